@@ -1,0 +1,165 @@
+#pragma once
+/// @file
+/// `Robot`: a loaded MuJoCo model, shared and immutable, with names that never fail silently.
+
+#include <mujoco/mujoco.h>
+
+#include <filesystem>
+#include <memory>
+#include <optional>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace mjarm {
+
+/// Deletes an `mjData` with `mj_deleteData`.
+struct DataDeleter {
+  void operator()(mjData* d) const noexcept { mj_deleteData(d); }
+};
+/// An `mjData` owned by its creator; every algorithm keeps its own scratch one.
+using DataPtr = std::unique_ptr<mjData, DataDeleter>;
+
+/// Joint types in MuJoCo's order.
+enum class JointType { free = mjJNT_FREE, ball = mjJNT_BALL, slide = mjJNT_SLIDE, hinge = mjJNT_HINGE };
+
+/// Human name of a joint type ("hinge", ...).
+const char* to_string(JointType type) noexcept;
+
+/// One joint of the model.
+struct JointInfo {
+  std::string name;
+  int id = 0;
+  JointType type = JointType::hinge;
+  int body = 0;          ///< body the joint moves
+  int qpos_address = 0;  ///< first index into qpos
+  int dof_address = 0;   ///< first index into qvel
+  bool limited = false;
+  double lower = 0.0;  ///< range [rad or m]; meaningful when limited
+  double upper = 0.0;
+};
+
+/// What an actuator does, read from its gain and bias parameters.
+enum class ActuatorKind {
+  motor,     ///< force = gear·ctrl
+  position,  ///< force = kp·(ctrl − q) − kv·q̇
+  velocity,  ///< force = kv·(ctrl − q̇)
+  general    ///< anything else
+};
+
+/// Human name of an actuator kind.
+const char* to_string(ActuatorKind kind) noexcept;
+
+/// One actuator of the model.
+struct ActuatorInfo {
+  std::string name;
+  int id = 0;
+  ActuatorKind kind = ActuatorKind::general;
+  std::optional<int> joint;  ///< joint it drives, when its transmission is a joint
+  bool ctrl_limited = false;
+  double ctrl_lower = 0.0;
+  double ctrl_upper = 0.0;
+  bool force_limited = false;
+  double force_lower = 0.0;
+  double force_upper = 0.0;
+  double gear = 1.0;  ///< first gear component
+};
+
+/// One sensor of the model; its values sit at sensordata[address, address + dimension).
+struct SensorInfo {
+  std::string name;
+  int id = 0;
+  std::string type;  ///< e.g. "jointpos", "framepos", "force"
+  int address = 0;
+  int dimension = 0;
+};
+
+/// A loaded model. Copies share one immutable `mjModel`; algorithms never modify it.
+class Robot {
+ public:
+  /// Loads MJCF or URDF from @p path. MJCF written for MuJoCo 3.x is translated for 2.2.2 (see
+  /// `load_warnings()`).
+  /// @throws Error naming the file and MuJoCo's message when the file is missing or invalid.
+  static Robot from_file(const std::filesystem::path& path);
+
+  /// Loads MJCF or URDF held in @p xml; relative asset paths resolve against @p base_dir.
+  /// @throws Error with MuJoCo's message (and line) when the XML is invalid.
+  static Robot from_string(std::string_view xml, const std::filesystem::path& base_dir = {});
+
+  /// Loads a bundled model by name ("panda", "ur5e_torque", ...).
+  /// @throws Error listing the bundled names when @p name is not one of them.
+  static Robot bundled(std::string_view name);
+
+  /// A bundled name when @p name_or_path has no '/' and no extension, a file path otherwise.
+  static Robot load(std::string_view name_or_path);
+
+  /// Directory of the bundled models: $MJARM_MODELS, else the source tree, else the install.
+  static std::filesystem::path models_dir();
+
+  /// Names of the bundled models (top-level files in `models_dir()`), sorted.
+  static std::vector<std::string> bundled_names();
+
+  /// The immutable MuJoCo model.
+  const mjModel& model() const noexcept { return *model_; }
+  /// The model's name.
+  const std::string& name() const noexcept { return name_; }
+  /// Where it was loaded from ("<string>" for strings).
+  const std::string& source() const noexcept { return source_; }
+  /// One message per rewrite done to load MuJoCo 3.x XML on 2.2.2.
+  const std::vector<std::string>& load_warnings() const noexcept { return warnings_; }
+
+  int nq() const noexcept { return model_->nq; }  ///< position coordinates
+  int nv() const noexcept { return model_->nv; }  ///< degrees of freedom
+  int nu() const noexcept { return model_->nu; }  ///< actuators
+
+  /// Ids by name; each throws `Error` naming the kind, the name, the model and close names.
+  int joint(std::string_view name) const;
+  int body(std::string_view name) const;
+  int site(std::string_view name) const;
+  int geom(std::string_view name) const;
+  int actuator(std::string_view name) const;
+  int sensor(std::string_view name) const;
+  int camera(std::string_view name) const;
+  int keyframe(std::string_view name) const;
+
+  std::vector<JointInfo> joints() const;
+  JointInfo joint_info(int id) const;
+  std::vector<ActuatorInfo> actuators() const;
+  std::vector<SensorInfo> sensors() const;
+  std::vector<std::string> body_names() const;
+  std::vector<std::string> site_names() const;
+  std::vector<std::string> camera_names() const;
+  std::vector<std::string> keyframe_names() const;
+
+  /// A fresh `mjData` at the model's reference configuration, kinematics computed.
+  DataPtr make_data() const;
+
+  /// Named state access. Spans cover the joint's coordinates (1 for hinge/slide, 4 ball, 7 free).
+  std::span<const double> qpos(const mjData& d, std::string_view joint) const;
+  std::span<const double> qvel(const mjData& d, std::string_view joint) const;
+  std::span<const double> sensor_values(const mjData& d, std::string_view sensor) const;
+  double ctrl(const mjData& d, std::string_view actuator) const;
+  /// @throws Error when @p values has the wrong size or holds NaN/inf.
+  void set_qpos(mjData& d, std::string_view joint, std::span<const double> values) const;
+  void set_qvel(mjData& d, std::string_view joint, std::span<const double> values) const;
+  void set_ctrl(mjData& d, std::string_view actuator, double value) const;
+
+  /// The qpos of keyframe @p name (nq values).
+  /// @throws Error when the keyframe does not exist.
+  std::vector<double> keyframe_qpos(std::string_view name) const;
+
+ private:
+  Robot(mjModel* model, std::string source, std::vector<std::string> warnings);
+
+  std::shared_ptr<const mjModel> model_;
+  std::string name_;
+  std::string source_;
+  std::vector<std::string> warnings_;
+};
+
+/// Installs MuJoCo error/warning handlers (once per process) that turn `mju_error` into
+/// `mjarm::Error` instead of exiting the process.
+void install_mujoco_handlers();
+
+}  // namespace mjarm

@@ -1,0 +1,33 @@
+#!/usr/bin/env bash
+# Installs the Debian 12 packages mjarm needs, skipping those already present. Idempotent.
+set -euo pipefail
+
+packages=(
+  build-essential cmake pkg-config
+  libmujoco-dev libeigen3-dev libtinyxml2-dev libcli11-dev nlohmann-json3-dev
+  libgtest-dev libgmock-dev libbenchmark-dev
+)
+# extra groups: "render" for the offscreen renderer, viewer, video and plots
+if [[ " $* " == *" render "* ]]; then
+  packages+=(libegl-dev libgl-dev libglfw3-dev libgles-dev ffmpeg gnuplot-nox xvfb xauth)
+fi
+
+missing=()
+for p in "${packages[@]}"; do
+  if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed"; then
+    missing+=("$p")
+  fi
+done
+if [ ${#missing[@]} -eq 0 ]; then
+  exit 0
+fi
+
+echo "mjarm setup: installing ${missing[*]}"
+sudo=""
+if [ "$(id -u)" -ne 0 ]; then
+  command -v sudo >/dev/null || { echo "mjarm setup: run as root or install sudo" >&2; exit 1; }
+  sudo="sudo"
+fi
+export DEBIAN_FRONTEND=noninteractive
+$sudo apt-get update -qq
+$sudo apt-get install -y -qq --no-install-recommends "${missing[@]}"

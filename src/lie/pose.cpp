@@ -1,0 +1,57 @@
+#include "mjarm/lie/pose.hpp"
+
+#include "mjarm/lie/rotation.hpp"
+
+namespace mjarm {
+
+Pose Pose::identity() noexcept { return Pose{}; }
+
+Pose Pose::from_isometry(const Eigen::Isometry3d& X) noexcept {
+  return Pose{X.linear(), X.translation()};
+}
+
+Pose Pose::from_matrix(const Eigen::Matrix4d& M) noexcept {
+  return Pose{M.topLeftCorner<3, 3>(), M.topRightCorner<3, 1>()};
+}
+
+Pose Pose::from_quaternion(const Eigen::Vector3d& p, const Eigen::Vector4d& q_wxyz) {
+  return Pose{rotation_from_quaternion(q_wxyz), p};
+}
+
+Pose Pose::from_rpy(const Eigen::Vector3d& p, const Eigen::Vector3d& rpy) noexcept {
+  return Pose{rotation_from_rpy(rpy), p};
+}
+
+Eigen::Isometry3d Pose::to_isometry() const noexcept {
+  Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
+  X.linear() = R;
+  X.translation() = p;
+  return X;
+}
+
+Eigen::Matrix4d Pose::matrix() const noexcept {
+  Eigen::Matrix4d M = Eigen::Matrix4d::Identity();
+  M.topLeftCorner<3, 3>() = R;
+  M.topRightCorner<3, 1>() = p;
+  return M;
+}
+
+Pose Pose::inverse() const noexcept {
+  const Eigen::Matrix3d Rt = R.transpose();
+  return Pose{Rt, -(Rt * p)};
+}
+
+Eigen::Vector3d Pose::act(const Eigen::Vector3d& point) const noexcept { return R * point + p; }
+
+Eigen::Vector3d Pose::rotate(const Eigen::Vector3d& vector) const noexcept { return R * vector; }
+
+Pose Pose::operator*(const Pose& X_BC) const noexcept {
+  return Pose{R * X_BC.R, R * X_BC.p + p};
+}
+
+bool Pose::is_approx(const Pose& other, double tolerance) const noexcept {
+  return (R - other.R).cwiseAbs().maxCoeff() <= tolerance &&
+         (p - other.p).cwiseAbs().maxCoeff() <= tolerance;
+}
+
+}  // namespace mjarm

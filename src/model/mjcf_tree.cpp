@@ -1,0 +1,168 @@
+// XML element tree used by the MJCF translator: parsing (tinyxml2), writing, attribute helpers.
+
+#include <tinyxml2.h>
+
+#include <cerrno>
+#include <charconv>
+#include <cstdlib>
+#include <sstream>
+
+#include "mjarm/error.hpp"
+#include "mjcf_detail.hpp"
+
+namespace mjarm::mjcf_detail {
+
+const std::string* XmlNode::find(std::string_view key) const {
+  for (const auto& [k, v] : attrs) {
+    if (k == key) return &v;
+  }
+  return nullptr;
+}
+
+void XmlNode::set(std::string_view key, std::string value) {
+  for (auto& [k, v] : attrs) {
+    if (k == key) {
+      v = std::move(value);
+      return;
+    }
+  }
+  attrs.emplace_back(std::string(key), std::move(value));
+}
+
+bool XmlNode::erase(std::string_view key) {
+  for (auto it = attrs.begin(); it != attrs.end(); ++it) {
+    if (it->first == key) {
+      attrs.erase(it);
+      return true;
+    }
+  }
+  return false;
+}
+
+std::string label(const XmlNode& n) {
+  std::string s = n.tag;
+  if (const std::string* name = n.find("name")) s += " '" + *name + "'";
+  s += " (line " + std::to_string(n.line);
+  if (n.file) s += " of " + n.file->string();
+  return s + ")";
+}
+
+void fail(const XmlNode& n, const std::string& what) {
+  throw Error("MJCF translation: " + label(n) + ": " + what);
+}
+
+void Context::warn(const XmlNode& n, const std::string& what) {
+  warnings.push_back(label(n) + ": " + what);
+}
+
+std::vector<double> parse_numbers(const XmlNode& n, std::string_view key, std::string_view text) {
+  std::vector<double> out;
+  std::string buf(text);
+  const char* p = buf.c_str();
+  while (true) {
+    while (*p == ' ' || *p == '\t' || *p == '\n' || *p == '\r') ++p;
+    if (*p == '\0') break;
+    char* end = nullptr;
+    errno = 0;
+    const double v = std::strtod(p, &end);
+    if (end == p || errno == ERANGE) {
+      fail(n, "attribute " + std::string(key) + "=\"" + buf + "\" is not a list of numbers");
+    }
+    out.push_back(v);
+    p = end;
+  }
+  return out;
+}
+
+std::vector<double> numbers(const XmlNode& n, std::string_view key) {
+  const std::string* v = n.find(key);
+  return v ? parse_numbers(n, key, *v) : std::vector<double>{};
+}
+
+std::string format_numbers(std::span<const double> v) {
+  std::string out;
+  char buf[64];
+  for (std::size_t i = 0; i < v.size(); ++i) {
+    // shortest form that reads back to the same double
+    const double x = v[i] == 0.0 ? 0.0 : v[i];  // no "-0"
+    const auto res = std::to_chars(buf, buf + sizeof(buf), x);
+    if (i) out += ' ';
+    out.append(buf, res.ptr);
+  }
+  return out;
+}
+
+namespace {
+
+XmlNode convert(const tinyxml2::XMLElement& e,
+                const std::shared_ptr<const std::filesystem::path>& file) {
+  XmlNode n;
+  n.tag = e.Name();
+  n.line = e.GetLineNum();
+  n.file = file;
+  for (const tinyxml2::XMLAttribute* a = e.FirstAttribute(); a; a = a->Next()) {
+    n.attrs.emplace_back(a->Name(), a->Value());
+  }
+  for (const tinyxml2::XMLElement* c = e.FirstChildElement(); c; c = c->NextSiblingElement()) {
+    n.children.push_back(convert(*c, file));
+  }
+  return n;
+}
+
+void escape(std::string& out, std::string_view s) {
+  for (const char c : s) {
+    switch (c) {
+      case '&': out += "&amp;"; break;
+      case '<': out += "&lt;"; break;
+      case '>': out += "&gt;"; break;
+      case '"': out += "&quot;"; break;
+      case '\n': out += "&#10;"; break;
+      default: out += c;
+    }
+  }
+}
+
+void write(std::string& out, const XmlNode& n, int depth) {
+  out.append(static_cast<std::size_t>(2 * depth), ' ');
+  out += '<';
+  out += n.tag;
+  for (const auto& [k, v] : n.attrs) {
+    out += ' ';
+    out += k;
+    out += "=\"";
+    escape(out, v);
+    out += '"';
+  }
+  if (n.children.empty()) {
+    out += "/>\n";
+    return;
+  }
+  out += ">\n";
+  for (const auto& c : n.children) write(out, c, depth + 1);
+  out.append(static_cast<std::size_t>(2 * depth), ' ');
+  out += "</" + n.tag + ">\n";
+}
+
+}  // namespace
+
+XmlNode parse_document(std::string_view text, std::shared_ptr<const std::filesystem::path> file) {
+  tinyxml2::XMLDocument doc;
+  const std::string source = file ? file->string() : std::string("<input>");
+  if (doc.Parse(text.data(), text.size()) != tinyxml2::XML_SUCCESS) {
+    std::ostringstream msg;
+    msg << "MJCF translation: malformed XML in " << source << " at line " << doc.ErrorLineNum()
+        << ": " << doc.ErrorName() << ": " << doc.ErrorStr();
+    throw Error(msg.str());
+  }
+  const tinyxml2::XMLElement* root = doc.RootElement();
+  if (!root) throw Error("MJCF translation: " + source + " has no root element");
+  return convert(*root, file);
+}
+
+std::string write_document(const XmlNode& root) {
+  std::string out;
+  write(out, root, 0);
+  return out;
+}
+
+}  // namespace mjarm::mjcf_detail

@@ -1,0 +1,345 @@
+#include "mjarm/model/robot.hpp"
+
+#include <tinyxml2.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <cstring>
+#include <fstream>
+#include <iostream>
+#include <mutex>
+#include <sstream>
+
+#include "mjarm/error.hpp"
+#include "mjarm/model/mjcf_translate.hpp"
+#include "mjarm/model/names.hpp"
+
+namespace mjarm {
+namespace {
+
+[[noreturn]] void throw_mujoco_error(const char* message) {
+  throw Error(std::string("MuJoCo error: ") + message);
+}
+
+void print_mujoco_warning(const char* message) { std::cerr << "mujoco warning: " << message << "\n"; }
+
+std::string read_text(const std::filesystem::path& path) {
+  std::error_code ec;
+  if (!std::filesystem::exists(path, ec)) throw Error("model file '" + path.string() + "' does not exist");
+  if (std::filesystem::is_directory(path, ec))
+    throw Error("model path '" + path.string() + "' is a directory, expected an MJCF or URDF file");
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw Error("model file '" + path.string() + "' cannot be read");
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+/// The root element's name ("mujoco" or "robot").
+/// @throws Error with the parser's message and line when the XML is malformed.
+std::string root_element(std::string_view xml, const std::string& source) {
+  tinyxml2::XMLDocument doc;
+  if (doc.Parse(xml.data(), xml.size()) != tinyxml2::XML_SUCCESS) {
+    throw Error("malformed XML in " + source + " (line " + std::to_string(doc.ErrorLineNum()) +
+                "): " + doc.ErrorStr());
+  }
+  const tinyxml2::XMLElement* root = doc.RootElement();
+  if (root == nullptr) throw Error("no root element in " + source);
+  return root->Name();
+}
+
+/// Loads XML text through MuJoCo's virtual file system; paths in it must be absolute.
+mjModel* load_from_memory(const std::string& xml, const std::string& source) {
+  auto vfs = std::make_unique<mjVFS>();
+  mj_defaultVFS(vfs.get());
+  const char* file_name = "mjarm_model.xml";
+  if (mj_makeEmptyFileVFS(vfs.get(), file_name, static_cast<int>(xml.size())) != 0)
+    throw Error("cannot stage " + source + " in MuJoCo's virtual file system");
+  const int index = mj_findFileVFS(vfs.get(), file_name);
+  std::memcpy(vfs->filedata[index], xml.data(), xml.size());
+  char error[1024] = "";
+  mjModel* model = mj_loadXML(file_name, vfs.get(), error, sizeof(error));
+  mj_deleteVFS(vfs.get());
+  if (model == nullptr) throw Error("cannot load " + source + ": " + error);
+  if (error[0] != '\0') print_mujoco_warning(error);
+  return model;
+}
+
+mjModel* load_from_disk(const std::filesystem::path& path) {
+  char error[1024] = "";
+  mjModel* model = mj_loadXML(path.c_str(), nullptr, error, sizeof(error));
+  if (model == nullptr) throw Error("cannot load '" + path.string() + "': " + error);
+  if (error[0] != '\0') print_mujoco_warning(error);
+  return model;
+}
+
+ActuatorKind classify(const mjModel& m, int id) {
+  const double* gain = m.actuator_gainprm + id * mjNGAIN;
+  const double* bias = m.actuator_biasprm + id * mjNBIAS;
+  const bool fixed_gain = m.actuator_gaintype[id] == mjGAIN_FIXED;
+  if (m.actuator_dyntype[id] != mjDYN_NONE || !fixed_gain) return ActuatorKind::general;
+  if (m.actuator_biastype[id] == mjBIAS_NONE) return ActuatorKind::motor;
+  if (m.actuator_biastype[id] == mjBIAS_AFFINE) {
+    if (bias[0] == 0.0 && std::abs(bias[1] + gain[0]) <= 1e-12 * std::abs(gain[0]))
+      return ActuatorKind::position;
+    if (bias[0] == 0.0 && bias[1] == 0.0 && std::abs(bias[2] + gain[0]) <= 1e-12 * std::abs(gain[0]))
+      return ActuatorKind::velocity;
+  }
+  return ActuatorKind::general;
+}
+
+int joint_coordinates(JointType type, bool position) {
+  switch (type) {
+    case JointType::free: return position ? 7 : 6;
+    case JointType::ball: return position ? 4 : 3;
+    default: return 1;
+  }
+}
+
+void check_values(std::span<const double> values, std::size_t expected, const std::string& what) {
+  if (values.size() != expected) {
+    throw Error(what + " expects " + std::to_string(expected) + " value(s), got " +
+                std::to_string(values.size()));
+  }
+  for (double v : values)
+    if (!std::isfinite(v)) throw Error(what + " got a non-finite value");
+}
+
+}  // namespace
+
+const char* to_string(JointType type) noexcept {
+  switch (type) {
+    case JointType::free: return "free";
+    case JointType::ball: return "ball";
+    case JointType::slide: return "slide";
+    case JointType::hinge: return "hinge";
+  }
+  return "unknown";
+}
+
+const char* to_string(ActuatorKind kind) noexcept {
+  switch (kind) {
+    case ActuatorKind::motor: return "motor";
+    case ActuatorKind::position: return "position";
+    case ActuatorKind::velocity: return "velocity";
+    case ActuatorKind::general: return "general";
+  }
+  return "unknown";
+}
+
+void install_mujoco_handlers() {
+  static std::once_flag once;
+  std::call_once(once, [] {
+    mju_user_error = throw_mujoco_error;
+    mju_user_warning = print_mujoco_warning;
+  });
+}
+
+Robot::Robot(mjModel* model, std::string source, std::vector<std::string> warnings)
+    : model_(model, [](const mjModel* m) { mj_deleteModel(const_cast<mjModel*>(m)); }),
+      name_(model_name(*model)),
+      source_(std::move(source)),
+      warnings_(std::move(warnings)) {}
+
+Robot Robot::from_file(const std::filesystem::path& path) {
+  install_mujoco_handlers();
+  const std::string xml = read_text(path);
+  const std::string source = "'" + path.string() + "'";
+  if (root_element(xml, source) != "mujoco") return Robot(load_from_disk(path), path.string(), {});
+  MjcfTranslation translated = translate_mjcf(xml, std::filesystem::absolute(path).parent_path());
+  // untouched files load from disk so that MuJoCo resolves their assets itself
+  if (translated.warnings.empty()) return Robot(load_from_disk(path), path.string(), {});
+  for (const auto& warning : translated.warnings) std::cerr << "mjarm: " << path.string() << ": " << warning << "\n";
+  return Robot(load_from_memory(translated.xml, source), path.string(), std::move(translated.warnings));
+}
+
+Robot Robot::from_string(std::string_view xml, const std::filesystem::path& base_dir) {
+  install_mujoco_handlers();
+  const std::string source = "XML string";
+  const std::string root = root_element(xml, source);
+  if (root != "mujoco") {
+    // URDF and other formats MuJoCo reads go through unchanged
+    return Robot(load_from_memory(std::string(xml), source), "<string>", {});
+  }
+  const std::filesystem::path base = base_dir.empty() ? std::filesystem::current_path() : base_dir;
+  MjcfTranslation translated = translate_mjcf(xml, std::filesystem::absolute(base));
+  for (const auto& warning : translated.warnings) std::cerr << "mjarm: " << warning << "\n";
+  return Robot(load_from_memory(translated.xml, source), "<string>", std::move(translated.warnings));
+}
+
+std::filesystem::path Robot::models_dir() {
+  if (const char* env = std::getenv("MJARM_MODELS"); env != nullptr && *env != '\0') return env;
+  std::error_code ec;
+  if (std::filesystem::is_directory(MJARM_MODELS_SOURCE_DIR, ec)) return MJARM_MODELS_SOURCE_DIR;
+  return MJARM_MODELS_INSTALL_DIR;
+}
+
+std::vector<std::string> Robot::bundled_names() {
+  std::vector<std::string> names;
+  std::error_code ec;
+  for (const auto& entry : std::filesystem::directory_iterator(models_dir(), ec)) {
+    if (entry.is_regular_file() && entry.path().extension() == ".xml")
+      names.push_back(entry.path().stem().string());
+  }
+  std::sort(names.begin(), names.end());
+  return names;
+}
+
+Robot Robot::bundled(std::string_view name) {
+  const auto path = models_dir() / (std::string(name) + ".xml");
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec)) {
+    const auto names = bundled_names();
+    std::string message = "no bundled model named '" + std::string(name) + "' in " + models_dir().string();
+    if (!names.empty()) {
+      message += "; bundled models: ";
+      for (std::size_t i = 0; i < names.size(); ++i) message += (i ? ", " : "") + names[i];
+    }
+    throw Error(message);
+  }
+  return from_file(path);
+}
+
+Robot Robot::load(std::string_view name_or_path) {
+  const std::filesystem::path path(name_or_path);
+  const bool looks_like_path = path.has_extension() || path.has_parent_path();
+  return looks_like_path ? from_file(path) : bundled(name_or_path);
+}
+
+int Robot::joint(std::string_view n) const { return find_object(*model_, mjOBJ_JOINT, n); }
+int Robot::body(std::string_view n) const { return find_object(*model_, mjOBJ_BODY, n); }
+int Robot::site(std::string_view n) const { return find_object(*model_, mjOBJ_SITE, n); }
+int Robot::geom(std::string_view n) const { return find_object(*model_, mjOBJ_GEOM, n); }
+int Robot::actuator(std::string_view n) const { return find_object(*model_, mjOBJ_ACTUATOR, n); }
+int Robot::sensor(std::string_view n) const { return find_object(*model_, mjOBJ_SENSOR, n); }
+int Robot::camera(std::string_view n) const { return find_object(*model_, mjOBJ_CAMERA, n); }
+int Robot::keyframe(std::string_view n) const { return find_object(*model_, mjOBJ_KEY, n); }
+
+JointInfo Robot::joint_info(int id) const {
+  const mjModel& m = *model_;
+  if (id < 0 || id >= m.njnt)
+    throw Error("joint id " + std::to_string(id) + " out of range [0, " + std::to_string(m.njnt) + ")");
+  JointInfo info;
+  const char* n = mj_id2name(&m, mjOBJ_JOINT, id);
+  info.name = n ? n : "";
+  info.id = id;
+  info.type = static_cast<JointType>(m.jnt_type[id]);
+  info.body = m.jnt_bodyid[id];
+  info.qpos_address = m.jnt_qposadr[id];
+  info.dof_address = m.jnt_dofadr[id];
+  info.limited = m.jnt_limited[id] != 0;
+  info.lower = m.jnt_range[2 * id];
+  info.upper = m.jnt_range[2 * id + 1];
+  return info;
+}
+
+std::vector<JointInfo> Robot::joints() const {
+  std::vector<JointInfo> result;
+  for (int id = 0; id < model_->njnt; ++id) result.push_back(joint_info(id));
+  return result;
+}
+
+std::vector<ActuatorInfo> Robot::actuators() const {
+  const mjModel& m = *model_;
+  std::vector<ActuatorInfo> result;
+  for (int id = 0; id < m.nu; ++id) {
+    ActuatorInfo info;
+    const char* n = mj_id2name(&m, mjOBJ_ACTUATOR, id);
+    info.name = n ? n : "";
+    info.id = id;
+    info.kind = classify(m, id);
+    if (m.actuator_trntype[id] == mjTRN_JOINT) info.joint = m.actuator_trnid[2 * id];
+    info.ctrl_limited = m.actuator_ctrllimited[id] != 0;
+    info.ctrl_lower = m.actuator_ctrlrange[2 * id];
+    info.ctrl_upper = m.actuator_ctrlrange[2 * id + 1];
+    info.force_limited = m.actuator_forcelimited[id] != 0;
+    info.force_lower = m.actuator_forcerange[2 * id];
+    info.force_upper = m.actuator_forcerange[2 * id + 1];
+    info.gear = m.actuator_gear[6 * id];
+    result.push_back(std::move(info));
+  }
+  return result;
+}
+
+std::vector<SensorInfo> Robot::sensors() const {
+  static const char* const kTypeNames[] = {
+      "touch", "accelerometer", "velocimeter", "gyro", "force", "torque", "magnetometer",
+      "rangefinder", "jointpos", "jointvel", "tendonpos", "tendonvel", "actuatorpos",
+      "actuatorvel", "actuatorfrc", "ballquat", "ballangvel", "jointlimitpos", "jointlimitvel",
+      "jointlimitfrc", "tendonlimitpos", "tendonlimitvel", "tendonlimitfrc", "framepos",
+      "framequat", "framexaxis", "frameyaxis", "framezaxis", "framelinvel", "frameangvel",
+      "framelinacc", "frameangacc", "subtreecom", "subtreelinvel", "subtreeangmom", "clock",
+      "user"};
+  const mjModel& m = *model_;
+  std::vector<SensorInfo> result;
+  for (int id = 0; id < m.nsensor; ++id) {
+    SensorInfo info;
+    const char* n = mj_id2name(&m, mjOBJ_SENSOR, id);
+    info.name = n ? n : "";
+    info.id = id;
+    const int type = m.sensor_type[id];
+    info.type = type >= 0 && type <= mjSENS_USER ? kTypeNames[type] : "unknown";
+    info.address = m.sensor_adr[id];
+    info.dimension = m.sensor_dim[id];
+    result.push_back(std::move(info));
+  }
+  return result;
+}
+
+std::vector<std::string> Robot::body_names() const { return object_names(*model_, mjOBJ_BODY); }
+std::vector<std::string> Robot::site_names() const { return object_names(*model_, mjOBJ_SITE); }
+std::vector<std::string> Robot::camera_names() const { return object_names(*model_, mjOBJ_CAMERA); }
+std::vector<std::string> Robot::keyframe_names() const { return object_names(*model_, mjOBJ_KEY); }
+
+DataPtr Robot::make_data() const {
+  DataPtr data(mj_makeData(model_.get()));
+  if (!data) throw Error("cannot allocate mjData for model '" + name_ + "'");
+  mj_forward(model_.get(), data.get());
+  return data;
+}
+
+std::span<const double> Robot::qpos(const mjData& d, std::string_view joint_name) const {
+  const JointInfo info = joint_info(joint(joint_name));
+  return {d.qpos + info.qpos_address, static_cast<std::size_t>(joint_coordinates(info.type, true))};
+}
+
+std::span<const double> Robot::qvel(const mjData& d, std::string_view joint_name) const {
+  const JointInfo info = joint_info(joint(joint_name));
+  return {d.qvel + info.dof_address, static_cast<std::size_t>(joint_coordinates(info.type, false))};
+}
+
+std::span<const double> Robot::sensor_values(const mjData& d, std::string_view sensor_name) const {
+  const int id = sensor(sensor_name);
+  return {d.sensordata + model_->sensor_adr[id], static_cast<std::size_t>(model_->sensor_dim[id])};
+}
+
+double Robot::ctrl(const mjData& d, std::string_view actuator_name) const {
+  return d.ctrl[actuator(actuator_name)];
+}
+
+void Robot::set_qpos(mjData& d, std::string_view joint_name, std::span<const double> values) const {
+  const JointInfo info = joint_info(joint(joint_name));
+  check_values(values, joint_coordinates(info.type, true), "qpos of joint '" + info.name + "'");
+  std::copy(values.begin(), values.end(), d.qpos + info.qpos_address);
+}
+
+void Robot::set_qvel(mjData& d, std::string_view joint_name, std::span<const double> values) const {
+  const JointInfo info = joint_info(joint(joint_name));
+  check_values(values, joint_coordinates(info.type, false), "qvel of joint '" + info.name + "'");
+  std::copy(values.begin(), values.end(), d.qvel + info.dof_address);
+}
+
+void Robot::set_ctrl(mjData& d, std::string_view actuator_name, double value) const {
+  const int id = actuator(actuator_name);
+  check_values({&value, 1}, 1, "ctrl of actuator '" + std::string(actuator_name) + "'");
+  d.ctrl[id] = value;
+}
+
+std::vector<double> Robot::keyframe_qpos(std::string_view key_name) const {
+  const int id = keyframe(key_name);
+  const double* begin = model_->key_qpos + static_cast<std::ptrdiff_t>(id) * model_->nq;
+  return {begin, begin + model_->nq};
+}
+
+}  // namespace mjarm

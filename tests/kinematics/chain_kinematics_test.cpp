@@ -1,0 +1,178 @@
+#include "mjarm/kinematics/chain_kinematics.hpp"
+
+#include <gtest/gtest.h>
+
+#include <random>
+
+#include "mjarm/error.hpp"
+#include "support/test_models.hpp"
+
+namespace mjarm {
+namespace {
+
+Eigen::VectorXd random_q(const Chain& chain, std::mt19937& rng) {
+  Eigen::VectorXd q(chain.size());
+  for (int i = 0; i < chain.size(); ++i) {
+    const double lo = std::isfinite(chain.lower()[i]) ? chain.lower()[i] : -3.0;
+    const double hi = std::isfinite(chain.upper()[i]) ? chain.upper()[i] : 3.0;
+    q[i] = std::uniform_real_distribution<double>(lo, hi)(rng);
+  }
+  return q;
+}
+
+/// Pose and world-aligned Jacobian of a chain's frame computed by MuJoCo itself.
+struct MujocoReference {
+  Pose X_WE;
+  Matrix6Xd J;
+};
+
+MujocoReference mujoco_reference(const Chain& chain, mjData* d, const Eigen::VectorXd& q) {
+  const mjModel& m = chain.robot().model();
+  chain.scatter(q, d->qpos);
+  mj_kinematics(&m, d);
+  mj_comPos(&m, d);
+  MujocoReference ref;
+  std::vector<double> jacp(3 * m.nv), jacr(3 * m.nv);
+  const FrameRef& f = chain.frame();
+  const double* pos = f.kind == FrameKind::site ? d->site_xpos + 3 * f.id : d->xpos + 3 * f.id;
+  const double* mat = f.kind == FrameKind::site ? d->site_xmat + 9 * f.id : d->xmat + 9 * f.id;
+  ref.X_WE.p = Eigen::Map<const Eigen::Vector3d>(pos);
+  ref.X_WE.R = Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(mat);
+  if (f.kind == FrameKind::site) {
+    mj_jacSite(&m, d, jacp.data(), jacr.data(), f.id);
+  } else {
+    mj_jacBody(&m, d, jacp.data(), jacr.data(), f.id);
+  }
+  ref.J.resize(6, chain.size());
+  for (int i = 0; i < chain.size(); ++i) {
+    const int dof = chain.dof_address(i);
+    for (int r = 0; r < 3; ++r) {
+      ref.J(r, i) = jacp[r * m.nv + dof];
+      ref.J(3 + r, i) = jacr[r * m.nv + dof];
+    }
+  }
+  return ref;
+}
+
+class ChainKinematicsTest : public ::testing::Test {
+ protected:
+  Robot robot_ = Robot::from_string(test::kTrickyArm);
+};
+
+TEST_F(ChainKinematicsTest, MatchesMujocoOnTrickyArm) {
+  const Chain chain(robot_, "tool");
+  ASSERT_EQ(chain.size(), 5);  // the off-path hinge and the free box are not on the path
+  ChainKinematics kin(chain);
+  DataPtr d = robot_.make_data();
+  std::mt19937 rng(7);
+  Matrix6Xd J(6, chain.size());
+  for (int trial = 0; trial < 200; ++trial) {
+    const Eigen::VectorXd q = random_q(chain, rng);
+    const MujocoReference ref = mujoco_reference(chain, d.get(), q);
+    kin.update(q);
+    kin.jacobian(J);
+    EXPECT_LT((kin.pose().p - ref.X_WE.p).norm(), 1e-12);
+    EXPECT_LT((kin.pose().R - ref.X_WE.R).norm(), 1e-12);
+    EXPECT_LT((J - ref.J).norm(), 1e-12);
+  }
+}
+
+TEST_F(ChainKinematicsTest, BodyFrameAndExplicitJointList) {
+  // j2 and j4 only; the others stay at the fixed configuration we set
+  const Chain chain(robot_, {"j4", "j2", "off_path"}, "l3");
+  ChainKinematics kin(chain);
+  DataPtr d = robot_.make_data();
+  std::mt19937 rng(3);
+  Eigen::VectorXd fixed = Eigen::Map<const Eigen::VectorXd>(robot_.model().qpos0, robot_.nq());
+  fixed[robot_.model().jnt_qposadr[robot_.joint("j1")]] = 0.7;
+  fixed[robot_.model().jnt_qposadr[robot_.joint("j3")]] = 0.05;
+  kin.set_fixed_qpos(fixed);
+  Matrix6Xd J(6, 3);
+  for (int trial = 0; trial < 50; ++trial) {
+    Eigen::VectorXd q = random_q(chain, rng);
+    Eigen::Map<Eigen::VectorXd>(d->qpos, robot_.nq()) = fixed;
+    const MujocoReference ref = mujoco_reference(chain, d.get(), q);
+    kin.update(q);
+    kin.jacobian(J);
+    EXPECT_LT((kin.pose().p - ref.X_WE.p).norm(), 1e-12);
+    EXPECT_LT((kin.pose().R - ref.X_WE.R).norm(), 1e-12);
+    EXPECT_LT((J - ref.J).norm(), 1e-12);
+    EXPECT_EQ(J.col(2).norm(), 0.0);  // off_path does not move l3
+  }
+  EXPECT_FALSE(kin.moves_frame(2));
+}
+
+TEST_F(ChainKinematicsTest, JacobianFramesAgreeWithFiniteDifferences) {
+  const Chain chain(robot_, "tool");
+  ChainKinematics kin(chain);
+  std::mt19937 rng(11);
+  const int n = chain.size();
+  Matrix6Xd J_aligned(6, n), J_local(6, n), J_world(6, n);
+  for (int trial = 0; trial < 20; ++trial) {
+    const Eigen::VectorXd q = random_q(chain, rng);
+    const Pose X = kin.update(q);
+    kin.jacobian(J_aligned, JacobianFrame::world_aligned);
+    kin.jacobian(J_local, JacobianFrame::local);
+    kin.jacobian(J_world, JacobianFrame::world);
+    const double h = 1e-6;
+    for (int i = 0; i < n; ++i) {
+      Eigen::VectorXd qp = q, qm = q;
+      qp[i] += h;
+      qm[i] -= h;
+      const Pose Xp = kin.update(qp);
+      const Pose Xm = kin.update(qm);
+      const Eigen::Vector3d v = (Xp.p - Xm.p) / (2 * h);
+      // angular velocity from Ṙ Rᵀ
+      const Eigen::Matrix3d W = (Xp.R - Xm.R) / (2 * h) * X.R.transpose();
+      const Eigen::Vector3d w(W(2, 1), W(0, 2), W(1, 0));
+      EXPECT_LT((J_aligned.col(i).head<3>() - v).norm(), 1e-8);
+      EXPECT_LT((J_aligned.col(i).tail<3>() - w).norm(), 1e-8);
+      EXPECT_LT((J_local.col(i).head<3>() - X.R.transpose() * v).norm(), 1e-8);
+      EXPECT_LT((J_local.col(i).tail<3>() - X.R.transpose() * w).norm(), 1e-8);
+      EXPECT_LT((J_world.col(i).head<3>() - (v - w.cross(X.p))).norm(), 1e-8);
+    }
+  }
+}
+
+TEST_F(ChainKinematicsTest, BiasAccelerationMatchesFiniteDifferenceOfJacobian) {
+  const Chain chain(robot_, "tool");
+  ChainKinematics kin(chain);
+  std::mt19937 rng(5);
+  const int n = chain.size();
+  Matrix6Xd Jp(6, n), Jm(6, n);
+  for (int trial = 0; trial < 20; ++trial) {
+    const Eigen::VectorXd q = random_q(chain, rng);
+    Eigen::VectorXd qd = Eigen::VectorXd::Random(n);
+    const double h = 1e-6;
+    kin.update(q + h * qd);
+    kin.jacobian(Jp);
+    kin.update(q - h * qd);
+    kin.jacobian(Jm);
+    const Vector6d expected = (Jp - Jm) / (2 * h) * qd;
+    kin.update(q);
+    EXPECT_LT((kin.bias_acceleration(qd) - expected).norm(), 1e-7);
+  }
+}
+
+TEST_F(ChainKinematicsTest, CostDoesNotDependOnOtherBodies) {
+  // the chain walks only its own path: the free box and the branch are never visited
+  const Chain chain(robot_, "tool");
+  ChainKinematics kin(chain);
+  Eigen::VectorXd fixed = Eigen::Map<const Eigen::VectorXd>(robot_.model().qpos0, robot_.nq());
+  fixed[robot_.model().jnt_qposadr[robot_.joint("box_free")]] = 1e9;  // far away, irrelevant
+  const Pose before = kin.update(chain.center());
+  kin.set_fixed_qpos(fixed);
+  const Pose after = kin.update(chain.center());
+  EXPECT_EQ((before.p - after.p).norm(), 0.0);
+}
+
+TEST_F(ChainKinematicsTest, BadFixedQposIsRejected) {
+  ChainKinematics kin(Chain(robot_, "tool"));
+  EXPECT_THROW(kin.set_fixed_qpos(Eigen::VectorXd::Zero(3)), Error);
+  Eigen::VectorXd bad = Eigen::VectorXd::Zero(robot_.nq());
+  bad[0] = std::nan("");
+  EXPECT_THROW(kin.set_fixed_qpos(bad), Error);
+}
+
+}  // namespace
+}  // namespace mjarm

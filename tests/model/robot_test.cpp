@@ -1,0 +1,120 @@
+#include "mjarm/model/robot.hpp"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "mjarm/error.hpp"
+#include "mjarm/model/names.hpp"
+#include "support/test_models.hpp"
+
+namespace mjarm {
+namespace {
+
+std::string error_of(const std::function<void()>& f) {
+  try {
+    f();
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "no error";
+}
+
+TEST(Robot, ReportsWhatTheModelHolds) {
+  const Robot robot = Robot::from_string(test::kTrickyArm);
+  EXPECT_EQ(robot.name(), "tricky");
+  EXPECT_EQ(robot.nq(), 6 + 7);
+  EXPECT_EQ(robot.nv(), 6 + 6);
+  const auto joints = robot.joints();
+  ASSERT_EQ(joints.size(), 7u);
+  EXPECT_EQ(joints[2].name, "off_path");
+  EXPECT_EQ(joints[3].type, JointType::slide);
+  EXPECT_TRUE(joints[3].limited);
+  EXPECT_DOUBLE_EQ(joints[3].upper, 0.2);
+  EXPECT_EQ(joints[6].type, JointType::free);
+  EXPECT_EQ(robot.site("tool"), 0);
+}
+
+TEST(Robot, UnknownNamesThrowWithTheClosestNames) {
+  const Robot robot = Robot::from_string(test::kTrickyArm);
+  const std::string message = error_of([&] { robot.site("tol"); });
+  EXPECT_NE(message.find("site 'tol' not found in model 'tricky'"), std::string::npos) << message;
+  EXPECT_NE(message.find("tool"), std::string::npos) << message;
+  EXPECT_NE(error_of([&] { robot.joint("j9"); }).find("closest: j"), std::string::npos);
+  EXPECT_NE(error_of([&] { robot.camera("top"); }).find("no named camera"), std::string::npos);
+  EXPECT_THROW(robot.actuator("motor"), Error);
+  EXPECT_THROW(robot.keyframe("home"), Error);
+}
+
+TEST(Robot, NamedStateAccessChecksSizesAndValues) {
+  const Robot robot = Robot::from_string(test::kTrickyArm);
+  DataPtr d = robot.make_data();
+  const double angle = 0.25;
+  robot.set_qpos(*d, "j2", {&angle, 1});
+  EXPECT_EQ(robot.qpos(*d, "j2")[0], 0.25);
+  EXPECT_EQ(robot.qpos(*d, "box_free").size(), 7u);
+  EXPECT_EQ(robot.qvel(*d, "box_free").size(), 6u);
+  const double two[2] = {0, 0};
+  EXPECT_THROW(robot.set_qpos(*d, "j2", two), Error);
+  const double nan = std::nan("");
+  EXPECT_THROW(robot.set_qpos(*d, "j2", {&nan, 1}), Error);
+  EXPECT_THROW(robot.set_qvel(*d, "nope", {&angle, 1}), Error);
+}
+
+TEST(Robot, MissingFileAndMalformedXmlGiveClearErrors) {
+  EXPECT_NE(error_of([] { Robot::from_file("/nonexistent/arm.xml"); }).find("does not exist"),
+            std::string::npos);
+  const std::string malformed = error_of([] { Robot::from_string("<mujoco><worldbody></mujoco>"); });
+  EXPECT_NE(malformed.find("malformed XML"), std::string::npos) << malformed;
+  EXPECT_NE(malformed.find("line 1"), std::string::npos) << malformed;
+  const std::string invalid =
+      error_of([] { Robot::from_string("<mujoco><worldbody><geom type=\"blob\"/></worldbody></mujoco>"); });
+  EXPECT_NE(invalid.find("cannot load"), std::string::npos) << invalid;
+  EXPECT_NE(error_of([] { Robot::bundled("pandaa"); }).find("no bundled model named 'pandaa'"),
+            std::string::npos);
+}
+
+TEST(Robot, LoadsUrdf) {
+  const char* urdf = R"(<?xml version="1.0"?>
+<robot name="two_link">
+  <link name="base"><inertial><mass value="1"/><inertia ixx="0.01" iyy="0.01" izz="0.01" ixy="0" ixz="0" iyz="0"/></inertial></link>
+  <link name="upper"><inertial><mass value="1"/><inertia ixx="0.01" iyy="0.01" izz="0.01" ixy="0" ixz="0" iyz="0"/></inertial></link>
+  <joint name="shoulder" type="revolute">
+    <parent link="base"/><child link="upper"/><origin xyz="0 0 0.1"/><axis xyz="0 1 0"/>
+    <limit lower="-1" upper="1" effort="10" velocity="1"/>
+  </joint>
+</robot>)";
+  const Robot robot = Robot::from_string(urdf);
+  ASSERT_EQ(robot.joints().size(), 1u);
+  EXPECT_EQ(robot.joints()[0].name, "shoulder");
+  EXPECT_TRUE(robot.joints()[0].limited);
+  EXPECT_DOUBLE_EQ(robot.joints()[0].lower, -1.0);
+  // and from a file
+  const auto path = std::filesystem::temp_directory_path() / "mjarm_two_link.urdf";
+  std::ofstream(path) << urdf;
+  EXPECT_EQ(Robot::from_file(path).nq(), 1);
+  std::filesystem::remove(path);
+}
+
+TEST(Robot, CopiesShareOneModel) {
+  const Robot a = Robot::from_string(test::kTrickyArm);
+  const Robot b = a;
+  EXPECT_EQ(&a.model(), &b.model());
+}
+
+TEST(Names, ClosestNamesPreferContainmentThenEditDistance) {
+  const std::vector<std::string> names = {"attachment_site", "tcp", "grip", "tip"};
+  const auto close = closest_names("attachment", names, 2);
+  ASSERT_EQ(close.size(), 2u);
+  EXPECT_EQ(close[0], "attachment_site");
+  EXPECT_EQ(closest_names("tpi", names, 1)[0], "tip");
+}
+
+TEST(Robot, MujocoErrorsBecomeExceptions) {
+  install_mujoco_handlers();
+  EXPECT_THROW(mju_error("deliberate"), Error);
+}
+
+}  // namespace
+}  // namespace mjarm
