@@ -21,8 +21,8 @@ struct XmlNode {
   std::string tag;
   std::vector<std::pair<std::string, std::string>> attrs;
   std::vector<XmlNode> children;
-  int line = 0;                                          ///< 1-based line in its source file
-  std::shared_ptr<const std::filesystem::path> file;     ///< source file, null for the input text
+  int line = 0;                                       ///< 1-based line in its source file
+  std::shared_ptr<const std::filesystem::path> file;  ///< source file, null for the input text
 
   /// Value of attribute `key`, or null when absent.
   const std::string* find(std::string_view key) const;
@@ -62,8 +62,8 @@ void for_each_element(XmlNode& root, Fn&& fn) {
 /// State shared by the passes.
 struct Context {
   std::filesystem::path base_dir;
-  bool degrees = true;              ///< compiler angle="degree" (the MJCF default)
-  std::string eulerseq = "xyz";     ///< compiler eulerseq
+  bool degrees = true;           ///< compiler angle="degree" (the MJCF default)
+  std::string eulerseq = "xyz";  ///< compiler eulerseq
   std::vector<std::string> warnings;
   /// Records one rewrite of element `n`.
   void warn(const XmlNode& n, const std::string& what);
@@ -72,7 +72,7 @@ struct Context {
 /// Snapshot of the `<default>` classes (taken once the includes are inlined).
 class Defaults {
  public:
-  explicit Defaults(const XmlNode& root);
+  explicit Defaults(XmlNode& root);
   /// The value `attr` takes for an element of default kind `kind` (joint, geom, tendon, ...) in
   /// class `cls`, searching `cls` then its ancestors; nullopt when no class sets it.
   std::optional<std::string> lookup(const std::string& cls, std::string_view kind,
@@ -80,9 +80,9 @@ class Defaults {
   /// Classes in definition order (every parent before its children).
   struct Class {
     std::string name;
-    std::string parent;   ///< empty for "main"
-    XmlNode* node;        ///< the <default> element in the live tree (stable: defaults are never
-                          ///< moved after the snapshot)
+    std::string parent;  ///< empty for "main"
+    XmlNode* node;       ///< the <default> element in the live tree; valid until
+                         ///< translate_actuators() returns (it erases actuator defaults last)
   };
   const std::vector<Class>& classes() const { return classes_; }
   bool has(const std::string& cls) const { return index_.count(cls) > 0; }
@@ -94,7 +94,10 @@ class Defaults {
   std::map<std::string, std::map<std::string, std::map<std::string, std::string>>> values_;
 };
 
-/// The default kind an element tag reads from ("spatial" and "fixed" read "tendon").
+/// Whether `tag` is one of the actuator elements MuJoCo 2.2.2 knows (general, motor, ...).
+bool is_actuator_tag(std::string_view tag);
+/// The default kind an element tag reads from ("spatial" and "fixed" read "tendon"; every
+/// actuator shortcut reads the class's one "actuator" default).
 std::string_view default_kind(std::string_view tag);
 
 /// Unit quaternion (w, x, y, z) and small helpers for composing frames.
@@ -121,8 +124,9 @@ void expand_frames(XmlNode& root, Context& ctx, const Defaults& defaults);
 
 /// An actuator whose 3.x dampratio still has to be turned into a damping gain.
 struct PendingDampratio {
-  std::size_t actuator_index;   ///< position in the compiled model's actuator list
+  std::size_t actuator_index;  ///< position in the compiled model's actuator list
   double dampratio;
+  std::size_t warning_index;  ///< the rewrite's warning, whose biasprm is updated too
 };
 /// Rewrites actuators (and actuator defaults) into 2.2.2 form, moves joint / tendon
 /// actuatorfrcrange into actuator forceranges, and returns the dampratios left to resolve.
@@ -135,6 +139,7 @@ void ensure_autolimits(XmlNode& root, Context& ctx, const Defaults& defaults);
 /// Throws when an element or attribute is still unknown to the installed MuJoCo's schema.
 void check_schema(const XmlNode& root);
 /// Compiles `root` with MuJoCo 2.2.2 and writes the damping implied by each pending dampratio.
-void resolve_dampratios(XmlNode& root, const std::vector<PendingDampratio>& pending);
+void resolve_dampratios(XmlNode& root, const std::vector<PendingDampratio>& pending,
+                        std::vector<std::string>& warnings);
 
 }  // namespace mjarm::mjcf_detail

@@ -36,9 +36,10 @@ struct MjcfTranslation {
 ///
 /// @param xml       MJCF text; the root element must be `<mujoco>`.
 /// @param base_dir  directory of the source file: relative asset paths (compiler meshdir /
-///                  texturedir / assetdir, mesh / texture / hfield / skin `file`) and `<include file>`
-///                  paths are made absolute against it (an included file in another directory is
-///                  also searched relative to itself when the path does not exist under base_dir).
+///                  texturedir / assetdir, mesh / texture / hfield / skin `file`) and `<include
+///                  file>` paths are made absolute against it (an included file in another
+///                  directory is also searched relative to itself when the path does not exist
+///                  under base_dir).
 /// @return the translated document and the list of rewrites.
 /// @throws mjarm::Error for malformed XML (with tinyxml2's message and line), an unreadable or
 ///         cyclic include, or a construct that cannot be translated; the message names the
