@@ -1,0 +1,102 @@
+#include "mjarm/kinematics/singularity.hpp"
+
+#include <algorithm>
+#include <random>
+
+#include "mjarm/error.hpp"
+#include "mjarm/kinematics/workspace.hpp"
+
+namespace mjarm {
+namespace {
+
+SingularityEntry measure(Manipulability& m, std::string name, const Eigen::VectorXd& q) {
+  const ManipulabilityResult& r = m.evaluate(q);
+  SingularityEntry e;
+  e.name = std::move(name);
+  e.q = q;
+  e.singular_values = m.singular_values();
+  e.sigma_min = r.sigma_min;
+  e.condition_number = r.condition_number;
+  e.manipulability = r.manipulability;
+  e.status = r.status;
+  return e;
+}
+
+}  // namespace
+
+std::vector<NamedConfiguration> standard_configurations(const Chain& chain) {
+  const mjModel& m = chain.robot().model();
+  std::vector<NamedConfiguration> configurations;
+  configurations.push_back({"qpos0", chain.gather(m.qpos0)});
+  configurations.push_back({"center", chain.center()});
+  for (int k = 0; k < m.nkey; ++k) {
+    const char* key_name = mj_id2name(&m, mjOBJ_KEY, k);
+    const std::string name =
+        key_name != nullptr && key_name[0] != '\0' ? key_name : "keyframe " + std::to_string(k);
+    configurations.push_back({name, chain.gather(m.key_qpos + k * m.nq)});
+  }
+  return configurations;
+}
+
+SingularityReport singularity_report(const Chain& chain,
+                                     const std::vector<NamedConfiguration>& extra,
+                                     const ManipulabilityOptions& options) {
+  // check the caller's configurations first, naming each
+  for (const NamedConfiguration& c : extra) chain.check(c.q, "configuration '" + c.name + "'");
+  Manipulability m(chain, options);
+  SingularityReport report;
+  report.options = options;
+  for (const NamedConfiguration& c : standard_configurations(chain)) {
+    report.entries.push_back(measure(m, c.name, c.q));
+  }
+  for (const NamedConfiguration& c : extra) report.entries.push_back(measure(m, c.name, c.q));
+  return report;
+}
+
+SingularityScan scan_singularities(const Chain& chain, std::size_t samples, std::uint64_t seed,
+                                   std::size_t keep_worst, const ManipulabilityOptions& options) {
+  if (samples == 0) throw Error("singularity scan needs at least one sample, got 0");
+  Manipulability m(chain, options);
+  const JointSampler sampler(chain);
+  std::mt19937_64 rng(seed);
+  SingularityScan scan;
+  scan.options = options;
+  scan.samples = samples;
+  scan.seed = seed;
+
+  // keep the worst as a max-heap on σmin (its top is the best of the worst, evicted first);
+  // ties break on the sample index so the result does not depend on heap internals
+  struct Candidate {
+    double sigma_min;
+    std::size_t index;
+    Eigen::VectorXd q;
+  };
+  const auto less = [](const Candidate& a, const Candidate& b) {
+    return a.sigma_min < b.sigma_min || (a.sigma_min == b.sigma_min && a.index < b.index);
+  };
+  std::vector<Candidate> heap;
+  heap.reserve(keep_worst + 1);
+  Eigen::VectorXd q(chain.size());
+  for (std::size_t s = 0; s < samples; ++s) {
+    sampler.sample(rng, q);
+    const ManipulabilityResult& r = m.evaluate(q);
+    if (r.status == SingularityStatus::singular) ++scan.singular_count;
+    if (r.status == SingularityStatus::near_singular) ++scan.near_singular_count;
+    if (keep_worst == 0) continue;
+    if (heap.size() < keep_worst || r.sigma_min < heap.front().sigma_min) {
+      heap.push_back({r.sigma_min, s, q});
+      std::push_heap(heap.begin(), heap.end(), less);
+      if (heap.size() > keep_worst) {
+        std::pop_heap(heap.begin(), heap.end(), less);
+        heap.pop_back();
+      }
+    }
+  }
+  std::sort(heap.begin(), heap.end(), less);
+  for (const Candidate& c : heap) {
+    scan.worst.push_back(measure(m, "sample " + std::to_string(c.index), c.q));
+  }
+  return scan;
+}
+
+}  // namespace mjarm

@@ -1,0 +1,114 @@
+#include "mjarm/kinematics/workspace.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <fstream>
+#include <limits>
+#include <numbers>
+
+#include "mjarm/error.hpp"
+
+namespace mjarm {
+
+JointSampler::JointSampler(const Chain& chain) : lower_(chain.lower()), upper_(chain.upper()) {
+  for (int i = 0; i < chain.size(); ++i) {
+    if (!std::isfinite(lower_[i]) || !std::isfinite(upper_[i])) {
+      lower_[i] = -std::numbers::pi;
+      upper_[i] = std::numbers::pi;
+    }
+  }
+}
+
+void JointSampler::sample(std::mt19937_64& rng, Eigen::Ref<Eigen::VectorXd> q) const noexcept {
+  for (Eigen::Index i = 0; i < lower_.size(); ++i) {
+    // top 53 bits -> [0, 1): exact, portable, no std distribution involved
+    const double u = static_cast<double>(rng() >> 11) * 0x1.0p-53;
+    q[i] = lower_[i] + u * (upper_[i] - lower_[i]);
+  }
+}
+
+namespace {
+
+/// Index of the chain joint closest to the world on the frame's path.
+int base_joint(const ChainKinematics& kin) {
+  int best = -1;
+  for (int i = 0; i < kin.chain().size(); ++i) {
+    if (!kin.moves_frame(i)) continue;
+    if (best < 0 || kin.chain().joint_id(i) < kin.chain().joint_id(best)) best = i;
+  }
+  return best;
+}
+
+}  // namespace
+
+WorkspaceResult sample_workspace(const Chain& chain, const WorkspaceOptions& options) {
+  if (options.samples == 0) throw Error("workspace sampling needs at least one sample, got 0");
+  Manipulability measure(chain, options.manipulability);
+  ChainKinematics& kin = measure.kinematics();
+  const JointSampler sampler(chain);
+  std::mt19937_64 rng(options.seed);
+  const int n = chain.size();
+
+  WorkspaceResult result;
+  result.samples = options.samples;
+  result.seed = options.seed;
+  // the base: most proximal moving joint's anchor at the centre configuration
+  kin.update(chain.center());
+  const int base = base_joint(kin);
+  result.p_WB = base >= 0 ? kin.anchor(base) : kin.pose().p;
+  if (options.keep_points) result.points.resize(options.samples);
+
+  result.lower.setConstant(std::numeric_limits<double>::infinity());
+  result.upper.setConstant(-std::numeric_limits<double>::infinity());
+  result.min_manipulability = std::numeric_limits<double>::infinity();
+  result.max_manipulability = -std::numeric_limits<double>::infinity();
+  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+  double w_sum = 0.0;
+  Eigen::VectorXd q(n);
+  const std::size_t total = options.samples;
+  const std::size_t report_every = std::max<std::size_t>(1, (total + 99) / 100);
+
+  const auto start = std::chrono::steady_clock::now();
+  for (std::size_t s = 0; s < total; ++s) {
+    sampler.sample(rng, q);
+    double w = 0.0;
+    if (options.compute_manipulability) {
+      w = measure.evaluate(q).manipulability;
+    } else {
+      kin.update(q);
+    }
+    const Eigen::Vector3d& p = kin.pose().p;
+    result.lower = result.lower.cwiseMin(p);
+    result.upper = result.upper.cwiseMax(p);
+    sum += p;
+    result.max_reach_from_base = std::max(result.max_reach_from_base, (p - result.p_WB).norm());
+    result.max_reach_from_origin = std::max(result.max_reach_from_origin, p.norm());
+    result.min_manipulability = std::min(result.min_manipulability, w);
+    result.max_manipulability = std::max(result.max_manipulability, w);
+    w_sum += w;
+    if (options.keep_points) result.points[s] = WorkspacePoint{p, w};
+    if (options.progress && ((s + 1) % report_every == 0 || s + 1 == total)) {
+      options.progress(s + 1, total);
+    }
+  }
+  result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  result.centroid = sum / static_cast<double>(total);
+  result.mean_manipulability = w_sum / static_cast<double>(total);
+  return result;
+}
+
+void WorkspaceResult::write_csv(const std::filesystem::path& path) const {
+  std::ofstream out(path);
+  if (!out) throw Error("cannot open '" + path.string() + "' for writing the workspace CSV");
+  out.precision(std::numeric_limits<double>::max_digits10);
+  out << "x,y,z,manipulability\n";
+  for (const WorkspacePoint& point : points) {
+    out << point.p_WE.x() << ',' << point.p_WE.y() << ',' << point.p_WE.z() << ','
+        << point.manipulability << '\n';
+  }
+  out.flush();
+  if (!out) throw Error("failed while writing the workspace CSV to '" + path.string() + "'");
+}
+
+}  // namespace mjarm
