@@ -45,9 +45,7 @@ Eigen::Vector3d Pose::act(const Eigen::Vector3d& point) const noexcept { return 
 
 Eigen::Vector3d Pose::rotate(const Eigen::Vector3d& vector) const noexcept { return R * vector; }
 
-Pose Pose::operator*(const Pose& X_BC) const noexcept {
-  return Pose{R * X_BC.R, R * X_BC.p + p};
-}
+Pose Pose::operator*(const Pose& X_BC) const noexcept { return Pose{R * X_BC.R, R * X_BC.p + p}; }
 
 bool Pose::is_approx(const Pose& other, double tolerance) const noexcept {
   return (R - other.R).cwiseAbs().maxCoeff() <= tolerance &&

@@ -2,7 +2,6 @@
 
 #include "mjarm/lie/coefficients.hpp"
 #include "mjarm/lie/so3.hpp"
-#include "mjarm/lie/so3_jacobian.hpp"
 
 namespace mjarm::se3 {
 namespace {
@@ -40,6 +39,11 @@ Eigen::Matrix3d q_dot_from(const lie::SeriesCoefficients& k, double w_dot_w,
          (w_dot_w * k.d_rate) * M3 + k.b * d_M1 + k.c * d_M2 + k.d * d_M3;
 }
 
+// Jl⁻¹(ω) = I − ½P + e P² for P = ω̂
+Eigen::Matrix3d so3_inverse(const lie::InverseCoefficients& ki, const Eigen::Matrix3d& P) noexcept {
+  return Eigen::Matrix3d::Identity() - 0.5 * P + ki.e * (P * P);
+}
+
 Matrix6d block_upper(const Eigen::Matrix3d& diagonal, const Eigen::Matrix3d& upper) noexcept {
   Matrix6d m;
   m.topLeftCorner<3, 3>() = diagonal;
@@ -74,10 +78,12 @@ Matrix6d right_jacobian(const Vector6d& xi) noexcept { return left_jacobian(-xi)
 
 Matrix6d left_jacobian_inverse(const Vector6d& xi) {
   const Eigen::Vector3d w = xi.tail<3>();
-  lie::require_inverse_domain(w.norm(), "se3::left_jacobian_inverse");
-  const Eigen::Matrix3d J_inv = so3::left_jacobian_inverse(w);
-  const Eigen::Matrix3d Q = q_block(xi.head<3>(), w);
-  return block_upper(J_inv, -J_inv * Q * J_inv);
+  const double theta = w.norm();
+  lie::require_inverse_domain(theta, "se3::left_jacobian_inverse");
+  const Eigen::Matrix3d P = so3::hat(w);
+  const Eigen::Matrix3d A = so3_inverse(lie::inverse_coefficients(theta), P);
+  const Eigen::Matrix3d Q = q_from(lie::series_coefficients(theta), P, so3::hat(xi.head<3>()));
+  return block_upper(A, -A * Q * A);
 }
 
 Matrix6d right_jacobian_inverse(const Vector6d& xi) {
@@ -93,10 +99,10 @@ Matrix6d left_jacobian_derivative(const Vector6d& xi, const Vector6d& xi_dot) no
   const Eigen::Matrix3d P = so3::hat(w);
   const Eigen::Matrix3d P_dot = so3::hat(w_dot);
   // SO(3) block: d/dt (I + a P + b P²)
-  const Eigen::Matrix3d J_dot = (s * k.a_rate) * P + k.a * P_dot + (s * k.b_rate) * (P * P) +
-                                k.b * (P_dot * P + P * P_dot);
-  return block_upper(J_dot,
-                     q_dot_from(k, s, P, so3::hat(xi.head<3>()), P_dot, so3::hat(xi_dot.head<3>())));
+  const Eigen::Matrix3d J_dot =
+      (s * k.a_rate) * P + k.a * P_dot + (s * k.b_rate) * (P * P) + k.b * (P_dot * P + P * P_dot);
+  return block_upper(
+      J_dot, q_dot_from(k, s, P, so3::hat(xi.head<3>()), P_dot, so3::hat(xi_dot.head<3>())));
 }
 
 Matrix6d right_jacobian_derivative(const Vector6d& xi, const Vector6d& xi_dot) noexcept {
@@ -105,18 +111,24 @@ Matrix6d right_jacobian_derivative(const Vector6d& xi, const Vector6d& xi_dot) n
 }
 
 Matrix6d left_jacobian_inverse_derivative(const Vector6d& xi, const Vector6d& xi_dot) {
-  const Eigen::Vector3d v = xi.head<3>();
   const Eigen::Vector3d w = xi.tail<3>();
   const Eigen::Vector3d w_dot = xi_dot.tail<3>();
-  lie::require_inverse_domain(w.norm(), "se3::left_jacobian_inverse_derivative");
-  // Jl⁻¹ = [A, B; 0, A] with A = Jl⁻¹(ω), B = −A Q A
-  //   ⇒ Ȧ from the SO(3) formula, Ḃ = −(Ȧ Q A + A Q̇ A + A Q Ȧ)
-  const Eigen::Matrix3d A = so3::left_jacobian_inverse(w);
-  const Eigen::Matrix3d A_dot = so3::left_jacobian_inverse_derivative(w, w_dot);
-  const Eigen::Matrix3d Q = q_block(v, w);
-  const Eigen::Matrix3d Q_dot = q_block_derivative(v, w, xi_dot.head<3>(), w_dot);
-  const Eigen::Matrix3d QA = Q * A;
-  return block_upper(A_dot, -(A_dot * QA + A * Q_dot * A + A * Q * A_dot));
+  const double theta = w.norm();
+  lie::require_inverse_domain(theta, "se3::left_jacobian_inverse_derivative");
+  const lie::SeriesCoefficients k = lie::series_coefficients(theta);
+  const lie::InverseCoefficients ki = lie::inverse_coefficients(theta);
+  const double s = w.dot(w_dot);
+  const Eigen::Matrix3d P = so3::hat(w);
+  const Eigen::Matrix3d P_dot = so3::hat(w_dot);
+  const Eigen::Matrix3d V = so3::hat(xi.head<3>());
+  // Jl⁻¹ = [A, B; 0, A] with A = Jl⁻¹(ω) = I − ½P + e P², B = −A Q A
+  //   ⇒ Ȧ = −½Ṗ + ė P² + e (Ṗ P + P Ṗ), Ḃ = −(Ȧ Q A + A Q̇ A + A Q Ȧ)
+  const Eigen::Matrix3d A = so3_inverse(ki, P);
+  const Eigen::Matrix3d A_dot =
+      -0.5 * P_dot + (s * ki.e_rate) * (P * P) + ki.e * (P_dot * P + P * P_dot);
+  const Eigen::Matrix3d Q = q_from(k, P, V);
+  const Eigen::Matrix3d Q_dot = q_dot_from(k, s, P, V, P_dot, so3::hat(xi_dot.head<3>()));
+  return block_upper(A_dot, -(A_dot * Q * A + A * Q_dot * A + A * Q * A_dot));
 }
 
 Matrix6d right_jacobian_inverse_derivative(const Vector6d& xi, const Vector6d& xi_dot) {

@@ -18,7 +18,10 @@ Eigen::Vector3d random_unit(std::mt19937& rng) {
   return Eigen::Vector3d(n(rng), n(rng), n(rng)).normalized();
 }
 
-double max_abs(const Eigen::MatrixXd& m) { return m.cwiseAbs().maxCoeff(); }
+template <typename Derived>
+double max_abs(const Eigen::MatrixBase<Derived>& m) {
+  return m.cwiseAbs().maxCoeff();
+}
 
 TEST(So3, HatVee) {
   std::mt19937 rng(1);
@@ -34,10 +37,10 @@ TEST(So3, HatVee) {
 
 TEST(So3, ExpMatchesAngleAxis) {
   std::mt19937 rng(2);
-  std::uniform_real_distribution<double> angle(0.0, 3.0 * kPi);
+  std::uniform_real_distribution<double> angle_dist(0.0, 3.0 * kPi);
   for (int i = 0; i < 200; ++i) {
     const Eigen::Vector3d u = random_unit(rng);
-    const double theta = angle(rng);
+    const double theta = angle_dist(rng);
     const Eigen::Matrix3d R = exp(theta * u);
     EXPECT_LT(max_abs(R - Eigen::AngleAxisd(theta, u).toRotationMatrix()), 1e-14);
     EXPECT_LT(max_abs(R.transpose() * R - Eigen::Matrix3d::Identity()), 1e-14);
@@ -47,9 +50,9 @@ TEST(So3, ExpMatchesAngleAxis) {
 
 TEST(So3, LogExpRoundTripRandom) {
   std::mt19937 rng(3);
-  std::uniform_real_distribution<double> angle(0.0, kPi);
+  std::uniform_real_distribution<double> angle_dist(0.0, kPi);
   for (int i = 0; i < 500; ++i) {
-    const Eigen::Vector3d w = angle(rng) * random_unit(rng);
+    const Eigen::Vector3d w = angle_dist(rng) * random_unit(rng);
     EXPECT_LT(max_abs(log(exp(w)) - w), 1e-13) << w.transpose();
     EXPECT_NEAR(angle(exp(w)), w.norm(), 1e-13);
   }
@@ -61,7 +64,8 @@ TEST(So3, ExpLogRoundTripRandomRotations) {
     Eigen::Vector4d q;
     std::normal_distribution<double> n(0.0, 1.0);
     q << n(rng), n(rng), n(rng), n(rng);
-    const Eigen::Matrix3d R = Eigen::Quaterniond(q(0), q(1), q(2), q(3)).normalized().toRotationMatrix();
+    const Eigen::Matrix3d R =
+        Eigen::Quaterniond(q(0), q(1), q(2), q(3)).normalized().toRotationMatrix();
     const Eigen::Vector3d w = log(R);
     EXPECT_LE(w.norm(), kPi + 1e-15);
     EXPECT_LT(max_abs(exp(w) - R), 1e-14);
@@ -76,7 +80,8 @@ TEST(So3, NearZeroIsRelativelyAccurate) {
     // first-order check of exp: R ≈ I + ω̂ + ½ω̂²
     const Eigen::Matrix3d W = hat(w);
     EXPECT_LT(max_abs(R - (Eigen::Matrix3d::Identity() + W + 0.5 * W * W)),
-              1e-15 + std::pow(theta, 3)) << theta;
+              1e-15 + std::pow(theta, 3))
+        << theta;
     // log recovers ω to relative precision, not only absolute
     EXPECT_LE((log(R) - w).norm(), 1e-14 * theta + 1e-300) << theta;
   }
@@ -118,10 +123,10 @@ TEST(So3, ExactPiFromSymmetricMatrix) {
 TEST(So3, LogIsEquivariant) {
   // log(Q R Qᵀ) = Q log(R)
   std::mt19937 rng(8);
-  std::uniform_real_distribution<double> angle(0.0, 3.0);
+  std::uniform_real_distribution<double> angle_dist(0.0, 3.0);
   for (int i = 0; i < 50; ++i) {
-    const Eigen::Matrix3d Q = exp(angle(rng) * random_unit(rng));
-    const Eigen::Vector3d w = angle(rng) * random_unit(rng);
+    const Eigen::Matrix3d Q = exp(angle_dist(rng) * random_unit(rng));
+    const Eigen::Vector3d w = angle_dist(rng) * random_unit(rng);
     EXPECT_LT(max_abs(log(Q * exp(w) * Q.transpose()) - Q * w), 1e-13);
   }
 }

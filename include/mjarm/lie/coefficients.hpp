@@ -18,11 +18,11 @@ inline constexpr double kTwoPi = 6.283185307179586476925286766559;
 
 /// Coefficients of exp and of the left Jacobian of SO(3) and SE(3), and their rates.
 struct SeriesCoefficients {
-  double sinc = 1.0;  ///< sin θ / θ (Rodrigues), dimensionless
-  double a = 0.5;     ///< (1 − cos θ)/θ² (Rodrigues, Jacobian)
-  double b = 0.0;     ///< (θ − sin θ)/θ³ (Jacobian, Q block)
-  double c = 0.0;     ///< (θ² + 2 cos θ − 2)/(2θ⁴) (Q block)
-  double d = 0.0;     ///< (2θ − 3 sin θ + θ cos θ)/(2θ⁵) (Q block)
+  double sinc = 1.0;    ///< sin θ / θ (Rodrigues), dimensionless
+  double a = 0.5;       ///< (1 − cos θ)/θ² (Rodrigues, Jacobian)
+  double b = 0.0;       ///< (θ − sin θ)/θ³ (Jacobian, Q block)
+  double c = 0.0;       ///< (θ² + 2 cos θ − 2)/(2θ⁴) (Q block)
+  double d = 0.0;       ///< (2θ − 3 sin θ + θ cos θ)/(2θ⁵) (Q block)
   double a_rate = 0.0;  ///< a'(θ)/θ
   double b_rate = 0.0;  ///< b'(θ)/θ
   double c_rate = 0.0;  ///< c'(θ)/θ
