@@ -15,9 +15,9 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 
 int checked_variables(int n, int m_eq, int m_in) {
   if (n < 1 || m_eq < 0 || m_in < 0) {
-    throw Error("DenseQp: sizes must be n >= 1, m_eq >= 0, m_in >= 0; got n = " +
-                std::to_string(n) + ", m_eq = " + std::to_string(m_eq) +
-                ", m_in = " + std::to_string(m_in));
+    throw Error(
+        "DenseQp: sizes must be n >= 1, m_eq >= 0, m_in >= 0; got n = " + std::to_string(n) +
+        ", m_eq = " + std::to_string(m_eq) + ", m_in = " + std::to_string(m_in));
   }
   return n;
 }
@@ -46,11 +46,16 @@ bool limits_valid(const Eigen::VectorXd& lo, const Eigen::VectorXd& hi) {
 
 const char* to_string(QpStatus status) noexcept {
   switch (status) {
-    case QpStatus::solved: return "solved";
-    case QpStatus::infeasible: return "infeasible";
-    case QpStatus::iteration_limit: return "iteration_limit";
-    case QpStatus::not_convex: return "not_convex";
-    case QpStatus::invalid_input: return "invalid_input";
+    case QpStatus::solved:
+      return "solved";
+    case QpStatus::infeasible:
+      return "infeasible";
+    case QpStatus::iteration_limit:
+      return "iteration_limit";
+    case QpStatus::not_convex:
+      return "not_convex";
+    case QpStatus::invalid_input:
+      return "invalid_input";
   }
   return "unknown";
 }
@@ -79,7 +84,9 @@ DenseQp::DenseQp(int n, int m_eq, int m_in)
   redundant_eq_ = Eigen::VectorXi::Zero(m_eq);
   warm_ = Eigen::VectorXi::Zero(n);
   x_ = Eigen::VectorXd::Zero(n);
-  cx_ = Eigen::VectorXd::Zero(m_in);
+  x_ref_ = Eigen::VectorXd::Zero(n);
+  cx_ref_ = Eigen::VectorXd::Zero(m_in);
+  margin_ref_ = Eigen::VectorXd::Zero(m_in);
   d_ = Eigen::VectorXd::Zero(n);
   r_ = Eigen::VectorXd::Zero(n);
   hx_ = Eigen::VectorXd::Zero(n);
@@ -130,6 +137,7 @@ void DenseQp::set_inequalities(const Eigen::Ref<const Eigen::MatrixXd>& C,
   check_size("u", u.rows(), u.cols(), mi_, 1);
   c_ = C;
   c_ok_ = c_.allFinite();
+  ref_valid_ = false;
   // a zero row keeps scale 1 so that an unsatisfiable 0 >= l > 0 still shows as violated
   for (int i = 0; i < mi_; ++i) {
     const double norm = c_.row(i).norm();
@@ -177,10 +185,14 @@ const QpResult& DenseQp::solve(QpStart start) noexcept {
     finalize(QpStatus::not_convex, 0, false);
     return result_;
   }
-  const int max_iterations = settings_.max_iterations > 0
-                                 ? settings_.max_iterations
-                                 : 10 * (n_ + me_ + mi_ + n_) + 100;
+  const int max_iterations =
+      settings_.max_iterations > 0 ? settings_.max_iterations : 10 * (n_ + me_ + mi_ + n_) + 100;
   bool warm = start == QpStart::warm && (factor_current_ || warm_count_ > 0);
+  if (warm && factor_current_ && ++warm_reuses_ >= kRebuildPeriod) {
+    // now and then rebuild the reused factorization from J0 to bound rounding drift
+    factor_current_ = false;
+    warm_reuses_ = 0;
+  }
   int iterations = 0;
   QpStatus status = run(warm, max_iterations, iterations);
   if (warm && status != QpStatus::solved) {

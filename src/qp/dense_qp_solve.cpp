@@ -6,6 +6,7 @@
 #include <cmath>
 #include <limits>
 
+#include "mjarm/qp/dense_kernels.hpp"
 #include "mjarm/qp/dense_qp.hpp"
 
 namespace mjarm::qp {
@@ -15,9 +16,11 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 }  // namespace
 
 double DenseQp::slack(int id) const noexcept {
-  // n_p·x − b_p with the row products of cx_ (valid at x_)
+  // n_p·x − b_p with the row products of cx_ref_ (valid when x_ref_ = x_)
   const int k = id - me_;
-  if (k < 2 * mi_) return k % 2 == 1 ? u_[k / 2] - cx_[k / 2] : cx_[k / 2] - l_[k / 2];
+  if (k < 2 * mi_) {
+    return k % 2 == 1 ? u_[k / 2] - cx_ref_[k / 2] : cx_ref_[k / 2] - l_[k / 2];
+  }
   const int kb = k - 2 * mi_;
   return kb % 2 == 1 ? ub_[kb / 2] - x_[kb / 2] : x_[kb / 2] - lb_[kb / 2];
 }
@@ -89,50 +92,98 @@ bool DenseQp::start_working_set(bool warm, int max_iterations, int& steps) noexc
   return true;
 }
 
-QpStatus DenseQp::run(bool warm, int max_iterations, int& iterations) noexcept {
+void DenseQp::refresh_reference() noexcept {
+  kernels::row_dots(c_.data(), mi_, n_, n_, x_.data(), cx_ref_.data());
+  x_ref_ = x_;
+  ref_valid_ = true;
+  update_margins();
+}
+
+void DenseQp::update_margins() noexcept {
+  // scaled distance of C·x_ref_ to the nearer limit (negative when violated, +inf if none)
+  margin_ref_ = (cx_ref_ - l_).cwiseMin(u_ - cx_ref_).cwiseProduct(c_scale_);
+}
+
+int DenseQp::most_violated(double& slack_p) noexcept {
   const double tol = settings_.primal_tolerance;
+  int p = -1;
+  double worst = -tol;  // scaled violation of the best candidate so far
+  auto consider_row = [&](int i, double cx) {
+    const double lo = cx - l_[i];
+    const double hi = u_[i] - cx;
+    if (lo * c_scale_[i] < worst) {
+      worst = lo * c_scale_[i];
+      slack_p = lo;
+      p = me_ + 2 * i;
+    }
+    if (hi * c_scale_[i] < worst) {
+      worst = hi * c_scale_[i];
+      slack_p = hi;
+      p = me_ + 2 * i + 1;
+    }
+  };
+
+  if (mi_ > 0) {
+    bool scanned = false;
+    double delta = ref_valid_ ? (x_ - x_ref_).norm() : kInf;
+    if (ref_valid_ && delta > 0.0) {
+      // a row whose scaled margin at x_ref_ exceeds ‖x − x_ref_‖ holds at x, since
+      // |c·x − c·x_ref_|/‖c‖ ≤ ‖x − x_ref_‖: only the others need a product with x, unless
+      // they are so many that one matrix product is cheaper
+      const double threshold = delta + tol;
+      int near = 0;
+      for (int i = 0; i < mi_; ++i) near += margin_ref_[i] <= threshold;
+      if (4 * near <= mi_) {
+        for (int i = 0; i < mi_; ++i) {
+          if (margin_ref_[i] <= threshold && state_[i] == 0)
+            consider_row(i, kernels::dot(&c_(i, 0), x_.data(), n_));
+        }
+        scanned = true;
+      }
+    }
+    if (!scanned) {
+      if (delta > 0.0) refresh_reference();
+      for (int i = 0; i < mi_; ++i) {
+        if (state_[i] == 0 && margin_ref_[i] < worst) consider_row(i, cx_ref_[i]);
+      }
+    }
+  }
+  const int bound0 = me_ + 2 * mi_;
+  for (int j = 0; j < n_; ++j) {
+    if (state_[mi_ + j] != 0) continue;
+    const double lo = x_[j] - lb_[j];
+    const double hi = ub_[j] - x_[j];
+    if (lo < worst) {
+      worst = lo;
+      slack_p = lo;
+      p = bound0 + 2 * j;
+    }
+    if (hi < worst) {
+      worst = hi;
+      slack_p = hi;
+      p = bound0 + 2 * j + 1;
+    }
+  }
+  return p;
+}
+
+QpStatus DenseQp::run(bool warm, int max_iterations, int& iterations) noexcept {
   const double dep_tol = settings_.dependence_tolerance;
   int steps = 0;
+  if (ref_valid_ && mi_ > 0) update_margins();  // the limits may have changed since
   const bool started = start_working_set(warm, max_iterations, steps);
   iterations += steps;
   if (!started) return steps > max_iterations ? QpStatus::iteration_limit : QpStatus::infeasible;
 
   for (;;) {
-    // pick the most violated constraint, violation scaled by the row norm
-    if (mi_ > 0) cx_.noalias() = c_ * x_;
-    int p = -1;
-    double worst = -tol;
-    for (int i = 0; i < mi_; ++i) {
-      if (state_[i] != 0) continue;
-      const double lo = (cx_[i] - l_[i]) * c_scale_[i];
-      const double hi = (u_[i] - cx_[i]) * c_scale_[i];
-      if (lo < worst) {
-        worst = lo;
-        p = me_ + 2 * i;
-      }
-      if (hi < worst) {
-        worst = hi;
-        p = me_ + 2 * i + 1;
-      }
+    double s = 0.0;
+    const int p = most_violated(s);
+    if (p < 0) {
+      // nan compares as satisfied: a numerical breakdown must not pass for a solution
+      return x_.allFinite() ? QpStatus::solved : QpStatus::iteration_limit;
     }
-    const int bound0 = me_ + 2 * mi_;
-    for (int j = 0; j < n_; ++j) {
-      if (state_[mi_ + j] != 0) continue;
-      const double lo = x_[j] - lb_[j];
-      const double hi = ub_[j] - x_[j];
-      if (lo < worst) {
-        worst = lo;
-        p = bound0 + 2 * j;
-      }
-      if (hi < worst) {
-        worst = hi;
-        p = bound0 + 2 * j + 1;
-      }
-    }
-    if (p < 0) return QpStatus::solved;
 
     // dual steps on constraint p until it joins the working set
-    double s = slack(p);
     normal_projection(p, d_);
     for (;;) {
       ++iterations;
@@ -188,7 +239,8 @@ void DenseQp::finalize(QpStatus status, int iterations, bool warm) noexcept {
     return;
   }
   res.x = x_;
-  if (status != QpStatus::solved && mi_ > 0) cx_.noalias() = c_ * x_;
+  // exact row products at the final x; they also screen the next warm start
+  if (mi_ > 0 && !(ref_valid_ && x_ref_ == x_)) refresh_reference();
 
   // multipliers in the y convention: lower side y = -u, upper side y = +u
   const int q = factor_.active_count();
@@ -211,7 +263,7 @@ void DenseQp::finalize(QpStatus status, int iterations, bool warm) noexcept {
   }
 
   // stationarity H x + g + A_eqᵀ y_eq + Cᵀ y_in + y_bound and the objective
-  hx_.noalias() = H_ * x_;
+  kernels::columns_times(H_.data(), n_, n_, n_, x_.data(), hx_.data());
   res.objective = 0.5 * x_.dot(hx_) + g_.dot(x_);
   stat_ = hx_ + g_ + res.y_bound;
   for (int k = 0; k < q; ++k) {
@@ -230,7 +282,7 @@ void DenseQp::finalize(QpStatus status, int iterations, bool warm) noexcept {
     residual = std::max(residual, std::abs(a_eq_.row(i).dot(x_) - b_eq_[i]));
   }
   for (int i = 0; i < mi_; ++i) {
-    residual = std::max(residual, std::max(l_[i] - cx_[i], cx_[i] - u_[i]));
+    residual = std::max(residual, std::max(l_[i] - cx_ref_[i], cx_ref_[i] - u_[i]));
   }
   for (int j = 0; j < n_; ++j) {
     residual = std::max(residual, std::max(lb_[j] - x_[j], x_[j] - ub_[j]));

@@ -17,6 +17,9 @@
 
 namespace mjarm::qp {
 
+/// Dense row-major matrix (rows contiguous), used where rows are the natural access.
+using RowMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+
 /// Goldfarb–Idnani working-set factorization (J = L⁻ᵀQ, R) with Givens updates.
 class ActiveSetFactor {
  public:
@@ -44,8 +47,8 @@ class ActiveSetFactor {
   /// d = Jᵀ·v for a dense constraint normal v (n-vector).
   /// @param v constraint normal, n entries
   /// @param d output, n entries (preallocated by the caller)
-  void project(const Eigen::Ref<const Eigen::VectorXd>& v, Eigen::Ref<Eigen::VectorXd> d) const
-      noexcept;
+  void project(const Eigen::Ref<const Eigen::VectorXd>& v,
+               Eigen::Ref<Eigen::VectorXd> d) const noexcept;
 
   /// d = sign·Jᵀ·e_j for the simple bound normal sign·e_j: the j-th row of J, O(n).
   void project_unit(int j, double sign, Eigen::Ref<Eigen::VectorXd> d) const noexcept;
@@ -91,19 +94,20 @@ class ActiveSetFactor {
   /// R (n×n storage, its leading q×q upper triangle is the factor).
   const Eigen::MatrixXd& r() const noexcept { return r_; }
   /// The Cholesky factor L of H (n×n lower triangular).
-  const Eigen::MatrixXd& l() const noexcept { return l_; }
+  const RowMatrix& l() const noexcept { return l_; }
 
  private:
   int n_;
   int q_ = 0;
   bool factorized_ = false;
-  Eigen::MatrixXd l_;   // cholesky factor, lower triangular
-  Eigen::MatrixXd j0_;  // L^{-T}, upper triangular
-  Eigen::MatrixXd j_;   // L^{-T} Q
-  Eigen::MatrixXd r_;   // leading q x q upper triangle used
-  Eigen::VectorXd w_;   // J^T g
-  Eigen::VectorXd a_;   // scratch: R^{-T} b
-  Eigen::VectorXd v_;   // scratch: [a; -w2]
+  RowMatrix l_;                // cholesky factor, lower triangular
+  Eigen::MatrixXd j0_;         // L^{-T}, upper triangular
+  Eigen::MatrixXd j_;          // L^{-T} Q
+  Eigen::MatrixXd r_;          // leading q x q upper triangle used
+  Eigen::VectorXd w_;          // J^T g
+  Eigen::VectorXd a_;          // scratch: R^{-T} b
+  Eigen::VectorXd v_;          // scratch: [a; -w2]
+  Eigen::VectorXd cos_, sin_;  // scratch: parameters of a chain of givens rotations
 };
 
 }  // namespace mjarm::qp

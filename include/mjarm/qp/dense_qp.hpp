@@ -14,6 +14,13 @@
 /// instead of a dense row's O(n²). All workspace is allocated by the constructor; solve()
 /// allocates nothing and never throws.
 ///
+/// Each step recomputes the minimizer on the working set from the factorization (O(n²)), so
+/// iterates carry no drift; general rows whose margin at the last full evaluation of C·x exceeds
+/// the distance moved since are skipped by the search for the most violated row (exactly: a
+/// skipped row cannot be violated). Degenerate steps (a new normal linearly dependent on the
+/// working set) move the multipliers only and drop the first one to reach zero; when none can,
+/// the problem is infeasible.
+///
 /// Multiplier convention (dual of each constraint, returned in QpResult):
 ///     H x + g + A_eqᵀ y_eq + Cᵀ y_in + y_bound = 0,
 /// y_in[i] ≥ 0 when C_i x = u_i (upper side active), ≤ 0 when C_i x = l_i, 0 when inactive;
@@ -29,9 +36,10 @@ namespace mjarm::qp {
 enum class QpStatus {
   solved,           ///< KKT point found (the unique minimizer)
   infeasible,       ///< the constraints have no common point (the dual is unbounded)
-  iteration_limit,  ///< QpSettings::max_iterations steps without convergence
+  iteration_limit,  ///< no convergence in QpSettings::max_iterations steps (or a numerical
+                    ///< breakdown, e.g. a non-finite iterate)
   not_convex,       ///< H is not numerically positive definite (its Cholesky factor fails)
-  invalid_input,    ///< non-finite data, l > u, lb > ub, a lower limit +∞ or an upper limit −∞
+  invalid_input,  ///< non-finite data, l > u, lb > ub, a lower limit +∞ or an upper limit −∞
 };
 
 /// Short lowercase name of a status ("solved", "infeasible", ...).
@@ -52,13 +60,13 @@ struct QpSettings {
 /// Result of a solve; owned by the solver (all vectors preallocated at construction).
 struct QpResult {
   QpStatus status = QpStatus::invalid_input;  ///< outcome
-  Eigen::VectorXd x;        ///< primal solution (n); the last iterate unless solved
-  double objective = 0.0;   ///< ½xᵀHx + gᵀx at x
-  int iterations = 0;       ///< Goldfarb–Idnani steps taken (additions + drops)
+  Eigen::VectorXd x;          ///< primal solution (n); the last iterate unless solved
+  double objective = 0.0;     ///< ½xᵀHx + gᵀx at x
+  int iterations = 0;         ///< Goldfarb–Idnani steps taken (additions + drops)
   double kkt_residual = 0.0;  ///< max of ‖stationarity‖∞, primal violation, |complementarity|
-  Eigen::VectorXd y_eq;     ///< multipliers of A_eq x = b_eq (m_eq)
-  Eigen::VectorXd y_in;     ///< multipliers of l ≤ Cx ≤ u (m_in), sign per active side
-  Eigen::VectorXd y_bound;  ///< multipliers of lb ≤ x ≤ ub (n), sign per active side
+  Eigen::VectorXd y_eq;       ///< multipliers of A_eq x = b_eq (m_eq)
+  Eigen::VectorXd y_in;       ///< multipliers of l ≤ Cx ≤ u (m_in), sign per active side
+  Eigen::VectorXd y_bound;    ///< multipliers of lb ≤ x ≤ ub (n), sign per active side
   bool warm_started = false;  ///< the solve began from the previous working set
 };
 
@@ -119,7 +127,10 @@ class DenseQp {
   const QpResult& solve(QpStart start = QpStart::warm) noexcept;
 
   /// Forgets the working set kept for warm starts (the next solve() starts cold).
-  void reset_warm_start() noexcept { warm_count_ = 0; factor_current_ = false; }
+  void reset_warm_start() noexcept {
+    warm_count_ = 0;
+    factor_current_ = false;
+  }
 
   /// Settings used by the next solve().
   QpSettings& settings() noexcept { return settings_; }
@@ -136,6 +147,8 @@ class DenseQp {
   int num_inequalities() const noexcept { return mi_; }
   /// How many Cholesky factorizations of H solve() has done (diagnostics: H reuse).
   int hessian_factorizations() const noexcept { return factorizations_; }
+  /// The working-set factorization left by the last solve (diagnostics).
+  const ActiveSetFactor& factor() const noexcept { return factor_; }
   /// Size of the working set at the end of the last solve (equalities included).
   int active_count() const noexcept { return factor_.active_count(); }
 
@@ -147,6 +160,9 @@ class DenseQp {
   void normal_projection(int id, Eigen::VectorXd& d) const noexcept;
   double rhs(int id) const noexcept;
   double slack(int id) const noexcept;
+  int most_violated(double& slack_p) noexcept;
+  void refresh_reference() noexcept;
+  void update_margins() noexcept;
   void set_state(int id, int value) noexcept;
   void push_active(int id) noexcept;
   void drop_active(int k, Eigen::VectorXd* d) noexcept;
@@ -174,19 +190,25 @@ class DenseQp {
 
   // working set
   ActiveSetFactor factor_;
-  bool factor_current_ = false;  // factor_ holds the last solved working set for this data
-  Eigen::VectorXi active_;       // constraint id per working-set position (n)
-  Eigen::VectorXd b_active_;     // right-hand side per position (n)
-  Eigen::VectorXd u_active_;     // multiplier per position, H x + g = N u (n)
-  Eigen::VectorXi state_;        // per row of C then per x_j: 0 free, -1 lower, +1 upper active
+  bool factor_current_ = false;   // factor_ holds the last solved working set for this data
+  Eigen::VectorXi active_;        // constraint id per working-set position (n)
+  Eigen::VectorXd b_active_;      // right-hand side per position (n)
+  Eigen::VectorXd u_active_;      // multiplier per position, H x + g = N u (n)
+  Eigen::VectorXi state_;         // per row of C then per x_j: 0 free, -1 lower, +1 upper active
   Eigen::VectorXi redundant_eq_;  // equality rows skipped as linearly dependent (me)
   int redundant_count_ = 0;
-  int eq_active_ = 0;             // equalities in the working set (its first positions)
-  Eigen::VectorXi warm_;          // inequality ids of the last solved working set (n)
+  int eq_active_ = 0;     // equalities in the working set (its first positions)
+  Eigen::VectorXi warm_;  // inequality ids of the last solved working set (n)
   int warm_count_ = 0;
+  int warm_reuses_ = 0;                      // warm starts on the kept factorization in a row
+  static constexpr int kRebuildPeriod = 64;  // then one rebuild from J0
 
   // scratch
-  Eigen::VectorXd x_, cx_, d_, r_, hx_, stat_;
+  Eigen::VectorXd x_, d_, r_, hx_, stat_;
+  // row products C·x_ref_ at a reference point, to skip rows that provably hold (valid while C
+  // is unchanged)
+  Eigen::VectorXd x_ref_, cx_ref_, margin_ref_;
+  bool ref_valid_ = false;
 };
 
 }  // namespace mjarm::qp
