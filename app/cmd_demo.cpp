@@ -1,0 +1,109 @@
+// `mjarm demo`: a tour of the library on a bundled arm — model summary, forward kinematics at
+// the home keyframe, a seeded workspace analysis and a pose-IK round trip.
+
+#include <chrono>
+#include <iostream>
+#include <memory>
+
+#include "commands.hpp"
+#include "mjarm/ik/pose_ik.hpp"
+#include "output.hpp"
+
+namespace mjarm::cli {
+
+namespace {
+
+/// IK back to the pose FK gave at the configuration, started from the middle of the ranges.
+struct RoundTrip {
+  Eigen::VectorXd seed;
+  IkResult result;
+  double seconds = 0.0;
+};
+
+RoundTrip ik_round_trip(const Chain& chain, const Configuration& config, const Pose& X_WT) {
+  RoundTrip trip;
+  trip.seed = chain.center();
+  PoseIk ik(chain);
+  ik.set_fixed_qpos(config.qpos);
+  const auto start = std::chrono::steady_clock::now();
+  trip.result = ik.solve(X_WT, trip.seed);
+  trip.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return trip;
+}
+
+}  // namespace
+
+Command add_demo_command(CLI::App& root) {
+  struct Options {
+    std::string model = "panda";
+    std::string site;
+    std::string key = "home";
+    std::size_t samples = 20000;
+    std::uint64_t seed = 1;
+    bool json = false;
+  };
+  auto options = std::make_shared<Options>();
+  CLI::App* app = root.add_subcommand(
+      "demo", "tour: model summary, FK at home, seeded workspace analysis, pose-IK round trip");
+  app->add_option("--model", options->model, "bundled model name or path")->capture_default_str();
+  add_site_option(*app, options->site);
+  app->add_option("--key", options->key, "keyframe for FK and the IK target")
+      ->capture_default_str();
+  app->add_option("--samples", options->samples, "workspace samples")
+      ->check(CLI::Range(std::size_t{1}, std::size_t{1000000000}))
+      ->capture_default_str();
+  app->add_option("--seed", options->seed, "workspace seed")
+      ->check(non_negative_integer())
+      ->capture_default_str();
+  add_json_flag(*app, options->json);
+
+  return {app, [options] {
+            const Robot robot = load_model(options->model);
+            const Chain chain(robot, resolve_site(robot, options->site));
+            const Configuration config = resolve_configuration(chain, {}, options->key);
+            ChainKinematics kin(chain);
+            kin.set_fixed_qpos(config.qpos);
+            const Pose X_WE = kin.update(config.q);
+            const WorkspaceResult workspace =
+                run_workspace(chain, options->samples, options->seed, false);
+            const RoundTrip trip = ik_round_trip(chain, config, X_WE);
+
+            if (options->json) {
+              Json ik{{"target", options->key},
+                      {"seed", vector_json(trip.seed)},
+                      {"q", vector_json(trip.result.q)},
+                      {"status", to_string(trip.result.status)},
+                      {"position_error", trip.result.position_error},
+                      {"orientation_error", trip.result.orientation_error},
+                      {"iterations", trip.result.iterations},
+                      {"seconds", trip.seconds}};
+              return print_json({{"model", model_json(robot)},
+                                 {"fk", pose_json(kin, config, false)},
+                                 {"workspace", workspace_json(chain, workspace)},
+                                 {"ik", ik}});
+            }
+
+            std::ostream& os = std::cout;
+            print_heading(os, "model");
+            print_model_summary(os, robot);
+            print_heading(os, "forward kinematics");
+            print_pose(os, kin, config, false);
+            print_heading(os, "workspace");
+            print_workspace(os, chain, workspace);
+            print_heading(os, "inverse kinematics round trip");
+            os << "target: the pose above (keyframe '" << options->key
+               << "'); seed: the middle of the joint ranges\n";
+            print_fields(os,
+                         {{"status", to_string(trip.result.status)},
+                          {"iterations", std::to_string(trip.result.iterations)},
+                          {"position error [m]", general(trip.result.position_error, 3)},
+                          {"orientation error [rad]", general(trip.result.orientation_error, 3)},
+                          {"time [ms]", fixed(trip.seconds * 1e3, 3)},
+                          {"seed q [rad or m]", vector_text(trip.seed)},
+                          {"solution q [rad or m]", vector_text(trip.result.q)},
+                          {"keyframe q [rad or m]", vector_text(config.q)}},
+                         2);
+          }};
+}
+
+}  // namespace mjarm::cli

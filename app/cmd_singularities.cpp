@@ -1,0 +1,166 @@
+// `mjarm singularities MODEL --site S`: how close named and sampled configurations are to
+// losing a direction of motion.
+
+#include <iostream>
+#include <map>
+#include <memory>
+
+#include "commands.hpp"
+#include "mjarm/kinematics/singularity.hpp"
+#include "output.hpp"
+
+namespace mjarm::cli {
+
+namespace {
+
+const std::map<std::string, JacobianBlock> kBlocks = {{"full", JacobianBlock::full},
+                                                      {"position", JacobianBlock::position},
+                                                      {"orientation", JacobianBlock::orientation}};
+
+Json entry_json(const SingularityEntry& e) {
+  return {{"name", e.name},
+          {"q", vector_json(e.q)},
+          {"singular_values", vector_json(e.singular_values)},
+          {"sigma_min", e.sigma_min},
+          {"condition_number", bound_json(e.condition_number)},
+          {"manipulability", e.manipulability},
+          {"status", to_string(e.status)}};
+}
+
+/// Where entry @p i of a report came from: the report lists qpos0, the centre of the ranges,
+/// the keyframes, then the caller's configurations.
+std::string origin(std::size_t i, int keyframes) {
+  if (i == 0) return "qpos0";
+  if (i == 1) return "mid-range";
+  if (i < 2 + static_cast<std::size_t>(keyframes)) return "keyframe";
+  return "--q";
+}
+
+void add_rows(Table& table, const std::vector<SingularityEntry>& entries, int keyframes) {
+  for (std::size_t i = 0; i < entries.size(); ++i) {
+    const SingularityEntry& e = entries[i];
+    const double sigma_max = e.singular_values.size() > 0 ? e.singular_values[0] : 0.0;
+    table.add_row({e.name, keyframes < 0 ? "sampled" : origin(i, keyframes), general(e.sigma_min),
+                   general(sigma_max), general(e.condition_number), general(e.manipulability),
+                   to_string(e.status), vector_text(e.q, 3)});
+  }
+}
+
+Table entry_table() {
+  return Table({{"configuration", Table::Align::left},
+                {"source", Table::Align::left},
+                {"σmin"},
+                {"σmax"},
+                {"cond"},
+                {"w"},
+                {"class", Table::Align::left},
+                {"q [rad or m]", Table::Align::left}});
+}
+
+}  // namespace
+
+Command add_singularities_command(CLI::App& root) {
+  struct Options {
+    std::string model;
+    std::string site;
+    std::size_t samples = 10000;
+    std::uint64_t seed = 1;
+    std::size_t worst = 5;
+    std::string block = "full";
+    std::vector<double> q;
+    bool json = false;
+  };
+  auto options = std::make_shared<Options>();
+  CLI::App* app = root.add_subcommand(
+      "singularities",
+      "singular values, condition number and manipulability at named and sampled configurations");
+  add_model_argument(*app, options->model)->required();
+  add_site_option(*app, options->site);
+  app->add_option("--samples", options->samples, "random configurations to scan (0: named only)")
+      ->check(non_negative_integer())
+      ->capture_default_str();
+  app->add_option("--seed", options->seed, "seed of the random generator")
+      ->check(non_negative_integer())
+      ->capture_default_str();
+  app->add_option("--worst", options->worst, "how many of the worst samples to list")
+      ->check(non_negative_integer())
+      ->capture_default_str();
+  app->add_option("--block", options->block,
+                  "Jacobian rows measured: full [v; ω], position or orientation")
+      ->check(CLI::IsMember({"full", "position", "orientation"}))
+      ->capture_default_str();
+  app->add_option("--q", options->q, "also measure this configuration (chain order) [rad or m]")
+      ->check(finite_number())
+      ->expected(1, -1);
+  add_json_flag(*app, options->json);
+
+  return {app, [options] {
+            const Robot robot = load_model(options->model);
+            const Chain chain(robot, resolve_site(robot, options->site));
+            ManipulabilityOptions measure;
+            measure.block = kBlocks.at(options->block);
+            std::vector<NamedConfiguration> extra;
+            if (!options->q.empty()) {
+              extra.push_back(
+                  {"--q", Eigen::Map<const Eigen::VectorXd>(
+                              options->q.data(), static_cast<Eigen::Index>(options->q.size()))});
+            }
+            const SingularityReport report = singularity_report(chain, extra, measure);
+            std::optional<SingularityScan> scan;
+            if (options->samples > 0) {
+              scan = scan_singularities(chain, options->samples, options->seed, options->worst,
+                                        measure);
+            }
+
+            if (options->json) {
+              Json doc{{"model", robot.name()},
+                       {"frame", chain.frame().name},
+                       {"joints", chain.joint_names()},
+                       {"block", to_string(measure.block)},
+                       {"singular_tolerance", measure.singular_tolerance},
+                       {"near_singular_threshold", measure.near_singular_threshold},
+                       {"configurations", Json::array()}};
+              for (const auto& e : report.entries) doc["configurations"].push_back(entry_json(e));
+              if (scan) {
+                Json s{{"samples", scan->samples},
+                       {"seed", scan->seed},
+                       {"singular", scan->singular_count},
+                       {"near_singular", scan->near_singular_count},
+                       {"worst", Json::array()}};
+                for (const auto& e : scan->worst) s["worst"].push_back(entry_json(e));
+                doc["scan"] = std::move(s);
+              } else {
+                doc["scan"] = nullptr;
+              }
+              return print_json(doc);
+            }
+
+            std::ostream& os = std::cout;
+            print_fields(
+                os, {{"model", robot.name()},
+                     {"frame", chain.frame().name},
+                     {"joints", std::to_string(chain.size()) + ": " + join(chain.joint_names())},
+                     {"measured", std::string(to_string(measure.block)) +
+                                      " block of the world-aligned Jacobian"},
+                     {"classes",
+                      "singular when σmin/σmax ≤ " + general(measure.singular_tolerance, 2) +
+                          ", near_singular below " + general(measure.near_singular_threshold, 2)}});
+            os << "\nnamed configurations\n";
+            Table named = entry_table();
+            add_rows(named, report.entries, robot.model().nkey);
+            named.print(os);
+            if (scan) {
+              os << "\nrandom scan: " << scan->samples << " samples (seed " << scan->seed
+                 << "): " << scan->singular_count << " singular, " << scan->near_singular_count
+                 << " near-singular\n";
+              if (!scan->worst.empty()) {
+                os << "lowest σmin among the samples\n";
+                Table worst = entry_table();
+                add_rows(worst, scan->worst, -1);
+                worst.print(os);
+              }
+            }
+          }};
+}
+
+}  // namespace mjarm::cli

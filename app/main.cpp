@@ -1,0 +1,86 @@
+// mjarm: command-line access to the library. Parse → call the library → print.
+
+#include <CLI/CLI.hpp>
+#include <exception>
+#include <iostream>
+#include <vector>
+
+#include "commands.hpp"
+#include "mjarm/error.hpp"
+#include "output.hpp"
+
+namespace {
+
+int fail(const std::string& message, int code, bool hint) {
+  std::cerr << "mjarm: error: " << message << '\n';
+  if (hint) std::cerr << "Run with --help for more information.\n";
+  return code;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  using namespace mjarm::cli;
+  CLI::App app(
+      "mjarm: robot arms on MuJoCo — inspect models, forward kinematics, workspace and "
+      "singularity analysis.",
+      "mjarm");
+  app.footer(
+      "Exit codes: 0 success, 1 the command failed, 2 the command line is wrong.\n"
+      "Run `mjarm COMMAND --help` for the options of one command.");
+  app.require_subcommand(1);
+
+  std::vector<Command> commands;
+  commands.push_back(add_models_command(app));
+  commands.push_back(add_info_command(app));
+  commands.push_back(add_fk_command(app));
+  commands.push_back(add_workspace_command(app));
+  commands.push_back(add_singularities_command(app));
+  commands.push_back(add_ik_command(app));
+  commands.push_back(add_bench_command(app));
+  commands.push_back(add_demo_command(app));
+
+  // name an unknown command instead of CLI11's generic "a subcommand is required"
+  if (argc > 1 && argv[1][0] != '-') {
+    std::vector<std::string> names;
+    bool known = false;
+    for (const auto& command : commands) {
+      names.push_back(command.app->get_name());
+      known = known || names.back() == argv[1];
+    }
+    if (!known)
+      return fail(std::string("unknown command '") + argv[1] + "'; commands: " + join(names), 2,
+                  true);
+  }
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForAllHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    if (argc == 1) {
+      // bare `mjarm`: show what it can do
+      std::cerr << app.help();
+      return 2;
+    }
+    return fail(e.what(), 2, true);
+  }
+
+  try {
+    for (const auto& command : commands) {
+      if (command.app->parsed()) command.run();
+    }
+  } catch (const UsageError& e) {
+    return fail(e.what(), 2, true);
+  } catch (const mjarm::Error& e) {
+    return fail(e.what(), 1, false);
+  } catch (const std::exception& e) {
+    return fail(e.what(), 1, false);
+  }
+  // a full disk or a closed pipe must not look like success
+  std::cout.flush();
+  if (!std::cout) return fail("cannot write to standard output", 1, false);
+  return 0;
+}

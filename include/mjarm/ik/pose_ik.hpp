@@ -1,0 +1,91 @@
+#pragma once
+/// @file
+/// Full-pose inverse kinematics (closed-loop IK on SE(3)) by damped least squares with
+/// Levenberg–Marquardt style adaptive damping.
+///
+/// The error is the body log error e = log(X_WE⁻¹·X_WT) = [v; ω] (m; rad, frame E). For a body
+/// twist V_E = J_E·q̇ it moves as ė = −Jlog(e)·V_E with Jlog = dexp⁻¹(e), so the Newton step
+/// solves (Jlog·J_E)·Δq = e. With row weights W = diag(w_p·I₃, w_o·I₃) one iteration is
+///   J = W·Jlog(e)·J_E,   λ² = damping² + error_damping·½‖W·e‖²,
+///   Δq = Jᵀ(JJᵀ + λ²I)⁻¹·W·e + N·b,   q ← clip(q + s·Δq),
+/// where b is the optional centre pull / limit repulsion / posture (null space N, at most
+/// secondary_ratio × the task step, as in `PositionIk`) and s ∈ {step, step/2, …} is the first
+/// step length that lowers ‖W·e‖ (the last one is taken anyway after `max_backtracks`
+/// halvings) and touches no watched geom. The error-proportional damping is large far from the
+/// target (short, safe steps) and vanishes near it (quadratic convergence). Joint limits: joints
+/// a step would carry past a bound are pinned on it and the step is recomputed for the others;
+/// no step changes a joint by more than max_step.
+
+#include <Eigen/Core>
+#include <memory>
+
+#include "mjarm/ik/collision_guard.hpp"
+#include "mjarm/ik/limit_bias.hpp"
+#include "mjarm/ik/posture.hpp"
+#include "mjarm/ik/result.hpp"
+#include "mjarm/kinematics/chain_kinematics.hpp"
+#include "mjarm/lie/pose.hpp"
+
+namespace mjarm {
+
+/// Every constant of `PoseIk`.
+struct PoseIkOptions {
+  double damping = 1e-3;             ///< constant part λ₀ of the damping (weighted error units)
+  double error_damping = 0.5;        ///< adds this × ½‖W·e‖² to λ² (≥ 0; 0 = plain DLS)
+  double step = 1.0;                 ///< fraction of the step tried first (0, 1]
+  int max_backtracks = 4;            ///< halvings of a step that raises the error (≥ 0)
+  double position_weight = 1.0;      ///< w_p, row weight of the position error [1/m] (> 0)
+  double orientation_weight = 0.5;   ///< w_o, row weight of the orientation error [1/rad] (> 0)
+  double null_space_damping = 1e-5;  ///< ε of the null-space projector (≥ 0)
+  double max_step = 0.5;             ///< largest joint change per iteration [rad or m] (> 0)
+  double secondary_ratio = 1.0;      ///< secondary step ≤ this × the task step (≥ 0)
+  LimitBias limits{0.0, 0.0, 0.15};  ///< optional centre pull / repulsion (off by default)
+  Posture posture;                   ///< optional pull towards a preferred configuration
+  double position_tolerance = 1e-5;  ///< success when ‖p_WT − p_WE‖ ≤ this [m]
+  double orientation_tolerance = 1e-5;  ///< ... and the rotation angle to the target ≤ this [rad]
+  int max_iterations = 200;             ///< iteration limit (≥ 1)
+  int stall_iterations = 30;            ///< stop after this many iterations without 0.01% progress
+  CollisionSpec collision;              ///< optional: geoms that must not touch (off when empty)
+};
+
+/// @throws Error naming the offending option.
+void check(const PoseIkOptions& options);
+
+/// Pose IK solver for one chain's frame: construct once, solve many times. After construction,
+/// `solve(X_WT, q_seed, result)` with a result of the right size allocates nothing. Never
+/// touches any caller's `mjData`.
+class PoseIk {
+ public:
+  /// @throws Error for invalid options or unknown collision geoms.
+  explicit PoseIk(const Chain& chain, const PoseIkOptions& options = {});
+
+  const Chain& chain() const noexcept { return kin_.chain(); }
+  const PoseIkOptions& options() const noexcept { return options_; }
+
+  /// Sets the joints outside the chain (full qpos, nq entries; default qpos0).
+  /// @throws Error when the size is not nq or a value is not finite.
+  void set_fixed_qpos(const Eigen::Ref<const Eigen::VectorXd>& qpos);
+
+  /// Moves the frame to the pose @p X_WT (world) starting from @p q_seed (n, clipped into the
+  /// limits first). Returns the best iterate (smallest max(position error / position
+  /// tolerance, orientation error / orientation tolerance)) with status converged,
+  /// not_converged or invalid_input (a NaN appeared: the last finite iterate).
+  /// @throws Error when X_WT is not finite or not a rotation, q_seed has the wrong size or
+  /// holds NaN/inf, or the seed is in contact under the collision spec.
+  IkResult solve(const Pose& X_WT, const Eigen::Ref<const Eigen::VectorXd>& q_seed);
+
+  /// The same, writing into @p result (allocation-free once result.q has n entries).
+  void solve(const Pose& X_WT, const Eigen::Ref<const Eigen::VectorXd>& q_seed, IkResult& result);
+
+ private:
+  PoseIkOptions options_;
+  ChainKinematics kin_;
+  std::unique_ptr<CollisionGuard> guard_;
+  Eigen::VectorXd q_pref_;
+  // workspace
+  Eigen::Matrix<double, 6, Eigen::Dynamic> J_world_;  // world-aligned frame Jacobian
+  Eigen::Matrix<double, 6, Eigen::Dynamic> J_, J_free_;
+  Eigen::VectorXd q_, q_best_, q_try_, dq_, bias_, free_bias_, locked_, dq_locked_;
+};
+
+}  // namespace mjarm

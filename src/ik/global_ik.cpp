@@ -1,0 +1,291 @@
+#include "mjarm/ik/global_ik.hpp"
+
+#include <Eigen/Cholesky>
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <numbers>
+#include <string>
+
+#include "mjarm/error.hpp"
+#include "mjarm/lie/so3.hpp"
+#include "validate_pose.hpp"
+
+namespace mjarm {
+namespace {
+
+constexpr int kMaxStallWindow = 64;
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+}  // namespace
+
+const char* to_string(GlobalIkMode mode) noexcept {
+  switch (mode) {
+    case GlobalIkMode::speed: return "speed";
+    case GlobalIkMode::distance: return "distance";
+    case GlobalIkMode::manipulability: return "manipulability";
+  }
+  return "unknown";
+}
+
+const char* to_string(GlobalIkMethods methods) noexcept {
+  switch (methods) {
+    case GlobalIkMethods::alternate: return "alternate";
+    case GlobalIkMethods::levenberg_marquardt: return "levenberg_marquardt";
+    case GlobalIkMethods::sqp: return "sqp";
+  }
+  return "unknown";
+}
+
+void check(const GlobalIkOptions& o) {
+  const auto fail = [](const std::string& what) { throw Error("GlobalIk: " + what); };
+  if (!(o.timeout.count() > 0.0) || !std::isfinite(o.timeout.count())) {
+    fail("timeout must be finite and positive, got " + std::to_string(o.timeout.count()) + " s");
+  }
+  check_tolerance(o.tolerance);
+  if (o.max_restarts < 0) fail("max_restarts must be >= 0, got " + std::to_string(o.max_restarts));
+  if (o.max_attempt_iterations < 1) {
+    fail("max_attempt_iterations must be >= 1, got " + std::to_string(o.max_attempt_iterations));
+  }
+  if (o.stall_iterations < 1 || o.stall_iterations > kMaxStallWindow) {
+    fail("stall_iterations must be in [1, " + std::to_string(kMaxStallWindow) + "], got " +
+         std::to_string(o.stall_iterations));
+  }
+  if (!(o.stall_ratio > 0.0 && o.stall_ratio < 1.0)) {
+    fail("stall_ratio must be in (0, 1), got " + std::to_string(o.stall_ratio));
+  }
+  if (!std::isfinite(o.damping) || o.damping <= 0.0) {
+    fail("damping must be finite and positive, got " + std::to_string(o.damping));
+  }
+  if (!std::isfinite(o.max_step) || o.max_step <= 0.0) {
+    fail("max_step must be finite and positive, got " + std::to_string(o.max_step));
+  }
+}
+
+GlobalIk::GlobalIk(const Chain& chain, const GlobalIkOptions& options)
+    : options_(options), kin_(chain), qp_(chain.size(), 0, 0) {
+  check(options_);
+  const int n = chain.size();
+  // restarts sample the limits; an unlimited joint samples one turn (hinge) or ±1 m (slide)
+  sample_lower_ = chain.lower();
+  sample_upper_ = chain.upper();
+  const mjModel& m = chain.robot().model();
+  for (int i = 0; i < n; ++i) {
+    const double half = m.jnt_type[chain.joint_id(i)] == mjJNT_HINGE ? std::numbers::pi : 1.0;
+    if (!std::isfinite(sample_lower_[i])) sample_lower_[i] = -half;
+    if (!std::isfinite(sample_upper_[i])) sample_upper_[i] = half;
+  }
+  J_ = Matrix6Xd::Zero(6, n);
+  H_ = Eigen::MatrixXd::Zero(n, n);
+  for (Eigen::VectorXd* v : {&q_, &q_trial_, &dq_, &g_, &lb_, &ub_, &q_seed_, &q_best_,
+                             &q_solution_}) {
+    *v = Eigen::VectorXd::Zero(n);
+  }
+}
+
+void GlobalIk::set_options(const GlobalIkOptions& options) {
+  check(options);
+  options_ = options;
+}
+
+void GlobalIk::set_fixed_qpos(const Eigen::Ref<const Eigen::VectorXd>& qpos) {
+  kin_.set_fixed_qpos(qpos);
+}
+
+IkResult GlobalIk::solve(const Pose& X_WT, const Eigen::Ref<const Eigen::VectorXd>& q_seed) {
+  IkResult result;
+  solve(X_WT, q_seed, result);
+  return result;
+}
+
+double GlobalIk::uniform() noexcept {
+  // 53 random bits → [0, 1): the same doubles on every platform for a given seed
+  return static_cast<double>(rng_() >> 11) * 0x1.0p-53;
+}
+
+void GlobalIk::random_configuration(Eigen::VectorXd& q) noexcept {
+  for (Eigen::Index i = 0; i < q.size(); ++i) {
+    q[i] = sample_lower_[i] + uniform() * (sample_upper_[i] - sample_lower_[i]);
+  }
+}
+
+double GlobalIk::evaluate(const Eigen::VectorXd& q, Vector6d& e) noexcept {
+  const Pose& X_WE = kin_.update(q);
+  e.head<3>() = X_WT_.p - X_WE.p;
+  e.tail<3>() = so3::log(X_WT_.R * X_WE.R.transpose());
+  return 0.5 * e.squaredNorm();
+}
+
+bool GlobalIk::converged(const Vector6d& e) const noexcept {
+  // target-frame error e_T = −blockdiag(R_WTᵀ, R_WTᵀ)·e (see pose_tolerance.hpp)
+  const Eigen::Vector3d lin = X_WT_.R.transpose() * e.head<3>();
+  const Eigen::Vector3d ang = X_WT_.R.transpose() * e.tail<3>();
+  const Vector6d& b = options_.tolerance.bound;
+  for (int i = 0; i < 3; ++i) {
+    if (!(std::abs(lin[i]) <= b[i]) || !(std::abs(ang[i]) <= b[3 + i])) return false;
+  }
+  return true;
+}
+
+double GlobalIk::manipulability() noexcept {
+  // √det(J Jᵀ) for n ≥ 6 (√det(JᵀJ) for shorter chains), through an in-place Cholesky factor
+  const int n = kin_.chain().size();
+  double det = 0.0;
+  if (n >= 6) {
+    const Matrix6d JJt = J_.lazyProduct(J_.transpose());
+    Eigen::LLT<Matrix6d> llt(JJt);
+    if (llt.info() == Eigen::Success) det = llt.matrixLLT().diagonal().prod();
+  } else {
+    H_.noalias() = J_.transpose().lazyProduct(J_);
+    Eigen::LLT<Eigen::Ref<Eigen::MatrixXd>> llt(H_);
+    if (llt.info() == Eigen::Success) det = H_.diagonal().prod();
+  }
+  return std::abs(det);  // product of the factor's diagonal = √det
+}
+
+void GlobalIk::solve(const Pose& X_WT, const Eigen::Ref<const Eigen::VectorXd>& q_seed,
+                     IkResult& result) {
+  const Chain& chain = kin_.chain();
+  detail::validate_pose(X_WT, "GlobalIk target");
+  chain.check(q_seed, "seed");
+  const int n = chain.size();
+  const auto start = Clock::now();
+  const auto deadline =
+      start + std::chrono::duration_cast<Clock::duration>(options_.timeout);
+  X_WT_ = X_WT;
+  rng_.seed(options_.seed);
+  stats_ = GlobalIkStats{};
+  q_seed_ = q_seed;
+  if (result.q.size() != n) result.q.resize(n);
+
+  double best_E = kInf;        // smallest ½‖e‖² over all iterates (for a failed solve)
+  double best_score = -kInf;   // mode score of the kept solution (larger is better)
+  int iterations = 0;
+  Outcome last = Outcome::stalled;
+  bool any_finite = false;
+  for (int attempt = 0;; ++attempt) {
+    const bool use_sqp = options_.methods == GlobalIkMethods::sqp ||
+                         (options_.methods == GlobalIkMethods::alternate && attempt % 2 == 1);
+    if (attempt == 0) {
+      q_ = chain.lower().cwiseMax(q_seed).cwiseMin(chain.upper());
+    } else {
+      random_configuration(q_);
+    }
+    ++stats_.attempts;
+    last = run_attempt(use_sqp, deadline, iterations);
+    if (last != Outcome::invalid) {
+      any_finite = true;
+      if (E_ < best_E) {
+        best_E = E_;
+        q_best_ = q_;
+      }
+    }
+    if (last == Outcome::converged) {
+      ++stats_.solutions;
+      ++(use_sqp ? stats_.sqp_solutions : stats_.lm_solutions);
+      double score = 0.0;
+      if (options_.mode == GlobalIkMode::distance) score = -(q_ - q_seed_).squaredNorm();
+      if (options_.mode == GlobalIkMode::manipulability) score = manipulability();
+      if (stats_.solutions == 1 || score > best_score) {
+        best_score = score;
+        q_solution_ = q_;
+      }
+      if (options_.mode == GlobalIkMode::speed) break;
+    }
+    if (last == Outcome::timeout || attempt >= options_.max_restarts) break;
+    if (Clock::now() >= deadline) {
+      last = Outcome::timeout;
+      break;
+    }
+  }
+
+  // report the kept solution, else the best iterate, else the clipped seed
+  if (stats_.solutions > 0) {
+    result.q = q_solution_;
+    result.status = IkStatus::converged;
+  } else if (any_finite) {
+    result.q = q_best_;
+    result.status = last == Outcome::timeout ? IkStatus::timeout : IkStatus::not_converged;
+  } else {
+    result.q = chain.lower().cwiseMax(q_seed_).cwiseMin(chain.upper());
+    result.status = IkStatus::invalid_input;
+  }
+  Vector6d e;
+  evaluate(result.q, e);
+  result.position_error = e.head<3>().norm();
+  result.orientation_error = e.tail<3>().norm();
+  result.iterations = iterations;
+  if (stats_.solutions > 0) {
+    kin_.jacobian(J_);
+    stats_.manipulability = manipulability();
+  }
+  stats_.elapsed = std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+GlobalIk::Outcome GlobalIk::run_attempt(bool use_sqp, Clock::time_point deadline,
+                                        int& iterations) noexcept {
+  const Eigen::VectorXd& lower = kin_.chain().lower();
+  const Eigen::VectorXd& upper = kin_.chain().upper();
+  E_ = evaluate(q_, e_);
+  if (!std::isfinite(E_)) return Outcome::invalid;
+  kin_.jacobian(J_);
+  mu_ = 0.1;
+  qp_.reset_warm_start();
+  std::array<double, kMaxStallWindow + 1> history{};  // E at the last iterations (ring)
+  const int window = options_.stall_iterations;
+  for (int it = 0;; ++it) {
+    if (converged(e_)) return Outcome::converged;
+    if (it >= options_.max_attempt_iterations) return Outcome::stalled;
+    // progress test: the error must shrink by stall_ratio every `window` iterations
+    if (it >= window && E_ > options_.stall_ratio * history[(it - window) % (window + 1)]) {
+      return Outcome::stalled;
+    }
+    history[it % (window + 1)] = E_;
+    if (Clock::now() >= deadline) return Outcome::timeout;
+    ++iterations;
+
+    // damping heavy far from the target, vanishing at the solution
+    const double lambda = mu_ * E_ + options_.damping;
+    // the unconstrained minimizer of both methods' model: Δq = Jᵀ(JJᵀ + λI)⁻¹e (6×6 solve)
+    Matrix6d A;
+    A.noalias() = J_.lazyProduct(J_.transpose());  // small: no GEMM blocking
+    A.diagonal().array() += lambda;
+    const Vector6d y = A.llt().solve(e_);
+    dq_.noalias() = J_.transpose() * y;
+    if (use_sqp) {
+      // the QP only differs when a bound binds: solve it then, with the limits as constraints
+      lb_ = (lower - q_).cwiseMax(-options_.max_step);
+      ub_ = (upper - q_).cwiseMin(options_.max_step);
+      if ((dq_.array() < lb_.array()).any() || (dq_.array() > ub_.array()).any()) {
+        H_.noalias() = J_.transpose().lazyProduct(J_);
+        H_.diagonal().array() += lambda;
+        g_.noalias() = -J_.transpose() * e_;
+        qp_.set_hessian(H_);
+        qp_.set_gradient(g_);
+        qp_.set_bounds(lb_, ub_);
+        const qp::QpResult& r = qp_.solve(qp::QpStart::warm);
+        if (!r.x.allFinite()) return Outcome::invalid;
+        dq_ = r.x;
+      }
+    } else {
+      const double largest = dq_.cwiseAbs().maxCoeff();
+      if (largest > options_.max_step) dq_ *= options_.max_step / largest;
+    }
+    q_trial_ = (q_ + dq_).cwiseMax(lower).cwiseMin(upper);
+
+    const double E_trial = evaluate(q_trial_, e_trial_);
+    if (E_trial < E_) {
+      // accept: a successful step lets the damping relax
+      q_.swap(q_trial_);
+      e_ = e_trial_;
+      E_ = E_trial;
+      kin_.jacobian(J_);
+      mu_ = std::max(mu_ * 0.5, 1e-3);
+    } else {
+      // reject: keep q (its Jacobian is still in J_) and damp harder
+      mu_ *= 10.0;
+    }
+  }
+}
+
+}  // namespace mjarm

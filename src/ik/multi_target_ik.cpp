@@ -1,0 +1,322 @@
+#include "mjarm/ik/multi_target_ik.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <string>
+
+#include "mjarm/error.hpp"
+
+namespace mjarm {
+namespace {
+
+void require(bool ok, const char* name, double value, const char* expected) {
+  if (!ok) {
+    throw Error(std::string("multi-target IK option ") + name + " must be " + expected + ", got " +
+                std::to_string(value));
+  }
+}
+
+bool positive(double x) { return std::isfinite(x) && x > 0.0; }
+
+/// A target's kinematics on the shared joints; the frame must be moved by one of them.
+ChainKinematics target_kinematics(const Robot& robot, const std::vector<std::string>& joints,
+                                  const FrameTarget& target) {
+  ChainKinematics kin{Chain(robot, joints, target.frame)};
+  bool moved = false;
+  for (int i = 0; i < kin.chain().size(); ++i) moved = moved || kin.moves_frame(i);
+  if (!moved)
+    throw Error("target frame '" + target.frame + "' is not moved by any of the IK joints");
+  return kin;
+}
+
+}  // namespace
+
+void check(const MultiTargetIkOptions& o) {
+  require(positive(o.damping), "damping", o.damping, "finite and > 0");
+  require(std::isfinite(o.error_damping) && o.error_damping >= 0.0, "error_damping",
+          o.error_damping, "finite and >= 0");
+  require(o.step > 0.0 && o.step <= 1.0, "step", o.step, "in (0, 1]");
+  require(o.max_backtracks >= 0, "max_backtracks", o.max_backtracks, ">= 0");
+  require(std::isfinite(o.null_space_damping) && o.null_space_damping >= 0.0, "null_space_damping",
+          o.null_space_damping, "finite and >= 0");
+  require(positive(o.position_tolerance), "position_tolerance", o.position_tolerance,
+          "finite and > 0");
+  require(positive(o.orientation_tolerance), "orientation_tolerance", o.orientation_tolerance,
+          "finite and > 0");
+  require(positive(o.max_step), "max_step", o.max_step, "finite and > 0");
+  require(std::isfinite(o.secondary_ratio) && o.secondary_ratio >= 0.0, "secondary_ratio",
+          o.secondary_ratio, "finite and >= 0");
+  require(o.max_iterations >= 1, "max_iterations", o.max_iterations, ">= 1");
+  require(o.stall_iterations >= 1, "stall_iterations", o.stall_iterations, ">= 1");
+  check(o.limits);
+}
+
+MultiTargetIk::MultiTargetIk(const Robot& robot, const std::vector<std::string>& joints,
+                             const std::vector<FrameTarget>& targets,
+                             const MultiTargetIkOptions& options)
+    : options_(options) {
+  check(options_);
+  if (targets.empty()) throw Error("multi-target IK needs at least one target");
+  // priority levels in increasing order; stacked mode puts everything in one level
+  std::vector<int> priorities;
+  for (const FrameTarget& t : targets) {
+    if (t.priority < 0) {
+      throw Error("target on '" + t.frame + "' has priority " + std::to_string(t.priority) +
+                  "; priorities are >= 0 (0 is the most important)");
+    }
+    check_weights(t);
+    check_pose_target(t.X_WT, "target on '" + t.frame + "'");
+    priorities.push_back(options_.mode == MultiTargetMode::stacked ? 0 : t.priority);
+  }
+  std::vector<int> distinct = priorities;
+  std::sort(distinct.begin(), distinct.end());
+  distinct.erase(std::unique(distinct.begin(), distinct.end()), distinct.end());
+  targets_.reserve(targets.size());
+  levels_.reserve(distinct.size());
+  std::vector<int> level_rows(distinct.size(), 0);
+  for (std::size_t i = 0; i < targets.size(); ++i) {
+    const int level = static_cast<int>(
+        std::lower_bound(distinct.begin(), distinct.end(), priorities[i]) - distinct.begin());
+    targets_.push_back(TargetSlot{targets[i],
+                                  target_kinematics(robot, joints, targets[i]),
+                                  level,
+                                  level_rows[level],
+                                  {},
+                                  {},
+                                  {},
+                                  {}});
+    level_rows[level] += task_rows(targets[i].kind);
+  }
+  const Chain& shared = targets_.front().kin.chain();
+  const int n = shared.size();
+  for (int rows : level_rows) {
+    levels_.push_back(Level{rows, Eigen::MatrixXd::Zero(rows, n), Eigen::VectorXd::Zero(rows),
+                            Eigen::MatrixXd::Zero(rows, n), Eigen::VectorXd::Zero(rows),
+                            Eigen::VectorXd::Zero(n), DampedLeastSquares(rows, n),
+                            DampedLeastSquares(rows, n)});
+  }
+  q_pref_ = resolve_posture(shared, options_.posture);
+  if (!options_.collision.empty())
+    guard_ = std::make_unique<CollisionGuard>(shared, options_.collision);
+  J_scratch_.setZero(6, n);
+  N_.setZero(n, n);
+  P_.setZero(n, n);
+  q_.setZero(n);
+  q_best_.setZero(n);
+  q_try_.setZero(n);
+  dq_.setZero(n);
+  bias_.setZero(n);
+  locked_.setZero(n);
+  dq_locked_.setZero(n);
+  projected_bias_.setZero(n);
+  for (Score* s : {&current_, &trial_, &best_}) {
+    s->converged.assign(levels_.size(), 0);
+    s->objective.assign(levels_.size(), 0.0);
+  }
+}
+
+void MultiTargetIk::set_target(int i, const Pose& X_WT) {
+  if (i < 0 || i >= target_count()) {
+    throw Error("target index " + std::to_string(i) + " out of range; there are " +
+                std::to_string(target_count()) + " targets");
+  }
+  // the message is built only on failure: moving targets must not allocate
+  if (!is_valid_pose(X_WT)) check_pose_target(X_WT, "target on '" + targets_[i].target.frame + "'");
+  targets_[i].target.X_WT = X_WT;
+}
+
+void MultiTargetIk::set_fixed_qpos(const Eigen::Ref<const Eigen::VectorXd>& qpos) {
+  for (TargetSlot& slot : targets_) slot.kin.set_fixed_qpos(qpos);
+  if (guard_) guard_->set_fixed_qpos(qpos);
+}
+
+void MultiTargetIk::evaluate(const Eigen::Ref<const Eigen::VectorXd>& q, bool trial,
+                             Score& score) noexcept {
+  const MultiTargetIkOptions& o = options_;
+  std::fill(score.converged.begin(), score.converged.end(), 1);
+  std::fill(score.objective.begin(), score.objective.end(), 0.0);
+  score.total = 0.0;
+  score.worst = 0.0;
+  for (TargetSlot& slot : targets_) {
+    const FrameTarget& t = slot.target;
+    const int rows = task_rows(t.kind);
+    Level& level = levels_[slot.level];
+    slot.kin.update(q);
+    auto e = level.e.segment(slot.row, rows);
+    auto J = level.J.middleRows(slot.row, rows);
+    const FrameErrors f = evaluate_target(slot.kin, t.kind, t.X_WT, e, J, J_scratch_);
+    // row weights: position rows first, then orientation rows
+    e.head<3>() *= t.position_weight;
+    J.topRows<3>() *= t.position_weight;
+    if (rows == 6) {
+      e.tail<3>() *= t.orientation_weight;
+      J.bottomRows<3>() *= t.orientation_weight;
+    }
+    (trial ? slot.trial_errors : slot.errors) = f;
+    const double s =
+        std::max(f.position / o.position_tolerance, f.orientation / o.orientation_tolerance);
+    if (!(s <= 1.0)) score.converged[slot.level] = 0;
+    score.objective[slot.level] += e.squaredNorm();
+    score.total += s;
+    score.worst = std::max(score.worst, s);
+  }
+}
+
+bool MultiTargetIk::better(const Score& a, const Score& b) const noexcept {
+  // lexicographic by level; a level both scores have converged on is a tie
+  for (std::size_t k = 0; k < levels_.size(); ++k) {
+    if (a.converged[k] && b.converged[k]) continue;
+    if (a.converged[k] != b.converged[k]) return a.converged[k] != 0;
+    if (a.objective[k] != b.objective[k]) return a.objective[k] < b.objective[k];
+  }
+  return false;
+}
+
+bool MultiTargetIk::all_converged(const Score& s) const noexcept {
+  return std::all_of(s.converged.begin(), s.converged.end(), [](char c) { return c != 0; });
+}
+
+void MultiTargetIk::compute_step() noexcept {
+  const MultiTargetIkOptions& o = options_;
+  const Chain& chain = this->chain();
+  const double eps_sq = o.null_space_damping * o.null_space_damping;
+  const bool has_bias =
+      o.limits.centre_gain > 0.0 || o.limits.repulsion_gain > 0.0 || o.posture.gain > 0.0;
+  // secondary terms
+  if (has_bias) {
+    bias_.setZero();
+    add_limit_bias(chain, o.limits, q_, bias_);
+    add_posture_pull(q_pref_, o.posture.gain, q_, bias_);
+  }
+  // the recursion starts from the pinned motion of saturated joints with a null space that
+  // excludes them; joints a pass would carry past a bound are pinned and the recursion reruns
+  locked_.setZero();
+  dq_locked_.setZero();
+  for (int pass = 0; pass <= chain.size(); ++pass) {
+    dq_ = dq_locked_;
+    N_.setZero();
+    N_.diagonal() = (1.0 - locked_.array()).matrix();
+    for (std::size_t k = 0; k < levels_.size(); ++k) {
+      Level& L = levels_[k];
+      L.J_tilde.noalias() = L.J * N_;
+      L.r = L.e;
+      L.r.noalias() -= L.J * dq_;
+      const double lambda_sq = o.damping * o.damping + o.error_damping * 0.5 * L.e.squaredNorm();
+      L.step.factor(L.J_tilde, lambda_sq);
+      L.step.step(L.J_tilde, L.r, L.dq);
+      dq_ += L.dq;
+      if (k + 1 < levels_.size() || has_bias) {
+        L.null.factor(L.J_tilde, eps_sq);
+        L.null.row_space_projector(L.J_tilde, P_);
+        N_ -= P_;
+      }
+    }
+    if (has_bias) {
+      projected_bias_.noalias() = N_ * bias_;
+      const double task = (dq_ - dq_locked_).norm();
+      dq_ += secondary_scale(task, projected_bias_.norm(), o.secondary_ratio) * projected_bias_;
+    }
+    if (saturate_step(chain, q_, dq_, locked_, dq_locked_) == 0) break;
+  }
+  // a trust region against the huge steps next to singularities
+  const double largest = dq_.cwiseAbs().maxCoeff();
+  if (largest > o.max_step) dq_ *= o.max_step / largest;
+}
+
+IkResult MultiTargetIk::solve(const Eigen::Ref<const Eigen::VectorXd>& q_seed) {
+  IkResult result;
+  result.q.resize(chain().size());
+  solve(q_seed, result);
+  return result;
+}
+
+void MultiTargetIk::solve(const Eigen::Ref<const Eigen::VectorXd>& q_seed, IkResult& result) {
+  const Chain& chain = this->chain();
+  chain.check(q_seed, "multi-target IK seed");
+  q_ = q_seed;
+  clamp_to_limits(chain, q_);
+  if (guard_ && guard_->in_contact(q_)) {
+    throw Error("multi-target IK seed is in contact: " + guard_->describe_contacts(q_));
+  }
+  if (result.q.size() != chain.size()) result.q.resize(chain.size());
+
+  const MultiTargetIkOptions& o = options_;
+  evaluate(q_, false, current_);
+  bool have_best = false;
+  double stall_reference = std::numeric_limits<double>::infinity();
+  int since_progress = 0;
+  IkStatus status = IkStatus::not_converged;
+  int iterations = 0;
+  for (;; ++iterations) {
+    if (!std::isfinite(current_.total)) {
+      status = IkStatus::invalid_input;
+      break;
+    }
+    if (!have_best || better(current_, best_)) {
+      have_best = true;
+      best_ = current_;
+      q_best_ = q_;
+      for (TargetSlot& slot : targets_) slot.best_errors = slot.errors;
+    }
+    if (all_converged(current_)) {
+      status = IkStatus::converged;
+      break;
+    }
+    if (iterations == o.max_iterations) break;
+    if (current_.total < stall_reference * (1.0 - 1e-4)) {
+      stall_reference = current_.total;
+      since_progress = 0;
+    } else if (++since_progress >= o.stall_iterations) {
+      break;
+    }
+
+    compute_step();
+    if (!dq_.allFinite()) {
+      status = IkStatus::invalid_input;
+      break;
+    }
+
+    // backtracking: halve the step while it makes the result worse (or touches a watched geom)
+    const int halvings = std::max(o.max_backtracks, guard_ ? guard_->spec().max_halvings : 0);
+    double s = o.step;
+    bool accepted = false;
+    for (int h = 0; h <= halvings; ++h, s *= 0.5) {
+      q_try_ = q_ + s * dq_;
+      clamp_to_limits(chain, q_try_);
+      if (!q_try_.allFinite()) break;
+      if (guard_ && guard_->in_contact(q_try_)) {
+        if (h >= guard_->spec().max_halvings) break;
+        continue;
+      }
+      evaluate(q_try_, true, trial_);
+      if (better(trial_, current_) || h >= o.max_backtracks) {
+        accepted = true;
+        break;
+      }
+    }
+    if (!q_try_.allFinite()) {
+      status = IkStatus::invalid_input;
+      break;
+    }
+    if (!accepted) break;  // every shortened step touched a watched geom
+    q_ = q_try_;
+    current_ = trial_;
+    for (TargetSlot& slot : targets_) slot.errors = slot.trial_errors;
+  }
+
+  // invalid input returns the last finite iterate, everything else the best one
+  const bool last = status == IkStatus::invalid_input || !have_best;
+  result.q = last ? q_ : q_best_;
+  result.position_error = 0.0;
+  result.orientation_error = 0.0;
+  for (TargetSlot& slot : targets_) {
+    slot.result_errors = last ? slot.errors : slot.best_errors;
+    result.position_error = std::max(result.position_error, slot.result_errors.position);
+    result.orientation_error = std::max(result.orientation_error, slot.result_errors.orientation);
+  }
+  result.status = status;
+  result.iterations = iterations;
+}
+
+}  // namespace mjarm

@@ -1,0 +1,368 @@
+// Drives the built `mjarm` executable: exit codes, error messages on stderr, and JSON output
+// cross-checked against the library and against closed-form kinematics of planar2.
+
+#include <fcntl.h>
+#include <gtest/gtest.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <numbers>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "mjarm/kinematics/chain_kinematics.hpp"
+#include "mjarm/kinematics/workspace.hpp"
+#include "mjarm/model/chain.hpp"
+#include "mjarm/model/robot.hpp"
+
+extern char** environ;
+
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+struct CliRun {
+  int exit_code = -1;
+  bool signaled = false;
+  std::string out;
+  std::string err;
+};
+
+std::string slurp(const fs::path& path) {
+  std::ifstream in(path);
+  std::stringstream buffer;
+  buffer << in.rdbuf();
+  return buffer.str();
+}
+
+/// A scratch directory unique to this test process, removed at exit.
+struct ScratchDir {
+  fs::path path = fs::temp_directory_path() / ("mjarm_cli_test_" + std::to_string(::getpid()));
+  ScratchDir() { fs::create_directories(path); }
+  ~ScratchDir() {
+    std::error_code ec;
+    fs::remove_all(path, ec);
+  }
+};
+
+fs::path scratch() {
+  static const ScratchDir dir;
+  return dir.path;
+}
+
+/// Runs the CLI with @p args (no shell), stdout and stderr captured through files.
+CliRun run_cli(const std::vector<std::string>& args) {
+  const fs::path out = scratch() / "stdout.txt";
+  const fs::path err = scratch() / "stderr.txt";
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, out.c_str(),
+                                   O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  posix_spawn_file_actions_addopen(&actions, STDERR_FILENO, err.c_str(),
+                                   O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  std::vector<std::string> all{MJARM_CLI};
+  all.insert(all.end(), args.begin(), args.end());
+  std::vector<char*> argv;
+  for (auto& a : all) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  pid_t pid = 0;
+  CliRun run;
+  const int spawned = posix_spawn(&pid, MJARM_CLI, &actions, nullptr, argv.data(), environ);
+  posix_spawn_file_actions_destroy(&actions);
+  if (spawned != 0) {
+    ADD_FAILURE() << "cannot start " << MJARM_CLI;
+    return run;
+  }
+  int status = 0;
+  waitpid(pid, &status, 0);
+  run.signaled = WIFSIGNALED(status);
+  run.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  run.out = slurp(out);
+  run.err = slurp(err);
+  return run;
+}
+
+json run_json(const std::vector<std::string>& args) {
+  const CliRun run = run_cli(args);
+  EXPECT_EQ(run.exit_code, 0) << run.err;
+  EXPECT_TRUE(json::accept(run.out)) << run.out;
+  return json::accept(run.out) ? json::parse(run.out) : json();
+}
+
+/// Expects a clean failure: the exit code, one "mjarm: error:" message containing @p needle, no
+/// output on stdout, no crash.
+void expect_error(const std::vector<std::string>& args, int code, const std::string& needle) {
+  const CliRun run = run_cli(args);
+  EXPECT_FALSE(run.signaled);
+  EXPECT_EQ(run.exit_code, code) << run.err;
+  EXPECT_EQ(run.err.rfind("mjarm: error: ", 0), 0u) << run.err;
+  EXPECT_NE(run.err.find(needle), std::string::npos) << "'" << needle << "' not in: " << run.err;
+  EXPECT_TRUE(run.out.empty()) << run.out;
+}
+
+fs::path write_file(const std::string& name, const std::string& text) {
+  const fs::path path = scratch() / name;
+  std::ofstream(path) << text;
+  return path;
+}
+
+// planar2 from its model file: shoulder 1 m above the floor, links 0.4 m and 0.35 m along +x at
+// q = 0, both hinges about +y (a positive angle turns the link from +x towards −z)
+constexpr double kL1 = 0.4, kL2 = 0.35, kShoulderHeight = 1.0;
+Eigen::Vector3d planar2_tip(double q1, double q2) {
+  return {kL1 * std::cos(q1) + kL2 * std::cos(q1 + q2), 0.0,
+          kShoulderHeight - kL1 * std::sin(q1) - kL2 * std::sin(q1 + q2)};
+}
+
+Eigen::VectorXd to_vector(const json& array) {
+  Eigen::VectorXd v(static_cast<Eigen::Index>(array.size()));
+  for (std::size_t i = 0; i < array.size(); ++i)
+    v[static_cast<Eigen::Index>(i)] = array[i].get<double>();
+  return v;
+}
+
+TEST(Cli, HelpWorksOnEveryCommand) {
+  for (const std::string command :
+       {"", "models", "info", "fk", "workspace", "singularities", "demo"}) {
+    std::vector<std::string> args;
+    if (!command.empty()) args.push_back(command);
+    args.push_back("--help");
+    const CliRun run = run_cli(args);
+    EXPECT_EQ(run.exit_code, 0) << command;
+    EXPECT_NE(run.out.find("Usage"), std::string::npos) << command;
+  }
+  const CliRun bare = run_cli({});
+  EXPECT_EQ(bare.exit_code, 2);
+  EXPECT_NE(bare.err.find("Subcommands"), std::string::npos);
+}
+
+TEST(Cli, ModelsListsTheBundledModels) {
+  const json doc = run_json({"models", "--json"});
+  EXPECT_EQ(doc["models"].get<std::vector<std::string>>(), mjarm::Robot::bundled_names());
+  const json same = run_json({"info", "--list", "--json"});
+  EXPECT_EQ(same, doc);
+}
+
+TEST(Cli, InfoJsonMatchesTheLibrary) {
+  const mjarm::Robot robot = mjarm::Robot::bundled("panda");
+  const json doc = run_json({"info", "panda", "--json"});
+  EXPECT_EQ(doc["name"], "panda");
+  EXPECT_EQ(doc["nq"], robot.nq());
+  EXPECT_EQ(doc["nv"], robot.nv());
+  EXPECT_EQ(doc["nu"], robot.nu());
+  const auto joints = robot.joints();
+  ASSERT_EQ(doc["joints"].size(), joints.size());
+  for (std::size_t i = 0; i < joints.size(); ++i) {
+    EXPECT_EQ(doc["joints"][i]["name"], joints[i].name);
+    EXPECT_EQ(doc["joints"][i]["type"], "hinge");
+    EXPECT_EQ(doc["joints"][i]["range"][0].get<double>(), joints[i].lower);
+    EXPECT_EQ(doc["joints"][i]["range"][1].get<double>(), joints[i].upper);
+  }
+  const auto actuators = robot.actuators();
+  ASSERT_EQ(doc["actuators"].size(), actuators.size());
+  EXPECT_EQ(doc["actuators"][0]["kind"], "position");
+  EXPECT_EQ(doc["actuators"][0]["joint"], joints[0].name);
+  EXPECT_EQ(doc["actuators"][0]["ctrlrange"][1].get<double>(), actuators[0].ctrl_upper);
+  EXPECT_EQ(doc["sites"].get<std::vector<std::string>>(), robot.site_names());
+  EXPECT_EQ(doc["keyframes"].get<std::vector<std::string>>(), robot.keyframe_names());
+  EXPECT_TRUE(doc["warnings"].empty());
+  for (const char* key : {"source", "bodies", "sensors", "cameras"})
+    EXPECT_TRUE(doc.contains(key)) << key;
+
+  const CliRun table = run_cli({"info", "panda"});
+  EXPECT_EQ(table.exit_code, 0);
+  EXPECT_NE(table.out.find("joint4  hinge  -3.0718  -0.0698  rad"), std::string::npos) << table.out;
+}
+
+TEST(Cli, InfoReportsTranslationWarningsAndSensors) {
+  const fs::path path = write_file("v3.xml", R"(<mujoco model="v3">
+  <option integrator="implicitfast"/>
+  <worldbody><body name="b"><joint name="j" axis="0 0 1" range="-1 1"/>
+    <geom type="sphere" size="0.1"/><site name="s"/></body></worldbody>
+  <sensor><jointpos name="jp" joint="j"/><framepos name="fp" objtype="site" objname="s"/></sensor>
+</mujoco>)");
+  const json doc = run_json({"info", path.string(), "--json"});
+  ASSERT_FALSE(doc["warnings"].empty());
+  EXPECT_NE(doc["warnings"][0].get<std::string>().find("implicitfast"), std::string::npos);
+  ASSERT_EQ(doc["sensors"].size(), 2u);
+  EXPECT_EQ(doc["sensors"][1]["name"], "fp");
+  EXPECT_EQ(doc["sensors"][1]["address"], 1);
+  EXPECT_EQ(doc["sensors"][1]["dimension"], 3);
+  // MJCF angles default to degrees: the range is reported in radians
+  EXPECT_NEAR(doc["joints"][0]["range"][1].get<double>(), std::numbers::pi / 180.0, 1e-15);
+}
+
+TEST(Cli, FkOfPlanar2MatchesClosedForm) {
+  const json zero = run_json({"fk", "planar2", "--site", "tip", "--q", "0", "0", "--json"});
+  const Eigen::Vector3d p = to_vector(zero["position"]);
+  EXPECT_LT((p - Eigen::Vector3d(kL1 + kL2, 0.0, kShoulderHeight)).norm(), 1e-12) << p.transpose();
+  EXPECT_EQ(zero["configuration"], "--q");
+  EXPECT_EQ(zero["frame"]["name"], "tip");
+  EXPECT_TRUE(zero["within_limits"].get<bool>());
+  // values outside the joint range are computed, and flagged
+  const json outside = run_json({"fk", "planar2", "--q", "2.0", "0", "--json"});
+  EXPECT_FALSE(outside["within_limits"].get<bool>());
+  EXPECT_LT((to_vector(outside["position"]) - planar2_tip(2.0, 0.0)).norm(), 1e-12);
+
+  // a general configuration (negative values parse as numbers), with the Jacobian
+  const double q1 = 0.3, q2 = -0.7;
+  const json doc = run_json({"fk", "planar2", "--q", "0.3", "-0.7", "--jacobian", "--json"});
+  EXPECT_LT((to_vector(doc["position"]) - planar2_tip(q1, q2)).norm(), 1e-12);
+  // the tip frame is rotated by q1 + q2 about +y
+  const Eigen::Vector4d quat = to_vector(doc["quaternion_wxyz"]);
+  const double half = 0.5 * (q1 + q2);
+  EXPECT_LT((quat - Eigen::Vector4d(std::cos(half), 0, std::sin(half), 0)).norm(), 1e-12)
+      << quat.transpose();
+  EXPECT_NEAR(doc["rpy"][1].get<double>(), q1 + q2, 1e-12);
+  EXPECT_NEAR(doc["rotation"][0][2].get<double>(), std::sin(q1 + q2), 1e-12);
+  // Jacobian columns against central differences of the closed form
+  const json& J = doc["jacobian"]["data"];
+  ASSERT_EQ(J.size(), 6u);
+  ASSERT_EQ(J[0].size(), 2u);
+  const double h = 1e-6;
+  const Eigen::Vector3d d1 = (planar2_tip(q1 + h, q2) - planar2_tip(q1 - h, q2)) / (2 * h);
+  const Eigen::Vector3d d2 = (planar2_tip(q1, q2 + h) - planar2_tip(q1, q2 - h)) / (2 * h);
+  for (int r = 0; r < 3; ++r) {
+    EXPECT_NEAR(J[r][0].get<double>(), d1[r], 1e-8);
+    EXPECT_NEAR(J[r][1].get<double>(), d2[r], 1e-8);
+  }
+  EXPECT_EQ(J[4][0].get<double>(), 1.0);  // ω_y of both hinges
+  EXPECT_EQ(J[4][1].get<double>(), 1.0);
+}
+
+TEST(Cli, FkAtAKeyframeMatchesTheLibrary) {
+  const mjarm::Robot robot = mjarm::Robot::bundled("panda");
+  const mjarm::Chain chain(robot, "attachment_site");
+  mjarm::ChainKinematics kin(chain);
+  const std::vector<double> home = robot.keyframe_qpos("home");
+  const mjarm::Pose& X_WE = kin.update(chain.gather(home.data()));
+
+  const json doc = run_json({"fk", "panda", "--key", "home", "--json"});
+  EXPECT_EQ(doc["frame"]["name"], "attachment_site");  // the model's only site is the default
+  EXPECT_EQ(doc["configuration"], "keyframe 'home'");
+  EXPECT_EQ(to_vector(doc["position"]), Eigen::VectorXd(X_WE.p));
+  for (int r = 0; r < 3; ++r) {
+    for (int c = 0; c < 3; ++c) EXPECT_EQ(doc["rotation"][r][c].get<double>(), X_WE.R(r, c));
+  }
+  EXPECT_NEAR(to_vector(doc["quaternion_wxyz"]).norm(), 1.0, 1e-14);
+
+  const CliRun table = run_cli({"fk", "panda", "--key", "home"});
+  EXPECT_EQ(table.exit_code, 0);
+  EXPECT_NE(table.out.find("position [m]"), std::string::npos);
+  EXPECT_TRUE(table.err.empty()) << table.err;
+}
+
+TEST(Cli, BadCommandLinesFailCleanly) {
+  expect_error({"fk", "planar2", "--q", "0", "0", "0"}, 1, "--q has 3 values");
+  expect_error({"fk", "planar2", "--q", "0"}, 1, "--q has 1 values");
+  expect_error({"fk", "planar2", "--q", "0", "nan"}, 2, "'nan' is not a finite number");
+  expect_error({"fk", "planar2", "--q", "inf", "0"}, 2, "'inf' is not a finite number");
+  expect_error({"fk", "planar2", "--q", "1e999", "0"}, 2, "not a finite number");
+  expect_error({"fk", "planar2", "--q", "0", "0.5rad"}, 2, "'0.5rad' is not a number");
+  expect_error({"fk", "planar2", "--q", "0", "0", "--key", "home"}, 2, "excludes");
+  expect_error({"fk", "planar2", "--site", "tpi"}, 1, "tip");
+  expect_error({"fk", "planar2", "--key", "hoem"}, 1, "home");
+  expect_error({"fk", "dual_arm"}, 2, "left_hand");  // several sites: --site is required
+  expect_error({"info", "pandaa"}, 1, "panda");
+  expect_error({"info"}, 2, "MODEL is required");
+  expect_error({"info", (scratch() / "missing.xml").string()}, 1, "does not exist");
+  expect_error({"info", write_file("broken.xml", "<mujoco><worldbody><body>").string()}, 1,
+               "malformed XML");
+  expect_error({"info", write_file("invalid.xml",
+                                   "<mujoco><worldbody><geom type='sphere'/></worldbody></mujoco>")
+                            .string()},
+               1, "invalid.xml");
+  expect_error({"fk", "planar2", "--bogus"}, 2, "--bogus");
+  expect_error({"frobnicate"}, 2, "unknown command 'frobnicate'; commands: models, info");
+  expect_error({"workspace", "planar2", "--samples", "0"}, 2, "--samples");
+  expect_error({"workspace", "planar2", "--out", (scratch() / "no_dir" / "cloud.csv").string()}, 1,
+               "cloud.csv");
+  expect_error({"singularities", "planar2", "--block", "linear"}, 2, "linear");
+  expect_error({"workspace", "planar2", "--seed", "-1"}, 2, "--seed");
+  expect_error({"singularities", "planar2", "--samples", "-5"}, 2, "--samples");
+}
+
+TEST(Cli, WorkspaceIsSeededAndMatchesTheLibrary) {
+  const fs::path csv = scratch() / "cloud.csv";
+  const json doc = run_json({"workspace", "planar2", "--samples", "3000", "--seed", "7", "--out",
+                             csv.string(), "--json"});
+  const mjarm::Robot robot = mjarm::Robot::bundled("planar2");
+  const mjarm::Chain chain(robot, "tip");
+  const mjarm::WorkspaceResult expected =
+      mjarm::sample_workspace(chain, {.samples = 3000, .seed = 7});
+  EXPECT_EQ(doc["samples"], 3000);
+  EXPECT_EQ(doc["seed"], 7);
+  EXPECT_EQ(to_vector(doc["lower"]), Eigen::VectorXd(expected.lower));
+  EXPECT_EQ(to_vector(doc["upper"]), Eigen::VectorXd(expected.upper));
+  EXPECT_EQ(doc["max_reach_from_base"].get<double>(), expected.max_reach_from_base);
+  // the arm cannot reach further than its stretched length, and moves in the x-z plane only
+  EXPECT_LE(doc["max_reach_from_base"].get<double>(), kL1 + kL2 + 1e-12);
+  EXPECT_EQ(doc["extent"][1].get<double>(), 0.0);
+  EXPECT_GT(doc["samples_per_second"].get<double>(), 0.0);
+  // CSV: header + one line per sample
+  std::ifstream in(csv);
+  std::string line;
+  int lines = 0;
+  std::getline(in, line);
+  EXPECT_EQ(line, "x,y,z,manipulability");
+  while (std::getline(in, line)) ++lines;
+  EXPECT_EQ(lines, 3000);
+
+  // same seed, same numbers; no progress noise when stderr is not a terminal
+  const CliRun again =
+      run_cli({"workspace", "planar2", "--samples", "3000", "--seed", "7", "--json"});
+  EXPECT_TRUE(again.err.empty()) << again.err;
+  EXPECT_EQ(json::parse(again.out)["upper"], doc["upper"]);
+}
+
+TEST(Cli, SingularitiesOfPlanar2FollowTheClosedForm) {
+  // position block of a planar 2-link arm: w = l1·l2·|sin q2|, singular when stretched
+  const json doc = run_json({"singularities", "planar2", "--block", "position", "--q", "0.3",
+                             "-1.0", "--samples", "500", "--seed", "2", "--worst", "3", "--json"});
+  EXPECT_EQ(doc["block"], "position");
+  const json& configs = doc["configurations"];
+  ASSERT_GE(configs.size(), 3u);
+  // the report starts at qpos0: planar2 stretched out
+  EXPECT_EQ(to_vector(configs[0]["q"]), Eigen::VectorXd::Zero(2));
+  EXPECT_EQ(configs[0]["status"], "singular");
+  EXPECT_TRUE(configs[0]["condition_number"].is_null());
+  const json& given = configs.back();
+  EXPECT_EQ(given["name"], "--q");
+  EXPECT_NEAR(given["manipulability"].get<double>(), kL1 * kL2 * std::sin(1.0), 1e-12);
+  EXPECT_EQ(given["status"], "regular");
+  ASSERT_EQ(doc["scan"]["worst"].size(), 3u);
+  EXPECT_LE(doc["scan"]["worst"][0]["sigma_min"].get<double>(),
+            doc["scan"]["worst"][1]["sigma_min"].get<double>());
+  EXPECT_EQ(doc["scan"]["samples"], 500);
+
+  const CliRun table = run_cli({"singularities", "planar2", "--samples", "0"});
+  EXPECT_EQ(table.exit_code, 0) << table.err;
+  EXPECT_NE(table.out.find("σmin"), std::string::npos);
+  EXPECT_EQ(table.out.find("random scan"), std::string::npos);
+}
+
+TEST(Cli, DemoRunsTheTour) {
+  const json doc = run_json({"demo", "--samples", "2000", "--json"});
+  EXPECT_EQ(doc["model"]["name"], "panda");
+  EXPECT_EQ(doc["fk"]["configuration"], "keyframe 'home'");
+  EXPECT_EQ(doc["workspace"]["samples"], 2000);
+  EXPECT_EQ(doc["ik"]["status"], "converged");
+  EXPECT_LE(doc["ik"]["position_error"].get<double>(), 1e-5);
+
+  const CliRun text = run_cli({"demo"});
+  EXPECT_EQ(text.exit_code, 0) << text.err;
+  for (const char* heading : {"== model ==", "== forward kinematics ==", "== workspace ==",
+                              "== inverse kinematics round trip =="}) {
+    EXPECT_NE(text.out.find(heading), std::string::npos) << heading;
+  }
+  EXPECT_NE(text.out.find("20000 (seed 1"), std::string::npos);
+}
+
+}  // namespace

@@ -1,0 +1,165 @@
+#include "mjarm/ik/ik_benchmark.hpp"
+
+#include <gtest/gtest.h>
+
+#include <ctime>
+#include <vector>
+
+#include "mjarm/error.hpp"
+
+namespace mjarm {
+namespace {
+
+using std::chrono::milliseconds;
+
+Chain chain_of(const char* robot) { return Chain(Robot::bundled(robot), "attachment_site"); }
+
+void expect_consistent(const IkBenchmarkResult& r, int samples) {
+  EXPECT_EQ(r.samples, samples);
+  EXPECT_LE(r.successes, r.samples);
+  EXPECT_DOUBLE_EQ(r.success_rate, static_cast<double>(r.successes) / r.samples);
+  EXPECT_GT(r.median_time_ms, 0.0);
+  EXPECT_LE(r.median_time_ms, r.p99_time_ms);
+  EXPECT_LE(r.p99_time_ms, r.max_time_ms);
+  EXPECT_LE(r.mean_time_ms, r.max_time_ms);
+  EXPECT_GT(r.mean_iterations, 0.0);
+}
+
+TEST(IkBenchmark, TracIkProtocolOnPandaMidRangeSeeds) {
+  const Chain chain = chain_of("panda");
+  IkBenchmarkOptions options;
+  options.samples = 200;
+  options.timeout = milliseconds(5);
+  // a 5 ms budget of CPU time: deterministic on a busy machine (see IkBenchmarkClock)
+  options.clock = IkBenchmarkClock::thread_cpu;
+  int calls = 0, last = 0;
+  options.progress = [&](int done, int total) {
+    EXPECT_EQ(done, last + 1);
+    EXPECT_EQ(total, 200);
+    last = done;
+    ++calls;
+  };
+  const IkBenchmarkResult r = run_ik_benchmark(chain, options);
+  expect_consistent(r, 200);
+  EXPECT_GE(r.success_rate, 0.99);
+  EXPECT_EQ(calls, 200);
+  EXPECT_EQ(r.solver, "global_ik(alternate, speed)");
+  EXPECT_EQ(r.robot, "panda");
+  EXPECT_EQ(r.frame, "attachment_site");
+  EXPECT_DOUBLE_EQ(r.timeout_ms, 5.0);
+  EXPECT_EQ(r.seed_mode, IkSeedMode::mid_range);
+  // the solver's own status agrees with the independent check on every sample it solved
+  EXPECT_GE(r.solver_converged, r.successes);
+}
+
+TEST(IkBenchmark, TracIkProtocolRandomSeedsOnEveryArm) {
+  for (const char* robot : {"panda", "iiwa14", "ur5e"}) {
+    IkBenchmarkOptions options;
+    options.samples = 100;
+    options.seed = 17;
+    options.seed_mode = IkSeedMode::random;
+    options.clock = IkBenchmarkClock::thread_cpu;
+    const IkBenchmarkResult r = run_ik_benchmark(chain_of(robot), options);
+    expect_consistent(r, 100);
+    EXPECT_GE(r.success_rate, 0.99) << robot;
+  }
+}
+
+TEST(IkBenchmark, JudgesByItsOwnKinematicsNotTheSolversWord) {
+  // a solver that claims success but returns its seed: every sample must fail
+  const Chain chain = chain_of("panda");
+  IkBenchmarkSolver liar{"liar", [&](const Pose&, const Eigen::VectorXd& q_seed) {
+                           IkResult r;
+                           r.q = q_seed;
+                           r.status = IkStatus::converged;
+                           return r;
+                         }};
+  IkBenchmarkOptions options;
+  options.samples = 50;
+  const IkBenchmarkResult r = run_ik_benchmark(chain, liar, options);
+  EXPECT_EQ(r.successes, 0);
+  EXPECT_EQ(r.solver_converged, 50);
+  EXPECT_EQ(r.solver, "liar");
+  EXPECT_EQ(r.mean_iterations, 0.0);
+
+  // an exact answer outside the limits fails too
+  IkBenchmarkSolver outside{"outside", [&](const Pose&, const Eigen::VectorXd&) {
+                              IkResult r;
+                              r.q = chain.upper() + Eigen::VectorXd::Constant(7, 1e-9);
+                              return r;
+                            }};
+  EXPECT_EQ(run_ik_benchmark(chain, outside, options).successes, 0);
+}
+
+TEST(IkBenchmark, WallClockRunAndCpuBudgetCharging) {
+  const Chain chain = chain_of("iiwa14");
+  IkBenchmarkOptions options;
+  options.samples = 30;
+  const IkBenchmarkResult wall = run_ik_benchmark(chain, options);
+  expect_consistent(wall, 30);
+  EXPECT_EQ(wall.clock, IkBenchmarkClock::wall);
+  EXPECT_GE(wall.successes, 28);  // wall clock: a descheduled solve may time out
+
+  // a solver burning 3 ms of CPU against a 1 ms CPU budget: every sample fails, charged 1 ms
+  IkBenchmarkSolver slow{"slow", [&](const Pose& X_WT, const Eigen::VectorXd& q_seed) {
+                           GlobalIk ik(chain);
+                           IkResult r = ik.solve(X_WT, q_seed);
+                           const auto until = std::clock() + 3 * CLOCKS_PER_SEC / 1000;
+                           while (std::clock() < until) {
+                           }
+                           return r;
+                         }};
+  options.samples = 5;
+  options.timeout = milliseconds(1);
+  options.clock = IkBenchmarkClock::thread_cpu;
+  const IkBenchmarkResult r = run_ik_benchmark(chain, slow, options);
+  EXPECT_EQ(r.successes, 0);
+  EXPECT_EQ(r.solver_converged, 5);
+  EXPECT_DOUBLE_EQ(r.max_time_ms, 1.0);
+  EXPECT_DOUBLE_EQ(r.median_time_ms, 1.0);
+}
+
+TEST(IkBenchmark, SeedModesShareTheTargetsAndDifferInSeeds) {
+  const Chain chain = chain_of("ur5e");
+  std::vector<Pose> targets[2];
+  std::vector<Eigen::VectorXd> seeds[2];
+  for (int run = 0; run < 2; ++run) {
+    IkBenchmarkSolver recorder{"recorder", [&, run](const Pose& X, const Eigen::VectorXd& s) {
+                                 targets[run].push_back(X);
+                                 seeds[run].push_back(s);
+                                 IkResult r;
+                                 r.q = s;
+                                 return r;
+                               }};
+    IkBenchmarkOptions options;
+    options.samples = 20;
+    options.seed = 99;
+    options.seed_mode = run == 0 ? IkSeedMode::mid_range : IkSeedMode::random;
+    run_ik_benchmark(chain, recorder, options);
+  }
+  ASSERT_EQ(targets[0].size(), 20u);
+  for (int k = 0; k < 20; ++k) {
+    EXPECT_TRUE(targets[0][k].is_approx(targets[1][k], 0.0));
+    EXPECT_EQ(seeds[0][k], chain.center());
+    EXPECT_TRUE(chain.within_limits(seeds[1][k]));
+    EXPECT_GT((seeds[1][k] - chain.center()).norm(), 1e-3);
+  }
+  EXPECT_FALSE(targets[0][0].is_approx(targets[0][1], 1e-3));
+}
+
+TEST(IkBenchmark, BadInputsThrow) {
+  const Chain chain = chain_of("panda");
+  IkBenchmarkOptions options;
+  options.samples = 0;
+  EXPECT_THROW(run_ik_benchmark(chain, options), Error);
+  options.samples = 10;
+  EXPECT_THROW(run_ik_benchmark(chain, IkBenchmarkSolver{"empty", {}}, options), Error);
+  options.timeout = milliseconds(0);
+  EXPECT_THROW(run_ik_benchmark(chain, options), Error);
+  options.timeout = milliseconds(5);
+  options.tolerance.bound[0] = -1.0;
+  EXPECT_THROW(run_ik_benchmark(chain, options), Error);
+}
+
+}  // namespace
+}  // namespace mjarm
