@@ -50,7 +50,7 @@ Command add_bench_command(CLI::App& root) {
       ->check(CLI::Range(1, 10000000));
   app->add_option("--timeout-ms", options->timeout_ms, "time budget per solve [ms]")
       ->check(CLI::PositiveNumber);
-  app->add_option("--seed", options->seed, "seed of the targets (and of the random starts)");
+  app->add_option("--seed", options->seed, "seed of the targets (and of the random starts)")->check(non_negative_integer());
   add_json_flag(*app, options->json);
 
   return {bench, [options, app] {
