@@ -147,9 +147,14 @@ void ChainKinematics::jacobian(Eigen::Ref<Matrix6Xd> J, JacobianFrame frame) con
     }
   }
   if (frame == JacobianFrame::local) {
+    // column by column: fixed-size temporaries, no heap allocation
     const Eigen::Matrix3d Rt = X_WE_.R.transpose();
-    J.topRows<3>() = Rt * J.topRows<3>();
-    J.bottomRows<3>() = Rt * J.bottomRows<3>();
+    for (int i = 0; i < chain_.size(); ++i) {
+      const Eigen::Vector3d v = Rt * J.col(i).head<3>();
+      const Eigen::Vector3d w = Rt * J.col(i).tail<3>();
+      J.col(i).head<3>() = v;
+      J.col(i).tail<3>() = w;
+    }
   } else if (frame == JacobianFrame::world) {
     // velocity of the point at the world origin moving with E: v_O = v_E + ω × (0 − p)
     for (int i = 0; i < chain_.size(); ++i) {
