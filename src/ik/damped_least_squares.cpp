@@ -12,7 +12,7 @@ DampedLeastSquares::DampedLeastSquares(int rows, int cols) {
                 std::to_string(cols));
   }
   A_.setZero(rows, rows);
-  llt_ = Eigen::LLT<Eigen::MatrixXd>(rows);
+  // factor something once so the LLT holds its storage and a defined state (copies read it)
   llt_.compute(Eigen::MatrixXd::Identity(rows, rows));
   y_m_.setZero(rows);
   y_n_.setZero(cols);

@@ -49,6 +49,8 @@ void check(const MultiTargetIkOptions& o) {
           o.secondary_ratio, "finite and >= 0");
   require(o.max_iterations >= 1, "max_iterations", o.max_iterations, ">= 1");
   require(o.stall_iterations >= 1, "stall_iterations", o.stall_iterations, ">= 1");
+  require(o.stall_progress >= 0.0 && o.stall_progress < 1.0, "stall_progress", o.stall_progress,
+          "in [0, 1)");
   check(o.limits);
 }
 
@@ -264,7 +266,7 @@ void MultiTargetIk::solve(const Eigen::Ref<const Eigen::VectorXd>& q_seed, IkRes
       break;
     }
     if (iterations == o.max_iterations) break;
-    if (current_.total < stall_reference * (1.0 - 1e-4)) {
+    if (current_.total < stall_reference * (1.0 - o.stall_progress)) {
       stall_reference = current_.total;
       since_progress = 0;
     } else if (++since_progress >= o.stall_iterations) {

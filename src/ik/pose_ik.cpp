@@ -44,6 +44,8 @@ void check(const PoseIkOptions& o) {
           o.secondary_ratio, "finite and >= 0");
   require(o.max_iterations >= 1, "max_iterations", o.max_iterations, ">= 1");
   require(o.stall_iterations >= 1, "stall_iterations", o.stall_iterations, ">= 1");
+  require(o.stall_progress >= 0.0 && o.stall_progress < 1.0, "stall_progress", o.stall_progress,
+          "in [0, 1)");
   check(o.limits);
 }
 
@@ -124,7 +126,7 @@ void PoseIk::solve(const Pose& X_WT, const Eigen::Ref<const Eigen::VectorXd>& q_
       break;
     }
     if (iterations == o.max_iterations) break;
-    if (best < stall_reference * (1.0 - 1e-4)) {
+    if (best < stall_reference * (1.0 - o.stall_progress)) {
       stall_reference = best;
       since_progress = 0;
     } else if (++since_progress >= o.stall_iterations) {

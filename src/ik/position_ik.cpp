@@ -34,6 +34,8 @@ void check(const PositionIkOptions& o) {
   require(o.max_backtracks >= 0, "max_backtracks", o.max_backtracks, ">= 0");
   require(o.max_iterations >= 1, "max_iterations", o.max_iterations, ">= 1");
   require(o.stall_iterations >= 1, "stall_iterations", o.stall_iterations, ">= 1");
+  require(o.stall_progress >= 0.0 && o.stall_progress < 1.0, "stall_progress", o.stall_progress,
+          "in [0, 1)");
   check(o.limits);
 }
 
@@ -109,7 +111,7 @@ void PositionIk::solve(const Eigen::Vector3d& p_WT, const Eigen::Ref<const Eigen
       break;
     }
     if (iterations == o.max_iterations) break;
-    if (best < stall_reference * (1.0 - 1e-4)) {
+    if (best < stall_reference * (1.0 - o.stall_progress)) {
       stall_reference = best;
       since_progress = 0;
     } else if (++since_progress >= o.stall_iterations) {

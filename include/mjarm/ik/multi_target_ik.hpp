@@ -53,8 +53,9 @@ struct MultiTargetIkOptions {
   double position_tolerance = 1e-5;     ///< per target: ‖p_WT − p_WE‖ ≤ this [m]
   double orientation_tolerance = 1e-5;  ///< per pose target: rotation angle ≤ this [rad]
   int max_iterations = 300;             ///< iteration limit (≥ 1)
-  int stall_iterations = 30;            ///< stop after this many iterations without 0.01% progress
-  CollisionSpec collision;              ///< optional: geoms that must not touch (off when empty)
+  int stall_iterations = 30;     ///< stop after this many iterations without progress (≥ 1)
+  double stall_progress = 1e-4;  ///< progress = the summed errors drop by this fraction, [0, 1)
+  CollisionSpec collision;       ///< optional: geoms that must not touch (off when empty)
 };
 
 /// @throws Error naming the offending option.

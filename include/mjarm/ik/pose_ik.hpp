@@ -44,8 +44,9 @@ struct PoseIkOptions {
   double position_tolerance = 1e-5;  ///< success when ‖p_WT − p_WE‖ ≤ this [m]
   double orientation_tolerance = 1e-5;  ///< ... and the rotation angle to the target ≤ this [rad]
   int max_iterations = 200;             ///< iteration limit (≥ 1)
-  int stall_iterations = 30;            ///< stop after this many iterations without 0.01% progress
-  CollisionSpec collision;              ///< optional: geoms that must not touch (off when empty)
+  int stall_iterations = 30;     ///< stop after this many iterations without progress (≥ 1)
+  double stall_progress = 1e-4;  ///< progress = the best error drops by this fraction, in [0, 1)
+  CollisionSpec collision;       ///< optional: geoms that must not touch (off when empty)
 };
 
 /// @throws Error naming the offending option.

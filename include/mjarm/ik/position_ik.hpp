@@ -41,8 +41,9 @@ struct PositionIkOptions {
   Posture posture;                    ///< optional pull towards a preferred configuration
   double tolerance = 1e-4;            ///< success when ‖p_WT − p_WE‖ ≤ tolerance [m]
   int max_iterations = 300;           ///< iteration limit (≥ 1)
-  int stall_iterations = 60;          ///< stop after this many iterations without 0.01% progress
-  CollisionSpec collision;            ///< optional: geoms that must not touch (off when empty)
+  int stall_iterations = 60;          ///< stop after this many iterations without progress (≥ 1)
+  double stall_progress = 1e-4;  ///< progress = the best error drops by this fraction, in [0, 1)
+  CollisionSpec collision;       ///< optional: geoms that must not touch (off when empty)
 };
 
 /// @throws Error naming the offending option.
