@@ -107,9 +107,9 @@ void GlobalIkSolve(benchmark::State& state, const std::string& robot, bool rando
   double solved = 0.0, iterations = 0.0;
   for (std::size_t i = 0; i < targets.size(); ++i) {
     ik.solve(targets[i], random_seeds ? seeds[i] : mid, result);
-    solved += chain.within_limits(result.q) &&
-              within_tolerance(target_frame_error(kin.update(result.q), targets[i]),
-                               options.tolerance);
+    solved +=
+        chain.within_limits(result.q) &&
+        within_tolerance(target_frame_error(kin.update(result.q), targets[i]), options.tolerance);
     iterations += result.iterations;
   }
   std::size_t k = 0;

@@ -43,7 +43,7 @@ int main() {
   std::printf("final error: position %.3e m, orientation %.3e rad\n", e.head<3>().norm(),
               e.tail<3>().norm());
   std::printf("joints within limits: %s\n", chain.within_limits(q) ? "yes" : "no");
-  const bool ok = worst_tracking < 0.01 && e.head<3>().norm() < 1e-6 &&
-                  e.tail<3>().norm() < 1e-6 && chain.within_limits(q);
+  const bool ok = worst_tracking < 0.01 && e.head<3>().norm() < 1e-6 && e.tail<3>().norm() < 1e-6 &&
+                  chain.within_limits(q);
   return ok ? 0 : 1;
 }

@@ -109,9 +109,10 @@ int DiffIk::add_frame_task(DiffIkTaskKind kind, std::string_view frame, double w
   auto task = std::make_unique<Task>();
   task->kind = kind;
   // the task's frame moved by this chain's joints (zero columns for joints off its path)
-  task->kin = frame.empty() ? std::make_unique<ChainKinematics>(chain_)
-                            : std::make_unique<ChainKinematics>(
-                                  Chain(chain_.robot(), chain_.joint_names(), frame));
+  task->kin =
+      frame.empty()
+          ? std::make_unique<ChainKinematics>(chain_)
+          : std::make_unique<ChainKinematics>(Chain(chain_.robot(), chain_.joint_names(), frame));
   task->X_WT = task->kin->update(chain_.center());
   task->row_weight << w_p, w_p, w_p, w_o, w_o, w_o;
   task->gain = gain;
@@ -120,8 +121,8 @@ int DiffIk::add_frame_task(DiffIkTaskKind kind, std::string_view frame, double w
   return task_count() - 1;
 }
 
-int DiffIk::add_pose_task(std::string_view frame, double position_weight,
-                          double orientation_weight, double gain) {
+int DiffIk::add_pose_task(std::string_view frame, double position_weight, double orientation_weight,
+                          double gain) {
   return add_frame_task(DiffIkTaskKind::pose, frame, position_weight, orientation_weight, gain);
 }
 
@@ -213,7 +214,7 @@ const DiffIkStep& DiffIk::step(const Eigen::Ref<const Eigen::VectorXd>& q) {
       J_.bottomRows<3>().noalias() = R_EW * A_.bottomRows<3>();
       // ė = −Jlog(e)·V_E: the rows that make A·v track the error rate exactly
       A_.noalias() = log_error_jacobian(e).lazyProduct(J_);
-      J_.noalias() = t.row_weight.asDiagonal() * A_;  // J_ now holds W·A
+      J_.noalias() = t.row_weight.asDiagonal() * A_;   // J_ now holds W·A
       H_.noalias() += A_.transpose().lazyProduct(J_);  // small: no GEMM blocking
       g_.noalias() -= J_.transpose() * (rate * e);
     } else {
@@ -259,8 +260,8 @@ const DiffIkStep& DiffIk::step(const Eigen::Ref<const Eigen::VectorXd>& q) {
   // integrate, then clip to kill round-off (joints being pulled back stay unclipped)
   for (int i = 0; i < n; ++i) {
     double next = q[i] + step_.v[i] * options_.dt;
-    const bool inside_reachable = (lower[i] - q[i]) * inv_dt <= hi_[i] &&
-                                  (upper[i] - q[i]) * inv_dt >= lo_[i];
+    const bool inside_reachable =
+        (lower[i] - q[i]) * inv_dt <= hi_[i] && (upper[i] - q[i]) * inv_dt >= lo_[i];
     if (inside_reachable) next = std::clamp(next, lower[i], upper[i]);
     step_.q_next[i] = next;
   }

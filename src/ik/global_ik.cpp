@@ -21,18 +21,24 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 
 const char* to_string(GlobalIkMode mode) noexcept {
   switch (mode) {
-    case GlobalIkMode::speed: return "speed";
-    case GlobalIkMode::distance: return "distance";
-    case GlobalIkMode::manipulability: return "manipulability";
+    case GlobalIkMode::speed:
+      return "speed";
+    case GlobalIkMode::distance:
+      return "distance";
+    case GlobalIkMode::manipulability:
+      return "manipulability";
   }
   return "unknown";
 }
 
 const char* to_string(GlobalIkMethods methods) noexcept {
   switch (methods) {
-    case GlobalIkMethods::alternate: return "alternate";
-    case GlobalIkMethods::levenberg_marquardt: return "levenberg_marquardt";
-    case GlobalIkMethods::sqp: return "sqp";
+    case GlobalIkMethods::alternate:
+      return "alternate";
+    case GlobalIkMethods::levenberg_marquardt:
+      return "levenberg_marquardt";
+    case GlobalIkMethods::sqp:
+      return "sqp";
   }
   return "unknown";
 }
@@ -77,8 +83,8 @@ GlobalIk::GlobalIk(const Chain& chain, const GlobalIkOptions& options)
   }
   J_ = Matrix6Xd::Zero(6, n);
   H_ = Eigen::MatrixXd::Zero(n, n);
-  for (Eigen::VectorXd* v : {&q_, &q_trial_, &dq_, &g_, &lb_, &ub_, &q_seed_, &q_best_,
-                             &q_solution_}) {
+  for (Eigen::VectorXd* v :
+       {&q_, &q_trial_, &dq_, &g_, &lb_, &ub_, &q_seed_, &q_best_, &q_solution_}) {
     *v = Eigen::VectorXd::Zero(n);
   }
 }
@@ -150,16 +156,15 @@ void GlobalIk::solve(const Pose& X_WT, const Eigen::Ref<const Eigen::VectorXd>& 
   chain.check(q_seed, "seed");
   const int n = chain.size();
   const auto start = Clock::now();
-  const auto deadline =
-      start + std::chrono::duration_cast<Clock::duration>(options_.timeout);
+  const auto deadline = start + std::chrono::duration_cast<Clock::duration>(options_.timeout);
   X_WT_ = X_WT;
   rng_.seed(options_.seed);
   stats_ = GlobalIkStats{};
   q_seed_ = q_seed;
   if (result.q.size() != n) result.q.resize(n);
 
-  double best_E = kInf;        // smallest ½‖e‖² over all iterates (for a failed solve)
-  double best_score = -kInf;   // mode score of the kept solution (larger is better)
+  double best_E = kInf;       // smallest ½‖e‖² over all iterates (for a failed solve)
+  double best_score = -kInf;  // mode score of the kept solution (larger is better)
   int iterations = 0;
   Outcome last = Outcome::stalled;
   bool any_finite = false;

@@ -59,16 +59,20 @@ double nearest_rank(const std::vector<double>& sorted, double fraction) {
 
 const char* to_string(IkBenchmarkClock clock) noexcept {
   switch (clock) {
-    case IkBenchmarkClock::wall: return "wall";
-    case IkBenchmarkClock::thread_cpu: return "thread_cpu";
+    case IkBenchmarkClock::wall:
+      return "wall";
+    case IkBenchmarkClock::thread_cpu:
+      return "thread_cpu";
   }
   return "unknown";
 }
 
 const char* to_string(IkSeedMode mode) noexcept {
   switch (mode) {
-    case IkSeedMode::mid_range: return "mid_range";
-    case IkSeedMode::random: return "random";
+    case IkSeedMode::mid_range:
+      return "mid_range";
+    case IkSeedMode::random:
+      return "random";
   }
   return "unknown";
 }
@@ -76,8 +80,8 @@ const char* to_string(IkSeedMode mode) noexcept {
 IkBenchmarkSolver global_ik_solver(const Chain& chain, const GlobalIkOptions& options) {
   auto solver = std::make_shared<GlobalIk>(chain, options);
   IkBenchmarkSolver s;
-  s.name = std::string("global_ik(") + to_string(options.methods) + ", " +
-           to_string(options.mode) + ")";
+  s.name =
+      std::string("global_ik(") + to_string(options.methods) + ", " + to_string(options.mode) + ")";
   // one result kept across calls: after the first solve no allocation happens in the solver
   auto result = std::make_shared<IkResult>();
   s.solve = [solver, result](const Pose& X_WT, const Eigen::VectorXd& q_seed) {

@@ -20,8 +20,9 @@ std::atomic<std::uint64_t> g_malloc_calls{0};
 
 #if defined(__SANITIZE_ADDRESS__)
 // from the sanitizer runtime's allocator interface (GCC does not install its header)
-extern "C" int __sanitizer_install_malloc_and_free_hooks(
-    void (*malloc_hook)(const volatile void*, std::size_t), void (*free_hook)(const volatile void*));
+extern "C" int __sanitizer_install_malloc_and_free_hooks(void (*malloc_hook)(const volatile void*,
+                                                                             std::size_t),
+                                                         void (*free_hook)(const volatile void*));
 namespace {
 void count_allocation(const volatile void*, std::size_t) {
   g_malloc_calls.fetch_add(1, std::memory_order_relaxed);
@@ -84,8 +85,8 @@ TEST(DiffIk, UnconstrainedStepMatchesClosedFormLeastSquares) {
   w << 2, 2, 2, 0.5, 0.5, 0.5;
   Eigen::MatrixXd H = A.transpose() * w.asDiagonal() * A;
   H.diagonal().array() += 0.01 + 1e-3;
-  const Eigen::VectorXd b = A.transpose() * w.asDiagonal() * (0.3 / 0.01 * e) +
-                            0.01 * (0.5 / 0.01) * (q_ref - q);
+  const Eigen::VectorXd b =
+      A.transpose() * w.asDiagonal() * (0.3 / 0.01 * e) + 0.01 * (0.5 / 0.01) * (q_ref - q);
   const Eigen::VectorXd v = H.ldlt().solve(b);
   EXPECT_LT((step.v - v).norm(), 1e-9 * (1.0 + v.norm()));
   EXPECT_LT((step.q_next - (q + 0.01 * v)).norm(), 1e-10);

@@ -43,8 +43,10 @@ namespace mjarm {
 
 /// Constants of a `DiffIk`, fixed at construction.
 struct DiffIkOptions {
-  double dt = 0.01;          ///< control period [s] (> 0)
-  double damping = 1e-6;     ///< λ of the regularisation λ‖v‖² [s²·(task units)²/rad²] (> 0)
+  double dt = 0.01;  ///< control period [s] (> 0)
+  /// λ of the regularisation λ‖v‖² (> 0), on the scale of the task weights: it keeps the QP
+  /// strictly convex and bounds v near singularities.
+  double damping = 1e-6;
   /// Joint velocity limits v_max (n entries, rad/s or m/s, > 0, +∞ allowed); empty = none.
   Eigen::VectorXd velocity_limit;
   /// Largest |Δq_i| = |v_i|·dt per step [rad or m] (> 0, +∞ = none).
@@ -66,7 +68,7 @@ struct DiffIkStep {
   Eigen::VectorXd v;       ///< joint velocity (n) [rad/s or m/s], within the box
   Eigen::VectorXd q_next;  ///< q + v·dt clipped into the limits (n) [rad or m]
   qp::QpStatus qp_status = qp::QpStatus::solved;  ///< status of the QP (solved in practice)
-  int qp_iterations = 0;   ///< active-set steps of the QP
+  int qp_iterations = 0;                          ///< active-set steps of the QP
   bool pulled_back = false;  ///< a joint was outside its limits by more than one step can undo
 };
 

@@ -42,8 +42,8 @@ namespace mjarm {
 
 /// Which solution `GlobalIk` returns.
 enum class GlobalIkMode {
-  speed,          ///< the first solution found
-  distance,       ///< the solution closest to the seed (‖q − q_seed‖₂) found before the budget ends
+  speed,     ///< the first solution found
+  distance,  ///< the solution closest to the seed (‖q − q_seed‖₂) found before the budget ends
   manipulability  ///< the solution with the largest √det(J Jᵀ) found before the budget ends
 };
 
@@ -60,7 +60,7 @@ const char* to_string(GlobalIkMethods methods) noexcept;
 
 /// Options of `GlobalIk`.
 struct GlobalIkOptions {
-  GlobalIkMode mode = GlobalIkMode::speed;  ///< which solution to return
+  GlobalIkMode mode = GlobalIkMode::speed;               ///< which solution to return
   GlobalIkMethods methods = GlobalIkMethods::alternate;  ///< local methods used
   /// Wall-clock budget of one solve (> 0). `distance` and `manipulability` use all of it
   /// unless `max_restarts` ends the search first.
@@ -87,12 +87,12 @@ void check(const GlobalIkOptions& options);
 
 /// What the last `GlobalIk::solve` did (diagnostics).
 struct GlobalIkStats {
-  int attempts = 0;        ///< local runs started (1 + restarts)
-  int solutions = 0;       ///< attempts that met the tolerance
-  int lm_solutions = 0;    ///< ... of which by Levenberg–Marquardt
-  int sqp_solutions = 0;   ///< ... of which by the SQP method
+  int attempts = 0;             ///< local runs started (1 + restarts)
+  int solutions = 0;            ///< attempts that met the tolerance
+  int lm_solutions = 0;         ///< ... of which by Levenberg–Marquardt
+  int sqp_solutions = 0;        ///< ... of which by the SQP method
   double manipulability = 0.0;  ///< √det(J Jᵀ) at the returned q (0 without a solution)
-  double elapsed = 0.0;    ///< wall-clock time of the solve [s]
+  double elapsed = 0.0;         ///< wall-clock time of the solve [s]
 };
 
 /// Global pose IK for one chain's frame (see the file comment). Construct once, solve many
@@ -146,7 +146,7 @@ class GlobalIk {
   Eigen::VectorXd sample_lower_, sample_upper_;  // random-restart box (finite)
   // per-solve state
   Pose X_WT_;
-  Vector6d e_;       // world-aligned error at q_
+  Vector6d e_;  // world-aligned error at q_
   Vector6d e_trial_;
   double E_ = 0.0;   // ½‖e‖² at q_
   double mu_ = 0.1;  // LM damping scale

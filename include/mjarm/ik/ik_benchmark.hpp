@@ -60,35 +60,35 @@ struct IkBenchmarkSolver {
 
 /// Protocol parameters.
 struct IkBenchmarkOptions {
-  int samples = 10000;                 ///< N (≥ 1)
-  std::uint64_t seed = 0;              ///< seeds the sample (and random-seed) generator
+  int samples = 10000;                           ///< N (≥ 1)
+  std::uint64_t seed = 0;                        ///< seeds the sample (and random-seed) generator
   IkSeedMode seed_mode = IkSeedMode::mid_range;  ///< where solves start
   /// Solver budget; used by the overload that builds the global solver (and recorded in the
   /// result). A custom solver enforces its own timeout.
   std::chrono::duration<double> timeout = std::chrono::milliseconds(5);
   IkBenchmarkClock clock = IkBenchmarkClock::wall;  ///< how solves are timed
-  PoseTolerance tolerance;             ///< success test (TRAC-IK: 1e-5 on each component)
+  PoseTolerance tolerance;  ///< success test (TRAC-IK: 1e-5 on each component)
   /// Called after every sample with (samples done, N); may be empty.
   std::function<void(int done, int total)> progress;
 };
 
 /// Figures of one benchmark run.
 struct IkBenchmarkResult {
-  std::string solver;      ///< IkBenchmarkSolver::name
-  std::string robot;       ///< model name
-  std::string frame;       ///< chain frame name
+  std::string solver;  ///< IkBenchmarkSolver::name
+  std::string robot;   ///< model name
+  std::string frame;   ///< chain frame name
   IkSeedMode seed_mode = IkSeedMode::mid_range;
   IkBenchmarkClock clock = IkBenchmarkClock::wall;
-  double timeout_ms = 0.0;     ///< IkBenchmarkOptions::timeout [ms]
-  int samples = 0;             ///< N
-  int successes = 0;           ///< samples meeting the success test
-  double success_rate = 0.0;   ///< successes / N, in [0, 1]
-  double mean_time_ms = 0.0;   ///< mean wall-clock time per solve [ms], failures included
-  double median_time_ms = 0.0; ///< median [ms]
-  double p99_time_ms = 0.0;    ///< 99th percentile (nearest rank) [ms]
-  double max_time_ms = 0.0;    ///< slowest solve [ms]
+  double timeout_ms = 0.0;       ///< IkBenchmarkOptions::timeout [ms]
+  int samples = 0;               ///< N
+  int successes = 0;             ///< samples meeting the success test
+  double success_rate = 0.0;     ///< successes / N, in [0, 1]
+  double mean_time_ms = 0.0;     ///< mean wall-clock time per solve [ms], failures included
+  double median_time_ms = 0.0;   ///< median [ms]
+  double p99_time_ms = 0.0;      ///< 99th percentile (nearest rank) [ms]
+  double max_time_ms = 0.0;      ///< slowest solve [ms]
   double mean_iterations = 0.0;  ///< mean IkResult::iterations
-  int solver_converged = 0;    ///< solves whose status was converged (cross-check of the test)
+  int solver_converged = 0;      ///< solves whose status was converged (cross-check of the test)
 };
 
 /// The default solver of the protocol: `GlobalIk` on @p chain with @p options, named
