@@ -31,15 +31,14 @@ void check_size(const char* what, Eigen::Index rows, Eigen::Index cols, Eigen::I
   }
 }
 
-// limits are valid when neither is nan, l <= u, l < +inf and u > -inf
+// limits are valid when neither is nan, l <= u, l < +inf and u > -inf (every comparison with
+// nan is false); branch-free so that the loop vectorizes
 bool limits_valid(const Eigen::VectorXd& lo, const Eigen::VectorXd& hi) {
+  bool ok = true;
   for (Eigen::Index i = 0; i < lo.size(); ++i) {
-    if (std::isnan(lo[i]) || std::isnan(hi[i]) || lo[i] > hi[i] || lo[i] == kInf ||
-        hi[i] == -kInf) {
-      return false;
-    }
+    ok &= (lo[i] <= hi[i]) & (lo[i] < kInf) & (hi[i] > -kInf);
   }
-  return true;
+  return ok;
 }
 
 }  // namespace
@@ -72,6 +71,7 @@ DenseQp::DenseQp(int n, int m_eq, int m_in)
   b_eq_ = Eigen::VectorXd::Zero(m_eq);
   eq_scale_ = Eigen::VectorXd::Ones(m_eq);
   c_.setZero(m_in, n);
+  c_cols_.setZero(m_in, n);
   l_ = Eigen::VectorXd::Constant(m_in, -kInf);
   u_ = Eigen::VectorXd::Constant(m_in, kInf);
   c_scale_ = Eigen::VectorXd::Ones(m_in);
@@ -81,11 +81,14 @@ DenseQp::DenseQp(int n, int m_eq, int m_in)
   b_active_ = Eigen::VectorXd::Zero(n);
   u_active_ = Eigen::VectorXd::Zero(n);
   state_ = Eigen::VectorXi::Zero(m_in + n);
+  row_skip_ = Eigen::VectorXd::Zero(m_in);
   redundant_eq_ = Eigen::VectorXi::Zero(m_eq);
   warm_ = Eigen::VectorXi::Zero(n);
   x_ = Eigen::VectorXd::Zero(n);
   x_ref_ = Eigen::VectorXd::Zero(n);
   cx_ref_ = Eigen::VectorXd::Zero(m_in);
+  near_ = Eigen::VectorXi::Zero(m_in + 1);
+  near_cx_ = Eigen::VectorXd::Zero(m_in + 1);
   margin_ref_ = Eigen::VectorXd::Zero(m_in);
   d_ = Eigen::VectorXd::Zero(n);
   r_ = Eigen::VectorXd::Zero(n);
@@ -95,10 +98,18 @@ DenseQp::DenseQp(int n, int m_eq, int m_in)
 
 void DenseQp::set_hessian(const Eigen::Ref<const Eigen::MatrixXd>& H) {
   check_size("H", H.rows(), H.cols(), n_, n_);
-  // mirror the lower triangle so that products with H_ match the factorized matrix
-  H_ = H.triangularView<Eigen::Lower>();
-  H_.triangularView<Eigen::StrictlyUpper>() = H.transpose().triangularView<Eigen::StrictlyUpper>();
-  hessian_ok_ = H_.allFinite();
+  // mirror the lower triangle so that products with H_ match the factorized matrix; a
+  // non-finite entry turns the sum of entry·0 into nan
+  double probe = 0.0;
+  for (int j = 0; j < n_; ++j) {
+    for (int i = j; i < n_; ++i) {
+      const double v = H(i, j);
+      H_(i, j) = v;
+      H_(j, i) = v;
+      probe += v * 0.0;
+    }
+  }
+  hessian_ok_ = probe == 0.0;
   hessian_dirty_ = true;
   factor_current_ = false;
 }
@@ -136,6 +147,7 @@ void DenseQp::set_inequalities(const Eigen::Ref<const Eigen::MatrixXd>& C,
   check_size("l", l.rows(), l.cols(), mi_, 1);
   check_size("u", u.rows(), u.cols(), mi_, 1);
   c_ = C;
+  c_cols_ = C;
   c_ok_ = c_.allFinite();
   ref_valid_ = false;
   // a zero row keeps scale 1 so that an unsatisfiable 0 >= l > 0 still shows as violated
@@ -154,6 +166,7 @@ void DenseQp::set_inequality_limits(const Eigen::Ref<const Eigen::VectorXd>& l,
   l_ = l;
   u_ = u;
   limits_ok_ = limits_valid(l_, u_);
+  margins_stale_ = true;
 }
 
 void DenseQp::set_bounds(const Eigen::Ref<const Eigen::VectorXd>& lb,
@@ -240,6 +253,7 @@ void DenseQp::set_state(int id, int value) noexcept {
   const int k = id - me_;
   if (k < 2 * mi_) {
     state_[k / 2] = value == 0 ? 0 : (k % 2 == 1 ? 1 : -1);
+    row_skip_[k / 2] = value == 0 ? 0.0 : kInf;
   } else {
     const int kb = k - 2 * mi_;
     state_[mi_ + kb / 2] = value == 0 ? 0 : (kb % 2 == 1 ? 1 : -1);

@@ -39,6 +39,7 @@ bool DenseQp::start_working_set(bool warm, int max_iterations, int& steps) noexc
     factor_.reset();
     factor_.set_linear_term(g_);
     state_.setZero();
+    row_skip_.setZero();
     redundant_count_ = 0;
     for (int i = 0; i < me_; ++i) {
       normal_projection(i, d_);
@@ -92,85 +93,9 @@ bool DenseQp::start_working_set(bool warm, int max_iterations, int& steps) noexc
   return true;
 }
 
-void DenseQp::refresh_reference() noexcept {
-  kernels::row_dots(c_.data(), mi_, n_, n_, x_.data(), cx_ref_.data());
-  x_ref_ = x_;
-  ref_valid_ = true;
-  update_margins();
-}
-
-void DenseQp::update_margins() noexcept {
-  // scaled distance of C·x_ref_ to the nearer limit (negative when violated, +inf if none)
-  margin_ref_ = (cx_ref_ - l_).cwiseMin(u_ - cx_ref_).cwiseProduct(c_scale_);
-}
-
-int DenseQp::most_violated(double& slack_p) noexcept {
-  const double tol = settings_.primal_tolerance;
-  int p = -1;
-  double worst = -tol;  // scaled violation of the best candidate so far
-  auto consider_row = [&](int i, double cx) {
-    const double lo = cx - l_[i];
-    const double hi = u_[i] - cx;
-    if (lo * c_scale_[i] < worst) {
-      worst = lo * c_scale_[i];
-      slack_p = lo;
-      p = me_ + 2 * i;
-    }
-    if (hi * c_scale_[i] < worst) {
-      worst = hi * c_scale_[i];
-      slack_p = hi;
-      p = me_ + 2 * i + 1;
-    }
-  };
-
-  if (mi_ > 0) {
-    bool scanned = false;
-    double delta = ref_valid_ ? (x_ - x_ref_).norm() : kInf;
-    if (ref_valid_ && delta > 0.0) {
-      // a row whose scaled margin at x_ref_ exceeds ‖x − x_ref_‖ holds at x, since
-      // |c·x − c·x_ref_|/‖c‖ ≤ ‖x − x_ref_‖: only the others need a product with x, unless
-      // they are so many that one matrix product is cheaper
-      const double threshold = delta + tol;
-      int near = 0;
-      for (int i = 0; i < mi_; ++i) near += margin_ref_[i] <= threshold;
-      if (4 * near <= mi_) {
-        for (int i = 0; i < mi_; ++i) {
-          if (margin_ref_[i] <= threshold && state_[i] == 0)
-            consider_row(i, kernels::dot(&c_(i, 0), x_.data(), n_));
-        }
-        scanned = true;
-      }
-    }
-    if (!scanned) {
-      if (delta > 0.0) refresh_reference();
-      for (int i = 0; i < mi_; ++i) {
-        if (state_[i] == 0 && margin_ref_[i] < worst) consider_row(i, cx_ref_[i]);
-      }
-    }
-  }
-  const int bound0 = me_ + 2 * mi_;
-  for (int j = 0; j < n_; ++j) {
-    if (state_[mi_ + j] != 0) continue;
-    const double lo = x_[j] - lb_[j];
-    const double hi = ub_[j] - x_[j];
-    if (lo < worst) {
-      worst = lo;
-      slack_p = lo;
-      p = bound0 + 2 * j;
-    }
-    if (hi < worst) {
-      worst = hi;
-      slack_p = hi;
-      p = bound0 + 2 * j + 1;
-    }
-  }
-  return p;
-}
-
 QpStatus DenseQp::run(bool warm, int max_iterations, int& iterations) noexcept {
   const double dep_tol = settings_.dependence_tolerance;
   int steps = 0;
-  if (ref_valid_ && mi_ > 0) update_margins();  // the limits may have changed since
   const bool started = start_working_set(warm, max_iterations, steps);
   iterations += steps;
   if (!started) return steps > max_iterations ? QpStatus::iteration_limit : QpStatus::infeasible;

@@ -173,5 +173,75 @@ TEST(ActiveSetFactor, SubproblemMatchesKktSolve) {
   EXPECT_LT((H * x + g - N2 * u.head(q - 1)).norm(), 1e-11);
 }
 
+TEST(ActiveSetFactor, AlignedNormalsKeepIdentities) {
+  // with H = I, J starts as I: a normal ±e_j projects onto one column of J₂ only, the cases in
+  // which the reflection of add() degenerates to nothing (+) or to a sign change (−)
+  const int n = 4;
+  const Eigen::MatrixXd H = Eigen::MatrixXd::Identity(n, n);
+  ActiveSetFactor f(n);
+  ASSERT_TRUE(f.factorize(H));
+  Eigen::MatrixXd N(n, 0);
+  Eigen::VectorXd d(n);
+  for (const Eigen::VectorXd& v : {Eigen::VectorXd(-Eigen::VectorXd::Unit(n, 0)),
+                                   Eigen::VectorXd(Eigen::VectorXd::Unit(n, 1)),
+                                   Eigen::VectorXd(-Eigen::VectorXd::Unit(n, 3))}) {
+    f.project(v, d);
+    ASSERT_TRUE(f.add(d, 1e-10));
+    N.conservativeResize(n, N.cols() + 1);
+    N.col(N.cols() - 1) = v;
+    expect_consistent(f, H, N);
+    EXPECT_GT(f.r()(N.cols() - 1, N.cols() - 1), 0.0);  // R keeps a positive diagonal
+  }
+}
+
+TEST(ActiveSetFactor, SubproblemAfterAddAndChangedRhs) {
+  // solve_subproblem() reuses R⁻ᵀb where R and b did not change: after an addition, after a
+  // change of one right-hand side and after a drop it must still match a direct KKT solve
+  std::mt19937 rng(9);
+  const int n = 8, q = 5;
+  const Eigen::MatrixXd H = random_spd(rng, n);
+  const Eigen::MatrixXd N = random_matrix(rng, n, q);
+  const Eigen::VectorXd g = random_matrix(rng, n, 1);
+  Eigen::VectorXd b = random_matrix(rng, q, 1);
+  ActiveSetFactor f(n);
+  ASSERT_TRUE(f.factorize(H));
+  f.set_linear_term(g);
+  Eigen::VectorXd d(n), x(n), u(n);
+  auto expect_kkt = [&](const std::vector<int>& cols) {
+    const int m = static_cast<int>(cols.size());
+    Eigen::MatrixXd Nw(n, m);
+    Eigen::VectorXd bw(m);
+    for (int k = 0; k < m; ++k) {
+      Nw.col(k) = N.col(cols[k]);
+      bw[k] = b[cols[k]];
+    }
+    Eigen::VectorXd bf = Eigen::VectorXd::Zero(n);
+    bf.head(m) = bw;
+    f.solve_subproblem(bf, x, u);
+    EXPECT_LT((Nw.transpose() * x - bw).norm(), 1e-11);
+    EXPECT_LT((H * x + g - Nw * u.head(m)).norm(), 1e-11);
+  };
+  std::vector<int> cols;
+  for (int c = 0; c < q; ++c) {
+    f.project(N.col(c), d);
+    ASSERT_TRUE(f.add(d, 1e-10));
+    cols.push_back(c);
+    expect_kkt(cols);
+  }
+  b[2] += 0.5;  // a right-hand side in the middle changes
+  expect_kkt(cols);
+  expect_kkt(cols);  // and nothing changes
+  f.drop(1, nullptr);
+  cols.erase(cols.begin() + 1);
+  expect_kkt(cols);
+  f.reset();
+  f.set_linear_term(g);  // w = Jᵀg is not kept across a reset
+  cols.clear();
+  f.project(N.col(4), d);
+  ASSERT_TRUE(f.add(d, 1e-10));
+  cols.push_back(4);
+  expect_kkt(cols);
+}
+
 }  // namespace
 }  // namespace mjarm::qp

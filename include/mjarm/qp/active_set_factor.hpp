@@ -6,8 +6,9 @@
 /// normals N = [n₁ … n_q] ∈ ℝⁿˣq (linearly independent), the QR factorization
 ///     L⁻¹·N = Q·[R; 0],   Q ∈ ℝⁿˣⁿ orthogonal, R ∈ ℝqˣq upper triangular,
 /// is carried implicitly as J = L⁻ᵀ·Q = [J₁ J₂] (J₁: first q columns) and R. Adding a
-/// constraint costs n − q − 1 Givens rotations on columns of J, dropping one costs q − k − 1
-/// Givens rotations on rows of R (Goldfarb & Idnani 1983, Math. Programming 27:1–33).
+/// constraint costs one Householder reflection of the n − q columns of J₂ (Goldfarb & Idnani
+/// use n − q − 1 Givens rotations; the reflection does half the flops), dropping one costs
+/// q − k − 1 Givens rotations on rows of R (Goldfarb & Idnani 1983, Math. Programming 27:1–33).
 /// The class also carries w = Jᵀ·g for the linear term g of the objective, rotated together with
 /// J, so that the minimizer of ½xᵀHx + gᵀx on {x : Nᵀx = b} costs O(n²):
 ///     a = R⁻ᵀ·b,   x = J₁·a − J₂·w₂,   multipliers u = R⁻¹·(a + w₁)   (H·x + g = N·u).
@@ -37,7 +38,8 @@ class ActiveSetFactor {
   /// Whether the last factorize() succeeded.
   bool factorized() const noexcept { return factorized_; }
 
-  /// Empties the working set: J = J₀ = L⁻ᵀ, q = 0.
+  /// Empties the working set: J = J₀ = L⁻ᵀ, q = 0. The linear term must be set again
+  /// (set_linear_term()) before solve_subproblem().
   void reset() noexcept;
 
   /// Sets the linear term g of the objective and recomputes w = Jᵀ·g.
@@ -80,6 +82,8 @@ class ActiveSetFactor {
   void drop(int k, Eigen::VectorXd* d) noexcept;
 
   /// Minimizer of ½xᵀHx + gᵀx subject to Nᵀx = b on the current working set.
+  /// R⁻ᵀb is kept between calls: entries whose part of R and b did not change are reused, so
+  /// after an add() the call costs one O(q) dot product plus the O(n²) of x.
   /// @param b right-hand sides of the working set, first q entries read
   /// @param x output minimizer (n)
   /// @param u output multipliers with H·x + g = N·u, first q entries written
@@ -105,8 +109,13 @@ class ActiveSetFactor {
   Eigen::MatrixXd j_;          // L^{-T} Q
   Eigen::MatrixXd r_;          // leading q x q upper triangle used
   Eigen::VectorXd w_;          // J^T g
-  Eigen::VectorXd a_;          // scratch: R^{-T} b
+  Eigen::VectorXd inv_diag_;   // 1 / R(i, i), i < q
+  Eigen::VectorXd b_;          // right-hand sides of the last solve_subproblem()
+  Eigen::VectorXd a_;          // R^{-T} b_, valid in its first solved_ entries
+  int solved_ = 0;
+  bool j_changed_ = true;      // j_ differs from j0_
   Eigen::VectorXd v_;          // scratch: [a; -w2]
+  Eigen::VectorXd h_;          // scratch: householder vector of add()
   Eigen::VectorXd cos_, sin_;  // scratch: parameters of a chain of givens rotations
 };
 

@@ -32,6 +32,34 @@ void rotate(double* a, double* b, int len, double c, double s) noexcept;
 void rotate_columns(double* A, int rows, int lda, int first, int count, const double* c,
                     const double* s, bool descending) noexcept;
 
+/// Householder reflection of `count` adjacent columns V = A[:, first, first + count) of a
+/// column-major matrix A (rows × ·, lda), from the right: V ← V·(I − tau·v·vᵀ), computed as
+/// y = V·v, V ← V − tau·y·vᵀ, one block of rows at a time.
+/// @param v count doubles
+void reflect_columns(double* A, int rows, int lda, int first, int count, const double* v,
+                     double tau) noexcept;
+
+/// Row products and scaled margins of two-sided rows lo ≤ A·x ≤ hi (A column-major,
+/// rows × cols, columns spaced lda apart):
+///     cx[i] = A_i·x,   margin[i] = min(cx[i] − lo[i], hi[i] − cx[i])·scale[i],
+/// which also finds the row with the smallest margin[i] + skip[i] (skip[i] = 0 to consider row
+/// i, +∞ to ignore it); ties go to the lowest index, NaN is never the smallest.
+/// @return that row, or −1 if no considered row has a margin below +∞
+int column_margins(const double* A, int rows, int cols, int lda, const double* x,
+                   const double* lo, const double* hi, const double* scale, const double* skip,
+                   double* cx, double* margin) noexcept;
+
+/// The first entries i of v (len entries) with v[i] ≤ t, in increasing order: writes their
+/// indices to idx and stops once there are more than max_count of them (NaN never qualifies).
+/// @param idx room for max_count + 1 indices
+/// @return how many were found, at most max_count + 1 (which means "more than max_count")
+int select_at_most(const double* v, int len, double t, int max_count, int* idx) noexcept;
+
+/// out[k] = A_{idx[k]}·x for k < count: products of selected rows of a row-major A (rows of
+/// `cols` doubles spaced lda apart) with x, several rows at a time.
+void indexed_row_dots(const double* A, int cols, int lda, const int* idx, int count,
+                      const double* x, double* out) noexcept;
+
 /// Σ_k a[k]·b[k] over len entries.
 double dot(const double* a, const double* b, int len) noexcept;
 

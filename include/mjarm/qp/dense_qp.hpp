@@ -161,7 +161,7 @@ class DenseQp {
   double rhs(int id) const noexcept;
   double slack(int id) const noexcept;
   int most_violated(double& slack_p) noexcept;
-  void refresh_reference() noexcept;
+  int refresh_reference() noexcept;
   void update_margins() noexcept;
   void set_state(int id, int value) noexcept;
   void push_active(int id) noexcept;
@@ -180,6 +180,7 @@ class DenseQp {
   Eigen::VectorXd b_eq_;
   Eigen::VectorXd eq_scale_;  // 1 / row norm of A_eq (1 for a zero row)
   Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> c_;
+  Eigen::MatrixXd c_cols_;  // C again, column-major: for the pass over all rows
   Eigen::VectorXd l_, u_, lb_, ub_;
   Eigen::VectorXd c_scale_;  // 1 / row norm of C (1 for a zero row)
   bool hessian_ok_ = true, gradient_ok_ = true, a_eq_ok_ = true, b_eq_ok_ = true, c_ok_ = true,
@@ -195,6 +196,7 @@ class DenseQp {
   Eigen::VectorXd b_active_;      // right-hand side per position (n)
   Eigen::VectorXd u_active_;      // multiplier per position, H x + g = N u (n)
   Eigen::VectorXi state_;         // per row of C then per x_j: 0 free, -1 lower, +1 upper active
+  Eigen::VectorXd row_skip_;      // per row of C: 0 free, +inf active (masks the violation scan)
   Eigen::VectorXi redundant_eq_;  // equality rows skipped as linearly dependent (me)
   int redundant_count_ = 0;
   int eq_active_ = 0;     // equalities in the working set (its first positions)
@@ -205,10 +207,13 @@ class DenseQp {
 
   // scratch
   Eigen::VectorXd x_, d_, r_, hx_, stat_;
-  // row products C·x_ref_ at a reference point, to skip rows that provably hold (valid while C
-  // is unchanged)
+  // row products C·x_ref_ at a reference point and the scaled margins there, to skip rows that
+  // provably hold (dense_qp_search.cpp; valid while C is unchanged)
   Eigen::VectorXd x_ref_, cx_ref_, margin_ref_;
+  Eigen::VectorXi near_;     // scratch: rows near their limits (m_in + 1)
+  Eigen::VectorXd near_cx_;  // scratch: their products with x (m_in + 1)
   bool ref_valid_ = false;
+  bool margins_stale_ = true;  // the limits changed since margin_ref_ was computed
 };
 
 }  // namespace mjarm::qp
