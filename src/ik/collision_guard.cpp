@@ -35,12 +35,7 @@ CollisionGuard::CollisionGuard(const Chain& chain, const CollisionSpec& spec)
 }
 
 void CollisionGuard::set_fixed_qpos(const Eigen::Ref<const Eigen::VectorXd>& qpos) {
-  const int nq = chain_.robot().nq();
-  if (qpos.size() != nq) {
-    throw Error("fixed qpos has " + std::to_string(qpos.size()) + " values, model '" +
-                chain_.robot().name() + "' has nq = " + std::to_string(nq));
-  }
-  if (!qpos.allFinite()) throw Error("fixed qpos holds a non-finite value");
+  chain_.check_qpos(qpos, "fixed qpos");
   fixed_qpos_ = qpos;
 }
 

@@ -2,22 +2,12 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
 #include <string>
 
 #include "mjarm/error.hpp"
 
 namespace mjarm {
 namespace {
-
-void require(bool ok, const char* name, double value, const char* expected) {
-  if (!ok) {
-    throw Error(std::string("multi-target IK option ") + name + " must be " + expected + ", got " +
-                std::to_string(value));
-  }
-}
-
-bool positive(double x) { return std::isfinite(x) && x > 0.0; }
 
 /// A target's kinematics on the shared joints; the frame must be moved by one of them.
 ChainKinematics target_kinematics(const Robot& robot, const std::vector<std::string>& joints,
@@ -33,25 +23,22 @@ ChainKinematics target_kinematics(const Robot& robot, const std::vector<std::str
 }  // namespace
 
 void check(const MultiTargetIkOptions& o) {
-  require(positive(o.damping), "damping", o.damping, "finite and > 0");
+  const OptionCheck require("multi-target IK");
+  require(finite_positive(o.damping), "damping", o.damping, "finite and > 0");
   require(std::isfinite(o.error_damping) && o.error_damping >= 0.0, "error_damping",
           o.error_damping, "finite and >= 0");
   require(o.step > 0.0 && o.step <= 1.0, "step", o.step, "in (0, 1]");
   require(o.max_backtracks >= 0, "max_backtracks", o.max_backtracks, ">= 0");
   require(std::isfinite(o.null_space_damping) && o.null_space_damping >= 0.0, "null_space_damping",
           o.null_space_damping, "finite and >= 0");
-  require(positive(o.position_tolerance), "position_tolerance", o.position_tolerance,
+  require(finite_positive(o.position_tolerance), "position_tolerance", o.position_tolerance,
           "finite and > 0");
-  require(positive(o.orientation_tolerance), "orientation_tolerance", o.orientation_tolerance,
-          "finite and > 0");
-  require(positive(o.max_step), "max_step", o.max_step, "finite and > 0");
+  require(finite_positive(o.orientation_tolerance), "orientation_tolerance",
+          o.orientation_tolerance, "finite and > 0");
+  require(finite_positive(o.max_step), "max_step", o.max_step, "finite and > 0");
   require(std::isfinite(o.secondary_ratio) && o.secondary_ratio >= 0.0, "secondary_ratio",
           o.secondary_ratio, "finite and >= 0");
-  require(o.max_iterations >= 1, "max_iterations", o.max_iterations, ">= 1");
-  require(o.stall_iterations >= 1, "stall_iterations", o.stall_iterations, ">= 1");
-  require(o.stall_progress >= 0.0 && o.stall_progress < 1.0, "stall_progress", o.stall_progress,
-          "in [0, 1)");
-  check(o.limits);
+  check_stopping_and_limits(require, o);
 }
 
 MultiTargetIk::MultiTargetIk(const Robot& robot, const std::vector<std::string>& joints,
@@ -98,19 +85,10 @@ MultiTargetIk::MultiTargetIk(const Robot& robot, const std::vector<std::string>&
                             Eigen::VectorXd::Zero(n), DampedLeastSquares(rows, n),
                             DampedLeastSquares(rows, n)});
   }
-  q_pref_ = resolve_posture(shared, options_.posture);
-  if (!options_.collision.empty())
-    guard_ = std::make_unique<CollisionGuard>(shared, options_.collision);
+  local_.emplace(shared, options_);
   J_scratch_.setZero(6, n);
   N_.setZero(n, n);
   P_.setZero(n, n);
-  q_.setZero(n);
-  q_best_.setZero(n);
-  q_try_.setZero(n);
-  dq_.setZero(n);
-  bias_.setZero(n);
-  locked_.setZero(n);
-  dq_locked_.setZero(n);
   projected_bias_.setZero(n);
   for (Score* s : {&current_, &trial_, &best_}) {
     s->converged.assign(levels_.size(), 0);
@@ -130,7 +108,7 @@ void MultiTargetIk::set_target(int i, const Pose& X_WT) {
 
 void MultiTargetIk::set_fixed_qpos(const Eigen::Ref<const Eigen::VectorXd>& qpos) {
   for (TargetSlot& slot : targets_) slot.kin.set_fixed_qpos(qpos);
-  if (guard_) guard_->set_fixed_qpos(qpos);
+  local_->set_fixed_qpos(qpos);
 }
 
 void MultiTargetIk::evaluate(const Eigen::Ref<const Eigen::VectorXd>& q, bool trial,
@@ -179,51 +157,40 @@ bool MultiTargetIk::all_converged(const Score& s) const noexcept {
   return std::all_of(s.converged.begin(), s.converged.end(), [](char c) { return c != 0; });
 }
 
-void MultiTargetIk::compute_step() noexcept {
+bool MultiTargetIk::compute_step() noexcept {
   const MultiTargetIkOptions& o = options_;
-  const Chain& chain = this->chain();
   const double eps_sq = o.null_space_damping * o.null_space_damping;
-  const bool has_bias =
-      o.limits.centre_gain > 0.0 || o.limits.repulsion_gain > 0.0 || o.posture.gain > 0.0;
-  // secondary terms
-  if (has_bias) {
-    bias_.setZero();
-    add_limit_bias(chain, o.limits, q_, bias_);
-    add_posture_pull(q_pref_, o.posture.gain, q_, bias_);
-  }
+  LocalIkWorkspace& local = *local_;
+  const bool has_secondary = local.has_secondary();
+  local.update_secondary();
   // the recursion starts from the pinned motion of saturated joints with a null space that
-  // excludes them; joints a pass would carry past a bound are pinned and the recursion reruns
-  locked_.setZero();
-  dq_locked_.setZero();
-  for (int pass = 0; pass <= chain.size(); ++pass) {
-    dq_ = dq_locked_;
+  // excludes them
+  return local.limited_step([&](const Eigen::VectorXd& locked, const Eigen::VectorXd& dq_locked,
+                                Eigen::VectorXd& dq) {
+    dq = dq_locked;
     N_.setZero();
-    N_.diagonal() = (1.0 - locked_.array()).matrix();
+    N_.diagonal() = (1.0 - locked.array()).matrix();
     for (std::size_t k = 0; k < levels_.size(); ++k) {
       Level& L = levels_[k];
       L.J_tilde.noalias() = L.J * N_;
       L.r = L.e;
-      L.r.noalias() -= L.J * dq_;
+      L.r.noalias() -= L.J * dq;
       const double lambda_sq = o.damping * o.damping + o.error_damping * 0.5 * L.e.squaredNorm();
       L.step.factor(L.J_tilde, lambda_sq);
       L.step.step(L.J_tilde, L.r, L.dq);
-      dq_ += L.dq;
-      if (k + 1 < levels_.size() || has_bias) {
+      dq += L.dq;
+      if (k + 1 < levels_.size() || has_secondary) {
         L.null.factor(L.J_tilde, eps_sq);
         L.null.row_space_projector(L.J_tilde, P_);
         N_ -= P_;
       }
     }
-    if (has_bias) {
-      projected_bias_.noalias() = N_ * bias_;
-      const double task = (dq_ - dq_locked_).norm();
-      dq_ += secondary_scale(task, projected_bias_.norm(), o.secondary_ratio) * projected_bias_;
+    if (has_secondary) {
+      projected_bias_.noalias() = N_ * local.secondary();
+      const double task = (dq - dq_locked).norm();
+      dq += secondary_scale(task, projected_bias_.norm(), o.secondary_ratio) * projected_bias_;
     }
-    if (saturate_step(chain, q_, dq_, locked_, dq_locked_) == 0) break;
-  }
-  // a trust region against the huge steps next to singularities
-  const double largest = dq_.cwiseAbs().maxCoeff();
-  if (largest > o.max_step) dq_ *= o.max_step / largest;
+  });
 }
 
 IkResult MultiTargetIk::solve(const Eigen::Ref<const Eigen::VectorXd>& q_seed) {
@@ -234,20 +201,13 @@ IkResult MultiTargetIk::solve(const Eigen::Ref<const Eigen::VectorXd>& q_seed) {
 }
 
 void MultiTargetIk::solve(const Eigen::Ref<const Eigen::VectorXd>& q_seed, IkResult& result) {
-  const Chain& chain = this->chain();
-  chain.check(q_seed, "multi-target IK seed");
-  q_ = q_seed;
-  clamp_to_limits(chain, q_);
-  if (guard_ && guard_->in_contact(q_)) {
-    throw Error("multi-target IK seed is in contact: " + guard_->describe_contacts(q_));
-  }
-  if (result.q.size() != chain.size()) result.q.resize(chain.size());
+  LocalIkWorkspace& local = *local_;
+  local.start(q_seed, "multi-target IK seed", result);
 
   const MultiTargetIkOptions& o = options_;
-  evaluate(q_, false, current_);
+  evaluate(local.q(), false, current_);
   bool have_best = false;
-  double stall_reference = std::numeric_limits<double>::infinity();
-  int since_progress = 0;
+  StallCounter stall(o.stall_progress, o.stall_iterations);
   IkStatus status = IkStatus::not_converged;
   int iterations = 0;
   for (;; ++iterations) {
@@ -258,58 +218,37 @@ void MultiTargetIk::solve(const Eigen::Ref<const Eigen::VectorXd>& q_seed, IkRes
     if (!have_best || better(current_, best_)) {
       have_best = true;
       best_ = current_;
-      q_best_ = q_;
+      local.keep_best();
       for (TargetSlot& slot : targets_) slot.best_errors = slot.errors;
     }
     if (all_converged(current_)) {
       status = IkStatus::converged;
       break;
     }
-    if (iterations == o.max_iterations) break;
-    if (current_.total < stall_reference * (1.0 - o.stall_progress)) {
-      stall_reference = current_.total;
-      since_progress = 0;
-    } else if (++since_progress >= o.stall_iterations) {
-      break;
-    }
+    if (iterations == o.max_iterations || stall.stalled(current_.total)) break;
 
-    compute_step();
-    if (!dq_.allFinite()) {
+    if (!compute_step()) {
       status = IkStatus::invalid_input;
       break;
     }
 
     // backtracking: halve the step while it makes the result worse (or touches a watched geom)
-    const int halvings = std::max(o.max_backtracks, guard_ ? guard_->spec().max_halvings : 0);
-    double s = o.step;
-    bool accepted = false;
-    for (int h = 0; h <= halvings; ++h, s *= 0.5) {
-      q_try_ = q_ + s * dq_;
-      clamp_to_limits(chain, q_try_);
-      if (!q_try_.allFinite()) break;
-      if (guard_ && guard_->in_contact(q_try_)) {
-        if (h >= guard_->spec().max_halvings) break;
-        continue;
-      }
-      evaluate(q_try_, true, trial_);
-      if (better(trial_, current_) || h >= o.max_backtracks) {
-        accepted = true;
-        break;
-      }
-    }
-    if (!q_try_.allFinite()) {
+    const LineSearchOutcome outcome = local.line_search(o.step, [&](const Eigen::VectorXd& q_try) {
+      evaluate(q_try, true, trial_);
+      return better(trial_, current_);
+    });
+    if (outcome == LineSearchOutcome::non_finite) {
       status = IkStatus::invalid_input;
       break;
     }
-    if (!accepted) break;  // every shortened step touched a watched geom
-    q_ = q_try_;
+    if (outcome == LineSearchOutcome::blocked) break;  // every step touched a watched geom
     current_ = trial_;
     for (TargetSlot& slot : targets_) slot.errors = slot.trial_errors;
   }
 
   // invalid input returns the last finite iterate, everything else the best one
   const bool last = status == IkStatus::invalid_input || !have_best;
-  result.q = last ? q_ : q_best_;
+  result.q = local.returned(last);
   result.position_error = 0.0;
   result.orientation_error = 0.0;
   for (TargetSlot& slot : targets_) {

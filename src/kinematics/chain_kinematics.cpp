@@ -2,8 +2,6 @@
 
 #include <cmath>
 
-#include "mjarm/error.hpp"
-
 namespace mjarm {
 namespace {
 
@@ -77,12 +75,7 @@ ChainKinematics::ChainKinematics(const Chain& chain) : chain_(chain) {
 }
 
 void ChainKinematics::set_fixed_qpos(const Eigen::Ref<const Eigen::VectorXd>& qpos) {
-  const int nq = chain_.robot().nq();
-  if (qpos.size() != nq) {
-    throw Error("fixed qpos has " + std::to_string(qpos.size()) + " values, model '" +
-                chain_.robot().name() + "' has nq = " + std::to_string(nq));
-  }
-  if (!qpos.allFinite()) throw Error("fixed qpos holds a non-finite value");
+  chain_.check_qpos(qpos, "fixed qpos");
   fixed_qpos_ = qpos;
 }
 

@@ -128,6 +128,15 @@ void Chain::check(const Eigen::Ref<const Eigen::VectorXd>& q, std::string_view w
   }
 }
 
+void Chain::check_qpos(const Eigen::Ref<const Eigen::VectorXd>& qpos, std::string_view what) const {
+  const int nq = robot_.nq();
+  if (qpos.size() != nq) {
+    throw Error(std::string(what) + " has " + std::to_string(qpos.size()) + " values, model '" +
+                robot_.name() + "' has nq = " + std::to_string(nq));
+  }
+  if (!qpos.allFinite()) throw Error(std::string(what) + " holds a non-finite value");
+}
+
 Eigen::VectorXd Chain::gather(const double* qpos) const {
   Eigen::VectorXd q(size());
   for (int i = 0; i < size(); ++i) q[i] = qpos[qpos_addresses_[i]];

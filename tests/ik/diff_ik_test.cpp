@@ -11,6 +11,7 @@
 #include "mjarm/error.hpp"
 #include "mjarm/lie/pose_error.hpp"
 #include "mjarm/lie/so3.hpp"
+#include "support/random_configurations.hpp"
 #include "support/test_models.hpp"
 
 // ---- allocation counter (see malloc_counter.hpp) ----
@@ -47,15 +48,6 @@ namespace mjarm {
 namespace {
 
 Chain panda_chain() { return Chain(Robot::bundled("panda"), "attachment_site"); }
-
-Eigen::VectorXd uniform_configuration(const Chain& chain, std::mt19937_64& rng) {
-  std::uniform_real_distribution<double> u(0.0, 1.0);
-  Eigen::VectorXd q(chain.size());
-  for (int i = 0; i < chain.size(); ++i) {
-    q[i] = chain.lower()[i] + u(rng) * (chain.upper()[i] - chain.lower()[i]);
-  }
-  return q;
-}
 
 TEST(DiffIk, UnconstrainedStepMatchesClosedFormLeastSquares) {
   // far from the limits the box is inactive: v = (Σ AᵀWA + λI)⁻¹ Σ AᵀW(α/dt)e
@@ -110,7 +102,7 @@ TEST(DiffIk, ConstrainedStepIsOptimalOverTheBox) {
   Matrix6Xd J(6, 7);
   std::uniform_real_distribution<double> u(0.0, 1.0);
   for (int trial = 0; trial < 20; ++trial) {
-    const Eigen::VectorXd q = uniform_configuration(chain, rng);
+    const Eigen::VectorXd q = test::random_q(chain, rng);
     const Eigen::Vector3d p_WT = kin.update(q).p + Eigen::Vector3d(0.3, -0.2, 0.1);
     ik.set_target(task, p_WT);
     const DiffIkStep& step = ik.step(q);
@@ -162,7 +154,7 @@ TEST(DiffIk, LimitsNeverViolatedOverLongRandomRuns) {
   int outside_workspace = 0;
   for (int k = 0; k < 20000; ++k) {
     if (k % 250 == 0) {
-      target = kin.update(uniform_configuration(chain, rng));
+      target = kin.update(test::random_q(chain, rng));
       if ((k / 250) % 3 == 0) {
         target.p *= 3.0;  // unreachable
         ++outside_workspace;
@@ -292,7 +284,7 @@ TEST(DiffIk, StepAllocatesNothing) {
   ik.add_posture_task(chain.center(), 1e-3);
   ChainKinematics kin(chain);
   std::mt19937_64 rng(11);
-  const Pose X_WT = kin.update(uniform_configuration(chain, rng));
+  const Pose X_WT = kin.update(test::random_q(chain, rng));
   const Eigen::Vector3d p_elbow(0.1, 0.1, 0.5);
   Eigen::VectorXd q = chain.center();
   ik.set_target(pose, X_WT);

@@ -13,6 +13,7 @@
 #include "mjarm/ik/multi_target_ik.hpp"
 #include "mjarm/ik/pose_ik.hpp"
 #include "mjarm/ik/position_ik.hpp"
+#include "support/random_configurations.hpp"
 
 namespace mjarm {
 namespace {

@@ -1,15 +1,10 @@
 #pragma once
-// Shared helpers of the local IK tests: bundled arms with their end-effector frames, seeded
-// random configurations, and a small two-branch model for multi-target tests.
+// Shared helpers of the local IK tests: bundled arms with their end-effector frames and a small
+// two-branch model for multi-target tests (random configurations are in
+// support/random_configurations.hpp).
 
-#include <Eigen/Core>
-#include <algorithm>
-#include <random>
 #include <string>
 #include <vector>
-
-#include "mjarm/model/chain.hpp"
-#include "mjarm/model/robot.hpp"
 
 namespace mjarm::test {
 
@@ -25,27 +20,6 @@ inline std::vector<ArmCase> bundled_arms() {
   return {{"planar2", "tip"},           {"arm6", "grip"},
           {"panda", "attachment_site"}, {"iiwa14", "attachment_site"},
           {"ur5e", "attachment_site"},  {"dual_arm", "right_hand"}};
-}
-
-/// Uniform joint values inside the limits shrunk by @p margin at each end (unlimited: ±π).
-inline Eigen::VectorXd random_q(const Chain& chain, std::mt19937& rng, double margin = 0.0) {
-  Eigen::VectorXd q(chain.size());
-  for (int i = 0; i < chain.size(); ++i) {
-    const double lo = std::isfinite(chain.lower()[i]) ? chain.lower()[i] : -3.14159;
-    const double hi = std::isfinite(chain.upper()[i]) ? chain.upper()[i] : 3.14159;
-    const double m = margin * (hi - lo);
-    q[i] = std::uniform_real_distribution<double>(lo + m, hi - m)(rng);
-  }
-  return q;
-}
-
-/// @p q moved by a normal perturbation of @p sigma per joint, clipped into the limits.
-inline Eigen::VectorXd perturb(const Chain& chain, const Eigen::VectorXd& q, std::mt19937& rng,
-                               double sigma) {
-  std::normal_distribution<double> noise(0.0, sigma);
-  Eigen::VectorXd out = q;
-  for (int i = 0; i < chain.size(); ++i) out[i] += noise(rng);
-  return chain.clamp(out);
 }
 
 /// A torso on a lift with two horizontal 3-link arms (yaw joints only, sites left_tip and

@@ -9,6 +9,7 @@
 #include "ik/local_ik_support.hpp"
 #include "mjarm/error.hpp"
 #include "mjarm/ik/targets.hpp"
+#include "support/random_configurations.hpp"
 #include "support/test_models.hpp"
 
 namespace mjarm {

@@ -8,6 +8,7 @@
 
 #include "ik/local_ik_support.hpp"
 #include "mjarm/error.hpp"
+#include "support/random_configurations.hpp"
 
 namespace mjarm {
 namespace {

@@ -4,9 +4,9 @@
 
 #include <random>
 
-#include "ik/local_ik_support.hpp"
 #include "mjarm/error.hpp"
 #include "mjarm/lie/pose_error.hpp"
+#include "support/random_configurations.hpp"
 #include "support/test_models.hpp"
 
 namespace mjarm {

@@ -18,13 +18,14 @@
 /// prioritized mode) or touch a watched geom.
 
 #include <Eigen/Core>
-#include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "mjarm/ik/collision_guard.hpp"
 #include "mjarm/ik/damped_least_squares.hpp"
 #include "mjarm/ik/limit_bias.hpp"
+#include "mjarm/ik/local_ik_workspace.hpp"
 #include "mjarm/ik/posture.hpp"
 #include "mjarm/ik/result.hpp"
 #include "mjarm/ik/targets.hpp"
@@ -130,17 +131,19 @@ class MultiTargetIk {
   void evaluate(const Eigen::Ref<const Eigen::VectorXd>& q, bool trial, Score& score) noexcept;
   bool better(const Score& a, const Score& b) const noexcept;
   bool all_converged(const Score& s) const noexcept;
-  void compute_step() noexcept;
+  /// The limit-aware prioritized step into the workspace; false when it is not finite.
+  bool compute_step() noexcept;
 
   MultiTargetIkOptions options_;
   std::vector<TargetSlot> targets_;
   std::vector<Level> levels_;
-  std::unique_ptr<CollisionGuard> guard_;
-  Eigen::VectorXd q_pref_;
+  // iterate, step, secondary terms, collision guard: built once the targets are validated (the
+  // constructor reports a bad target before a bad posture or collision spec)
+  std::optional<LocalIkWorkspace> local_;
   // workspace
   Matrix6Xd J_scratch_;
   Eigen::MatrixXd N_, P_;
-  Eigen::VectorXd q_, q_best_, q_try_, dq_, bias_, projected_bias_, locked_, dq_locked_;
+  Eigen::VectorXd projected_bias_;
   Score current_, trial_, best_;
 };
 

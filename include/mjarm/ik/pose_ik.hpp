@@ -17,10 +17,10 @@
 /// no step changes a joint by more than max_step.
 
 #include <Eigen/Core>
-#include <memory>
 
 #include "mjarm/ik/collision_guard.hpp"
 #include "mjarm/ik/limit_bias.hpp"
+#include "mjarm/ik/local_ik_workspace.hpp"
 #include "mjarm/ik/posture.hpp"
 #include "mjarm/ik/result.hpp"
 #include "mjarm/kinematics/chain_kinematics.hpp"
@@ -81,12 +81,10 @@ class PoseIk {
  private:
   PoseIkOptions options_;
   ChainKinematics kin_;
-  std::unique_ptr<CollisionGuard> guard_;
-  Eigen::VectorXd q_pref_;
+  LocalIkWorkspace local_;  // iterate, step, secondary terms, collision guard
   // workspace
   Eigen::Matrix<double, 6, Eigen::Dynamic> J_world_;  // world-aligned frame Jacobian
   Eigen::Matrix<double, 6, Eigen::Dynamic> J_, J_free_;
-  Eigen::VectorXd q_, q_best_, q_try_, dq_, bias_, free_bias_, locked_, dq_locked_;
 };
 
 }  // namespace mjarm

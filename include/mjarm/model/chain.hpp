@@ -67,6 +67,10 @@ class Chain {
 
   /// @throws Error when @p q does not have size() entries or holds NaN/inf; @p what names it.
   void check(const Eigen::Ref<const Eigen::VectorXd>& q, std::string_view what = "q") const;
+  /// @throws Error when @p qpos is not a full configuration of the model (nq entries, all
+  /// finite); @p what names it.
+  void check_qpos(const Eigen::Ref<const Eigen::VectorXd>& qpos,
+                  std::string_view what = "qpos") const;
 
   /// The chain's joint values taken from a full qpos (nq entries).
   Eigen::VectorXd gather(const double* qpos) const;
