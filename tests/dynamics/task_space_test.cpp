@@ -1,0 +1,163 @@
+#include "mjarm/dynamics/task_space.hpp"
+
+#include <gtest/gtest.h>
+
+#include <Eigen/LU>
+#include <cmath>
+#include <random>
+
+#include "dynamics/dynamics_test_support.hpp"
+#include "ik/malloc_counter.hpp"
+#include "mjarm/error.hpp"
+
+namespace mjarm {
+namespace {
+
+using test::random_state;
+
+double rel(double scale) { return 1e-9 * (1.0 + scale); }
+
+TEST(TaskSpaceDynamics, IdentitiesAwayFromSingularities) {
+  std::mt19937 rng(5);
+  int checked = 0;
+  for (const auto& arm : test::dynamics_arms()) {
+    const Chain chain(Robot::bundled(arm.robot), arm.frame);
+    SCOPED_TRACE(arm.robot);
+    // planar2 moves in a plane: only its position rows x, z make a full-rank task
+    const bool planar = chain.size() < 6;
+    DataPtr d = chain.robot().make_data();
+    ChainDynamics dyn(chain);
+    TaskSpaceDynamics ts(chain.size(), planar ? 2 : 6);
+    Eigen::MatrixXd J(ts.task_rows(), chain.size());
+    for (int trial = 0; trial < 20; ++trial) {
+      random_state(chain, d.get(), rng);
+      dyn.update(*d);
+      if (planar) {
+        J << dyn.jacobian().row(0), dyn.jacobian().row(2);
+      } else {
+        J = dyn.jacobian();
+      }
+      if (ts.update(dyn.mass_matrix(), J) != TaskSpaceStatus::ok) continue;  // too close to singular
+      ++checked;
+      const int n = chain.size();
+      const int m = ts.task_rows();
+      const Eigen::MatrixXd Minv = dyn.mass_matrix().inverse();
+      const Eigen::MatrixXd A = J * Minv * J.transpose();
+      const Eigen::MatrixXd I_m = Eigen::MatrixXd::Identity(m, m);
+      const Eigen::MatrixXd& L = ts.lambda();
+      const Eigen::MatrixXd& Jbar = ts.jbar();
+      const Eigen::MatrixXd& N = ts.nullspace();
+      EXPECT_LT((ts.mass_inverse() - Minv).norm(), rel(Minv.norm()));
+      EXPECT_LT((L * A - I_m).norm(), 1e-8 * ts.condition());
+      EXPECT_LT((L - A.inverse()).norm(), 1e-8 * ts.condition() * (1.0 + L.norm()));
+      EXPECT_LT((J * Jbar - I_m).norm(), 1e-8 * ts.condition());
+      EXPECT_LT((N * Jbar).norm(), 1e-8 * ts.condition() * (1.0 + Jbar.norm()));
+      EXPECT_LT((J * N).norm(), 1e-8 * ts.condition() * (1.0 + J.norm()));
+      EXPECT_LT((N * N - N).norm(), 1e-8 * ts.condition() * (1.0 + N.norm()));
+      // M-weighted symmetry: N·M⁻¹ = M⁻¹·Nᵀ, and Nᵀ torques make no task acceleration
+      EXPECT_LT((N * Minv - Minv * N.transpose()).norm(), 1e-9 * (1.0 + Minv.norm()));
+      const Eigen::MatrixXd& M = dyn.mass_matrix();
+      EXPECT_LT((M * N - N.transpose() * M).norm(), 1e-8 * ts.condition() * (1.0 + M.norm()));
+      const Eigen::VectorXd tau0 = Eigen::VectorXd::Random(n);
+      Eigen::VectorXd tau(n);
+      ts.project_torque(tau0, tau);
+      EXPECT_LT((tau - N.transpose() * tau0).norm(), rel(tau.norm()));
+      EXPECT_LT((J * Minv * tau).norm(), 1e-8 * ts.condition() * (1.0 + tau0.norm()));
+      EXPECT_GT(ts.min_singular_value(), 0.0);
+      EXPECT_NEAR(ts.min_singular_value() * ts.min_singular_value(), ts.eigenvalues()[0], 1e-15);
+    }
+  }
+  EXPECT_GT(checked, 60);  // most random states are regular
+}
+
+TEST(TaskSpaceDynamics, BoundedThroughTheElbowSingularity) {
+  // planar2 stretched out (elbow = 0) cannot move its tip along the arm: J·M⁻¹·Jᵀ is singular
+  const Chain chain(Robot::bundled("planar2"), "tip");
+  DataPtr d = chain.robot().make_data();
+  ChainDynamics dyn(chain);
+  TaskSpaceDynamics ts(2, 2);
+  const double floor = ts.options().min_eigenvalue;
+  Eigen::MatrixXd J(2, 2);
+  double previous_sigma = INFINITY;
+  bool saw_ok = false;
+  bool saw_damped = false;
+  for (double elbow = -0.6; elbow <= 1e-12; elbow += 0.01) {
+    Eigen::Vector2d q(0.3, elbow);
+    chain.scatter(q, d->qpos);
+    mju_zero(d->qvel, chain.robot().model().nv);
+    mj_forward(&chain.robot().model(), d.get());
+    dyn.update(*d);
+    J << dyn.jacobian().row(0), dyn.jacobian().row(2);
+    const TaskSpaceStatus status = ts.update(dyn.mass_matrix(), J);
+    (status == TaskSpaceStatus::ok ? saw_ok : saw_damped) = true;
+    EXPECT_TRUE(ts.lambda().allFinite());
+    EXPECT_TRUE(ts.jbar().allFinite());
+    EXPECT_TRUE(ts.nullspace().allFinite());
+    // no direction of Λ exceeds 1/floor, and Λ stays symmetric positive definite
+    Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(ts.lambda());
+    EXPECT_LE(eig.eigenvalues().maxCoeff(), (1.0 + 1e-9) / floor);
+    EXPECT_GT(eig.eigenvalues().minCoeff(), 0.0);
+    EXPECT_EQ(status == TaskSpaceStatus::damped, ts.eigenvalues()[0] < floor);
+    // the M-weighted symmetry survives the damping
+    const Eigen::MatrixXd& Minv = ts.mass_inverse();
+    EXPECT_LT((ts.nullspace() * Minv - Minv * ts.nullspace().transpose()).norm(), 1e-9);
+    const Eigen::MatrixXd& M = dyn.mass_matrix();
+    EXPECT_LT((M * ts.nullspace() - ts.nullspace().transpose() * M).norm(), 1e-9);
+    EXPECT_LE(ts.min_singular_value(), previous_sigma + 1e-12);  // shrinks towards the singularity
+    previous_sigma = ts.min_singular_value();
+  }
+  EXPECT_TRUE(saw_ok);
+  EXPECT_TRUE(saw_damped);
+  EXPECT_LT(previous_sigma, 1e-6);
+  EXPECT_GT(ts.condition(), 1e9);
+}
+
+TEST(TaskSpaceDynamics, RankDeficientTaskIsDampedNotInfinite) {
+  // a 6-row task on a 2-dof arm: J·M⁻¹·Jᵀ has rank 2
+  const Chain chain(Robot::bundled("planar2"), "tip");
+  DataPtr d = chain.robot().make_data();
+  ChainDynamics dyn(chain);
+  TaskSpaceDynamics ts(2);
+  mj_forward(&chain.robot().model(), d.get());
+  dyn.update(*d);
+  EXPECT_EQ(ts.update(dyn), TaskSpaceStatus::damped);
+  EXPECT_TRUE(ts.lambda().allFinite());
+  EXPECT_TRUE(ts.nullspace().allFinite());
+  EXPECT_EQ(std::string(to_string(ts.status())), "damped");
+}
+
+TEST(TaskSpaceDynamics, RejectsBadSizesOptionsAndMass) {
+  EXPECT_THROW(TaskSpaceDynamics(0), Error);
+  EXPECT_THROW(TaskSpaceDynamics(7, 0), Error);
+  EXPECT_THROW(TaskSpaceDynamics(7, 7), Error);
+  EXPECT_THROW(TaskSpaceDynamics(7, 6, TaskSpaceOptions{0.0}), Error);
+  EXPECT_THROW(TaskSpaceDynamics(7, 6, TaskSpaceOptions{NAN}), Error);
+  TaskSpaceDynamics ts(2, 1);
+  Eigen::Matrix2d M;
+  M << 1.0, 2.0, 2.0, 1.0;  // indefinite
+  EXPECT_EQ(ts.update(M, Eigen::RowVector2d(1.0, 0.0)), TaskSpaceStatus::not_positive_definite);
+}
+
+TEST(TaskSpaceDynamics, UpdateAllocatesNothing) {
+  const Chain chain(Robot::bundled("panda"), "attachment_site");
+  DataPtr d = chain.robot().make_data();
+  ChainDynamics dyn(chain);
+  TaskSpaceDynamics full(chain.size(), 6);
+  TaskSpaceDynamics position(chain.size(), 3);
+  std::mt19937 rng(9);
+  random_state(chain, d.get(), rng);
+  Eigen::VectorXd tau0 = Eigen::VectorXd::Ones(chain.size());
+  Eigen::VectorXd tau(chain.size());
+  const std::uint64_t calls = test::malloc_calls();
+  for (int k = 0; k < 10; ++k) {
+    dyn.update(*d);
+    full.update(dyn);
+    position.update(dyn);
+    full.project_torque(tau0, tau);
+  }
+  EXPECT_EQ(test::malloc_calls() - calls, 0u);
+  EXPECT_NE(full.status(), TaskSpaceStatus::not_positive_definite);
+}
+
+}  // namespace
+}  // namespace mjarm
