@@ -1,12 +1,78 @@
 // `mjarm bench ik MODEL --site S --samples N --timeout-ms T --seed K [--clock wall|cpu]`: the
 // TRAC-IK protocol.
 
+// `mjarm bench control MODEL [--site S] [--steps N] [--warmup W] [--json]`: time per controller
+// step, allocations per step, and the real-time factor of closed-loop OSC + mj_step.
+
+#include <algorithm>
+#include <atomic>
+#include <cerrno>
+#include <cstddef>
+#include <cstdint>
 #include <iostream>
 #include <memory>
 
 #include "commands.hpp"
+#include "mjarm/control/control_benchmark.hpp"
 #include "mjarm/ik/ik_benchmark.hpp"
 #include "output.hpp"
+
+// ---- allocation counter for `bench control` ----
+// Every heap allocation of the process goes through one of these (operator new and Eigen call
+// malloc), so counting them here is what "allocations per controller step" means. Under
+// AddressSanitizer, whose allocator must stay in charge, the sanitizer's malloc hook counts
+// instead.
+namespace {
+std::atomic<std::uint64_t> g_heap_allocations{0};
+void count_heap_allocation() noexcept { g_heap_allocations.fetch_add(1, std::memory_order_relaxed); }
+}  // namespace
+
+#if defined(__SANITIZE_ADDRESS__)
+// from the sanitizer runtime's allocator interface (GCC does not install its header)
+extern "C" int __sanitizer_install_malloc_and_free_hooks(void (*malloc_hook)(const volatile void*,
+                                                                             std::size_t),
+                                                         void (*free_hook)(const volatile void*));
+namespace {
+void sanitizer_malloc_hook(const volatile void*, std::size_t) { count_heap_allocation(); }
+void sanitizer_free_hook(const volatile void*) {}  // the runtime wants both hooks
+[[maybe_unused]] const int g_hooks_installed =
+    __sanitizer_install_malloc_and_free_hooks(sanitizer_malloc_hook, sanitizer_free_hook);
+}  // namespace
+#else
+// glibc's own entry points; ours count, then forward
+extern "C" void* __libc_malloc(std::size_t size) noexcept;
+extern "C" void* __libc_calloc(std::size_t count, std::size_t size) noexcept;
+extern "C" void* __libc_realloc(void* pointer, std::size_t size) noexcept;
+extern "C" void* __libc_memalign(std::size_t alignment, std::size_t size) noexcept;
+extern "C" void* malloc(std::size_t size) noexcept {
+  count_heap_allocation();
+  return __libc_malloc(size);
+}
+extern "C" void* calloc(std::size_t count, std::size_t size) noexcept {
+  count_heap_allocation();
+  return __libc_calloc(count, size);
+}
+extern "C" void* realloc(void* pointer, std::size_t size) noexcept {
+  count_heap_allocation();
+  return __libc_realloc(pointer, size);
+}
+extern "C" void* aligned_alloc(std::size_t alignment, std::size_t size) noexcept {
+  count_heap_allocation();
+  return __libc_memalign(alignment, size);
+}
+extern "C" void* memalign(std::size_t alignment, std::size_t size) noexcept {
+  count_heap_allocation();
+  return __libc_memalign(alignment, size);
+}
+extern "C" int posix_memalign(void** pointer, std::size_t alignment, std::size_t size) noexcept {
+  if (alignment % sizeof(void*) != 0 || (alignment & (alignment - 1)) != 0) return EINVAL;
+  count_heap_allocation();
+  void* p = __libc_memalign(alignment, size);
+  if (p == nullptr) return ENOMEM;
+  *pointer = p;
+  return 0;
+}
+#endif
 
 namespace mjarm::cli {
 namespace {
@@ -25,6 +91,122 @@ Json result_json(const IkBenchmarkResult& r) {
           {"mean_iterations", r.mean_iterations}};
 }
 
+/// MODEL, or its torque-driven variant when MODEL is a bundled name that has one ("panda" →
+/// "panda_torque"): the control benchmark drives motors.
+Robot load_torque_model(const std::string& model) {
+  if (model.find('/') == std::string::npos && model.find('.') == std::string::npos) {
+    const auto names = Robot::bundled_names();
+    const std::string torque = model + "_torque";
+    if (std::find(names.begin(), names.end(), torque) != names.end()) return Robot::bundled(torque);
+  }
+  return load_model(model);
+}
+
+Json controller_json(const ControllerBenchmark& c) {
+  return {{"name", c.name},
+          {"steps", c.steps},
+          {"median_us", c.median_us},
+          {"p99_us", c.p99_us},
+          {"mean_us", c.mean_us},
+          {"max_us", c.max_us},
+          {"allocations", c.allocations},
+          {"allocations_per_step", c.allocations_per_step},
+          {"rms_position_error_m", c.rms_position_error}};
+}
+
+/// `mjarm bench control`: registers the subcommand on @p bench.
+Command add_control_subcommand(CLI::App& bench) {
+  struct Options {
+    std::string model;
+    std::string site;
+    int steps = 20000;
+    int warmup = 200;
+    bool json = false;
+  };
+  auto options = std::make_shared<Options>();
+  CLI::App* app = bench.add_subcommand(
+      "control",
+      "every torque controller (joint PD, gravity hold, computed torque, task PD, acceleration "
+      "control, operational space) in closed loop with MuJoCo on a periodic reference: median and "
+      "p99 time per controller step, heap allocations per step, and the real-time factor of "
+      "operational-space control + mj_step beside mj_step alone");
+  add_model_argument(*app, options->model)->required();
+  add_site_option(*app, options->site);
+  app->add_option("--steps", options->steps, "timed control steps per controller (one per physics step)")
+      ->check(CLI::Range(1, 1000000));
+  app->add_option("--warmup", options->warmup, "untimed steps before each timed run")
+      ->check(CLI::Range(0, 1000000));
+  add_json_flag(*app, options->json);
+
+  return {app, [options] {
+            const Robot robot = load_torque_model(options->model);
+            const Chain chain(robot, resolve_site(robot, options->site));
+            ControlBenchmarkOptions protocol;
+            protocol.steps = options->steps;
+            protocol.warmup = options->warmup;
+            protocol.allocation_count = [] {
+              return g_heap_allocations.load(std::memory_order_relaxed);
+            };
+            Progress progress("benchmarking controllers", 8);
+            protocol.progress = [&progress](int done, int) { progress.update(done); };
+            const ControlBenchmarkResult r = run_control_benchmark(chain, protocol);
+            progress.finish();
+
+            if (options->json) {
+              Json controllers = Json::array();
+              for (const auto& c : r.controllers) controllers.push_back(controller_json(c));
+              return print_json({{"model", r.robot},
+                                 {"frame", r.frame},
+                                 {"joints", r.joints},
+                                 {"timestep", r.timestep},
+                                 {"steps", r.steps},
+                                 {"warmup", options->warmup},
+                                 {"reference_frequency_hz", r.frequency},
+                                 {"reference_amplitude", protocol.amplitude},
+                                 {"controllers", controllers},
+                                 {"real_time_factor",
+                                  {{"osc_mj_step", r.osc_real_time_factor},
+                                   {"mj_step_only", r.passive_real_time_factor}}},
+                                 {"step_us",
+                                  {{"osc_mj_step", r.osc_step_us},
+                                   {"mj_step_only", r.passive_step_us}}},
+                                 {"loop_allocations", r.loop_allocations}});
+            }
+            print_fields(std::cout,
+                         {{"model", r.robot},
+                          {"frame", r.frame},
+                          {"joints", std::to_string(r.joints)},
+                          {"timestep [s]", compact(r.timestep) + " (one control step per physics step)"},
+                          {"steps", std::to_string(r.steps) + " per controller, after " +
+                                        std::to_string(options->warmup) + " untimed"},
+                          {"reference", "joint sinusoids of " + compact(protocol.amplitude) +
+                                            " rad at " + compact(r.frequency) +
+                                            " Hz and their task-space image"}});
+            std::cout << '\n';
+            Table table({{"controller", Table::Align::left},
+                         {"median [µs]"},
+                         {"p99 [µs]"},
+                         {"mean [µs]"},
+                         {"max [µs]"},
+                         {"alloc/step"},
+                         {"rms error [mm]"}});
+            for (const auto& c : r.controllers) {
+              table.add_row({c.name, fixed(c.median_us, 3), fixed(c.p99_us, 3), fixed(c.mean_us, 3),
+                             fixed(c.max_us, 1), compact(c.allocations_per_step),
+                             fixed(1e3 * c.rms_position_error, 3)});
+            }
+            table.print(std::cout);
+            std::cout << '\n';
+            Table rtf({{"one thread", Table::Align::left}, {"real-time factor"}, {"per step [µs]"}});
+            rtf.add_row({"osc + mj_step", fixed(r.osc_real_time_factor, 1), fixed(r.osc_step_us, 3)});
+            rtf.add_row({"mj_step only", fixed(r.passive_real_time_factor, 1),
+                         fixed(r.passive_step_us, 3)});
+            rtf.print(std::cout);
+            std::cout << "\nheap allocations in the closed OSC loop (controller + physics): "
+                      << r.loop_allocations << '\n';
+          }};
+}
+
 }  // namespace
 
 Command add_bench_command(CLI::App& root) {
@@ -39,7 +221,7 @@ Command add_bench_command(CLI::App& root) {
   };
   auto options = std::make_shared<Options>();
   CLI::App* bench =
-      root.add_subcommand("bench", "benchmarks of the library (see `mjarm bench ik --help`)");
+      root.add_subcommand("bench", "benchmarks of the library (see `mjarm bench ik --help`, `mjarm bench control --help`)");
   bench->require_subcommand(1);
   CLI::App* app = bench->add_subcommand(
       "ik",
@@ -58,8 +240,10 @@ Command add_bench_command(CLI::App& root) {
                   "time, for a shared machine (a solve over budget counts as failed)")
       ->check(CLI::IsMember({"wall", "cpu"}));
   add_json_flag(*app, options->json);
+  const Command control = add_control_subcommand(*bench);
 
-  return {bench, [options, app] {
+  return {bench, [options, app, control] {
+            if (control.app->parsed()) return control.run();
             if (!app->parsed()) return;
             const Robot robot = load_model(options->model);
             const Chain chain(robot, resolve_site(robot, options->site));

@@ -1,0 +1,118 @@
+#pragma once
+/// @file
+/// `OperationalSpaceController`: operational-space impedance control (Khatib's formulation) of the
+/// chain's frame E, in translation and rotation, with an external-wrench term, null-space
+/// damping/posture and an optional integral term with anti-windup.
+
+#include <array>
+#include <span>
+#include <string>
+#include <string_view>
+
+#include "mjarm/control/controller.hpp"
+#include "mjarm/control/task_error.hpp"
+#include "mjarm/dynamics/chain_dynamics.hpp"
+#include "mjarm/dynamics/task_space.hpp"
+#include "mjarm/lie/types.hpp"
+
+namespace mjarm {
+
+/// Settings of an `OperationalSpaceController`. Task entries are [x, y, z, rx, ry, rz] in world
+/// axes; in `TaskMode::position` only the first three are used (and checked).
+struct OperationalSpaceOptions {
+  TaskMode mode = TaskMode::pose;  ///< 6-D pose or 3-D position task
+  /// K: stiffness [N/m; N·m/rad] (≥ 0).
+  Vector6d stiffness = Vector6d::Constant(400.0);
+  /// D: damping [N·s/m; N·m·s/rad]. A negative entry means "critical": 2ζ·√(m_i·K_i), with m_i
+  /// the desired inertia (or Λ_ii with `task_inertia`).
+  Vector6d damping = Vector6d::Constant(-1.0);
+  /// ζ used for the negative (automatic) damping entries (> 0; 1 = critical).
+  double damping_ratio = 1.0;
+  /// M_d: desired apparent inertia [kg; kg·m²] (> 0). The default of 1 makes K and D per unit
+  /// mass: every direction then closes at ω_n = √K.
+  Vector6d inertia = Vector6d::Ones();
+  /// Keep the arm's own task inertia (M_d = Λ(q), no inertia shaping) instead of `inertia`:
+  /// the closed loop is then a passive spring-damper Λ·ë + D·ė + K·e = f_contact.
+  bool task_inertia = false;
+  /// K_i: integral gain [N/(m·s); N·m/(rad·s)] (≥ 0); 0 disables the integral term.
+  Vector6d integral_gain = Vector6d::Zero();
+  /// Anti-windup: each entry of ∫e dt is clamped to ±limit [m·s; rad·s] (≥ 0).
+  Vector6d integral_limit = (Vector6d() << 0.02, 0.02, 0.02, 0.05, 0.05, 0.05).finished();
+  /// D_n: null-space joint damping [N·m·s/rad or N·s/m] (≥ 0).
+  double nullspace_damping = 5.0;
+  /// K_n: null-space posture stiffness towards reference.joint.q [N·m/rad or N/m] (≥ 0), used
+  /// when reference.joint.q has n entries.
+  double nullspace_stiffness = 0.0;
+  /// Cancels the model's passive forces (joint damping, springs: qfrc_passive).
+  bool compensate_passive = true;
+  /// The floor that bounds Λ near singularities.
+  TaskSpaceOptions task_space;
+};
+
+/// Operational-space impedance control. Each tick, with J the world-aligned Jacobian (its first
+/// 3 rows in position mode), Λ = (J·M⁻¹·Jᵀ)⁻¹ (bounded near singularities, `TaskSpaceDynamics`)
+/// and N = I − J̄·J its dynamically consistent null-space projector:
+///
+///     e  = task_error(X_WE, X_WD),  ė = V_WD − J·q̇,  ∫e += e·Δt (clamped to ±limit)
+///     f  = K·e + D·ė + K_i·∫e                                   (impedance wrench, m rows)
+///     u  = A_WD + M_d⁻¹·f                                        (desired task acceleration)
+///     F  = Λ·(u − J̇·q̇) + F_ext           (with task_inertia: F = Λ·(A_WD − J̇·q̇) + f + F_ext)
+///     τ  = Jᵀ·F + h − τ_passive + Nᵀ·(K_n·(q_ref − q) − D_n·q̇)
+///
+/// h = C·q̇ + g is MuJoCo's qfrc_bias on the chain's dofs, τ_passive its qfrc_passive. With the
+/// model exact and no contact, M_d·ë + D·ė + K·e = 0 in free motion (to first order in the
+/// orientation error); F_ext (reference.task.F_ext) is the wrench E should exert on the
+/// environment, fed forward. Δt is the change of data.time since the previous compute (0 on the
+/// first call after `reset`). Reads reference.task and, for the posture, reference.joint.q.
+///
+/// Internals: position_error [m], orientation_error [rad], lambda_condition (condition number of
+/// J·M⁻¹·Jᵀ), lambda_damped (1 when Λ was floored), integral_x … integral_rz [m·s, rad·s].
+class OperationalSpaceController final : public Controller {
+ public:
+  /// @throws Error when a gain, inertia, ratio or limit is out of range or not finite.
+  explicit OperationalSpaceController(const Chain& chain, const OperationalSpaceOptions& options = {});
+
+  std::string_view name() const noexcept override { return "osc"; }
+  CommandKind command_kind() const noexcept override { return CommandKind::torque; }
+  const Chain& chain() const noexcept override { return dynamics_.chain(); }
+  const OperationalSpaceOptions& options() const noexcept { return options_; }
+
+  /// One tick; a command of the wrong size is left untouched.
+  void compute(const mjData& data, const Reference& reference,
+               JointCommand& command) noexcept override;
+
+  /// Clears the integral and the time of the previous tick.
+  void reset() noexcept override;
+
+  /// ∫e dt after the last `compute` (first m entries used) [m·s; rad·s].
+  const Vector6d& integral() const noexcept { return integral_; }
+  /// Task-space force F of the last `compute` (first m entries used) [N; N·m].
+  const Vector6d& task_force() const noexcept { return force_; }
+  /// The task-space dynamics of the last `compute` (Λ, J̄, N, status).
+  const TaskSpaceDynamics& task_space() const noexcept { return task_space_; }
+
+  std::span<const std::string> internal_names() const noexcept override { return names_; }
+  std::span<const double> internal_values() const noexcept override { return values_; }
+
+ private:
+  OperationalSpaceOptions options_;
+  int rows_ = 6;
+  ChainDynamics dynamics_;
+  TaskSpaceDynamics task_space_;
+  Vector6d damping_ = Vector6d::Zero();  // D with the automatic entries resolved (fixed M_d)
+  Vector6d integral_ = Vector6d::Zero();
+  Vector6d force_ = Vector6d::Zero();
+  double last_time_ = 0.0;
+  bool has_last_time_ = false;
+  // workspace
+  Eigen::VectorXd tau0_;     // n
+  Eigen::VectorXd null_;     // n
+  Eigen::VectorXd passive_;  // n
+  std::array<std::string, 10> names_{"position_error", "orientation_error", "lambda_condition",
+                                     "lambda_damped",  "integral_x",        "integral_y",
+                                     "integral_z",     "integral_rx",       "integral_ry",
+                                     "integral_rz"};
+  std::array<double, 10> values_{};
+};
+
+}  // namespace mjarm

@@ -1,0 +1,279 @@
+#include "mjarm/control/control_benchmark.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <numbers>
+
+#include "mjarm/control/acceleration_control.hpp"
+#include "mjarm/control/computed_torque.hpp"
+#include "mjarm/control/gravity_compensation.hpp"
+#include "mjarm/control/joint_pd.hpp"
+#include "mjarm/control/operational_space.hpp"
+#include "mjarm/control/task_pd.hpp"
+#include "mjarm/error.hpp"
+#include "mjarm/kinematics/chain_kinematics.hpp"
+#include "mjarm/kinematics/frame_state.hpp"
+
+namespace mjarm {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double seconds_between(Clock::time_point a, Clock::time_point b) {
+  return std::chrono::duration<double>(b - a).count();
+}
+
+/// One period of the reference motion, tabulated before any timing.
+class ReferenceTable {
+ public:
+  ReferenceTable(const Chain& chain, const Eigen::VectorXd& qpos_home, double amplitude,
+                 double frequency, int period) {
+    const int n = chain.size();
+    const Eigen::VectorXd q_home = chain.gather(qpos_home.data());
+    ChainKinematics kin(chain);
+    kin.set_fixed_qpos(qpos_home);
+    Matrix6Xd J(6, n);
+    const double w = 2.0 * std::numbers::pi * frequency;
+    const double dt = 1.0 / (frequency * period);
+    ticks_.resize(static_cast<std::size_t>(period));
+    for (int k = 0; k < period; ++k) {
+      Reference& r = ticks_[static_cast<std::size_t>(k)];
+      r.joint.q.resize(n);
+      r.joint.qd.resize(n);
+      r.joint.qdd.resize(n);
+      for (int i = 0; i < n; ++i) {
+        // keep the motion 0.05 inside the limits
+        const double room = std::min(q_home[i] - chain.lower()[i], chain.upper()[i] - q_home[i]) - 0.05;
+        const double a = std::clamp(room, 0.0, amplitude);
+        const double phase = w * k * dt + 0.7 * i;
+        r.joint.q[i] = q_home[i] + a * std::sin(phase);
+        r.joint.qd[i] = a * w * std::cos(phase);
+        r.joint.qdd[i] = -a * w * w * std::sin(phase);
+      }
+      r.task.X_WE = kin.update(r.joint.q);
+      kin.jacobian(J);
+      r.task.V_WE = J * r.joint.qd;
+      r.task.A_WE = J * r.joint.qdd + kin.bias_acceleration(r.joint.qd);
+    }
+  }
+
+  int period() const noexcept { return static_cast<int>(ticks_.size()); }
+
+  /// Copies tick @p k (mod the period) into @p ref (sizes already right: no allocation).
+  void load(int k, Reference& ref) const noexcept {
+    const Reference& r = ticks_[static_cast<std::size_t>(k % period())];
+    ref.joint.q = r.joint.q;
+    ref.joint.qd = r.joint.qd;
+    ref.joint.qdd = r.joint.qdd;
+    ref.task = r.task;
+  }
+
+ private:
+  std::vector<Reference> ticks_;
+};
+
+/// The motor of each chain joint: ctrl = τ ÷ gear (MuJoCo clips it to ctrlrange).
+class Motors {
+ public:
+  explicit Motors(const Chain& chain) {
+    const Robot& robot = chain.robot();
+    const std::vector<ActuatorInfo> actuators = robot.actuators();
+    for (int i = 0; i < chain.size(); ++i) {
+      const auto id = chain.actuator(i);
+      const std::string& joint = chain.joint_names()[static_cast<std::size_t>(i)];
+      if (!id || actuators[static_cast<std::size_t>(*id)].kind != ActuatorKind::motor ||
+          actuators[static_cast<std::size_t>(*id)].gear == 0.0) {
+        throw Error("control benchmark: joint '" + joint + "' of model '" + robot.name() +
+                    "' is not driven by a motor; the benchmark needs torque actuators (load the "
+                    "'_torque' variant of a bundled robot, e.g. 'panda_torque')");
+      }
+      ids_.push_back(*id);
+      gears_.push_back(actuators[static_cast<std::size_t>(*id)].gear);
+    }
+  }
+
+  void apply(const double* tau, mjData& d) const noexcept {
+    for (std::size_t i = 0; i < ids_.size(); ++i) d.ctrl[ids_[i]] = tau[i] / gears_[i];
+  }
+
+ private:
+  std::vector<int> ids_;
+  std::vector<double> gears_;
+};
+
+/// Nearest-rank percentile of sorted values.
+double percentile(const std::vector<double>& sorted, double p) {
+  const auto rank = static_cast<std::size_t>(std::ceil(p * static_cast<double>(sorted.size())));
+  return sorted[std::clamp<std::size_t>(rank, 1, sorted.size()) - 1];
+}
+
+void check_options(const ControlBenchmarkOptions& o) {
+  if (o.steps < 1) throw Error("control benchmark: steps must be >= 1, got " + std::to_string(o.steps));
+  if (o.warmup < 0) throw Error("control benchmark: warmup must be >= 0, got " + std::to_string(o.warmup));
+  if (!std::isfinite(o.amplitude) || o.amplitude < 0.0) {
+    throw Error("control benchmark: amplitude must be finite and >= 0, got " + std::to_string(o.amplitude));
+  }
+  if (!std::isfinite(o.frequency) || o.frequency <= 0.0) {
+    throw Error("control benchmark: frequency must be finite and > 0, got " + std::to_string(o.frequency));
+  }
+}
+
+/// Restarts @p d on the reference's first tick (chain joints at q_d(0) moving at q̇_d(0), the
+/// rest at home), with fresh kinematics and dynamics: every run starts on the reference.
+void reset_start(const Chain& chain, const Reference& first, const Eigen::VectorXd& qpos_home,
+                 mjData& d) {
+  const mjModel& m = chain.robot().model();
+  mj_resetData(&m, &d);
+  mju_copy(d.qpos, qpos_home.data(), m.nq);
+  chain.scatter(first.joint.q, d.qpos);
+  for (int i = 0; i < chain.size(); ++i) d.qvel[chain.dof_address(i)] = first.joint.qd[i];
+  mj_forward(&m, &d);
+}
+
+}  // namespace
+
+std::vector<std::unique_ptr<Controller>> default_benchmark_controllers(const Chain& chain) {
+  std::vector<std::unique_ptr<Controller>> controllers;
+  controllers.push_back(std::make_unique<JointPdController>(chain));
+  controllers.push_back(std::make_unique<GravityHoldController>(chain));
+  controllers.push_back(std::make_unique<ComputedTorqueController>(chain));
+  controllers.push_back(std::make_unique<TaskPdController>(chain));
+  controllers.push_back(std::make_unique<AccelerationController>(chain));
+  controllers.push_back(std::make_unique<OperationalSpaceController>(chain));
+  return controllers;
+}
+
+ControlBenchmarkResult run_control_benchmark(const Chain& chain, const ControlBenchmarkOptions& options) {
+  auto controllers = default_benchmark_controllers(chain);
+  return run_control_benchmark(chain, controllers, options);
+}
+
+ControlBenchmarkResult run_control_benchmark(const Chain& chain,
+                                             std::vector<std::unique_ptr<Controller>>& controllers,
+                                             const ControlBenchmarkOptions& options) {
+  check_options(options);
+  const Robot& robot = chain.robot();
+  const mjModel& m = robot.model();
+  const int n = chain.size();
+  for (const auto& c : controllers) {
+    if (c->command_kind() != CommandKind::torque || c->chain().size() != n) {
+      throw Error("control benchmark: controller '" + std::string(c->name()) +
+                  "' must be a torque controller of " + std::to_string(n) + " joints");
+    }
+  }
+  const Motors motors(chain);
+  OperationalSpaceController osc(chain);
+
+  // the home state and one period of the reference
+  Eigen::VectorXd qpos_home = Eigen::Map<const Eigen::VectorXd>(m.qpos0, m.nq);
+  const auto keys = robot.keyframe_names();
+  if (std::find(keys.begin(), keys.end(), "home") != keys.end()) {
+    const auto key = robot.keyframe_qpos("home");
+    qpos_home = Eigen::Map<const Eigen::VectorXd>(key.data(), m.nq);
+  }
+  const double dt = m.opt.timestep;
+  const int period = std::max(1, static_cast<int>(std::lround(1.0 / (options.frequency * dt))));
+  const ReferenceTable table(chain, qpos_home, options.amplitude, 1.0 / (period * dt), period);
+
+  ControlBenchmarkResult result;
+  result.robot = robot.name();
+  result.frame = chain.frame().name;
+  result.joints = n;
+  result.timestep = dt;
+  result.frequency = 1.0 / (period * dt);
+  result.steps = options.steps;
+
+  DataPtr data = robot.make_data();
+  mjData& d = *data;
+  Reference ref;
+  ref.joint.q.setZero(n);
+  ref.joint.qd.setZero(n);
+  ref.joint.qdd.setZero(n);
+  JointCommand command{CommandKind::torque, Eigen::VectorXd::Zero(n)};
+  std::vector<double> times(static_cast<std::size_t>(options.steps));
+  const auto& count = options.allocation_count;
+  const int phases = static_cast<int>(controllers.size()) + 2;
+  int phase = 0;
+
+  // every controller in closed loop, each compute timed
+  for (auto& controller : controllers) {
+    table.load(0, ref);
+    reset_start(chain, ref, qpos_home, d);
+    controller->reset();
+    std::uint64_t allocations = 0;
+    double error2 = 0.0;
+    for (int k = 0; k < options.warmup + options.steps; ++k) {
+      table.load(k, ref);
+      mj_step1(&m, &d);
+      const std::uint64_t a0 = count ? count() : 0;
+      const Clock::time_point t0 = Clock::now();
+      controller->compute(d, ref, command);
+      const Clock::time_point t1 = Clock::now();
+      const std::uint64_t a1 = count ? count() : 0;
+      if (k >= options.warmup) {
+        times[static_cast<std::size_t>(k - options.warmup)] = 1e6 * seconds_between(t0, t1);
+        allocations += a1 - a0;
+        error2 += (frame_pose(m, d, chain.frame()).p - ref.task.X_WE.p).squaredNorm();
+      }
+      motors.apply(command.value.data(), d);
+      mj_step2(&m, &d);
+    }
+    ControllerBenchmark b;
+    b.name = std::string(controller->name());
+    b.steps = options.steps;
+    b.mean_us = 0.0;
+    for (double t : times) b.mean_us += t;
+    b.mean_us /= options.steps;
+    std::sort(times.begin(), times.end());
+    b.median_us = percentile(times, 0.5);
+    b.p99_us = percentile(times, 0.99);
+    b.max_us = times.back();
+    if (count) {
+      b.allocations = static_cast<std::int64_t>(allocations);
+      b.allocations_per_step = static_cast<double>(allocations) / options.steps;
+    }
+    b.rms_position_error = std::sqrt(error2 / options.steps);
+    result.controllers.push_back(std::move(b));
+    if (options.progress) options.progress(++phase, phases);
+  }
+
+  // real-time factor of closed-loop OSC + physics, no per-tick clocks
+  std::vector<double> torques(static_cast<std::size_t>(options.steps) * static_cast<std::size_t>(n));
+  table.load(0, ref);
+  reset_start(chain, ref, qpos_home, d);
+  osc.reset();
+  const std::uint64_t loop_a0 = count ? count() : 0;
+  const Clock::time_point osc_start = Clock::now();
+  for (int k = 0; k < options.steps; ++k) {
+    table.load(k, ref);
+    mj_step1(&m, &d);
+    osc.compute(d, ref, command);
+    motors.apply(command.value.data(), d);
+    std::copy(command.value.data(), command.value.data() + n, torques.data() + static_cast<std::size_t>(k) * n);
+    mj_step2(&m, &d);
+  }
+  const double osc_seconds = seconds_between(osc_start, Clock::now());
+  if (count) result.loop_allocations = static_cast<std::int64_t>(count() - loop_a0);
+  if (options.progress) options.progress(++phase, phases);
+
+  // the same physics alone: mj_step replaying the recorded torques
+  table.load(0, ref);
+  reset_start(chain, ref, qpos_home, d);
+  const Clock::time_point passive_start = Clock::now();
+  for (int k = 0; k < options.steps; ++k) {
+    motors.apply(torques.data() + static_cast<std::size_t>(k) * n, d);
+    mj_step(&m, &d);
+  }
+  const double passive_seconds = seconds_between(passive_start, Clock::now());
+  if (options.progress) options.progress(++phase, phases);
+
+  const double simulated = options.steps * dt;
+  result.osc_real_time_factor = simulated / osc_seconds;
+  result.passive_real_time_factor = simulated / passive_seconds;
+  result.osc_step_us = 1e6 * osc_seconds / options.steps;
+  result.passive_step_us = 1e6 * passive_seconds / options.steps;
+  return result;
+}
+
+}  // namespace mjarm

@@ -1,0 +1,69 @@
+#pragma once
+// Checks of controller options at construction (they throw; compute() never does) and the small
+// state reads the task-space controllers share.
+
+#include <mujoco/mujoco.h>
+
+#include <Eigen/Core>
+#include <cmath>
+#include <sstream>
+#include <string>
+
+#include "mjarm/error.hpp"
+#include "mjarm/model/chain.hpp"
+
+namespace mjarm::detail {
+
+/// "[a, b, c]" for error messages.
+inline std::string values_text(const Eigen::Ref<const Eigen::VectorXd>& v) {
+  std::ostringstream os;
+  os << '[';
+  for (Eigen::Index i = 0; i < v.size(); ++i) os << (i ? ", " : "") << v[i];
+  os << ']';
+  return os.str();
+}
+
+/// @throws Error "<owner>: <what> must be finite and ≥ 0, got [...]" unless the first @p rows
+/// entries of @p v are finite and non-negative.
+inline void require_non_negative(const Eigen::Ref<const Eigen::VectorXd>& v, int rows,
+                                 const char* owner, const char* what) {
+  const auto head = v.head(rows);
+  if (!head.allFinite() || (head.array() < 0.0).any()) {
+    throw Error(std::string(owner) + ": " + what + " must be finite and ≥ 0, got " +
+                values_text(head));
+  }
+}
+
+/// @throws Error unless the first @p rows entries of @p v are finite and > 0.
+inline void require_positive(const Eigen::Ref<const Eigen::VectorXd>& v, int rows,
+                             const char* owner, const char* what) {
+  const auto head = v.head(rows);
+  if (!head.allFinite() || (head.array() <= 0.0).any()) {
+    throw Error(std::string(owner) + ": " + what + " must be finite and > 0, got " +
+                values_text(head));
+  }
+}
+
+/// @throws Error unless @p value is finite and ≥ 0.
+inline void require_non_negative(double value, const char* owner, const char* what) {
+  if (!std::isfinite(value) || value < 0.0) {
+    throw Error(std::string(owner) + ": " + what + " must be finite and ≥ 0, got " +
+                std::to_string(value));
+  }
+}
+
+/// @throws Error unless @p value is finite and > 0.
+inline void require_positive(double value, const char* owner, const char* what) {
+  if (!std::isfinite(value) || value <= 0.0) {
+    throw Error(std::string(owner) + ": " + what + " must be finite and > 0, got " +
+                std::to_string(value));
+  }
+}
+
+/// The passive forces (joint damping, springs) on the chain's dofs, from qfrc_passive [N·m or N].
+inline void read_passive(const Chain& chain, const mjData& d, Eigen::Ref<Eigen::VectorXd> out) noexcept {
+  const auto& dofs = chain.dof_addresses();
+  for (std::size_t i = 0; i < dofs.size(); ++i) out[static_cast<Eigen::Index>(i)] = d.qfrc_passive[dofs[i]];
+}
+
+}  // namespace mjarm::detail

@@ -1,0 +1,70 @@
+#include "mjarm/control/gripper_pd.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include "mjarm/error.hpp"
+
+namespace mjarm {
+namespace {
+
+// the finger positions for one end of the stroke: given, or a joint limit
+Eigen::VectorXd stroke_end(const Chain& chain, const Eigen::VectorXd& given, bool upper, const char* what) {
+  const int n = chain.size();
+  if (given.size() == n) {
+    if (!given.allFinite()) throw Error(std::string("GripperPdController: options.") + what + " must be finite");
+    return given;
+  }
+  if (given.size() != 0) {
+    throw Error(std::string("GripperPdController: options.") + what + " needs " + std::to_string(n) +
+                " entries (one per finger joint) or none, got " + std::to_string(given.size()));
+  }
+  const Eigen::VectorXd& limit = upper ? chain.upper() : chain.lower();
+  for (int i = 0; i < n; ++i) {
+    if (!std::isfinite(limit[i])) {
+      throw Error("GripperPdController: finger joint '" + chain.joint_names()[i] +
+                  "' has no finite range; give options.open and options.closed");
+    }
+  }
+  return limit;
+}
+
+}  // namespace
+
+GripperPdController::GripperPdController(const Chain& fingers, const GripperPdOptions& options)
+    : gains_(options.gains.expanded(fingers.size(), "GripperPdController")),
+      max_force_(options.max_force),
+      gravity_(options.gravity_compensation),
+      dynamics_(fingers),
+      open_(stroke_end(fingers, options.open, true, "open")),
+      closed_(stroke_end(fingers, options.closed, false, "closed")) {
+  if (!(max_force_ > 0.0) || !std::isfinite(max_force_)) {
+    throw Error("GripperPdController: options.max_force must be finite and > 0, got " +
+                std::to_string(max_force_));
+  }
+}
+
+void GripperPdController::compute(const mjData& data, const Reference& reference,
+                                  JointCommand& command) noexcept {
+  const Chain& chain = dynamics_.chain();
+  const int n = chain.size();
+  if (command.value.size() != n) return;
+  command.kind = CommandKind::torque;
+  if (!std::isnan(reference.gripper)) fraction_ = std::clamp(reference.gripper, 0.0, 1.0);
+  if (gravity_) dynamics_.update(data);
+  double e2 = 0.0;
+  int saturated = 0;
+  for (int i = 0; i < n; ++i) {
+    const double target = open_[i] + fraction_ * (closed_[i] - open_[i]);
+    const double e = target - data.qpos[chain.qpos_address(i)];
+    const double tau = gains_.kp[i] * e - gains_.kd[i] * data.qvel[chain.dof_address(i)] +
+                       (gravity_ ? dynamics_.gravity()[i] : 0.0);
+    command.value[i] = std::clamp(tau, -max_force_, max_force_);
+    saturated += std::abs(tau) > max_force_ ? 1 : 0;
+    e2 += e * e;
+  }
+  values_ = {fraction_, std::sqrt(e2), static_cast<double>(saturated)};
+}
+
+}  // namespace mjarm

@@ -1,0 +1,113 @@
+#include "mjarm/control/operational_space.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "control_checks.hpp"
+
+namespace mjarm {
+
+OperationalSpaceController::OperationalSpaceController(const Chain& chain,
+                                                       const OperationalSpaceOptions& options)
+    : options_(options),
+      rows_(task_rows(options.mode)),
+      dynamics_(chain),
+      task_space_(chain.size(), task_rows(options.mode), options.task_space) {
+  const char* owner = "osc";
+  detail::require_non_negative(options.stiffness, rows_, owner, "stiffness K");
+  if (!options.damping.head(rows_).allFinite()) {
+    throw Error(std::string("osc: damping D must be finite (negative = critical), got ") +
+                detail::values_text(options.damping.head(rows_)));
+  }
+  detail::require_positive(options.damping_ratio, owner, "damping ratio");
+  detail::require_positive(options.inertia, rows_, owner, "inertia M_d");
+  detail::require_non_negative(options.integral_gain, rows_, owner, "integral gain K_i");
+  detail::require_non_negative(options.integral_limit, rows_, owner, "integral limit");
+  detail::require_non_negative(options.nullspace_damping, owner, "null-space damping");
+  detail::require_non_negative(options.nullspace_stiffness, owner, "null-space stiffness");
+  // automatic damping for a fixed desired inertia is a constant
+  for (int i = 0; i < 6; ++i) {
+    const double d = options.damping[i];
+    damping_[i] = d >= 0.0 ? d
+                           : 2.0 * options.damping_ratio *
+                                 std::sqrt(options.inertia[i] * options.stiffness[i]);
+  }
+  const int n = chain.size();
+  tau0_.setZero(n);
+  null_.setZero(n);
+  passive_.setZero(n);
+}
+
+void OperationalSpaceController::reset() noexcept {
+  integral_.setZero();
+  force_.setZero();
+  has_last_time_ = false;
+  last_time_ = 0.0;
+}
+
+void OperationalSpaceController::compute(const mjData& data, const Reference& reference,
+                                         JointCommand& command) noexcept {
+  command.kind = CommandKind::torque;
+  const int n = dynamics_.size();
+  const int m = rows_;
+  if (command.value.size() != n) return;
+  dynamics_.update(data);
+  const TaskSpaceStatus status = task_space_.update(dynamics_);
+  const Eigen::MatrixXd& Lambda = task_space_.lambda();
+
+  // errors and their integral (clamped: anti-windup)
+  const TaskReference& task = reference.task;
+  const Vector6d e = task_error(dynamics_.pose(), task.X_WE);
+  const Vector6d e_dot = task.V_WE - dynamics_.velocity();
+  const double dt = has_last_time_ ? std::max(0.0, data.time - last_time_) : 0.0;
+  last_time_ = data.time;
+  has_last_time_ = true;
+  if (dt > 0.0) {
+    for (int i = 0; i < m; ++i) {
+      if (options_.integral_gain[i] == 0.0) continue;
+      const double limit = options_.integral_limit[i];
+      integral_[i] = std::clamp(integral_[i] + e[i] * dt, -limit, limit);
+    }
+  }
+
+  // impedance wrench, then the task force
+  Vector6d damping = damping_;
+  if (options_.task_inertia) {
+    for (int i = 0; i < m; ++i) {
+      if (options_.damping[i] < 0.0) {
+        damping[i] = 2.0 * options_.damping_ratio * std::sqrt(Lambda(i, i) * options_.stiffness[i]);
+      }
+    }
+  }
+  const Vector6d f = options_.stiffness.cwiseProduct(e) + damping.cwiseProduct(e_dot) +
+                     options_.integral_gain.cwiseProduct(integral_);
+  Vector6d u = task.A_WE - dynamics_.bias_acceleration();
+  if (!options_.task_inertia) u += f.cwiseQuotient(options_.inertia);
+  force_.head(m).noalias() = Lambda * u.head(m);
+  if (options_.task_inertia) force_.head(m) += f.head(m);
+  force_.head(m) += task.F_ext.head(m);
+
+  // joint torques: task force, bias forces, null-space damping/posture
+  auto tau = command.value.head(n);
+  tau.noalias() = dynamics_.jacobian().topRows(m).transpose() * force_.head(m);
+  tau += dynamics_.bias();
+  if (options_.compensate_passive) {
+    detail::read_passive(dynamics_.chain(), data, passive_);
+    tau -= passive_;
+  }
+  tau0_ = -options_.nullspace_damping * dynamics_.qd();
+  const auto& q_ref = reference.joint.q;
+  if (options_.nullspace_stiffness > 0.0 && q_ref.size() == n) {
+    tau0_ += options_.nullspace_stiffness * (q_ref - dynamics_.q());
+  }
+  task_space_.project_torque(tau0_, null_);
+  tau += null_;
+
+  values_[0] = e.head<3>().norm();
+  values_[1] = m == 6 ? e.tail<3>().norm() : 0.0;
+  values_[2] = task_space_.condition();
+  values_[3] = status == TaskSpaceStatus::ok ? 0.0 : 1.0;
+  for (int i = 0; i < 6; ++i) values_[4 + i] = integral_[i];
+}
+
+}  // namespace mjarm

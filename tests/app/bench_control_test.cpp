@@ -1,0 +1,125 @@
+// Drives `mjarm bench control`: JSON fields, zero allocations per controller step, the text
+// report, and clean failures for bad command lines.
+
+#include <fcntl.h>
+#include <gtest/gtest.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <string>
+#include <vector>
+
+extern char** environ;
+
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+struct CliRun {
+  int exit_code = -1;
+  bool signaled = false;
+  std::string out;
+  std::string err;
+};
+
+std::string slurp(const fs::path& path) {
+  std::ifstream in(path);
+  std::stringstream buffer;
+  buffer << in.rdbuf();
+  return buffer.str();
+}
+
+/// Runs the CLI with @p args (no shell); stdout and stderr captured through scratch files.
+CliRun run_cli(const std::vector<std::string>& args) {
+  const fs::path dir = fs::temp_directory_path() / ("mjarm_bench_control_test_" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  const fs::path out = dir / "stdout.txt", err = dir / "stderr.txt";
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, out.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  posix_spawn_file_actions_addopen(&actions, STDERR_FILENO, err.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  std::vector<std::string> all{MJARM_CLI};
+  all.insert(all.end(), args.begin(), args.end());
+  std::vector<char*> argv;
+  for (auto& a : all) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  pid_t pid = 0;
+  CliRun run;
+  const int spawned = posix_spawn(&pid, MJARM_CLI, &actions, nullptr, argv.data(), environ);
+  posix_spawn_file_actions_destroy(&actions);
+  if (spawned == 0) {
+    int status = 0;
+    waitpid(pid, &status, 0);
+    run.signaled = WIFSIGNALED(status);
+    run.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    run.out = slurp(out);
+    run.err = slurp(err);
+  } else {
+    ADD_FAILURE() << "cannot start " << MJARM_CLI;
+  }
+  std::error_code ec;
+  fs::remove_all(dir, ec);
+  return run;
+}
+
+TEST(BenchControl, JsonReportsEveryControllerWithZeroAllocations) {
+  const CliRun run = run_cli({"bench", "control", "panda", "--steps", "300", "--warmup", "20", "--json"});
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  ASSERT_TRUE(json::accept(run.out)) << run.out;
+  const json j = json::parse(run.out);
+  EXPECT_EQ(j["model"], "panda_torque");  // the torque variant of the bundled panda
+  EXPECT_EQ(j["frame"], "attachment_site");
+  EXPECT_EQ(j["joints"], 7);
+  EXPECT_EQ(j["steps"], 300);
+  EXPECT_EQ(j["warmup"], 20);
+  EXPECT_DOUBLE_EQ(j["timestep"].get<double>(), 0.002);
+  const std::vector<std::string> names{"joint-pd", "gravity", "ct", "task-pd", "accel", "osc"};
+  ASSERT_EQ(j["controllers"].size(), names.size());
+  for (std::size_t i = 0; i < names.size(); ++i) {
+    const json& c = j["controllers"][i];
+    EXPECT_EQ(c["name"], names[i]);
+    EXPECT_EQ(c["steps"], 300);
+    EXPECT_EQ(c["allocations"], 0) << names[i];
+    EXPECT_EQ(c["allocations_per_step"], 0.0) << names[i];
+    for (const char* key : {"median_us", "p99_us", "mean_us", "max_us", "rms_position_error_m"}) {
+      ASSERT_TRUE(c[key].is_number()) << key;
+      EXPECT_GE(c[key].get<double>(), 0.0) << key;
+    }
+    EXPECT_LE(c["median_us"].get<double>(), c["p99_us"].get<double>());
+  }
+  EXPECT_GT(j["real_time_factor"]["osc_mj_step"].get<double>(), 0.0);
+  EXPECT_GT(j["real_time_factor"]["mj_step_only"].get<double>(), 0.0);
+  EXPECT_GT(j["step_us"]["osc_mj_step"].get<double>(), 0.0);
+  EXPECT_EQ(j["loop_allocations"], 0);
+}
+
+TEST(BenchControl, TextReportHasTheTables) {
+  const CliRun run = run_cli({"bench", "control", "panda_torque", "--steps", "50", "--warmup", "0"});
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  for (const char* text : {"median [µs]", "p99 [µs]", "alloc/step", "osc + mj_step", "mj_step only",
+                           "joint-pd", "gravity", "ct", "task-pd", "accel", "osc"}) {
+    EXPECT_NE(run.out.find(text), std::string::npos) << text << " not in:\n" << run.out;
+  }
+  EXPECT_TRUE(run.err.empty()) << run.err;  // no progress line when stderr is not a terminal
+}
+
+TEST(BenchControl, BadCommandLinesFailCleanly) {
+  const CliRun zero = run_cli({"bench", "control", "panda", "--steps", "0"});
+  EXPECT_EQ(zero.exit_code, 2);
+  EXPECT_NE(zero.err.find("--steps"), std::string::npos) << zero.err;
+  const CliRun unknown = run_cli({"bench", "control", "no_such_robot"});
+  EXPECT_EQ(unknown.exit_code, 1);
+  EXPECT_EQ(unknown.err.rfind("mjarm: error: ", 0), 0u) << unknown.err;
+  EXPECT_TRUE(unknown.out.empty());
+  const CliRun help = run_cli({"bench", "control", "--help"});
+  EXPECT_EQ(help.exit_code, 0);
+  EXPECT_NE(help.out.find("--steps"), std::string::npos);
+}
+
+}  // namespace

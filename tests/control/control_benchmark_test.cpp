@@ -1,0 +1,100 @@
+#include "mjarm/control/control_benchmark.hpp"
+
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "ik/malloc_counter.hpp"
+#include "mjarm/control/gravity_compensation.hpp"
+#include "mjarm/control/operational_space.hpp"
+#include "mjarm/error.hpp"
+
+namespace mjarm {
+namespace {
+
+Chain panda_torque() { return Chain(Robot::bundled("panda_torque"), "attachment_site"); }
+
+TEST(ControlBenchmark, TimesEveryControllerWithoutAllocations) {
+  const Chain chain = panda_torque();
+  ControlBenchmarkOptions o;
+  o.steps = 400;
+  o.warmup = 20;
+  o.allocation_count = [] { return test::malloc_calls(); };
+  int last_phase = 0;
+  o.progress = [&](int done, int total) {
+    EXPECT_EQ(done, last_phase + 1);
+    EXPECT_EQ(total, 8);
+    last_phase = done;
+  };
+  const ControlBenchmarkResult r = run_control_benchmark(chain, o);
+  EXPECT_EQ(last_phase, 8);
+  EXPECT_EQ(r.robot, "panda_torque");
+  EXPECT_EQ(r.joints, 7);
+  EXPECT_DOUBLE_EQ(r.timestep, 0.002);
+  EXPECT_DOUBLE_EQ(r.frequency, 0.5);  // 1000 steps per period
+  const std::vector<std::string> names{"joint-pd", "gravity", "ct", "task-pd", "accel", "osc"};
+  ASSERT_EQ(r.controllers.size(), names.size());
+  for (std::size_t i = 0; i < names.size(); ++i) {
+    const auto& c = r.controllers[i];
+    EXPECT_EQ(c.name, names[i]);
+    EXPECT_EQ(c.steps, 400);
+    EXPECT_EQ(c.allocations, 0) << c.name;
+    EXPECT_EQ(c.allocations_per_step, 0.0) << c.name;
+    EXPECT_GT(c.median_us, 0.0);
+    EXPECT_LE(c.median_us, c.p99_us);
+    EXPECT_LE(c.p99_us, c.max_us);
+    EXPECT_GT(c.mean_us, 0.0);
+    // the tracking controllers follow the reference (its amplitude moves the tool ~0.1 m)
+    if (c.name != "gravity") {
+      EXPECT_LT(c.rms_position_error, 0.02) << c.name;
+    }
+  }
+  // computed torque and OSC cancel the dynamics: they track tightly
+  EXPECT_LT(r.controllers[2].rms_position_error, 1e-3);
+  EXPECT_LT(r.controllers[5].rms_position_error, 2e-3);
+  EXPECT_EQ(r.loop_allocations, 0);
+  EXPECT_GT(r.osc_real_time_factor, 0.0);
+  EXPECT_GT(r.passive_real_time_factor, 0.0);
+  EXPECT_GT(r.osc_step_us, 0.0);
+  EXPECT_GT(r.passive_step_us, 0.0);
+}
+
+TEST(ControlBenchmark, WithoutACounterAllocationsAreNotReported) {
+  ControlBenchmarkOptions o;
+  o.steps = 20;
+  o.warmup = 0;
+  const ControlBenchmarkResult r = run_control_benchmark(panda_torque(), o);
+  for (const auto& c : r.controllers) {
+    EXPECT_EQ(c.allocations, -1);
+    EXPECT_EQ(c.allocations_per_step, -1.0);
+  }
+  EXPECT_EQ(r.loop_allocations, -1);
+}
+
+TEST(ControlBenchmark, BadInputThrows) {
+  const Chain chain = panda_torque();
+  auto with = [&](auto edit) {
+    ControlBenchmarkOptions o;
+    edit(o);
+    return o;
+  };
+  EXPECT_THROW(run_control_benchmark(chain, with([](auto& o) { o.steps = 0; })), Error);
+  EXPECT_THROW(run_control_benchmark(chain, with([](auto& o) { o.warmup = -1; })), Error);
+  EXPECT_THROW(run_control_benchmark(chain, with([](auto& o) { o.amplitude = NAN; })), Error);
+  EXPECT_THROW(run_control_benchmark(chain, with([](auto& o) { o.frequency = 0.0; })), Error);
+  // position servos: the benchmark names the torque variant
+  const Chain servo(Robot::bundled("panda"), "attachment_site");
+  try {
+    run_control_benchmark(servo, with([](auto& o) { o.steps = 1; }));
+    ADD_FAILURE() << "no exception";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("_torque"), std::string::npos) << e.what();
+  }
+  // a position-kind controller cannot be timed on motors
+  std::vector<std::unique_ptr<Controller>> controllers;
+  controllers.push_back(std::make_unique<GravityCompensationController>(servo));
+  EXPECT_THROW(run_control_benchmark(chain, controllers, with([](auto& o) { o.steps = 1; })), Error);
+}
+
+}  // namespace
+}  // namespace mjarm

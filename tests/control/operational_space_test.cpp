@@ -1,0 +1,320 @@
+#include "mjarm/control/operational_space.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+#include "control/task_control_support.hpp"
+#include "ik/malloc_counter.hpp"
+#include "mjarm/error.hpp"
+
+namespace mjarm {
+namespace {
+
+using test::MatrixX;
+using test::Rig;
+using test::VectorX;
+
+/// Everything the independent formula needs besides the state.
+struct OscCase {
+  Reference ref;
+  OperationalSpaceOptions options;
+};
+
+/// τ of the operational-space law written straight from the docs with dense inverses.
+/// @p integral is ∫e dt as the controller should hold it.
+VectorX reference_osc_torque(const mjModel& m, const mjData& d, int site, const OscCase& c,
+                             const Vector6d& integral) {
+  const auto& o = c.options;
+  const int rows = task_rows(o.mode);
+  const MatrixX M = test::dense_mass(m, d);
+  const MatrixX J = test::site_jacobian(m, d, site).topRows(rows);
+  const VectorX qd = Eigen::Map<const VectorX>(d.qvel, m.nv);
+  const VectorX q = Eigen::Map<const VectorX>(d.qpos, m.nq);
+  const MatrixX Minv = M.inverse();
+  const MatrixX Lambda = (J * Minv * J.transpose()).inverse();
+  const VectorX jdot_qd = test::site_jdot_qdot(m, d, site).head(rows);
+
+  const Vector6d e6 = test::reference_error(test::site_pose(d, site), c.ref.task.X_WE);
+  const VectorX e = e6.head(rows);
+  const VectorX e_dot = c.ref.task.V_WE.head(rows) - J * qd;
+  VectorX K = o.stiffness.head(rows), Ki = o.integral_gain.head(rows), D(rows);
+  for (int i = 0; i < rows; ++i) {
+    const double mass = o.task_inertia ? Lambda(i, i) : o.inertia[i];
+    D[i] = o.damping[i] >= 0.0 ? o.damping[i] : 2.0 * o.damping_ratio * std::sqrt(mass * K[i]);
+  }
+  const VectorX f = K.asDiagonal() * e + D.asDiagonal() * e_dot + Ki.asDiagonal() * integral.head(rows);
+  // (each step into a named vector: GCC 12 reports a false use-after-free on the nested form)
+  VectorX u = c.ref.task.A_WE.head(rows);
+  if (!o.task_inertia) u += o.inertia.head(rows).cwiseInverse().asDiagonal() * f;
+  u -= jdot_qd;
+  VectorX F = Lambda * u;
+  if (o.task_inertia) F += f;
+  F += c.ref.task.F_ext.head(rows);
+
+  const VectorX h = Eigen::Map<const VectorX>(d.qfrc_bias, m.nv);
+  const VectorX passive = Eigen::Map<const VectorX>(d.qfrc_passive, m.nv);
+  const MatrixX Jbar = Minv * J.transpose() * Lambda;
+  const MatrixX N = MatrixX::Identity(m.nv, m.nv) - Jbar * J;
+  VectorX tau0 = -o.nullspace_damping * qd;
+  if (c.ref.joint.q.size() == m.nv) tau0 += o.nullspace_stiffness * (c.ref.joint.q - q);
+  VectorX tau = J.transpose() * F + h + N.transpose() * tau0;
+  if (o.compensate_passive) tau -= passive;
+  return tau;
+}
+
+OscCase random_case(Rig& rig, std::mt19937_64& rng, TaskMode mode, bool task_inertia) {
+  OscCase c;
+  const int site = rig.chain.frame().id;
+  c.ref.task.X_WE = test::nearby_pose(test::site_pose(rig.d(), site), rng, 0.1, 0.5);
+  c.ref.task.V_WE = test::random6(rng, 0.5);
+  c.ref.task.A_WE = test::random6(rng, 2.0);
+  c.ref.task.F_ext = test::random6(rng, 5.0);
+  c.ref.joint.q = VectorX::Zero(rig.chain.size());
+  for (int i = 0; i < rig.chain.size(); ++i) c.ref.joint.q[i] = rig.chain.center()[i];
+  c.options.mode = mode;
+  c.options.task_inertia = task_inertia;
+  c.options.stiffness = test::random6(rng, 100.0).array().abs() + 50.0;
+  if (task_inertia) c.options.stiffness *= 5.0;
+  c.options.damping << 20.0, -1.0, 15.0, -1.0, 3.0, -1.0;  // explicit and automatic entries
+  c.options.damping_ratio = 0.8;
+  c.options.inertia << 2.0, 1.5, 1.0, 0.2, 0.3, 0.25;
+  c.options.integral_gain = Vector6d::Constant(30.0);
+  c.options.integral_limit = Vector6d::Constant(1e-3);
+  c.options.nullspace_damping = 3.0;
+  c.options.nullspace_stiffness = 7.0;
+  return c;
+}
+
+void expect_close(const VectorX& actual, const VectorX& expected, double rel) {
+  ASSERT_EQ(actual.size(), expected.size());
+  EXPECT_LE((actual - expected).norm(), rel * expected.norm())
+      << "actual   " << actual.transpose() << "\nexpected " << expected.transpose();
+}
+
+void check_against_formula(TaskMode mode, bool task_inertia, std::uint64_t seed) {
+  Rig rig("panda_torque", "attachment_site");
+  std::mt19937_64 rng(seed);
+  int checked = 0;
+  while (checked < 25) {
+    if (!test::random_state(rig, rng)) continue;
+    OscCase c = random_case(rig, rng, mode, task_inertia);
+    OperationalSpaceController osc(rig.chain, c.options);
+    JointCommand command{CommandKind::torque, VectorX::Zero(7)};
+    // first call: no integral yet
+    osc.compute(rig.d(), c.ref, command);
+    if (osc.task_space().status() != TaskSpaceStatus::ok) continue;  // formula assumes exact Λ
+    const int site = rig.chain.frame().id;
+    expect_close(command.value, reference_osc_torque(rig.m(), rig.d(), site, c, Vector6d::Zero()), 1e-8);
+    // second call 5 ms later: the integral holds e·Δt, clamped to ±1e-3
+    const Vector6d e = test::reference_error(test::site_pose(rig.d(), site), c.ref.task.X_WE);
+    Vector6d integral = (e * 5e-3).cwiseMax(-1e-3).cwiseMin(1e-3);
+    if (mode == TaskMode::position) integral.tail<3>().setZero();
+    rig.d().time += 5e-3;
+    osc.compute(rig.d(), c.ref, command);
+    EXPECT_LE((osc.integral() - integral).norm(), 1e-15);
+    expect_close(command.value, reference_osc_torque(rig.m(), rig.d(), site, c, integral), 1e-8);
+    ++checked;
+  }
+}
+
+TEST(OperationalSpace, MatchesIndependentFormulaPose) { check_against_formula(TaskMode::pose, false, 1); }
+TEST(OperationalSpace, MatchesIndependentFormulaPosition) {
+  check_against_formula(TaskMode::position, false, 2);
+}
+TEST(OperationalSpace, MatchesIndependentFormulaTaskInertia) {
+  check_against_formula(TaskMode::pose, true, 3);
+  check_against_formula(TaskMode::position, true, 4);
+}
+
+TEST(OperationalSpace, ZeroErrorAtRestHoldsAgainstGravity) {
+  // at rest on target, τ = h − passive exactly: the arm is held, nothing else is commanded
+  Rig rig("panda_torque", "attachment_site");
+  std::mt19937_64 rng(5);
+  test::random_state(rig, rng);
+  mju_zero(rig.d().qvel, rig.m().nv);
+  mj_forward(&rig.m(), &rig.d());
+  Reference ref;
+  ref.task.X_WE = test::site_pose(rig.d(), rig.chain.frame().id);
+  OperationalSpaceController osc(rig.chain);
+  JointCommand command{CommandKind::torque, VectorX::Zero(7)};
+  osc.compute(rig.d(), ref, command);
+  const VectorX h = Eigen::Map<const VectorX>(rig.d().qfrc_bias, 7);
+  EXPECT_LE((command.value - h).norm(), 1e-9 * h.norm());
+}
+
+/// Closed loop on the torque model: mj_step1 → compute → ctrl → mj_step2.
+double run_closed_loop(Rig& rig, Controller& controller, const Reference& ref, double seconds) {
+  JointCommand command{CommandKind::torque, VectorX::Zero(rig.chain.size())};
+  const int steps = static_cast<int>(seconds / rig.m().opt.timestep);
+  for (int k = 0; k < steps; ++k) {
+    mj_step1(&rig.m(), &rig.d());
+    controller.compute(rig.d(), ref, command);
+    test::apply_torque(rig.chain, command.value, rig.d());
+    mj_step2(&rig.m(), &rig.d());
+  }
+  mj_forward(&rig.m(), &rig.d());
+  return (test::site_pose(rig.d(), rig.chain.frame().id).p - ref.task.X_WE.p).norm();
+}
+
+TEST(OperationalSpace, ConvergesOnPandaInSimulation) {
+  Rig rig("panda_torque", "attachment_site");
+  mj_resetDataKeyframe(&rig.m(), &rig.d(), rig.robot.keyframe("home"));
+  mj_forward(&rig.m(), &rig.d());
+  const Pose home = test::site_pose(rig.d(), rig.chain.frame().id);
+  Reference ref;
+  ref.task.X_WE.p = home.p + Eigen::Vector3d(0.12, -0.15, -0.1);
+  ref.task.X_WE.R = Eigen::AngleAxisd(0.4, Eigen::Vector3d(1, 2, 0).normalized()).toRotationMatrix() * home.R;
+  OperationalSpaceController osc(rig.chain);
+  const double error = run_closed_loop(rig, osc, ref, 2.0);
+  EXPECT_LT(error, 1e-3);
+  const Vector6d e = test::reference_error(test::site_pose(rig.d(), rig.chain.frame().id), ref.task.X_WE);
+  EXPECT_LT(e.tail<3>().norm(), 1e-3);
+  EXPECT_LT(osc.internal_values()[0], 1e-3);  // position_error internal agrees
+}
+
+TEST(OperationalSpace, IntegralRemovesAConstantDisturbance) {
+  // a constant unmodelled force on the tool: without the integral a stiffness-sized offset
+  // remains, with it the offset vanishes while the integral stays inside its clamp
+  Rig rig("panda_torque", "attachment_site");
+  mj_resetDataKeyframe(&rig.m(), &rig.d(), rig.robot.keyframe("home"));
+  mj_forward(&rig.m(), &rig.d());
+  const int body = rig.m().site_bodyid[rig.chain.frame().id];
+  Reference ref;
+  ref.task.X_WE = test::site_pose(rig.d(), rig.chain.frame().id);
+  auto offset = [&](const Vector6d& ki) {
+    mj_resetDataKeyframe(&rig.m(), &rig.d(), rig.robot.keyframe("home"));
+    rig.d().xfrc_applied[6 * body + 2] = -10.0;  // 10 N downwards on the last link
+    OperationalSpaceOptions o;
+    o.integral_gain = ki;
+    o.integral_limit = Vector6d::Constant(0.05);
+    OperationalSpaceController osc(rig.chain, o);
+    return run_closed_loop(rig, osc, ref, 4.0);
+  };
+  const double plain = offset(Vector6d::Zero());
+  const double integral = offset(Vector6d::Constant(2000.0));
+  EXPECT_GT(plain, 5e-3);     // about 10 N / 400 N/m... shaped by Λ: millimetres
+  EXPECT_LT(integral, 1e-4);
+}
+
+TEST(OperationalSpace, AntiWindupClampsTheIntegral) {
+  Rig rig("panda_torque", "attachment_site");
+  mj_resetDataKeyframe(&rig.m(), &rig.d(), rig.robot.keyframe("home"));
+  mj_forward(&rig.m(), &rig.d());
+  Reference ref;
+  ref.task.X_WE = test::site_pose(rig.d(), rig.chain.frame().id);
+  ref.task.X_WE.p.z() += 5.0;  // unreachable: the error never closes
+  OperationalSpaceOptions o;
+  o.integral_gain = Vector6d::Constant(1.0);
+  o.integral_limit << 0.01, 0.02, 0.03, 0.04, 0.05, 0.06;
+  OperationalSpaceController osc(rig.chain, o);
+  JointCommand command{CommandKind::torque, VectorX::Zero(7)};
+  for (int k = 0; k < 200; ++k) {
+    rig.d().time = 0.01 * k;
+    osc.compute(rig.d(), ref, command);
+  }
+  EXPECT_DOUBLE_EQ(osc.integral()[2], 0.03);
+  EXPECT_DOUBLE_EQ(osc.internal_values()[6], 0.03);  // integral_z
+  osc.reset();
+  EXPECT_EQ(osc.integral().norm(), 0.0);
+  osc.compute(rig.d(), ref, command);  // first call after reset: Δt = 0
+  EXPECT_EQ(osc.integral().norm(), 0.0);
+}
+
+TEST(OperationalSpace, InternalsAreNamedAndSized) {
+  Rig rig("panda_torque", "attachment_site");
+  OperationalSpaceController osc(rig.chain);
+  ASSERT_EQ(osc.internal_names().size(), osc.internal_values().size());
+  EXPECT_EQ(osc.internal_names()[2], "lambda_condition");
+  Reference ref;
+  ref.task.X_WE = test::site_pose(rig.d(), rig.chain.frame().id);
+  JointCommand command{CommandKind::torque, VectorX::Zero(7)};
+  osc.compute(rig.d(), ref, command);
+  EXPECT_GT(osc.internal_values()[2], 1.0);
+  EXPECT_TRUE(std::isfinite(osc.internal_values()[2]));
+  EXPECT_EQ(osc.name(), "osc");
+  EXPECT_EQ(osc.command_kind(), CommandKind::torque);
+}
+
+TEST(OperationalSpace, ComputeAllocatesNothing) {
+  Rig rig("panda_torque", "attachment_site");
+  std::mt19937_64 rng(8);
+  test::random_state(rig, rng);
+  OscCase c = random_case(rig, rng, TaskMode::pose, false);
+  for (bool task_inertia : {false, true}) {
+    for (TaskMode mode : {TaskMode::pose, TaskMode::position}) {
+      c.options.task_inertia = task_inertia;
+      c.options.mode = mode;
+      OperationalSpaceController osc(rig.chain, c.options);
+      JointCommand command{CommandKind::torque, VectorX::Zero(7)};
+      osc.compute(rig.d(), c.ref, command);  // warm-up
+      const std::uint64_t before = test::malloc_calls();
+      for (int k = 0; k < 100; ++k) {
+        rig.d().time += 1e-3;
+        osc.compute(rig.d(), c.ref, command);
+      }
+      EXPECT_EQ(test::malloc_calls() - before, 0u);
+    }
+  }
+}
+
+TEST(OperationalSpace, PositionModeOnPlanarArmConverges) {
+  // 3 task rows, 2 joints: Λ is floored along the arm's normal, the reachable point is reached
+  Rig rig("planar2_torque", "tip");
+  mj_resetDataKeyframe(&rig.m(), &rig.d(), rig.robot.keyframe("home"));
+  mj_forward(&rig.m(), &rig.d());
+  // a reachable target: the tip at another configuration
+  mjData* other = mj_makeData(&rig.m());
+  other->qpos[0] = 0.2;
+  other->qpos[1] = -1.4;
+  mj_forward(&rig.m(), other);
+  Reference ref;
+  ref.task.X_WE = test::site_pose(*other, rig.chain.frame().id);
+  mj_deleteData(other);
+  OperationalSpaceOptions o;
+  o.mode = TaskMode::position;
+  OperationalSpaceController osc(rig.chain, o);
+  EXPECT_LT(run_closed_loop(rig, osc, ref, 2.0), 1e-3);
+}
+
+TEST(OperationalSpace, BadOptionsThrow) {
+  Rig rig("panda_torque", "attachment_site");
+  auto expect_throw = [&](auto edit, const char* what) {
+    OperationalSpaceOptions o;
+    edit(o);
+    try {
+      OperationalSpaceController osc(rig.chain, o);
+      ADD_FAILURE() << "no exception for " << what;
+    } catch (const Error& e) {
+      EXPECT_NE(std::string(e.what()).find(what), std::string::npos) << e.what();
+    }
+  };
+  expect_throw([](auto& o) { o.stiffness[0] = -1.0; }, "stiffness");
+  expect_throw([](auto& o) { o.stiffness[4] = NAN; }, "stiffness");
+  expect_throw([](auto& o) { o.damping[1] = INFINITY; }, "damping");
+  expect_throw([](auto& o) { o.damping_ratio = 0.0; }, "damping ratio");
+  expect_throw([](auto& o) { o.inertia[3] = 0.0; }, "inertia");
+  expect_throw([](auto& o) { o.integral_gain[2] = -3.0; }, "integral gain");
+  expect_throw([](auto& o) { o.integral_limit[0] = -1.0; }, "integral limit");
+  expect_throw([](auto& o) { o.nullspace_damping = -1.0; }, "null-space damping");
+  expect_throw([](auto& o) { o.nullspace_stiffness = NAN; }, "null-space stiffness");
+  expect_throw([](auto& o) { o.task_space.min_eigenvalue = 0.0; }, "min_eigenvalue");
+  // in position mode the rotational entries are not used, so they are not checked
+  OperationalSpaceOptions o;
+  o.mode = TaskMode::position;
+  o.inertia[5] = 0.0;
+  EXPECT_NO_THROW(OperationalSpaceController(rig.chain, o));
+}
+
+TEST(OperationalSpace, WrongCommandSizeIsLeftUntouched) {
+  Rig rig("panda_torque", "attachment_site");
+  OperationalSpaceController osc(rig.chain);
+  Reference ref;
+  JointCommand command{CommandKind::torque, VectorX::Constant(3, 7.0)};
+  osc.compute(rig.d(), ref, command);
+  EXPECT_EQ(command.value, VectorX::Constant(3, 7.0));
+}
+
+}  // namespace
+}  // namespace mjarm
