@@ -1,0 +1,51 @@
+#pragma once
+/// @file
+/// How a `Simulation` runs: its mode, control period and divergence bound.
+
+#include <limits>
+
+#include "mjarm/sim/contact_query.hpp"
+
+namespace mjarm {
+
+/// The three ways a `Simulation` moves the robot.
+enum class SimulationMode {
+  /// Positions are written directly (`Simulation::move`), forward kinematics only, time advanced
+  /// by hand; no dynamics, no controllers. Optional contact check with rollback.
+  kinematic,
+  /// Position servos driven by position targets (`CommandKind::position`), plus gravity
+  /// compensation on the servo-driven dofs.
+  position,
+  /// Motors driven by torques (`CommandKind::torque`): ctrl = τ ÷ (gear·gain), clipped.
+  torque
+};
+
+/// Human name ("kinematic", "position", "torque").
+const char* to_string(SimulationMode mode) noexcept;
+
+/// Options of a `Simulation`; checked by its constructor.
+struct SimulationOptions {
+  SimulationMode mode = SimulationMode::torque;
+
+  /// Control period [s]: the controllers run once per period. 0 means one physics step. Must be a
+  /// whole multiple of the model's timestep (to 1e-9 relative).
+  double control_period = 0.0;
+
+  /// Position mode only: every physics step, add the bias forces qfrc_bias (gravity, Coriolis,
+  /// centrifugal) of each dof driven by a position servo to qfrc_applied, so the servos do not
+  /// sag under gravity. Ignored in the other modes.
+  bool gravity_compensation = true;
+
+  /// Divergence bound on |qacc| [rad/s² or m/s²]: a larger acceleration stops the run as diverged.
+  /// +infinity leaves only the NaN/inf checks and MuJoCo's own (|x| > 1e10).
+  double max_acceleration = 1e6;
+
+  /// Kinematic mode only: a `move` that puts a geom of `contact_check_a` in contact with a geom of
+  /// `contact_check_b` (as MuJoCo's collision detection reports it, i.e. within the geoms'
+  /// margins) is rolled back and reported. Empty sets disable the check; an empty `b` with a
+  /// non-empty `a` means "any other geom".
+  GeomSet contact_check_a;
+  GeomSet contact_check_b;
+};
+
+}  // namespace mjarm

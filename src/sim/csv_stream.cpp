@@ -1,0 +1,98 @@
+#include "csv_stream.hpp"
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <charconv>
+#include <cstring>
+
+#include "mjarm/error.hpp"
+
+namespace mjarm::sim_detail {
+namespace {
+constexpr std::size_t kIoBuffer = 1 << 16;
+constexpr std::size_t kNumberBytes = 32;  // "-2.2250738585072014e-308" and a separator fit
+}  // namespace
+
+CsvStream::CsvStream(const std::filesystem::path& path, const std::vector<std::string>& columns,
+                     int flush_rows, std::size_t text_bytes)
+    : path_(path), columns_(static_cast<int>(columns.size())), flush_rows_(std::max(flush_rows, 1)) {
+  file_ = std::fopen(path.c_str(), "w");
+  if (file_ == nullptr) {
+    throw Error("recorder: cannot create '" + path.string() + "': " + std::strerror(errno));
+  }
+  io_buffer_ = std::make_unique<char[]>(kIoBuffer);
+  std::setvbuf(file_, io_buffer_.get(), _IOFBF, kIoBuffer);  // stdio then never allocates
+  std::size_t header = 2;
+  for (const std::string& c : columns) header += c.size() + 1;
+  row_.resize(std::max(header, columns.size() * kNumberBytes + text_bytes + 2));
+  for (const std::string& c : columns) add_text(c);
+  end_row();
+  rows_ = 0;  // the header is not a row
+  flush();
+  if (error_ != 0) {
+    std::fclose(file_);
+    file_ = nullptr;
+    throw Error("recorder: cannot write '" + path.string() + "': " + std::strerror(error_));
+  }
+}
+
+CsvStream::~CsvStream() {
+  if (file_ != nullptr) std::fclose(file_);
+}
+
+void CsvStream::separator() noexcept {
+  if (fields_++ > 0 && used_ + 1 < row_.size()) row_[used_++] = ',';
+}
+
+void CsvStream::add(double value) noexcept {
+  separator();
+  const auto [end, ec] = std::to_chars(row_.data() + used_, row_.data() + row_.size() - 1, value);
+  if (ec == std::errc()) used_ = static_cast<std::size_t>(end - row_.data());
+}
+
+void CsvStream::add_text(std::string_view text) noexcept {
+  separator();
+  const std::size_t limit = row_.size() - 1;  // keep room for the newline
+  if (text.find_first_of(",\"\n\r") == std::string_view::npos) {
+    const std::size_t n = std::min(text.size(), limit - std::min(used_, limit));
+    std::memcpy(row_.data() + used_, text.data(), n);
+    used_ += n;
+    return;
+  }
+  if (used_ + 2 > limit) return;
+  row_[used_++] = '"';
+  for (char c : text) {
+    const std::size_t need = c == '"' ? 2 : 1;  // "" escapes a quote
+    if (used_ + need + 1 > limit) break;
+    if (c == '"') row_[used_++] = '"';
+    row_[used_++] = c;
+  }
+  row_[used_++] = '"';
+}
+
+void CsvStream::end_row() noexcept {
+  row_[used_++] = '\n';
+  if (file_ != nullptr && std::fwrite(row_.data(), 1, used_, file_) != used_ && error_ == 0) {
+    error_ = errno != 0 ? errno : EIO;
+  }
+  used_ = 0;
+  fields_ = 0;
+  if (++rows_ % flush_rows_ == 0) flush();
+}
+
+void CsvStream::flush() noexcept {
+  if (file_ != nullptr && std::fflush(file_) != 0 && error_ == 0) error_ = errno;
+}
+
+bool CsvStream::close() noexcept {
+  if (file_ == nullptr) return error_ == 0;
+  flush();
+  if (fsync(fileno(file_)) != 0 && error_ == 0) error_ = errno;
+  if (std::fclose(file_) != 0 && error_ == 0) error_ = errno;
+  file_ = nullptr;
+  return error_ == 0;
+}
+
+}  // namespace mjarm::sim_detail

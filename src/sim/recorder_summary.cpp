@@ -1,0 +1,109 @@
+#include "recorder_summary.hpp"
+
+#include <unistd.h>
+
+#include <cerrno>
+#include <charconv>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+
+#include "mjarm/error.hpp"
+
+namespace mjarm::sim_detail {
+namespace {
+
+std::string json_string(std::string_view text) {
+  std::string out = "\"";
+  for (const char c : text) {
+    switch (c) {
+      case '"': out += "\\\""; break;
+      case '\\': out += "\\\\"; break;
+      case '\n': out += "\\n"; break;
+      case '\r': out += "\\r"; break;
+      case '\t': out += "\\t"; break;
+      default:
+        if (static_cast<unsigned char>(c) < 0x20) {
+          char escape[8];
+          std::snprintf(escape, sizeof(escape), "\\u%04x", c);
+          out += escape;
+        } else {
+          out += c;
+        }
+    }
+  }
+  return out + "\"";
+}
+
+std::string number(double v) {
+  if (!std::isfinite(v)) return "null";  // JSON has no NaN/inf
+  char text[32];
+  const auto [end, ec] = std::to_chars(text, text + sizeof(text), v);
+  return ec == std::errc() ? std::string(text, end) : "null";
+}
+
+}  // namespace
+
+std::string summary_json(const SummaryInfo& info) {
+  std::string j = "{\n";
+  auto field = [&](const char* key, const std::string& value, bool last = false) {
+    j += "  " + json_string(key) + ": " + value + (last ? "\n" : ",\n");
+  };
+  field("model", json_string(info.model));
+  field("source", json_string(info.source));
+  field("mode", json_string(info.mode));
+  field("integrator", json_string(info.integrator));
+  field("timestep", number(info.timestep));
+  field("control_period", number(info.control_period));
+  field("steps_per_tick", std::to_string(info.steps_per_tick));
+  field("state_decimation", std::to_string(info.state_decimation));
+  field("frame", json_string(info.frame));
+  field("status", json_string(info.status));
+  field("message", json_string(info.message));
+  if (!info.write_error.empty()) field("write_error", json_string(info.write_error));
+  field("start_time", number(info.start_time));
+  field("end_time", number(info.end_time));
+  field("duration", number(info.end_time - info.start_time));
+  field("counts", "{\"state_rows\": " + std::to_string(info.state_rows) +
+                      ", \"task_rows\": " + std::to_string(info.task_rows) +
+                      ", \"events\": " + std::to_string(info.event_rows) + "}");
+  std::string controllers = "[";
+  for (std::size_t c = 0; c < info.controllers.size(); ++c) {
+    const auto& ci = info.controllers[c];
+    std::string joints = "[";
+    for (std::size_t k = 0; k < ci.joints.size(); ++k) joints += (k ? ", " : "") + json_string(ci.joints[k]);
+    controllers += std::string(c ? ", " : "") + "{\"name\": " + json_string(ci.name) +
+                   ", \"command\": " + json_string(ci.command) + ", \"joints\": " + joints + "]}";
+  }
+  field("controllers", controllers + "]");
+  std::string saturation = "{";
+  for (std::size_t k = 0; k < info.saturation.size(); ++k) {
+    saturation += (k ? ", " : "") + json_string(info.saturation[k].actuator) + ": " +
+                  std::to_string(info.saturation[k].ticks);
+  }
+  field("saturated_ticks", saturation + "}");
+  std::string files = "{";
+  for (std::size_t k = 0; k < info.files.size(); ++k) {
+    files += (k ? ", " : "") + json_string(info.files[k].layer) + ": {\"file\": " + json_string(info.files[k].name) +
+             ", \"columns\": " + std::to_string(info.files[k].columns) + "}";
+  }
+  field("files", files + "}", true);
+  return j + "}\n";
+}
+
+void write_summary(const std::filesystem::path& path, const SummaryInfo& info) {
+  const std::string text = summary_json(info);
+  std::FILE* file = std::fopen(path.c_str(), "w");
+  if (file == nullptr) {
+    throw Error("recorder: cannot create '" + path.string() + "': " + std::strerror(errno));
+  }
+  const bool written = std::fwrite(text.data(), 1, text.size(), file) == text.size() &&
+                       std::fflush(file) == 0 && fsync(fileno(file)) == 0;
+  const int error = errno;
+  const bool closed = std::fclose(file) == 0;
+  if (!written || !closed) {
+    throw Error("recorder: cannot write '" + path.string() + "': " + std::strerror(error));
+  }
+}
+
+}  // namespace mjarm::sim_detail

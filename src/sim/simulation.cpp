@@ -1,0 +1,200 @@
+#include "mjarm/sim/simulation.hpp"
+
+#include <cmath>
+#include <string>
+
+#include "mjarm/error.hpp"
+#include "mjarm/sim/recorder.hpp"
+
+namespace mjarm {
+namespace {
+
+// control period as a whole number of physics steps, or a clear error
+int steps_per_tick_of(const mjModel& m, double period) {
+  const double h = m.opt.timestep;
+  if (!(std::isfinite(h) && h > 0.0)) {
+    throw Error("simulation: the model's timestep must be positive and finite, got " +
+                std::to_string(h) + " s");
+  }
+  if (period == 0.0) return 1;
+  if (!(std::isfinite(period) && period > 0.0)) {
+    throw Error("simulation: control_period must be positive and finite (or 0 for one physics "
+                "step), got " + std::to_string(period) + " s");
+  }
+  const double n = std::round(period / h);
+  if (n < 1.0 || std::abs(n * h - period) > 1e-9 * period) {
+    throw Error("simulation: control_period " + std::to_string(period) +
+                " s is not a whole multiple of the timestep " + std::to_string(h) +
+                " s (nearest: " + std::to_string(std::max(n, 1.0) * h) + " s)");
+  }
+  return static_cast<int>(n);
+}
+
+void check_finite(std::span<const double> values, std::size_t size, const char* what) {
+  if (values.size() != size) {
+    throw Error(std::string("simulation: ") + what + " needs " + std::to_string(size) +
+                " values, got " + std::to_string(values.size()));
+  }
+  for (std::size_t i = 0; i < size; ++i) {
+    if (!std::isfinite(values[i])) {
+      throw Error(std::string("simulation: ") + what + "[" + std::to_string(i) + "] is not finite");
+    }
+  }
+}
+
+}  // namespace
+
+Simulation::Simulation(const Robot& robot, const SimulationOptions& options)
+    : robot_(robot),
+      options_(options),
+      steps_per_tick_(steps_per_tick_of(robot.model(), options.control_period)),
+      detector_(options.max_acceleration) {
+  if (!(options.max_acceleration > 0.0)) {
+    throw Error("simulation: max_acceleration must be positive (+inf disables the bound), got " +
+                std::to_string(options.max_acceleration));
+  }
+  if (options.mode == SimulationMode::kinematic && options.contact_check_a.empty() &&
+      !options.contact_check_b.empty()) {
+    throw Error("simulation: contact_check_b is set but contact_check_a is empty");
+  }
+  const mjModel& m = robot_.model();
+  data_ = robot_.make_data();
+  commanded_by_.assign(m.nu, -1);
+  saturated_.assign(m.nu, 0);
+  saturation_counts_.assign(m.nu, 0);
+  gravity_added_.assign(m.nv, 0.0);
+  if (options.mode == SimulationMode::position && options.gravity_compensation) {
+    // every hinge/slide dof driven by a position servo holds itself against its bias forces
+    for (const ActuatorInfo& a : robot_.actuators()) {
+      if (a.kind != ActuatorKind::position || !a.joint) continue;
+      const int type = m.jnt_type[*a.joint];
+      if (type != mjJNT_HINGE && type != mjJNT_SLIDE) continue;
+      const int dof = m.jnt_dofadr[*a.joint];
+      bool seen = false;
+      for (int d : gravity_dofs_) seen = seen || d == dof;
+      if (!seen) gravity_dofs_.push_back(dof);
+    }
+  }
+  snapshot_.qpos.resize(m.nq);
+  snapshot_.qvel.resize(m.nv);
+  snapshot_.act.resize(m.na);
+  snapshot_.ctrl.resize(m.nu);
+  snapshot_.qfrc_applied.resize(m.nv);
+  after_reset();
+}
+
+Simulation::~Simulation() = default;
+
+void Simulation::after_reset() {
+  const mjModel& m = robot_.model();
+  mj_forward(&m, data_.get());
+  fault_ = StepFault{};
+  detector_.rebase(*data_);
+  std::fill(saturated_.begin(), saturated_.end(), 0);
+  std::fill(saturation_counts_.begin(), saturation_counts_.end(), 0);
+  std::fill(gravity_added_.begin(), gravity_added_.end(), 0.0);
+  ticks_ = 0;
+  steps_ = 0;
+  for (ControllerSlot& slot : controllers_) slot.controller->reset();
+  refresh_watches(options_.mode != SimulationMode::kinematic);
+}
+
+void Simulation::reset() {
+  mj_resetData(&robot_.model(), data_.get());
+  after_reset();
+}
+
+void Simulation::reset(std::string_view keyframe) {
+  mj_resetDataKeyframe(&robot_.model(), data_.get(), robot_.keyframe(keyframe));
+  after_reset();
+}
+
+void Simulation::set_state(std::span<const double> qpos, std::span<const double> qvel) {
+  const mjModel& m = robot_.model();
+  check_finite(qpos, m.nq, "qpos");
+  check_finite(qvel, m.nv, "qvel");
+  std::copy(qpos.begin(), qpos.end(), data_->qpos);
+  std::copy(qvel.begin(), qvel.end(), data_->qvel);
+  mj_forward(&m, data_.get());
+  fault_ = StepFault{};
+  detector_.rebase(*data_);
+  refresh_watches(options_.mode != SimulationMode::kinematic);
+}
+
+void Simulation::forward() {
+  mj_forward(&robot_.model(), data_.get());
+  refresh_watches(options_.mode != SimulationMode::kinematic);
+}
+
+void Simulation::add_controller(Controller& controller) {
+  const std::string name(controller.name());
+  if (options_.mode == SimulationMode::kinematic) {
+    throw Error("simulation: kinematic mode runs no controllers (controller '" + name +
+                "'); use position or torque mode");
+  }
+  const CommandKind wanted =
+      options_.mode == SimulationMode::torque ? CommandKind::torque : CommandKind::position;
+  if (controller.command_kind() != wanted) {
+    throw Error("simulation: " + std::string(to_string(options_.mode)) + " mode takes " +
+                (wanted == CommandKind::torque ? "torque" : "position") + " commands, but controller '" +
+                name + "' writes " +
+                (controller.command_kind() == CommandKind::torque ? "torques" : "position targets"));
+  }
+  if (&controller.chain().robot().model() != &robot_.model()) {
+    throw Error("simulation: controller '" + name + "' was built for model '" +
+                controller.chain().robot().name() + "', not for this simulation's model '" +
+                robot_.name() + "' (load once and share the Robot)");
+  }
+  auto binding = std::make_unique<ActuatorBinding>(controller.chain(), wanted, name);
+  for (int i = 0; i < binding->size(); ++i) {
+    const int other = commanded_by_[binding->actuators()[i]];
+    if (other >= 0) {
+      throw Error("simulation: joint '" + binding->joint_names()[i] + "' is already commanded by controller '" +
+                  std::string(controllers_[other].controller->name()) + "'; controller '" + name +
+                  "' cannot command it too");
+    }
+  }
+  const int index = static_cast<int>(controllers_.size());
+  for (int a : binding->actuators()) commanded_by_[a] = index;
+  ControllerSlot slot;
+  slot.controller = &controller;
+  slot.command.kind = wanted;
+  slot.command.value = Eigen::VectorXd::Zero(binding->size());
+  slot.binding = std::move(binding);
+  controllers_.push_back(std::move(slot));
+}
+
+std::string Simulation::describe(const StepFault& fault) const {
+  std::string controller_name;
+  if (fault.controller >= 0 && fault.controller < controller_count())
+    controller_name = std::string(controllers_[fault.controller].controller->name());
+  return mjarm::describe(robot_.model(), fault, controller_name);
+}
+
+std::span<const double> Simulation::sensor(std::string_view name) const {
+  return robot_.sensor_values(*data_, name);
+}
+
+std::span<const double> Simulation::sensor(int id) const {
+  const mjModel& m = robot_.model();
+  if (id < 0 || id >= m.nsensor) {
+    throw Error("simulation: sensor id " + std::to_string(id) + " out of range [0, " +
+                std::to_string(m.nsensor) + ")");
+  }
+  return {data_->sensordata + m.sensor_adr[id], static_cast<std::size_t>(m.sensor_dim[id])};
+}
+
+int Simulation::watch_contacts(const GeomSet& a, const GeomSet& b) {
+  if (a.empty()) throw Error("simulation: watch_contacts needs a non-empty first geom set");
+  watches_.push_back(Watch{a, b, {}});
+  refresh_watches(options_.mode != SimulationMode::kinematic);
+  return static_cast<int>(watches_.size()) - 1;
+}
+
+void Simulation::refresh_watches(bool with_forces) noexcept {
+  for (Watch& w : watches_) {
+    w.summary = contact_between(robot_.model(), *data_, w.a, w.b, with_forces);
+  }
+}
+
+}  // namespace mjarm

@@ -1,0 +1,32 @@
+#pragma once
+// A recording directory filled atomically: files are written into DIR/.partial-XXXXXX and moved
+// into DIR on commit, the marker file (summary.json) last.
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace mjarm::sim_detail {
+
+class StagingDir {
+ public:
+  /// Creates @p directory (and parents) and a fresh staging folder inside it.
+  /// @throws Error naming the directory and the system's reason when either fails.
+  explicit StagingDir(const std::filesystem::path& directory);
+
+  const std::filesystem::path& directory() const noexcept { return directory_; }
+  const std::filesystem::path& staging() const noexcept { return staging_; }
+  /// Path of @p name inside the staging folder.
+  std::filesystem::path staged(const std::string& name) const { return staging_ / name; }
+
+  /// Removes a stale DIR/marker, moves @p files then @p marker from the staging folder into the
+  /// directory, removes the staging folder and syncs the directory.
+  /// @throws Error naming the file when a move fails (the staging folder is kept).
+  void commit(const std::vector<std::string>& files, const std::string& marker);
+
+ private:
+  std::filesystem::path directory_;
+  std::filesystem::path staging_;
+};
+
+}  // namespace mjarm::sim_detail

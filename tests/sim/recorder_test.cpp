@@ -1,0 +1,309 @@
+#include "mjarm/sim/recorder.hpp"
+
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <csignal>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <stdexcept>
+#include <string>
+
+#include "mjarm/error.hpp"
+#include "mjarm/sim/interrupt.hpp"
+#include "mjarm/sim/simulation.hpp"
+#include "sim/sim_test_support.hpp"
+
+namespace mjarm {
+namespace {
+
+using test::Csv;
+using test::read_csv;
+
+nlohmann::json read_summary(const std::filesystem::path& dir) {
+  return nlohmann::json::parse(test::read_text(dir / "summary.json"));
+}
+
+// Every file complete: a header, rows of the header's width, a final newline.
+void expect_complete(const std::filesystem::path& dir) {
+  for (const char* name : {"state.csv", "task.csv", "events.csv"}) {
+    const Csv csv = read_csv(dir / name);
+    ASSERT_FALSE(csv.header.empty()) << name;
+    EXPECT_TRUE(csv.ends_with_newline) << name;
+    for (std::size_t r = 0; r < csv.rows.size(); ++r) {
+      ASSERT_EQ(csv.rows[r].size(), csv.header.size()) << name << " row " << r;
+    }
+  }
+  EXPECT_TRUE(std::filesystem::exists(dir / "summary.json"));
+  EXPECT_EQ(test::partial_folders(dir), 0);
+}
+
+struct Planar2Run {
+  Robot robot = Robot::bundled("planar2_torque");
+  Chain chain{robot, "tip"};
+  Simulation sim;
+  test::PdTorque pd{chain, 60.0, 6.0};
+  Reference reference;
+
+  explicit Planar2Run(double period = 0.01) : sim(robot, options(period)) {
+    sim.reset("home");
+    sim.add_controller(pd);
+    reference.joint.q = Eigen::Vector2d(0.3, -0.6);
+    reference.task.X_WE.p = Eigen::Vector3d(0.5, 0.1, 0.7);
+    reference.gripper = 0.25;
+  }
+  static SimulationOptions options(double period) {
+    SimulationOptions o;
+    o.control_period = period;
+    return o;
+  }
+};
+
+TEST(Recorder, WritesThreeLayersAndASummary) {
+  Planar2Run p;
+  test::TempDir dir("layers");
+  RecorderOptions options;
+  options.state_decimation = 2;
+  const std::filesystem::path out = dir.path() / "run1";  // created by the recorder
+  Recorder recorder(p.sim, out, options);
+  EXPECT_EQ(test::partial_folders(out), 1);  // staging while the run goes
+  EXPECT_FALSE(std::filesystem::exists(out / "state.csv"));
+  ConstantReferenceSource source(p.reference);
+  const RunResult run = p.sim.run(source, 0.5, &recorder);
+  ASSERT_EQ(run.status, RunStatus::duration_reached);
+  recorder.event(p.sim.time(), "phase", "hold, then \"release\"");
+  recorder.finalize(run);
+  recorder.finalize("twice");  // idempotent
+  expect_complete(out);
+
+  const Csv state = read_csv(out / "state.csv");
+  for (const char* c : {"t", "q.shoulder", "q.elbow", "v.shoulder", "v.elbow", "ctrl.shoulder",
+                        "ctrl.elbow", "force.shoulder", "force.elbow"}) {
+    EXPECT_GE(state.column(c), 0) << c;
+  }
+  EXPECT_EQ(state.header.size(), 9u);
+  EXPECT_EQ(state.rows.size(), 125u);  // 250 physics steps, every second one
+  // the first row is the start state, the ctrl applied during that step, and its force
+  EXPECT_EQ(state.value(0, "t"), 0.0);
+  EXPECT_EQ(state.value(0, "q.shoulder"), 0.5);
+  EXPECT_EQ(state.value(0, "q.elbow"), -1.0);
+  EXPECT_EQ(state.value(0, "ctrl.shoulder"), state.value(0, "force.shoulder"));
+  EXPECT_NEAR(state.value(1, "t"), 0.004, 1e-15);
+
+  const Csv task = read_csv(out / "task.csv");
+  for (const char* c : {"ee.x", "ee.qw", "ref.z", "err.vx", "err.wz", "gripper_ref", "qref.shoulder",
+                        "cmd.test-pd.elbow", "test-pd.error_norm", "sat.shoulder", "sat.elbow"}) {
+    EXPECT_GE(task.column(c), 0) << c;
+  }
+  EXPECT_EQ(task.rows.size(), 50u);
+  EXPECT_EQ(task.value(0, "qref.shoulder"), 0.3);
+  EXPECT_EQ(task.value(0, "gripper_ref"), 0.25);
+  EXPECT_EQ(task.value(0, "ref.x"), 0.5);
+  // the pose of the tip at home, and the error to the reference, world axes
+  const Robot& robot = p.robot;
+  DataPtr home = robot.make_data();
+  mj_resetDataKeyframe(&robot.model(), home.get(), robot.keyframe("home"));
+  mj_forward(&robot.model(), home.get());
+  const double* tip = home->site_xpos + 3 * robot.site("tip");
+  EXPECT_NEAR(task.value(0, "ee.x"), tip[0], 1e-15);
+  EXPECT_NEAR(task.value(0, "ee.z"), tip[2], 1e-15);
+  EXPECT_NEAR(task.value(0, "err.vx"), 0.5 - tip[0], 1e-15);
+  EXPECT_NEAR(task.value(0, "test-pd.error_norm"), std::hypot(0.3 - 0.5, -0.6 + 1.0), 1e-12);
+
+  const Csv events = read_csv(out / "events.csv");
+  ASSERT_EQ(events.rows.size(), 1u);
+  EXPECT_EQ(events.rows[0][1], "phase");
+  EXPECT_EQ(events.rows[0][2], "hold, then \"release\"");
+
+  const nlohmann::json s = read_summary(out);
+  EXPECT_EQ(s["model"], "planar2_torque");
+  EXPECT_EQ(s["mode"], "torque");
+  EXPECT_EQ(s["integrator"], "Euler");
+  EXPECT_EQ(s["timestep"], 0.002);
+  EXPECT_EQ(s["control_period"], 0.01);
+  EXPECT_EQ(s["steps_per_tick"], 5);
+  EXPECT_EQ(s["status"], "duration_reached");
+  EXPECT_EQ(s["counts"]["state_rows"], 125);
+  EXPECT_EQ(s["counts"]["task_rows"], 50);
+  EXPECT_EQ(s["counts"]["events"], 1);
+  EXPECT_NEAR(s["duration"].get<double>(), 0.5, 1e-9);
+  EXPECT_EQ(s["files"]["state"]["file"], "state.csv");
+  EXPECT_EQ(s["controllers"][0]["name"], "test-pd");
+  EXPECT_EQ(s["controllers"][0]["joints"][1], "elbow");
+}
+
+TEST(Recorder, ARunThatThrowsIsFinalizedAsError) {
+  Planar2Run p(0.002);
+  test::TempDir dir("throw");
+  try {
+    Recorder recorder(p.sim, dir.path());
+    for (int k = 0;; ++k) {
+      p.sim.tick(p.reference, &recorder);
+      if (k == 19) throw std::runtime_error("controller exploded");
+    }
+  } catch (const std::runtime_error&) {
+  }
+  expect_complete(dir.path());
+  EXPECT_EQ(read_csv(dir.path() / "state.csv").rows.size(), 20u);
+  EXPECT_EQ(read_csv(dir.path() / "task.csv").rows.size(), 20u);
+  const nlohmann::json s = read_summary(dir.path());
+  EXPECT_EQ(s["status"], "error");
+  EXPECT_EQ(s["counts"]["task_rows"], 20);
+}
+
+TEST(Recorder, DestroyedWithoutFinalizeIsAborted) {
+  Planar2Run p;
+  test::TempDir dir("aborted");
+  {
+    Recorder recorder(p.sim, dir.path());
+    for (int k = 0; k < 3; ++k) p.sim.tick(p.reference, &recorder);
+  }
+  expect_complete(dir.path());
+  EXPECT_EQ(read_summary(dir.path())["status"], "aborted");
+  EXPECT_EQ(read_csv(dir.path() / "state.csv").rows.size(), 15u);
+}
+
+// SIGINT raised in-process while the handler is installed: the loop stops at the next tick and
+// the recording is finalized as interrupted with every row so far.
+TEST(Recorder, SigintStopsTheRunAndTheRecordingIsKept) {
+  Planar2Run p;
+  test::TempDir dir("sigint");
+  RunResult run;
+  {
+    InterruptGuard guard;
+    EXPECT_THROW(InterruptGuard second, Error);
+    Recorder recorder(p.sim, dir.path());
+    bool raised = false;
+    FunctionReferenceSource source([&](const mjData& d, Reference& r) {
+      r = p.reference;
+      if (d.time >= 0.1 - 1e-9 && !raised) {
+        raised = true;
+        std::raise(SIGINT);
+      }
+      return true;
+    });
+    run = p.sim.run(source, 10.0, &recorder);
+    EXPECT_TRUE(interrupt_requested());
+    recorder.finalize(run);
+  }
+  EXPECT_FALSE(interrupt_requested());  // the guard cleared it
+  ASSERT_EQ(run.status, RunStatus::interrupted);
+  EXPECT_NEAR(run.end_time, 0.11, 1e-9);  // the tick that saw the signal completed
+  expect_complete(dir.path());
+  EXPECT_EQ(read_csv(dir.path() / "task.csv").rows.size(), 11u);
+  EXPECT_EQ(read_csv(dir.path() / "state.csv").rows.size(), 55u);
+  const Csv events = read_csv(dir.path() / "events.csv");
+  ASSERT_EQ(events.rows.size(), 1u);
+  EXPECT_EQ(events.rows[0][1], "interrupt");
+  EXPECT_EQ(read_summary(dir.path())["status"], "interrupted");
+}
+
+TEST(Recorder, UnwritableDirectoryFailsBeforeTheRun) {
+  Planar2Run p;
+  test::TempDir dir("unwritable");
+  const std::filesystem::path file = dir.path() / "a_file";
+  std::ofstream(file) << "not a directory";
+  try {
+    Recorder recorder(p.sim, file / "recording");
+    FAIL() << "no error";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find((file / "recording").string()), std::string::npos) << e.what();
+  }
+  if (geteuid() != 0) {  // root writes anywhere: the permission case only means something for users
+    const std::filesystem::path locked = dir.path() / "locked";
+    std::filesystem::create_directory(locked);
+    std::filesystem::permissions(locked, std::filesystem::perms::owner_read | std::filesystem::perms::owner_exec);
+    try {
+      Recorder recorder(p.sim, locked);
+      FAIL() << "no error";
+    } catch (const Error& e) {
+      EXPECT_NE(std::string(e.what()).find("not writable"), std::string::npos) << e.what();
+    }
+    std::filesystem::permissions(locked, std::filesystem::perms::owner_all);
+  }
+  EXPECT_EQ(p.sim.ticks(), 0);
+}
+
+TEST(Recorder, BadOptionsAndLateControllersAreRefused) {
+  Planar2Run p;
+  test::TempDir dir("options");
+  RecorderOptions bad;
+  bad.state_decimation = 0;
+  EXPECT_THROW(Recorder(p.sim, dir.path(), bad), Error);
+  RecorderOptions frame;
+  frame.frame = "no_such_frame";
+  EXPECT_THROW(Recorder(p.sim, dir.path(), frame), Error);
+  EXPECT_EQ(test::partial_folders(dir.path()), 0);  // nothing touched the disk
+
+  // a controller added after the recorder changes the columns: run() refuses
+  Simulation sim(p.robot);
+  Recorder early(sim, dir.path() / "early");
+  test::PdTorque pd(p.chain, 1.0, 1.0);
+  sim.add_controller(pd);
+  ConstantReferenceSource source(p.reference);
+  EXPECT_THROW(sim.run(source, 0.1, &early), Error);
+  Simulation other(p.robot);
+  EXPECT_THROW(other.run(source, 0.1, &early), Error);
+}
+
+// A caller that returns early without finalize still gets the run's status (here: interrupted).
+TEST(Recorder, DestroyedAfterARunKeepsTheRunStatus) {
+  Planar2Run p;
+  test::TempDir dir("run_status");
+  {
+    InterruptGuard guard;
+    Recorder recorder(p.sim, dir.path());
+    bool raised = false;  // once: the handler is one-shot, a second SIGINT would end the process
+    FunctionReferenceSource source([&](const mjData& d, Reference& r) {
+      r = p.reference;
+      if (d.time >= 0.05 - 1e-9 && !raised) {
+        raised = true;
+        std::raise(SIGINT);
+      }
+      return true;
+    });
+    EXPECT_EQ(p.sim.run(source, 1.0, &recorder).status, RunStatus::interrupted);
+  }
+  expect_complete(dir.path());
+  const nlohmann::json s = read_summary(dir.path());
+  EXPECT_EQ(s["status"], "interrupted");
+  EXPECT_NEAR(s["end_time"].get<double>(), 0.06, 1e-9);
+}
+
+// A second recording into the same directory replaces the first one whole.
+TEST(Recorder, ASecondRecordingReplacesTheFirst) {
+  test::TempDir dir("replace");
+  for (int round = 0; round < 2; ++round) {
+    Planar2Run p;
+    Recorder recorder(p.sim, dir.path());
+    for (int k = 0; k < 2 + round; ++k) p.sim.tick(p.reference, &recorder);
+    recorder.finalize("finished");
+  }
+  expect_complete(dir.path());
+  EXPECT_EQ(read_csv(dir.path() / "task.csv").rows.size(), 3u);
+  EXPECT_EQ(read_summary(dir.path())["counts"]["task_rows"], 3);
+}
+
+TEST(Recorder, KinematicMovesAreStateRows) {
+  const Robot robot = Robot::bundled("planar2");
+  SimulationOptions options;
+  options.mode = SimulationMode::kinematic;
+  Simulation sim(robot, options);
+  test::TempDir dir("kinematic");
+  {
+    Recorder recorder(sim, dir.path(), RecorderOptions{1, 256, "tip"});
+    for (int k = 1; k <= 10; ++k) {
+      const double q[2] = {0.01 * k, -0.02 * k};
+      sim.move(q, 0.01, &recorder);
+    }
+    recorder.finalize("finished");
+  }
+  const Csv state = read_csv(dir.path() / "state.csv");
+  ASSERT_EQ(state.rows.size(), 10u);
+  EXPECT_NEAR(state.value(9, "t"), 0.1, 1e-12);
+  EXPECT_EQ(state.value(9, "q.elbow"), -0.2);
+  EXPECT_NEAR(state.value(9, "v.shoulder"), 1.0, 1e-9);
+}
+
+}  // namespace
+}  // namespace mjarm
