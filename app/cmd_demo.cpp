@@ -1,15 +1,24 @@
-// `mjarm demo`: a tour of the library on a bundled arm — model summary, forward kinematics at
-// the home keyframe, a seeded workspace analysis and a pose-IK round trip.
+// `mjarm demo`: the main job — the shelf pick on the panda under operational-space control,
+// recorded — then a short tour of the library on a bundled arm: model, forward kinematics at the
+// home keyframe, a seeded workspace analysis and a pose-IK round trip.
 
 #include <chrono>
 #include <iostream>
 #include <memory>
+#include <optional>
 
 #include "commands.hpp"
+#include "mjarm/error.hpp"
 #include "mjarm/ik/pose_ik.hpp"
+#include "mjarm/sim/interrupt.hpp"
+#include "mjarm/tasks/shelf_pick.hpp"
 #include "output.hpp"
 
 namespace mjarm::cli {
+
+// the shelf pick's printing, shared with `mjarm run` (defined in cmd_run.cpp)
+Json shelf_pick_json(const ShelfPickReport& report);
+void print_shelf_pick(std::ostream& os, const ShelfPickReport& report);
 
 namespace {
 
@@ -40,11 +49,14 @@ Command add_demo_command(CLI::App& root) {
     std::string key = "home";
     std::size_t samples = 20000;
     std::uint64_t seed = 1;
+    std::string record = "out/demo";
     bool json = false;
   };
   auto options = std::make_shared<Options>();
   CLI::App* app = root.add_subcommand(
-      "demo", "tour: model summary, FK at home, seeded workspace analysis, pose-IK round trip");
+      "demo",
+      "the shelf pick on the panda under operational-space control (recorded), then a tour: "
+      "model, FK at home, seeded workspace analysis, pose-IK round trip");
   app->add_option("--model", options->model, "bundled model name or path")->capture_default_str();
   add_site_option(*app, options->site);
   app->add_option("--key", options->key, "keyframe for FK and the IK target")
@@ -52,12 +64,32 @@ Command add_demo_command(CLI::App& root) {
   app->add_option("--samples", options->samples, "workspace samples")
       ->check(CLI::Range(std::size_t{1}, std::size_t{1000000000}))
       ->capture_default_str();
-  app->add_option("--seed", options->seed, "workspace seed")
+  app->add_option("--seed", options->seed, "seed of the shelf pick and of the workspace sampling")
       ->check(non_negative_integer())
+      ->capture_default_str();
+  app->add_option("--record", options->record,
+                  "where the shelf pick's recording goes (relative to the current directory)")
       ->capture_default_str();
   add_json_flag(*app, options->json);
 
   return {app, [options] {
+            // the main job: the shelf pick (a finalized recording even on Ctrl-C)
+            ShelfPickOptions pick;
+            pick.request.robot = "panda";
+            pick.request.controller = "osc";
+            pick.request.seed = options->seed;
+            pick.record = options->record;
+            std::optional<ShelfPickReport> report;
+            {
+              const InterruptGuard interrupts;
+              report.emplace(run_shelf_pick(pick));
+            }
+            if (!report->ok())
+              throw mjarm::Error("the shelf pick ended " +
+                                 std::string(to_string(report->outcome)) + ": " +
+                                 report->run.message + "; recording in " +
+                                 report->recording.string());
+
             const Robot robot = load_model(options->model);
             const Chain chain(robot, resolve_site(robot, options->site));
             const Configuration config = resolve_configuration(chain, {}, options->key);
@@ -77,15 +109,20 @@ Command add_demo_command(CLI::App& root) {
                       {"orientation_error", trip.result.orientation_error},
                       {"iterations", trip.result.iterations},
                       {"seconds", trip.seconds}};
-              return print_json({{"model", model_json(robot)},
+              return print_json({{"shelf_pick", shelf_pick_json(*report)},
+                                 {"model", model_json(robot)},
                                  {"fk", pose_json(kin, config, false)},
                                  {"workspace", workspace_json(chain, workspace)},
                                  {"ik", ik}});
             }
 
             std::ostream& os = std::cout;
+            print_heading(os, "shelf pick");
+            print_shelf_pick(os, *report);
             print_heading(os, "model");
-            print_model_summary(os, robot);
+            os << robot.name() << ": " << robot.joints().size() << " joints, " << robot.nu()
+               << " actuators, frame " << chain.frame().name << " (mjarm info " << options->model
+               << " for the tables)\n";
             print_heading(os, "forward kinematics");
             print_pose(os, kin, config, false);
             print_heading(os, "workspace");

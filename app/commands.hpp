@@ -31,6 +31,7 @@ Command add_singularities_command(CLI::App& root);  ///< `mjarm singularities MO
 Command add_demo_command(CLI::App& root);           ///< `mjarm demo`
 Command add_ik_command(CLI::App& root);             ///< `mjarm ik MODEL …` (cmd_ik.cpp)
 Command add_bench_command(CLI::App& root);          ///< `mjarm bench ik MODEL …` (cmd_bench.cpp)
+Command add_run_command(CLI::App& root);            ///< `mjarm run shelf-pick …` (cmd_run.cpp)
 
 /// Everything `info` reports about a model, as JSON.
 Json model_json(const Robot& robot);

@@ -38,6 +38,7 @@ int main(int argc, char** argv) {
   commands.push_back(add_singularities_command(app));
   commands.push_back(add_ik_command(app));
   commands.push_back(add_bench_command(app));
+  commands.push_back(add_run_command(app));
   commands.push_back(add_demo_command(app));
 
   // name an unknown command instead of CLI11's generic "a subcommand is required"

@@ -1,0 +1,307 @@
+// `mjarm run SCENARIO`: runs a ready-made closed-loop scenario in simulation and prints its
+// figures. Scenario: shelf-pick (docs/tasks.md).
+
+#include <algorithm>
+#include <cmath>
+#include <iostream>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "commands.hpp"
+#include "mjarm/error.hpp"
+#include "mjarm/sim/interrupt.hpp"
+#include "mjarm/tasks/shelf_pick.hpp"
+#include "output.hpp"
+
+namespace mjarm::cli {
+
+namespace {
+
+const std::vector<std::string> kScenarios{"shelf-pick"};
+
+std::string controller_title(const std::string& name) {
+  if (name == "ct") return "computed torque (ct)";
+  if (name == "osc") return "operational-space impedance (osc)";
+  if (name == "task-pd") return "task-space PD (task-pd)";
+  if (name == "accel") return "acceleration control through inverse dynamics (accel)";
+  return name;
+}
+
+std::string point_text(const Eigen::Vector3d& p) {
+  return "(" + fixed(p.x(), 4) + ", " + fixed(p.y(), 4) + ", " + fixed(p.z(), 4) + ")";
+}
+
+/// Millimetres with 4 decimals, "—" for NaN (the event did not happen).
+std::string mm(double metres) { return std::isnan(metres) ? "—" : fixed(metres * 1e3, 4); }
+std::string sec(double seconds) { return std::isnan(seconds) ? "—" : fixed(seconds, 3); }
+Json number_or_null(double v) { return std::isfinite(v) ? Json(v) : Json(nullptr); }
+
+/// Throws UsageError (exit 2) for an unknown robot or controller, with the choices.
+void check_names(const std::string& robot, const std::string& controller) {
+  try {
+    shelf_pick_robot(robot);
+    check_shelf_pick_controller(controller);
+  } catch (const Error& e) {
+    throw UsageError(e.what());
+  }
+}
+
+}  // namespace
+
+Json shelf_pick_json(const ShelfPickReport& r) {
+  const ShelfPickPlan& p = r.plan;
+  const PickMetrics& m = r.metrics;
+  Json doc{{"scenario", "shelf-pick"},
+           {"robot", p.robot->name},
+           {"model", p.model.name()},
+           {"controller", p.controller},
+           {"seed", p.seed},
+           {"pick", vector_json(p.pick)},
+           {"pick_drawn", p.pick_drawn},
+           {"start_q", vector_json(p.goal.q_start)},
+           {"target_q", vector_json(p.goal.q_target)},
+           {"distance", (p.pick - p.goal.X_WS.p).norm()},
+           {"approach_time", p.goal.approach_time},
+           {"control_period", r.control_period},
+           {"time_limit", r.time_limit},
+           {"tolerance", p.goal.criteria.tolerance},
+           {"hold_time", p.goal.criteria.hold_time},
+           {"outcome", to_string(r.outcome)},
+           {"held", m.held},
+           {"status", to_string(r.run.status)},
+           {"message", r.run.message},
+           {"end_time", r.run.end_time}};
+  doc["metrics"] = Json{{"time_to_tolerance", number_or_null(m.time_to_tolerance)},
+                        {"first_entry_time", number_or_null(m.first_entry_time)},
+                        {"overshoot", m.overshoot},
+                        {"steady_state_mean", number_or_null(m.steady_state_mean)},
+                        {"steady_state_max", number_or_null(m.steady_state_max)},
+                        {"hold_mean", number_or_null(m.hold_mean)},
+                        {"hold_max", number_or_null(m.hold_max)},
+                        {"orientation_error_max", number_or_null(m.orientation_error_max)},
+                        {"hold_end_time", number_or_null(m.hold_end_time)},
+                        {"exits", m.exits},
+                        {"final_error", number_or_null(m.final_error)}};
+  doc["saturated_ticks"] = r.saturated_ticks;
+  doc["recording"] = r.recording.empty() ? Json(nullptr) : Json(r.recording.string());
+  return doc;
+}
+
+void print_shelf_pick(std::ostream& os, const ShelfPickReport& r) {
+  const ShelfPickPlan& p = r.plan;
+  const PickMetrics& m = r.metrics;
+  os << "shelf pick on " << p.robot->name << " (" << p.model.name() << "), "
+     << controller_title(p.controller) << ", seed " << p.seed << '\n';
+  print_fields(os,
+               {{"pick point [m]", point_text(p.pick) + (p.pick_drawn ? "  (drawn from the seed)"
+                                                                      : "  (--pick)")},
+                {"start q [rad]", vector_text(p.goal.q_start)},
+                {"distance [m]", fixed((p.pick - p.goal.X_WS.p).norm(), 4)},
+                {"approach [s]", fixed(p.goal.approach_time, 3) + " (minimum jerk)"},
+                {"control period [s]", compact(r.control_period)}},
+               2);
+  os << "result: " << to_string(r.outcome) << " — " << r.run.message << '\n';
+  const std::string tol = compact(p.goal.criteria.tolerance * 1e3) + " mm";
+  std::vector<std::pair<std::string, std::string>> fields{
+      {"time to " + tol + " [s]", sec(m.time_to_tolerance)},
+      {"first entry [s]", sec(m.first_entry_time)},
+      {"overshoot [mm]", mm(m.overshoot)},
+      {"steady state [mm]", "mean " + mm(m.steady_state_mean) + ", max " +
+                                mm(m.steady_state_max) + " (last " +
+                                compact(p.goal.criteria.steady_window * 1e3) + " ms of the hold)"},
+      {"whole hold [mm]", "mean " + mm(m.hold_mean) + ", max " + mm(m.hold_max)},
+      {"hold", m.held ? "held " + compact(p.goal.criteria.hold_time * 1e3) +
+                            " ms, released at t = " + fixed(m.hold_end_time, 3) + " s"
+                      : "not held (error at the end " + mm(m.final_error) + " mm)"},
+      {"exits from tolerance", std::to_string(m.exits)},
+      {"saturated ticks", std::to_string(r.saturated_ticks)}};
+  if (!p.goal.position_only)
+    fields.insert(fields.begin() + 5,
+                  {"orientation [mrad]", "max " + mm(m.orientation_error_max) + " over the hold"});
+  if (!r.recording.empty())
+    fields.push_back({"recording", r.recording.string() +
+                                       " (state.csv, task.csv, events.csv, summary.json)"});
+  print_fields(os, fields, 2);
+}
+
+namespace {
+
+/// Every robot × controller, each over @p seeds seeds from @p first: worst figures per row.
+void run_all(const ShelfPickOptions& base, int seeds, bool json) {
+  struct Row {
+    std::string robot, controller;
+    int held = 0, runs = 0;
+    double time = 0.0, overshoot = 0.0, steady_mean = 0.0, steady_max = 0.0, hold_mean = 0.0;
+    std::int64_t saturated = 0;
+  };
+  std::vector<Row> rows;
+  const auto& robots = shelf_pick_robots();
+  const auto& controllers = shelf_pick_controllers();
+  Progress progress("shelf picks",
+                    static_cast<std::int64_t>(robots.size() * controllers.size()) * seeds);
+  std::int64_t done = 0;
+  for (const auto& robot : robots) {
+    for (const auto& controller : controllers) {
+      Row row{robot.name, controller};
+      for (int k = 0; k < seeds; ++k) {
+        ShelfPickOptions options = base;
+        options.request.robot = robot.name;
+        options.request.controller = controller;
+        options.request.seed = base.request.seed + static_cast<std::uint64_t>(k);
+        const ShelfPickReport r = run_shelf_pick(options);
+        const PickMetrics& m = r.metrics;
+        ++row.runs;
+        row.saturated = std::max(row.saturated, r.saturated_ticks);
+        progress.update(++done);
+        if (!r.ok()) continue;
+        ++row.held;
+        row.time = std::max(row.time, m.time_to_tolerance);
+        row.overshoot = std::max(row.overshoot, m.overshoot);
+        row.steady_mean = std::max(row.steady_mean, m.steady_state_mean);
+        row.steady_max = std::max(row.steady_max, m.steady_state_max);
+        row.hold_mean = std::max(row.hold_mean, m.hold_mean);
+      }
+      rows.push_back(row);
+    }
+  }
+  progress.finish();
+  if (json) {
+    Json doc = Json::array();
+    for (const Row& row : rows)
+      doc.push_back({{"robot", row.robot},
+                     {"controller", row.controller},
+                     {"runs", row.runs},
+                     {"held", row.held},
+                     {"worst_time_to_tolerance", row.time},
+                     {"worst_overshoot", row.overshoot},
+                     {"worst_steady_state_mean", row.steady_mean},
+                     {"worst_steady_state_max", row.steady_max},
+                     {"worst_hold_mean", row.hold_mean},
+                     {"worst_saturated_ticks", row.saturated}});
+    print_json({{"scenario", "shelf-pick"},
+                {"first_seed", base.request.seed},
+                {"seeds", seeds},
+                {"rows", doc}});
+    return;
+  }
+  if (seeds == 1) {
+    std::cout << "shelf pick, seed " << base.request.seed << '\n';
+  } else {
+    std::cout << "shelf pick, seeds " << base.request.seed << "–"
+              << base.request.seed + static_cast<std::uint64_t>(seeds) - 1
+              << ": the worst figure of the held runs in each row\n";
+  }
+  Table table({{"robot", Table::Align::left},
+               {"controller", Table::Align::left},
+               {"held"},
+               {"time to 1 mm [s]"},
+               {"overshoot [mm]"},
+               {"steady mean [mm]"},
+               {"steady max [mm]"},
+               {"hold mean [mm]"},
+               {"saturated ticks"}});
+  for (const Row& row : rows)
+    table.add_row({row.robot, row.controller,
+                   std::to_string(row.held) + "/" + std::to_string(row.runs), fixed(row.time, 3),
+                   fixed(row.overshoot * 1e3, 4), fixed(row.steady_mean * 1e3, 4),
+                   fixed(row.steady_max * 1e3, 4), fixed(row.hold_mean * 1e3, 4),
+                   std::to_string(row.saturated)});
+  table.print(std::cout, 0);
+  const bool all_held =
+      std::all_of(rows.begin(), rows.end(), [](const Row& row) { return row.held == row.runs; });
+  if (!all_held) throw Error("some shelf picks did not hold (see the 'held' column)");
+}
+
+}  // namespace
+
+Command add_run_command(CLI::App& root) {
+  struct Options {
+    std::string scenario;
+    std::string robot = "panda";
+    std::string controller = "osc";
+    std::vector<double> pick;
+    std::uint64_t seed = 1;
+    std::string record;
+    double control_period = 0.0;
+    double max_acceleration = 1e6;
+    double settle_time = 1.0;
+    bool all = false;
+    int seeds = 1;
+    bool json = false;
+  };
+  auto o = std::make_shared<Options>();
+  CLI::App* app = root.add_subcommand(
+      "run", "run a closed-loop scenario in simulation and print its figures (shelf-pick)");
+  app->add_option("scenario", o->scenario, "scenario to run: " + join(kScenarios))->required();
+  app->add_option("--robot", o->robot, "planar2 | panda (torque-motor models)")
+      ->capture_default_str();
+  app->add_option("--controller", o->controller, "ct | osc | task-pd | accel")
+      ->capture_default_str();
+  CLI::Option* pick = app->add_option("--pick", o->pick, "pick point x y z in the world [m] "
+                                                         "(default: drawn from the seed)")
+                          ->expected(3)
+                          ->check(finite_number());
+  app->add_option("--seed", o->seed,
+                  "seed: draws the pick point when --pick is absent and perturbs the start "
+                  "(same seed, same run bit for bit)")
+      ->check(non_negative_integer())
+      ->capture_default_str();
+  CLI::Option* record =
+      app->add_option("--record", o->record, "record state, task and events into DIR");
+  app->add_option("--control-period", o->control_period,
+                  "control period [s], a whole multiple of the timestep (0: one physics step)")
+      ->check(finite_number())
+      ->capture_default_str();
+  app->add_option("--max-acceleration", o->max_acceleration,
+                  "divergence bound on |joint acceleration| [rad/s²]")
+      ->check(finite_number())
+      ->capture_default_str();
+  app->add_option("--settle-time", o->settle_time,
+                  "time allowed after the approach to enter the tolerance and hold [s]")
+      ->check(finite_number())
+      ->capture_default_str();
+  app->add_flag("--all", o->all, "every robot × controller (a table of the worst figures)")
+      ->excludes(pick)
+      ->excludes(record);
+  app->add_option("--seeds", o->seeds, "with --all: run seeds K … K+N−1 per row")
+      ->check(CLI::Range(1, 100000))
+      ->capture_default_str();
+  add_json_flag(*app, o->json);
+
+  return {app, [o] {
+            if (o->scenario != "shelf-pick")
+              throw UsageError("unknown scenario '" + o->scenario +
+                               "'; scenarios: " + join(kScenarios));
+            if (o->seeds != 1 && !o->all) throw UsageError("--seeds needs --all");
+            ShelfPickOptions options;
+            options.request.robot = o->robot;
+            options.request.controller = o->controller;
+            options.request.seed = o->seed;
+            if (!o->pick.empty()) options.request.pick = Eigen::Vector3d(o->pick[0], o->pick[1], o->pick[2]);
+            options.record = o->record;
+            options.control_period = o->control_period;
+            options.max_acceleration = o->max_acceleration;
+            options.settle_time = o->settle_time;
+            const InterruptGuard interrupts;  // Ctrl-C ends the run with a finalized recording
+            if (o->all) return run_all(options, o->seeds, o->json);
+
+            check_names(o->robot, o->controller);
+            const ShelfPickReport report = run_shelf_pick(options);
+            if (o->json) {
+              print_json(shelf_pick_json(report));
+            } else {
+              print_shelf_pick(std::cout, report);
+            }
+            if (!report.ok()) {
+              std::string why = "the shelf pick ended " + std::string(to_string(report.outcome)) +
+                                ": " + report.run.message;
+              if (!report.recording.empty())
+                why += "; the recording up to that point is in " + report.recording.string();
+              throw Error(why);
+            }
+          }};
+}
+
+}  // namespace mjarm::cli

@@ -1,0 +1,68 @@
+#pragma once
+/// @file
+/// `run_shelf_pick`: the shelf-pick scenario end to end — plan, simulate under a controller,
+/// measure, record. See docs/tasks.md for the scenario, its metrics and the measured figures.
+
+#include <cstdint>
+#include <filesystem>
+#include <string>
+
+#include "mjarm/sim/run_result.hpp"
+#include "mjarm/tasks/pick_monitor.hpp"
+#include "mjarm/tasks/shelf_pick_plan.hpp"
+
+namespace mjarm {
+
+/// How to run one shelf pick.
+struct ShelfPickOptions {
+  ShelfPickRequest request;        ///< robot, controller, pick point, seed, criteria
+  std::filesystem::path record;    ///< recording directory; empty: no recording
+  /// Control period [s]; 0 = one physics step (2 ms on the bundled models). Must be a whole
+  /// multiple of the timestep.
+  double control_period = 0.0;
+  /// Divergence bound on |q̈| [rad/s²] (`SimulationOptions::max_acceleration`).
+  double max_acceleration = 1e6;
+  /// Time allowed after the approach for entering the tolerance and holding [s] (> 0): the run
+  /// stops at approach_time + settle_time + hold_time at the latest.
+  double settle_time = 1.0;
+  int state_decimation = 1;        ///< one state row every N physics steps when recording
+};
+
+/// How a shelf pick ended.
+enum class PickOutcome {
+  held,         ///< the tip entered the tolerance and held; released
+  not_held,     ///< the time limit came first
+  diverged,     ///< the simulation diverged (recording kept up to the fault)
+  bad_command,  ///< the controller produced NaN/inf
+  interrupted   ///< SIGINT/SIGTERM (see sim/interrupt.hpp)
+};
+
+/// Human name ("held", "not_held", ...).
+const char* to_string(PickOutcome outcome) noexcept;
+
+/// What a shelf pick did.
+struct ShelfPickReport {
+  ShelfPickPlan plan;            ///< robot, chain, pick point, start, targets, approach time
+  RunResult run;                 ///< the simulation's account (status, end time, message)
+  PickMetrics metrics;           ///< time to tolerance, overshoot, steady state, hold
+  PickOutcome outcome = PickOutcome::not_held;
+  PickPhase final_phase = PickPhase::approach;
+  double time_limit = 0.0;       ///< simulated time allowed [s]
+  double control_period = 0.0;   ///< [s]
+  /// The most control ticks any one motor was clipped to its torque limit.
+  std::int64_t saturated_ticks = 0;
+  std::filesystem::path recording;  ///< the recording directory (empty when not recorded)
+  bool ok() const noexcept { return outcome == PickOutcome::held; }
+};
+
+/// Plans (`plan_shelf_pick`), builds the simulation in torque mode at the seeded start, runs the
+/// `ShelfPickTask` under the chosen controller and returns the figures. With a recording
+/// directory, a `Recorder` is opened before the first step (so a directory that cannot be
+/// written fails before anything runs), gets the phase events and a final "result" event, and is
+/// finalized with the run's status — also when the run diverges.
+/// @throws Error for bad options (see `plan_shelf_pick`, a control period that is not a whole
+///         multiple of the timestep, a non-positive settle time or bound) or a recording
+///         directory that cannot be created or written.
+ShelfPickReport run_shelf_pick(const ShelfPickOptions& options);
+
+}  // namespace mjarm

@@ -1,0 +1,259 @@
+// Drives `mjarm run shelf-pick` and the demo's shelf pick through the built executable: figures
+// in --json, recordings on disk, exit codes and messages for every bad input.
+
+#include <fcntl.h>
+#include <gtest/gtest.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <string>
+#include <vector>
+
+extern char** environ;
+
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+struct CliResult {
+  int exit_code = -1;
+  bool signaled = false;
+  std::string out;
+  std::string err;
+};
+
+std::string slurp(const fs::path& path) {
+  std::ifstream in(path);
+  std::stringstream buffer;
+  buffer << in.rdbuf();
+  return buffer.str();
+}
+
+fs::path scratch() {
+  struct Dir {
+    fs::path path = fs::temp_directory_path() / ("mjarm_run_test_" + std::to_string(::getpid()));
+    Dir() { fs::create_directories(path); }
+    ~Dir() {
+      std::error_code ec;
+      fs::remove_all(path, ec);
+    }
+  };
+  static const Dir dir;
+  return dir.path;
+}
+
+/// Runs the CLI with @p args in directory @p cwd (default: the scratch directory).
+CliResult run_cli(const std::vector<std::string>& args, const fs::path& cwd = scratch()) {
+  const fs::path out = scratch() / "run_stdout.txt";
+  const fs::path err = scratch() / "run_stderr.txt";
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, out.c_str(),
+                                   O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  posix_spawn_file_actions_addopen(&actions, STDERR_FILENO, err.c_str(),
+                                   O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  posix_spawn_file_actions_addchdir_np(&actions, cwd.c_str());
+  std::vector<std::string> all{MJARM_CLI};
+  all.insert(all.end(), args.begin(), args.end());
+  std::vector<char*> argv;
+  for (auto& a : all) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  pid_t pid = 0;
+  CliResult run;
+  const int spawned = posix_spawn(&pid, MJARM_CLI, &actions, nullptr, argv.data(), environ);
+  posix_spawn_file_actions_destroy(&actions);
+  if (spawned != 0) {
+    ADD_FAILURE() << "cannot start " << MJARM_CLI;
+    return run;
+  }
+  int status = 0;
+  waitpid(pid, &status, 0);
+  run.signaled = WIFSIGNALED(status);
+  run.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  run.out = slurp(out);
+  run.err = slurp(err);
+  return run;
+}
+
+json run_json(const std::vector<std::string>& args) {
+  const CliResult run = run_cli(args);
+  EXPECT_EQ(run.exit_code, 0) << run.err;
+  EXPECT_TRUE(json::accept(run.out)) << run.out;
+  return json::accept(run.out) ? json::parse(run.out) : json();
+}
+
+/// A clean failure: exit code, one "mjarm: error:" message holding @p needle, nothing on stdout.
+void expect_error(const std::vector<std::string>& args, int code, const std::string& needle) {
+  const CliResult run = run_cli(args);
+  EXPECT_FALSE(run.signaled);
+  EXPECT_EQ(run.exit_code, code) << run.err;
+  EXPECT_EQ(run.err.rfind("mjarm: error: ", 0), 0u) << run.err;
+  EXPECT_NE(run.err.find(needle), std::string::npos) << "'" << needle << "' not in: " << run.err;
+  EXPECT_TRUE(run.out.empty()) << run.out;
+}
+
+/// A finalized recording: the four files, no staging folder left, the summary's status.
+void expect_recording(const fs::path& dir, const std::string& status) {
+  for (const char* file : {"state.csv", "task.csv", "events.csv", "summary.json"})
+    EXPECT_TRUE(fs::exists(dir / file)) << dir / file;
+  for (const auto& entry : fs::directory_iterator(dir))
+    EXPECT_NE(entry.path().filename().string().rfind(".partial", 0), 0u) << entry.path();
+  const std::string summary = slurp(dir / "summary.json");
+  ASSERT_TRUE(json::accept(summary)) << summary;
+  EXPECT_EQ(json::parse(summary)["status"], status);
+}
+
+TEST(RunCli, HelpNamesTheScenarioAndOptions) {
+  const CliResult run = run_cli({"run", "--help"});
+  EXPECT_EQ(run.exit_code, 0);
+  for (const char* word : {"shelf-pick", "--robot", "--controller", "--pick", "--seed", "--record",
+                           "--json", "--all"})
+    EXPECT_NE(run.out.find(word), std::string::npos) << word;
+}
+
+TEST(RunCli, JsonHoldsEveryFigure) {
+  const std::vector<std::string> args{"run",          "shelf-pick", "--robot", "planar2",
+                                      "--controller", "ct",         "--seed",  "5", "--json"};
+  const CliResult first = run_cli(args);
+  ASSERT_EQ(first.exit_code, 0) << first.err;
+  ASSERT_TRUE(json::accept(first.out)) << first.out;
+  const json doc = json::parse(first.out);
+  EXPECT_EQ(doc["scenario"], "shelf-pick");
+  EXPECT_EQ(doc["robot"], "planar2");
+  EXPECT_EQ(doc["model"], "planar2_torque");
+  EXPECT_EQ(doc["controller"], "ct");
+  EXPECT_EQ(doc["seed"], 5);
+  EXPECT_EQ(doc["outcome"], "held");
+  EXPECT_EQ(doc["held"], true);
+  EXPECT_EQ(doc["status"], "finished");
+  EXPECT_EQ(doc["pick_drawn"], true);
+  ASSERT_EQ(doc["pick"].size(), 3u);
+  EXPECT_EQ(doc["pick"][1], 0.0);  // in planar2's plane
+  EXPECT_EQ(doc["tolerance"], 0.001);
+  EXPECT_EQ(doc["hold_time"], 0.2);
+  EXPECT_EQ(doc["control_period"], 0.002);
+  EXPECT_TRUE(doc["recording"].is_null());
+  const json& m = doc["metrics"];
+  for (const char* key : {"time_to_tolerance", "first_entry_time", "overshoot", "steady_state_mean",
+                          "steady_state_max", "hold_mean", "hold_max", "hold_end_time", "exits",
+                          "final_error"})
+    EXPECT_TRUE(m.contains(key)) << key;
+  EXPECT_LE(m["time_to_tolerance"].get<double>(), 0.4);
+  EXPECT_LE(m["steady_state_mean"].get<double>(), 1e-4);
+  EXPECT_LE(m["steady_state_max"].get<double>(), 1e-4);
+  EXPECT_NEAR(m["hold_end_time"].get<double>() - m["time_to_tolerance"].get<double>(), 0.2, 1e-9);
+  EXPECT_TRUE(m["orientation_error_max"].is_number());
+
+  // the same seed gives the same document; a given pick point is used as is
+  EXPECT_EQ(run_cli(args).out, first.out);
+  const json given = run_json({"run", "shelf-pick", "--robot", "panda", "--controller", "accel",
+                               "--pick", "0.45", "0.05", "0.4", "--json"});
+  EXPECT_EQ(given["pick_drawn"], false);
+  EXPECT_EQ(given["pick"], json::array({0.45, 0.05, 0.4}));
+  EXPECT_EQ(given["outcome"], "held");
+}
+
+TEST(RunCli, TextReportsTheFigures) {
+  const CliResult run = run_cli({"run", "shelf-pick", "--robot", "panda", "--controller", "task-pd"});
+  EXPECT_EQ(run.exit_code, 0) << run.err;
+  for (const char* text : {"shelf pick on panda", "task-space PD", "result: held", "time to 1 mm [s]",
+                           "overshoot [mm]", "steady state [mm]", "orientation [mrad]", "hold  "})
+    EXPECT_NE(run.out.find(text), std::string::npos) << text << " not in:\n" << run.out;
+}
+
+TEST(RunCli, RecordWritesAFinalizedRecording) {
+  const fs::path dir = scratch() / "rec";
+  const json doc =
+      run_json({"run", "shelf-pick", "--robot", "panda", "--record", dir.string(), "--json"});
+  EXPECT_EQ(doc["recording"], dir.string());
+  expect_recording(dir, "finished");
+  const std::string events = slurp(dir / "events.csv");
+  for (const char* phase : {",phase,approach", ",phase,hold", ",phase,release", ",result,held"})
+    EXPECT_NE(events.find(phase), std::string::npos) << phase << " not in:\n" << events;
+  // task rows: a header and one row per control tick up to the release
+  const std::string task = slurp(dir / "task.csv");
+  const auto rows = std::count(task.begin(), task.end(), '\n') - 1;
+  EXPECT_NEAR(static_cast<double>(rows), doc["end_time"].get<double>() / 0.002, 1.5);
+}
+
+TEST(RunCli, BadInputFailsClearly) {
+  expect_error({"run", "shelf-pick", "--robot", "ur5"}, 2, "choices: planar2, panda");
+  expect_error({"run", "shelf-pick", "--controller", "pid"}, 2, "choices: ct, osc, task-pd, accel");
+  expect_error({"run", "shelf-place"}, 2, "unknown scenario 'shelf-place'; scenarios: shelf-pick");
+  expect_error({"run", "shelf-pick", "--robot", "planar2", "--pick", "0.92", "0", "1"}, 1,
+               "planar2 reaches 0.2");
+  expect_error({"run", "shelf-pick", "--robot", "planar2", "--pick", "0.92", "0", "1"}, 1,
+               "0.920 m from the shoulder");
+  expect_error({"run", "shelf-pick", "--robot", "planar2", "--pick", "0.5", "0.2", "0.8"}, 1,
+               "off the arm's plane");
+  expect_error({"run", "shelf-pick", "--pick", "2", "0", "0.5"}, 1, "out of reach of panda");
+  expect_error({"run", "shelf-pick", "--pick", "nan", "0", "0.5"}, 2, "--pick");
+  expect_error({"run", "shelf-pick", "--control-period", "0.003"}, 1, "not a whole multiple");
+  expect_error({"run", "shelf-pick", "--all", "--record", "x"}, 2, "excludes");
+  expect_error({"run", "shelf-pick", "--seeds", "3"}, 2, "--seeds needs --all");
+
+  // a recording directory that cannot be written: an error before anything runs
+  const fs::path file = scratch() / "plain_file";
+  std::ofstream(file) << "x";
+  expect_error({"run", "shelf-pick", "--record", (file / "rec").string()}, 1, "recording directory");
+  EXPECT_EQ(slurp(file), "x");
+}
+
+TEST(RunCli, ADivergingRunReportsHonestlyAndKeepsTheRecording) {
+  const fs::path dir = scratch() / "diverged";
+  const CliResult run = run_cli({"run", "shelf-pick", "--max-acceleration", "2", "--record", dir.string(),
+                           "--json"});
+  EXPECT_FALSE(run.signaled);
+  EXPECT_EQ(run.exit_code, 1);
+  ASSERT_TRUE(json::accept(run.out)) << run.out;
+  const json doc = json::parse(run.out);
+  EXPECT_EQ(doc["outcome"], "diverged");
+  EXPECT_EQ(doc["status"], "diverged");
+  EXPECT_EQ(doc["held"], false);
+  EXPECT_TRUE(doc["metrics"]["time_to_tolerance"].is_null());
+  EXPECT_NE(run.err.find("diverged"), std::string::npos) << run.err;
+  EXPECT_NE(run.err.find(dir.string()), std::string::npos) << run.err;
+  expect_recording(dir, "diverged");
+}
+
+TEST(RunCli, AllSweepsEveryRobotAndController) {
+  const json doc = run_json({"run", "shelf-pick", "--all", "--json"});
+  ASSERT_EQ(doc["rows"].size(), 8u);
+  for (const json& row : doc["rows"]) {
+    EXPECT_EQ(row["held"], 1) << row;
+    EXPECT_LE(row["worst_time_to_tolerance"].get<double>(), 0.4) << row;
+    EXPECT_LE(row["worst_steady_state_max"].get<double>(), 1e-4) << row;
+  }
+  EXPECT_EQ(doc["rows"][0]["robot"], "planar2");
+  EXPECT_EQ(doc["rows"][7]["controller"], "accel");
+}
+
+TEST(RunCli, DemoRunsTheShelfPickAndRecordsIntoOutDemo) {
+  const fs::path cwd = scratch() / "demo_cwd";
+  fs::create_directories(cwd);
+  const CliResult run = run_cli({"demo", "--samples", "1000"}, cwd);
+  EXPECT_EQ(run.exit_code, 0) << run.err;
+  EXPECT_NE(run.out.find("== shelf pick =="), std::string::npos) << run.out;
+  EXPECT_NE(run.out.find("operational-space"), std::string::npos);
+  EXPECT_NE(run.out.find("result: held"), std::string::npos);
+  EXPECT_NE(run.out.find("out/demo (state.csv"), std::string::npos) << run.out;
+  expect_recording(cwd / "out" / "demo", "finished");
+
+  const CliResult json_run = run_cli({"demo", "--samples", "1000", "--json", "--record", "elsewhere"}, cwd);
+  ASSERT_TRUE(json::accept(json_run.out)) << json_run.out;
+  const json doc = json::parse(json_run.out);
+  EXPECT_EQ(doc["shelf_pick"]["robot"], "panda");
+  EXPECT_EQ(doc["shelf_pick"]["controller"], "osc");
+  EXPECT_EQ(doc["shelf_pick"]["outcome"], "held");
+  EXPECT_EQ(doc["shelf_pick"]["recording"], "elsewhere");
+  expect_recording(cwd / "elsewhere", "finished");
+}
+
+}  // namespace
