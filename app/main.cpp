@@ -38,6 +38,8 @@ int main(int argc, char** argv) {
   commands.push_back(add_singularities_command(app));
   commands.push_back(add_ik_command(app));
   commands.push_back(add_bench_command(app));
+  commands.push_back(add_render_command(app));
+  commands.push_back(add_view_command(app));
   commands.push_back(add_run_command(app));
   commands.push_back(add_demo_command(app));
 

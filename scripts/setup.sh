@@ -6,11 +6,14 @@ packages=(
   build-essential cmake pkg-config
   libmujoco-dev libeigen3-dev libtinyxml2-dev libcli11-dev nlohmann-json3-dev
   libgtest-dev libgmock-dev libbenchmark-dev
+  # render room (part of the default build, tested headless): EGL + desktop GL headers, Mesa's
+  # EGL vendor and software rasteriser (no GPU, no display), PNG frames, ffmpeg for MP4 video
+  libegl-dev libgl-dev libegl-mesa0 libgl1-mesa-dri libpng-dev ffmpeg
+  # interactive viewer (part of the default build): GLFW windows; its test runs under Xvfb
+  libglfw3-dev xvfb xauth
+  # plots of a recording (`mjarm plot`, the demo)
+  gnuplot-nox
 )
-# extra groups: "render" for the offscreen renderer, viewer, video and plots
-if [[ " $* " == *" render "* ]]; then
-  packages+=(libegl-dev libgl-dev libglfw3-dev libgles-dev ffmpeg gnuplot-nox xvfb xauth)
-fi
 
 missing=()
 for p in "${packages[@]}"; do

@@ -1,0 +1,187 @@
+// `mjarm render MODEL [--q …|--keyframe NAME] [camera] [--size WxH] --out image.png`: a still
+// picture of a model at a configuration, rendered headless.
+
+#include <iostream>
+#include <memory>
+
+#include "commands.hpp"
+#include "mjarm/error.hpp"
+#include "mjarm/render/offscreen_renderer.hpp"
+#include "mjarm/render/png.hpp"
+
+namespace mjarm::cli {
+namespace {
+
+struct Size {
+  int width = 640;
+  int height = 480;
+};
+
+// "WxH" with whole numbers 1 … 16384
+CLI::Validator size_text() {
+  return CLI::Validator(
+      [](std::string& text) -> std::string {
+        const auto x = text.find_first_of("xX");
+        auto whole = [](const std::string& s) {
+          return !s.empty() && s.size() <= 5 && s.find_first_not_of("0123456789") == std::string::npos;
+        };
+        if (x == std::string::npos || !whole(text.substr(0, x)) || !whole(text.substr(x + 1)))
+          return "'" + text + "' is not a size WIDTHxHEIGHT in pixels (e.g. 640x480)";
+        const int w = std::stoi(text.substr(0, x)), h = std::stoi(text.substr(x + 1));
+        if (w < 1 || h < 1 || w > 16384 || h > 16384)
+          return "size '" + text + "' must be between 1x1 and 16384x16384 pixels";
+        return {};
+      },
+      "WxH", "size");
+}
+
+Size parse_size(const std::string& text) {
+  const auto x = text.find_first_of("xX");
+  return {std::stoi(text.substr(0, x)), std::stoi(text.substr(x + 1))};
+}
+
+// --q values fill qpos from the start and must end on a joint boundary (the 7 arm joints of
+// panda_hand, or all nq coordinates); the rest keep qpos0
+std::string apply_q(const Robot& robot, const std::vector<double>& q, mjData& d) {
+  const mjModel& m = robot.model();
+  const int n = static_cast<int>(q.size());
+  bool boundary = n == m.nq;
+  for (int j = 0; j < m.njnt && !boundary; ++j) boundary = m.jnt_qposadr[j] == n;
+  if (n > m.nq || !boundary) {
+    std::string names;
+    for (const auto& joint : robot.joints())
+      names += (names.empty() ? "" : ", ") + joint.name;
+    throw UsageError("--q got " + std::to_string(n) + " values; model '" + robot.name() +
+                     "' takes up to nq = " + std::to_string(m.nq) +
+                     " coordinates in qpos order, ending at a joint boundary (joints: " + names +
+                     ")");
+  }
+  for (int i = 0; i < n; ++i) d.qpos[i] = q[static_cast<std::size_t>(i)];
+  return "--q";
+}
+
+}  // namespace
+
+Command add_render_command(CLI::App& root) {
+  struct Options {
+    std::string model;
+    std::vector<double> q;
+    std::string keyframe;
+    std::string camera;
+    std::string follow;
+    std::vector<double> lookat;
+    double distance = 0.0;
+    double azimuth = 135.0;
+    double elevation = -25.0;
+    std::string size = "640x480";
+    std::string out;
+    bool no_shadows = false;
+    bool json = false;
+  };
+  auto options = std::make_shared<Options>();
+  CLI::App* app = root.add_subcommand(
+      "render", "render a still picture of a model to PNG, headless (no display or GPU needed)");
+  app->footer(
+      "Camera: a model camera (--camera), a free camera (--lookat with --distance, --azimuth, "
+      "--elevation), a camera following a site or body (--follow), or by default a free camera "
+      "framing the robot. Azimuth: heading of the view about +z from +x [deg]; elevation: "
+      "negative looks down [deg].");
+  add_model_argument(*app, options->model)->required();
+  auto* q = app->add_option("--q", options->q,
+                            "qpos values in model order (all nq, or the leading joints; the "
+                            "rest stay at qpos0) [rad or m]")
+                ->check(finite_number())
+                ->expected(1, -1);
+  app->add_option("--keyframe,--key", options->keyframe, "take the configuration from a keyframe")
+      ->excludes(q);
+  auto* camera = app->add_option("--camera", options->camera, "a named camera of the model");
+  auto* follow = app->add_option("--follow", options->follow,
+                                 "look at this site (or body), e.g. the end effector");
+  auto* lookat = app->add_option("--lookat", options->lookat, "point looked at, world x y z [m]")
+                     ->check(finite_number())
+                     ->expected(3);
+  auto* distance = app->add_option("--distance", options->distance,
+                                   "camera distance to the look-at point [m]; default: framing")
+                       ->check(finite_number());
+  auto* azimuth = app->add_option("--azimuth", options->azimuth,
+                                  "heading of the view about +z, from +x [deg]")
+                      ->capture_default_str()
+                      ->check(finite_number());
+  auto* elevation = app->add_option("--elevation", options->elevation,
+                                    "pitch of the view, negative looks down [deg]")
+                        ->capture_default_str()
+                        ->check(finite_number());
+  camera->excludes(follow)->excludes(lookat)->excludes(distance)->excludes(azimuth)->excludes(
+      elevation);
+  follow->excludes(lookat);
+  app->add_option("--size", options->size, "image size WIDTHxHEIGHT [pixels]")
+      ->capture_default_str()
+      ->check(size_text());
+  app->add_option("--out", options->out, "PNG file to write")->required();
+  app->add_flag("--no-shadows", options->no_shadows, "draw without shadows");
+  add_json_flag(*app, options->json);
+
+  return {app, [options, distance] {
+            const Robot robot = load_model(options->model);
+            DataPtr data = robot.make_data();
+            std::string configuration = "qpos0";
+            if (!options->keyframe.empty()) {
+              const std::vector<double> qpos = robot.keyframe_qpos(options->keyframe);
+              for (int i = 0; i < robot.nq(); ++i) data->qpos[i] = qpos[static_cast<std::size_t>(i)];
+              configuration = "keyframe '" + options->keyframe + "'";
+            } else if (!options->q.empty()) {
+              configuration = apply_q(robot, options->q, *data);
+            }
+            mj_forward(&robot.model(), data.get());
+
+            CameraSpec spec;
+            const bool has_distance = distance->count() > 0;
+            if (!options->camera.empty()) {
+              spec = CameraSpec::model_camera(options->camera);
+            } else if (!options->follow.empty()) {
+              spec = CameraSpec::follow(options->follow, has_distance ? options->distance : 1.0,
+                                        options->azimuth, options->elevation);
+            } else if (!options->lookat.empty() && has_distance) {
+              const Eigen::Vector3d lookat(options->lookat[0], options->lookat[1],
+                                           options->lookat[2]);
+              spec = CameraSpec::free_camera(lookat, options->distance, options->azimuth,
+                                             options->elevation);
+            } else {
+              // framing the robot fills in what was not given
+              spec = frame_robot(robot, *data, options->azimuth, options->elevation);
+              if (!options->lookat.empty())
+                spec.lookat = Eigen::Vector3d(options->lookat[0], options->lookat[1],
+                                              options->lookat[2]);
+              if (has_distance) spec.distance = options->distance;
+            }
+
+            const Size size = parse_size(options->size);
+            RenderOptions render_options;
+            render_options.shadows = !options->no_shadows;
+            OffscreenRenderer renderer(robot, size.width, size.height, render_options);
+            const Image image = renderer.render(*data, spec);
+            write_png(image, options->out);
+
+            if (options->json) {
+              Json doc;
+              doc["model"] = robot.name();
+              doc["configuration"] = configuration;
+              doc["qpos"] = vector_json(Eigen::Map<const Eigen::VectorXd>(data->qpos, robot.nq()));
+              doc["camera"] = {{"kind", to_string(spec.kind)}, {"description", spec.describe()}};
+              doc["width"] = image.width;
+              doc["height"] = image.height;
+              doc["out"] = options->out;
+              doc["opengl"] = renderer.gl_description();
+              return print_json(doc);
+            }
+            print_fields(std::cout, {{"model", robot.name()},
+                                     {"configuration", configuration},
+                                     {"camera", spec.describe()},
+                                     {"size", std::to_string(image.width) + "×" +
+                                                  std::to_string(image.height) + " pixels"},
+                                     {"OpenGL", renderer.gl_description()},
+                                     {"wrote", options->out}});
+          }};
+}
+
+}  // namespace mjarm::cli

@@ -1,0 +1,190 @@
+// `mjarm view [MODEL]`: the interactive viewer (a GLFW window), or a scripted session of it.
+
+#include <iostream>
+#include <memory>
+#include <numbers>
+
+#include "commands.hpp"
+#include "mjarm/lie/rotation.hpp"
+#include "mjarm/render/viewer.hpp"
+#include "output.hpp"
+
+namespace mjarm::cli {
+
+namespace {
+
+struct ViewOptions {
+  std::string model = "panda";
+  std::string site;
+  std::string key;
+  std::string mode = "kinematic";
+  std::string script;
+  std::int64_t frames = -1;
+  std::string screenshot;
+  std::vector<std::string> set;
+  std::string size = "1280x800";
+  double render_hz = 60.0;
+  double input_hz = 20.0;
+  double speed = 1.0;
+  bool json = false;
+};
+
+SimulationMode parse_mode(const std::string& text) {
+  for (int m = 0; m < 3; ++m) {
+    if (text == to_string(static_cast<SimulationMode>(m))) return static_cast<SimulationMode>(m);
+  }
+  throw UsageError("view: --mode must be kinematic, position or torque, got '" + text + "'");
+}
+
+std::pair<int, int> parse_size(const std::string& text) {
+  const auto x = text.find('x');
+  try {
+    if (x != std::string::npos && x > 0 && x + 1 < text.size() &&
+        text.find_first_not_of("0123456789x") == std::string::npos) {
+      return {std::stoi(text.substr(0, x)), std::stoi(text.substr(x + 1))};
+    }
+  } catch (const std::exception&) {  // out of int range: reported below
+  }
+  throw UsageError("view: --size must be WIDTHxHEIGHT in pixels, e.g. 1280x800, got '" + text +
+                   "'");
+}
+
+Json pose_summary(const Pose& X) {
+  return {{"position", vector_json(X.p)}, {"rpy", vector_json(rpy_from_rotation(X.R))}};
+}
+
+Json report_json(const Robot& robot, const ViewerReport& report, const std::string& site) {
+  const ViewerStats& s = report.stats;
+  Json doc;
+  doc["model"] = robot.name();
+  doc["site"] = site;
+  doc["ended_by"] = report.ended_by;
+  doc["mode"] = to_string(s.mode);
+  doc["frames"] = report.frames;
+  doc["input_polls"] = report.polls;
+  doc["control_ticks"] = report.ticks;
+  doc["sim_time"] = s.time;
+  doc["wall_seconds"] = report.wall_seconds;
+  doc["dropped_sim_time"] = report.dropped;
+  doc["end_effector"] = pose_summary(s.X_WE);
+  doc["target"] = pose_summary(s.X_WT);
+  doc["reference"] = pose_summary(s.X_WR);
+  doc["tracking_error"] = {{"position", s.tracking_position},
+                           {"orientation", s.tracking_orientation}};
+  doc["to_target"] = {{"position", s.target_position}, {"orientation", s.target_orientation}};
+  doc["gripper"] = report.panel.gripper;
+  doc["saturated"] = s.saturated;
+  doc["contacts"] = s.contacts.contacts;
+  doc["fault"] = s.faulted ? Json(s.fault) : Json(nullptr);
+  Json shots = Json::array();
+  for (const ViewerScreenshot& shot : report.screenshots) {
+    shots.push_back({{"path", shot.path},
+                     {"frame", shot.frame},
+                     {"sim_time", shot.time},
+                     {"mode", to_string(shot.mode)},
+                     {"end_effector", vector_json(shot.p_WE)},
+                     {"target", vector_json(shot.p_WT)},
+                     {"width", shot.width},
+                     {"height", shot.height}});
+  }
+  doc["screenshots"] = shots;
+  doc["gl"] = report.gl;
+  return doc;
+}
+
+void run_view(const ViewOptions& o) {
+  const Robot robot = load_model(o.model);
+  ViewerOptions options;
+  options.session.site = o.site;
+  options.session.keyframe = o.key;
+  options.session.mode = parse_mode(o.mode);
+  std::tie(options.width, options.height) = parse_size(o.size);
+  options.rates.render_hz = o.render_hz;
+  options.rates.input_hz = o.input_hz;
+  options.rates.speed = o.speed;
+  for (const std::string& item : o.set) {
+    const auto eq = item.find('=');
+    if (eq == std::string::npos || eq == 0) {
+      throw UsageError("view: --set takes NAME=VALUE (e.g. x=0.4, mode=torque), got '" + item +
+                       "'");
+    }
+    options.set.emplace_back(item.substr(0, eq), item.substr(eq + 1));
+  }
+  // any of --script, --frames, --screenshot makes a scripted session on the virtual clock
+  if (!o.script.empty() || o.frames >= 0 || !o.screenshot.empty()) {
+    ViewerScript script = o.script.empty() ? ViewerScript{} : ViewerScript::load(o.script);
+    ScriptCommand wait;
+    wait.action = ScriptAction::wait;
+    wait.frames = static_cast<int>(std::max<std::int64_t>(o.frames, o.screenshot.empty() ? 0 : 1));
+    script.commands.push_back(wait);
+    if (!o.screenshot.empty()) {
+      ScriptCommand shot;
+      shot.action = ScriptAction::screenshot;
+      shot.name = o.screenshot;
+      script.commands.push_back(shot);
+    }
+    options.script = std::move(script);
+  }
+
+  const ViewerReport report = run_viewer(robot, options);
+  const std::string site =
+      options.session.site.empty() ? default_viewer_site(robot) : options.session.site;
+  if (o.json) {
+    print_json(report_json(robot, report, site));
+    return;
+  }
+  const ViewerStats& s = report.stats;
+  print_fields(std::cout,
+               {{"model", robot.name()},
+                {"ended by", report.ended_by},
+                {"mode", to_string(s.mode)},
+                {"frames", std::to_string(report.frames)},
+                {"simulated", fixed(s.time, 3) + " s in " + fixed(report.wall_seconds, 2) + " s"},
+                {"end effector", vector_text(s.X_WE.p)},
+                {"target", vector_text(s.X_WT.p)},
+                {"to target", fixed(s.target_position * 1000.0, 1) + " mm"}});
+  for (const ViewerScreenshot& shot : report.screenshots) {
+    std::cout << "screenshot " << shot.path << " (" << shot.width << "x" << shot.height << ")\n";
+  }
+}
+
+}  // namespace
+
+Command add_view_command(CLI::App& root) {
+  auto options = std::make_shared<ViewOptions>();
+  CLI::App* app = root.add_subcommand(
+      "view",
+      "Interactive viewer: a window with the model, a panel of end-effector target sliders, "
+      "gripper and simulation mode (kinematic, position, torque), and overlays. Mouse: left "
+      "drag rotates, right drag moves, scroll zooms; keys: space pause, right arrow step, "
+      "backspace reset, escape quit. Needs a display (DISPLAY, or xvfb-run).");
+  app->add_option("MODEL", options->model,
+                  "bundled model name (see `mjarm models`) or path to an MJCF file; default panda");
+  app->add_option("--site", options->site,
+                  "end-effector site (or body); default: 'tcp' when the model has that site, "
+                  "else its only named site");
+  app->add_option("--key", options->key, "initial keyframe; default 'home' when the model has it");
+  app->add_option("--mode", options->mode, "initial mode: kinematic, position or torque")
+      ->check(CLI::IsMember({"kinematic", "position", "torque"}));
+  app->add_option("--script", options->script,
+                  "run a script of synthetic input and screenshots (see docs/viewer.md), then exit")
+      ->check(CLI::ExistingFile);
+  app->add_option("--frames", options->frames,
+                  "scripted: draw N frames (after the script), then exit")
+      ->check(CLI::Range(std::int64_t{0}, std::int64_t{10000000}));
+  app->add_option("--screenshot", options->screenshot, "scripted: save the last frame as this PNG");
+  app->add_option("--set", options->set,
+                  "panel value before the first frame, NAME=VALUE (x y z [m], roll pitch yaw "
+                  "[rad], gripper 0..1, mode); repeatable");
+  app->add_option("--size", options->size, "window size WIDTHxHEIGHT [pixels]; default 1280x800");
+  app->add_option("--render-hz", options->render_hz, "frames per second; default 60")
+      ->check(CLI::PositiveNumber);
+  app->add_option("--input-hz", options->input_hz, "input polls per second; default 20")
+      ->check(CLI::PositiveNumber);
+  app->add_option("--speed", options->speed, "simulated seconds per wall-clock second; default 1")
+      ->check(CLI::PositiveNumber);
+  add_json_flag(*app, options->json);
+  return {app, [options] { run_view(*options); }};
+}
+
+}  // namespace mjarm::cli

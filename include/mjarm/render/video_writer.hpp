@@ -1,0 +1,83 @@
+#pragma once
+/// @file
+/// `VideoWriter`: MP4 video from `Image` frames, encoded by Debian's `ffmpeg` reading raw RGB24
+/// frames from a pipe.
+
+#include <cstdint>
+#include <filesystem>
+#include <memory>
+#include <string>
+
+#include "mjarm/render/image.hpp"
+
+namespace mjarm {
+
+/// How the video is encoded.
+struct VideoOptions {
+  /// The ffmpeg executable: a name looked up on PATH, or a path (with a '/').
+  std::string ffmpeg = "ffmpeg";
+  /// ffmpeg's video encoder: "libx264" (H.264, Debian's ffmpeg has it) or "mpeg4" (MPEG-4
+  /// part 2, built into every ffmpeg).
+  std::string codec = "libx264";
+  /// Quality: the constant rate factor for libx264 (0 lossless … 51 worst, 18–23 looks good),
+  /// the quantiser scale -q:v for other encoders (1 best … 31 worst; 20 is mapped to 4).
+  int quality = 20;
+};
+
+/// Writes frames of one size to an MP4 file (H.264 or MPEG-4, yuv420p, so width and height must
+/// be even). Frames are timed by their index: frame k is shown at k / fps seconds.
+///
+/// The file is always finalized: `close()` does it and reports failure; the destructor does it
+/// too (when a run stops early or an exception unwinds past the writer), so the frames written
+/// so far form a valid, playable MP4. ffmpeg runs in its own process group, so a Ctrl-C aimed at
+/// the program does not cut it short; if the program dies, ffmpeg sees the end of its input and
+/// finalizes the file by itself. A dead ffmpeg never kills the program with SIGPIPE: `write`
+/// throws instead, with ffmpeg's own message.
+///
+/// Pushing frames at video rate from a run loop: see `FrameSchedule`.
+class VideoWriter {
+ public:
+  /// Starts ffmpeg writing to @p path (overwritten; MP4 whatever the extension).
+  /// @param width  frame width [pixels], even and ≥ 2
+  /// @param height frame height [pixels], even and ≥ 2
+  /// @param fps    frames per second of the video, > 0
+  /// @throws Error, before any frame, when a size is zero, negative or odd, @p fps is not a
+  ///         positive finite number, @p path cannot be created for writing (the message names
+  ///         the path and the reason), or ffmpeg cannot be found (the message names Debian's
+  ///         package `ffmpeg`) or started.
+  VideoWriter(const std::filesystem::path& path, int width, int height, double fps,
+              VideoOptions options = {});
+  /// Finalizes the file if `close()` was not called; never throws (a failure is printed to
+  /// stderr).
+  ~VideoWriter();
+  VideoWriter(VideoWriter&&) noexcept;
+  VideoWriter& operator=(VideoWriter&&) noexcept;
+  VideoWriter(const VideoWriter&) = delete;
+  VideoWriter& operator=(const VideoWriter&) = delete;
+
+  /// Appends one frame. Allocates nothing.
+  /// @throws Error when the frame's size differs from the video's, after `close()`, or when
+  ///         ffmpeg has stopped (its exit status and message are in the error; the writer is
+  ///         then closed).
+  void write(const Image& frame);
+
+  /// Ends the input, waits for ffmpeg to finalize the file. Idempotent.
+  /// @throws Error with ffmpeg's message when it exits with a failure.
+  void close();
+
+  /// False after `close()`, after a failed `write`, and for a moved-from writer.
+  bool is_open() const noexcept;
+  /// Frames written so far.
+  std::int64_t frames() const noexcept;
+  /// Where the video goes.
+  const std::filesystem::path& path() const noexcept;
+  int width() const noexcept;   ///< [pixels]
+  int height() const noexcept;  ///< [pixels]
+  double fps() const noexcept;  ///< [frames/s]
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace mjarm

@@ -1,0 +1,66 @@
+#pragma once
+/// @file
+/// Scripted viewer sessions: a small text format of synthetic input (panel values, slider drags,
+/// key presses, mouse drags) and screenshots, for tests, CI and reproducible demos.
+///
+/// One command per line; `#` starts a comment; blank lines are ignored:
+///
+///     wait N                 let N rendered frames pass (physics advances with them)
+///     set NAME VALUE         set a panel value: x y z [m], roll pitch yaw [rad], gripper 0…1,
+///                            mode kinematic|position|torque
+///     slider NAME FRACTION   press and release the mouse on slider NAME (x … gripper) at
+///                            FRACTION ∈ [0, 1] of its length: goes through the panel's events
+///     key NAME               press a key: space (pause), right (single step), backspace
+///                            (reset), escape (quit)
+///     drag BUTTON DX DY      drag the mouse in the 3-D view: left rotates, right moves,
+///                            middle zooms; DX, DY in pixels (y down)
+///     scroll DY              scroll wheel in the 3-D view (positive zooms in)
+///     screenshot PATH        draw a frame and save the window as a PNG
+///     quit                   end the session (also implied at the end of the script)
+///
+/// Scripted sessions run on a virtual clock (one render period per frame), so they are
+/// deterministic whatever the machine's speed.
+
+#include <filesystem>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace mjarm {
+
+/// What a script line asks for.
+enum class ScriptAction { wait, set, slider, key, drag, scroll, screenshot, quit };
+
+/// Human name of an action (the script keyword).
+const char* to_string(ScriptAction action) noexcept;
+
+/// One parsed script line.
+struct ScriptCommand {
+  ScriptAction action = ScriptAction::wait;
+  int line = 0;       ///< 1-based line in the source (0 for commands built in code)
+  std::string name;   ///< set/slider: value name; key: key name; drag: button; screenshot: path
+  std::string value;  ///< set: the value as written
+  double x = 0.0;     ///< slider: fraction; drag: DX [pixels]; scroll: DY
+  double y = 0.0;     ///< drag: DY [pixels]
+  int frames = 0;     ///< wait: frame count
+};
+
+/// A parsed script.
+struct ViewerScript {
+  std::vector<ScriptCommand> commands;
+
+  /// Parses @p text; @p source names it in messages.
+  /// @throws Error "SOURCE:LINE: …" for an unknown command, a wrong number of arguments, an
+  ///         unknown value/key/button name, or a number that is not finite (or a negative or
+  ///         non-integer frame count, a fraction outside [0, 1]).
+  static ViewerScript parse(std::string_view text, std::string_view source = "<script>");
+
+  /// Reads and parses the file @p path.
+  /// @throws Error naming the path when it cannot be read, or as `parse`.
+  static ViewerScript load(const std::filesystem::path& path);
+};
+
+/// The mjui/GLFW key code of a script key name, or 0 when unknown.
+int viewer_key_code(std::string_view name) noexcept;
+
+}  // namespace mjarm

@@ -1,0 +1,248 @@
+#include "mjarm/render/offscreen_renderer.hpp"
+
+#include <GL/gl.h>
+#include <GL/glext.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <numbers>
+#include <utility>
+#include <vector>
+
+#include "egl_context.hpp"
+#include "mjarm/error.hpp"
+#include "mjarm/model/names.hpp"
+
+namespace mjarm {
+namespace {
+
+// room for every model geom plus decorations (frames, contact markers) drawn later by overlays
+constexpr int kMaxSceneGeoms = 5000;
+
+std::string name_list(const mjModel& m, mjtObj type) {
+  std::string list;
+  for (const auto& name : object_names(m, type)) {
+    if (name.empty()) continue;
+    list += list.empty() ? name : ", " + name;
+  }
+  return list.empty() ? "(none)" : list;
+}
+
+}  // namespace
+
+struct OffscreenRenderer::Impl {
+  Robot robot;
+  RenderOptions options;
+  std::unique_ptr<render_detail::EglContext> context;
+  mjrContext gpu{};
+  mjvScene scene{};
+  mjvOption vis_options{};
+  DataPtr scratch;              // copy of the caller's state: mjv_updateScene writes its mjData
+  std::vector<std::uint8_t> row;  // one image row, for flipping OpenGL's bottom-up rows
+  bool gpu_made = false;
+  bool scene_made = false;
+
+  explicit Impl(const Robot& r, RenderOptions o) : robot(r), options(o) {}
+
+  ~Impl() { free_all(); }
+
+  void free_all() noexcept {
+    if (gpu_made && context) {
+      try {
+        render_detail::EglContext::Scope current(*context);
+        mjr_freeContext(&gpu);
+      } catch (...) {
+        // the context cannot be made current: its resources go with it below
+      }
+    }
+    gpu_made = false;
+    context.reset();
+    if (scene_made) mjv_freeScene(&scene);
+    scene_made = false;
+    scratch.reset();
+  }
+
+  void apply_options() {
+    for (int g = 0; g < mjNGROUP; ++g) {
+      vis_options.geomgroup[g] = options.geom_groups[static_cast<std::size_t>(g)] ? 1 : 0;
+      vis_options.sitegroup[g] = options.site_groups[static_cast<std::size_t>(g)] ? 1 : 0;
+    }
+    scene.flags[mjRND_SHADOW] = options.shadows ? 1 : 0;
+    scene.flags[mjRND_REFLECTION] = options.reflections ? 1 : 0;
+    scene.flags[mjRND_SKYBOX] = options.skybox ? 1 : 0;
+  }
+
+  // Copies the caller's state into the scratch data and turns @p spec into MuJoCo's camera.
+  mjvCamera prepare(const mjData& data, const CameraSpec& spec) {
+    if (!context) throw Error("OffscreenRenderer used after close()");
+    const mjModel& m = robot.model();
+    // an mjData's arena sizes come from its model: a mismatch means another model's data
+    if (data.nstack != scratch->nstack || data.nbuffer != scratch->nbuffer)
+      throw Error("OffscreenRenderer: the mjData was not made for model '" + robot.name() + "'");
+    mj_copyData(scratch.get(), &m, &data);
+
+    mjvCamera camera;
+    mjv_defaultCamera(&camera);
+    switch (spec.kind) {
+      case CameraKind::model: {
+        const int id = mj_name2id(&m, mjOBJ_CAMERA, spec.name.c_str());
+        if (id < 0)
+          throw Error("camera '" + spec.name + "' not found in model '" + robot.name() +
+                      "'; cameras: " + name_list(m, mjOBJ_CAMERA) +
+                      " (or use a free or follow camera)");
+        camera.type = mjCAMERA_FIXED;
+        camera.fixedcamid = id;
+        return camera;
+      }
+      case CameraKind::free:
+      case CameraKind::follow: {
+        Eigen::Vector3d lookat = spec.lookat;
+        if (spec.kind == CameraKind::follow) {
+          // our own follow camera: MuJoCo's tracking camera follows bodies only
+          if (const int site = mj_name2id(&m, mjOBJ_SITE, spec.name.c_str()); site >= 0) {
+            lookat = Eigen::Map<const Eigen::Vector3d>(scratch->site_xpos + 3 * site);
+          } else if (const int body = mj_name2id(&m, mjOBJ_BODY, spec.name.c_str());
+                     body >= 0) {
+            lookat = Eigen::Map<const Eigen::Vector3d>(scratch->xpos + 3 * body);
+          } else {
+            throw Error("follow camera: no site or body '" + spec.name + "' in model '" +
+                        robot.name() + "'; sites: " + name_list(m, mjOBJ_SITE) +
+                        "; bodies: " + name_list(m, mjOBJ_BODY));
+          }
+        }
+        // validates the numbers with the messages of the documented conventions
+        free_camera_view(lookat, spec.distance, spec.azimuth, spec.elevation, m.vis.global.fovy);
+        camera.type = mjCAMERA_FREE;
+        for (int i = 0; i < 3; ++i) camera.lookat[i] = lookat[i];
+        camera.distance = spec.distance;
+        camera.azimuth = spec.azimuth;
+        camera.elevation = spec.elevation;
+        return camera;
+      }
+    }
+    throw Error("unknown camera kind");
+  }
+};
+
+OffscreenRenderer::OffscreenRenderer(const Robot& robot, int width, int height,
+                                     RenderOptions options)
+    : width_(width), height_(height) {
+  if (width < 1 || height < 1)
+    throw Error("render size must be at least 1×1 pixels, got " + std::to_string(width) + "×" +
+                std::to_string(height));
+  install_mujoco_handlers();
+  auto impl = std::make_unique<Impl>(robot, options);
+  const mjModel& m = impl->robot.model();
+  impl->context = std::make_unique<render_detail::EglContext>();
+  {
+    render_detail::EglContext::Scope current(*impl->context);
+    GLint max_size = 0;
+    glGetIntegerv(GL_MAX_RENDERBUFFER_SIZE, &max_size);
+    if (max_size > 0 && (width > max_size || height > max_size))
+      throw Error("render size " + std::to_string(width) + "×" + std::to_string(height) +
+                  " exceeds the OpenGL limit of " + std::to_string(max_size) + " pixels per side");
+    // MuJoCo sizes its offscreen buffer from visual/global offwidth/offheight; the shared model
+    // stays untouched: a header copy (sharing every array) carries the requested size
+    mjModel sized = m;
+    sized.vis.global.offwidth = width;
+    sized.vis.global.offheight = height;
+    mjr_defaultContext(&impl->gpu);
+    mjr_makeContext(&sized, &impl->gpu, mjFONTSCALE_100);
+    impl->gpu_made = true;
+    mjr_setBuffer(mjFB_OFFSCREEN, &impl->gpu);
+    if (impl->gpu.currentBuffer != mjFB_OFFSCREEN || impl->gpu.offWidth != width ||
+        impl->gpu.offHeight != height)
+      throw Error("OpenGL could not make a " + std::to_string(width) + "×" +
+                  std::to_string(height) + " offscreen buffer");
+  }
+  mjv_defaultScene(&impl->scene);
+  mjv_makeScene(&m, &impl->scene, kMaxSceneGeoms);
+  impl->scene_made = true;
+  mjv_defaultOption(&impl->vis_options);
+  impl->apply_options();
+  impl->scratch = impl->robot.make_data();
+  impl->row.resize(static_cast<std::size_t>(width) * 3);
+  impl_ = std::move(impl);
+}
+
+OffscreenRenderer::~OffscreenRenderer() = default;
+OffscreenRenderer::OffscreenRenderer(OffscreenRenderer&&) noexcept = default;
+OffscreenRenderer& OffscreenRenderer::operator=(OffscreenRenderer&&) noexcept = default;
+
+void OffscreenRenderer::render(const mjData& data, const CameraSpec& camera, Image& out) {
+  if (!impl_) throw Error("OffscreenRenderer used after close()");
+  Impl& s = *impl_;
+  mjvCamera cam = s.prepare(data, camera);
+  if (out.width != width_ || out.height != height_ || out.rgb.size() != out.pixels() * 3) {
+    out.width = width_;
+    out.height = height_;
+    out.rgb.resize(out.pixels() * 3);
+  }
+  const mjModel& m = s.robot.model();
+  {
+    render_detail::EglContext::Scope current(*s.context);
+    mjv_updateScene(&m, s.scratch.get(), &s.vis_options, nullptr, &cam, mjCAT_ALL, &s.scene);
+    const mjrRect viewport{0, 0, width_, height_};
+    mjr_setBuffer(mjFB_OFFSCREEN, &s.gpu);
+    mjr_render(viewport, &s.scene, &s.gpu);
+    mjr_readPixels(out.rgb.data(), nullptr, viewport, &s.gpu);
+  }
+  // OpenGL's row 0 is the bottom: swap rows so that row 0 is the top
+  const std::size_t stride = static_cast<std::size_t>(width_) * 3;
+  for (int top = 0, bottom = height_ - 1; top < bottom; ++top, --bottom) {
+    std::uint8_t* a = out.at(0, top);
+    std::uint8_t* b = out.at(0, bottom);
+    std::memcpy(s.row.data(), a, stride);
+    std::memcpy(a, b, stride);
+    std::memcpy(b, s.row.data(), stride);
+  }
+}
+
+Image OffscreenRenderer::render(const mjData& data, const CameraSpec& camera) {
+  Image image;
+  render(data, camera, image);
+  return image;
+}
+
+CameraView OffscreenRenderer::view(const mjData& data, const CameraSpec& camera) {
+  if (!impl_) throw Error("OffscreenRenderer used after close()");
+  Impl& s = *impl_;
+  mjvCamera cam = s.prepare(data, camera);
+  mjv_updateCamera(&s.robot.model(), s.scratch.get(), &cam, &s.scene);
+  // the two eyes coincide without stereo; their average is the camera
+  const mjvGLCamera gl = mjv_averageCamera(&s.scene.camera[0], &s.scene.camera[1]);
+  CameraView v;
+  for (int i = 0; i < 3; ++i) {
+    v.position[i] = gl.pos[i];
+    v.forward[i] = gl.forward[i];
+    v.up[i] = gl.up[i];
+  }
+  v.forward.normalize();
+  v.up.normalize();
+  v.fovy = 2.0 * std::atan2(0.5 * (gl.frustum_top - gl.frustum_bottom), gl.frustum_near) * 180.0 /
+           std::numbers::pi;
+  return v;
+}
+
+void OffscreenRenderer::set_options(const RenderOptions& options) {
+  if (!impl_) throw Error("OffscreenRenderer used after close()");
+  impl_->options = options;
+  impl_->apply_options();
+}
+
+const RenderOptions& OffscreenRenderer::options() const {
+  if (!impl_) throw Error("OffscreenRenderer used after close()");
+  return impl_->options;
+}
+
+void OffscreenRenderer::close() noexcept { impl_.reset(); }
+
+bool OffscreenRenderer::is_open() const noexcept { return impl_ != nullptr; }
+
+const std::string& OffscreenRenderer::gl_description() const {
+  if (!impl_) throw Error("OffscreenRenderer used after close()");
+  return impl_->context->description();
+}
+
+}  // namespace mjarm

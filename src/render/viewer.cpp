@@ -1,0 +1,192 @@
+// The viewer's loop (wall clock or virtual clock) and the script runner.
+#include "mjarm/render/viewer.hpp"
+
+#include <GLFW/glfw3.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdlib>
+#include <thread>
+#include <utility>
+
+#include "mjarm/error.hpp"
+#include "mjarm/render/png.hpp"
+#include "mjarm/sim/interrupt.hpp"
+#include "viewer_shell.hpp"
+
+namespace mjarm {
+
+const char* const kNoDisplayMessage =
+    "no display: set DISPLAY or run under xvfb-run; for headless images use `mjarm render`";
+
+void require_display() {
+  const char* display = std::getenv("DISPLAY");
+  if (display == nullptr || display[0] == '\0') throw Error(kNoDisplayMessage);
+}
+
+ViewerReport run_viewer(const Robot& robot, const ViewerOptions& options) {
+  require_display();
+  detail::ViewerShell shell(robot, options);
+  return shell.run();
+}
+
+namespace detail {
+
+ViewerReport ViewerShell::run() {
+  const bool scripted = options_.script.has_value();
+  const double wall_start = glfwGetTime();
+  clock_ = scripted ? 0.0 : wall_start;
+  for (const auto& [name, value] : options_.set) {
+    ScriptCommand command;
+    command.action = ScriptAction::set;
+    command.name = name;
+    command.value = value;
+    execute(command);
+  }
+  schedule_ = ViewerSchedule(options_.rates, session_.control_period(), clock_);
+  const InterruptGuard interrupt_guard;  // Ctrl-C ends the session with its report
+  while (!quit_) {
+    if (!scripted) clock_ = glfwGetTime();
+    const ScheduleStep step = schedule_.update(clock_, paused_);
+    if (step.poll_input) {
+      glfwPollEvents();
+      if (failure_) std::rethrow_exception(std::exchange(failure_, nullptr));
+      if (glfwWindowShouldClose(window_.get())) {
+        quit_ = true;
+        ended_by_ = "window closed";
+      } else if (interrupt_requested()) {
+        quit_ = true;
+        ended_by_ = "interrupted";
+      }
+      if (scripted && !quit_) run_script();
+      session_.set_target(panel_);  // the panel is read at the input rate
+    }
+    if (quit_) break;
+    const int ticks = paused_ ? 0 : session_.step(step.ticks);  // a pause takes effect at once
+    // the meters use the real clock, also in scripted runs: they report what the machine does
+    const double wall = glfwGetTime();
+    speed_.add(wall, ticks * session_.control_period());
+    if (step.render) {
+      render(nullptr);
+      fps_.add(wall);
+    }
+    if (scripted) {
+      clock_ = schedule_.next_due();  // jump straight to the next event
+    } else {
+      const double wait = schedule_.next_due() - glfwGetTime();
+      if (wait > 0.0)
+        std::this_thread::sleep_for(std::chrono::duration<double>(std::min(wait, 0.05)));
+    }
+  }
+  report_.ended_by = ended_by_;
+  report_.frames = frames_;
+  report_.polls = schedule_.polls();
+  report_.ticks = schedule_.ticks();
+  report_.wall_seconds = glfwGetTime() - wall_start;
+  report_.dropped = schedule_.dropped();
+  report_.stats = session_.stats();
+  report_.panel = panel_;
+  report_.gl = gl_;
+  return report_;
+}
+
+// runs script commands until one waits for frames, or the script ends
+void ViewerShell::run_script() {
+  const auto& commands = options_.script->commands;
+  while (!quit_ && frames_ >= wait_until_) {
+    if (next_command_ >= commands.size()) {
+      quit_ = true;
+      ended_by_ = "end of script";
+      return;
+    }
+    const ScriptCommand& command = commands[next_command_++];
+    try {
+      execute(command);
+    } catch (const Error& e) {
+      throw Error("viewer script, line " + std::to_string(command.line) + " (" +
+                  to_string(command.action) + "): " + e.what());
+    }
+  }
+}
+
+void ViewerShell::execute(const ScriptCommand& c) {
+  const mjrRect view = ui_.view();
+  const double cx = view.left + 0.5 * view.width;
+  const double cy = view.bottom + 0.5 * view.height;
+  switch (c.action) {
+    case ScriptAction::wait:
+      wait_until_ = frames_ + c.frames;
+      break;
+    case ScriptAction::set:
+      set_panel_value(panel_, session_.ranges(), c.name, c.value);
+      if (c.name == "mode") {
+        const SimulationMode wanted = panel_mode(panel_);
+        apply_mode();  // reverts the panel and leaves a note when the mode is unavailable
+        if (session_.mode() != wanted) throw Error(session_.unavailable_reason(wanted));
+      }
+      session_.set_target(panel_);
+      ui_.refresh(con_);
+      break;
+    case ScriptAction::slider: {
+      const auto point = ui_.slider_point(c.name, c.x);
+      if (!point) throw Error("no slider '" + c.name + "' on the panel");
+      press(mjBUTTON_LEFT, (*point)[0], (*point)[1]);
+      release((*point)[0], (*point)[1]);
+      break;
+    }
+    case ScriptAction::key: {
+      mjuiState& s = ui_.input();
+      s.type = mjEVENT_KEY;
+      s.key = viewer_key_code(c.name);
+      s.keytime = clock_;
+      on_event();
+      break;
+    }
+    case ScriptAction::drag: {
+      const int button = c.name == "left"    ? mjBUTTON_LEFT
+                         : c.name == "right" ? mjBUTTON_RIGHT
+                                             : mjBUTTON_MIDDLE;
+      press(button, cx, cy);
+      constexpr int kSteps = 10;  // a drag is a series of moves, as a hand makes it
+      for (int k = 1; k <= kSteps; ++k) move_to(cx + c.x * k / kSteps, cy - c.y * k / kSteps);
+      release(cx + c.x, cy - c.y);
+      break;
+    }
+    case ScriptAction::scroll: {
+      ui_.move_pointer(cx, cy);
+      mjuiState& s = ui_.input();
+      s.type = mjEVENT_SCROLL;
+      s.sx = 0.0;
+      s.sy = c.x;
+      on_event();
+      break;
+    }
+    case ScriptAction::screenshot:
+      screenshot(c.name);
+      break;
+    case ScriptAction::quit:
+      quit_ = true;
+      ended_by_ = "quit";
+      break;
+  }
+}
+
+void ViewerShell::screenshot(const std::string& path) {
+  session_.set_target(panel_);
+  Image image;
+  render(&image);
+  write_png(image, path);
+  ViewerScreenshot shot;
+  shot.path = path;
+  shot.frame = frames_;
+  shot.time = session_.stats().time;
+  shot.mode = session_.mode();
+  shot.p_WE = session_.stats().X_WE.p;
+  shot.p_WT = panel_target(panel_).p;
+  shot.width = image.width;
+  shot.height = image.height;
+  report_.screenshots.push_back(shot);
+}
+
+}  // namespace detail
+}  // namespace mjarm

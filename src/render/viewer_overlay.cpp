@@ -1,0 +1,98 @@
+#include "mjarm/render/viewer_overlay.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <numbers>
+
+namespace mjarm {
+
+namespace {
+
+constexpr double kDegrees = 180.0 / std::numbers::pi;
+
+void line(OverlayText& out, const char* label, const char* value) {
+  if (!out.labels.empty()) {
+    out.labels += '\n';
+    out.values += '\n';
+  }
+  out.labels += label;
+  out.values += value;
+}
+
+}  // namespace
+
+RateMeter::RateMeter(double window) noexcept
+    : window_(std::isfinite(window) && window > 0.0 ? window : 0.5) {}
+
+void RateMeter::add(double now, double amount) noexcept {
+  if (!std::isfinite(now)) return;
+  if (!started_) {  // the first call opens the window: what it reports happened before
+    started_ = true;
+    start_ = now;
+    return;
+  }
+  sum_ += amount;
+  if (now - start_ >= window_) {
+    rate_ = sum_ / (now - start_);
+    start_ = now;
+    sum_ = 0.0;
+  }
+}
+
+void format_overlay(const ViewerStats& stats, const OverlayInfo& info, const mjModel& m,
+                    std::span<const std::uint8_t> saturated, OverlayText& out) {
+  out.labels.clear();
+  out.values.clear();
+  char text[256];
+
+  std::snprintf(text, sizeof(text), "%s%s", to_string(stats.mode), info.paused ? "  (paused)" : "");
+  line(out, "Mode", text);
+  std::snprintf(text, sizeof(text), "%.2f s  (speed %.2fx)", stats.time, info.speed);
+  line(out, "Time", text);
+  std::snprintf(text, sizeof(text), "%.1f fps", info.fps);
+  line(out, "Frame rate", text);
+  std::snprintf(text, sizeof(text), "%.1f mm  %.2f deg", stats.tracking_position * 1000.0,
+                stats.tracking_orientation * kDegrees);
+  line(out, "Tracking error", text);
+  std::snprintf(text, sizeof(text), "%.1f mm  %.2f deg", stats.target_position * 1000.0,
+                stats.target_orientation * kDegrees);
+  line(out, "To target", text);
+  if (stats.ik_used) line(out, "IK", to_string(stats.ik_status));
+
+  // saturation: the clipped actuators by name
+  int clipped = 0;
+  std::string names;
+  for (std::size_t a = 0; a < saturated.size() && a < static_cast<std::size_t>(m.nu); ++a) {
+    if (saturated[a] == 0) continue;
+    ++clipped;
+    if (clipped <= 4) {
+      const char* name = mj_id2name(&m, mjOBJ_ACTUATOR, static_cast<int>(a));
+      names += ' ';
+      names += name != nullptr ? name : "?";
+    }
+  }
+  if (stats.mode == SimulationMode::kinematic) {
+    std::snprintf(text, sizeof(text), "n/a (kinematic)");
+  } else if (clipped == 0) {
+    std::snprintf(text, sizeof(text), "none of %d", m.nu);
+  } else {
+    std::snprintf(text, sizeof(text), "%d of %d:%s%s", clipped, m.nu, names.c_str(),
+                  clipped > 4 ? " ..." : "");
+  }
+  line(out, "Saturation", text);
+
+  const ContactSummary& c = stats.contacts;
+  if (c.contacts == 0) {
+    std::snprintf(text, sizeof(text), "none");
+  } else if (!c.forces_valid || stats.mode == SimulationMode::kinematic) {
+    std::snprintf(text, sizeof(text), "%d (forces n/a in kinematic mode)", c.contacts);
+  } else {
+    std::snprintf(text, sizeof(text), "%d, normal force %.1f N", c.contacts, c.normal_force);
+  }
+  line(out, "Contacts", text);
+
+  if (stats.faulted) line(out, "FAULT", stats.fault.c_str());
+  if (!info.note.empty()) line(out, "Note", info.note.c_str());
+}
+
+}  // namespace mjarm

@@ -1,0 +1,177 @@
+#include "mjarm/render/viewer_script.hpp"
+
+#include <mujoco/mjui.h>
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <fstream>
+#include <sstream>
+
+#include "mjarm/error.hpp"
+#include "mjarm/render/viewer_panel.hpp"
+
+namespace mjarm {
+
+namespace {
+
+struct KeyName {
+  const char* name;
+  int code;
+};
+constexpr KeyName kKeys[] = {{"space", 32},
+                             {"right", mjKEY_RIGHT},
+                             {"backspace", mjKEY_BACKSPACE},
+                             {"escape", mjKEY_ESCAPE}};
+
+std::vector<std::string> split(std::string_view line) {
+  std::vector<std::string> words;
+  std::istringstream in{std::string(line)};
+  for (std::string word; in >> word;) words.push_back(word);
+  return words;
+}
+
+class LineParser {
+ public:
+  LineParser(std::string_view source, int line) : source_(source), line_(line) {}
+
+  [[noreturn]] void fail(const std::string& message) const {
+    throw Error(std::string(source_) + ":" + std::to_string(line_) + ": " + message);
+  }
+
+  double number(const std::string& word, const char* what) const {
+    double v = 0.0;
+    const char* end = word.data() + word.size();
+    const auto parsed = std::from_chars(word.data(), end, v);
+    if (parsed.ec != std::errc() || parsed.ptr != end || !std::isfinite(v)) {
+      fail(std::string(what) + " must be a finite number, got '" + word + "'");
+    }
+    return v;
+  }
+
+  void arguments(const std::vector<std::string>& words, std::size_t count,
+                 const char* usage) const {
+    if (words.size() != count + 1) fail("'" + words[0] + "' takes " + usage);
+  }
+
+ private:
+  std::string_view source_;
+  int line_;
+};
+
+}  // namespace
+
+const char* to_string(ScriptAction action) noexcept {
+  switch (action) {
+    case ScriptAction::wait:
+      return "wait";
+    case ScriptAction::set:
+      return "set";
+    case ScriptAction::slider:
+      return "slider";
+    case ScriptAction::key:
+      return "key";
+    case ScriptAction::drag:
+      return "drag";
+    case ScriptAction::scroll:
+      return "scroll";
+    case ScriptAction::screenshot:
+      return "screenshot";
+    case ScriptAction::quit:
+      return "quit";
+  }
+  return "?";
+}
+
+int viewer_key_code(std::string_view name) noexcept {
+  for (const auto& key : kKeys) {
+    if (name == key.name) return key.code;
+  }
+  return 0;
+}
+
+ViewerScript ViewerScript::parse(std::string_view text, std::string_view source) {
+  ViewerScript script;
+  std::istringstream in{std::string(text)};
+  int number = 0;
+  for (std::string raw; std::getline(in, raw);) {
+    ++number;
+    const std::string line = raw.substr(0, raw.find('#'));
+    const std::vector<std::string> words = split(line);
+    if (words.empty()) continue;
+    const LineParser p(source, number);
+    ScriptCommand c;
+    c.line = number;
+    const std::string& verb = words[0];
+    if (verb == "wait") {
+      p.arguments(words, 1, "a frame count: wait N");
+      const double n = p.number(words[1], "the frame count");
+      if (n < 0 || n != std::floor(n) || n > 1e7)
+        p.fail("the frame count must be a whole number ≥ 0");
+      c.action = ScriptAction::wait;
+      c.frames = static_cast<int>(n);
+    } else if (verb == "set") {
+      p.arguments(words, 2, "a name and a value: set NAME VALUE");
+      const auto& names = panel_value_names();
+      if (std::find(names.begin(), names.end(), words[1]) == names.end()) {
+        p.fail("unknown panel value '" + words[1] + "'; values: x y z roll pitch yaw gripper mode");
+      }
+      c.action = ScriptAction::set;
+      c.name = words[1];
+      c.value = words[2];
+    } else if (verb == "slider") {
+      p.arguments(words, 2, "a slider and a fraction: slider NAME FRACTION");
+      const auto& names = panel_value_names();
+      const auto found = std::find(names.begin(), names.end(), words[1]);
+      if (found == names.end() || words[1] == "mode") {
+        p.fail("unknown slider '" + words[1] + "'; sliders: x y z roll pitch yaw gripper");
+      }
+      c.action = ScriptAction::slider;
+      c.name = words[1];
+      c.x = p.number(words[2], "the slider fraction");
+      if (c.x < 0.0 || c.x > 1.0) p.fail("the slider fraction must lie in [0, 1]");
+    } else if (verb == "key") {
+      p.arguments(words, 1, "a key name: key space|right|backspace|escape");
+      if (viewer_key_code(words[1]) == 0) {
+        p.fail("unknown key '" + words[1] + "'; keys: space, right, backspace, escape");
+      }
+      c.action = ScriptAction::key;
+      c.name = words[1];
+    } else if (verb == "drag") {
+      p.arguments(words, 3, "a button and a displacement: drag left|right|middle DX DY");
+      if (words[1] != "left" && words[1] != "right" && words[1] != "middle") {
+        p.fail("unknown mouse button '" + words[1] + "'; buttons: left, right, middle");
+      }
+      c.action = ScriptAction::drag;
+      c.name = words[1];
+      c.x = p.number(words[2], "DX");
+      c.y = p.number(words[3], "DY");
+    } else if (verb == "scroll") {
+      p.arguments(words, 1, "an amount: scroll DY");
+      c.action = ScriptAction::scroll;
+      c.x = p.number(words[1], "the scroll amount");
+    } else if (verb == "screenshot") {
+      p.arguments(words, 1, "a file: screenshot PATH");
+      c.action = ScriptAction::screenshot;
+      c.name = words[1];
+    } else if (verb == "quit") {
+      p.arguments(words, 0, "no argument");
+      c.action = ScriptAction::quit;
+    } else {
+      p.fail("unknown command '" + verb +
+             "'; commands: wait, set, slider, key, drag, scroll, screenshot, quit");
+    }
+    script.commands.push_back(std::move(c));
+  }
+  return script;
+}
+
+ViewerScript ViewerScript::load(const std::filesystem::path& path) {
+  std::ifstream file(path);
+  if (!file) throw Error("viewer script '" + path.string() + "' cannot be read");
+  std::ostringstream text;
+  text << file.rdbuf();
+  return parse(text.str(), path.string());
+}
+
+}  // namespace mjarm

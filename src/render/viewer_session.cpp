@@ -1,0 +1,387 @@
+#include "mjarm/render/viewer_session.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <optional>
+#include <vector>
+
+#include "mjarm/control/gripper_pd.hpp"
+#include "mjarm/control/operational_space.hpp"
+#include "mjarm/error.hpp"
+#include "mjarm/ik/pose_ik.hpp"
+#include "mjarm/kinematics/frame_state.hpp"
+#include "mjarm/lie/so3.hpp"
+#include "mjarm/render/viewer_controllers.hpp"
+
+namespace mjarm {
+
+namespace {
+
+constexpr const char* kTorqueSuffix = "_torque";
+
+bool ends_with(const std::string& s, const std::string& suffix) {
+  return s.size() >= suffix.size() &&
+         s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
+}
+
+// the model file of the other flavour (position servos / torque motors), or nullopt
+std::optional<Robot> variant(const Robot& robot, bool torque) {
+  const std::filesystem::path source = robot.source();
+  if (source.empty() || robot.source() == "<string>") return std::nullopt;
+  const std::string stem = source.stem().string();
+  if (ends_with(stem, kTorqueSuffix) == torque) return robot;  // already that flavour
+  const std::string other = torque
+                                ? stem + kTorqueSuffix
+                                : stem.substr(0, stem.size() - std::string(kTorqueSuffix).size());
+  const std::filesystem::path path = source.parent_path() / (other + source.extension().string());
+  if (!std::filesystem::exists(path)) return std::nullopt;
+  return Robot::from_file(path);
+}
+
+std::string variant_missing(const Robot& robot, bool torque) {
+  const std::filesystem::path source = robot.source();
+  const std::string stem = source.stem().string();
+  return std::string(torque ? "torque" : "position") + " mode needs the model's " +
+         (torque ? "torque-motor variant '" + stem + kTorqueSuffix + source.extension().string()
+                 : "position-servo variant") +
+         "' beside '" + robot.source() + "'";
+}
+
+// limited hinge/slide joints below the arm's last joint that the arm does not move
+std::vector<std::string> gripper_joints(const Chain& arm) {
+  const mjModel& m = arm.robot().model();
+  const int last_body = m.jnt_bodyid[arm.joint_ids().back()];
+  std::vector<std::string> names;
+  for (int j = 0; j < m.njnt; ++j) {
+    const auto& ids = arm.joint_ids();
+    if (std::find(ids.begin(), ids.end(), j) != ids.end()) continue;
+    if ((m.jnt_type[j] != mjJNT_HINGE && m.jnt_type[j] != mjJNT_SLIDE) || !m.jnt_limited[j])
+      continue;
+    int b = m.jnt_bodyid[j];
+    while (b > 0 && b != last_body) b = m.body_parentid[b];
+    const char* name = mj_id2name(&m, mjOBJ_JOINT, j);
+    if (b == last_body && name != nullptr) names.emplace_back(name);
+  }
+  return names;
+}
+
+// the top-level body holding the arm, for the robot-vs-rest contact watch ("" when unnamed)
+std::string root_body(const Chain& arm) {
+  const mjModel& m = arm.robot().model();
+  int b = m.jnt_bodyid[arm.joint_ids().front()];
+  while (b > 0 && m.body_parentid[b] > 0) b = m.body_parentid[b];
+  const char* name = mj_id2name(&m, mjOBJ_BODY, b);
+  return name != nullptr ? name : "";
+}
+
+double rotation_angle(const Eigen::Matrix3d& R_a, const Eigen::Matrix3d& R_b) noexcept {
+  return so3::angle(R_b * R_a.transpose());
+}
+
+}  // namespace
+
+std::string default_viewer_site(const Robot& robot) {
+  std::vector<std::string> named;
+  for (const auto& name : robot.site_names()) {
+    if (name == "tcp") return name;
+    if (!name.empty()) named.push_back(name);
+  }
+  if (named.size() == 1) return named.front();
+  std::string list;
+  for (const auto& n : named) list += (list.empty() ? "" : ", ") + n;
+  throw Error("viewer: model '" + robot.name() + "' has " +
+              (named.empty() ? std::string("no named site")
+                             : std::to_string(named.size()) + " sites (" + list + ")") +
+              "; choose the end-effector frame with --site");
+}
+
+struct ViewerSession::Rig {
+  Robot robot;
+  SimulationMode mode;
+  Chain arm;
+  std::optional<Chain> gripper;
+  double period = 0.0;
+  std::unique_ptr<Simulation> sim;
+  std::unique_ptr<PoseIk> ik;
+  std::unique_ptr<JointTargetController> joints;
+  std::unique_ptr<OperationalSpaceController> osc;
+  std::unique_ptr<GripperTargetController> grip;  // kinematic and position modes
+  std::unique_ptr<GripperPdController> grip_pd;   // torque mode
+  Reference reference;
+  IkResult ik_result;
+  Eigen::VectorXd q, q_cmd, q_grip, q_home;
+  std::vector<double> qpos;
+  int watch = -1;
+
+  Rig(const Robot& r, SimulationMode m, const std::string& site, const ViewerSessionOptions& o)
+      : robot(r), mode(m), arm(robot, site) {
+    const auto fingers = gripper_joints(arm);
+    if (!fingers.empty()) gripper.emplace(robot, fingers, site);
+    const double h = robot.model().opt.timestep;
+    SimulationOptions sim_options;
+    sim_options.mode = m;
+    if (m == SimulationMode::kinematic) {
+      period = h * std::max(1.0, std::round(o.kinematic_period / h));
+    } else {
+      sim_options.control_period = o.control_period;
+    }
+    sim = std::make_unique<Simulation>(robot, sim_options);
+    if (gripper && m != SimulationMode::torque)
+      grip = std::make_unique<GripperTargetController>(*gripper);
+    if (m != SimulationMode::kinematic) {
+      period = sim->control_period();
+      if (m == SimulationMode::position) {
+        joints = std::make_unique<JointTargetController>(arm);
+        sim->add_controller(*joints);
+      } else {
+        OperationalSpaceOptions osc_options;
+        osc_options.nullspace_stiffness = 10.0;  // hold the initial posture in the null space
+        osc = std::make_unique<OperationalSpaceController>(arm, osc_options);
+        sim->add_controller(*osc);
+      }
+      if (grip) sim->add_controller(*grip);
+      if (gripper && m == SimulationMode::torque) {
+        grip_pd = std::make_unique<GripperPdController>(*gripper);
+        sim->add_controller(*grip_pd);
+      }
+    }
+    if (m != SimulationMode::torque) {
+      PoseIkOptions ik_options;
+      ik_options.max_iterations = std::max(1, o.ik_iterations);
+      ik = std::make_unique<PoseIk>(arm, ik_options);
+    }
+    const std::string root = root_body(arm);
+    if (!root.empty()) watch = sim->watch_contacts(GeomSet::of_bodies(robot, {root}), GeomSet());
+    const int n = arm.size();
+    q.setZero(n);
+    q_cmd.setZero(n);
+    q_home.setZero(n);
+    q_grip.setZero(gripper ? gripper->size() : 0);
+    ik_result.q.setZero(n);
+    reference.joint.q.setZero(n);
+    reference.joint.qd.setZero(n);
+    reference.joint.qdd.setZero(n);
+    qpos.assign(static_cast<std::size_t>(robot.nq()), 0.0);
+  }
+
+  // arm joint values from the simulation's qpos, without allocating
+  void read_q() noexcept {
+    const double* qpos_now = sim->data().qpos;
+    for (int i = 0; i < arm.size(); ++i) q[i] = qpos_now[arm.qpos_address(i)];
+  }
+};
+
+ViewerSession::ViewerSession(const Robot& robot, const ViewerSessionOptions& options)
+    : site_(options.site.empty() ? default_viewer_site(robot) : options.site),
+      options_(options),
+      filter_(options.max_speed, options.max_angular_speed) {
+  if (!(options.max_joint_speed > 0.0) || !std::isfinite(options.max_joint_speed)) {
+    throw Error("viewer: max_joint_speed must be positive and finite");
+  }
+  std::string keyframe = options.keyframe;
+  if (keyframe.empty()) {
+    const auto keys = robot.keyframe_names();
+    if (std::find(keys.begin(), keys.end(), "home") != keys.end()) keyframe = "home";
+  } else {
+    robot.keyframe(keyframe);  // throws for an unknown name, listing close ones
+  }
+  options_.keyframe = keyframe;
+
+  // one rig per mode; a mode whose rig cannot be built is unavailable, with the reason
+  for (int m = 0; m < 3; ++m) {
+    const auto mode = static_cast<SimulationMode>(m);
+    try {
+      std::optional<Robot> model = robot;
+      if (mode != SimulationMode::kinematic) model = variant(robot, mode == SimulationMode::torque);
+      if (!model) {
+        reasons_[m] = variant_missing(robot, mode == SimulationMode::torque);
+        continue;
+      }
+      rigs_[m] = std::make_unique<Rig>(*model, mode, site_, options_);
+    } catch (const Error& e) {
+      if (mode == SimulationMode::kinematic) throw;  // the frame itself is wrong
+      reasons_[m] = std::string(to_string(mode)) + " mode unavailable: " + e.what();
+    }
+  }
+  if (!available(options.mode)) throw Error("viewer: " + reasons_[static_cast<int>(options.mode)]);
+  mode_ = options.mode;
+  // every rig starts in the initial state, so that a mode switch before any motion is seamless
+  for (int m = 0; m < 3; ++m) {
+    if (rigs_[m] == nullptr) continue;
+    mode_ = static_cast<SimulationMode>(m);
+    reset();
+  }
+  mode_ = options.mode;
+  restart_reference();
+  ranges_ = panel_ranges(rigs_[0]->arm, stats_.X_WE, options.range_samples);
+  initial_panel_ = panel_state(stats_.X_WE, ranges_, 0.0, mode_);
+  set_target(initial_panel_);
+}
+
+ViewerSession::~ViewerSession() = default;
+
+const Robot& ViewerSession::robot() const noexcept { return rigs_[static_cast<int>(mode_)]->robot; }
+Simulation& ViewerSession::simulation() noexcept { return *rigs_[static_cast<int>(mode_)]->sim; }
+const Simulation& ViewerSession::simulation() const noexcept {
+  return *rigs_[static_cast<int>(mode_)]->sim;
+}
+const Chain& ViewerSession::arm() const noexcept { return rigs_[static_cast<int>(mode_)]->arm; }
+
+bool ViewerSession::available(SimulationMode mode) const noexcept {
+  const int m = static_cast<int>(mode);
+  return m >= 0 && m < 3 && rigs_[m] != nullptr;
+}
+
+const std::string& ViewerSession::unavailable_reason(SimulationMode mode) const noexcept {
+  static const std::string none;
+  const int m = static_cast<int>(mode);
+  return m >= 0 && m < 3 ? reasons_[m] : none;
+}
+
+bool ViewerSession::has_gripper() const noexcept {
+  return rigs_[static_cast<int>(mode_)]->gripper.has_value();
+}
+
+double ViewerSession::control_period() const noexcept {
+  return rigs_[static_cast<int>(mode_)]->period;
+}
+
+void ViewerSession::set_mode(SimulationMode mode) {
+  if (mode == mode_) return;
+  if (!available(mode)) throw Error("viewer: " + unavailable_reason(mode));
+  Rig& from = *rigs_[static_cast<int>(mode_)];
+  Rig& to = *rigs_[static_cast<int>(mode)];
+  const mjModel& mf = from.robot.model();
+  const mjModel& mt = to.robot.model();
+  if (mf.nq == mt.nq && mf.nv == mt.nv) {
+    const mjData& d = from.sim->data();
+    const std::vector<double> qvel(d.qvel, d.qvel + mt.nv);
+    to.sim->set_state(std::span<const double>(d.qpos, static_cast<std::size_t>(mt.nq)), qvel);
+    to.sim->data().time = d.time;  // the clock goes on across the switch
+  } else {
+    to.sim->reset();
+  }
+  for (int c = 0; c < to.sim->controller_count(); ++c) to.sim->controller(c).reset();
+  mode_ = mode;
+  restart_reference();
+}
+
+void ViewerSession::set_target(const PanelState& panel) noexcept {
+  X_WT_ = panel_target(panel);
+  gripper_ = std::isfinite(panel.gripper) ? std::clamp(panel.gripper, 0.0, 1.0) : 0.0;
+  refresh_stats();
+}
+
+void ViewerSession::reset() {
+  Rig& rig = *rigs_[static_cast<int>(mode_)];
+  const auto keys = rig.robot.keyframe_names();
+  if (!options_.keyframe.empty() &&
+      std::find(keys.begin(), keys.end(), options_.keyframe) != keys.end()) {
+    rig.sim->reset(options_.keyframe);
+  } else {
+    rig.sim->reset();
+  }
+  rig.read_q();
+  rig.q_home = rig.q;
+  restart_reference();
+}
+
+// the reference restarts at the end effector, the servo targets at the configuration
+void ViewerSession::restart_reference() {
+  Rig& rig = *rigs_[static_cast<int>(mode_)];
+  rig.read_q();
+  rig.q_cmd = rig.q;
+  rig.reference.joint.q = rig.q;
+  rig.reference.gripper = gripper_;
+  rig.reference.task.X_WE = frame_pose(rig.robot.model(), rig.sim->data(), rig.arm.frame());
+  filter_.reset(rig.reference.task.X_WE);
+  stats_.faulted = false;
+  stats_.fault.clear();
+  stats_.ik_used = false;
+  stats_.saturated = 0;
+  refresh_stats();
+}
+
+int ViewerSession::step(int ticks) noexcept {
+  Rig& rig = *rigs_[static_cast<int>(mode_)];
+  int done = 0;
+  for (; done < ticks && !stats_.faulted; ++done) {
+    if (!tick(rig)) break;
+  }
+  refresh_stats();
+  return done;
+}
+
+bool ViewerSession::tick(Rig& rig) noexcept {
+  const double dt = rig.period;
+  const Pose& X_WR = filter_.update(X_WT_, dt);
+  rig.reference.gripper = gripper_;
+  stats_.ik_used = rig.ik != nullptr;
+  if (rig.ik) {
+    // IK from the current configuration (kinematic) or the last servo target (position),
+    // the step limited to max_joint_speed
+    rig.read_q();
+    const Eigen::VectorXd& seed = rig.mode == SimulationMode::kinematic ? rig.q : rig.q_cmd;
+    rig.ik->solve(X_WR, seed, rig.ik_result);
+    stats_.ik_status = rig.ik_result.status;
+    const double max_step = options_.max_joint_speed * dt;
+    rig.q_cmd = seed + (rig.ik_result.q - seed).cwiseMax(-max_step).cwiseMin(max_step);
+  }
+  if (rig.mode == SimulationMode::kinematic) {
+    const mjData& d = rig.sim->data();
+    std::copy(d.qpos, d.qpos + rig.robot.nq(), rig.qpos.begin());
+    rig.arm.scatter(rig.q_cmd, rig.qpos.data());
+    if (rig.grip) {
+      rig.grip->targets(gripper_, rig.q_grip);
+      rig.gripper->scatter(rig.q_grip, rig.qpos.data());
+    }
+    try {
+      rig.sim->move(rig.qpos, dt);
+    } catch (const std::exception& e) {  // only for NaN from a broken model: stop, do not die
+      stats_.faulted = true;
+      stats_.fault = e.what();
+      return false;
+    }
+    return true;
+  }
+  if (rig.mode == SimulationMode::position) {
+    rig.reference.joint.q = rig.q_cmd;
+  } else {
+    rig.reference.task.X_WE = X_WR;
+    rig.reference.task.V_WE = filter_.velocity();
+    rig.reference.joint.q = rig.q_home;  // null-space posture
+  }
+  const TickResult result = rig.sim->tick(rig.reference);
+  stats_.saturated = result.saturated;
+  if (!result.ok()) {
+    stats_.faulted = true;
+    stats_.fault = rig.sim->describe(result.fault);
+    return false;
+  }
+  return true;
+}
+
+void ViewerSession::refresh_stats() noexcept {
+  Rig& rig = *rigs_[static_cast<int>(mode_)];
+  const mjData& d = rig.sim->data();
+  const FrameRef& frame = rig.arm.frame();
+  // frame_pose checks the id, which the chain already did: read the pose directly
+  const double* p =
+      frame.kind == FrameKind::site ? d.site_xpos + 3 * frame.id : d.xpos + 3 * frame.id;
+  const double* R =
+      frame.kind == FrameKind::site ? d.site_xmat + 9 * frame.id : d.xmat + 9 * frame.id;
+  stats_.mode = mode_;
+  stats_.time = d.time;
+  stats_.X_WE.p = Eigen::Vector3d(p[0], p[1], p[2]);
+  stats_.X_WE.R = Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(R);
+  stats_.X_WR = filter_.pose();
+  stats_.X_WT = X_WT_;
+  stats_.tracking_position = (stats_.X_WR.p - stats_.X_WE.p).norm();
+  stats_.tracking_orientation = rotation_angle(stats_.X_WE.R, stats_.X_WR.R);
+  stats_.target_position = (stats_.X_WT.p - stats_.X_WE.p).norm();
+  stats_.target_orientation = rotation_angle(stats_.X_WE.R, stats_.X_WT.R);
+  stats_.contacts = rig.watch >= 0 ? rig.sim->contacts(rig.watch) : ContactSummary{};
+}
+
+}  // namespace mjarm

@@ -1,0 +1,400 @@
+// The viewer's window: GLFW set-up, MuJoCo's rendering resources, drawing and event routing.
+#include "viewer_shell.hpp"
+
+#include <GLFW/glfw3.h>
+
+#include <algorithm>
+#include <cstdlib>
+#include <string>
+
+#include "mjarm/error.hpp"
+
+namespace mjarm::detail {
+
+namespace {
+
+std::string g_glfw_error;  // the last GLFW error (GLFW reports through a C callback)
+
+void record_glfw_error(int code, const char* description) {
+  g_glfw_error = std::string(description != nullptr ? description : "unknown error") +
+                 " (GLFW error " + std::to_string(code) + ")";
+}
+
+ViewerShell* shell_of(GLFWwindow* window) {
+  return static_cast<ViewerShell*>(glfwGetWindowUserPointer(window));
+}
+
+constexpr int kMaxGeoms = 4000;  // scene capacity: the bundled scenes use a few hundred
+
+}  // namespace
+
+GlfwLibrary::GlfwLibrary() {
+  glfwSetErrorCallback(record_glfw_error);
+  if (glfwInit() != GLFW_TRUE) {
+    throw Error("cannot initialise GLFW on display '" +
+                std::string(std::getenv("DISPLAY") ? std::getenv("DISPLAY") : "") +
+                "': " + g_glfw_error + "; " + kNoDisplayMessage);
+  }
+}
+
+GlfwLibrary::~GlfwLibrary() { glfwTerminate(); }
+
+void WindowDeleter::operator()(GLFWwindow* window) const noexcept { glfwDestroyWindow(window); }
+
+ViewerShell::ViewerShell(const Robot& robot, const ViewerOptions& options)
+    : options_(options),
+      session_(robot, options.session),
+      panel_(session_.initial_panel()),
+      ui_(panel_, session_.ranges(), session_.has_gripper()),
+      schedule_(options.rates, session_.control_period(), 0.0) {
+  if (options.width < 320 || options.height < 240) {
+    throw Error("viewer: the window must be at least 320×240 pixels, got " +
+                std::to_string(options.width) + "×" + std::to_string(options.height));
+  }
+  // multisampling when the display offers it (Xvfb may not)
+  const std::string title = "mjarm view: " + robot.name();
+  for (const int samples : {4, 0}) {
+    glfwWindowHint(GLFW_SAMPLES, samples);
+    window_.reset(glfwCreateWindow(options.width, options.height, title.c_str(), nullptr, nullptr));
+    if (window_) break;
+  }
+  if (!window_) throw Error("viewer: cannot open a window: " + g_glfw_error);
+  glfwMakeContextCurrent(window_.get());
+  glfwSwapInterval(0);  // the schedule paces frames, not the display's refresh
+  glfwSetWindowUserPointer(window_.get(), this);
+  int window_width = 0, buffer_width = 0, height = 0;
+  glfwGetWindowSize(window_.get(), &window_width, &height);
+  glfwGetFramebufferSize(window_.get(), &buffer_width, &height);
+  buffer_to_window_ = window_width > 0 ? static_cast<double>(buffer_width) / window_width : 1.0;
+
+  // the GL description, looked up through GLFW so that no GL library is linked for it
+  using GetString = const unsigned char* (*)(unsigned int);
+  if (auto get = reinterpret_cast<GetString>(glfwGetProcAddress("glGetString"))) {
+    for (const unsigned int name : {0x1F00u, 0x1F01u, 0x1F02u}) {  // vendor, renderer, version
+      const unsigned char* text = get(name);
+      if (text != nullptr)
+        gl_ += (gl_.empty() ? "" : ", ") + std::string(reinterpret_cast<const char*>(text));
+    }
+  }
+
+  mjv_defaultOption(&vis_);
+  mjv_defaultScene(&scene_);
+  mjr_defaultContext(&con_);
+  mjv_defaultFreeCamera(&session_.robot().model(), &camera_);
+  const Eigen::Vector3d p = session_.stats().X_WE.p;
+  camera_.lookat[0] = 0.5 * p.x();
+  camera_.lookat[1] = 0.5 * p.y();
+  camera_.lookat[2] = 0.4;
+  camera_.distance = 2.0;
+  camera_.azimuth = 135.0;
+  camera_.elevation = -20.0;
+  make_gl();
+  install_callbacks(window_.get());
+}
+
+ViewerShell::~ViewerShell() {
+  if (window_) glfwMakeContextCurrent(window_.get());
+  free_gl();
+}
+
+void ViewerShell::make_gl() {
+  const mjModel& m = session_.robot().model();
+  mjv_makeScene(&m, &scene_, kMaxGeoms);
+  mjr_makeContext(&m, &con_, mjFONTSCALE_100);
+  gl_model_ = &m;
+  int width = 0, height = 0;
+  glfwGetFramebufferSize(window_.get(), &width, &height);
+  ui_.layout(width, height);
+  ui_.attach(con_);
+  // a first scene, so that camera moves before the first frame have a camera to move
+  mjv_updateScene(&m, &session_.simulation().data(), &vis_, nullptr, &camera_, mjCAT_ALL, &scene_);
+}
+
+void ViewerShell::free_gl() noexcept {
+  if (gl_model_ == nullptr) return;
+  mjr_freeContext(&con_);
+  mjv_freeScene(&scene_);
+  mjr_defaultContext(&con_);
+  mjv_defaultScene(&scene_);
+  gl_model_ = nullptr;
+}
+
+void ViewerShell::add_markers() {
+  const ViewerStats& s = session_.stats();
+  auto add = [this](int type, const mjtNum size[3], const Eigen::Vector3d& p,
+                    const float rgba[4]) -> mjvGeom* {
+    if (scene_.ngeom >= scene_.maxgeom) return nullptr;
+    mjvGeom* g = scene_.geoms + scene_.ngeom++;
+    const mjtNum pos[3] = {p.x(), p.y(), p.z()};
+    mjv_initGeom(g, type, size, pos, nullptr, rgba);
+    g->category = mjCAT_DECOR;
+    return g;
+  };
+  // the panel target: a translucent green ball with its axes (x red, y green, z blue)
+  const mjtNum ball[3] = {0.03, 0.0, 0.0};
+  const float green[4] = {0.2f, 0.9f, 0.3f, 0.4f};
+  add(mjGEOM_SPHERE, ball, s.X_WT.p, green);
+  const float axis_rgba[3][4] = {
+      {0.9f, 0.1f, 0.1f, 1.0f}, {0.1f, 0.8f, 0.1f, 1.0f}, {0.1f, 0.2f, 0.9f, 1.0f}};
+  const mjtNum none[3] = {0.0, 0.0, 0.0};
+  for (int i = 0; i < 3; ++i) {
+    const Eigen::Vector3d tip = s.X_WT.p + 0.08 * s.X_WT.R.col(i);
+    if (mjvGeom* g = add(mjGEOM_CAPSULE, none, s.X_WT.p, axis_rgba[i])) {
+      mjv_makeConnector(g, mjGEOM_CAPSULE, 0.004, s.X_WT.p.x(), s.X_WT.p.y(), s.X_WT.p.z(), tip.x(),
+                        tip.y(), tip.z());
+    }
+  }
+  // the reference the controller tracks: a small yellow ball
+  const mjtNum dot[3] = {0.012, 0.0, 0.0};
+  const float yellow[4] = {1.0f, 0.85f, 0.1f, 0.8f};
+  add(mjGEOM_SPHERE, dot, s.X_WR.p, yellow);
+}
+
+void ViewerShell::render(Image* capture) {
+  int width = 0, height = 0;
+  glfwGetFramebufferSize(window_.get(), &width, &height);
+  const mjrRect& window = ui_.input().rect[rect_window];
+  if (width != window.width || height != window.height) ui_.layout(width, height);
+  mjData& d = session_.simulation().data();
+  const mjModel& m = session_.robot().model();
+  mjv_updateScene(&m, &d, &vis_, nullptr, &camera_, mjCAT_ALL, &scene_);
+  add_markers();
+
+  mjr_setBuffer(mjFB_WINDOW, &con_);
+  const mjrRect view = ui_.view();
+  mjr_render(view, &scene_, &con_);
+  info_.paused = paused_;
+  info_.fps = fps_.rate();
+  info_.speed = speed_.rate();
+  format_overlay(session_.stats(), info_, m, session_.simulation().saturated(), overlay_);
+  mjr_overlay(mjFONT_NORMAL, mjGRID_TOPLEFT, view, overlay_.labels.c_str(), overlay_.values.c_str(),
+              &con_);
+  mjr_overlay(mjFONT_NORMAL, mjGRID_BOTTOMLEFT, view,
+              "drag: left rotate, right move, scroll zoom\n"
+              "space pause, right step, bksp reset, esc quit",
+              nullptr, &con_);
+  if (paused_) mjr_overlay(mjFONT_BIG, mjGRID_TOPRIGHT, view, "Paused", nullptr, &con_);
+  mjui_render(&ui_.ui(), &ui_.input(), &con_);
+
+  if (capture != nullptr) {
+    // the back buffer before the swap; OpenGL rows run bottom-up
+    Image bottom_up(width, height);
+    mjr_readPixels(bottom_up.rgb.data(), nullptr, mjrRect{0, 0, width, height}, &con_);
+    *capture = Image(width, height);
+    const std::size_t row = static_cast<std::size_t>(width) * 3;
+    for (int y = 0; y < height; ++y) {
+      std::copy_n(bottom_up.rgb.data() + static_cast<std::size_t>(height - 1 - y) * row, row,
+                  capture->rgb.data() + static_cast<std::size_t>(y) * row);
+    }
+  }
+  glfwSwapBuffers(window_.get());
+  ++frames_;
+}
+
+// ---- events ----
+
+void ViewerShell::install_callbacks(GLFWwindow* window) {
+  glfwSetKeyCallback(window, [](GLFWwindow* w, int key, int, int act, int) {
+    if (act == GLFW_RELEASE) return;
+    ViewerShell* shell = shell_of(w);
+    shell->read_window_input();
+    mjuiState& s = shell->ui_.input();
+    s.type = mjEVENT_KEY;
+    s.key = key;
+    s.keytime = glfwGetTime();
+    shell->guarded([shell] { shell->on_event(); });
+  });
+  glfwSetMouseButtonCallback(window, [](GLFWwindow* w, int button, int act, int) {
+    ViewerShell* shell = shell_of(w);
+    shell->read_window_input();
+    const mjuiState& s = shell->ui_.input();
+    const int b = button == GLFW_MOUSE_BUTTON_LEFT    ? mjBUTTON_LEFT
+                  : button == GLFW_MOUSE_BUTTON_RIGHT ? mjBUTTON_RIGHT
+                                                      : mjBUTTON_MIDDLE;
+    const double x = s.x, y = s.y;
+    if (act == GLFW_PRESS) {
+      shell->guarded([=] { shell->press(b, x, y); });
+    } else {
+      shell->guarded([=] { shell->release(x, y); });
+    }
+  });
+  glfwSetCursorPosCallback(window, [](GLFWwindow* w, double, double) {
+    ViewerShell* shell = shell_of(w);
+    mjuiState& s = shell->ui_.input();
+    if (!s.left && !s.right && !s.middle) return;  // only drags matter
+    shell->read_window_input();
+    s.type = mjEVENT_MOVE;
+    shell->guarded([shell] { shell->on_event(); });
+  });
+  glfwSetScrollCallback(window, [](GLFWwindow* w, double sx, double sy) {
+    ViewerShell* shell = shell_of(w);
+    shell->read_window_input();
+    mjuiState& s = shell->ui_.input();
+    s.type = mjEVENT_SCROLL;
+    s.sx = sx * shell->buffer_to_window_;
+    s.sy = sy * shell->buffer_to_window_;
+    shell->guarded([shell] { shell->on_event(); });
+  });
+  glfwSetFramebufferSizeCallback(window, [](GLFWwindow* w, int width, int height) {
+    ViewerShell* shell = shell_of(w);
+    shell->ui_.layout(width, height);
+    mjuiState& s = shell->ui_.input();
+    s.type = mjEVENT_RESIZE;
+    s.dragrect = 0;
+    s.dragbutton = 0;
+  });
+}
+
+// buttons, modifiers and pointer from the window (framebuffer pixels, y up)
+void ViewerShell::read_window_input() {
+  GLFWwindow* w = window_.get();
+  mjuiState& s = ui_.input();
+  s.left = glfwGetMouseButton(w, GLFW_MOUSE_BUTTON_LEFT) == GLFW_PRESS;
+  s.right = glfwGetMouseButton(w, GLFW_MOUSE_BUTTON_RIGHT) == GLFW_PRESS;
+  s.middle = glfwGetMouseButton(w, GLFW_MOUSE_BUTTON_MIDDLE) == GLFW_PRESS;
+  s.control = glfwGetKey(w, GLFW_KEY_LEFT_CONTROL) == GLFW_PRESS ||
+              glfwGetKey(w, GLFW_KEY_RIGHT_CONTROL) == GLFW_PRESS;
+  s.shift = glfwGetKey(w, GLFW_KEY_LEFT_SHIFT) == GLFW_PRESS ||
+            glfwGetKey(w, GLFW_KEY_RIGHT_SHIFT) == GLFW_PRESS;
+  s.alt = glfwGetKey(w, GLFW_KEY_LEFT_ALT) == GLFW_PRESS ||
+          glfwGetKey(w, GLFW_KEY_RIGHT_ALT) == GLFW_PRESS;
+  double x = 0.0, y = 0.0;
+  glfwGetCursorPos(w, &x, &y);
+  ui_.move_pointer(x * buffer_to_window_, s.rect[rect_window].height - y * buffer_to_window_);
+}
+
+void ViewerShell::press(int button, double x, double y) {
+  mjuiState& s = ui_.input();
+  ui_.move_pointer(x, y);
+  s.left = button == mjBUTTON_LEFT;
+  s.right = button == mjBUTTON_RIGHT;
+  s.middle = button == mjBUTTON_MIDDLE;
+  s.type = mjEVENT_PRESS;
+  s.doubleclick = 0;
+  s.button = button;
+  s.buttontime = clock_;
+  if (s.mouserect != 0) {
+    s.dragbutton = button;
+    s.dragrect = s.mouserect;
+  }
+  on_event();
+}
+
+void ViewerShell::move_to(double x, double y) {
+  ui_.move_pointer(x, y);
+  ui_.input().type = mjEVENT_MOVE;
+  on_event();
+}
+
+void ViewerShell::release(double x, double y) {
+  mjuiState& s = ui_.input();
+  ui_.move_pointer(x, y);
+  s.left = s.right = s.middle = 0;
+  s.type = mjEVENT_RELEASE;
+  on_event();
+  s.dragrect = 0;
+  s.dragbutton = 0;
+}
+
+void ViewerShell::on_event() {
+  mjuiState& s = ui_.input();
+  if (s.type == mjEVENT_KEY) {
+    on_key(s.key);
+    return;
+  }
+  if (s.type == mjEVENT_RESIZE || s.type == mjEVENT_NONE) return;
+  const bool panel = s.dragrect == rect_panel || (s.dragrect == 0 && s.mouserect == rect_panel);
+  if (panel) {
+    on_panel(ui_.action(mjui_event(&ui_.ui(), &s, &con_)));
+    return;
+  }
+  const mjModel& m = session_.robot().model();
+  if (s.type == mjEVENT_SCROLL) {
+    mjv_moveCamera(&m, mjMOUSE_ZOOM, 0.0, -0.05 * s.sy, &scene_, &camera_);
+  } else if (s.type == mjEVENT_MOVE && s.dragrect == rect_view) {
+    int action = mjMOUSE_NONE;
+    if (s.left) {
+      action = s.shift ? mjMOUSE_ROTATE_H : mjMOUSE_ROTATE_V;
+    } else if (s.right) {
+      action = s.shift ? mjMOUSE_MOVE_H : mjMOUSE_MOVE_V;
+    } else if (s.middle) {
+      action = mjMOUSE_ZOOM;
+    }
+    const double h = std::max(1, ui_.view().height);
+    if (action != mjMOUSE_NONE) mjv_moveCamera(&m, action, s.dx / h, -s.dy / h, &scene_, &camera_);
+  }
+}
+
+void ViewerShell::on_key(int key) {
+  switch (key) {
+    case GLFW_KEY_SPACE:
+      paused_ = !paused_;
+      break;
+    case GLFW_KEY_RIGHT:
+      if (paused_) session_.step(1);
+      break;
+    case GLFW_KEY_BACKSPACE:
+      reset();
+      break;
+    case GLFW_KEY_ESCAPE:
+      quit_ = true;
+      ended_by_ = "escape";
+      break;
+    default:
+      break;
+  }
+}
+
+void ViewerShell::on_panel(PanelAction action) {
+  switch (action) {
+    case PanelAction::none:
+      break;
+    case PanelAction::target:
+      session_.set_target(panel_);
+      break;
+    case PanelAction::mode:
+      apply_mode();
+      break;
+    case PanelAction::pause:
+      paused_ = !paused_;
+      break;
+    case PanelAction::step:
+      paused_ = true;
+      session_.step(1);
+      break;
+    case PanelAction::reset:
+      reset();
+      break;
+  }
+}
+
+// the panel's mode radio → the session (and new rendering resources for a new model)
+void ViewerShell::apply_mode() {
+  const SimulationMode mode = panel_mode(panel_);
+  if (mode == session_.mode()) return;
+  if (!session_.available(mode)) {
+    info_.note = session_.unavailable_reason(mode);
+    panel_.mode = static_cast<int>(session_.mode());
+    ui_.refresh(con_);
+    return;
+  }
+  session_.set_mode(mode);
+  info_.note.clear();
+  if (&session_.robot().model() != gl_model_) {
+    free_gl();
+    make_gl();
+  }
+  schedule_.set_control_period(session_.control_period());
+}
+
+void ViewerShell::reset() {
+  session_.reset();
+  const int mode = panel_.mode;
+  panel_ = session_.initial_panel();
+  panel_.mode = mode;
+  session_.set_target(panel_);
+  schedule_.clear_backlog();
+  ui_.refresh(con_);
+}
+
+}  // namespace mjarm::detail

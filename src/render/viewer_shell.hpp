@@ -1,0 +1,106 @@
+#pragma once
+// The GLFW shell of the interactive viewer (private to src/render): the window, MuJoCo's
+// rendering resources, event routing and drawing (viewer_shell.cpp), the loop and the script
+// runner (viewer.cpp).
+
+#include <mujoco/mujoco.h>
+
+#include <exception>
+#include <memory>
+#include <string>
+
+#include "mjarm/render/image.hpp"
+#include "mjarm/render/viewer.hpp"
+#include "mjarm/render/viewer_overlay.hpp"
+#include "mjarm/render/viewer_ui.hpp"
+
+struct GLFWwindow;
+
+namespace mjarm::detail {
+
+/// glfwInit / glfwTerminate for the lifetime of the object.
+class GlfwLibrary {
+ public:
+  GlfwLibrary();
+  ~GlfwLibrary();
+  GlfwLibrary(const GlfwLibrary&) = delete;
+  GlfwLibrary& operator=(const GlfwLibrary&) = delete;
+};
+
+struct WindowDeleter {
+  void operator()(GLFWwindow* window) const noexcept;
+};
+
+class ViewerShell {
+ public:
+  ViewerShell(const Robot& robot, const ViewerOptions& options);
+  ~ViewerShell();
+  ViewerShell(const ViewerShell&) = delete;
+  ViewerShell& operator=(const ViewerShell&) = delete;
+
+  ViewerReport run();  // viewer.cpp
+
+ private:
+  // viewer_shell.cpp: OpenGL resources and drawing
+  void make_gl();
+  void free_gl() noexcept;
+  void render(Image* capture);
+  void add_markers();
+  // viewer_shell.cpp: events (real and synthetic share `on_event`)
+  static void install_callbacks(GLFWwindow* window);
+  void read_window_input();
+  void on_event();
+  void on_key(int key);
+  void on_panel(PanelAction action);
+  void apply_mode();
+  void reset();
+  void press(int button, double x, double y);
+  void release(double x, double y);
+  void move_to(double x, double y);
+  // runs an event handler from a GLFW callback: an exception must not unwind through GLFW's C
+  // code, so it is kept and rethrown by the loop after glfwPollEvents
+  template <class F>
+  void guarded(F&& handler) noexcept {
+    if (failure_) return;
+    try {
+      handler();
+    } catch (...) {
+      failure_ = std::current_exception();
+    }
+  }
+  // viewer.cpp: scripts
+  void run_script();
+  void execute(const ScriptCommand& command);
+  void screenshot(const std::string& path);
+
+  ViewerOptions options_;
+  ViewerSession session_;
+  PanelState panel_;
+  ViewerUi ui_;
+  GlfwLibrary glfw_;
+  std::unique_ptr<GLFWwindow, WindowDeleter> window_;
+  double buffer_to_window_ = 1.0;
+  std::string gl_;
+  mjvScene scene_{};
+  mjvCamera camera_{};
+  mjvOption vis_{};
+  mjrContext con_{};
+  const mjModel* gl_model_ = nullptr;  // the model the context and scene were made for
+
+  ViewerSchedule schedule_;
+  RateMeter fps_;
+  RateMeter speed_;
+  OverlayInfo info_;
+  OverlayText overlay_;
+  bool paused_ = false;
+  bool quit_ = false;
+  std::string ended_by_;
+  double clock_ = 0.0;  // time of the current loop iteration (virtual when scripted) [s]
+  std::int64_t frames_ = 0;
+  std::size_t next_command_ = 0;
+  std::int64_t wait_until_ = 0;
+  ViewerReport report_;
+  std::exception_ptr failure_;  // from an event handler run by a GLFW callback
+};
+
+}  // namespace mjarm::detail

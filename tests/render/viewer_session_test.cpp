@@ -1,0 +1,229 @@
+// The viewer's simulation without a window: every mode reaches a target set on the panel, mode
+// switches carry the state over, the gripper follows its slider, and a step allocates nothing.
+#include "mjarm/render/viewer_session.hpp"
+
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <cstdlib>
+
+#include "ik/malloc_counter.hpp"
+#include "mjarm/error.hpp"
+#include "mjarm/lie/so3.hpp"
+
+// ---- allocation counter (see tests/ik/malloc_counter.hpp) ----
+// Weak definitions: if another test file of this executable counts allocations the same way,
+// its definitions are used and both files read the same counter.
+namespace {
+std::atomic<std::uint64_t> g_viewer_malloc_calls{0};
+}  // namespace
+
+#if defined(__SANITIZE_ADDRESS__)
+extern "C" int __sanitizer_install_malloc_and_free_hooks(void (*malloc_hook)(const volatile void*,
+                                                                             std::size_t),
+                                                         void (*free_hook)(const volatile void*));
+namespace {
+void count_allocation(const volatile void*, std::size_t) {
+  g_viewer_malloc_calls.fetch_add(1, std::memory_order_relaxed);
+}
+void ignore_free(const volatile void*) {}
+[[maybe_unused]] const int g_hook_installed =
+    __sanitizer_install_malloc_and_free_hooks(count_allocation, ignore_free);
+}  // namespace
+#else
+extern "C" void* __libc_malloc(std::size_t size) noexcept;
+extern "C" __attribute__((weak)) void* malloc(std::size_t size) noexcept {
+  g_viewer_malloc_calls.fetch_add(1, std::memory_order_relaxed);
+  return __libc_malloc(size);
+}
+#endif
+
+namespace mjarm::test {
+__attribute__((weak)) std::uint64_t malloc_calls() noexcept {
+  return g_viewer_malloc_calls.load(std::memory_order_relaxed);
+}
+}  // namespace mjarm::test
+
+namespace mjarm {
+namespace {
+
+// the panel moved by (dx, dy, dz) [m] and yaw by dyaw [rad] from the initial target
+PanelState moved(const ViewerSession& session, double dx, double dy, double dz, double dyaw = 0.0) {
+  PanelState panel = session.initial_panel();
+  panel.target[slider_x] += dx;
+  panel.target[slider_y] += dy;
+  panel.target[slider_z] += dz;
+  panel.target[slider_yaw] += dyaw;
+  return panel;
+}
+
+// simulates `seconds` of simulated time
+void run_for(ViewerSession& session, double seconds) {
+  const int ticks = static_cast<int>(std::lround(seconds / session.control_period()));
+  ASSERT_EQ(session.step(ticks), ticks) << session.stats().fault;
+}
+
+TEST(ViewerSession, PandaStartsAtHomeWithEveryMode) {
+  ViewerSession session(Robot::bundled("panda"));
+  EXPECT_EQ(session.site(), "attachment_site");
+  EXPECT_EQ(session.mode(), SimulationMode::kinematic);
+  for (int m = 0; m < 3; ++m) {
+    EXPECT_TRUE(session.available(static_cast<SimulationMode>(m)))
+        << session.unavailable_reason(static_cast<SimulationMode>(m));
+  }
+  EXPECT_FALSE(session.has_gripper());
+  EXPECT_DOUBLE_EQ(session.control_period(), 0.01);  // 5 timesteps of 2 ms
+  const ViewerStats& s = session.stats();
+  // keyframe "home": the flange hangs in front of the base, pointing down
+  EXPECT_NEAR(s.X_WE.p.x(), 0.307, 0.01);
+  EXPECT_NEAR(s.X_WE.p.z(), 0.59, 0.05);
+  EXPECT_LT(s.X_WE.R(2, 2), -0.99);
+  EXPECT_LT(s.target_position, 1e-12);  // the initial target is where the end effector is
+  EXPECT_LT(s.target_orientation, 1e-9);
+  EXPECT_TRUE(panel_target(session.initial_panel()).is_approx(s.X_WE, 1e-9));
+}
+
+TEST(ViewerSession, EveryModeReachesThePanelTarget) {
+  // tolerances: kinematic IK is exact; the servos and the impedance controller settle close
+  const struct {
+    SimulationMode mode;
+    double seconds, position, orientation;
+  } cases[] = {{SimulationMode::kinematic, 1.0, 1e-4, 1e-3},
+               {SimulationMode::position, 2.0, 5e-3, 2e-2},
+               {SimulationMode::torque, 2.0, 5e-3, 2e-2}};
+  for (const auto& c : cases) {
+    ViewerSessionOptions options;
+    options.mode = c.mode;
+    ViewerSession session(Robot::bundled("panda"), options);
+    const double start = (session.stats().X_WE.p - Eigen::Vector3d(0.45, 0.1, 0.45)).norm();
+    session.set_target(moved(session, 0.45 - session.stats().X_WE.p.x(),
+                             0.1 - session.stats().X_WE.p.y(), 0.45 - session.stats().X_WE.p.z(),
+                             0.4));
+    run_for(session, c.seconds);
+    const ViewerStats& s = session.stats();
+    EXPECT_GT(start, 0.1);
+    EXPECT_LT(s.target_position, c.position) << to_string(c.mode);
+    EXPECT_LT(s.target_orientation, c.orientation) << to_string(c.mode);
+    EXPECT_TRUE(s.X_WR.is_approx(s.X_WT, 1e-12)) << "the reference has reached the target";
+    EXPECT_FALSE(s.faulted) << s.fault;
+    EXPECT_NEAR(s.time, c.seconds, 1e-9);
+  }
+}
+
+TEST(ViewerSession, ReferenceSpeedLimitShapesTheMotion) {
+  ViewerSession session(Robot::bundled("panda"));
+  session.set_target(moved(session, 0.0, 0.2, 0.0));
+  run_for(session, 0.2);  // 0.5 m/s for 0.2 s: 0.1 m along the way
+  EXPECT_NEAR((session.stats().X_WR.p - panel_target(session.initial_panel()).p).norm(), 0.1, 1e-9);
+  EXPECT_NEAR(session.stats().target_position, 0.1, 2e-3);
+}
+
+TEST(ViewerSession, ModeSwitchCarriesTheStateOver) {
+  ViewerSession session(Robot::bundled("panda"));
+  session.set_target(moved(session, 0.05, -0.1, -0.05));
+  run_for(session, 1.0);
+  const Pose before = session.stats().X_WE;
+  const double time = session.stats().time;
+  session.set_mode(SimulationMode::torque);
+  EXPECT_EQ(session.mode(), SimulationMode::torque);
+  EXPECT_EQ(session.robot().name(), "panda_torque");
+  EXPECT_DOUBLE_EQ(session.control_period(), 0.002);
+  EXPECT_TRUE(session.stats().X_WE.is_approx(before, 1e-9));
+  EXPECT_TRUE(session.stats().X_WR.is_approx(before, 1e-9)) << "reference restarts at the arm";
+  EXPECT_NEAR(session.stats().time, time, 1e-12);
+  // the impedance controller holds the pose it took over
+  run_for(session, 1.0);
+  EXPECT_LT(session.stats().target_position, 5e-3);
+  session.set_mode(SimulationMode::position);
+  run_for(session, 0.5);
+  EXPECT_LT(session.stats().target_position, 5e-3);
+  // reset: home again, fault cleared, in the current mode
+  session.reset();
+  EXPECT_TRUE(session.stats().X_WE.is_approx(panel_target(session.initial_panel()), 1e-6));
+  EXPECT_EQ(session.mode(), SimulationMode::position);
+  EXPECT_DOUBLE_EQ(session.stats().time, 0.0);
+}
+
+TEST(ViewerSession, ModelsWithoutAVariantLackThatMode) {
+  // a model from a string has no file beside it: kinematic only; naming the missing variant
+  const std::string xml = R"(
+    <mujoco model="one">
+      <worldbody><body name="base"><joint name="j" type="hinge" axis="0 0 1" range="-2 2"/>
+        <geom type="capsule" fromto="0 0 0 0.3 0 0" size="0.02"/>
+        <site name="tip" pos="0.3 0 0"/></body></worldbody>
+      <actuator><motor joint="j"/></actuator>
+    </mujoco>)";
+  ViewerSession session(Robot::from_string(xml));
+  EXPECT_TRUE(session.available(SimulationMode::kinematic));
+  EXPECT_FALSE(session.available(SimulationMode::position));
+  EXPECT_FALSE(session.available(SimulationMode::torque));
+  EXPECT_NE(session.unavailable_reason(SimulationMode::torque).find("torque-motor variant"),
+            std::string::npos)
+      << session.unavailable_reason(SimulationMode::torque);
+  EXPECT_THROW(session.set_mode(SimulationMode::torque), Error);
+  ViewerSessionOptions options;
+  options.mode = SimulationMode::position;
+  EXPECT_THROW(ViewerSession(Robot::from_string(xml), options), Error);
+}
+
+TEST(ViewerSession, BadFrameOrKeyframeIsAnError) {
+  ViewerSessionOptions options;
+  options.site = "end_effctor";
+  try {
+    ViewerSession session(Robot::bundled("panda"), options);
+    FAIL() << "no error";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("end_effctor"), std::string::npos) << e.what();
+  }
+  options.site.clear();
+  options.keyframe = "hom";
+  EXPECT_THROW(ViewerSession(Robot::bundled("panda"), options), Error);
+  // several sites and none called tcp: the message lists them
+  try {
+    default_viewer_site(Robot::bundled("dual_arm"));
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("--site"), std::string::npos) << e.what();
+  }
+  EXPECT_EQ(default_viewer_site(Robot::bundled("panda_hand")), "tcp");
+}
+
+TEST(ViewerSession, GripperFollowsItsSliderInEveryMode) {
+  for (int m = 0; m < 3; ++m) {
+    ViewerSessionOptions options;
+    options.mode = static_cast<SimulationMode>(m);
+    ViewerSession session(Robot::bundled("panda_hand"), options);
+    ASSERT_TRUE(session.has_gripper());
+    const Robot& robot = session.robot();
+    auto width = [&] {
+      const mjData& d = session.simulation().data();
+      return robot.qpos(d, "finger_left")[0] + robot.qpos(d, "finger_right")[0];
+    };
+    EXPECT_NEAR(width(), 0.08, 1e-3) << "home: open";
+    PanelState panel = session.initial_panel();
+    panel.gripper = 0.75;
+    session.set_target(panel);
+    run_for(session, 1.0);
+    EXPECT_NEAR(width(), 0.02, 2e-3) << to_string(options.mode);
+    EXPECT_LT(session.stats().target_position, 5e-3) << "the arm holds still meanwhile";
+  }
+}
+
+TEST(ViewerSession, StepAllocatesNothing) {
+  for (int m = 0; m < 3; ++m) {
+    ViewerSessionOptions options;
+    options.mode = static_cast<SimulationMode>(m);
+    ViewerSession session(Robot::bundled("panda_hand"), options);
+    PanelState panel = moved(session, 0.1, 0.1, -0.1, 0.3);
+    panel.gripper = 0.5;
+    session.set_target(panel);
+    session.step(2);  // warm-up
+    const std::uint64_t before = test::malloc_calls();
+    const int done = session.step(50);
+    const std::uint64_t after = test::malloc_calls();
+    EXPECT_EQ(done, 50);
+    EXPECT_EQ(after - before, 0u) << to_string(options.mode) << " mode allocated";
+  }
+}
+
+}  // namespace
+}  // namespace mjarm

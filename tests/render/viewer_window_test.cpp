@@ -1,0 +1,234 @@
+// `mjarm view` in a real window: a scripted session under Xvfb (or the DISPLAY at hand) with
+// synthetic slider clicks, mouse drags and key presses, checked through its screenshots and its
+// --json report; and the message when there is no display at all.
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+
+#include "mjarm/render/png.hpp"
+#include "mjarm/render/viewer_session.hpp"
+
+namespace mjarm {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct Outcome {
+  int status = -1;
+  std::string out;
+  std::string err;
+};
+
+// runs a shell command, capturing stdout and stderr
+Outcome run_command(const std::string& command, const fs::path& dir) {
+  const fs::path err = dir / "stderr.txt";
+  Outcome r;
+  FILE* pipe = popen((command + " 2>'" + err.string() + "'").c_str(), "r");
+  if (pipe == nullptr) return r;
+  std::array<char, 4096> buffer{};
+  for (std::size_t n; (n = std::fread(buffer.data(), 1, buffer.size(), pipe)) > 0;)
+    r.out.append(buffer.data(), n);
+  const int status = pclose(pipe);
+  r.status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  std::ifstream in(err);
+  r.err.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  return r;
+}
+
+fs::path fresh_dir(const std::string& name) {
+  const fs::path dir =
+      fs::temp_directory_path() / ("mjarm_viewer_" + name + "_" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  return dir;
+}
+
+// the prefix that gives the command a display: none when DISPLAY is set, xvfb-run otherwise;
+// nullopt (and a failure) when neither exists: scripts/setup.sh installs xvfb
+std::optional<std::string> display_prefix() {
+  std::string prefix;
+#if defined(__SANITIZE_ADDRESS__)
+  prefix = "ASAN_OPTIONS=detect_leaks=0 ";  // Mesa and X11 keep allocations until exit
+#endif
+  const char* display = std::getenv("DISPLAY");
+  if (display != nullptr && display[0] != '\0') return prefix;
+  if (std::system("command -v xvfb-run >/dev/null 2>&1") != 0) {
+    ADD_FAILURE() << "no DISPLAY and no xvfb-run: the viewer test needs one; scripts/setup.sh "
+                     "installs Debian's xvfb and xauth";
+    return std::nullopt;
+  }
+  return prefix + "xvfb-run -a -s '-screen 0 1280x1024x24' ";
+}
+
+struct PixelStats {
+  double mean = 0.0;
+  double stddev = 0.0;
+};
+
+PixelStats pixel_stats(const Image& image) {
+  double sum = 0.0, sum2 = 0.0;
+  for (const std::uint8_t v : image.rgb) {
+    sum += v;
+    sum2 += static_cast<double>(v) * v;
+  }
+  const double n = static_cast<double>(image.rgb.size());
+  PixelStats s;
+  s.mean = sum / n;
+  s.stddev = std::sqrt(std::max(0.0, sum2 / n - s.mean * s.mean));
+  return s;
+}
+
+// mean absolute difference per channel over the 3-D view (right of the panel, x ≥ x0)
+double difference(const Image& a, const Image& b, int x0) {
+  double sum = 0.0;
+  std::size_t n = 0;
+  for (int y = 0; y < a.height; ++y) {
+    for (int x = x0; x < a.width; ++x) {
+      for (int c = 0; c < 3; ++c) sum += std::abs(int(a.at(x, y)[c]) - int(b.at(x, y)[c]));
+      n += 3;
+    }
+  }
+  return sum / static_cast<double>(n);
+}
+
+Eigen::Vector3d vec(const nlohmann::json& j) {
+  return {j[0].get<double>(), j[1].get<double>(), j[2].get<double>()};
+}
+
+TEST(ViewerWindow, ScriptedSessionMovesTheArmAndTakesScreenshots) {
+  const auto prefix = display_prefix();
+  if (!prefix) return;
+  const fs::path dir = fresh_dir("script");
+  {
+    std::ofstream script(dir / "session.txt");
+    // at --render-hz 10 a frame is 100 ms of simulated time (fewer frames to draw in software)
+    script << "wait 2\n"
+              "screenshot "
+           << (dir / "a.png").string()
+           << "\n"
+              "slider x 0.8          # a synthetic click at 80 % of the x slider\n"
+              "set z 0.45\n"
+              "wait 15               # 1.5 s of simulated time\n"
+              "screenshot "
+           << (dir / "b.png").string()
+           << "\n"
+              "drag left 150 0       # orbit the camera\n"
+              "scroll 2\n"
+              "key space             # pause\n"
+              "wait 3\n"
+              "key right             # one control tick\n"
+              "screenshot "
+           << (dir / "c.png").string()
+           << "\n"
+              "key backspace         # reset (still paused)\n"
+              "wait 2\n"
+              "screenshot "
+           << (dir / "d.png").string()
+           << "\n"
+              "key space\n"
+              "set mode torque\n"
+              "wait 5\n"
+              "screenshot "
+           << (dir / "e.png").string() << "\n";
+  }
+  const Outcome r = run_command(
+      *prefix + "'" MJARM_CLI "' view panda --size 640x480 --render-hz 10 --json --script '" +
+          (dir / "session.txt").string() + "'",
+      dir);
+  ASSERT_EQ(r.status, 0) << r.err << r.out;
+  const auto report = nlohmann::json::parse(r.out);
+  EXPECT_EQ(report["ended_by"], "end of script");
+  const auto& shots = report["screenshots"];
+  ASSERT_EQ(shots.size(), 5u) << r.out;
+
+  // every screenshot is a real picture of the window
+  std::vector<Image> images;
+  for (const auto& shot : shots) {
+    images.push_back(read_png(shot["path"].get<std::string>()));
+    const Image& image = images.back();
+    ASSERT_EQ(image.width, 640);
+    ASSERT_EQ(image.height, 480);
+    const PixelStats s = pixel_stats(image);
+    EXPECT_GT(s.stddev, 20.0) << shot["path"] << " looks blank";
+    EXPECT_GT(s.mean, 20.0);
+    EXPECT_LT(s.mean, 235.0);
+  }
+
+  // the slider click went through the panel: x at 80 % of its range (one division = 0.5 %)
+  const ViewerSession session(Robot::bundled("panda"));
+  const PanelRanges& ranges = session.ranges();
+  const double expected_x = ranges.lower[0] + 0.8 * (ranges.upper[0] - ranges.lower[0]);
+  const Eigen::Vector3d a_target = vec(shots[0]["target"]), b_target = vec(shots[1]["target"]);
+  EXPECT_NEAR(b_target.x(), expected_x, 0.01 * (ranges.upper[0] - ranges.lower[0]));
+  EXPECT_NEAR(b_target.z(), 0.45, 1e-12);
+  EXPECT_NEAR(b_target.y(), a_target.y(), 1e-12);
+
+  // the arm followed: it moved by more than 10 cm and sits on the target
+  const Eigen::Vector3d a_ee = vec(shots[0]["end_effector"]), b_ee = vec(shots[1]["end_effector"]);
+  EXPECT_GT((b_ee - a_ee).norm(), 0.1);
+  EXPECT_LT((b_ee - b_target).norm(), 2e-3);
+  const int panel_width = 250;  // the 3-D view starts right of the panel (≈ 270 px)
+  EXPECT_GT(difference(images[0], images[1], panel_width + 20), 1.0) << "the arm moved on screen";
+
+  // paused, then one step: the arm holds still while the camera drag changed the picture
+  const double period = 0.01;  // kinematic mode
+  EXPECT_NEAR(shots[2]["sim_time"].get<double>(), shots[1]["sim_time"].get<double>() + period,
+              1e-9);
+  EXPECT_LT((vec(shots[2]["end_effector"]) - b_ee).norm(), 1e-3);
+  EXPECT_GT(difference(images[1], images[2], panel_width + 20), 1.0) << "the camera moved";
+
+  // backspace reset: home again at time 0 (paused), the target back on the end effector
+  EXPECT_DOUBLE_EQ(shots[3]["sim_time"].get<double>(), 0.0);
+  EXPECT_LT((vec(shots[3]["end_effector"]) - a_ee).norm(), 1e-6);
+  EXPECT_LT((vec(shots[3]["target"]) - a_target).norm(), 1e-9);
+
+  // torque mode on panda_torque holds the home pose
+  EXPECT_EQ(shots[4]["mode"], "torque");
+  EXPECT_NEAR(shots[4]["sim_time"].get<double>(), 0.5, 0.11);  // ± a frame
+  EXPECT_LT((vec(shots[4]["end_effector"]) - a_ee).norm(), 5e-3);
+  EXPECT_EQ(report["mode"], "torque");
+  EXPECT_TRUE(report["fault"].is_null());
+  fs::remove_all(dir);
+}
+
+TEST(ViewerWindow, ScriptErrorsNameTheLine) {
+  const auto prefix = display_prefix();
+  if (!prefix) return;
+  const fs::path dir = fresh_dir("bad");
+  {
+    std::ofstream script(dir / "bad.txt");
+    script << "wait 1\nset x 99\n";
+  }
+  const Outcome r = run_command(*prefix + "'" MJARM_CLI "' view panda --size 640x480 --script '" +
+                                    (dir / "bad.txt").string() + "'",
+                                dir);
+  EXPECT_EQ(r.status, 1) << r.err;
+  EXPECT_NE(r.err.find("line 2 (set)"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("outside its slider range"), std::string::npos) << r.err;
+  fs::remove_all(dir);
+}
+
+TEST(ViewerWindow, NoDisplayIsAClearError) {
+  const fs::path dir = fresh_dir("nodisplay");
+  const Outcome r =
+      run_command("env -u DISPLAY -u WAYLAND_DISPLAY '" MJARM_CLI "' view panda --frames 1", dir);
+  EXPECT_EQ(r.status, 1);
+  EXPECT_NE(r.err.find("no display: set DISPLAY or run under xvfb-run; for headless images use "
+                       "`mjarm render`"),
+            std::string::npos)
+      << r.err;
+  // a bad command line is still reported as such (exit 2), display or not
+  const Outcome bad = run_command("env -u DISPLAY '" MJARM_CLI "' view panda --mode fast", dir);
+  EXPECT_EQ(bad.status, 2) << bad.err;
+  fs::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace mjarm
