@@ -55,11 +55,13 @@ struct Scene {
       if (d->ncon > 0) continue;
       const int site = chain.frame().id;
       mjarm::Reference r;
-      r.task.X_WE.p = Eigen::Map<const Eigen::Vector3d>(d->site_xpos + 3 * site) +
-                      0.1 * unit(rng) * Eigen::Vector3d(unit(rng) - 0.5, unit(rng) - 0.5, unit(rng) - 0.5);
-      r.task.X_WE.R = Eigen::AngleAxisd(0.5 * unit(rng), Eigen::Vector3d(unit(rng), unit(rng), 1).normalized())
-                          .toRotationMatrix() *
-                      Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(d->site_xmat + 9 * site);
+      r.task.X_WE.p =
+          Eigen::Map<const Eigen::Vector3d>(d->site_xpos + 3 * site) +
+          0.1 * unit(rng) * Eigen::Vector3d(unit(rng) - 0.5, unit(rng) - 0.5, unit(rng) - 0.5);
+      r.task.X_WE.R =
+          Eigen::AngleAxisd(0.5 * unit(rng), Eigen::Vector3d(unit(rng), unit(rng), 1).normalized())
+              .toRotationMatrix() *
+          Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(d->site_xmat + 9 * site);
       for (int k = 0; k < 6; ++k) {
         r.task.V_WE[k] = unit(rng) - 0.5;
         r.task.A_WE[k] = 2 * unit(rng) - 1;
@@ -104,12 +106,18 @@ void BM_TaskSpaceUpdate(benchmark::State& state) {
     M.push_back(dyn.mass_matrix());
     J.push_back(dyn.jacobian().topRows(rows));
   }
+  int eigen_path = 0;  // states whose Λ needed the eigendecomposition (not the Cholesky fast path)
+  for (int k = 0; k < kStates; ++k) {
+    ts.update(M[k], J[k]);
+    eigen_path += ts.eigendecomposed() ? 1 : 0;
+  }
   int k = 0;
   for (auto _ : state) {
     ts.update(M[k], J[k]);
     benchmark::DoNotOptimize(ts.nullspace().data());
     k = (k + 1) % kStates;
   }
+  state.counters["eigen_path"] = eigen_path;
   state.SetLabel(rows == 6 ? "pose task, Λ, J̄, N" : "position task, Λ, J̄, N");
 }
 BENCHMARK(BM_TaskSpaceUpdate)->Arg(6)->Arg(3);
@@ -141,11 +149,13 @@ void BM_Step(benchmark::State& state) {
   mjarm::Reference ref;
   const int site = s.chain.frame().id;
   ref.task.X_WE.p = Eigen::Map<const Eigen::Vector3d>(d->site_xpos + 3 * site);
-  ref.task.X_WE.R = Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(d->site_xmat + 9 * site);
+  ref.task.X_WE.R =
+      Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(d->site_xmat + 9 * site);
   mjarm::JointCommand command{mjarm::CommandKind::torque, Eigen::VectorXd::Zero(s.chain.size())};
   // without the controller, a constant torque equal to the bias forces at home keeps the arm near
   // home (no falling onto the floor, no contacts that would change the cost of a step)
-  for (int i = 0; i < s.chain.size(); ++i) d->ctrl[*s.chain.actuator(i)] = d->qfrc_bias[s.chain.dof_address(i)];
+  for (int i = 0; i < s.chain.size(); ++i)
+    d->ctrl[*s.chain.actuator(i)] = d->qfrc_bias[s.chain.dof_address(i)];
   for (auto _ : state) {
     if (with_osc) {
       mj_step1(&m, d.get());

@@ -16,8 +16,9 @@
 //   inside mj_inverse, without armature), for reference.
 // - ChainDynamicsUpdate/<robot>: ChainDynamics::update — M block, h, g, pose, J, velocity and
 //   J̇·q̇ of the end effector.
-// - TaskSpaceUpdate/<robot>: TaskSpaceDynamics::update on the full 6-row Jacobian — LLT of M,
-//   M⁻¹, Λ by a 6×6 eigendecomposition, J̄ and N.
+// - TaskSpaceUpdate/<robot>: TaskSpaceDynamics::update on the full 6-row Jacobian — Cholesky
+//   of M, Λ by the Cholesky fast path (the 6×6 eigendecomposition only for near-singular
+//   states), J̄; M⁻¹ and N are computed on demand and not timed.
 // The figures quoted in docs/dynamics.md come from `bench_dynamics --benchmark_min_time=0.5`.
 
 #include <benchmark/benchmark.h>
@@ -49,7 +50,8 @@ struct Arm {
     for (int k = 0; k < kStates; ++k) {
       DataPtr d = robot.make_data();
       for (int i = 0; i < chain.size(); ++i) {
-        d->qpos[chain.qpos_address(i)] = chain.lower()[i] + unit(rng) * (chain.upper()[i] - chain.lower()[i]);
+        d->qpos[chain.qpos_address(i)] =
+            chain.lower()[i] + unit(rng) * (chain.upper()[i] - chain.lower()[i]);
       }
       for (int i = 0; i < m.nv; ++i) d->qvel[i] = 4.0 * unit(rng) - 2.0;
       mj_forward(&m, d.get());
@@ -80,7 +82,9 @@ void MjInverse(benchmark::State& state) {
   int k = 0;
   for (auto _ : state) {
     const mjData& d = *a.states[static_cast<std::size_t>(k)];
-    for (int i = 0; i < a.chain.size(); ++i) qacc[static_cast<std::size_t>(a.chain.dof_address(i))] = a.qdd[static_cast<std::size_t>(k)][i];
+    for (int i = 0; i < a.chain.size(); ++i)
+      qacc[static_cast<std::size_t>(a.chain.dof_address(i))] =
+          a.qdd[static_cast<std::size_t>(k)][i];
     mju_copy(scratch->qpos, d.qpos, m.nq);
     mju_copy(scratch->qvel, d.qvel, m.nv);
     mju_copy(scratch->qacc, qacc.data(), m.nv);
@@ -97,7 +101,8 @@ void ChainInverseDynamics(benchmark::State& state) {
   Eigen::VectorXd tau(a.chain.size());
   int k = 0;
   for (auto _ : state) {
-    dyn.inverse_dynamics(*a.states[static_cast<std::size_t>(k)], a.qdd[static_cast<std::size_t>(k)], tau);
+    dyn.inverse_dynamics(*a.states[static_cast<std::size_t>(k)], a.qdd[static_cast<std::size_t>(k)],
+                         tau);
     benchmark::DoNotOptimize(tau.data());
     k = (k + 1) % kStates;
   }
@@ -134,7 +139,8 @@ void TaskSpaceUpdate(benchmark::State& state) {
   Arm& a = arm(static_cast<int>(state.range(0)));
   // one ChainDynamics per state, updated beforehand: only Λ, J̄, N are timed
   std::vector<ChainDynamics> dyn(kStates, ChainDynamics(a.chain));
-  for (int k = 0; k < kStates; ++k) dyn[static_cast<std::size_t>(k)].update(*a.states[static_cast<std::size_t>(k)]);
+  for (int k = 0; k < kStates; ++k)
+    dyn[static_cast<std::size_t>(k)].update(*a.states[static_cast<std::size_t>(k)]);
   TaskSpaceDynamics ts(a.chain.size(), 6);
   int k = 0;
   for (auto _ : state) {

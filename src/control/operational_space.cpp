@@ -105,9 +105,14 @@ void OperationalSpaceController::compute(const mjData& data, const Reference& re
 
   values_[0] = e.head<3>().norm();
   values_[1] = m == 6 ? e.tail<3>().norm() : 0.0;
-  values_[2] = task_space_.condition();
+  values_[2] = 0.0;  // lambda_condition: see internal_values()
   values_[3] = status == TaskSpaceStatus::ok ? 0.0 : 1.0;
   for (int i = 0; i < 6; ++i) values_[4 + i] = integral_[i];
+}
+
+std::span<const double> OperationalSpaceController::internal_values() const noexcept {
+  values_[2] = task_space_.condition();
+  return values_;
 }
 
 }  // namespace mjarm

@@ -44,7 +44,8 @@ VectorX reference_osc_torque(const mjModel& m, const mjData& d, int site, const 
     const double mass = o.task_inertia ? Lambda(i, i) : o.inertia[i];
     D[i] = o.damping[i] >= 0.0 ? o.damping[i] : 2.0 * o.damping_ratio * std::sqrt(mass * K[i]);
   }
-  const VectorX f = K.asDiagonal() * e + D.asDiagonal() * e_dot + Ki.asDiagonal() * integral.head(rows);
+  const VectorX f =
+      K.asDiagonal() * e + D.asDiagonal() * e_dot + Ki.asDiagonal() * integral.head(rows);
   // (each step into a named vector: GCC 12 reports a false use-after-free on the nested form)
   VectorX u = c.ref.task.A_WE.head(rows);
   if (!o.task_inertia) u += o.inertia.head(rows).cwiseInverse().asDiagonal() * f;
@@ -106,7 +107,8 @@ void check_against_formula(TaskMode mode, bool task_inertia, std::uint64_t seed)
     osc.compute(rig.d(), c.ref, command);
     if (osc.task_space().status() != TaskSpaceStatus::ok) continue;  // formula assumes exact Λ
     const int site = rig.chain.frame().id;
-    expect_close(command.value, reference_osc_torque(rig.m(), rig.d(), site, c, Vector6d::Zero()), 1e-8);
+    expect_close(command.value, reference_osc_torque(rig.m(), rig.d(), site, c, Vector6d::Zero()),
+                 1e-8);
     // second call 5 ms later: the integral holds e·Δt, clamped to ±1e-3
     const Vector6d e = test::reference_error(test::site_pose(rig.d(), site), c.ref.task.X_WE);
     Vector6d integral = (e * 5e-3).cwiseMax(-1e-3).cwiseMin(1e-3);
@@ -119,7 +121,9 @@ void check_against_formula(TaskMode mode, bool task_inertia, std::uint64_t seed)
   }
 }
 
-TEST(OperationalSpace, MatchesIndependentFormulaPose) { check_against_formula(TaskMode::pose, false, 1); }
+TEST(OperationalSpace, MatchesIndependentFormulaPose) {
+  check_against_formula(TaskMode::pose, false, 1);
+}
 TEST(OperationalSpace, MatchesIndependentFormulaPosition) {
   check_against_formula(TaskMode::position, false, 2);
 }
@@ -165,11 +169,13 @@ TEST(OperationalSpace, ConvergesOnPandaInSimulation) {
   const Pose home = test::site_pose(rig.d(), rig.chain.frame().id);
   Reference ref;
   ref.task.X_WE.p = home.p + Eigen::Vector3d(0.12, -0.15, -0.1);
-  ref.task.X_WE.R = Eigen::AngleAxisd(0.4, Eigen::Vector3d(1, 2, 0).normalized()).toRotationMatrix() * home.R;
+  ref.task.X_WE.R =
+      Eigen::AngleAxisd(0.4, Eigen::Vector3d(1, 2, 0).normalized()).toRotationMatrix() * home.R;
   OperationalSpaceController osc(rig.chain);
   const double error = run_closed_loop(rig, osc, ref, 2.0);
   EXPECT_LT(error, 1e-3);
-  const Vector6d e = test::reference_error(test::site_pose(rig.d(), rig.chain.frame().id), ref.task.X_WE);
+  const Vector6d e =
+      test::reference_error(test::site_pose(rig.d(), rig.chain.frame().id), ref.task.X_WE);
   EXPECT_LT(e.tail<3>().norm(), 1e-3);
   EXPECT_LT(osc.internal_values()[0], 1e-3);  // position_error internal agrees
 }
@@ -194,7 +200,7 @@ TEST(OperationalSpace, IntegralRemovesAConstantDisturbance) {
   };
   const double plain = offset(Vector6d::Zero());
   const double integral = offset(Vector6d::Constant(2000.0));
-  EXPECT_GT(plain, 5e-3);     // about 10 N / 400 N/m... shaped by Λ: millimetres
+  EXPECT_GT(plain, 5e-3);  // about 10 N / 400 N/m... shaped by Λ: millimetres
   EXPECT_LT(integral, 1e-4);
 }
 
@@ -233,6 +239,10 @@ TEST(OperationalSpace, InternalsAreNamedAndSized) {
   osc.compute(rig.d(), ref, command);
   EXPECT_GT(osc.internal_values()[2], 1.0);
   EXPECT_TRUE(std::isfinite(osc.internal_values()[2]));
+  // lambda_condition is filled on reading, from the eigenvalues of J·M⁻¹·Jᵀ of the last compute
+  const Eigen::VectorXd& eig = osc.task_space().eigenvalues();
+  EXPECT_NEAR(osc.internal_values()[2], eig[eig.size() - 1] / eig[0],
+              1e-9 * osc.internal_values()[2]);
   EXPECT_EQ(osc.name(), "osc");
   EXPECT_EQ(osc.command_kind(), CommandKind::torque);
 }
@@ -250,11 +260,14 @@ TEST(OperationalSpace, ComputeAllocatesNothing) {
       JointCommand command{CommandKind::torque, VectorX::Zero(7)};
       osc.compute(rig.d(), c.ref, command);  // warm-up
       const std::uint64_t before = test::malloc_calls();
+      double condition = 0.0;
       for (int k = 0; k < 100; ++k) {
         rig.d().time += 1e-3;
         osc.compute(rig.d(), c.ref, command);
+        condition += osc.internal_values()[2];  // the on-demand condition allocates nothing too
       }
       EXPECT_EQ(test::malloc_calls() - before, 0u);
+      EXPECT_TRUE(std::isfinite(condition));
     }
   }
 }

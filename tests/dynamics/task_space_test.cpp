@@ -37,7 +37,8 @@ TEST(TaskSpaceDynamics, IdentitiesAwayFromSingularities) {
       } else {
         J = dyn.jacobian();
       }
-      if (ts.update(dyn.mass_matrix(), J) != TaskSpaceStatus::ok) continue;  // too close to singular
+      if (ts.update(dyn.mass_matrix(), J) != TaskSpaceStatus::ok)
+        continue;  // too close to singular
       ++checked;
       const int n = chain.size();
       const int m = ts.task_rows();
@@ -112,6 +113,87 @@ TEST(TaskSpaceDynamics, BoundedThroughTheElbowSingularity) {
   EXPECT_GT(ts.condition(), 1e9);
 }
 
+// Λ, J̄, N, M⁻¹ and the eigenvalues of two instances, one forced onto the eigen path.
+void expect_same_outputs(const TaskSpaceDynamics& a, const TaskSpaceDynamics& b) {
+  const auto close = [](const Eigen::MatrixXd& x, const Eigen::MatrixXd& y) {
+    return (x - y).norm() <= 1e-9 * (1.0 + y.norm());
+  };
+  EXPECT_EQ(a.status(), b.status());
+  EXPECT_TRUE(close(a.lambda(), b.lambda()));
+  EXPECT_TRUE(close(a.lambda_inverse(), b.lambda_inverse()));
+  EXPECT_TRUE(close(a.jbar(), b.jbar()));
+  EXPECT_TRUE(close(a.nullspace(), b.nullspace()));
+  EXPECT_TRUE(close(a.mass_inverse(), b.mass_inverse()));
+  EXPECT_TRUE(close(a.eigenvalues(), b.eigenvalues()));
+}
+
+TEST(TaskSpaceDynamics, CholeskyFastPathMatchesEigenPath) {
+  // random panda states: the fast path certifies most of them, and then agrees with the
+  // eigendecomposition; the eigen path is taken exactly when an eigenvalue is at the floor
+  const Chain chain(Robot::bundled("panda"), "attachment_site");
+  DataPtr d = chain.robot().make_data();
+  ChainDynamics dyn(chain);
+  TaskSpaceOptions forced;
+  forced.always_eigendecompose = true;
+  std::mt19937 rng(11);
+  for (const int rows : {6, 3}) {
+    TaskSpaceDynamics fast(chain.size(), rows);
+    TaskSpaceDynamics robust(chain.size(), rows, forced);
+    const double floor = fast.options().min_eigenvalue;
+    int fast_states = 0;
+    for (int trial = 0; trial < 40; ++trial) {
+      random_state(chain, d.get(), rng);
+      dyn.update(*d);
+      fast.update(dyn);
+      robust.update(dyn);
+      EXPECT_TRUE(robust.eigendecomposed());
+      if (!fast.eigendecomposed()) {
+        ++fast_states;
+        EXPECT_EQ(fast.status(), TaskSpaceStatus::ok);
+        EXPECT_GT(robust.eigenvalues()[0], floor);  // the certificate holds
+      } else {
+        EXPECT_LT(robust.eigenvalues()[0], floor * (1.0 + 1e-9));  // not taken needlessly
+      }
+      expect_same_outputs(fast, robust);
+    }
+    EXPECT_GT(fast_states, 20);
+  }
+}
+
+TEST(TaskSpaceDynamics, EigenPathNearTheElbowSingularity) {
+  // planar2 straightening its elbow: the fast path is used while far from the singularity, the
+  // floored eigen path once the smallest eigenvalue drops below the floor
+  const Chain chain(Robot::bundled("planar2"), "tip");
+  DataPtr d = chain.robot().make_data();
+  ChainDynamics dyn(chain);
+  TaskSpaceOptions forced;
+  forced.always_eigendecompose = true;
+  TaskSpaceDynamics fast(2, 2);
+  TaskSpaceDynamics robust(2, 2, forced);
+  Eigen::MatrixXd J(2, 2);
+  bool saw_fast = false;
+  bool saw_floor = false;
+  for (double elbow = -0.6; elbow <= 1e-12; elbow += 0.01) {
+    const Eigen::Vector2d q(0.3, elbow);
+    chain.scatter(q, d->qpos);
+    mju_zero(d->qvel, chain.robot().model().nv);
+    mj_forward(&chain.robot().model(), d.get());
+    dyn.update(*d);
+    J << dyn.jacobian().row(0), dyn.jacobian().row(2);
+    const TaskSpaceStatus status = fast.update(dyn.mass_matrix(), J);
+    robust.update(dyn.mass_matrix(), J);
+    if (status == TaskSpaceStatus::damped) {
+      EXPECT_TRUE(fast.eigendecomposed());
+      saw_floor = true;
+    }
+    saw_fast = saw_fast || !fast.eigendecomposed();
+    expect_same_outputs(fast, robust);
+  }
+  EXPECT_TRUE(saw_fast);
+  EXPECT_TRUE(saw_floor);
+  EXPECT_EQ(fast.status(), TaskSpaceStatus::damped);
+}
+
 TEST(TaskSpaceDynamics, RankDeficientTaskIsDampedNotInfinite) {
   // a 6-row task on a 2-dof arm: J·M⁻¹·Jᵀ has rank 2
   const Chain chain(Robot::bundled("planar2"), "tip");
@@ -154,6 +236,10 @@ TEST(TaskSpaceDynamics, UpdateAllocatesNothing) {
     full.update(dyn);
     position.update(dyn);
     full.project_torque(tau0, tau);
+    // the lazily filled caches allocate nothing either
+    EXPECT_TRUE(full.nullspace().allFinite());
+    EXPECT_TRUE(full.mass_inverse().allFinite());
+    EXPECT_GT(full.condition(), 0.0);
   }
   EXPECT_EQ(test::malloc_calls() - calls, 0u);
   EXPECT_NE(full.status(), TaskSpaceStatus::not_positive_definite);

@@ -37,6 +37,12 @@ class Controller {
   virtual void compute(const mjData& data, const Reference& reference,
                        JointCommand& command) noexcept = 0;
 
+  /// True when the commands already cancel the bias forces (gravity, possibly Coriolis) through
+  /// the servo targets, as `GravityCompensationController` does. A `Simulation` in position mode
+  /// with `SimulationOptions::gravity_compensation` on also adds those forces, so it refuses such
+  /// a controller rather than compensate twice.
+  virtual bool compensates_bias() const noexcept { return false; }
+
   /// Forgets internal state (integrators, filters) before a new run.
   virtual void reset() noexcept {}
 

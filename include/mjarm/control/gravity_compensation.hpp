@@ -81,11 +81,14 @@ class GravityCompensationController final : public Controller {
 
   std::string_view name() const noexcept override { return "gravity-servo"; }
   CommandKind command_kind() const noexcept override { return CommandKind::position; }
+  /// True: the targets carry the bias offset b / k.
+  bool compensates_bias() const noexcept override { return true; }
   const Chain& chain() const noexcept override { return compensation_.chain(); }
   const ServoBiasCompensation& compensation() const noexcept { return compensation_; }
 
   /// One tick; a command of the wrong size is left untouched.
-  void compute(const mjData& data, const Reference& reference, JointCommand& command) noexcept override;
+  void compute(const mjData& data, const Reference& reference,
+               JointCommand& command) noexcept override;
   /// Forgets the held position.
   void reset() noexcept override { latched_ = false; }
 
@@ -115,7 +118,8 @@ class GravityHoldController final : public Controller {
   const Chain& chain() const noexcept override { return dynamics_.chain(); }
 
   /// One tick; a command of the wrong size is left untouched.
-  void compute(const mjData& data, const Reference& reference, JointCommand& command) noexcept override;
+  void compute(const mjData& data, const Reference& reference,
+               JointCommand& command) noexcept override;
 
   std::span<const std::string> internal_names() const noexcept override { return names_; }
   std::span<const double> internal_values() const noexcept override { return values_; }

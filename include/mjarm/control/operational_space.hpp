@@ -67,10 +67,13 @@ struct OperationalSpaceOptions {
 ///
 /// Internals: position_error [m], orientation_error [rad], lambda_condition (condition number of
 /// J·M⁻¹·Jᵀ), lambda_damped (1 when Λ was floored), integral_x … integral_rz [m·s, rad·s].
+/// lambda_condition needs the eigenvalues of J·M⁻¹·Jᵀ, which the fast path of
+/// `TaskSpaceDynamics` skips: it is computed when `internal_values` is read, not in `compute`.
 class OperationalSpaceController final : public Controller {
  public:
   /// @throws Error when a gain, inertia, ratio or limit is out of range or not finite.
-  explicit OperationalSpaceController(const Chain& chain, const OperationalSpaceOptions& options = {});
+  explicit OperationalSpaceController(const Chain& chain,
+                                      const OperationalSpaceOptions& options = {});
 
   std::string_view name() const noexcept override { return "osc"; }
   CommandKind command_kind() const noexcept override { return CommandKind::torque; }
@@ -92,7 +95,8 @@ class OperationalSpaceController final : public Controller {
   const TaskSpaceDynamics& task_space() const noexcept { return task_space_; }
 
   std::span<const std::string> internal_names() const noexcept override { return names_; }
-  std::span<const double> internal_values() const noexcept override { return values_; }
+  /// Fills lambda_condition on demand (an eigenvalue solve `compute` does not pay for).
+  std::span<const double> internal_values() const noexcept override;
 
  private:
   OperationalSpaceOptions options_;
@@ -108,11 +112,10 @@ class OperationalSpaceController final : public Controller {
   Eigen::VectorXd tau0_;     // n
   Eigen::VectorXd null_;     // n
   Eigen::VectorXd passive_;  // n
-  std::array<std::string, 10> names_{"position_error", "orientation_error", "lambda_condition",
-                                     "lambda_damped",  "integral_x",        "integral_y",
-                                     "integral_z",     "integral_rx",       "integral_ry",
-                                     "integral_rz"};
-  std::array<double, 10> values_{};
+  std::array<std::string, 10> names_{
+      "position_error", "orientation_error", "lambda_condition", "lambda_damped", "integral_x",
+      "integral_y",     "integral_z",        "integral_rx",      "integral_ry",   "integral_rz"};
+  mutable std::array<double, 10> values_{};  // [2] filled by internal_values()
 };
 
 }  // namespace mjarm

@@ -4,8 +4,8 @@
 /// inverse J̄ and the null-space projector N of one task Jacobian, with a bounded path near
 /// singularities.
 
-#include <Eigen/Core>
 #include <Eigen/Cholesky>
+#include <Eigen/Core>
 #include <Eigen/Eigenvalues>
 
 #include "mjarm/dynamics/chain_dynamics.hpp"
@@ -19,6 +19,9 @@ struct TaskSpaceOptions {
   /// (1000 kg or kg·m² by default). Away from singularities (every eigenvalue above the floor)
   /// Λ is the exact inverse. Must be > 0 and finite.
   double min_eigenvalue = 1e-3;
+  /// Always take the eigendecomposition path, even when the Cholesky fast path certifies that
+  /// no eigenvalue is below the floor (the results agree to rounding; for tests and comparisons).
+  bool always_eigendecompose = false;
 };
 
 /// Outcome of one `TaskSpaceDynamics::update`.
@@ -39,12 +42,18 @@ const char* to_string(TaskSpaceStatus status) noexcept;
 ///     N = I − J̄·J               n×n   null-space projector of joint velocities; Nᵀ for torques
 ///
 /// Λ⁻¹ is eigendecomposed (V·diag(λ)·Vᵀ) and Λ = V·diag(1/max(λ, floor))·Vᵀ: exact away from
-/// singularities. Always: M·N = Nᵀ·M and N·M⁻¹ = M⁻¹·Nᵀ (N is self-adjoint in the M inner
+/// singularities. Fast path: when Λ⁻¹ − floor·I has a Cholesky factorization (it is positive
+/// definite, so every eigenvalue of Λ⁻¹ is above the floor and nothing would be floored), Λ is
+/// the Cholesky inverse of Λ⁻¹ and the eigendecomposition is skipped; otherwise the eigen path
+/// runs. Always: M·N = Nᵀ·M and N·M⁻¹ = M⁻¹·Nᵀ (N is self-adjoint in the M inner
 /// product).
 /// When no eigenvalue is floored (status ok) also: Λ·J·M⁻¹·Jᵀ = I, J·J̄ = I, N·J̄ = 0, J·N = 0,
 /// N² = N. When floored (status damped) they hold only along the unfloored eigen-directions.
 ///
 /// All buffers are allocated in the constructor; `update` allocates nothing and never throws.
+/// M⁻¹, N and the eigenvalues are computed on first access after an `update` (cached, no
+/// allocation): a control tick that needs only Λ, J̄ and `project_torque` does not pay for them.
+/// Those accessors are const but fill a cache: do not call them concurrently on one object.
 class TaskSpaceDynamics {
  public:
   /// @param dofs n, the number of joint-space dofs (≥ 1).
@@ -52,8 +61,8 @@ class TaskSpaceDynamics {
   /// @throws Error when a size is out of range or options.min_eigenvalue is not > 0 and finite.
   TaskSpaceDynamics(int dofs, int task_rows = 6, TaskSpaceOptions options = {});
 
-  int dofs() const noexcept { return n_; }        ///< n
-  int task_rows() const noexcept { return m_; }   ///< m
+  int dofs() const noexcept { return n_; }                               ///< n
+  int task_rows() const noexcept { return m_; }                          ///< m
   const TaskSpaceOptions& options() const noexcept { return options_; }  ///< as constructed
 
   /// Recomputes everything from @p M (n×n, symmetric positive definite) and @p J (m×n).
@@ -68,23 +77,30 @@ class TaskSpaceDynamics {
   /// Status of the last `update`.
   TaskSpaceStatus status() const noexcept { return status_; }
 
-  /// M⁻¹ (n×n).
-  const Eigen::MatrixXd& mass_inverse() const noexcept { return M_inv_; }
+  /// True when the last successful `update` went through the eigendecomposition (robust) path,
+  /// false when the Cholesky fast path certified Λ (always true with status damped).
+  bool eigendecomposed() const noexcept { return eigendecomposed_; }
+
+  /// M⁻¹ (n×n), computed on first access after an update.
+  const Eigen::MatrixXd& mass_inverse() const noexcept;
   /// Λ (m×m, symmetric positive definite) [kg for linear rows, kg·m² for angular rows].
   const Eigen::MatrixXd& lambda() const noexcept { return Lambda_; }
   /// Λ⁻¹ = J·M⁻¹·Jᵀ as computed (m×m), before flooring.
   const Eigen::MatrixXd& lambda_inverse() const noexcept { return Lambda_inv_; }
   /// J̄ = M⁻¹·Jᵀ·Λ (n×m).
   const Eigen::MatrixXd& jbar() const noexcept { return Jbar_; }
-  /// N = I − J̄·J (n×n); a joint torque τ₀ acts in the null space as Nᵀ·τ₀.
-  const Eigen::MatrixXd& nullspace() const noexcept { return N_; }
+  /// N = I − J̄·J (n×n), computed on first access after an update; a joint torque τ₀ acts in the
+  /// null space as Nᵀ·τ₀.
+  const Eigen::MatrixXd& nullspace() const noexcept;
 
-  /// Writes Nᵀ·@p tau0 into @p tau (both n): the part of τ₀ that produces no task acceleration.
+  /// Writes Nᵀ·@p tau0 = τ₀ − Jᵀ·(J̄ᵀ·τ₀) into @p tau (both n, distinct): the part of τ₀ that
+  /// produces no task acceleration (without forming N).
   void project_torque(const Eigen::Ref<const Eigen::VectorXd>& tau0,
                       Eigen::Ref<Eigen::VectorXd> tau) const noexcept;
 
-  /// Eigenvalues of J·M⁻¹·Jᵀ, ascending (m), before flooring.
-  const Eigen::VectorXd& eigenvalues() const noexcept { return eigenvalues_; }
+  /// Eigenvalues of J·M⁻¹·Jᵀ, ascending (m), before flooring (computed on first access after an
+  /// update on the fast path).
+  const Eigen::VectorXd& eigenvalues() const noexcept;
   /// Smallest singular value of J·M^(−1/2) = √(smallest eigenvalue of J·M⁻¹·Jᵀ); → 0 at a
   /// singularity.
   double min_singular_value() const noexcept;
@@ -96,22 +112,36 @@ class TaskSpaceDynamics {
   using SmallMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, 6, 6>;
   using SmallVector = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 6, 1>;
 
+  /// Λ from Λ⁻¹ (in Lambda_inv_) by the eigendecomposition with the floor; true when floored.
+  bool eigen_lambda() noexcept;
+  /// Fills eigenvalues_ from Lambda_inv_.
+  void compute_eigenvalues() const noexcept;
+
   int n_ = 0;
   int m_ = 0;
   TaskSpaceOptions options_;
   TaskSpaceStatus status_ = TaskSpaceStatus::ok;
-  Eigen::LLT<Eigen::MatrixXd> llt_;
-  Eigen::SelfAdjointEigenSolver<SmallMatrix> eigen_;
-  SmallMatrix small_;  // Λ⁻¹ handed to the eigen solver
-  SmallMatrix scaled_vectors_;  // V·diag(1/λ)
-  Eigen::MatrixXd M_inv_;
-  Eigen::MatrixXd MinvJt_;  // n×m
+  bool eigendecomposed_ = true;
+  Eigen::MatrixXd chol_;       // n×n, lower Cholesky factor L of M (M = L·Lᵀ)
+  Eigen::MatrixXd chol_work_;  // n×n, factorization in progress (swapped in on success)
+  Eigen::MatrixXd J_;          // m×n, the task Jacobian of the last update
+  Eigen::MatrixXd Y_;          // n×m, L⁻¹·Jᵀ
+  Eigen::MatrixXd MinvJt_;     // n×m, M⁻¹·Jᵀ
   Eigen::MatrixXd Lambda_inv_;
   Eigen::MatrixXd Lambda_;
   Eigen::MatrixXd Jbar_;
-  Eigen::MatrixXd N_;
-  Eigen::VectorXd eigenvalues_;
-  SmallVector scaled_;  // 1 / floored eigenvalues
+  SmallMatrix small_;           // Λ⁻¹ handed to the eigen solver / its Cholesky factor
+  SmallMatrix scaled_vectors_;  // V·diag(1/λ); on the fast path R⁻¹
+  SmallVector scaled_;          // 1 / floored eigenvalues
+  Eigen::VectorXd work_;        // n
+  // caches filled on first access after an update
+  mutable Eigen::SelfAdjointEigenSolver<SmallMatrix> eigen_;
+  mutable Eigen::MatrixXd M_inv_;
+  mutable Eigen::MatrixXd N_;
+  mutable Eigen::VectorXd eigenvalues_;
+  mutable bool M_inv_ready_ = true;
+  mutable bool N_ready_ = true;
+  mutable bool eigenvalues_ready_ = true;
 };
 
 }  // namespace mjarm
