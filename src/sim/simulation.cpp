@@ -18,8 +18,10 @@ int steps_per_tick_of(const mjModel& m, double period) {
   }
   if (period == 0.0) return 1;
   if (!(std::isfinite(period) && period > 0.0)) {
-    throw Error("simulation: control_period must be positive and finite (or 0 for one physics "
-                "step), got " + std::to_string(period) + " s");
+    throw Error(
+        "simulation: control_period must be positive and finite (or 0 for one physics "
+        "step), got " +
+        std::to_string(period) + " s");
   }
   const double n = std::round(period / h);
   if (n < 1.0 || std::abs(n * h - period) > 1e-9 * period) {
@@ -135,10 +137,19 @@ void Simulation::add_controller(Controller& controller) {
   const CommandKind wanted =
       options_.mode == SimulationMode::torque ? CommandKind::torque : CommandKind::position;
   if (controller.command_kind() != wanted) {
-    throw Error("simulation: " + std::string(to_string(options_.mode)) + " mode takes " +
-                (wanted == CommandKind::torque ? "torque" : "position") + " commands, but controller '" +
-                name + "' writes " +
-                (controller.command_kind() == CommandKind::torque ? "torques" : "position targets"));
+    throw Error(
+        "simulation: " + std::string(to_string(options_.mode)) + " mode takes " +
+        (wanted == CommandKind::torque ? "torque" : "position") + " commands, but controller '" +
+        name + "' writes " +
+        (controller.command_kind() == CommandKind::torque ? "torques" : "position targets"));
+  }
+  if (options_.mode == SimulationMode::position && options_.gravity_compensation &&
+      controller.compensates_bias()) {
+    // both would cancel the bias: the servos would settle b / k past their targets
+    throw Error("simulation: controller '" + name +
+                "' already compensates the bias forces through its servo targets, and this "
+                "position-mode simulation adds them too; set SimulationOptions::"
+                "gravity_compensation = false to use it");
   }
   if (&controller.chain().robot().model() != &robot_.model()) {
     throw Error("simulation: controller '" + name + "' was built for model '" +
@@ -149,7 +160,8 @@ void Simulation::add_controller(Controller& controller) {
   for (int i = 0; i < binding->size(); ++i) {
     const int other = commanded_by_[binding->actuators()[i]];
     if (other >= 0) {
-      throw Error("simulation: joint '" + binding->joint_names()[i] + "' is already commanded by controller '" +
+      throw Error("simulation: joint '" + binding->joint_names()[i] +
+                  "' is already commanded by controller '" +
                   std::string(controllers_[other].controller->name()) + "'; controller '" + name +
                   "' cannot command it too");
     }

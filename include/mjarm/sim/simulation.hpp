@@ -59,12 +59,12 @@ class Simulation {
   const mjData& data() const noexcept { return *data_; }
   const SimulationOptions& options() const noexcept { return options_; }
   SimulationMode mode() const noexcept { return options_.mode; }
-  double timestep() const noexcept { return robot_.model().opt.timestep; }  ///< [s]
+  double timestep() const noexcept { return robot_.model().opt.timestep; }         ///< [s]
   double control_period() const noexcept { return timestep() * steps_per_tick_; }  ///< [s]
   int steps_per_tick() const noexcept { return steps_per_tick_; }
   double time() const noexcept { return data_->time; }  ///< simulated time [s]
   bool uses_rk4() const noexcept { return robot_.model().opt.integrator == mjINT_RK4; }
-  std::int64_t ticks() const noexcept { return ticks_; }  ///< control ticks since reset
+  std::int64_t ticks() const noexcept { return ticks_; }          ///< control ticks since reset
   std::int64_t physics_steps() const noexcept { return steps_; }  ///< physics steps since reset
 
   // ---- state ----
@@ -85,7 +85,9 @@ class Simulation {
   /// The simulation keeps a reference: @p controller must outlive it.
   /// @throws Error when the mode takes no controllers (kinematic) or another kind of command,
   ///         when its chain belongs to another model, when a joint lacks a fitting actuator, or
-  ///         when an actuator is already commanded by another controller.
+  ///         when an actuator is already commanded by another controller, or when the controller
+  ///         compensates the bias forces itself (`Controller::compensates_bias`) in position mode
+  ///         with `SimulationOptions::gravity_compensation` on (the bias would count twice).
   void add_controller(Controller& controller);
   int controller_count() const noexcept { return static_cast<int>(controllers_.size()); }
   Controller& controller(int i) const { return *controllers_.at(i).controller; }
@@ -169,8 +171,8 @@ class Simulation {
   DataPtr data_;
   int steps_per_tick_ = 1;
   std::vector<ControllerSlot> controllers_;
-  std::vector<int> commanded_by_;  // per actuator: controller index or −1
-  std::vector<int> gravity_dofs_;  // dofs compensated in position mode
+  std::vector<int> commanded_by_;      // per actuator: controller index or −1
+  std::vector<int> gravity_dofs_;      // dofs compensated in position mode
   std::vector<double> gravity_added_;  // what compensate_gravity added to qfrc_applied, per dof
   std::vector<std::uint8_t> saturated_;
   std::vector<std::int64_t> saturation_counts_;
@@ -178,7 +180,7 @@ class Simulation {
   DivergenceDetector detector_;
   StepFault fault_;
   Snapshot snapshot_;
-  Reference reference_;  // filled by a source each tick (reused storage)
+  Reference reference_;            // filled by a source each tick (reused storage)
   std::vector<double> move_qpos_;  // scratch full qpos for the chain form of move
   std::int64_t ticks_ = 0;
   std::int64_t steps_ = 0;

@@ -33,7 +33,9 @@ struct SimulationOptions {
 
   /// Position mode only: every physics step, add the bias forces qfrc_bias (gravity, Coriolis,
   /// centrifugal) of each dof driven by a position servo to qfrc_applied, so the servos do not
-  /// sag under gravity. Ignored in the other modes.
+  /// sag under gravity. Ignored in the other modes. Switch it off for a controller that
+  /// compensates through its servo targets (`GravityCompensationController`):
+  /// `Simulation::add_controller` refuses that pairing.
   bool gravity_compensation = true;
 
   /// Divergence bound on |qacc| [rad/s² or m/s²]: a larger acceleration stops the run as diverged.
