@@ -56,6 +56,31 @@ void add_pose(sim_detail::CsvStream& csv, const double* p, const double* R_rowma
   for (double q : quat) csv.add(q);
 }
 
+// The range of the actuator's scalar force (before the gear): forcerange when force-limited; a
+// motor (force = gain·ctrl) is also bounded by gain·ctrlrange, which the simulation clips to.
+sim_detail::SummaryInfo::Actuator actuator_info(const mjModel& m, const ActuatorInfo& a) {
+  sim_detail::SummaryInfo::Actuator out;
+  out.name = a.name;
+  out.kind = to_string(a.kind);
+  out.joint = a.joint ? object_name(m, mjOBJ_JOINT, *a.joint, "joint") : "";
+  out.gear = a.gear;
+  double lower = -std::numeric_limits<double>::infinity(), upper = -lower;
+  if (a.force_limited) {
+    lower = a.force_lower;
+    upper = a.force_upper;
+  }
+  if (a.kind == ActuatorKind::motor && a.ctrl_limited) {
+    const double gain = m.actuator_gainprm[a.id * mjNGAIN];
+    const double l = gain * a.ctrl_lower, u = gain * a.ctrl_upper;
+    lower = std::max(lower, std::min(l, u));
+    upper = std::min(upper, std::max(l, u));
+  }
+  out.force_limited = std::isfinite(lower) && std::isfinite(upper) && lower < upper;
+  out.force_lower = lower;
+  out.force_upper = upper;
+  return out;
+}
+
 }  // namespace
 
 struct Recorder::Impl {
@@ -69,6 +94,7 @@ struct Recorder::Impl {
   std::vector<int> saturation_columns;  // actuators with a sat.* column
   std::vector<std::int64_t> saturation_counts;  // per saturation column
   std::int64_t steps_seen = 0;
+  bool contact_forces = true;  // false in kinematic mode: no constraint forces are computed
   sim_detail::SummaryInfo info;
 
   Impl(const Simulation& sim, const std::filesystem::path& dir, const RecorderOptions& opt)
@@ -94,12 +120,16 @@ Recorder::Recorder(const Simulation& simulation, const std::filesystem::path& di
   impl_ = std::make_unique<Impl>(simulation, directory, options);
   Impl& im = *impl_;
   im.frame = frame;
+  im.contact_forces = simulation.mode() != SimulationMode::kinematic;
 
   std::vector<std::string> state_columns{"t"};
   add_joint_columns(m, "q.", true, state_columns);
   add_joint_columns(m, "v.", false, state_columns);
   for (int a = 0; a < m.nu; ++a) state_columns.push_back("ctrl." + object_name(m, mjOBJ_ACTUATOR, a, "actuator"));
   for (int a = 0; a < m.nu; ++a) state_columns.push_back("force." + object_name(m, mjOBJ_ACTUATOR, a, "actuator"));
+  // every contact of the model, summed: what `mjarm plot` draws as the contact force
+  state_columns.push_back("contact.count");
+  state_columns.push_back("contact.normal_force");
 
   std::vector<std::string> task_columns{"t"};
   if (frame) {
@@ -165,6 +195,7 @@ Recorder::Recorder(const Simulation& simulation, const std::filesystem::path& di
                                 controller.chain().joint_names()});
   }
   for (int a : im.saturation_columns) info.saturation.push_back({object_name(m, mjOBJ_ACTUATOR, a, "actuator"), 0});
+  for (const ActuatorInfo& a : robot.actuators()) info.actuators.push_back(actuator_info(m, a));
   info.files = {{"state", kState, static_cast<int>(state_columns.size())},
                 {"task", kTask, static_cast<int>(task_columns.size())},
                 {"events", kEvents, 3}};
@@ -243,6 +274,19 @@ void Recorder::on_physics_step(const Simulation& simulation, double time, const 
   for (int i = 0; i < m.nv; ++i) csv.add(qvel[i]);
   for (int a = 0; a < m.nu; ++a) csv.add(d.ctrl[a]);
   for (int a = 0; a < m.nu; ++a) csv.add(d.actuator_force[a]);
+  // after the step d holds the contacts of the state at `time` and their constraint forces
+  int contacts = 0;
+  double normal_force = 0.0;
+  for (int c = 0; c < d.ncon; ++c) {
+    if (d.contact[c].exclude != 0) continue;
+    ++contacts;
+    if (d.contact[c].efc_address < 0) continue;
+    mjtNum f_C[6];
+    mj_contactForce(&m, &d, c, f_C);
+    normal_force += f_C[0];
+  }
+  csv.add(static_cast<double>(contacts));
+  csv.add(im.contact_forces ? normal_force : kNaN);
   csv.end_row();
 }
 

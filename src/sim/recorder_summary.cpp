@@ -82,6 +82,16 @@ std::string summary_json(const SummaryInfo& info) {
                   std::to_string(info.saturation[k].ticks);
   }
   field("saturated_ticks", saturation + "}");
+  std::string actuators = "[";
+  for (std::size_t k = 0; k < info.actuators.size(); ++k) {
+    const auto& a = info.actuators[k];
+    const std::string range =
+        a.force_limited ? "[" + number(a.force_lower) + ", " + number(a.force_upper) + "]" : "null";
+    actuators += std::string(k ? ", " : "") + "{\"name\": " + json_string(a.name) +
+                 ", \"kind\": " + json_string(a.kind) + ", \"joint\": " + json_string(a.joint) +
+                 ", \"gear\": " + number(a.gear) + ", \"force_range\": " + range + "}";
+  }
+  field("actuators", actuators + "]");
   std::string files = "{";
   for (std::size_t k = 0; k < info.files.size(); ++k) {
     files += (k ? ", " : "") + json_string(info.files[k].layer) + ": {\"file\": " + json_string(info.files[k].name) +

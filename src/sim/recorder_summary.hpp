@@ -18,6 +18,13 @@ struct SummaryInfo {
     std::string actuator;
     std::int64_t ticks = 0;
   };
+  /// One actuator and the range of its scalar force (the state.csv `force.<actuator>` column).
+  struct Actuator {
+    std::string name, kind, joint;  // joint empty when the transmission is not a joint
+    double gear = 1.0;
+    bool force_limited = false;  // false: no finite range is known
+    double force_lower = 0.0, force_upper = 0.0;
+  };
   struct File {
     std::string layer;
     std::string name;
@@ -31,6 +38,7 @@ struct SummaryInfo {
   std::string status, message, write_error;
   std::vector<ControllerInfo> controllers;
   std::vector<Saturation> saturation;
+  std::vector<Actuator> actuators;
   std::vector<File> files;
 };
 

@@ -81,7 +81,7 @@ TEST(Recorder, WritesThreeLayersAndASummary) {
                         "ctrl.elbow", "force.shoulder", "force.elbow"}) {
     EXPECT_GE(state.column(c), 0) << c;
   }
-  EXPECT_EQ(state.header.size(), 9u);
+  EXPECT_EQ(state.header.size(), 11u);  // and contact.count, contact.normal_force
   EXPECT_EQ(state.rows.size(), 125u);  // 250 physics steps, every second one
   // the first row is the start state, the ctrl applied during that step, and its force
   EXPECT_EQ(state.value(0, "t"), 0.0);

@@ -6,7 +6,9 @@
 /// Layers (one CSV file each, header row of named columns):
 /// - state.csv: every physics step, or every N-th (`state_decimation`): `t`, `q.<joint>`,
 ///   `v.<joint>` (`.k` suffix for each coordinate of free/ball joints), `ctrl.<actuator>`,
-///   `force.<actuator>` (MuJoCo's actuator_force: the scalar actuator force, before the gear).
+///   `force.<actuator>` (MuJoCo's actuator_force: the scalar actuator force, before the gear),
+///   `contact.count` (active contacts of the whole model) and `contact.normal_force` (the sum of
+///   their normal forces [N]; NaN in kinematic mode, where no constraint forces are computed).
 ///   Row at time t: qpos/qvel at t, with the ctrl applied and the actuator force produced during
 ///   the step from t to t + h.
 /// - task.csv: every control tick: `t`; the end-effector frame E (`ee.x ee.y ee.z ee.qw ee.qx
@@ -15,6 +17,9 @@
 ///   (NaN when reference.joint.q does not have that size); per controller `cmd.<ctrl>.<joint>`
 ///   and `<ctrl>.<internal>`; `sat.<actuator>` (1 when clipped this tick).
 /// - events.csv: `t,kind,message` for phase changes, grasps, warnings, divergence, interrupts.
+/// - summary.json also lists the actuators: name, kind, joint, gear and `force_range`, the range
+///   of the `force.<actuator>` column (forcerange, and gain·ctrlrange for motors; null when
+///   unbounded).
 ///
 /// Atomicity: every file is written into DIR/.partial-XXXXXX and moved into DIR by `finalize`,
 /// summary.json last: a DIR with summary.json holds a complete recording. The destructor
