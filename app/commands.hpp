@@ -34,6 +34,7 @@ Command add_bench_command(CLI::App& root);          ///< `mjarm bench ik MODEL �
 Command add_render_command(CLI::App& root);         ///< `mjarm render MODEL --out P` (cmd_render.cpp)
 Command add_view_command(CLI::App& root);           ///< `mjarm view [MODEL]` (cmd_view.cpp)
 Command add_run_command(CLI::App& root);            ///< `mjarm run shelf-pick …` (cmd_run.cpp)
+Command add_plot_command(CLI::App& root);           ///< `mjarm plot RECORDING …` (cmd_plot.cpp)
 
 /// Everything `info` reports about a model, as JSON.
 Json model_json(const Robot& robot);

@@ -1,0 +1,92 @@
+// `mjarm plot RECORDING [--out DIR] [--size WxH] [--json]`: PNG figures of a recording made with
+// `mjarm run … --record DIR`, drawn by gnuplot (Debian package gnuplot-nox).
+
+#include <iostream>
+#include <memory>
+
+#include "commands.hpp"
+#include "mjarm/plot/plots.hpp"
+
+namespace mjarm::cli {
+namespace {
+
+struct PlotSize {
+  int width = 1280;
+  int height = 720;
+};
+
+// "WxH" with whole numbers, 200x150 … 16384x16384; empty text when valid
+std::string check_size(const std::string& text, PlotSize* size) {
+  const auto x = text.find_first_of("xX");
+  auto whole = [](const std::string& s) {
+    return !s.empty() && s.size() <= 5 && s.find_first_not_of("0123456789") == std::string::npos;
+  };
+  if (x == std::string::npos || !whole(text.substr(0, x)) || !whole(text.substr(x + 1)))
+    return "'" + text + "' is not a size WIDTHxHEIGHT in pixels (e.g. 1280x720)";
+  const int w = std::stoi(text.substr(0, x)), h = std::stoi(text.substr(x + 1));
+  if (w < 200 || h < 150 || w > 16384 || h > 16384)
+    return "plot size '" + text + "' must be between 200x150 and 16384x16384 pixels";
+  if (size != nullptr) *size = {w, h};
+  return {};
+}
+
+}  // namespace
+
+Command add_plot_command(CLI::App& root) {
+  struct Options {
+    std::string recording;
+    std::string out;
+    std::string size = "1280x720";
+    bool json = false;
+  };
+  auto options = std::make_shared<Options>();
+  CLI::App* app = root.add_subcommand(
+      "plot",
+      "draw PNG figures of a recording: tracking error, joint torques, contact force, phases");
+  app->footer(
+      "RECORDING is a folder written by `mjarm run … --record DIR`. Four figures are written: "
+      "tracking_error.png, joint_torques.png, contact_force.png, phases.png; the gnuplot script "
+      "and data stay in OUT/gnuplot/. Needs gnuplot (Debian: apt-get install gnuplot-nox).");
+  app->add_option("RECORDING", options->recording,
+                  "recording folder (state.csv, task.csv, events.csv, summary.json)")
+      ->required();
+  app->add_option("--out", options->out, "folder for the PNG files [default: RECORDING/plots]");
+  app->add_option("--size", options->size, "figure size WIDTHxHEIGHT [pixels]")
+      ->capture_default_str()
+      ->check(CLI::Validator([](std::string& text) { return check_size(text, nullptr); }, "WxH",
+                             "size"));
+  add_json_flag(*app, options->json);
+
+  return {app, [options] {
+            PlotSize size;
+            check_size(options->size, &size);
+            plot::PlotOptions plot_options;
+            plot_options.width = size.width;
+            plot_options.height = size.height;
+            const plot::Recording recording = plot::Recording::load(options->recording);
+            const std::filesystem::path out = options->out.empty()
+                                                  ? recording.directory() / "plots"
+                                                  : std::filesystem::path(options->out);
+            const std::vector<plot::PlotInfo> plots =
+                plot::make_plots(recording, out, plot_options);
+            if (options->json) {
+              Json document;
+              document["recording"] = options->recording;
+              document["out"] = out.string();
+              document["size"] = {{"width", size.width}, {"height", size.height}};
+              document["plots"] = Json::array();
+              for (const plot::PlotInfo& p : plots) {
+                document["plots"].push_back({{"name", p.name},
+                                             {"path", p.path.string()},
+                                             {"title", p.title},
+                                             {"series", p.series},
+                                             {"notes", p.notes}});
+              }
+              print_json(document);
+              return;
+            }
+            for (const plot::PlotInfo& p : plots) std::cout << p.path.string() << '\n';
+          }};
+}
+
+}  // namespace mjarm::cli

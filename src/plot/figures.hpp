@@ -1,0 +1,41 @@
+#pragma once
+// The four figures of `make_plots`, each as gnuplot commands plus the data files they read.
+
+#include <filesystem>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "mjarm/plot/plots.hpp"
+#include "mjarm/plot/recording.hpp"
+
+namespace mjarm::plot::detail {
+
+struct Figure {
+  PlotInfo info;
+  // data files (absolute path, whitespace-separated text) the script reads
+  std::vector<std::pair<std::filesystem::path, std::string>> data;
+  std::string script;  // drawing commands, after the common `set terminal` / `set output`
+};
+
+// Each figure names its data files after itself inside data_dir.
+Figure tracking_error_figure(const Recording& recording, const std::filesystem::path& data_dir);
+Figure joint_torques_figure(const Recording& recording, const std::filesystem::path& data_dir);
+Figure contact_force_figure(const Recording& recording, const std::filesystem::path& data_dir);
+Figure phases_figure(const Recording& recording, const std::filesystem::path& data_dir);
+
+// Helpers shared by the figures (figure_style.cpp).
+std::string gp_string(const std::string& text);    // a gnuplot string literal
+std::string gp_number(double value);               // shortest text gnuplot reads back; NaN as "NaN"
+std::string line_color(std::size_t k);             // distinct colours for curves
+std::string band_color(std::size_t k);             // light colours for phase bands
+std::string describe(const Recording& recording);  // "panda_torque, osc, finished"
+// [t0, t1] of the run (never empty)
+std::pair<double, double> time_range(const Recording& recording);
+// The run's time range as the x range, and light phase bands behind a time plot, named at the
+// top.
+std::string phase_background(const Recording& recording);
+// Common look: fonts, grid, key frame.
+std::string common_style();
+
+}  // namespace mjarm::plot::detail

@@ -1,0 +1,109 @@
+#include "mjarm/plot/gnuplot.hpp"
+
+#include <fcntl.h>
+#include <signal.h>
+#include <spawn.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <chrono>
+#include <cstdlib>
+#include <cstring>
+#include <thread>
+#include <vector>
+
+#include "mjarm/error.hpp"
+
+extern char** environ;
+
+namespace mjarm::plot {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string read_log(int fd) {
+  std::string text;
+  ::lseek(fd, 0, SEEK_SET);
+  char buffer[4096];
+  for (ssize_t n; (n = ::read(fd, buffer, sizeof(buffer))) > 0;)
+    text.append(buffer, static_cast<std::size_t>(n));
+  while (!text.empty() && (text.back() == '\n' || text.back() == ' ')) text.pop_back();
+  if (text.size() > 2000) text = text.substr(0, 2000) + " …";
+  return text;
+}
+
+}  // namespace
+
+fs::path find_gnuplot() {
+  const char* path = std::getenv("PATH");
+  std::string dirs = path != nullptr ? path : "";
+  std::size_t start = 0;
+  while (start <= dirs.size()) {
+    const std::size_t end = std::min(dirs.find(':', start), dirs.size());
+    const std::string dir = dirs.substr(start, end - start);
+    const fs::path candidate = fs::path(dir.empty() ? "." : dir) / "gnuplot";
+    struct stat info {};
+    if (::stat(candidate.c_str(), &info) == 0 && S_ISREG(info.st_mode) &&
+        ::access(candidate.c_str(), X_OK) == 0)
+      return candidate;
+    start = end + 1;
+  }
+  throw Error(
+      "gnuplot was not found on PATH; install the Debian package gnuplot-nox "
+      "(apt-get install gnuplot-nox) to draw plots");
+}
+
+void run_gnuplot(const fs::path& script, double timeout_s) {
+  const fs::path gnuplot = find_gnuplot();
+  // gnuplot's messages go to an unlinked temporary file: no pipe to drain while we wait
+  char log_name[] = "/tmp/mjarm-gnuplot-XXXXXX";
+  const int log = ::mkstemp(log_name);
+  if (log < 0)
+    throw Error(std::string("cannot create a log file for gnuplot: ") + std::strerror(errno));
+  ::unlink(log_name);
+
+  std::string program = gnuplot.string(), name = script.string();
+  std::vector<char*> argv{program.data(), name.data(), nullptr};
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_addopen(&actions, STDIN_FILENO, "/dev/null", O_RDONLY, 0);
+  posix_spawn_file_actions_adddup2(&actions, log, STDOUT_FILENO);
+  posix_spawn_file_actions_adddup2(&actions, log, STDERR_FILENO);
+  pid_t pid = -1;
+  const int spawned = ::posix_spawn(&pid, program.c_str(), &actions, nullptr, argv.data(), environ);
+  posix_spawn_file_actions_destroy(&actions);
+  if (spawned != 0) {
+    ::close(log);
+    throw Error("cannot start gnuplot ('" + program + "') on '" + script.string() +
+                "': " + std::strerror(spawned));
+  }
+
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(timeout_s);
+  int status = 0;
+  for (;;) {
+    const pid_t done = ::waitpid(pid, &status, WNOHANG);
+    if (done == pid || (done < 0 && errno != EINTR)) break;
+    if (std::chrono::steady_clock::now() > deadline) {
+      ::kill(pid, SIGKILL);
+      while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+      }
+      ::close(log);
+      throw Error("gnuplot did not finish '" + script.string() + "' within " +
+                  std::to_string(timeout_s) + " s and was stopped");
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  }
+  const std::string messages = read_log(log);
+  ::close(log);
+  if (!(WIFEXITED(status) && WEXITSTATUS(status) == 0)) {
+    const std::string how = WIFEXITED(status)
+                                ? "exited with status " + std::to_string(WEXITSTATUS(status))
+                                : "was killed by signal " + std::to_string(WTERMSIG(status));
+    throw Error("gnuplot " + how + " on '" + script.string() +
+                "': " + (messages.empty() ? "no message" : messages));
+  }
+}
+
+}  // namespace mjarm::plot

@@ -1,0 +1,118 @@
+#include "mjarm/plot/recording.hpp"
+
+#include <algorithm>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "mjarm/error.hpp"
+
+namespace mjarm::plot {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string quoted(const fs::path& path) { return "'" + path.string() + "'"; }
+
+bool has_partial_folder(const fs::path& directory) {
+  std::error_code ec;
+  for (const auto& entry : fs::directory_iterator(directory, ec))
+    if (entry.path().filename().string().rfind(".partial-", 0) == 0) return true;
+  return false;
+}
+
+nlohmann::json read_summary(const fs::path& path) {
+  std::ifstream in(path);
+  if (!in) throw Error("cannot read " + quoted(path));
+  try {
+    return nlohmann::json::parse(in);
+  } catch (const nlohmann::json::exception& e) {
+    throw Error(quoted(path) + " is not valid JSON: " + e.what());
+  }
+}
+
+template <typename T>
+T field_or(const nlohmann::json& j, const char* key, T fallback) {
+  const auto it = j.find(key);
+  if (it == j.end() || it->is_null()) return fallback;
+  try {
+    return it->get<T>();
+  } catch (const nlohmann::json::exception&) {
+    return fallback;
+  }
+}
+
+}  // namespace
+
+Recording Recording::load(const fs::path& directory) {
+  std::error_code ec;
+  if (!fs::exists(directory, ec))
+    throw Error("recording " + quoted(directory) +
+                " does not exist (make one with `mjarm run … --record DIR`)");
+  if (!fs::is_directory(directory, ec))
+    throw Error("recording " + quoted(directory) +
+                " is not a directory (expected the folder written by --record)");
+  for (const char* name : {"summary.json", "state.csv", "task.csv", "events.csv"}) {
+    if (fs::exists(directory / name, ec)) continue;
+    std::string hint;
+    if (has_partial_folder(directory))
+      hint = "; a .partial-* folder holds the rows of a run that did not finish";
+    throw Error("recording " + quoted(directory) + " has no " + name +
+                " (not a complete recording" + hint + ")");
+  }
+
+  Recording r;
+  r.directory_ = directory;
+  r.state_ = CsvTable::read(directory / "state.csv");
+  r.task_ = CsvTable::read(directory / "task.csv");
+  const CsvTable events = CsvTable::read(directory / "events.csv");
+  if (r.task_.rows() == 0 || r.state_.rows() == 0) {
+    throw Error("recording " + quoted(directory) +
+                " is empty: " + (r.task_.rows() == 0 ? "task.csv" : "state.csv") +
+                " has no rows (the run never ticked)");
+  }
+  const std::vector<double> t = events.numbers("t");
+  const std::vector<std::string> kinds = events.text("kind");
+  const std::vector<std::string> messages = events.text("message");
+  for (std::size_t i = 0; i < t.size(); ++i) r.events_.push_back({t[i], kinds[i], messages[i]});
+  std::stable_sort(r.events_.begin(), r.events_.end(),
+                   [](const RecordedEvent& a, const RecordedEvent& b) { return a.t < b.t; });
+
+  const nlohmann::json summary = read_summary(directory / "summary.json");
+  if (!summary.is_object())
+    throw Error(quoted(directory / "summary.json") + " is not a JSON object");
+  r.model_ = field_or<std::string>(summary, "model", "");
+  r.status_ = field_or<std::string>(summary, "status", "");
+  r.frame_ = field_or<std::string>(summary, "frame", "");
+  const std::vector<double> task_t = r.task_.numbers("t");
+  r.start_time_ = field_or<double>(summary, "start_time", task_t.front());
+  r.end_time_ = field_or<double>(summary, "end_time", task_t.back());
+  const auto controllers = summary.find("controllers");
+  if (controllers != summary.end() && controllers->is_array())
+    for (const nlohmann::json& c : *controllers)
+      r.controllers_.push_back(field_or<std::string>(c, "name", "?"));
+  const auto actuators = summary.find("actuators");
+  if (actuators != summary.end() && actuators->is_array()) {
+    for (const nlohmann::json& a : *actuators) {
+      RecordedActuator actuator;
+      actuator.name = field_or<std::string>(a, "name", "");
+      actuator.joint = field_or<std::string>(a, "joint", "");
+      actuator.gear = field_or<double>(a, "gear", 1.0);
+      const auto range = a.find("force_range");
+      if (range != a.end() && range->is_array() && range->size() == 2 && (*range)[0].is_number() &&
+          (*range)[1].is_number())
+        actuator.force_range = std::make_pair((*range)[0].get<double>(), (*range)[1].get<double>());
+      r.actuators_.push_back(std::move(actuator));
+    }
+  }
+  return r;
+}
+
+std::vector<RecordedEvent> Recording::events_of(const std::string& kind) const {
+  std::vector<RecordedEvent> out;
+  for (const RecordedEvent& e : events_)
+    if (e.kind == kind) out.push_back(e);
+  return out;
+}
+
+}  // namespace mjarm::plot

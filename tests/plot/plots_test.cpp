@@ -1,0 +1,141 @@
+#include "mjarm/plot/plots.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+
+#include "mjarm/error.hpp"
+#include "mjarm/plot/gnuplot.hpp"
+#include "plot/plot_test_support.hpp"
+
+namespace mjarm::plot {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct PressRun {
+  test::TempDir dir{"plot-figures"};
+  fs::path recording = dir.path() / "rec";
+  PressRun() { test::record_press(recording); }
+};
+
+const PlotInfo& find(const std::vector<PlotInfo>& plots, const std::string& name) {
+  for (const PlotInfo& p : plots)
+    if (p.name == name) return p;
+  throw std::runtime_error("no figure " + name);
+}
+
+bool mentions(const std::vector<std::string>& notes, const std::string& text) {
+  for (const std::string& n : notes)
+    if (n.find(text) != std::string::npos) return true;
+  return false;
+}
+
+// PATH without gnuplot for the lifetime of the guard
+struct PathWithoutGnuplot {
+  std::string saved = std::getenv("PATH") ? std::getenv("PATH") : "";
+  PathWithoutGnuplot() { ::setenv("PATH", "/nonexistent-bin", 1); }
+  ~PathWithoutGnuplot() { ::setenv("PATH", saved.c_str(), 1); }
+};
+
+TEST(Plots, FourFiguresOfTheAskedSizeThatAreNotBlank) {
+  PressRun run;
+  const std::vector<fs::path> paths = write_plots(run.recording, {}, {});
+  ASSERT_EQ(paths.size(), 4u);
+  for (const char* name : {"tracking_error", "joint_torques", "contact_force", "phases"}) {
+    const fs::path png =
+        run.recording / "plots" / (std::string(name) + ".png");  // the default folder
+    EXPECT_TRUE(std::find(paths.begin(), paths.end(), fs::absolute(png)) != paths.end()) << name;
+    const test::PixelStats s = test::pixel_stats(png);
+    EXPECT_EQ(s.width, 1280) << name;
+    EXPECT_EQ(s.height, 720) << name;
+    // a white page with a frame and text has a little ink; curves, bands and labels much more
+    EXPECT_GT(s.variance, 300.0) << name;
+    EXPECT_GT(s.ink_fraction, 0.01) << name;
+  }
+  EXPECT_TRUE(fs::exists(run.recording / "plots" / "gnuplot" / "plots.gp"));
+}
+
+TEST(Plots, WhatWasDrawnIsReported) {
+  PressRun run;
+  PlotOptions options;
+  options.width = 800;
+  options.height = 450;
+  const std::vector<PlotInfo> plots =
+      make_plots(Recording::load(run.recording), run.dir.path() / "figs", options);
+  ASSERT_EQ(plots.size(), 4u);
+  EXPECT_EQ(test::pixel_stats(find(plots, "phases").path).width, 800);
+  EXPECT_EQ(test::pixel_stats(find(plots, "contact_force").path).height, 450);
+  // the motor pushes at its 50 N limit: normalized torque −1, saturated ticks marked
+  const PlotInfo& torques = find(plots, "joint_torques");
+  EXPECT_TRUE(mentions(torques.series, "slide (peak 100 %)"));
+  EXPECT_TRUE(mentions(torques.series, "saturated tick"));
+  EXPECT_FALSE(mentions(torques.notes, "no saturated ticks"));
+  const PlotInfo& contact = find(plots, "contact_force");
+  EXPECT_TRUE(mentions(contact.notes, "peak normal force")) << contact.notes.front();
+  const PlotInfo& phases = find(plots, "phases");
+  EXPECT_EQ(phases.series, (std::vector<std::string>{"descend", "press", "other events"}));
+  const PlotInfo& error = find(plots, "tracking_error");
+  EXPECT_TRUE(mentions(error.notes, "peak position error"));
+  EXPECT_NE(error.title.find("tip"), std::string::npos);
+}
+
+TEST(Plots, AnUnwritableOutputFolderIsNamed) {
+  PressRun run;
+  test::write_file(run.dir.path() / "a-file", "x");
+  try {
+    write_plots(run.recording, run.dir.path() / "a-file" / "plots", {});
+    FAIL() << "no error";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("cannot create the plot folder"), std::string::npos)
+        << e.what();
+    EXPECT_NE(std::string(e.what()).find("a-file/plots"), std::string::npos) << e.what();
+  }
+}
+
+TEST(Plots, MissingGnuplotNamesTheDebianPackage) {
+  PressRun run;
+  PathWithoutGnuplot guard;
+  EXPECT_THROW(find_gnuplot(), Error);
+  try {
+    write_plots(run.recording, run.dir.path() / "out", {});
+    FAIL() << "no error";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("gnuplot-nox"), std::string::npos) << e.what();
+  }
+  EXPECT_FALSE(fs::exists(run.dir.path() / "out"));  // refused before writing anything
+}
+
+TEST(Plots, BadSizesAreRefused) {
+  PressRun run;
+  PlotOptions options;
+  options.width = 10;
+  EXPECT_THROW(write_plots(run.recording, {}, options), Error);
+}
+
+TEST(Gnuplot, AFailingScriptReportsGnuplotsMessage) {
+  test::TempDir dir("plot-gnuplot");
+  test::write_file(dir.path() / "bad.gp", "set terminal pngcairo\nthis is not gnuplot\n");
+  try {
+    run_gnuplot(dir.path() / "bad.gp", 30.0);
+    FAIL() << "no error";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("gnuplot exited with status"), std::string::npos)
+        << e.what();
+    EXPECT_NE(std::string(e.what()).find("line 2"), std::string::npos) << e.what();
+  }
+}
+
+TEST(Gnuplot, ARunawayScriptIsStoppedAtTheTimeout) {
+  test::TempDir dir("plot-timeout");
+  test::write_file(dir.path() / "slow.gp", "pause 30\n");
+  try {
+    run_gnuplot(dir.path() / "slow.gp", 0.3);
+    FAIL() << "no error";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("did not finish"), std::string::npos) << e.what();
+  }
+}
+
+}  // namespace
+}  // namespace mjarm::plot
