@@ -1,5 +1,5 @@
 // `mjarm run SCENARIO`: runs a ready-made closed-loop scenario in simulation and prints its
-// figures. Scenario: shelf-pick (docs/tasks.md).
+// figures, optionally with a video of the run. Scenario: shelf-pick (docs/tasks.md).
 
 #include <algorithm>
 #include <cmath>
@@ -37,6 +37,28 @@ std::string point_text(const Eigen::Vector3d& p) {
 std::string mm(double metres) { return std::isnan(metres) ? "—" : fixed(metres * 1e3, 4); }
 std::string sec(double seconds) { return std::isnan(seconds) ? "—" : fixed(seconds, 3); }
 Json number_or_null(double v) { return std::isfinite(v) ? Json(v) : Json(nullptr); }
+
+// "WxH", both whole, even (the MP4's yuv420p) and 2 … 16384
+CLI::Validator video_size() {
+  return CLI::Validator(
+      [](std::string& text) -> std::string {
+        const auto x = text.find_first_of("xX");
+        auto whole = [](const std::string& s) {
+          return !s.empty() && s.size() <= 5 &&
+                 s.find_first_not_of("0123456789") == std::string::npos;
+        };
+        if (x == std::string::npos || !whole(text.substr(0, x)) || !whole(text.substr(x + 1)))
+          return "'" + text + "' is not a size WIDTHxHEIGHT in pixels (e.g. 640x480)";
+        const int w = std::stoi(text.substr(0, x)), h = std::stoi(text.substr(x + 1));
+        if (w < 2 || h < 2 || w > 16384 || h > 16384)
+          return "size '" + text + "' must be between 2x2 and 16384x16384 pixels";
+        if (w % 2 != 0 || h % 2 != 0)
+          return "size '" + text + "' must be even in both directions (the MP4's yuv420p), e.g. " +
+                 std::to_string(w + w % 2) + "x" + std::to_string(h + h % 2);
+        return {};
+      },
+      "WxH", "video size");
+}
 
 /// Throws UsageError (exit 2) for an unknown robot or controller, with the choices.
 void check_names(const std::string& robot, const std::string& controller) {
@@ -86,6 +108,12 @@ Json shelf_pick_json(const ShelfPickReport& r) {
                         {"final_error", number_or_null(m.final_error)}};
   doc["saturated_ticks"] = r.saturated_ticks;
   doc["recording"] = r.recording.empty() ? Json(nullptr) : Json(r.recording.string());
+  doc["video"] = nullptr;
+  if (!r.video.empty())
+    doc["video"] = Json{{"path", r.video.string()},
+                        {"frames", r.video_frames},
+                        {"camera", r.video_camera},
+                        {"error", r.video_error.empty() ? Json(nullptr) : Json(r.video_error)}};
   return doc;
 }
 
@@ -95,8 +123,8 @@ void print_shelf_pick(std::ostream& os, const ShelfPickReport& r) {
   os << "shelf pick on " << p.robot->name << " (" << p.model.name() << "), "
      << controller_title(p.controller) << ", seed " << p.seed << '\n';
   print_fields(os,
-               {{"pick point [m]", point_text(p.pick) + (p.pick_drawn ? "  (drawn from the seed)"
-                                                                      : "  (--pick)")},
+               {{"pick point [m]",
+                 point_text(p.pick) + (p.pick_drawn ? "  (drawn from the seed)" : "  (--pick)")},
                 {"start q [rad]", vector_text(p.goal.q_start)},
                 {"distance [m]", fixed((p.pick - p.goal.X_WS.p).norm(), 4)},
                 {"approach [s]", fixed(p.goal.approach_time, 3) + " (minimum jerk)"},
@@ -108,9 +136,9 @@ void print_shelf_pick(std::ostream& os, const ShelfPickReport& r) {
       {"time to " + tol + " [s]", sec(m.time_to_tolerance)},
       {"first entry [s]", sec(m.first_entry_time)},
       {"overshoot [mm]", mm(m.overshoot)},
-      {"steady state [mm]", "mean " + mm(m.steady_state_mean) + ", max " +
-                                mm(m.steady_state_max) + " (last " +
-                                compact(p.goal.criteria.steady_window * 1e3) + " ms of the hold)"},
+      {"steady state [mm]", "mean " + mm(m.steady_state_mean) + ", max " + mm(m.steady_state_max) +
+                                " (last " + compact(p.goal.criteria.steady_window * 1e3) +
+                                " ms of the hold)"},
       {"whole hold [mm]", "mean " + mm(m.hold_mean) + ", max " + mm(m.hold_max)},
       {"hold", m.held ? "held " + compact(p.goal.criteria.hold_time * 1e3) +
                             " ms, released at t = " + fixed(m.hold_end_time, 3) + " s"
@@ -121,8 +149,12 @@ void print_shelf_pick(std::ostream& os, const ShelfPickReport& r) {
     fields.insert(fields.begin() + 5,
                   {"orientation [mrad]", "max " + mm(m.orientation_error_max) + " over the hold"});
   if (!r.recording.empty())
-    fields.push_back({"recording", r.recording.string() +
-                                       " (state.csv, task.csv, events.csv, summary.json)"});
+    fields.push_back(
+        {"recording", r.recording.string() + " (state.csv, task.csv, events.csv, summary.json)"});
+  if (!r.video.empty())
+    fields.push_back({"video", r.video.string() + " (" + std::to_string(r.video_frames) +
+                                   " frames" + (r.video_error.empty() ? "" : ", stopped early") +
+                                   "; " + r.video_camera + ")"});
   print_fields(os, fields, 2);
 }
 
@@ -229,6 +261,10 @@ Command add_run_command(CLI::App& root) {
     double settle_time = 1.0;
     bool all = false;
     int seeds = 1;
+    std::string video;
+    std::string camera;
+    std::string size = "640x480";
+    double fps = 30.0;
     bool json = false;
   };
   auto o = std::make_shared<Options>();
@@ -239,8 +275,9 @@ Command add_run_command(CLI::App& root) {
       ->capture_default_str();
   app->add_option("--controller", o->controller, "ct | osc | task-pd | accel")
       ->capture_default_str();
-  CLI::Option* pick = app->add_option("--pick", o->pick, "pick point x y z in the world [m] "
-                                                         "(default: drawn from the seed)")
+  CLI::Option* pick = app->add_option("--pick", o->pick,
+                                      "pick point x y z in the world [m] "
+                                      "(default: drawn from the seed)")
                           ->expected(3)
                           ->check(finite_number());
   app->add_option("--seed", o->seed,
@@ -262,9 +299,24 @@ Command add_run_command(CLI::App& root) {
                   "time allowed after the approach to enter the tolerance and hold [s]")
       ->check(finite_number())
       ->capture_default_str();
+  CLI::Option* video = app->add_option(
+      "--video", o->video, "write an MP4 of the run (rendered headless; needs Debian's ffmpeg)");
+  app->add_option("--camera", o->camera,
+                  "video camera: a camera of the model, or 'follow' (the tool tip); default: a "
+                  "free camera framing the robot and the pick point")
+      ->needs(video);
+  app->add_option("--size", o->size, "video size WIDTHxHEIGHT [pixels], even")
+      ->check(video_size())
+      ->needs(video)
+      ->capture_default_str();
+  app->add_option("--fps", o->fps, "video frames per simulated second")
+      ->check(finite_number())
+      ->needs(video)
+      ->capture_default_str();
   app->add_flag("--all", o->all, "every robot × controller (a table of the worst figures)")
       ->excludes(pick)
-      ->excludes(record);
+      ->excludes(record)
+      ->excludes(video);
   app->add_option("--seeds", o->seeds, "with --all: run seeds K … K+N−1 per row")
       ->check(CLI::Range(1, 100000))
       ->capture_default_str();
@@ -279,11 +331,21 @@ Command add_run_command(CLI::App& root) {
             options.request.robot = o->robot;
             options.request.controller = o->controller;
             options.request.seed = o->seed;
-            if (!o->pick.empty()) options.request.pick = Eigen::Vector3d(o->pick[0], o->pick[1], o->pick[2]);
+            if (!o->pick.empty())
+              options.request.pick = Eigen::Vector3d(o->pick[0], o->pick[1], o->pick[2]);
             options.record = o->record;
             options.control_period = o->control_period;
             options.max_acceleration = o->max_acceleration;
             options.settle_time = o->settle_time;
+            if (!o->video.empty()) {
+              if (!(o->fps > 0.0)) throw UsageError("--fps must be > 0, got " + compact(o->fps));
+              const auto x = o->size.find_first_of("xX");
+              options.video.path = o->video;
+              options.video.camera = o->camera;
+              options.video.options.width = std::stoi(o->size.substr(0, x));
+              options.video.options.height = std::stoi(o->size.substr(x + 1));
+              options.video.options.fps = o->fps;
+            }
             const InterruptGuard interrupts;  // Ctrl-C ends the run with a finalized recording
             if (o->all) return run_all(options, o->seeds, o->json);
 
@@ -299,8 +361,11 @@ Command add_run_command(CLI::App& root) {
                                 ": " + report.run.message;
               if (!report.recording.empty())
                 why += "; the recording up to that point is in " + report.recording.string();
+              if (!report.video.empty())
+                why += "; the video up to that point is in " + report.video.string();
               throw Error(why);
             }
+            if (!report.video_error.empty()) throw Error(report.video_error);
           }};
 }
 

@@ -29,6 +29,17 @@ std::string name_list(const mjModel& m, mjtObj type) {
   return list.empty() ? "(none)" : list;
 }
 
+const RenderOptions& checked(const RenderOptions& options) {
+  for (const RenderMarker& marker : options.markers) {
+    const bool colour = std::all_of(marker.rgba.begin(), marker.rgba.end(),
+                                    [](float c) { return c >= 0.0f && c <= 1.0f; });
+    if (!marker.position.allFinite() || !std::isfinite(marker.radius) || !(marker.radius > 0.0) ||
+        !colour)
+      throw Error("render marker: needs a finite position, a radius > 0 m and rgba in [0, 1]");
+  }
+  return options;
+}
+
 }  // namespace
 
 struct OffscreenRenderer::Impl {
@@ -71,6 +82,18 @@ struct OffscreenRenderer::Impl {
     scene.flags[mjRND_SHADOW] = options.shadows ? 1 : 0;
     scene.flags[mjRND_REFLECTION] = options.reflections ? 1 : 0;
     scene.flags[mjRND_SKYBOX] = options.skybox ? 1 : 0;
+  }
+
+  // appends the options' marker balls to the scene (as many as fit)
+  void add_markers() noexcept {
+    for (const RenderMarker& marker : options.markers) {
+      if (scene.ngeom >= scene.maxgeom) return;
+      mjvGeom* g = scene.geoms + scene.ngeom++;
+      const mjtNum size[3] = {marker.radius, marker.radius, marker.radius};
+      const mjtNum pos[3] = {marker.position.x(), marker.position.y(), marker.position.z()};
+      mjv_initGeom(g, mjGEOM_SPHERE, size, pos, nullptr, marker.rgba.data());
+      g->category = mjCAT_DECOR;
+    }
   }
 
   // Copies the caller's state into the scratch data and turns @p spec into MuJoCo's camera.
@@ -132,7 +155,7 @@ OffscreenRenderer::OffscreenRenderer(const Robot& robot, int width, int height,
     throw Error("render size must be at least 1×1 pixels, got " + std::to_string(width) + "×" +
                 std::to_string(height));
   install_mujoco_handlers();
-  auto impl = std::make_unique<Impl>(robot, options);
+  auto impl = std::make_unique<Impl>(robot, checked(options));
   const mjModel& m = impl->robot.model();
   impl->context = std::make_unique<render_detail::EglContext>();
   {
@@ -183,6 +206,7 @@ void OffscreenRenderer::render(const mjData& data, const CameraSpec& camera, Ima
   {
     render_detail::EglContext::Scope current(*s.context);
     mjv_updateScene(&m, s.scratch.get(), &s.vis_options, nullptr, &cam, mjCAT_ALL, &s.scene);
+    s.add_markers();
     const mjrRect viewport{0, 0, width_, height_};
     mjr_setBuffer(mjFB_OFFSCREEN, &s.gpu);
     mjr_render(viewport, &s.scene, &s.gpu);
@@ -227,7 +251,7 @@ CameraView OffscreenRenderer::view(const mjData& data, const CameraSpec& camera)
 
 void OffscreenRenderer::set_options(const RenderOptions& options) {
   if (!impl_) throw Error("OffscreenRenderer used after close()");
-  impl_->options = options;
+  impl_->options = checked(options);
   impl_->apply_options();
 }
 

@@ -1,5 +1,6 @@
 #include "mjarm/tasks/shelf_pick.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <memory>
@@ -8,6 +9,7 @@
 #include "mjarm/error.hpp"
 #include "mjarm/sim/recorder.hpp"
 #include "mjarm/sim/simulation.hpp"
+#include "mjarm/tasks/run_video.hpp"
 #include "mjarm/tasks/shelf_pick_controllers.hpp"
 #include "mjarm/tasks/shelf_pick_task.hpp"
 
@@ -15,11 +17,16 @@ namespace mjarm {
 
 const char* to_string(PickOutcome outcome) noexcept {
   switch (outcome) {
-    case PickOutcome::held: return "held";
-    case PickOutcome::not_held: return "not_held";
-    case PickOutcome::diverged: return "diverged";
-    case PickOutcome::bad_command: return "bad_command";
-    case PickOutcome::interrupted: return "interrupted";
+    case PickOutcome::held:
+      return "held";
+    case PickOutcome::not_held:
+      return "not_held";
+    case PickOutcome::diverged:
+      return "diverged";
+    case PickOutcome::bad_command:
+      return "bad_command";
+    case PickOutcome::interrupted:
+      return "interrupted";
   }
   return "unknown";
 }
@@ -28,11 +35,16 @@ namespace {
 
 PickOutcome outcome_of(const RunResult& run, bool held) {
   switch (run.status) {
-    case RunStatus::finished: return held ? PickOutcome::held : PickOutcome::not_held;
-    case RunStatus::duration_reached: return PickOutcome::not_held;
-    case RunStatus::diverged: return PickOutcome::diverged;
-    case RunStatus::bad_command: return PickOutcome::bad_command;
-    case RunStatus::interrupted: return PickOutcome::interrupted;
+    case RunStatus::finished:
+      return held ? PickOutcome::held : PickOutcome::not_held;
+    case RunStatus::duration_reached:
+      return PickOutcome::not_held;
+    case RunStatus::diverged:
+      return PickOutcome::diverged;
+    case RunStatus::bad_command:
+      return PickOutcome::bad_command;
+    case RunStatus::interrupted:
+      return PickOutcome::interrupted;
   }
   return PickOutcome::not_held;
 }
@@ -55,8 +67,8 @@ ShelfPickReport run_shelf_pick(const ShelfPickOptions& options) {
   if (!(options.settle_time > 0.0) || !std::isfinite(options.settle_time))
     throw Error("shelf pick: settle_time must be positive and finite [s], got " +
                 std::to_string(options.settle_time));
-  ShelfPickReport report{plan_shelf_pick(options.request), {}, {}, PickOutcome::not_held,
-                         PickPhase::approach, 0.0, 0.0, 0, {}};
+  // designated: every other member keeps its default
+  ShelfPickReport report{.plan = plan_shelf_pick(options.request)};
   const ShelfPickPlan& plan = report.plan;
 
   SimulationOptions sim_options;
@@ -71,7 +83,21 @@ ShelfPickReport run_shelf_pick(const ShelfPickOptions& options) {
   sim.set_state(plan.qpos_start, qvel);
   report.control_period = sim.control_period();
 
-  // the recorder opens (and fails) before the first step
+  // the video and the recorder open (and fail) before the first step
+  std::optional<RunVideo> video;
+  if (!options.video.path.empty()) {
+    const ShelfPickVideo& v = options.video;
+    const CameraSpec camera =
+        shelf_pick_camera(plan, sim.data(), v.camera,
+                          static_cast<double>(v.options.width) / std::max(v.options.height, 1));
+    RunVideoOptions video_options = v.options;
+    RenderMarker pick;
+    pick.position = plan.pick;
+    video_options.render.markers.push_back(pick);
+    video.emplace(plan.model, sim.data(), v.path, camera, video_options);
+    report.video = v.path;
+    report.video_camera = camera.describe();
+  }
   std::optional<Recorder> recorder;
   if (!options.record.empty()) {
     RecorderOptions recorder_options;
@@ -83,6 +109,7 @@ ShelfPickReport run_shelf_pick(const ShelfPickOptions& options) {
   ShelfPickGoal goal = plan.goal;
   goal.velocity_lag = sim.uses_rk4() ? 0.0 : 0.5 * sim.timestep();
   ShelfPickTask task(plan.chain, goal, recorder ? &*recorder : nullptr);
+  if (video) task.set_observer(&*video);
   report.time_limit = plan.goal.approach_time + options.settle_time + plan.goal.criteria.hold_time;
   const RunResult& run = report.run =
       sim.run(task, report.time_limit, recorder ? &*recorder : nullptr);
@@ -95,6 +122,14 @@ ShelfPickReport run_shelf_pick(const ShelfPickOptions& options) {
   if (recorder) {
     recorder->event(sim.time(), "result", result_line(report));
     recorder->finalize(run);
+  }
+  if (video) {
+    try {
+      video->finish(sim.data());  // the frames up to the end state, then the file is finalized
+    } catch (const Error& e) {
+      report.video_error = e.what();
+    }
+    report.video_frames = video->frames();
   }
   return report;
 }

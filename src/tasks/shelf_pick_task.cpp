@@ -14,10 +14,14 @@ namespace mjarm {
 
 const char* to_string(PickPhase phase) noexcept {
   switch (phase) {
-    case PickPhase::approach: return "approach";
-    case PickPhase::settle: return "settle";
-    case PickPhase::hold: return "hold";
-    case PickPhase::release: return "release";
+    case PickPhase::approach:
+      return "approach";
+    case PickPhase::settle:
+      return "settle";
+    case PickPhase::hold:
+      return "hold";
+    case PickPhase::release:
+      return "release";
   }
   return "unknown";
 }
@@ -57,6 +61,7 @@ void ShelfPickTask::enter(PickPhase phase, double t) noexcept {
 
 bool ShelfPickTask::update(const mjData& data, Reference& reference) noexcept {
   const int n = chain_.size();
+  if (observer_ != nullptr) observer_->on_tick(data);
   if (!started_) {
     started_ = true;
     t0_ = data.time;
@@ -66,10 +71,10 @@ bool ShelfPickTask::update(const mjData& data, Reference& reference) noexcept {
 
   // the tip, from the simulation's fresh kinematics (MuJoCo matrices are row-major)
   const FrameRef& frame = chain_.frame();
-  const double* p = frame.kind == FrameKind::site ? data.site_xpos + 3 * frame.id
-                                                  : data.xpos + 3 * frame.id;
-  const double* R = frame.kind == FrameKind::site ? data.site_xmat + 9 * frame.id
-                                                  : data.xmat + 9 * frame.id;
+  const double* p =
+      frame.kind == FrameKind::site ? data.site_xpos + 3 * frame.id : data.xpos + 3 * frame.id;
+  const double* R =
+      frame.kind == FrameKind::site ? data.site_xmat + 9 * frame.id : data.xmat + 9 * frame.id;
   X_WE_.p = Eigen::Vector3d(p[0], p[1], p[2]);
   X_WE_.R = Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(R);
 
@@ -79,7 +84,8 @@ bool ShelfPickTask::update(const mjData& data, Reference& reference) noexcept {
   TaskReference& task = reference.task;
   const Eigen::Vector3d dp = goal_.X_WT.p - goal_.X_WS.p;
   task.X_WE.p = goal_.X_WS.p + s.s * dp;
-  task.X_WE.R = goal_.position_only ? goal_.X_WT.R : Eigen::Matrix3d(so3::exp(s.s * rotation_) * goal_.X_WS.R);
+  task.X_WE.R = goal_.position_only ? goal_.X_WT.R
+                                    : Eigen::Matrix3d(so3::exp(s.s * rotation_) * goal_.X_WS.R);
   task.V_WE << ds * dp, ds * rotation_;
   task.A_WE << s.dds * dp, s.dds * rotation_;
   task.F_ext.setZero();
@@ -96,7 +102,9 @@ bool ShelfPickTask::update(const mjData& data, Reference& reference) noexcept {
       goal_.position_only ? 0.0 : so3::angle(goal_.X_WT.R * X_WE_.R.transpose());
   const PickEvent event = monitor_.observe(t, X_WE_.p, orientation_error);
   switch (event) {
-    case PickEvent::entered: enter(PickPhase::hold, data.time); break;
+    case PickEvent::entered:
+      enter(PickPhase::hold, data.time);
+      break;
     case PickEvent::left:
       if (recorder_ != nullptr) {
         std::snprintf(message_.data(), message_.size(),
@@ -106,7 +114,9 @@ bool ShelfPickTask::update(const mjData& data, Reference& reference) noexcept {
       }
       enter(t < profile_.duration() ? PickPhase::approach : PickPhase::settle, data.time);
       break;
-    case PickEvent::held: enter(PickPhase::release, data.time); break;
+    case PickEvent::held:
+      enter(PickPhase::release, data.time);
+      break;
     case PickEvent::none:
       if (phase_ == PickPhase::approach && t >= profile_.duration())
         enter(PickPhase::settle, data.time);

@@ -1,5 +1,5 @@
 // Drives `mjarm run shelf-pick` and the demo's shelf pick through the built executable: figures
-// in --json, recordings on disk, exit codes and messages for every bad input.
+// in --json, recordings and videos on disk, exit codes and messages for every bad input.
 
 #include <fcntl.h>
 #include <gtest/gtest.h>
@@ -8,12 +8,15 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <string>
 #include <vector>
+
+#include "render/render_test_support.hpp"
 
 extern char** environ;
 
@@ -114,13 +117,13 @@ TEST(RunCli, HelpNamesTheScenarioAndOptions) {
   const CliResult run = run_cli({"run", "--help"});
   EXPECT_EQ(run.exit_code, 0);
   for (const char* word : {"shelf-pick", "--robot", "--controller", "--pick", "--seed", "--record",
-                           "--json", "--all"})
+                           "--json", "--all", "--video", "--camera", "--size", "--fps"})
     EXPECT_NE(run.out.find(word), std::string::npos) << word;
 }
 
 TEST(RunCli, JsonHoldsEveryFigure) {
-  const std::vector<std::string> args{"run",          "shelf-pick", "--robot", "planar2",
-                                      "--controller", "ct",         "--seed",  "5", "--json"};
+  const std::vector<std::string> args{"run", "shelf-pick", "--robot", "planar2", "--controller",
+                                      "ct",  "--seed",     "5",       "--json"};
   const CliResult first = run_cli(args);
   ASSERT_EQ(first.exit_code, 0) << first.err;
   ASSERT_TRUE(json::accept(first.out)) << first.out;
@@ -141,9 +144,9 @@ TEST(RunCli, JsonHoldsEveryFigure) {
   EXPECT_EQ(doc["control_period"], 0.002);
   EXPECT_TRUE(doc["recording"].is_null());
   const json& m = doc["metrics"];
-  for (const char* key : {"time_to_tolerance", "first_entry_time", "overshoot", "steady_state_mean",
-                          "steady_state_max", "hold_mean", "hold_max", "hold_end_time", "exits",
-                          "final_error"})
+  for (const char* key :
+       {"time_to_tolerance", "first_entry_time", "overshoot", "steady_state_mean",
+        "steady_state_max", "hold_mean", "hold_max", "hold_end_time", "exits", "final_error"})
     EXPECT_TRUE(m.contains(key)) << key;
   EXPECT_LE(m["time_to_tolerance"].get<double>(), 0.4);
   EXPECT_LE(m["steady_state_mean"].get<double>(), 1e-4);
@@ -161,10 +164,12 @@ TEST(RunCli, JsonHoldsEveryFigure) {
 }
 
 TEST(RunCli, TextReportsTheFigures) {
-  const CliResult run = run_cli({"run", "shelf-pick", "--robot", "panda", "--controller", "task-pd"});
+  const CliResult run =
+      run_cli({"run", "shelf-pick", "--robot", "panda", "--controller", "task-pd"});
   EXPECT_EQ(run.exit_code, 0) << run.err;
-  for (const char* text : {"shelf pick on panda", "task-space PD", "result: held", "time to 1 mm [s]",
-                           "overshoot [mm]", "steady state [mm]", "orientation [mrad]", "hold  "})
+  for (const char* text :
+       {"shelf pick on panda", "task-space PD", "result: held", "time to 1 mm [s]",
+        "overshoot [mm]", "steady state [mm]", "orientation [mrad]", "hold  "})
     EXPECT_NE(run.out.find(text), std::string::npos) << text << " not in:\n" << run.out;
 }
 
@@ -202,14 +207,15 @@ TEST(RunCli, BadInputFailsClearly) {
   // a recording directory that cannot be written: an error before anything runs
   const fs::path file = scratch() / "plain_file";
   std::ofstream(file) << "x";
-  expect_error({"run", "shelf-pick", "--record", (file / "rec").string()}, 1, "recording directory");
+  expect_error({"run", "shelf-pick", "--record", (file / "rec").string()}, 1,
+               "recording directory");
   EXPECT_EQ(slurp(file), "x");
 }
 
 TEST(RunCli, ADivergingRunReportsHonestlyAndKeepsTheRecording) {
   const fs::path dir = scratch() / "diverged";
-  const CliResult run = run_cli({"run", "shelf-pick", "--max-acceleration", "2", "--record", dir.string(),
-                           "--json"});
+  const CliResult run =
+      run_cli({"run", "shelf-pick", "--max-acceleration", "2", "--record", dir.string(), "--json"});
   EXPECT_FALSE(run.signaled);
   EXPECT_EQ(run.exit_code, 1);
   ASSERT_TRUE(json::accept(run.out)) << run.out;
@@ -246,7 +252,8 @@ TEST(RunCli, DemoRunsTheShelfPickAndRecordsIntoOutDemo) {
   EXPECT_NE(run.out.find("out/demo (state.csv"), std::string::npos) << run.out;
   expect_recording(cwd / "out" / "demo", "finished");
 
-  const CliResult json_run = run_cli({"demo", "--samples", "1000", "--json", "--record", "elsewhere"}, cwd);
+  const CliResult json_run =
+      run_cli({"demo", "--samples", "1000", "--json", "--record", "elsewhere"}, cwd);
   ASSERT_TRUE(json::accept(json_run.out)) << json_run.out;
   const json doc = json::parse(json_run.out);
   EXPECT_EQ(doc["shelf_pick"]["robot"], "panda");
@@ -254,6 +261,122 @@ TEST(RunCli, DemoRunsTheShelfPickAndRecordsIntoOutDemo) {
   EXPECT_EQ(doc["shelf_pick"]["outcome"], "held");
   EXPECT_EQ(doc["shelf_pick"]["recording"], "elsewhere");
   expect_recording(cwd / "elsewhere", "finished");
+}
+
+// ---- --video ----
+
+/// Frames in @p video counted by decoding them all (ffprobe, Debian package ffmpeg); -1 when the
+/// file is not a valid video. Also its size.
+struct Probe {
+  int frames = -1;
+  std::string size;
+};
+
+Probe probe(const fs::path& video) {
+  std::string ffprobe;
+  for (const char* dir : {"/usr/bin", "/usr/local/bin"})
+    if (::access((std::string(dir) + "/ffprobe").c_str(), X_OK) == 0)
+      ffprobe = dir + std::string("/ffprobe");
+  EXPECT_FALSE(ffprobe.empty()) << "ffprobe (Debian package ffmpeg) is needed by this test";
+  const auto run = mjarm::test::run_process(
+      {ffprobe, "-v", "error", "-count_frames", "-select_streams", "v:0", "-show_entries",
+       "stream=nb_read_frames,width,height", "-of", "csv=p=0:s=x", video.string()});
+  Probe p;
+  if (run.exit_code != 0) return p;
+  // "WIDTHxHEIGHTxFRAMES"
+  const auto last = run.out.rfind('x');
+  p.frames = std::atoi(run.out.substr(last + 1).c_str());
+  p.size = run.out.substr(0, last);
+  return p;
+}
+
+/// Frames of a video at @p fps of a run that ended at @p end_time [s] (frame k at k / fps).
+int expected_frames(double end_time, double fps) {
+  return static_cast<int>(std::floor(end_time * fps + 1e-9)) + 1;
+}
+
+TEST(RunVideo, HoldsDurationTimesFpsFramesAndLeavesTheFiguresAlone) {
+  const std::vector<std::string> args{"run", "shelf-pick", "--robot", "planar2", "--controller",
+                                      "ct",  "--seed",     "5",       "--json"};
+  const json plain = run_json(args);
+  const fs::path video = scratch() / "pick.mp4";
+  std::vector<std::string> with_video = args;
+  for (const char* a : {"--video", video.c_str(), "--size", "160x120", "--fps", "25"})
+    with_video.emplace_back(a);
+  json filmed = run_json(with_video);
+  ASSERT_TRUE(filmed["video"].is_object()) << filmed;
+  EXPECT_EQ(filmed["video"]["path"], video.string());
+  EXPECT_TRUE(filmed["video"]["error"].is_null());
+  EXPECT_NE(filmed["video"]["camera"].get<std::string>().find("free"), std::string::npos);
+  const double end_time = filmed["end_time"].get<double>();
+  const int frames = expected_frames(end_time, 25.0);
+  EXPECT_NEAR(frames, end_time * 25.0, 1.0);
+  EXPECT_EQ(filmed["video"]["frames"], frames);
+  const Probe p = probe(video);
+  EXPECT_EQ(p.frames, frames);
+  EXPECT_EQ(p.size, "160x120");
+
+  // rendering only reads the state: every figure is the same, bit for bit
+  EXPECT_TRUE(plain["video"].is_null());
+  filmed.erase("video");
+  json without = plain;
+  without.erase("video");
+  EXPECT_EQ(filmed, without);
+}
+
+TEST(RunVideo, FollowCameraAndTextOutput) {
+  const fs::path video = scratch() / "follow.mp4";
+  const CliResult run = run_cli({"run", "shelf-pick", "--controller", "ct", "--video",
+                                 video.string(), "--camera", "follow", "--size", "160x120"});
+  EXPECT_EQ(run.exit_code, 0) << run.err;
+  EXPECT_NE(run.out.find("video  "), std::string::npos) << run.out;
+  EXPECT_NE(run.out.find(video.string()), std::string::npos) << run.out;
+  EXPECT_NE(run.out.find("follow 'attachment_site'"), std::string::npos) << run.out;
+  EXPECT_GT(probe(video).frames, 1);
+}
+
+TEST(RunVideo, ADivergingRunLeavesAFinalizedVideo) {
+  const fs::path video = scratch() / "diverged.mp4";
+  const CliResult run = run_cli({"run", "shelf-pick", "--max-acceleration", "2", "--video",
+                                 video.string(), "--size", "160x120", "--json"});
+  EXPECT_FALSE(run.signaled);
+  EXPECT_EQ(run.exit_code, 1);
+  ASSERT_TRUE(json::accept(run.out)) << run.out;
+  const json doc = json::parse(run.out);
+  EXPECT_EQ(doc["outcome"], "diverged");
+  EXPECT_NE(run.err.find("the video up to that point is in " + video.string()), std::string::npos)
+      << run.err;
+  const int frames = expected_frames(doc["end_time"].get<double>(), 30.0);
+  EXPECT_EQ(doc["video"]["frames"], frames);
+  EXPECT_EQ(probe(video).frames, frames);
+}
+
+TEST(RunVideo, BadInputFailsClearly) {
+  const std::string out = (scratch() / "bad.mp4").string();
+  // the camera is checked against the model before anything renders or runs
+  expect_error({"run", "shelf-pick", "--video", out, "--camera", "top"}, 1,
+               "video camera 'top' is not a camera of model 'panda_torque' (its cameras: none)");
+  EXPECT_FALSE(fs::exists(out));
+  expect_error({"run", "shelf-pick", "--video", out, "--size", "0x120"}, 2, "between 2x2");
+  expect_error({"run", "shelf-pick", "--video", out, "--size", "161x120"}, 2,
+               "must be even in both directions (the MP4's yuv420p), e.g. 162x120");
+  expect_error({"run", "shelf-pick", "--video", out, "--size", "big"}, 2, "not a size");
+  expect_error({"run", "shelf-pick", "--video", out, "--fps", "0"}, 2, "--fps must be > 0");
+  expect_error({"run", "shelf-pick", "--all", "--video", out}, 2, "--video excludes --all");
+  expect_error({"run", "shelf-pick", "--camera", "follow"}, 2, "--camera requires --video");
+  const fs::path file = scratch() / "not_a_dir";
+  std::ofstream(file) << "x";
+  expect_error({"run", "shelf-pick", "--video", (file / "v.mp4").string(), "--size", "160x120"}, 1,
+               "cannot write video");
+
+  // no ffmpeg on PATH: the message names Debian's package
+  const auto run = mjarm::test::run_process(
+      {MJARM_CLI, "run", "shelf-pick", "--video", out, "--size", "160x120"},
+      {"PATH=/nonexistent", "HOME=" + scratch().string()});
+  EXPECT_EQ(run.exit_code, 1) << run.err;
+  EXPECT_NE(run.err.find("ffmpeg not found"), std::string::npos) << run.err;
+  EXPECT_NE(run.err.find("package `ffmpeg`"), std::string::npos) << run.err;
+  EXPECT_TRUE(run.out.empty()) << run.out;
 }
 
 }  // namespace

@@ -5,6 +5,7 @@
 #include <atomic>
 #include <cmath>
 #include <cstdlib>
+#include <vector>
 
 #include "ik/malloc_counter.hpp"
 #include "mjarm/error.hpp"
@@ -202,6 +203,35 @@ TEST(ShelfPickTask, UpdateAllocatesNothing) {
     task.update(*f.data, ref);
   }
   EXPECT_EQ(test::malloc_calls() - before, 0u);
+}
+
+/// Keeps the times it saw (storage reserved up front: seeing a tick allocates nothing).
+struct TimeLog final : TickObserver {
+  std::vector<double> times;
+  void on_tick(const mjData& data) noexcept override { times.push_back(data.time); }
+};
+
+TEST(ShelfPickTask, ObserverSeesEveryTickWithoutAllocating) {
+  Fixture f("panda_torque", "attachment_site");
+  ShelfPickTask task(f.chain, goal_between(f.chain, panda_q(0.0), panda_q(0.2), 0.2, false));
+  TimeLog log;
+  log.times.reserve(400);
+  task.set_observer(&log);
+  Reference ref;
+  f.place(panda_q(0.0), 0.0);
+  task.update(*f.data, ref);  // the first tick sizes the reference
+  const std::uint64_t before = test::malloc_calls();
+  for (int k = 1; k < 300; ++k) {
+    f.data->time = 0.002 * k;
+    task.update(*f.data, ref);
+  }
+  EXPECT_EQ(test::malloc_calls() - before, 0u);
+  ASSERT_EQ(log.times.size(), 300u);
+  for (std::size_t k = 0; k < log.times.size(); ++k)
+    EXPECT_EQ(log.times[k], 0.002 * static_cast<double>(k));
+  task.set_observer(nullptr);
+  task.update(*f.data, ref);
+  EXPECT_EQ(log.times.size(), 300u);
 }
 
 TEST(ShelfPickTask, RejectsBadGoals) {

@@ -8,12 +8,20 @@
 #include <array>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "mjarm/model/robot.hpp"
 #include "mjarm/render/camera.hpp"
 #include "mjarm/render/image.hpp"
 
 namespace mjarm {
+
+/// A ball drawn into every picture that is not part of the model (a target, a pick point).
+struct RenderMarker {
+  Eigen::Vector3d position = Eigen::Vector3d::Zero();  ///< centre in W [m]
+  double radius = 0.02;                                ///< [m], > 0
+  std::array<float, 4> rgba = {0.2f, 0.9f, 0.3f, 0.6f};  ///< colour and opacity, each in [0, 1]
+};
 
 /// What the scene shows and which effects are drawn.
 struct RenderOptions {
@@ -24,6 +32,8 @@ struct RenderOptions {
   std::array<bool, mjNGROUP> geom_groups = {true, true, true, false, false, false};
   /// Site groups drawn; the bundled arms put their sites in group 3, hidden by default.
   std::array<bool, mjNGROUP> site_groups = {true, true, true, false, false, false};
+  /// Balls added to the scene after the model's geoms (decoration: they cast no shadow).
+  std::vector<RenderMarker> markers;
 };
 
 /// Renders a `Robot`'s scene at a given `mjData` state into RGB images of a fixed size.
@@ -46,9 +56,9 @@ class OffscreenRenderer {
   /// @param robot  shared model (kept alive by the renderer: copies of `Robot` share the model)
   /// @param width  image width [pixels], ≥ 1
   /// @param height image height [pixels], ≥ 1
-  /// @throws Error when a size is < 1 or larger than the OpenGL implementation allows, or when
+  /// @throws Error when a size is < 1 or larger than the OpenGL implementation allows, when
   ///         no headless OpenGL context can be made (the message names the EGL call and the
-  ///         Debian packages of a driver).
+  ///         Debian packages of a driver), or for an invalid marker (see `RenderMarker`).
   OffscreenRenderer(const Robot& robot, int width, int height, RenderOptions options = {});
   ~OffscreenRenderer();
   OffscreenRenderer(OffscreenRenderer&&) noexcept;
@@ -73,6 +83,7 @@ class OffscreenRenderer {
   CameraView view(const mjData& data, const CameraSpec& camera);
 
   /// Changes what later frames show.
+  /// @throws Error for an invalid marker (the options in force are kept).
   void set_options(const RenderOptions& options);
   /// The options in force.
   const RenderOptions& options() const;

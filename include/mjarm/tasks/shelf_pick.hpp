@@ -10,13 +10,14 @@
 #include "mjarm/sim/run_result.hpp"
 #include "mjarm/tasks/pick_monitor.hpp"
 #include "mjarm/tasks/shelf_pick_plan.hpp"
+#include "mjarm/tasks/shelf_pick_video.hpp"
 
 namespace mjarm {
 
 /// How to run one shelf pick.
 struct ShelfPickOptions {
-  ShelfPickRequest request;        ///< robot, controller, pick point, seed, criteria
-  std::filesystem::path record;    ///< recording directory; empty: no recording
+  ShelfPickRequest request;      ///< robot, controller, pick point, seed, criteria
+  std::filesystem::path record;  ///< recording directory; empty: no recording
   /// Control period [s]; 0 = one physics step (2 ms on the bundled models). Must be a whole
   /// multiple of the timestep.
   double control_period = 0.0;
@@ -25,7 +26,8 @@ struct ShelfPickOptions {
   /// Time allowed after the approach for entering the tolerance and holding [s] (> 0): the run
   /// stops at approach_time + settle_time + hold_time at the latest.
   double settle_time = 1.0;
-  int state_decimation = 1;        ///< one state row every N physics steps when recording
+  int state_decimation = 1;  ///< one state row every N physics steps when recording
+  ShelfPickVideo video;      ///< MP4 of the run; empty path: no video
 };
 
 /// How a shelf pick ended.
@@ -42,16 +44,22 @@ const char* to_string(PickOutcome outcome) noexcept;
 
 /// What a shelf pick did.
 struct ShelfPickReport {
-  ShelfPickPlan plan;            ///< robot, chain, pick point, start, targets, approach time
-  RunResult run;                 ///< the simulation's account (status, end time, message)
-  PickMetrics metrics;           ///< time to tolerance, overshoot, steady state, hold
+  ShelfPickPlan plan;     ///< robot, chain, pick point, start, targets, approach time
+  RunResult run{};        ///< the simulation's account (status, end time, message)
+  PickMetrics metrics{};  ///< time to tolerance, overshoot, steady state, hold
   PickOutcome outcome = PickOutcome::not_held;
   PickPhase final_phase = PickPhase::approach;
-  double time_limit = 0.0;       ///< simulated time allowed [s]
-  double control_period = 0.0;   ///< [s]
+  double time_limit = 0.0;      ///< simulated time allowed [s]
+  double control_period = 0.0;  ///< [s]
   /// The most control ticks any one motor was clipped to its torque limit.
   std::int64_t saturated_ticks = 0;
-  std::filesystem::path recording;  ///< the recording directory (empty when not recorded)
+  std::filesystem::path recording{};  ///< the recording directory (empty when not recorded)
+  std::filesystem::path video{};      ///< the MP4 written (empty when no video)
+  std::int64_t video_frames = 0;      ///< frames in it: ⌊(end − start)·fps⌋ + 1
+  std::string video_camera{};         ///< the camera, described (`CameraSpec::describe`)
+  /// Why the video stopped early (ffmpeg died, disk full; empty when it did not). The run and
+  /// its figures are unaffected; the file holds the frames up to the failure.
+  std::string video_error{};
   bool ok() const noexcept { return outcome == PickOutcome::held; }
 };
 
@@ -59,10 +67,15 @@ struct ShelfPickReport {
 /// `ShelfPickTask` under the chosen controller and returns the figures. With a recording
 /// directory, a `Recorder` is opened before the first step (so a directory that cannot be
 /// written fails before anything runs), gets the phase events and a final "result" event, and is
-/// finalized with the run's status — also when the run diverges.
+/// finalized with the run's status — also when the run diverges. With a video path, a
+/// `RunVideo` (camera from `shelf_pick_camera`, the pick point drawn as a green ball) is opened
+/// before the recorder and watches every control tick through `ShelfPickTask::set_observer`;
+/// the MP4 is finalized with the frames up to the end of the run whatever the outcome, and the
+/// figures are the same as without a video.
 /// @throws Error for bad options (see `plan_shelf_pick`, a control period that is not a whole
-///         multiple of the timestep, a non-positive settle time or bound) or a recording
-///         directory that cannot be created or written.
+///         multiple of the timestep, a non-positive settle time or bound), a recording
+///         directory that cannot be created or written, or a video that cannot start (see
+///         `RunVideo`, `shelf_pick_camera`); all before the first step.
 ShelfPickReport run_shelf_pick(const ShelfPickOptions& options);
 
 }  // namespace mjarm

@@ -13,6 +13,7 @@
 #include "mjarm/model/chain.hpp"
 #include "mjarm/sim/run_result.hpp"
 #include "mjarm/tasks/pick_monitor.hpp"
+#include "mjarm/tasks/tick_observer.hpp"
 #include "mjarm/trajectory/min_jerk.hpp"
 
 namespace mjarm {
@@ -32,19 +33,19 @@ const char* to_string(PickPhase phase) noexcept;
 
 /// Everything a `ShelfPickTask` needs, fixed before the run.
 struct ShelfPickGoal {
-  Pose X_WS;                    ///< pose of the tool frame at the start (world; m)
-  Pose X_WT;                    ///< pose to reach: position = pick point, rotation = tool to hold
-  Eigen::VectorXd q_start;      ///< joint values at the start (chain order) [rad or m]
-  Eigen::VectorXd q_target;     ///< joint values that put the tool at X_WT (from IK) [rad or m]
-  double approach_time = 0.3;   ///< duration T of the minimum-jerk approach [s] (> 0)
-  bool position_only = false;   ///< only the position counts (orientation error reported as 0)
+  Pose X_WS;                   ///< pose of the tool frame at the start (world; m)
+  Pose X_WT;                   ///< pose to reach: position = pick point, rotation = tool to hold
+  Eigen::VectorXd q_start;     ///< joint values at the start (chain order) [rad or m]
+  Eigen::VectorXd q_target;    ///< joint values that put the tool at X_WT (from IK) [rad or m]
+  double approach_time = 0.3;  ///< duration T of the minimum-jerk approach [s] (> 0)
+  bool position_only = false;  ///< only the position counts (orientation error reported as 0)
   /// How far the integrator's velocities lag its positions [s] (≥ 0): velocity references are
   /// evaluated at t − velocity_lag. MuJoCo's semi-implicit Euler advances q_{k+1} = q_k +
   /// h·v_{k+1}, so the qvel a controller sees at t_k is the mean velocity over [t_k − h, t_k],
   /// i.e. the velocity at t_k − h/2: use h/2 there, 0 for RK4. Comparing it with the reference
   /// velocity at t_k would make the damping fight a phantom error of (h/2)·acceleration.
   double velocity_lag = 0.0;
-  PickCriteria criteria;        ///< tolerance and hold time
+  PickCriteria criteria;  ///< tolerance and hold time
 };
 
 /// The shelf pick as a reference source. From the start time t₀ (data.time at the first
@@ -80,6 +81,9 @@ class ShelfPickTask final : public ReferenceSource {
   const Pose& tip() const noexcept { return X_WE_; }
   /// Simulated time of the first `update` [s] (NaN before).
   double start_time() const noexcept { return t0_; }
+  /// Calls @p observer at the start of every `update` with the tick's state (null: none). The
+  /// observer must outlive the task's run; calling it adds no allocation of the task's own.
+  void set_observer(TickObserver* observer) noexcept { observer_ = observer; }
 
  private:
   void enter(PickPhase phase, double t) noexcept;
@@ -87,6 +91,7 @@ class ShelfPickTask final : public ReferenceSource {
   Chain chain_;
   ShelfPickGoal goal_;
   Recorder* recorder_;
+  TickObserver* observer_ = nullptr;
   MinJerkProfile profile_;
   PickMonitor monitor_;
   PickPhase phase_ = PickPhase::approach;
