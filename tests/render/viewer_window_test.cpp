@@ -64,7 +64,11 @@ std::optional<std::string> display_prefix() {
                      "installs Debian's xvfb and xauth";
     return std::nullopt;
   }
-  return prefix + "xvfb-run -a -s '-screen 0 1280x1024x24' ";
+  // tests run in parallel: xvfb-run -a alone lets two of them race for the same display number,
+  // so each process starts its search at a number of its own
+  const int first_display = 100 + static_cast<int>(::getpid() % 800);
+  return prefix + "xvfb-run -a -n " + std::to_string(first_display) +
+         " -s '-screen 0 1280x1024x24' ";
 }
 
 struct PixelStats {
