@@ -1,5 +1,5 @@
 // `mjarm demo`: the main job — the shelf pick on the panda under operational-space control,
-// recorded — then a short tour of the library on a bundled arm: model, forward kinematics at the
+// recorded, filmed and plotted — then a short tour of the library on a bundled arm: model, forward kinematics at the
 // home keyframe, a seeded workspace analysis and a pose-IK round trip.
 
 #include <chrono>
@@ -10,6 +10,7 @@
 #include "commands.hpp"
 #include "mjarm/error.hpp"
 #include "mjarm/ik/pose_ik.hpp"
+#include "mjarm/plot/plots.hpp"
 #include "mjarm/sim/interrupt.hpp"
 #include "mjarm/tasks/shelf_pick.hpp"
 #include "output.hpp"
@@ -50,6 +51,7 @@ Command add_demo_command(CLI::App& root) {
     std::size_t samples = 20000;
     std::uint64_t seed = 1;
     std::string record = "out/demo";
+    std::string video = "out/demo.mp4";
     bool json = false;
   };
   auto options = std::make_shared<Options>();
@@ -70,6 +72,9 @@ Command add_demo_command(CLI::App& root) {
   app->add_option("--record", options->record,
                   "where the shelf pick's recording goes (relative to the current directory)")
       ->capture_default_str();
+  app->add_option("--video", options->video,
+                  "where the shelf pick's video goes (MP4, rendered headless; '' for none)")
+      ->capture_default_str();
   add_json_flag(*app, options->json);
 
   return {app, [options] {
@@ -79,6 +84,9 @@ Command add_demo_command(CLI::App& root) {
             pick.request.controller = "osc";
             pick.request.seed = options->seed;
             pick.record = options->record;
+            pick.video.path = options->video;
+            if (pick.video.path.has_parent_path())
+              std::filesystem::create_directories(pick.video.path.parent_path());
             std::optional<ShelfPickReport> report;
             {
               const InterruptGuard interrupts;
@@ -89,6 +97,10 @@ Command add_demo_command(CLI::App& root) {
                                  std::string(to_string(report->outcome)) + ": " +
                                  report->run.message + "; recording in " +
                                  report->recording.string());
+            // plots of the recording, beside it (docs/plot.md)
+            std::vector<std::filesystem::path> plots =
+                plot::write_plots(report->recording, report->recording / "plots");
+            for (auto& p : plots) p = std::filesystem::proximate(p);  // as given: relative
 
             const Robot robot = load_model(options->model);
             const Chain chain(robot, resolve_site(robot, options->site));
@@ -109,7 +121,10 @@ Command add_demo_command(CLI::App& root) {
                       {"orientation_error", trip.result.orientation_error},
                       {"iterations", trip.result.iterations},
                       {"seconds", trip.seconds}};
+              Json plot_paths = Json::array();
+              for (const auto& p : plots) plot_paths.push_back(p.string());
               return print_json({{"shelf_pick", shelf_pick_json(*report)},
+                                 {"plots", plot_paths},
                                  {"model", model_json(robot)},
                                  {"fk", pose_json(kin, config, false)},
                                  {"workspace", workspace_json(chain, workspace)},
@@ -119,6 +134,8 @@ Command add_demo_command(CLI::App& root) {
             std::ostream& os = std::cout;
             print_heading(os, "shelf pick");
             print_shelf_pick(os, *report);
+            os << "plots\n";
+            for (const auto& p : plots) os << "  " << p.string() << "\n";
             print_heading(os, "model");
             os << robot.name() << ": " << robot.joints().size() << " joints, " << robot.nu()
                << " actuators, frame " << chain.frame().name << " (mjarm info " << options->model

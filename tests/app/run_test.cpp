@@ -251,6 +251,15 @@ TEST(RunCli, DemoRunsTheShelfPickAndRecordsIntoOutDemo) {
   EXPECT_NE(run.out.find("result: held"), std::string::npos);
   EXPECT_NE(run.out.find("out/demo (state.csv"), std::string::npos) << run.out;
   expect_recording(cwd / "out" / "demo", "finished");
+  // the main job also films the pick and plots its recording, and says where they went
+  EXPECT_NE(run.out.find("out/demo.mp4 ("), std::string::npos) << run.out;
+  EXPECT_GT(fs::file_size(cwd / "out" / "demo.mp4"), 0u);
+  for (const char* plot : {"tracking_error.png", "joint_torques.png", "contact_force.png",
+                           "phases.png"}) {
+    const fs::path path = cwd / "out" / "demo" / "plots" / plot;
+    EXPECT_TRUE(fs::exists(path)) << path;
+    EXPECT_NE(run.out.find(plot), std::string::npos) << plot;
+  }
 
   const CliResult json_run =
       run_cli({"demo", "--samples", "1000", "--json", "--record", "elsewhere"}, cwd);
@@ -261,6 +270,8 @@ TEST(RunCli, DemoRunsTheShelfPickAndRecordsIntoOutDemo) {
   EXPECT_EQ(doc["shelf_pick"]["outcome"], "held");
   EXPECT_EQ(doc["shelf_pick"]["recording"], "elsewhere");
   expect_recording(cwd / "elsewhere", "finished");
+  EXPECT_EQ(doc["shelf_pick"]["video"]["path"], "out/demo.mp4");
+  EXPECT_EQ(doc["plots"].size(), 4u);
 }
 
 // ---- --video ----
