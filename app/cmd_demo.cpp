@@ -1,6 +1,6 @@
 // `mjarm demo`: the main job — the shelf pick on the panda under operational-space control,
-// recorded, filmed and plotted — then a short tour of the library on a bundled arm: model, forward kinematics at the
-// home keyframe, a seeded workspace analysis and a pose-IK round trip.
+// recorded, filmed and plotted — then a short tour of the library on a bundled arm: model, forward
+// kinematics at the home keyframe, a seeded workspace analysis and a pose-IK round trip.
 
 #include <chrono>
 #include <iostream>
@@ -93,9 +93,8 @@ Command add_demo_command(CLI::App& root) {
               report.emplace(run_shelf_pick(pick));
             }
             if (!report->ok())
-              throw mjarm::Error("the shelf pick ended " +
-                                 std::string(to_string(report->outcome)) + ": " +
-                                 report->run.message + "; recording in " +
+              throw mjarm::Error("the shelf pick ended " + std::string(to_string(report->outcome)) +
+                                 ": " + report->run.message + "; recording in " +
                                  report->recording.string());
             // plots of the recording, beside it (docs/plot.md)
             std::vector<std::filesystem::path> plots =

@@ -254,8 +254,8 @@ TEST(RunCli, DemoRunsTheShelfPickAndRecordsIntoOutDemo) {
   // the main job also films the pick and plots its recording, and says where they went
   EXPECT_NE(run.out.find("out/demo.mp4 ("), std::string::npos) << run.out;
   EXPECT_GT(fs::file_size(cwd / "out" / "demo.mp4"), 0u);
-  for (const char* plot : {"tracking_error.png", "joint_torques.png", "contact_force.png",
-                           "phases.png"}) {
+  for (const char* plot :
+       {"tracking_error.png", "joint_torques.png", "contact_force.png", "phases.png"}) {
     const fs::path path = cwd / "out" / "demo" / "plots" / plot;
     EXPECT_TRUE(fs::exists(path)) << path;
     EXPECT_NE(run.out.find(plot), std::string::npos) << plot;
