@@ -25,6 +25,8 @@ long allocations() { return g_allocations.load(std::memory_order_relaxed); }
 }  // namespace
 
 #if defined(__SANITIZE_ADDRESS__)
+// GCC 12 cannot see that this operator new allocates with malloc, and warns on free below
+#pragma GCC diagnostic ignored "-Wmismatched-new-delete"
 void* operator new(std::size_t size) {
   g_allocations.fetch_add(1, std::memory_order_relaxed);
   if (void* p = std::malloc(size == 0 ? 1 : size)) return p;
