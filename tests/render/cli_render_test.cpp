@@ -38,11 +38,13 @@ TEST(CliRender, HeadlessWithoutDisplayOrGpu) {
   // no DISPLAY, no WAYLAND_DISPLAY, software rasteriser forced: what a CI box or server has
   const fs::path out = test::scratch() / "headless.png";
   const char* path = std::getenv("PATH");
+  const char* asan = std::getenv("ASAN_OPTIONS");  // a sanitized build's settings carry over
   const auto run = render({"panda", "--q", "0", "-0.5", "0", "-2", "0", "1.6", "0.8",
                            "--follow", "attachment_site", "--distance", "0.9", "--out",
                            out.string()},
                           {std::string("PATH=") + (path != nullptr ? path : "/usr/bin:/bin"),
-                           "LIBGL_ALWAYS_SOFTWARE=1", "MJARM_MODELS=" MJARM_MODELS_DIR});
+                           "LIBGL_ALWAYS_SOFTWARE=1", "MJARM_MODELS=" MJARM_MODELS_DIR,
+                           std::string("ASAN_OPTIONS=") + (asan != nullptr ? asan : "")});
   ASSERT_EQ(run.exit_code, 0) << run.err;
   EXPECT_NE(run.out.find("llvmpipe"), std::string::npos) << run.out;
   const auto stats = test::pixel_stats(read_png(out));
