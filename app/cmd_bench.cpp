@@ -24,7 +24,9 @@
 // instead.
 namespace {
 std::atomic<std::uint64_t> g_heap_allocations{0};
-void count_heap_allocation() noexcept { g_heap_allocations.fetch_add(1, std::memory_order_relaxed); }
+void count_heap_allocation() noexcept {
+  g_heap_allocations.fetch_add(1, std::memory_order_relaxed);
+}
 }  // namespace
 
 #if defined(__SANITIZE_ADDRESS__)
@@ -132,79 +134,80 @@ Command add_control_subcommand(CLI::App& bench) {
       "operational-space control + mj_step beside mj_step alone");
   add_model_argument(*app, options->model)->required();
   add_site_option(*app, options->site);
-  app->add_option("--steps", options->steps, "timed control steps per controller (one per physics step)")
+  app->add_option("--steps", options->steps,
+                  "timed control steps per controller (one per physics step)")
       ->check(CLI::Range(1, 1000000));
   app->add_option("--warmup", options->warmup, "untimed steps before each timed run")
       ->check(CLI::Range(0, 1000000));
   add_json_flag(*app, options->json);
 
-  return {app, [options] {
-            const Robot robot = load_torque_model(options->model);
-            const Chain chain(robot, resolve_site(robot, options->site));
-            ControlBenchmarkOptions protocol;
-            protocol.steps = options->steps;
-            protocol.warmup = options->warmup;
-            protocol.allocation_count = [] {
-              return g_heap_allocations.load(std::memory_order_relaxed);
-            };
-            Progress progress("benchmarking controllers", 8);
-            protocol.progress = [&progress](int done, int) { progress.update(done); };
-            const ControlBenchmarkResult r = run_control_benchmark(chain, protocol);
-            progress.finish();
+  return {
+      app, [options] {
+        const Robot robot = load_torque_model(options->model);
+        const Chain chain(robot, resolve_site(robot, options->site));
+        ControlBenchmarkOptions protocol;
+        protocol.steps = options->steps;
+        protocol.warmup = options->warmup;
+        protocol.allocation_count = [] {
+          return g_heap_allocations.load(std::memory_order_relaxed);
+        };
+        Progress progress("benchmarking controllers", 8);
+        protocol.progress = [&progress](int done, int) { progress.update(done); };
+        const ControlBenchmarkResult r = run_control_benchmark(chain, protocol);
+        progress.finish();
 
-            if (options->json) {
-              Json controllers = Json::array();
-              for (const auto& c : r.controllers) controllers.push_back(controller_json(c));
-              return print_json({{"model", r.robot},
-                                 {"frame", r.frame},
-                                 {"joints", r.joints},
-                                 {"timestep", r.timestep},
-                                 {"steps", r.steps},
-                                 {"warmup", options->warmup},
-                                 {"reference_frequency_hz", r.frequency},
-                                 {"reference_amplitude", protocol.amplitude},
-                                 {"controllers", controllers},
-                                 {"real_time_factor",
-                                  {{"osc_mj_step", r.osc_real_time_factor},
-                                   {"mj_step_only", r.passive_real_time_factor}}},
-                                 {"step_us",
-                                  {{"osc_mj_step", r.osc_step_us},
-                                   {"mj_step_only", r.passive_step_us}}},
-                                 {"loop_allocations", r.loop_allocations}});
-            }
-            print_fields(std::cout,
-                         {{"model", r.robot},
-                          {"frame", r.frame},
-                          {"joints", std::to_string(r.joints)},
-                          {"timestep [s]", compact(r.timestep) + " (one control step per physics step)"},
-                          {"steps", std::to_string(r.steps) + " per controller, after " +
-                                        std::to_string(options->warmup) + " untimed"},
-                          {"reference", "joint sinusoids of " + compact(protocol.amplitude) +
-                                            " rad at " + compact(r.frequency) +
-                                            " Hz and their task-space image"}});
-            std::cout << '\n';
-            Table table({{"controller", Table::Align::left},
-                         {"median [µs]"},
-                         {"p99 [µs]"},
-                         {"mean [µs]"},
-                         {"max [µs]"},
-                         {"alloc/step"},
-                         {"rms error [mm]"}});
-            for (const auto& c : r.controllers) {
-              table.add_row({c.name, fixed(c.median_us, 3), fixed(c.p99_us, 3), fixed(c.mean_us, 3),
-                             fixed(c.max_us, 1), compact(c.allocations_per_step),
-                             fixed(1e3 * c.rms_position_error, 3)});
-            }
-            table.print(std::cout);
-            std::cout << '\n';
-            Table rtf({{"one thread", Table::Align::left}, {"real-time factor"}, {"per step [µs]"}});
-            rtf.add_row({"osc + mj_step", fixed(r.osc_real_time_factor, 1), fixed(r.osc_step_us, 3)});
-            rtf.add_row({"mj_step only", fixed(r.passive_real_time_factor, 1),
-                         fixed(r.passive_step_us, 3)});
-            rtf.print(std::cout);
-            std::cout << "\nheap allocations in the closed OSC loop (controller + physics): "
-                      << r.loop_allocations << '\n';
-          }};
+        if (options->json) {
+          Json controllers = Json::array();
+          for (const auto& c : r.controllers) controllers.push_back(controller_json(c));
+          return print_json(
+              {{"model", r.robot},
+               {"frame", r.frame},
+               {"joints", r.joints},
+               {"timestep", r.timestep},
+               {"steps", r.steps},
+               {"warmup", options->warmup},
+               {"reference_frequency_hz", r.frequency},
+               {"reference_amplitude", protocol.amplitude},
+               {"controllers", controllers},
+               {"real_time_factor",
+                {{"osc_mj_step", r.osc_real_time_factor},
+                 {"mj_step_only", r.passive_real_time_factor}}},
+               {"step_us", {{"osc_mj_step", r.osc_step_us}, {"mj_step_only", r.passive_step_us}}},
+               {"loop_allocations", r.loop_allocations}});
+        }
+        print_fields(
+            std::cout,
+            {{"model", r.robot},
+             {"frame", r.frame},
+             {"joints", std::to_string(r.joints)},
+             {"timestep [s]", compact(r.timestep) + " (one control step per physics step)"},
+             {"steps", std::to_string(r.steps) + " per controller, after " +
+                           std::to_string(options->warmup) + " untimed"},
+             {"reference", "joint sinusoids of " + compact(protocol.amplitude) + " rad at " +
+                               compact(r.frequency) + " Hz and their task-space image"}});
+        std::cout << '\n';
+        Table table({{"controller", Table::Align::left},
+                     {"median [µs]"},
+                     {"p99 [µs]"},
+                     {"mean [µs]"},
+                     {"max [µs]"},
+                     {"alloc/step"},
+                     {"rms error [mm]"}});
+        for (const auto& c : r.controllers) {
+          table.add_row({c.name, fixed(c.median_us, 3), fixed(c.p99_us, 3), fixed(c.mean_us, 3),
+                         fixed(c.max_us, 1), compact(c.allocations_per_step),
+                         fixed(1e3 * c.rms_position_error, 3)});
+        }
+        table.print(std::cout);
+        std::cout << '\n';
+        Table rtf({{"one thread", Table::Align::left}, {"real-time factor"}, {"per step [µs]"}});
+        rtf.add_row({"osc + mj_step", fixed(r.osc_real_time_factor, 1), fixed(r.osc_step_us, 3)});
+        rtf.add_row(
+            {"mj_step only", fixed(r.passive_real_time_factor, 1), fixed(r.passive_step_us, 3)});
+        rtf.print(std::cout);
+        std::cout << "\nheap allocations in the closed OSC loop (controller + physics): "
+                  << r.loop_allocations << '\n';
+      }};
 }
 
 }  // namespace
@@ -220,8 +223,9 @@ Command add_bench_command(CLI::App& root) {
     bool json = false;
   };
   auto options = std::make_shared<Options>();
-  CLI::App* bench =
-      root.add_subcommand("bench", "benchmarks of the library (see `mjarm bench ik --help`, `mjarm bench control --help`)");
+  CLI::App* bench = root.add_subcommand(
+      "bench",
+      "benchmarks of the library (see `mjarm bench ik --help`, `mjarm bench control --help`)");
   bench->require_subcommand(1);
   CLI::App* app = bench->add_subcommand(
       "ik",
@@ -234,7 +238,8 @@ Command add_bench_command(CLI::App& root) {
       ->check(CLI::Range(1, 10000000));
   app->add_option("--timeout-ms", options->timeout_ms, "time budget per solve [ms]")
       ->check(CLI::PositiveNumber);
-  app->add_option("--seed", options->seed, "seed of the targets (and of the random starts)")->check(non_negative_integer());
+  app->add_option("--seed", options->seed, "seed of the targets (and of the random starts)")
+      ->check(non_negative_integer());
   app->add_option("--clock", options->clock,
                   "wall: the published protocol (steady clock); cpu: the solving thread's CPU "
                   "time, for a shared machine (a solve over budget counts as failed)")
@@ -254,8 +259,8 @@ Command add_bench_command(CLI::App& root) {
               protocol.seed = options->seed;
               protocol.seed_mode = mode;
               protocol.timeout = std::chrono::duration<double, std::milli>(options->timeout_ms);
-              protocol.clock = options->clock == "cpu" ? IkBenchmarkClock::thread_cpu
-                                                       : IkBenchmarkClock::wall;
+              protocol.clock =
+                  options->clock == "cpu" ? IkBenchmarkClock::thread_cpu : IkBenchmarkClock::wall;
               Progress progress(std::string("solving (") + to_string(mode) + " seeds)",
                                 options->samples);
               protocol.progress = [&progress](int done, int) { progress.update(done); };

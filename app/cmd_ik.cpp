@@ -88,7 +88,8 @@ Command add_ik_command(CLI::App& root) {
       ->check(CLI::IsMember({"dls", "pose", "global"}));
   app->add_option("--timeout-ms", options->timeout_ms, "time budget of the global solver [ms]")
       ->check(CLI::PositiveNumber);
-  app->add_option("--seed", options->seed, "seed of the global solver's restarts")->check(non_negative_integer());
+  app->add_option("--seed", options->seed, "seed of the global solver's restarts")
+      ->check(non_negative_integer());
   add_json_flag(*app, options->json);
 
   return {app, [options] {

@@ -31,10 +31,10 @@ Command add_singularities_command(CLI::App& root);  ///< `mjarm singularities MO
 Command add_demo_command(CLI::App& root);           ///< `mjarm demo`
 Command add_ik_command(CLI::App& root);             ///< `mjarm ik MODEL …` (cmd_ik.cpp)
 Command add_bench_command(CLI::App& root);          ///< `mjarm bench ik MODEL …` (cmd_bench.cpp)
-Command add_render_command(CLI::App& root);         ///< `mjarm render MODEL --out P` (cmd_render.cpp)
-Command add_view_command(CLI::App& root);           ///< `mjarm view [MODEL]` (cmd_view.cpp)
-Command add_run_command(CLI::App& root);            ///< `mjarm run shelf-pick …` (cmd_run.cpp)
-Command add_plot_command(CLI::App& root);           ///< `mjarm plot RECORDING …` (cmd_plot.cpp)
+Command add_render_command(CLI::App& root);  ///< `mjarm render MODEL --out P` (cmd_render.cpp)
+Command add_view_command(CLI::App& root);    ///< `mjarm view [MODEL]` (cmd_view.cpp)
+Command add_run_command(CLI::App& root);     ///< `mjarm run shelf-pick …` (cmd_run.cpp)
+Command add_plot_command(CLI::App& root);    ///< `mjarm plot RECORDING …` (cmd_plot.cpp)
 
 /// Everything `info` reports about a model, as JSON.
 Json model_json(const Robot& robot);
