@@ -8,30 +8,6 @@
 #include "mjarm/plot/plots.hpp"
 
 namespace mjarm::cli {
-namespace {
-
-struct PlotSize {
-  int width = 1280;
-  int height = 720;
-};
-
-// "WxH" with whole numbers, 200x150 … 16384x16384; empty text when valid
-std::string check_size(const std::string& text, PlotSize* size) {
-  const auto x = text.find_first_of("xX");
-  auto whole = [](const std::string& s) {
-    return !s.empty() && s.size() <= 5 && s.find_first_not_of("0123456789") == std::string::npos;
-  };
-  if (x == std::string::npos || !whole(text.substr(0, x)) || !whole(text.substr(x + 1)))
-    return "'" + text + "' is not a size WIDTHxHEIGHT in pixels (e.g. 1280x720)";
-  const int w = std::stoi(text.substr(0, x)), h = std::stoi(text.substr(x + 1));
-  if (w < 200 || h < 150 || w > 16384 || h > 16384)
-    return "plot size '" + text + "' must be between 200x150 and 16384x16384 pixels";
-  if (size != nullptr) *size = {w, h};
-  return {};
-}
-
-}  // namespace
-
 Command add_plot_command(CLI::App& root) {
   struct Options {
     std::string recording;
@@ -53,13 +29,11 @@ Command add_plot_command(CLI::App& root) {
   app->add_option("--out", options->out, "folder for the PNG files [default: RECORDING/plots]");
   app->add_option("--size", options->size, "figure size WIDTHxHEIGHT [pixels]")
       ->capture_default_str()
-      ->check(CLI::Validator([](std::string& text) { return check_size(text, nullptr); }, "WxH",
-                             "size"));
+      ->check(pixel_size({200, 150}));
   add_json_flag(*app, options->json);
 
   return {app, [options] {
-            PlotSize size;
-            check_size(options->size, &size);
+            const PixelSize size = parse_pixel_size(options->size);
             plot::PlotOptions plot_options;
             plot_options.width = size.width;
             plot_options.height = size.height;

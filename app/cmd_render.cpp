@@ -12,34 +12,6 @@
 namespace mjarm::cli {
 namespace {
 
-struct Size {
-  int width = 640;
-  int height = 480;
-};
-
-// "WxH" with whole numbers 1 … 16384
-CLI::Validator size_text() {
-  return CLI::Validator(
-      [](std::string& text) -> std::string {
-        const auto x = text.find_first_of("xX");
-        auto whole = [](const std::string& s) {
-          return !s.empty() && s.size() <= 5 && s.find_first_not_of("0123456789") == std::string::npos;
-        };
-        if (x == std::string::npos || !whole(text.substr(0, x)) || !whole(text.substr(x + 1)))
-          return "'" + text + "' is not a size WIDTHxHEIGHT in pixels (e.g. 640x480)";
-        const int w = std::stoi(text.substr(0, x)), h = std::stoi(text.substr(x + 1));
-        if (w < 1 || h < 1 || w > 16384 || h > 16384)
-          return "size '" + text + "' must be between 1x1 and 16384x16384 pixels";
-        return {};
-      },
-      "WxH", "size");
-}
-
-Size parse_size(const std::string& text) {
-  const auto x = text.find_first_of("xX");
-  return {std::stoi(text.substr(0, x)), std::stoi(text.substr(x + 1))};
-}
-
 // --q values fill qpos from the start and must end on a joint boundary (the 7 arm joints of
 // panda_hand, or all nq coordinates); the rest keep qpos0
 std::string apply_q(const Robot& robot, const std::vector<double>& q, mjData& d) {
@@ -49,8 +21,7 @@ std::string apply_q(const Robot& robot, const std::vector<double>& q, mjData& d)
   for (int j = 0; j < m.njnt && !boundary; ++j) boundary = m.jnt_qposadr[j] == n;
   if (n > m.nq || !boundary) {
     std::string names;
-    for (const auto& joint : robot.joints())
-      names += (names.empty() ? "" : ", ") + joint.name;
+    for (const auto& joint : robot.joints()) names += (names.empty() ? "" : ", ") + joint.name;
     throw UsageError("--q got " + std::to_string(n) + " values; model '" + robot.name() +
                      "' takes up to nq = " + std::to_string(m.nq) +
                      " coordinates in qpos order, ending at a joint boundary (joints: " + names +
@@ -103,10 +74,10 @@ Command add_render_command(CLI::App& root) {
   auto* distance = app->add_option("--distance", options->distance,
                                    "camera distance to the look-at point [m]; default: framing")
                        ->check(finite_number());
-  auto* azimuth = app->add_option("--azimuth", options->azimuth,
-                                  "heading of the view about +z, from +x [deg]")
-                      ->capture_default_str()
-                      ->check(finite_number());
+  auto* azimuth =
+      app->add_option("--azimuth", options->azimuth, "heading of the view about +z, from +x [deg]")
+          ->capture_default_str()
+          ->check(finite_number());
   auto* elevation = app->add_option("--elevation", options->elevation,
                                     "pitch of the view, negative looks down [deg]")
                         ->capture_default_str()
@@ -116,7 +87,7 @@ Command add_render_command(CLI::App& root) {
   follow->excludes(lookat);
   app->add_option("--size", options->size, "image size WIDTHxHEIGHT [pixels]")
       ->capture_default_str()
-      ->check(size_text());
+      ->check(pixel_size());
   app->add_option("--out", options->out, "PNG file to write")->required();
   app->add_flag("--no-shadows", options->no_shadows, "draw without shadows");
   add_json_flag(*app, options->json);
@@ -127,7 +98,8 @@ Command add_render_command(CLI::App& root) {
             std::string configuration = "qpos0";
             if (!options->keyframe.empty()) {
               const std::vector<double> qpos = robot.keyframe_qpos(options->keyframe);
-              for (int i = 0; i < robot.nq(); ++i) data->qpos[i] = qpos[static_cast<std::size_t>(i)];
+              for (int i = 0; i < robot.nq(); ++i)
+                data->qpos[i] = qpos[static_cast<std::size_t>(i)];
               configuration = "keyframe '" + options->keyframe + "'";
             } else if (!options->q.empty()) {
               configuration = apply_q(robot, options->q, *data);
@@ -150,12 +122,12 @@ Command add_render_command(CLI::App& root) {
               // framing the robot fills in what was not given
               spec = frame_robot(robot, *data, options->azimuth, options->elevation);
               if (!options->lookat.empty())
-                spec.lookat = Eigen::Vector3d(options->lookat[0], options->lookat[1],
-                                              options->lookat[2]);
+                spec.lookat =
+                    Eigen::Vector3d(options->lookat[0], options->lookat[1], options->lookat[2]);
               if (has_distance) spec.distance = options->distance;
             }
 
-            const Size size = parse_size(options->size);
+            const PixelSize size = parse_pixel_size(options->size);
             RenderOptions render_options;
             render_options.shadows = !options->no_shadows;
             OffscreenRenderer renderer(robot, size.width, size.height, render_options);

@@ -38,28 +38,6 @@ std::string mm(double metres) { return std::isnan(metres) ? "—" : fixed(metres
 std::string sec(double seconds) { return std::isnan(seconds) ? "—" : fixed(seconds, 3); }
 Json number_or_null(double v) { return std::isfinite(v) ? Json(v) : Json(nullptr); }
 
-// "WxH", both whole, even (the MP4's yuv420p) and 2 … 16384
-CLI::Validator video_size() {
-  return CLI::Validator(
-      [](std::string& text) -> std::string {
-        const auto x = text.find_first_of("xX");
-        auto whole = [](const std::string& s) {
-          return !s.empty() && s.size() <= 5 &&
-                 s.find_first_not_of("0123456789") == std::string::npos;
-        };
-        if (x == std::string::npos || !whole(text.substr(0, x)) || !whole(text.substr(x + 1)))
-          return "'" + text + "' is not a size WIDTHxHEIGHT in pixels (e.g. 640x480)";
-        const int w = std::stoi(text.substr(0, x)), h = std::stoi(text.substr(x + 1));
-        if (w < 2 || h < 2 || w > 16384 || h > 16384)
-          return "size '" + text + "' must be between 2x2 and 16384x16384 pixels";
-        if (w % 2 != 0 || h % 2 != 0)
-          return "size '" + text + "' must be even in both directions (the MP4's yuv420p), e.g. " +
-                 std::to_string(w + w % 2) + "x" + std::to_string(h + h % 2);
-        return {};
-      },
-      "WxH", "video size");
-}
-
 /// Throws UsageError (exit 2) for an unknown robot or controller, with the choices.
 void check_names(const std::string& robot, const std::string& controller) {
   try {
@@ -306,7 +284,7 @@ Command add_run_command(CLI::App& root) {
                   "free camera framing the robot and the pick point")
       ->needs(video);
   app->add_option("--size", o->size, "video size WIDTHxHEIGHT [pixels], even")
-      ->check(video_size())
+      ->check(pixel_size({2, 2}, true))
       ->needs(video)
       ->capture_default_str();
   app->add_option("--fps", o->fps, "video frames per simulated second")
@@ -339,11 +317,11 @@ Command add_run_command(CLI::App& root) {
             options.settle_time = o->settle_time;
             if (!o->video.empty()) {
               if (!(o->fps > 0.0)) throw UsageError("--fps must be > 0, got " + compact(o->fps));
-              const auto x = o->size.find_first_of("xX");
+              const PixelSize size = parse_pixel_size(o->size);
               options.video.path = o->video;
               options.video.camera = o->camera;
-              options.video.options.width = std::stoi(o->size.substr(0, x));
-              options.video.options.height = std::stoi(o->size.substr(x + 1));
+              options.video.options.width = size.width;
+              options.video.options.height = size.height;
               options.video.options.fps = o->fps;
             }
             const InterruptGuard interrupts;  // Ctrl-C ends the run with a finalized recording

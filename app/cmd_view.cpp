@@ -36,19 +36,6 @@ SimulationMode parse_mode(const std::string& text) {
   throw UsageError("view: --mode must be kinematic, position or torque, got '" + text + "'");
 }
 
-std::pair<int, int> parse_size(const std::string& text) {
-  const auto x = text.find('x');
-  try {
-    if (x != std::string::npos && x > 0 && x + 1 < text.size() &&
-        text.find_first_not_of("0123456789x") == std::string::npos) {
-      return {std::stoi(text.substr(0, x)), std::stoi(text.substr(x + 1))};
-    }
-  } catch (const std::exception&) {  // out of int range: reported below
-  }
-  throw UsageError("view: --size must be WIDTHxHEIGHT in pixels, e.g. 1280x800, got '" + text +
-                   "'");
-}
-
 Json pose_summary(const Pose& X) {
   return {{"position", vector_json(X.p)}, {"rpy", vector_json(rpy_from_rotation(X.R))}};
 }
@@ -98,7 +85,9 @@ void run_view(const ViewOptions& o) {
   options.session.site = o.site;
   options.session.keyframe = o.key;
   options.session.mode = parse_mode(o.mode);
-  std::tie(options.width, options.height) = parse_size(o.size);
+  const PixelSize size = parse_pixel_size(o.size);
+  options.width = size.width;
+  options.height = size.height;
   options.rates.render_hz = o.render_hz;
   options.rates.input_hz = o.input_hz;
   options.rates.speed = o.speed;
@@ -176,7 +165,8 @@ Command add_view_command(CLI::App& root) {
   app->add_option("--set", options->set,
                   "panel value before the first frame, NAME=VALUE (x y z [m], roll pitch yaw "
                   "[rad], gripper 0..1, mode); repeatable");
-  app->add_option("--size", options->size, "window size WIDTHxHEIGHT [pixels]; default 1280x800");
+  app->add_option("--size", options->size, "window size WIDTHxHEIGHT [pixels]; default 1280x800")
+      ->check(pixel_size());
   app->add_option("--render-hz", options->render_hz, "frames per second; default 60")
       ->check(CLI::PositiveNumber);
   app->add_option("--input-hz", options->input_hz, "input polls per second; default 20")

@@ -34,6 +34,37 @@ CLI::Validator non_negative_integer() {
       "INTEGER", "non_negative_integer");
 }
 
+CLI::Validator pixel_size(PixelSize min, bool even) {
+  constexpr int kMax = 16384;
+  return CLI::Validator(
+      [min, even](std::string& text) -> std::string {
+        const auto x = text.find_first_of("xX");
+        auto whole = [](const std::string& s) {
+          return !s.empty() && s.size() <= 5 &&
+                 s.find_first_not_of("0123456789") == std::string::npos;
+        };
+        if (x == std::string::npos || !whole(text.substr(0, x)) || !whole(text.substr(x + 1)))
+          return "'" + text + "' is not a size WIDTHxHEIGHT in pixels (e.g. 640x480)";
+        const PixelSize size = parse_pixel_size(text);
+        if (size.width < min.width || size.height < min.height || size.width > kMax ||
+            size.height > kMax) {
+          return "size '" + text + "' must be between " + std::to_string(min.width) + "x" +
+                 std::to_string(min.height) + " and 16384x16384 pixels";
+        }
+        if (even && (size.width % 2 != 0 || size.height % 2 != 0))
+          return "size '" + text + "' must be even in both directions (the MP4's yuv420p), e.g. " +
+                 std::to_string(size.width + size.width % 2) + "x" +
+                 std::to_string(size.height + size.height % 2);
+        return {};
+      },
+      "WxH", "pixel_size");
+}
+
+PixelSize parse_pixel_size(const std::string& text) {
+  const auto x = text.find_first_of("xX");
+  return {std::stoi(text.substr(0, x)), std::stoi(text.substr(x + 1))};
+}
+
 CLI::Option* add_model_argument(CLI::App& command, std::string& model) {
   return command.add_option("MODEL", model,
                             "bundled model name (see `mjarm models`) or path to an MJCF/URDF file");

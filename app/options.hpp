@@ -1,7 +1,7 @@
 #pragma once
 /// @file
 /// Command-line pieces shared by the `mjarm` commands: the MODEL argument, the frame (--site),
-/// the configuration (--q / --key), and validators for numbers.
+/// the configuration (--q / --key), and validators for numbers and picture sizes.
 
 #include <CLI/CLI.hpp>
 #include <Eigen/Core>
@@ -18,6 +18,19 @@ CLI::Validator finite_number();
 
 /// Accepts only a whole number ≥ 0 written with digits (rejects "-1", which would wrap around).
 CLI::Validator non_negative_integer();
+
+/// A picture's size in pixels.
+struct PixelSize {
+  int width = 0;
+  int height = 0;
+};
+
+/// Accepts "WIDTHxHEIGHT" with whole numbers from @p min up to 16384 in each direction, both
+/// even when @p even (an MP4's yuv420p needs that).
+CLI::Validator pixel_size(PixelSize min = {1, 1}, bool even = false);
+
+/// The size a pixel_size()-checked text names.
+PixelSize parse_pixel_size(const std::string& text);
 
 /// Adds the positional MODEL argument (bundled name or file path) to @p command.
 CLI::Option* add_model_argument(CLI::App& command, std::string& model);

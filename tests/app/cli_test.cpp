@@ -265,6 +265,9 @@ TEST(Cli, BadCommandLinesFailCleanly) {
   expect_error({"fk", "planar2", "--q", "0", "nan"}, 2, "'nan' is not a finite number");
   expect_error({"fk", "planar2", "--q", "inf", "0"}, 2, "'inf' is not a finite number");
   expect_error({"fk", "planar2", "--q", "1e999", "0"}, 2, "not a finite number");
+  // every --size goes through one parser: the window's too (checked before any window opens)
+  expect_error({"view", "panda", "--size", "wide"}, 2, "'wide' is not a size WIDTHxHEIGHT");
+  expect_error({"view", "panda", "--size", "0x480"}, 2, "between 1x1 and 16384x16384 pixels");
   expect_error({"fk", "planar2", "--q", "0", "0.5rad"}, 2, "'0.5rad' is not a number");
   expect_error({"fk", "planar2", "--q", "0", "0", "--key", "home"}, 2, "excludes");
   expect_error({"fk", "planar2", "--site", "tpi"}, 1, "tip");
