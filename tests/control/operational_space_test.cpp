@@ -8,6 +8,7 @@
 #include "control/task_control_support.hpp"
 #include "ik/malloc_counter.hpp"
 #include "mjarm/error.hpp"
+#include "support/reference_linear_algebra.hpp"
 
 namespace mjarm {
 namespace {
@@ -32,8 +33,8 @@ VectorX reference_osc_torque(const mjModel& m, const mjData& d, int site, const 
   const MatrixX J = test::site_jacobian(m, d, site).topRows(rows);
   const VectorX qd = Eigen::Map<const VectorX>(d.qvel, m.nv);
   const VectorX q = Eigen::Map<const VectorX>(d.qpos, m.nq);
-  const MatrixX Minv = M.inverse();
-  const MatrixX Lambda = (J * Minv * J.transpose()).inverse();
+  const MatrixX Minv = test::inverse(M);
+  const MatrixX Lambda = test::inverse(J * Minv * J.transpose());
   const VectorX jdot_qd = test::site_jdot_qdot(m, d, site).head(rows);
 
   const Vector6d e6 = test::reference_error(test::site_pose(d, site), c.ref.task.X_WE);

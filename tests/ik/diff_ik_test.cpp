@@ -12,6 +12,7 @@
 #include "mjarm/lie/pose_error.hpp"
 #include "mjarm/lie/so3.hpp"
 #include "support/random_configurations.hpp"
+#include "support/reference_linear_algebra.hpp"
 #include "support/test_models.hpp"
 
 // ---- allocation counter (see malloc_counter.hpp) ----
@@ -79,7 +80,7 @@ TEST(DiffIk, UnconstrainedStepMatchesClosedFormLeastSquares) {
   H.diagonal().array() += 0.01 + 1e-3;
   const Eigen::VectorXd b =
       A.transpose() * w.asDiagonal() * (0.3 / 0.01 * e) + 0.01 * (0.5 / 0.01) * (q_ref - q);
-  const Eigen::VectorXd v = H.ldlt().solve(b);
+  const Eigen::VectorXd v = test::solve_ldlt(H, b);
   EXPECT_LT((step.v - v).norm(), 1e-9 * (1.0 + v.norm()));
   EXPECT_LT((step.q_next - (q + 0.01 * v)).norm(), 1e-10);
   EXPECT_LT((ik.task_error(pose) - e).norm(), 1e-15);

@@ -13,6 +13,7 @@
 #include "mjarm/error.hpp"
 #include "mjarm/kinematics/frame_state.hpp"
 #include "mjarm/kinematics/workspace.hpp"
+#include "support/reference_linear_algebra.hpp"
 #include "support/test_models.hpp"
 
 // Allocation counting for the whole test_kinematics executable: malloc, calloc and realloc are
@@ -216,11 +217,14 @@ TEST_F(ManipulabilityTest, ManipulabilityIsProductOfSingularValuesAndRootDetermi
       mujoco_frame_jacobian(chain, *d, J_mj);
       const Eigen::MatrixXd Jb =
           J_mj.middleRows(block == JacobianBlock::orientation ? 3 : 0, m.rows());
-      const Eigen::VectorXd sigma = Eigen::BDCSVD<Eigen::MatrixXd>(Jb).singularValues();
+      // σ² are the eigenvalues of the smaller Gram matrix (descending, like the SVD's)
+      const Eigen::MatrixXd gram = m.rows() <= chain.size() ? Eigen::MatrixXd(Jb * Jb.transpose())
+                                                            : Eigen::MatrixXd(Jb.transpose() * Jb);
+      const Eigen::VectorXd sigma =
+          test::symmetric_eigenvalues(gram).reverse().cwiseMax(0.0).cwiseSqrt();
       EXPECT_LT((sigma - Eigen::VectorXd(m.singular_values())).norm(), 1e-10);
       // 5 joints: √det(JJᵀ) for 3-row blocks, √det(JᵀJ) for the 6-row one
-      const double det = m.rows() <= chain.size() ? (Jb * Jb.transpose()).determinant()
-                                                  : (Jb.transpose() * Jb).determinant();
+      const double det = test::determinant(gram);
       EXPECT_NEAR(r.manipulability, std::sqrt(std::max(det, 0.0)), 1e-10);
       EXPECT_NEAR(r.condition_number, sigma(0) / sigma(sigma.size() - 1),
                   1e-6 * r.condition_number);

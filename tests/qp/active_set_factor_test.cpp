@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "mjarm/error.hpp"
+#include "support/reference_linear_algebra.hpp"
 
 namespace mjarm::qp {
 namespace {
@@ -159,7 +160,7 @@ TEST(ActiveSetFactor, SubproblemMatchesKktSolve) {
   kkt.bottomLeftCorner(q, n) = N.transpose();
   Eigen::VectorXd rhs(n + q);
   rhs << -g, b;
-  const Eigen::VectorXd sol = kkt.fullPivLu().solve(rhs);
+  const Eigen::VectorXd sol = test::solve_lu(kkt, rhs);
   EXPECT_LT((x - sol.head(n)).norm(), 1e-11);
   EXPECT_LT((u.head(q) - sol.tail(q)).norm(), 1e-11);
   // after a drop the subproblem still matches (w = Jᵀg is rotated along)
@@ -182,9 +183,9 @@ TEST(ActiveSetFactor, AlignedNormalsKeepIdentities) {
   ASSERT_TRUE(f.factorize(H));
   Eigen::MatrixXd N(n, 0);
   Eigen::VectorXd d(n);
-  for (const Eigen::VectorXd& v : {Eigen::VectorXd(-Eigen::VectorXd::Unit(n, 0)),
-                                   Eigen::VectorXd(Eigen::VectorXd::Unit(n, 1)),
-                                   Eigen::VectorXd(-Eigen::VectorXd::Unit(n, 3))}) {
+  for (const Eigen::VectorXd& v :
+       {Eigen::VectorXd(-Eigen::VectorXd::Unit(n, 0)), Eigen::VectorXd(Eigen::VectorXd::Unit(n, 1)),
+        Eigen::VectorXd(-Eigen::VectorXd::Unit(n, 3))}) {
     f.project(v, d);
     ASSERT_TRUE(f.add(d, 1e-10));
     N.conservativeResize(n, N.cols() + 1);

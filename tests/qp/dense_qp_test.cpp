@@ -12,6 +12,7 @@
 #include <random>
 
 #include "mjarm/error.hpp"
+#include "support/reference_linear_algebra.hpp"
 
 namespace mjarm::qp {
 namespace {
@@ -130,7 +131,7 @@ std::optional<Eigen::VectorXd> brute_force(const Problem& p) {
     if (!ok || q > n) continue;
     Eigen::MatrixXd N(n, q);
     for (int k = 0; k < q; ++k) N.col(k) = rows[k];
-    if (q > 0 && N.fullPivLu().rank() < q) continue;
+    if (q > 0 && test::rank(N) < q) continue;
     Eigen::MatrixXd kkt = Eigen::MatrixXd::Zero(n + q, n + q);
     kkt.topLeftCorner(n, n) = p.H;
     kkt.topRightCorner(n, q) = N;
@@ -138,7 +139,7 @@ std::optional<Eigen::VectorXd> brute_force(const Problem& p) {
     Eigen::VectorXd b(n + q);
     b.head(n) = -p.g;
     for (int k = 0; k < q; ++k) b[n + k] = rhs[k];
-    const Eigen::VectorXd x = kkt.fullPivLu().solve(b).head(n);
+    const Eigen::VectorXd x = test::solve_lu(kkt, b).head(n);
     const Eigen::VectorXd cx = p.C * x;
     bool feasible = me == 0 || (p.A * x - p.b).lpNorm<Eigen::Infinity>() < 1e-9;
     for (int i = 0; i < mi; ++i)
@@ -210,7 +211,7 @@ TEST(DenseQp, UnconstrainedEqualityOnlyBoundOnly) {
     load(qp, base);
     const QpResult& r = qp.solve();
     expect_kkt(base, r);
-    EXPECT_LT((r.x + base.H.llt().solve(base.g)).norm(), 1e-12);
+    EXPECT_LT((r.x + test::solve_llt(base.H, base.g)).norm(), 1e-12);
     EXPECT_EQ(r.iterations, 0);
   }
   {
