@@ -15,7 +15,6 @@ namespace mjarm {
 namespace {
 
 constexpr int kMaxStallWindow = 64;
-constexpr double kInf = std::numeric_limits<double>::infinity();
 
 }  // namespace
 
@@ -163,8 +162,10 @@ void GlobalIk::solve(const Pose& X_WT, const Eigen::Ref<const Eigen::VectorXd>& 
   q_seed_ = q_seed;
   if (result.q.size() != n) result.q.resize(n);
 
-  double best_E = kInf;       // smallest ½‖e‖² over all iterates (for a failed solve)
-  double best_score = -kInf;  // mode score of the kept solution (larger is better)
+  double best_E = std::numeric_limits<double>::infinity();  // smallest ½‖e‖² over all iterates (for
+                                                            // a failed solve)
+  double best_score = -std::numeric_limits<double>::infinity();  // mode score of the kept solution
+                                                                 // (larger is better)
   int iterations = 0;
   Outcome last = Outcome::stalled;
   bool any_finite = false;

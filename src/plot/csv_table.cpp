@@ -8,11 +8,10 @@
 #include <sstream>
 
 #include "mjarm/error.hpp"
+#include "quoted_path.hpp"
 
 namespace mjarm::plot {
 namespace {
-
-std::string quoted(const std::filesystem::path& path) { return "'" + path.string() + "'"; }
 
 // Splits one record starting at text[pos]; a quoted cell may hold commas, doubled quotes and
 // newlines. Leaves pos after the record's line end.

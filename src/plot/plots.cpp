@@ -7,13 +7,12 @@
 #include "figures.hpp"
 #include "mjarm/error.hpp"
 #include "mjarm/plot/gnuplot.hpp"
+#include "quoted_path.hpp"
 
 namespace mjarm::plot {
 namespace {
 
 namespace fs = std::filesystem;
-
-std::string quoted(const fs::path& path) { return "'" + path.string() + "'"; }
 
 void write_text(const fs::path& path, const std::string& text) {
   std::ofstream out(path, std::ios::binary | std::ios::trunc);

@@ -6,13 +6,12 @@
 #include <sstream>
 
 #include "mjarm/error.hpp"
+#include "quoted_path.hpp"
 
 namespace mjarm::plot {
 namespace {
 
 namespace fs = std::filesystem;
-
-std::string quoted(const fs::path& path) { return "'" + path.string() + "'"; }
 
 bool has_partial_folder(const fs::path& directory) {
   std::error_code ec;

@@ -16,10 +16,6 @@
 
 namespace mjarm::qp {
 
-namespace {
-constexpr double kInf = std::numeric_limits<double>::infinity();
-}  // namespace
-
 int DenseQp::refresh_reference() noexcept {
   // C·x, the margins and the most violated free row in one pass over C
   // (column-major copy of C: no horizontal sums, whole vectors of rows at a time)
@@ -77,7 +73,7 @@ int DenseQp::most_violated(double& slack_p) noexcept {
     }
   };
   if (ref_valid_ && margins_stale_) update_margins();  // the limits changed since
-  const double delta = ref_valid_ ? (x_ - x_ref_).norm() : kInf;
+  const double delta = ref_valid_ ? (x_ - x_ref_).norm() : std::numeric_limits<double>::infinity();
   if (delta == 0.0) {
     // at the reference point: the margins are exact
     for (int i = 0; i < mi_; ++i) {
@@ -89,15 +85,14 @@ int DenseQp::most_violated(double& slack_p) noexcept {
     // rows that may be violated: margin at x_ref_ ≤ ‖x − x_ref_‖ (+ tol for rounding); the
     // selection stops once so many qualify that one full pass over C is cheaper
     const int cap = mi_ / 4;
-    const int count = kernels::select_at_most(margin_ref_.data(), mi_, delta + tol, cap,
-                                              near_.data());
+    const int count =
+        kernels::select_at_most(margin_ref_.data(), mi_, delta + tol, cap, near_.data());
     if (count <= cap) {
       int free = 0;
       for (int k = 0; k < count; ++k) {
         if (state_[near_[k]] == 0) near_[free++] = near_[k];
       }
-      kernels::indexed_row_dots(c_.data(), n_, n_, near_.data(), free, x_.data(),
-                                near_cx_.data());
+      kernels::indexed_row_dots(c_.data(), n_, n_, near_.data(), free, x_.data(), near_cx_.data());
       for (int k = 0; k < free; ++k) consider_row(near_[k], near_cx_[k]);
       return p;
     }

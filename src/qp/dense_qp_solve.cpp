@@ -11,10 +11,6 @@
 
 namespace mjarm::qp {
 
-namespace {
-constexpr double kInf = std::numeric_limits<double>::infinity();
-}  // namespace
-
 double DenseQp::slack(int id) const noexcept {
   // n_p·x − b_p with the row products of cx_ref_ (valid when x_ref_ = x_)
   const int k = id - me_;
@@ -117,7 +113,7 @@ QpStatus DenseQp::run(bool warm, int max_iterations, int& iterations) noexcept {
       const bool dependent = !factor_.independent(d_, dep_tol);
       factor_.dual_direction(d_, r_);
       // partial step length: the first inequality multiplier to reach zero
-      double t1 = kInf;
+      double t1 = std::numeric_limits<double>::infinity();
       int leave = -1;
       for (int k = eq_active_; k < q; ++k) {
         if (r_[k] > 0.0) {
@@ -130,7 +126,7 @@ QpStatus DenseQp::run(bool warm, int max_iterations, int& iterations) noexcept {
       }
       // full step length: the primal step that makes p hold with equality
       const double null2 = dependent ? 0.0 : factor_.null_space_norm2(d_);
-      const double t2 = dependent ? kInf : -s / null2;
+      const double t2 = dependent ? std::numeric_limits<double>::infinity() : -s / null2;
       if (leave < 0 && dependent) return QpStatus::infeasible;  // the dual is unbounded
 
       if (t2 <= t1) {
@@ -160,7 +156,7 @@ void DenseQp::finalize(QpStatus status, int iterations, bool warm) noexcept {
   if (status == QpStatus::invalid_input || status == QpStatus::not_convex) {
     res.x.setZero();
     res.objective = 0.0;
-    res.kkt_residual = kInf;
+    res.kkt_residual = std::numeric_limits<double>::infinity();
     return;
   }
   res.x = x_;

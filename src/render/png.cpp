@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "mjarm/error.hpp"
+#include "quoted_path.hpp"
 
 namespace mjarm {
 namespace {
@@ -33,8 +34,6 @@ void on_png_error(png_structp png, png_const_charp message) {
 
 void on_png_warning(png_structp, png_const_charp) {}
 
-std::string quoted(const std::filesystem::path& path) { return "'" + path.string() + "'"; }
-
 }  // namespace
 
 void write_png(const Image& image, const std::filesystem::path& path) {
@@ -43,11 +42,10 @@ void write_png(const Image& image, const std::filesystem::path& path) {
                 std::to_string(image.width) + "×" + std::to_string(image.height) + ")");
   if (image.rgb.size() != image.pixels() * 3)
     throw Error("cannot write PNG " + quoted(path) + ": the image holds " +
-                std::to_string(image.rgb.size()) + " bytes, expected width·height·3 = " +
-                std::to_string(image.pixels() * 3));
+                std::to_string(image.rgb.size()) +
+                " bytes, expected width·height·3 = " + std::to_string(image.pixels() * 3));
   File file(std::fopen(path.c_str(), "wb"));
-  if (!file)
-    throw Error("cannot write PNG " + quoted(path) + ": " + std::strerror(errno));
+  if (!file) throw Error("cannot write PNG " + quoted(path) + ": " + std::strerror(errno));
 
   ErrorState state;
   png_structp png =

@@ -16,13 +16,12 @@
 #include <vector>
 
 #include "mjarm/error.hpp"
+#include "quoted_path.hpp"
 
 extern char** environ;
 
 namespace mjarm {
 namespace {
-
-std::string quoted(const std::filesystem::path& path) { return "'" + path.string() + "'"; }
 
 // The executable to run: @p name itself when it holds a '/', else the first match on PATH.
 std::string find_executable(const std::string& name) {
@@ -139,8 +138,7 @@ VideoWriter::VideoWriter(const std::filesystem::path& path, int width, int heigh
   // prove the path writable now, before any frame, with the system's reason when it is not
   {
     const int fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
-    if (fd < 0)
-      throw Error("cannot write video " + quoted(path) + ": " + std::strerror(errno));
+    if (fd < 0) throw Error("cannot write video " + quoted(path) + ": " + std::strerror(errno));
     ::close(fd);
   }
   const std::string ffmpeg = find_executable(options.ffmpeg);
@@ -154,8 +152,8 @@ VideoWriter::VideoWriter(const std::filesystem::path& path, int width, int heigh
   // ffmpeg's stderr goes to an unlinked temporary file: read back for error messages, and a
   // chatty ffmpeg can never block on a full pipe
   const char* tmp = std::getenv("TMPDIR");
-  std::string log_template = std::string(tmp != nullptr && *tmp != '\0' ? tmp : "/tmp") +
-                             "/mjarm-ffmpeg-XXXXXX";
+  std::string log_template =
+      std::string(tmp != nullptr && *tmp != '\0' ? tmp : "/tmp") + "/mjarm-ffmpeg-XXXXXX";
   impl->stderr_fd = ::mkostemp(log_template.data(), O_CLOEXEC);
   if (impl->stderr_fd < 0)
     throw Error("cannot create a temporary file for ffmpeg's messages: " +
@@ -173,12 +171,14 @@ VideoWriter::VideoWriter(const std::filesystem::path& path, int width, int heigh
   rate.precision(17);
   rate << fps;
   const bool x264 = options.codec == "libx264";
-  std::vector<std::string> args = {ffmpeg,       "-hide_banner",  "-nostats",   "-loglevel",
-                                   "error",      "-y",            "-f",         "rawvideo",
-                                   "-pix_fmt",   "rgb24",         "-video_size",
-                                   std::to_string(width) + "x" + std::to_string(height),
-                                   "-framerate", rate.str(),      "-i",         "pipe:0",
-                                   "-an",        "-c:v",          options.codec};
+  std::vector<std::string> args = {
+      ffmpeg,       "-hide_banner", "-nostats",
+      "-loglevel",  "error",        "-y",
+      "-f",         "rawvideo",     "-pix_fmt",
+      "rgb24",      "-video_size",  std::to_string(width) + "x" + std::to_string(height),
+      "-framerate", rate.str(),     "-i",
+      "pipe:0",     "-an",          "-c:v",
+      options.codec};
   if (x264) {
     args.insert(args.end(), {"-preset", "veryfast", "-crf", std::to_string(options.quality)});
   } else {
@@ -211,8 +211,8 @@ VideoWriter::VideoWriter(const std::filesystem::path& path, int width, int heigh
   posix_spawnattr_setflags(&attributes,
                            POSIX_SPAWN_SETPGROUP | POSIX_SPAWN_SETSIGDEF | POSIX_SPAWN_SETSIGMASK);
   pid_t pid = -1;
-  const int spawned = ::posix_spawn(&pid, ffmpeg.c_str(), &actions, &attributes, argv.data(),
-                                    environ);
+  const int spawned =
+      ::posix_spawn(&pid, ffmpeg.c_str(), &actions, &attributes, argv.data(), environ);
   posix_spawn_file_actions_destroy(&actions);
   posix_spawnattr_destroy(&attributes);
   ::close(fds[0]);
@@ -235,8 +235,8 @@ void VideoWriter::write(const Image& frame) {
   if (frame.width != s.width || frame.height != s.height || frame.rgb.size() != frame.pixels() * 3)
     throw Error("video frame of " + std::to_string(frame.width) + "×" +
                 std::to_string(frame.height) + " pixels does not match the video's " +
-                std::to_string(s.width) + "×" + std::to_string(s.height) + " (" +
-                quoted(s.path) + ")");
+                std::to_string(s.width) + "×" + std::to_string(s.height) + " (" + quoted(s.path) +
+                ")");
 
   // a dead reader raises SIGPIPE, whose default action kills the process: block it on this
   // thread while writing, and take back any SIGPIPE the write left pending
@@ -274,8 +274,8 @@ void VideoWriter::write(const Image& frame) {
   ::close(s.stderr_fd);
   s.stderr_fd = -1;
   throw Error("ffmpeg stopped while receiving frame " + std::to_string(s.frames) + " of " +
-              quoted(s.path) + " (" + std::strerror(error) + ", ffmpeg " +
-              describe_status(status) + "): " + (log.empty() ? "no message" : log));
+              quoted(s.path) + " (" + std::strerror(error) + ", ffmpeg " + describe_status(status) +
+              "): " + (log.empty() ? "no message" : log));
 }
 
 void VideoWriter::close() {
