@@ -1,75 +1,22 @@
 // Drives `mjarm bench control`: JSON fields, zero allocations per controller step, the text
 // report, and clean failures for bad command lines.
 
-#include <fcntl.h>
 #include <gtest/gtest.h>
-#include <spawn.h>
-#include <sys/wait.h>
-#include <unistd.h>
 
-#include <filesystem>
-#include <fstream>
 #include <nlohmann/json.hpp>
-#include <sstream>
 #include <string>
-#include <vector>
 
-extern char** environ;
+#include "app/cli_runner.hpp"
 
 namespace {
 
-namespace fs = std::filesystem;
+using mjarm::test::CliRun;
+using mjarm::test::run_cli;
 using nlohmann::json;
 
-struct CliRun {
-  int exit_code = -1;
-  bool signaled = false;
-  std::string out;
-  std::string err;
-};
-
-std::string slurp(const fs::path& path) {
-  std::ifstream in(path);
-  std::stringstream buffer;
-  buffer << in.rdbuf();
-  return buffer.str();
-}
-
-/// Runs the CLI with @p args (no shell); stdout and stderr captured through scratch files.
-CliRun run_cli(const std::vector<std::string>& args) {
-  const fs::path dir = fs::temp_directory_path() / ("mjarm_bench_control_test_" + std::to_string(::getpid()));
-  fs::create_directories(dir);
-  const fs::path out = dir / "stdout.txt", err = dir / "stderr.txt";
-  posix_spawn_file_actions_t actions;
-  posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, out.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-  posix_spawn_file_actions_addopen(&actions, STDERR_FILENO, err.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-  std::vector<std::string> all{MJARM_CLI};
-  all.insert(all.end(), args.begin(), args.end());
-  std::vector<char*> argv;
-  for (auto& a : all) argv.push_back(a.data());
-  argv.push_back(nullptr);
-  pid_t pid = 0;
-  CliRun run;
-  const int spawned = posix_spawn(&pid, MJARM_CLI, &actions, nullptr, argv.data(), environ);
-  posix_spawn_file_actions_destroy(&actions);
-  if (spawned == 0) {
-    int status = 0;
-    waitpid(pid, &status, 0);
-    run.signaled = WIFSIGNALED(status);
-    run.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    run.out = slurp(out);
-    run.err = slurp(err);
-  } else {
-    ADD_FAILURE() << "cannot start " << MJARM_CLI;
-  }
-  std::error_code ec;
-  fs::remove_all(dir, ec);
-  return run;
-}
-
 TEST(BenchControl, JsonReportsEveryControllerWithZeroAllocations) {
-  const CliRun run = run_cli({"bench", "control", "panda", "--steps", "300", "--warmup", "20", "--json"});
+  const CliRun run =
+      run_cli({"bench", "control", "panda", "--steps", "300", "--warmup", "20", "--json"});
   ASSERT_EQ(run.exit_code, 0) << run.err;
   ASSERT_TRUE(json::accept(run.out)) << run.out;
   const json j = json::parse(run.out);
@@ -100,7 +47,8 @@ TEST(BenchControl, JsonReportsEveryControllerWithZeroAllocations) {
 }
 
 TEST(BenchControl, TextReportHasTheTables) {
-  const CliRun run = run_cli({"bench", "control", "panda_torque", "--steps", "50", "--warmup", "0"});
+  const CliRun run =
+      run_cli({"bench", "control", "panda_torque", "--steps", "50", "--warmup", "0"});
   ASSERT_EQ(run.exit_code, 0) << run.err;
   for (const char* text : {"median [µs]", "p99 [µs]", "alloc/step", "osc + mj_step", "mj_step only",
                            "joint-pd", "gravity", "ct", "task-pd", "accel", "osc"}) {

@@ -1,111 +1,31 @@
 // Drives the built `mjarm` executable: exit codes, error messages on stderr, and JSON output
 // cross-checked against the library and against closed-form kinematics of planar2.
 
-#include <fcntl.h>
 #include <gtest/gtest.h>
-#include <spawn.h>
-#include <sys/wait.h>
-#include <unistd.h>
 
 #include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <numbers>
-#include <sstream>
 #include <string>
 #include <vector>
 
+#include "app/cli_runner.hpp"
 #include "mjarm/kinematics/chain_kinematics.hpp"
 #include "mjarm/kinematics/workspace.hpp"
 #include "mjarm/model/chain.hpp"
 #include "mjarm/model/robot.hpp"
 
-extern char** environ;
-
 namespace {
 
 namespace fs = std::filesystem;
+using mjarm::test::CliRun;
+using mjarm::test::expect_error;
+using mjarm::test::run_cli;
+using mjarm::test::run_json;
+using mjarm::test::scratch;
 using nlohmann::json;
-
-struct CliRun {
-  int exit_code = -1;
-  bool signaled = false;
-  std::string out;
-  std::string err;
-};
-
-std::string slurp(const fs::path& path) {
-  std::ifstream in(path);
-  std::stringstream buffer;
-  buffer << in.rdbuf();
-  return buffer.str();
-}
-
-/// A scratch directory unique to this test process, removed at exit.
-struct ScratchDir {
-  fs::path path = fs::temp_directory_path() / ("mjarm_cli_test_" + std::to_string(::getpid()));
-  ScratchDir() { fs::create_directories(path); }
-  ~ScratchDir() {
-    std::error_code ec;
-    fs::remove_all(path, ec);
-  }
-};
-
-fs::path scratch() {
-  static const ScratchDir dir;
-  return dir.path;
-}
-
-/// Runs the CLI with @p args (no shell), stdout and stderr captured through files.
-CliRun run_cli(const std::vector<std::string>& args) {
-  const fs::path out = scratch() / "stdout.txt";
-  const fs::path err = scratch() / "stderr.txt";
-  posix_spawn_file_actions_t actions;
-  posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, out.c_str(),
-                                   O_WRONLY | O_CREAT | O_TRUNC, 0644);
-  posix_spawn_file_actions_addopen(&actions, STDERR_FILENO, err.c_str(),
-                                   O_WRONLY | O_CREAT | O_TRUNC, 0644);
-  std::vector<std::string> all{MJARM_CLI};
-  all.insert(all.end(), args.begin(), args.end());
-  std::vector<char*> argv;
-  for (auto& a : all) argv.push_back(a.data());
-  argv.push_back(nullptr);
-  pid_t pid = 0;
-  CliRun run;
-  const int spawned = posix_spawn(&pid, MJARM_CLI, &actions, nullptr, argv.data(), environ);
-  posix_spawn_file_actions_destroy(&actions);
-  if (spawned != 0) {
-    ADD_FAILURE() << "cannot start " << MJARM_CLI;
-    return run;
-  }
-  int status = 0;
-  waitpid(pid, &status, 0);
-  run.signaled = WIFSIGNALED(status);
-  run.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  run.out = slurp(out);
-  run.err = slurp(err);
-  return run;
-}
-
-json run_json(const std::vector<std::string>& args) {
-  const CliRun run = run_cli(args);
-  EXPECT_EQ(run.exit_code, 0) << run.err;
-  EXPECT_TRUE(json::accept(run.out)) << run.out;
-  return json::accept(run.out) ? json::parse(run.out) : json();
-}
-
-/// Expects a clean failure: the exit code, one "mjarm: error:" message containing @p needle, no
-/// output on stdout, no crash.
-void expect_error(const std::vector<std::string>& args, int code, const std::string& needle) {
-  const CliRun run = run_cli(args);
-  EXPECT_FALSE(run.signaled);
-  EXPECT_EQ(run.exit_code, code) << run.err;
-  EXPECT_EQ(run.err.rfind("mjarm: error: ", 0), 0u) << run.err;
-  EXPECT_NE(run.err.find(needle), std::string::npos) << "'" << needle << "' not in: " << run.err;
-  EXPECT_TRUE(run.out.empty()) << run.out;
-}
 
 fs::path write_file(const std::string& name, const std::string& text) {
   const fs::path path = scratch() / name;

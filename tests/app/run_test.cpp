@@ -1,106 +1,29 @@
 // Drives `mjarm run shelf-pick` and the demo's shelf pick through the built executable: figures
 // in --json, recordings and videos on disk, exit codes and messages for every bad input.
 
-#include <fcntl.h>
 #include <gtest/gtest.h>
-#include <spawn.h>
-#include <sys/wait.h>
-#include <unistd.h>
 
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
-#include <sstream>
 #include <string>
 #include <vector>
 
+#include "app/cli_runner.hpp"
 #include "render/render_test_support.hpp"
-
-extern char** environ;
 
 namespace {
 
 namespace fs = std::filesystem;
+using mjarm::test::CliRun;
+using mjarm::test::expect_error;
+using mjarm::test::run_cli;
+using mjarm::test::run_json;
+using mjarm::test::scratch;
+using mjarm::test::slurp;
 using nlohmann::json;
-
-struct CliResult {
-  int exit_code = -1;
-  bool signaled = false;
-  std::string out;
-  std::string err;
-};
-
-std::string slurp(const fs::path& path) {
-  std::ifstream in(path);
-  std::stringstream buffer;
-  buffer << in.rdbuf();
-  return buffer.str();
-}
-
-fs::path scratch() {
-  struct Dir {
-    fs::path path = fs::temp_directory_path() / ("mjarm_run_test_" + std::to_string(::getpid()));
-    Dir() { fs::create_directories(path); }
-    ~Dir() {
-      std::error_code ec;
-      fs::remove_all(path, ec);
-    }
-  };
-  static const Dir dir;
-  return dir.path;
-}
-
-/// Runs the CLI with @p args in directory @p cwd (default: the scratch directory).
-CliResult run_cli(const std::vector<std::string>& args, const fs::path& cwd = scratch()) {
-  const fs::path out = scratch() / "run_stdout.txt";
-  const fs::path err = scratch() / "run_stderr.txt";
-  posix_spawn_file_actions_t actions;
-  posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, out.c_str(),
-                                   O_WRONLY | O_CREAT | O_TRUNC, 0644);
-  posix_spawn_file_actions_addopen(&actions, STDERR_FILENO, err.c_str(),
-                                   O_WRONLY | O_CREAT | O_TRUNC, 0644);
-  posix_spawn_file_actions_addchdir_np(&actions, cwd.c_str());
-  std::vector<std::string> all{MJARM_CLI};
-  all.insert(all.end(), args.begin(), args.end());
-  std::vector<char*> argv;
-  for (auto& a : all) argv.push_back(a.data());
-  argv.push_back(nullptr);
-  pid_t pid = 0;
-  CliResult run;
-  const int spawned = posix_spawn(&pid, MJARM_CLI, &actions, nullptr, argv.data(), environ);
-  posix_spawn_file_actions_destroy(&actions);
-  if (spawned != 0) {
-    ADD_FAILURE() << "cannot start " << MJARM_CLI;
-    return run;
-  }
-  int status = 0;
-  waitpid(pid, &status, 0);
-  run.signaled = WIFSIGNALED(status);
-  run.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  run.out = slurp(out);
-  run.err = slurp(err);
-  return run;
-}
-
-json run_json(const std::vector<std::string>& args) {
-  const CliResult run = run_cli(args);
-  EXPECT_EQ(run.exit_code, 0) << run.err;
-  EXPECT_TRUE(json::accept(run.out)) << run.out;
-  return json::accept(run.out) ? json::parse(run.out) : json();
-}
-
-/// A clean failure: exit code, one "mjarm: error:" message holding @p needle, nothing on stdout.
-void expect_error(const std::vector<std::string>& args, int code, const std::string& needle) {
-  const CliResult run = run_cli(args);
-  EXPECT_FALSE(run.signaled);
-  EXPECT_EQ(run.exit_code, code) << run.err;
-  EXPECT_EQ(run.err.rfind("mjarm: error: ", 0), 0u) << run.err;
-  EXPECT_NE(run.err.find(needle), std::string::npos) << "'" << needle << "' not in: " << run.err;
-  EXPECT_TRUE(run.out.empty()) << run.out;
-}
 
 /// A finalized recording: the four files, no staging folder left, the summary's status.
 void expect_recording(const fs::path& dir, const std::string& status) {
@@ -114,7 +37,7 @@ void expect_recording(const fs::path& dir, const std::string& status) {
 }
 
 TEST(RunCli, HelpNamesTheScenarioAndOptions) {
-  const CliResult run = run_cli({"run", "--help"});
+  const CliRun run = run_cli({"run", "--help"});
   EXPECT_EQ(run.exit_code, 0);
   for (const char* word : {"shelf-pick", "--robot", "--controller", "--pick", "--seed", "--record",
                            "--json", "--all", "--video", "--camera", "--size", "--fps"})
@@ -124,7 +47,7 @@ TEST(RunCli, HelpNamesTheScenarioAndOptions) {
 TEST(RunCli, JsonHoldsEveryFigure) {
   const std::vector<std::string> args{"run", "shelf-pick", "--robot", "planar2", "--controller",
                                       "ct",  "--seed",     "5",       "--json"};
-  const CliResult first = run_cli(args);
+  const CliRun first = run_cli(args);
   ASSERT_EQ(first.exit_code, 0) << first.err;
   ASSERT_TRUE(json::accept(first.out)) << first.out;
   const json doc = json::parse(first.out);
@@ -164,8 +87,7 @@ TEST(RunCli, JsonHoldsEveryFigure) {
 }
 
 TEST(RunCli, TextReportsTheFigures) {
-  const CliResult run =
-      run_cli({"run", "shelf-pick", "--robot", "panda", "--controller", "task-pd"});
+  const CliRun run = run_cli({"run", "shelf-pick", "--robot", "panda", "--controller", "task-pd"});
   EXPECT_EQ(run.exit_code, 0) << run.err;
   for (const char* text :
        {"shelf pick on panda", "task-space PD", "result: held", "time to 1 mm [s]",
@@ -214,7 +136,7 @@ TEST(RunCli, BadInputFailsClearly) {
 
 TEST(RunCli, ADivergingRunReportsHonestlyAndKeepsTheRecording) {
   const fs::path dir = scratch() / "diverged";
-  const CliResult run =
+  const CliRun run =
       run_cli({"run", "shelf-pick", "--max-acceleration", "2", "--record", dir.string(), "--json"});
   EXPECT_FALSE(run.signaled);
   EXPECT_EQ(run.exit_code, 1);
@@ -244,7 +166,7 @@ TEST(RunCli, AllSweepsEveryRobotAndController) {
 TEST(RunCli, DemoRunsTheShelfPickAndRecordsIntoOutDemo) {
   const fs::path cwd = scratch() / "demo_cwd";
   fs::create_directories(cwd);
-  const CliResult run = run_cli({"demo", "--samples", "1000"}, cwd);
+  const CliRun run = run_cli({"demo", "--samples", "1000"}, cwd);
   EXPECT_EQ(run.exit_code, 0) << run.err;
   EXPECT_NE(run.out.find("== shelf pick =="), std::string::npos) << run.out;
   EXPECT_NE(run.out.find("operational-space"), std::string::npos);
@@ -261,7 +183,7 @@ TEST(RunCli, DemoRunsTheShelfPickAndRecordsIntoOutDemo) {
     EXPECT_NE(run.out.find(plot), std::string::npos) << plot;
   }
 
-  const CliResult json_run =
+  const CliRun json_run =
       run_cli({"demo", "--samples", "1000", "--json", "--record", "elsewhere"}, cwd);
   ASSERT_TRUE(json::accept(json_run.out)) << json_run.out;
   const json doc = json::parse(json_run.out);
@@ -337,8 +259,8 @@ TEST(RunVideo, HoldsDurationTimesFpsFramesAndLeavesTheFiguresAlone) {
 
 TEST(RunVideo, FollowCameraAndTextOutput) {
   const fs::path video = scratch() / "follow.mp4";
-  const CliResult run = run_cli({"run", "shelf-pick", "--controller", "ct", "--video",
-                                 video.string(), "--camera", "follow", "--size", "160x120"});
+  const CliRun run = run_cli({"run", "shelf-pick", "--controller", "ct", "--video", video.string(),
+                              "--camera", "follow", "--size", "160x120"});
   EXPECT_EQ(run.exit_code, 0) << run.err;
   EXPECT_NE(run.out.find("video  "), std::string::npos) << run.out;
   EXPECT_NE(run.out.find(video.string()), std::string::npos) << run.out;
@@ -348,8 +270,8 @@ TEST(RunVideo, FollowCameraAndTextOutput) {
 
 TEST(RunVideo, ADivergingRunLeavesAFinalizedVideo) {
   const fs::path video = scratch() / "diverged.mp4";
-  const CliResult run = run_cli({"run", "shelf-pick", "--max-acceleration", "2", "--video",
-                                 video.string(), "--size", "160x120", "--json"});
+  const CliRun run = run_cli({"run", "shelf-pick", "--max-acceleration", "2", "--video",
+                              video.string(), "--size", "160x120", "--json"});
   EXPECT_FALSE(run.signaled);
   EXPECT_EQ(run.exit_code, 1);
   ASSERT_TRUE(json::accept(run.out)) << run.out;

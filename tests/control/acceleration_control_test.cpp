@@ -13,6 +13,7 @@ namespace {
 
 using test::MatrixX;
 using test::Rig;
+using test::run_closed_loop;
 using test::VectorX;
 
 /// Applies @p tau as qfrc_applied (no actuators) and returns MuJoCo's forward-dynamics qacc.
@@ -52,7 +53,8 @@ void check_task_acceleration(TaskMode mode, std::uint64_t seed) {
     const MatrixX J = test::site_jacobian(rig.m(), rig.d(), site).topRows(rows);
     const VectorX qd = Eigen::Map<const VectorX>(rig.d().qvel, 7);
     const Vector6d e = test::reference_error(test::site_pose(rig.d(), site), ref.task.X_WE);
-    const VectorX xdd = ref.task.A_WE.head(rows) + o.stiffness.head(rows).asDiagonal() * e.head(rows) +
+    const VectorX xdd = ref.task.A_WE.head(rows) +
+                        o.stiffness.head(rows).asDiagonal() * e.head(rows) +
                         o.damping.head(rows).asDiagonal() * (ref.task.V_WE.head(rows) - J * qd);
     EXPECT_LE((accel.task_acceleration().head(rows) - xdd).norm(), 1e-10 * xdd.norm());
 
@@ -117,19 +119,6 @@ TEST(AccelerationControl, StaysBoundedAtASingularity) {
   EXPECT_GT(accel.internal_values()[3], 0.0);
   EXPECT_TRUE(command.value.allFinite());
   EXPECT_LT(command.value.cwiseAbs().maxCoeff(), 1e3);
-}
-
-double run_closed_loop(Rig& rig, Controller& controller, const Reference& ref, double seconds) {
-  JointCommand command{CommandKind::torque, VectorX::Zero(rig.chain.size())};
-  const int steps = static_cast<int>(seconds / rig.m().opt.timestep);
-  for (int k = 0; k < steps; ++k) {
-    mj_step1(&rig.m(), &rig.d());
-    controller.compute(rig.d(), ref, command);
-    test::apply_torque(rig.chain, command.value, rig.d());
-    mj_step2(&rig.m(), &rig.d());
-  }
-  mj_forward(&rig.m(), &rig.d());
-  return (test::site_pose(rig.d(), rig.chain.frame().id).p - ref.task.X_WE.p).norm();
 }
 
 TEST(AccelerationControl, ConvergesOnPandaInSimulation) {

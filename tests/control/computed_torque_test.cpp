@@ -12,7 +12,7 @@
 namespace mjarm {
 namespace {
 
-Chain panda() { return Chain(Robot::bundled("panda_torque"), "attachment_site"); }
+using test::panda;
 
 // a random state inside the limits (shrunk), touching nothing, with joint speeds in ±1 rad/s
 void random_state(const Chain& chain, mjData& d, std::mt19937& rng) {

@@ -14,6 +14,9 @@
 
 namespace mjarm::test {
 
+/// The torque-driven Panda arm up to its attachment site.
+inline Chain panda() { return Chain(Robot::bundled("panda_torque"), "attachment_site"); }
+
 /// Writes a torque command to the chain's motors: ctrl = τ / gear (MuJoCo clips to ctrlrange).
 inline void apply_torque(const Chain& chain, const JointCommand& command, mjData& d) {
   const mjModel& m = chain.robot().model();
@@ -34,8 +37,8 @@ inline void apply_position(const Chain& chain, const JointCommand& command, mjDa
 
 /// Runs @p controllers (each on its own chain, torque or position) for @p steps physics steps,
 /// calling @p reference(time, ref) before each tick and @p observe(d) after each step.
-inline void run_loop(const Robot& robot, mjData& d, const std::vector<Controller*>& controllers, int steps,
-                     const std::function<void(double, Reference&)>& reference,
+inline void run_loop(const Robot& robot, mjData& d, const std::vector<Controller*>& controllers,
+                     int steps, const std::function<void(double, Reference&)>& reference,
                      const std::function<void(const mjData&)>& observe = {}) {
   const mjModel& m = robot.model();
   Reference ref;

@@ -11,7 +11,7 @@
 namespace mjarm {
 namespace {
 
-Chain panda() { return Chain(Robot::bundled("panda_torque"), "attachment_site"); }
+using test::panda;
 
 // the gravity torque computed by MuJoCo on a scratch copy at rest
 Eigen::VectorXd mujoco_gravity(const Chain& chain, const mjData& d) {

@@ -15,6 +15,7 @@ namespace {
 
 using test::MatrixX;
 using test::Rig;
+using test::run_closed_loop;
 using test::VectorX;
 
 /// Everything the independent formula needs besides the state.
@@ -147,20 +148,6 @@ TEST(OperationalSpace, ZeroErrorAtRestHoldsAgainstGravity) {
   osc.compute(rig.d(), ref, command);
   const VectorX h = Eigen::Map<const VectorX>(rig.d().qfrc_bias, 7);
   EXPECT_LE((command.value - h).norm(), 1e-9 * h.norm());
-}
-
-/// Closed loop on the torque model: mj_step1 → compute → ctrl → mj_step2.
-double run_closed_loop(Rig& rig, Controller& controller, const Reference& ref, double seconds) {
-  JointCommand command{CommandKind::torque, VectorX::Zero(rig.chain.size())};
-  const int steps = static_cast<int>(seconds / rig.m().opt.timestep);
-  for (int k = 0; k < steps; ++k) {
-    mj_step1(&rig.m(), &rig.d());
-    controller.compute(rig.d(), ref, command);
-    test::apply_torque(rig.chain, command.value, rig.d());
-    mj_step2(&rig.m(), &rig.d());
-  }
-  mj_forward(&rig.m(), &rig.d());
-  return (test::site_pose(rig.d(), rig.chain.frame().id).p - ref.task.X_WE.p).norm();
 }
 
 TEST(OperationalSpace, ConvergesOnPandaInSimulation) {

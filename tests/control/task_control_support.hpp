@@ -128,4 +128,20 @@ inline void apply_torque(const Chain& chain, const Eigen::VectorXd& tau, mjData&
   for (int i = 0; i < chain.size(); ++i) d.ctrl[*chain.actuator(i)] = tau[i];
 }
 
+/// Closed loop on the torque model for @p seconds: mj_step1 → compute → ctrl → mj_step2. Returns
+/// the final distance of the frame from the reference position [m].
+inline double run_closed_loop(Rig& rig, Controller& controller, const Reference& ref,
+                              double seconds) {
+  JointCommand command{CommandKind::torque, VectorX::Zero(rig.chain.size())};
+  const int steps = static_cast<int>(seconds / rig.m().opt.timestep);
+  for (int k = 0; k < steps; ++k) {
+    mj_step1(&rig.m(), &rig.d());
+    controller.compute(rig.d(), ref, command);
+    apply_torque(rig.chain, command.value, rig.d());
+    mj_step2(&rig.m(), &rig.d());
+  }
+  mj_forward(&rig.m(), &rig.d());
+  return (site_pose(rig.d(), rig.chain.frame().id).p - ref.task.X_WE.p).norm();
+}
+
 }  // namespace mjarm::test

@@ -6,6 +6,7 @@
 #include <random>
 #include <vector>
 
+#include "ik/local_ik_support.hpp"
 #include "ik/malloc_counter.hpp"
 #include "mjarm/error.hpp"
 #include "mjarm/lie/so3.hpp"
@@ -20,7 +21,7 @@ using std::chrono::milliseconds;
 /// (Debug + sanitizers run ~100× slower than Release).
 constexpr std::chrono::seconds kRoomy{10};
 
-Chain chain_of(const char* robot) { return Chain(Robot::bundled(robot), "attachment_site"); }
+using test::chain_of;
 
 /// Reachable targets: forward kinematics of uniform configurations.
 std::vector<Pose> reachable_targets(const Chain& chain, int count, std::uint64_t seed) {

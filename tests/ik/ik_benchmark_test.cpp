@@ -5,6 +5,7 @@
 #include <ctime>
 #include <vector>
 
+#include "ik/local_ik_support.hpp"
 #include "mjarm/error.hpp"
 
 namespace mjarm {
@@ -20,7 +21,7 @@ constexpr int kBuildSlowdown = 100;
 constexpr int kBuildSlowdown = 1;
 #endif
 
-Chain chain_of(const char* robot) { return Chain(Robot::bundled(robot), "attachment_site"); }
+using test::chain_of;
 
 void expect_consistent(const IkBenchmarkResult& r, int samples) {
   EXPECT_EQ(r.samples, samples);

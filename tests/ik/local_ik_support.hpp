@@ -6,6 +6,9 @@
 #include <string>
 #include <vector>
 
+#include "mjarm/model/chain.hpp"
+#include "mjarm/model/robot.hpp"
+
 namespace mjarm::test {
 
 /// A bundled arm and the frame its IK moves.
@@ -13,6 +16,9 @@ struct ArmCase {
   std::string model;
   std::string frame;
 };
+
+/// The chain of bundled arm @p robot up to its attachment site.
+inline Chain chain_of(const char* robot) { return Chain(Robot::bundled(robot), "attachment_site"); }
 
 /// The single-chain bundled arms (dual_arm is covered by the multi-target tests and by its
 /// right-hand chain here).

@@ -5,6 +5,7 @@
 #include <numbers>
 #include <random>
 
+#include "lie/lie_test_support.hpp"
 #include "mjarm/error.hpp"
 #include "mjarm/lie/se3.hpp"
 #include "mjarm/lie/so3.hpp"
@@ -12,22 +13,9 @@
 namespace mjarm {
 namespace {
 
-template <typename Derived>
-double max_abs(const Eigen::MatrixBase<Derived>& m) {
-  return m.cwiseAbs().maxCoeff();
-}
-
-Eigen::Vector3d random_unit(std::mt19937& rng) {
-  std::normal_distribution<double> n(0.0, 1.0);
-  return Eigen::Vector3d(n(rng), n(rng), n(rng)).normalized();
-}
-
-Vector6d random_twist(std::mt19937& rng, double max_angle) {
-  std::uniform_real_distribution<double> angle(0.0, max_angle), length(0.0, 2.0);
-  Vector6d xi;
-  xi << length(rng) * random_unit(rng), angle(rng) * random_unit(rng);
-  return xi;
-}
+using test::max_abs;
+using test::random_twist;
+using test::random_unit;
 
 Pose translation(const Eigen::Vector3d& p) { return Pose{Eigen::Matrix3d::Identity(), p}; }
 

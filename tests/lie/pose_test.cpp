@@ -5,16 +5,14 @@
 #include <numbers>
 #include <random>
 
+#include "lie/lie_test_support.hpp"
 #include "mjarm/error.hpp"
 #include "mjarm/lie/rotation.hpp"
 
 namespace mjarm {
 namespace {
 
-template <typename Derived>
-double max_abs(const Eigen::MatrixBase<Derived>& m) {
-  return m.cwiseAbs().maxCoeff();
-}
+using test::max_abs;
 
 Pose random_pose(std::mt19937& rng) {
   std::normal_distribution<double> n(0.0, 1.0);

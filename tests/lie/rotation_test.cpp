@@ -8,17 +8,14 @@
 #include <numbers>
 #include <random>
 
+#include "lie/lie_test_support.hpp"
 #include "mjarm/error.hpp"
 
 namespace mjarm {
 namespace {
 
-constexpr double kPi = std::numbers::pi;
-
-template <typename Derived>
-double max_abs(const Eigen::MatrixBase<Derived>& m) {
-  return m.cwiseAbs().maxCoeff();
-}
+using test::kPi;
+using test::max_abs;
 
 Eigen::Matrix3d axis_rotation(int axis, double angle) {
   return Eigen::AngleAxisd(angle, Eigen::Vector3d::Unit(axis)).toRotationMatrix();

@@ -10,6 +10,7 @@
 #include <random>
 #include <string>
 
+#include "lie/lie_test_support.hpp"
 #include "mjarm/error.hpp"
 #include "mjarm/lie/se3.hpp"
 #include "mjarm/lie/so3_jacobian.hpp"
@@ -17,27 +18,15 @@
 namespace mjarm::se3 {
 namespace {
 
-constexpr double kPi = std::numbers::pi;
-
-template <typename Derived>
-double max_abs(const Eigen::MatrixBase<Derived>& m) {
-  return m.cwiseAbs().maxCoeff();
-}
-
-Eigen::Vector3d random_unit(std::mt19937& rng) {
-  std::normal_distribution<double> n(0.0, 1.0);
-  return Eigen::Vector3d(n(rng), n(rng), n(rng)).normalized();
-}
+using test::kPi;
+using test::max_abs;
+using test::random_twist;
+using test::random_unit;
 
 Vector6d twist(const Eigen::Vector3d& v, const Eigen::Vector3d& w) {
   Vector6d xi;
   xi << v, w;
   return xi;
-}
-
-Vector6d random_twist(std::mt19937& rng, double max_angle) {
-  std::uniform_real_distribution<double> angle(0.0, max_angle), length(0.0, 2.0);
-  return twist(length(rng) * random_unit(rng), angle(rng) * random_unit(rng));
 }
 
 // columns: central differences of δ ↦ log(exp(ξ + hδ)·exp(ξ)⁻¹) (left) or

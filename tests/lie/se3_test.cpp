@@ -8,31 +8,17 @@
 #include <numbers>
 #include <random>
 
+#include "lie/lie_test_support.hpp"
 #include "mjarm/lie/so3.hpp"
 #include "support/reference_linear_algebra.hpp"
 
 namespace mjarm::se3 {
 namespace {
 
-constexpr double kPi = std::numbers::pi;
-
-template <typename Derived>
-double max_abs(const Eigen::MatrixBase<Derived>& m) {
-  return m.cwiseAbs().maxCoeff();
-}
-
-Eigen::Vector3d random_unit(std::mt19937& rng) {
-  std::normal_distribution<double> n(0.0, 1.0);
-  return Eigen::Vector3d(n(rng), n(rng), n(rng)).normalized();
-}
-
-// ξ = [v; ω] with ‖ω‖ uniform in [0, max_angle) and ‖v‖ ≤ 2
-Vector6d random_twist(std::mt19937& rng, double max_angle) {
-  std::uniform_real_distribution<double> angle(0.0, max_angle), length(0.0, 2.0);
-  Vector6d xi;
-  xi << length(rng) * random_unit(rng), angle(rng) * random_unit(rng);
-  return xi;
-}
+using test::kPi;
+using test::max_abs;
+using test::random_twist;
+using test::random_unit;
 
 Pose random_pose(std::mt19937& rng) { return exp(random_twist(rng, 3.1)); }
 

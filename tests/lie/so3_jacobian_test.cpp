@@ -9,23 +9,16 @@
 #include <numbers>
 #include <random>
 
+#include "lie/lie_test_support.hpp"
 #include "mjarm/error.hpp"
 #include "mjarm/lie/so3.hpp"
 
 namespace mjarm::so3 {
 namespace {
 
-constexpr double kPi = std::numbers::pi;
-
-Eigen::Vector3d random_unit(std::mt19937& rng) {
-  std::normal_distribution<double> n(0.0, 1.0);
-  return Eigen::Vector3d(n(rng), n(rng), n(rng)).normalized();
-}
-
-template <typename Derived>
-double max_abs(const Eigen::MatrixBase<Derived>& m) {
-  return m.cwiseAbs().maxCoeff();
-}
+using test::kPi;
+using test::max_abs;
+using test::random_unit;
 
 // columns: central differences of δ ↦ log(exp(ω + hδ)·exp(ω)ᵀ) (left) or
 // log(exp(ω)ᵀ·exp(ω + hδ)) (right)

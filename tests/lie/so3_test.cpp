@@ -8,20 +8,14 @@
 #include <numbers>
 #include <random>
 
+#include "lie/lie_test_support.hpp"
+
 namespace mjarm::so3 {
 namespace {
 
-constexpr double kPi = std::numbers::pi;
-
-Eigen::Vector3d random_unit(std::mt19937& rng) {
-  std::normal_distribution<double> n(0.0, 1.0);
-  return Eigen::Vector3d(n(rng), n(rng), n(rng)).normalized();
-}
-
-template <typename Derived>
-double max_abs(const Eigen::MatrixBase<Derived>& m) {
-  return m.cwiseAbs().maxCoeff();
-}
+using test::kPi;
+using test::max_abs;
+using test::random_unit;
 
 TEST(So3, HatVee) {
   std::mt19937 rng(1);

@@ -1,6 +1,7 @@
 // Cross-checks the bundled arm models against an independent Denavit-Hartenberg forward kinematics
 // written here from the published tables: the end-effector site pose reported by MuJoCo must equal
 // the DH product to machine precision at random joint configurations within the limits.
+#include <gtest/gtest.h>
 #include <mujoco/mujoco.h>
 
 #include <Eigen/Dense>
@@ -15,7 +16,7 @@
 #include <string>
 #include <vector>
 
-#include <gtest/gtest.h>
+#include "model/mjcf_test_support.hpp"
 
 #ifndef MJARM_MODELS_DIR
 #define MJARM_MODELS_DIR "models"
@@ -31,16 +32,11 @@ constexpr int kSamples = 1000;
 using Mat4 = Eigen::Matrix4d;
 using Mat3 = Eigen::Matrix3d;
 
-struct ModelDeleter {
-  void operator()(mjModel* m) const { mj_deleteModel(m); }
-};
-struct DataDeleter {
-  void operator()(mjData* d) const { mj_deleteData(d); }
-};
-using ModelPtr = std::unique_ptr<mjModel, ModelDeleter>;
-using DataPtr = std::unique_ptr<mjData, DataDeleter>;
+using mjarm::mjcf_test::DataPtr;
+using mjarm::mjcf_test::ModelPtr;
 
-ModelPtr load(const std::string& file) {
+// models/<file>, failing the test when MuJoCo rejects it
+ModelPtr load_model_file(const std::string& file) {
   const std::string path = std::string(MJARM_MODELS_DIR) + "/" + file;
   std::array<char, 1024> error{};
   ModelPtr m(mj_loadXML(path.c_str(), nullptr, error.data(), static_cast<int>(error.size())));
@@ -157,12 +153,12 @@ struct SiteCheck {
   Mat4 extra;  // site pose = DH(q) * extra
 };
 
-/// Samples kSamples random configurations of `joints` (and of every other joint of the model) within
-/// the model's limits and compares each site with base_body_pose * DH(q) * extra.
+/// Samples kSamples random configurations of `joints` (and of every other joint of the model)
+/// within the model's limits and compares each site with base_body_pose * DH(q) * extra.
 void check_arm(const std::string& file, const std::string& base_body,
                const std::vector<std::string>& joints, const DhArm& arm,
                const std::vector<SiteCheck>& sites, unsigned seed) {
-  ModelPtr m = load(file);
+  ModelPtr m = load_model_file(file);
   ASSERT_NE(m, nullptr);
   DataPtr d(mj_makeData(m.get()));
   const int base = mj_name2id(m.get(), mjOBJ_BODY, base_body.c_str());
@@ -265,7 +261,7 @@ TEST(BundledModelDh, SingleArmBasesSitAtTheWorldOrigin) {
   // the DH base frame is the model's world frame for the single-arm scenes
   for (const auto& [file, body] : std::vector<std::pair<std::string, std::string>>{
            {"panda.xml", "link0"}, {"iiwa14.xml", "link0"}, {"ur5e.xml", "base"}}) {
-    ModelPtr m = load(file);
+    ModelPtr m = load_model_file(file);
     ASSERT_NE(m, nullptr);
     DataPtr d(mj_makeData(m.get()));
     mj_kinematics(m.get(), d.get());
@@ -302,8 +298,8 @@ TEST(BundledModelDh, JointAndTorqueLimitsAreThePublishedOnes) {
        {150, 150, 150, 28, 28, 28}},
   };
   for (const auto& r : robots) {
-    ModelPtr servo = load(r.file + ".xml");
-    ModelPtr motor = load(r.file + "_torque.xml");
+    ModelPtr servo = load_model_file(r.file + ".xml");
+    ModelPtr motor = load_model_file(r.file + "_torque.xml");
     ASSERT_NE(servo, nullptr);
     ASSERT_NE(motor, nullptr);
     for (size_t i = 0; i < r.joints.size(); ++i) {
@@ -325,7 +321,7 @@ TEST(BundledModelDh, JointAndTorqueLimitsAreThePublishedOnes) {
 }
 
 TEST(BundledModelDh, PandaHomeKeyframeIsFrankasReadyPose) {
-  ModelPtr m = load("panda.xml");
+  ModelPtr m = load_model_file("panda.xml");
   ASSERT_NE(m, nullptr);
   const int key = mj_name2id(m.get(), mjOBJ_KEY, "home");
   ASSERT_GE(key, 0);

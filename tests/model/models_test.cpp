@@ -1,6 +1,7 @@
 // Sanity of every bundled top-level model: it loads, its joints are limited and damped, it has its
 // end-effector sites and a `home` key within limits, the position flavour holds home and stays
 // stable around random configurations, the torque flavour falls, and the inertias are physical.
+#include <gtest/gtest.h>
 #include <mujoco/mujoco.h>
 
 #include <algorithm>
@@ -12,7 +13,7 @@
 #include <string>
 #include <vector>
 
-#include <gtest/gtest.h>
+#include "model/mjcf_test_support.hpp"
 
 #ifndef MJARM_MODELS_DIR
 #define MJARM_MODELS_DIR "models"
@@ -20,14 +21,8 @@
 
 namespace {
 
-struct ModelDeleter {
-  void operator()(mjModel* m) const { mj_deleteModel(m); }
-};
-struct DataDeleter {
-  void operator()(mjData* d) const { mj_deleteData(d); }
-};
-using ModelPtr = std::unique_ptr<mjModel, ModelDeleter>;
-using DataPtr = std::unique_ptr<mjData, DataDeleter>;
+using mjarm::mjcf_test::DataPtr;
+using mjarm::mjcf_test::ModelPtr;
 
 /// One bundled robot: its position-servo file, its torque-motor file and its end-effector sites.
 struct Bundle {

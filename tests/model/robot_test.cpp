@@ -7,19 +7,13 @@
 
 #include "mjarm/error.hpp"
 #include "mjarm/model/names.hpp"
+#include "support/error_message.hpp"
 #include "support/test_models.hpp"
 
 namespace mjarm {
 namespace {
 
-std::string error_of(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "no error";
-}
+using test::error_of;
 
 TEST(Robot, ReportsWhatTheModelHolds) {
   const Robot robot = Robot::from_string(test::kTrickyArm);
@@ -49,7 +43,7 @@ TEST(Robot, UnknownNamesThrowWithTheClosestNames) {
 
 TEST(Robot, NamedStateAccessChecksSizesAndValues) {
   const Robot robot = Robot::from_string(test::kTrickyArm);
-  DataPtr d = robot.make_data();
+  const auto d = robot.make_data();
   const double angle = 0.25;
   robot.set_qpos(*d, "j2", {&angle, 1});
   EXPECT_EQ(robot.qpos(*d, "j2")[0], 0.25);
@@ -65,11 +59,12 @@ TEST(Robot, NamedStateAccessChecksSizesAndValues) {
 TEST(Robot, MissingFileAndMalformedXmlGiveClearErrors) {
   EXPECT_NE(error_of([] { Robot::from_file("/nonexistent/arm.xml"); }).find("does not exist"),
             std::string::npos);
-  const std::string malformed = error_of([] { Robot::from_string("<mujoco><worldbody></mujoco>"); });
+  const std::string malformed =
+      error_of([] { Robot::from_string("<mujoco><worldbody></mujoco>"); });
   EXPECT_NE(malformed.find("malformed XML"), std::string::npos) << malformed;
   EXPECT_NE(malformed.find("line 1"), std::string::npos) << malformed;
-  const std::string invalid =
-      error_of([] { Robot::from_string("<mujoco><worldbody><geom type=\"blob\"/></worldbody></mujoco>"); });
+  const std::string invalid = error_of(
+      [] { Robot::from_string("<mujoco><worldbody><geom type=\"blob\"/></worldbody></mujoco>"); });
   EXPECT_NE(invalid.find("cannot load"), std::string::npos) << invalid;
   EXPECT_NE(error_of([] { Robot::bundled("pandaa"); }).find("no bundled model named 'pandaa'"),
             std::string::npos);

@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "mjarm/qp/dense_qp.hpp"
+#include "qp/qp_test_support.hpp"
 
 namespace {
 
@@ -90,7 +91,7 @@ void operator delete[](void* p, std::size_t) noexcept { __libc_free(p); }
 namespace mjarm::qp {
 namespace {
 
-constexpr double kInf = std::numeric_limits<double>::infinity();
+using test::kInf;
 
 // counts the allocations made by f()
 template <class F>

@@ -12,36 +12,16 @@
 #include <random>
 
 #include "mjarm/error.hpp"
+#include "qp/qp_test_support.hpp"
 #include "support/reference_linear_algebra.hpp"
 
 namespace mjarm::qp {
 namespace {
 
-constexpr double kInf = std::numeric_limits<double>::infinity();
-
-// a problem held in plain Eigen types, independent of the solver
-struct Problem {
-  Eigen::MatrixXd H, A, C;
-  Eigen::VectorXd g, b, l, u, lb, ub;
-  Eigen::VectorXd x0;  // a feasible point (random problems only)
-  int n() const { return static_cast<int>(g.size()); }
-};
-
-void load(DenseQp& qp, const Problem& p) {
-  qp.set_hessian(p.H);
-  qp.set_gradient(p.g);
-  qp.set_equalities(p.A, p.b);
-  qp.set_inequalities(p.C, p.l, p.u);
-  qp.set_bounds(p.lb, p.ub);
-}
-
-Eigen::MatrixXd gaussian(std::mt19937& rng, int rows, int cols, double sigma = 1.0) {
-  std::normal_distribution<double> normal(0.0, sigma);
-  Eigen::MatrixXd m(rows, cols);
-  for (int j = 0; j < cols; ++j)
-    for (int i = 0; i < rows; ++i) m(i, j) = normal(rng);
-  return m;
-}
+using test::gaussian;
+using test::kInf;
+using test::load;
+using test::Problem;
 
 // feasible by construction around a hidden point x0; g pushes the minimizer into the limits
 Problem random_problem(std::mt19937& rng, int n, int me, int mi, bool bounds = true) {

@@ -9,27 +9,18 @@
 #include <random>
 
 #include "mjarm/qp/dense_qp.hpp"
+#include "qp/qp_test_support.hpp"
 
 namespace mjarm::qp {
 namespace {
 
-constexpr double kInf = std::numeric_limits<double>::infinity();
-
-struct Problem {
-  Eigen::MatrixXd H, A, C;
-  Eigen::VectorXd g, b, l, u, lb, ub;
-};
-
-Eigen::MatrixXd gaussian(std::mt19937& rng, int rows, int cols, double sigma = 1.0) {
-  std::normal_distribution<double> normal(0.0, sigma);
-  Eigen::MatrixXd m(rows, cols);
-  for (int j = 0; j < cols; ++j)
-    for (int i = 0; i < rows; ++i) m(i, j) = normal(rng);
-  return m;
-}
+using test::gaussian;
+using test::kInf;
+using test::load;
+using test::Problem;
 
 // feasible around x = 0 (equalities through a point near it); g pushes x into the limits
-Problem random_problem(std::mt19937& rng, int n, int me, int mi) {
+Problem problem_near_origin(std::mt19937& rng, int n, int me, int mi) {
   std::uniform_real_distribution<double> uni(0.5, 1.5);
   Problem p;
   const Eigen::MatrixXd M = gaussian(rng, n, n);
@@ -52,14 +43,6 @@ Problem random_problem(std::mt19937& rng, int n, int me, int mi) {
     p.ub[j] = 1.5 * uni(rng);
   }
   return p;
-}
-
-void load(DenseQp& qp, const Problem& p) {
-  qp.set_hessian(p.H);
-  qp.set_gradient(p.g);
-  qp.set_equalities(p.A, p.b);
-  qp.set_inequalities(p.C, p.l, p.u);
-  qp.set_bounds(p.lb, p.ub);
 }
 
 // 1 % additive perturbation of g, b_eq and every limit
@@ -87,7 +70,7 @@ TEST(DenseQpWarm, SameAnswerAsColdInFewerIterations) {
   };
   std::mt19937 rng(31);
   for (const Size s : {Size{7, 0, 42}, Size{10, 3, 40}, Size{14, 0, 100}, Size{30, 0, 200}}) {
-    const Problem base = random_problem(rng, s.n, s.me, s.mi);
+    const Problem base = problem_near_origin(rng, s.n, s.me, s.mi);
     DenseQp warm(s.n, s.me, s.mi), cold(s.n, s.me, s.mi);
     load(warm, base);
     load(cold, base);
@@ -121,7 +104,7 @@ TEST(DenseQpWarm, SameAnswerAsColdInFewerIterations) {
 
 TEST(DenseQpWarm, ReAddsWorkingSetAfterMatrixChanges) {
   std::mt19937 rng(32);
-  const Problem base = random_problem(rng, 12, 2, 60);
+  const Problem base = problem_near_origin(rng, 12, 2, 60);
   DenseQp warm(12, 2, 60), cold(12, 2, 60);
   load(warm, base);
   ASSERT_EQ(warm.solve().status, QpStatus::solved);
@@ -150,7 +133,7 @@ TEST(DenseQpWarm, ReAddsWorkingSetAfterMatrixChanges) {
 
 TEST(DenseQpWarm, HandlesRemovedLimitsAndLargeChanges) {
   std::mt19937 rng(33);
-  Problem p = random_problem(rng, 9, 1, 30);
+  Problem p = problem_near_origin(rng, 9, 1, 30);
   DenseQp warm(9, 1, 30), cold(9, 1, 30);
   load(warm, p);
   const QpResult& r0 = warm.solve();
@@ -179,7 +162,7 @@ TEST(DenseQpWarm, HandlesRemovedLimitsAndLargeChanges) {
 
 TEST(DenseQpWarm, InfeasibleAfterWarmStartAndRecovery) {
   std::mt19937 rng(34);
-  const Problem p = random_problem(rng, 6, 0, 10);
+  const Problem p = problem_near_origin(rng, 6, 0, 10);
   DenseQp qp(6, 0, 10);
   load(qp, p);
   ASSERT_EQ(qp.solve().status, QpStatus::solved);
@@ -197,7 +180,7 @@ TEST(DenseQpWarm, InfeasibleAfterWarmStartAndRecovery) {
 TEST(DenseQpWarm, LongWarmSequenceStaysExact) {
   // hundreds of warm starts on one factorization (and its periodic rebuilds) lose no accuracy
   std::mt19937 rng(35);
-  const Problem base = random_problem(rng, 20, 0, 120);
+  const Problem base = problem_near_origin(rng, 20, 0, 120);
   DenseQp warm(20, 0, 120), cold(20, 0, 120);
   load(warm, base);
   load(cold, base);
@@ -217,7 +200,7 @@ TEST(DenseQpWarm, LongWarmSequenceStaysExact) {
 
 TEST(DenseQpWarm, CholeskyReusedWhileHessianUnchanged) {
   std::mt19937 rng(36);
-  const Problem p = random_problem(rng, 8, 1, 20);
+  const Problem p = problem_near_origin(rng, 8, 1, 20);
   DenseQp qp(8, 1, 20);
   load(qp, p);
   EXPECT_EQ(qp.hessian_factorizations(), 0);  // factorized lazily by solve()

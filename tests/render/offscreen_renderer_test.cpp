@@ -16,6 +16,7 @@ namespace mjarm {
 namespace {
 
 using test::changed_pixels;
+using test::error_of;
 using test::pixel_stats;
 
 constexpr int kW = 320;
@@ -35,16 +36,6 @@ constexpr const char* kCameraScene = R"(
 </mujoco>)";
 
 const CameraSpec kFront = CameraSpec::free_camera({0.2, 0.0, 0.45}, 1.9, 150.0, -20.0);
-
-template <typename F>
-std::string error_of(F&& f) {
-  try {
-    f();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "(no error)";
-}
 
 bool same(const Image& a, const Image& b) {
   return a.width == b.width && a.height == b.height && a.rgb == b.rgb;
@@ -92,8 +83,8 @@ TEST(OffscreenRenderer, RobotPixelsAreWhereTheRobotProjects) {
     const Eigen::Vector3d c(d->geom_xpos + 3 * g);
     for (int corner = 0; corner < 4; ++corner) {
       const double r = m.geom_rbound[g];
-      const Eigen::Vector3d p =
-          c + r * ((corner & 1) ? right : Eigen::Vector3d(-right)) + r * ((corner & 2) ? view.up : Eigen::Vector3d(-view.up));
+      const Eigen::Vector3d p = c + r * ((corner & 1) ? right : Eigen::Vector3d(-right)) +
+                                r * ((corner & 2) ? view.up : Eigen::Vector3d(-view.up));
       const Eigen::Vector3d uvd = project(view, kW, kH, p);
       ASSERT_GT(uvd.z(), 0.0);
       u0 = std::min(u0, uvd.x());
@@ -201,7 +192,8 @@ TEST(OffscreenRenderer, UnknownCameraListsTheCameras) {
   const Robot panda = Robot::bundled("panda");
   DataPtr p = panda.make_data();
   OffscreenRenderer panda_renderer(panda, kW, kH);
-  const std::string none = error_of([&] { panda_renderer.view(*p, CameraSpec::model_camera("x")); });
+  const std::string none =
+      error_of([&] { panda_renderer.view(*p, CameraSpec::model_camera("x")); });
   EXPECT_NE(none.find("cameras: (none)"), std::string::npos) << none;
   // and an unknown follow target lists sites and bodies
   const std::string follow =
@@ -246,8 +238,11 @@ TEST(OffscreenRenderer, SeveralCamerasInOneRun) {
   for (int round = 0; round < 2; ++round) {
     for (const auto& camera : cameras) {
       renderer.render(*d, camera, frame);
-      if (round == 0) images.push_back(frame);
-      else EXPECT_TRUE(same(frame, images[images.size() - cameras.size() + (&camera - cameras.data())]));
+      if (round == 0)
+        images.push_back(frame);
+      else
+        EXPECT_TRUE(
+            same(frame, images[images.size() - cameras.size() + (&camera - cameras.data())]));
     }
   }
   for (std::size_t i = 0; i < images.size(); ++i) {

@@ -16,8 +16,11 @@
 #include <string>
 #include <vector>
 
+#include "mjarm/error.hpp"
 #include "mjarm/model/robot.hpp"
 #include "mjarm/render/image.hpp"
+#include "support/error_message.hpp"
+#include "support/files.hpp"
 
 extern char** environ;
 
@@ -75,27 +78,6 @@ inline std::vector<bool> changed_pixels(const Image& a, const Image& b, int thre
     changed[p] = d > threshold;
   }
   return changed;
-}
-
-/// A scratch folder unique to this test process, removed at exit.
-inline fs::path scratch() {
-  struct Dir {
-    fs::path path = fs::temp_directory_path() / ("mjarm_render_test_" + std::to_string(::getpid()));
-    Dir() { fs::create_directories(path); }
-    ~Dir() {
-      std::error_code ec;
-      fs::remove_all(path, ec);
-    }
-  };
-  static const Dir dir;
-  return dir.path;
-}
-
-inline std::string slurp(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream buffer;
-  buffer << in.rdbuf();
-  return buffer.str();
 }
 
 /// What a program did.

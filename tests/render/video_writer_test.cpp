@@ -18,6 +18,8 @@
 namespace mjarm {
 namespace {
 
+using test::error_of;
+
 namespace fs = std::filesystem;
 
 // a frame with a square that moves with k, so the encoder has something to do
@@ -60,10 +62,10 @@ struct Probe {
 Probe probe(const fs::path& video) {
   const std::string ffprobe = find_on_path("ffprobe");
   EXPECT_FALSE(ffprobe.empty()) << "ffprobe (Debian package ffmpeg) is needed by this test";
-  const auto run = test::run_process({ffprobe, "-v", "error", "-count_frames", "-select_streams",
-                                      "v:0", "-show_entries",
-                                      "stream=nb_read_frames,width,height,codec_name", "-of",
-                                      "default=noprint_wrappers=1", video.string()});
+  const auto run =
+      test::run_process({ffprobe, "-v", "error", "-count_frames", "-select_streams", "v:0",
+                         "-show_entries", "stream=nb_read_frames,width,height,codec_name", "-of",
+                         "default=noprint_wrappers=1", video.string()});
   Probe p;
   if (run.exit_code != 0) return p;
   std::istringstream lines(run.out);
@@ -82,16 +84,6 @@ Probe probe(const fs::path& video) {
 
 bool has_moov_atom(const fs::path& video) {
   return test::slurp(video).find("moov") != std::string::npos;
-}
-
-template <typename F>
-std::string error_of(F&& f) {
-  try {
-    f();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "(no error)";
 }
 
 TEST(VideoWriter, WritesAValidMp4WithEveryFrame) {
@@ -158,8 +150,8 @@ TEST(VideoWriter, Mpeg4EncoderAndTwoWritersAtOnce) {
 TEST(VideoWriter, FfmpegMissingNamesTheDebianPackage) {
   VideoOptions options;
   options.ffmpeg = "/nonexistent/bin/ffmpeg";
-  const std::string message = error_of(
-      [&] { VideoWriter(test::scratch() / "x.mp4", 64, 48, 30.0, options); });
+  const std::string message =
+      error_of([&] { VideoWriter(test::scratch() / "x.mp4", 64, 48, 30.0, options); });
   EXPECT_NE(message.find("ffmpeg not found"), std::string::npos) << message;
   EXPECT_NE(message.find("package `ffmpeg`"), std::string::npos) << message;
 

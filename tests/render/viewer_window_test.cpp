@@ -71,19 +71,20 @@ std::optional<std::string> display_prefix() {
          " -s '-screen 0 1280x1024x24' ";
 }
 
-struct PixelStats {
+/// Mean and standard deviation of every channel value (0…255) of an image.
+struct ChannelStats {
   double mean = 0.0;
   double stddev = 0.0;
 };
 
-PixelStats pixel_stats(const Image& image) {
+ChannelStats channel_stats(const Image& image) {
   double sum = 0.0, sum2 = 0.0;
   for (const std::uint8_t v : image.rgb) {
     sum += v;
     sum2 += static_cast<double>(v) * v;
   }
   const double n = static_cast<double>(image.rgb.size());
-  PixelStats s;
+  ChannelStats s;
   s.mean = sum / n;
   s.stddev = std::sqrt(std::max(0.0, sum2 / n - s.mean * s.mean));
   return s;
@@ -159,7 +160,7 @@ TEST(ViewerWindow, ScriptedSessionMovesTheArmAndTakesScreenshots) {
     const Image& image = images.back();
     ASSERT_EQ(image.width, 640);
     ASSERT_EQ(image.height, 480);
-    const PixelStats s = pixel_stats(image);
+    const ChannelStats s = channel_stats(image);
     EXPECT_GT(s.stddev, 20.0) << shot["path"] << " looks blank";
     EXPECT_GT(s.mean, 20.0);
     EXPECT_LT(s.mean, 235.0);

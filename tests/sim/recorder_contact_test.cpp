@@ -13,7 +13,7 @@ namespace mjarm {
 namespace {
 
 // A 2 kg box dropped 1 cm onto the floor: once it rests, the contacts carry its weight.
-constexpr const char* kBoxOnFloor = R"(
+constexpr const char* kDroppedBox = R"(
 <mujoco model="box_on_floor">
   <option timestep="0.002"/>
   <worldbody>
@@ -26,7 +26,7 @@ constexpr const char* kBoxOnFloor = R"(
 </mujoco>)";
 
 TEST(RecorderContacts, TheRestingBoxWeighsItsMassTimesG) {
-  const Robot robot = Robot::from_string(kBoxOnFloor);
+  const Robot robot = Robot::from_string(kDroppedBox);
   Simulation sim(robot, SimulationOptions{});
   test::TempDir dir("contacts");
   Recorder recorder(sim, dir.path());
@@ -66,7 +66,7 @@ TEST(RecorderContacts, TheSummaryListsTheForceRangeOfEachActuator) {
 }
 
 TEST(RecorderContacts, KinematicModeHasNoContactForces) {
-  const Robot robot = Robot::from_string(kBoxOnFloor);
+  const Robot robot = Robot::from_string(kDroppedBox);
   SimulationOptions options;
   options.mode = SimulationMode::kinematic;
   Simulation sim(robot, options);

@@ -8,20 +8,12 @@
 #include "mjarm/error.hpp"
 #include "mjarm/kinematics/chain_kinematics.hpp"
 #include "mjarm/tasks/approach_timing.hpp"
+#include "support/error_message.hpp"
 
 namespace mjarm {
 namespace {
 
-/// The message of the Error @p f throws ("" when it does not throw).
-template <class F>
-std::string error_of(F&& f) {
-  try {
-    f();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "";
-}
+using test::error_of;
 
 ShelfPickRequest request(const char* robot, std::uint64_t seed) {
   ShelfPickRequest r;
@@ -61,8 +53,9 @@ TEST(ShelfPickPlan, TheSeedDrawsThePickAndTheStart) {
     EXPECT_NE(a.pick, c.pick);
     EXPECT_TRUE(a.pick_drawn);
     // inside the documented box, and the start within the perturbation of home
-    EXPECT_TRUE(((a.pick - spec.pick_center).cwiseAbs().array() <=
-                 spec.pick_half_width.array() + 1e-15).all());
+    EXPECT_TRUE(
+        ((a.pick - spec.pick_center).cwiseAbs().array() <= spec.pick_half_width.array() + 1e-15)
+            .all());
     const std::vector<double> home = a.model.keyframe_qpos("home");
     const Eigen::VectorXd dq = a.goal.q_start - a.chain.gather(home.data());
     EXPECT_LE(dq.cwiseAbs().maxCoeff(), spec.start_perturbation);

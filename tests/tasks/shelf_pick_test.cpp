@@ -10,6 +10,7 @@
 #include <string>
 
 #include "mjarm/error.hpp"
+#include "support/files.hpp"
 
 namespace mjarm {
 namespace {
@@ -23,19 +24,7 @@ std::string slurp(const fs::path& path) {
   return buffer.str();
 }
 
-/// A scratch directory unique to this test process, removed at exit.
-fs::path scratch() {
-  struct Dir {
-    fs::path path = fs::temp_directory_path() / ("mjarm_shelf_pick_" + std::to_string(::getpid()));
-    Dir() { fs::create_directories(path); }
-    ~Dir() {
-      std::error_code ec;
-      fs::remove_all(path, ec);
-    }
-  };
-  static const Dir dir;
-  return dir.path;
-}
+using test::scratch;
 
 ShelfPickOptions options(const std::string& robot, const std::string& controller,
                          std::uint64_t seed) {

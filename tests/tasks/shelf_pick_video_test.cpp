@@ -15,24 +15,14 @@
 
 #include "mjarm/error.hpp"
 #include "mjarm/tasks/shelf_pick.hpp"
+#include "support/files.hpp"
 
 namespace mjarm {
 namespace {
 
 namespace fs = std::filesystem;
 
-fs::path scratch() {
-  struct Dir {
-    fs::path path = fs::temp_directory_path() / ("mjarm_pick_video_" + std::to_string(::getpid()));
-    Dir() { fs::create_directories(path); }
-    ~Dir() {
-      std::error_code ec;
-      fs::remove_all(path, ec);
-    }
-  };
-  static const Dir dir;
-  return dir.path;
-}
+using test::scratch;
 
 bool inside(const Eigen::Vector3d& uvd, int width, int height) {
   return uvd.z() > 0.0 && uvd.x() >= 0.0 && uvd.x() < width && uvd.y() >= 0.0 && uvd.y() < height;
