@@ -22,12 +22,12 @@ demo: setup $(BUILD)/CMakeCache.txt
 	./$(BUILD)/mjarm demo
 
 # Every test, once, in one build that is both strict (-Werror) and sanitized: ASan + UBSan, the
-# library at -O1, the code that drives it (CLI, tests, examples) at -O0, one unit per room,
-# third-party headers precompiled (docs/architecture.md, "Build"). UBSan's `null` and
-# `alignment` checks are left out: they double the compile time of the Eigen-heavy sources, ASan
-# already reports a null dereference, and Eigen's own assertions (live without NDEBUG) check the
-# alignment of its fixed-size types. LeakSanitizer ignores what Mesa, EGL, GLFW and X11 keep for
-# the life of the process (scripts/lsan.supp).
+# library at -O1, the code that drives it (CLI, tests, examples) at -O0, one translation unit per
+# room (docs/architecture.md, "Build"). UBSan's `null` and `alignment` checks are left out: they
+# double the compile time of the Eigen-heavy sources, ASan already reports a null dereference,
+# and Eigen's own assertions (live without NDEBUG) check the alignment of its fixed-size types.
+# LeakSanitizer ignores what Mesa, EGL, GLFW and X11 keep for the life of the process
+# (scripts/lsan.supp).
 TEST_BUILD ?= build-test
 SANITIZER_ENV = ASAN_OPTIONS=detect_leaks=1:abort_on_error=0 \
   LSAN_OPTIONS=suppressions=$(CURDIR)/scripts/lsan.supp \
@@ -35,8 +35,7 @@ SANITIZER_ENV = ASAN_OPTIONS=detect_leaks=1:abort_on_error=0 \
 
 $(TEST_BUILD)/CMakeCache.txt:
 	cmake -S . -B $(TEST_BUILD) -DCMAKE_BUILD_TYPE=Debug -DMJARM_SANITIZE=ON \
-	  -DMJARM_PRECOMPILE_HEADERS=ON -DMJARM_UNITY_BUILD=ON \
-	  -DCMAKE_CXX_FLAGS_DEBUG="-O1 -g1" $(CMAKE_FLAGS)
+	  -DMJARM_UNITY_BUILD=ON -DCMAKE_CXX_FLAGS_DEBUG="-O1 -g1" $(CMAKE_FLAGS)
 
 test: setup $(TEST_BUILD)/CMakeCache.txt
 	cmake --build $(TEST_BUILD) -j $(JOBS)
