@@ -83,4 +83,9 @@ std::string common_style() {
          "set xlabel 'time t [s]'\n";
 }
 
+std::string time_figure_preamble(const Recording& recording, const std::string& title) {
+  return common_style() + phase_background(recording) + "set title " + gp_string(title) +
+         " font ',16'\n";
+}
+
 }  // namespace mjarm::plot::detail

@@ -5,6 +5,7 @@
 #include <cstdio>
 
 #include "mjarm/error.hpp"
+#include "quoted_path.hpp"
 
 namespace mjarm::plot::detail {
 namespace {
@@ -63,8 +64,7 @@ Figure tracking_error_figure(const Recording& recording, const fs::path& data_di
                          " mm at t = " + fixed(t[at], 3) + " s");
   f.info.notes.push_back("final position error " + fixed(position.back(), 4) +
                          " mm, orientation error " + fixed(orientation.back(), 4) + " mrad");
-  f.script = common_style() + phase_background(recording) + "set title " + gp_string(f.info.title) +
-             " font ',16'\n"
+  f.script = time_figure_preamble(recording, f.info.title) +
              "set ylabel 'position error [mm]'\n"
              "set y2label 'orientation error [mrad]'\n"
              "set y2tics\n"
@@ -88,8 +88,8 @@ Figure joint_torques_figure(const Recording& recording, const fs::path& data_dir
       actuators.push_back({column.substr(6), "", 1.0, std::nullopt});
   }
   if (actuators.empty())
-    throw Error("'" + (recording.directory() / "state.csv").string() +
-                "' has no force.<actuator> column: no torques to plot");
+    throw Error(quoted(recording.directory() / "state.csv") +
+                " has no force.<actuator> column: no torques to plot");
   const bool all_limited =
       std::all_of(actuators.begin(), actuators.end(),
                   [](const RecordedActuator& a) { return a.force_range.has_value(); });
@@ -174,8 +174,7 @@ Figure joint_torques_figure(const Recording& recording, const fs::path& data_dir
   f.info.notes.push_back(saturated > 0
                              ? std::to_string(saturated) + " saturated actuator ticks marked"
                              : "no saturated ticks");
-  f.script = common_style() + phase_background(recording) + "set title " + gp_string(f.info.title) +
-             " font ',16'\n" +
+  f.script = time_figure_preamble(recording, f.info.title) +
              (all_limited ? "set ylabel 'torque / limit  tau / tau_max [-]'\nset yrange "
                             "[-1.15:1.15]\nset ytics 0.25\n"
                           : "set ylabel 'joint torque tau [N m]'\n") +
@@ -220,8 +219,7 @@ Figure contact_force_figure(const Recording& recording, const fs::path& data_dir
              gp_number(std::max(1.0, std::ceil(1.15 * peak_count))) + "]\n";
   }
   f.info.series = {"sum of normal forces [N]", "active contacts"};
-  f.script = common_style() + phase_background(recording) + "set title " + gp_string(f.info.title) +
-             " font ',16'\n" +
+  f.script = time_figure_preamble(recording, f.info.title) +
              "set ylabel 'normal force [N]'\nset y2label 'contacts [count]'\nset y2tics\nset key "
              "outside below center horizontal width -2\nset bmargin 5.5\n" +
              extra + "plot " + gp_string(file.string()) + " using 1:2 with lines lw 2.5 lc rgb " +

@@ -37,5 +37,7 @@ std::pair<double, double> time_range(const Recording& recording);
 std::string phase_background(const Recording& recording);
 // Common look: fonts, grid, key frame.
 std::string common_style();
+// The start of a figure over the run's time: common style, phase background, title.
+std::string time_figure_preamble(const Recording& recording, const std::string& title);
 
 }  // namespace mjarm::plot::detail

@@ -3,17 +3,16 @@
 #include <fcntl.h>
 #include <signal.h>
 #include <spawn.h>
-#include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
 #include <cerrno>
 #include <chrono>
-#include <cstdlib>
 #include <cstring>
 #include <thread>
 #include <vector>
 
+#include "executable_on_path.hpp"
 #include "mjarm/error.hpp"
 
 extern char** environ;
@@ -37,22 +36,13 @@ std::string read_log(int fd) {
 }  // namespace
 
 fs::path find_gnuplot() {
-  const char* path = std::getenv("PATH");
-  std::string dirs = path != nullptr ? path : "";
-  std::size_t start = 0;
-  while (start <= dirs.size()) {
-    const std::size_t end = std::min(dirs.find(':', start), dirs.size());
-    const std::string dir = dirs.substr(start, end - start);
-    const fs::path candidate = fs::path(dir.empty() ? "." : dir) / "gnuplot";
-    struct stat info {};
-    if (::stat(candidate.c_str(), &info) == 0 && S_ISREG(info.st_mode) &&
-        ::access(candidate.c_str(), X_OK) == 0)
-      return candidate;
-    start = end + 1;
+  const std::string gnuplot = executable_on_path("gnuplot");
+  if (gnuplot.empty()) {
+    throw Error(
+        "gnuplot was not found on PATH; install the Debian package gnuplot-nox "
+        "(apt-get install gnuplot-nox) to draw plots");
   }
-  throw Error(
-      "gnuplot was not found on PATH; install the Debian package gnuplot-nox "
-      "(apt-get install gnuplot-nox) to draw plots");
+  return gnuplot;
 }
 
 void run_gnuplot(const fs::path& script, double timeout_s) {

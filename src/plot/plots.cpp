@@ -22,16 +22,15 @@ void write_text(const fs::path& path, const std::string& text) {
   if (!out) throw Error("cannot write " + quoted(path) + ": " + std::strerror(errno));
 }
 
-fs::path prepare_directory(const fs::path& out_dir) {
+// Creates @p out_dir and its subfolder @p data_dir.
+void prepare_directories(const fs::path& out_dir, const fs::path& data_dir) {
   std::error_code ec;
   fs::create_directories(out_dir, ec);
   if (ec) throw Error("cannot create the plot folder " + quoted(out_dir) + ": " + ec.message());
   if (!fs::is_directory(out_dir, ec))
     throw Error("the plot folder " + quoted(out_dir) + " is not a directory");
-  const fs::path data_dir = fs::absolute(out_dir, ec) / "gnuplot";
   fs::create_directories(data_dir, ec);
   if (ec) throw Error("cannot write into the plot folder " + quoted(out_dir) + ": " + ec.message());
-  return data_dir;
 }
 
 }  // namespace
@@ -46,7 +45,8 @@ std::vector<PlotInfo> make_plots(const Recording& recording, const fs::path& out
   // every figure is built (and every column checked) before anything is written or run
   const fs::path out = out_dir.empty() ? recording.directory() / "plots" : out_dir;
   std::error_code ec;
-  const fs::path data_dir = fs::absolute(out, ec) / "gnuplot";
+  const fs::path absolute_out = fs::absolute(out, ec);
+  const fs::path data_dir = absolute_out / "gnuplot";
   std::vector<detail::Figure> figures;
   figures.push_back(detail::tracking_error_figure(recording, data_dir));
   figures.push_back(detail::joint_torques_figure(recording, data_dir));
@@ -54,7 +54,7 @@ std::vector<PlotInfo> make_plots(const Recording& recording, const fs::path& out
   figures.push_back(detail::phases_figure(recording, data_dir));
   find_gnuplot();  // fail early, before files are written, when gnuplot is not installed
 
-  prepare_directory(out);
+  prepare_directories(out, data_dir);
   // a font size that stays readable from 640x360 to 4K: proportional to the height
   const int font = std::max(9, options.height / 52);
   std::string script = "# drawn by `mjarm plot` from " + recording.directory().string() +
@@ -66,7 +66,7 @@ std::vector<PlotInfo> make_plots(const Recording& recording, const fs::path& out
                        "set encoding utf8\n";
   std::vector<PlotInfo> infos;
   for (detail::Figure& figure : figures) {
-    figure.info.path = fs::absolute(out, ec) / (figure.info.name + ".png");
+    figure.info.path = absolute_out / (figure.info.name + ".png");
     for (const auto& [path, text] : figure.data) write_text(path, text);
     script += "\n# ---- " + figure.info.name + "\nreset\nset output " +
               detail::gp_string(figure.info.path.string()) + "\n" + figure.script +

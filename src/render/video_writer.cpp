@@ -3,7 +3,6 @@
 #include <fcntl.h>
 #include <signal.h>
 #include <spawn.h>
-#include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -15,6 +14,7 @@
 #include <sstream>
 #include <vector>
 
+#include "executable_on_path.hpp"
 #include "mjarm/error.hpp"
 #include "quoted_path.hpp"
 
@@ -31,21 +31,9 @@ std::string find_executable(const std::string& name) {
     if (::access(name.c_str(), X_OK) == 0) return name;
     throw Error("ffmpeg not found: '" + name + "' is not an executable file" + hint);
   }
-  const char* env = std::getenv("PATH");
-  const std::string path = env != nullptr ? env : "";
-  std::size_t begin = 0;
-  while (begin <= path.size()) {
-    std::size_t end = path.find(':', begin);
-    if (end == std::string::npos) end = path.size();
-    const std::string dir = end > begin ? path.substr(begin, end - begin) : ".";
-    const std::string candidate = dir + "/" + name;
-    struct stat info {};
-    if (::stat(candidate.c_str(), &info) == 0 && S_ISREG(info.st_mode) &&
-        ::access(candidate.c_str(), X_OK) == 0)
-      return candidate;
-    begin = end + 1;
-  }
-  throw Error("ffmpeg not found: no '" + name + "' on PATH" + hint);
+  std::string found = executable_on_path(name);
+  if (found.empty()) throw Error("ffmpeg not found: no '" + name + "' on PATH" + hint);
+  return found;
 }
 
 // Reads what ffmpeg wrote to its stderr file (the last lines matter: they say why it stopped).
