@@ -6,6 +6,7 @@
 
 #include "mjarm/error.hpp"
 #include "render_test_support.hpp"
+#include "support/file_size_limit.hpp"
 
 namespace mjarm {
 namespace {
@@ -40,6 +41,38 @@ TEST(Png, UnwritablePathNamesThePathAndTheReason) {
   }
   // a folder is not a file
   EXPECT_THROW(write_png(image, test::scratch()), Error);
+}
+
+TEST(Png, AFullDiskLeavesTheOldFileAndNamesTheReason) {
+  Image noise(96, 96);  // incompressible: ~27 KB of PNG
+  for (std::size_t i = 0; i < noise.rgb.size(); ++i)
+    noise.rgb[i] = static_cast<std::uint8_t>((i * 2654435761u) >> 13);
+  const auto dir = test::scratch() / "png_full";
+  std::filesystem::create_directories(dir);
+  const auto path = dir / "still.png";
+  std::ofstream(path) << "old";
+  const test::LimitedRun child = test::with_file_size_limit(4096, [&] {
+    write_png(noise, path);
+    return std::string("written");
+  });
+  ASSERT_EQ(child.exit_code, 1) << child.out;
+  EXPECT_NE(child.err.find("cannot write PNG '" + path.string() + "'"), std::string::npos)
+      << child.err;
+  EXPECT_NE(child.err.find("File too large"), std::string::npos) << child.err;
+  // never a truncated PNG: the old file as it was, and no temporary file beside it
+  EXPECT_EQ(test::slurp(path), "old");
+  EXPECT_EQ(std::distance(std::filesystem::directory_iterator(dir),
+                          std::filesystem::directory_iterator()),
+            1);
+  // with room, the same image replaces it whole
+  write_png(noise, path);
+  EXPECT_EQ(read_png(path).rgb, noise.rgb);
+  try {
+    write_png(noise, "/dev/full");
+    FAIL() << "no error";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("No space left on device"), std::string::npos) << e.what();
+  }
 }
 
 TEST(Png, EmptyOrInconsistentImagesAreErrors) {
