@@ -4,6 +4,8 @@
 
 #include <gtest/gtest.h>
 
+#include <random>
+
 #include "mjarm/error.hpp"
 #include "render_test_support.hpp"
 #include "support/file_size_limit.hpp"
@@ -44,9 +46,9 @@ TEST(Png, UnwritablePathNamesThePathAndTheReason) {
 }
 
 TEST(Png, AFullDiskLeavesTheOldFileAndNamesTheReason) {
-  Image noise(96, 96);  // incompressible: ~27 KB of PNG
-  for (std::size_t i = 0; i < noise.rgb.size(); ++i)
-    noise.rgb[i] = static_cast<std::uint8_t>((i * 2654435761u) >> 13);
+  Image noise(96, 96);  // random bytes do not compress: ~27 KB of PNG
+  std::mt19937 random(7);
+  for (std::uint8_t& byte : noise.rgb) byte = static_cast<std::uint8_t>(random() >> 24);
   const auto dir = test::scratch() / "png_full";
   std::filesystem::create_directories(dir);
   const auto path = dir / "still.png";
