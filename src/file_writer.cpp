@@ -39,8 +39,16 @@ FileWriter::FileWriter(const fs::path& path, Mode mode, std::string what, std::s
     throw Error(cannot_write(what_, path_) + std::strerror(EISDIR));
   buffer_ = std::make_unique<char[]>(capacity_);
   if (mode == Mode::in_place || (exists && !S_ISREG(info.st_mode))) {
-    fd_ = ::open(path_.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0666);
-    if (fd_ < 0) throw Error(cannot_write(what_, path_) + std::strerror(errno));
+    // a FIFO nobody reads would block open() forever: without a reader it is an error (ENXIO)
+    const bool fifo = exists && S_ISFIFO(info.st_mode);
+    fd_ = ::open(path_.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC | (fifo ? O_NONBLOCK : 0),
+                 0666);
+    if (fd_ < 0) {
+      const int error = errno;
+      throw Error(cannot_write(what_, path_) + std::strerror(error) +
+                  (fifo && error == ENXIO ? " (a FIFO that nothing reads)" : ""));
+    }
+    if (fifo) ::fcntl(fd_, F_SETFL, ::fcntl(fd_, F_GETFL) & ~O_NONBLOCK);
     return;
   }
   // the temporary file lives beside the file it replaces (a symlink's target): rename is atomic
