@@ -77,6 +77,25 @@ TEST(Png, AFullDiskLeavesTheOldFileAndNamesTheReason) {
   }
 }
 
+TEST(Png, ReplacingKeepsSymlinksAndPermissions) {
+  namespace fs = std::filesystem;
+  const auto dir = test::scratch() / "png_replace";
+  fs::create_directories(dir);
+  const auto real = dir / "real.png", link = dir / "link.png";
+  std::ofstream(real) << "old";
+  fs::permissions(real, fs::perms::owner_read | fs::perms::owner_write | fs::perms::group_read);
+  fs::create_symlink("real.png", link);
+  Image image(8, 6);
+  image.at(3, 2)[1] = 200;
+  write_png(image, link);
+  // written through the link, as a plain write would: the link stays a link
+  EXPECT_TRUE(fs::is_symlink(link));
+  EXPECT_EQ(read_png(real).rgb, image.rgb);
+  EXPECT_EQ(fs::status(real).permissions() & fs::perms::all,
+            fs::perms::owner_read | fs::perms::owner_write | fs::perms::group_read);
+  EXPECT_EQ(std::distance(fs::directory_iterator(dir), fs::directory_iterator()), 2);
+}
+
 TEST(Png, EmptyOrInconsistentImagesAreErrors) {
   const auto path = test::scratch() / "bad.png";
   EXPECT_THROW(write_png(Image(), path), Error);
