@@ -96,6 +96,7 @@ Command add_demo_command(CLI::App& root) {
               throw mjarm::Error("the shelf pick ended " + std::string(to_string(report->outcome)) +
                                  ": " + report->run.message + "; recording in " +
                                  report->recording.string());
+            if (!report->recording_error.empty()) throw mjarm::Error(report->recording_error);
             // plots of the recording, beside it (docs/plot.md)
             std::vector<std::filesystem::path> plots =
                 plot::write_plots(report->recording, report->recording / "plots");

@@ -86,6 +86,7 @@ Json shelf_pick_json(const ShelfPickReport& r) {
                         {"final_error", number_or_null(m.final_error)}};
   doc["saturated_ticks"] = r.saturated_ticks;
   doc["recording"] = r.recording.empty() ? Json(nullptr) : Json(r.recording.string());
+  doc["recording_error"] = r.recording_error.empty() ? Json(nullptr) : Json(r.recording_error);
   doc["video"] = nullptr;
   if (!r.video.empty())
     doc["video"] = Json{{"path", r.video.string()},
@@ -127,8 +128,10 @@ void print_shelf_pick(std::ostream& os, const ShelfPickReport& r) {
     fields.insert(fields.begin() + 5,
                   {"orientation [mrad]", "max " + mm(m.orientation_error_max) + " over the hold"});
   if (!r.recording.empty())
-    fields.push_back(
-        {"recording", r.recording.string() + " (state.csv, task.csv, events.csv, summary.json)"});
+    fields.push_back({"recording", r.recording.string() +
+                                       (r.recording_error.empty()
+                                            ? " (state.csv, task.csv, events.csv, summary.json)"
+                                            : " (not written: see the error)")});
   if (!r.video.empty())
     fields.push_back({"video", r.video.string() + " (" + std::to_string(r.video_frames) +
                                    " frames" + (r.video_error.empty() ? "" : ", stopped early") +
@@ -337,12 +340,15 @@ Command add_run_command(CLI::App& root) {
             if (!report.ok()) {
               std::string why = "the shelf pick ended " + std::string(to_string(report.outcome)) +
                                 ": " + report.run.message;
-              if (!report.recording.empty())
+              if (!report.recording_error.empty())
+                why += "; " + report.recording_error;
+              else if (!report.recording.empty())
                 why += "; the recording up to that point is in " + report.recording.string();
               if (!report.video.empty())
                 why += "; the video up to that point is in " + report.video.string();
               throw Error(why);
             }
+            if (!report.recording_error.empty()) throw Error(report.recording_error);
             if (!report.video_error.empty()) throw Error(report.video_error);
           }};
 }

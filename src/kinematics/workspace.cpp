@@ -3,10 +3,11 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <fstream>
+#include <cstdio>
 #include <limits>
 #include <numbers>
 
+#include "file_writer.hpp"
 #include "mjarm/error.hpp"
 
 namespace mjarm {
@@ -99,16 +100,16 @@ WorkspaceResult sample_workspace(const Chain& chain, const WorkspaceOptions& opt
 }
 
 void WorkspaceResult::write_csv(const std::filesystem::path& path) const {
-  std::ofstream out(path);
-  if (!out) throw Error("cannot open '" + path.string() + "' for writing the workspace CSV");
-  out.precision(std::numeric_limits<double>::max_digits10);
-  out << "x,y,z,manipulability\n";
+  // a new file beside the target, renamed over it once complete: never a truncated CSV
+  FileWriter out(path, FileWriter::Mode::replace, "the workspace CSV");
+  out.write("x,y,z,manipulability\n");
+  char row[4 * 26 + 4];  // four %.17g numbers (at most 24 characters each) and separators
   for (const WorkspacePoint& point : points) {
-    out << point.p_WE.x() << ',' << point.p_WE.y() << ',' << point.p_WE.z() << ','
-        << point.manipulability << '\n';
+    const int n = std::snprintf(row, sizeof(row), "%.17g,%.17g,%.17g,%.17g\n", point.p_WE.x(),
+                                point.p_WE.y(), point.p_WE.z(), point.manipulability);
+    if (!out.write(row, static_cast<std::size_t>(n))) break;  // the failure is reported below
   }
-  out.flush();
-  if (!out) throw Error("failed while writing the workspace CSV to '" + path.string() + "'");
+  out.commit();
 }
 
 }  // namespace mjarm

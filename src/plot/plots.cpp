@@ -1,10 +1,12 @@
 #include "mjarm/plot/plots.hpp"
 
-#include <cerrno>
+#include <sys/statvfs.h>
+
+#include <cstdio>
 #include <cstring>
-#include <fstream>
 
 #include "figures.hpp"
+#include "file_writer.hpp"
 #include "mjarm/error.hpp"
 #include "mjarm/plot/gnuplot.hpp"
 #include "quoted_path.hpp"
@@ -14,12 +16,30 @@ namespace {
 
 namespace fs = std::filesystem;
 
-void write_text(const fs::path& path, const std::string& text) {
-  std::ofstream out(path, std::ios::binary | std::ios::trunc);
-  if (!out) throw Error("cannot write " + quoted(path) + ": " + std::strerror(errno));
-  out << text;
-  out.close();
-  if (!out) throw Error("cannot write " + quoted(path) + ": " + std::strerror(errno));
+// True when @p path is a whole PNG file: the signature first and the IEND chunk last. gnuplot does
+// not report a failed write (a full disk leaves an empty or cut PNG and exit status 0).
+bool png_complete(const fs::path& path) {
+  static constexpr unsigned char kSignature[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
+  static constexpr unsigned char kEnd[12] = {0,   0,   0,    0,    'I',  'E',
+                                             'N', 'D', 0xae, 0x42, 0x60, 0x82};
+  std::FILE* file = std::fopen(path.c_str(), "rb");
+  if (file == nullptr) return false;
+  unsigned char head[8] = {}, tail[12] = {};
+  const bool complete = std::fread(head, 1, 8, file) == 8 && std::fseek(file, -12, SEEK_END) == 0 &&
+                        std::fread(tail, 1, 12, file) == 12 &&
+                        std::memcmp(head, kSignature, 8) == 0 && std::memcmp(tail, kEnd, 12) == 0;
+  std::fclose(file);
+  return complete;
+}
+
+// "1.2 MB free" for the file system holding @p path: the likely cause of a cut file, measured
+std::string free_space(const fs::path& path) {
+  struct statvfs info {};
+  if (::statvfs(path.c_str(), &info) != 0) return "free space unknown";
+  const double bytes = static_cast<double>(info.f_bavail) * static_cast<double>(info.f_frsize);
+  char text[48];
+  std::snprintf(text, sizeof(text), "%.1f MB free there", bytes / 1e6);
+  return text;
 }
 
 // Creates @p out_dir and its subfolder @p data_dir.
@@ -67,21 +87,34 @@ std::vector<PlotInfo> make_plots(const Recording& recording, const fs::path& out
   std::vector<PlotInfo> infos;
   for (detail::Figure& figure : figures) {
     figure.info.path = absolute_out / (figure.info.name + ".png");
-    for (const auto& [path, text] : figure.data) write_text(path, text);
+    for (const auto& [path, text] : figure.data) write_file(path, text);
     script += "\n# ---- " + figure.info.name + "\nreset\nset output " +
               detail::gp_string(figure.info.path.string()) + "\n" + figure.script +
               "unset output\n";
     infos.push_back(figure.info);
   }
   const fs::path script_path = data_dir / "plots.gp";
-  write_text(script_path, script);
+  write_file(script_path, script);
   for (const PlotInfo& info : infos)
     fs::remove(info.path, ec);  // no stale figure survives a failure
-  run_gnuplot(script_path, options.timeout_s);
+  try {
+    run_gnuplot(script_path, options.timeout_s);
+  } catch (const Error&) {
+    for (const PlotInfo& info : infos) fs::remove(info.path, ec);  // no half-drawn set is left
+    throw;
+  }
   for (const PlotInfo& info : infos) {
-    if (!fs::exists(info.path, ec) || fs::file_size(info.path, ec) == 0)
-      throw Error("gnuplot did not write " + quoted(info.path) + " (script " + quoted(script_path) +
-                  ")");
+    if (png_complete(info.path)) continue;
+    // a whole set of figures or none: no empty or cut PNG is left behind
+    const bool exists = fs::exists(info.path, ec);
+    const std::uintmax_t size = exists ? fs::file_size(info.path, ec) : 0;
+    for (const PlotInfo& written : infos) fs::remove(written.path, ec);
+    throw Error("gnuplot did not write " + quoted(info.path) +
+                (exists ? " completely (" + std::to_string(size) +
+                              " bytes, no PNG end chunk; is the disk full? " +
+                              free_space(absolute_out) + ")"
+                        : "") +
+                "; no figure was kept (script " + quoted(script_path) + ")");
   }
   return infos;
 }

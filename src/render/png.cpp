@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "file_writer.hpp"
 #include "mjarm/error.hpp"
 #include "quoted_path.hpp"
 
@@ -34,6 +35,18 @@ void on_png_error(png_structp png, png_const_charp message) {
 
 void on_png_warning(png_structp, png_const_charp) {}
 
+// libpng's output goes through the FileWriter, which checks every write: the first failure
+// stops libpng at once (on_png_error keeps the writer's message)
+void on_png_write(png_structp png, png_bytep data, png_size_t size) {
+  auto* file = static_cast<FileWriter*>(png_get_io_ptr(png));
+  if (!file->write(data, size)) png_error(png, "write failed");
+}
+
+void on_png_flush(png_structp png) {
+  auto* file = static_cast<FileWriter*>(png_get_io_ptr(png));
+  if (!file->flush()) png_error(png, "write failed");
+}
+
 }  // namespace
 
 void write_png(const Image& image, const std::filesystem::path& path) {
@@ -44,8 +57,8 @@ void write_png(const Image& image, const std::filesystem::path& path) {
     throw Error("cannot write PNG " + quoted(path) + ": the image holds " +
                 std::to_string(image.rgb.size()) +
                 " bytes, expected width·height·3 = " + std::to_string(image.pixels() * 3));
-  File file(std::fopen(path.c_str(), "wb"));
-  if (!file) throw Error("cannot write PNG " + quoted(path) + ": " + std::strerror(errno));
+  // a new file beside the target, renamed over it once complete: never a truncated PNG
+  FileWriter file(path, FileWriter::Mode::replace, "PNG");
 
   ErrorState state;
   png_structp png =
@@ -60,12 +73,13 @@ void write_png(const Image& image, const std::filesystem::path& path) {
   for (int y = 0; y < image.height; ++y)
     rows[static_cast<std::size_t>(y)] = const_cast<png_bytep>(image.at(0, y));
   if (setjmp(png_jmpbuf(png)) != 0) {
-    // libpng jumped here from on_png_error
+    // libpng jumped here from on_png_error; the writer's destructor removes the temporary file
     png_destroy_write_struct(&png, &info);
+    if (file.error() != 0) throw Error(file.failure());
     throw Error("cannot write PNG " + quoted(path) + ": " + state.message);
   }
   {
-    png_init_io(png, file.get());
+    png_set_write_fn(png, &file, on_png_write, on_png_flush);
     // fast zlib level: stills and frames are written often, size matters less than time
     png_set_compression_level(png, 3);
     png_set_IHDR(png, info, static_cast<png_uint_32>(image.width),
@@ -76,15 +90,8 @@ void write_png(const Image& image, const std::filesystem::path& path) {
     png_write_end(png, nullptr);
   }
   png_destroy_write_struct(&png, &info);
-  // a full disk shows up only when the buffered data is flushed
-  std::FILE* raw = file.release();
-  if (std::fflush(raw) != 0 || std::ferror(raw) != 0) {
-    const std::string reason = std::strerror(errno);
-    std::fclose(raw);
-    throw Error("cannot write PNG " + quoted(path) + ": " + reason);
-  }
-  if (std::fclose(raw) != 0)
-    throw Error("cannot write PNG " + quoted(path) + ": " + std::strerror(errno));
+  // a full disk may show only when the last bytes are flushed, synced or closed
+  file.commit();
 }
 
 Image read_png(const std::filesystem::path& path) {

@@ -1,9 +1,6 @@
 #include "csv_stream.hpp"
 
-#include <unistd.h>
-
 #include <algorithm>
-#include <cerrno>
 #include <charconv>
 #include <cstring>
 
@@ -17,13 +14,9 @@ constexpr std::size_t kNumberBytes = 32;  // "-2.2250738585072014e-308" and a se
 
 CsvStream::CsvStream(const std::filesystem::path& path, const std::vector<std::string>& columns,
                      int flush_rows, std::size_t text_bytes)
-    : path_(path), columns_(static_cast<int>(columns.size())), flush_rows_(std::max(flush_rows, 1)) {
-  file_ = std::fopen(path.c_str(), "w");
-  if (file_ == nullptr) {
-    throw Error("recorder: cannot create '" + path.string() + "': " + std::strerror(errno));
-  }
-  io_buffer_ = std::make_unique<char[]>(kIoBuffer);
-  std::setvbuf(file_, io_buffer_.get(), _IOFBF, kIoBuffer);  // stdio then never allocates
+    : file_(path, FileWriter::Mode::in_place, {}, kIoBuffer),
+      columns_(static_cast<int>(columns.size())),
+      flush_rows_(std::max(flush_rows, 1)) {
   std::size_t header = 2;
   for (const std::string& c : columns) header += c.size() + 1;
   row_.resize(std::max(header, columns.size() * kNumberBytes + text_bytes + 2));
@@ -31,16 +24,10 @@ CsvStream::CsvStream(const std::filesystem::path& path, const std::vector<std::s
   end_row();
   rows_ = 0;  // the header is not a row
   flush();
-  if (error_ != 0) {
-    std::fclose(file_);
-    file_ = nullptr;
-    throw Error("recorder: cannot write '" + path.string() + "': " + std::strerror(error_));
-  }
+  if (file_.error() != 0) throw Error("recorder: " + file_.failure());
 }
 
-CsvStream::~CsvStream() {
-  if (file_ != nullptr) std::fclose(file_);
-}
+CsvStream::~CsvStream() = default;
 
 void CsvStream::separator() noexcept {
   if (fields_++ > 0 && used_ + 1 < row_.size()) row_[used_++] = ',';
@@ -74,25 +61,14 @@ void CsvStream::add_text(std::string_view text) noexcept {
 
 void CsvStream::end_row() noexcept {
   row_[used_++] = '\n';
-  if (file_ != nullptr && std::fwrite(row_.data(), 1, used_, file_) != used_ && error_ == 0) {
-    error_ = errno != 0 ? errno : EIO;
-  }
+  file_.write(row_.data(), used_);  // a failure is kept by file_ and reported at close
   used_ = 0;
   fields_ = 0;
   if (++rows_ % flush_rows_ == 0) flush();
 }
 
-void CsvStream::flush() noexcept {
-  if (file_ != nullptr && std::fflush(file_) != 0 && error_ == 0) error_ = errno;
-}
+void CsvStream::flush() noexcept { file_.flush(); }
 
-bool CsvStream::close() noexcept {
-  if (file_ == nullptr) return error_ == 0;
-  flush();
-  if (fsync(fileno(file_)) != 0 && error_ == 0) error_ = errno;
-  if (std::fclose(file_) != 0 && error_ == 0) error_ = errno;
-  file_ = nullptr;
-  return error_ == 0;
-}
+bool CsvStream::close() noexcept { return file_.close(); }
 
 }  // namespace mjarm::sim_detail

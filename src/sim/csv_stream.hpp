@@ -1,15 +1,15 @@
 #pragma once
 // A CSV file written row by row without allocating: numbers are formatted with std::to_chars
-// (shortest round-trip form) into a preallocated row buffer, and stdio writes through a buffer
-// owned by the stream.
+// (shortest round-trip form) into a preallocated row buffer, and a `FileWriter` (in place: the
+// recorder's staging folder makes the recording atomic) checks every write.
 
 #include <cstdint>
-#include <cstdio>
 #include <filesystem>
-#include <memory>
 #include <string>
 #include <string_view>
 #include <vector>
+
+#include "file_writer.hpp"
 
 namespace mjarm::sim_detail {
 
@@ -27,7 +27,8 @@ class CsvStream {
   void add(double value) noexcept;
   /// A text field, quoted when it holds a comma, a quote or a line break; cut to fit the row.
   void add_text(std::string_view text) noexcept;
-  /// Writes the row; flushes every `flush_rows` rows.
+  /// Writes the row; flushes every `flush_rows` rows. Once a write failed, rows are counted
+  /// but no longer written (see `error()`).
   void end_row() noexcept;
   /// Pushes buffered rows to the operating system.
   void flush() noexcept;
@@ -37,22 +38,21 @@ class CsvStream {
   std::int64_t rows() const noexcept { return rows_; }
   int columns() const noexcept { return columns_; }
   /// errno of the first failed write, 0 when none.
-  int error() const noexcept { return error_; }
-  const std::filesystem::path& path() const noexcept { return path_; }
+  int error() const noexcept { return file_.error(); }
+  /// "cannot write '<path>': <reason>" for the first failure; empty when none.
+  std::string failure() const { return file_.failure(); }
+  const std::filesystem::path& path() const noexcept { return file_.path(); }
 
  private:
   void separator() noexcept;
 
-  std::filesystem::path path_;
-  std::FILE* file_ = nullptr;
-  std::unique_ptr<char[]> io_buffer_;
+  FileWriter file_;
   std::vector<char> row_;
   std::size_t used_ = 0;
   int fields_ = 0;
   int columns_ = 0;
   int flush_rows_ = 1;
   std::int64_t rows_ = 0;
-  int error_ = 0;
 };
 
 }  // namespace mjarm::sim_detail

@@ -34,7 +34,9 @@ void add_joint_columns(const mjModel& m, const char* prefix, bool positions,
                        std::vector<std::string>& columns) {
   for (int j = 0; j < m.njnt; ++j) {
     const int type = m.jnt_type[j];
-    const int n = type == mjJNT_FREE ? (positions ? 7 : 6) : type == mjJNT_BALL ? (positions ? 4 : 3) : 1;
+    const int n = type == mjJNT_FREE   ? (positions ? 7 : 6)
+                  : type == mjJNT_BALL ? (positions ? 4 : 3)
+                                       : 1;
     const std::string name = std::string(prefix) + object_name(m, mjOBJ_JOINT, j, "joint");
     if (n == 1) {
       columns.push_back(name);
@@ -45,7 +47,8 @@ void add_joint_columns(const mjModel& m, const char* prefix, bool positions,
 }
 
 void add_pose_columns(const char* prefix, std::vector<std::string>& columns) {
-  for (const char* c : {"x", "y", "z", "qw", "qx", "qy", "qz"}) columns.push_back(std::string(prefix) + c);
+  for (const char* c : {"x", "y", "z", "qw", "qx", "qy", "qz"})
+    columns.push_back(std::string(prefix) + c);
 }
 
 // position then unit quaternion (w, x, y, z) of a row-major rotation
@@ -90,8 +93,8 @@ struct Recorder::Impl {
   sim_detail::StagingDir staging;
   std::unique_ptr<sim_detail::CsvStream> state, task, events;
   std::optional<FrameRef> frame;
-  int qref_size = 0;                    // first controller's chain size (qref columns)
-  std::vector<int> saturation_columns;  // actuators with a sat.* column
+  int qref_size = 0;                            // first controller's chain size (qref columns)
+  std::vector<int> saturation_columns;          // actuators with a sat.* column
   std::vector<std::int64_t> saturation_counts;  // per saturation column
   std::int64_t steps_seen = 0;
   bool contact_forces = true;  // false in kinematic mode: no constraint forces are computed
@@ -106,7 +109,8 @@ Recorder::Recorder(const Simulation& simulation, const std::filesystem::path& di
     : uncaught_at_construction_(std::uncaught_exceptions()) {
   if (options.state_decimation < 1 || options.flush_rows < 1) {
     throw Error("recorder: state_decimation and flush_rows must be ≥ 1, got " +
-                std::to_string(options.state_decimation) + " and " + std::to_string(options.flush_rows));
+                std::to_string(options.state_decimation) + " and " +
+                std::to_string(options.flush_rows));
   }
   const Robot& robot = simulation.robot();
   const mjModel& m = robot.model();
@@ -125,8 +129,10 @@ Recorder::Recorder(const Simulation& simulation, const std::filesystem::path& di
   std::vector<std::string> state_columns{"t"};
   add_joint_columns(m, "q.", true, state_columns);
   add_joint_columns(m, "v.", false, state_columns);
-  for (int a = 0; a < m.nu; ++a) state_columns.push_back("ctrl." + object_name(m, mjOBJ_ACTUATOR, a, "actuator"));
-  for (int a = 0; a < m.nu; ++a) state_columns.push_back("force." + object_name(m, mjOBJ_ACTUATOR, a, "actuator"));
+  for (int a = 0; a < m.nu; ++a)
+    state_columns.push_back("ctrl." + object_name(m, mjOBJ_ACTUATOR, a, "actuator"));
+  for (int a = 0; a < m.nu; ++a)
+    state_columns.push_back("force." + object_name(m, mjOBJ_ACTUATOR, a, "actuator"));
   // every contact of the model, summed: what `mjarm plot` draws as the contact force
   state_columns.push_back("contact.count");
   state_columns.push_back("contact.normal_force");
@@ -135,7 +141,8 @@ Recorder::Recorder(const Simulation& simulation, const std::filesystem::path& di
   if (frame) {
     add_pose_columns("ee.", task_columns);
     add_pose_columns("ref.", task_columns);
-    for (const char* c : {"vx", "vy", "vz", "wx", "wy", "wz"}) task_columns.push_back(std::string("err.") + c);
+    for (const char* c : {"vx", "vy", "vz", "wx", "wy", "wz"})
+      task_columns.push_back(std::string("err.") + c);
   }
   task_columns.push_back("gripper_ref");
   std::vector<std::string> base_names, controller_names;
@@ -155,17 +162,22 @@ Recorder::Recorder(const Simulation& simulation, const std::filesystem::path& di
     const Controller& controller = simulation.controller(c);
     for (const std::string& j : controller.chain().joint_names())
       task_columns.push_back("cmd." + controller_names[c] + "." + j);
-    for (const std::string& n : controller.internal_names()) task_columns.push_back(controller_names[c] + "." + n);
+    for (const std::string& n : controller.internal_names())
+      task_columns.push_back(controller_names[c] + "." + n);
     for (int a : simulation.binding(c).actuators()) im.saturation_columns.push_back(a);
   }
-  for (int a : im.saturation_columns) task_columns.push_back("sat." + object_name(m, mjOBJ_ACTUATOR, a, "actuator"));
+  for (int a : im.saturation_columns)
+    task_columns.push_back("sat." + object_name(m, mjOBJ_ACTUATOR, a, "actuator"));
   im.saturation_counts.assign(im.saturation_columns.size(), 0);
 
   try {
-    im.state = std::make_unique<sim_detail::CsvStream>(im.staging.staged(kState), state_columns, options.flush_rows);
-    im.task = std::make_unique<sim_detail::CsvStream>(im.staging.staged(kTask), task_columns, options.flush_rows);
+    im.state = std::make_unique<sim_detail::CsvStream>(im.staging.staged(kState), state_columns,
+                                                       options.flush_rows);
+    im.task = std::make_unique<sim_detail::CsvStream>(im.staging.staged(kTask), task_columns,
+                                                      options.flush_rows);
     im.events = std::make_unique<sim_detail::CsvStream>(
-        im.staging.staged(kEvents), std::vector<std::string>{"t", "kind", "message"}, 1, kEventText);
+        im.staging.staged(kEvents), std::vector<std::string>{"t", "kind", "message"}, 1,
+        kEventText);
   } catch (...) {
     // nothing was recorded yet: leave no staging folder behind
     im.state.reset();
@@ -190,11 +202,13 @@ Recorder::Recorder(const Simulation& simulation, const std::filesystem::path& di
   info.frame = frame ? frame->name : "";
   for (int c = 0; c < simulation.controller_count(); ++c) {
     const Controller& controller = simulation.controller(c);
-    info.controllers.push_back({controller_names[c],
-                                controller.command_kind() == CommandKind::torque ? "torque" : "position",
-                                controller.chain().joint_names()});
+    info.controllers.push_back(
+        {controller_names[c],
+         controller.command_kind() == CommandKind::torque ? "torque" : "position",
+         controller.chain().joint_names()});
   }
-  for (int a : im.saturation_columns) info.saturation.push_back({object_name(m, mjOBJ_ACTUATOR, a, "actuator"), 0});
+  for (int a : im.saturation_columns)
+    info.saturation.push_back({object_name(m, mjOBJ_ACTUATOR, a, "actuator"), 0});
   for (const ActuatorInfo& a : robot.actuators()) info.actuators.push_back(actuator_info(m, a));
   info.files = {{"state", kState, static_cast<int>(state_columns.size())},
                 {"task", kTask, static_cast<int>(task_columns.size())},
@@ -217,7 +231,9 @@ Recorder::~Recorder() {
   }
 }
 
-const std::filesystem::path& Recorder::directory() const noexcept { return impl_->staging.directory(); }
+const std::filesystem::path& Recorder::directory() const noexcept {
+  return impl_->staging.directory();
+}
 std::filesystem::path Recorder::state_path() const { return directory() / kState; }
 std::filesystem::path Recorder::task_path() const { return directory() / kTask; }
 std::filesystem::path Recorder::events_path() const { return directory() / kEvents; }
@@ -233,7 +249,8 @@ void Recorder::check_layout(const Simulation& simulation) const {
   if (simulation.controller_count() != impl_->controller_count) {
     throw Error("recorder for '" + directory().string() + "' was built with " +
                 std::to_string(impl_->controller_count) + " controllers, the simulation now has " +
-                std::to_string(simulation.controller_count()) + ": build the recorder after adding them");
+                std::to_string(simulation.controller_count()) +
+                ": build the recorder after adding them");
   }
 }
 
@@ -346,17 +363,28 @@ void Recorder::finalize(std::string_view status, std::string_view message) {
   info.state_rows = im.state->rows();
   info.task_rows = im.task->rows();
   info.event_rows = im.events->rows();
-  for (std::size_t k = 0; k < info.saturation.size(); ++k) info.saturation[k].ticks = im.saturation_counts[k];
+  for (std::size_t k = 0; k < info.saturation.size(); ++k)
+    info.saturation[k].ticks = im.saturation_counts[k];
   std::string failure;
   for (auto* csv : {im.state.get(), im.task.get(), im.events.get()}) {
-    if (!csv->close() && failure.empty()) {
-      failure = "cannot write '" + csv->path().string() + "': " + std::strerror(csv->error());
-    }
+    if (!csv->close() && failure.empty()) failure = csv->failure();
   }
   info.write_error = failure;
-  sim_detail::write_summary(im.staging.staged(kSummary), info);  // throws on failure
+  // a recording with a failed write is never moved into the directory: the summary still goes
+  // into the staging folder (when it can), so that the partial recording describes itself
+  try {
+    sim_detail::write_summary(im.staging.staged(kSummary), info);
+  } catch (const Error& e) {
+    failure =
+        failure.empty() ? e.what() : failure + "; " + kSummary + " could not be written either";
+    std::error_code ec;
+    std::filesystem::remove(im.staging.staged(kSummary), ec);  // a cut summary misleads a reader
+  }
+  if (!failure.empty()) {
+    throw Error("recorder: " + failure + "; nothing was moved into '" + directory().string() +
+                "': the incomplete recording stays in '" + im.staging.staging().string() + "'");
+  }
   im.staging.commit({kState, kTask, kEvents}, kSummary);
-  if (!failure.empty()) throw Error("recorder: " + failure + " (the recording in '" + directory().string() + "' is incomplete)");
 }
 
 }  // namespace mjarm

@@ -1,13 +1,10 @@
 #include "recorder_summary.hpp"
 
-#include <unistd.h>
-
-#include <cerrno>
 #include <charconv>
 #include <cmath>
 #include <cstdio>
-#include <cstring>
 
+#include "file_writer.hpp"
 #include "mjarm/error.hpp"
 
 namespace mjarm::sim_detail {
@@ -17,11 +14,21 @@ std::string json_string(std::string_view text) {
   std::string out = "\"";
   for (const char c : text) {
     switch (c) {
-      case '"': out += "\\\""; break;
-      case '\\': out += "\\\\"; break;
-      case '\n': out += "\\n"; break;
-      case '\r': out += "\\r"; break;
-      case '\t': out += "\\t"; break;
+      case '"':
+        out += "\\\"";
+        break;
+      case '\\':
+        out += "\\\\";
+        break;
+      case '\n':
+        out += "\\n";
+        break;
+      case '\r':
+        out += "\\r";
+        break;
+      case '\t':
+        out += "\\t";
+        break;
       default:
         if (static_cast<unsigned char>(c) < 0x20) {
           char escape[8];
@@ -71,7 +78,8 @@ std::string summary_json(const SummaryInfo& info) {
   for (std::size_t c = 0; c < info.controllers.size(); ++c) {
     const auto& ci = info.controllers[c];
     std::string joints = "[";
-    for (std::size_t k = 0; k < ci.joints.size(); ++k) joints += (k ? ", " : "") + json_string(ci.joints[k]);
+    for (std::size_t k = 0; k < ci.joints.size(); ++k)
+      joints += (k ? ", " : "") + json_string(ci.joints[k]);
     controllers += std::string(c ? ", " : "") + "{\"name\": " + json_string(ci.name) +
                    ", \"command\": " + json_string(ci.command) + ", \"joints\": " + joints + "]}";
   }
@@ -94,7 +102,8 @@ std::string summary_json(const SummaryInfo& info) {
   field("actuators", actuators + "]");
   std::string files = "{";
   for (std::size_t k = 0; k < info.files.size(); ++k) {
-    files += (k ? ", " : "") + json_string(info.files[k].layer) + ": {\"file\": " + json_string(info.files[k].name) +
+    files += (k ? ", " : "") + json_string(info.files[k].layer) +
+             ": {\"file\": " + json_string(info.files[k].name) +
              ", \"columns\": " + std::to_string(info.files[k].columns) + "}";
   }
   field("files", files + "}", true);
@@ -103,17 +112,10 @@ std::string summary_json(const SummaryInfo& info) {
 
 void write_summary(const std::filesystem::path& path, const SummaryInfo& info) {
   const std::string text = summary_json(info);
-  std::FILE* file = std::fopen(path.c_str(), "w");
-  if (file == nullptr) {
-    throw Error("recorder: cannot create '" + path.string() + "': " + std::strerror(errno));
-  }
-  const bool written = std::fwrite(text.data(), 1, text.size(), file) == text.size() &&
-                       std::fflush(file) == 0 && fsync(fileno(file)) == 0;
-  const int error = errno;
-  const bool closed = std::fclose(file) == 0;
-  if (!written || !closed) {
-    throw Error("recorder: cannot write '" + path.string() + "': " + std::strerror(error));
-  }
+  // in place: the staging folder is what makes the recording atomic
+  FileWriter file(path, FileWriter::Mode::in_place, {}, text.size() + 1);
+  file.write(text);
+  if (!file.close()) throw Error(file.failure());
 }
 
 }  // namespace mjarm::sim_detail

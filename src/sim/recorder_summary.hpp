@@ -45,8 +45,8 @@ struct SummaryInfo {
 /// The summary as a JSON document.
 std::string summary_json(const SummaryInfo& info);
 
-/// Writes summary_json(info) to @p path and syncs it.
-/// @throws Error when the file cannot be written.
+/// Writes summary_json(info) to @p path and syncs it (every write checked).
+/// @throws Error "cannot write '<path>': <reason>" when it cannot be created or written.
 void write_summary(const std::filesystem::path& path, const SummaryInfo& info);
 
 }  // namespace mjarm::sim_detail

@@ -14,11 +14,13 @@
 namespace mjarm::sim_detail {
 namespace {
 
-void sync_directory(const std::filesystem::path& dir) noexcept {
-  const int fd = ::open(dir.c_str(), O_RDONLY | O_DIRECTORY);
-  if (fd < 0) return;
-  ::fsync(fd);
-  ::close(fd);
+// errno of a failed sync of @p dir, 0 when it reached the disk (or the file system cannot sync)
+int sync_directory(const std::filesystem::path& dir) noexcept {
+  const int fd = ::open(dir.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+  if (fd < 0) return errno;
+  int error = ::fsync(fd) == 0 || errno == EINVAL || errno == EROFS ? 0 : errno;
+  if (::close(fd) != 0 && error == 0 && errno != EINTR) error = errno;
+  return error;
 }
 
 }  // namespace
@@ -28,13 +30,13 @@ StagingDir::StagingDir(const std::filesystem::path& directory) : directory_(dire
   std::error_code ec;
   std::filesystem::create_directories(directory, ec);
   if (ec || !std::filesystem::is_directory(directory)) {
-    throw Error("recorder: cannot create recording directory '" + directory.string() + "': " +
-                (ec ? ec.message() : std::string("exists and is not a directory")));
+    throw Error("recorder: cannot create recording directory '" + directory.string() +
+                "': " + (ec ? ec.message() : std::string("exists and is not a directory")));
   }
   std::string pattern = (directory / ".partial-XXXXXX").string();
   if (::mkdtemp(pattern.data()) == nullptr) {
-    throw Error("recorder: recording directory '" + directory.string() + "' is not writable: " +
-                std::strerror(errno));
+    throw Error("recorder: recording directory '" + directory.string() +
+                "' is not writable: " + std::strerror(errno));
   }
   staging_ = pattern;
 }
@@ -54,7 +56,10 @@ void StagingDir::commit(const std::vector<std::string>& files, const std::string
     }
   }
   std::filesystem::remove(staging_, ec);
-  sync_directory(directory_);
+  if (const int error = sync_directory(directory_); error != 0) {
+    throw Error("recorder: the recording was moved into '" + directory_.string() +
+                "' but the folder could not be synced to disk: " + std::strerror(error));
+  }
 }
 
 }  // namespace mjarm::sim_detail

@@ -21,7 +21,8 @@ class StagingDir {
 
   /// Removes a stale DIR/marker, moves @p files then @p marker from the staging folder into the
   /// directory, removes the staging folder and syncs the directory.
-  /// @throws Error naming the file when a move fails (the staging folder is kept).
+  /// @throws Error naming the file when a move fails (the staging folder is kept), or when the
+  ///         directory cannot be synced afterwards.
   void commit(const std::vector<std::string>& files, const std::string& marker);
 
  private:

@@ -121,7 +121,11 @@ ShelfPickReport run_shelf_pick(const ShelfPickOptions& options) {
     report.saturated_ticks = std::max(report.saturated_ticks, count);
   if (recorder) {
     recorder->event(sim.time(), "result", result_line(report));
-    recorder->finalize(run);
+    try {
+      recorder->finalize(run);
+    } catch (const Error& e) {
+      report.recording_error = e.what();  // the figures stand; the message says where the rows are
+    }
   }
   if (video) {
     try {

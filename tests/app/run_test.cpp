@@ -13,6 +13,7 @@
 
 #include "app/cli_runner.hpp"
 #include "render/render_test_support.hpp"
+#include "support/file_size_limit.hpp"
 
 namespace {
 
@@ -108,6 +109,30 @@ TEST(RunCli, RecordWritesAFinalizedRecording) {
   const std::string task = slurp(dir / "task.csv");
   const auto rows = std::count(task.begin(), task.end(), '\n') - 1;
   EXPECT_NEAR(static_cast<double>(rows), doc["end_time"].get<double>() / 0.002, 1.5);
+}
+
+TEST(RunCli, AFullDiskStillPrintsTheReportAndNamesTheKeptRows) {
+  const fs::path cwd = scratch() / "full_disk";
+  fs::create_directories(cwd);
+  // room for the CSV headers, not for the rows nor for the summary
+  const mjarm::test::LimitedRun text = mjarm::test::run_with_file_size_limit(
+      1024, MJARM_CLI, {"run", "shelf-pick", "--record", "rec"}, cwd);
+  EXPECT_EQ(text.exit_code, 1);
+  EXPECT_NE(text.out.find("result: held"), std::string::npos) << text.out;
+  EXPECT_NE(text.out.find("not written"), std::string::npos) << text.out;
+  EXPECT_NE(text.err.find("rec/.partial-"), std::string::npos) << text.err;
+  EXPECT_NE(text.err.find("state.csv': File too large"), std::string::npos) << text.err;
+  EXPECT_NE(text.err.find("nothing was moved into 'rec'"), std::string::npos) << text.err;
+  EXPECT_FALSE(fs::exists(cwd / "rec" / "summary.json"));
+
+  const mjarm::test::LimitedRun js = mjarm::test::run_with_file_size_limit(
+      1024, MJARM_CLI, {"run", "shelf-pick", "--record", "rec_json", "--json"}, cwd);
+  EXPECT_EQ(js.exit_code, 1);
+  ASSERT_TRUE(json::accept(js.out)) << js.out;
+  const json doc = json::parse(js.out);
+  EXPECT_EQ(doc["outcome"], "held");
+  ASSERT_TRUE(doc["recording_error"].is_string()) << js.out;
+  EXPECT_NE(doc["recording_error"].get<std::string>().find("File too large"), std::string::npos);
 }
 
 TEST(RunCli, BadInputFailsClearly) {

@@ -11,6 +11,8 @@
 
 #include "mjarm/error.hpp"
 #include "mjarm/kinematics/frame_state.hpp"
+#include "support/file_size_limit.hpp"
+#include "support/files.hpp"
 #include "support/test_models.hpp"
 
 namespace mjarm {
@@ -195,6 +197,34 @@ TEST_F(WorkspaceTest, CsvRoundTripsAndBadPathThrows) {
     FAIL() << "expected an Error";
   } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find(bad.string()), std::string::npos) << e.what();
+  }
+}
+
+TEST_F(WorkspaceTest, CsvOnAFullDiskLeavesTheOldFileAndNamesTheReason) {
+  const Chain chain(planar_, "tip");
+  const WorkspaceResult ws = sample_workspace(chain, {.samples = 500, .seed = 3});  // ~40 KB
+  const std::filesystem::path dir = test::scratch() / "workspace_full";
+  std::filesystem::create_directories(dir);
+  const std::filesystem::path path = dir / "ws.csv";
+  std::ofstream(path) << "old content\n";
+  const test::LimitedRun child = test::with_file_size_limit(4096, [&] {
+    ws.write_csv(path);
+    return std::string("written");
+  });
+  ASSERT_EQ(child.exit_code, 1) << child.out;
+  EXPECT_NE(child.err.find(path.string()), std::string::npos) << child.err;
+  EXPECT_NE(child.err.find("File too large"), std::string::npos) << child.err;
+  // never a truncated CSV: the old file as it was, and no temporary file beside it
+  EXPECT_EQ(test::slurp(path), "old content\n");
+  EXPECT_EQ(std::distance(std::filesystem::directory_iterator(dir),
+                          std::filesystem::directory_iterator()),
+            1);
+  // a device that refuses every byte (ENOSPC) is reported too
+  try {
+    ws.write_csv("/dev/full");
+    FAIL() << "expected an Error";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("No space left on device"), std::string::npos) << e.what();
   }
 }
 

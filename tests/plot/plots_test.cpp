@@ -2,11 +2,14 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cstdint>
 #include <cstdlib>
 
 #include "mjarm/error.hpp"
 #include "mjarm/plot/gnuplot.hpp"
 #include "plot/plot_test_support.hpp"
+#include "support/file_size_limit.hpp"
 
 namespace mjarm::plot {
 namespace {
@@ -104,6 +107,32 @@ TEST(Plots, MissingGnuplotNamesTheDebianPackage) {
     EXPECT_NE(std::string(e.what()).find("gnuplot-nox"), std::string::npos) << e.what();
   }
   EXPECT_FALSE(fs::exists(run.dir.path() / "out"));  // refused before writing anything
+}
+
+TEST(Plots, AFullDiskLeavesNoCutFigure) {
+  PressRun run;
+  const Recording recording = Recording::load(run.recording);
+  // with room: the sizes of the data files and of the figures
+  const fs::path roomy = run.dir.path() / "roomy";
+  const std::vector<PlotInfo> drawn = make_plots(recording, roomy);
+  std::uintmax_t largest_data = 0, smallest_png = UINTMAX_MAX;
+  for (const auto& entry : fs::directory_iterator(roomy / "gnuplot"))
+    largest_data = std::max(largest_data, entry.file_size());
+  for (const PlotInfo& info : drawn)
+    smallest_png = std::min(smallest_png, fs::file_size(info.path));
+  // a disk with room for the data and the script but not for a whole figure
+  const std::size_t limit = static_cast<std::size_t>(largest_data) + 512;
+  ASSERT_LT(limit, smallest_png);
+  const fs::path full = run.dir.path() / "full";
+  const test::LimitedRun child = test::with_file_size_limit(limit, [&] {
+    make_plots(recording, full);
+    return std::string("drawn");
+  });
+  ASSERT_EQ(child.exit_code, 1) << child.out;
+  EXPECT_NE(child.err.find("gnuplot did not write"), std::string::npos) << child.err;
+  EXPECT_NE(child.err.find("no PNG end chunk"), std::string::npos) << child.err;
+  // a whole set of figures or none
+  for (const PlotInfo& info : drawn) EXPECT_FALSE(fs::exists(full / info.path.filename()));
 }
 
 TEST(Plots, BadSizesAreRefused) {

@@ -4,8 +4,11 @@
 
 #include <gtest/gtest.h>
 
+#include <random>
+
 #include "mjarm/error.hpp"
 #include "render_test_support.hpp"
+#include "support/file_size_limit.hpp"
 
 namespace mjarm {
 namespace {
@@ -40,6 +43,57 @@ TEST(Png, UnwritablePathNamesThePathAndTheReason) {
   }
   // a folder is not a file
   EXPECT_THROW(write_png(image, test::scratch()), Error);
+}
+
+TEST(Png, AFullDiskLeavesTheOldFileAndNamesTheReason) {
+  Image noise(96, 96);  // random bytes do not compress: ~27 KB of PNG
+  std::mt19937 random(7);
+  for (std::uint8_t& byte : noise.rgb) byte = static_cast<std::uint8_t>(random() >> 24);
+  const auto dir = test::scratch() / "png_full";
+  std::filesystem::create_directories(dir);
+  const auto path = dir / "still.png";
+  std::ofstream(path) << "old";
+  const test::LimitedRun child = test::with_file_size_limit(4096, [&] {
+    write_png(noise, path);
+    return std::string("written");
+  });
+  ASSERT_EQ(child.exit_code, 1) << child.out;
+  EXPECT_NE(child.err.find("cannot write PNG '" + path.string() + "'"), std::string::npos)
+      << child.err;
+  EXPECT_NE(child.err.find("File too large"), std::string::npos) << child.err;
+  // never a truncated PNG: the old file as it was, and no temporary file beside it
+  EXPECT_EQ(test::slurp(path), "old");
+  EXPECT_EQ(std::distance(std::filesystem::directory_iterator(dir),
+                          std::filesystem::directory_iterator()),
+            1);
+  // with room, the same image replaces it whole
+  write_png(noise, path);
+  EXPECT_EQ(read_png(path).rgb, noise.rgb);
+  try {
+    write_png(noise, "/dev/full");
+    FAIL() << "no error";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("No space left on device"), std::string::npos) << e.what();
+  }
+}
+
+TEST(Png, ReplacingKeepsSymlinksAndPermissions) {
+  namespace fs = std::filesystem;
+  const auto dir = test::scratch() / "png_replace";
+  fs::create_directories(dir);
+  const auto real = dir / "real.png", link = dir / "link.png";
+  std::ofstream(real) << "old";
+  fs::permissions(real, fs::perms::owner_read | fs::perms::owner_write | fs::perms::group_read);
+  fs::create_symlink("real.png", link);
+  Image image(8, 6);
+  image.at(3, 2)[1] = 200;
+  write_png(image, link);
+  // written through the link, as a plain write would: the link stays a link
+  EXPECT_TRUE(fs::is_symlink(link));
+  EXPECT_EQ(read_png(real).rgb, image.rgb);
+  EXPECT_EQ(fs::status(real).permissions() & fs::perms::all,
+            fs::perms::owner_read | fs::perms::owner_write | fs::perms::group_read);
+  EXPECT_EQ(std::distance(fs::directory_iterator(dir), fs::directory_iterator()), 2);
 }
 
 TEST(Png, EmptyOrInconsistentImagesAreErrors) {

@@ -13,6 +13,7 @@
 #include "mjarm/sim/interrupt.hpp"
 #include "mjarm/sim/simulation.hpp"
 #include "sim/sim_test_support.hpp"
+#include "support/file_size_limit.hpp"
 
 namespace mjarm {
 namespace {
@@ -82,7 +83,7 @@ TEST(Recorder, WritesThreeLayersAndASummary) {
     EXPECT_GE(state.column(c), 0) << c;
   }
   EXPECT_EQ(state.header.size(), 11u);  // and contact.count, contact.normal_force
-  EXPECT_EQ(state.rows.size(), 125u);  // 250 physics steps, every second one
+  EXPECT_EQ(state.rows.size(), 125u);   // 250 physics steps, every second one
   // the first row is the start state, the ctrl applied during that step, and its force
   EXPECT_EQ(state.value(0, "t"), 0.0);
   EXPECT_EQ(state.value(0, "q.shoulder"), 0.5);
@@ -91,8 +92,9 @@ TEST(Recorder, WritesThreeLayersAndASummary) {
   EXPECT_NEAR(state.value(1, "t"), 0.004, 1e-15);
 
   const Csv task = read_csv(out / "task.csv");
-  for (const char* c : {"ee.x", "ee.qw", "ref.z", "err.vx", "err.wz", "gripper_ref", "qref.shoulder",
-                        "cmd.test-pd.elbow", "test-pd.error_norm", "sat.shoulder", "sat.elbow"}) {
+  for (const char* c :
+       {"ee.x", "ee.qw", "ref.z", "err.vx", "err.wz", "gripper_ref", "qref.shoulder",
+        "cmd.test-pd.elbow", "test-pd.error_norm", "sat.shoulder", "sat.elbow"}) {
     EXPECT_GE(task.column(c), 0) << c;
   }
   EXPECT_EQ(task.rows.size(), 50u);
@@ -207,12 +209,14 @@ TEST(Recorder, UnwritableDirectoryFailsBeforeTheRun) {
     Recorder recorder(p.sim, file / "recording");
     FAIL() << "no error";
   } catch (const Error& e) {
-    EXPECT_NE(std::string(e.what()).find((file / "recording").string()), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find((file / "recording").string()), std::string::npos)
+        << e.what();
   }
   if (geteuid() != 0) {  // root writes anywhere: the permission case only means something for users
     const std::filesystem::path locked = dir.path() / "locked";
     std::filesystem::create_directory(locked);
-    std::filesystem::permissions(locked, std::filesystem::perms::owner_read | std::filesystem::perms::owner_exec);
+    std::filesystem::permissions(
+        locked, std::filesystem::perms::owner_read | std::filesystem::perms::owner_exec);
     try {
       Recorder recorder(p.sim, locked);
       FAIL() << "no error";
@@ -222,6 +226,63 @@ TEST(Recorder, UnwritableDirectoryFailsBeforeTheRun) {
     std::filesystem::permissions(locked, std::filesystem::perms::owner_all);
   }
   EXPECT_EQ(p.sim.ticks(), 0);
+}
+
+// The staging folder a recorder error names ("… stays in '<folder>'").
+std::filesystem::path kept_folder(const std::string& message) {
+  const std::string marker = "stays in '";
+  const std::size_t begin = message.find(marker);
+  if (begin == std::string::npos) return {};
+  const std::size_t from = begin + marker.size();
+  return message.substr(from, message.find('\'', from) - from);
+}
+
+TEST(Recorder, AFullDiskMovesNothingAndNamesTheKeptRows) {
+  Planar2Run p;
+  test::TempDir dir("full");
+  const std::filesystem::path out = dir.path() / "run";
+  // headers and the summary fit in 4 KB, the rows of half a second do not
+  const test::LimitedRun child = test::with_file_size_limit(4096, [&] {
+    Recorder recorder(p.sim, out);
+    ConstantReferenceSource source(p.reference);
+    recorder.finalize(p.sim.run(source, 0.5, &recorder));
+    return std::string("finalized");
+  });
+  ASSERT_EQ(child.exit_code, 1) << child.out;
+  const std::string& message = child.err;
+  EXPECT_NE(message.find("state.csv"), std::string::npos) << message;
+  EXPECT_NE(message.find("File too large"), std::string::npos) << message;
+  EXPECT_NE(message.find("nothing was moved into '" + out.string() + "'"), std::string::npos)
+      << message;
+  // nothing in the directory: no summary pairs with cut rows
+  EXPECT_FALSE(std::filesystem::exists(out / "summary.json"));
+  EXPECT_FALSE(std::filesystem::exists(out / "state.csv"));
+  // the rows written so far stay where the message says, described by their summary
+  const std::filesystem::path kept = kept_folder(message);
+  ASSERT_EQ(kept.parent_path(), out) << message;
+  ASSERT_TRUE(std::filesystem::is_directory(kept)) << message;
+  const Csv state = read_csv(kept / "state.csv");
+  EXPECT_EQ(state.header.front(), "t");
+  EXPECT_EQ(state.header.back(), "contact.normal_force");
+  EXPECT_LE(std::filesystem::file_size(kept / "state.csv"), 4096u);
+  const nlohmann::json summary = read_summary(kept);
+  EXPECT_EQ(summary["status"], "duration_reached");
+  EXPECT_EQ(summary["counts"]["state_rows"], 250);  // what the run produced, not what was kept
+  const std::string write_error = summary["write_error"];
+  EXPECT_NE(write_error.find("state.csv"), std::string::npos) << write_error;
+  EXPECT_NE(write_error.find("File too large"), std::string::npos) << write_error;
+
+  // the same run with room for it is complete
+  Planar2Run again;
+  const std::filesystem::path roomy = dir.path() / "roomy";
+  const test::LimitedRun ok = test::with_file_size_limit(1 << 20, [&] {
+    Recorder recorder(again.sim, roomy);
+    ConstantReferenceSource source(again.reference);
+    recorder.finalize(again.sim.run(source, 0.5, &recorder));
+    return std::string("finalized");
+  });
+  EXPECT_EQ(ok.exit_code, 0) << ok.err;
+  expect_complete(roomy);
 }
 
 TEST(Recorder, BadOptionsAndLateControllersAreRefused) {

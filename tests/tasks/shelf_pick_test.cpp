@@ -10,6 +10,7 @@
 #include <string>
 
 #include "mjarm/error.hpp"
+#include "support/file_size_limit.hpp"
 #include "support/files.hpp"
 
 namespace mjarm {
@@ -149,6 +150,32 @@ TEST(ShelfPick, AnUnwritableRecordingDirectoryFailsBeforeRunning) {
     EXPECT_NE(std::string(e.what()).find("recording"), std::string::npos) << e.what();
   }
   EXPECT_EQ(slurp(file), "not a directory");
+}
+
+TEST(ShelfPick, AFullDiskKeepsTheFiguresAndNamesTheKeptRows) {
+  ShelfPickOptions o = options("panda", "osc", 1);
+  o.record = scratch() / "full_disk";
+  // room for the CSV headers, not for the rows nor for the summary
+  const test::LimitedRun child = test::with_file_size_limit(1024, [&] {
+    const ShelfPickReport r = run_shelf_pick(o);
+    return std::string(to_string(r.outcome)) + "\n" + r.recording_error;
+  });
+  ASSERT_EQ(child.exit_code, 0) << child.err;  // the report comes back: the run is unaffected
+  const std::string outcome = child.out.substr(0, child.out.find('\n'));
+  const std::string error = child.out.substr(child.out.find('\n') + 1);
+  EXPECT_EQ(outcome, "held");
+  EXPECT_NE(error.find("state.csv': File too large"), std::string::npos) << error;
+  EXPECT_NE(error.find("summary.json could not be written either"), std::string::npos) << error;
+  // nothing moved into the directory; the staging folder the message names keeps the rows
+  EXPECT_FALSE(fs::exists(o.record / "summary.json"));
+  EXPECT_FALSE(fs::exists(o.record / "state.csv"));
+  ASSERT_TRUE(has_partial(o.record));
+  for (const auto& entry : fs::directory_iterator(o.record)) {
+    EXPECT_NE(error.find(entry.path().string()), std::string::npos) << error;
+    EXPECT_EQ(slurp(entry.path() / "state.csv").rfind("t,q.", 0), 0u);
+    EXPECT_TRUE(fs::exists(entry.path() / "events.csv"));
+    EXPECT_FALSE(fs::exists(entry.path() / "summary.json"));  // no cut summary
+  }
 }
 
 TEST(ShelfPick, BadOptionsFailClearly) {

@@ -75,8 +75,11 @@ struct WorkspaceResult {
   double seconds = 0.0;  ///< wall-clock time of the sampling loop [s] (not deterministic)
   std::vector<WorkspacePoint> points;  ///< every sample, in order, when kept
 
-  /// Writes the points as CSV with header `x,y,z,manipulability`, full double precision.
-  /// @throws Error naming @p path when it cannot be opened or written.
+  /// Writes the points as CSV with header `x,y,z,manipulability`, full double precision, into a
+  /// new file renamed over @p path once complete (every write checked, synced before the
+  /// rename): @p path holds either its old content or every point, never a truncated list.
+  /// @throws Error naming @p path and the system's reason when it cannot be created or written
+  ///         (missing folder, full disk).
   void write_csv(const std::filesystem::path& path) const;
 };
 

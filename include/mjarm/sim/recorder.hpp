@@ -22,7 +22,10 @@
 ///   unbounded).
 ///
 /// Atomicity: every file is written into DIR/.partial-XXXXXX and moved into DIR by `finalize`,
-/// summary.json last: a DIR with summary.json holds a complete recording. The destructor
+/// summary.json last: a DIR with summary.json holds a complete recording. Every write, flush,
+/// sync and close is checked; when one failed (a full disk), `finalize` moves nothing: the rows
+/// written so far stay in the .partial folder with a summary.json whose `write_error` names the
+/// failure (when the summary itself can still be written), and the error names both. The destructor
 /// finalizes a recording that was not finalized, with status "error" when an exception is
 /// unwinding, the status of the last `Simulation::run` when there was one, "aborted" otherwise. If the process is killed outright, the rows flushed so far
 /// stay in the .partial folder.
@@ -84,8 +87,9 @@ class Recorder {
   /// Idempotent: a second call does nothing.
   /// @param status "duration_reached", "finished", "diverged", "interrupted", ... or any word
   /// @param message one line for people (may be empty)
-  /// @throws Error when a file could not be written or moved (the staging folder is kept and
-  ///         named in the message).
+  /// @throws Error when a file could not be written or moved: the message names the file, the
+  ///         system's reason and the staging folder, which is kept with the rows written so far
+  ///         (nothing is moved into the directory).
   void finalize(std::string_view status, std::string_view message = {});
   /// `finalize(to_string(result.status), result.message)`.
   void finalize(const RunResult& result);

@@ -54,6 +54,10 @@ struct ShelfPickReport {
   /// The most control ticks any one motor was clipped to its torque limit.
   std::int64_t saturated_ticks = 0;
   std::filesystem::path recording{};  ///< the recording directory (empty when not recorded)
+  /// Why the recording could not be completed (a write failed: full disk), naming the file, the
+  /// reason and the staging folder that keeps the rows written; empty when it was. Nothing is
+  /// then moved into `recording`. The run and its figures are unaffected.
+  std::string recording_error{};
   std::filesystem::path video{};      ///< the MP4 written (empty when no video)
   std::int64_t video_frames = 0;      ///< frames in it: ⌊(end − start)·fps⌋ + 1
   std::string video_camera{};         ///< the camera, described (`CameraSpec::describe`)

@@ -1,0 +1,99 @@
+// The rule for every file mjarm writes (docs/cli.md, "Files written"): one checked writer
+// (src/file_writer.hpp), so a full disk is an error naming the file and the reason and never
+// leaves a truncated file. Checked on the sources (no other way to open a file for writing) and
+// on the commands that write a single file, with a full disk made by RLIMIT_FSIZE.
+
+#include <gtest/gtest.h>
+#include <sys/stat.h>
+
+#include <filesystem>
+#include <fstream>
+#include <regex>
+#include <string>
+#include <vector>
+
+#include "app/cli_runner.hpp"
+#include "support/file_size_limit.hpp"
+
+namespace {
+
+namespace fs = std::filesystem;
+using mjarm::test::run_cli;
+using mjarm::test::scratch;
+using mjarm::test::slurp;
+
+// Lines of the library and the CLI that open or write a file some other way than FileWriter.
+std::vector<std::string> unchecked_writers() {
+  const fs::path root = fs::path(MJARM_MODELS_DIR).parent_path();
+  // std::ofstream/fstream, fopen for writing or appending, fwrite, open(2) for writing
+  const std::regex writer(
+      R"(std::(o|)fstream\b|fopen\([^;]*"[wa]|\bfwrite\(|\bO_WRONLY\b|\bO_RDWR\b)");
+  std::vector<std::string> found;
+  for (const char* folder : {"src", "app"}) {
+    for (const auto& entry : fs::recursive_directory_iterator(root / folder)) {
+      const fs::path& path = entry.path();
+      if (path.extension() != ".cpp" && path.extension() != ".hpp") continue;
+      const std::string relative = fs::relative(path, root).string();
+      if (relative == "src/file_writer.cpp") continue;  // the one checked writer
+      std::ifstream in(path);
+      std::string line;
+      for (int number = 1; std::getline(in, line); ++number) {
+        if (!std::regex_search(line, writer)) continue;
+        // the MP4 is written by ffmpeg; VideoWriter only proves the path writable before it
+        // starts and checks the file it gets back (docs/rendering.md)
+        if (relative == "src/render/video_writer.cpp" && line.find("O_TRUNC") != std::string::npos)
+          continue;
+        found.push_back(relative + ":" + std::to_string(number) + ": " + line);
+      }
+    }
+  }
+  return found;
+}
+
+TEST(FilesWritten, OnlyTheCheckedWriterOpensFilesForWriting) {
+  const std::vector<std::string> found = unchecked_writers();
+  std::string listing;
+  for (const std::string& f : found) listing += f + "\n";
+  EXPECT_TRUE(found.empty()) << "write files through FileWriter (src/file_writer.hpp):\n"
+                             << listing;
+}
+
+TEST(FilesWritten, RenderAndWorkspaceOnAFullDiskKeepTheOldFile) {
+  const fs::path cwd = scratch() / "files_written";
+  fs::create_directories(cwd);
+  const std::vector<std::vector<std::string>> commands{
+      {"render", "panda", "--out", "still.png"},
+      {"workspace", "planar2", "--samples", "2000", "--out", "cloud.csv"}};
+  for (const std::vector<std::string>& args : commands) {
+    const std::string file = args.back();
+    std::ofstream(cwd / file) << "old content\n";
+    const mjarm::test::LimitedRun run =
+        mjarm::test::run_with_file_size_limit(4096, MJARM_CLI, args, cwd);
+    EXPECT_EQ(run.exit_code, 1) << file << "\n" << run.out << run.err;
+    EXPECT_NE(run.err.find("'" + file + "': File too large"), std::string::npos) << run.err;
+    // the old file as it was, and nothing else beside it
+    EXPECT_EQ(slurp(cwd / file), "old content\n") << file;
+    EXPECT_EQ(std::distance(fs::directory_iterator(cwd), fs::directory_iterator()), 1) << file;
+    fs::remove(cwd / file);
+
+    // a device that refuses every byte
+    std::vector<std::string> full = args;
+    full.back() = "/dev/full";
+    const mjarm::test::CliRun refused = run_cli(full);
+    EXPECT_EQ(refused.exit_code, 1) << refused.err;
+    EXPECT_NE(refused.err.find("'/dev/full': No space left on device"), std::string::npos)
+        << refused.err;
+  }
+}
+
+TEST(FilesWritten, AFifoThatNothingReadsIsAnErrorNotAHang) {
+  const fs::path fifo = scratch() / "nobody_reads.fifo";
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  const mjarm::test::CliRun run =
+      run_cli({"workspace", "planar2", "--samples", "10", "--out", fifo.string()});
+  EXPECT_EQ(run.exit_code, 1) << run.err;
+  EXPECT_NE(run.err.find("a FIFO that nothing reads"), std::string::npos) << run.err;
+  fs::remove(fifo);
+}
+
+}  // namespace
