@@ -10,6 +10,7 @@
 #include <utility>
 #include <vector>
 
+#include "kinematics/allocation_counter.hpp"
 #include "mjarm/error.hpp"
 #include "mjarm/kinematics/frame_state.hpp"
 #include "mjarm/kinematics/workspace.hpp"
@@ -24,6 +25,8 @@ namespace {
 std::atomic<long> g_allocations{0};
 long allocations() { return g_allocations.load(std::memory_order_relaxed); }
 }  // namespace
+
+long mjarm::test::heap_allocations() noexcept { return allocations(); }
 
 #if defined(__SANITIZE_ADDRESS__)
 // GCC 12 cannot see that this operator new allocates with malloc, and warns on free below
