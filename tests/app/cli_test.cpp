@@ -264,10 +264,24 @@ TEST(Cli, SingularitiesOfPlanar2FollowTheClosedForm) {
   EXPECT_LE(doc["scan"]["worst"][0]["sigma_min"].get<double>(),
             doc["scan"]["worst"][1]["sigma_min"].get<double>());
   EXPECT_EQ(doc["scan"]["samples"], 500);
+  // the kinds: a planar arm has no wrist, elbow or shoulder in this sense
+  EXPECT_EQ(configs[0]["kinds"], json::array({"unclassified"}));
+  EXPECT_TRUE(configs[0]["below_sigma_min"].get<bool>());
+  // stretched, (l1 + l2)·q̇1 + l2·q̇2 = 0 leaves the tip still
+  const Eigen::VectorXd lost = to_vector(configs[0]["null_direction"]);
+  EXPECT_NEAR(lost[0] / lost[1], -kL2 / (kL1 + kL2), 1e-12);
+  EXPECT_EQ(given["kinds"], json::array());
+  EXPECT_GE(doc["scan"]["flagged"].get<int>(), doc["scan"]["near_singular"].get<int>());
+  const json arm6 = run_json({"singularities", "arm6", "--site", "grip", "--q", "0", "0.2", "1.4",
+                              "0", "0", "0", "--samples", "0", "--json"});
+  EXPECT_EQ(arm6["configurations"].back()["kinds"], json::array({"wrist"}));
+  EXPECT_EQ(arm6["configurations"][0]["kinds"], json::array({"wrist", "elbow", "shoulder"}));
+  EXPECT_EQ(arm6["sigma_min_threshold"], 0.01);
 
   const CliRun table = run_cli({"singularities", "planar2", "--samples", "0"});
   EXPECT_EQ(table.exit_code, 0) << table.err;
   EXPECT_NE(table.out.find("σmin"), std::string::npos);
+  EXPECT_NE(table.out.find("unclassified"), std::string::npos);
   EXPECT_EQ(table.out.find("random scan"), std::string::npos);
 }
 
