@@ -8,6 +8,7 @@
 
 #include "dynamics/dynamics_test_support.hpp"
 #include "ik/malloc_counter.hpp"
+#include "mjarm/kinematics/finite_difference.hpp"
 #include "mjarm/kinematics/frame_state.hpp"
 #include "support/test_models.hpp"
 
@@ -69,7 +70,8 @@ Eigen::VectorXd chain_values(const Chain& chain, const double* full) {
 template <class Check>
 void for_each_arm_state(Check check, int trials = 20) {
   std::vector<Chain> chains;
-  for (const auto& arm : test::dynamics_arms()) chains.emplace_back(Robot::bundled(arm.robot), arm.frame);
+  for (const auto& arm : test::dynamics_arms())
+    chains.emplace_back(Robot::bundled(arm.robot), arm.frame);
   chains.emplace_back(Robot::from_string(test::kTrickyArm), "tool");
   std::mt19937 rng(11);
   for (const Chain& chain : chains) {
@@ -108,7 +110,8 @@ TEST(ChainDynamics, GravityMatchesRneWithZeroVelocity) {
     const Eigen::VectorXd expected = chain_values(chain, rne.data());
     EXPECT_LT((dyn.gravity() - expected).norm(), 1e-10 * (1.0 + expected.norm()));
     // and it is the bias force at rest
-    EXPECT_LT((dyn.gravity() - chain_values(chain, scratch->qfrc_bias)).norm(), 1e-10 * (1.0 + expected.norm()));
+    EXPECT_LT((dyn.gravity() - chain_values(chain, scratch->qfrc_bias)).norm(),
+              1e-10 * (1.0 + expected.norm()));
   });
 }
 
@@ -146,35 +149,37 @@ TEST(ChainDynamics, BiasAccelerationMatchesFiniteDifferences) {
     const double eps = 1e-6;
     DataPtr scratch(mj_copyData(nullptr, &m, d));
     ChainDynamics probe(chain);
-    Vector6d V[2];
-    for (int s = 0; s < 2; ++s) {
+    const auto velocity_at = [&](double t) {
       mju_copy(scratch->qpos, d->qpos, m.nq);
-      mj_integratePos(&m, scratch->qpos, d->qvel, s == 0 ? eps : -eps);
+      mj_integratePos(&m, scratch->qpos, d->qvel, t);
       mj_forward(&m, scratch.get());
       probe.update(*scratch);
-      V[s] = probe.velocity();
-    }
-    const Vector6d fd = (V[0] - V[1]) / (2.0 * eps);
+      return probe.velocity();
+    };
+    const Vector6d fd = finite_difference_derivative(velocity_at, 0.0, eps);
     EXPECT_LT((dyn.bias_acceleration() - fd).norm(), 1e-6 * (1.0 + fd.norm()));
     // and ChainKinematics' own recursion agrees
     ChainKinematics kin(chain);
     kin.set_fixed_qpos(Eigen::Map<const Eigen::VectorXd>(d->qpos, m.nq));
     kin.update(dyn.q());
-    EXPECT_LT((dyn.bias_acceleration() - kin.bias_acceleration(dyn.qd())).norm(), 1e-10 * (1.0 + fd.norm()));
+    EXPECT_LT((dyn.bias_acceleration() - kin.bias_acceleration(dyn.qd())).norm(),
+              1e-10 * (1.0 + fd.norm()));
   });
 }
 
 TEST(ChainDynamics, NeverWritesTheCallersDataNorAllocates) {
-  for_each_arm_state([](const Chain& chain, ChainDynamics& dyn, mjData* d, std::mt19937&) {
-    const std::vector<unsigned char> before = test::data_bytes(d);
-    Eigen::VectorXd qdd = Eigen::VectorXd::Ones(chain.size());
-    Eigen::VectorXd tau(chain.size());
-    const std::uint64_t calls = test::malloc_calls();
-    dyn.update(*d);
-    dyn.inverse_dynamics(*d, qdd, tau);
-    EXPECT_EQ(test::malloc_calls() - calls, 0u);
-    EXPECT_TRUE(test::data_bytes(d) == before);
-  }, 2);  // the byte snapshot is large (mjData's stack): a few states suffice
+  for_each_arm_state(
+      [](const Chain& chain, ChainDynamics& dyn, mjData* d, std::mt19937&) {
+        const std::vector<unsigned char> before = test::data_bytes(d);
+        Eigen::VectorXd qdd = Eigen::VectorXd::Ones(chain.size());
+        Eigen::VectorXd tau(chain.size());
+        const std::uint64_t calls = test::malloc_calls();
+        dyn.update(*d);
+        dyn.inverse_dynamics(*d, qdd, tau);
+        EXPECT_EQ(test::malloc_calls() - calls, 0u);
+        EXPECT_TRUE(test::data_bytes(d) == before);
+      },
+      2);  // the byte snapshot is large (mjData's stack): a few states suffice
 }
 
 TEST(ChainDynamics, OffPathJointsGiveZeroColumnsAndNoCoupling) {
