@@ -157,7 +157,7 @@ TEST(FiniteDifference, PreallocatedFormsAllocateNothing) {
   finite_difference_jacobian(position, q, Jv, workspace);
   finite_difference_jacobian(fixed, q, Jv, workspace);
   EXPECT_EQ(test::heap_allocations() - before, 0);
-  EXPECT_LT((Jv - J.topRows(3)).norm(), 10.0);  // both computed (finite, same scale)
+  // and they computed: the position rows against the analytic world-aligned Jacobian
   kin.update(q);
   Matrix6Xd J_aligned(6, n);
   kin.jacobian(J_aligned);

@@ -117,7 +117,8 @@ class SingularityClassifier {
   /// @throws Error when @p q has the wrong size or holds NaN/inf.
   SingularityGeometry geometry(const Eigen::Ref<const Eigen::VectorXd>& q);
 
-  /// Classifies @p q (chain order): thresholds, kinds and null direction.
+  /// Classifies @p q (chain order): thresholds, kinds and null direction. Allocates its result
+  /// (a reporting tool, not for a control loop; `manipulability()` is the allocation-free test).
   /// @throws Error when @p q has the wrong size or holds NaN/inf.
   SingularityClassification classify(const Eigen::Ref<const Eigen::VectorXd>& q);
 
