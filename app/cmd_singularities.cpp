@@ -109,79 +109,81 @@ Command add_singularities_command(CLI::App& root) {
       ->expected(1, -1);
   add_json_flag(*app, options->json);
 
-  return {
-      app, [options] {
-        const Robot robot = load_model(options->model);
-        const Chain chain(robot, resolve_site(robot, options->site));
-        ManipulabilityOptions measure;
-        measure.block = kBlocks.at(options->block);
-        std::vector<NamedConfiguration> extra;
-        if (!options->q.empty()) {
-          extra.push_back(
-              {"--q", Eigen::Map<const Eigen::VectorXd>(
-                          options->q.data(), static_cast<Eigen::Index>(options->q.size()))});
-        }
-        const SingularityReport report = singularity_report(chain, extra, measure);
-        std::optional<SingularityScan> scan;
-        if (options->samples > 0) {
-          scan =
-              scan_singularities(chain, options->samples, options->seed, options->worst, measure);
-        }
+  return {app, [options] {
+            const Robot robot = load_model(options->model);
+            const Chain chain(robot, resolve_site(robot, options->site));
+            ManipulabilityOptions measure;
+            measure.block = kBlocks.at(options->block);
+            std::vector<NamedConfiguration> extra;
+            if (!options->q.empty()) {
+              extra.push_back(
+                  {"--q", Eigen::Map<const Eigen::VectorXd>(
+                              options->q.data(), static_cast<Eigen::Index>(options->q.size()))});
+            }
+            const SingularityReport report = singularity_report(chain, extra, measure);
+            std::optional<SingularityScan> scan;
+            if (options->samples > 0) {
+              scan = scan_singularities(chain, options->samples, options->seed, options->worst,
+                                        measure);
+            }
 
-        if (options->json) {
-          Json doc{{"model", robot.name()},
-                   {"frame", chain.frame().name},
-                   {"joints", chain.joint_names()},
-                   {"block", to_string(measure.block)},
-                   {"singular_tolerance", measure.singular_tolerance},
-                   {"near_singular_threshold", measure.near_singular_threshold},
-                   {"sigma_min_threshold", report.thresholds.sigma_min},
-                   {"condition_number_threshold", report.thresholds.condition_number},
-                   {"configurations", Json::array()}};
-          for (const auto& e : report.entries) doc["configurations"].push_back(entry_json(e));
-          if (scan) {
-            Json s{{"samples", scan->samples},         {"seed", scan->seed},
-                   {"singular", scan->singular_count}, {"near_singular", scan->near_singular_count},
-                   {"flagged", scan->flagged_count},   {"worst", Json::array()}};
-            for (const auto& e : scan->worst) s["worst"].push_back(entry_json(e));
-            doc["scan"] = std::move(s);
-          } else {
-            doc["scan"] = nullptr;
-          }
-          return print_json(doc);
-        }
+            if (options->json) {
+              Json doc{{"model", robot.name()},
+                       {"frame", chain.frame().name},
+                       {"joints", chain.joint_names()},
+                       {"block", to_string(measure.block)},
+                       {"singular_tolerance", measure.singular_tolerance},
+                       {"near_singular_threshold", measure.near_singular_threshold},
+                       {"sigma_min_threshold", report.thresholds.sigma_min},
+                       {"condition_number_threshold", report.thresholds.condition_number},
+                       {"configurations", Json::array()}};
+              for (const auto& e : report.entries) doc["configurations"].push_back(entry_json(e));
+              if (scan) {
+                Json s{{"samples", scan->samples},
+                       {"seed", scan->seed},
+                       {"singular", scan->singular_count},
+                       {"near_singular", scan->near_singular_count},
+                       {"flagged", scan->flagged_count},
+                       {"worst", Json::array()}};
+                for (const auto& e : scan->worst) s["worst"].push_back(entry_json(e));
+                doc["scan"] = std::move(s);
+              } else {
+                doc["scan"] = nullptr;
+              }
+              return print_json(doc);
+            }
 
-        std::ostream& os = std::cout;
-        print_fields(
-            os, {{"model", robot.name()},
-                 {"frame", chain.frame().name},
-                 {"joints", std::to_string(chain.size()) + ": " + join(chain.joint_names())},
-                 {"measured",
-                  std::string(to_string(measure.block)) + " block of the world-aligned Jacobian"},
-                 {"classes", "singular when σmin/σmax ≤ " + general(measure.singular_tolerance, 2) +
-                                 ", near_singular below " +
-                                 general(measure.near_singular_threshold, 2)},
-                 {"kinds", "named where σmin < " + general(report.thresholds.sigma_min, 2) +
-                               " or cond > " + general(report.thresholds.condition_number, 3) +
-                               ": wrist, elbow, shoulder, or unclassified"}});
-        os << "\nnamed configurations\n";
-        Table named = entry_table();
-        add_rows(named, report.entries, robot.model().nkey);
-        named.print(os);
-        if (scan) {
-          os << "\nrandom scan: " << scan->samples << " samples (seed " << scan->seed
-             << "): " << scan->singular_count << " singular, " << scan->near_singular_count
-             << " near-singular, " << scan->flagged_count << " with σmin < "
-             << general(scan->thresholds.sigma_min, 2) << " or cond > "
-             << general(scan->thresholds.condition_number, 3) << "\n";
-          if (!scan->worst.empty()) {
-            os << "lowest σmin among the samples\n";
-            Table worst = entry_table();
-            add_rows(worst, scan->worst, -1);
-            worst.print(os);
-          }
-        }
-      }};
+            std::ostream& os = std::cout;
+            print_fields(
+                os, {{"model", robot.name()},
+                     {"frame", chain.frame().name},
+                     {"joints", std::to_string(chain.size()) + ": " + join(chain.joint_names())},
+                     {"measured", std::string(to_string(measure.block)) +
+                                      " block of the world-aligned Jacobian"},
+                     {"classes",
+                      "singular when σmin/σmax ≤ " + general(measure.singular_tolerance, 2) +
+                          ", near_singular below " + general(measure.near_singular_threshold, 2)},
+                     {"kinds", "named where σmin < " + general(report.thresholds.sigma_min, 2) +
+                                   " or cond > " + general(report.thresholds.condition_number, 3) +
+                                   ": wrist, elbow, shoulder, or unclassified"}});
+            os << "\nnamed configurations\n";
+            Table named = entry_table();
+            add_rows(named, report.entries, robot.model().nkey);
+            named.print(os);
+            if (scan) {
+              os << "\nrandom scan: " << scan->samples << " samples (seed " << scan->seed
+                 << "): " << scan->singular_count << " singular, " << scan->near_singular_count
+                 << " near-singular, " << scan->flagged_count << " with σmin < "
+                 << general(scan->thresholds.sigma_min, 2) << " or cond > "
+                 << general(scan->thresholds.condition_number, 3) << "\n";
+              if (!scan->worst.empty()) {
+                os << "lowest σmin among the samples\n";
+                Table worst = entry_table();
+                add_rows(worst, scan->worst, -1);
+                worst.print(os);
+              }
+            }
+          }};
 }
 
 }  // namespace mjarm::cli

@@ -70,8 +70,7 @@ Eigen::VectorXd chain_values(const Chain& chain, const double* full) {
 template <class Check>
 void for_each_arm_state(Check check, int trials = 20) {
   std::vector<Chain> chains;
-  for (const auto& arm : test::dynamics_arms())
-    chains.emplace_back(Robot::bundled(arm.robot), arm.frame);
+  for (const auto& arm : test::dynamics_arms()) chains.emplace_back(Robot::bundled(arm.robot), arm.frame);
   chains.emplace_back(Robot::from_string(test::kTrickyArm), "tool");
   std::mt19937 rng(11);
   for (const Chain& chain : chains) {
@@ -110,8 +109,7 @@ TEST(ChainDynamics, GravityMatchesRneWithZeroVelocity) {
     const Eigen::VectorXd expected = chain_values(chain, rne.data());
     EXPECT_LT((dyn.gravity() - expected).norm(), 1e-10 * (1.0 + expected.norm()));
     // and it is the bias force at rest
-    EXPECT_LT((dyn.gravity() - chain_values(chain, scratch->qfrc_bias)).norm(),
-              1e-10 * (1.0 + expected.norm()));
+    EXPECT_LT((dyn.gravity() - chain_values(chain, scratch->qfrc_bias)).norm(), 1e-10 * (1.0 + expected.norm()));
   });
 }
 
@@ -162,24 +160,21 @@ TEST(ChainDynamics, BiasAccelerationMatchesFiniteDifferences) {
     ChainKinematics kin(chain);
     kin.set_fixed_qpos(Eigen::Map<const Eigen::VectorXd>(d->qpos, m.nq));
     kin.update(dyn.q());
-    EXPECT_LT((dyn.bias_acceleration() - kin.bias_acceleration(dyn.qd())).norm(),
-              1e-10 * (1.0 + fd.norm()));
+    EXPECT_LT((dyn.bias_acceleration() - kin.bias_acceleration(dyn.qd())).norm(), 1e-10 * (1.0 + fd.norm()));
   });
 }
 
 TEST(ChainDynamics, NeverWritesTheCallersDataNorAllocates) {
-  for_each_arm_state(
-      [](const Chain& chain, ChainDynamics& dyn, mjData* d, std::mt19937&) {
-        const std::vector<unsigned char> before = test::data_bytes(d);
-        Eigen::VectorXd qdd = Eigen::VectorXd::Ones(chain.size());
-        Eigen::VectorXd tau(chain.size());
-        const std::uint64_t calls = test::malloc_calls();
-        dyn.update(*d);
-        dyn.inverse_dynamics(*d, qdd, tau);
-        EXPECT_EQ(test::malloc_calls() - calls, 0u);
-        EXPECT_TRUE(test::data_bytes(d) == before);
-      },
-      2);  // the byte snapshot is large (mjData's stack): a few states suffice
+  for_each_arm_state([](const Chain& chain, ChainDynamics& dyn, mjData* d, std::mt19937&) {
+    const std::vector<unsigned char> before = test::data_bytes(d);
+    Eigen::VectorXd qdd = Eigen::VectorXd::Ones(chain.size());
+    Eigen::VectorXd tau(chain.size());
+    const std::uint64_t calls = test::malloc_calls();
+    dyn.update(*d);
+    dyn.inverse_dynamics(*d, qdd, tau);
+    EXPECT_EQ(test::malloc_calls() - calls, 0u);
+    EXPECT_TRUE(test::data_bytes(d) == before);
+  }, 2);  // the byte snapshot is large (mjData's stack): a few states suffice
 }
 
 TEST(ChainDynamics, OffPathJointsGiveZeroColumnsAndNoCoupling) {
