@@ -17,6 +17,14 @@ const std::map<std::string, JacobianBlock> kBlocks = {{"full", JacobianBlock::fu
                                                       {"position", JacobianBlock::position},
                                                       {"orientation", JacobianBlock::orientation}};
 
+/// The kinds of a singular entry ("wrist", "elbow, shoulder", "unclassified"), empty when the
+/// entry crosses neither threshold.
+std::vector<std::string> kind_names(const SingularityEntry& e) {
+  std::vector<std::string> names;
+  for (SingularityKind k : e.kinds) names.emplace_back(to_string(k));
+  return names;
+}
+
 Json entry_json(const SingularityEntry& e) {
   return {{"name", e.name},
           {"q", vector_json(e.q)},
@@ -24,7 +32,11 @@ Json entry_json(const SingularityEntry& e) {
           {"sigma_min", e.sigma_min},
           {"condition_number", bound_json(e.condition_number)},
           {"manipulability", e.manipulability},
-          {"status", to_string(e.status)}};
+          {"status", to_string(e.status)},
+          {"below_sigma_min", e.below_sigma_min},
+          {"above_condition_number", e.above_condition_number},
+          {"kinds", kind_names(e)},
+          {"null_direction", vector_json(e.null_direction)}};
 }
 
 /// Where entry @p i of a report came from: the report lists qpos0, the centre of the ranges,
@@ -42,7 +54,8 @@ void add_rows(Table& table, const std::vector<SingularityEntry>& entries, int ke
     const double sigma_max = e.singular_values.size() > 0 ? e.singular_values[0] : 0.0;
     table.add_row({e.name, keyframes < 0 ? "sampled" : origin(i, keyframes), general(e.sigma_min),
                    general(sigma_max), general(e.condition_number), general(e.manipulability),
-                   to_string(e.status), vector_text(e.q, 3)});
+                   to_string(e.status), e.kinds.empty() ? "-" : join(kind_names(e)),
+                   e.kinds.empty() ? "" : vector_text(e.null_direction, 3), vector_text(e.q, 3)});
   }
 }
 
@@ -54,6 +67,8 @@ Table entry_table() {
                 {"cond"},
                 {"w"},
                 {"class", Table::Align::left},
+                {"kind", Table::Align::left},
+                {"lost joint motion", Table::Align::left},
                 {"q [rad or m]", Table::Align::left}});
 }
 
@@ -119,6 +134,8 @@ Command add_singularities_command(CLI::App& root) {
                        {"block", to_string(measure.block)},
                        {"singular_tolerance", measure.singular_tolerance},
                        {"near_singular_threshold", measure.near_singular_threshold},
+                       {"sigma_min_threshold", report.thresholds.sigma_min},
+                       {"condition_number_threshold", report.thresholds.condition_number},
                        {"configurations", Json::array()}};
               for (const auto& e : report.entries) doc["configurations"].push_back(entry_json(e));
               if (scan) {
@@ -126,6 +143,7 @@ Command add_singularities_command(CLI::App& root) {
                        {"seed", scan->seed},
                        {"singular", scan->singular_count},
                        {"near_singular", scan->near_singular_count},
+                       {"flagged", scan->flagged_count},
                        {"worst", Json::array()}};
                 for (const auto& e : scan->worst) s["worst"].push_back(entry_json(e));
                 doc["scan"] = std::move(s);
@@ -144,7 +162,10 @@ Command add_singularities_command(CLI::App& root) {
                                       " block of the world-aligned Jacobian"},
                      {"classes",
                       "singular when σmin/σmax ≤ " + general(measure.singular_tolerance, 2) +
-                          ", near_singular below " + general(measure.near_singular_threshold, 2)}});
+                          ", near_singular below " + general(measure.near_singular_threshold, 2)},
+                     {"kinds", "named where σmin < " + general(report.thresholds.sigma_min, 2) +
+                                   " or cond > " + general(report.thresholds.condition_number, 3) +
+                                   ": wrist, elbow, shoulder, or unclassified"}});
             os << "\nnamed configurations\n";
             Table named = entry_table();
             add_rows(named, report.entries, robot.model().nkey);
@@ -152,7 +173,9 @@ Command add_singularities_command(CLI::App& root) {
             if (scan) {
               os << "\nrandom scan: " << scan->samples << " samples (seed " << scan->seed
                  << "): " << scan->singular_count << " singular, " << scan->near_singular_count
-                 << " near-singular\n";
+                 << " near-singular, " << scan->flagged_count << " with σmin < "
+                 << general(scan->thresholds.sigma_min, 2) << " or cond > "
+                 << general(scan->thresholds.condition_number, 3) << "\n";
               if (!scan->worst.empty()) {
                 os << "lowest σmin among the samples\n";
                 Table worst = entry_table();

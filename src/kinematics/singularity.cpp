@@ -9,8 +9,11 @@
 namespace mjarm {
 namespace {
 
-SingularityEntry measure(Manipulability& m, std::string name, const Eigen::VectorXd& q) {
-  const ManipulabilityResult& r = m.evaluate(q);
+SingularityEntry measure(SingularityClassifier& classifier, std::string name,
+                         const Eigen::VectorXd& q) {
+  SingularityClassification c = classifier.classify(q);
+  const Manipulability& m = classifier.manipulability();
+  const ManipulabilityResult& r = m.result();
   SingularityEntry e;
   e.name = std::move(name);
   e.q = q;
@@ -19,6 +22,11 @@ SingularityEntry measure(Manipulability& m, std::string name, const Eigen::Vecto
   e.condition_number = r.condition_number;
   e.manipulability = r.manipulability;
   e.status = r.status;
+  e.below_sigma_min = c.below_sigma_min;
+  e.above_condition_number = c.above_condition_number;
+  e.kinds = std::move(c.kinds);
+  e.null_direction = std::move(c.null_direction);
+  e.geometry = c.geometry;
   return e;
 }
 
@@ -40,27 +48,33 @@ std::vector<NamedConfiguration> standard_configurations(const Chain& chain) {
 
 SingularityReport singularity_report(const Chain& chain,
                                      const std::vector<NamedConfiguration>& extra,
-                                     const ManipulabilityOptions& options) {
+                                     const ManipulabilityOptions& options,
+                                     const SingularityThresholds& thresholds) {
   // check the caller's configurations first, naming each
   for (const NamedConfiguration& c : extra) chain.check(c.q, "configuration '" + c.name + "'");
-  Manipulability m(chain, options);
+  SingularityClassifier classifier(chain, options, thresholds);
   SingularityReport report;
   report.options = options;
+  report.thresholds = thresholds;
   for (const NamedConfiguration& c : standard_configurations(chain)) {
-    report.entries.push_back(measure(m, c.name, c.q));
+    report.entries.push_back(measure(classifier, c.name, c.q));
   }
-  for (const NamedConfiguration& c : extra) report.entries.push_back(measure(m, c.name, c.q));
+  for (const NamedConfiguration& c : extra)
+    report.entries.push_back(measure(classifier, c.name, c.q));
   return report;
 }
 
 SingularityScan scan_singularities(const Chain& chain, std::size_t samples, std::uint64_t seed,
-                                   std::size_t keep_worst, const ManipulabilityOptions& options) {
+                                   std::size_t keep_worst, const ManipulabilityOptions& options,
+                                   const SingularityThresholds& thresholds) {
   if (samples == 0) throw Error("singularity scan needs at least one sample, got 0");
-  Manipulability m(chain, options);
+  SingularityClassifier classifier(chain, options, thresholds);
+  Manipulability& m = classifier.manipulability();
   const JointSampler sampler(chain);
   std::mt19937_64 rng(seed);
   SingularityScan scan;
   scan.options = options;
+  scan.thresholds = thresholds;
   scan.samples = samples;
   scan.seed = seed;
 
@@ -82,6 +96,9 @@ SingularityScan scan_singularities(const Chain& chain, std::size_t samples, std:
     const ManipulabilityResult& r = m.evaluate(q);
     if (r.status == SingularityStatus::singular) ++scan.singular_count;
     if (r.status == SingularityStatus::near_singular) ++scan.near_singular_count;
+    if (r.sigma_min < thresholds.sigma_min || r.condition_number > thresholds.condition_number) {
+      ++scan.flagged_count;
+    }
     if (keep_worst == 0) continue;
     if (heap.size() < keep_worst || r.sigma_min < heap.front().sigma_min) {
       heap.push_back({r.sigma_min, s, q});
@@ -94,7 +111,7 @@ SingularityScan scan_singularities(const Chain& chain, std::size_t samples, std:
   }
   std::sort(heap.begin(), heap.end(), less);
   for (const Candidate& c : heap) {
-    scan.worst.push_back(measure(m, "sample " + std::to_string(c.index), c.q));
+    scan.worst.push_back(measure(classifier, "sample " + std::to_string(c.index), c.q));
   }
   return scan;
 }

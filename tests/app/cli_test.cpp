@@ -13,6 +13,7 @@
 
 #include "app/cli_runner.hpp"
 #include "mjarm/kinematics/chain_kinematics.hpp"
+#include "mjarm/kinematics/finite_difference.hpp"
 #include "mjarm/kinematics/workspace.hpp"
 #include "mjarm/model/chain.hpp"
 #include "mjarm/model/robot.hpp"
@@ -146,9 +147,10 @@ TEST(Cli, FkOfPlanar2MatchesClosedForm) {
   const json& J = doc["jacobian"]["data"];
   ASSERT_EQ(J.size(), 6u);
   ASSERT_EQ(J[0].size(), 2u);
-  const double h = 1e-6;
-  const Eigen::Vector3d d1 = (planar2_tip(q1 + h, q2) - planar2_tip(q1 - h, q2)) / (2 * h);
-  const Eigen::Vector3d d2 = (planar2_tip(q1, q2 + h) - planar2_tip(q1, q2 - h)) / (2 * h);
+  const Eigen::MatrixXd fd = mjarm::finite_difference_jacobian(
+      [](const Eigen::VectorXd& q) { return planar2_tip(q[0], q[1]); }, Eigen::Vector2d(q1, q2));
+  const Eigen::Vector3d d1 = fd.col(0);
+  const Eigen::Vector3d d2 = fd.col(1);
   for (int r = 0; r < 3; ++r) {
     EXPECT_NEAR(J[r][0].get<double>(), d1[r], 1e-8);
     EXPECT_NEAR(J[r][1].get<double>(), d2[r], 1e-8);
@@ -264,10 +266,24 @@ TEST(Cli, SingularitiesOfPlanar2FollowTheClosedForm) {
   EXPECT_LE(doc["scan"]["worst"][0]["sigma_min"].get<double>(),
             doc["scan"]["worst"][1]["sigma_min"].get<double>());
   EXPECT_EQ(doc["scan"]["samples"], 500);
+  // the kinds: a planar arm has no wrist, elbow or shoulder in this sense
+  EXPECT_EQ(configs[0]["kinds"], json::array({"unclassified"}));
+  EXPECT_TRUE(configs[0]["below_sigma_min"].get<bool>());
+  // stretched, (l1 + l2)·q̇1 + l2·q̇2 = 0 leaves the tip still
+  const Eigen::VectorXd lost = to_vector(configs[0]["null_direction"]);
+  EXPECT_NEAR(lost[0] / lost[1], -kL2 / (kL1 + kL2), 1e-12);
+  EXPECT_EQ(given["kinds"], json::array());
+  EXPECT_GE(doc["scan"]["flagged"].get<int>(), doc["scan"]["near_singular"].get<int>());
+  const json arm6 = run_json({"singularities", "arm6", "--site", "grip", "--q", "0", "0.2", "1.4",
+                              "0", "0", "0", "--samples", "0", "--json"});
+  EXPECT_EQ(arm6["configurations"].back()["kinds"], json::array({"wrist"}));
+  EXPECT_EQ(arm6["configurations"][0]["kinds"], json::array({"wrist", "elbow", "shoulder"}));
+  EXPECT_EQ(arm6["sigma_min_threshold"], 0.01);
 
   const CliRun table = run_cli({"singularities", "planar2", "--samples", "0"});
   EXPECT_EQ(table.exit_code, 0) << table.err;
   EXPECT_NE(table.out.find("σmin"), std::string::npos);
+  EXPECT_NE(table.out.find("unclassified"), std::string::npos);
   EXPECT_EQ(table.out.find("random scan"), std::string::npos);
 }
 

@@ -10,6 +10,7 @@
 #include <random>
 
 #include "mjarm/control/controller.hpp"
+#include "mjarm/kinematics/finite_difference.hpp"
 #include "mjarm/lie/pose.hpp"
 #include "mjarm/lie/types.hpp"
 #include "mjarm/model/chain.hpp"
@@ -78,7 +79,7 @@ inline Vector6d site_jdot_qdot(const mjModel& m, const mjData& d, int site, doub
     return site_jacobian(m, *s, site);
   };
   auto central = [&](double h) -> Vector6d {
-    return (jacobian_at(h) - jacobian_at(-h)) / (2.0 * h) * qvel;
+    return finite_difference_derivative(jacobian_at, 0.0, h) * qvel;
   };
   const Vector6d coarse = central(eps);
   const Vector6d fine = central(0.5 * eps);

@@ -5,6 +5,7 @@
 #include <random>
 
 #include "mjarm/error.hpp"
+#include "mjarm/kinematics/finite_difference.hpp"
 #include "mjarm/lie/pose_error.hpp"
 #include "support/random_configurations.hpp"
 #include "support/test_models.hpp"
@@ -19,24 +20,22 @@ void expect_task_jacobian_matches_differences(const Chain& chain, TargetKind kin
   const int n = chain.size();
   const int m = task_rows(kind);
   Matrix6Xd scratch(6, n);
-  Eigen::MatrixXd J(m, n), unused(m, n);
-  Eigen::VectorXd e(m), e_plus(m), e_minus(m);
+  Eigen::MatrixXd J(m, n), unused(m, n), fd(m, n);
+  Eigen::VectorXd e(m);
+  FiniteDifferenceWorkspace workspace(n, m);
   for (int trial = 0; trial < 20; ++trial) {
     const Eigen::VectorXd q = test::random_q(chain, rng, 0.05);
     // a target near the frame, so the log stays well inside its principal branch
     Pose X_WT = kin.update(test::perturb(chain, q, rng, 0.3));
     kin.update(q);
     evaluate_target(kin, kind, X_WT, e, J, scratch);
-    const double h = 1e-6;
+    const auto residual = [&](const Eigen::VectorXd& x, Eigen::Ref<Eigen::VectorXd> out) {
+      kin.update(x);
+      evaluate_target(kin, kind, X_WT, out, unused, scratch);
+    };
+    finite_difference_jacobian(residual, q, fd, workspace);
     for (int i = 0; i < n; ++i) {
-      Eigen::VectorXd qp = q, qm = q;
-      qp[i] += h;
-      qm[i] -= h;
-      kin.update(qp);
-      evaluate_target(kin, kind, X_WT, e_plus, unused, scratch);
-      kin.update(qm);
-      evaluate_target(kin, kind, X_WT, e_minus, unused, scratch);
-      const Eigen::VectorXd de = (e_plus - e_minus) / (2 * h);
+      const Eigen::VectorXd de = fd.col(i);
       EXPECT_LT((de + J.col(i)).norm(), 1e-7) << "joint " << i << " kind " << m;
     }
   }

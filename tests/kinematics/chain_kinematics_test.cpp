@@ -5,6 +5,7 @@
 #include <random>
 
 #include "mjarm/error.hpp"
+#include "mjarm/kinematics/finite_difference.hpp"
 #include "support/test_models.hpp"
 
 namespace mjarm {
@@ -107,24 +108,20 @@ TEST_F(ChainKinematicsTest, JacobianFramesAgreeWithFiniteDifferences) {
   ChainKinematics kin(chain);
   std::mt19937 rng(11);
   const int n = chain.size();
-  Matrix6Xd J_aligned(6, n), J_local(6, n), J_world(6, n);
+  Matrix6Xd J_aligned(6, n), J_local(6, n), J_world(6, n), fd(6, n);
+  FiniteDifferenceWorkspace workspace(n, 6);
+  const auto fk = [&kin](const Eigen::VectorXd& x) -> const Pose& { return kin.update(x); };
   for (int trial = 0; trial < 20; ++trial) {
     const Eigen::VectorXd q = random_q(chain, rng);
+    // [ṗ; ω] per joint, from central differences of the pose (world-aligned)
+    finite_difference_pose_jacobian(fk, q, fd, workspace);
     const Pose X = kin.update(q);
     kin.jacobian(J_aligned, JacobianFrame::world_aligned);
     kin.jacobian(J_local, JacobianFrame::local);
     kin.jacobian(J_world, JacobianFrame::world);
-    const double h = 1e-6;
     for (int i = 0; i < n; ++i) {
-      Eigen::VectorXd qp = q, qm = q;
-      qp[i] += h;
-      qm[i] -= h;
-      const Pose Xp = kin.update(qp);
-      const Pose Xm = kin.update(qm);
-      const Eigen::Vector3d v = (Xp.p - Xm.p) / (2 * h);
-      // angular velocity from Ṙ Rᵀ
-      const Eigen::Matrix3d W = (Xp.R - Xm.R) / (2 * h) * X.R.transpose();
-      const Eigen::Vector3d w(W(2, 1), W(0, 2), W(1, 0));
+      const Eigen::Vector3d v = fd.col(i).head<3>();
+      const Eigen::Vector3d w = fd.col(i).tail<3>();
       EXPECT_LT((J_aligned.col(i).head<3>() - v).norm(), 1e-8);
       EXPECT_LT((J_aligned.col(i).tail<3>() - w).norm(), 1e-8);
       EXPECT_LT((J_local.col(i).head<3>() - X.R.transpose() * v).norm(), 1e-8);
@@ -139,16 +136,17 @@ TEST_F(ChainKinematicsTest, BiasAccelerationMatchesFiniteDifferenceOfJacobian) {
   ChainKinematics kin(chain);
   std::mt19937 rng(5);
   const int n = chain.size();
-  Matrix6Xd Jp(6, n), Jm(6, n);
+  Matrix6Xd J(6, n);
   for (int trial = 0; trial < 20; ++trial) {
     const Eigen::VectorXd q = random_q(chain, rng);
     Eigen::VectorXd qd = Eigen::VectorXd::Random(n);
-    const double h = 1e-6;
-    kin.update(q + h * qd);
-    kin.jacobian(Jp);
-    kin.update(q - h * qd);
-    kin.jacobian(Jm);
-    const Vector6d expected = (Jp - Jm) / (2 * h) * qd;
+    // dJ/dt along q(t) = q + t·q̇
+    const auto jacobian_at = [&](double t) {
+      kin.update(q + t * qd);
+      kin.jacobian(J);
+      return J;
+    };
+    const Vector6d expected = finite_difference_derivative(jacobian_at, 0.0) * qd;
     kin.update(q);
     EXPECT_LT((kin.bias_acceleration(qd) - expected).norm(), 1e-7);
   }

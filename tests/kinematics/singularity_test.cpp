@@ -149,6 +149,58 @@ TEST(SingularityBundled, Ur5eStandardConfigurations) {
   EXPECT_EQ(report.entries[2].name, "home");
   EXPECT_EQ(report.entries[2].status, SingularityStatus::regular);
   EXPECT_GT(report.entries[2].manipulability, 1e-3);
+  // at zero the wrist axes are parallel too, but the one direction lost is the stretched elbow's
+  for (int k : {0, 1}) {
+    EXPECT_EQ(report.entries[k].kinds, std::vector<SingularityKind>{SingularityKind::elbow});
+    EXPECT_TRUE(report.entries[k].below_sigma_min && report.entries[k].above_condition_number);
+  }
+  EXPECT_TRUE(report.entries[2].kinds.empty());
+  EXPECT_FALSE(report.entries[2].below_sigma_min || report.entries[2].above_condition_number);
+}
+
+TEST(SingularityBundled, Arm6ReportNamesEachKind) {
+  const Robot robot = Robot::bundled("arm6");
+  const Chain chain(robot, "grip");
+  const Eigen::VectorXd home = chain.gather(robot.model().key_qpos);
+  Eigen::VectorXd wrist = home, elbow = home;
+  wrist[4] = 0.0;
+  elbow[2] = 0.0;
+  const SingularityReport report =
+      singularity_report(chain, {{"wrist", wrist}, {"elbow", elbow}, {"zero", chain.center()}});
+  ASSERT_EQ(report.entries.size(), 6u);  // qpos0, center, home, then the three
+  using Kinds = std::vector<SingularityKind>;
+  EXPECT_EQ(report.entries[2].name, "home");
+  EXPECT_TRUE(report.entries[2].kinds.empty());
+  EXPECT_EQ(report.entries[3].kinds, Kinds{SingularityKind::wrist});
+  EXPECT_EQ(report.entries[4].kinds, Kinds{SingularityKind::elbow});
+  // all joints at 0: arm upright, wrist aligned on the first axis
+  EXPECT_EQ(report.entries[5].kinds,
+            (Kinds{SingularityKind::wrist, SingularityKind::elbow, SingularityKind::shoulder}));
+  for (const SingularityEntry& e : report.entries) {
+    EXPECT_EQ(e.null_direction.size(), 6) << e.name;
+    EXPECT_NEAR(e.null_direction.norm(), 1.0, 1e-12) << e.name;
+  }
+  EXPECT_DOUBLE_EQ(report.thresholds.sigma_min, 0.01);
+  EXPECT_DOUBLE_EQ(report.thresholds.condition_number, 100.0);
+}
+
+TEST(SingularityBundled, ScanCountsBothThresholds) {
+  const Robot robot = Robot::bundled("ur5e");
+  const Chain chain(robot, "attachment_site");
+  const SingularityScan scan = scan_singularities(chain, 3000, 5, 3);
+  // κ > 100 is the near-singular class; σmin < 0.01 adds to it
+  EXPECT_GE(scan.flagged_count, scan.singular_count + scan.near_singular_count);
+  EXPECT_GT(scan.flagged_count, 0u);
+  ASSERT_EQ(scan.worst.size(), 3u);
+  for (const SingularityEntry& e : scan.worst) {
+    EXPECT_TRUE(e.below_sigma_min) << e.name;
+    EXPECT_FALSE(e.kinds.empty()) << e.name;
+  }
+  // with σmax ≈ 2, σmin < 0.01 implies κ > 100: the absolute threshold alone flags fewer
+  const SingularityScan absolute =
+      scan_singularities(chain, 3000, 5, 0, {}, {.condition_number = 1e300});
+  EXPECT_GT(absolute.flagged_count, 0u);
+  EXPECT_LT(absolute.flagged_count, scan.flagged_count);
 }
 
 }  // namespace

@@ -8,6 +8,7 @@
 #include <string>
 
 #include "mjarm/error.hpp"
+#include "mjarm/kinematics/finite_difference.hpp"
 
 namespace mjarm::lie {
 namespace {
@@ -79,14 +80,20 @@ TEST(LieCoefficients, RatesMatchFiniteDifferences) {
   for (double t : {0.05, 0.4, 0.9, 1.1, 2.0, 3.1, 4.5, 6.0}) {
     const double h = 1e-5;
     const SeriesCoefficients k = series_coefficients(t);
-    const SeriesCoefficients p = series_coefficients(t + h);
-    const SeriesCoefficients m = series_coefficients(t - h);
-    EXPECT_NEAR(k.a_rate, (p.a - m.a) / (2 * h) / t, 1e-8) << t;
-    EXPECT_NEAR(k.b_rate, (p.b - m.b) / (2 * h) / t, 1e-8) << t;
-    EXPECT_NEAR(k.c_rate, (p.c - m.c) / (2 * h) / t, 1e-8) << t;
-    EXPECT_NEAR(k.d_rate, (p.d - m.d) / (2 * h) / t, 1e-8) << t;
+    // central differences of (a, b, c, d) at t
+    const Eigen::Vector4d d = finite_difference_derivative(
+        [](double s) {
+          const SeriesCoefficients c = series_coefficients(s);
+          return Eigen::Vector4d(c.a, c.b, c.c, c.d);
+        },
+        t, h);
+    EXPECT_NEAR(k.a_rate, d[0] / t, 1e-8) << t;
+    EXPECT_NEAR(k.b_rate, d[1] / t, 1e-8) << t;
+    EXPECT_NEAR(k.c_rate, d[2] / t, 1e-8) << t;
+    EXPECT_NEAR(k.d_rate, d[3] / t, 1e-8) << t;
     const InverseCoefficients ki = inverse_coefficients(t);
-    const double fd = (inverse_coefficients(t + h).e - inverse_coefficients(t - h).e) / (2 * h) / t;
+    const double fd =
+        finite_difference_derivative([](double s) { return inverse_coefficients(s).e; }, t, h) / t;
     EXPECT_NEAR(ki.e_rate, fd, 1e-7 * std::max(1.0, std::fabs(fd))) << t;
   }
 }

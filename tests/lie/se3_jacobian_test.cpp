@@ -12,6 +12,7 @@
 
 #include "lie/lie_test_support.hpp"
 #include "mjarm/error.hpp"
+#include "mjarm/kinematics/finite_difference.hpp"
 #include "mjarm/lie/se3.hpp"
 #include "mjarm/lie/so3_jacobian.hpp"
 
@@ -32,24 +33,18 @@ Vector6d twist(const Eigen::Vector3d& v, const Eigen::Vector3d& w) {
 // columns: central differences of δ ↦ log(exp(ξ + hδ)·exp(ξ)⁻¹) (left) or
 // log(exp(ξ)⁻¹·exp(ξ + hδ)) (right)
 Matrix6d fd_jacobian(const Vector6d& xi, bool left) {
-  const double h = 1e-6;
   const Pose X_inv = exp(xi).inverse();
-  Matrix6d J;
-  for (int i = 0; i < 6; ++i) {
-    const Vector6d d = h * Vector6d::Unit(i);
-    const Pose Xp = exp(xi + d), Xm = exp(xi - d);
-    const Vector6d lp = left ? log(Xp * X_inv) : log(X_inv * Xp);
-    const Vector6d lm = left ? log(Xm * X_inv) : log(X_inv * Xm);
-    J.col(i) = (lp - lm) / (2 * h);
-  }
-  return J;
+  const auto f = [&](const Eigen::VectorXd& d) -> Vector6d {
+    const Pose Xd = exp(xi + d);
+    return left ? log(Xd * X_inv) : log(X_inv * Xd);
+  };
+  return finite_difference_jacobian(f, Vector6d::Zero());
 }
 
 // central difference of t ↦ f(ξ + t·ξ̇) at t = 0
 Matrix6d fd_rate(const std::function<Matrix6d(const Vector6d&)>& f, const Vector6d& xi,
                  const Vector6d& xi_dot) {
-  const double h = 1e-5;
-  return (f(xi + h * xi_dot) - f(xi - h * xi_dot)) / (2 * h);
+  return finite_difference_derivative([&](double t) { return f(xi + t * xi_dot); }, 0.0, 1e-5);
 }
 
 TEST(Se3Jacobian, LeftAndRightMatchFiniteDifferencesOfExp) {
@@ -116,8 +111,8 @@ TEST(Se3Jacobian, LogOfPerturbedPoseUsesTheInverse) {
   std::mt19937 rng(55);
   for (int i = 0; i < 50; ++i) {
     const Vector6d xi = random_twist(rng, 3.0), d = random_twist(rng, 1.0);
-    const double h = 1e-6;
-    const Vector6d fd = (log(exp(h * d) * exp(xi)) - log(exp(-h * d) * exp(xi))) / (2 * h);
+    const Vector6d fd =
+        finite_difference_derivative([&](double t) { return log(exp(t * d) * exp(xi)); }, 0.0);
     EXPECT_LT(max_abs(fd - left_jacobian_inverse(xi) * d), 1e-8);
   }
 }

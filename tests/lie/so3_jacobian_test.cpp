@@ -11,6 +11,7 @@
 
 #include "lie/lie_test_support.hpp"
 #include "mjarm/error.hpp"
+#include "mjarm/kinematics/finite_difference.hpp"
 #include "mjarm/lie/so3.hpp"
 
 namespace mjarm::so3 {
@@ -23,24 +24,18 @@ using test::random_unit;
 // columns: central differences of δ ↦ log(exp(ω + hδ)·exp(ω)ᵀ) (left) or
 // log(exp(ω)ᵀ·exp(ω + hδ)) (right)
 Eigen::Matrix3d fd_jacobian(const Eigen::Vector3d& w, bool left) {
-  const double h = 1e-6;
   const Eigen::Matrix3d R = exp(w);
-  Eigen::Matrix3d J;
-  for (int i = 0; i < 3; ++i) {
-    const Eigen::Vector3d d = h * Eigen::Vector3d::Unit(i);
-    const Eigen::Matrix3d Rp = exp(w + d), Rm = exp(w - d);
-    const Eigen::Vector3d lp = left ? log(Rp * R.transpose()) : log(R.transpose() * Rp);
-    const Eigen::Vector3d lm = left ? log(Rm * R.transpose()) : log(R.transpose() * Rm);
-    J.col(i) = (lp - lm) / (2 * h);
-  }
-  return J;
+  const auto f = [&](const Eigen::VectorXd& d) -> Eigen::Vector3d {
+    const Eigen::Matrix3d Rd = exp(w + d);
+    return left ? log(Rd * R.transpose()) : log(R.transpose() * Rd);
+  };
+  return finite_difference_jacobian(f, Eigen::Vector3d::Zero());
 }
 
 // central difference of t ↦ f(ω + t·ω̇) at t = 0
 Eigen::Matrix3d fd_rate(const std::function<Eigen::Matrix3d(const Eigen::Vector3d&)>& f,
                         const Eigen::Vector3d& w, const Eigen::Vector3d& w_dot) {
-  const double h = 1e-5;
-  return (f(w + h * w_dot) - f(w - h * w_dot)) / (2 * h);
+  return finite_difference_derivative([&](double t) { return f(w + t * w_dot); }, 0.0, 1e-5);
 }
 
 TEST(So3Jacobian, LeftAndRightMatchFiniteDifferencesOfExp) {

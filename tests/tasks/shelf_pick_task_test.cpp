@@ -10,7 +10,7 @@
 #include "ik/malloc_counter.hpp"
 #include "mjarm/error.hpp"
 #include "mjarm/kinematics/chain_kinematics.hpp"
-#include "mjarm/lie/so3.hpp"
+#include "mjarm/kinematics/finite_difference.hpp"
 
 // ---- allocation counter for test_tasks (see tests/ik/malloc_counter.hpp) ----
 namespace {
@@ -97,17 +97,23 @@ TEST(ShelfPickTask, ReferencesFollowTheMinimumJerkPath) {
   EXPECT_TRUE(r0.joint.q.isApprox(goal.q_start));
 
   // finite differences of position, rotation and joints give the velocities
-  const double h = 1e-6;
+  const auto pose_at = [&](const Eigen::VectorXd& t) { return at(t[0]).task.X_WE; };
   for (double t : {0.05, 0.11, 0.15, 0.23, 0.29}) {
-    const Reference a = at(t - h), b = at(t + h), c = at(t);
-    const Eigen::Vector3d v = (b.task.X_WE.p - a.task.X_WE.p) / (2 * h);
-    const Eigen::Vector3d w = so3::log(b.task.X_WE.R * a.task.X_WE.R.transpose()) / (2 * h);
+    // [ṗ; ω] of the reference pose (world-aligned), then the rates of the other signals
+    const Matrix6Xd V = finite_difference_pose_jacobian(pose_at, Eigen::VectorXd::Constant(1, t));
+    const Eigen::Vector3d v = V.col(0).head<3>();
+    const Eigen::Vector3d w = V.col(0).tail<3>();
+    const Reference c = at(t);
     EXPECT_LT((v - c.task.V_WE.head<3>()).norm(), 1e-6) << t;
     EXPECT_LT((w - c.task.V_WE.tail<3>()).norm(), 1e-6) << t;
-    const Vector6d dv = (b.task.V_WE - a.task.V_WE) / (2 * h);
+    const Vector6d dv = finite_difference_derivative([&](double s) { return at(s).task.V_WE; }, t);
     EXPECT_LT((dv - c.task.A_WE).norm(), 1e-4) << t;
-    EXPECT_LT(((b.joint.q - a.joint.q) / (2 * h) - c.joint.qd).norm(), 1e-6) << t;
-    EXPECT_LT(((b.joint.qd - a.joint.qd) / (2 * h) - c.joint.qdd).norm(), 1e-4) << t;
+    const Eigen::VectorXd dq =
+        finite_difference_derivative([&](double s) { return at(s).joint.q; }, t);
+    const Eigen::VectorXd dqd =
+        finite_difference_derivative([&](double s) { return at(s).joint.qd; }, t);
+    EXPECT_LT((dq - c.joint.qd).norm(), 1e-6) << t;
+    EXPECT_LT((dqd - c.joint.qdd).norm(), 1e-4) << t;
     // the path is straight: the position lies on the segment start → target
     const Eigen::Vector3d along = goal.X_WT.p - goal.X_WS.p;
     const Eigen::Vector3d off = c.task.X_WE.p - goal.X_WS.p;

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "mjarm/kinematics/manipulability.hpp"
+#include "mjarm/kinematics/singularity_kind.hpp"
 #include "mjarm/model/chain.hpp"
 
 namespace mjarm {
@@ -29,11 +30,21 @@ struct SingularityEntry {
   double condition_number = 0.0;   ///< σmax/σmin, +infinity when singular
   double manipulability = 0.0;     ///< Yoshikawa w
   SingularityStatus status = SingularityStatus::singular;
+  bool below_sigma_min = false;         ///< σmin < thresholds.sigma_min (absolute)
+  bool above_condition_number = false;  ///< σmax/σmin > thresholds.condition_number (relative)
+  /// Empty when neither threshold is crossed; else the kinds found, or {unclassified} (see
+  /// `SingularityClassification::kinds`).
+  std::vector<SingularityKind> kinds;
+  /// Right singular vector of σmin: the joint motion that moves the frame least (unit, chain
+  /// order, largest entry positive).
+  Eigen::VectorXd null_direction;
+  SingularityGeometry geometry;  ///< the measures the kinds are judged on
 };
 
 /// Entries for named configurations, in the order given.
 struct SingularityReport {
   ManipulabilityOptions options;
+  SingularityThresholds thresholds;
   std::vector<SingularityEntry> entries;
 };
 
@@ -42,30 +53,37 @@ struct SingularityReport {
 /// model, named after the keyframe ("keyframe <index>" when unnamed). Joints are in chain order.
 std::vector<NamedConfiguration> standard_configurations(const Chain& chain);
 
-/// Measures `standard_configurations(chain)` followed by @p extra.
+/// Measures and classifies `standard_configurations(chain)` followed by @p extra.
 /// @throws Error when an extra configuration has the wrong size or holds NaN/inf (naming it),
-/// or the thresholds in @p options are invalid.
+/// or the thresholds in @p options or @p thresholds are invalid.
 SingularityReport singularity_report(const Chain& chain,
                                      const std::vector<NamedConfiguration>& extra = {},
-                                     const ManipulabilityOptions& options = {});
+                                     const ManipulabilityOptions& options = {},
+                                     const SingularityThresholds& thresholds = {});
 
 /// Result of a random scan.
 struct SingularityScan {
   ManipulabilityOptions options;
+  SingularityThresholds thresholds;
   std::size_t samples = 0;
   std::uint64_t seed = 0;
   std::size_t singular_count = 0;       ///< samples classified singular
   std::size_t near_singular_count = 0;  ///< samples classified near-singular
+  /// Samples crossing either threshold (σmin < thresholds.sigma_min or condition above
+  /// thresholds.condition_number).
+  std::size_t flagged_count = 0;
   /// The lowest-σmin samples, lowest first (at most `keep_worst`), named "sample <index>".
   std::vector<SingularityEntry> worst;
 };
 
 /// Samples @p samples configurations uniformly within the limits (see `JointSampler`, seeded
 /// std::mt19937_64: the same seed gives the same scan) and keeps the @p keep_worst samples with
-/// the lowest σmin.
-/// @throws Error when @p samples is 0 or the thresholds in @p options are invalid.
+/// the lowest σmin, classified.
+/// @throws Error when @p samples is 0 or the thresholds in @p options or @p thresholds are
+/// invalid.
 SingularityScan scan_singularities(const Chain& chain, std::size_t samples, std::uint64_t seed,
                                    std::size_t keep_worst = 10,
-                                   const ManipulabilityOptions& options = {});
+                                   const ManipulabilityOptions& options = {},
+                                   const SingularityThresholds& thresholds = {});
 
 }  // namespace mjarm
