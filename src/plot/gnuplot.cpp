@@ -35,6 +35,37 @@ std::string read_log(int fd) {
 
 }  // namespace
 
+std::string gnuplot_string(std::string_view text) {
+  std::string out;
+  bool in_quotes = false;
+  for (const char c : text) {
+    const auto byte = static_cast<unsigned char>(c);
+    if (byte == 0) continue;
+    if (byte < 0x20 || byte == 0x7f || c == '\'') {
+      // a control character or a quote: "\ooo" on its own, between single-quoted runs
+      if (in_quotes) out += '\'';
+      if (!out.empty()) out += '.';
+      const char octal[] = {'"',
+                            '\\',
+                            static_cast<char>('0' + (byte >> 6)),
+                            static_cast<char>('0' + ((byte >> 3) & 7)),
+                            static_cast<char>('0' + (byte & 7)),
+                            '"'};
+      out.append(octal, sizeof octal);
+      in_quotes = false;
+      continue;
+    }
+    if (!in_quotes) {
+      if (!out.empty()) out += '.';
+      out += '\'';
+      in_quotes = true;
+    }
+    out += c;
+  }
+  if (in_quotes) out += '\'';
+  return out.empty() ? "''" : out;
+}
+
 fs::path find_gnuplot() {
   const std::string gnuplot = executable_on_path("gnuplot");
   if (gnuplot.empty()) {
