@@ -136,7 +136,7 @@ std::string mp4_defect(const std::filesystem::path& path) {
     at += box;
   }
   ::close(fd);
-  if (defect.empty() && !moov) defect = "it has no 'moov' box (the index a player needs)";
+  if (defect.empty() && !moov) defect = "it has no 'moov' box, the index a player needs";
   return defect;
 }
 

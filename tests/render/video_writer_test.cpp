@@ -5,8 +5,10 @@
 #include "mjarm/render/video_writer.hpp"
 
 #include <gtest/gtest.h>
+#include <sys/resource.h>
 
 #include <cstdlib>
+#include <fstream>
 #include <stdexcept>
 
 #include "mjarm/error.hpp"
@@ -14,6 +16,7 @@
 #include "mjarm/render/frame_schedule.hpp"
 #include "mjarm/render/offscreen_renderer.hpp"
 #include "render_test_support.hpp"
+#include "support/running_process.hpp"
 
 namespace mjarm {
 namespace {
@@ -250,6 +253,194 @@ TEST(VideoWriter, RendererFramesAtVideoRate) {
   video.close();
   EXPECT_EQ(video.frames(), 11);
   EXPECT_EQ(probe(path).frames, 11);
+}
+
+// ---- ffmpeg that misbehaves: fake ffmpeg scripts (issue 16, items 5 and 6)
+
+// Ends the test process with SIGALRM (a failure, never a hang) if a test outlives @p seconds.
+struct Watchdog {
+  explicit Watchdog(unsigned seconds) { ::alarm(seconds); }
+  ~Watchdog() { ::alarm(0); }
+};
+
+// A script called ffmpeg in a folder of its own (for PATH), running @p body. The video path is
+// its last argument without the "file:" prefix, in $out.
+fs::path fake_ffmpeg(const std::string& name, const std::string& body) {
+  const fs::path dir = test::scratch() / ("fake_ffmpeg_" + name);
+  fs::create_directories(dir);
+  const fs::path script = dir / "ffmpeg";
+  std::ofstream(script) << "#!/bin/sh\nfor last; do :; done\nout=\"${last#file:}\"\n" << body;
+  fs::permissions(script, fs::perms::owner_all | fs::perms::group_read | fs::perms::others_read);
+  return script;
+}
+
+// never reads its input, never exits by itself; leaves its pid in VIDEO.pid
+fs::path stuck_ffmpeg() { return fake_ffmpeg("stuck", "echo $$ > \"$out.pid\"\nexec sleep 300\n"); }
+
+pid_t read_pid(const fs::path& file) {
+  const std::string text = test::slurp(file);
+  return text.empty() ? -1 : static_cast<pid_t>(std::atol(text.c_str()));
+}
+
+TEST(VideoWriter, AnFfmpegThatStopsReadingIsKilledAtTheDeadline) {
+  const Watchdog watchdog(60);
+  VideoOptions options;
+  options.ffmpeg = stuck_ffmpeg();
+  options.timeout_s = 0.5;
+  const fs::path path = test::scratch() / "stuck.mp4";
+  VideoWriter video(path, 64, 48, 30.0, options);
+  std::string message;
+  for (int k = 0; k < 10000 && message.empty(); ++k) {
+    try {
+      video.write(moving_square(64, 48, k % 20));
+    } catch (const Error& e) {
+      message = e.what();
+    }
+  }
+  EXPECT_NE(message.find("did not take frame"), std::string::npos) << message;
+  EXPECT_NE(message.find(path.string()), std::string::npos) << message;
+  EXPECT_NE(message.find("not playable"), std::string::npos) << message;
+  EXPECT_FALSE(video.is_open());
+  const pid_t ffmpeg = read_pid(path.string() + ".pid");
+  ASSERT_GT(ffmpeg, 0);
+  EXPECT_FALSE(test::process_alive(ffmpeg)) << "ffmpeg " << ffmpeg << " was left running";
+  video.close();  // nothing left to do, no second error
+}
+
+TEST(VideoWriter, AnFfmpegThatNeverExitsIsKilledAtTheDeadline) {
+  const Watchdog watchdog(60);
+  VideoOptions options;
+  options.ffmpeg = stuck_ffmpeg();
+  options.timeout_s = 0.5;
+  const fs::path path = test::scratch() / "never_exits.mp4";
+  VideoWriter video(path, 64, 48, 30.0, options);
+  video.write(moving_square(64, 48, 0));  // fits in the pipe
+  const std::string message = error_of([&] { video.close(); });
+  EXPECT_NE(message.find("did not finalize video"), std::string::npos) << message;
+  const pid_t ffmpeg = read_pid(path.string() + ".pid");
+  ASSERT_GT(ffmpeg, 0);
+  EXPECT_FALSE(test::process_alive(ffmpeg));
+}
+
+// ffmpeg's exit status 0 is not enough: the file must be a complete MP4 (a full disk leaves one
+// without its moov box while ffmpeg may still exit 0)
+TEST(VideoWriter, ASuccessfulExitWithAnIncompleteFileIsAFailure) {
+  const Watchdog watchdog(60);
+  // ftyp (24 bytes) and an mdat header: what ffmpeg leaves when the disk fills up
+  const std::string ftyp = "\\000\\000\\000\\030ftypisom\\000\\000\\002\\000isomiso2";
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"printf '" + ftyp + "\\000\\000\\000\\010mdat' > \"$out\"", "no 'moov' box"},
+      {"printf '" + ftyp + "\\000\\000\\020\\000mdatabc' > \"$out\"", "truncated"},
+      {"printf '\\000\\000' > \"$out\"", "ends inside a box header"},
+      {": > \"$out\"", "it is empty"},
+      {"rm -f \"$out\"", "cannot be opened"}};
+  int k = 0;
+  for (const auto& [writes, defect] : cases) {
+    VideoOptions options;
+    options.ffmpeg = fake_ffmpeg("incomplete" + std::to_string(++k),
+                                 "cat > /dev/null\n" + writes + "\nexit 0\n");
+    const fs::path path = test::scratch() / ("incomplete" + std::to_string(k) + ".mp4");
+    VideoWriter video(path, 64, 48, 30.0, options);
+    for (int f = 0; f < 5; ++f) video.write(moving_square(64, 48, f));
+    const std::string message = error_of([&] { video.close(); });
+    EXPECT_NE(message.find("is not a complete MP4"), std::string::npos) << message;
+    EXPECT_NE(message.find(defect), std::string::npos) << message;
+    EXPECT_NE(message.find(path.string()), std::string::npos) << message;
+  }
+  // and one that exits 0 at once without reading: an error too, never success
+  VideoOptions quits;
+  quits.ffmpeg = fake_ffmpeg("quits", "exit 0\n");
+  const fs::path path = test::scratch() / "quits.mp4";
+  std::string message;
+  try {
+    VideoWriter video(path, 64, 48, 30.0, quits);
+    for (int f = 0; f < 50; ++f) video.write(moving_square(64, 48, f % 20));
+    video.close();
+  } catch (const Error& e) {
+    message = e.what();
+  }
+  EXPECT_NE(message.find(path.string()), std::string::npos) << message;
+}
+
+// a real ffmpeg on a "full disk": RLIMIT_FSIZE, set in a forked child, caps the file at 4 KiB
+TEST(VideoWriter, AFullDiskIsReportedWithThePath) {
+  const Watchdog watchdog(120);
+  const fs::path path = test::scratch() / "full_disk.mp4";
+  const pid_t child = ::fork();
+  ASSERT_GE(child, 0);
+  if (child == 0) {
+    ::signal(SIGXFSZ, SIG_IGN);  // a write past the limit fails with EFBIG instead
+    const rlimit limit{4096, 4096};
+    ::setrlimit(RLIMIT_FSIZE, &limit);
+    int code = 3;
+    try {
+      VideoWriter video(path, 160, 120, 30.0);
+      for (int f = 0; f < 49; ++f) video.write(moving_square(160, 120, f % 20));
+      video.close();
+      code = 1;  // reported success
+    } catch (const Error& e) {
+      code = std::string(e.what()).find(path.string()) != std::string::npos ? 0 : 2;
+    }
+    ::_exit(code);
+  }
+  int status = 0;
+  while (::waitpid(child, &status, 0) < 0 && errno == EINTR) {
+  }
+  ASSERT_TRUE(WIFEXITED(status));
+  EXPECT_EQ(WEXITSTATUS(status), 0) << "1: success was reported, 2: the path was not named";
+}
+
+// `mjarm run … --video` with an ffmpeg that never reads: SIGINT and SIGTERM end the run at once
+// with the recording kept, exit 128 + signal, and ffmpeg does not outlive the run
+TEST(VideoCli, SignalsEndARunWhoseFfmpegIsStuck) {
+  const fs::path fake = stuck_ffmpeg();
+  const std::string path_env = "PATH=" + fake.parent_path().string() + ":" + std::getenv("PATH");
+  for (const int signal : {SIGINT, SIGTERM}) {
+    const fs::path dir = test::scratch() / ("stuck_run_" + std::to_string(signal));
+    fs::create_directories(dir);
+    test::RunningProcess run(
+        {MJARM_CLI, "run", "shelf-pick", "--robot", "planar2", "--video",
+         (dir / "run.mp4").string(), "--size", "64x48", "--record", (dir / "rec").string()},
+        dir, {path_env});
+    ASSERT_TRUE(run.started());
+    const fs::path pid_file = dir / "run.mp4.pid";
+    ASSERT_TRUE(test::eventually(
+        [&] { return (fs::exists(pid_file) && read_pid(pid_file) > 0) || run.wait(0); }, 60.0))
+        << run.err();
+    const pid_t ffmpeg = read_pid(pid_file);
+    ASSERT_TRUE(test::catches_signal(run.pid(), signal)) << run.err();
+    run.signal(signal);
+    ASSERT_TRUE(run.wait(60.0)) << "mjarm did not end after signal " << signal;
+    EXPECT_FALSE(run.signaled());
+    EXPECT_EQ(run.exit_code(), 128 + signal) << run.err();
+    EXPECT_NE(run.err().find("interrupted"), std::string::npos) << run.err();
+    EXPECT_NE(run.err().find("ffmpeg did not"), std::string::npos) << run.err();
+    EXPECT_FALSE(test::process_alive(ffmpeg)) << "ffmpeg " << ffmpeg << " outlived the run";
+    const std::string summary = test::slurp(dir / "rec" / "summary.json");
+    EXPECT_NE(summary.find("\"interrupted\""), std::string::npos) << summary;
+  }
+}
+
+// SIGKILL leaves mjarm no chance to clean up: ffmpeg still dies with it (PR_SET_PDEATHSIG)
+TEST(VideoCli, FfmpegDiesWithAKilledRun) {
+  const fs::path fake = stuck_ffmpeg();
+  const std::string path_env = "PATH=" + fake.parent_path().string() + ":" + std::getenv("PATH");
+  const fs::path dir = test::scratch() / "killed_run";
+  fs::create_directories(dir);
+  test::RunningProcess run({MJARM_CLI, "run", "shelf-pick", "--robot", "planar2", "--video",
+                            (dir / "run.mp4").string(), "--size", "64x48"},
+                           dir, {path_env});
+  ASSERT_TRUE(run.started());
+  const fs::path pid_file = dir / "run.mp4.pid";
+  ASSERT_TRUE(test::eventually(
+      [&] { return (fs::exists(pid_file) && read_pid(pid_file) > 0) || run.wait(0); }, 60.0))
+      << run.err();
+  const pid_t ffmpeg = read_pid(pid_file);
+  ASSERT_TRUE(test::process_alive(ffmpeg));
+  run.signal(SIGKILL);
+  ASSERT_TRUE(run.wait(30.0));
+  EXPECT_TRUE(test::eventually([&] { return !test::process_alive(ffmpeg); }, 30.0))
+      << "ffmpeg " << ffmpeg << " outlived mjarm";
 }
 
 }  // namespace
