@@ -20,8 +20,8 @@ test::ProcessRun render(std::vector<std::string> args, std::vector<std::string> 
 
 TEST(CliRender, WritesAPngAndDescribesItAsJson) {
   const fs::path out = test::scratch() / "cli.png";
-  const auto run =
-      render({"panda", "--keyframe", "home", "--size", "200x150", "--out", out.string(), "--json"});
+  const auto run = render({"panda", "--keyframe", "home", "--size", "200x150", "--out",
+                           out.string(), "--json"});
   ASSERT_EQ(run.exit_code, 0) << run.err;
   const auto doc = nlohmann::json::parse(run.out);
   EXPECT_EQ(doc["model"], "panda");
@@ -39,8 +39,9 @@ TEST(CliRender, HeadlessWithoutDisplayOrGpu) {
   const fs::path out = test::scratch() / "headless.png";
   const char* path = std::getenv("PATH");
   const char* asan = std::getenv("ASAN_OPTIONS");  // a sanitized build's settings carry over
-  const auto run = render({"panda", "--q", "0", "-0.5", "0", "-2", "0", "1.6", "0.8", "--follow",
-                           "attachment_site", "--distance", "0.9", "--out", out.string()},
+  const auto run = render({"panda", "--q", "0", "-0.5", "0", "-2", "0", "1.6", "0.8",
+                           "--follow", "attachment_site", "--distance", "0.9", "--out",
+                           out.string()},
                           {std::string("PATH=") + (path != nullptr ? path : "/usr/bin:/bin"),
                            "LIBGL_ALWAYS_SOFTWARE=1", "MJARM_MODELS=" MJARM_MODELS_DIR,
                            std::string("ASAN_OPTIONS=") + (asan != nullptr ? asan : "")});
@@ -52,8 +53,8 @@ TEST(CliRender, HeadlessWithoutDisplayOrGpu) {
 }
 
 TEST(CliRender, UnknownCameraFailsWithTheList) {
-  const auto run =
-      render({"panda", "--camera", "top", "--out", (test::scratch() / "never.png").string()});
+  const auto run = render({"panda", "--camera", "top", "--out",
+                           (test::scratch() / "never.png").string()});
   EXPECT_EQ(run.exit_code, 1);
   EXPECT_NE(run.err.find("camera 'top' not found in model 'panda'; cameras: (none)"),
             std::string::npos)
@@ -61,8 +62,8 @@ TEST(CliRender, UnknownCameraFailsWithTheList) {
 }
 
 TEST(CliRender, UnwritableOutputFails) {
-  const auto run = render(
-      {"panda", "--size", "64x48", "--out", (test::scratch() / "missing_dir" / "x.png").string()});
+  const auto run = render({"panda", "--size", "64x48", "--out",
+                           (test::scratch() / "missing_dir" / "x.png").string()});
   EXPECT_EQ(run.exit_code, 1);
   EXPECT_NE(run.err.find("No such file or directory"), std::string::npos) << run.err;
 }
@@ -73,7 +74,7 @@ TEST(CliRender, BadCommandLinesExitTwo) {
            {"panda", "--size", "0x0", "--out", out},
            {"panda", "--size", "640", "--out", out},
            {"panda", "--size", "-640x480", "--out", out},
-           {"panda"},                                                               // no --out
+           {"panda"},                                            // no --out
            {"panda", "--q", "1", "2", "3", "4", "5", "6", "7", "8", "--out", out},  // > nq
            {"panda", "--camera", "x", "--lookat", "0", "0", "0", "--out", out},
            {"panda", "--elevation", "nan", "--out", out}}) {

@@ -16,8 +16,7 @@ std::int64_t frames_over(double fps, double dt, double duration) {
   FrameSchedule schedule(fps);
   std::int64_t total = schedule.frames_due(0.0);
   const auto steps = static_cast<std::int64_t>(std::llround(duration / dt));
-  for (std::int64_t k = 1; k <= steps; ++k)
-    total += schedule.frames_due(static_cast<double>(k) * dt);
+  for (std::int64_t k = 1; k <= steps; ++k) total += schedule.frames_due(static_cast<double>(k) * dt);
   EXPECT_EQ(total, schedule.frames());
   return total;
 }
@@ -33,8 +32,8 @@ TEST(FrameSchedule, OneFramePerPeriodWhateverTheStep) {
 TEST(FrameSchedule, StepsLongerThanAFrameOweSeveralFrames) {
   FrameSchedule schedule(50.0);
   EXPECT_EQ(schedule.frames_due(0.0), 1);
-  EXPECT_EQ(schedule.frames_due(0.1), 5);   // frames at 0.02 … 0.1
-  EXPECT_EQ(schedule.frames_due(0.1), 0);   // already counted
+  EXPECT_EQ(schedule.frames_due(0.1), 5);  // frames at 0.02 … 0.1
+  EXPECT_EQ(schedule.frames_due(0.1), 0);  // already counted
   EXPECT_EQ(schedule.frames_due(0.05), 0);  // time going back owes nothing
   EXPECT_NEAR(schedule.next_time(), 0.12, 1e-12);
 }
