@@ -81,6 +81,14 @@ Clock::time_point after(double seconds) {
                             std::chrono::duration<double>(std::min(seconds, 1e7)));
 }
 
+// @p seconds as a person writes them: "3", "0.5", "60"
+std::string seconds_text(double seconds) {
+  std::ostringstream text;
+  text.precision(3);
+  text << seconds;
+  return text.str();
+}
+
 // The deadline cut to the grace period once an interrupt is pending (the first time it is seen).
 void shorten_on_interrupt(Clock::time_point& deadline, bool& interrupted) {
   if (interrupted || !interrupt_requested()) return;
@@ -200,7 +208,7 @@ struct VideoWriter::Impl {
       if (Clock::now() < deadline) continue;
       stop(0.0);
       throw Error("ffmpeg did not finalize video " + quoted(path) + " within " +
-                  std::to_string(interrupted ? kInterruptGrace : timeout_s) + " s" +
+                  seconds_text(interrupted ? kInterruptGrace : timeout_s) + " s" +
                   (interrupted ? " of the interrupt" : "") + " and was stopped after " +
                   std::to_string(frames) + " frames; the file is not playable: " + take_log());
     }
@@ -232,7 +240,7 @@ VideoWriter::VideoWriter(const std::filesystem::path& path, int width, int heigh
                 std::to_string(fps) + " for " + quoted(path));
   if (!std::isfinite(options.timeout_s) || !(options.timeout_s > 0.0))
     throw Error("video timeout must be a finite number > 0 s, got " +
-                std::to_string(options.timeout_s) + " for " + quoted(path));
+                seconds_text(options.timeout_s) + " for " + quoted(path));
   // prove the path writable now, before any frame, with the system's reason when it is not
   {
     const int fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
@@ -363,7 +371,7 @@ void VideoWriter::write(const Image& frame) {
     // ffmpeg stopped reading: it will not finalize the file either
     s.stop(0.0);
     throw Error("ffmpeg did not take frame " + std::to_string(s.frames) + " of " + quoted(s.path) +
-                " within " + std::to_string(interrupted ? kInterruptGrace : s.timeout_s) + " s" +
+                " within " + seconds_text(interrupted ? kInterruptGrace : s.timeout_s) + " s" +
                 (interrupted ? " of the interrupt" : "") +
                 " and was stopped; the file is not playable: " + s.take_log());
   }

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <string>
 #include <vector>
 
@@ -83,6 +84,21 @@ TEST(Gnuplot, AFailingScriptReportsGnuplotsMessage) {
     EXPECT_NE(std::string(e.what()).find("gnuplot exited with status"), std::string::npos)
         << e.what();
     EXPECT_NE(std::string(e.what()).find("line 2"), std::string::npos) << e.what();
+  }
+}
+
+TEST(Gnuplot, TheTimeoutMustBeAPositiveFiniteNumber) {
+  test::TempDir dir("plot-bad-timeout");
+  test::write_file(dir.path() / "empty.gp", "\n");
+  for (const double timeout : {0.0, -1.0, std::nan(""), HUGE_VAL}) {
+    try {
+      run_gnuplot(dir.path() / "empty.gp", timeout);
+      ADD_FAILURE() << "no error for " << timeout;
+    } catch (const Error& e) {
+      EXPECT_NE(std::string(e.what()).find("gnuplot timeout must be a finite number"),
+                std::string::npos)
+          << e.what();
+    }
   }
 }
 

@@ -322,6 +322,17 @@ TEST(VideoWriter, AnFfmpegThatNeverExitsIsKilledAtTheDeadline) {
   EXPECT_FALSE(test::process_alive(ffmpeg));
 }
 
+TEST(VideoWriter, TheTimeoutMustBeAPositiveFiniteNumber) {
+  for (const double timeout : {0.0, -1.0, std::nan(""), HUGE_VAL}) {
+    VideoOptions options;
+    options.timeout_s = timeout;
+    const std::string message = error_of(
+        [&] { VideoWriter video(test::scratch() / "timeout.mp4", 64, 48, 30.0, options); });
+    EXPECT_NE(message.find("video timeout must be a finite number > 0 s"), std::string::npos)
+        << message;
+  }
+}
+
 // ffmpeg's exit status 0 is not enough: the file must be a complete MP4 (a full disk leaves one
 // without its moov box while ffmpeg may still exit 0)
 TEST(VideoWriter, ASuccessfulExitWithAnIncompleteFileIsAFailure) {
