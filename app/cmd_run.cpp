@@ -356,10 +356,9 @@ Command add_run_command(CLI::App& root) {
                       (report.recording.empty()
                            ? std::string()
                            : "; the recording is in " + report.recording.string()) +
-                      (report.video.empty()
-                           ? std::string()
-                           : "; the video: " + (report.video_error.empty() ? report.video.string()
-                                                                           : report.video_error)),
+                      (report.video.empty()         ? std::string()
+                       : report.video_error.empty() ? "; the video is in " + report.video.string()
+                                                    : "; " + report.video_error),
                   interrupt_signal());
             if (!report.ok()) {
               std::string why = "the shelf pick ended " + std::string(to_string(report.outcome)) +

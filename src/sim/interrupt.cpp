@@ -16,7 +16,9 @@ bool g_guard_alive = false;
 struct sigaction g_previous_int;
 struct sigaction g_previous_term;
 
-extern "C" void on_interrupt(int signal) { g_interrupted = signal; }
+extern "C" void on_interrupt(int signal) {
+  if (g_interrupted == 0) g_interrupted = signal;  // the first signal names the interrupt
+}
 
 }  // namespace
 
