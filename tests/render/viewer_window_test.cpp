@@ -66,8 +66,9 @@ fs::path fresh_dir(const std::string& name) {
 //   taking it, where `xvfb-run -a` guessed one from /tmp/.X*-lock files and raced every other
 //   program starting an X server at the same time;
 // - the test waits for that report (the server accepts connections from then on), bounded;
-// - the server is killed and reaped when the display goes out of scope, whatever the test's
-//   outcome, and dies with the test process if that is killed (PR_SET_PDEATHSIG).
+// - the server is killed and reaped when the display goes out of scope (at the test process's
+//   exit, whatever the tests' outcome), and dies with the test process if that is killed or
+//   crashes (PR_SET_PDEATHSIG).
 class VirtualDisplay {
  public:
   VirtualDisplay() {
@@ -188,9 +189,10 @@ class VirtualDisplay {
   fs::path log_;
 };
 
-// The environment prefix that gives a command the display @p server (nullopt, and a failure,
-// when the server could not start).
-std::optional<std::string> display_prefix(const VirtualDisplay& server) {
+// The environment prefix that gives a command the display: the X server of this test process,
+// started on first use and stopped at exit (nullopt, and a failure, when it could not start).
+std::optional<std::string> display_prefix() {
+  static const VirtualDisplay server;
   if (server.display().empty()) {
     ADD_FAILURE() << server.error();
     return std::nullopt;
@@ -240,8 +242,7 @@ Eigen::Vector3d vec(const nlohmann::json& j) {
 }
 
 TEST(ViewerWindow, ScriptedSessionMovesTheArmAndTakesScreenshots) {
-  const VirtualDisplay server;
-  const auto prefix = display_prefix(server);
+  const auto prefix = display_prefix();
   if (!prefix) return;
   const fs::path dir = fresh_dir("script");
   {
@@ -337,8 +338,7 @@ TEST(ViewerWindow, ScriptedSessionMovesTheArmAndTakesScreenshots) {
 }
 
 TEST(ViewerWindow, ScriptErrorsNameTheLine) {
-  const VirtualDisplay server;
-  const auto prefix = display_prefix(server);
+  const auto prefix = display_prefix();
   if (!prefix) return;
   const fs::path dir = fresh_dir("bad");
   {
