@@ -40,10 +40,11 @@ struct VideoOptions {
 /// ffmpeg is started with an argv array (never through a shell) and runs in its own process
 /// group, so a Ctrl-C aimed at the program does not cut it short; it gets SIGKILL if mjarm dies
 /// (PR_SET_PDEATHSIG: it never outlives the program, and a video being written when mjarm is
-/// killed is lost). Frames go through a non-blocking pipe: an ffmpeg that stops reading is
-/// killed after `VideoOptions::timeout_s` (3 s after an interrupt) and `write` throws. A dead
-/// ffmpeg never kills the program with SIGPIPE: `write` throws instead, with ffmpeg's own
-/// message.
+/// killed is lost). PR_SET_PDEATHSIG follows the thread that created the writer: create it on a
+/// thread that outlives it (ffmpeg is killed when that thread ends). Frames go through a
+/// non-blocking pipe: an ffmpeg that stops reading is killed after `VideoOptions::timeout_s` (3 s
+/// after an interrupt) and `write` throws. A dead ffmpeg never kills the program with SIGPIPE:
+/// `write` throws instead, with ffmpeg's own message.
 ///
 /// Pushing frames at video rate from a run loop: see `FrameSchedule`.
 class VideoWriter {
