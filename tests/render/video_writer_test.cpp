@@ -107,6 +107,36 @@ TEST(VideoWriter, WritesAValidMp4WithEveryFrame) {
             std::string::npos);
 }
 
+// issue 16, item 3: the video path reaches ffmpeg's command line as one argv entry, never
+// through a shell nor read as an option or a protocol: every byte of the name is kept
+std::string hostile_video_name() {
+  return "-y:v\n'`touch PWNED1`$(touch PWNED2)\"; system \"touch PWNED3\" %d \\.mp4";
+}
+
+TEST(VideoWriter, AnyFileNameIsWrittenAsGiven) {
+  const fs::path dir = test::scratch() / "hostile\n$(touch PWNED4)";
+  fs::create_directories(dir);
+  const fs::path path = dir / hostile_video_name();
+  const fs::path saved = fs::current_path();
+  fs::current_path(dir);  // where a `touch` run by mistake would write
+  std::string error;
+  try {
+    VideoWriter video(path, 64, 48, 25.0);
+    for (int k = 0; k < 6; ++k) video.write(moving_square(64, 48, k));
+    video.close();
+  } catch (const Error& e) {
+    error = e.what();
+  }
+  fs::current_path(saved);
+  ASSERT_EQ(error, "");
+  EXPECT_EQ(probe("file:" + path.string()).frames, 6);
+  // (the video's own name holds the word: a file made by `touch` starts with it)
+  for (const auto& entry : fs::directory_iterator(dir))
+    EXPECT_NE(entry.path().filename().string().rfind("PWNED", 0), 0u) << entry.path();
+  for (const auto& entry : fs::directory_iterator(test::scratch()))
+    EXPECT_NE(entry.path().filename().string().rfind("PWNED", 0), 0u) << entry.path();
+}
+
 TEST(VideoWriter, DestroyedWithoutCloseStillFinalizes) {
   const fs::path path = test::scratch() / "dropped.mp4";
   {
@@ -430,6 +460,22 @@ TEST(VideoCli, SignalsEndARunWhoseFfmpegIsStuck) {
     const std::string summary = test::slurp(dir / "rec" / "summary.json");
     EXPECT_NE(summary.find("\"interrupted\""), std::string::npos) << summary;
   }
+}
+
+// the same through `mjarm run --video`: the exact file, nothing run
+TEST(VideoCli, AnyFileNameIsWrittenAsGiven) {
+  const fs::path dir = test::scratch() / "hostile_cli";
+  fs::create_directories(dir);
+  const fs::path path = dir / hostile_video_name();
+  test::RunningProcess run({MJARM_CLI, "run", "shelf-pick", "--robot", "planar2", "--video",
+                            path.string(), "--size", "64x48", "--fps", "10"},
+                           dir);
+  ASSERT_TRUE(run.started());
+  ASSERT_TRUE(run.wait(300.0));
+  EXPECT_EQ(run.exit_code(), 0) << run.err();
+  EXPECT_GT(probe("file:" + path.string()).frames, 1);
+  for (const auto& entry : fs::directory_iterator(dir))
+    EXPECT_NE(entry.path().filename().string().rfind("PWNED", 0), 0u) << entry.path();
 }
 
 // SIGKILL leaves mjarm no chance to clean up: ffmpeg still dies with it (PR_SET_PDEATHSIG)
