@@ -4,6 +4,7 @@
 
 #include "mjarm/render/video_writer.hpp"
 
+#include <fcntl.h>
 #include <gtest/gtest.h>
 #include <sys/resource.h>
 
@@ -403,32 +404,47 @@ TEST(VideoWriter, ASuccessfulExitWithAnIncompleteFileIsAFailure) {
   EXPECT_NE(message.find(path.string()), std::string::npos) << message;
 }
 
-// a real ffmpeg on a "full disk": RLIMIT_FSIZE, set in a forked child, caps the file at 4 KiB
-TEST(VideoWriter, AFullDiskIsReportedWithThePath) {
-  const Watchdog watchdog(120);
-  const fs::path path = test::scratch() / "full_disk.mp4";
+// a real ffmpeg on a "full disk": `mjarm run --video` with RLIMIT_FSIZE = 2 KiB, set in a forked
+// child before exec (ffmpeg inherits it; SIGXFSZ ignored, so writes fail with EFBIG). ffmpeg
+// exits 0 with a file cut at 2 KiB and no moov box: the run must fail and name the path
+TEST(VideoCli, AFullDiskIsReportedWithThePath) {
+  const fs::path dir = test::scratch() / "full_disk";
+  fs::create_directories(dir);
+  const fs::path path = dir / "full.mp4";
+  const fs::path err = dir / "stderr.txt";
+  std::vector<std::string> args = {MJARM_CLI, "run",         "shelf-pick", "--robot", "planar2",
+                                   "--video", path.string(), "--size",     "160x120"};
+  std::vector<char*> argv;
+  for (std::string& a : args) argv.push_back(a.data());
+  argv.push_back(nullptr);
   const pid_t child = ::fork();
   ASSERT_GE(child, 0);
-  if (child == 0) {
-    ::signal(SIGXFSZ, SIG_IGN);  // a write past the limit fails with EFBIG instead
-    const rlimit limit{4096, 4096};
+  if (child == 0) {  // system calls only until exec
+    struct sigaction ignore {};
+    ignore.sa_handler = SIG_IGN;
+    ::sigaction(SIGXFSZ, &ignore, nullptr);
+    const rlimit limit{2048, 2048};
     ::setrlimit(RLIMIT_FSIZE, &limit);
-    int code = 3;
-    try {
-      VideoWriter video(path, 160, 120, 30.0);
-      for (int f = 0; f < 49; ++f) video.write(moving_square(160, 120, f % 20));
-      video.close();
-      code = 1;  // reported success
-    } catch (const Error& e) {
-      code = std::string(e.what()).find(path.string()) != std::string::npos ? 0 : 2;
-    }
-    ::_exit(code);
+    const int out = ::open("/dev/null", O_WRONLY);
+    const int error = ::open(err.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    ::dup2(out, STDOUT_FILENO);
+    ::dup2(error, STDERR_FILENO);
+    ::execv(argv[0], argv.data());
+    ::_exit(127);
   }
   int status = 0;
-  while (::waitpid(child, &status, 0) < 0 && errno == EINTR) {
+  const bool ended =
+      test::eventually([&] { return ::waitpid(child, &status, WNOHANG) == child; }, 300.0);
+  if (!ended) {
+    ::kill(child, SIGKILL);
+    ::waitpid(child, &status, 0);
   }
+  ASSERT_TRUE(ended) << "mjarm did not end";
   ASSERT_TRUE(WIFEXITED(status));
-  EXPECT_EQ(WEXITSTATUS(status), 0) << "1: success was reported, 2: the path was not named";
+  const std::string message = test::slurp(err);
+  EXPECT_EQ(WEXITSTATUS(status), 1) << message;
+  EXPECT_NE(message.find("'" + path.string() + "'"), std::string::npos) << message;
+  EXPECT_NE(message.find("is not a complete MP4"), std::string::npos) << message;
 }
 
 // `mjarm run … --video` with an ffmpeg that never reads: SIGINT and SIGTERM end the run at once
