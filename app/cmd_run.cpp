@@ -152,18 +152,23 @@ void run_all(const ShelfPickOptions& base, int seeds, bool json) {
   std::vector<Row> rows;
   const auto& robots = shelf_pick_robots();
   const auto& controllers = shelf_pick_controllers();
-  Progress progress("shelf picks",
-                    static_cast<std::int64_t>(robots.size() * controllers.size()) * seeds);
+  const std::int64_t planned =
+      static_cast<std::int64_t>(robots.size() * controllers.size()) * seeds;
+  Progress progress("shelf picks", planned);
   std::int64_t done = 0;
+  // Ctrl-C or SIGTERM: stop at the next tick, report the rows done so far (interrupt.hpp)
+  bool interrupted = false;
   for (const auto& robot : robots) {
     for (const auto& controller : controllers) {
       Row row{robot.name, controller};
-      for (int k = 0; k < seeds; ++k) {
+      for (int k = 0; k < seeds && !interrupted; ++k) {
         ShelfPickOptions options = base;
         options.request.robot = robot.name;
         options.request.controller = controller;
         options.request.seed = base.request.seed + static_cast<std::uint64_t>(k);
         const ShelfPickReport r = run_shelf_pick(options);
+        interrupted = interrupt_requested() || r.outcome == PickOutcome::interrupted;
+        if (interrupted) break;  // a run cut short is not a row's figure
         const PickMetrics& m = r.metrics;
         ++row.runs;
         row.saturated = std::max(row.saturated, r.saturated_ticks);
@@ -176,10 +181,14 @@ void run_all(const ShelfPickOptions& base, int seeds, bool json) {
         row.steady_max = std::max(row.steady_max, m.steady_state_max);
         row.hold_mean = std::max(row.hold_mean, m.hold_mean);
       }
-      rows.push_back(row);
+      if (row.runs > 0) rows.push_back(row);
+      if (interrupted) break;
     }
+    if (interrupted) break;
   }
   progress.finish();
+  const std::string stopped = "interrupted after " + std::to_string(done) + " of " +
+                              std::to_string(planned) + " shelf picks";
   if (json) {
     Json doc = Json::array();
     for (const Row& row : rows)
@@ -196,7 +205,10 @@ void run_all(const ShelfPickOptions& base, int seeds, bool json) {
     print_json({{"scenario", "shelf-pick"},
                 {"first_seed", base.request.seed},
                 {"seeds", seeds},
+                {"interrupted", interrupted},
+                {"runs", done},
                 {"rows", doc}});
+    if (interrupted) throw InterruptedError(stopped, interrupt_signal());
     return;
   }
   if (seeds == 1) {
@@ -222,6 +234,10 @@ void run_all(const ShelfPickOptions& base, int seeds, bool json) {
                    fixed(row.steady_max * 1e3, 4), fixed(row.hold_mean * 1e3, 4),
                    std::to_string(row.saturated)});
   table.print(std::cout, 0);
+  if (interrupted) {
+    std::cout << stopped << ": the rows above hold the runs done\n";
+    throw InterruptedError(stopped, interrupt_signal());
+  }
   const bool all_held =
       std::all_of(rows.begin(), rows.end(), [](const Row& row) { return row.held == row.runs; });
   if (!all_held) throw Error("some shelf picks did not hold (see the 'held' column)");
@@ -337,6 +353,16 @@ Command add_run_command(CLI::App& root) {
             } else {
               print_shelf_pick(std::cout, report);
             }
+            if (report.outcome == PickOutcome::interrupted)
+              throw InterruptedError(
+                  "the shelf pick was interrupted at t = " + fixed(report.run.end_time, 3) + " s" +
+                      (report.recording.empty()
+                           ? std::string()
+                           : "; the recording is in " + report.recording.string()) +
+                      (report.video.empty()         ? std::string()
+                       : report.video_error.empty() ? "; the video is in " + report.video.string()
+                                                    : "; " + report.video_error),
+                  interrupt_signal());
             if (!report.ok()) {
               std::string why = "the shelf pick ended " + std::string(to_string(report.outcome)) +
                                 ": " + report.run.message;

@@ -78,6 +78,9 @@ int main(int argc, char** argv) {
     }
   } catch (const UsageError& e) {
     return fail(e.what(), 2, true);
+  } catch (const InterruptedError& e) {
+    std::cout.flush();
+    return fail(e.what(), e.exit_code(), false);
   } catch (const mjarm::Error& e) {
     return fail(e.what(), 1, false);
   } catch (const std::exception& e) {

@@ -1,5 +1,6 @@
 #include "output.hpp"
 
+#include <signal.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -8,6 +9,9 @@
 #include <iostream>
 
 namespace mjarm::cli {
+
+InterruptedError::InterruptedError(const std::string& what, int signal)
+    : std::runtime_error(what), signal_(signal > 0 ? signal : SIGINT) {}
 
 namespace {
 

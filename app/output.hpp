@@ -26,6 +26,18 @@ class UsageError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+/// A command stopped by SIGINT or SIGTERM (sim/interrupt.hpp) after printing what it had done:
+/// `main` exits with 128 + the signal's number (130 for Ctrl-C, 143 for SIGTERM).
+class InterruptedError : public std::runtime_error {
+ public:
+  /// @param signal the signal that stopped the command (`interrupt_signal()`; 0: SIGINT)
+  InterruptedError(const std::string& what, int signal);
+  int exit_code() const noexcept { return 128 + signal_; }
+
+ private:
+  int signal_;
+};
+
 /// @p v with @p decimals digits after the point; "inf", "-inf" and "nan" spelled out.
 std::string fixed(double v, int decimals = 4);
 

@@ -15,7 +15,7 @@ Figure phases_figure(const Recording& recording, const std::filesystem::path& da
   f.info.name = "phases";
   f.info.title = "Task phases and events over time (" + describe(recording) + ")";
   std::string s =
-      "set title " + gp_string(f.info.title) + " font ',16'\n" + common_style() +
+      "set title " + gnuplot_string(f.info.title) + " font ',16'\n" + common_style() +
       "unset grid\nset grid xtics lc rgb '#d0d0d0'\n"
       // a margin on the right: a phase or event at the very end stays visible
       "set xrange [" +
@@ -40,22 +40,22 @@ Figure phases_figure(const Recording& recording, const std::filesystem::path& da
     }
     // wide bands are named inside, narrow ones (a phase at the very end) beside their line
     if (b - a > 0.15 * span) {
-      s += "set label " + id + " " + gp_string(phases[k].message) + " at " +
+      s += "set label " + id + " " + gnuplot_string(phases[k].message) + " at " +
            gp_number(0.5 * (a + b)) + ", 1.55 center font ',15' front\n";
-      s += "set label " + std::to_string(100 + k) + " " + gp_string(times) + " at " +
+      s += "set label " + std::to_string(100 + k) + " " + gnuplot_string(times) + " at " +
            gp_number(0.5 * (a + b)) + ", 1.35 center font ',11' tc rgb '#505050' front\n";
     } else {
       s += "set arrow " + id + " from " + gp_number(a) + ", 1.1 to " + gp_number(a) +
            ", 1.9 nohead lw 3 lc rgb " + line_color(k) + " front\n";
-      s += "set label " + id + " " + gp_string(phases[k].message) + " at " + gp_number(a) + ", " +
-           gp_number(1.7 - 0.2 * static_cast<double>(k % 3)) + " " + label_side(a) +
+      s += "set label " + id + " " + gnuplot_string(phases[k].message) + " at " + gp_number(a) +
+           ", " + gp_number(1.7 - 0.2 * static_cast<double>(k % 3)) + " " + label_side(a) +
            " font ',15' front\n";
     }
     char from[64];
     std::snprintf(from, sizeof(from), " (from %.3f s)", a);
     const std::string legend = phases[k].message + from;
     plot += std::string(k ? ", " : "") + "NaN with boxes fs solid 1.0 fc rgb " + band_color(k) +
-            " title " + gp_string(legend);
+            " title " + gnuplot_string(legend);
     f.info.series.push_back(phases[k].message);
   }
   if (phases.empty()) {
@@ -73,14 +73,14 @@ Figure phases_figure(const Recording& recording, const std::filesystem::path& da
     ++others;
     if (others > 24) continue;  // a crowded run: the first ones, the rest counted in the notes
     events += gp_number(e.t) + " 0.85\n";
-    s += "set label " + std::to_string(200 + others) + " " + gp_string(e.kind) + " at " +
+    s += "set label " + std::to_string(200 + others) + " " + gnuplot_string(e.kind) + " at " +
          gp_number(e.t) + ", " + gp_number(0.75 - 0.2 * static_cast<double>(others % 3)) + " " +
          label_side(e.t) + " font ',13' front\n";
   }
   if (others > 0) {
     const std::filesystem::path file = data_dir / "phases_events.dat";
     f.data.emplace_back(file, "# t [s]  stem height\n" + events);
-    plot += std::string(phases.empty() ? "" : ", ") + gp_string(file.string()) +
+    plot += std::string(phases.empty() ? "" : ", ") + gnuplot_string(file.string()) +
             " using 1:2 with impulses lw 2 lc rgb '#404040' title 'other events'";
     f.info.series.push_back("other events");
     f.info.notes.push_back(std::to_string(others) + " other events" +

@@ -7,14 +7,6 @@
 
 namespace mjarm::plot::detail {
 
-std::string gp_string(const std::string& text) {
-  // single quotes: no escapes inside except '' for a quote
-  std::string out = "'";
-  for (const char c : text)
-    out += c == '\'' ? std::string("''") : std::string(1, c == '\n' ? ' ' : c);
-  return out + "'";
-}
-
 std::string gp_number(double value) {
   if (std::isnan(value)) return "NaN";
   if (std::isinf(value)) return value > 0 ? "1e308" : "-1e308";
@@ -68,7 +60,7 @@ std::string phase_background(const Recording& recording) {
     const bool at_end = (t1 - a) < 0.08 * (t1 - t0);
     s += "set arrow " + id + " from first " + gp_number(a) + ", graph 0 to first " + gp_number(a) +
          ", graph 1 nohead lc rgb '#9a9a9a' dt 2\n";
-    s += "set label " + id + " " + gp_string(phases[k].message) + " at first " + gp_number(a) +
+    s += "set label " + id + " " + gnuplot_string(phases[k].message) + " at first " + gp_number(a) +
          ", graph 0.975 " + (at_end ? "right offset -0.4,0" : "left offset 0.4,0") +
          " font ',12' tc rgb '#505050' front\n";
   }
@@ -84,7 +76,7 @@ std::string common_style() {
 }
 
 std::string time_figure_preamble(const Recording& recording, const std::string& title) {
-  return common_style() + phase_background(recording) + "set title " + gp_string(title) +
+  return common_style() + phase_background(recording) + "set title " + gnuplot_string(title) +
          " font ',16'\n";
 }
 

@@ -71,10 +71,10 @@ Figure tracking_error_figure(const Recording& recording, const fs::path& data_di
              "set yrange [0:*]\nset y2range [0:*]\n"
              "set key outside below center horizontal width -2\nset bmargin 5.5\n"
              "plot " +
-             gp_string(file.string()) + " using 1:2 with lines lw 2.5 lc rgb " + line_color(0) +
-             " title " + gp_string(f.info.series[0]) +
+             gnuplot_string(file.string()) + " using 1:2 with lines lw 2.5 lc rgb " +
+             line_color(0) + " title " + gnuplot_string(f.info.series[0]) +
              ", \\\n     '' using 1:3 axes x1y2 with lines lw 2 dt 2 lc rgb " + line_color(3) +
-             " title " + gp_string(f.info.series[1]) + "\n";
+             " title " + gnuplot_string(f.info.series[1]) + "\n";
   return f;
 }
 
@@ -144,9 +144,9 @@ Figure joint_torques_figure(const Recording& recording, const fs::path& data_dir
     const std::string title = all_limited ? name + " (peak " + fixed(100.0 * p, 0) + " %)"
                                           : name + " (peak " + fixed(p, 1) + " N m)";
     f.info.series.push_back(title);
-    plot += std::string(k ? ", \\\n     " : "") + gp_string(file.string()) +
+    plot += std::string(k ? ", \\\n     " : "") + gnuplot_string(file.string()) +
             " using 1:" + std::to_string(k + 2) + " with lines lw 2 lc rgb " + line_color(k) +
-            " title " + gp_string(title);
+            " title " + gnuplot_string(title);
   }
   if (all_limited) {
     plot +=
@@ -165,7 +165,7 @@ Figure joint_torques_figure(const Recording& recording, const fs::path& data_dir
   }
   if (saturated > 0) {
     // first, so that the curves stay visible through a run of saturated ticks
-    plot = "plot " + gp_string(sat_file.string()) +
+    plot = "plot " + gnuplot_string(sat_file.string()) +
            " using 1:2 with points pt 6 ps 1.2 lw 1.5 lc rgb 'black' title 'saturated tick "
            "(clipped)', \\\n     " +
            plot.substr(5);
@@ -222,10 +222,11 @@ Figure contact_force_figure(const Recording& recording, const fs::path& data_dir
   f.script = time_figure_preamble(recording, f.info.title) +
              "set ylabel 'normal force [N]'\nset y2label 'contacts [count]'\nset y2tics\nset key "
              "outside below center horizontal width -2\nset bmargin 5.5\n" +
-             extra + "plot " + gp_string(file.string()) + " using 1:2 with lines lw 2.5 lc rgb " +
-             line_color(0) + " title " + gp_string(f.info.series[0]) +
+             extra + "plot " + gnuplot_string(file.string()) +
+             " using 1:2 with lines lw 2.5 lc rgb " + line_color(0) + " title " +
+             gnuplot_string(f.info.series[0]) +
              ", \\\n     '' using 1:3 axes x1y2 with steps lw 1.5 lc rgb " + line_color(7) +
-             " title " + gp_string(f.info.series[1]) + "\n";
+             " title " + gnuplot_string(f.info.series[1]) + "\n";
   return f;
 }
 

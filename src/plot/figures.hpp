@@ -6,6 +6,7 @@
 #include <utility>
 #include <vector>
 
+#include "mjarm/plot/gnuplot.hpp"  // gnuplot_string: every text that reaches a script
 #include "mjarm/plot/plots.hpp"
 #include "mjarm/plot/recording.hpp"
 
@@ -25,7 +26,6 @@ Figure contact_force_figure(const Recording& recording, const std::filesystem::p
 Figure phases_figure(const Recording& recording, const std::filesystem::path& data_dir);
 
 // Helpers shared by the figures (figure_style.cpp).
-std::string gp_string(const std::string& text);    // a gnuplot string literal
 std::string gp_number(double value);               // shortest text gnuplot reads back; NaN as "NaN"
 std::string line_color(std::size_t k);             // distinct colours for curves
 std::string band_color(std::size_t k);             // light colours for phase bands

@@ -1,21 +1,17 @@
 #include "mjarm/plot/gnuplot.hpp"
 
 #include <fcntl.h>
-#include <signal.h>
-#include <spawn.h>
-#include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <chrono>
+#include <cmath>
 #include <cstring>
-#include <thread>
-#include <vector>
 
+#include "child_process.hpp"
 #include "executable_on_path.hpp"
 #include "mjarm/error.hpp"
-
-extern char** environ;
 
 namespace mjarm::plot {
 namespace {
@@ -35,6 +31,37 @@ std::string read_log(int fd) {
 
 }  // namespace
 
+std::string gnuplot_string(std::string_view text) {
+  std::string out;
+  bool in_quotes = false;
+  for (const char c : text) {
+    const auto byte = static_cast<unsigned char>(c);
+    if (byte == 0) continue;
+    if (byte < 0x20 || byte == 0x7f || c == '\'') {
+      // a control character or a quote: "\ooo" on its own, between single-quoted runs
+      if (in_quotes) out += '\'';
+      if (!out.empty()) out += '.';
+      const char octal[] = {'"',
+                            '\\',
+                            static_cast<char>('0' + (byte >> 6)),
+                            static_cast<char>('0' + ((byte >> 3) & 7)),
+                            static_cast<char>('0' + (byte & 7)),
+                            '"'};
+      out.append(octal, sizeof octal);
+      in_quotes = false;
+      continue;
+    }
+    if (!in_quotes) {
+      if (!out.empty()) out += '.';
+      out += '\'';
+      in_quotes = true;
+    }
+    out += c;
+  }
+  if (in_quotes) out += '\'';
+  return out.empty() ? "''" : out;
+}
+
 fs::path find_gnuplot() {
   const std::string gnuplot = executable_on_path("gnuplot");
   if (gnuplot.empty()) {
@@ -46,44 +73,37 @@ fs::path find_gnuplot() {
 }
 
 void run_gnuplot(const fs::path& script, double timeout_s) {
+  if (!(timeout_s > 0.0) || !std::isfinite(timeout_s))
+    throw Error("gnuplot timeout must be a finite number of seconds > 0, got " +
+                std::to_string(timeout_s));
   const fs::path gnuplot = find_gnuplot();
   // gnuplot's messages go to an unlinked temporary file: no pipe to drain while we wait
   char log_name[] = "/tmp/mjarm-gnuplot-XXXXXX";
-  const int log = ::mkstemp(log_name);
+  const int log = ::mkostemp(log_name, O_CLOEXEC);
   if (log < 0)
     throw Error(std::string("cannot create a log file for gnuplot: ") + std::strerror(errno));
   ::unlink(log_name);
 
-  std::string program = gnuplot.string(), name = script.string();
-  std::vector<char*> argv{program.data(), name.data(), nullptr};
-  posix_spawn_file_actions_t actions;
-  posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_addopen(&actions, STDIN_FILENO, "/dev/null", O_RDONLY, 0);
-  posix_spawn_file_actions_adddup2(&actions, log, STDOUT_FILENO);
-  posix_spawn_file_actions_adddup2(&actions, log, STDERR_FILENO);
-  pid_t pid = -1;
-  const int spawned = ::posix_spawn(&pid, program.c_str(), &actions, nullptr, argv.data(), environ);
-  posix_spawn_file_actions_destroy(&actions);
-  if (spawned != 0) {
+  // an argv array, no shell; the child dies with mjarm (child_process.hpp)
+  const std::string program = gnuplot.string();
+  int error = 0;
+  const pid_t pid = start_child({program, script.string()}, {-1, log, log}, false, error);
+  if (pid < 0) {
     ::close(log);
     throw Error("cannot start gnuplot ('" + program + "') on '" + script.string() +
-                "': " + std::strerror(spawned));
+                "': " + std::strerror(error));
   }
 
-  const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(timeout_s);
+  const auto deadline =
+      std::chrono::steady_clock::now() +
+      std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+          std::chrono::duration<double>(std::min(timeout_s, 1e7)));  // no overflow
   int status = 0;
-  for (;;) {
-    const pid_t done = ::waitpid(pid, &status, WNOHANG);
-    if (done == pid || (done < 0 && errno != EINTR)) break;
-    if (std::chrono::steady_clock::now() > deadline) {
-      ::kill(pid, SIGKILL);
-      while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
-      }
-      ::close(log);
-      throw Error("gnuplot did not finish '" + script.string() + "' within " +
-                  std::to_string(timeout_s) + " s and was stopped");
-    }
-    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  if (!wait_child_until(pid, deadline, status)) {
+    kill_child(pid, false);
+    ::close(log);
+    throw Error("gnuplot did not finish '" + script.string() + "' within " +
+                std::to_string(timeout_s) + " s and was stopped");
   }
   const std::string messages = read_log(log);
   ::close(log);

@@ -65,7 +65,10 @@ std::vector<PlotInfo> make_plots(const Recording& recording, const fs::path& out
   // every figure is built (and every column checked) before anything is written or run
   const fs::path out = out_dir.empty() ? recording.directory() / "plots" : out_dir;
   std::error_code ec;
+  // absolute, so that no file name in the script starts with '<' or '|' (a command to gnuplot)
   const fs::path absolute_out = fs::absolute(out, ec);
+  if (ec || !absolute_out.is_absolute())
+    throw Error("cannot resolve the plot folder " + quoted(out) + ": " + ec.message());
   const fs::path data_dir = absolute_out / "gnuplot";
   std::vector<detail::Figure> figures;
   figures.push_back(detail::tracking_error_figure(recording, data_dir));
@@ -77,7 +80,10 @@ std::vector<PlotInfo> make_plots(const Recording& recording, const fs::path& out
   prepare_directories(out, data_dir);
   // a font size that stays readable from 640x360 to 4K: proportional to the height
   const int font = std::max(9, options.height / 52);
-  std::string script = "# drawn by `mjarm plot` from " + recording.directory().string() +
+  // the recording's folder is quoted like every other text: a newline in its name must not
+  // end the comment and start a command
+  std::string script = "# drawn by `mjarm plot` from " +
+                       gnuplot_string(recording.directory().string()) +
                        "; run `gnuplot plots.gp` to redraw\n"
                        "set terminal pngcairo noenhanced size " +
                        std::to_string(options.width) + "," + std::to_string(options.height) +
@@ -89,8 +95,7 @@ std::vector<PlotInfo> make_plots(const Recording& recording, const fs::path& out
     figure.info.path = absolute_out / (figure.info.name + ".png");
     for (const auto& [path, text] : figure.data) write_file(path, text);
     script += "\n# ---- " + figure.info.name + "\nreset\nset output " +
-              detail::gp_string(figure.info.path.string()) + "\n" + figure.script +
-              "unset output\n";
+              gnuplot_string(figure.info.path.string()) + "\n" + figure.script + "unset output\n";
     infos.push_back(figure.info);
   }
   const fs::path script_path = data_dir / "plots.gp";

@@ -1,12 +1,15 @@
 #include "mjarm/render/video_writer.hpp"
 
 #include <fcntl.h>
+#include <poll.h>
 #include <signal.h>
-#include <spawn.h>
+#include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
+#include <chrono>
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
@@ -14,11 +17,11 @@
 #include <sstream>
 #include <vector>
 
+#include "child_process.hpp"
 #include "executable_on_path.hpp"
 #include "mjarm/error.hpp"
+#include "mjarm/sim/interrupt.hpp"
 #include "quoted_path.hpp"
-
-extern char** environ;
 
 namespace mjarm {
 namespace {
@@ -63,6 +66,88 @@ std::string describe_status(int status) {
   return "status " + std::to_string(status);
 }
 
+// The one way a path reaches ffmpeg's command line. ffmpeg gets an argv array (no shell, so
+// nothing to quote for one); the "file:" protocol prefix keeps it from reading a ':' in the name
+// as a protocol and a leading '-' as an option. Every byte but NUL passes unchanged.
+std::string ffmpeg_output(const std::filesystem::path& path) { return "file:" + path.string(); }
+
+using Clock = std::chrono::steady_clock;
+
+// After Ctrl-C or SIGTERM, how long ffmpeg still gets to take a frame or to finalize the file.
+constexpr double kInterruptGrace = 3.0;  // [s]
+
+Clock::time_point after(double seconds) {
+  return Clock::now() + std::chrono::duration_cast<Clock::duration>(
+                            std::chrono::duration<double>(std::min(seconds, 1e7)));
+}
+
+// @p seconds as a person writes them: "3", "0.5", "60"
+std::string seconds_text(double seconds) {
+  std::ostringstream text;
+  text.precision(3);
+  text << seconds;
+  return text.str();
+}
+
+// The deadline cut to the grace period once an interrupt is pending (the first time it is seen).
+void shorten_on_interrupt(Clock::time_point& deadline, bool& interrupted) {
+  if (interrupted || !interrupt_requested()) return;
+  interrupted = true;
+  deadline = std::min(deadline, after(kInterruptGrace));
+}
+
+// Why @p path is not a complete MP4 (empty when it is): it must exist, be a non-empty regular
+// file, and its top-level boxes (32-bit size, type; size 1: a 64-bit size follows; size 0: to
+// the end of the file) must tile the file and include the `moov` box, which ffmpeg writes last
+// (or, with +faststart, moves to the front once the rest is written).
+std::string mp4_defect(const std::filesystem::path& path) {
+  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+  if (fd < 0) return std::string("it cannot be opened: ") + std::strerror(errno);
+  struct stat info {};
+  if (::fstat(fd, &info) != 0 || !S_ISREG(info.st_mode)) {
+    ::close(fd);
+    return "it is not a regular file";
+  }
+  const auto size = static_cast<std::uint64_t>(info.st_size);
+  std::string defect = size == 0 ? "it is empty" : "";
+  bool moov = false;
+  std::uint64_t at = 0;
+  while (defect.empty() && at < size) {
+    unsigned char header[16];
+    const ssize_t n = ::pread(fd, header, sizeof header, static_cast<off_t>(at));
+    if (n < 8) {
+      defect = "it ends inside a box header at byte " + std::to_string(at);
+      break;
+    }
+    std::uint64_t box = 0;
+    for (int k = 0; k < 4; ++k) box = box << 8 | header[k];
+    std::uint64_t header_size = 8;
+    if (box == 1) {
+      if (n < 16) {
+        defect = "it ends inside a box header at byte " + std::to_string(at);
+        break;
+      }
+      box = 0;
+      for (int k = 8; k < 16; ++k) box = box << 8 | header[k];
+      header_size = 16;
+    } else if (box == 0) {
+      box = size - at;
+    }
+    const std::string type(reinterpret_cast<const char*>(header) + 4, 4);
+    if (box < header_size || box > size - at) {
+      defect = "its '" + type + "' box at byte " + std::to_string(at) + " claims " +
+               std::to_string(box) + " bytes, but the file has " + std::to_string(size - at) +
+               " from there (truncated)";
+      break;
+    }
+    moov = moov || type == "moov";
+    at += box;
+  }
+  ::close(fd);
+  if (defect.empty() && !moov) defect = "it has no 'moov' box, the index a player needs";
+  return defect;
+}
+
 }  // namespace
 
 struct VideoWriter::Impl {
@@ -70,8 +155,9 @@ struct VideoWriter::Impl {
   int width = 0;
   int height = 0;
   double fps = 0.0;
-  pid_t pid = -1;
-  int pipe_fd = -1;    // write end of ffmpeg's stdin
+  double timeout_s = 0.0;
+  pid_t pid = -1;      // ffmpeg, leading its own process group
+  int pipe_fd = -1;    // write end of ffmpeg's stdin, non-blocking
   int stderr_fd = -1;  // unlinked temporary file holding ffmpeg's stderr
   std::int64_t frames = 0;
 
@@ -87,26 +173,55 @@ struct VideoWriter::Impl {
     if (stderr_fd >= 0) ::close(stderr_fd);
   }
 
-  // Closes ffmpeg's input and waits for it; returns its wait status.
-  int reap() noexcept {
+  // ffmpeg's messages so far (the last lines say why it stopped); closes the log
+  std::string take_log() {
+    const std::string log = read_all(stderr_fd);
+    if (stderr_fd >= 0) ::close(stderr_fd);
+    stderr_fd = -1;
+    return log.empty() ? "no message" : log;
+  }
+
+  // Ends ffmpeg's input and gives it @p grace_s to exit; then kills it (and anything it
+  // started) and reaps it. Returns its wait status. For the error paths.
+  int stop(double grace_s) noexcept {
     if (pipe_fd >= 0) ::close(pipe_fd);
     pipe_fd = -1;
     int status = 0;
-    while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
-    }
+    if (grace_s <= 0.0 || !wait_child_until(pid, after(grace_s), status))
+      status = kill_child(pid, true);
     pid = -1;
     return status;
   }
 
+  // Closes ffmpeg's input, waits for it to finalize the file (up to the timeout, less after an
+  // interrupt), then checks the file itself: ffmpeg's exit status alone misses a full disk.
   void finish() {
-    const int status = reap();
-    const std::string log = read_all(stderr_fd);
-    ::close(stderr_fd);
-    stderr_fd = -1;
+    if (pipe_fd >= 0) ::close(pipe_fd);
+    pipe_fd = -1;
+    Clock::time_point deadline = after(timeout_s);
+    bool interrupted = false;
+    int status = 0;
+    for (;;) {
+      shorten_on_interrupt(deadline, interrupted);
+      const Clock::time_point slice = std::min(deadline, after(0.1));
+      if (wait_child_until(pid, slice, status)) break;
+      if (Clock::now() < deadline) continue;
+      stop(0.0);
+      throw Error("ffmpeg did not finalize video " + quoted(path) + " within " +
+                  seconds_text(interrupted ? kInterruptGrace : timeout_s) + " s" +
+                  (interrupted ? " of the interrupt" : "") + " and was stopped after " +
+                  std::to_string(frames) + " frames; the file is not playable: " + take_log());
+    }
+    pid = -1;
+    const std::string log = take_log();
     if (!(WIFEXITED(status) && WEXITSTATUS(status) == 0))
       throw Error("ffmpeg failed to finalize video " + quoted(path) + " after " +
-                  std::to_string(frames) + " frames (" + describe_status(status) +
-                  "): " + (log.empty() ? "no message" : log));
+                  std::to_string(frames) + " frames (" + describe_status(status) + "): " + log);
+    const std::string defect = mp4_defect(path);
+    if (!defect.empty())
+      throw Error("ffmpeg reported success, but video " + quoted(path) +
+                  " is not a complete MP4 (" + defect + ") after " + std::to_string(frames) +
+                  " frames; is the disk full? ffmpeg said: " + log);
   }
 };
 
@@ -123,6 +238,9 @@ VideoWriter::VideoWriter(const std::filesystem::path& path, int width, int heigh
   if (!std::isfinite(fps) || !(fps > 0.0))
     throw Error("video frame rate must be a finite number > 0 frames/s, got " +
                 std::to_string(fps) + " for " + quoted(path));
+  if (!std::isfinite(options.timeout_s) || !(options.timeout_s > 0.0))
+    throw Error("video timeout must be a finite number > 0 s, got " +
+                seconds_text(options.timeout_s) + " for " + quoted(path));
   // prove the path writable now, before any frame, with the system's reason when it is not
   {
     const int fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
@@ -136,6 +254,7 @@ VideoWriter::VideoWriter(const std::filesystem::path& path, int width, int heigh
   impl->width = width;
   impl->height = height;
   impl->fps = fps;
+  impl->timeout_s = options.timeout_s;
 
   // ffmpeg's stderr goes to an unlinked temporary file: read back for error messages, and a
   // chatty ffmpeg can never block on a full pipe
@@ -173,41 +292,19 @@ VideoWriter::VideoWriter(const std::filesystem::path& path, int width, int heigh
     const int q = options.quality == 20 ? 4 : options.quality;
     args.insert(args.end(), {"-q:v", std::to_string(q)});
   }
-  // "file:" keeps ffmpeg from reading a ':' in the name as a protocol
-  args.insert(args.end(), {"-pix_fmt", "yuv420p", "-movflags", "+faststart", "-f", "mp4",
-                           "file:" + path.string()});
-  std::vector<char*> argv;
-  for (auto& a : args) argv.push_back(a.data());
-  argv.push_back(nullptr);
-
-  posix_spawn_file_actions_t actions;
-  posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_adddup2(&actions, fds[0], STDIN_FILENO);
-  posix_spawn_file_actions_adddup2(&actions, impl->stderr_fd, STDOUT_FILENO);
-  posix_spawn_file_actions_adddup2(&actions, impl->stderr_fd, STDERR_FILENO);
-  posix_spawnattr_t attributes;
-  posix_spawnattr_init(&attributes);
-  // own process group: a terminal's Ctrl-C stops the program, and ffmpeg then finalizes on EOF
-  posix_spawnattr_setpgroup(&attributes, 0);
-  sigset_t defaults, empty;
-  sigemptyset(&defaults);
-  sigaddset(&defaults, SIGPIPE);
-  sigaddset(&defaults, SIGINT);
-  sigemptyset(&empty);
-  posix_spawnattr_setsigdefault(&attributes, &defaults);
-  posix_spawnattr_setsigmask(&attributes, &empty);
-  posix_spawnattr_setflags(&attributes,
-                           POSIX_SPAWN_SETPGROUP | POSIX_SPAWN_SETSIGDEF | POSIX_SPAWN_SETSIGMASK);
-  pid_t pid = -1;
-  const int spawned =
-      ::posix_spawn(&pid, ffmpeg.c_str(), &actions, &attributes, argv.data(), environ);
-  posix_spawn_file_actions_destroy(&actions);
-  posix_spawnattr_destroy(&attributes);
+  args.insert(args.end(),
+              {"-pix_fmt", "yuv420p", "-movflags", "+faststart", "-f", "mp4", ffmpeg_output(path)});
+  // an argv array, never a shell; ffmpeg leads its own process group (a terminal's Ctrl-C
+  // reaches mjarm only, which then ends ffmpeg's input) and dies with mjarm (child_process.hpp)
+  int error = 0;
+  const pid_t pid = start_child(args, {fds[0], impl->stderr_fd, impl->stderr_fd}, true, error);
   ::close(fds[0]);
-  if (spawned != 0) {
+  if (pid < 0) {
     ::close(fds[1]);
-    throw Error("cannot start ffmpeg ('" + ffmpeg + "'): " + std::strerror(spawned));
+    throw Error("cannot start ffmpeg ('" + ffmpeg + "'): " + std::strerror(error));
   }
+  // writes wait with a deadline (poll), never in a blocking write ffmpeg may never drain
+  ::fcntl(fds[1], F_SETFL, ::fcntl(fds[1], F_GETFL) | O_NONBLOCK);
   impl->pid = pid;
   impl->pipe_fd = fds[1];
   impl_ = std::move(impl);
@@ -235,15 +332,29 @@ void VideoWriter::write(const Image& frame) {
   const std::uint8_t* data = frame.rgb.data();
   std::size_t left = frame.rgb.size();
   int error = 0;
+  Clock::time_point deadline = after(s.timeout_s);
+  bool interrupted = false;
   while (left > 0) {
     const ssize_t n = ::write(s.pipe_fd, data, left);
-    if (n < 0) {
-      if (errno == EINTR) continue;
+    if (n > 0) {
+      data += n;
+      left -= static_cast<std::size_t>(n);
+      continue;
+    }
+    if (n < 0 && errno != EAGAIN && errno != EINTR) {
       error = errno;
       break;
     }
-    data += n;
-    left -= static_cast<std::size_t>(n);
+    // the pipe is full: wait for ffmpeg to read, in slices, until the deadline
+    shorten_on_interrupt(deadline, interrupted);
+    const auto now = Clock::now();
+    if (now >= deadline) {
+      error = ETIMEDOUT;
+      break;
+    }
+    const auto wait = std::chrono::duration_cast<std::chrono::milliseconds>(deadline - now);
+    pollfd ready{s.pipe_fd, POLLOUT, 0};
+    ::poll(&ready, 1, static_cast<int>(std::clamp<std::int64_t>(wait.count(), 1, 100)));
   }
   if (error == EPIPE && !sigismember(&previous, SIGPIPE)) {
     const timespec no_wait{0, 0};
@@ -256,14 +367,19 @@ void VideoWriter::write(const Image& frame) {
     return;
   }
 
-  // ffmpeg went away (or the pipe broke): collect its reason and close
-  const int status = s.reap();
-  const std::string log = read_all(s.stderr_fd);
-  ::close(s.stderr_fd);
-  s.stderr_fd = -1;
+  if (error == ETIMEDOUT) {
+    // ffmpeg stopped reading: it will not finalize the file either
+    s.stop(0.0);
+    throw Error("ffmpeg did not take frame " + std::to_string(s.frames) + " of " + quoted(s.path) +
+                " within " + seconds_text(interrupted ? kInterruptGrace : s.timeout_s) + " s" +
+                (interrupted ? " of the interrupt" : "") +
+                " and was stopped; the file is not playable: " + s.take_log());
+  }
+  // ffmpeg went away (or the pipe broke): collect its reason
+  const int status = s.stop(kInterruptGrace);
   throw Error("ffmpeg stopped while receiving frame " + std::to_string(s.frames) + " of " +
               quoted(s.path) + " (" + std::strerror(error) + ", ffmpeg " + describe_status(status) +
-              "): " + (log.empty() ? "no message" : log));
+              "): " + s.take_log());
 }
 
 void VideoWriter::close() {

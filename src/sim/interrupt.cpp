@@ -16,7 +16,9 @@ bool g_guard_alive = false;
 struct sigaction g_previous_int;
 struct sigaction g_previous_term;
 
-extern "C" void on_interrupt(int) { g_interrupted = 1; }
+extern "C" void on_interrupt(int signal) {
+  if (g_interrupted == 0) g_interrupted = signal;  // the first signal names the interrupt
+}
 
 }  // namespace
 
@@ -45,6 +47,8 @@ InterruptGuard::~InterruptGuard() {
 }
 
 bool interrupt_requested() noexcept { return g_interrupted != 0; }
+
+int interrupt_signal() noexcept { return g_interrupted; }
 
 void clear_interrupt() noexcept { g_interrupted = 0; }
 

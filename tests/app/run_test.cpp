@@ -14,6 +14,7 @@
 #include "app/cli_runner.hpp"
 #include "render/render_test_support.hpp"
 #include "support/file_size_limit.hpp"
+#include "support/running_process.hpp"
 
 namespace {
 
@@ -186,6 +187,36 @@ TEST(RunCli, AllSweepsEveryRobotAndController) {
   }
   EXPECT_EQ(doc["rows"][0]["robot"], "planar2");
   EXPECT_EQ(doc["rows"][7]["controller"], "accel");
+}
+
+// issue 16, item 5: Ctrl-C (or SIGTERM) stops a long sweep at the next tick; the rows done so far
+// are reported, the run is marked interrupted, and the exit status is 128 + the signal
+TEST(RunCli, AllStopsAtCtrlCWithTheRowsDone) {
+  for (const int signal : {SIGINT, SIGTERM}) {
+    mjarm::test::RunningProcess run(
+        {MJARM_CLI, "run", "shelf-pick", "--all", "--seeds", "100000", "--json"}, scratch());
+    ASSERT_TRUE(run.started());
+    // signalled once its handler is installed, not after a guessed delay
+    ASSERT_TRUE(mjarm::test::eventually(
+        [&] { return mjarm::test::catches_signal(run.pid(), signal) || run.wait(0); }, 60.0));
+    run.signal(signal);
+    ASSERT_TRUE(run.wait(60.0)) << "the sweep went on after the signal";
+    EXPECT_FALSE(run.signaled());
+    EXPECT_EQ(run.exit_code(), 128 + signal) << run.err();
+    EXPECT_NE(run.err().find("interrupted after "), std::string::npos) << run.err();
+    EXPECT_NE(run.err().find(" of 800000 shelf picks"), std::string::npos) << run.err();
+    ASSERT_TRUE(json::accept(run.out())) << run.out();
+    const json doc = json::parse(run.out());
+    EXPECT_EQ(doc["interrupted"], true);
+    int runs = 0;
+    for (const json& row : doc["rows"]) {
+      EXPECT_GT(row["runs"].get<int>(), 0) << row;
+      EXPECT_EQ(row["held"], row["runs"]) << row;  // no interrupted run counted as a failure
+      runs += row["runs"].get<int>();
+    }
+    EXPECT_EQ(doc["runs"], runs);
+    EXPECT_LT(runs, 800000);
+  }
 }
 
 TEST(RunCli, DemoRunsTheShelfPickAndRecordsIntoOutDemo) {

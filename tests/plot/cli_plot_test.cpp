@@ -1,11 +1,14 @@
 // `mjarm plot` through the built executable: paths and --json on success, exit codes and
 // messages for bad input.
 
+#include <fcntl.h>
 #include <gtest/gtest.h>
+#include <spawn.h>
 #include <sys/wait.h>
 
 #include <cstdlib>
 #include <nlohmann/json.hpp>
+#include <vector>
 
 #include "plot/plot_test_support.hpp"
 
@@ -91,6 +94,37 @@ TEST(PlotCli, BadInputFailsWithAMessage) {
   const CliResult help = run_cli("plot --help", dir);
   EXPECT_EQ(help.exit_code, 0);
   EXPECT_NE(help.out.find("gnuplot-nox"), std::string::npos);
+}
+
+// `mjarm plot DIR` run without a shell: argv as given, in working folder @p cwd
+int run_cli_argv(std::vector<std::string> args, const fs::path& cwd) {
+  std::vector<char*> argv{const_cast<char*>(MJARM_CLI)};
+  for (std::string& a : args) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_addchdir_np(&actions, cwd.c_str());
+  posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, "/dev/null", O_WRONLY, 0);
+  pid_t pid = -1;
+  const int spawned = posix_spawn(&pid, MJARM_CLI, &actions, nullptr, argv.data(), environ);
+  posix_spawn_file_actions_destroy(&actions);
+  if (spawned != 0) return -1;
+  int status = 0;
+  while (waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+  }
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+// issue 16, item 3: a folder name with a newline and a gnuplot command after it ran the command
+TEST(PlotCli, AFolderNameIsNeverACommand) {
+  test::TempDir dir("plot-cli-injection");
+  const fs::path rec = dir.path() / "rec\nsystem \"touch PWNED\"\n# '`touch PWNED2`$(touch PWNED3)";
+  test::record_press(rec);
+  EXPECT_EQ(run_cli_argv({"plot", rec.string()}, dir.path()), 0);
+  EXPECT_FALSE(fs::exists(dir.path() / "PWNED"));
+  EXPECT_FALSE(fs::exists(dir.path() / "PWNED2"));
+  EXPECT_FALSE(fs::exists(dir.path() / "PWNED3"));
+  EXPECT_GT(test::pixel_stats(rec / "plots" / "phases.png").variance, 300.0);
 }
 
 }  // namespace

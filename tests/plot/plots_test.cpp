@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cstdint>
 #include <cstdlib>
+#include <nlohmann/json.hpp>
 
 #include "mjarm/error.hpp"
 #include "mjarm/plot/gnuplot.hpp"
@@ -142,28 +143,72 @@ TEST(Plots, BadSizesAreRefused) {
   EXPECT_THROW(write_plots(run.recording, {}, options), Error);
 }
 
-TEST(Gnuplot, AFailingScriptReportsGnuplotsMessage) {
-  test::TempDir dir("plot-gnuplot");
-  test::write_file(dir.path() / "bad.gp", "set terminal pngcairo\nthis is not gnuplot\n");
-  try {
-    run_gnuplot(dir.path() / "bad.gp", 30.0);
-    FAIL() << "no error";
-  } catch (const Error& e) {
-    EXPECT_NE(std::string(e.what()).find("gnuplot exited with status"), std::string::npos)
-        << e.what();
-    EXPECT_NE(std::string(e.what()).find("line 2"), std::string::npos) << e.what();
-  }
+// Every text that reaches the gnuplot script, hostile: the recording's folder, the output
+// folder, the model, frame and controller names in summary.json (titles), the actuators' joint
+// names (curve titles), and events' kinds and phase names (labels). Each would run
+// `touch PWNED…` if it were written raw.
+std::string injection_text() {
+  return "x\nsystem \"touch PWNED1\"\n'\nsystem 'touch PWNED2'\n`touch PWNED3`$(touch PWNED4)"
+         "\"; system \"touch PWNED5\"; \"\\\nsystem \"touch PWNED6\"";
 }
 
-TEST(Gnuplot, ARunawayScriptIsStoppedAtTheTimeout) {
-  test::TempDir dir("plot-timeout");
-  test::write_file(dir.path() / "slow.gp", "pause 30\n");
+// the press recording in @p dir, its names replaced by the injection text
+void record_hostile_press(const fs::path& dir) {
+  test::record_press(dir);
+  nlohmann::json summary = nlohmann::json::parse(test::read_text(dir / "summary.json"));
+  summary["model"] = injection_text();
+  summary["frame"] = injection_text();
+  summary["controllers"] = nlohmann::json::array({{{"name", injection_text()}}});
+  for (auto& actuator : summary["actuators"]) actuator["joint"] = injection_text();
+  test::write_file(dir / "summary.json", summary.dump());
+  std::string csv_text = injection_text();  // a CSV cell: doubled quotes, in quotes
+  for (std::size_t at = 0; (at = csv_text.find('"', at)) != std::string::npos; at += 2)
+    csv_text.insert(at, 1, '"');
+  std::string events = test::read_text(dir / "events.csv");
+  events += "0.1,phase,\"" + csv_text + "\"\n0.2,\"" + csv_text + "\",message\n";
+  test::write_file(dir / "events.csv", events);
+}
+
+std::vector<fs::path> pwned_files(const fs::path& dir) {
+  std::vector<fs::path> found;
+  for (const auto& entry : fs::recursive_directory_iterator(dir))
+    if (entry.path().filename().string().rfind("PWNED", 0) == 0)  // the folders hold the word
+      found.push_back(entry.path());
+  return found;
+}
+
+TEST(Plots, NoTextReachesGnuplotAsACommand) {
+  test::TempDir dir("plot-injection");
+  // the folder names themselves hold the payload (a name may hold anything but '/')
+  const fs::path recording = dir.path() / ("rec" + injection_text());
+  record_hostile_press(recording);
+  const fs::path out = dir.path() / ("out" + injection_text());
+  // gnuplot's working folder is this process's: the scratch folder, where `touch` would write
+  const fs::path saved = fs::current_path();
+  fs::current_path(dir.path());
+  std::vector<fs::path> default_paths, out_paths;
+  std::string error;
   try {
-    run_gnuplot(dir.path() / "slow.gp", 0.3);
-    FAIL() << "no error";
-  } catch (const Error& e) {
-    EXPECT_NE(std::string(e.what()).find("did not finish"), std::string::npos) << e.what();
+    default_paths = write_plots(recording, {}, {});
+    out_paths = write_plots(recording, out, {});
+  } catch (const std::exception& e) {
+    error = e.what();
   }
+  fs::current_path(saved);
+  ASSERT_EQ(error, "");
+  EXPECT_EQ(pwned_files(dir.path()), std::vector<fs::path>{});
+  // the figures came out where they were asked for, under the exact (hostile) names
+  ASSERT_EQ(default_paths.size(), 4u);
+  ASSERT_EQ(out_paths.size(), 4u);
+  for (std::size_t k = 0; k < 4; ++k) {
+    EXPECT_EQ(default_paths[k].parent_path(), recording / "plots");
+    EXPECT_EQ(out_paths[k].parent_path(), out);
+    EXPECT_GT(test::pixel_stats(default_paths[k]).variance, 300.0) << default_paths[k];
+    EXPECT_GT(test::pixel_stats(out_paths[k]).variance, 300.0) << out_paths[k];
+  }
+  // no line of the script starts with a command taken from the names
+  const std::string script = test::read_text(out / "gnuplot" / "plots.gp");
+  EXPECT_EQ(script.find("\nsystem"), std::string::npos);
 }
 
 }  // namespace

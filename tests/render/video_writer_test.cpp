@@ -4,9 +4,12 @@
 
 #include "mjarm/render/video_writer.hpp"
 
+#include <fcntl.h>
 #include <gtest/gtest.h>
+#include <sys/resource.h>
 
 #include <cstdlib>
+#include <fstream>
 #include <stdexcept>
 
 #include "mjarm/error.hpp"
@@ -14,6 +17,7 @@
 #include "mjarm/render/frame_schedule.hpp"
 #include "mjarm/render/offscreen_renderer.hpp"
 #include "render_test_support.hpp"
+#include "support/running_process.hpp"
 
 namespace mjarm {
 namespace {
@@ -102,6 +106,36 @@ TEST(VideoWriter, WritesAValidMp4WithEveryFrame) {
   EXPECT_EQ(p.codec, "h264");
   EXPECT_NE(error_of([&] { video.write(moving_square(64, 48, 0)); }).find("after close"),
             std::string::npos);
+}
+
+// issue 16, item 3: the video path reaches ffmpeg's command line as one argv entry, never
+// through a shell nor read as an option or a protocol: every byte of the name is kept
+std::string hostile_video_name() {
+  return "-y:v\n'`touch PWNED1`$(touch PWNED2)\"; system \"touch PWNED3\" %d \\.mp4";
+}
+
+TEST(VideoWriter, AnyFileNameIsWrittenAsGiven) {
+  const fs::path dir = test::scratch() / "hostile\n$(touch PWNED4)";
+  fs::create_directories(dir);
+  const fs::path path = dir / hostile_video_name();
+  const fs::path saved = fs::current_path();
+  fs::current_path(dir);  // where a `touch` run by mistake would write
+  std::string error;
+  try {
+    VideoWriter video(path, 64, 48, 25.0);
+    for (int k = 0; k < 6; ++k) video.write(moving_square(64, 48, k));
+    video.close();
+  } catch (const Error& e) {
+    error = e.what();
+  }
+  fs::current_path(saved);
+  ASSERT_EQ(error, "");
+  EXPECT_EQ(probe("file:" + path.string()).frames, 6);
+  // (the video's own name holds the word: a file made by `touch` starts with it)
+  for (const auto& entry : fs::directory_iterator(dir))
+    EXPECT_NE(entry.path().filename().string().rfind("PWNED", 0), 0u) << entry.path();
+  for (const auto& entry : fs::directory_iterator(test::scratch()))
+    EXPECT_NE(entry.path().filename().string().rfind("PWNED", 0), 0u) << entry.path();
 }
 
 TEST(VideoWriter, DestroyedWithoutCloseStillFinalizes) {
@@ -250,6 +284,236 @@ TEST(VideoWriter, RendererFramesAtVideoRate) {
   video.close();
   EXPECT_EQ(video.frames(), 11);
   EXPECT_EQ(probe(path).frames, 11);
+}
+
+// ---- ffmpeg that misbehaves: fake ffmpeg scripts (issue 16, items 5 and 6)
+
+// Ends the test process with SIGALRM (a failure, never a hang) if a test outlives @p seconds.
+struct Watchdog {
+  explicit Watchdog(unsigned seconds) { ::alarm(seconds); }
+  ~Watchdog() { ::alarm(0); }
+};
+
+// A script called ffmpeg in a folder of its own (for PATH), running @p body. The video path is
+// its last argument without the "file:" prefix, in $out.
+fs::path fake_ffmpeg(const std::string& name, const std::string& body) {
+  const fs::path dir = test::scratch() / ("fake_ffmpeg_" + name);
+  fs::create_directories(dir);
+  const fs::path script = dir / "ffmpeg";
+  std::ofstream(script) << "#!/bin/sh\nfor last; do :; done\nout=\"${last#file:}\"\n" << body;
+  fs::permissions(script, fs::perms::owner_all | fs::perms::group_read | fs::perms::others_read);
+  return script;
+}
+
+// never reads its input, never exits by itself; leaves its pid in VIDEO.pid
+fs::path stuck_ffmpeg() { return fake_ffmpeg("stuck", "echo $$ > \"$out.pid\"\nexec sleep 300\n"); }
+
+pid_t read_pid(const fs::path& file) {
+  const std::string text = test::slurp(file);
+  return text.empty() ? -1 : static_cast<pid_t>(std::atol(text.c_str()));
+}
+
+TEST(VideoWriter, AnFfmpegThatStopsReadingIsKilledAtTheDeadline) {
+  const Watchdog watchdog(60);
+  VideoOptions options;
+  options.ffmpeg = stuck_ffmpeg();
+  options.timeout_s = 0.5;
+  const fs::path path = test::scratch() / "stuck.mp4";
+  VideoWriter video(path, 64, 48, 30.0, options);
+  std::string message;
+  for (int k = 0; k < 10000 && message.empty(); ++k) {
+    try {
+      video.write(moving_square(64, 48, k % 20));
+    } catch (const Error& e) {
+      message = e.what();
+    }
+  }
+  EXPECT_NE(message.find("did not take frame"), std::string::npos) << message;
+  EXPECT_NE(message.find(path.string()), std::string::npos) << message;
+  EXPECT_NE(message.find("not playable"), std::string::npos) << message;
+  EXPECT_FALSE(video.is_open());
+  const pid_t ffmpeg = read_pid(path.string() + ".pid");
+  ASSERT_GT(ffmpeg, 0);
+  EXPECT_FALSE(test::process_alive(ffmpeg)) << "ffmpeg " << ffmpeg << " was left running";
+  video.close();  // nothing left to do, no second error
+}
+
+TEST(VideoWriter, AnFfmpegThatNeverExitsIsKilledAtTheDeadline) {
+  const Watchdog watchdog(60);
+  VideoOptions options;
+  options.ffmpeg = stuck_ffmpeg();
+  options.timeout_s = 0.5;
+  const fs::path path = test::scratch() / "never_exits.mp4";
+  VideoWriter video(path, 64, 48, 30.0, options);
+  video.write(moving_square(64, 48, 0));  // fits in the pipe
+  const std::string message = error_of([&] { video.close(); });
+  EXPECT_NE(message.find("did not finalize video"), std::string::npos) << message;
+  const pid_t ffmpeg = read_pid(path.string() + ".pid");
+  ASSERT_GT(ffmpeg, 0);
+  EXPECT_FALSE(test::process_alive(ffmpeg));
+}
+
+TEST(VideoWriter, TheTimeoutMustBeAPositiveFiniteNumber) {
+  for (const double timeout : {0.0, -1.0, std::nan(""), HUGE_VAL}) {
+    VideoOptions options;
+    options.timeout_s = timeout;
+    const std::string message = error_of(
+        [&] { VideoWriter video(test::scratch() / "timeout.mp4", 64, 48, 30.0, options); });
+    EXPECT_NE(message.find("video timeout must be a finite number > 0 s"), std::string::npos)
+        << message;
+  }
+}
+
+// ffmpeg's exit status 0 is not enough: the file must be a complete MP4 (a full disk leaves one
+// without its moov box while ffmpeg may still exit 0)
+TEST(VideoWriter, ASuccessfulExitWithAnIncompleteFileIsAFailure) {
+  const Watchdog watchdog(60);
+  // ftyp (24 bytes) and an mdat header: what ffmpeg leaves when the disk fills up
+  const std::string ftyp = "\\000\\000\\000\\030ftypisom\\000\\000\\002\\000isomiso2";
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"printf '" + ftyp + "\\000\\000\\000\\010mdat' > \"$out\"", "no 'moov' box"},
+      {"printf '" + ftyp + "\\000\\000\\020\\000mdatabc' > \"$out\"", "truncated"},
+      {"printf '\\000\\000' > \"$out\"", "ends inside a box header"},
+      {": > \"$out\"", "it is empty"},
+      {"rm -f \"$out\"", "cannot be opened"}};
+  int k = 0;
+  for (const auto& [writes, defect] : cases) {
+    VideoOptions options;
+    options.ffmpeg = fake_ffmpeg("incomplete" + std::to_string(++k),
+                                 "cat > /dev/null\n" + writes + "\nexit 0\n");
+    const fs::path path = test::scratch() / ("incomplete" + std::to_string(k) + ".mp4");
+    VideoWriter video(path, 64, 48, 30.0, options);
+    for (int f = 0; f < 5; ++f) video.write(moving_square(64, 48, f));
+    const std::string message = error_of([&] { video.close(); });
+    EXPECT_NE(message.find("is not a complete MP4"), std::string::npos) << message;
+    EXPECT_NE(message.find(defect), std::string::npos) << message;
+    EXPECT_NE(message.find(path.string()), std::string::npos) << message;
+  }
+  // and one that exits 0 at once without reading: an error too, never success
+  VideoOptions quits;
+  quits.ffmpeg = fake_ffmpeg("quits", "exit 0\n");
+  const fs::path path = test::scratch() / "quits.mp4";
+  std::string message;
+  try {
+    VideoWriter video(path, 64, 48, 30.0, quits);
+    for (int f = 0; f < 50; ++f) video.write(moving_square(64, 48, f % 20));
+    video.close();
+  } catch (const Error& e) {
+    message = e.what();
+  }
+  EXPECT_NE(message.find(path.string()), std::string::npos) << message;
+}
+
+// a real ffmpeg on a "full disk": `mjarm run --video` with RLIMIT_FSIZE = 2 KiB, set in a forked
+// child before exec (ffmpeg inherits it; SIGXFSZ ignored, so writes fail with EFBIG). ffmpeg
+// exits 0 with a file cut at 2 KiB and no moov box: the run must fail and name the path
+TEST(VideoCli, AFullDiskIsReportedWithThePath) {
+  const fs::path dir = test::scratch() / "full_disk";
+  fs::create_directories(dir);
+  const fs::path path = dir / "full.mp4";
+  const fs::path err = dir / "stderr.txt";
+  std::vector<std::string> args = {MJARM_CLI, "run",         "shelf-pick", "--robot", "planar2",
+                                   "--video", path.string(), "--size",     "160x120"};
+  std::vector<char*> argv;
+  for (std::string& a : args) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  const pid_t child = ::fork();
+  ASSERT_GE(child, 0);
+  if (child == 0) {  // system calls only until exec
+    struct sigaction ignore {};
+    ignore.sa_handler = SIG_IGN;
+    ::sigaction(SIGXFSZ, &ignore, nullptr);
+    const rlimit limit{2048, 2048};
+    ::setrlimit(RLIMIT_FSIZE, &limit);
+    const int out = ::open("/dev/null", O_WRONLY);
+    const int error = ::open(err.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    ::dup2(out, STDOUT_FILENO);
+    ::dup2(error, STDERR_FILENO);
+    ::execv(argv[0], argv.data());
+    ::_exit(127);
+  }
+  int status = 0;
+  const bool ended =
+      test::eventually([&] { return ::waitpid(child, &status, WNOHANG) == child; }, 300.0);
+  if (!ended) {
+    ::kill(child, SIGKILL);
+    ::waitpid(child, &status, 0);
+  }
+  ASSERT_TRUE(ended) << "mjarm did not end";
+  ASSERT_TRUE(WIFEXITED(status));
+  const std::string message = test::slurp(err);
+  EXPECT_EQ(WEXITSTATUS(status), 1) << message;
+  EXPECT_NE(message.find("'" + path.string() + "'"), std::string::npos) << message;
+  EXPECT_NE(message.find("is not a complete MP4"), std::string::npos) << message;
+}
+
+// `mjarm run … --video` with an ffmpeg that never reads: SIGINT and SIGTERM end the run at once
+// with the recording kept, exit 128 + signal, and ffmpeg does not outlive the run
+TEST(VideoCli, SignalsEndARunWhoseFfmpegIsStuck) {
+  const fs::path fake = stuck_ffmpeg();
+  const std::string path_env = "PATH=" + fake.parent_path().string() + ":" + std::getenv("PATH");
+  for (const int signal : {SIGINT, SIGTERM}) {
+    const fs::path dir = test::scratch() / ("stuck_run_" + std::to_string(signal));
+    fs::create_directories(dir);
+    test::RunningProcess run(
+        {MJARM_CLI, "run", "shelf-pick", "--robot", "planar2", "--video",
+         (dir / "run.mp4").string(), "--size", "64x48", "--record", (dir / "rec").string()},
+        dir, {path_env});
+    ASSERT_TRUE(run.started());
+    const fs::path pid_file = dir / "run.mp4.pid";
+    ASSERT_TRUE(test::eventually(
+        [&] { return (fs::exists(pid_file) && read_pid(pid_file) > 0) || run.wait(0); }, 60.0))
+        << run.err();
+    const pid_t ffmpeg = read_pid(pid_file);
+    ASSERT_TRUE(test::catches_signal(run.pid(), signal)) << run.err();
+    run.signal(signal);
+    ASSERT_TRUE(run.wait(60.0)) << "mjarm did not end after signal " << signal;
+    EXPECT_FALSE(run.signaled());
+    EXPECT_EQ(run.exit_code(), 128 + signal) << run.err();
+    EXPECT_NE(run.err().find("interrupted"), std::string::npos) << run.err();
+    EXPECT_NE(run.err().find("ffmpeg did not"), std::string::npos) << run.err();
+    EXPECT_FALSE(test::process_alive(ffmpeg)) << "ffmpeg " << ffmpeg << " outlived the run";
+    const std::string summary = test::slurp(dir / "rec" / "summary.json");
+    EXPECT_NE(summary.find("\"interrupted\""), std::string::npos) << summary;
+  }
+}
+
+// the same through `mjarm run --video`: the exact file, nothing run
+TEST(VideoCli, AnyFileNameIsWrittenAsGiven) {
+  const fs::path dir = test::scratch() / "hostile_cli";
+  fs::create_directories(dir);
+  const fs::path path = dir / hostile_video_name();
+  test::RunningProcess run({MJARM_CLI, "run", "shelf-pick", "--robot", "planar2", "--video",
+                            path.string(), "--size", "64x48", "--fps", "10"},
+                           dir);
+  ASSERT_TRUE(run.started());
+  ASSERT_TRUE(run.wait(300.0));
+  EXPECT_EQ(run.exit_code(), 0) << run.err();
+  EXPECT_GT(probe("file:" + path.string()).frames, 1);
+  for (const auto& entry : fs::directory_iterator(dir))
+    EXPECT_NE(entry.path().filename().string().rfind("PWNED", 0), 0u) << entry.path();
+}
+
+// SIGKILL leaves mjarm no chance to clean up: ffmpeg still dies with it (PR_SET_PDEATHSIG)
+TEST(VideoCli, FfmpegDiesWithAKilledRun) {
+  const fs::path fake = stuck_ffmpeg();
+  const std::string path_env = "PATH=" + fake.parent_path().string() + ":" + std::getenv("PATH");
+  const fs::path dir = test::scratch() / "killed_run";
+  fs::create_directories(dir);
+  test::RunningProcess run({MJARM_CLI, "run", "shelf-pick", "--robot", "planar2", "--video",
+                            (dir / "run.mp4").string(), "--size", "64x48"},
+                           dir, {path_env});
+  ASSERT_TRUE(run.started());
+  const fs::path pid_file = dir / "run.mp4.pid";
+  ASSERT_TRUE(test::eventually(
+      [&] { return (fs::exists(pid_file) && read_pid(pid_file) > 0) || run.wait(0); }, 60.0))
+      << run.err();
+  const pid_t ffmpeg = read_pid(pid_file);
+  ASSERT_TRUE(test::process_alive(ffmpeg));
+  run.signal(SIGKILL);
+  ASSERT_TRUE(run.wait(30.0));
+  EXPECT_TRUE(test::eventually([&] { return !test::process_alive(ffmpeg); }, 30.0))
+      << "ffmpeg " << ffmpeg << " outlived mjarm";
 }
 
 }  // namespace

@@ -22,6 +22,10 @@ struct VideoOptions {
   /// Quality: the constant rate factor for libx264 (0 lossless … 51 worst, 18–23 looks good),
   /// the quantiser scale -q:v for other encoders (1 best … 31 worst; 20 is mapped to 4).
   int quality = 20;
+  /// How long ffmpeg may take to accept one frame, and to finalize the file after the last one
+  /// [s], finite and > 0. Past it, ffmpeg is killed and the writer reports an error. After
+  /// Ctrl-C or SIGTERM (see sim/interrupt.hpp) ffmpeg gets at most 3 s more instead.
+  double timeout_s = 60.0;
 };
 
 /// Writes frames of one size to an MP4 file (H.264 or MPEG-4, yuv420p, so width and height must
@@ -29,10 +33,18 @@ struct VideoOptions {
 ///
 /// The file is always finalized: `close()` does it and reports failure; the destructor does it
 /// too (when a run stops early or an exception unwinds past the writer), so the frames written
-/// so far form a valid, playable MP4. ffmpeg runs in its own process group, so a Ctrl-C aimed at
-/// the program does not cut it short; if the program dies, ffmpeg sees the end of its input and
-/// finalizes the file by itself. A dead ffmpeg never kills the program with SIGPIPE: `write`
-/// throws instead, with ffmpeg's own message.
+/// so far form a valid, playable MP4. Finalized means checked: after ffmpeg exits 0, the file
+/// must exist, be non-empty and be a complete MP4 (its top-level boxes tile the file and include
+/// `moov`), else `close()` throws naming the path (a full disk is caught this way).
+///
+/// ffmpeg is started with an argv array (never through a shell) and runs in its own process
+/// group, so a Ctrl-C aimed at the program does not cut it short; it gets SIGKILL if mjarm dies
+/// (PR_SET_PDEATHSIG: it never outlives the program, and a video being written when mjarm is
+/// killed is lost). PR_SET_PDEATHSIG follows the thread that created the writer: create it on a
+/// thread that outlives it (ffmpeg is killed when that thread ends). Frames go through a
+/// non-blocking pipe: an ffmpeg that stops reading is killed after `VideoOptions::timeout_s` (3 s
+/// after an interrupt) and `write` throws. A dead ffmpeg never kills the program with SIGPIPE:
+/// `write` throws instead, with ffmpeg's own message.
 ///
 /// Pushing frames at video rate from a run loop: see `FrameSchedule`.
 class VideoWriter {
@@ -56,13 +68,15 @@ class VideoWriter {
   VideoWriter& operator=(const VideoWriter&) = delete;
 
   /// Appends one frame. Allocates nothing.
-  /// @throws Error when the frame's size differs from the video's, after `close()`, or when
-  ///         ffmpeg has stopped (its exit status and message are in the error; the writer is
-  ///         then closed).
+  /// @throws Error when the frame's size differs from the video's, after `close()`, when
+  ///         ffmpeg has stopped (its exit status and message are in the error), or when it did
+  ///         not take the frame within the timeout (it is then killed); the writer is then
+  ///         closed.
   void write(const Image& frame);
 
-  /// Ends the input, waits for ffmpeg to finalize the file. Idempotent.
-  /// @throws Error with ffmpeg's message when it exits with a failure.
+  /// Ends the input, waits for ffmpeg to finalize the file, and checks the file. Idempotent.
+  /// @throws Error with ffmpeg's message when it exits with a failure, does not exit within the
+  ///         timeout (it is then killed), or leaves a file that is not a complete MP4.
   void close();
 
   /// False after `close()`, after a failed `write`, and for a moved-from writer.

@@ -24,6 +24,10 @@ class InterruptGuard {
 /// True once SIGINT/SIGTERM arrived while an `InterruptGuard` was alive (and not cleared).
 bool interrupt_requested() noexcept;
 
+/// The signal that requested the interrupt (SIGINT or SIGTERM), 0 when none is pending. A
+/// command line reports it as exit status 128 + signal (130 for Ctrl-C), as a shell does.
+int interrupt_signal() noexcept;
+
 /// Forgets a pending interrupt.
 void clear_interrupt() noexcept;
 
