@@ -177,6 +177,10 @@ void run_all(const ShelfPickOptions& base, int seeds, bool json) {
     }
   }
   progress.finish();
+  // the exit code says whether every pick held, whatever the output format
+  const bool all_held =
+      std::all_of(rows.begin(), rows.end(), [](const Row& row) { return row.held == row.runs; });
+  const char* const not_held = "some shelf picks did not hold (see the 'held' column)";
   if (json) {
     Json doc = Json::array();
     for (const Row& row : rows)
@@ -194,6 +198,7 @@ void run_all(const ShelfPickOptions& base, int seeds, bool json) {
                 {"first_seed", base.request.seed},
                 {"seeds", seeds},
                 {"rows", doc}});
+    if (!all_held) throw Error(not_held);
     return;
   }
   if (seeds == 1) {
@@ -219,9 +224,7 @@ void run_all(const ShelfPickOptions& base, int seeds, bool json) {
                    fixed(row.steady_max * 1e3, 4), fixed(row.hold_mean * 1e3, 4),
                    std::to_string(row.saturated)});
   table.print(std::cout, 0);
-  const bool all_held =
-      std::all_of(rows.begin(), rows.end(), [](const Row& row) { return row.held == row.runs; });
-  if (!all_held) throw Error("some shelf picks did not hold (see the 'held' column)");
+  if (!all_held) throw Error(not_held);
 }
 
 }  // namespace
@@ -267,7 +270,7 @@ Command add_run_command(CLI::App& root) {
       app->add_option("--record", o->record, "record state, task and events into DIR");
   app->add_option("--control-period", o->control_period,
                   "control period [s], a whole multiple of the timestep (0: one physics step)")
-      ->check(finite_number())
+      ->check(number_in(0.0, 1.0))
       ->capture_default_str();
   app->add_option("--max-acceleration", o->max_acceleration,
                   "divergence bound on |joint acceleration| [rad/s²]")
@@ -275,7 +278,7 @@ Command add_run_command(CLI::App& root) {
       ->capture_default_str();
   app->add_option("--settle-time", o->settle_time,
                   "time allowed after the approach to enter the tolerance and hold [s]")
-      ->check(finite_number())
+      ->check(number_in(0.0, 600.0))
       ->capture_default_str();
   CLI::Option* video = app->add_option(
       "--video", o->video, "write an MP4 of the run (rendered headless; needs Debian's ffmpeg)");
@@ -284,11 +287,11 @@ Command add_run_command(CLI::App& root) {
                   "free camera framing the robot and the pick point")
       ->needs(video);
   app->add_option("--size", o->size, "video size WIDTHxHEIGHT [pixels], even")
-      ->check(pixel_size({2, 2}, true))
+      ->check(pixel_size({2, 2}, true, {4096, 4096}))
       ->needs(video)
       ->capture_default_str();
   app->add_option("--fps", o->fps, "video frames per simulated second")
-      ->check(finite_number())
+      ->check(number_in(1.0, 240.0))
       ->needs(video)
       ->capture_default_str();
   app->add_flag("--all", o->all, "every robot × controller (a table of the worst figures)")
@@ -296,7 +299,7 @@ Command add_run_command(CLI::App& root) {
       ->excludes(record)
       ->excludes(video);
   app->add_option("--seeds", o->seeds, "with --all: run seeds K … K+N−1 per row")
-      ->check(CLI::Range(1, 100000))
+      ->check(count_in(1, 10000))
       ->capture_default_str();
   add_json_flag(*app, o->json);
 
@@ -305,6 +308,9 @@ Command add_run_command(CLI::App& root) {
               throw UsageError("unknown scenario '" + o->scenario +
                                "'; scenarios: " + join(kScenarios));
             if (o->seeds != 1 && !o->all) throw UsageError("--seeds needs --all");
+            // the outputs are checked before the work
+            if (!o->record.empty()) check_output_folder(o->record, "--record");
+            if (!o->video.empty()) check_output_file(o->video, "--video");
             ShelfPickOptions options;
             options.request.robot = o->robot;
             options.request.controller = o->controller;
@@ -316,7 +322,6 @@ Command add_run_command(CLI::App& root) {
             options.max_acceleration = o->max_acceleration;
             options.settle_time = o->settle_time;
             if (!o->video.empty()) {
-              if (!(o->fps > 0.0)) throw UsageError("--fps must be > 0, got " + compact(o->fps));
               const PixelSize size = parse_pixel_size(o->size);
               options.video.path = o->video;
               options.video.camera = o->camera;

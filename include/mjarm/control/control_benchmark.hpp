@@ -46,7 +46,21 @@ struct ControlBenchmarkOptions {
   std::function<std::uint64_t()> allocation_count;
   /// Called after each phase with (phases done, phases total); may be empty.
   std::function<void(int done, int total)> progress;
+  /// Asked every thousand ticks whether to stop (e.g. `interrupt_requested` after Ctrl-C); may be
+  /// empty. A stop ends the run `ControlBenchmarkStatus::interrupted`.
+  std::function<bool()> stop;
 };
+
+/// How a benchmark run ended.
+enum class ControlBenchmarkStatus {
+  ok,           ///< every phase ran; the figures stand
+  faulted,      ///< MuJoCo flagged a bad state (bad qpos, qvel, qacc or ctrl, singular inertia)
+                ///< and reset the simulation: the figures would be meaningless and are not given
+  interrupted,  ///< the stop request said so; the figures are incomplete
+};
+
+/// "ok", "faulted" or "interrupted".
+const char* to_string(ControlBenchmarkStatus status) noexcept;
 
 /// Figures of one controller.
 struct ControllerBenchmark {
@@ -65,6 +79,10 @@ struct ControllerBenchmark {
 
 /// Figures of one benchmark run.
 struct ControlBenchmarkResult {
+  ControlBenchmarkStatus status = ControlBenchmarkStatus::ok;
+  /// What went wrong when status is not ok, naming the phase ("MuJoCo warned 'bad qacc' 3 times
+  /// (first at dof 6) while running 'osc' …"); empty when ok.
+  std::string message;
   std::string robot;         ///< model name
   std::string frame;         ///< chain frame
   int joints = 0;            ///< chain size n
@@ -90,6 +108,8 @@ std::vector<std::unique_ptr<Controller>> default_benchmark_controllers(const Cha
 /// @throws Error when steps < 1, warmup < 0, amplitude < 0 or frequency ≤ 0 (or not finite), when
 /// a controller is not a torque controller or has another chain size, or when a chain joint is
 /// not driven by a motor (torque actuators: load the `_torque` variant of a bundled robot).
+/// A bad state reported by MuJoCo is not thrown: the run stops at the end of that phase with
+/// `ControlBenchmarkStatus::faulted` (MuJoCo's warning counters are read after every phase).
 ControlBenchmarkResult run_control_benchmark(const Chain& chain,
                                              std::vector<std::unique_ptr<Controller>>& controllers,
                                              const ControlBenchmarkOptions& options = {});

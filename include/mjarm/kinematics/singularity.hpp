@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "mjarm/kinematics/manipulability.hpp"
+#include "mjarm/kinematics/workspace.hpp"
 #include "mjarm/model/chain.hpp"
 
 namespace mjarm {
@@ -52,7 +53,8 @@ SingularityReport singularity_report(const Chain& chain,
 /// Result of a random scan.
 struct SingularityScan {
   ManipulabilityOptions options;
-  std::size_t samples = 0;
+  SamplingStatus status = SamplingStatus::complete;
+  std::size_t samples = 0;  ///< samples drawn (fewer than asked when interrupted)
   std::uint64_t seed = 0;
   std::size_t singular_count = 0;       ///< samples classified singular
   std::size_t near_singular_count = 0;  ///< samples classified near-singular
@@ -62,10 +64,14 @@ struct SingularityScan {
 
 /// Samples @p samples configurations uniformly within the limits (see `JointSampler`, seeded
 /// std::mt19937_64: the same seed gives the same scan) and keeps the @p keep_worst samples with
-/// the lowest σmin.
+/// the lowest σmin. @p progress, when given, is called with (done, samples) at most ~100 times;
+/// @p stop, when given, is asked every thousand samples and ends the scan
+/// `SamplingStatus::interrupted` (the counts then cover the samples drawn).
 /// @throws Error when @p samples is 0 or the thresholds in @p options are invalid.
 SingularityScan scan_singularities(const Chain& chain, std::size_t samples, std::uint64_t seed,
                                    std::size_t keep_worst = 10,
-                                   const ManipulabilityOptions& options = {});
+                                   const ManipulabilityOptions& options = {},
+                                   const ProgressCallback& progress = nullptr,
+                                   const StopRequest& stop = nullptr);
 
 }  // namespace mjarm
