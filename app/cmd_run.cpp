@@ -278,7 +278,7 @@ Command add_run_command(CLI::App& root) {
       ->capture_default_str();
   app->add_option("--settle-time", o->settle_time,
                   "time allowed after the approach to enter the tolerance and hold [s]")
-      ->check(number_in(0.0, 600.0))
+      ->check(number_in(0.01, 600.0))
       ->capture_default_str();
   CLI::Option* video = app->add_option(
       "--video", o->video, "write an MP4 of the run (rendered headless; needs Debian's ffmpeg)");

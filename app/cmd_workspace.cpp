@@ -87,8 +87,7 @@ void print_workspace(std::ostream& os, const Chain& chain, const WorkspaceResult
            {"joints", std::to_string(chain.size()) + ": " + join(chain.joint_names())},
            {"samples", std::to_string(result.samples) + " (seed " + std::to_string(result.seed) +
                            ", uniform within the joint limits" +
-                           (result.status == SamplingStatus::complete ? ")"
-                                                                      : "; interrupted)")}});
+                           (result.status == SamplingStatus::complete ? ")" : "; interrupted)")}});
   os << "\nreachable positions of the frame, world axes\n";
   Table box({{"", Table::Align::left}, {"min [m]"}, {"max [m]"}, {"extent [m]"}, {"centroid [m]"}});
   const char* axes[] = {"x", "y", "z"};

@@ -4,8 +4,8 @@
 
 #include <CLI/CLI.hpp>
 #include <exception>
-#include <string>
 #include <iostream>
+#include <string>
 #include <vector>
 
 #include "commands.hpp"
@@ -32,8 +32,8 @@ int main(int argc, char** argv) {
       "Exit codes: 0 success, 1 the command failed, 2 the command line is wrong.\n"
       "Run `mjarm COMMAND --help` for the options of one command.");
   app.require_subcommand(1);
-  app.set_version_flag("--version", std::string("mjarm ") + MJARM_VERSION + " (MuJoCo " +
-                                        mj_versionString() + ")");
+  app.set_version_flag(
+      "--version", std::string("mjarm ") + MJARM_VERSION + " (MuJoCo " + mj_versionString() + ")");
 
   std::vector<Command> commands;
   commands.push_back(add_models_command(app));

@@ -49,12 +49,11 @@ const char* to_string(SamplingStatus status) noexcept {
 WorkspaceResult sample_workspace(const Chain& chain, const WorkspaceOptions& options) {
   if (options.samples == 0) throw Error("workspace sampling needs at least one sample, got 0");
   if (options.keep_points && options.samples > kMaxKeptWorkspacePoints) {
-    throw Error("workspace sampling: keeping " + std::to_string(options.samples) +
-                " points would take " +
-                std::to_string(options.samples / (std::size_t{1} << 20) * sizeof(WorkspacePoint)) +
-                " MiB; at most " + std::to_string(kMaxKeptWorkspacePoints) + " points (" +
-                std::to_string(kMaxKeptWorkspacePoints * sizeof(WorkspacePoint) >> 20) +
-                " MiB) are kept");
+    throw Error(
+        "workspace sampling: keeping " + std::to_string(options.samples) + " points would take " +
+        std::to_string(options.samples / (std::size_t{1} << 20) * sizeof(WorkspacePoint)) +
+        " MiB; at most " + std::to_string(kMaxKeptWorkspacePoints) + " points (" +
+        std::to_string(kMaxKeptWorkspacePoints * sizeof(WorkspacePoint) >> 20) + " MiB) are kept");
   }
   Manipulability measure(chain, options.manipulability);
   ChainKinematics& kin = measure.kinematics();

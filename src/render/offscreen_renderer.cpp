@@ -68,9 +68,9 @@ void check_buffer_size(const mjModel& m, int width, int height) {
     throw Error("render size " + size + " is too large: MuJoCo's offscreen buffer with " +
                 std::to_string(samples) + " samples per pixel (visual/quality offsamples) would " +
                 "take " + std::to_string(bytes >> 20) + " MiB, the limit is " +
-                std::to_string(kMaxOffscreenBufferBytes >> 20) + " MiB (" +
-                std::to_string(pixels) + " pixels, e.g. " + std::to_string(side) + "×" +
-                std::to_string(side) + "); OpenGL: " + limits);
+                std::to_string(kMaxOffscreenBufferBytes >> 20) + " MiB (" + std::to_string(pixels) +
+                " pixels, e.g. " + std::to_string(side) + "×" + std::to_string(side) +
+                "); OpenGL: " + limits);
   }
 }
 
@@ -83,7 +83,7 @@ struct OffscreenRenderer::Impl {
   mjrContext gpu{};
   mjvScene scene{};
   mjvOption vis_options{};
-  DataPtr scratch;              // copy of the caller's state: mjv_updateScene writes its mjData
+  DataPtr scratch;                // copy of the caller's state: mjv_updateScene writes its mjData
   std::vector<std::uint8_t> row;  // one image row, for flipping OpenGL's bottom-up rows
   bool gpu_made = false;
   bool scene_made = false;
@@ -159,8 +159,7 @@ struct OffscreenRenderer::Impl {
           // our own follow camera: MuJoCo's tracking camera follows bodies only
           if (const int site = mj_name2id(&m, mjOBJ_SITE, spec.name.c_str()); site >= 0) {
             lookat = Eigen::Map<const Eigen::Vector3d>(scratch->site_xpos + 3 * site);
-          } else if (const int body = mj_name2id(&m, mjOBJ_BODY, spec.name.c_str());
-                     body >= 0) {
+          } else if (const int body = mj_name2id(&m, mjOBJ_BODY, spec.name.c_str()); body >= 0) {
             lookat = Eigen::Map<const Eigen::Vector3d>(scratch->xpos + 3 * body);
           } else {
             throw Error("follow camera: no site or body '" + spec.name + "' in model '" +
@@ -207,8 +206,8 @@ OffscreenRenderer::OffscreenRenderer(const Robot& robot, int width, int height,
       // a limit no query shows (the driver's memory): say what was asked for
       throw Error("OpenGL could not make a " + std::to_string(width) + "×" +
                   std::to_string(height) + " offscreen buffer with " +
-                  std::to_string(std::max(1, m.vis.quality.offsamples)) +
-                  " samples per pixel (" + e.what() + "); try a smaller size");
+                  std::to_string(std::max(1, m.vis.quality.offsamples)) + " samples per pixel (" +
+                  e.what() + "); try a smaller size");
     }
     impl->gpu_made = true;
     mjr_setBuffer(mjFB_OFFSCREEN, &impl->gpu);

@@ -129,8 +129,8 @@ TEST(RunCli, BadInputFailsClearly) {
   // a recording directory that cannot be written: an error before anything runs
   const fs::path file = scratch() / "plain_file";
   std::ofstream(file) << "x";
-  expect_error({"run", "shelf-pick", "--record", (file / "rec").string()}, 1,
-               "recording directory");
+  expect_error({"run", "shelf-pick", "--record", (file / "rec").string()}, 2,
+               "--record: '" + file.string() + "' is not a folder");
   EXPECT_EQ(slurp(file), "x");
 }
 
@@ -161,6 +161,20 @@ TEST(RunCli, AllSweepsEveryRobotAndController) {
   }
   EXPECT_EQ(doc["rows"][0]["robot"], "planar2");
   EXPECT_EQ(doc["rows"][7]["controller"], "accel");
+}
+
+TEST(RunCli, AllExitsOneWhenPicksFailWhateverTheFormat) {
+  // every pick diverges at this acceleration bound: the JSON form fails like the text form
+  const std::vector<std::string> args{"run", "shelf-pick", "--all", "--max-acceleration", "2"};
+  const CliRun text = run_cli(args);
+  std::vector<std::string> with_json = args;
+  with_json.push_back("--json");
+  const CliRun doc = run_cli(with_json);
+  EXPECT_EQ(text.exit_code, 1) << text.err;
+  EXPECT_EQ(doc.exit_code, 1) << doc.err;
+  EXPECT_NE(doc.err.find("some shelf picks did not hold"), std::string::npos) << doc.err;
+  ASSERT_TRUE(json::accept(doc.out)) << doc.out;  // the figures are still printed
+  for (const json& row : json::parse(doc.out)["rows"]) EXPECT_EQ(row["held"], 0) << row;
 }
 
 TEST(RunCli, DemoRunsTheShelfPickAndRecordsIntoOutDemo) {
@@ -294,13 +308,14 @@ TEST(RunVideo, BadInputFailsClearly) {
   expect_error({"run", "shelf-pick", "--video", out, "--size", "161x120"}, 2,
                "must be even in both directions (the MP4's yuv420p), e.g. 162x120");
   expect_error({"run", "shelf-pick", "--video", out, "--size", "big"}, 2, "not a size");
-  expect_error({"run", "shelf-pick", "--video", out, "--fps", "0"}, 2, "--fps must be > 0");
+  expect_error({"run", "shelf-pick", "--video", out, "--fps", "0"}, 2,
+               "--fps: '0' is not a number from 1 to 240");
   expect_error({"run", "shelf-pick", "--all", "--video", out}, 2, "--video excludes --all");
   expect_error({"run", "shelf-pick", "--camera", "follow"}, 2, "--camera requires --video");
   const fs::path file = scratch() / "not_a_dir";
   std::ofstream(file) << "x";
-  expect_error({"run", "shelf-pick", "--video", (file / "v.mp4").string(), "--size", "160x120"}, 1,
-               "cannot write video");
+  expect_error({"run", "shelf-pick", "--video", (file / "v.mp4").string(), "--size", "160x120"}, 2,
+               "--video: '" + file.string() + "' is not a folder");
 
   // no ffmpeg on PATH: the message names Debian's package
   const auto run = mjarm::test::run_process(

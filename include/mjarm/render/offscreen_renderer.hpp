@@ -18,8 +18,8 @@ namespace mjarm {
 
 /// A ball drawn into every picture that is not part of the model (a target, a pick point).
 struct RenderMarker {
-  Eigen::Vector3d position = Eigen::Vector3d::Zero();  ///< centre in W [m]
-  double radius = 0.02;                                ///< [m], > 0
+  Eigen::Vector3d position = Eigen::Vector3d::Zero();    ///< centre in W [m]
+  double radius = 0.02;                                  ///< [m], > 0
   std::array<float, 4> rgba = {0.2f, 0.9f, 0.3f, 0.6f};  ///< colour and opacity, each in [0, 1]
 };
 
