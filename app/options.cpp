@@ -33,13 +33,13 @@ CLI::Validator finite_number() {
 
 namespace {
 
-/// The whole number @p text spells with digits, or an error message; leading zeros are dropped
-/// from @p text (CLI11 reads "010" as octal).
-std::string parse_whole(std::string& text, std::uint64_t& value) {
+/// The whole number @p text spells with digits, or an error message. Leading zeros are refused:
+/// CLI11 would read "010" as octal eight.
+std::string parse_whole(const std::string& text, std::uint64_t& value) {
   if (text.empty() || text.find_first_not_of("0123456789") != std::string::npos)
     return "'" + text + "' is not a whole number written with digits";
-  const auto first = text.find_first_not_of('0');
-  text = first == std::string::npos ? "0" : text.substr(first);
+  if (text.size() > 1 && text[0] == '0')
+    return "'" + text + "' starts with 0; write the number without leading zeros";
   errno = 0;
   value = std::strtoull(text.c_str(), nullptr, 10);
   if (errno == ERANGE)
@@ -63,10 +63,9 @@ CLI::Validator count_in(std::uint64_t min, std::uint64_t max) {
   const std::string range = "from " + std::to_string(min) + " to " + std::to_string(max);
   return CLI::Validator(
       [min, max, range](std::string& text) -> std::string {
-        const std::string given = text;
         std::uint64_t value = 0;
         if (!parse_whole(text, value).empty() || value < min || value > max)
-          return "'" + given + "' is not a whole number " + range;
+          return "'" + text + "' is not a whole number " + range;
         return {};
       },
       "INTEGER", "count_in");

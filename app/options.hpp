@@ -24,8 +24,8 @@ namespace mjarm::cli {
 CLI::Validator finite_number();
 
 /// Accepts only a whole number ≥ 0 written with digits that fits 64 bits (rejects "-1", which
-/// would wrap around, and 2^64 or more, which CLI11 would clamp). Leading zeros are dropped, so
-/// "010" is ten (CLI11 would read it as octal).
+/// would wrap around, and 2^64 or more, which CLI11 would clamp). A leading zero is refused:
+/// CLI11 would read "010" as octal eight.
 CLI::Validator non_negative_integer();
 
 /// A count option's rule: a whole number written with digits, from @p min to @p max. The error

@@ -79,9 +79,12 @@ TEST(CliOptions, SeedsFitSixtyFourBitsAndAreReadInDecimal) {
   const json top = run_json(
       {"workspace", "planar2", "--samples", "10", "--seed", "18446744073709551615", "--json"});
   EXPECT_EQ(top["seed"].get<std::uint64_t>(), std::numeric_limits<std::uint64_t>::max());
-  // "010" is ten, not octal eight
-  const json ten = run_json({"workspace", "planar2", "--samples", "10", "--seed", "010", "--json"});
-  EXPECT_EQ(ten["seed"], 10);
+  // "010" would be read as octal eight: refused, and so is "0x10"
+  expect_error({"workspace", "planar2", "--seed", "010"}, 2,
+               "--seed: '010' starts with 0; write the number without leading zeros");
+  expect_error({"workspace", "planar2", "--samples", "0x10"}, 2, "'0x10' is not a whole number");
+  EXPECT_EQ(run_json({"workspace", "planar2", "--samples", "10", "--seed", "0", "--json"})["seed"],
+            0);
 }
 
 TEST(CliOptions, SubnormalNumbersAreFinite) {
