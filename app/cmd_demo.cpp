@@ -93,8 +93,12 @@ void run_demo(const DemoOptions& options) {
     fail("the shelf pick ended " + std::string(to_string(report.outcome)) + ": " +
          report.run.message + "; recording in " + report.recording.string());
   // plots of the recording, beside it (docs/plot.md)
-  std::vector<std::filesystem::path> plots =
-      plot::write_plots(report.recording, report.recording / "plots");
+  std::vector<std::filesystem::path> plots;
+  try {
+    plots = plot::write_plots(report.recording, report.recording / "plots");
+  } catch (const Error& e) {
+    fail(e.what());  // with --json, the shelf pick's figures still reach stdout
+  }
   for (auto& p : plots) p = std::filesystem::proximate(p);  // as given: relative
   if (options.json) {
     doc["plots"] = Json::array();

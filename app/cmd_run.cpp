@@ -21,6 +21,10 @@ namespace {
 
 const std::vector<std::string> kScenarios{"shelf-pick"};
 
+/// Most frames `run --video` may film after the approach (--fps × --settle-time): 5 minutes of
+/// video at 30 fps, about 20 minutes of software rendering at 640x480.
+constexpr double kMaxVideoFrames = 9000.0;
+
 std::string controller_title(const std::string& name) {
   if (name == "ct") return "computed torque (ct)";
   if (name == "osc") return "operational-space impedance (osc)";
@@ -322,6 +326,15 @@ Command add_run_command(CLI::App& root) {
             options.max_acceleration = o->max_acceleration;
             options.settle_time = o->settle_time;
             if (!o->video.empty()) {
+              // the work before it starts: the run lasts the approach (a second or two) plus
+              // --settle-time, and every simulated second films --fps frames
+              const double frames = o->fps * o->settle_time;
+              if (frames > kMaxVideoFrames)
+                throw UsageError("--video at --fps " + readable(o->fps) + " with --settle-time " +
+                                 readable(o->settle_time) + " s would film up to " +
+                                 readable(std::ceil(frames)) + " frames after the approach; at " +
+                                 "most " + readable(kMaxVideoFrames) +
+                                 " (lower --fps or --settle-time)");
               const PixelSize size = parse_pixel_size(o->size);
               options.video.path = o->video;
               options.video.camera = o->camera;

@@ -30,16 +30,16 @@ void expect_interrupted(const CliRun& run, const std::string& message) {
 TEST(CliInterrupt, WorkspaceReportsTheSamplesDrawnAndWritesNoCsv) {
   const fs::path csv = scratch() / "interrupted.csv";
   const auto cli =
-      start_cli({"workspace", "panda", "--samples", "30000000", "--out", csv.string(), "--json"},
+      start_cli({"workspace", "panda", "--samples", "5000000", "--out", csv.string(), "--json"},
                 "workspace_int");
   interrupt_after_cpu(cli, 0.5);
   const CliRun run = finish_cli(cli);
-  expect_interrupted(run, "of 30000000 samples; " + csv.string() + " was not written");
+  expect_interrupted(run, "of 5000000 samples; " + csv.string() + " was not written");
   ASSERT_TRUE(json::accept(run.out)) << run.out;
   const json doc = json::parse(run.out);
   EXPECT_EQ(doc["status"], "interrupted");
   EXPECT_GT(doc["samples"].get<std::size_t>(), 0u);
-  EXPECT_LT(doc["samples"].get<std::size_t>(), 30000000u);
+  EXPECT_LT(doc["samples"].get<std::size_t>(), 5000000u);
   EXPECT_TRUE(doc["csv"].is_null());
   EXPECT_FALSE(fs::exists(csv));
 }
@@ -67,7 +67,7 @@ TEST(CliInterrupt, DemoKeepsTheReportsOfTheFinishedParts) {
   const fs::path cwd = scratch() / "demo_interrupt";
   fs::create_directories(cwd);
   // no video (faster); a workspace part long enough to be interrupted in
-  const auto cli = start_cli({"demo", "--video", "", "--samples", "1000000000"}, "demo_int", cwd);
+  const auto cli = start_cli({"demo", "--video", "", "--samples", "100000000"}, "demo_int", cwd);
   // the forward kinematics part is printed (and flushed) before the workspace part starts
   mjarm::test::wait_until(cli, [&] {
     return mjarm::test::slurp(cli.out).find("roll pitch yaw [deg]") != std::string::npos;
@@ -75,7 +75,7 @@ TEST(CliInterrupt, DemoKeepsTheReportsOfTheFinishedParts) {
   interrupt_after_cpu(cli, mjarm::test::cpu_seconds(cli.pid) + 0.3);
   const CliRun run = finish_cli(cli);
   expect_interrupted(run, "interrupted after ");
-  EXPECT_NE(run.err.find(" of 1000000000 workspace samples"), std::string::npos) << run.err;
+  EXPECT_NE(run.err.find(" of 100000000 workspace samples"), std::string::npos) << run.err;
   for (const char* part : {"== shelf pick ==", "result: held", "tracking_error.png",
                            "== forward kinematics ==", "== workspace ==", "interrupted)"})
     EXPECT_NE(run.out.find(part), std::string::npos) << part << " not in:\n" << run.out;

@@ -45,8 +45,8 @@ TEST(CliOptions, EveryCountAndRateIsBoundedWithItsRangeNamed) {
        "--samples: '1e20' is not a whole number from 0 to 100000000"},
       {{"singularities", "panda", "--samples", "100000000000000000000"}, "from 0 to 100000000"},
       {{"singularities", "panda", "--worst", "99999"}, "--worst: '99999'"},
-      {{"workspace", "panda", "--samples", "1000000001"}, "from 1 to 1000000000"},
-      {{"demo", "--samples", "1e9"}, "--samples: '1e9' is not a whole number from 1 to 1000000000"},
+      {{"workspace", "panda", "--samples", "100000001"}, "from 1 to 100000000"},
+      {{"demo", "--samples", "1e9"}, "--samples: '1e9' is not a whole number from 1 to 100000000"},
       {{"view", "--render-hz", "1e6"}, "--render-hz: '1e6' is not a number from 1 to 240"},
       {{"view", "--input-hz", "1e9"}, "--input-hz: '1e9' is not a number from 1 to 1000"},
       {{"view", "--speed", "0"}, "--speed: '0' is not a number from 0.01 to 100"},
@@ -64,6 +64,9 @@ TEST(CliOptions, EveryCountAndRateIsBoundedWithItsRangeNamed) {
       // the value is checked before it is converted: no 309-digit bound for text
       {{"view", "--render-hz", "abc"}, "--render-hz: 'abc' is not a number from 1 to 240"},
   };
+  // the work is estimated before it starts: frames = --fps × --settle-time
+  expect_error({"run", "shelf-pick", "--video", video, "--fps", "240", "--settle-time", "600"}, 2,
+               "would film up to 144000 frames after the approach; at most 9000");
   for (const Case& c : cases) {
     SCOPED_TRACE(c.args[0] + " " + c.args.back());
     expect_error(c.args, 2, c.message);
@@ -129,9 +132,9 @@ TEST(CliOptions, OutputPathsAreCheckedBeforeTheWork) {
 }
 
 TEST(CliOptions, WorkspaceMemoryAndDiskAreEstimatedBeforeTheWork) {
-  // 10^9 points would be 30 GB: refused at once, not after minutes or with std::bad_alloc
+  // 10^8 points would be 3 GB: refused at once, not after minutes or with std::bad_alloc
   const std::string csv = (scratch() / "big.csv").string();
-  expect_error({"workspace", "panda", "--samples", "1000000000", "--out", csv}, 2,
+  expect_error({"workspace", "panda", "--samples", "100000000", "--out", csv}, 2,
                "with --out at most 33554432 samples are allowed");
   expect_error({"workspace", "panda", "--samples", "33554433", "--out", csv}, 2, "MiB of points");
   EXPECT_FALSE(fs::exists(csv));
