@@ -44,7 +44,8 @@ class ReferenceTable {
       r.joint.qdd.resize(n);
       for (int i = 0; i < n; ++i) {
         // keep the motion 0.05 inside the limits
-        const double room = std::min(q_home[i] - chain.lower()[i], chain.upper()[i] - q_home[i]) - 0.05;
+        const double room =
+            std::min(q_home[i] - chain.lower()[i], chain.upper()[i] - q_home[i]) - 0.05;
         const double a = std::clamp(room, 0.0, amplitude);
         const double phase = w * k * dt + 0.7 * i;
         r.joint.q[i] = q_home[i] + a * std::sin(phase);
@@ -109,13 +110,17 @@ double percentile(const std::vector<double>& sorted, double p) {
 }
 
 void check_options(const ControlBenchmarkOptions& o) {
-  if (o.steps < 1) throw Error("control benchmark: steps must be >= 1, got " + std::to_string(o.steps));
-  if (o.warmup < 0) throw Error("control benchmark: warmup must be >= 0, got " + std::to_string(o.warmup));
+  if (o.steps < 1)
+    throw Error("control benchmark: steps must be >= 1, got " + std::to_string(o.steps));
+  if (o.warmup < 0)
+    throw Error("control benchmark: warmup must be >= 0, got " + std::to_string(o.warmup));
   if (!std::isfinite(o.amplitude) || o.amplitude < 0.0) {
-    throw Error("control benchmark: amplitude must be finite and >= 0, got " + std::to_string(o.amplitude));
+    throw Error("control benchmark: amplitude must be finite and >= 0, got " +
+                std::to_string(o.amplitude));
   }
   if (!std::isfinite(o.frequency) || o.frequency <= 0.0) {
-    throw Error("control benchmark: frequency must be finite and > 0, got " + std::to_string(o.frequency));
+    throw Error("control benchmark: frequency must be finite and > 0, got " +
+                std::to_string(o.frequency));
   }
 }
 
@@ -125,11 +130,16 @@ constexpr int kFatalWarnings[] = {mjWARN_INERTIA, mjWARN_BADQPOS, mjWARN_BADQVEL
 
 const char* fatal_warning_text(int warning) noexcept {
   switch (warning) {
-    case mjWARN_INERTIA: return "singular inertia matrix";
-    case mjWARN_BADQPOS: return "bad qpos";
-    case mjWARN_BADQVEL: return "bad qvel";
-    case mjWARN_BADQACC: return "bad qacc";
-    default: return "bad ctrl";
+    case mjWARN_INERTIA:
+      return "singular inertia matrix";
+    case mjWARN_BADQPOS:
+      return "bad qpos";
+    case mjWARN_BADQVEL:
+      return "bad qvel";
+    case mjWARN_BADQACC:
+      return "bad qacc";
+    default:
+      return "bad ctrl";
   }
 }
 
@@ -187,14 +197,18 @@ std::vector<std::unique_ptr<Controller>> default_benchmark_controllers(const Cha
 
 const char* to_string(ControlBenchmarkStatus status) noexcept {
   switch (status) {
-    case ControlBenchmarkStatus::ok: return "ok";
-    case ControlBenchmarkStatus::faulted: return "faulted";
-    case ControlBenchmarkStatus::interrupted: return "interrupted";
+    case ControlBenchmarkStatus::ok:
+      return "ok";
+    case ControlBenchmarkStatus::faulted:
+      return "faulted";
+    case ControlBenchmarkStatus::interrupted:
+      return "interrupted";
   }
   return "?";
 }
 
-ControlBenchmarkResult run_control_benchmark(const Chain& chain, const ControlBenchmarkOptions& options) {
+ControlBenchmarkResult run_control_benchmark(const Chain& chain,
+                                             const ControlBenchmarkOptions& options) {
   auto controllers = default_benchmark_controllers(chain);
   return run_control_benchmark(chain, controllers, options);
 }
@@ -291,7 +305,8 @@ ControlBenchmarkResult run_control_benchmark(const Chain& chain,
   }
 
   // real-time factor of closed-loop OSC + physics, no per-tick clocks
-  std::vector<double> torques(static_cast<std::size_t>(options.steps) * static_cast<std::size_t>(n));
+  std::vector<double> torques(static_cast<std::size_t>(options.steps) *
+                              static_cast<std::size_t>(n));
   table.load(0, ref);
   reset_start(chain, ref, qpos_home, d);
   osc.reset();
@@ -303,7 +318,8 @@ ControlBenchmarkResult run_control_benchmark(const Chain& chain,
     mj_step1(&m, &d);
     osc.compute(d, ref, command);
     motors.apply(command.value.data(), d);
-    std::copy(command.value.data(), command.value.data() + n, torques.data() + static_cast<std::size_t>(k) * n);
+    std::copy(command.value.data(), command.value.data() + n,
+              torques.data() + static_cast<std::size_t>(k) * n);
     mj_step2(&m, &d);
   }
   const double osc_seconds = seconds_between(osc_start, Clock::now());

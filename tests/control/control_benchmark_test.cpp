@@ -93,7 +93,8 @@ TEST(ControlBenchmark, BadInputThrows) {
   // a position-kind controller cannot be timed on motors
   std::vector<std::unique_ptr<Controller>> controllers;
   controllers.push_back(std::make_unique<GravityCompensationController>(servo));
-  EXPECT_THROW(run_control_benchmark(chain, controllers, with([](auto& o) { o.steps = 1; })), Error);
+  EXPECT_THROW(run_control_benchmark(chain, controllers, with([](auto& o) { o.steps = 1; })),
+               Error);
 }
 
 /// Two motor-driven hinges on a base that floats (free joint): the controllers drive the hinges
