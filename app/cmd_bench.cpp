@@ -14,7 +14,9 @@
 
 #include "commands.hpp"
 #include "mjarm/control/control_benchmark.hpp"
+#include "mjarm/error.hpp"
 #include "mjarm/ik/ik_benchmark.hpp"
+#include "mjarm/sim/interrupt.hpp"
 #include "output.hpp"
 
 // ---- allocation counter for `bench control` ----
@@ -136,9 +138,9 @@ Command add_control_subcommand(CLI::App& bench) {
   add_site_option(*app, options->site);
   app->add_option("--steps", options->steps,
                   "timed control steps per controller (one per physics step)")
-      ->check(CLI::Range(1, 1000000));
+      ->check(count_in(1, 1000000));
   app->add_option("--warmup", options->warmup, "untimed steps before each timed run")
-      ->check(CLI::Range(0, 1000000));
+      ->check(count_in(0, 1000000));
   add_json_flag(*app, options->json);
 
   return {
@@ -153,8 +155,15 @@ Command add_control_subcommand(CLI::App& bench) {
         };
         Progress progress("benchmarking controllers", 8);
         protocol.progress = [&progress](int done, int) { progress.update(done); };
+        const InterruptGuard interrupts;  // Ctrl-C ends the benchmark
+        protocol.stop = [] { return interrupt_requested(); };
         const ControlBenchmarkResult r = run_control_benchmark(chain, protocol);
         progress.finish();
+        // a faulted run's numbers mean nothing: no figures, a failed command
+        const std::string failed = "bench control on model '" + r.robot + "': " + r.message;
+        if (r.status == ControlBenchmarkStatus::interrupted)
+          throw InterruptedError(failed, interrupt_signal());
+        if (r.status != ControlBenchmarkStatus::ok) throw Error(failed);
 
         if (options->json) {
           Json controllers = Json::array();

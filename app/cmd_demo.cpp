@@ -10,6 +10,7 @@
 #include "commands.hpp"
 #include "mjarm/error.hpp"
 #include "mjarm/ik/pose_ik.hpp"
+#include "mjarm/plot/gnuplot.hpp"
 #include "mjarm/plot/plots.hpp"
 #include "mjarm/sim/interrupt.hpp"
 #include "mjarm/tasks/shelf_pick.hpp"
@@ -41,20 +42,137 @@ RoundTrip ik_round_trip(const Chain& chain, const Configuration& config, const P
   return trip;
 }
 
+struct DemoOptions {
+  std::string model = "panda";
+  std::string site;
+  std::string key = "home";
+  std::size_t samples = 20000;
+  std::uint64_t seed = 1;
+  std::string record = "out/demo";
+  std::string video = "out/demo.mp4";
+  bool json = false;
+};
+
+void run_demo(const DemoOptions& options) {
+  // every argument and output is checked before the work: a typo fails in milliseconds, not
+  // after the shelf pick
+  const Robot robot = load_model(options.model);
+  const Chain chain(robot, resolve_site(robot, options.site));
+  const Configuration config = resolve_configuration(chain, {}, options.key);
+  check_output_folder(options.record, "--record");
+  if (!options.video.empty()) check_output_file(options.video, "--video", true);
+  plot::find_gnuplot();  // the plots of the recording need it (names the package to install)
+
+  // with --json one document at the end; it holds the parts done when a later one fails
+  Json doc;
+  std::ostream& os = std::cout;
+  const auto fail = [&](const std::string& why) {
+    if (options.json) print_json(doc);
+    if (interrupt_requested()) throw InterruptedError(why, interrupt_signal());
+    throw Error(why);
+  };
+  const InterruptGuard interrupts;  // Ctrl-C ends the current part with its report
+
+  // the main job: the shelf pick (a finalized recording even on Ctrl-C)
+  ShelfPickOptions pick;
+  pick.request.robot = "panda";
+  pick.request.controller = "osc";
+  pick.request.seed = options.seed;
+  pick.record = options.record;
+  pick.video.path = options.video;
+  if (pick.video.path.has_parent_path())
+    std::filesystem::create_directories(pick.video.path.parent_path());
+  const ShelfPickReport report = run_shelf_pick(pick);
+  if (options.json) {
+    doc["shelf_pick"] = shelf_pick_json(report);
+  } else {
+    print_heading(os, "shelf pick");
+    print_shelf_pick(os, report);
+    os.flush();
+  }
+  if (!report.ok())
+    fail("the shelf pick ended " + std::string(to_string(report.outcome)) + ": " +
+         report.run.message + "; recording in " + report.recording.string());
+  if (!report.recording_error.empty()) fail(report.recording_error);
+  // plots of the recording, beside it (docs/plot.md)
+  std::vector<std::filesystem::path> plots;
+  try {
+    plots = plot::write_plots(report.recording, report.recording / "plots");
+  } catch (const Error& e) {
+    fail(e.what());  // with --json, the shelf pick's figures still reach stdout
+  }
+  for (auto& p : plots) p = std::filesystem::proximate(p);  // as given: relative
+  if (options.json) {
+    doc["plots"] = Json::array();
+    for (const auto& p : plots) doc["plots"].push_back(p.string());
+  } else {
+    os << "plots\n";
+    for (const auto& p : plots) os << "  " << p.string() << "\n";
+    os.flush();
+  }
+  if (interrupt_requested()) fail("interrupted after the shelf pick");
+
+  // the tour
+  ChainKinematics kin(chain);
+  kin.set_fixed_qpos(config.qpos);
+  const Pose X_WE = kin.update(config.q);
+  if (options.json) {
+    doc["model"] = model_json(robot);
+    doc["fk"] = pose_json(kin, config, false);
+  } else {
+    print_heading(os, "model");
+    os << robot.name() << ": " << robot.joints().size() << " joints, " << robot.nu()
+       << " actuators, frame " << chain.frame().name << " (mjarm info " << options.model
+       << " for the tables)\n";
+    print_heading(os, "forward kinematics");
+    print_pose(os, kin, config, false);
+    os.flush();
+  }
+
+  const WorkspaceResult workspace = run_workspace(chain, options.samples, options.seed, false);
+  if (options.json) {
+    doc["workspace"] = workspace_json(chain, workspace);
+  } else {
+    print_heading(os, "workspace");
+    print_workspace(os, chain, workspace);
+    os.flush();
+  }
+  if (workspace.status != SamplingStatus::complete)
+    fail("interrupted after " + std::to_string(workspace.samples) + " of " +
+         std::to_string(options.samples) + " workspace samples");
+
+  const RoundTrip trip = ik_round_trip(chain, config, X_WE);
+  if (options.json) {
+    doc["ik"] = Json{{"target", options.key},
+                     {"seed", vector_json(trip.seed)},
+                     {"q", vector_json(trip.result.q)},
+                     {"status", to_string(trip.result.status)},
+                     {"position_error", trip.result.position_error},
+                     {"orientation_error", trip.result.orientation_error},
+                     {"iterations", trip.result.iterations},
+                     {"seconds", trip.seconds}};
+    print_json(doc);
+    return;
+  }
+  print_heading(os, "inverse kinematics round trip");
+  os << "target: the pose above (keyframe '" << options.key
+     << "'); seed: the middle of the joint ranges\n";
+  print_fields(os,
+               {{"status", to_string(trip.result.status)},
+                {"iterations", std::to_string(trip.result.iterations)},
+                {"position error [m]", general(trip.result.position_error, 3)},
+                {"orientation error [rad]", general(trip.result.orientation_error, 3)},
+                {"time [ms]", fixed(trip.seconds * 1e3, 3)},
+                {"seed q [rad or m]", vector_text(trip.seed)},
+                {"solution q [rad or m]", vector_text(trip.result.q)},
+                {"keyframe q [rad or m]", vector_text(config.q)}},
+               2);
+}
+
 }  // namespace
 
 Command add_demo_command(CLI::App& root) {
-  struct Options {
-    std::string model = "panda";
-    std::string site;
-    std::string key = "home";
-    std::size_t samples = 20000;
-    std::uint64_t seed = 1;
-    std::string record = "out/demo";
-    std::string video = "out/demo.mp4";
-    bool json = false;
-  };
-  auto options = std::make_shared<Options>();
+  auto options = std::make_shared<DemoOptions>();
   CLI::App* app = root.add_subcommand(
       "demo",
       "the shelf pick on the panda under operational-space control (recorded), then a tour: "
@@ -64,7 +182,7 @@ Command add_demo_command(CLI::App& root) {
   app->add_option("--key", options->key, "keyframe for FK and the IK target")
       ->capture_default_str();
   app->add_option("--samples", options->samples, "workspace samples")
-      ->check(CLI::Range(std::size_t{1}, std::size_t{1000000000}))
+      ->check(count_in(1, kMaxWorkspaceSamples))
       ->capture_default_str();
   app->add_option("--seed", options->seed, "seed of the shelf pick and of the workspace sampling")
       ->check(non_negative_integer())
@@ -77,87 +195,7 @@ Command add_demo_command(CLI::App& root) {
       ->capture_default_str();
   add_json_flag(*app, options->json);
 
-  return {app, [options] {
-            // the main job: the shelf pick (a finalized recording even on Ctrl-C)
-            ShelfPickOptions pick;
-            pick.request.robot = "panda";
-            pick.request.controller = "osc";
-            pick.request.seed = options->seed;
-            pick.record = options->record;
-            pick.video.path = options->video;
-            if (pick.video.path.has_parent_path())
-              std::filesystem::create_directories(pick.video.path.parent_path());
-            std::optional<ShelfPickReport> report;
-            {
-              const InterruptGuard interrupts;
-              report.emplace(run_shelf_pick(pick));
-            }
-            if (!report->ok())
-              throw mjarm::Error("the shelf pick ended " + std::string(to_string(report->outcome)) +
-                                 ": " + report->run.message + "; recording in " +
-                                 report->recording.string());
-            if (!report->recording_error.empty()) throw mjarm::Error(report->recording_error);
-            // plots of the recording, beside it (docs/plot.md)
-            std::vector<std::filesystem::path> plots =
-                plot::write_plots(report->recording, report->recording / "plots");
-            for (auto& p : plots) p = std::filesystem::proximate(p);  // as given: relative
-
-            const Robot robot = load_model(options->model);
-            const Chain chain(robot, resolve_site(robot, options->site));
-            const Configuration config = resolve_configuration(chain, {}, options->key);
-            ChainKinematics kin(chain);
-            kin.set_fixed_qpos(config.qpos);
-            const Pose X_WE = kin.update(config.q);
-            const WorkspaceResult workspace =
-                run_workspace(chain, options->samples, options->seed, false);
-            const RoundTrip trip = ik_round_trip(chain, config, X_WE);
-
-            if (options->json) {
-              Json ik{{"target", options->key},
-                      {"seed", vector_json(trip.seed)},
-                      {"q", vector_json(trip.result.q)},
-                      {"status", to_string(trip.result.status)},
-                      {"position_error", trip.result.position_error},
-                      {"orientation_error", trip.result.orientation_error},
-                      {"iterations", trip.result.iterations},
-                      {"seconds", trip.seconds}};
-              Json plot_paths = Json::array();
-              for (const auto& p : plots) plot_paths.push_back(p.string());
-              return print_json({{"shelf_pick", shelf_pick_json(*report)},
-                                 {"plots", plot_paths},
-                                 {"model", model_json(robot)},
-                                 {"fk", pose_json(kin, config, false)},
-                                 {"workspace", workspace_json(chain, workspace)},
-                                 {"ik", ik}});
-            }
-
-            std::ostream& os = std::cout;
-            print_heading(os, "shelf pick");
-            print_shelf_pick(os, *report);
-            os << "plots\n";
-            for (const auto& p : plots) os << "  " << p.string() << "\n";
-            print_heading(os, "model");
-            os << robot.name() << ": " << robot.joints().size() << " joints, " << robot.nu()
-               << " actuators, frame " << chain.frame().name << " (mjarm info " << options->model
-               << " for the tables)\n";
-            print_heading(os, "forward kinematics");
-            print_pose(os, kin, config, false);
-            print_heading(os, "workspace");
-            print_workspace(os, chain, workspace);
-            print_heading(os, "inverse kinematics round trip");
-            os << "target: the pose above (keyframe '" << options->key
-               << "'); seed: the middle of the joint ranges\n";
-            print_fields(os,
-                         {{"status", to_string(trip.result.status)},
-                          {"iterations", std::to_string(trip.result.iterations)},
-                          {"position error [m]", general(trip.result.position_error, 3)},
-                          {"orientation error [rad]", general(trip.result.orientation_error, 3)},
-                          {"time [ms]", fixed(trip.seconds * 1e3, 3)},
-                          {"seed q [rad or m]", vector_text(trip.seed)},
-                          {"solution q [rad or m]", vector_text(trip.result.q)},
-                          {"keyframe q [rad or m]", vector_text(config.q)}},
-                         2);
-          }};
+  return {app, [options] { run_demo(*options); }};
 }
 
 }  // namespace mjarm::cli

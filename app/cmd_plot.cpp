@@ -29,7 +29,7 @@ Command add_plot_command(CLI::App& root) {
   app->add_option("--out", options->out, "folder for the PNG files [default: RECORDING/plots]");
   app->add_option("--size", options->size, "figure size WIDTHxHEIGHT [pixels]")
       ->capture_default_str()
-      ->check(pixel_size({200, 150}));
+      ->check(pixel_size({200, 150}, false, {8192, 8192}));
   add_json_flag(*app, options->json);
 
   return {app, [options] {
@@ -41,6 +41,7 @@ Command add_plot_command(CLI::App& root) {
             const std::filesystem::path out = options->out.empty()
                                                   ? recording.directory() / "plots"
                                                   : std::filesystem::path(options->out);
+            check_output_folder(out.string(), "--out");
             const std::vector<plot::PlotInfo> plots =
                 plot::make_plots(recording, out, plot_options);
             if (options->json) {

@@ -93,6 +93,7 @@ Command add_render_command(CLI::App& root) {
   add_json_flag(*app, options->json);
 
   return {app, [options, distance] {
+            check_output_file(options->out, "--out");  // before the model loads or GL starts
             const Robot robot = load_model(options->model);
             DataPtr data = robot.make_data();
             std::string configuration = "qpos0";

@@ -21,6 +21,10 @@ namespace {
 
 const std::vector<std::string> kScenarios{"shelf-pick"};
 
+/// Most frames `run --video` may film after the approach (--fps × --settle-time): 5 minutes of
+/// video at 30 fps, about 20 minutes of software rendering at 640x480.
+constexpr double kMaxVideoFrames = 9000.0;
+
 std::string controller_title(const std::string& name) {
   if (name == "ct") return "computed torque (ct)";
   if (name == "osc") return "operational-space impedance (osc)";
@@ -189,6 +193,10 @@ void run_all(const ShelfPickOptions& base, int seeds, bool json) {
   progress.finish();
   const std::string stopped = "interrupted after " + std::to_string(done) + " of " +
                               std::to_string(planned) + " shelf picks";
+  // the exit code says whether every pick held, whatever the output format
+  const bool all_held =
+      std::all_of(rows.begin(), rows.end(), [](const Row& row) { return row.held == row.runs; });
+  const char* const not_held = "some shelf picks did not hold (see the 'held' column)";
   if (json) {
     Json doc = Json::array();
     for (const Row& row : rows)
@@ -209,6 +217,7 @@ void run_all(const ShelfPickOptions& base, int seeds, bool json) {
                 {"runs", done},
                 {"rows", doc}});
     if (interrupted) throw InterruptedError(stopped, interrupt_signal());
+    if (!all_held) throw Error(not_held);
     return;
   }
   if (seeds == 1) {
@@ -238,9 +247,7 @@ void run_all(const ShelfPickOptions& base, int seeds, bool json) {
     std::cout << stopped << ": the rows above hold the runs done\n";
     throw InterruptedError(stopped, interrupt_signal());
   }
-  const bool all_held =
-      std::all_of(rows.begin(), rows.end(), [](const Row& row) { return row.held == row.runs; });
-  if (!all_held) throw Error("some shelf picks did not hold (see the 'held' column)");
+  if (!all_held) throw Error(not_held);
 }
 
 }  // namespace
@@ -286,7 +293,7 @@ Command add_run_command(CLI::App& root) {
       app->add_option("--record", o->record, "record state, task and events into DIR");
   app->add_option("--control-period", o->control_period,
                   "control period [s], a whole multiple of the timestep (0: one physics step)")
-      ->check(finite_number())
+      ->check(number_in(0.0, 1.0))
       ->capture_default_str();
   app->add_option("--max-acceleration", o->max_acceleration,
                   "divergence bound on |joint acceleration| [rad/s²]")
@@ -294,7 +301,7 @@ Command add_run_command(CLI::App& root) {
       ->capture_default_str();
   app->add_option("--settle-time", o->settle_time,
                   "time allowed after the approach to enter the tolerance and hold [s]")
-      ->check(finite_number())
+      ->check(number_in(0.01, 600.0))
       ->capture_default_str();
   CLI::Option* video = app->add_option(
       "--video", o->video, "write an MP4 of the run (rendered headless; needs Debian's ffmpeg)");
@@ -303,11 +310,11 @@ Command add_run_command(CLI::App& root) {
                   "free camera framing the robot and the pick point")
       ->needs(video);
   app->add_option("--size", o->size, "video size WIDTHxHEIGHT [pixels], even")
-      ->check(pixel_size({2, 2}, true))
+      ->check(pixel_size({2, 2}, true, {4096, 4096}))
       ->needs(video)
       ->capture_default_str();
   app->add_option("--fps", o->fps, "video frames per simulated second")
-      ->check(finite_number())
+      ->check(number_in(1.0, 240.0))
       ->needs(video)
       ->capture_default_str();
   app->add_flag("--all", o->all, "every robot × controller (a table of the worst figures)")
@@ -315,7 +322,7 @@ Command add_run_command(CLI::App& root) {
       ->excludes(record)
       ->excludes(video);
   app->add_option("--seeds", o->seeds, "with --all: run seeds K … K+N−1 per row")
-      ->check(CLI::Range(1, 100000))
+      ->check(count_in(1, 10000))
       ->capture_default_str();
   add_json_flag(*app, o->json);
 
@@ -324,6 +331,9 @@ Command add_run_command(CLI::App& root) {
               throw UsageError("unknown scenario '" + o->scenario +
                                "'; scenarios: " + join(kScenarios));
             if (o->seeds != 1 && !o->all) throw UsageError("--seeds needs --all");
+            // the outputs are checked before the work
+            if (!o->record.empty()) check_output_folder(o->record, "--record");
+            if (!o->video.empty()) check_output_file(o->video, "--video");
             ShelfPickOptions options;
             options.request.robot = o->robot;
             options.request.controller = o->controller;
@@ -335,7 +345,15 @@ Command add_run_command(CLI::App& root) {
             options.max_acceleration = o->max_acceleration;
             options.settle_time = o->settle_time;
             if (!o->video.empty()) {
-              if (!(o->fps > 0.0)) throw UsageError("--fps must be > 0, got " + compact(o->fps));
+              // the work before it starts: the run lasts the approach (a second or two) plus
+              // --settle-time, and every simulated second films --fps frames
+              const double frames = o->fps * o->settle_time;
+              if (frames > kMaxVideoFrames)
+                throw UsageError("--video at --fps " + readable(o->fps) + " with --settle-time " +
+                                 readable(o->settle_time) + " s would film up to " +
+                                 readable(std::ceil(frames)) + " frames after the approach; at " +
+                                 "most " + readable(kMaxVideoFrames) +
+                                 " (lower --fps or --settle-time)");
               const PixelSize size = parse_pixel_size(o->size);
               options.video.path = o->video;
               options.video.camera = o->camera;

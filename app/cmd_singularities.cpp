@@ -4,9 +4,12 @@
 #include <iostream>
 #include <map>
 #include <memory>
+#include <optional>
 
 #include "commands.hpp"
+#include "mjarm/error.hpp"
 #include "mjarm/kinematics/singularity.hpp"
+#include "mjarm/sim/interrupt.hpp"
 #include "output.hpp"
 
 namespace mjarm::cli {
@@ -72,6 +75,9 @@ Table entry_table() {
                 {"q [rad or m]", Table::Align::left}});
 }
 
+/// Most samples `singularities` scans: about ten minutes at the panda's rate.
+constexpr std::uint64_t kMaxSingularitySamples = 100'000'000;
+
 }  // namespace
 
 Command add_singularities_command(CLI::App& root) {
@@ -92,13 +98,13 @@ Command add_singularities_command(CLI::App& root) {
   add_model_argument(*app, options->model)->required();
   add_site_option(*app, options->site);
   app->add_option("--samples", options->samples, "random configurations to scan (0: named only)")
-      ->check(non_negative_integer())
+      ->check(count_in(0, kMaxSingularitySamples))
       ->capture_default_str();
   app->add_option("--seed", options->seed, "seed of the random generator")
       ->check(non_negative_integer())
       ->capture_default_str();
   app->add_option("--worst", options->worst, "how many of the worst samples to list")
-      ->check(non_negative_integer())
+      ->check(count_in(0, 1000))
       ->capture_default_str();
   app->add_option("--block", options->block,
                   "Jacobian rows measured: full [v; ω], position or orientation")
@@ -116,6 +122,7 @@ Command add_singularities_command(CLI::App& root) {
             measure.block = kBlocks.at(options->block);
             std::vector<NamedConfiguration> extra;
             if (!options->q.empty()) {
+              resolve_configuration(chain, options->q, "");  // a wrong count is a usage error
               extra.push_back(
                   {"--q", Eigen::Map<const Eigen::VectorXd>(
                               options->q.data(), static_cast<Eigen::Index>(options->q.size()))});
@@ -123,9 +130,21 @@ Command add_singularities_command(CLI::App& root) {
             const SingularityReport report = singularity_report(chain, extra, measure);
             std::optional<SingularityScan> scan;
             if (options->samples > 0) {
-              scan = scan_singularities(chain, options->samples, options->seed, options->worst,
-                                        measure);
+              const InterruptGuard interrupts;  // Ctrl-C: report the samples scanned so far
+              Progress progress("scanning", static_cast<std::int64_t>(options->samples));
+              scan = scan_singularities(
+                  chain, options->samples, options->seed, options->worst, measure, {},
+                  [&progress](std::size_t done, std::size_t) {
+                    progress.update(static_cast<std::int64_t>(done));
+                  },
+                  [] { return interrupt_requested(); });
+              progress.finish();
             }
+            const bool interrupted = scan && scan->status == SamplingStatus::interrupted;
+            const std::string stopped =
+                interrupted ? "interrupted after " + std::to_string(scan->samples) + " of " +
+                                  std::to_string(options->samples) + " samples"
+                            : "";
 
             if (options->json) {
               Json doc{{"model", robot.name()},
@@ -139,7 +158,8 @@ Command add_singularities_command(CLI::App& root) {
                        {"configurations", Json::array()}};
               for (const auto& e : report.entries) doc["configurations"].push_back(entry_json(e));
               if (scan) {
-                Json s{{"samples", scan->samples},
+                Json s{{"status", to_string(scan->status)},
+                       {"samples", scan->samples},
                        {"seed", scan->seed},
                        {"singular", scan->singular_count},
                        {"near_singular", scan->near_singular_count},
@@ -150,7 +170,9 @@ Command add_singularities_command(CLI::App& root) {
               } else {
                 doc["scan"] = nullptr;
               }
-              return print_json(doc);
+              print_json(doc);
+              if (interrupted) throw InterruptedError(stopped, interrupt_signal());
+              return;
             }
 
             std::ostream& os = std::cout;
@@ -172,8 +194,9 @@ Command add_singularities_command(CLI::App& root) {
             named.print(os);
             if (scan) {
               os << "\nrandom scan: " << scan->samples << " samples (seed " << scan->seed
-                 << "): " << scan->singular_count << " singular, " << scan->near_singular_count
-                 << " near-singular, " << scan->flagged_count << " with σmin < "
+                 << (interrupted ? "; interrupted" : "") << "): " << scan->singular_count
+                 << " singular, " << scan->near_singular_count << " near-singular, "
+                 << scan->flagged_count << " with σmin < "
                  << general(scan->thresholds.sigma_min, 2) << " or cond > "
                  << general(scan->thresholds.condition_number, 3) << "\n";
               if (!scan->worst.empty()) {
@@ -183,6 +206,7 @@ Command add_singularities_command(CLI::App& root) {
                 worst.print(os);
               }
             }
+            if (interrupted) throw InterruptedError(stopped, interrupt_signal());
           }};
 }
 

@@ -80,6 +80,7 @@ Json report_json(const Robot& robot, const ViewerReport& report, const std::stri
 }
 
 void run_view(const ViewOptions& o) {
+  if (!o.screenshot.empty()) check_output_file(o.screenshot, "--screenshot");
   const Robot robot = load_model(o.model);
   ViewerOptions options;
   options.session.site = o.site;
@@ -160,19 +161,20 @@ Command add_view_command(CLI::App& root) {
       ->check(CLI::ExistingFile);
   app->add_option("--frames", options->frames,
                   "scripted: draw N frames (after the script), then exit")
-      ->check(CLI::Range(std::int64_t{0}, std::int64_t{10000000}));
+      ->check(count_in(0, 1000000));
   app->add_option("--screenshot", options->screenshot, "scripted: save the last frame as this PNG");
   app->add_option("--set", options->set,
                   "panel value before the first frame, NAME=VALUE (x y z [m], roll pitch yaw "
                   "[rad], gripper 0..1, mode); repeatable");
   app->add_option("--size", options->size, "window size WIDTHxHEIGHT [pixels]; default 1280x800")
-      ->check(pixel_size());
-  app->add_option("--render-hz", options->render_hz, "frames per second; default 60")
-      ->check(CLI::PositiveNumber);
-  app->add_option("--input-hz", options->input_hz, "input polls per second; default 20")
-      ->check(CLI::PositiveNumber);
-  app->add_option("--speed", options->speed, "simulated seconds per wall-clock second; default 1")
-      ->check(CLI::PositiveNumber);
+      ->check(pixel_size({1, 1}, false, {7680, 4320}));
+  app->add_option("--render-hz", options->render_hz, "frames per second, 1 to 240; default 60")
+      ->check(number_in(1.0, 240.0));
+  app->add_option("--input-hz", options->input_hz, "input polls per second, 1 to 1000; default 20")
+      ->check(number_in(1.0, 1000.0));
+  app->add_option("--speed", options->speed,
+                  "simulated seconds per wall-clock second, 0.01 to 100; default 1")
+      ->check(number_in(0.01, 100.0));
   add_json_flag(*app, options->json);
   return {app, [options] { run_view(*options); }};
 }

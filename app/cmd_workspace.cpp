@@ -1,9 +1,12 @@
 // `mjarm workspace MODEL --site S --samples N --seed K`: seeded Monte-Carlo reachable workspace.
 
+#include <filesystem>
 #include <iostream>
 #include <memory>
 
 #include "commands.hpp"
+#include "mjarm/error.hpp"
+#include "mjarm/sim/interrupt.hpp"
 #include "output.hpp"
 
 namespace mjarm::cli {
@@ -16,6 +19,28 @@ double rate(const WorkspaceResult& result) {
 
 }  // namespace
 
+void check_workspace_csv(const std::string& out, std::size_t samples) {
+  if (samples > kMaxKeptWorkspacePoints) {
+    throw UsageError("--samples " + std::to_string(samples) + " with --out would keep " +
+                     std::to_string(samples / (std::size_t{1} << 20) * sizeof(WorkspacePoint)) +
+                     " MiB of points in memory; with --out at most " +
+                     std::to_string(kMaxKeptWorkspacePoints) + " samples are allowed");
+  }
+  check_output_file(out, "--out");
+  // a CSV line holds four numbers of up to 17 significant digits: about 90 bytes
+  constexpr std::uintmax_t kCsvLineBytes = 90;
+  const std::filesystem::path file(out);
+  std::error_code ec;
+  const std::filesystem::space_info space = std::filesystem::space(
+      file.has_parent_path() ? file.parent_path() : std::filesystem::path("."), ec);
+  const std::uintmax_t needed = kCsvLineBytes * samples;
+  if (!ec && space.available < needed) {
+    throw UsageError("--out: " + out + " would need about " + std::to_string(needed >> 20) +
+                     " MiB for " + std::to_string(samples) + " samples; " +
+                     std::to_string(space.available >> 20) + " MiB are free there");
+  }
+}
+
 WorkspaceResult run_workspace(const Chain& chain, std::size_t samples, std::uint64_t seed,
                               bool keep_points) {
   WorkspaceOptions options;
@@ -26,6 +51,7 @@ WorkspaceResult run_workspace(const Chain& chain, std::size_t samples, std::uint
   options.progress = [&progress](std::size_t done, std::size_t) {
     progress.update(static_cast<std::int64_t>(done));
   };
+  options.stop = [] { return interrupt_requested(); };  // the caller holds the InterruptGuard
   WorkspaceResult result = sample_workspace(chain, options);
   progress.finish();
   return result;
@@ -35,6 +61,7 @@ Json workspace_json(const Chain& chain, const WorkspaceResult& result) {
   return {{"model", chain.robot().name()},
           {"frame", chain.frame().name},
           {"joints", chain.joint_names()},
+          {"status", to_string(result.status)},
           {"samples", result.samples},
           {"seed", result.seed},
           {"lower", vector_json(result.lower)},
@@ -59,7 +86,8 @@ void print_workspace(std::ostream& os, const Chain& chain, const WorkspaceResult
            {"frame", chain.frame().name},
            {"joints", std::to_string(chain.size()) + ": " + join(chain.joint_names())},
            {"samples", std::to_string(result.samples) + " (seed " + std::to_string(result.seed) +
-                           ", uniform within the joint limits)"}});
+                           ", uniform within the joint limits" +
+                           (result.status == SamplingStatus::complete ? ")" : "; interrupted)")}});
   os << "\nreachable positions of the frame, world axes\n";
   Table box({{"", Table::Align::left}, {"min [m]"}, {"max [m]"}, {"extent [m]"}, {"centroid [m]"}});
   const char* axes[] = {"x", "y", "z"};
@@ -94,8 +122,10 @@ Command add_workspace_command(CLI::App& root) {
       "workspace", "reachable workspace of a site: seeded uniform joint samples within the limits");
   add_model_argument(*app, options->model)->required();
   add_site_option(*app, options->site);
-  app->add_option("--samples", options->samples, "number of joint samples")
-      ->check(CLI::Range(std::size_t{1}, std::size_t{1000000000}))
+  app->add_option("--samples", options->samples,
+                  "number of joint samples (with --out at most " +
+                      std::to_string(kMaxKeptWorkspacePoints) + ", kept in memory)")
+      ->check(count_in(1, kMaxWorkspaceSamples))
       ->capture_default_str();
   app->add_option("--seed", options->seed, "seed of the random generator (same seed, same samples)")
       ->check(non_negative_integer())
@@ -105,20 +135,32 @@ Command add_workspace_command(CLI::App& root) {
   add_json_flag(*app, options->json);
 
   return {app, [options] {
+            // every argument and the output are checked before the work
+            if (!options->out.empty()) check_workspace_csv(options->out, options->samples);
             const Robot robot = load_model(options->model);
             const Chain chain(robot, resolve_site(robot, options->site));
+            const InterruptGuard interrupts;  // Ctrl-C: report the samples drawn so far
             const WorkspaceResult result =
                 run_workspace(chain, options->samples, options->seed, !options->out.empty());
-            if (!options->out.empty()) result.write_csv(options->out);
+            const bool complete = result.status == SamplingStatus::complete;
+            if (!options->out.empty() && complete) result.write_csv(options->out);
             if (options->json) {
               Json doc = workspace_json(chain, result);
-              doc["csv"] = options->out.empty() ? Json(nullptr) : Json(options->out);
-              return print_json(doc);
+              doc["csv"] = options->out.empty() || !complete ? Json(nullptr) : Json(options->out);
+              print_json(doc);
+            } else {
+              print_workspace(std::cout, chain, result);
+              if (!options->out.empty() && complete) {
+                std::cout << "\nwrote " << result.points.size() << " samples to " << options->out
+                          << '\n';
+              }
             }
-            print_workspace(std::cout, chain, result);
-            if (!options->out.empty()) {
-              std::cout << "\nwrote " << result.points.size() << " samples to " << options->out
-                        << '\n';
+            if (!complete) {
+              throw InterruptedError(
+                  "interrupted after " + std::to_string(result.samples) + " of " +
+                      std::to_string(options->samples) + " samples" +
+                      (options->out.empty() ? "" : "; " + options->out + " was not written"),
+                  interrupt_signal());
             }
           }};
 }

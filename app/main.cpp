@@ -1,8 +1,11 @@
 // mjarm: command-line access to the library. Parse → call the library → print.
 
+#include <mujoco/mujoco.h>
+
 #include <CLI/CLI.hpp>
 #include <exception>
 #include <iostream>
+#include <string>
 #include <vector>
 
 #include "commands.hpp"
@@ -29,6 +32,8 @@ int main(int argc, char** argv) {
       "Exit codes: 0 success, 1 the command failed, 2 the command line is wrong.\n"
       "Run `mjarm COMMAND --help` for the options of one command.");
   app.require_subcommand(1);
+  app.set_version_flag(
+      "--version", std::string("mjarm ") + MJARM_VERSION + " (MuJoCo " + mj_versionString() + ")");
 
   std::vector<Command> commands;
   commands.push_back(add_models_command(app));
@@ -62,6 +67,8 @@ int main(int argc, char** argv) {
   } catch (const CLI::CallForHelp& e) {
     return app.exit(e);
   } catch (const CLI::CallForAllHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForVersion& e) {
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
     if (argc == 1) {

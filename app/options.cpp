@@ -1,8 +1,15 @@
 #include "options.hpp"
 
+#include <fcntl.h>
+#include <unistd.h>
+
 #include <cerrno>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <limits>
 
 #include "mjarm/error.hpp"
 #include "output.hpp"
@@ -14,30 +21,79 @@ CLI::Validator finite_number() {
       [](std::string& text) -> std::string {
         const char* begin = text.c_str();
         char* end = nullptr;
-        errno = 0;
         const double value = std::strtod(begin, &end);
         if (end == begin || *end != '\0') return "'" + text + "' is not a number";
-        if (!std::isfinite(value) || errno == ERANGE)
-          return "'" + text + "' is not a finite number";
+        // strtod flags an underflow (a subnormal such as 1e-320) with ERANGE too: those are
+        // finite numbers; only an overflow (±HUGE_VAL) or nan/inf is refused
+        if (!std::isfinite(value)) return "'" + text + "' is not a finite number";
         return {};
       },
       "NUMBER", "finite_number");
 }
 
+namespace {
+
+/// The whole number @p text spells with digits, or an error message. Leading zeros are refused:
+/// CLI11 would read "010" as octal eight.
+std::string parse_whole(const std::string& text, std::uint64_t& value) {
+  if (text.empty() || text.find_first_not_of("0123456789") != std::string::npos)
+    return "'" + text + "' is not a whole number written with digits";
+  if (text.size() > 1 && text[0] == '0')
+    return "'" + text + "' starts with 0; write the number without leading zeros";
+  errno = 0;
+  value = std::strtoull(text.c_str(), nullptr, 10);
+  if (errno == ERANGE)
+    return "'" + text + "' is too large (at most " +
+           std::to_string(std::numeric_limits<std::uint64_t>::max()) + ")";
+  return {};
+}
+
+}  // namespace
+
 CLI::Validator non_negative_integer() {
   return CLI::Validator(
       [](std::string& text) -> std::string {
-        const bool digits =
-            !text.empty() && text.find_first_not_of("0123456789") == std::string::npos;
-        return digits ? std::string() : "'" + text + "' is not a whole number ≥ 0";
+        std::uint64_t value = 0;
+        return parse_whole(text, value);
       },
       "INTEGER", "non_negative_integer");
 }
 
-CLI::Validator pixel_size(PixelSize min, bool even) {
-  constexpr int kMax = 16384;
+CLI::Validator count_in(std::uint64_t min, std::uint64_t max) {
+  const std::string range = "from " + std::to_string(min) + " to " + std::to_string(max);
   return CLI::Validator(
-      [min, even](std::string& text) -> std::string {
+      [min, max, range](std::string& text) -> std::string {
+        std::uint64_t value = 0;
+        if (!parse_whole(text, value).empty() || value < min || value > max)
+          return "'" + text + "' is not a whole number " + range;
+        return {};
+      },
+      "INTEGER", "count_in");
+}
+
+std::string readable(double value) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%g", value);
+  return text;
+}
+
+CLI::Validator number_in(double min, double max) {
+  const std::string range = "from " + readable(min) + " to " + readable(max);
+  return CLI::Validator(
+      [min, max, range](std::string& text) -> std::string {
+        const char* begin = text.c_str();
+        char* end = nullptr;
+        const double value = std::strtod(begin, &end);
+        if (end == begin || *end != '\0' || !std::isfinite(value) || value < min || value > max)
+          return "'" + text + "' is not a number " + range;
+        return {};
+      },
+      "NUMBER", "number_in");
+}
+
+CLI::Validator pixel_size(PixelSize min, bool even, PixelSize max) {
+  return CLI::Validator(
+      [min, even, max](std::string& text) -> std::string {
         const auto x = text.find_first_of("xX");
         auto whole = [](const std::string& s) {
           return !s.empty() && s.size() <= 5 &&
@@ -46,10 +102,11 @@ CLI::Validator pixel_size(PixelSize min, bool even) {
         if (x == std::string::npos || !whole(text.substr(0, x)) || !whole(text.substr(x + 1)))
           return "'" + text + "' is not a size WIDTHxHEIGHT in pixels (e.g. 640x480)";
         const PixelSize size = parse_pixel_size(text);
-        if (size.width < min.width || size.height < min.height || size.width > kMax ||
-            size.height > kMax) {
+        if (size.width < min.width || size.height < min.height || size.width > max.width ||
+            size.height > max.height) {
           return "size '" + text + "' must be between " + std::to_string(min.width) + "x" +
-                 std::to_string(min.height) + " and 16384x16384 pixels";
+                 std::to_string(min.height) + " and " + std::to_string(max.width) + "x" +
+                 std::to_string(max.height) + " pixels";
         }
         if (even && (size.width % 2 != 0 || size.height % 2 != 0))
           return "size '" + text + "' must be even in both directions (the MP4's yuv420p), e.g. " +
@@ -97,11 +154,16 @@ std::string resolve_site(const Robot& robot, const std::string& site) {
 }
 
 Configuration resolve_configuration(const Chain& chain, const std::vector<double>& q,
-                                    const std::string& key) {
+                                    const std::string& key, const std::string& option) {
   const mjModel& m = chain.robot().model();
   Configuration config;
   if (!key.empty()) {
-    const std::vector<double> qpos = chain.robot().keyframe_qpos(key);
+    std::vector<double> qpos;
+    try {
+      qpos = chain.robot().keyframe_qpos(key);
+    } catch (const Error& e) {
+      throw UsageError(std::string("--key: ") + e.what());
+    }
     config.qpos =
         Eigen::Map<const Eigen::VectorXd>(qpos.data(), static_cast<Eigen::Index>(qpos.size()));
     config.q = chain.gather(config.qpos.data());
@@ -116,11 +178,92 @@ Configuration resolve_configuration(const Chain& chain, const std::vector<double
   }
   const Eigen::VectorXd values =
       Eigen::Map<const Eigen::VectorXd>(q.data(), static_cast<Eigen::Index>(q.size()));
-  chain.check(values, "--q");
+  try {
+    chain.check(values, option);
+  } catch (const Error& e) {
+    throw UsageError(e.what());  // a wrong count is a mistake on the command line
+  }
   chain.scatter(values, config.qpos.data());
   config.q = values;
-  config.source = "--q";
+  config.source = option;
   return config;
+}
+
+namespace {
+
+namespace fs = std::filesystem;
+
+/// The nearest ancestor of @p path that exists ("." for a relative path with none).
+fs::path existing_ancestor(const fs::path& path) {
+  std::error_code ec;
+  fs::path p = path;
+  while (!p.empty() && !fs::exists(p, ec)) p = p.parent_path();
+  return p.empty() ? fs::path(".") : p;
+}
+
+/// Whether a file can be created in folder @p folder: tries it (root ignores permission bits, and
+/// /proc or a read-only mount only shows itself on creation), then removes the probe.
+std::string probe_folder(const fs::path& folder) {
+  std::string probe = (folder / ".mjarm-probe-XXXXXX").string();
+  const int fd = mkstemp(probe.data());
+  if (fd < 0) return std::strerror(errno);
+  close(fd);
+  unlink(probe.c_str());
+  return {};
+}
+
+std::string shown(const fs::path& path) { return "'" + path.string() + "'"; }
+
+}  // namespace
+
+void check_output_file(const std::string& path, const std::string& option, bool make_parents) {
+  if (path.empty()) throw UsageError(option + ": the path is empty");
+  const fs::path file(path);
+  std::error_code ec;
+  const fs::file_status status = fs::status(file, ec);
+  if (fs::is_directory(status))
+    throw UsageError(option + ": " + shown(file) + " is a folder, expected a file name");
+  if (fs::exists(status)) {
+    // an existing file (or device, e.g. /dev/null): it must open for writing, without waiting
+    // on a FIFO nobody reads and without truncating it yet
+    const int fd = open(file.c_str(), O_WRONLY | O_NONBLOCK | O_CLOEXEC);
+    if (fd < 0)
+      throw UsageError(option + ": cannot write " + shown(file) + ": " + std::strerror(errno));
+    close(fd);
+    return;
+  }
+  const fs::path parent = file.has_parent_path() ? file.parent_path() : fs::path(".");
+  if (!fs::exists(parent, ec)) {
+    if (!make_parents)
+      throw UsageError(option + ": the folder " + shown(parent) + " of " + shown(file) +
+                       " does not exist");
+    return check_output_folder(parent.string(), option);
+  }
+  if (!fs::is_directory(parent, ec))
+    throw UsageError(option + ": " + shown(parent) + " is not a folder, so " + shown(file) +
+                     " cannot be created");
+  // create the file itself (exclusively) and remove it: the one test that cannot be wrong
+  const int fd = open(file.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0644);
+  if (fd < 0)
+    throw UsageError(option + ": cannot create " + shown(file) + ": " + std::strerror(errno));
+  close(fd);
+  unlink(file.c_str());
+}
+
+void check_output_folder(const std::string& path, const std::string& option) {
+  if (path.empty()) throw UsageError(option + ": the path is empty");
+  const fs::path folder(path);
+  const fs::path ancestor = existing_ancestor(folder);
+  std::error_code ec;
+  if (!fs::is_directory(ancestor, ec)) {
+    throw UsageError(option + ": " + shown(ancestor) + " is not a folder" +
+                     (ancestor == folder ? "" : ", so " + shown(folder) + " cannot be made"));
+  }
+  const std::string why = probe_folder(ancestor);
+  if (!why.empty()) {
+    throw UsageError(option + ": cannot write into " + shown(ancestor) +
+                     (ancestor == folder ? "" : " (to make " + shown(folder) + ")") + ": " + why);
+  }
 }
 
 }  // namespace mjarm::cli

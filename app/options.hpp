@@ -1,10 +1,17 @@
 #pragma once
 /// @file
 /// Command-line pieces shared by the `mjarm` commands: the MODEL argument, the frame (--site),
-/// the configuration (--q / --key), and validators for numbers and picture sizes.
+/// the configuration (--q / --key), validators for numbers and picture sizes, and the checks of
+/// output paths made before any work starts.
+///
+/// The rule for counts and rates: every option that sets how much work a command does (a number
+/// of samples, steps, frames or seeds; a rate in Hz or frames per second; a duration that the
+/// run spends) is checked while parsing with `count_in` or `number_in`, so an absurd value is a
+/// usage error (exit 2) that names the accepted range, never minutes of work or an endless loop.
 
 #include <CLI/CLI.hpp>
 #include <Eigen/Core>
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -16,8 +23,21 @@ namespace mjarm::cli {
 /// Accepts only a finite decimal number ("nan", "inf", "1e999" and trailing junk are rejected).
 CLI::Validator finite_number();
 
-/// Accepts only a whole number ≥ 0 written with digits (rejects "-1", which would wrap around).
+/// Accepts only a whole number ≥ 0 written with digits that fits 64 bits (rejects "-1", which
+/// would wrap around, and 2^64 or more, which CLI11 would clamp). A leading zero is refused:
+/// CLI11 would read "010" as octal eight.
 CLI::Validator non_negative_integer();
+
+/// A count option's rule: a whole number written with digits, from @p min to @p max. The error
+/// names the range ("--samples: '1e20' is not a whole number from 0 to 100000000").
+CLI::Validator count_in(std::uint64_t min, std::uint64_t max);
+
+/// A rate or duration option's rule: a finite number from @p min to @p max (both included),
+/// with the bounds printed in their shortest form ("from 1 to 240").
+CLI::Validator number_in(double min, double max);
+
+/// @p value in its shortest readable form ("240", "0.001", "1e+06"), as bounds are printed.
+std::string readable(double value);
 
 /// A picture's size in pixels.
 struct PixelSize {
@@ -25,9 +45,10 @@ struct PixelSize {
   int height = 0;
 };
 
-/// Accepts "WIDTHxHEIGHT" with whole numbers from @p min up to 16384 in each direction, both
+/// Accepts "WIDTHxHEIGHT" with whole numbers from @p min up to @p max in each direction, both
 /// even when @p even (an MP4's yuv420p needs that).
-CLI::Validator pixel_size(PixelSize min = {1, 1}, bool even = false);
+CLI::Validator pixel_size(PixelSize min = {1, 1}, bool even = false,
+                          PixelSize max = {16384, 16384});
 
 /// The size a pixel_size()-checked text names.
 PixelSize parse_pixel_size(const std::string& text);
@@ -56,10 +77,25 @@ struct Configuration {
   std::string source;    ///< "--q", "keyframe 'home'" or "qpos0"
 };
 
-/// The configuration given by `--q` values (other joints at qpos0), by keyframe @p key, or qpos0
-/// when both are empty.
-/// @throws Error when q has the wrong length or the keyframe does not exist.
+/// The configuration given by @p q values (other joints at qpos0), by keyframe @p key, or qpos0
+/// when both are empty. @p option is the name the user typed for the values ("--q", "--from"):
+/// errors and `Configuration::source` name it.
+/// @throws UsageError when q has the wrong length or the keyframe does not exist (both are
+///         mistakes on the command line: exit 2).
 Configuration resolve_configuration(const Chain& chain, const std::vector<double>& q,
-                                    const std::string& key);
+                                    const std::string& key, const std::string& option = "--q");
+
+/// Checks, before any work, that a file can be created at @p path: its folder exists (or can be
+/// made, when @p make_parents), is a folder and is writable, and @p path is not a folder. The
+/// file is not created.
+/// @param option the option that named the path ("--out"), for the message
+/// @throws UsageError naming the option, the path and what is wrong.
+void check_output_file(const std::string& path, const std::string& option,
+                       bool make_parents = false);
+
+/// Checks, before any work, that @p path is a folder that exists and is writable or can be
+/// made (its nearest existing ancestor is a writable folder).
+/// @throws UsageError naming the option, the path and what is wrong.
+void check_output_folder(const std::string& path, const std::string& option);
 
 }  // namespace mjarm::cli

@@ -44,7 +44,8 @@ class ReferenceTable {
       r.joint.qdd.resize(n);
       for (int i = 0; i < n; ++i) {
         // keep the motion 0.05 inside the limits
-        const double room = std::min(q_home[i] - chain.lower()[i], chain.upper()[i] - q_home[i]) - 0.05;
+        const double room =
+            std::min(q_home[i] - chain.lower()[i], chain.upper()[i] - q_home[i]) - 0.05;
         const double a = std::clamp(room, 0.0, amplitude);
         const double phase = w * k * dt + 0.7 * i;
         r.joint.q[i] = q_home[i] + a * std::sin(phase);
@@ -109,14 +110,64 @@ double percentile(const std::vector<double>& sorted, double p) {
 }
 
 void check_options(const ControlBenchmarkOptions& o) {
-  if (o.steps < 1) throw Error("control benchmark: steps must be >= 1, got " + std::to_string(o.steps));
-  if (o.warmup < 0) throw Error("control benchmark: warmup must be >= 0, got " + std::to_string(o.warmup));
+  if (o.steps < 1)
+    throw Error("control benchmark: steps must be >= 1, got " + std::to_string(o.steps));
+  if (o.warmup < 0)
+    throw Error("control benchmark: warmup must be >= 0, got " + std::to_string(o.warmup));
   if (!std::isfinite(o.amplitude) || o.amplitude < 0.0) {
-    throw Error("control benchmark: amplitude must be finite and >= 0, got " + std::to_string(o.amplitude));
+    throw Error("control benchmark: amplitude must be finite and >= 0, got " +
+                std::to_string(o.amplitude));
   }
   if (!std::isfinite(o.frequency) || o.frequency <= 0.0) {
-    throw Error("control benchmark: frequency must be finite and > 0, got " + std::to_string(o.frequency));
+    throw Error("control benchmark: frequency must be finite and > 0, got " +
+                std::to_string(o.frequency));
   }
+}
+
+// MuJoCo's warnings after which it has reset the data: the run's figures mean nothing
+constexpr int kFatalWarnings[] = {mjWARN_INERTIA, mjWARN_BADQPOS, mjWARN_BADQVEL, mjWARN_BADQACC,
+                                  mjWARN_BADCTRL};
+
+const char* fatal_warning_text(int warning) noexcept {
+  switch (warning) {
+    case mjWARN_INERTIA:
+      return "singular inertia matrix";
+    case mjWARN_BADQPOS:
+      return "bad qpos";
+    case mjWARN_BADQVEL:
+      return "bad qvel";
+    case mjWARN_BADQACC:
+      return "bad qacc";
+    default:
+      return "bad ctrl";
+  }
+}
+
+/// Sets @p result faulted when MuJoCo raised a fatal warning during phase @p phase (the counters
+/// start at zero with every `reset_start`). Returns true then.
+bool check_warnings(const mjData& d, const std::string& phase, ControlBenchmarkResult& result) {
+  for (const int w : kFatalWarnings) {
+    const int times = d.warning[w].number;
+    if (times == 0) continue;
+    result.status = ControlBenchmarkStatus::faulted;
+    result.message = "MuJoCo warned '" + std::string(fatal_warning_text(w)) + "' " +
+                     std::to_string(times) + (times == 1 ? " time" : " times") + " (dof or index " +
+                     std::to_string(d.warning[w].lastinfo) + ") while running '" + phase +
+                     "' and reset the simulation, so the timings and errors are meaningless; "
+                     "the model's dynamics (e.g. a free or ball joint the controllers do not "
+                     "drive) cannot follow this benchmark";
+    return true;
+  }
+  return false;
+}
+
+/// True (and @p result interrupted) when the stop request says so; asked every 1000 ticks.
+bool stop_requested(const ControlBenchmarkOptions& options, int tick,
+                    ControlBenchmarkResult& result) {
+  if (!options.stop || tick % 1000 != 0 || !options.stop()) return false;
+  result.status = ControlBenchmarkStatus::interrupted;
+  result.message = "interrupted";
+  return true;
 }
 
 /// Restarts @p d on the reference's first tick (chain joints at q_d(0) moving at q̇_d(0), the
@@ -144,7 +195,20 @@ std::vector<std::unique_ptr<Controller>> default_benchmark_controllers(const Cha
   return controllers;
 }
 
-ControlBenchmarkResult run_control_benchmark(const Chain& chain, const ControlBenchmarkOptions& options) {
+const char* to_string(ControlBenchmarkStatus status) noexcept {
+  switch (status) {
+    case ControlBenchmarkStatus::ok:
+      return "ok";
+    case ControlBenchmarkStatus::faulted:
+      return "faulted";
+    case ControlBenchmarkStatus::interrupted:
+      return "interrupted";
+  }
+  return "?";
+}
+
+ControlBenchmarkResult run_control_benchmark(const Chain& chain,
+                                             const ControlBenchmarkOptions& options) {
   auto controllers = default_benchmark_controllers(chain);
   return run_control_benchmark(chain, controllers, options);
 }
@@ -204,6 +268,7 @@ ControlBenchmarkResult run_control_benchmark(const Chain& chain,
     std::uint64_t allocations = 0;
     double error2 = 0.0;
     for (int k = 0; k < options.warmup + options.steps; ++k) {
+      if (stop_requested(options, k, result)) return result;
       table.load(k, ref);
       mj_step1(&m, &d);
       const std::uint64_t a0 = count ? count() : 0;
@@ -219,6 +284,7 @@ ControlBenchmarkResult run_control_benchmark(const Chain& chain,
       motors.apply(command.value.data(), d);
       mj_step2(&m, &d);
     }
+    if (check_warnings(d, std::string(controller->name()), result)) return result;
     ControllerBenchmark b;
     b.name = std::string(controller->name());
     b.steps = options.steps;
@@ -239,22 +305,26 @@ ControlBenchmarkResult run_control_benchmark(const Chain& chain,
   }
 
   // real-time factor of closed-loop OSC + physics, no per-tick clocks
-  std::vector<double> torques(static_cast<std::size_t>(options.steps) * static_cast<std::size_t>(n));
+  std::vector<double> torques(static_cast<std::size_t>(options.steps) *
+                              static_cast<std::size_t>(n));
   table.load(0, ref);
   reset_start(chain, ref, qpos_home, d);
   osc.reset();
   const std::uint64_t loop_a0 = count ? count() : 0;
   const Clock::time_point osc_start = Clock::now();
   for (int k = 0; k < options.steps; ++k) {
+    if (stop_requested(options, k, result)) return result;
     table.load(k, ref);
     mj_step1(&m, &d);
     osc.compute(d, ref, command);
     motors.apply(command.value.data(), d);
-    std::copy(command.value.data(), command.value.data() + n, torques.data() + static_cast<std::size_t>(k) * n);
+    std::copy(command.value.data(), command.value.data() + n,
+              torques.data() + static_cast<std::size_t>(k) * n);
     mj_step2(&m, &d);
   }
   const double osc_seconds = seconds_between(osc_start, Clock::now());
   if (count) result.loop_allocations = static_cast<std::int64_t>(count() - loop_a0);
+  if (check_warnings(d, "osc + mj_step", result)) return result;
   if (options.progress) options.progress(++phase, phases);
 
   // the same physics alone: mj_step replaying the recorded torques
@@ -262,10 +332,12 @@ ControlBenchmarkResult run_control_benchmark(const Chain& chain,
   reset_start(chain, ref, qpos_home, d);
   const Clock::time_point passive_start = Clock::now();
   for (int k = 0; k < options.steps; ++k) {
+    if (stop_requested(options, k, result)) return result;
     motors.apply(torques.data() + static_cast<std::size_t>(k) * n, d);
     mj_step(&m, &d);
   }
   const double passive_seconds = seconds_between(passive_start, Clock::now());
+  if (check_warnings(d, "mj_step only", result)) return result;
   if (options.progress) options.progress(++phase, phases);
 
   const double simulated = options.steps * dt;

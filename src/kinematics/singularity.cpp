@@ -66,7 +66,8 @@ SingularityReport singularity_report(const Chain& chain,
 
 SingularityScan scan_singularities(const Chain& chain, std::size_t samples, std::uint64_t seed,
                                    std::size_t keep_worst, const ManipulabilityOptions& options,
-                                   const SingularityThresholds& thresholds) {
+                                   const SingularityThresholds& thresholds,
+                                   const ProgressCallback& progress, const StopRequest& stop) {
   if (samples == 0) throw Error("singularity scan needs at least one sample, got 0");
   SingularityClassifier classifier(chain, options, thresholds);
   Manipulability& m = classifier.manipulability();
@@ -91,7 +92,14 @@ SingularityScan scan_singularities(const Chain& chain, std::size_t samples, std:
   std::vector<Candidate> heap;
   heap.reserve(keep_worst + 1);
   Eigen::VectorXd q(chain.size());
+  const std::size_t report_every = std::max<std::size_t>(1, (samples + 99) / 100);
   for (std::size_t s = 0; s < samples; ++s) {
+    if (stop && s % 1000 == 0 && stop()) {
+      scan.status = SamplingStatus::interrupted;
+      scan.samples = s;
+      break;
+    }
+    if (progress && s > 0 && s % report_every == 0) progress(s, samples);
     sampler.sample(rng, q);
     const ManipulabilityResult& r = m.evaluate(q);
     if (r.status == SingularityStatus::singular) ++scan.singular_count;
@@ -109,6 +117,7 @@ SingularityScan scan_singularities(const Chain& chain, std::size_t samples, std:
       }
     }
   }
+  if (progress && scan.status == SamplingStatus::complete) progress(samples, samples);
   std::sort(heap.begin(), heap.end(), less);
   for (const Candidate& c : heap) {
     scan.worst.push_back(measure(classifier, "sample " + std::to_string(c.index), c.q));

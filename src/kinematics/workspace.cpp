@@ -43,8 +43,19 @@ int base_joint(const ChainKinematics& kin) {
 
 }  // namespace
 
+const char* to_string(SamplingStatus status) noexcept {
+  return status == SamplingStatus::complete ? "complete" : "interrupted";
+}
+
 WorkspaceResult sample_workspace(const Chain& chain, const WorkspaceOptions& options) {
   if (options.samples == 0) throw Error("workspace sampling needs at least one sample, got 0");
+  if (options.keep_points && options.samples > kMaxKeptWorkspacePoints) {
+    throw Error(
+        "workspace sampling: keeping " + std::to_string(options.samples) + " points would take " +
+        std::to_string(options.samples / (std::size_t{1} << 20) * sizeof(WorkspacePoint)) +
+        " MiB; at most " + std::to_string(kMaxKeptWorkspacePoints) + " points (" +
+        std::to_string(kMaxKeptWorkspacePoints * sizeof(WorkspacePoint) >> 20) + " MiB) are kept");
+  }
   Manipulability measure(chain, options.manipulability);
   ChainKinematics& kin = measure.kinematics();
   const JointSampler sampler(chain);
@@ -69,9 +80,15 @@ WorkspaceResult sample_workspace(const Chain& chain, const WorkspaceOptions& opt
   Eigen::VectorXd q(n);
   const std::size_t total = options.samples;
   const std::size_t report_every = std::max<std::size_t>(1, (total + 99) / 100);
+  constexpr std::size_t kStopEvery = 1000;
 
   const auto start = std::chrono::steady_clock::now();
+  std::size_t done = 0;
   for (std::size_t s = 0; s < total; ++s) {
+    if (options.stop && s % kStopEvery == 0 && options.stop()) {
+      result.status = SamplingStatus::interrupted;
+      break;
+    }
     sampler.sample(rng, q);
     double w = 0.0;
     if (options.compute_manipulability) {
@@ -89,13 +106,23 @@ WorkspaceResult sample_workspace(const Chain& chain, const WorkspaceOptions& opt
     result.max_manipulability = std::max(result.max_manipulability, w);
     w_sum += w;
     if (options.keep_points) result.points[s] = WorkspacePoint{p, w};
+    done = s + 1;
     if (options.progress && ((s + 1) % report_every == 0 || s + 1 == total)) {
       options.progress(s + 1, total);
     }
   }
   result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  result.centroid = sum / static_cast<double>(total);
-  result.mean_manipulability = w_sum / static_cast<double>(total);
+  result.samples = done;
+  if (options.keep_points) result.points.resize(done);
+  if (done == 0) {
+    // stopped before the first sample: no statistics to give
+    result.lower.setZero();
+    result.upper.setZero();
+    result.min_manipulability = result.max_manipulability = 0.0;
+    return result;
+  }
+  result.centroid = sum / static_cast<double>(done);
+  result.mean_manipulability = w_sum / static_cast<double>(done);
   return result;
 }
 

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstring>
 #include <numbers>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -40,6 +41,39 @@ const RenderOptions& checked(const RenderOptions& options) {
   return options;
 }
 
+/// Refuses, before MuJoCo allocates anything, a size beyond the current context's OpenGL limits
+/// or a buffer beyond kMaxOffscreenBufferBytes, naming the limits.
+void check_buffer_size(const mjModel& m, int width, int height) {
+  GLint renderbuffer = 0;
+  GLint viewport[2] = {0, 0};
+  glGetIntegerv(GL_MAX_RENDERBUFFER_SIZE, &renderbuffer);
+  glGetIntegerv(GL_MAX_VIEWPORT_DIMS, viewport);
+  const std::string size = std::to_string(width) + "×" + std::to_string(height);
+  const std::string limits = "GL_MAX_RENDERBUFFER_SIZE " + std::to_string(renderbuffer) +
+                             ", GL_MAX_VIEWPORT_DIMS " + std::to_string(viewport[0]) + "×" +
+                             std::to_string(viewport[1]);
+  const bool too_wide =
+      (renderbuffer > 0 && width > renderbuffer) || (viewport[0] > 0 && width > viewport[0]);
+  const bool too_high =
+      (renderbuffer > 0 && height > renderbuffer) || (viewport[1] > 0 && height > viewport[1]);
+  if (too_wide || too_high)
+    throw Error("render size " + size + " exceeds this OpenGL's limits (" + limits + ")");
+  // MuJoCo's offscreen buffer holds `offsamples` samples of 4 bytes (RGBA8; depth-stencil
+  // likewise) per pixel
+  const int samples = std::max(1, m.vis.quality.offsamples);
+  const long long bytes = 4LL * width * height * samples;
+  if (bytes > kMaxOffscreenBufferBytes) {
+    const long long pixels = kMaxOffscreenBufferBytes / (4LL * samples);
+    const long long side = static_cast<long long>(std::sqrt(static_cast<double>(pixels)));
+    throw Error("render size " + size + " is too large: MuJoCo's offscreen buffer with " +
+                std::to_string(samples) + " samples per pixel (visual/quality offsamples) would " +
+                "take " + std::to_string(bytes >> 20) + " MiB, the limit is " +
+                std::to_string(kMaxOffscreenBufferBytes >> 20) + " MiB (" + std::to_string(pixels) +
+                " pixels, e.g. " + std::to_string(side) + "×" + std::to_string(side) +
+                "); OpenGL: " + limits);
+  }
+}
+
 }  // namespace
 
 struct OffscreenRenderer::Impl {
@@ -49,7 +83,7 @@ struct OffscreenRenderer::Impl {
   mjrContext gpu{};
   mjvScene scene{};
   mjvOption vis_options{};
-  DataPtr scratch;              // copy of the caller's state: mjv_updateScene writes its mjData
+  DataPtr scratch;                // copy of the caller's state: mjv_updateScene writes its mjData
   std::vector<std::uint8_t> row;  // one image row, for flipping OpenGL's bottom-up rows
   bool gpu_made = false;
   bool scene_made = false;
@@ -125,8 +159,7 @@ struct OffscreenRenderer::Impl {
           // our own follow camera: MuJoCo's tracking camera follows bodies only
           if (const int site = mj_name2id(&m, mjOBJ_SITE, spec.name.c_str()); site >= 0) {
             lookat = Eigen::Map<const Eigen::Vector3d>(scratch->site_xpos + 3 * site);
-          } else if (const int body = mj_name2id(&m, mjOBJ_BODY, spec.name.c_str());
-                     body >= 0) {
+          } else if (const int body = mj_name2id(&m, mjOBJ_BODY, spec.name.c_str()); body >= 0) {
             lookat = Eigen::Map<const Eigen::Vector3d>(scratch->xpos + 3 * body);
           } else {
             throw Error("follow camera: no site or body '" + spec.name + "' in model '" +
@@ -160,18 +193,22 @@ OffscreenRenderer::OffscreenRenderer(const Robot& robot, int width, int height,
   impl->context = std::make_unique<render_detail::EglContext>();
   {
     render_detail::EglContext::Scope current(*impl->context);
-    GLint max_size = 0;
-    glGetIntegerv(GL_MAX_RENDERBUFFER_SIZE, &max_size);
-    if (max_size > 0 && (width > max_size || height > max_size))
-      throw Error("render size " + std::to_string(width) + "×" + std::to_string(height) +
-                  " exceeds the OpenGL limit of " + std::to_string(max_size) + " pixels per side");
+    check_buffer_size(m, width, height);
     // MuJoCo sizes its offscreen buffer from visual/global offwidth/offheight; the shared model
     // stays untouched: a header copy (sharing every array) carries the requested size
     mjModel sized = m;
     sized.vis.global.offwidth = width;
     sized.vis.global.offheight = height;
     mjr_defaultContext(&impl->gpu);
-    mjr_makeContext(&sized, &impl->gpu, mjFONTSCALE_100);
+    try {
+      mjr_makeContext(&sized, &impl->gpu, mjFONTSCALE_100);
+    } catch (const Error& e) {
+      // a limit no query shows (the driver's memory): say what was asked for
+      throw Error("OpenGL could not make a " + std::to_string(width) + "×" +
+                  std::to_string(height) + " offscreen buffer with " +
+                  std::to_string(std::max(1, m.vis.quality.offsamples)) + " samples per pixel (" +
+                  e.what() + "); try a smaller size");
+    }
     impl->gpu_made = true;
     mjr_setBuffer(mjFB_OFFSCREEN, &impl->gpu);
     if (impl->gpu.currentBuffer != mjFB_OFFSCREEN || impl->gpu.offWidth != width ||

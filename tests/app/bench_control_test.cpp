@@ -3,8 +3,11 @@
 
 #include <gtest/gtest.h>
 
+#include <filesystem>
+#include <fstream>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <vector>
 
 #include "app/cli_runner.hpp"
 
@@ -12,7 +15,9 @@ namespace {
 
 using mjarm::test::CliRun;
 using mjarm::test::run_cli;
+using mjarm::test::scratch;
 using nlohmann::json;
+namespace fs = std::filesystem;
 
 TEST(BenchControl, JsonReportsEveryControllerWithZeroAllocations) {
   const CliRun run =
@@ -68,6 +73,39 @@ TEST(BenchControl, BadCommandLinesFailCleanly) {
   const CliRun help = run_cli({"bench", "control", "--help"});
   EXPECT_EQ(help.exit_code, 0);
   EXPECT_NE(help.out.find("--steps"), std::string::npos);
+}
+
+TEST(BenchControl, MuJoCoBadStateWarningsFailTheCommand) {
+  // a free-floating base the controllers do not drive: MuJoCo warns about qacc and resets the
+  // state, so the timings mean nothing: exit 1 with a message, no figures
+  const fs::path model = scratch() / "floating_arm.xml";
+  std::ofstream(model) << R"(<mujoco model="floating_arm">
+  <compiler autolimits="true"/>
+  <worldbody>
+    <body name="base" pos="0 0 1">
+      <freejoint/>
+      <geom type="box" size="0.1 0.1 0.1" mass="1"/>
+      <body name="link1">
+        <joint name="j1" type="hinge" axis="0 1 0" range="-2 2"/>
+        <geom type="capsule" fromto="0 0 0 0.4 0 0" size="0.03" mass="1"/>
+        <site name="tip" pos="0.4 0 0"/>
+      </body>
+    </body>
+  </worldbody>
+  <actuator><motor joint="j1" gear="1"/></actuator>
+</mujoco>)";
+  for (const bool json_output : {false, true}) {
+    std::vector<std::string> args{"bench", "control", model.string(), "--steps", "2000"};
+    if (json_output) args.push_back("--json");
+    const CliRun run = run_cli(args);
+    EXPECT_EQ(run.exit_code, 1) << run.err;
+    EXPECT_TRUE(run.out.empty()) << run.out;
+    EXPECT_NE(run.err.find("mjarm: error: bench control on model 'floating_arm': MuJoCo warned "
+                           "'bad qacc'"),
+              std::string::npos)
+        << run.err;
+    EXPECT_NE(run.err.find("meaningless"), std::string::npos) << run.err;
+  }
 }
 
 }  // namespace

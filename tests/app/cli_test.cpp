@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -182,18 +183,20 @@ TEST(Cli, FkAtAKeyframeMatchesTheLibrary) {
 }
 
 TEST(Cli, BadCommandLinesFailCleanly) {
-  expect_error({"fk", "planar2", "--q", "0", "0", "0"}, 1, "--q has 3 values");
-  expect_error({"fk", "planar2", "--q", "0"}, 1, "--q has 1 values");
+  // a wrong count of --q values is a mistake on the command line: exit 2
+  expect_error({"fk", "planar2", "--q", "0", "0", "0"}, 2, "--q has 3 values");
+  expect_error({"fk", "planar2", "--q", "0"}, 2, "--q has 1 values");
+  expect_error({"singularities", "planar2", "--q", "0"}, 2, "--q has 1 values");
   expect_error({"fk", "planar2", "--q", "0", "nan"}, 2, "'nan' is not a finite number");
   expect_error({"fk", "planar2", "--q", "inf", "0"}, 2, "'inf' is not a finite number");
   expect_error({"fk", "planar2", "--q", "1e999", "0"}, 2, "not a finite number");
   // every --size goes through one parser: the window's too (checked before any window opens)
   expect_error({"view", "panda", "--size", "wide"}, 2, "'wide' is not a size WIDTHxHEIGHT");
-  expect_error({"view", "panda", "--size", "0x480"}, 2, "between 1x1 and 16384x16384 pixels");
+  expect_error({"view", "panda", "--size", "0x480"}, 2, "between 1x1 and 7680x4320 pixels");
   expect_error({"fk", "planar2", "--q", "0", "0.5rad"}, 2, "'0.5rad' is not a number");
   expect_error({"fk", "planar2", "--q", "0", "0", "--key", "home"}, 2, "excludes");
   expect_error({"fk", "planar2", "--site", "tpi"}, 1, "tip");
-  expect_error({"fk", "planar2", "--key", "hoem"}, 1, "home");
+  expect_error({"fk", "planar2", "--key", "hoem"}, 2, "home");
   expect_error({"fk", "dual_arm"}, 2, "left_hand");  // several sites: --site is required
   expect_error({"info", "pandaa"}, 1, "panda");
   expect_error({"info"}, 2, "MODEL is required");
@@ -207,7 +210,7 @@ TEST(Cli, BadCommandLinesFailCleanly) {
   expect_error({"fk", "planar2", "--bogus"}, 2, "--bogus");
   expect_error({"frobnicate"}, 2, "unknown command 'frobnicate'; commands: models, info");
   expect_error({"workspace", "planar2", "--samples", "0"}, 2, "--samples");
-  expect_error({"workspace", "planar2", "--out", (scratch() / "no_dir" / "cloud.csv").string()}, 1,
+  expect_error({"workspace", "planar2", "--out", (scratch() / "no_dir" / "cloud.csv").string()}, 2,
                "cloud.csv");
   expect_error({"singularities", "planar2", "--block", "linear"}, 2, "linear");
   expect_error({"workspace", "planar2", "--seed", "-1"}, 2, "--seed");
@@ -285,6 +288,36 @@ TEST(Cli, SingularitiesOfPlanar2FollowTheClosedForm) {
   EXPECT_NE(table.out.find("σmin"), std::string::npos);
   EXPECT_NE(table.out.find("unclassified"), std::string::npos);
   EXPECT_EQ(table.out.find("random scan"), std::string::npos);
+}
+
+TEST(Cli, DemoChecksEveryArgumentBeforeTheShelfPick) {
+  // each mistake fails at once: no shelf pick, nothing written, nothing on stdout
+  const fs::path cwd = scratch() / "demo_checks";
+  fs::create_directories(cwd);
+  const auto demo_error = [&](const std::vector<std::string>& args, int code,
+                              const std::string& needle) {
+    const CliRun run = run_cli(args, cwd);
+    EXPECT_EQ(run.exit_code, code) << run.err;
+    EXPECT_NE(run.err.find(needle), std::string::npos) << needle << " not in: " << run.err;
+    EXPECT_TRUE(run.out.empty()) << run.out;
+    EXPECT_FALSE(fs::exists(cwd / "out")) << args.back();
+  };
+  demo_error({"demo", "--model", "pandaa"}, 1, "no bundled model named 'pandaa'");
+  demo_error({"demo", "--key", "hom"}, 2, "--key: keyframe 'hom' not found");
+  demo_error({"demo", "--model", "dual_arm"}, 2, "choose one with --site");
+  demo_error({"demo", "--record", "/proc/demo"}, 2, "--record: cannot write into '/proc'");
+  demo_error({"demo", "--video", "/proc/demo.mp4"}, 2, "--video: cannot create '/proc/demo.mp4'");
+  // gnuplot missing from PATH: named before the shelf pick, not after it
+  const char* path = std::getenv("PATH");
+  const std::string saved = path != nullptr ? path : "";
+  setenv("PATH", "/nonexistent", 1);
+  const CliRun no_gnuplot = run_cli({"demo"}, cwd);
+  setenv("PATH", saved.c_str(), 1);
+  EXPECT_EQ(no_gnuplot.exit_code, 1) << no_gnuplot.err;
+  EXPECT_NE(no_gnuplot.err.find("gnuplot was not found on PATH"), std::string::npos)
+      << no_gnuplot.err;
+  EXPECT_TRUE(no_gnuplot.out.empty()) << no_gnuplot.out;
+  EXPECT_FALSE(fs::exists(cwd / "out"));
 }
 
 TEST(Cli, DemoRunsTheTour) {

@@ -155,8 +155,8 @@ TEST(RunCli, BadInputFailsClearly) {
   // a recording directory that cannot be written: an error before anything runs
   const fs::path file = scratch() / "plain_file";
   std::ofstream(file) << "x";
-  expect_error({"run", "shelf-pick", "--record", (file / "rec").string()}, 1,
-               "recording directory");
+  expect_error({"run", "shelf-pick", "--record", (file / "rec").string()}, 2,
+               "--record: '" + file.string() + "' is not a folder");
   EXPECT_EQ(slurp(file), "x");
 }
 
@@ -194,7 +194,7 @@ TEST(RunCli, AllSweepsEveryRobotAndController) {
 TEST(RunCli, AllStopsAtCtrlCWithTheRowsDone) {
   for (const int signal : {SIGINT, SIGTERM}) {
     mjarm::test::RunningProcess run(
-        {MJARM_CLI, "run", "shelf-pick", "--all", "--seeds", "100000", "--json"}, scratch());
+        {MJARM_CLI, "run", "shelf-pick", "--all", "--seeds", "10000", "--json"}, scratch());
     ASSERT_TRUE(run.started());
     // signalled once its handler is installed, not after a guessed delay
     ASSERT_TRUE(mjarm::test::eventually(
@@ -204,7 +204,7 @@ TEST(RunCli, AllStopsAtCtrlCWithTheRowsDone) {
     EXPECT_FALSE(run.signaled());
     EXPECT_EQ(run.exit_code(), 128 + signal) << run.err();
     EXPECT_NE(run.err().find("interrupted after "), std::string::npos) << run.err();
-    EXPECT_NE(run.err().find(" of 800000 shelf picks"), std::string::npos) << run.err();
+    EXPECT_NE(run.err().find(" of 80000 shelf picks"), std::string::npos) << run.err();
     ASSERT_TRUE(json::accept(run.out())) << run.out();
     const json doc = json::parse(run.out());
     EXPECT_EQ(doc["interrupted"], true);
@@ -215,8 +215,22 @@ TEST(RunCli, AllStopsAtCtrlCWithTheRowsDone) {
       runs += row["runs"].get<int>();
     }
     EXPECT_EQ(doc["runs"], runs);
-    EXPECT_LT(runs, 800000);
+    EXPECT_LT(runs, 80000);
   }
+}
+
+TEST(RunCli, AllExitsOneWhenPicksFailWhateverTheFormat) {
+  // every pick diverges at this acceleration bound: the JSON form fails like the text form
+  const std::vector<std::string> args{"run", "shelf-pick", "--all", "--max-acceleration", "2"};
+  const CliRun text = run_cli(args);
+  std::vector<std::string> with_json = args;
+  with_json.push_back("--json");
+  const CliRun doc = run_cli(with_json);
+  EXPECT_EQ(text.exit_code, 1) << text.err;
+  EXPECT_EQ(doc.exit_code, 1) << doc.err;
+  EXPECT_NE(doc.err.find("some shelf picks did not hold"), std::string::npos) << doc.err;
+  ASSERT_TRUE(json::accept(doc.out)) << doc.out;  // the figures are still printed
+  for (const json& row : json::parse(doc.out)["rows"]) EXPECT_EQ(row["held"], 0) << row;
 }
 
 TEST(RunCli, DemoRunsTheShelfPickAndRecordsIntoOutDemo) {
@@ -350,13 +364,14 @@ TEST(RunVideo, BadInputFailsClearly) {
   expect_error({"run", "shelf-pick", "--video", out, "--size", "161x120"}, 2,
                "must be even in both directions (the MP4's yuv420p), e.g. 162x120");
   expect_error({"run", "shelf-pick", "--video", out, "--size", "big"}, 2, "not a size");
-  expect_error({"run", "shelf-pick", "--video", out, "--fps", "0"}, 2, "--fps must be > 0");
+  expect_error({"run", "shelf-pick", "--video", out, "--fps", "0"}, 2,
+               "--fps: '0' is not a number from 1 to 240");
   expect_error({"run", "shelf-pick", "--all", "--video", out}, 2, "--video excludes --all");
   expect_error({"run", "shelf-pick", "--camera", "follow"}, 2, "--camera requires --video");
   const fs::path file = scratch() / "not_a_dir";
   std::ofstream(file) << "x";
-  expect_error({"run", "shelf-pick", "--video", (file / "v.mp4").string(), "--size", "160x120"}, 1,
-               "cannot write video");
+  expect_error({"run", "shelf-pick", "--video", (file / "v.mp4").string(), "--size", "160x120"}, 2,
+               "--video: '" + file.string() + "' is not a folder");
 
   // no ffmpeg on PATH: the message names Debian's package
   const auto run = mjarm::test::run_process(

@@ -93,7 +93,65 @@ TEST(ControlBenchmark, BadInputThrows) {
   // a position-kind controller cannot be timed on motors
   std::vector<std::unique_ptr<Controller>> controllers;
   controllers.push_back(std::make_unique<GravityCompensationController>(servo));
-  EXPECT_THROW(run_control_benchmark(chain, controllers, with([](auto& o) { o.steps = 1; })), Error);
+  EXPECT_THROW(run_control_benchmark(chain, controllers, with([](auto& o) { o.steps = 1; })),
+               Error);
+}
+
+/// Two motor-driven hinges on a base that floats (free joint): the controllers drive the hinges
+/// only, and MuJoCo soon flags a bad qacc and resets the state.
+constexpr const char* kFloatingArm = R"(
+<mujoco model="floating_arm">
+  <compiler autolimits="true"/>
+  <option timestep="0.002"/>
+  <worldbody>
+    <body name="base" pos="0 0 1">
+      <freejoint name="float"/>
+      <geom type="box" size="0.1 0.1 0.1" mass="1"/>
+      <body name="link1">
+        <joint name="j1" type="hinge" axis="0 1 0" range="-2 2"/>
+        <geom type="capsule" fromto="0 0 0 0.4 0 0" size="0.03" mass="1"/>
+        <body name="link2" pos="0.4 0 0">
+          <joint name="j2" type="hinge" axis="0 1 0" range="-2 2"/>
+          <geom type="capsule" fromto="0 0 0 0.35 0 0" size="0.03" mass="1"/>
+          <site name="tip" pos="0.35 0 0"/>
+        </body>
+      </body>
+    </body>
+  </worldbody>
+  <actuator>
+    <motor joint="j1" gear="1"/>
+    <motor joint="j2" gear="1"/>
+  </actuator>
+</mujoco>
+)";
+
+TEST(ControlBenchmark, MuJoCoBadStateWarningsFaultTheRun) {
+  const Robot robot = Robot::from_string(kFloatingArm);
+  const Chain chain(robot, "tip");
+  ControlBenchmarkOptions o;
+  o.steps = 2000;
+  o.warmup = 0;
+  const ControlBenchmarkResult r = run_control_benchmark(chain, o);
+  EXPECT_EQ(r.status, ControlBenchmarkStatus::faulted);
+  EXPECT_NE(r.message.find("bad qacc"), std::string::npos) << r.message;
+  EXPECT_NE(r.message.find("while running 'joint-pd'"), std::string::npos) << r.message;
+  EXPECT_TRUE(r.controllers.empty());  // no figures from a reset simulation
+  EXPECT_STREQ(to_string(r.status), "faulted");
+  // the bundled torque panda runs clean
+  o.steps = 50;
+  EXPECT_EQ(run_control_benchmark(panda_torque(), o).status, ControlBenchmarkStatus::ok);
+}
+
+TEST(ControlBenchmark, AStopRequestInterruptsTheRun) {
+  ControlBenchmarkOptions o;
+  o.steps = 5000;
+  o.warmup = 0;
+  int asked = 0;
+  o.stop = [&] { return ++asked > 2; };
+  const ControlBenchmarkResult r = run_control_benchmark(panda_torque(), o);
+  EXPECT_EQ(r.status, ControlBenchmarkStatus::interrupted);
+  EXPECT_EQ(asked, 3);
+  EXPECT_TRUE(r.controllers.empty());
 }
 
 }  // namespace

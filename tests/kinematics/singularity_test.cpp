@@ -125,6 +125,27 @@ TEST_F(SingularityTest, ScanKeepsTheLowestSigmaDeterministically) {
   EXPECT_NE(scan_singularities(chain, samples, 43, keep).worst[0].q, scan.worst[0].q);
 }
 
+TEST_F(SingularityTest, ScanReportsProgressAndStopsWhenAsked) {
+  std::vector<std::size_t> calls;
+  const SingularityScan full =
+      scan_singularities(chain_, 5000, 9, 3, {}, {}, [&](std::size_t done, std::size_t total) {
+        EXPECT_EQ(total, 5000u);
+        calls.push_back(done);
+      });
+  EXPECT_EQ(full.status, SamplingStatus::complete);
+  ASSERT_FALSE(calls.empty());
+  EXPECT_LE(calls.size(), 101u);
+  EXPECT_EQ(calls.back(), 5000u);
+  EXPECT_TRUE(std::is_sorted(calls.begin(), calls.end()));
+  int asked = 0;
+  const SingularityScan stopped =
+      scan_singularities(chain_, 5000, 9, 3, {}, {}, nullptr, [&] { return ++asked > 2; });
+  EXPECT_EQ(stopped.status, SamplingStatus::interrupted);
+  EXPECT_EQ(stopped.samples, 2000u);  // asked before samples 0, 1000 and 2000
+  EXPECT_LE(stopped.singular_count + stopped.near_singular_count,
+            full.singular_count + full.near_singular_count);
+}
+
 TEST_F(SingularityTest, ScanFindsTheStraightElbowRegion) {
   // with q2 in [-0.5, 1.5] the worst samples cluster around the straight elbow q2 = 0
   const SingularityScan scan = scan_singularities(chain_, 5000, 3, 5, options_);

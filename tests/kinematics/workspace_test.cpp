@@ -236,5 +236,46 @@ TEST_F(WorkspaceTest, RejectsBadOptions) {
   EXPECT_THROW(sample_workspace(chain, options), Error);
 }
 
+TEST_F(WorkspaceTest, AStopRequestEndsTheRunWithTheSamplesDrawn) {
+  const Chain chain(planar_, "tip");
+  WorkspaceOptions options;
+  options.samples = 10000;
+  int asked = 0;
+  options.stop = [&] { return ++asked > 3; };  // stop at the fourth question: after 3000
+  const WorkspaceResult stopped = sample_workspace(chain, options);
+  EXPECT_EQ(stopped.status, SamplingStatus::interrupted);
+  EXPECT_EQ(stopped.samples, 3000u);
+  EXPECT_EQ(stopped.points.size(), 3000u);
+  // the statistics are those of the samples drawn: the same as a run of 3000
+  const WorkspaceResult first = sample_workspace(chain, {.samples = 3000});
+  EXPECT_EQ(first.status, SamplingStatus::complete);
+  EXPECT_EQ(stopped.lower, first.lower);
+  EXPECT_EQ(stopped.upper, first.upper);
+  EXPECT_EQ(stopped.centroid, first.centroid);
+  EXPECT_STREQ(to_string(stopped.status), "interrupted");
+  // stopped before the first sample: nothing drawn, no NaN statistics
+  options.stop = [] { return true; };
+  const WorkspaceResult none = sample_workspace(chain, options);
+  EXPECT_EQ(none.samples, 0u);
+  EXPECT_TRUE(none.centroid.allFinite());
+  EXPECT_TRUE(none.lower.allFinite());
+}
+
+TEST_F(WorkspaceTest, KeepingTooManyPointsIsRefusedBeforeAllocating) {
+  const Chain chain(planar_, "tip");
+  WorkspaceOptions options;
+  options.samples = kMaxKeptWorkspacePoints + 1;
+  try {
+    sample_workspace(chain, options);
+    FAIL() << "expected an Error";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("at most 33554432 points"), std::string::npos) << e.what();
+  }
+  // without the points the same count is only a matter of time: stop it at once
+  options.keep_points = false;
+  options.stop = [] { return true; };
+  EXPECT_EQ(sample_workspace(chain, options).status, SamplingStatus::interrupted);
+}
+
 }  // namespace
 }  // namespace mjarm

@@ -354,6 +354,24 @@ TEST(ViewerWindow, ScriptErrorsNameTheLine) {
   fs::remove_all(dir);
 }
 
+TEST(ViewerWindow, FramesAreCountedExactlyWhateverTheRates) {
+  // --frames 3 draws 3 frames even with 240 frames per input poll (the script used to resume
+  // only at the next poll: 240 frames here, 50 at --render-hz 1000 with the default 20 Hz input)
+  const auto prefix = display_prefix();
+  if (!prefix) return;
+  const fs::path dir = fresh_dir("frames");
+  const Outcome r = run_command(*prefix + "'" MJARM_CLI
+                                          "' view panda --size 320x240 --render-hz 240 "
+                                          "--input-hz 1 --frames 3 --json",
+                                dir);
+  ASSERT_EQ(r.status, 0) << r.err;
+  ASSERT_TRUE(nlohmann::json::accept(r.out)) << r.out;
+  const auto report = nlohmann::json::parse(r.out);
+  EXPECT_EQ(report["frames"], 3);
+  EXPECT_EQ(report["ended_by"], "end of script");
+  fs::remove_all(dir);
+}
+
 TEST(ViewerWindow, NoDisplayIsAClearError) {
   const fs::path dir = fresh_dir("nodisplay");
   const Outcome r =

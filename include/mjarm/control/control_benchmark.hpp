@@ -37,8 +37,8 @@ namespace mjarm {
 
 /// Settings of `run_control_benchmark`.
 struct ControlBenchmarkOptions {
-  int steps = 20000;       ///< timed ticks per controller, and physics steps of the RTF runs (≥ 1)
-  int warmup = 200;        ///< untimed ticks before each timed run (≥ 0)
+  int steps = 20000;  ///< timed ticks per controller, and physics steps of the RTF runs (≥ 1)
+  int warmup = 200;   ///< untimed ticks before each timed run (≥ 0)
   double amplitude = 0.2;  ///< joint amplitude a of the reference [rad or m] (≥ 0)
   double frequency = 0.5;  ///< f [Hz] (> 0), rounded so that a period is a whole number of steps
   /// Allocation counter of the process (e.g. a replaced malloc's call count); read before and
@@ -46,17 +46,31 @@ struct ControlBenchmarkOptions {
   std::function<std::uint64_t()> allocation_count;
   /// Called after each phase with (phases done, phases total); may be empty.
   std::function<void(int done, int total)> progress;
+  /// Asked every thousand ticks whether to stop (e.g. `interrupt_requested` after Ctrl-C); may be
+  /// empty. A stop ends the run `ControlBenchmarkStatus::interrupted`.
+  std::function<bool()> stop;
 };
+
+/// How a benchmark run ended.
+enum class ControlBenchmarkStatus {
+  ok,           ///< every phase ran; the figures stand
+  faulted,      ///< MuJoCo flagged a bad state (bad qpos, qvel, qacc or ctrl, singular inertia)
+                ///< and reset the simulation: the figures would be meaningless and are not given
+  interrupted,  ///< the stop request said so; the figures are incomplete
+};
+
+/// "ok", "faulted" or "interrupted".
+const char* to_string(ControlBenchmarkStatus status) noexcept;
 
 /// Figures of one controller.
 struct ControllerBenchmark {
-  std::string name;              ///< Controller::name()
-  int steps = 0;                 ///< timed ticks
-  double median_us = 0.0;        ///< median time of one compute [µs]
-  double p99_us = 0.0;           ///< 99th percentile (nearest rank) [µs]
-  double mean_us = 0.0;          ///< mean [µs]
-  double max_us = 0.0;           ///< slowest tick [µs]
-  std::int64_t allocations = -1; ///< heap allocations during the timed computes (−1: not counted)
+  std::string name;               ///< Controller::name()
+  int steps = 0;                  ///< timed ticks
+  double median_us = 0.0;         ///< median time of one compute [µs]
+  double p99_us = 0.0;            ///< 99th percentile (nearest rank) [µs]
+  double mean_us = 0.0;           ///< mean [µs]
+  double max_us = 0.0;            ///< slowest tick [µs]
+  std::int64_t allocations = -1;  ///< heap allocations during the timed computes (−1: not counted)
   double allocations_per_step = -1.0;  ///< allocations / steps (−1: not counted)
   /// RMS distance between E's origin and the reference over the timed ticks [m]: a sanity check
   /// that the controller really was in the loop (gravity hold ignores the reference).
@@ -65,12 +79,16 @@ struct ControllerBenchmark {
 
 /// Figures of one benchmark run.
 struct ControlBenchmarkResult {
-  std::string robot;         ///< model name
-  std::string frame;         ///< chain frame
-  int joints = 0;            ///< chain size n
-  double timestep = 0.0;     ///< physics timestep [s]
-  double frequency = 0.0;    ///< reference frequency actually used [Hz]
-  int steps = 0;             ///< ticks per controller
+  ControlBenchmarkStatus status = ControlBenchmarkStatus::ok;
+  /// What went wrong when status is not ok, naming the phase ("MuJoCo warned 'bad qacc' 3 times
+  /// (first at dof 6) while running 'osc' …"); empty when ok.
+  std::string message;
+  std::string robot;       ///< model name
+  std::string frame;       ///< chain frame
+  int joints = 0;          ///< chain size n
+  double timestep = 0.0;   ///< physics timestep [s]
+  double frequency = 0.0;  ///< reference frequency actually used [Hz]
+  int steps = 0;           ///< ticks per controller
   std::vector<ControllerBenchmark> controllers;
   double osc_real_time_factor = 0.0;      ///< OSC compute + mj_step1/2, one thread
   double passive_real_time_factor = 0.0;  ///< mj_step alone (replayed torques)
@@ -90,6 +108,8 @@ std::vector<std::unique_ptr<Controller>> default_benchmark_controllers(const Cha
 /// @throws Error when steps < 1, warmup < 0, amplitude < 0 or frequency ≤ 0 (or not finite), when
 /// a controller is not a torque controller or has another chain size, or when a chain joint is
 /// not driven by a motor (torque actuators: load the `_torque` variant of a bundled robot).
+/// A bad state reported by MuJoCo is not thrown: the run stops at the end of that phase with
+/// `ControlBenchmarkStatus::faulted` (MuJoCo's warning counters are read after every phase).
 ControlBenchmarkResult run_control_benchmark(const Chain& chain,
                                              std::vector<std::unique_ptr<Controller>>& controllers,
                                              const ControlBenchmarkOptions& options = {});

@@ -11,6 +11,7 @@
 
 #include "mjarm/kinematics/manipulability.hpp"
 #include "mjarm/kinematics/singularity_kind.hpp"
+#include "mjarm/kinematics/workspace.hpp"
 #include "mjarm/model/chain.hpp"
 
 namespace mjarm {
@@ -65,7 +66,8 @@ SingularityReport singularity_report(const Chain& chain,
 struct SingularityScan {
   ManipulabilityOptions options;
   SingularityThresholds thresholds;
-  std::size_t samples = 0;
+  SamplingStatus status = SamplingStatus::complete;
+  std::size_t samples = 0;  ///< samples drawn (fewer than asked when interrupted)
   std::uint64_t seed = 0;
   std::size_t singular_count = 0;       ///< samples classified singular
   std::size_t near_singular_count = 0;  ///< samples classified near-singular
@@ -78,12 +80,16 @@ struct SingularityScan {
 
 /// Samples @p samples configurations uniformly within the limits (see `JointSampler`, seeded
 /// std::mt19937_64: the same seed gives the same scan) and keeps the @p keep_worst samples with
-/// the lowest σmin, classified.
+/// the lowest σmin, classified. @p progress, when given, is called with (done, samples) at most
+/// ~100 times; @p stop, when given, is asked every thousand samples and ends the scan
+/// `SamplingStatus::interrupted` (the counts then cover the samples drawn).
 /// @throws Error when @p samples is 0 or the thresholds in @p options or @p thresholds are
 /// invalid.
 SingularityScan scan_singularities(const Chain& chain, std::size_t samples, std::uint64_t seed,
                                    std::size_t keep_worst = 10,
                                    const ManipulabilityOptions& options = {},
-                                   const SingularityThresholds& thresholds = {});
+                                   const SingularityThresholds& thresholds = {},
+                                   const ProgressCallback& progress = nullptr,
+                                   const StopRequest& stop = nullptr);
 
 }  // namespace mjarm

@@ -40,6 +40,21 @@ class JointSampler {
 /// Called with (samples done, samples total) as sampling progresses.
 using ProgressCallback = std::function<void(std::size_t done, std::size_t total)>;
 
+/// Asked between samples whether to stop early (e.g. `interrupt_requested` after Ctrl-C).
+using StopRequest = std::function<bool()>;
+
+/// How a sampling run ended.
+enum class SamplingStatus {
+  complete,     ///< every requested sample was drawn
+  interrupted,  ///< the stop request said so; the statistics cover the samples drawn
+};
+
+/// "complete" or "interrupted".
+const char* to_string(SamplingStatus status) noexcept;
+
+/// Most samples `sample_workspace` keeps in memory (`keep_points`): 2^25 points, 1 GiB.
+inline constexpr std::size_t kMaxKeptWorkspacePoints = std::size_t{1} << 25;
+
 /// Settings of `sample_workspace`.
 struct WorkspaceOptions {
   std::size_t samples = 10000;  ///< number of joint samples (> 0)
@@ -50,6 +65,9 @@ struct WorkspaceOptions {
   bool keep_points = true;  ///< store every sample in `WorkspaceResult::points`
   /// Optional progress report, called at most ~100 times, always once at the end.
   ProgressCallback progress = nullptr;
+  /// Optional stop request, asked about every thousand samples (and once before the first):
+  /// when it answers true the run ends `SamplingStatus::interrupted`.
+  StopRequest stop = nullptr;
 };
 
 /// One sample: where the frame was and how manipulable it was there.
@@ -60,7 +78,8 @@ struct WorkspacePoint {
 
 /// Summary of a sampling run; the statistics cover all samples even when points are not kept.
 struct WorkspaceResult {
-  std::size_t samples = 0;
+  SamplingStatus status = SamplingStatus::complete;
+  std::size_t samples = 0;  ///< samples drawn (fewer than asked when interrupted)
   std::uint64_t seed = 0;
   Eigen::Vector3d lower = Eigen::Vector3d::Zero();     ///< bounding-box minimum, world [m]
   Eigen::Vector3d upper = Eigen::Vector3d::Zero();     ///< bounding-box maximum, world [m]
@@ -86,7 +105,10 @@ struct WorkspaceResult {
 /// Samples the workspace of @p chain's frame. Uses `ChainKinematics` only (no mjData), so it
 /// does not depend on the scene's size; joints outside the chain hold the model's qpos0.
 /// The same options and seed give the same points bit for bit.
-/// @throws Error when options.samples is 0 or the manipulability thresholds are invalid.
+/// The memory is checked before it is allocated: keeping more than `kMaxKeptWorkspacePoints`
+/// points is refused.
+/// @throws Error when options.samples is 0, more points than `kMaxKeptWorkspacePoints` would be
+///         kept, or the manipulability thresholds are invalid.
 WorkspaceResult sample_workspace(const Chain& chain, const WorkspaceOptions& options = {});
 
 }  // namespace mjarm

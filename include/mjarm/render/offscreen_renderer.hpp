@@ -18,8 +18,8 @@ namespace mjarm {
 
 /// A ball drawn into every picture that is not part of the model (a target, a pick point).
 struct RenderMarker {
-  Eigen::Vector3d position = Eigen::Vector3d::Zero();  ///< centre in W [m]
-  double radius = 0.02;                                ///< [m], > 0
+  Eigen::Vector3d position = Eigen::Vector3d::Zero();    ///< centre in W [m]
+  double radius = 0.02;                                  ///< [m], > 0
   std::array<float, 4> rgba = {0.2f, 0.9f, 0.3f, 0.6f};  ///< colour and opacity, each in [0, 1]
 };
 
@@ -50,13 +50,20 @@ struct RenderOptions {
 /// of the bundled Panda takes about 0.13 s of CPU time with shadows and the model's 4×
 /// multisampling (0.08 s without shadows); creating a renderer about 0.3 s. See
 /// docs/rendering.md.
+/// Largest of MuJoCo's offscreen buffers a renderer makes [bytes]: 1 GiB, the most Mesa's
+/// software rasteriser (llvmpipe) allocates for one buffer; 8192×8192 with 4× multisampling.
+inline constexpr long long kMaxOffscreenBufferBytes = 1LL << 30;
+
 class OffscreenRenderer {
  public:
   /// Creates the OpenGL context and MuJoCo's rendering resources for @p robot.
   /// @param robot  shared model (kept alive by the renderer: copies of `Robot` share the model)
   /// @param width  image width [pixels], ≥ 1
   /// @param height image height [pixels], ≥ 1
-  /// @throws Error when a size is < 1 or larger than the OpenGL implementation allows, when
+  /// @throws Error when a size is < 1 or larger than the OpenGL implementation allows
+  ///         (GL_MAX_RENDERBUFFER_SIZE, GL_MAX_VIEWPORT_DIMS), when one of MuJoCo's buffers
+  ///         (width × height × 4 bytes × the model's `visual/quality offsamples`) would exceed
+  ///         `kMaxOffscreenBufferBytes` (the message names every limit), when
   ///         no headless OpenGL context can be made (the message names the EGL call and the
   ///         Debian packages of a driver), or for an invalid marker (see `RenderMarker`).
   OffscreenRenderer(const Robot& robot, int width, int height, RenderOptions options = {});
