@@ -13,6 +13,10 @@
 #include <utility>
 #include <vector>
 
+namespace tinyxml2 {
+class XMLDocument;
+}
+
 namespace mjarm::mjcf_detail {
 
 /// One XML element with its attributes in document order and its element children.
@@ -45,6 +49,9 @@ std::vector<double> parse_numbers(const XmlNode& n, std::string_view key, std::s
 /// Space-separated shortest round-trip decimal form of `v`.
 std::string format_numbers(std::span<const double> v);
 
+/// "malformed XML in <source> (line N): <tinyxml2's error>", or for a tree deeper than tinyxml2
+/// reads, what its depth limit (TINYXML2_MAX_ELEMENT_DEPTH) is.
+std::string xml_parse_error(const tinyxml2::XMLDocument& doc, const std::string& source);
 /// Parses an XML document into XmlNode form; throws mjarm::Error with tinyxml2's message and line.
 XmlNode parse_document(std::string_view text, std::shared_ptr<const std::filesystem::path> file);
 /// Serializes `root` as an indented XML document.

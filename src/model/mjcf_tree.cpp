@@ -156,14 +156,26 @@ void write(std::string& out, const XmlNode& n, int depth) {
 
 }  // namespace
 
+std::string xml_parse_error(const tinyxml2::XMLDocument& doc, const std::string& source) {
+  std::ostringstream msg;
+  if (doc.ErrorID() == tinyxml2::XML_ELEMENT_DEPTH_EXCEEDED) {
+    // a well-formed but deep tree: say which limit it hit, not "malformed"
+    msg << source << " nests elements more than " << TINYXML2_MAX_ELEMENT_DEPTH
+        << " deep (line " << doc.ErrorLineNum()
+        << "), the limit of the tinyxml2 XML parser (TINYXML2_MAX_ELEMENT_DEPTH); a chain of "
+           "bodies that long cannot be read";
+  } else {
+    msg << "malformed XML in " << source << " (line " << doc.ErrorLineNum()
+        << "): " << doc.ErrorName() << ": " << doc.ErrorStr();
+  }
+  return msg.str();
+}
+
 XmlNode parse_document(std::string_view text, std::shared_ptr<const std::filesystem::path> file) {
   tinyxml2::XMLDocument doc;
-  const std::string source = file ? file->string() : std::string("<input>");
+  const std::string source = file ? "'" + file->string() + "'" : std::string("<input>");
   if (doc.Parse(text.data(), text.size()) != tinyxml2::XML_SUCCESS) {
-    std::ostringstream msg;
-    msg << "MJCF translation: malformed XML in " << source << " at line " << doc.ErrorLineNum()
-        << ": " << doc.ErrorName() << ": " << doc.ErrorStr();
-    throw Error(msg.str());
+    throw Error("MJCF translation: " + xml_parse_error(doc, source));
   }
   const tinyxml2::XMLElement* root = doc.RootElement();
   if (!root) throw Error("MJCF translation: " + source + " has no root element");

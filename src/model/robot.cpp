@@ -14,6 +14,8 @@
 #include "mjarm/error.hpp"
 #include "mjarm/model/mjcf_translate.hpp"
 #include "mjarm/model/names.hpp"
+#include "mjarm/model/user_file.hpp"
+#include "mjcf_detail.hpp"
 
 namespace mjarm {
 namespace {
@@ -22,18 +24,8 @@ namespace {
   throw Error(std::string("MuJoCo error: ") + message);
 }
 
-void print_mujoco_warning(const char* message) { std::cerr << "mujoco warning: " << message << "\n"; }
-
-std::string read_text(const std::filesystem::path& path) {
-  std::error_code ec;
-  if (!std::filesystem::exists(path, ec)) throw Error("model file '" + path.string() + "' does not exist");
-  if (std::filesystem::is_directory(path, ec))
-    throw Error("model path '" + path.string() + "' is a directory, expected an MJCF or URDF file");
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw Error("model file '" + path.string() + "' cannot be read");
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
+void print_mujoco_warning(const char* message) {
+  std::cerr << "mujoco warning: " << message << "\n";
 }
 
 /// The root element's name ("mujoco" or "robot").
@@ -41,8 +33,7 @@ std::string read_text(const std::filesystem::path& path) {
 std::string root_element(std::string_view xml, const std::string& source) {
   tinyxml2::XMLDocument doc;
   if (doc.Parse(xml.data(), xml.size()) != tinyxml2::XML_SUCCESS) {
-    throw Error("malformed XML in " + source + " (line " + std::to_string(doc.ErrorLineNum()) +
-                "): " + doc.ErrorStr());
+    throw Error(mjcf_detail::xml_parse_error(doc, source));
   }
   const tinyxml2::XMLElement* root = doc.RootElement();
   if (root == nullptr) throw Error("no root element in " + source);
@@ -83,7 +74,8 @@ ActuatorKind classify(const mjModel& m, int id) {
   if (m.actuator_biastype[id] == mjBIAS_AFFINE) {
     if (bias[0] == 0.0 && std::abs(bias[1] + gain[0]) <= 1e-12 * std::abs(gain[0]))
       return ActuatorKind::position;
-    if (bias[0] == 0.0 && bias[1] == 0.0 && std::abs(bias[2] + gain[0]) <= 1e-12 * std::abs(gain[0]))
+    if (bias[0] == 0.0 && bias[1] == 0.0 &&
+        std::abs(bias[2] + gain[0]) <= 1e-12 * std::abs(gain[0]))
       return ActuatorKind::velocity;
   }
   return ActuatorKind::general;
@@ -91,9 +83,12 @@ ActuatorKind classify(const mjModel& m, int id) {
 
 int joint_coordinates(JointType type, bool position) {
   switch (type) {
-    case JointType::free: return position ? 7 : 6;
-    case JointType::ball: return position ? 4 : 3;
-    default: return 1;
+    case JointType::free:
+      return position ? 7 : 6;
+    case JointType::ball:
+      return position ? 4 : 3;
+    default:
+      return 1;
   }
 }
 
@@ -110,20 +105,28 @@ void check_values(std::span<const double> values, std::size_t expected, const st
 
 const char* to_string(JointType type) noexcept {
   switch (type) {
-    case JointType::free: return "free";
-    case JointType::ball: return "ball";
-    case JointType::slide: return "slide";
-    case JointType::hinge: return "hinge";
+    case JointType::free:
+      return "free";
+    case JointType::ball:
+      return "ball";
+    case JointType::slide:
+      return "slide";
+    case JointType::hinge:
+      return "hinge";
   }
   return "unknown";
 }
 
 const char* to_string(ActuatorKind kind) noexcept {
   switch (kind) {
-    case ActuatorKind::motor: return "motor";
-    case ActuatorKind::position: return "position";
-    case ActuatorKind::velocity: return "velocity";
-    case ActuatorKind::general: return "general";
+    case ActuatorKind::motor:
+      return "motor";
+    case ActuatorKind::position:
+      return "position";
+    case ActuatorKind::velocity:
+      return "velocity";
+    case ActuatorKind::general:
+      return "general";
   }
   return "unknown";
 }
@@ -144,14 +147,16 @@ Robot::Robot(mjModel* model, std::string source, std::vector<std::string> warnin
 
 Robot Robot::from_file(const std::filesystem::path& path) {
   install_mujoco_handlers();
-  const std::string xml = read_text(path);
+  const std::string xml = read_user_file(path, "model file");
   const std::string source = "'" + path.string() + "'";
   if (root_element(xml, source) != "mujoco") return Robot(load_from_disk(path), path.string(), {});
   MjcfTranslation translated = translate_mjcf(xml, std::filesystem::absolute(path).parent_path());
   // untouched files load from disk so that MuJoCo resolves their assets itself
   if (translated.warnings.empty()) return Robot(load_from_disk(path), path.string(), {});
-  for (const auto& warning : translated.warnings) std::cerr << "mjarm: " << path.string() << ": " << warning << "\n";
-  return Robot(load_from_memory(translated.xml, source), path.string(), std::move(translated.warnings));
+  for (const auto& warning : translated.warnings)
+    std::cerr << "mjarm: " << path.string() << ": " << warning << "\n";
+  return Robot(load_from_memory(translated.xml, source), path.string(),
+               std::move(translated.warnings));
 }
 
 Robot Robot::from_string(std::string_view xml, const std::filesystem::path& base_dir) {
@@ -165,7 +170,8 @@ Robot Robot::from_string(std::string_view xml, const std::filesystem::path& base
   const std::filesystem::path base = base_dir.empty() ? std::filesystem::current_path() : base_dir;
   MjcfTranslation translated = translate_mjcf(xml, std::filesystem::absolute(base));
   for (const auto& warning : translated.warnings) std::cerr << "mjarm: " << warning << "\n";
-  return Robot(load_from_memory(translated.xml, source), "<string>", std::move(translated.warnings));
+  return Robot(load_from_memory(translated.xml, source), "<string>",
+               std::move(translated.warnings));
 }
 
 std::filesystem::path Robot::models_dir() {
@@ -176,29 +182,37 @@ std::filesystem::path Robot::models_dir() {
 }
 
 std::vector<std::string> Robot::bundled_names() {
-  std::vector<std::string> names;
+  const std::filesystem::path dir = models_dir();
+  const char* env = std::getenv("MJARM_MODELS");
+  const std::string folder = "bundled models folder '" + dir.string() + "'" +
+                             (env != nullptr && *env != '\0' ? " (from $MJARM_MODELS)" : "");
   std::error_code ec;
-  for (const auto& entry : std::filesystem::directory_iterator(models_dir(), ec)) {
-    if (entry.is_regular_file() && entry.path().extension() == ".xml")
-      names.push_back(entry.path().stem().string());
+  const auto status = std::filesystem::status(dir, ec);
+  if (!std::filesystem::exists(status)) throw Error(folder + " does not exist");
+  if (!std::filesystem::is_directory(status)) throw Error(folder + " is not a folder");
+  std::vector<std::string> names;
+  for (std::filesystem::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec)) {
+    std::error_code type_ec;
+    if (it->is_regular_file(type_ec) && it->path().extension() == ".xml")
+      names.push_back(it->path().stem().string());
   }
+  if (ec) throw Error(folder + " cannot be listed: " + ec.message());
+  if (names.empty()) throw Error(folder + " holds no models (no .xml files)");
   std::sort(names.begin(), names.end());
   return names;
 }
 
 Robot Robot::bundled(std::string_view name) {
-  const auto path = models_dir() / (std::string(name) + ".xml");
-  std::error_code ec;
-  if (!std::filesystem::is_regular_file(path, ec)) {
-    const auto names = bundled_names();
-    std::string message = "no bundled model named '" + std::string(name) + "' in " + models_dir().string();
-    if (!names.empty()) {
-      message += "; bundled models: ";
-      for (std::size_t i = 0; i < names.size(); ++i) message += (i ? ", " : "") + names[i];
-    }
+  // the list first: a missing or empty folder is reported as such, not as an unknown name
+  const auto names = bundled_names();
+  if (std::find(names.begin(), names.end(), name) == names.end()) {
+    std::string message =
+        "no bundled model named '" + std::string(name) + "' in " + models_dir().string();
+    message += "; bundled models: ";
+    for (std::size_t i = 0; i < names.size(); ++i) message += (i ? ", " : "") + names[i];
     throw Error(message);
   }
-  return from_file(path);
+  return from_file(models_dir() / (std::string(name) + ".xml"));
 }
 
 Robot Robot::load(std::string_view name_or_path) {
@@ -219,7 +233,8 @@ int Robot::keyframe(std::string_view n) const { return find_object(*model_, mjOB
 JointInfo Robot::joint_info(int id) const {
   const mjModel& m = *model_;
   if (id < 0 || id >= m.njnt)
-    throw Error("joint id " + std::to_string(id) + " out of range [0, " + std::to_string(m.njnt) + ")");
+    throw Error("joint id " + std::to_string(id) + " out of range [0, " + std::to_string(m.njnt) +
+                ")");
   JointInfo info;
   const char* n = mj_id2name(&m, mjOBJ_JOINT, id);
   info.name = n ? n : "";
@@ -263,14 +278,43 @@ std::vector<ActuatorInfo> Robot::actuators() const {
 }
 
 std::vector<SensorInfo> Robot::sensors() const {
-  static const char* const kTypeNames[] = {
-      "touch", "accelerometer", "velocimeter", "gyro", "force", "torque", "magnetometer",
-      "rangefinder", "jointpos", "jointvel", "tendonpos", "tendonvel", "actuatorpos",
-      "actuatorvel", "actuatorfrc", "ballquat", "ballangvel", "jointlimitpos", "jointlimitvel",
-      "jointlimitfrc", "tendonlimitpos", "tendonlimitvel", "tendonlimitfrc", "framepos",
-      "framequat", "framexaxis", "frameyaxis", "framezaxis", "framelinvel", "frameangvel",
-      "framelinacc", "frameangacc", "subtreecom", "subtreelinvel", "subtreeangmom", "clock",
-      "user"};
+  static const char* const kTypeNames[] = {"touch",
+                                           "accelerometer",
+                                           "velocimeter",
+                                           "gyro",
+                                           "force",
+                                           "torque",
+                                           "magnetometer",
+                                           "rangefinder",
+                                           "jointpos",
+                                           "jointvel",
+                                           "tendonpos",
+                                           "tendonvel",
+                                           "actuatorpos",
+                                           "actuatorvel",
+                                           "actuatorfrc",
+                                           "ballquat",
+                                           "ballangvel",
+                                           "jointlimitpos",
+                                           "jointlimitvel",
+                                           "jointlimitfrc",
+                                           "tendonlimitpos",
+                                           "tendonlimitvel",
+                                           "tendonlimitfrc",
+                                           "framepos",
+                                           "framequat",
+                                           "framexaxis",
+                                           "frameyaxis",
+                                           "framezaxis",
+                                           "framelinvel",
+                                           "frameangvel",
+                                           "framelinacc",
+                                           "frameangacc",
+                                           "subtreecom",
+                                           "subtreelinvel",
+                                           "subtreeangmom",
+                                           "clock",
+                                           "user"};
   const mjModel& m = *model_;
   std::vector<SensorInfo> result;
   for (int id = 0; id < m.nsensor; ++id) {

@@ -2,12 +2,15 @@
 
 #include <gtest/gtest.h>
 
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <optional>
 
 #include "mjarm/error.hpp"
 #include "mjarm/model/names.hpp"
 #include "support/error_message.hpp"
+#include "support/files.hpp"
 #include "support/test_models.hpp"
 
 namespace mjarm {
@@ -104,6 +107,71 @@ TEST(Names, ClosestNamesPreferContainmentThenEditDistance) {
   ASSERT_EQ(close.size(), 2u);
   EXPECT_EQ(close[0], "attachment_site");
   EXPECT_EQ(closest_names("tpi", names, 1)[0], "tip");
+}
+
+// sets $MJARM_MODELS for one test and restores it
+class ModelsFolder : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    if (const char* old = std::getenv("MJARM_MODELS")) old_ = old;
+  }
+  void TearDown() override {
+    if (old_) {
+      ::setenv("MJARM_MODELS", old_->c_str(), 1);
+    } else {
+      ::unsetenv("MJARM_MODELS");
+    }
+  }
+  std::optional<std::string> old_;
+};
+
+TEST_F(ModelsFolder, MissingOrEmptyFolderIsAnErrorNamingItAndTheVariable) {
+  ::setenv("MJARM_MODELS", "/nonexistent/models", 1);
+  const std::string missing = error_of([] { Robot::bundled_names(); });
+  EXPECT_NE(missing.find("bundled models folder '/nonexistent/models' (from $MJARM_MODELS) does "
+                         "not exist"),
+            std::string::npos)
+      << missing;
+  // every lookup of a bundled name says the same
+  EXPECT_EQ(error_of([] { Robot::bundled("panda"); }), missing);
+  EXPECT_EQ(error_of([] { Robot::load("panda"); }), missing);
+
+  const auto empty = test::scratch() / "no_models";
+  std::filesystem::create_directories(empty);
+  std::ofstream(empty / "readme.txt") << "not a model";
+  ::setenv("MJARM_MODELS", empty.c_str(), 1);
+  const std::string none = error_of([] { Robot::bundled("panda"); });
+  EXPECT_NE(none.find("'" + empty.string() + "' (from $MJARM_MODELS) holds no models"),
+            std::string::npos)
+      << none;
+  ::setenv("MJARM_MODELS", (empty / "readme.txt").c_str(), 1);
+  EXPECT_NE(error_of([] { Robot::bundled_names(); }).find("is not a folder"), std::string::npos);
+}
+
+TEST(Robot, FilesThatAreNotRegularOrTooDeepGiveClearErrors) {
+  const std::string device = error_of([] { Robot::from_file("/dev/zero"); });
+  EXPECT_NE(device.find("model file '/dev/zero' is a character device"), std::string::npos)
+      << device;
+  const auto dir = test::scratch() / "robot_files";
+  std::filesystem::create_directories(dir);
+  std::ofstream(dir / "include_urandom.xml")
+      << "<mujoco>\n<include file=\"/dev/urandom\"/>\n</mujoco>";
+  const std::string include = error_of([&] { Robot::from_file(dir / "include_urandom.xml"); });
+  EXPECT_NE(include.find("include (line 2"), std::string::npos) << include;
+  EXPECT_NE(include.find("included file '/dev/urandom' is a character device"), std::string::npos)
+      << include;
+  // a well-formed chain of 500 bodies: the parser's depth limit is named, not "malformed"
+  std::string deep = "<mujoco><worldbody>";
+  for (int i = 0; i < 500; ++i) deep += "<body><joint/><geom size=\"0.1\"/>";
+  for (int i = 0; i < 500; ++i) deep += "</body>";
+  deep += "</worldbody></mujoco>";
+  std::ofstream(dir / "deep.xml") << deep;
+  for (const std::string& message : {error_of([&] { Robot::from_file(dir / "deep.xml"); }),
+                                     error_of([&] { Robot::from_string(deep); })}) {
+    EXPECT_NE(message.find("more than 100 deep"), std::string::npos) << message;
+    EXPECT_NE(message.find("TINYXML2_MAX_ELEMENT_DEPTH"), std::string::npos) << message;
+    EXPECT_EQ(message.find("malformed"), std::string::npos) << message;
+  }
 }
 
 TEST(Robot, MujocoErrorsBecomeExceptions) {
