@@ -12,6 +12,7 @@
 #include <sstream>
 
 #include "mjarm/error.hpp"
+#include "mjarm/model/finite_model.hpp"
 #include "mjarm/model/mjcf_translate.hpp"
 #include "mjarm/model/names.hpp"
 #include "mjarm/model/user_file.hpp"
@@ -143,7 +144,10 @@ Robot::Robot(mjModel* model, std::string source, std::vector<std::string> warnin
     : model_(model, [](const mjModel* m) { mj_deleteModel(const_cast<mjModel*>(m)); }),
       name_(model_name(*model)),
       source_(std::move(source)),
-      warnings_(std::move(warnings)) {}
+      warnings_(std::move(warnings)) {
+  // a non-finite number would come out of every algorithm as inf / NaN without an error
+  check_model_finite(*model_, source_ == "<string>" ? "XML string" : "'" + source_ + "'");
+}
 
 Robot Robot::from_file(const std::filesystem::path& path) {
   install_mujoco_handlers();
