@@ -13,6 +13,8 @@
 #include <utility>
 #include <vector>
 
+#include "mjarm/model/mjcf_translate.hpp"
+
 namespace tinyxml2 {
 class XMLDocument;
 }
@@ -37,7 +39,8 @@ struct XmlNode {
   bool erase(std::string_view key);
 };
 
-/// "position 'shoulder' (line 12)" or "... (line 4 of /abs/arm.xml)" for included content.
+/// "position 'shoulder' (line 12)" or "... (line 4 of '/abs/arm.xml')" when the element's file is
+/// known.
 std::string label(const XmlNode& n);
 /// Throws mjarm::Error "MJCF translation: <label>: <what>".
 [[noreturn]] void fail(const XmlNode& n, const std::string& what);
@@ -54,8 +57,11 @@ std::string format_numbers(std::span<const double> v);
 std::string xml_parse_error(const tinyxml2::XMLDocument& doc, const std::string& source);
 /// Parses an XML document into XmlNode form; throws mjarm::Error with tinyxml2's message and line.
 XmlNode parse_document(std::string_view text, std::shared_ptr<const std::filesystem::path> file);
-/// Serializes `root` as an indented XML document.
-std::string write_document(const XmlNode& root);
+/// Serializes `root` as an indented XML document, one element per line; when `lines` is given,
+/// fills it with the source of each output line.
+std::string write_document(const XmlNode& root, std::vector<MjcfSourceLine>* lines = nullptr);
+/// `message` with each "line N" of a written document mapped through `lines` to its source.
+std::string to_source_lines(std::string_view message, const std::vector<MjcfSourceLine>& lines);
 
 /// Calls `fn(node, parent)` for every element below `root` in pre-order (parent is never null).
 template <class Fn>

@@ -6,10 +6,8 @@
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
-#include <fstream>
 #include <iostream>
 #include <mutex>
-#include <sstream>
 
 #include "mjarm/error.hpp"
 #include "mjarm/model/finite_model.hpp"
@@ -41,9 +39,18 @@ std::string root_element(std::string_view xml, const std::string& source) {
   return root->Name();
 }
 
-/// Loads XML text through MuJoCo's virtual file system; paths in it must be absolute.
-mjModel* load_from_memory(const std::string& xml, const std::string& source) {
-  auto vfs = std::make_unique<mjVFS>();
+struct VfsDeleter {
+  void operator()(mjVFS* vfs) const {
+    mj_deleteVFS(vfs);
+    delete vfs;
+  }
+};
+
+/// Loads XML text through MuJoCo's virtual file system; paths in it must be absolute. With
+/// @p translation, line numbers in MuJoCo's messages are mapped back to the user's files.
+mjModel* load_from_memory(const std::string& xml, const std::string& source,
+                          const MjcfTranslation* translation = nullptr) {
+  const std::unique_ptr<mjVFS, VfsDeleter> vfs(new mjVFS);
   mj_defaultVFS(vfs.get());
   const char* file_name = "mjarm_model.xml";
   if (mj_makeEmptyFileVFS(vfs.get(), file_name, static_cast<int>(xml.size())) != 0)
@@ -52,9 +59,9 @@ mjModel* load_from_memory(const std::string& xml, const std::string& source) {
   std::memcpy(vfs->filedata[index], xml.data(), xml.size());
   char error[1024] = "";
   mjModel* model = mj_loadXML(file_name, vfs.get(), error, sizeof(error));
-  mj_deleteVFS(vfs.get());
-  if (model == nullptr) throw Error("cannot load " + source + ": " + error);
-  if (error[0] != '\0') print_mujoco_warning(error);
+  const std::string message = translation ? translation->to_source_lines(error) : error;
+  if (model == nullptr) throw Error("cannot load " + source + ": " + message);
+  if (!message.empty()) print_mujoco_warning(message.c_str());
   return model;
 }
 
@@ -154,13 +161,13 @@ Robot Robot::from_file(const std::filesystem::path& path) {
   const std::string xml = read_user_file(path, "model file");
   const std::string source = "'" + path.string() + "'";
   if (root_element(xml, source) != "mujoco") return Robot(load_from_disk(path), path.string(), {});
-  MjcfTranslation translated = translate_mjcf(xml, std::filesystem::absolute(path).parent_path());
-  // untouched files load from disk so that MuJoCo resolves their assets itself
-  if (translated.warnings.empty()) return Robot(load_from_disk(path), path.string(), {});
-  for (const auto& warning : translated.warnings)
-    std::cerr << "mjarm: " << path.string() << ": " << warning << "\n";
-  return Robot(load_from_memory(translated.xml, source), path.string(),
-               std::move(translated.warnings));
+  // every MJCF file loads as translated (includes inlined, asset paths checked and absolute),
+  // so MuJoCo's line numbers map back to the user's own files, included ones too
+  MjcfTranslation translated =
+      translate_mjcf(xml, std::filesystem::absolute(path).parent_path(), path);
+  for (const auto& warning : translated.warnings) std::cerr << "mjarm: " << warning << "\n";
+  mjModel* model = load_from_memory(translated.xml, source, &translated);
+  return Robot(model, path.string(), std::move(translated.warnings));
 }
 
 Robot Robot::from_string(std::string_view xml, const std::filesystem::path& base_dir) {
@@ -174,8 +181,8 @@ Robot Robot::from_string(std::string_view xml, const std::filesystem::path& base
   const std::filesystem::path base = base_dir.empty() ? std::filesystem::current_path() : base_dir;
   MjcfTranslation translated = translate_mjcf(xml, std::filesystem::absolute(base));
   for (const auto& warning : translated.warnings) std::cerr << "mjarm: " << warning << "\n";
-  return Robot(load_from_memory(translated.xml, source), "<string>",
-               std::move(translated.warnings));
+  mjModel* model = load_from_memory(translated.xml, source, &translated);
+  return Robot(model, "<string>", std::move(translated.warnings));
 }
 
 std::filesystem::path Robot::models_dir() {

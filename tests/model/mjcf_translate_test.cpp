@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <set>
 
@@ -338,6 +339,40 @@ TEST(MjcfTranslate, DampratioOnGearedActuatorUsesReflectedInertia) {
   const double mass = m->dof_M0[0] / 9.0;
   EXPECT_NEAR(m->actuator_biasprm[2], -2 * 1.5 * std::sqrt(50 * mass), 1e-12);
   EXPECT_NEAR(m->dof_M0[0], 0.2 + 2.0 * (0.6 * 0.6 + 0.2 * 0.2) / 12, 1e-12);
+}
+
+TEST(MjcfTranslate, TranslatedLinesMapBackToTheSource) {
+  const std::string xml = R"(<mujoco>
+  <!-- two
+       comment lines -->
+  <option integrator="implicitfast"/>
+  <worldbody>
+
+    <frame pos="0 0 1"><geom name="g" size="0.1"/></frame>
+  </worldbody>
+</mujoco>)";
+  const MjcfTranslation t = translate_mjcf(xml, ".", "arm.xml");
+  // every output line has a source, and the geom's line is the geom's source line
+  const auto lines = std::count(t.xml.begin(), t.xml.end(), '\n');
+  ASSERT_EQ(t.source_lines.size(), static_cast<std::size_t>(lines));
+  const std::size_t geom_at = t.xml.find("<geom");
+  const auto geom_line = std::count(t.xml.begin(), t.xml.begin() + geom_at, '\n');
+  EXPECT_EQ(t.source_lines[geom_line].line, 7);
+  EXPECT_EQ(t.source_lines[geom_line].file, "arm.xml");
+  // MuJoCo's two message forms
+  const std::string n = std::to_string(geom_line + 1);
+  EXPECT_EQ(t.to_source_lines("Element 'geom', line " + n + "\n"),
+            "Element 'geom', line 7 of 'arm.xml'\n");
+  EXPECT_EQ(t.to_source_lines("Object name = g, id = 0, line = " + n + ", column = -1"),
+            "Object name = g, id = 0, line 7 of 'arm.xml'");
+  // numbers that are not line numbers of the document stay as they are
+  EXPECT_EQ(t.to_source_lines("line 99999; pipeline 3; baseline 2"),
+            "line 99999; pipeline 3; baseline 2");
+  // the warnings name the file too
+  EXPECT_EQ(count_containing(t.warnings, "option (line 4 of 'arm.xml')"), 1);
+  // without a file name, lines of the text itself
+  const MjcfTranslation s = translate_mjcf(xml, ".");
+  EXPECT_EQ(s.to_source_lines("Element 'geom', line " + n), "Element 'geom', line 7");
 }
 
 }  // namespace

@@ -174,6 +174,56 @@ TEST(Robot, FilesThatAreNotRegularOrTooDeepGiveClearErrors) {
   }
 }
 
+TEST(Robot, LoadErrorsNameTheUsersFileAndLine) {
+  const auto dir = test::scratch() / "robot_lines";
+  std::filesystem::create_directories(dir);
+  // MuJoCo 3.x constructs (rewritten) and a comment shift the translated lines; the missing mesh
+  // is on line 10 of the user's file
+  const auto main = dir / "arm3x.xml";
+  std::ofstream(main) << R"(<mujoco model="arm3x">
+  <!-- a comment
+       over three lines -->
+  <compiler angle="radian"/>
+  <option integrator="implicitfast"/>
+
+  <include file="parts.xml"/>
+  <asset>
+
+    <mesh name="shell" file="missing.stl"/>
+  </asset>
+  <worldbody>
+    <frame pos="0 0 1">
+      <body name="b"><joint name="j" range="-1 1"/><geom type="mesh" mesh="shell"/></body>
+    </frame>
+  </worldbody>
+</mujoco>)";
+  std::ofstream(dir / "parts.xml") << "<mujoco>\n  <default/>\n</mujoco>";
+  const std::string mesh = error_of([&] { Robot::from_file(main); });
+  EXPECT_NE(mesh.find("missing.stl"), std::string::npos) << mesh;
+  EXPECT_NE(mesh.find("line 10 of '" + main.string() + "'"), std::string::npos) << mesh;
+
+  // an error inside an included file names that file and its line (MuJoCo itself says line 0)
+  std::ofstream(dir / "parts.xml") << R"(<mujoco>
+  <worldbody>
+
+    <geom name="short" size="0.1" pos="1 2"/>
+  </worldbody>
+</mujoco>)";
+  const std::string part = error_of([&] { Robot::from_file(main); });
+  const auto parts = std::filesystem::canonical(dir / "parts.xml");
+  EXPECT_NE(part.find("'pos'"), std::string::npos) << part;
+  EXPECT_NE(part.find("line 4 of '" + parts.string() + "'"), std::string::npos) << part;
+
+  // a plain 2.2.2 file too
+  std::ofstream(dir / "plain.xml") << R"(<mujoco>
+
+  <worldbody><geom size="0.1" type="blob"/></worldbody>
+</mujoco>)";
+  const std::string plain = error_of([&] { Robot::from_file(dir / "plain.xml"); });
+  EXPECT_NE(plain.find("line 3 of '" + (dir / "plain.xml").string() + "'"), std::string::npos)
+      << plain;
+}
+
 TEST(Robot, MujocoErrorsBecomeExceptions) {
   install_mujoco_handlers();
   EXPECT_THROW(mju_error("deliberate"), Error);
