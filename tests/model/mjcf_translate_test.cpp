@@ -375,5 +375,62 @@ TEST(MjcfTranslate, TranslatedLinesMapBackToTheSource) {
   EXPECT_EQ(s.to_source_lines("Element 'geom', line " + n), "Element 'geom', line 7");
 }
 
+// MuJoCo 3.x refuses ctrlrange next to inheritrange on <position> / <intvelocity> only
+// (xml_native_reader.cc); its compiler sets the range of any position-servo actuator whose
+// class carries inheritrange, <general> included (mjCActuator::Compile)
+TEST(MjcfTranslate, InheritrangeFollowsTheRulesOfMuJoCo3) {
+  const std::string model = R"(<compiler angle="radian"/>
+<default>
+  <default class="servo"><position kp="10" inheritrange="1"/></default>
+  <default class="integ"><intvelocity kp="10" inheritrange="0.5"/></default>
+</default>
+<worldbody><body><joint name="j" range="-1 2"/><geom size="0.1"/></body></worldbody>
+<actuator>
+  )";
+  // a position-servo <general> with its own ctrlrange: accepted, the range is inherited
+  const MjcfTranslation servo =
+      translate_snippet(model + R"(<general name="g" class="servo" joint="j" ctrlrange="-5 5"/>
+</actuator>)");
+  const ModelPtr m = load_xml(servo.xml);
+  ASSERT_TRUE(m) << servo.xml;
+  EXPECT_DOUBLE_EQ(m->actuator_ctrlrange[0], -1);
+  EXPECT_DOUBLE_EQ(m->actuator_ctrlrange[1], 2);
+  EXPECT_EQ(count_containing(servo.warnings, "replaces the element's own ctrlrange"), 1);
+
+  // not a servo (no bias): inheritrange does not apply, its own ctrlrange stays
+  const MjcfTranslation motor = translate_snippet(
+      model + R"(<general name="g" class="servo" joint="j" biastype="none" ctrlrange="-5 5"/>
+</actuator>)");
+  const ModelPtr mm = load_xml(motor.xml);
+  ASSERT_TRUE(mm) << motor.xml;
+  EXPECT_DOUBLE_EQ(mm->actuator_ctrlrange[0], -5);
+  EXPECT_DOUBLE_EQ(mm->actuator_ctrlrange[1], 5);
+  EXPECT_EQ(count_containing(motor.warnings, "not a position servo"), 1);
+
+  // an integrator <general> from an intvelocity class: the activation range is inherited
+  const MjcfTranslation integ =
+      translate_snippet(model + R"(<general name="g" class="integ" joint="j" ctrlrange="-1 1"/>
+</actuator>)");
+  const ModelPtr mi = load_xml(integ.xml);
+  ASSERT_TRUE(mi) << integ.xml;
+  EXPECT_DOUBLE_EQ(mi->actuator_actrange[0], 0.5 - 0.75);
+  EXPECT_DOUBLE_EQ(mi->actuator_actrange[1], 0.5 + 0.75);
+  EXPECT_DOUBLE_EQ(mi->actuator_ctrlrange[0], -1);
+
+  // the shortcuts still refuse the pair, from the element or from the class
+  expect_error(
+      [&] {
+        translate_snippet(model + R"(<position class="servo" joint="j" ctrlrange="-5 5"/>
+</actuator>)");
+      },
+      {"position (line 9)", "ctrlrange and inheritrange cannot both be defined"});
+  expect_error(
+      [&] {
+        translate_snippet(model + R"(<intvelocity class="integ" joint="j" actrange="-1 1"/>
+</actuator>)");
+      },
+      {"intvelocity (line 9)", "actrange and inheritrange"});
+}
+
 }  // namespace
 }  // namespace mjarm
