@@ -80,7 +80,7 @@ void inline_in(XmlNode& parent, Context& ctx, std::vector<fs::path>& stack,
 // MuJoCo opens the assets itself: they get the same checks before it does
 void check_asset(const XmlNode& e, const std::string& key, const fs::path& path) {
   try {
-    check_user_file(path, e.tag + " " + key, kMaxAssetFileBytes);
+    check_user_file(path, e.tag + " " + key, kMaxDataFileBytes);
   } catch (const Error& err) {
     fail(e, err.what());
   }

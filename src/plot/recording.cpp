@@ -1,10 +1,10 @@
 #include "mjarm/plot/recording.hpp"
 
 #include <algorithm>
-#include <fstream>
 #include <nlohmann/json.hpp>
 
 #include "mjarm/error.hpp"
+#include "mjarm/model/user_file.hpp"
 #include "quoted_path.hpp"
 
 namespace mjarm::plot {
@@ -20,10 +20,9 @@ bool has_partial_folder(const fs::path& directory) {
 }
 
 nlohmann::json read_summary(const fs::path& path) {
-  std::ifstream in(path);
-  if (!in) throw Error("cannot read " + quoted(path));
+  const std::string text = read_user_file(path, "recording summary");
   try {
-    return nlohmann::json::parse(in);
+    return nlohmann::json::parse(text);
   } catch (const nlohmann::json::exception& e) {
     throw Error(quoted(path) + " is not valid JSON: " + e.what());
   }

@@ -87,7 +87,7 @@ TEST(UserFile, RefusesFilesOverTheLimitAndNamesIt) {
   fs::resize_file(path, kMaxTextFileBytes + 1);
   expect_contains(error_of([&] { check_user_file(path, "model file"); }),
                   "over the 64 MiB limit for a model file");
-  EXPECT_NO_THROW(check_user_file(path, "mesh file", kMaxAssetFileBytes));
+  EXPECT_NO_THROW(check_user_file(path, "mesh file", kMaxDataFileBytes));
 }
 
 }  // namespace

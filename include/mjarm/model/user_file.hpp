@@ -13,8 +13,9 @@ namespace mjarm {
 
 /// Largest text file mjarm reads by default (model, include, script): 64 MiB.
 inline constexpr std::uintmax_t kMaxTextFileBytes = std::uintmax_t{64} << 20;
-/// Largest asset (mesh, texture, height field, skin) a model may reference: 512 MiB.
-inline constexpr std::uintmax_t kMaxAssetFileBytes = std::uintmax_t{512} << 20;
+/// Largest data file mjarm reads: an asset a model references (mesh, texture, height field,
+/// skin) or a recorded CSV: 512 MiB.
+inline constexpr std::uintmax_t kMaxDataFileBytes = std::uintmax_t{512} << 20;
 
 /// Checks that @p path names a regular file (symbolic links followed) of at most @p max_bytes,
 /// without opening it.
