@@ -15,6 +15,7 @@
 #include "mjarm/model/names.hpp"
 #include "mjarm/model/user_file.hpp"
 #include "mjcf_detail.hpp"
+#include "urdf_assets.hpp"
 
 namespace mjarm {
 namespace {
@@ -39,7 +40,7 @@ std::string root_element(std::string_view xml, const std::string& source) {
   return root->Name();
 }
 
-struct VfsDeleter {
+struct MemoryFsDeleter {
   void operator()(mjVFS* vfs) const {
     mj_deleteVFS(vfs);
     delete vfs;
@@ -50,7 +51,7 @@ struct VfsDeleter {
 /// @p translation, line numbers in MuJoCo's messages are mapped back to the user's files.
 mjModel* load_from_memory(const std::string& xml, const std::string& source,
                           const MjcfTranslation* translation = nullptr) {
-  const std::unique_ptr<mjVFS, VfsDeleter> vfs(new mjVFS);
+  const std::unique_ptr<mjVFS, MemoryFsDeleter> vfs(new mjVFS);
   mj_defaultVFS(vfs.get());
   const char* file_name = "mjarm_model.xml";
   if (mj_makeEmptyFileVFS(vfs.get(), file_name, static_cast<int>(xml.size())) != 0)
@@ -160,7 +161,11 @@ Robot Robot::from_file(const std::filesystem::path& path) {
   install_mujoco_handlers();
   const std::string xml = read_user_file(path, "model file");
   const std::string source = "'" + path.string() + "'";
-  if (root_element(xml, source) != "mujoco") return Robot(load_from_disk(path), path.string(), {});
+  if (root_element(xml, source) != "mujoco") {
+    // URDF: MuJoCo opens the meshes itself, after the same checks as MJCF assets
+    check_urdf_assets(xml, std::filesystem::absolute(path).parent_path(), source);
+    return Robot(load_from_disk(path), path.string(), {});
+  }
   // every MJCF file loads as translated (includes inlined, asset paths checked and absolute),
   // so MuJoCo's line numbers map back to the user's own files, included ones too
   MjcfTranslation translated =

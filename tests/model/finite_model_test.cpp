@@ -14,8 +14,8 @@ namespace {
 using test::error_of;
 
 // a one-joint arm with `body`, `joint`, `geom` and `extra` spliced into its elements
-std::string arm(const std::string& body, const std::string& joint = "",
-                const std::string& geom = "", const std::string& extra = "") {
+std::string one_joint_arm(const std::string& body, const std::string& joint = "",
+                          const std::string& geom = "", const std::string& extra = "") {
   return R"(<mujoco model="bad">)" + extra + R"(
   <worldbody>
     <body name="link" )" +
@@ -35,21 +35,26 @@ void expect_names(const std::string& message, std::initializer_list<std::string>
 }
 
 TEST(FiniteModel, NonFiniteNumbersFailTheLoadNamingElementAndAttribute) {
-  expect_names(error_of([] { Robot::from_string(arm(R"(pos="inf 0 0")")); }),
+  expect_names(error_of([] { Robot::from_string(one_joint_arm(R"(pos="inf 0 0")")); }),
                {"non-finite", "body 'link'", "attribute pos = inf 0 0", "mjModel::body_pos"});
   // MuJoCo's own parser refuses an overflowing number
-  expect_names(error_of([] { Robot::from_string(arm(R"(pos="0 0 1e999")")); }),
+  expect_names(error_of([] { Robot::from_string(one_joint_arm(R"(pos="0 0 1e999")")); }),
                {"'pos'", "line 3"});
-  expect_names(error_of([] { Robot::from_string(arm("", R"(limited="true" range="-1 nan")")); }),
-               {"joint 'hinge'", "attribute range", "mjModel::jnt_range"});
-  expect_names(error_of([] { Robot::from_string(arm("", R"(damping="inf")")); }),
-               {"joint 'hinge'", "attribute damping", "mjModel::dof_damping"});
-  expect_names(error_of([] { Robot::from_string(arm("", "", R"(friction="nan 0.005 0.0001")")); }),
-               {"geom 'rod'", "friction", "mjModel::geom_friction"});
   expect_names(
-      error_of([] { Robot::from_string(arm("", "", "", R"(<option gravity="0 0 -inf"/>)")); }),
-      {"<option> gravity = 0 0 -inf", "mjModel::opt.gravity"});
-  expect_names(error_of([] { Robot::from_string(arm("", "", "", R"(<option timestep="nan"/>)")); }),
+      error_of([] { Robot::from_string(one_joint_arm("", R"(limited="true" range="-1 nan")")); }),
+      {"joint 'hinge'", "attribute range", "mjModel::jnt_range"});
+  expect_names(error_of([] { Robot::from_string(one_joint_arm("", R"(damping="inf")")); }),
+               {"joint 'hinge'", "attribute damping", "mjModel::dof_damping"});
+  expect_names(
+      error_of([] { Robot::from_string(one_joint_arm("", "", R"(friction="nan 0.005 0.0001")")); }),
+      {"geom 'rod'", "friction", "mjModel::geom_friction"});
+  expect_names(error_of([] {
+                 Robot::from_string(one_joint_arm("", "", "", R"(<option gravity="0 0 -inf"/>)"));
+               }),
+               {"<option> gravity = 0 0 -inf", "mjModel::opt.gravity"});
+  expect_names(error_of([] {
+                 Robot::from_string(one_joint_arm("", "", "", R"(<option timestep="nan"/>)"));
+               }),
                {"<option> timestep"});
 }
 
@@ -70,8 +75,8 @@ TEST(FiniteModel, TheSourceIsNamedNotWhatItSpreadTo) {
 
 TEST(FiniteModel, KeyframesAndUnnamedElementsAreNamed) {
   expect_names(error_of([] {
-                 Robot::from_string(
-                     arm("", "", "", R"(<keyframe><key name="home" qpos="nan"/></keyframe>)"));
+                 Robot::from_string(one_joint_arm(
+                     "", "", "", R"(<keyframe><key name="home" qpos="nan"/></keyframe>)"));
                }),
                {"key 'home'", "qpos = nan", "mjModel::key_qpos"});
   expect_names(error_of([] {
