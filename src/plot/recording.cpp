@@ -1,6 +1,7 @@
 #include "mjarm/plot/recording.hpp"
 
 #include <algorithm>
+#include <cerrno>
 #include <nlohmann/json.hpp>
 
 #include "mjarm/error.hpp"
@@ -43,7 +44,11 @@ T field_or(const nlohmann::json& j, const char* key, T fallback) {
 
 Recording Recording::load(const fs::path& directory) {
   std::error_code ec;
-  if (!fs::exists(directory, ec))
+  const fs::file_status status = fs::status(directory, ec);
+  if (ec.value() == ELOOP)
+    throw Error("recording " + quoted(directory) +
+                " is a symbolic link loop (ELOOP: too many levels of symbolic links)");
+  if (!fs::exists(status))
     throw Error("recording " + quoted(directory) +
                 " does not exist (make one with `mjarm run … --record DIR`)");
   if (!fs::is_directory(directory, ec))
