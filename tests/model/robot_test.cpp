@@ -1,10 +1,15 @@
 #include "mjarm/model/robot.hpp"
 
+#include <fcntl.h>
 #include <gtest/gtest.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
+#include <chrono>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <future>
 #include <optional>
 
 #include "mjarm/error.hpp"
@@ -160,6 +165,20 @@ TEST(Robot, FilesThatAreNotRegularOrTooDeepGiveClearErrors) {
   EXPECT_NE(include.find("include (line 2"), std::string::npos) << include;
   EXPECT_NE(include.find("included file '/dev/urandom' is a character device"), std::string::npos)
       << include;
+  // an <include> of a FIFO: refused at once (guarded: a regression fails instead of hanging)
+  const auto fifo = dir / "pipe.xml";
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  std::ofstream(dir / "include_fifo.xml") << R"(<mujoco><include file="pipe.xml"/></mujoco>)";
+  auto read = std::async(std::launch::async, [&] {
+    return error_of([&] { Robot::from_file(dir / "include_fifo.xml"); });
+  });
+  if (read.wait_for(std::chrono::seconds(10)) != std::future_status::ready) {
+    ADD_FAILURE() << "an included FIFO blocked the load";
+    const int fd = ::open(fifo.c_str(), O_WRONLY | O_NONBLOCK);
+    if (fd >= 0) ::close(fd);
+  }
+  const std::string pipe = read.get();
+  EXPECT_NE(pipe.find("is a FIFO (named pipe)"), std::string::npos) << pipe;
   // a well-formed chain of 500 bodies: the parser's depth limit is named, not "malformed"
   std::string deep = "<mujoco><worldbody>";
   for (int i = 0; i < 500; ++i) deep += "<body><joint/><geom size=\"0.1\"/>";
