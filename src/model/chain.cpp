@@ -25,8 +25,8 @@ FrameRef find_frame(const Robot& robot, std::string_view name) {
   std::vector<std::string> candidates = object_names(m, mjOBJ_SITE);
   const auto bodies = object_names(m, mjOBJ_BODY);
   candidates.insert(candidates.end(), bodies.begin(), bodies.end());
-  std::string message = "frame '" + std::string(name) + "' is neither a site nor a body of model '" +
-                        robot.name() + "'";
+  std::string message = "frame '" + std::string(name) +
+                        "' is neither a site nor a body of model '" + robot.name() + "'";
   const auto close = closest_names(name, candidates, 5);
   if (!close.empty()) {
     message += "; closest: ";
@@ -35,7 +35,8 @@ FrameRef find_frame(const Robot& robot, std::string_view name) {
   throw Error(message);
 }
 
-Chain::Chain(const Robot& robot, std::string_view frame) : robot_(robot), frame_(find_frame(robot, frame)) {
+Chain::Chain(const Robot& robot, std::string_view frame)
+    : robot_(robot), frame_(find_frame(robot, frame)) {
   const mjModel& m = robot_.model();
   // walk from the frame's body to the world, collecting movable joints, then reverse
   std::vector<int> path;
@@ -101,7 +102,8 @@ void Chain::finish() {
 Eigen::VectorXd Chain::center() const {
   Eigen::VectorXd c(size());
   for (int i = 0; i < size(); ++i)
-    c[i] = std::isfinite(lower_[i]) && std::isfinite(upper_[i]) ? 0.5 * (lower_[i] + upper_[i]) : 0.0;
+    c[i] =
+        std::isfinite(lower_[i]) && std::isfinite(upper_[i]) ? 0.5 * (lower_[i] + upper_[i]) : 0.0;
   return c;
 }
 
@@ -118,9 +120,9 @@ Eigen::VectorXd Chain::clamp(const Eigen::Ref<const Eigen::VectorXd>& q) const {
 
 void Chain::check(const Eigen::Ref<const Eigen::VectorXd>& q, std::string_view what) const {
   if (q.size() != size()) {
-    throw Error(std::string(what) + " has " + std::to_string(q.size()) + " values but the chain to '" +
-                frame_.name + "' of model '" + robot_.name() + "' has " + std::to_string(size()) +
-                " joints");
+    throw Error(std::string(what) + " has " + std::to_string(q.size()) +
+                " values but the chain to '" + frame_.name + "' of model '" + robot_.name() +
+                "' has " + std::to_string(size()) + " joints");
   }
   for (int i = 0; i < size(); ++i) {
     if (!std::isfinite(q[i]))

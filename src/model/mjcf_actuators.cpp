@@ -121,6 +121,58 @@ std::array<double, 2> inherited_range(const XmlNode& act, double inheritrange,
   return {centre - half, centre + half};
 }
 
+// an actuator range given on the element or by its class (3.x counts "0 0" as not given)
+bool has_range(const XmlNode& e, const std::string& cls, const char* key,
+               const Defaults& defaults) {
+  const std::string* own = e.find(key);
+  const auto text = own ? std::optional<std::string>(*own) : defaults.lookup(cls, "actuator", key);
+  if (!text) return false;
+  const std::vector<double> r = parse_numbers(e, key, *text);
+  return std::any_of(r.begin(), r.end(), [](double x) { return x != 0; });
+}
+
+// MuJoCo 3.x inheritrange, by its two rules (xml_native_reader.cc and mjCActuator::Compile):
+// the reader refuses ctrlrange (actrange) next to inheritrange on <position> (<intvelocity>)
+// only; the compiler then sets the range of every actuator whose gain and bias make it a
+// position servo (fixed gain, affine bias, gainprm[0] = -biasprm[1]) — ctrlrange for dyntype
+// none / filterexact, actrange for integrator — and ignores inheritrange on any other actuator.
+// A <general> gets inheritrange only from its class. Returns the note for the warning.
+std::string apply_inheritrange(XmlNode& e, const ActuatorRecord& r, const std::string& cls,
+                               const TargetIndex& targets, const Defaults& defaults,
+                               const Context& ctx) {
+  if (e.tag == "position" || e.tag == "intvelocity") {
+    const char* key = e.tag == "intvelocity" ? "actrange" : "ctrlrange";
+    if (has_range(e, cls, key, defaults)) {
+      fail(e, std::string(key) + " and inheritrange cannot both be defined on <" + e.tag + ">");
+    }
+  }
+  const bool servo =
+      r.gaintype == "fixed" && r.biastype == "affine" && r.gainprm[0] == -r.biasprm[1];
+  if (!servo) {
+    return "; inheritrange=\"" + format_numbers(std::array<double, 1>{r.inheritrange}) +
+           "\" from class '" + cls +
+           "' ignored, as in MuJoCo 3.x: this actuator is not a position servo";
+  }
+  const char* key = nullptr;
+  if (r.dyntype == "none" || r.dyntype == "filterexact") {
+    key = "ctrlrange";
+  } else if (r.dyntype == "integrator") {
+    key = "actrange";
+  } else {
+    fail(e, "inheritrange only applies to position and intvelocity actuators (dyntype " +
+                r.dyntype + ")");
+  }
+  const bool replaced = has_range(e, cls, key, defaults);
+  const auto range = inherited_range(e, r.inheritrange, targets, defaults, ctx);
+  e.set(key, format_numbers(range));
+  e.set(std::string_view(key) == "actrange" ? "actlimited" : "ctrllimited", "true");
+  std::string note =
+      std::string("; ") + key + "=\"" + format_numbers(range) + "\" from the target range";
+  if (replaced)
+    note += " (it replaces the element's own " + std::string(key) + ", as in MuJoCo 3.x)";
+  return note;
+}
+
 double model_timestep(const XmlNode& root) {
   double h = 0.002;
   for (const auto& c : root.children) {
@@ -217,18 +269,8 @@ std::vector<PendingDampratio> translate_actuators(XmlNode& root, Context& ctx,
 
       const std::string where = label(e);  // before the rewrite renames the element
       std::string note = reasons(e, !has3 && !(r3 == r2));
-      if (r3.inheritrange > 0) {
-        const bool act = e.tag == "intvelocity";
-        const char* key = act ? "actrange" : "ctrlrange";
-        if (e.has(key) || defaults.lookup(c ? *c : "main", "actuator", key)) {
-          fail(e, std::string(key) + " and inheritrange cannot both be defined");
-        }
-        const auto range = inherited_range(e, r3.inheritrange, targets, defaults, ctx);
-        e.set(key, format_numbers(range));
-        e.set(act ? "actlimited" : "ctrllimited", "true");
-        note +=
-            std::string("; ") + key + "=\"" + format_numbers(range) + "\" from the target range";
-      }
+      if (r3.inheritrange > 0)
+        note += apply_inheritrange(e, r3, c ? *c : "main", targets, defaults, ctx);
       if (dampratio) {
         pending.push_back({id, r3.biasprm[2], ctx.warnings.size()});
         note += "; dampratio " + format_numbers(std::array<double, 1>{r3.biasprm[2]}) +

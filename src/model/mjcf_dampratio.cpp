@@ -29,7 +29,8 @@ struct VfsDeleter {
   }
 };
 
-std::unique_ptr<mjModel, ModelDeleter> compile(const std::string& xml) {
+std::unique_ptr<mjModel, ModelDeleter> compile(const std::string& xml,
+                                               const std::vector<MjcfSourceLine>& lines) {
   // the document is served from memory; its asset paths are absolute, so they load from disk
   std::unique_ptr<mjVFS, VfsDeleter> vfs(new mjVFS);
   mj_defaultVFS(vfs.get());
@@ -44,7 +45,7 @@ std::unique_ptr<mjModel, ModelDeleter> compile(const std::string& xml) {
   if (!m) {
     throw Error(std::string("MJCF translation: dampratio needs the model's inertia, but the "
                             "translated model does not compile in MuJoCo 2.2.2: ") +
-                err);
+                to_source_lines(err, lines));
   }
   return std::unique_ptr<mjModel, ModelDeleter>(m);
 }
@@ -54,7 +55,9 @@ std::unique_ptr<mjModel, ModelDeleter> compile(const std::string& xml) {
 void resolve_dampratios(XmlNode& root, const std::vector<PendingDampratio>& pending,
                         std::vector<std::string>& warnings) {
   if (pending.empty()) return;
-  const auto m = compile(write_document(root));
+  std::vector<MjcfSourceLine> lines;
+  const std::string xml = write_document(root, &lines);
+  const auto m = compile(xml, lines);
   const std::unique_ptr<mjData, DataDeleter> d(mj_makeData(m.get()));
   // transmission moments at qpos0 (mj_makeData starts there)
   mj_kinematics(m.get(), d.get());

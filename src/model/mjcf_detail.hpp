@@ -13,6 +13,12 @@
 #include <utility>
 #include <vector>
 
+#include "mjarm/model/mjcf_translate.hpp"
+
+namespace tinyxml2 {
+class XMLDocument;
+}
+
 namespace mjarm::mjcf_detail {
 
 /// One XML element with its attributes in document order and its element children.
@@ -33,7 +39,8 @@ struct XmlNode {
   bool erase(std::string_view key);
 };
 
-/// "position 'shoulder' (line 12)" or "... (line 4 of /abs/arm.xml)" for included content.
+/// "position 'shoulder' (line 12)" or "... (line 4 of '/abs/arm.xml')" when the element's file is
+/// known.
 std::string label(const XmlNode& n);
 /// Throws mjarm::Error "MJCF translation: <label>: <what>".
 [[noreturn]] void fail(const XmlNode& n, const std::string& what);
@@ -45,10 +52,16 @@ std::vector<double> parse_numbers(const XmlNode& n, std::string_view key, std::s
 /// Space-separated shortest round-trip decimal form of `v`.
 std::string format_numbers(std::span<const double> v);
 
+/// "malformed XML in <source> (line N): <tinyxml2's error>", or for a tree deeper than tinyxml2
+/// reads, what its depth limit (TINYXML2_MAX_ELEMENT_DEPTH) is.
+std::string xml_parse_error(const tinyxml2::XMLDocument& doc, const std::string& source);
 /// Parses an XML document into XmlNode form; throws mjarm::Error with tinyxml2's message and line.
 XmlNode parse_document(std::string_view text, std::shared_ptr<const std::filesystem::path> file);
-/// Serializes `root` as an indented XML document.
-std::string write_document(const XmlNode& root);
+/// Serializes `root` as an indented XML document, one element per line; when `lines` is given,
+/// fills it with the source of each output line.
+std::string write_document(const XmlNode& root, std::vector<MjcfSourceLine>* lines = nullptr);
+/// `message` with each "line N" of a written document mapped through `lines` to its source.
+std::string to_source_lines(std::string_view message, const std::vector<MjcfSourceLine>& lines);
 
 /// Calls `fn(node, parent)` for every element below `root` in pre-order (parent is never null).
 template <class Fn>

@@ -1,9 +1,9 @@
 // <include> inlining and asset path resolution of the MJCF translator.
 
-#include <fstream>
 #include <set>
-#include <sstream>
 
+#include "mjarm/error.hpp"
+#include "mjarm/model/user_file.hpp"
 #include "mjcf_detail.hpp"
 
 namespace mjarm::mjcf_detail {
@@ -12,17 +12,33 @@ namespace fs = std::filesystem;
 
 namespace {
 
+// whether a directory entry exists at `p` (a dangling link or a link loop counts: reading it
+// reports what is wrong with it, instead of "not found")
+bool entry_exists(const fs::path& p) {
+  std::error_code ec;
+  return fs::exists(fs::symlink_status(p, ec));
+}
+
 // MuJoCo resolves include and asset paths against the main file's directory; newer 3.x versions
 // also try the directory of the included file that names them
 std::optional<fs::path> locate(const fs::path& file, const fs::path& base, const XmlNode& from) {
-  if (file.is_absolute()) return fs::exists(file) ? std::optional(file) : std::nullopt;
+  if (file.is_absolute()) return entry_exists(file) ? std::optional(file) : std::nullopt;
   const fs::path main = (base / file).lexically_normal();
-  if (fs::exists(main)) return main;
+  if (entry_exists(main)) return main;
   if (from.file) {
     const fs::path local = (from.file->parent_path() / file).lexically_normal();
-    if (fs::exists(local)) return local;
+    if (entry_exists(local)) return local;
   }
   return std::nullopt;
+}
+
+// reads an included file through the one checked reader; its errors name the <include>
+std::string read_include(const XmlNode& include, const fs::path& path) {
+  try {
+    return read_user_file(path, "included file");
+  } catch (const Error& e) {
+    fail(include, e.what());
+  }
 }
 
 void inline_in(XmlNode& parent, Context& ctx, std::vector<fs::path>& stack,
@@ -41,18 +57,17 @@ void inline_in(XmlNode& parent, Context& ctx, std::vector<fs::path>& stack,
       fail(c, "included file '" + *name + "' not found (looked in " + ctx.base_dir.string() +
                   (c.file ? " and " + c.file->parent_path().string() : std::string()) + ")");
     }
-    const fs::path canonical = fs::weakly_canonical(*path);
+    std::error_code ec;
+    fs::path canonical = fs::weakly_canonical(*path, ec);
+    if (ec) canonical = *path;  // a link loop: read_include() reports it
     for (const auto& open : stack) {
       if (open == canonical) fail(c, "include cycle through '" + canonical.string() + "'");
     }
     if (!seen.insert(canonical).second) {
       fail(c, "'" + canonical.string() + "' is included twice (MuJoCo allows one inclusion)");
     }
-    std::ifstream in(canonical, std::ios::binary);
-    if (!in) fail(c, "cannot read included file '" + canonical.string() + "'");
-    std::ostringstream text;
-    text << in.rdbuf();
-    XmlNode included = parse_document(text.str(), std::make_shared<const fs::path>(canonical));
+    const std::string text = read_include(c, canonical);
+    XmlNode included = parse_document(text, std::make_shared<const fs::path>(canonical));
     if (included.tag != "mujoco") fail(included, "an included file's root must be <mujoco>");
     stack.push_back(canonical);
     inline_in(included, ctx, stack, seen);
@@ -60,6 +75,15 @@ void inline_in(XmlNode& parent, Context& ctx, std::vector<fs::path>& stack,
     for (auto& ic : included.children) out.push_back(std::move(ic));
   }
   parent.children = std::move(out);
+}
+
+// MuJoCo opens the assets itself: they get the same checks before it does
+void check_asset(const XmlNode& e, const std::string& key, const fs::path& path) {
+  try {
+    check_user_file(path, e.tag + " " + key, kMaxDataFileBytes);
+  } catch (const Error& err) {
+    fail(e, err.what());
+  }
 }
 
 bool is_file_attr(std::string_view tag, std::string_view key) {
@@ -99,10 +123,14 @@ void resolve_compiler_and_paths(XmlNode& root, Context& ctx) {
     for (auto& [key, value] : e.attrs) {
       if (!is_file_attr(e.tag, key) || value.empty()) continue;
       fs::path file = strip ? fs::path(value).filename() : fs::path(value);
-      if (file.is_absolute()) continue;
+      if (file.is_absolute()) {
+        if (entry_exists(file)) check_asset(e, key, file);
+        continue;
+      }
       const fs::path dir = e.tag == "texture" ? fs::path(texturedir) : fs::path(meshdir);
       const fs::path rel = dir / file;
       const auto found = locate(rel, ctx.base_dir, e);
+      if (found) check_asset(e, key, *found);
       // a missing file is reported by MuJoCo when it loads the model
       value = found ? found->string()
                     : (rel.is_absolute() ? rel : ctx.base_dir / rel).lexically_normal().string();

@@ -88,14 +88,21 @@ void ensure_autolimits(XmlNode& root, Context& ctx, const Defaults& defaults) {
 
 }  // namespace mjcf_detail
 
-MjcfTranslation translate_mjcf(std::string_view xml, const std::filesystem::path& base_dir) {
+std::string MjcfTranslation::to_source_lines(std::string_view message) const {
+  return mjcf_detail::to_source_lines(message, source_lines);
+}
+
+MjcfTranslation translate_mjcf(std::string_view xml, const std::filesystem::path& base_dir,
+                               const std::filesystem::path& source_file) {
   using namespace mjcf_detail;
   Context ctx;
   // an empty base_dir means the working directory
   ctx.base_dir =
       (base_dir.empty() ? std::filesystem::current_path() : std::filesystem::absolute(base_dir))
           .lexically_normal();
-  XmlNode root = parse_document(xml, nullptr);
+  XmlNode root = parse_document(
+      xml,
+      source_file.empty() ? nullptr : std::make_shared<const std::filesystem::path>(source_file));
   if (root.tag != "mujoco") fail(root, "the root element must be <mujoco>");
 
   inline_includes(root, ctx);
@@ -112,7 +119,10 @@ MjcfTranslation translate_mjcf(std::string_view xml, const std::filesystem::path
   }
   check_schema(root);
   resolve_dampratios(root, pending, ctx.warnings);
-  return {write_document(root), std::move(ctx.warnings)};
+  MjcfTranslation result;
+  result.xml = write_document(root, &result.source_lines);
+  result.warnings = std::move(ctx.warnings);
+  return result;
 }
 
 }  // namespace mjarm

@@ -2,6 +2,7 @@
 
 #include <tinyxml2.h>
 
+#include <cctype>
 #include <cerrno>
 #include <charconv>
 #include <cstdlib>
@@ -43,7 +44,7 @@ std::string label(const XmlNode& n) {
   std::string s = n.tag;
   if (const std::string* name = n.find("name")) s += " '" + *name + "'";
   s += " (line " + std::to_string(n.line);
-  if (n.file) s += " of " + n.file->string();
+  if (n.file) s += " of '" + n.file->string() + "'";
   return s + ")";
 }
 
@@ -133,7 +134,12 @@ void escape(std::string& out, std::string_view s) {
   }
 }
 
-void write(std::string& out, const XmlNode& n, int depth) {
+void note_line(std::vector<MjcfSourceLine>* lines, const XmlNode& n) {
+  if (lines) lines->push_back({n.file ? *n.file : std::filesystem::path(), n.line});
+}
+
+void write(std::string& out, const XmlNode& n, int depth, std::vector<MjcfSourceLine>* lines) {
+  note_line(lines, n);
   out.append(static_cast<std::size_t>(2 * depth), ' ');
   out += '<';
   out += n.tag;
@@ -149,30 +155,84 @@ void write(std::string& out, const XmlNode& n, int depth) {
     return;
   }
   out += ">\n";
-  for (const auto& c : n.children) write(out, c, depth + 1);
+  for (const auto& c : n.children) write(out, c, depth + 1, lines);
+  note_line(lines, n);  // the closing tag
   out.append(static_cast<std::size_t>(2 * depth), ' ');
   out += "</" + n.tag + ">\n";
 }
 
 }  // namespace
 
+std::string xml_parse_error(const tinyxml2::XMLDocument& doc, const std::string& source) {
+  std::ostringstream msg;
+  if (doc.ErrorID() == tinyxml2::XML_ELEMENT_DEPTH_EXCEEDED) {
+    // a well-formed but deep tree: say which limit it hit, not "malformed"
+    msg << source << " nests elements more than " << TINYXML2_MAX_ELEMENT_DEPTH << " deep (line "
+        << doc.ErrorLineNum()
+        << "), the limit of the tinyxml2 XML parser (TINYXML2_MAX_ELEMENT_DEPTH); a chain of "
+           "bodies that long cannot be read";
+  } else {
+    msg << "malformed XML in " << source << " (line " << doc.ErrorLineNum()
+        << "): " << doc.ErrorName() << ": " << doc.ErrorStr();
+  }
+  return msg.str();
+}
+
 XmlNode parse_document(std::string_view text, std::shared_ptr<const std::filesystem::path> file) {
   tinyxml2::XMLDocument doc;
-  const std::string source = file ? file->string() : std::string("<input>");
+  const std::string source = file ? "'" + file->string() + "'" : std::string("<input>");
   if (doc.Parse(text.data(), text.size()) != tinyxml2::XML_SUCCESS) {
-    std::ostringstream msg;
-    msg << "MJCF translation: malformed XML in " << source << " at line " << doc.ErrorLineNum()
-        << ": " << doc.ErrorName() << ": " << doc.ErrorStr();
-    throw Error(msg.str());
+    throw Error("MJCF translation: " + xml_parse_error(doc, source));
   }
   const tinyxml2::XMLElement* root = doc.RootElement();
   if (!root) throw Error("MJCF translation: " + source + " has no root element");
   return convert(*root, file);
 }
 
-std::string write_document(const XmlNode& root) {
+std::string write_document(const XmlNode& root, std::vector<MjcfSourceLine>* lines) {
   std::string out;
-  write(out, root, 0);
+  if (lines) lines->clear();
+  write(out, root, 0, lines);
+  return out;
+}
+
+std::string to_source_lines(std::string_view message, const std::vector<MjcfSourceLine>& lines) {
+  // MuJoCo 2.2.2 writes "Element 'geom', line 5" (XML errors) and
+  // "Object name = m, id = 0, line = 5, column = -1" (compiler errors)
+  std::string out;
+  std::size_t i = 0;
+  while (i < message.size()) {
+    const std::size_t at = message.find("line ", i);
+    if (at == std::string_view::npos) break;
+    std::size_t p = at + 5;
+    if (message.compare(p, 2, "= ") == 0) p += 2;
+    std::size_t end = p;
+    while (end < message.size() && message[end] >= '0' && message[end] <= '9') ++end;
+    const bool word = at == 0 || !std::isalnum(static_cast<unsigned char>(message[at - 1]));
+    if (end == p || !word) {
+      out.append(message.substr(i, p - i));
+      i = p;
+      continue;
+    }
+    const long n = std::strtol(std::string(message.substr(p, end - p)).c_str(), nullptr, 10);
+    out.append(message.substr(i, at - i));
+    if (n >= 1 && static_cast<std::size_t>(n) <= lines.size()) {
+      const MjcfSourceLine& source = lines[static_cast<std::size_t>(n - 1)];
+      out += "line " + std::to_string(source.line);
+      if (!source.file.empty()) out += " of '" + source.file.string() + "'";
+      // the column counts in the translated text: meaningless to the user
+      const std::string_view column = ", column = ";
+      if (message.compare(end, column.size(), column) == 0) {
+        end += column.size();
+        if (end < message.size() && message[end] == '-') ++end;
+        while (end < message.size() && message[end] >= '0' && message[end] <= '9') ++end;
+      }
+    } else {
+      out.append(message.substr(at, end - at));
+    }
+    i = end;
+  }
+  out.append(message.substr(i));
   return out;
 }
 

@@ -17,8 +17,8 @@ std::size_t edit_distance(std::string_view a, std::string_view b) {
   for (std::size_t i = 1; i <= a.size(); ++i) {
     for (std::size_t j = 1; j <= b.size(); ++j) {
       const std::size_t cost = a[i - 1] == b[j - 1] ? 0 : 1;
-      std::size_t best = std::min({d[(i - 1) * w + j] + 1, d[i * w + j - 1] + 1,
-                                   d[(i - 1) * w + j - 1] + cost});
+      std::size_t best =
+          std::min({d[(i - 1) * w + j] + 1, d[i * w + j - 1] + 1, d[(i - 1) * w + j - 1] + cost});
       if (i > 1 && j > 1 && a[i - 1] == b[j - 2] && a[i - 2] == b[j - 1])
         best = std::min(best, d[(i - 2) * w + j - 2] + 1);
       d[i * w + j] = best;
@@ -31,19 +31,32 @@ std::size_t edit_distance(std::string_view a, std::string_view b) {
 
 const char* object_kind_name(mjtObj type) noexcept {
   switch (type) {
-    case mjOBJ_BODY: return "body";
-    case mjOBJ_JOINT: return "joint";
-    case mjOBJ_GEOM: return "geom";
-    case mjOBJ_SITE: return "site";
-    case mjOBJ_CAMERA: return "camera";
-    case mjOBJ_LIGHT: return "light";
-    case mjOBJ_MESH: return "mesh";
-    case mjOBJ_ACTUATOR: return "actuator";
-    case mjOBJ_SENSOR: return "sensor";
-    case mjOBJ_KEY: return "keyframe";
-    case mjOBJ_TENDON: return "tendon";
-    case mjOBJ_EQUALITY: return "equality";
-    default: return "object";
+    case mjOBJ_BODY:
+      return "body";
+    case mjOBJ_JOINT:
+      return "joint";
+    case mjOBJ_GEOM:
+      return "geom";
+    case mjOBJ_SITE:
+      return "site";
+    case mjOBJ_CAMERA:
+      return "camera";
+    case mjOBJ_LIGHT:
+      return "light";
+    case mjOBJ_MESH:
+      return "mesh";
+    case mjOBJ_ACTUATOR:
+      return "actuator";
+    case mjOBJ_SENSOR:
+      return "sensor";
+    case mjOBJ_KEY:
+      return "keyframe";
+    case mjOBJ_TENDON:
+      return "tendon";
+    case mjOBJ_EQUALITY:
+      return "equality";
+    default:
+      return "object";
   }
 }
 
@@ -55,19 +68,44 @@ std::vector<std::string> object_names(const mjModel& m, mjtObj type) {
       // mj_id2name gives null both past the end and for unnamed objects: stop at the count
       int count = 0;
       switch (type) {
-        case mjOBJ_BODY: count = m.nbody; break;
-        case mjOBJ_JOINT: count = m.njnt; break;
-        case mjOBJ_GEOM: count = m.ngeom; break;
-        case mjOBJ_SITE: count = m.nsite; break;
-        case mjOBJ_CAMERA: count = m.ncam; break;
-        case mjOBJ_LIGHT: count = m.nlight; break;
-        case mjOBJ_MESH: count = m.nmesh; break;
-        case mjOBJ_ACTUATOR: count = m.nu; break;
-        case mjOBJ_SENSOR: count = m.nsensor; break;
-        case mjOBJ_KEY: count = m.nkey; break;
-        case mjOBJ_TENDON: count = m.ntendon; break;
-        case mjOBJ_EQUALITY: count = m.neq; break;
-        default: count = 0;
+        case mjOBJ_BODY:
+          count = m.nbody;
+          break;
+        case mjOBJ_JOINT:
+          count = m.njnt;
+          break;
+        case mjOBJ_GEOM:
+          count = m.ngeom;
+          break;
+        case mjOBJ_SITE:
+          count = m.nsite;
+          break;
+        case mjOBJ_CAMERA:
+          count = m.ncam;
+          break;
+        case mjOBJ_LIGHT:
+          count = m.nlight;
+          break;
+        case mjOBJ_MESH:
+          count = m.nmesh;
+          break;
+        case mjOBJ_ACTUATOR:
+          count = m.nu;
+          break;
+        case mjOBJ_SENSOR:
+          count = m.nsensor;
+          break;
+        case mjOBJ_KEY:
+          count = m.nkey;
+          break;
+        case mjOBJ_TENDON:
+          count = m.ntendon;
+          break;
+        case mjOBJ_EQUALITY:
+          count = m.neq;
+          break;
+        default:
+          count = 0;
       }
       if (id >= count) break;
       names.emplace_back();

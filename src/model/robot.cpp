@@ -6,14 +6,16 @@
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
-#include <fstream>
 #include <iostream>
 #include <mutex>
-#include <sstream>
 
 #include "mjarm/error.hpp"
+#include "mjarm/model/finite_model.hpp"
 #include "mjarm/model/mjcf_translate.hpp"
 #include "mjarm/model/names.hpp"
+#include "mjarm/model/user_file.hpp"
+#include "mjcf_detail.hpp"
+#include "urdf_assets.hpp"
 
 namespace mjarm {
 namespace {
@@ -22,18 +24,8 @@ namespace {
   throw Error(std::string("MuJoCo error: ") + message);
 }
 
-void print_mujoco_warning(const char* message) { std::cerr << "mujoco warning: " << message << "\n"; }
-
-std::string read_text(const std::filesystem::path& path) {
-  std::error_code ec;
-  if (!std::filesystem::exists(path, ec)) throw Error("model file '" + path.string() + "' does not exist");
-  if (std::filesystem::is_directory(path, ec))
-    throw Error("model path '" + path.string() + "' is a directory, expected an MJCF or URDF file");
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw Error("model file '" + path.string() + "' cannot be read");
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
+void print_mujoco_warning(const char* message) {
+  std::cerr << "mujoco warning: " << message << "\n";
 }
 
 /// The root element's name ("mujoco" or "robot").
@@ -41,17 +33,25 @@ std::string read_text(const std::filesystem::path& path) {
 std::string root_element(std::string_view xml, const std::string& source) {
   tinyxml2::XMLDocument doc;
   if (doc.Parse(xml.data(), xml.size()) != tinyxml2::XML_SUCCESS) {
-    throw Error("malformed XML in " + source + " (line " + std::to_string(doc.ErrorLineNum()) +
-                "): " + doc.ErrorStr());
+    throw Error(mjcf_detail::xml_parse_error(doc, source));
   }
   const tinyxml2::XMLElement* root = doc.RootElement();
   if (root == nullptr) throw Error("no root element in " + source);
   return root->Name();
 }
 
-/// Loads XML text through MuJoCo's virtual file system; paths in it must be absolute.
-mjModel* load_from_memory(const std::string& xml, const std::string& source) {
-  auto vfs = std::make_unique<mjVFS>();
+struct MemoryFsDeleter {
+  void operator()(mjVFS* vfs) const {
+    mj_deleteVFS(vfs);
+    delete vfs;
+  }
+};
+
+/// Loads XML text through MuJoCo's virtual file system; paths in it must be absolute. With
+/// @p translation, line numbers in MuJoCo's messages are mapped back to the user's files.
+mjModel* load_from_memory(const std::string& xml, const std::string& source,
+                          const MjcfTranslation* translation = nullptr) {
+  const std::unique_ptr<mjVFS, MemoryFsDeleter> vfs(new mjVFS);
   mj_defaultVFS(vfs.get());
   const char* file_name = "mjarm_model.xml";
   if (mj_makeEmptyFileVFS(vfs.get(), file_name, static_cast<int>(xml.size())) != 0)
@@ -60,9 +60,9 @@ mjModel* load_from_memory(const std::string& xml, const std::string& source) {
   std::memcpy(vfs->filedata[index], xml.data(), xml.size());
   char error[1024] = "";
   mjModel* model = mj_loadXML(file_name, vfs.get(), error, sizeof(error));
-  mj_deleteVFS(vfs.get());
-  if (model == nullptr) throw Error("cannot load " + source + ": " + error);
-  if (error[0] != '\0') print_mujoco_warning(error);
+  const std::string message = translation ? translation->to_source_lines(error) : error;
+  if (model == nullptr) throw Error("cannot load " + source + ": " + message);
+  if (!message.empty()) print_mujoco_warning(message.c_str());
   return model;
 }
 
@@ -83,7 +83,8 @@ ActuatorKind classify(const mjModel& m, int id) {
   if (m.actuator_biastype[id] == mjBIAS_AFFINE) {
     if (bias[0] == 0.0 && std::abs(bias[1] + gain[0]) <= 1e-12 * std::abs(gain[0]))
       return ActuatorKind::position;
-    if (bias[0] == 0.0 && bias[1] == 0.0 && std::abs(bias[2] + gain[0]) <= 1e-12 * std::abs(gain[0]))
+    if (bias[0] == 0.0 && bias[1] == 0.0 &&
+        std::abs(bias[2] + gain[0]) <= 1e-12 * std::abs(gain[0]))
       return ActuatorKind::velocity;
   }
   return ActuatorKind::general;
@@ -91,9 +92,12 @@ ActuatorKind classify(const mjModel& m, int id) {
 
 int joint_coordinates(JointType type, bool position) {
   switch (type) {
-    case JointType::free: return position ? 7 : 6;
-    case JointType::ball: return position ? 4 : 3;
-    default: return 1;
+    case JointType::free:
+      return position ? 7 : 6;
+    case JointType::ball:
+      return position ? 4 : 3;
+    default:
+      return 1;
   }
 }
 
@@ -110,20 +114,28 @@ void check_values(std::span<const double> values, std::size_t expected, const st
 
 const char* to_string(JointType type) noexcept {
   switch (type) {
-    case JointType::free: return "free";
-    case JointType::ball: return "ball";
-    case JointType::slide: return "slide";
-    case JointType::hinge: return "hinge";
+    case JointType::free:
+      return "free";
+    case JointType::ball:
+      return "ball";
+    case JointType::slide:
+      return "slide";
+    case JointType::hinge:
+      return "hinge";
   }
   return "unknown";
 }
 
 const char* to_string(ActuatorKind kind) noexcept {
   switch (kind) {
-    case ActuatorKind::motor: return "motor";
-    case ActuatorKind::position: return "position";
-    case ActuatorKind::velocity: return "velocity";
-    case ActuatorKind::general: return "general";
+    case ActuatorKind::motor:
+      return "motor";
+    case ActuatorKind::position:
+      return "position";
+    case ActuatorKind::velocity:
+      return "velocity";
+    case ActuatorKind::general:
+      return "general";
   }
   return "unknown";
 }
@@ -140,18 +152,27 @@ Robot::Robot(mjModel* model, std::string source, std::vector<std::string> warnin
     : model_(model, [](const mjModel* m) { mj_deleteModel(const_cast<mjModel*>(m)); }),
       name_(model_name(*model)),
       source_(std::move(source)),
-      warnings_(std::move(warnings)) {}
+      warnings_(std::move(warnings)) {
+  // a non-finite number would come out of every algorithm as inf / NaN without an error
+  check_model_finite(*model_, source_ == "<string>" ? "XML string" : "'" + source_ + "'");
+}
 
 Robot Robot::from_file(const std::filesystem::path& path) {
   install_mujoco_handlers();
-  const std::string xml = read_text(path);
+  const std::string xml = read_user_file(path, "model file");
   const std::string source = "'" + path.string() + "'";
-  if (root_element(xml, source) != "mujoco") return Robot(load_from_disk(path), path.string(), {});
-  MjcfTranslation translated = translate_mjcf(xml, std::filesystem::absolute(path).parent_path());
-  // untouched files load from disk so that MuJoCo resolves their assets itself
-  if (translated.warnings.empty()) return Robot(load_from_disk(path), path.string(), {});
-  for (const auto& warning : translated.warnings) std::cerr << "mjarm: " << path.string() << ": " << warning << "\n";
-  return Robot(load_from_memory(translated.xml, source), path.string(), std::move(translated.warnings));
+  if (root_element(xml, source) != "mujoco") {
+    // URDF: MuJoCo opens the meshes itself, after the same checks as MJCF assets
+    check_urdf_assets(xml, std::filesystem::absolute(path).parent_path(), source);
+    return Robot(load_from_disk(path), path.string(), {});
+  }
+  // every MJCF file loads as translated (includes inlined, asset paths checked and absolute),
+  // so MuJoCo's line numbers map back to the user's own files, included ones too
+  MjcfTranslation translated =
+      translate_mjcf(xml, std::filesystem::absolute(path).parent_path(), path);
+  for (const auto& warning : translated.warnings) std::cerr << "mjarm: " << warning << "\n";
+  mjModel* model = load_from_memory(translated.xml, source, &translated);
+  return Robot(model, path.string(), std::move(translated.warnings));
 }
 
 Robot Robot::from_string(std::string_view xml, const std::filesystem::path& base_dir) {
@@ -165,7 +186,8 @@ Robot Robot::from_string(std::string_view xml, const std::filesystem::path& base
   const std::filesystem::path base = base_dir.empty() ? std::filesystem::current_path() : base_dir;
   MjcfTranslation translated = translate_mjcf(xml, std::filesystem::absolute(base));
   for (const auto& warning : translated.warnings) std::cerr << "mjarm: " << warning << "\n";
-  return Robot(load_from_memory(translated.xml, source), "<string>", std::move(translated.warnings));
+  mjModel* model = load_from_memory(translated.xml, source, &translated);
+  return Robot(model, "<string>", std::move(translated.warnings));
 }
 
 std::filesystem::path Robot::models_dir() {
@@ -176,29 +198,37 @@ std::filesystem::path Robot::models_dir() {
 }
 
 std::vector<std::string> Robot::bundled_names() {
-  std::vector<std::string> names;
+  const std::filesystem::path dir = models_dir();
+  const char* env = std::getenv("MJARM_MODELS");
+  const std::string folder = "bundled models folder '" + dir.string() + "'" +
+                             (env != nullptr && *env != '\0' ? " (from $MJARM_MODELS)" : "");
   std::error_code ec;
-  for (const auto& entry : std::filesystem::directory_iterator(models_dir(), ec)) {
-    if (entry.is_regular_file() && entry.path().extension() == ".xml")
-      names.push_back(entry.path().stem().string());
+  const auto status = std::filesystem::status(dir, ec);
+  if (!std::filesystem::exists(status)) throw Error(folder + " does not exist");
+  if (!std::filesystem::is_directory(status)) throw Error(folder + " is not a folder");
+  std::vector<std::string> names;
+  for (std::filesystem::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec)) {
+    std::error_code type_ec;
+    if (it->is_regular_file(type_ec) && it->path().extension() == ".xml")
+      names.push_back(it->path().stem().string());
   }
+  if (ec) throw Error(folder + " cannot be listed: " + ec.message());
+  if (names.empty()) throw Error(folder + " holds no models (no .xml files)");
   std::sort(names.begin(), names.end());
   return names;
 }
 
 Robot Robot::bundled(std::string_view name) {
-  const auto path = models_dir() / (std::string(name) + ".xml");
-  std::error_code ec;
-  if (!std::filesystem::is_regular_file(path, ec)) {
-    const auto names = bundled_names();
-    std::string message = "no bundled model named '" + std::string(name) + "' in " + models_dir().string();
-    if (!names.empty()) {
-      message += "; bundled models: ";
-      for (std::size_t i = 0; i < names.size(); ++i) message += (i ? ", " : "") + names[i];
-    }
+  // the list first: a missing or empty folder is reported as such, not as an unknown name
+  const auto names = bundled_names();
+  if (std::find(names.begin(), names.end(), name) == names.end()) {
+    std::string message =
+        "no bundled model named '" + std::string(name) + "' in " + models_dir().string();
+    message += "; bundled models: ";
+    for (std::size_t i = 0; i < names.size(); ++i) message += (i ? ", " : "") + names[i];
     throw Error(message);
   }
-  return from_file(path);
+  return from_file(models_dir() / (std::string(name) + ".xml"));
 }
 
 Robot Robot::load(std::string_view name_or_path) {
@@ -219,7 +249,8 @@ int Robot::keyframe(std::string_view n) const { return find_object(*model_, mjOB
 JointInfo Robot::joint_info(int id) const {
   const mjModel& m = *model_;
   if (id < 0 || id >= m.njnt)
-    throw Error("joint id " + std::to_string(id) + " out of range [0, " + std::to_string(m.njnt) + ")");
+    throw Error("joint id " + std::to_string(id) + " out of range [0, " + std::to_string(m.njnt) +
+                ")");
   JointInfo info;
   const char* n = mj_id2name(&m, mjOBJ_JOINT, id);
   info.name = n ? n : "";
@@ -263,14 +294,43 @@ std::vector<ActuatorInfo> Robot::actuators() const {
 }
 
 std::vector<SensorInfo> Robot::sensors() const {
-  static const char* const kTypeNames[] = {
-      "touch", "accelerometer", "velocimeter", "gyro", "force", "torque", "magnetometer",
-      "rangefinder", "jointpos", "jointvel", "tendonpos", "tendonvel", "actuatorpos",
-      "actuatorvel", "actuatorfrc", "ballquat", "ballangvel", "jointlimitpos", "jointlimitvel",
-      "jointlimitfrc", "tendonlimitpos", "tendonlimitvel", "tendonlimitfrc", "framepos",
-      "framequat", "framexaxis", "frameyaxis", "framezaxis", "framelinvel", "frameangvel",
-      "framelinacc", "frameangacc", "subtreecom", "subtreelinvel", "subtreeangmom", "clock",
-      "user"};
+  static const char* const kTypeNames[] = {"touch",
+                                           "accelerometer",
+                                           "velocimeter",
+                                           "gyro",
+                                           "force",
+                                           "torque",
+                                           "magnetometer",
+                                           "rangefinder",
+                                           "jointpos",
+                                           "jointvel",
+                                           "tendonpos",
+                                           "tendonvel",
+                                           "actuatorpos",
+                                           "actuatorvel",
+                                           "actuatorfrc",
+                                           "ballquat",
+                                           "ballangvel",
+                                           "jointlimitpos",
+                                           "jointlimitvel",
+                                           "jointlimitfrc",
+                                           "tendonlimitpos",
+                                           "tendonlimitvel",
+                                           "tendonlimitfrc",
+                                           "framepos",
+                                           "framequat",
+                                           "framexaxis",
+                                           "frameyaxis",
+                                           "framezaxis",
+                                           "framelinvel",
+                                           "frameangvel",
+                                           "framelinacc",
+                                           "frameangacc",
+                                           "subtreecom",
+                                           "subtreelinvel",
+                                           "subtreeangmom",
+                                           "clock",
+                                           "user"};
   const mjModel& m = *model_;
   std::vector<SensorInfo> result;
   for (int id = 0; id < m.nsensor; ++id) {

@@ -3,11 +3,10 @@
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
-#include <cstring>
-#include <fstream>
 #include <sstream>
 
 #include "mjarm/error.hpp"
+#include "mjarm/model/user_file.hpp"
 #include "quoted_path.hpp"
 
 namespace mjarm::plot {
@@ -56,12 +55,7 @@ bool parse_number(const std::string& cell, double& value) {
 }  // namespace
 
 CsvTable CsvTable::read(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw Error("cannot read " + quoted(path) + ": " + std::strerror(errno));
-  std::ostringstream text;
-  text << in.rdbuf();
-  if (in.bad()) throw Error("cannot read " + quoted(path));
-  return parse(text.str(), path);
+  return parse(read_user_file(path, "recorded table", kMaxDataFileBytes), path);
 }
 
 CsvTable CsvTable::parse(std::string_view text, const std::filesystem::path& path) {

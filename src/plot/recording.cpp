@@ -1,10 +1,11 @@
 #include "mjarm/plot/recording.hpp"
 
 #include <algorithm>
-#include <fstream>
+#include <cerrno>
 #include <nlohmann/json.hpp>
 
 #include "mjarm/error.hpp"
+#include "mjarm/model/user_file.hpp"
 #include "quoted_path.hpp"
 
 namespace mjarm::plot {
@@ -20,10 +21,9 @@ bool has_partial_folder(const fs::path& directory) {
 }
 
 nlohmann::json read_summary(const fs::path& path) {
-  std::ifstream in(path);
-  if (!in) throw Error("cannot read " + quoted(path));
+  const std::string text = read_user_file(path, "recording summary");
   try {
-    return nlohmann::json::parse(in);
+    return nlohmann::json::parse(text);
   } catch (const nlohmann::json::exception& e) {
     throw Error(quoted(path) + " is not valid JSON: " + e.what());
   }
@@ -44,7 +44,11 @@ T field_or(const nlohmann::json& j, const char* key, T fallback) {
 
 Recording Recording::load(const fs::path& directory) {
   std::error_code ec;
-  if (!fs::exists(directory, ec))
+  const fs::file_status status = fs::status(directory, ec);
+  if (ec.value() == ELOOP)
+    throw Error("recording " + quoted(directory) +
+                " is a symbolic link loop (ELOOP: too many levels of symbolic links)");
+  if (!fs::exists(status))
     throw Error("recording " + quoted(directory) +
                 " does not exist (make one with `mjarm run … --record DIR`)");
   if (!fs::is_directory(directory, ec))

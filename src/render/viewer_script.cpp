@@ -5,10 +5,10 @@
 #include <algorithm>
 #include <charconv>
 #include <cmath>
-#include <fstream>
 #include <sstream>
 
 #include "mjarm/error.hpp"
+#include "mjarm/model/user_file.hpp"
 #include "mjarm/render/viewer_panel.hpp"
 
 namespace mjarm {
@@ -167,11 +167,7 @@ ViewerScript ViewerScript::parse(std::string_view text, std::string_view source)
 }
 
 ViewerScript ViewerScript::load(const std::filesystem::path& path) {
-  std::ifstream file(path);
-  if (!file) throw Error("viewer script '" + path.string() + "' cannot be read");
-  std::ostringstream text;
-  text << file.rdbuf();
-  return parse(text.str(), path.string());
+  return parse(read_user_file(path, "viewer script"), path.string());
 }
 
 }  // namespace mjarm

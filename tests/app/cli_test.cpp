@@ -72,6 +72,35 @@ TEST(Cli, ModelsListsTheBundledModels) {
   EXPECT_EQ(same, doc);
 }
 
+TEST(Cli, AMissingOrEmptyModelsFolderIsAnError) {
+  const char* old = std::getenv("MJARM_MODELS");
+  const std::string saved = old ? old : "";
+  const fs::path empty = scratch() / "empty_models";
+  fs::create_directories(empty);
+  for (const std::string& folder : {std::string("/nonexistent"), empty.string()}) {
+    ::setenv("MJARM_MODELS", folder.c_str(), 1);
+    // every command that looks up bundled models names the folder and the variable
+    for (const std::vector<std::string>& args :
+         std::vector<std::vector<std::string>>{{"models"},
+                                               {"models", "--json"},
+                                               {"info", "--list"},
+                                               {"fk", "panda"},
+                                               {"bench", "control", "panda"}}) {
+      const CliRun run = run_cli(args);
+      EXPECT_EQ(run.exit_code, 1) << args[0] << " " << folder;
+      EXPECT_NE(run.err.find("bundled models folder '" + folder + "' (from $MJARM_MODELS)"),
+                std::string::npos)
+          << run.err;
+      EXPECT_TRUE(run.out.empty()) << run.out;
+    }
+  }
+  if (old) {
+    ::setenv("MJARM_MODELS", saved.c_str(), 1);
+  } else {
+    ::unsetenv("MJARM_MODELS");
+  }
+}
+
 TEST(Cli, InfoJsonMatchesTheLibrary) {
   const mjarm::Robot robot = mjarm::Robot::bundled("panda");
   const json doc = run_json({"info", "panda", "--json"});

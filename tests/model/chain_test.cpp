@@ -62,7 +62,8 @@ TEST_F(ChainTest, BadInputIsRejectedWithNames) {
     chain.check(q, "seed");
     FAIL();
   } catch (const Error& e) {
-    EXPECT_NE(std::string(e.what()).find("seed value for joint 'j4' is not finite"), std::string::npos);
+    EXPECT_NE(std::string(e.what()).find("seed value for joint 'j4' is not finite"),
+              std::string::npos);
   }
 }
 

@@ -193,5 +193,28 @@ TEST_F(MjcfInclude, MissingAndCyclicIncludesThrow) {
   }
 }
 
+TEST_F(MjcfInclude, IncludesAndAssetsMustBeRegularFiles) {
+  // MuJoCo would read /dev/zero forever: the translator refuses it before MuJoCo opens it
+  try {
+    translate_mjcf(R"(<mujoco>
+  <asset><mesh name="m" file="/dev/zero"/></asset>
+</mujoco>)",
+                   dir_);
+    ADD_FAILURE() << "no throw";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("mesh 'm' (line 2)"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("'/dev/zero' is a character device"), std::string::npos)
+        << e.what();
+  }
+  std::filesystem::create_symlink("loop2.xml", dir_ / "loop1.xml");
+  std::filesystem::create_symlink("loop1.xml", dir_ / "loop2.xml");
+  try {
+    translate_mjcf(R"(<mujoco><include file="loop1.xml"/></mujoco>)", dir_);
+    ADD_FAILURE() << "no throw";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("symbolic link loop"), std::string::npos) << e.what();
+  }
+}
+
 }  // namespace
 }  // namespace mjarm

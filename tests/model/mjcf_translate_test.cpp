@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <set>
 
@@ -338,6 +339,97 @@ TEST(MjcfTranslate, DampratioOnGearedActuatorUsesReflectedInertia) {
   const double mass = m->dof_M0[0] / 9.0;
   EXPECT_NEAR(m->actuator_biasprm[2], -2 * 1.5 * std::sqrt(50 * mass), 1e-12);
   EXPECT_NEAR(m->dof_M0[0], 0.2 + 2.0 * (0.6 * 0.6 + 0.2 * 0.2) / 12, 1e-12);
+}
+
+TEST(MjcfTranslate, TranslatedLinesMapBackToTheSource) {
+  const std::string xml = R"(<mujoco>
+  <!-- two
+       comment lines -->
+  <option integrator="implicitfast"/>
+  <worldbody>
+
+    <frame pos="0 0 1"><geom name="g" size="0.1"/></frame>
+  </worldbody>
+</mujoco>)";
+  const MjcfTranslation t = translate_mjcf(xml, ".", "arm.xml");
+  // every output line has a source, and the geom's line is the geom's source line
+  const auto lines = std::count(t.xml.begin(), t.xml.end(), '\n');
+  ASSERT_EQ(t.source_lines.size(), static_cast<std::size_t>(lines));
+  const std::size_t geom_at = t.xml.find("<geom");
+  const auto geom_line = std::count(t.xml.begin(), t.xml.begin() + geom_at, '\n');
+  EXPECT_EQ(t.source_lines[geom_line].line, 7);
+  EXPECT_EQ(t.source_lines[geom_line].file, "arm.xml");
+  // MuJoCo's two message forms
+  const std::string n = std::to_string(geom_line + 1);
+  EXPECT_EQ(t.to_source_lines("Element 'geom', line " + n + "\n"),
+            "Element 'geom', line 7 of 'arm.xml'\n");
+  EXPECT_EQ(t.to_source_lines("Object name = g, id = 0, line = " + n + ", column = -1"),
+            "Object name = g, id = 0, line 7 of 'arm.xml'");
+  // numbers that are not line numbers of the document stay as they are
+  EXPECT_EQ(t.to_source_lines("line 99999; pipeline 3; baseline 2"),
+            "line 99999; pipeline 3; baseline 2");
+  // the warnings name the file too
+  EXPECT_EQ(count_containing(t.warnings, "option (line 4 of 'arm.xml')"), 1);
+  // without a file name, lines of the text itself
+  const MjcfTranslation s = translate_mjcf(xml, ".");
+  EXPECT_EQ(s.to_source_lines("Element 'geom', line " + n), "Element 'geom', line 7");
+}
+
+// MuJoCo 3.x refuses ctrlrange next to inheritrange on <position> / <intvelocity> only
+// (xml_native_reader.cc); its compiler sets the range of any position-servo actuator whose
+// class carries inheritrange, <general> included (mjCActuator::Compile)
+TEST(MjcfTranslate, InheritrangeFollowsTheRulesOfMuJoCo3) {
+  const std::string model = R"(<compiler angle="radian"/>
+<default>
+  <default class="servo"><position kp="10" inheritrange="1"/></default>
+  <default class="integ"><intvelocity kp="10" inheritrange="0.5"/></default>
+</default>
+<worldbody><body><joint name="j" range="-1 2"/><geom size="0.1"/></body></worldbody>
+<actuator>
+  )";
+  // a position-servo <general> with its own ctrlrange: accepted, the range is inherited
+  const MjcfTranslation servo =
+      translate_snippet(model + R"(<general name="g" class="servo" joint="j" ctrlrange="-5 5"/>
+</actuator>)");
+  const ModelPtr m = load_xml(servo.xml);
+  ASSERT_TRUE(m) << servo.xml;
+  EXPECT_DOUBLE_EQ(m->actuator_ctrlrange[0], -1);
+  EXPECT_DOUBLE_EQ(m->actuator_ctrlrange[1], 2);
+  EXPECT_EQ(count_containing(servo.warnings, "replaces the element's own ctrlrange"), 1);
+
+  // not a servo (no bias): inheritrange does not apply, its own ctrlrange stays
+  const MjcfTranslation motor = translate_snippet(
+      model + R"(<general name="g" class="servo" joint="j" biastype="none" ctrlrange="-5 5"/>
+</actuator>)");
+  const ModelPtr mm = load_xml(motor.xml);
+  ASSERT_TRUE(mm) << motor.xml;
+  EXPECT_DOUBLE_EQ(mm->actuator_ctrlrange[0], -5);
+  EXPECT_DOUBLE_EQ(mm->actuator_ctrlrange[1], 5);
+  EXPECT_EQ(count_containing(motor.warnings, "not a position servo"), 1);
+
+  // an integrator <general> from an intvelocity class: the activation range is inherited
+  const MjcfTranslation integ =
+      translate_snippet(model + R"(<general name="g" class="integ" joint="j" ctrlrange="-1 1"/>
+</actuator>)");
+  const ModelPtr mi = load_xml(integ.xml);
+  ASSERT_TRUE(mi) << integ.xml;
+  EXPECT_DOUBLE_EQ(mi->actuator_actrange[0], 0.5 - 0.75);
+  EXPECT_DOUBLE_EQ(mi->actuator_actrange[1], 0.5 + 0.75);
+  EXPECT_DOUBLE_EQ(mi->actuator_ctrlrange[0], -1);
+
+  // the shortcuts still refuse the pair, from the element or from the class
+  expect_error(
+      [&] {
+        translate_snippet(model + R"(<position class="servo" joint="j" ctrlrange="-5 5"/>
+</actuator>)");
+      },
+      {"position (line 9)", "ctrlrange and inheritrange cannot both be defined"});
+  expect_error(
+      [&] {
+        translate_snippet(model + R"(<intvelocity class="integ" joint="j" actrange="-1 1"/>
+</actuator>)");
+      },
+      {"intvelocity (line 9)", "actrange and inheritrange"});
 }
 
 }  // namespace

@@ -1,13 +1,21 @@
 #include "mjarm/model/robot.hpp"
 
+#include <fcntl.h>
 #include <gtest/gtest.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
+#include <chrono>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <future>
+#include <optional>
 
 #include "mjarm/error.hpp"
 #include "mjarm/model/names.hpp"
 #include "support/error_message.hpp"
+#include "support/files.hpp"
 #include "support/test_models.hpp"
 
 namespace mjarm {
@@ -104,6 +112,135 @@ TEST(Names, ClosestNamesPreferContainmentThenEditDistance) {
   ASSERT_EQ(close.size(), 2u);
   EXPECT_EQ(close[0], "attachment_site");
   EXPECT_EQ(closest_names("tpi", names, 1)[0], "tip");
+}
+
+// sets $MJARM_MODELS for one test and restores it
+class ModelsFolder : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    if (const char* old = std::getenv("MJARM_MODELS")) old_ = old;
+  }
+  void TearDown() override {
+    if (old_) {
+      ::setenv("MJARM_MODELS", old_->c_str(), 1);
+    } else {
+      ::unsetenv("MJARM_MODELS");
+    }
+  }
+  std::optional<std::string> old_;
+};
+
+TEST_F(ModelsFolder, MissingOrEmptyFolderIsAnErrorNamingItAndTheVariable) {
+  ::setenv("MJARM_MODELS", "/nonexistent/models", 1);
+  const std::string missing = error_of([] { Robot::bundled_names(); });
+  EXPECT_NE(missing.find("bundled models folder '/nonexistent/models' (from $MJARM_MODELS) does "
+                         "not exist"),
+            std::string::npos)
+      << missing;
+  // every lookup of a bundled name says the same
+  EXPECT_EQ(error_of([] { Robot::bundled("panda"); }), missing);
+  EXPECT_EQ(error_of([] { Robot::load("panda"); }), missing);
+
+  const auto empty = test::scratch() / "no_models";
+  std::filesystem::create_directories(empty);
+  std::ofstream(empty / "readme.txt") << "not a model";
+  ::setenv("MJARM_MODELS", empty.c_str(), 1);
+  const std::string none = error_of([] { Robot::bundled("panda"); });
+  EXPECT_NE(none.find("'" + empty.string() + "' (from $MJARM_MODELS) holds no models"),
+            std::string::npos)
+      << none;
+  ::setenv("MJARM_MODELS", (empty / "readme.txt").c_str(), 1);
+  EXPECT_NE(error_of([] { Robot::bundled_names(); }).find("is not a folder"), std::string::npos);
+}
+
+TEST(Robot, FilesThatAreNotRegularOrTooDeepGiveClearErrors) {
+  const std::string device = error_of([] { Robot::from_file("/dev/zero"); });
+  EXPECT_NE(device.find("model file '/dev/zero' is a character device"), std::string::npos)
+      << device;
+  const auto dir = test::scratch() / "robot_files";
+  std::filesystem::create_directories(dir);
+  std::ofstream(dir / "include_urandom.xml")
+      << "<mujoco>\n<include file=\"/dev/urandom\"/>\n</mujoco>";
+  const std::string include = error_of([&] { Robot::from_file(dir / "include_urandom.xml"); });
+  EXPECT_NE(include.find("include (line 2"), std::string::npos) << include;
+  EXPECT_NE(include.find("included file '/dev/urandom' is a character device"), std::string::npos)
+      << include;
+  // an <include> of a FIFO: refused at once (guarded: a regression fails instead of hanging)
+  const auto fifo = dir / "pipe.xml";
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  std::ofstream(dir / "include_fifo.xml") << R"(<mujoco><include file="pipe.xml"/></mujoco>)";
+  auto read = std::async(std::launch::async, [&] {
+    return error_of([&] { Robot::from_file(dir / "include_fifo.xml"); });
+  });
+  if (read.wait_for(std::chrono::seconds(10)) != std::future_status::ready) {
+    ADD_FAILURE() << "an included FIFO blocked the load";
+    const int fd = ::open(fifo.c_str(), O_WRONLY | O_NONBLOCK);
+    if (fd >= 0) ::close(fd);
+  }
+  const std::string pipe = read.get();
+  EXPECT_NE(pipe.find("is a FIFO (named pipe)"), std::string::npos) << pipe;
+  // a well-formed chain of 500 bodies: the parser's depth limit is named, not "malformed"
+  std::string deep = "<mujoco><worldbody>";
+  for (int i = 0; i < 500; ++i) deep += "<body><joint/><geom size=\"0.1\"/>";
+  for (int i = 0; i < 500; ++i) deep += "</body>";
+  deep += "</worldbody></mujoco>";
+  std::ofstream(dir / "deep.xml") << deep;
+  for (const std::string& message : {error_of([&] { Robot::from_file(dir / "deep.xml"); }),
+                                     error_of([&] { Robot::from_string(deep); })}) {
+    EXPECT_NE(message.find("more than 100 deep"), std::string::npos) << message;
+    EXPECT_NE(message.find("TINYXML2_MAX_ELEMENT_DEPTH"), std::string::npos) << message;
+    EXPECT_EQ(message.find("malformed"), std::string::npos) << message;
+  }
+}
+
+TEST(Robot, LoadErrorsNameTheUsersFileAndLine) {
+  const auto dir = test::scratch() / "robot_lines";
+  std::filesystem::create_directories(dir);
+  // MuJoCo 3.x constructs (rewritten) and a comment shift the translated lines; the missing mesh
+  // is on line 10 of the user's file
+  const auto main = dir / "arm3x.xml";
+  std::ofstream(main) << R"(<mujoco model="arm3x">
+  <!-- a comment
+       over three lines -->
+  <compiler angle="radian"/>
+  <option integrator="implicitfast"/>
+
+  <include file="parts.xml"/>
+  <asset>
+
+    <mesh name="shell" file="missing.stl"/>
+  </asset>
+  <worldbody>
+    <frame pos="0 0 1">
+      <body name="b"><joint name="j" range="-1 1"/><geom type="mesh" mesh="shell"/></body>
+    </frame>
+  </worldbody>
+</mujoco>)";
+  std::ofstream(dir / "parts.xml") << "<mujoco>\n  <default/>\n</mujoco>";
+  const std::string mesh = error_of([&] { Robot::from_file(main); });
+  EXPECT_NE(mesh.find("missing.stl"), std::string::npos) << mesh;
+  EXPECT_NE(mesh.find("line 10 of '" + main.string() + "'"), std::string::npos) << mesh;
+
+  // an error inside an included file names that file and its line (MuJoCo itself says line 0)
+  std::ofstream(dir / "parts.xml") << R"(<mujoco>
+  <worldbody>
+
+    <geom name="short" size="0.1" pos="1 2"/>
+  </worldbody>
+</mujoco>)";
+  const std::string part = error_of([&] { Robot::from_file(main); });
+  const auto parts = std::filesystem::canonical(dir / "parts.xml");
+  EXPECT_NE(part.find("'pos'"), std::string::npos) << part;
+  EXPECT_NE(part.find("line 4 of '" + parts.string() + "'"), std::string::npos) << part;
+
+  // a plain 2.2.2 file too
+  std::ofstream(dir / "plain.xml") << R"(<mujoco>
+
+  <worldbody><geom size="0.1" type="blob"/></worldbody>
+</mujoco>)";
+  const std::string plain = error_of([&] { Robot::from_file(dir / "plain.xml"); });
+  EXPECT_NE(plain.find("line 3 of '" + (dir / "plain.xml").string() + "'"), std::string::npos)
+      << plain;
 }
 
 TEST(Robot, MujocoErrorsBecomeExceptions) {

@@ -71,6 +71,11 @@ TEST(Recording, AMissingOrNonDirectoryRecordingIsNamed) {
   test::write_file(dir.path() / "file.txt", "x");
   const std::string file = load_error(dir.path() / "file.txt");
   EXPECT_NE(file.find("is not a directory"), std::string::npos) << file;
+  // a symbolic link loop is named as such, not as a missing folder
+  std::filesystem::create_symlink("loop_b", dir.path() / "loop_a");
+  std::filesystem::create_symlink("loop_a", dir.path() / "loop_b");
+  const std::string loop = load_error(dir.path() / "loop_a");
+  EXPECT_NE(loop.find("symbolic link loop"), std::string::npos) << loop;
 }
 
 TEST(Recording, AMissingFileIsNamed) {

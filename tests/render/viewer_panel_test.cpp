@@ -232,6 +232,7 @@ TEST(ViewerScript, ErrorsNameTheLine) {
   EXPECT_NE(message("drag left 1 inf").find("DY must be a finite number"), std::string::npos);
   EXPECT_NE(message("quit now").find("takes no argument"), std::string::npos);
   EXPECT_THROW(ViewerScript::load("/nonexistent/script.txt"), Error);
+  EXPECT_THROW(ViewerScript::load("/dev/zero"), Error);  // refused, not read forever
 }
 
 TEST(ViewerOverlay, ShowsTrackingSaturationContactsAndRate) {

@@ -10,6 +10,12 @@
 
 namespace mjarm {
 
+/// Where one line of a translated document came from.
+struct MjcfSourceLine {
+  std::filesystem::path file;  ///< the source file; empty for text given without a file name
+  int line = 0;                ///< 1-based line of the element in that file
+};
+
 /// Result of translate_mjcf().
 struct MjcfTranslation {
   /// A complete MJCF document that MuJoCo 2.2.2 accepts. Every asset path in it (mesh, texture,
@@ -19,6 +25,13 @@ struct MjcfTranslation {
   /// `option (line 3): integrator="implicitfast" is MuJoCo 3.x; using "implicit"`.
   /// Empty when the input was already valid MuJoCo 2.2.2 MJCF.
   std::vector<std::string> warnings;
+  /// `source_lines[k]` is where line k + 1 of `xml` came from: the file and line of the element
+  /// written on it (included files keep their own file and lines).
+  std::vector<MjcfSourceLine> source_lines;
+
+  /// @p message (MuJoCo's, about `xml`) with every "line N" / "line = N, column = C" rewritten to
+  /// the source: "line 48 of 'arm.xml'" (just "line 48" for text without a file name).
+  std::string to_source_lines(std::string_view message) const;
 };
 
 /// Rewrites MuJoCo 3.x-only MJCF into MuJoCo 2.2.2 MJCF.
@@ -40,10 +53,14 @@ struct MjcfTranslation {
 ///                  file>` paths are made absolute against it (an included file in another
 ///                  directory is also searched relative to itself when the path does not exist
 ///                  under base_dir).
-/// @return the translated document and the list of rewrites.
+/// @param source_file  the file @p xml was read from (as the user named it): elements of the main
+///                     text are labelled with it in errors, warnings and `source_lines`; empty
+///                     for text without a file.
+/// @return the translated document, the list of rewrites and the line map.
 /// @throws mjarm::Error for malformed XML (with tinyxml2's message and line), an unreadable or
 ///         cyclic include, or a construct that cannot be translated; the message names the
 ///         element (tag, name attribute, line, and file for included content).
-MjcfTranslation translate_mjcf(std::string_view xml, const std::filesystem::path& base_dir);
+MjcfTranslation translate_mjcf(std::string_view xml, const std::filesystem::path& base_dir,
+                               const std::filesystem::path& source_file = {});
 
 }  // namespace mjarm

@@ -22,7 +22,12 @@ struct DataDeleter {
 using DataPtr = std::unique_ptr<mjData, DataDeleter>;
 
 /// Joint types in MuJoCo's order.
-enum class JointType { free = mjJNT_FREE, ball = mjJNT_BALL, slide = mjJNT_SLIDE, hinge = mjJNT_HINGE };
+enum class JointType {
+  free = mjJNT_FREE,
+  ball = mjJNT_BALL,
+  slide = mjJNT_SLIDE,
+  hinge = mjJNT_HINGE
+};
 
 /// Human name of a joint type ("hinge", ...).
 const char* to_string(JointType type) noexcept;
@@ -88,7 +93,8 @@ class Robot {
   static Robot from_string(std::string_view xml, const std::filesystem::path& base_dir = {});
 
   /// Loads a bundled model by name ("panda", "ur5e_torque", ...).
-  /// @throws Error listing the bundled names when @p name is not one of them.
+  /// @throws Error listing the bundled names when @p name is not one of them, and as
+  ///         `bundled_names()` when the models folder is missing or empty.
   static Robot bundled(std::string_view name);
 
   /// A bundled name when @p name_or_path has no '/' and no extension, a file path otherwise.
@@ -97,7 +103,9 @@ class Robot {
   /// Directory of the bundled models: $MJARM_MODELS, else the source tree, else the install.
   static std::filesystem::path models_dir();
 
-  /// Names of the bundled models (top-level files in `models_dir()`), sorted.
+  /// Names of the bundled models (top-level .xml files in `models_dir()`), sorted.
+  /// @throws Error naming the folder (and $MJARM_MODELS when it came from there) when it does not
+  ///         exist, is not a folder, cannot be listed or holds no models.
   static std::vector<std::string> bundled_names();
 
   /// The immutable MuJoCo model.

@@ -1,0 +1,182 @@
+#include "mjarm/model/finite_model.hpp"
+
+#include <mujoco/mjxmacro.h>
+
+#include <cmath>
+#include <sstream>
+#include <string>
+
+#include "mjarm/error.hpp"
+
+namespace mjarm {
+
+namespace {
+
+// what an array's prefix belongs to: the MJCF element and the object type that names it
+struct Owner {
+  std::string_view prefix;
+  std::string_view element;
+  int type;  // mjtObj, or -1 when the row does not name an object directly
+};
+constexpr Owner kOwners[] = {
+    {"body_", "body", mjOBJ_BODY},
+    {"jnt_", "joint", mjOBJ_JOINT},
+    {"dof_", "joint", -1},
+    {"geom_", "geom", mjOBJ_GEOM},
+    {"site_", "site", mjOBJ_SITE},
+    {"cam_", "camera", mjOBJ_CAMERA},
+    {"light_", "light", mjOBJ_LIGHT},
+    {"mesh_", "mesh", -1},
+    {"skin_", "skin", mjOBJ_SKIN},
+    {"hfield_", "hfield", -1},
+    {"mat_", "material", mjOBJ_MATERIAL},
+    {"pair_", "pair", mjOBJ_PAIR},
+    {"eq_", "equality", mjOBJ_EQUALITY},
+    {"tendon_", "tendon", mjOBJ_TENDON},
+    {"wrap_", "tendon", -1},
+    {"actuator_", "actuator", mjOBJ_ACTUATOR},
+    {"sensor_", "sensor", mjOBJ_SENSOR},
+    {"numeric_", "numeric", -1},
+    {"tuple_", "tuple", -1},
+    {"key_", "key", mjOBJ_KEY},
+    {"qpos", "joint", -1},
+};
+
+// arrays whose MJCF attribute has another name, or that come from a child element
+struct Attribute {
+  std::string_view array;
+  std::string_view attribute;
+};
+constexpr Attribute kAttributes[] = {
+    {"body_quat", "quat / euler / axisangle / xyaxes / zaxis"},
+    {"body_ipos", "<inertial> pos"},
+    {"body_iquat", "<inertial> quat"},
+    {"body_mass", "<inertial> mass (or the mass of its geoms)"},
+    {"body_inertia", "<inertial> diaginertia / fullinertia (or its geoms)"},
+    {"geom_quat", "quat / euler / axisangle / xyaxes / zaxis / fromto"},
+    {"site_quat", "quat / euler / axisangle / xyaxes / zaxis / fromto"},
+    {"cam_quat", "quat / euler / axisangle / xyaxes / zaxis"},
+    {"qpos0", "ref"},
+    {"qpos_spring", "springref"},
+    {"mesh_vert", "vertices (or its file)"},
+    {"mesh_normal", "normals (or its file)"},
+    {"tendon_solref_lim", "solreflimit"},
+    {"tendon_solimp_lim", "solimplimit"},
+    {"tendon_solref_fri", "solreffriction"},
+    {"tendon_solimp_fri", "solimpfriction"},
+};
+
+// arrays the compiler derives from the others; checked last
+bool derived(std::string_view name) {
+  for (std::string_view suffix : {"qpos0", "subtreemass", "invweight0", "M0", "rbound", "poscom0",
+                                  "pos0", "mat0", "dir0", "length0", "acc0", "lengthrange"}) {
+    if (name.size() >= suffix.size() && name.substr(name.size() - suffix.size()) == suffix)
+      return true;
+  }
+  return false;
+}
+
+class FiniteCheck {
+ public:
+  FiniteCheck(const mjModel& m, std::string_view source) : m_(m), source_(source) {}
+
+  void check_arrays(bool derived_pass) {
+    const mjModel* m = &m_;
+    MJMODEL_POINTERS_PREAMBLE(m)
+#define X(type, name, nr, nc) check(#name, m->name, m->nr, nc, derived_pass);
+    MJMODEL_POINTERS
+#undef X
+  }
+
+  void check_options() {
+    const mjOption& opt = m_.opt;
+#define X(type, name) check_option(#name, &opt.name, 1);
+    MJOPTION_FLOATS
+#undef X
+#define X(name, n) check_option(#name, opt.name, n);
+    MJOPTION_VECTORS
+#undef X
+  }
+
+ private:
+  template <class T>
+  void check(std::string_view name, const T* values, int rows, int cols, bool derived_pass) {
+    if constexpr (std::is_same_v<T, mjtNum> || std::is_same_v<T, float>) {
+      if (derived(name) != derived_pass || name.ends_with("_user") || cols <= 0) return;
+      for (int r = 0; r < rows; ++r) {
+        const T* row = values + static_cast<std::ptrdiff_t>(r) * cols;
+        for (int c = 0; c < cols; ++c) {
+          if (!std::isfinite(row[c])) fail(name, r, row, cols);
+        }
+      }
+    }
+  }
+
+  void check_option(std::string_view name, const mjtNum* values, int n) {
+    for (int i = 0; i < n; ++i) {
+      if (std::isfinite(values[i])) continue;
+      throw Error("model " + std::string(source_) + " has a non-finite number: <option> " +
+                  std::string(name) + " = " + format(values, n) + " (mjModel::opt." +
+                  std::string(name) + ")");
+    }
+  }
+
+  template <class T>
+  static std::string format(const T* values, int n) {
+    std::ostringstream os;
+    for (int i = 0; i < n && i < 12; ++i) os << (i ? " " : "") << values[i];
+    if (n > 12) os << " ...";
+    return os.str();
+  }
+
+  // "body 'link3'" (or "body 4" when unnamed) for row `row` of the array `name`
+  std::string owner_of(std::string_view name, int row) const {
+    for (const Owner& o : kOwners) {
+      if (!name.starts_with(o.prefix)) continue;
+      int type = o.type, id = row;
+      if (o.prefix == "dof_") {
+        type = mjOBJ_JOINT;
+        id = m_.dof_jntid[row];
+      } else if (o.prefix == "qpos") {
+        // the joint whose coordinates hold this row
+        type = mjOBJ_JOINT;
+        for (int j = 0; j < m_.njnt; ++j) {
+          if (m_.jnt_qposadr[j] <= row) id = j;
+        }
+      } else if (type < 0) {
+        return std::string(o.element) + " data, row " + std::to_string(row);
+      }
+      const char* object = mj_id2name(&m_, type, id);
+      return std::string(o.element) + (object != nullptr && *object != '\0'
+                                           ? " '" + std::string(object) + "'"
+                                           : " " + std::to_string(id) + " (unnamed)");
+    }
+    return "row " + std::to_string(row);
+  }
+
+  template <class T>
+  [[noreturn]] void fail(std::string_view name, int row, const T* values, int cols) const {
+    std::string attribute;
+    for (const Attribute& a : kAttributes) {
+      if (a.array == name) attribute = a.attribute;
+    }
+    if (attribute.empty()) attribute = std::string(name.substr(name.find('_') + 1));
+    throw Error("model " + std::string(source_) +
+                " has a non-finite number: " + owner_of(name, row) + ", attribute " + attribute +
+                " = " + format(values, cols) + " (mjModel::" + std::string(name) + ")");
+  }
+
+  const mjModel& m_;
+  std::string_view source_;
+};
+
+}  // namespace
+
+void check_model_finite(const mjModel& m, std::string_view source) {
+  FiniteCheck check(m, source);
+  check.check_options();
+  check.check_arrays(false);
+  check.check_arrays(true);
+}
+
+}  // namespace mjarm

@@ -1,0 +1,97 @@
+#include "mjarm/model/finite_model.hpp"
+
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "mjarm/error.hpp"
+#include "mjarm/model/robot.hpp"
+#include "support/error_message.hpp"
+
+namespace mjarm {
+namespace {
+
+using test::error_of;
+
+// a one-joint arm with `body`, `joint`, `geom` and `extra` spliced into its elements
+std::string one_joint_arm(const std::string& body, const std::string& joint = "",
+                          const std::string& geom = "", const std::string& extra = "") {
+  return R"(<mujoco model="bad">)" + extra + R"(
+  <worldbody>
+    <body name="link" )" +
+         body + R"(>
+      <joint name="hinge" axis="0 0 1" )" +
+         joint + R"(/>
+      <geom name="rod" size="0.05 0.2" type="capsule" )" +
+         geom + R"(/>
+      <site name="tip"/>
+    </body>
+  </worldbody>
+</mujoco>)";
+}
+
+void expect_names(const std::string& message, std::initializer_list<std::string> parts) {
+  for (const auto& part : parts) EXPECT_NE(message.find(part), std::string::npos) << message;
+}
+
+TEST(FiniteModel, NonFiniteNumbersFailTheLoadNamingElementAndAttribute) {
+  expect_names(error_of([] { Robot::from_string(one_joint_arm(R"(pos="inf 0 0")")); }),
+               {"non-finite", "body 'link'", "attribute pos = inf 0 0", "mjModel::body_pos"});
+  // MuJoCo's own parser refuses an overflowing number
+  expect_names(error_of([] { Robot::from_string(one_joint_arm(R"(pos="0 0 1e999")")); }),
+               {"'pos'", "line 3"});
+  expect_names(
+      error_of([] { Robot::from_string(one_joint_arm("", R"(limited="true" range="-1 nan")")); }),
+      {"joint 'hinge'", "attribute range", "mjModel::jnt_range"});
+  expect_names(error_of([] { Robot::from_string(one_joint_arm("", R"(damping="inf")")); }),
+               {"joint 'hinge'", "attribute damping", "mjModel::dof_damping"});
+  expect_names(
+      error_of([] { Robot::from_string(one_joint_arm("", "", R"(friction="nan 0.005 0.0001")")); }),
+      {"geom 'rod'", "friction", "mjModel::geom_friction"});
+  expect_names(error_of([] {
+                 Robot::from_string(one_joint_arm("", "", "", R"(<option gravity="0 0 -inf"/>)"));
+               }),
+               {"<option> gravity = 0 0 -inf", "mjModel::opt.gravity"});
+  expect_names(error_of([] {
+                 Robot::from_string(one_joint_arm("", "", "", R"(<option timestep="nan"/>)"));
+               }),
+               {"<option> timestep"});
+}
+
+TEST(FiniteModel, TheSourceIsNamedNotWhatItSpreadTo) {
+  // a non-finite mass spreads to subtreemass, invweight0 and dof_M0; the error names the mass
+  const std::string mass = error_of([] {
+    Robot::from_string(R"(<mujoco>
+  <worldbody>
+    <body name="heavy">
+      <joint name="hinge" axis="0 0 1"/>
+      <inertial pos="0 0 0" mass="inf" diaginertia="1 1 1"/>
+    </body>
+  </worldbody>
+</mujoco>)");
+  });
+  expect_names(mass, {"body 'heavy'", "<inertial> mass", "mjModel::body_mass"});
+}
+
+TEST(FiniteModel, KeyframesAndUnnamedElementsAreNamed) {
+  expect_names(error_of([] {
+                 Robot::from_string(one_joint_arm(
+                     "", "", "", R"(<keyframe><key name="home" qpos="nan"/></keyframe>)"));
+               }),
+               {"key 'home'", "qpos = nan", "mjModel::key_qpos"});
+  expect_names(error_of([] {
+                 Robot::from_string(
+                     R"(<mujoco><worldbody><geom size="0.1" pos="0 inf 0"/></worldbody></mujoco>)");
+               }),
+               {"geom 0 (unnamed)", "pos = 0 inf 0"});
+}
+
+TEST(FiniteModel, EveryBundledModelIsFinite) {
+  for (const auto& name : Robot::bundled_names()) {
+    const Robot robot = Robot::bundled(name);  // the constructor checks; check again explicitly
+    EXPECT_NO_THROW(check_model_finite(robot.model(), name)) << name;
+  }
+}
+
+}  // namespace
+}  // namespace mjarm
