@@ -24,6 +24,24 @@ CLI::Validator finite_number() {
       "NUMBER", "finite_number");
 }
 
+CLI::Validator timeout_ms() {
+  return CLI::Validator(
+      [](std::string& text) -> std::string {
+        const std::string range =
+            "a time in ms, more than 0 and at most " + compact(kMaxTimeoutMs) + " (one minute)";
+        const char* begin = text.c_str();
+        char* end = nullptr;
+        const double value = std::strtod(begin, &end);
+        if (end == begin || *end != '\0')
+          return "'" + text + "' is not a number; expected " + range;
+        // an underflow to 0 is out of range, a denormal is > 0 and accepted
+        if (!std::isfinite(value) || !(value > 0.0) || value > kMaxTimeoutMs)
+          return "'" + text + "' is out of range; expected " + range;
+        return {};
+      },
+      "MS", "timeout_ms");
+}
+
 CLI::Validator non_negative_integer() {
   return CLI::Validator(
       [](std::string& text) -> std::string {

@@ -19,6 +19,13 @@ CLI::Validator finite_number();
 /// Accepts only a whole number ≥ 0 written with digits (rejects "-1", which would wrap around).
 CLI::Validator non_negative_integer();
 
+/// The largest time budget a `--timeout-ms` option accepts [ms]: one minute.
+inline constexpr double kMaxTimeoutMs = 60000.0;
+
+/// Accepts a time budget in milliseconds: a finite decimal number > 0 and ≤ kMaxTimeoutMs (the
+/// message names the accepted range). Every `--timeout-ms` of the CLI uses it.
+CLI::Validator timeout_ms();
+
 /// A picture's size in pixels.
 struct PixelSize {
   int width = 0;
