@@ -122,15 +122,20 @@ IkRun solve_ik(const IkOptions& options, const Chain& chain, const Configuration
   return run;
 }
 
+/// "1 attempt", "4 attempts".
+std::string attempts_text(int attempts) {
+  return std::to_string(attempts) + (attempts == 1 ? " attempt" : " attempts");
+}
+
 /// The "restarts" line of the text report.
 std::string restarts_text(const IkOptions& options, const IkRun& run) {
   if (options.solver == "global")
-    return std::to_string(run.global_attempts - 1) + " (" + std::to_string(run.global_attempts) +
-           " attempts)";
+    return std::to_string(run.global_attempts - 1) + " (" + attempts_text(run.global_attempts) +
+           ")";
   if (run.restarts_needed)
     return std::string("needed: dls ended not_converged, global restarts ") +
            (run.result.ok() ? "solved it" : "found no solution") + " in " +
-           std::to_string(run.global_attempts) + " attempts";
+           attempts_text(run.global_attempts);
   if (options.solver_is_default) return "not needed";
   return "none (--solver " + options.solver + " runs alone)";
 }

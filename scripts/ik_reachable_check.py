@@ -34,6 +34,7 @@ def main():
     info = json.loads(run(a.mjarm, ["info", a.model, "--json"]).stdout)
     ranges = {j["name"]: j["range"] for j in info["joints"]}
     solved = 0
+    restarted = 0
     for trial in range(a.trials):
         q = [rng.uniform(*ranges[name]) for name in fk0["joints"]]
         fk = json.loads(run(a.mjarm, ["fk", a.model, *site, "--json", "--q", *map(repr, q)]).stdout)
@@ -41,13 +42,15 @@ def main():
         r = run(a.mjarm, ["ik", a.model, *site, "--pos", *pos, "--json", *a.extra])
         ok = r.returncode == 0
         solved += ok
+        doc = json.loads(r.stdout) if r.stdout.strip() else {}
+        restarted += bool(doc.get("restarts_needed"))
         if a.verbose or not ok:
-            doc = json.loads(r.stdout) if r.stdout.strip() else {}
             print(f"target {trial}: {' '.join(pos)} -> exit {r.returncode}, "
                   f"status {doc.get('status')}, error {doc.get('position_error')}, "
-                  f"start {doc.get('start')}, restarts {doc.get('restarts')}")
-    print(f"{a.model}: {solved}/{a.trials} reachable targets solved (seed {a.seed}, "
-          f"options {' '.join(a.extra) or '(defaults)'})")
+                  f"start {doc.get('start')}, restarts needed {doc.get('restarts_needed')}")
+    where = f"{a.model} ({a.site})" if a.site else a.model
+    print(f"{where}: {solved}/{a.trials} reachable targets solved, {restarted} after global "
+          f"restarts (seed {a.seed}, options {' '.join(a.extra) or '(defaults)'})")
     return 0 if solved == a.trials else 1
 
 
