@@ -244,9 +244,9 @@ Command add_bench_command(CLI::App& root) {
   add_model_argument(*app, options->model)->required();
   add_site_option(*app, options->site);
   app->add_option("--samples", options->samples, "number of random targets N")
-      ->check(CLI::Range(1, 10000000));
-  app->add_option("--timeout-ms", options->timeout_ms, "time budget per solve [ms]")
-      ->check(CLI::PositiveNumber);
+      ->check(count_in(1, 10000000));
+  app->add_option("--timeout-ms", options->timeout_ms, "time budget per solve [ms]; default 5")
+      ->check(timeout_ms());
   app->add_option("--seed", options->seed, "seed of the targets (and of the random starts)")
       ->check(non_negative_integer());
   app->add_option("--clock", options->clock,

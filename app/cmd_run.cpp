@@ -293,7 +293,7 @@ Command add_run_command(CLI::App& root) {
       app->add_option("--record", o->record, "record state, task and events into DIR");
   app->add_option("--control-period", o->control_period,
                   "control period [s], a whole multiple of the timestep (0: one physics step)")
-      ->check(number_in(0.0, 1.0))
+      ->check(duration_at_most(1.0, "s", true))
       ->capture_default_str();
   app->add_option("--max-acceleration", o->max_acceleration,
                   "divergence bound on |joint acceleration| [rad/s²]")
@@ -301,7 +301,7 @@ Command add_run_command(CLI::App& root) {
       ->capture_default_str();
   app->add_option("--settle-time", o->settle_time,
                   "time allowed after the approach to enter the tolerance and hold [s]")
-      ->check(number_in(0.01, 600.0))
+      ->check(duration_at_most(60.0, "s"))
       ->capture_default_str();
   CLI::Option* video = app->add_option(
       "--video", o->video, "write an MP4 of the run (rendered headless; needs Debian's ffmpeg)");

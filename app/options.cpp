@@ -49,6 +49,26 @@ std::string parse_whole(const std::string& text, std::uint64_t& value) {
 }
 
 }  // namespace
+CLI::Validator duration_at_most(double max, const std::string& unit, bool zero_allowed) {
+  const std::string range = "a time in " + unit + (zero_allowed ? ", from 0" : ", more than 0") +
+                            " and at most " + compact(max);
+  return CLI::Validator(
+      [max, zero_allowed, range](std::string& text) -> std::string {
+        const char* begin = text.c_str();
+        char* end = nullptr;
+        const double value = std::strtod(begin, &end);
+        if (end == begin || *end != '\0')
+          return "'" + text + "' is not a number; expected " + range;
+        // an underflow to 0 counts as 0; a denormal is > 0
+        const bool above_min = zero_allowed ? value >= 0.0 : value > 0.0;
+        if (!std::isfinite(value) || !above_min || value > max)
+          return "'" + text + "' is out of range; expected " + range;
+        return {};
+      },
+      unit == "s" ? "SECONDS" : "MS", "duration_at_most");
+}
+
+CLI::Validator timeout_ms() { return duration_at_most(kMaxTimeoutMs, "ms"); }
 
 CLI::Validator non_negative_integer() {
   return CLI::Validator(

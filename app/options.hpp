@@ -38,6 +38,16 @@ CLI::Validator number_in(double min, double max);
 
 /// @p value in its shortest readable form ("240", "0.001", "1e+06"), as bounds are printed.
 std::string readable(double value);
+/// The largest time budget a `--timeout-ms` option accepts [ms]: one minute.
+inline constexpr double kMaxTimeoutMs = 60000.0;
+
+/// Accepts a duration in @p unit ("ms" or "s"): a finite decimal number ≤ @p max and > 0 (≥ 0
+/// when @p zero_allowed); the message names the accepted range. Every duration or timeout
+/// option of the CLI is bounded with it: a huge value would overflow a clock or run for ever.
+CLI::Validator duration_at_most(double max, const std::string& unit, bool zero_allowed = false);
+
+/// `duration_at_most(kMaxTimeoutMs, "ms")`: every `--timeout-ms` of the CLI uses it.
+CLI::Validator timeout_ms();
 
 /// A picture's size in pixels.
 struct PixelSize {

@@ -8,6 +8,7 @@
 #include <string>
 
 #include "mjarm/error.hpp"
+#include "mjarm/ik/targets.hpp"
 #include "mjarm/lie/so3.hpp"
 #include "validate_pose.hpp"
 
@@ -15,6 +16,17 @@ namespace mjarm {
 namespace {
 
 constexpr int kMaxStallWindow = 64;
+
+/// start + timeout on the steady clock, saturated: a timeout beyond half the clock's remaining
+/// range (about 146 years) never expires. A plain duration_cast of a huge double duration to
+/// int64 nanoseconds overflows (1e13 ms did) and put the deadline in the past.
+std::chrono::steady_clock::time_point deadline_after(std::chrono::steady_clock::time_point start,
+                                                     std::chrono::duration<double> timeout) {
+  using Clock = std::chrono::steady_clock;
+  const std::chrono::duration<double> room = (Clock::time_point::max() - start) / 2;
+  if (!(timeout < room)) return Clock::time_point::max();
+  return start + std::chrono::duration_cast<Clock::duration>(timeout);
+}
 
 }  // namespace
 
@@ -117,7 +129,11 @@ void GlobalIk::random_configuration(Eigen::VectorXd& q) noexcept {
 double GlobalIk::evaluate(const Eigen::VectorXd& q, Vector6d& e) noexcept {
   const Pose& X_WE = kin_.update(q);
   e.head<3>() = X_WT_.p - X_WE.p;
-  e.tail<3>() = so3::log(X_WT_.R * X_WE.R.transpose());
+  if (position_only_) {
+    e.tail<3>().setZero();
+  } else {
+    e.tail<3>() = so3::log(X_WT_.R * X_WE.R.transpose());
+  }
   return 0.5 * e.squaredNorm();
 }
 
@@ -133,10 +149,15 @@ bool GlobalIk::converged(const Vector6d& e) const noexcept {
 }
 
 double GlobalIk::manipulability() noexcept {
-  // √det(J Jᵀ) for n ≥ 6 (√det(JᵀJ) for shorter chains), through an in-place Cholesky factor
+  // √det(J Jᵀ) for n ≥ 6 (√det(JᵀJ) for shorter chains), through an in-place Cholesky factor;
+  // a position target uses the translational rows only: √det(J_v J_vᵀ) for n ≥ 3
   const int n = kin_.chain().size();
   double det = 0.0;
-  if (n >= 6) {
+  if (position_only_ && n >= 3) {
+    const Eigen::Matrix3d JJt = J_.topRows<3>().lazyProduct(J_.topRows<3>().transpose());
+    Eigen::LLT<Eigen::Matrix3d> llt(JJt);
+    if (llt.info() == Eigen::Success) det = llt.matrixLLT().diagonal().prod();
+  } else if (n >= 6 && !position_only_) {
     const Matrix6d JJt = J_.lazyProduct(J_.transpose());
     Eigen::LLT<Matrix6d> llt(JJt);
     if (llt.info() == Eigen::Success) det = llt.matrixLLT().diagonal().prod();
@@ -150,13 +171,41 @@ double GlobalIk::manipulability() noexcept {
 
 void GlobalIk::solve(const Pose& X_WT, const Eigen::Ref<const Eigen::VectorXd>& q_seed,
                      IkResult& result) {
-  const Chain& chain = kin_.chain();
   detail::validate_pose(X_WT, "GlobalIk target");
-  chain.check(q_seed, "seed");
+  kin_.chain().check(q_seed, "seed");
+  X_WT_ = X_WT;
+  position_only_ = false;
+  search(q_seed, result);
+}
+
+IkResult GlobalIk::solve_position(const Eigen::Vector3d& p_WT,
+                                  const Eigen::Ref<const Eigen::VectorXd>& q_seed) {
+  IkResult result;
+  solve_position(p_WT, q_seed, result);
+  return result;
+}
+
+void GlobalIk::solve_position(const Eigen::Vector3d& p_WT,
+                              const Eigen::Ref<const Eigen::VectorXd>& q_seed, IkResult& result) {
+  check_position_target(p_WT, "GlobalIk position target");
+  kin_.chain().check(q_seed, "seed");
+  // world axes: the tolerance's x, y, z bounds apply to the world components of the error
+  X_WT_ = Pose{};
+  X_WT_.p = p_WT;
+  position_only_ = true;
+  search(q_seed, result);
+}
+
+void GlobalIk::update_jacobian() noexcept {
+  kin_.jacobian(J_);
+  if (position_only_) J_.bottomRows<3>().setZero();
+}
+
+void GlobalIk::search(const Eigen::Ref<const Eigen::VectorXd>& q_seed, IkResult& result) {
+  const Chain& chain = kin_.chain();
   const int n = chain.size();
   const auto start = Clock::now();
-  const auto deadline = start + std::chrono::duration_cast<Clock::duration>(options_.timeout);
-  X_WT_ = X_WT;
+  const auto deadline = deadline_after(start, options_.timeout);
   rng_.seed(options_.seed);
   stats_ = GlobalIkStats{};
   q_seed_ = q_seed;
@@ -222,7 +271,7 @@ void GlobalIk::solve(const Pose& X_WT, const Eigen::Ref<const Eigen::VectorXd>& 
   result.orientation_error = e.tail<3>().norm();
   result.iterations = iterations;
   if (stats_.solutions > 0) {
-    kin_.jacobian(J_);
+    update_jacobian();
     stats_.manipulability = manipulability();
   }
   stats_.elapsed = std::chrono::duration<double>(Clock::now() - start).count();
@@ -234,7 +283,7 @@ GlobalIk::Outcome GlobalIk::run_attempt(bool use_sqp, Clock::time_point deadline
   const Eigen::VectorXd& upper = kin_.chain().upper();
   E_ = evaluate(q_, e_);
   if (!std::isfinite(E_)) return Outcome::invalid;
-  kin_.jacobian(J_);
+  update_jacobian();
   mu_ = 0.1;
   qp_.reset_warm_start();
   std::array<double, kMaxStallWindow + 1> history{};  // E at the last iterations (ring)
@@ -285,7 +334,7 @@ GlobalIk::Outcome GlobalIk::run_attempt(bool use_sqp, Clock::time_point deadline
       q_.swap(q_trial_);
       e_ = e_trial_;
       E_ = E_trial;
-      kin_.jacobian(J_);
+      update_jacobian();
       mu_ = std::max(mu_ * 0.5, 1e-3);
     } else {
       // reject: keep q (its Jacobian is still in J_) and damp harder

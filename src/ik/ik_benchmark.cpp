@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <ctime>
+#include <limits>
 #include <memory>
 #include <numbers>
 #include <random>
@@ -171,7 +172,11 @@ IkBenchmarkResult run_ik_benchmark(const Chain& chain, const IkBenchmarkSolver& 
 IkBenchmarkResult run_ik_benchmark(const Chain& chain, const IkBenchmarkOptions& options) {
   GlobalIkOptions global;
   global.timeout = options.timeout;
-  if (options.clock == IkBenchmarkClock::thread_cpu) global.timeout *= kCpuModeWallFactor;
+  if (options.clock == IkBenchmarkClock::thread_cpu) {
+    // the wall-clock safety margin saturates instead of overflowing to inf
+    global.timeout = std::min(global.timeout * kCpuModeWallFactor,
+                              std::chrono::duration<double>(std::numeric_limits<double>::max()));
+  }
   global.tolerance = options.tolerance;
   global.seed = options.seed;
   return run_ik_benchmark(chain, global_ik_solver(chain, global), options);

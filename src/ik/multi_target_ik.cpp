@@ -193,6 +193,18 @@ bool MultiTargetIk::compute_step() noexcept {
   });
 }
 
+void MultiTargetIk::report_iteration(int iteration) const {
+  IkIteration it{iteration, 0.0, 0.0, &local_->q()};
+  for (const TargetSlot& slot : targets_) {
+    // std::max would drop a NaN that the callback should see
+    if (!(slot.errors.position <= it.position_error)) it.position_error = slot.errors.position;
+    if (!(slot.errors.orientation <= it.orientation_error)) {
+      it.orientation_error = slot.errors.orientation;
+    }
+  }
+  options_.on_iteration(it);
+}
+
 IkResult MultiTargetIk::solve(const Eigen::Ref<const Eigen::VectorXd>& q_seed) {
   IkResult result;
   result.q.resize(chain().size());
@@ -211,6 +223,7 @@ void MultiTargetIk::solve(const Eigen::Ref<const Eigen::VectorXd>& q_seed, IkRes
   IkStatus status = IkStatus::not_converged;
   int iterations = 0;
   for (;; ++iterations) {
+    if (o.on_iteration) report_iteration(iterations);
     if (!std::isfinite(current_.total)) {
       status = IkStatus::invalid_input;
       break;

@@ -74,6 +74,9 @@ void PoseIk::solve(const Pose& X_WT, const Eigen::Ref<const Eigen::VectorXd>& q_
   int iterations = 0;
   for (;; ++iterations) {
     const double current = score(errors);
+    if (o.on_iteration) {
+      o.on_iteration(IkIteration{iterations, errors.position, errors.orientation, &local_.q()});
+    }
     if (!std::isfinite(current) || !e.allFinite()) {
       status = IkStatus::invalid_input;
       break;

@@ -58,6 +58,7 @@ void PositionIk::solve(const Eigen::Vector3d& p_WT, const Eigen::Ref<const Eigen
   for (;; ++iterations) {
     // the NaN guard keeps the last finite iterate
     const double err = e.norm();
+    if (o.on_iteration) o.on_iteration(IkIteration{iterations, err, 0.0, &local_.q()});
     if (!std::isfinite(err)) {
       status = IkStatus::invalid_input;
       break;

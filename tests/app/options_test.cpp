@@ -65,8 +65,8 @@ TEST(CliOptions, EveryCountAndRateIsBoundedWithItsRangeNamed) {
       {{"view", "--render-hz", "abc"}, "--render-hz: 'abc' is not a number from 1 to 240"},
   };
   // the work is estimated before it starts: frames = --fps × --settle-time
-  expect_error({"run", "shelf-pick", "--video", video, "--fps", "240", "--settle-time", "600"}, 2,
-               "would film up to 144000 frames after the approach; at most 9000");
+  expect_error({"run", "shelf-pick", "--video", video, "--fps", "240", "--settle-time", "60"}, 2,
+               "would film up to 14400 frames after the approach; at most 9000");
   for (const Case& c : cases) {
     SCOPED_TRACE(c.args[0] + " " + c.args.back());
     expect_error(c.args, 2, c.message);

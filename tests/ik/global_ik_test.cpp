@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 #include <random>
 #include <vector>
 
@@ -201,6 +202,71 @@ TEST(GlobalIk, UnreachableTargetTimesOutWithTheBestError) {
   const IkResult capped = ik.solve(far, chain.center());
   EXPECT_EQ(capped.status, IkStatus::not_converged);
   EXPECT_EQ(ik.stats().attempts, 3);
+}
+
+TEST(GlobalIk, HugeTimeoutSaturatesInsteadOfOverflowing) {
+  // 1e13 ms overflowed int64 nanoseconds in the deadline: `timeout` after 0 iterations
+  const Chain chain = chain_of("panda");
+  Pose far;
+  far.p = Eigen::Vector3d(2.0, 0.0, 0.5);
+  for (const double seconds : {1e10, 1e300, std::numeric_limits<double>::max()}) {
+    GlobalIkOptions options;
+    options.timeout = std::chrono::duration<double>(seconds);
+    options.max_restarts = 2;  // the restart cap ends the search, not the clock
+    GlobalIk ik(chain, options);
+    const IkResult r = ik.solve(far, chain.center());
+    EXPECT_EQ(r.status, IkStatus::not_converged) << seconds << " s";
+    EXPECT_EQ(ik.stats().attempts, 3) << seconds << " s";
+    EXPECT_GT(r.iterations, 10) << seconds << " s";
+    const IkResult solved = ik.solve(reachable_targets(chain, 1, 8).front(), chain.center());
+    EXPECT_TRUE(solved.ok()) << seconds << " s";
+  }
+}
+
+TEST(GlobalIk, PositionTargetsSolveWithAnyOrientation) {
+  for (const char* robot : {"panda", "ur5e", "planar2"}) {
+    const Robot model = Robot::bundled(robot);
+    const Chain chain(model, std::string(robot) == "planar2" ? "tip" : "attachment_site");
+    GlobalIkOptions options;
+    options.timeout = kRoomy;
+    options.max_restarts = 200;
+    GlobalIk ik(chain, options);
+    ChainKinematics kin(chain);
+    for (const Pose& X : reachable_targets(chain, 10, 21)) {
+      const IkResult r = ik.solve_position(X.p, chain.center());
+      ASSERT_TRUE(r.ok()) << robot;
+      EXPECT_TRUE(chain.within_limits(r.q));
+      const Eigen::Vector3d p = kin.update(r.q).p;
+      EXPECT_NEAR(r.position_error, (p - X.p).norm(), 1e-12);
+      EXPECT_LE((p - X.p).cwiseAbs().maxCoeff(), options.tolerance.bound[0]) << robot;
+      EXPECT_EQ(r.orientation_error, 0.0);
+    }
+  }
+  // a pose solve after a position solve uses the orientation again
+  const Chain chain = chain_of("panda");
+  GlobalIkOptions options;
+  options.timeout = kRoomy;
+  GlobalIk ik(chain, options);
+  const Pose X_WT = reachable_targets(chain, 1, 22).front();
+  ik.solve_position(X_WT.p, chain.center());
+  const IkResult pose = ik.solve(X_WT, chain.center());
+  ASSERT_TRUE(pose.ok());
+  EXPECT_TRUE(solves(chain, pose, X_WT));
+  // unreachable: the restart cap reports not_converged with the closest point's error
+  options.max_restarts = 3;
+  ik.set_options(options);
+  const IkResult far = ik.solve_position(Eigen::Vector3d(2.0, 0.0, 0.5), chain.center());
+  EXPECT_EQ(far.status, IkStatus::not_converged);
+  EXPECT_GT(far.position_error, 1.0);
+  EXPECT_THROW(ik.solve_position(Eigen::Vector3d(std::nan(""), 0.0, 0.0), chain.center()), Error);
+  // allocation-free once the result is sized
+  const std::vector<Pose> targets = reachable_targets(chain, 5, 23);
+  const Eigen::VectorXd seed = chain.center();
+  IkResult result;
+  ik.solve_position(X_WT.p, seed, result);
+  const std::uint64_t before = test::malloc_calls();
+  for (const Pose& X : targets) ik.solve_position(X.p, seed, result);
+  EXPECT_EQ(test::malloc_calls() - before, 0u);
 }
 
 TEST(GlobalIk, SeedOutsideTheLimitsIsClippedAndTheAnswerStaysInside) {

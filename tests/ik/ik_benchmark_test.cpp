@@ -160,6 +160,19 @@ TEST(IkBenchmark, SeedModesShareTheTargetsAndDifferInSeeds) {
   EXPECT_FALSE(targets[0][0].is_approx(targets[0][1], 1e-3));
 }
 
+TEST(IkBenchmark, HugeTimeoutsDoNotFailEverySample) {
+  // a timeout beyond int64 nanoseconds (1e308 ms) reported 0 % success: the deadline overflowed
+  const Chain chain = chain_of("panda");
+  for (const IkBenchmarkClock clock : {IkBenchmarkClock::wall, IkBenchmarkClock::thread_cpu}) {
+    IkBenchmarkOptions options;
+    options.samples = 5;
+    options.timeout = std::chrono::duration<double>(1e305);
+    options.clock = clock;
+    const IkBenchmarkResult r = run_ik_benchmark(chain, options);
+    EXPECT_EQ(r.successes, 5) << to_string(clock);
+  }
+}
+
 TEST(IkBenchmark, BadInputsThrow) {
   const Chain chain = chain_of("panda");
   IkBenchmarkOptions options;

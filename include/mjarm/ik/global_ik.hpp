@@ -62,8 +62,9 @@ const char* to_string(GlobalIkMethods methods) noexcept;
 struct GlobalIkOptions {
   GlobalIkMode mode = GlobalIkMode::speed;               ///< which solution to return
   GlobalIkMethods methods = GlobalIkMethods::alternate;  ///< local methods used
-  /// Wall-clock budget of one solve (> 0). `distance` and `manipulability` use all of it
-  /// unless `max_restarts` ends the search first.
+  /// Wall-clock budget of one solve (finite, > 0). `distance` and `manipulability` use all of
+  /// it unless `max_restarts` ends the search first. A budget beyond the steady clock's range
+  /// (about 146 years) never expires.
   std::chrono::duration<double> timeout = std::chrono::milliseconds(5);
   PoseTolerance tolerance;  ///< acceptance test (default: TRAC-IK's 1e-5 on each component)
   /// Restarts after the first attempt (≥ 0); the default is unbounded (the timeout decides).
@@ -124,6 +125,19 @@ class GlobalIk {
   /// The same, writing into @p result (allocation-free once result.q has n entries).
   void solve(const Pose& X_WT, const Eigen::Ref<const Eigen::VectorXd>& q_seed, IkResult& result);
 
+  /// Position only: finds q (n) with the chain frame's origin at @p p_WT (m, world) and any
+  /// orientation, by the same restarts and local methods on the 3 translational rows. The
+  /// tolerance's x, y, z bounds apply to the world components of p_WT − p_WE (its rotation
+  /// bounds are unused); status as for `solve`; orientation_error is 0; in manipulability mode
+  /// the score is √det(J_v J_vᵀ) of the translational Jacobian.
+  /// @throws Error for a non-finite target, or a seed of the wrong size / NaN.
+  IkResult solve_position(const Eigen::Vector3d& p_WT,
+                          const Eigen::Ref<const Eigen::VectorXd>& q_seed);
+
+  /// The same, writing into @p result (allocation-free once result.q has n entries).
+  void solve_position(const Eigen::Vector3d& p_WT, const Eigen::Ref<const Eigen::VectorXd>& q_seed,
+                      IkResult& result);
+
   /// Diagnostics of the last solve.
   const GlobalIkStats& stats() const noexcept { return stats_; }
 
@@ -131,6 +145,10 @@ class GlobalIk {
   enum class Outcome { converged, stalled, timeout, invalid };
   using Clock = std::chrono::steady_clock;
 
+  /// The restart loop of both solves, on the target already in X_WT_ / position_only_.
+  void search(const Eigen::Ref<const Eigen::VectorXd>& q_seed, IkResult& result);
+  /// J_ at kin_'s configuration (rotation rows zero for a position target).
+  void update_jacobian() noexcept;
   double evaluate(const Eigen::VectorXd& q, Vector6d& e) noexcept;
   bool converged(const Vector6d& e) const noexcept;
   Outcome run_attempt(bool use_sqp, Clock::time_point deadline, int& iterations) noexcept;
@@ -146,7 +164,8 @@ class GlobalIk {
   Eigen::VectorXd sample_lower_, sample_upper_;  // random-restart box (finite)
   // per-solve state
   Pose X_WT_;
-  Vector6d e_;  // world-aligned error at q_
+  bool position_only_ = false;  // solve_position: the rotation part of e and J is zero
+  Vector6d e_;                  // world-aligned error at q_
   Vector6d e_trial_;
   double E_ = 0.0;   // ½‖e‖² at q_
   double mu_ = 0.1;  // LM damping scale

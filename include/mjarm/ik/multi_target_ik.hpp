@@ -24,6 +24,7 @@
 
 #include "mjarm/ik/collision_guard.hpp"
 #include "mjarm/ik/damped_least_squares.hpp"
+#include "mjarm/ik/iteration_callback.hpp"
 #include "mjarm/ik/limit_bias.hpp"
 #include "mjarm/ik/local_ik_workspace.hpp"
 #include "mjarm/ik/posture.hpp"
@@ -57,6 +58,8 @@ struct MultiTargetIkOptions {
   int stall_iterations = 30;     ///< stop after this many iterations without progress (≥ 1)
   double stall_progress = 1e-4;  ///< progress = the summed errors drop by this fraction, [0, 1)
   CollisionSpec collision;       ///< optional: geoms that must not touch (off when empty)
+  IkIterationCallback
+      on_iteration;  ///< optional observer of every iterate (iteration_callback.hpp)
 };
 
 /// @throws Error naming the offending option.
@@ -131,6 +134,8 @@ class MultiTargetIk {
   void evaluate(const Eigen::Ref<const Eigen::VectorXd>& q, bool trial, Score& score) noexcept;
   bool better(const Score& a, const Score& b) const noexcept;
   bool all_converged(const Score& s) const noexcept;
+  /// Calls options_.on_iteration with the worst errors of the current iterate.
+  void report_iteration(int iteration) const;
   /// The limit-aware prioritized step into the workspace; false when it is not finite.
   bool compute_step() noexcept;
 

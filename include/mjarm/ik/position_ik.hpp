@@ -21,6 +21,7 @@
 #include <Eigen/Core>
 
 #include "mjarm/ik/collision_guard.hpp"
+#include "mjarm/ik/iteration_callback.hpp"
 #include "mjarm/ik/limit_bias.hpp"
 #include "mjarm/ik/local_ik_workspace.hpp"
 #include "mjarm/ik/posture.hpp"
@@ -44,6 +45,8 @@ struct PositionIkOptions {
   int stall_iterations = 60;          ///< stop after this many iterations without progress (≥ 1)
   double stall_progress = 1e-4;  ///< progress = the best error drops by this fraction, in [0, 1)
   CollisionSpec collision;       ///< optional: geoms that must not touch (off when empty)
+  IkIterationCallback
+      on_iteration;  ///< optional observer of every iterate (iteration_callback.hpp)
 };
 
 /// @throws Error naming the offending option.
