@@ -43,14 +43,14 @@ Quintic::Sample evaluate_quintic(const double* c, double t) noexcept {
 }
 
 // t clamped to [0, T] (NaN → 0) and whether it is strictly inside
-double clamp_time(double t, double T, bool& inside) noexcept {
+double clamp_quintic_time(double t, double T, bool& inside) noexcept {
   inside = t > 0.0 && t < T;
   if (t >= T) return T;
   return t > 0.0 ? t : 0.0;
 }
 
 // max |p(t)| over [0, T] for a polynomial in t: at the roots of p′ and at the ends
-double peak_abs(const polynomial::Poly& p, double T) {
+double quintic_peak_abs(const polynomial::Poly& p, double T) {
   double peak =
       std::max(std::abs(polynomial::evaluate(p, 0.0)), std::abs(polynomial::evaluate(p, T)));
   for (double t : polynomial::real_roots(polynomial::derivative(p), 0.0, T))
@@ -58,7 +58,7 @@ double peak_abs(const polynomial::Poly& p, double T) {
   return peak;
 }
 
-void require_size(Eigen::Index expected, Eigen::Index got, const char* what) {
+void require_quintic_size(Eigen::Index expected, Eigen::Index got, const char* what) {
   if (got != expected)
     throw Error(std::string("quintic trajectory: ") + what + " must have " +
                 std::to_string(expected) + " entries, got " + std::to_string(got));
@@ -86,7 +86,7 @@ Quintic::Quintic(const State& start, const State& end, double duration) : durati
 
 Quintic::Sample Quintic::at(double t) const noexcept {
   bool inside = false;
-  Sample out = evaluate_quintic(c_.data(), clamp_time(t, duration_, inside));
+  Sample out = evaluate_quintic(c_.data(), clamp_quintic_time(t, duration_, inside));
   if (!inside) out.j = 0.0;
   return out;
 }
@@ -96,9 +96,9 @@ Quintic::Peaks Quintic::peaks() const {
   const polynomial::Poly v = polynomial::derivative(p);
   const polynomial::Poly a = polynomial::derivative(v);
   Peaks out;
-  out.velocity = peak_abs(v, duration_);
-  out.acceleration = peak_abs(a, duration_);
-  out.jerk = duration_ > 0.0 ? peak_abs(polynomial::derivative(a), duration_) : 0.0;
+  out.velocity = quintic_peak_abs(v, duration_);
+  out.acceleration = quintic_peak_abs(a, duration_);
+  out.jerk = duration_ > 0.0 ? quintic_peak_abs(polynomial::derivative(a), duration_) : 0.0;
   return out;
 }
 
@@ -106,11 +106,11 @@ QuinticTrajectory::QuinticTrajectory(const State& start, const State& end, doubl
     : duration_(duration) {
   const Eigen::Index n = start.q.size();
   if (n == 0) throw Error("quintic trajectory: no joints (start q is empty)");
-  require_size(n, start.qd.size(), "start qd");
-  require_size(n, start.qdd.size(), "start qdd");
-  require_size(n, end.q.size(), "end q");
-  require_size(n, end.qd.size(), "end qd");
-  require_size(n, end.qdd.size(), "end qdd");
+  require_quintic_size(n, start.qd.size(), "start qd");
+  require_quintic_size(n, start.qdd.size(), "start qdd");
+  require_quintic_size(n, end.q.size(), "end q");
+  require_quintic_size(n, end.qd.size(), "end qd");
+  require_quintic_size(n, end.qdd.size(), "end qdd");
   coefficients_.resize(n, 6);
   for (Eigen::Index i = 0; i < n; ++i) {
     try {
@@ -143,11 +143,11 @@ Quintic QuinticTrajectory::joint(Eigen::Index i) const {
 void QuinticTrajectory::at(double t, Eigen::Ref<Eigen::VectorXd> q, Eigen::Ref<Eigen::VectorXd> qd,
                            Eigen::Ref<Eigen::VectorXd> qdd) const {
   const Eigen::Index n = size();
-  require_size(n, q.size(), "q");
-  require_size(n, qd.size(), "qd");
-  require_size(n, qdd.size(), "qdd");
+  require_quintic_size(n, q.size(), "q");
+  require_quintic_size(n, qd.size(), "qd");
+  require_quintic_size(n, qdd.size(), "qdd");
   bool inside = false;
-  const double tc = clamp_time(t, duration_, inside);
+  const double tc = clamp_quintic_time(t, duration_, inside);
   const auto& c = coefficients_;
   q = c.col(0) +
       tc * (c.col(1) + tc * (c.col(2) + tc * (c.col(3) + tc * (c.col(4) + tc * c.col(5)))));
@@ -160,9 +160,9 @@ void QuinticTrajectory::at(double t, Eigen::Ref<Eigen::VectorXd> q, Eigen::Ref<E
                            Eigen::Ref<Eigen::VectorXd> qdd,
                            Eigen::Ref<Eigen::VectorXd> qddd) const {
   at(t, q, qd, qdd);
-  require_size(size(), qddd.size(), "qddd");
+  require_quintic_size(size(), qddd.size(), "qddd");
   bool inside = false;
-  const double tc = clamp_time(t, duration_, inside);
+  const double tc = clamp_quintic_time(t, duration_, inside);
   if (!inside) {
     qddd.setZero();
     return;

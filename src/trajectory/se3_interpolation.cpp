@@ -11,7 +11,7 @@ namespace mjarm {
 
 namespace {
 
-void require_pose(const Pose& X, const char* which) {
+void require_interpolated_pose(const Pose& X, const char* which) {
   if (!X.R.allFinite() || !X.p.allFinite())
     throw Error(std::string("SE(3) interpolation: the ") + which + " pose must be finite");
   const double error = (X.R.transpose() * X.R - Eigen::Matrix3d::Identity()).norm();
@@ -21,7 +21,7 @@ void require_pose(const Pose& X, const char* which) {
                 ")");
 }
 
-void require_duration(double duration) {
+void require_interpolation_duration(double duration) {
   if (!(duration > 0.0) || !std::isfinite(duration))
     throw Error("SE(3) interpolation: duration must be positive and finite, got " +
                 std::to_string(duration) + " s");
@@ -38,9 +38,9 @@ std::array<Quintic, 3> axis_quintics(const Eigen::Vector3d& x0, const Eigen::Vec
 
 std::array<Quintic, 3> checked_position(const Pose& X_start, const Vector6d& V, const Vector6d& A,
                                         const Pose& X_goal, double T) {
-  require_pose(X_start, "start");
-  require_pose(X_goal, "goal");
-  require_duration(T);
+  require_interpolated_pose(X_start, "start");
+  require_interpolated_pose(X_goal, "goal");
+  require_interpolation_duration(T);
   if (!V.allFinite() || !A.allFinite())
     throw Error("SE(3) interpolation: the start twist and twist rate must be finite");
   return axis_quintics(X_start.p, V.head<3>(), A.head<3>(), X_goal.p, T);

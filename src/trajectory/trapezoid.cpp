@@ -9,10 +9,12 @@ namespace mjarm {
 
 namespace {
 
-void require_limit(double value, const std::string& what) {
+// the message is built only on failure: a valid profile is made without heap allocation
+void require_trapezoid_limit(double value, const char* what, Eigen::Index axis = -1) {
   if (!(value > 0.0) || !std::isfinite(value))
-    throw Error("trapezoid profile: " + what + " must be positive and finite, got " +
-                std::to_string(value));
+    throw Error(std::string(axis < 0 ? "trapezoid profile: " : "synced trapezoid: axis ") +
+                (axis < 0 ? "" : std::to_string(axis) + " ") + what +
+                " must be positive and finite, got " + std::to_string(value));
 }
 
 }  // namespace
@@ -22,8 +24,8 @@ TrapezoidProfile::TrapezoidProfile(double distance, double max_velocity, double 
   if (!(distance >= 0.0) || !std::isfinite(distance))
     throw Error("trapezoid profile: distance must be ≥ 0 and finite, got " +
                 std::to_string(distance) + " (SyncedTrapezoid takes signed moves)");
-  require_limit(max_velocity, "max velocity");
-  require_limit(max_acceleration, "max acceleration");
+  require_trapezoid_limit(max_velocity, "max velocity");
+  require_trapezoid_limit(max_acceleration, "max acceleration");
   if (distance == 0.0) return;
   const double d_acc = max_velocity * max_velocity / (2.0 * max_acceleration);
   triangular_ = 2.0 * d_acc > distance;
@@ -90,12 +92,12 @@ SyncedTrapezoid::SyncedTrapezoid(const Eigen::VectorXd& start, const Eigen::Vect
         std::to_string(max_velocity.size()) + ", " + std::to_string(max_acceleration.size()));
   axes_.reserve(static_cast<std::size_t>(n));
   for (Eigen::Index i = 0; i < n; ++i) {
-    const std::string axis = "axis " + std::to_string(i);
     if (!std::isfinite(start[i]) || !std::isfinite(goal[i]))
-      throw Error("synced trapezoid: " + axis + " start and goal must be finite, got " +
-                  std::to_string(start[i]) + " and " + std::to_string(goal[i]));
-    require_limit(max_velocity[i], axis + " max velocity");
-    require_limit(max_acceleration[i], axis + " max acceleration");
+      throw Error("synced trapezoid: axis " + std::to_string(i) +
+                  " start and goal must be finite, got " + std::to_string(start[i]) + " and " +
+                  std::to_string(goal[i]));
+    require_trapezoid_limit(max_velocity[i], "max velocity", i);
+    require_trapezoid_limit(max_acceleration[i], "max acceleration", i);
     const double move = goal[i] - start[i];
     direction_[i] = move > 0.0 ? 1.0 : (move < 0.0 ? -1.0 : 0.0);
     axes_.emplace_back(std::abs(move), max_velocity[i], max_acceleration[i]);
