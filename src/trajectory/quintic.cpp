@@ -42,9 +42,9 @@ Quintic::Sample evaluate_quintic(const double* c, double t) noexcept {
   return out;
 }
 
-// t clamped to [0, T] (NaN → 0) and whether it is strictly inside
+// t clamped to [0, T] (NaN → 0) and whether t itself lies in [0, T]
 double clamp_quintic_time(double t, double T, bool& inside) noexcept {
-  inside = t > 0.0 && t < T;
+  inside = t >= 0.0 && t <= T;
   if (t >= T) return T;
   return t > 0.0 ? t : 0.0;
 }

@@ -32,7 +32,7 @@ JointShape joint_shape(double h, double v0, double v1, double a0, double a1, dou
   s.A = qpoly::scale({0, 0, 0, 10, -15, 6}, h);
   s.B = qpoly::add(qpoly::scale({0, 1, 0, -6, 8, -3}, v0), qpoly::scale({0, 0, 0, -4, 7, -3}, v1));
   s.C = qpoly::add(qpoly::scale({0, 0, 0.5, -1.5, 1.5, -0.5}, a0),
-                  qpoly::scale({0, 0, 0, 0.5, -1, 0.5}, a1));
+                   qpoly::scale({0, 0, 0, 0.5, -1, 0.5}, a1));
   s.v_max = v_max;
   s.a_max = a_max;
   s.moves = h != 0.0 || v0 != 0.0 || v1 != 0.0 || a0 != 0.0 || a1 != 0.0;
@@ -131,7 +131,7 @@ void touching_durations(std::array<qpoly::Poly, 3> g, Eigen::Index joint, bool v
   }
   for (double tau : taus) {
     for (double T : qpoly::quadratic_roots(qpoly::evaluate(g[0], tau), qpoly::evaluate(g[1], tau),
-                                          degree == 2 ? qpoly::evaluate(g[2], tau) : 0.0)) {
+                                           degree == 2 ? qpoly::evaluate(g[2], tau) : 0.0)) {
       if (!(T > 0.0) || !std::isfinite(T)) continue;
       out.push_back({T, joint, velocity});
       const double polished = polish_touch(g, tau, T);
@@ -141,7 +141,7 @@ void touching_durations(std::array<qpoly::Poly, 3> g, Eigen::Index joint, bool v
 }
 
 void require_duration_input(const Eigen::VectorXd& v, Eigen::Index n, const std::string& what,
-                    bool positive) {
+                            bool positive) {
   if (v.size() != n)
     throw Error("shortest quintic duration: " + what + " must have " + std::to_string(n) +
                 " entries, got " + std::to_string(v.size()));
@@ -161,9 +161,9 @@ const char* to_string(QuinticDurationStatus status) noexcept {
     case QuinticDurationStatus::ok:
       return "ok";
     case QuinticDurationStatus::start_beyond_limits:
-      return "start beyond_limit limits";
+      return "start beyond limits";
     case QuinticDurationStatus::end_beyond_limits:
-      return "end beyond_limit limits";
+      return "end beyond limits";
     case QuinticDurationStatus::infeasible:
       return "infeasible";
   }
@@ -192,7 +192,8 @@ QuinticDuration shortest_quintic_duration(const QuinticTrajectory::State& start,
   QuinticDuration result;
   for (Eigen::Index i = 0; i < n; ++i) {
     // v and a at the ends do not depend on T
-    if (beyond_limit(start.qd[i], max_velocity[i]) || beyond_limit(start.qdd[i], max_acceleration[i])) {
+    if (beyond_limit(start.qd[i], max_velocity[i]) ||
+        beyond_limit(start.qdd[i], max_acceleration[i])) {
       result.status = QuinticDurationStatus::start_beyond_limits;
       result.limiting_joint = i;
       result.velocity_limited = beyond_limit(start.qd[i], max_velocity[i]);
@@ -238,12 +239,16 @@ QuinticDuration shortest_quintic_duration(const QuinticTrajectory::State& start,
   for (Eigen::Index i = 0; i < n; ++i) {
     const JointShape& s = shapes[static_cast<std::size_t>(i)];
     if (!s.moves) continue;
-    const qpoly::Poly A1 = qpoly::derivative(s.A), B1 = qpoly::derivative(s.B), C1 = qpoly::derivative(s.C);
-    const qpoly::Poly A2 = qpoly::derivative(A1), B2 = qpoly::derivative(B1), C2 = qpoly::derivative(C1);
+    const qpoly::Poly A1 = qpoly::derivative(s.A), B1 = qpoly::derivative(s.B),
+                      C1 = qpoly::derivative(s.C);
+    const qpoly::Poly A2 = qpoly::derivative(A1), B2 = qpoly::derivative(B1),
+                      C2 = qpoly::derivative(C1);
     for (const double sign : {1.0, -1.0}) {
       // velocity: A′ + T·(B′ ∓ v_max) + T²·C′; acceleration: A″ + T·B″ + T²·(C″ ∓ a_max)
-      touching_durations({A1, qpoly::add(B1, qpoly::Poly{-sign * s.v_max}), C1}, i, true, candidates);
-      touching_durations({A2, B2, qpoly::add(C2, qpoly::Poly{-sign * s.a_max})}, i, false, candidates);
+      touching_durations({A1, qpoly::add(B1, qpoly::Poly{-sign * s.v_max}), C1}, i, true,
+                         candidates);
+      touching_durations({A2, B2, qpoly::add(C2, qpoly::Poly{-sign * s.a_max})}, i, false,
+                         candidates);
     }
   }
   std::sort(candidates.begin(), candidates.end(),

@@ -54,7 +54,7 @@ class Quintic {
   const std::array<double, 6>& coefficients() const noexcept { return c_; }
 
   /// The sample at @p t [s]; t is clamped to [0, T] (NaN gives the start), and the jerk is 0
-  /// outside (0, T).
+  /// outside [0, T].
   Sample at(double t) const noexcept;
 
   /// Exact peaks of |v|, |a|, |j| over [0, T].
@@ -99,7 +99,7 @@ class QuinticTrajectory {
   void at(double t, Eigen::Ref<Eigen::VectorXd> q, Eigen::Ref<Eigen::VectorXd> qd,
           Eigen::Ref<Eigen::VectorXd> qdd) const;
 
-  /// q, q̇, q̈ and the jerk q⃛ at @p t [s] (clamped; jerk 0 outside (0, T)); allocates nothing.
+  /// q, q̇, q̈ and the jerk q⃛ at @p t [s] (clamped; jerk 0 outside [0, T]); allocates nothing.
   /// @throws Error when an output does not have n entries.
   void at(double t, Eigen::Ref<Eigen::VectorXd> q, Eigen::Ref<Eigen::VectorXd> qd,
           Eigen::Ref<Eigen::VectorXd> qdd, Eigen::Ref<Eigen::VectorXd> qddd) const;
