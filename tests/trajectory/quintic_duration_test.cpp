@@ -3,6 +3,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <limits>
 #include <random>
 
@@ -67,8 +69,11 @@ TEST(QuinticDuration, RestToRestMatchesTheClosedForm) {
 TEST(QuinticDuration, MatchesABruteForceSearchFromMovingStarts) {
   std::mt19937_64 rng(2024);
   std::uniform_real_distribution<double> u(-1.0, 1.0), lim(0.5, 3.0);
+  // 12 cases in the suite; MJARM_QUINTIC_TRIALS=N runs N (docs/trajectory.md has the figures)
+  const char* env = std::getenv("MJARM_QUINTIC_TRIALS");
+  const int trials = env ? std::max(1, std::atoi(env)) : 12;
   int compared = 0;
-  for (int trial = 0; trial < 12; ++trial) {
+  for (int trial = 0; trial < trials; ++trial) {
     const Eigen::Index n = 1 + trial % 3;
     State a{Eigen::VectorXd(n), Eigen::VectorXd(n), Eigen::VectorXd(n)};
     State b{Eigen::VectorXd(n), Eigen::VectorXd::Zero(n), Eigen::VectorXd::Zero(n)};
@@ -111,7 +116,11 @@ TEST(QuinticDuration, MatchesABruteForceSearchFromMovingStarts) {
                                             : limiting.acceleration / a_max[d.limiting_joint];
     EXPECT_NEAR(ratio, 1.0, 1e-9);
   }
-  EXPECT_GE(compared, 8);
+  EXPECT_GE(compared, trials * 2 / 3);
+  std::printf(
+      "%d of %d cases compared with the brute force (the rest: no feasible duration, and none "
+      "found by the brute force)\n",
+      compared, trials);
 }
 
 TEST(QuinticDuration, FeasibilityIsNotMonotoneAndTheSmallestIsFound) {
