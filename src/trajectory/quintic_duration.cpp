@@ -99,11 +99,36 @@ double polish_touch(const std::array<qpoly::Poly, 3>& g, double tau, double T) {
   return T;
 }
 
+// A boundary value at its limit makes g vanish at that end of [0, 1] whatever T; feasibility then
+// changes where the first τ-derivative of g there that is not identically zero in T changes
+// sign. Appends the positive roots in T of those derivatives (of every order up to the first
+// clearly non-zero one: extra candidates are harmless).
+void endpoint_durations(const std::array<qpoly::Poly, 3>& g, Eigen::Index joint, bool velocity,
+                        std::vector<DurationCandidate>& out) {
+  for (const double tau : {0.0, 1.0}) {
+    std::array<qpoly::Poly, 3> d = g;
+    for (int order = 1; order <= 5; ++order) {
+      double size = 0.0;
+      std::array<double, 3> c{};
+      for (std::size_t k = 0; k < 3; ++k) {
+        d[k] = qpoly::derivative(d[k]);
+        c[k] = qpoly::evaluate(d[k], tau);
+        for (double coefficient : d[k]) size += std::abs(coefficient);
+      }
+      for (double T : qpoly::quadratic_roots(c[0], c[1], c[2]))
+        if (T > 0.0 && std::isfinite(T)) out.push_back({T, joint, velocity});
+      const bool vanishes = std::abs(c[0]) + std::abs(c[1]) + std::abs(c[2]) <= 1e-12 * size;
+      if (!vanishes) break;
+    }
+  }
+}
+
 // The durations at which an interior extremum of g touches zero (plus near misses), appended.
 void touching_durations(std::array<qpoly::Poly, 3> g, Eigen::Index joint, bool velocity,
                         std::vector<DurationCandidate>& out) {
   // a factor T common to all of g (no displacement): divide it out
   if (qpoly::is_zero(g[0])) g = {g[1], g[2], qpoly::Poly{0.0}};
+  endpoint_durations(g, joint, velocity, out);
   int degree = qpoly::is_zero(g[2]) ? 1 : 2;
   if (degree == 1 && qpoly::is_zero(g[1])) return;  // g does not depend on T: no boundary in T
   std::array<qpoly::Poly, 3> d;

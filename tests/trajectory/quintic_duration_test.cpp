@@ -7,6 +7,8 @@
 #include <cstdlib>
 #include <limits>
 #include <random>
+#include <utility>
+#include <vector>
 
 #include "mjarm/error.hpp"
 #include "mjarm/trajectory/min_jerk.hpp"
@@ -38,7 +40,9 @@ bool sampled_feasible(const State& a, const State& b, const Eigen::VectorXd& v_m
     const Quintic q({a.q[i], a.qd[i], a.qdd[i]}, {b.q[i], b.qd[i], b.qdd[i]}, T);
     for (int k = 0; k <= 600; ++k) {
       const Quintic::Sample s = q.at(T * k / 600.0);
-      if (std::abs(s.v) > v_max[i] || std::abs(s.a) > a_max[i]) return false;
+      // the slack of the exact search: boundary values may sit exactly at a limit
+      if (std::abs(s.v) > v_max[i] * (1 + 1e-9) || std::abs(s.a) > a_max[i] * (1 + 1e-9))
+        return false;
     }
   }
   return true;
@@ -150,6 +154,26 @@ TEST(QuinticDuration, FeasibilityIsNotMonotoneAndTheSmallestIsFound) {
   EXPECT_NEAR(later.duration, 0.3795, 1e-3);
   EXPECT_TRUE(feasible_at(later.duration * (1 + 1e-9)));
   EXPECT_FALSE(feasible_at(later.duration * (1 - 1e-6)));
+}
+
+TEST(QuinticDuration, BoundaryValuesExactlyAtTheirLimits) {
+  // a limit met at an end whatever T: the feasible durations begin where the first τ-derivative
+  // there changes sign, not where an interior extremum touches (these came out 3–9 times too
+  // long, or infeasible, before endpoint candidates were added)
+  const Eigen::VectorXd v_max = Eigen::VectorXd::Constant(1, 1.0);
+  const Eigen::VectorXd a_max = Eigen::VectorXd::Constant(1, 2.0);
+  const std::vector<std::pair<State, State>> cases{
+      {joint_state({0}, {1.0}, {-2.0}), joint_state({1.355}, {0}, {-2.0})},
+      {joint_state({0}, {-0.491}, {2.0}), joint_state({0.022}, {0}, {0})},
+      {joint_state({0}, {-1.0}, {2.0}), joint_state({-0.242}, {0}, {0})},
+      {joint_state({0}, {0.356}, {-0.796}), joint_state({1.812}, {1.0}, {0})},
+      {joint_state({0}, {-1.0}, {0.147}), joint_state({0.556}, {1.0}, {0})}};
+  for (const auto& [a, b] : cases) {
+    const QuinticDuration d = shortest_quintic_duration(a, b, v_max, a_max);
+    ASSERT_EQ(d.status, QuinticDurationStatus::ok) << a.qd[0] << " " << a.qdd[0];
+    EXPECT_NEAR(brute_force_shortest(a, b, v_max, a_max) / d.duration, 1.0, 1.5e-3)
+        << a.qd[0] << " " << a.qdd[0] << ": exact " << d.duration;
+  }
 }
 
 TEST(QuinticDuration, HonestStatusWhenNoDurationWorks) {
