@@ -35,6 +35,7 @@ Command add_render_command(CLI::App& root);  ///< `mjarm render MODEL --out P` (
 Command add_view_command(CLI::App& root);    ///< `mjarm view [MODEL]` (cmd_view.cpp)
 Command add_run_command(CLI::App& root);     ///< `mjarm run shelf-pick …` (cmd_run.cpp)
 Command add_plot_command(CLI::App& root);    ///< `mjarm plot RECORDING …` (cmd_plot.cpp)
+Command add_traj_command(CLI::App& root);    ///< `mjarm traj KIND …` (cmd_traj.cpp)
 
 /// Everything `info` reports about a model, as JSON.
 Json model_json(const Robot& robot);

@@ -1,4 +1,4 @@
-#include "file_writer.hpp"
+#include "mjarm/file_writer.hpp"
 
 #include <fcntl.h>
 #include <sys/stat.h>

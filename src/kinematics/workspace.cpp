@@ -7,7 +7,7 @@
 #include <limits>
 #include <numbers>
 
-#include "file_writer.hpp"
+#include "mjarm/file_writer.hpp"
 #include "mjarm/error.hpp"
 
 namespace mjarm {

@@ -40,4 +40,8 @@ std::string common_style();
 // The start of a figure over the run's time: common style, phase background, title.
 std::string time_figure_preamble(const Recording& recording, const std::string& title);
 
+/// True when @p path is a whole PNG file (its signature first, the IEND chunk last): gnuplot
+/// exits 0 on a full disk, leaving an empty or cut PNG.
+bool png_complete(const std::filesystem::path& path);
+
 }  // namespace mjarm::plot::detail

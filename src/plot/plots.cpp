@@ -6,8 +6,8 @@
 #include <cstring>
 
 #include "figures.hpp"
-#include "file_writer.hpp"
 #include "mjarm/error.hpp"
+#include "mjarm/file_writer.hpp"
 #include "mjarm/plot/gnuplot.hpp"
 #include "quoted_path.hpp"
 
@@ -15,22 +15,6 @@ namespace mjarm::plot {
 namespace {
 
 namespace fs = std::filesystem;
-
-// True when @p path is a whole PNG file: the signature first and the IEND chunk last. gnuplot does
-// not report a failed write (a full disk leaves an empty or cut PNG and exit status 0).
-bool png_complete(const fs::path& path) {
-  static constexpr unsigned char kSignature[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
-  static constexpr unsigned char kEnd[12] = {0,   0,   0,    0,    'I',  'E',
-                                             'N', 'D', 0xae, 0x42, 0x60, 0x82};
-  std::FILE* file = std::fopen(path.c_str(), "rb");
-  if (file == nullptr) return false;
-  unsigned char head[8] = {}, tail[12] = {};
-  const bool complete = std::fread(head, 1, 8, file) == 8 && std::fseek(file, -12, SEEK_END) == 0 &&
-                        std::fread(tail, 1, 12, file) == 12 &&
-                        std::memcmp(head, kSignature, 8) == 0 && std::memcmp(tail, kEnd, 12) == 0;
-  std::fclose(file);
-  return complete;
-}
 
 // "1.2 MB free" for the file system holding @p path: the likely cause of a cut file, measured
 std::string free_space(const fs::path& path) {
@@ -54,6 +38,26 @@ void prepare_directories(const fs::path& out_dir, const fs::path& data_dir) {
 }
 
 }  // namespace
+
+namespace detail {
+
+// True when @p path is a whole PNG file: the signature first and the IEND chunk last. gnuplot does
+// not report a failed write (a full disk leaves an empty or cut PNG and exit status 0).
+bool png_complete(const std::filesystem::path& path) {
+  static constexpr unsigned char kSignature[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
+  static constexpr unsigned char kEnd[12] = {0,   0,   0,    0,    'I',  'E',
+                                             'N', 'D', 0xae, 0x42, 0x60, 0x82};
+  std::FILE* file = std::fopen(path.c_str(), "rb");
+  if (file == nullptr) return false;
+  unsigned char head[8] = {}, tail[12] = {};
+  const bool complete = std::fread(head, 1, 8, file) == 8 && std::fseek(file, -12, SEEK_END) == 0 &&
+                        std::fread(tail, 1, 12, file) == 12 &&
+                        std::memcmp(head, kSignature, 8) == 0 && std::memcmp(tail, kEnd, 12) == 0;
+  std::fclose(file);
+  return complete;
+}
+
+}  // namespace detail
 
 std::vector<PlotInfo> make_plots(const Recording& recording, const fs::path& out_dir,
                                  const PlotOptions& options) {
@@ -109,7 +113,7 @@ std::vector<PlotInfo> make_plots(const Recording& recording, const fs::path& out
     throw;
   }
   for (const PlotInfo& info : infos) {
-    if (png_complete(info.path)) continue;
+    if (detail::png_complete(info.path)) continue;
     // a whole set of figures or none: no empty or cut PNG is left behind
     const bool exists = fs::exists(info.path, ec);
     const std::uintmax_t size = exists ? fs::file_size(info.path, ec) : 0;

@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "file_writer.hpp"
+#include "mjarm/file_writer.hpp"
 #include "mjarm/error.hpp"
 #include "quoted_path.hpp"
 

@@ -9,7 +9,7 @@
 #include <string_view>
 #include <vector>
 
-#include "file_writer.hpp"
+#include "mjarm/file_writer.hpp"
 
 namespace mjarm::sim_detail {
 

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <cstdio>
 
-#include "file_writer.hpp"
+#include "mjarm/file_writer.hpp"
 #include "mjarm/error.hpp"
 
 namespace mjarm::sim_detail {

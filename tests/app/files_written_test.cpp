@@ -1,5 +1,5 @@
 // The rule for every file mjarm writes (docs/cli.md, "Files written"): one checked writer
-// (src/file_writer.hpp), so a full disk is an error naming the file and the reason and never
+// (include/mjarm/file_writer.hpp), so a full disk is an error naming the file and the reason and never
 // leaves a truncated file. Checked on the sources (no other way to open a file for writing) and
 // on the commands that write a single file, with a full disk made by RLIMIT_FSIZE.
 
@@ -56,7 +56,7 @@ TEST(FilesWritten, OnlyTheCheckedWriterOpensFilesForWriting) {
   const std::vector<std::string> found = unchecked_writers();
   std::string listing;
   for (const std::string& f : found) listing += f + "\n";
-  EXPECT_TRUE(found.empty()) << "write files through FileWriter (src/file_writer.hpp):\n"
+  EXPECT_TRUE(found.empty()) << "write files through FileWriter (include/mjarm/file_writer.hpp):\n"
                              << listing;
 }
 

@@ -1,0 +1,132 @@
+#include "mjarm/plot/trajectory_plot.hpp"
+
+#include <algorithm>
+#include <cerrno>
+#include <cmath>
+#include <cstring>
+
+#include "figures.hpp"
+#include "mjarm/error.hpp"
+#include "mjarm/file_writer.hpp"
+#include "mjarm/plot/gnuplot.hpp"
+#include "quoted_path.hpp"
+
+namespace mjarm::plot {
+namespace {
+
+namespace fs = std::filesystem;
+
+void check_trajectory_series(const TrajectorySeries& s) {
+  const std::size_t n = s.axes.size();
+  if (n == 0) throw Error("trajectory plot: no axes");
+  if (s.t.empty()) throw Error("trajectory plot: no samples");
+  for (std::size_t k = 0; k < 4; ++k) {
+    if (s.values[k].size() != n)
+      throw Error("trajectory plot: derivative " + std::to_string(k) + " has " +
+                  std::to_string(s.values[k].size()) + " axes, expected " + std::to_string(n));
+    for (std::size_t i = 0; i < n; ++i)
+      if (s.values[k][i].size() != s.t.size())
+        throw Error("trajectory plot: axis '" + s.axes[i] + "' derivative " + std::to_string(k) +
+                    " has " + std::to_string(s.values[k][i].size()) + " samples, expected " +
+                    std::to_string(s.t.size()));
+    if (!s.limits[k].empty() && s.limits[k].size() != n)
+      throw Error("trajectory plot: derivative " + std::to_string(k) + " has " +
+                  std::to_string(s.limits[k].size()) + " limits, expected " + std::to_string(n));
+  }
+}
+
+}  // namespace
+
+PlotInfo plot_trajectory(const TrajectorySeries& series, const fs::path& out_dir,
+                         const PlotOptions& options) {
+  if (options.width < 200 || options.height < 300 || options.width > 16384 ||
+      options.height > 16384)
+    throw Error("plot size " + std::to_string(options.width) + "x" +
+                std::to_string(options.height) + " is out of range (200x300 … 16384x16384 pixels)");
+  if (!(options.timeout_s > 0.0)) throw Error("plot timeout must be positive");
+  check_trajectory_series(series);
+  find_gnuplot();  // fail before anything is written
+
+  std::error_code ec;
+  const fs::path out = fs::absolute(out_dir, ec);
+  const fs::path data_dir = out / "gnuplot";
+  fs::create_directories(data_dir, ec);
+  if (ec || !fs::is_directory(out, ec))
+    throw Error("cannot create the plot folder " + quoted(out_dir) +
+                (ec ? ": " + ec.message() : std::string(" (not a directory)")));
+
+  const std::size_t n = series.axes.size();
+  // one row per sample: t, then positions, velocities, accelerations, jerks of every axis
+  std::string data = "# t [s], then q, qd, qdd, qddd of each axis\n";
+  for (std::size_t s = 0; s < series.t.size(); ++s) {
+    data += detail::gp_number(series.t[s]);
+    for (std::size_t k = 0; k < 4; ++k)
+      for (std::size_t i = 0; i < n; ++i) data += " " + detail::gp_number(series.values[k][i][s]);
+    data += "\n";
+  }
+  const fs::path data_file = data_dir / "trajectory.dat";
+
+  PlotInfo info;
+  info.name = "trajectory";
+  info.path = out / "trajectory.png";
+  info.title = series.title;
+  const std::array<const char*, 4> names{"position", "velocity", "acceleration", "jerk"};
+  const std::array<std::string, 4> units{series.unit, series.unit + "/s", series.unit + "/s²",
+                                         series.unit + "/s³"};
+  const int font = std::max(9, options.height / 70);
+  std::string script =
+      "# drawn by `mjarm traj --plot`; run `gnuplot trajectory.gp` to redraw\n"
+      "set terminal pngcairo noenhanced size " +
+      std::to_string(options.width) + "," + std::to_string(options.height) + " font 'DejaVu Sans," +
+      std::to_string(font) + "' linewidth 1\nset encoding utf8\nset output " +
+      gnuplot_string(info.path.string()) + "\n" + detail::common_style();
+  const double t0 = series.t.front();
+  const double t1 = series.t.back() > t0 ? series.t.back() : t0 + 1e-3;
+  script += "set xrange [" + detail::gp_number(t0) + ":" + detail::gp_number(t1) + "]\n";
+  // the same margins in every panel keep their time axes aligned; limits off the frame
+  script += "set lmargin 12\nset rmargin 4\nset offsets 0, 0, graph 0.08, graph 0.08\n";
+  script += "set multiplot layout 4,1 title " + gnuplot_string(series.title) + " font ',14'\n";
+  for (std::size_t k = 0; k < 4; ++k) {
+    script += "set ylabel " + gnuplot_string(std::string(names[k]) + " [" + units[k] + "]") + "\n";
+    script += k == 0 ? "set key inside left top\n" : "unset key\n";
+    if (k < 3)
+      script += "set xlabel ''\n";
+    else
+      script += "set xlabel 'time t [s]'\n";
+    std::string plot = "plot ";
+    bool limited = false;
+    for (std::size_t i = 0; i < n; ++i) {
+      const std::string column = std::to_string(2 + k * n + i);
+      plot += (i ? ", " : "") + gnuplot_string(data_file.string()) + " using 1:" + column +
+              " with lines lw 2 lc rgb " + detail::line_color(i) + " title " +
+              gnuplot_string(series.axes[i]);
+      const double limit = series.limits[k].empty() ? NAN : series.limits[k][i];
+      if (k > 0 && std::isfinite(limit)) {
+        limited = true;
+        for (const double sign : {1.0, -1.0})
+          plot += ", " + detail::gp_number(sign * limit) + " with lines dt 2 lw 1.5 lc rgb " +
+                  detail::line_color(i) + " notitle";
+      }
+    }
+    info.series.push_back(std::string(names[k]) + (limited ? " (dashed: ±limit)" : ""));
+    script += plot + "\n";
+  }
+  script += "unset multiplot\nunset output\n";
+  if (std::all_of(series.limits[3].begin(), series.limits[3].end(),
+                  [](double v) { return !std::isfinite(v); }))
+    info.notes.push_back("no jerk limit given");
+
+  const fs::path script_file = data_dir / "trajectory.gp";
+  write_file(data_file, data);
+  write_file(script_file, script);
+  fs::remove(info.path, ec);  // no stale figure survives a failure
+  run_gnuplot(script_file, options.timeout_s);
+  if (!detail::png_complete(info.path)) {
+    fs::remove(info.path, ec);  // a whole figure or none
+    throw Error("gnuplot did not write " + quoted(info.path) + " completely (script " +
+                quoted(script_file) + "; is the disk full?)");
+  }
+  return info;
+}
+
+}  // namespace mjarm::plot

@@ -1,0 +1,74 @@
+#include "mjarm/plot/trajectory_plot.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "mjarm/error.hpp"
+#include "plot/plot_test_support.hpp"
+#include "support/error_message.hpp"
+
+namespace mjarm::plot {
+namespace {
+
+namespace fs = std::filesystem;
+
+// a sine on two axes with its exact derivatives, limits on velocity and acceleration
+TrajectorySeries sine_series() {
+  TrajectorySeries s;
+  s.title = "two sines";
+  s.unit = "rad";
+  s.axes = {"a", "b"};
+  for (int k = 0; k <= 200; ++k) s.t.push_back(0.01 * k);
+  for (auto& v : s.values) v.assign(2, {});
+  for (std::size_t i = 0; i < 2; ++i) {
+    const double w = 2.0 + static_cast<double>(i);
+    for (double t : s.t) {
+      s.values[0][i].push_back(std::sin(w * t));
+      s.values[1][i].push_back(w * std::cos(w * t));
+      s.values[2][i].push_back(-w * w * std::sin(w * t));
+      s.values[3][i].push_back(-w * w * w * std::cos(w * t));
+    }
+  }
+  s.limits[1] = {2.5, 3.5};
+  s.limits[2] = {5.0, 10.0};
+  return s;
+}
+
+TEST(TrajectoryPlot, DrawsFourPanelsAgainstTheLimits) {
+  test::TempDir dir("trajectory-plot");
+  const PlotInfo info = plot_trajectory(sine_series(), dir.path() / "out", {800, 900, 60.0});
+  EXPECT_EQ(info.path, fs::absolute(dir.path() / "out" / "trajectory.png"));
+  const test::PixelStats stats = test::pixel_stats(info.path);
+  EXPECT_EQ(stats.width, 800);
+  EXPECT_EQ(stats.height, 900);
+  EXPECT_GT(stats.ink_fraction, 0.01);
+  ASSERT_EQ(info.series.size(), 4u);
+  EXPECT_EQ(info.series[0], "position");
+  EXPECT_EQ(info.series[1], "velocity (dashed: ±limit)");
+  EXPECT_EQ(info.series[3], "jerk");
+  ASSERT_EQ(info.notes.size(), 1u);
+  EXPECT_EQ(info.notes[0], "no jerk limit given");
+  EXPECT_TRUE(fs::exists(dir.path() / "out" / "gnuplot" / "trajectory.gp"));
+}
+
+TEST(TrajectoryPlot, InconsistentSeriesAreNamed) {
+  test::TempDir dir("trajectory-plot-bad");
+  TrajectorySeries s = sine_series();
+  s.values[2][1].pop_back();
+  EXPECT_NE(test::error_of([&] {
+              plot_trajectory(s, dir.path(), {});
+            }).find("axis 'b' derivative 2 has 200 samples, expected 201"),
+            std::string::npos);
+  s = sine_series();
+  s.limits[1] = {1.0};
+  EXPECT_THROW(plot_trajectory(s, dir.path(), {}), Error);
+  s = sine_series();
+  s.axes.clear();
+  EXPECT_THROW(plot_trajectory(s, dir.path(), {}), Error);
+  EXPECT_THROW(plot_trajectory(sine_series(), dir.path(), {100, 100, 60.0}), Error);
+  EXPECT_FALSE(fs::exists(dir.path() / "trajectory.png"));
+}
+
+}  // namespace
+}  // namespace mjarm::plot

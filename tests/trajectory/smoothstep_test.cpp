@@ -1,0 +1,90 @@
+#include "mjarm/trajectory/smoothstep.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+
+#include "mjarm/error.hpp"
+#include "mjarm/trajectory/min_jerk.hpp"
+
+namespace mjarm {
+namespace {
+
+TEST(Smoothstep, ValuesEndsAndClipping) {
+  EXPECT_EQ(smoothstep(0.0).s, 0.0);
+  EXPECT_EQ(smoothstep(1.0).s, 1.0);
+  EXPECT_EQ(smoothstep(0.5).s, 0.5);
+  EXPECT_NEAR(smoothstep(0.25).s, 0.0625 * 2.5, 1e-15);
+  EXPECT_EQ(smoothstep(-3.0).s, 0.0);
+  EXPECT_EQ(smoothstep(4.0).s, 1.0);
+  EXPECT_EQ(smoothstep(4.0).ds, 0.0);
+  EXPECT_EQ(smoothstep(std::nan("")).s, 0.0);
+  EXPECT_EQ(smoothstep(0.0).ds, 0.0);  // C¹ at both ends
+  EXPECT_EQ(smoothstep(1.0).ds, 0.0);
+  EXPECT_EQ(smoothstep(0.5).ds, 1.5);
+  EXPECT_EQ(smootherstep(0.0).s, 0.0);
+  EXPECT_EQ(smootherstep(1.0).s, 1.0);
+  EXPECT_EQ(smootherstep(0.5).s, 0.5);
+  EXPECT_EQ(smootherstep(1.0).dds, 0.0);  // C² at both ends
+  EXPECT_EQ(smootherstep(0.0).dds, 0.0);
+  EXPECT_EQ(smootherstep(2.0).s, 1.0);
+  EXPECT_EQ(smootherstep(-2.0).ddds, 0.0);
+}
+
+TEST(Smoothstep, DerivativesMatchFiniteDifferences) {
+  const double h = 1e-6;
+  for (double x = 0.01; x < 1.0; x += 0.0137) {
+    for (const auto f : {&smoothstep, &smootherstep}) {
+      const RampSample a = f(x - h), b = f(x + h), c = f(x);
+      EXPECT_NEAR((b.s - a.s) / (2 * h), c.ds, 1e-8) << x;
+      EXPECT_NEAR((b.ds - a.ds) / (2 * h), c.dds, 1e-7) << x;
+      EXPECT_NEAR((b.dds - a.dds) / (2 * h), c.ddds, 1e-6) << x;
+      EXPECT_GE(c.ds, 0.0);
+    }
+  }
+}
+
+TEST(Smoothstep, SmootherstepIsTheMinimumJerkScaling) {
+  const MinJerkProfile profile(2.0);
+  for (double t = 0.0; t <= 2.0; t += 0.1) {
+    EXPECT_NEAR(smootherstep(t / 2.0).s, profile.at(t).s, 1e-15);
+    EXPECT_NEAR(SmoothRamp(SmoothRamp::Kind::smootherstep, 2.0).at(t).ds, profile.at(t).ds, 1e-15);
+  }
+}
+
+TEST(SmoothRamp, TimeDerivativesAndTheShortestDuration) {
+  for (const auto kind : {SmoothRamp::Kind::smoothstep, SmoothRamp::Kind::smootherstep}) {
+    const double d = 0.08, v = 0.1, a = 0.3;
+    const double T = SmoothRamp::duration_for(kind, d, v, a);
+    const SmoothRamp ramp(kind, T);
+    double peak_v = 0.0, peak_a = 0.0;
+    for (int k = 0; k <= 20000; ++k) {
+      const RampSample s = ramp.at(T * k / 20000.0);
+      peak_v = std::max(peak_v, d * s.ds);
+      peak_a = std::max(peak_a, std::abs(d * s.dds));
+    }
+    EXPECT_LE(peak_v, v * (1 + 1e-12));
+    EXPECT_LE(peak_a, a * (1 + 1e-12));
+    // one of the two limits is met (to the sampling resolution)
+    EXPECT_GT(std::max(peak_v / v, peak_a / a), 1.0 - 1e-6);
+    const double h = 1e-6;
+    EXPECT_NEAR((ramp.at(0.3 * T + h).s - ramp.at(0.3 * T - h).s) / (2 * h), ramp.at(0.3 * T).ds,
+                1e-7);
+    EXPECT_EQ(ramp.at(T + 1).s, 1.0);
+  }
+  EXPECT_EQ(SmoothRamp::duration_for(SmoothRamp::Kind::smoothstep, 0.0, 1.0, 1.0), 0.0);
+}
+
+TEST(SmoothRamp, RejectsBadInput) {
+  using K = SmoothRamp::Kind;
+  EXPECT_THROW(SmoothRamp(K::smoothstep, 0.0), Error);
+  EXPECT_THROW(SmoothRamp(K::smoothstep, -1.0), Error);
+  EXPECT_THROW(SmoothRamp(K::smootherstep, std::numeric_limits<double>::infinity()), Error);
+  EXPECT_THROW(SmoothRamp::duration_for(K::smoothstep, -0.1, 1.0, 1.0), Error);
+  EXPECT_THROW(SmoothRamp::duration_for(K::smoothstep, 0.1, 0.0, 1.0), Error);
+  EXPECT_THROW(SmoothRamp::duration_for(K::smoothstep, 0.1, 1.0, std::nan("")), Error);
+}
+
+}  // namespace
+}  // namespace mjarm
