@@ -19,7 +19,7 @@ namespace mjarm::cli {
 
 namespace {
 
-const std::vector<std::string> kScenarios{"shelf-pick"};
+const std::vector<std::string> kScenarios{"shelf-pick", "plan"};
 
 std::string controller_title(const std::string& name) {
   if (name == "ct") return "computed torque (ct)";
@@ -244,11 +244,15 @@ Command add_run_command(CLI::App& root) {
     std::string size = "640x480";
     double fps = 30.0;
     bool json = false;
+    PlanCliOptions plan;  // run plan ROBOT --waypoints FILE (cmd_run_plan.cpp)
   };
   auto o = std::make_shared<Options>();
   CLI::App* app = root.add_subcommand(
       "run", "run a closed-loop scenario in simulation and print its figures (shelf-pick)");
   app->add_option("scenario", o->scenario, "scenario to run: " + join(kScenarios))->required();
+  app->add_option("plan_robot", o->plan.model, "run plan: the robot (planar2 | panda)");
+  add_plan_options(*app, o->plan, false);
+  app->get_option("--waypoints")->required(false);
   app->add_option("--robot", o->robot, "planar2 | panda (torque-motor models)")
       ->capture_default_str();
   app->add_option("--controller", o->controller, "ct | osc | task-pd | accel")
@@ -301,6 +305,14 @@ Command add_run_command(CLI::App& root) {
   add_json_flag(*app, o->json);
 
   return {app, [o] {
+            if (o->scenario == "plan") {
+              if (o->plan.waypoints.empty()) throw UsageError("run plan needs --waypoints FILE");
+              const InterruptGuard interrupts;
+              o->plan.seed = o->seed;
+              return run_plan_scenario(o->plan, o->controller, o->settle_time, o->json);
+            }
+            if (!o->plan.model.empty() || !o->plan.waypoints.empty())
+              throw UsageError("ROBOT and --waypoints belong to 'run plan'");
             if (o->scenario != "shelf-pick")
               throw UsageError("unknown scenario '" + o->scenario +
                                "'; scenarios: " + join(kScenarios));
