@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include "ik/malloc_counter.hpp"
 #include "mjarm/dynamics/chain_dynamics.hpp"
 #include "mjarm/error.hpp"
 #include "planning/planning_support.hpp"
@@ -70,6 +71,19 @@ TEST_F(PandaChecks, TorqueIsInverseDynamicsAgainstTheLimits) {
   dynamics.inverse_dynamics(*data, qdd, tau);
   EXPECT_NEAR(c.torque_ratio, std::abs(tau[5]) / 12.0, 1e-9);
   EXPECT_NE(checker.describe(c).find("joint 'joint6' needs"), std::string::npos);
+}
+
+TEST_F(PandaChecks, CheckingAllocatesNothing) {
+  ConfigurationChecker checker(chain, limits);
+  const Eigen::VectorXd q = home_q(robot);
+  const Eigen::VectorXd qd = Eigen::VectorXd::Constant(7, 0.2);
+  const Eigen::VectorXd qdd = Eigen::VectorXd::Constant(7, 1.0);
+  checker.check(q, qd, qdd);  // warm
+  const std::uint64_t before = test::malloc_calls();
+  int failures = 0;
+  for (int j = 0; j < 20; ++j) failures += !checker.check(q, qd, qdd).ok();
+  EXPECT_EQ(test::malloc_calls() - before, 0u);
+  EXPECT_EQ(failures, 0);
 }
 
 TEST_F(PandaChecks, NanIsInvalidNotACrash) {

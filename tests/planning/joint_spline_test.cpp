@@ -4,6 +4,7 @@
 
 #include <cmath>
 
+#include "ik/malloc_counter.hpp"
 #include "mjarm/error.hpp"
 
 namespace mjarm {
@@ -66,6 +67,20 @@ TEST(JointSpline, TimedPassesTheKnotsInMotionWithinTheLimits) {
   const JointSpline slow =
       JointSpline::timed(q, 0.5 * vmax, 0.5 * amax, {0.05, 0.05, 0.05}, {0, 1, 1, 0});
   EXPECT_GT(slow.duration(), 1.4 * s.duration());
+}
+
+TEST(JointSpline, EvaluationAllocatesNothing) {
+  const JointSpline s = JointSpline::timed({vec({0, 0}), vec({1, 0.5}), vec({2, 0.2})}, vec({1, 1}),
+                                           vec({2, 2}), {0.05, 0.05}, {0, 1, 0});
+  Eigen::VectorXd q(2), qd(2), qdd(2);
+  double sink = 0.0;
+  const std::uint64_t before = test::malloc_calls();
+  for (int j = 0; j <= 100; ++j) {
+    s.at(s.duration() * j / 100.0, q, qd, qdd);
+    sink += q[0] + qd[1] + qdd[0];
+  }
+  EXPECT_EQ(test::malloc_calls() - before, 0u);
+  EXPECT_TRUE(std::isfinite(sink));
 }
 
 TEST(JointSpline, BadInputIsAnError) {

@@ -4,6 +4,7 @@
 
 #include <memory>
 
+#include "ik/malloc_counter.hpp"
 #include "mjarm/control/gravity_compensation.hpp"
 #include "mjarm/error.hpp"
 #include "mjarm/planning/waypoint_planner.hpp"
@@ -99,6 +100,24 @@ TEST(PlannedReference, PositionServosTrackItToo) {
   EXPECT_EQ(run.status, RunStatus::finished) << run.message;
   EXPECT_LT(source.tracking().max_position, 0.05);
   EXPECT_LT(source.tracking().final_position, 0.005);
+}
+
+TEST(PlannedReference, TicksAllocateNothingAfterTheFirst) {
+  const Robot robot = Robot::bundled("panda_torque");
+  const Chain chain(robot, "attachment_site");
+  PlannedReference source(chain, plan_five(chain), 0.5, 0.001);
+  DataPtr data = robot.make_data();
+  Reference reference;
+  source.update(*data, reference);  // sizes the reference
+  const std::uint64_t before = test::malloc_calls();
+  bool running = true;
+  for (int j = 1; j <= 250; ++j) {
+    data->time = 0.02 * j;
+    running = source.update(*data, reference) && running;
+  }
+  EXPECT_EQ(test::malloc_calls() - before, 0u);
+  EXPECT_FALSE(running);  // 5 s > duration + hold (4.41 s)
+  EXPECT_EQ(source.tracking().ticks, 251);
 }
 
 TEST(PlannedReference, BadInputIsAnError) {
