@@ -308,11 +308,16 @@ Command add_run_command(CLI::App& root) {
             if (o->scenario == "plan") {
               if (o->plan.waypoints.empty()) throw UsageError("run plan needs --waypoints FILE");
               const InterruptGuard interrupts;
+              if (o->all || !o->pick.empty() || !o->record.empty() || !o->video.empty())
+                throw UsageError("--all, --pick, --record and --video are shelf-pick options");
               o->plan.seed = o->seed;
-              return run_plan_scenario(o->plan, o->controller, o->settle_time, o->json);
+              return run_plan_scenario(o->plan, o->controller, o->settle_time, o->control_period,
+                                       o->max_acceleration, o->json);
             }
-            if (!o->plan.model.empty() || !o->plan.waypoints.empty())
-              throw UsageError("ROBOT and --waypoints belong to 'run plan'");
+            if (!o->plan.model.empty() || !o->plan.waypoints.empty() || !o->plan.q.empty() ||
+                !o->plan.key.empty() || !o->plan.max_velocity.empty() ||
+                !o->plan.max_acceleration.empty() || !o->plan.max_torque.empty())
+              throw UsageError("ROBOT, --waypoints, --q, --key and the limits belong to 'run plan'");
             if (o->scenario != "shelf-pick")
               throw UsageError("unknown scenario '" + o->scenario +
                                "'; scenarios: " + join(kScenarios));

@@ -14,7 +14,8 @@
 namespace mjarm::cli {
 
 void run_plan_scenario(const PlanCliOptions& given, const std::string& controller_name,
-                       double settle_time, bool json) {
+                       double settle_time, double control_period, double max_acceleration,
+                       bool json) {
   const ShelfPickRobot* robot = nullptr;
   try {
     robot = &shelf_pick_robot(given.model);
@@ -36,7 +37,11 @@ void run_plan_scenario(const PlanCliOptions& given, const std::string& controlle
     throw Error("no plan: " + plan.result.message);
   }
   const Chain& chain = *plan.chain;
-  Simulation sim(plan.robot);
+  SimulationOptions sim_options;
+  sim_options.mode = SimulationMode::torque;
+  sim_options.control_period = control_period;
+  sim_options.max_acceleration = max_acceleration;
+  Simulation sim(plan.robot, sim_options);
   const std::unique_ptr<Controller> controller =
       make_shelf_pick_controller(controller_name, chain, *robot);
   sim.add_controller(*controller);

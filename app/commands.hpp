@@ -69,8 +69,10 @@ PlannedPath plan_path(const PlanCliOptions& options);
 Json plan_json(const PlannedPath& plan);
 void print_plan(std::ostream& os, const PlannedPath& plan);
 /// `mjarm run plan ROBOT --waypoints F --controller C` (cmd_run_plan.cpp).
+/// @param control_period, max_acceleration as `SimulationOptions` (0: one physics step)
 void run_plan_scenario(const PlanCliOptions& options, const std::string& controller,
-                       double settle_time, bool json);
+                       double settle_time, double control_period, double max_acceleration,
+                       bool json);
 
 /// Everything `info` reports about a model, as JSON.
 Json model_json(const Robot& robot);

@@ -108,6 +108,11 @@ TEST(RunPlanCli, TracksThePlanAndReportsTheError) {
                2, "unknown controller");
   expect_error({"run", "plan", "ur9", "--waypoints", plan_file("five.json", kFive)}, 2,
                "unknown robot");
+  expect_error({"run", "plan", "panda", "--waypoints", plan_file("five.json", kFive), "--record",
+                (scratch() / "rec").string()},
+               2, "shelf-pick options");
+  expect_error({"run", "shelf-pick", "--waypoints", plan_file("five.json", kFive)}, 2,
+               "belong to 'run plan'");
 }
 
 }  // namespace
