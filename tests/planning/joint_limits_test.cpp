@@ -46,7 +46,7 @@ TEST(JointLimits, AccelerationIsTheTorqueFractionOverTheInertia) {
 }
 
 TEST(JointLimits, WithoutActuatorsTheTorqueIsUncheckedAndTheAccelerationTheDefault) {
-  const Robot robot = Robot::from_string(R"(<mujoco><worldbody><body>
+  const Robot robot = Robot::from_string(R"(<mujoco><compiler autolimits="true"/><worldbody><body>
       <joint name="a" type="hinge" axis="0 0 1" range="-1 1"/>
       <geom type="capsule" fromto="0 0 0 0.3 0 0" size="0.03"/><site name="tip" pos="0.3 0 0"/>
     </body></worldbody></mujoco>)");

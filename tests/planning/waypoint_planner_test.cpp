@@ -4,8 +4,10 @@
 
 #include <cmath>
 
+#include "mjarm/dynamics/chain_dynamics.hpp"
 #include "mjarm/error.hpp"
 #include "mjarm/kinematics/chain_kinematics.hpp"
+#include "mjarm/trajectory/quintic_duration.hpp"
 #include "planning/planning_support.hpp"
 
 namespace mjarm {
@@ -90,6 +92,45 @@ TEST_F(PandaPlan, AWaypointAtTheStretchedSingularityIsRefused) {
   EXPECT_EQ(r.status, PlanStatus::singular) << r.message;
   EXPECT_EQ(r.failed_waypoint, 1);
   EXPECT_NE(r.message.find("singular value"), std::string::npos) << r.message;
+}
+
+TEST_F(PandaPlan, AWaypointThatNeedsMoreTorqueThanTheLimitsIsRefused) {
+  // limits just above the gravity torques at home: reaching far out needs more at the shoulder
+  DataPtr data = robot.make_data();
+  chain.scatter(home_q(robot), data->qpos);
+  mj_forward(&robot.model(), data.get());
+  ChainDynamics dynamics(chain);
+  dynamics.update(*data);
+  PlanOptions options;
+  options.limits.max_torque = (1.1 * dynamics.gravity().cwiseAbs()).cwiseMax(1.0);
+  options.ik_branches = 3;
+  Pose far = five_waypoints()[0];
+  far.p = Eigen::Vector3d(0.75, 0.0, 0.25);
+  const PlanResult r = WaypointPlanner(chain, options).plan(home_q(robot), {far});
+  EXPECT_EQ(r.status, PlanStatus::torque) << r.message;
+  EXPECT_EQ(r.failed_waypoint, 0);
+  EXPECT_NE(r.message.find("of its torque limit"), std::string::npos) << r.message;
+}
+
+TEST_F(PandaPlan, FastLimitsAreSlowedDownUntilTheTorquesFit) {
+  PlanOptions options;
+  options.limits.max_velocity = Eigen::VectorXd::Constant(7, 3.0);
+  options.limits.max_acceleration = Eigen::VectorXd::Constant(7, 300.0);
+  const PlanResult r = WaypointPlanner(chain, options).plan(home_q(robot), five_waypoints());
+  ASSERT_TRUE(r.ok()) << r.message;
+  for (const WaypointReport& w : r.waypoints) EXPECT_LE(w.max_torque_ratio, 1.0) << w.index;
+  // at 300 rad/s² the wrist joints alone would need more than their 12 N·m: some segment was
+  // stretched beyond the shortest duration the velocity and acceleration limits allow
+  bool stretched = false;
+  for (int k = 0; k < r.trajectory.segments(); ++k) {
+    const JointSpline& s = r.trajectory;
+    const QuinticDuration shortest = shortest_quintic_duration(
+        {s.knots()[k], s.knot_velocities()[k], Eigen::VectorXd::Zero(7)},
+        {s.knots()[k + 1], s.knot_velocities()[k + 1], Eigen::VectorXd::Zero(7)},
+        options.limits.max_velocity, options.limits.max_acceleration, options.min_segment_duration);
+    stretched = stretched || s.segment(k).duration() > 1.01 * shortest.duration;
+  }
+  EXPECT_TRUE(stretched);
 }
 
 TEST(WaypointPlanner, AWaypointInsideAnObstacleIsACollision) {
