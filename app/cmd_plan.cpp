@@ -196,7 +196,8 @@ Command add_plan_command(CLI::App& root) {
       ->capture_default_str();
   add_json_flag(*app, *json);
   return {app, [o, out, rate, json] {
-            if (!(*rate > 0.0)) throw UsageError("--rate must be > 0, got " + compact(*rate));
+            if (!(*rate > 0.0) || *rate > 1e5)
+              throw UsageError("--rate must be in (0, 100000] Hz, got " + compact(*rate));
             if (o->min_sigma < 0.0) throw UsageError("--min-sigma must be >= 0");
             const PlannedPath p = plan_path(*o);
             if (*json) {

@@ -115,6 +115,15 @@ double WaypointPlanner::sample_spacing() const noexcept {
   return std::min(options_.sample_period, options_.sample_step / limits_.max_velocity.maxCoeff());
 }
 
+int WaypointPlanner::sample_intervals(double duration) const {
+  const double count = std::ceil(duration / sample_spacing());
+  if (!(count <= 1e7))  // also NaN
+    throw Error("waypoint planner: a segment of " + std::to_string(duration) + " s checked every " +
+                std::to_string(sample_spacing()) +
+                " s would need more than 1e7 samples; the limits are out of proportion");
+  return std::max(1, static_cast<int>(count));
+}
+
 WaypointPlanner::SegmentCheck WaypointPlanner::check_rest_segment(const Eigen::VectorXd& a,
                                                                   const Eigen::VectorXd& b) {
   SegmentCheck out;
@@ -122,10 +131,9 @@ WaypointPlanner::SegmentCheck WaypointPlanner::check_rest_segment(const Eigen::V
       shortest_quintic_duration(rest_state(a), rest_state(b), limits_.max_velocity,
                                 limits_.max_acceleration, options_.min_segment_duration);
   double T = shortest.duration;  // rest to rest is always feasible
-  const double spacing = sample_spacing();
   for (int attempt = 0; attempt <= options_.stretch_attempts; ++attempt) {
     const QuinticTrajectory segment(rest_state(a), rest_state(b), T);
-    const int m = std::max(1, static_cast<int>(std::ceil(T / spacing)));
+    const int m = sample_intervals(T);
     out = SegmentCheck{};
     out.ok = true;
     out.duration = T;
@@ -152,7 +160,7 @@ WaypointPlanner::SegmentCheck WaypointPlanner::check_rest_segment(const Eigen::V
 bool WaypointPlanner::check_spline_segment(const JointSpline& spline, int k, SegmentCheck& out) {
   const double t0 = spline.knot_time(k);
   const double T = spline.knot_time(k + 1) - t0;
-  const int m = std::max(1, static_cast<int>(std::ceil(T / sample_spacing())));
+  const int m = sample_intervals(T);
   out = SegmentCheck{};
   out.ok = true;
   out.duration = T;
@@ -350,9 +358,7 @@ PlanResult WaypointPlanner::plan(const Eigen::VectorXd& q_start,
       JointSpline::timed(knots, limits_.max_velocity, limits_.max_acceleration, floors, blend);
   std::vector<SegmentCheck> segments(floors.size());
   for (int k = 0; k < spline.segments();) {
-    result.samples += static_cast<std::int64_t>(std::ceil(
-                          (spline.knot_time(k + 1) - spline.knot_time(k)) / sample_spacing())) +
-                      1;
+    result.samples += sample_intervals(spline.knot_time(k + 1) - spline.knot_time(k)) + 1;
     if (check_spline_segment(spline, k, segments[k])) {
       ++k;
       continue;

@@ -90,7 +90,7 @@ TEST(PlanCli, BadInputFailsClearly) {
                2, "--velocity-limit takes 1 value or 7");
   expect_error(
       {"plan", "panda_torque", "--waypoints", plan_file("five.json", kFive), "--rate", "0"}, 2,
-      "--rate must be > 0");
+      "--rate must be in (0, 100000] Hz");
 }
 
 TEST(RunPlanCli, TracksThePlanAndReportsTheError) {

@@ -9,6 +9,7 @@
 #include "mjarm/kinematics/chain_kinematics.hpp"
 #include "mjarm/trajectory/quintic_duration.hpp"
 #include "planning/planning_support.hpp"
+#include "support/error_message.hpp"
 
 namespace mjarm {
 namespace {
@@ -192,6 +193,14 @@ TEST_F(PandaPlan, BadInputIsAnError) {
   options = PlanOptions{};
   options.limits.max_velocity = Eigen::VectorXd::Ones(2);
   EXPECT_THROW(WaypointPlanner(chain, options), Error);
+  // limits out of proportion: an error, not a billion samples or an overflow
+  options = PlanOptions{};
+  options.limits.max_velocity = Eigen::VectorXd::Constant(7, 1e12);
+  options.limits.max_acceleration = Eigen::VectorXd::Constant(7, 1e-6);
+  EXPECT_NE(test::error_of([&] {
+              WaypointPlanner(chain, options).plan(home_q(robot), five_waypoints());
+            }).find("more than 1e7 samples"),
+            std::string::npos);
 }
 
 }  // namespace

@@ -111,8 +111,9 @@ class WaypointPlanner {
 
   /// Plans from rest at @p q_start through @p waypoints (poses of the chain's frame in the world)
   /// to rest at the last one.
-  /// @throws Error when @p waypoints is empty, a waypoint is not finite or not a rotation, or
-  ///         @p q_start does not fit the chain.
+  /// @throws Error when @p waypoints is empty, a waypoint is not finite or not a rotation,
+  ///         @p q_start does not fit the chain, or the limits would need more than 1e7 samples
+  ///         in one segment.
   PlanResult plan(const Eigen::VectorXd& q_start, const std::vector<Pose>& waypoints);
 
  private:
@@ -129,6 +130,9 @@ class WaypointPlanner {
   /// Samples segment k of @p spline; returns false at the first failing sample.
   bool check_spline_segment(const JointSpline& spline, int k, SegmentCheck& out);
   double sample_spacing() const noexcept;
+  /// Sample intervals of a segment of @p duration [s] (≥ 1).
+  /// @throws Error beyond 1e7 (limits out of proportion: tiny accelerations, huge velocities).
+  int sample_intervals(double duration) const;
 
   Chain chain_;
   PlanOptions options_;
