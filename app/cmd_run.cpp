@@ -19,7 +19,7 @@ namespace mjarm::cli {
 
 namespace {
 
-const std::vector<std::string> kScenarios{"shelf-pick"};
+const std::vector<std::string> kScenarios{"shelf-pick", "plan"};
 
 /// Most frames `run --video` may film after the approach (--fps × --settle-time): 5 minutes of
 /// video at 30 fps, about 20 minutes of software rendering at 640x480.
@@ -270,11 +270,15 @@ Command add_run_command(CLI::App& root) {
     std::string size = "640x480";
     double fps = 30.0;
     bool json = false;
+    PlanCliOptions plan;  // run plan ROBOT --waypoints FILE (cmd_run_plan.cpp)
   };
   auto o = std::make_shared<Options>();
   CLI::App* app = root.add_subcommand(
       "run", "run a closed-loop scenario in simulation and print its figures (shelf-pick)");
   app->add_option("scenario", o->scenario, "scenario to run: " + join(kScenarios))->required();
+  app->add_option("plan_robot", o->plan.model, "run plan: the robot (planar2 | panda)");
+  add_plan_options(*app, o->plan, false);
+  app->get_option("--waypoints")->required(false);
   app->add_option("--robot", o->robot, "planar2 | panda (torque-motor models)")
       ->capture_default_str();
   app->add_option("--controller", o->controller, "ct | osc | task-pd | accel")
@@ -327,6 +331,19 @@ Command add_run_command(CLI::App& root) {
   add_json_flag(*app, o->json);
 
   return {app, [o] {
+            if (o->scenario == "plan") {
+              if (o->plan.waypoints.empty()) throw UsageError("run plan needs --waypoints FILE");
+              const InterruptGuard interrupts;
+              if (o->all || !o->pick.empty() || !o->record.empty() || !o->video.empty())
+                throw UsageError("--all, --pick, --record and --video are shelf-pick options");
+              o->plan.seed = o->seed;
+              return run_plan_scenario(o->plan, o->controller, o->settle_time, o->control_period,
+                                       o->max_acceleration, o->json);
+            }
+            if (!o->plan.model.empty() || !o->plan.waypoints.empty() || !o->plan.q.empty() ||
+                !o->plan.key.empty() || !o->plan.max_velocity.empty() ||
+                !o->plan.max_acceleration.empty() || !o->plan.max_torque.empty())
+              throw UsageError("ROBOT, --waypoints, --q, --key and the limits belong to 'run plan'");
             if (o->scenario != "shelf-pick")
               throw UsageError("unknown scenario '" + o->scenario +
                                "'; scenarios: " + join(kScenarios));

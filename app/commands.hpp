@@ -8,10 +8,13 @@
 #include <functional>
 #include <iosfwd>
 #include <nlohmann/json.hpp>
+#include <optional>
+#include <vector>
 
 #include "mjarm/kinematics/chain_kinematics.hpp"
 #include "mjarm/kinematics/workspace.hpp"
 #include "mjarm/model/robot.hpp"
+#include "mjarm/planning/waypoint_planner.hpp"
 #include "options.hpp"
 #include "output.hpp"
 
@@ -36,6 +39,41 @@ Command add_view_command(CLI::App& root);    ///< `mjarm view [MODEL]` (cmd_view
 Command add_run_command(CLI::App& root);     ///< `mjarm run shelf-pick …` (cmd_run.cpp)
 Command add_plot_command(CLI::App& root);    ///< `mjarm plot RECORDING …` (cmd_plot.cpp)
 Command add_traj_command(CLI::App& root);    ///< `mjarm traj KIND …` (cmd_traj.cpp)
+Command add_plan_command(CLI::App& root);    ///< `mjarm plan ROBOT --waypoints F` (cmd_plan.cpp)
+
+/// What `mjarm plan` and `mjarm run plan` read from the command line.
+struct PlanCliOptions {
+  std::string model;
+  std::string site;
+  std::string waypoints;
+  std::vector<double> q;
+  std::string key;
+  std::vector<double> max_velocity, max_acceleration, max_torque;
+  double min_sigma = 0.02;
+  std::uint64_t seed = 1;
+};
+/// Registers --waypoints, --q, --key, the limit overrides, --min-sigma (and --seed when
+/// @p with_seed; `run` has its own).
+void add_plan_options(CLI::App& app, PlanCliOptions& options, bool with_seed);
+/// A planned path with everything needed to print or run it.
+struct PlannedPath {
+  Robot robot;
+  std::optional<Chain> chain;
+  Configuration start;
+  std::vector<Pose> poses;
+  PlanResult result;
+};
+/// Loads the model and the waypoint file, and plans (start: --q, --key, else keyframe 'home').
+/// @throws UsageError for limit lists of the wrong length; Error for bad files or models.
+PlannedPath plan_path(const PlanCliOptions& options);
+/// The plan as JSON / as a table of per-waypoint checks.
+Json plan_json(const PlannedPath& plan);
+void print_plan(std::ostream& os, const PlannedPath& plan);
+/// `mjarm run plan ROBOT --waypoints F --controller C` (cmd_run_plan.cpp).
+/// @param control_period, max_acceleration as `SimulationOptions` (0: one physics step)
+void run_plan_scenario(const PlanCliOptions& options, const std::string& controller,
+                       double settle_time, double control_period, double max_acceleration,
+                       bool json);
 
 /// Everything `info` reports about a model, as JSON.
 Json model_json(const Robot& robot);

@@ -1,0 +1,216 @@
+// `mjarm plan ROBOT --waypoints FILE`: plans a checked, timed joint trajectory through Cartesian
+// waypoints (docs/planning.md) and prints the per-waypoint checks; `--out` writes it as CSV.
+
+#include <cmath>
+#include <iostream>
+#include <memory>
+#include <sstream>
+
+#include "commands.hpp"
+#include "mjarm/error.hpp"
+#include "mjarm/file_writer.hpp"
+#include "mjarm/planning/waypoint_file.hpp"
+
+namespace mjarm::cli {
+
+namespace {
+
+/// One value for every joint, or one per joint.
+Eigen::VectorXd per_joint(const std::vector<double>& values, int n, const char* option) {
+  if (values.empty()) return {};
+  if (values.size() == 1) return Eigen::VectorXd::Constant(n, values[0]);
+  if (static_cast<int>(values.size()) != n)
+    throw UsageError(std::string(option) + " takes 1 value or " + std::to_string(n) +
+                     " (one per joint), got " + std::to_string(values.size()));
+  for (double v : values)
+    if (!(v > 0.0)) throw UsageError(std::string(option) + " values must be > 0");
+  return Eigen::Map<const Eigen::VectorXd>(values.data(), n);
+}
+
+std::string plan_mm(double metres) { return fixed(metres * 1e3, 3); }
+
+/// Writes t, q, q̇, q̈ and the tool position every @p period seconds.
+void write_csv(const std::string& path, const Chain& chain, const JointSpline& s, double period) {
+  std::ostringstream out;
+  const int n = chain.size();
+  out << "t";
+  for (const char* kind : {"q", "qd", "qdd"})
+    for (int i = 0; i < n; ++i) out << ',' << kind << '_' << chain.joint_names()[i];
+  out << ",x,y,z\n";
+  ChainKinematics kin(chain);
+  Eigen::VectorXd q(n), qd(n), qdd(n);
+  const auto steps = static_cast<std::int64_t>(std::ceil(s.duration() / period - 1e-9));
+  out.precision(10);
+  for (std::int64_t k = 0; k <= steps; ++k) {
+    const double t = std::min(s.duration(), static_cast<double>(k) * period);
+    s.at(t, q, qd, qdd);
+    out << t;
+    for (const Eigen::VectorXd* v : {&q, &qd, &qdd})
+      for (int i = 0; i < n; ++i) out << ',' << (*v)[i];
+    const Eigen::Vector3d p = kin.update(q).p;
+    out << ',' << p.x() << ',' << p.y() << ',' << p.z() << '\n';
+  }
+  write_file(path, out.str(), "trajectory CSV");  // whole or not at all, errors name the file
+}
+
+}  // namespace
+
+PlannedPath plan_path(const PlanCliOptions& o) {
+  const WaypointPath file = load_waypoints(o.waypoints);
+  PlannedPath out{load_model(o.model), std::nullopt, {}, {}, {}};
+  std::string site = o.site.empty() && file.frame ? *file.frame : o.site;
+  out.chain.emplace(out.robot, resolve_site(out.robot, site));
+  const Chain& chain = *out.chain;
+  std::string key = o.key;
+  if (key.empty() && o.q.empty() && out.robot.model().nkey > 0) {
+    const std::vector<std::string> keys = out.robot.keyframe_names();
+    if (std::find(keys.begin(), keys.end(), "home") != keys.end()) key = "home";
+  }
+  out.start = resolve_configuration(chain, o.q, key);
+  const int n = chain.size();
+  PlanOptions options;
+  options.limits.max_velocity = per_joint(o.max_velocity, n, "--velocity-limit");
+  options.limits.max_acceleration = per_joint(o.max_acceleration, n, "--acceleration-limit");
+  options.limits.max_torque = per_joint(o.max_torque, n, "--torque-limit");
+  options.checks.min_singular_value = o.min_sigma;
+  options.seed = o.seed;
+  WaypointPlanner planner(chain, options);
+  planner.set_fixed_qpos(out.start.qpos);
+  ChainKinematics kin(chain);
+  kin.set_fixed_qpos(out.start.qpos);
+  out.poses = file.poses(kin.update(out.start.q).R);
+  out.result = planner.plan(out.start.q, out.poses);
+  return out;
+}
+
+Json plan_json(const PlannedPath& p) {
+  const PlanResult& r = p.result;
+  Json waypoints = Json::array();
+  for (const WaypointReport& w : r.waypoints)
+    waypoints.push_back({{"index", w.index},
+                         {"position", vector_json(w.X_WT.p)},
+                         {"q", vector_json(w.q)},
+                         {"ik", to_string(w.ik)},
+                         {"position_error", w.position_error},
+                         {"orientation_error", w.orientation_error},
+                         {"branch", w.branch},
+                         {"detour", w.detour},
+                         {"check", to_string(w.check.failure)},
+                         {"sigma_min", w.check.sigma_min},
+                         {"segment_min_sigma", w.min_sigma},
+                         {"segment_max_torque_ratio", w.max_torque_ratio},
+                         {"time", w.time},
+                         {"message", w.message}});
+  Json torque = Json::array();
+  for (Eigen::Index i = 0; i < r.limits.max_torque.size(); ++i)
+    torque.push_back(bound_json(r.limits.max_torque[i]));
+  return Json{{"model", p.robot.name()},
+              {"frame", p.chain->frame().name},
+              {"start", p.start.source},
+              {"start_q", vector_json(p.start.q)},
+              {"status", to_string(r.status)},
+              {"failed_waypoint", r.failed_waypoint},
+              {"message", r.message},
+              {"duration", r.trajectory.duration()},
+              {"sample_spacing", r.sample_spacing},
+              {"samples", r.samples},
+              {"limits",
+               {{"max_velocity", vector_json(r.limits.max_velocity)},
+                {"max_acceleration", vector_json(r.limits.max_acceleration)},
+                {"max_torque", torque}}},
+              {"waypoints", waypoints}};
+}
+
+void print_plan(std::ostream& os, const PlannedPath& p) {
+  const PlanResult& r = p.result;
+  os << "plan on " << p.robot.name() << ", frame '" << p.chain->frame().name << "', from "
+     << p.start.source << ", " << p.poses.size() << " waypoints\n";
+  Table table({{"#"},
+               {"x y z [m]", Table::Align::left},
+               {"branch"},
+               {"detour"},
+               {"IK error [mm]"},
+               {"σmin"},
+               {"min σ on the way"},
+               {"max torque [%]"},
+               {"at [s]"},
+               {"result", Table::Align::left}});
+  for (const WaypointReport& w : r.waypoints)
+    table.add_row({std::to_string(w.index), vector_text(w.X_WT.p, 3),
+                   w.branch == 0 ? "local" : "global " + std::to_string(w.branch),
+                   w.detour ? "yes" : "no", plan_mm(w.position_error), fixed(w.check.sigma_min, 3),
+                   r.ok() ? fixed(w.min_sigma, 3) : "—",
+                   r.ok() ? fixed(w.max_torque_ratio * 100.0, 1) : "—",
+                   r.ok() ? fixed(w.time, 3) : "—", w.message});
+  table.print(os, 2);
+  os << "result: " << to_string(r.status) << " — " << r.message << '\n';
+  if (r.ok())
+    print_fields(os,
+                 {{"duration [s]", fixed(r.trajectory.duration(), 3)},
+                  {"checked every [s]", compact(r.sample_spacing)},
+                  {"max velocity [rad/s]", vector_text(r.limits.max_velocity, 3)},
+                  {"max acceleration [rad/s²]", vector_text(r.limits.max_acceleration, 2)}},
+                 2);
+}
+
+void add_plan_options(CLI::App& app, PlanCliOptions& o, bool with_seed) {
+  app.add_option("--waypoints", o.waypoints,
+                 "waypoint file: JSON ({\"waypoints\": [{\"position\": [x, y, z]}, …]}) or CSV "
+                 "rows x,y,z[,qw,qx,qy,qz] (docs/planning.md)")
+      ->required();
+  app.add_option("--q", o.q, "start joint values [rad or m] (default: keyframe 'home', else qpos0)")
+      ->check(finite_number());
+  app.add_option("--key", o.key, "start at this keyframe");
+  app.add_option("--velocity-limit", o.max_velocity,
+                 "joint velocity limits [rad/s]: one value or one per joint (default 1)")
+      ->check(finite_number());
+  app.add_option("--acceleration-limit", o.max_acceleration,
+                 "joint acceleration limits [rad/s²]: one or one per joint (default: from the "
+                 "actuators' torque limits and the inertia at the start)")
+      ->check(finite_number());
+  app.add_option("--torque-limit", o.max_torque,
+                 "joint torque limits [N·m]: one or one per joint (default: the actuators')")
+      ->check(finite_number());
+  app.add_option("--min-sigma", o.min_sigma, "smallest accepted singular value of the 6×n Jacobian")
+      ->check(finite_number())
+      ->capture_default_str();
+  if (with_seed)
+    app.add_option("--seed", o.seed, "seed of the IK branches and detours")
+        ->check(non_negative_integer())
+        ->capture_default_str();
+}
+
+Command add_plan_command(CLI::App& root) {
+  auto o = std::make_shared<PlanCliOptions>();
+  auto out = std::make_shared<std::string>();
+  auto rate = std::make_shared<double>(500.0);
+  auto json = std::make_shared<bool>(false);
+  CLI::App* app = root.add_subcommand(
+      "plan", "plan a checked joint trajectory through Cartesian waypoints (docs/planning.md)");
+  add_model_argument(*app, o->model);
+  add_site_option(*app, o->site);
+  add_plan_options(*app, *o, true);
+  app->add_option("--out", *out, "write the trajectory as CSV (t, q, qd, qdd, tool x y z)");
+  app->add_option("--rate", *rate, "CSV rows per second [Hz]")
+      ->check(finite_number())
+      ->capture_default_str();
+  add_json_flag(*app, *json);
+  return {app, [o, out, rate, json] {
+            if (!(*rate > 0.0) || *rate > 1e5)
+              throw UsageError("--rate must be in (0, 100000] Hz, got " + compact(*rate));
+            if (o->min_sigma < 0.0) throw UsageError("--min-sigma must be >= 0");
+            const PlannedPath p = plan_path(*o);
+            if (*json) {
+              print_json(plan_json(p));
+            } else {
+              print_plan(std::cout, p);
+            }
+            if (!p.result.ok()) throw Error("no plan: " + p.result.message);
+            if (!out->empty()) {
+              write_csv(*out, *p.chain, p.result.trajectory, 1.0 / *rate);
+              if (!*json) std::cout << "  trajectory written to " << *out << '\n';
+            }
+          }};
+}
+
+}  // namespace mjarm::cli

@@ -1,0 +1,89 @@
+// `mjarm run plan ROBOT --waypoints FILE --controller NAME`: plans through the waypoints on the
+// robot's torque-motor model and tracks the plan in simulation under the chosen controller,
+// reporting the tracking error of the tool frame (docs/planning.md).
+
+#include <iostream>
+#include <memory>
+
+#include "commands.hpp"
+#include "mjarm/error.hpp"
+#include "mjarm/planning/planned_reference.hpp"
+#include "mjarm/sim/simulation.hpp"
+#include "mjarm/tasks/shelf_pick_controllers.hpp"
+
+namespace mjarm::cli {
+
+void run_plan_scenario(const PlanCliOptions& given, const std::string& controller_name,
+                       double settle_time, double control_period, double max_acceleration,
+                       bool json) {
+  const ShelfPickRobot* robot = nullptr;
+  try {
+    robot = &shelf_pick_robot(given.model);
+    check_shelf_pick_controller(controller_name);
+  } catch (const Error& e) {
+    throw UsageError(e.what());
+  }
+  if (!(settle_time >= 0.0)) throw UsageError("--settle-time must be >= 0");
+  PlanCliOptions options = given;
+  options.model = robot->model;
+  if (options.site.empty()) options.site = robot->frame;
+  const PlannedPath plan = plan_path(options);
+  if (!plan.result.ok()) {
+    if (json) {
+      print_json(plan_json(plan));
+    } else {
+      print_plan(std::cout, plan);
+    }
+    throw Error("no plan: " + plan.result.message);
+  }
+  const Chain& chain = *plan.chain;
+  SimulationOptions sim_options;
+  sim_options.mode = SimulationMode::torque;
+  sim_options.control_period = control_period;
+  sim_options.max_acceleration = max_acceleration;
+  Simulation sim(plan.robot, sim_options);
+  const std::unique_ptr<Controller> controller =
+      make_shelf_pick_controller(controller_name, chain, *robot);
+  sim.add_controller(*controller);
+  std::vector<double> qpos(plan.start.qpos.data(), plan.start.qpos.data() + plan.start.qpos.size());
+  sim.set_state(qpos, std::vector<double>(static_cast<std::size_t>(plan.robot.nv()), 0.0));
+  PlannedReference source(chain, plan.result.trajectory, settle_time,
+                          sim.uses_rk4() ? 0.0 : 0.5 * sim.timestep());
+  const RunResult run = sim.run(source, source.run_time() + 1.0);
+  const TrackingError& e = source.tracking();
+  if (json) {
+    Json doc = plan_json(plan);
+    doc["scenario"] = "plan";
+    doc["controller"] = controller_name;
+    doc["run"] = Json{{"status", to_string(run.status)},
+                      {"message", run.message},
+                      {"end_time", run.end_time},
+                      {"ticks", e.ticks},
+                      {"max_position_error", e.max_position},
+                      {"rms_position_error", e.rms_position},
+                      {"final_position_error", e.final_position},
+                      {"max_orientation_error", e.max_orientation},
+                      {"final_orientation_error", e.final_orientation}};
+    print_json(doc);
+  } else {
+    print_plan(std::cout, plan);
+    std::cout << "tracked in simulation by " << controller_name << " (torque mode, control period "
+              << compact(sim.control_period()) << " s): " << to_string(run.status) << '\n';
+    print_fields(
+        std::cout,
+        {{"position error [mm]", "max " + fixed(e.max_position * 1e3, 3) + ", RMS " +
+                                     fixed(e.rms_position * 1e3, 3) + ", final " +
+                                     fixed(e.final_position * 1e3, 3)},
+         {"orientation error [mrad]", "max " + fixed(e.max_orientation * 1e3, 3) + ", final " +
+                                          fixed(e.final_orientation * 1e3, 3)},
+         {"simulated [s]", fixed(run.end_time, 3) + " (plan " +
+                               fixed(plan.result.trajectory.duration(), 3) + " s + settle " +
+                               compact(settle_time) + " s)"}},
+        2);
+  }
+  if (!run.ok())
+    throw Error("the tracking run ended " + std::string(to_string(run.status)) + ": " +
+                run.message);
+}
+
+}  // namespace mjarm::cli

@@ -1,0 +1,106 @@
+#pragma once
+/// @file
+/// The checks a planned motion passes at every waypoint and at samples between them: joint
+/// limits, distance from singularities, torque by inverse dynamics, and contacts between the
+/// moving robot and the rest of the scene — on an owned scratch `mjData`, never the caller's.
+
+#include <mujoco/mujoco.h>
+
+#include <Eigen/Core>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "mjarm/dynamics/chain_dynamics.hpp"
+#include "mjarm/kinematics/manipulability.hpp"
+#include "mjarm/model/chain.hpp"
+#include "mjarm/planning/joint_limits.hpp"
+
+namespace mjarm {
+
+/// Which check a state failed, in the order they are judged.
+enum class CheckFailure {
+  none,          ///< every check passed
+  invalid,       ///< q, q̇ or q̈ holds NaN/inf
+  joint_limits,  ///< a joint outside its range
+  collision,     ///< a moving geom of the robot touches another geom
+  singular,      ///< σmin of the 6×n Jacobian below the threshold
+  torque         ///< τ = M·q̈ + h beyond a joint's torque limit
+};
+
+/// "none", "invalid", "joint_limits", "collision", "singular", "torque".
+const char* to_string(CheckFailure failure) noexcept;
+
+/// Thresholds of the checks.
+struct CheckOptions {
+  /// Smallest singular value σmin of the world-aligned 6×n Jacobian J_WE (rows [v; ω], so σ mixes
+  /// m/rad and rad/rad) that is still accepted (≥ 0).
+  double min_singular_value = 0.02;
+  /// A contact counts when its signed distance is below this [m] (≥ 0). MuJoCo reports contacts
+  /// only within the geoms' margins, so a margin beyond them finds nothing more.
+  double collision_margin = 0.0;
+  /// Joints may exceed their range by this much [rad or m] (≥ 0; round-off of IK clamping).
+  double limit_tolerance = 1e-9;
+};
+
+/// @throws Error naming the option that is negative or not finite.
+void check(const CheckOptions& options);
+
+/// What one state measured, and the first failure in `CheckFailure` order.
+struct ConfigurationCheck {
+  CheckFailure failure = CheckFailure::none;
+  double sigma_min = 0.0;     ///< σmin of J_WE
+  double torque_ratio = 0.0;  ///< max_i |τ_i| / τ_max,i (0 when no joint has a torque limit)
+  int torque_joint = -1;      ///< the joint of torque_ratio
+  int limit_joint = -1;       ///< the first joint outside its range (−1: none)
+  int geom1 = -1;             ///< the deepest counted contact: a moving geom … (−1: none)
+  int geom2 = -1;             ///< … and the other geom
+  double distance = std::numeric_limits<double>::infinity();  ///< its signed distance [m]
+  bool ok() const noexcept { return failure == CheckFailure::none; }
+};
+
+/// Checks states (q, q̇, q̈) of one chain. "The robot" is every geom on a body moved by a chain
+/// joint; a contact counts when at least one of its geoms is such a geom (the model's
+/// contype/conaffinity filters and MuJoCo's parent–child exclusion apply). Torques are
+/// τ = M(q)·q̈ + C(q, q̇)·q̇ + g(q) on the chain's dofs (`ChainDynamics::inverse_dynamics`; passive
+/// forces excluded). One `check` runs MuJoCo's `mj_fwdPosition` and `mj_fwdVelocity` on the
+/// owned scratch `mjData` and allocates nothing.
+class ConfigurationChecker {
+ public:
+  /// @throws Error for invalid limits (wrong sizes, non-positive) or options.
+  ConfigurationChecker(const Chain& chain, const JointLimits& limits,
+                       const CheckOptions& options = {});
+
+  const Chain& chain() const noexcept { return chain_; }
+  const JointLimits& limits() const noexcept { return limits_; }
+  const CheckOptions& options() const noexcept { return options_; }
+
+  /// Sets the joints that are not in the chain (full qpos, nq entries; default qpos0).
+  /// @throws Error when the size is not nq or a value is not finite.
+  void set_fixed_qpos(const Eigen::Ref<const Eigen::VectorXd>& qpos);
+
+  /// Checks the state (n entries each, unchecked sizes). Never throws, allocates nothing.
+  const ConfigurationCheck& check(const Eigen::Ref<const Eigen::VectorXd>& q,
+                                  const Eigen::Ref<const Eigen::VectorXd>& qd,
+                                  const Eigen::Ref<const Eigen::VectorXd>& qdd) noexcept;
+  /// A state at rest: q̇ = q̈ = 0 (the torque is the gravity torque).
+  const ConfigurationCheck& check(const Eigen::Ref<const Eigen::VectorXd>& q) noexcept;
+
+  /// The failure of @p result in words, naming the joint or the geoms and the values against
+  /// their bounds ("joint 'joint4' at -3.1 rad outside [-3.07, -0.07]"); "ok" when it passed.
+  std::string describe(const ConfigurationCheck& result) const;
+
+ private:
+  Chain chain_;
+  JointLimits limits_;
+  CheckOptions options_;
+  Manipulability manipulability_;
+  ChainDynamics dynamics_;
+  DataPtr data_;
+  Eigen::VectorXd fixed_qpos_;
+  std::vector<char> moving_;  // per geom: on a body moved by the chain
+  Eigen::VectorXd zero_, tau_, q_;
+  ConfigurationCheck result_;
+};
+
+}  // namespace mjarm

@@ -1,0 +1,146 @@
+#pragma once
+/// @file
+/// `WaypointPlanner`: a Cartesian waypoint path turned into a checked, timed joint trajectory
+/// (docs/planning.md): IK per waypoint, checks at every waypoint and at dense samples between
+/// them, other IK branches and joint-space detours when a check fails, quintic segments with
+/// non-zero velocities at interior waypoints, durations from the joint limits.
+
+#include <Eigen/Core>
+#include <cstdint>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "mjarm/ik/global_ik.hpp"
+#include "mjarm/ik/pose_ik.hpp"
+#include "mjarm/ik/result.hpp"
+#include "mjarm/lie/pose.hpp"
+#include "mjarm/model/chain.hpp"
+#include "mjarm/planning/configuration_check.hpp"
+#include "mjarm/planning/joint_limits.hpp"
+#include "mjarm/planning/joint_spline.hpp"
+
+namespace mjarm {
+
+/// How a plan ended.
+enum class PlanStatus {
+  ok,            ///< every waypoint and every sample passed: `PlanResult::trajectory` is set
+  start_failed,  ///< the start configuration fails a check
+  unreachable,   ///< no IK branch reaches the waypoint's pose within tolerance
+  joint_limits,  ///< every IK solution of the waypoint is outside the joint ranges
+  collision,     ///< every IK solution of the waypoint is in collision
+  singular,      ///< every IK solution of the waypoint is too close to a singularity
+  torque,        ///< every IK solution of the waypoint needs more than the torque limits
+  blocked  ///< the waypoint passes, but no branch or detour gets there with every check passing
+};
+
+/// "ok", "start_failed", "unreachable", "joint_limits", "collision", "singular", "torque",
+/// "blocked".
+const char* to_string(PlanStatus status) noexcept;
+
+/// Every setting of `WaypointPlanner`.
+struct PlanOptions {
+  /// Joint limits; empty vectors are filled by `joint_limits_from_model` at the start.
+  JointLimits limits;
+  ModelLimitOptions model_limits;  ///< how the model's limits are derived
+  CheckOptions checks;             ///< thresholds of the checks
+  /// Samples between knots are at most this far apart in time [s] (> 0) …
+  double sample_period = 0.01;
+  /// … and so close that no joint moves more than this between two [rad or m] (> 0): the spacing
+  /// is min(sample_period, sample_step / max_i v_max,i).
+  double sample_step = 0.02;
+  double min_segment_duration = 0.05;  ///< shortest segment [s] (> 0)
+  PoseIkOptions ik;                    ///< the local IK from the previous waypoint
+  int ik_branches = 8;                 ///< global-IK solves for other branches (≥ 0)
+  /// Seeds of branch b are q_prev + (b/ik_branches)·branch_spread·u, u uniform in [−1, 1]ⁿ [rad].
+  double branch_spread = 1.5;
+  int detour_samples = 32;      ///< intermediate configurations tried for a detour (≥ 0)
+  double detour_radius = 0.8;   ///< largest offset of a detour from the straight path [rad]
+  int stretch_attempts = 4;     ///< a torque failure stretches a segment this often (≥ 0) …
+  double stretch_factor = 1.5;  ///< … by this factor (> 1)
+  std::uint64_t seed = 1;       ///< branch seeds and detours (same seed, same plan)
+};
+
+/// @throws Error naming the option out of range.
+void check(const PlanOptions& options);
+
+/// What happened at one waypoint.
+struct WaypointReport {
+  int index = 0;      ///< position in the path (0 = first waypoint after the start)
+  Pose X_WT;          ///< the pose asked for
+  Eigen::VectorXd q;  ///< the configuration chosen (the best IK iterate on failure)
+  IkStatus ik = IkStatus::not_converged;
+  double position_error = 0.0;     ///< [m]
+  double orientation_error = 0.0;  ///< [rad]
+  int branch = 0;            ///< 0: local IK from the previous waypoint; b ≥ 1: global branch b
+  bool detour = false;       ///< true when a via configuration was inserted before it
+  ConfigurationCheck check;  ///< the checks at the waypoint (at rest)
+  /// Over the samples of the segments that arrive here (the final trajectory when ok):
+  double min_sigma = 0.0;         ///< smallest σmin
+  double max_torque_ratio = 0.0;  ///< largest |τ|/τ_max
+  double time = 0.0;              ///< arrival time in the trajectory [s] (when ok)
+  std::string message;            ///< "ok" or why it failed
+};
+
+/// The result of `WaypointPlanner::plan`.
+struct PlanResult {
+  PlanStatus status = PlanStatus::unreachable;
+  int failed_waypoint = -1;  ///< index of the waypoint that failed (−1: none, or the start)
+  std::string message;       ///< one line for people
+  std::vector<WaypointReport> waypoints;  ///< one per waypoint reached or tried
+  JointSpline trajectory;                 ///< the timed trajectory (when ok)
+  JointLimits limits;                     ///< the limits used
+  double sample_spacing = 0.0;            ///< time between checked samples [s]
+  std::int64_t samples = 0;               ///< states checked along the trajectory
+  bool ok() const noexcept { return status == PlanStatus::ok; }
+};
+
+/// Plans through Cartesian waypoints for one chain (construct once, plan many times). Never
+/// writes a caller's `mjData`: the checks and the IK run on their own scratch state.
+class WaypointPlanner {
+ public:
+  /// @throws Error for invalid options (limits of the wrong size, non-positive values).
+  explicit WaypointPlanner(const Chain& chain, const PlanOptions& options = {});
+
+  const Chain& chain() const noexcept { return chain_; }
+  const PlanOptions& options() const noexcept { return options_; }
+
+  /// Sets the joints that are not in the chain (full qpos, nq entries; default qpos0).
+  /// @throws Error when the size is not nq or a value is not finite.
+  void set_fixed_qpos(const Eigen::Ref<const Eigen::VectorXd>& qpos);
+
+  /// Plans from rest at @p q_start through @p waypoints (poses of the chain's frame in the world)
+  /// to rest at the last one.
+  /// @throws Error when @p waypoints is empty, a waypoint is not finite or not a rotation,
+  ///         @p q_start does not fit the chain, or the limits would need more than 1e7 samples
+  ///         in one segment.
+  PlanResult plan(const Eigen::VectorXd& q_start, const std::vector<Pose>& waypoints);
+
+ private:
+  struct SegmentCheck {
+    bool ok = false;
+    ConfigurationCheck failure;  // the first failing sample
+    double time = 0.0;           // its time in the segment [s]
+    double duration = 0.0;       // the (possibly stretched) rest-to-rest duration [s]
+    double min_sigma = 0.0;
+    double max_torque_ratio = 0.0;
+  };
+
+  SegmentCheck check_rest_segment(const Eigen::VectorXd& a, const Eigen::VectorXd& b);
+  /// Samples segment k of @p spline; returns false at the first failing sample.
+  bool check_spline_segment(const JointSpline& spline, int k, SegmentCheck& out);
+  double sample_spacing() const noexcept;
+  /// Sample intervals of a segment of @p duration [s] (≥ 1).
+  /// @throws Error beyond 1e7 (limits out of proportion: tiny accelerations, huge velocities).
+  int sample_intervals(double duration) const;
+
+  Chain chain_;
+  PlanOptions options_;
+  JointLimits limits_;  // resolved per plan
+  std::mt19937_64 rng_;
+  Eigen::VectorXd fixed_qpos_;
+  Eigen::VectorXd q_, qd_, qdd_;             // sample buffers
+  ConfigurationChecker* checker_ = nullptr;  // valid during plan()
+};
+
+}  // namespace mjarm

@@ -1,0 +1,118 @@
+// Drives `mjarm plan` and `mjarm run plan` through the built executable: the per-waypoint checks
+// in --json, the trajectory CSV, the tracking figures, exit codes and messages for bad input.
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <string>
+
+#include "app/cli_runner.hpp"
+
+namespace {
+
+namespace fs = std::filesystem;
+using mjarm::test::CliRun;
+using mjarm::test::expect_error;
+using mjarm::test::run_cli;
+using mjarm::test::run_json;
+using mjarm::test::scratch;
+using mjarm::test::slurp;
+using nlohmann::json;
+
+/// Writes @p text into the scratch directory as @p name and returns the path.
+std::string plan_file(const std::string& name, const std::string& text) {
+  const fs::path path = scratch() / name;
+  std::ofstream(path) << text;
+  return path.string();
+}
+
+const char* kFive =
+    R"({"waypoints": [{"position": [0.45, 0.0, 0.50]}, {"position": [0.45, 0.20, 0.40]},
+  {"position": [0.35, 0.25, 0.35]}, {"position": [0.30, 0.10, 0.45]},
+  {"position": [0.40, -0.15, 0.50]}]})";
+
+TEST(PlanCli, HelpNamesTheOptions) {
+  const CliRun run = run_cli({"plan", "--help"});
+  EXPECT_EQ(run.exit_code, 0);
+  for (const char* option :
+       {"--waypoints", "--site", "--q", "--key", "--velocity-limit", "--acceleration-limit",
+        "--torque-limit", "--min-sigma", "--out", "--rate", "--json"})
+    EXPECT_NE(run.out.find(option), std::string::npos) << option;
+}
+
+TEST(PlanCli, JsonReportsEveryWaypointAndCsvHoldsTheTrajectory) {
+  const std::string csv = (scratch() / "plan_trajectory.csv").string();
+  const json doc = run_json({"plan", "panda_torque", "--waypoints", plan_file("five.json", kFive),
+                             "--out", csv, "--rate", "100", "--json"});
+  EXPECT_EQ(doc["status"], "ok");
+  EXPECT_EQ(doc["start"], "keyframe 'home'");
+  ASSERT_EQ(doc["waypoints"].size(), 5u);
+  for (const json& w : doc["waypoints"]) {
+    EXPECT_EQ(w["check"], "none");
+    EXPECT_LT(w["position_error"].get<double>(), 1e-4);
+    EXPECT_GE(w["segment_min_sigma"].get<double>(), 0.02);
+  }
+  const double duration = doc["duration"].get<double>();
+  EXPECT_GT(duration, 1.0);
+  std::istringstream lines(slurp(csv));
+  std::string line;
+  int rows = -1;  // the header
+  while (std::getline(lines, line)) ++rows;
+  EXPECT_EQ(rows, static_cast<int>(std::ceil(duration * 100 - 1e-9)) + 1);
+  // slower limits, longer plan
+  const json slow = run_json({"plan", "panda_torque", "--waypoints", plan_file("five.json", kFive),
+                              "--velocity-limit", "0.5", "--json"});
+  EXPECT_GT(slow["duration"].get<double>(), 1.5 * duration);
+}
+
+TEST(PlanCli, AFailedPlanPrintsTheChecksAndExitsOne) {
+  const CliRun run = run_cli({"plan", "panda_torque", "--waypoints",
+                              plan_file("far.csv", "x,y,z\n0.45,0,0.5\n1.6,0,0.5\n")});
+  EXPECT_EQ(run.exit_code, 1);
+  EXPECT_NE(run.out.find("result: unreachable"), std::string::npos) << run.out;
+  EXPECT_NE(run.err.find("waypoint 1: no IK solution"), std::string::npos) << run.err;
+}
+
+TEST(PlanCli, BadInputFailsClearly) {
+  expect_error({"plan", "panda_torque"}, 2, "--waypoints is required");
+  expect_error({"plan", "panda_torque", "--waypoints", "/nonexistent/w.json"}, 1,
+               "cannot read the waypoint file");
+  expect_error({"plan", "panda_torque", "--waypoints", plan_file("nan.csv", "0.4,nan,0.5\n")}, 1,
+               "'nan' is not a finite number");
+  expect_error(
+      {"plan", "panda_torque", "--waypoints", plan_file("empty.json", R"({"waypoints": []})")}, 1,
+      "holds no waypoint");
+  expect_error({"plan", "panda_torque", "--waypoints", plan_file("five.json", kFive),
+                "--velocity-limit", "1", "2"},
+               2, "--velocity-limit takes 1 value or 7");
+  expect_error(
+      {"plan", "panda_torque", "--waypoints", plan_file("five.json", kFive), "--rate", "0"}, 2,
+      "--rate must be in (0, 100000] Hz");
+}
+
+TEST(RunPlanCli, TracksThePlanAndReportsTheError) {
+  const json doc = run_json({"run", "plan", "panda", "--waypoints", plan_file("five.json", kFive),
+                             "--controller", "osc", "--json"});
+  EXPECT_EQ(doc["status"], "ok");
+  EXPECT_EQ(doc["run"]["status"], "finished");
+  EXPECT_LT(doc["run"]["max_position_error"].get<double>(), 0.01);
+  EXPECT_LT(doc["run"]["final_position_error"].get<double>(), 0.002);
+  EXPECT_LE(doc["run"]["rms_position_error"].get<double>(),
+            doc["run"]["max_position_error"].get<double>());
+  expect_error({"run", "plan", "panda", "--controller", "osc"}, 2, "run plan needs --waypoints");
+  expect_error({"run", "plan", "panda", "--waypoints", plan_file("five.json", kFive),
+                "--controller", "nope"},
+               2, "unknown controller");
+  expect_error({"run", "plan", "ur9", "--waypoints", plan_file("five.json", kFive)}, 2,
+               "unknown robot");
+  expect_error({"run", "plan", "panda", "--waypoints", plan_file("five.json", kFive), "--record",
+                (scratch() / "rec").string()},
+               2, "shelf-pick options");
+  expect_error({"run", "shelf-pick", "--waypoints", plan_file("five.json", kFive)}, 2,
+               "belong to 'run plan'");
+}
+
+}  // namespace

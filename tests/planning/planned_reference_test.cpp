@@ -1,0 +1,135 @@
+#include "mjarm/planning/planned_reference.hpp"
+
+#include <gtest/gtest.h>
+
+#include <memory>
+
+#include "ik/malloc_counter.hpp"
+#include "mjarm/control/gravity_compensation.hpp"
+#include "mjarm/error.hpp"
+#include "mjarm/planning/waypoint_planner.hpp"
+#include "mjarm/sim/simulation.hpp"
+#include "mjarm/tasks/shelf_pick_controllers.hpp"
+#include "planning/planning_support.hpp"
+
+namespace mjarm {
+namespace {
+
+using planning_test::five_waypoints;
+using planning_test::home_q;
+
+/// The 5-waypoint plan on @p robot (planned once per robot and test).
+JointSpline plan_five(const Chain& chain) {
+  const PlanResult r = WaypointPlanner(chain).plan(home_q(chain.robot()), five_waypoints());
+  if (!r.ok()) throw Error("test plan failed: " + r.message);
+  return r.trajectory;
+}
+
+TEST(PlannedReference, TaskReferenceIsTheDerivativeOfTheJointReference) {
+  const Robot robot = Robot::bundled("panda_torque");
+  const Chain chain(robot, "attachment_site");
+  PlannedReference source(chain, plan_five(chain));
+  Reference a, b, c;
+  const double h = 1e-5;
+  for (double t : {0.3, 0.9, 1.7, source.trajectory().knot_time(2)}) {
+    source.evaluate(t - h, a);
+    source.evaluate(t, b);
+    source.evaluate(t + h, c);
+    // velocity: central difference of the position and of the rotation (world axes)
+    const Eigen::Vector3d v = (c.task.X_WE.p - a.task.X_WE.p) / (2 * h);
+    const Eigen::Matrix3d dR = (c.task.X_WE.R - a.task.X_WE.R) / (2 * h);
+    const Eigen::Matrix3d W = dR * b.task.X_WE.R.transpose();
+    const Eigen::Vector3d w(W(2, 1), W(0, 2), W(1, 0));
+    EXPECT_LT((v - b.task.V_WE.head<3>()).norm(), 1e-6) << t;
+    EXPECT_LT((w - b.task.V_WE.tail<3>()).norm(), 1e-6) << t;
+    // acceleration: central difference of the twist (J q̈ + J̇ q̇)
+    const Vector6d A = (c.task.V_WE - a.task.V_WE) / (2 * h);
+    EXPECT_LT((A - b.task.A_WE).norm(), 1e-4) << t;
+  }
+}
+
+TEST(PlannedReference, KinematicModeFollowsItExactly) {
+  const Robot robot = Robot::bundled("panda_torque");
+  const Chain chain(robot, "attachment_site");
+  PlannedReference source(chain, plan_five(chain), 0.0);
+  SimulationOptions options;
+  options.mode = SimulationMode::kinematic;
+  Simulation sim(robot, options);
+  Reference reference;
+  const double dt = 0.01;
+  for (double t = 0.0; t <= source.run_time(); t += dt) {
+    source.evaluate(t, reference);
+    sim.move(chain, reference.joint.q, dt);
+    source.update(sim.data(), reference);  // measures the tracking of the moved state
+  }
+  EXPECT_GT(source.tracking().ticks, 100);
+  // update reads the moved state at data.time − t₀ = t: the same q as the reference
+  EXPECT_LT(source.tracking().max_position, 1e-12);
+}
+
+TEST(PlannedReference, TorqueControllersTrackTheWaypointPath) {
+  const Robot robot = Robot::bundled("panda_torque");
+  const Chain chain(robot, "attachment_site");
+  const JointSpline plan = plan_five(chain);
+  for (const char* name : {"ct", "osc"}) {
+    Simulation sim(robot);
+    const std::unique_ptr<Controller> controller =
+        make_shelf_pick_controller(name, chain, shelf_pick_robot("panda"));
+    sim.add_controller(*controller);
+    sim.reset("home");
+    PlannedReference source(chain, plan, 0.5, 0.5 * sim.timestep());
+    const RunResult run = sim.run(source, source.run_time() + 1.0);
+    EXPECT_EQ(run.status, RunStatus::finished) << name << ": " << run.message;
+    EXPECT_LT(source.tracking().max_position, 0.01) << name;
+    EXPECT_LT(source.tracking().final_position, 0.002) << name;
+    EXPECT_LE(source.tracking().rms_position, source.tracking().max_position);
+  }
+}
+
+TEST(PlannedReference, PositionServosTrackItToo) {
+  const Robot robot = Robot::bundled("panda");  // position servos
+  const Chain chain(robot, "attachment_site");
+  SimulationOptions options;
+  options.mode = SimulationMode::position;
+  options.gravity_compensation = false;
+  Simulation sim(robot, options);
+  GravityCompensationController controller(chain);
+  sim.add_controller(controller);
+  sim.reset("home");
+  PlannedReference source(chain, plan_five(chain), 0.5, 0.5 * sim.timestep());
+  const RunResult run = sim.run(source, source.run_time() + 1.0);
+  EXPECT_EQ(run.status, RunStatus::finished) << run.message;
+  EXPECT_LT(source.tracking().max_position, 0.05);
+  EXPECT_LT(source.tracking().final_position, 0.005);
+}
+
+TEST(PlannedReference, TicksAllocateNothingAfterTheFirst) {
+  const Robot robot = Robot::bundled("panda_torque");
+  const Chain chain(robot, "attachment_site");
+  PlannedReference source(chain, plan_five(chain), 0.5, 0.001);
+  DataPtr data = robot.make_data();
+  Reference reference;
+  source.update(*data, reference);  // sizes the reference
+  const std::uint64_t before = test::malloc_calls();
+  bool running = true;
+  for (int j = 1; j <= 250; ++j) {
+    data->time = 0.02 * j;
+    running = source.update(*data, reference) && running;
+  }
+  EXPECT_EQ(test::malloc_calls() - before, 0u);
+  EXPECT_FALSE(running);  // 5 s > duration + hold (4.41 s)
+  EXPECT_EQ(source.tracking().ticks, 251);
+}
+
+TEST(PlannedReference, BadInputIsAnError) {
+  const Robot robot = Robot::bundled("panda_torque");
+  const Chain chain(robot, "attachment_site");
+  EXPECT_THROW(PlannedReference(chain, JointSpline()), Error);
+  EXPECT_THROW(PlannedReference(chain, plan_five(chain), -1.0), Error);
+  const JointSpline two({Eigen::VectorXd::Zero(2), Eigen::VectorXd::Ones(2)},
+                        {Eigen::VectorXd::Zero(2), Eigen::VectorXd::Zero(2)}, {1.0});
+  EXPECT_THROW(PlannedReference(chain, two), Error);
+}
+
+}  // namespace
+}  // namespace mjarm

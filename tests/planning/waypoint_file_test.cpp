@@ -1,0 +1,87 @@
+#include "mjarm/planning/waypoint_file.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <fstream>
+
+#include "mjarm/error.hpp"
+#include "support/error_message.hpp"
+
+namespace mjarm {
+namespace {
+
+using test::error_of;
+
+TEST(WaypointFile, JsonPositionsAndOrientations) {
+  const WaypointPath path = parse_waypoints_json(R"({"frame": "attachment_site",
+      "orientation": [0, 1, 0, 0],
+      "waypoints": [{"position": [0.4, 0, 0.5]},
+                    {"position": [0.4, 0.1, 0.5], "quaternion": [2, 0, 0, 0]}]})");
+  ASSERT_EQ(path.waypoints.size(), 2u);
+  EXPECT_EQ(*path.frame, "attachment_site");
+  const std::vector<Pose> poses = path.poses(Eigen::Matrix3d::Identity());
+  EXPECT_TRUE(poses[0].R.isApprox(Eigen::Vector3d(1, -1, -1).asDiagonal().toDenseMatrix()));
+  EXPECT_TRUE(poses[1].R.isApprox(Eigen::Matrix3d::Identity()));  // normalised
+  EXPECT_EQ(poses[1].p, Eigen::Vector3d(0.4, 0.1, 0.5));
+}
+
+TEST(WaypointFile, CsvWithAndWithoutHeaderUsesTheDefaultOrientation) {
+  const WaypointPath path =
+      parse_waypoints_csv("x,y,z\n# comment\n0.4,0,0.5\n\n0.3, 0.1, 0.4, 1, 0, 0, 0\n");
+  ASSERT_EQ(path.waypoints.size(), 2u);
+  Eigen::Matrix3d R = Eigen::Matrix3d::Zero();
+  R(0, 1) = R(1, 0) = 1.0;
+  R(2, 2) = -1.0;
+  const std::vector<Pose> poses = path.poses(R);
+  EXPECT_EQ(poses[0].R, R);
+  EXPECT_TRUE(poses[1].R.isApprox(Eigen::Matrix3d::Identity()));
+}
+
+TEST(WaypointFile, BadFilesAreClearErrors) {
+  EXPECT_NE(error_of([] {
+              parse_waypoints_csv("0.4,nan,0.5\n", "f.csv");
+            }).find("f.csv line 1: 'nan' is not a finite number"),
+            std::string::npos);
+  EXPECT_NE(error_of([] {
+              parse_waypoints_csv("x,y,z\n0.1,0.2\n", "f.csv");
+            }).find("line 2: expected 3 columns"),
+            std::string::npos);
+  EXPECT_NE(error_of([] { parse_waypoints_csv("x,y,z\n", "f.csv"); }).find("holds no waypoint"),
+            std::string::npos);
+  EXPECT_NE(error_of([] {
+              parse_waypoints_json(R"({"waypoints": []})", "f.json");
+            }).find("holds no waypoint"),
+            std::string::npos);
+  EXPECT_NE(error_of([] {
+              parse_waypoints_json(R"({"waypoints": [{"position": [NaN, 0, 0]}]})");
+            }).find("not valid JSON"),
+            std::string::npos);
+  EXPECT_NE(error_of([] {
+              parse_waypoints_json(R"({"waypoints": [{"position": [1, 0]}]})");
+            }).find("waypoint 0 \"position\" must be an array of 3 numbers"),
+            std::string::npos);
+  EXPECT_NE(error_of([] {
+              parse_waypoints_json(
+                  R"({"waypoints": [{"position": [1, 0, 0], "quaternion": [0, 0, 0, 0]}]})");
+            }).find("must not be zero"),
+            std::string::npos);
+  EXPECT_NE(error_of([] {
+              load_waypoints("/nonexistent/path.json");
+            }).find("cannot read the waypoint file '/nonexistent/path.json'"),
+            std::string::npos);
+}
+
+TEST(WaypointFile, LoadPicksTheFormatByExtension) {
+  const std::string json = ::testing::TempDir() + "planning_waypoints.json";
+  const std::string csv = ::testing::TempDir() + "planning_waypoints.csv";
+  std::ofstream(json) << R"({"waypoints": [{"position": [0.1, 0.2, 0.3]}]})";
+  std::ofstream(csv) << "0.1,0.2,0.3\n0.2,0.2,0.3\n";
+  EXPECT_EQ(load_waypoints(json).waypoints.size(), 1u);
+  EXPECT_EQ(load_waypoints(csv).waypoints.size(), 2u);
+  std::remove(json.c_str());
+  std::remove(csv.c_str());
+}
+
+}  // namespace
+}  // namespace mjarm
