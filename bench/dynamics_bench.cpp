@@ -19,6 +19,12 @@
 // - TaskSpaceUpdate/<robot>: TaskSpaceDynamics::update on the full 6-row Jacobian — Cholesky
 //   of M, Λ by the Cholesky fast path (the 6×6 eigendecomposition only for near-singular
 //   states), J̄; M⁻¹ and N are computed on demand and not timed.
+// - ObserverUpdate/<method>: MomentumObserver::update on the iiwa14 (7 dofs) after its
+//   ChainDynamics::update (not timed: a controller has it already) — p = M·q̇, Cᵀ·q̇ (0: exact
+//   subtree momentum, 1: directional difference of M on a scratch mjData), both PI channels,
+//   the friction model, the 6×6 LDLT of J·Jᵀ + εI and both wrench estimates.
+// - ObserverTick/iiwa14: ChainDynamics::update plus ObserverUpdate/0, the whole per-tick cost of
+//   a controller that needs nothing else.
 // The figures quoted in docs/dynamics.md come from `bench_dynamics --benchmark_min_time=0.5`.
 
 #include <benchmark/benchmark.h>
@@ -29,6 +35,7 @@
 #include <vector>
 
 #include "mjarm/dynamics/chain_dynamics.hpp"
+#include "mjarm/dynamics/momentum_observer.hpp"
 #include "mjarm/dynamics/task_space.hpp"
 
 namespace {
@@ -150,8 +157,44 @@ void TaskSpaceUpdate(benchmark::State& state) {
   label(state, a);
 }
 
+void ObserverUpdate(benchmark::State& state) {
+  Arm& a = arm(1);
+  MomentumObserverOptions options;
+  options.coriolis = state.range(0) == 0 ? CoriolisMethod::subtree_momentum
+                                         : CoriolisMethod::directional_difference;
+  std::vector<ChainDynamics> dyn(kStates, ChainDynamics(a.chain));
+  for (int k = 0; k < kStates; ++k)
+    dyn[static_cast<std::size_t>(k)].update(*a.states[static_cast<std::size_t>(k)]);
+  MomentumObserver observer(a.chain, options);
+  int k = 0;
+  for (auto _ : state) {
+    const auto i = static_cast<std::size_t>(k);
+    benchmark::DoNotOptimize(observer.update(*a.states[i], dyn[i], a.qdd[i], 0.002));
+    k = (k + 1) % kStates;
+  }
+  state.SetLabel(options.coriolis == CoriolisMethod::subtree_momentum
+                     ? "iiwa14 subtree momentum"
+                     : "iiwa14 directional difference");
+}
+
+void ObserverTick(benchmark::State& state) {
+  Arm& a = arm(1);
+  ChainDynamics dyn(a.chain);
+  MomentumObserver observer(a.chain);
+  int k = 0;
+  for (auto _ : state) {
+    const auto i = static_cast<std::size_t>(k);
+    dyn.update(*a.states[i]);
+    benchmark::DoNotOptimize(observer.update(*a.states[i], dyn, a.qdd[i], 0.002));
+    k = (k + 1) % kStates;
+  }
+  label(state, a);
+}
+
 }  // namespace
 
+BENCHMARK(ObserverUpdate)->DenseRange(0, 1);
+BENCHMARK(ObserverTick);
 BENCHMARK(MjInverse)->DenseRange(0, 3);
 BENCHMARK(ChainInverseDynamics)->DenseRange(0, 3);
 BENCHMARK(MjRne)->DenseRange(0, 3);
