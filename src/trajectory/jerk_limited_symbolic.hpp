@@ -64,6 +64,9 @@ inline Ext operator+(const Ext& x, const Ext& y) noexcept { return {x.a + y.a, x
 inline Ext operator-(const Ext& x, const Ext& y) noexcept { return {x.a - y.a, x.b - y.b}; }
 inline Ext operator*(double k, const Ext& x) noexcept { return {k * x.a, k * x.b}; }
 
+/// The value of @p e at x with r = @p r.
+inline double evaluate(const Ext& e, double x, double r) noexcept { return e.a(x) + r * e.b(x); }
+
 /// Symbolic integration of phases of constant jerk with durations of type Ext.
 class SymbolicPhases {
  public:
