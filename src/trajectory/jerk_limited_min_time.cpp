@@ -56,7 +56,7 @@ struct MinTimeCollector {
       candidate.append(up.sign * j[i], ti);
     }
     if (!reaches_within_limits(candidate, up.target, up.limits)) return;
-    record(candidate.duration());
+    record(candidate);
     if (!found || candidate.duration() < block->t_min) {
       block->fastest = candidate;
       block->t_min = candidate.duration();
@@ -64,7 +64,8 @@ struct MinTimeCollector {
     found = true;
   }
 
-  void record(double duration) noexcept {
+  void record(const JerkProfile& profile) noexcept {
+    const double duration = profile.duration();
     JerkBlock& b = *block;
     for (int i = 0; i < b.duration_count; ++i)
       if (std::abs(b.durations[i] - duration) <= 1e-9 * std::max(1.0, duration)) return;
@@ -72,9 +73,11 @@ struct MinTimeCollector {
     int i = b.duration_count++;
     while (i > 0 && b.durations[i - 1] > duration) {
       b.durations[i] = b.durations[i - 1];
+      b.profiles[i] = b.profiles[i - 1];
       --i;
     }
     b.durations[i] = duration;
+    b.profiles[i] = profile;
   }
 };
 

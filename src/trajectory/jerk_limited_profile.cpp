@@ -55,11 +55,12 @@ JerkSample JerkProfile::at(double t) const noexcept {
   return out;
 }
 
-JerkExtrema JerkProfile::extrema() const noexcept {
+JerkExtrema JerkProfile::extrema(int first_phase) const noexcept {
   JerkExtrema e;
-  e.v_min = e.v_max = state_[0].v;
-  e.a_min = e.a_max = state_[0].a;
-  for (int i = 0; i < size_; ++i) {
+  const int first = std::clamp(first_phase, 0, size_);
+  e.v_min = e.v_max = state_[first].v;
+  e.a_min = e.a_max = state_[first].a;
+  for (int i = first; i < size_; ++i) {
     const KinematicState& s = state_[i];
     const KinematicState& n = state_[i + 1];
     e.v_min = std::min(e.v_min, n.v);

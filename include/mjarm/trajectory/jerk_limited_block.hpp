@@ -30,6 +30,8 @@ struct JerkBlock {
   int blocked_count = 0;  ///< how many of `blocked` are set
   /// The distinct durations of every valid extremal profile found, ascending; t_min first.
   std::array<double, kMaxDurations> durations{};
+  /// The profile of each entry of `durations` (the interval ends are reached exactly by them).
+  std::array<JerkProfile, kMaxDurations> profiles{};
   int duration_count = 0;  ///< how many of `durations` are set
 
   /// Rebuilds the blocked intervals from `durations`: with 2k + 1 distinct extremal durations

@@ -76,8 +76,9 @@ class JerkProfile {
   /// extrapolation, which is rest when the target acceleration and velocity are zero).
   JerkSample at(double t) const noexcept;
 
-  /// Extreme velocity and acceleration over [0, duration()] (analytic, see JerkExtrema).
-  JerkExtrema extrema() const noexcept;
+  /// Extreme velocity and acceleration over phases @p first_phase … size−1 (analytic, see
+  /// JerkExtrema); 0 covers [0, duration()].
+  JerkExtrema extrema(int first_phase = 0) const noexcept;
 
   /// True when every phase keeps |v| ≤ limits.velocity·(1 + @p relative) and
   /// |a| ≤ limits.acceleration·(1 + @p relative), and every phase's |jerk| ≤ limits.jerk·(1 +

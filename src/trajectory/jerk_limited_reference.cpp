@@ -1,27 +1,18 @@
-#pragma once
-// An independent check of the jerk-limited solvers: does ANY motion of duration T take one DoF
-// from a start state to a target state within its limits? Decided numerically on a time grid,
-// with none of the profile-structure code: the jerk is piecewise constant on N equal steps
-// (N unknowns in [−j_max, j_max]); the end state is a linear function of them (three equality
-// rows); velocity and acceleration at every grid node are two-sided inequality rows. A dense QP
-// (minimum ‖jerk‖²) is feasible exactly when such a motion exists.
-//
-// Discrete-feasible implies truly feasible: the acceleration is linear within a step, so its
-// extremes are at the nodes; the velocity can bulge between nodes by at most j_max·h²/8, so the
-// velocity rows are tightened by that much. A feasible answer is therefore a certificate that a
-// motion of duration T exists; an infeasible one says that no motion with jerk switching on this
-// grid exists (a finer grid gets closer to the true set).
+#include "mjarm/trajectory/jerk_limited_reference.hpp"
 
 #include <cmath>
+#include <string>
 
+#include "mjarm/error.hpp"
 #include "mjarm/qp/dense_qp.hpp"
-#include "mjarm/trajectory/jerk_limited_profile.hpp"
 
-namespace mjarm::test {
+namespace mjarm {
 
-/// Whether a grid motion of @p duration [s] with @p steps jerk steps exists (see the file).
-inline bool grid_motion_exists(const KinematicState& start, const KinematicState& target,
-                               const JerkLimits& limits, double duration, int steps) {
+bool grid_motion_exists(const KinematicState& start, const KinematicState& target,
+                        const JerkLimits& limits, double duration, int steps) {
+  if (steps < 1 || !(duration > 0.0) || !std::isfinite(duration))
+    throw Error("grid_motion_exists: expected steps ≥ 1 and a positive finite duration, got " +
+                std::to_string(steps) + " and " + std::to_string(duration));
   const int n = steps;
   const double h = duration / n;
   const double J = limits.jerk;
@@ -61,4 +52,4 @@ inline bool grid_motion_exists(const KinematicState& start, const KinematicState
   return r.status == qp::QpStatus::solved;
 }
 
-}  // namespace mjarm::test
+}  // namespace mjarm
