@@ -82,22 +82,23 @@ void JerkLimitedGenerator::check_states(std::span<const KinematicState> current,
   for (std::size_t i = 0; i < n; ++i) {
     const KinematicState& c = current[i];
     const KinematicState& t = target[i];
-    const std::string dof = "JerkLimitedGenerator: DoF " + std::to_string(i) + ": ";
+    // the message prefix is built only on an error (the check runs at every tick)
+    const auto dof = [i] { return "JerkLimitedGenerator: DoF " + std::to_string(i) + ": "; };
     if (!std::isfinite(c.p) || !std::isfinite(c.v) || !std::isfinite(c.a))
-      throw Error(dof + "current state must be finite, got p " + otg_number(c.p) + ", v " +
+      throw Error(dof() + "current state must be finite, got p " + otg_number(c.p) + ", v " +
                   otg_number(c.v) + ", a " + otg_number(c.a));
     if ((!velocity_interface && !std::isfinite(t.p)) || !std::isfinite(t.v) || !std::isfinite(t.a))
-      throw Error(dof + "target state must be finite, got p " + otg_number(t.p) + ", v " +
+      throw Error(dof() + "target state must be finite, got p " + otg_number(t.p) + ", v " +
                   otg_number(t.v) + ", a " + otg_number(t.a));
     const JerkLimits& l = limits_[i];
     if (std::abs(t.v) > l.velocity)
-      throw Error(dof + "target velocity " + otg_number(t.v) + " exceeds its limit " +
+      throw Error(dof() + "target velocity " + otg_number(t.v) + " exceeds its limit " +
                   otg_number(l.velocity));
     if (std::abs(t.a) > l.acceleration)
-      throw Error(dof + "target acceleration " + otg_number(t.a) + " exceeds its limit " +
+      throw Error(dof() + "target acceleration " + otg_number(t.a) + " exceeds its limit " +
                   otg_number(l.acceleration));
     if (!velocity_interface && !is_reachable(t, l))
-      throw Error(dof + "target state (v " + otg_number(t.v) + ", a " + otg_number(t.a) +
+      throw Error(dof() + "target state (v " + otg_number(t.v) + ", a " + otg_number(t.a) +
                   ") cannot be reached without exceeding the velocity limit " +
                   otg_number(l.velocity) + " (|v − a·|a|/(2·jerk)| must be ≤ it)");
   }

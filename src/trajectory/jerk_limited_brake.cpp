@@ -30,9 +30,11 @@ bool is_reachable(const KinematicState& s, const JerkLimits& limits) noexcept {
          std::abs(s.v - s.a * std::abs(s.a) / (2.0 * limits.jerk)) <= v;
 }
 
-bool append_brake(const KinematicState& start, const JerkLimits& limits,
-                  JerkProfile& profile) noexcept {
-  if (is_startable(start, limits)) return true;
+namespace {
+
+/// One brake pass from @p start (see append_brake).
+void brake_pass(const KinematicState& start, const JerkLimits& limits,
+                JerkProfile& profile) noexcept {
   const double V = limits.velocity, A = limits.acceleration, J = limits.jerk;
   // the braking direction: a velocity violation decides it, else the acceleration's; the
   // problem is then seen in "up" coordinates (all values times sign) with the violation on the
@@ -70,6 +72,17 @@ bool append_brake(const KinematicState& start, const JerkLimits& limits,
   } else if (a0 > A) {
     profile.append(-sign * J, (a0 - A) / J);  // only the acceleration is too large
   }
+}
+
+}  // namespace
+
+bool append_brake(const KinematicState& start, const JerkLimits& limits,
+                  JerkProfile& profile) noexcept {
+  // a second pass handles a first one that overshoots to the other side (a deceleration far
+  // beyond its limit turns a too-high velocity into a too-low one while it is ramped back)
+  if (profile.size() == 0) profile.reset(start);
+  for (int pass = 0; pass < 2 && !is_startable(profile.end(), limits); ++pass)
+    brake_pass(profile.end(), limits, profile);
   return is_startable(profile.end(), limits);
 }
 

@@ -18,12 +18,13 @@ bool is_startable(const KinematicState& s, const JerkLimits& limits) noexcept;
 /// |v − a·|a|/(2 j_max)| ≤ v_max (the state was reached without overshooting).
 bool is_reachable(const KinematicState& s, const JerkLimits& limits) noexcept;
 
-/// Appends to @p profile (which must start at @p start and be empty) the brake phases (at most
-/// two: full jerk towards the limit acceleration of the braking direction, then a hold at that
-/// acceleration) that bring @p start into an is_startable() state. Appends nothing when @p start
-/// is already startable.
-/// @return false when two phases do not suffice (limits where a²_max/(2 j_max) > 2 v_max, in
-/// which braking to v_max already overshoots −v_max). Never allocates, never throws.
+/// Appends to @p profile (which must start at @p start and be empty) the brake phases that
+/// bring @p start into an is_startable() state: full jerk towards the limit acceleration of the
+/// braking direction, then a hold at that acceleration, and when that overshoots to the other
+/// side (a deceleration far beyond its limit), one more such pass — at most 4 phases. Appends
+/// nothing when @p start is already startable.
+/// @return false when that does not suffice (limits where a²_max/(2 j_max) > 2 v_max, in which
+/// braking to v_max already overshoots −v_max). Never allocates, never throws.
 bool append_brake(const KinematicState& start, const JerkLimits& limits,
                   JerkProfile& profile) noexcept;
 

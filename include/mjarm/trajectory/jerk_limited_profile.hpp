@@ -1,7 +1,7 @@
 #pragma once
 /// @file
-/// `JerkProfile`: one degree of freedom moved by piecewise-constant jerk (at most 9 phases: a
-/// brake pre-trajectory of up to 2 phases and the 7 phases of a jerk-limited profile), with its
+/// `JerkProfile`: one degree of freedom moved by piecewise-constant jerk (at most 11 phases: a
+/// brake pre-trajectory of up to 4 phases and the 7 phases of a jerk-limited profile), with its
 /// state at any time and the analytic extrema of velocity and acceleration over every phase.
 /// Also the per-DoF `JerkLimits` and the `KinematicState` (p, v, a) the generator works on.
 
@@ -47,7 +47,7 @@ struct JerkExtrema {
 class JerkProfile {
  public:
   /// Most phases a profile holds.
-  static constexpr int kMaxPhases = 9;
+  static constexpr int kMaxPhases = 11;
 
   /// An empty profile resting at the origin.
   JerkProfile() = default;

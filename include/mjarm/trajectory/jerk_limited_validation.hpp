@@ -50,10 +50,11 @@ struct OtgValidationResult {
   int reference_cases = 0;           ///< one-DoF cases checked against the grid reference
   /// Reference cases where a grid motion shorter than the computed minimum exists (the
   /// minimum is beaten: a definite error), or where none exists within 3 % above it (the
-  /// reference disagrees).
+  /// reference disagrees; checked when the grid's velocity margin j·h²/8 is ≤ 1 % of v_max).
   int optimality_mismatches = 0;
   int blocked_checked = 0;     ///< blocked intervals probed by the reference
   int blocked_mismatches = 0;  ///< of those, midpoints where a grid motion exists
+  std::string first_reference_failure;  ///< the first reference mismatch (empty when none)
 };
 
 /// Runs the protocol (see the file comment).
