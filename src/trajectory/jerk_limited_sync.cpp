@@ -15,8 +15,11 @@ bool free_for_all(std::span<const JerkBlock> blocks, std::span<const double> off
     const double local = t - offsets[i];
     // t_min itself is feasible (round-off may put local a hair below it)
     if (local < b.t_min - 1e-12 * std::max(1.0, b.t_min)) return false;
-    for (int k = 0; k < b.blocked_count; ++k)
-      if (local > b.blocked[k].lower && local < b.blocked[k].upper) return false;
+    // an interval's ends are feasible; offset + end − offset may land a hair inside
+    for (int k = 0; k < b.blocked_count; ++k) {
+      const double eps = 1e-12 * std::max(1.0, b.blocked[k].upper);
+      if (local > b.blocked[k].lower + eps && local < b.blocked[k].upper - eps) return false;
+    }
   }
   return true;
 }

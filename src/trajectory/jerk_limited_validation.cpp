@@ -162,7 +162,8 @@ OtgValidationResult run_otg_validation(const OtgValidationOptions& options) {
       ++r.position_failures;
       if (r.first_failure.empty()) {
         const int d = std::max(res.failed_dof, 0);
-        r.first_failure = describe(to_string(res.status), d, start[d], target[d], limits[d]);
+        r.first_failure = describe(to_string(res.status), d, start[d], target[d], limits[d]) +
+                          ", synchronized duration " + std::to_string(res.duration) + " s";
       }
     } else {
       for (std::size_t i = 0; i < n; ++i) {
@@ -192,9 +193,12 @@ OtgValidationResult run_otg_validation(const OtgValidationOptions& options) {
     velocity_total_us += std::chrono::duration<double, std::micro>(t3 - t2).count();
     if (vres.status != OtgStatus::working && vres.status != OtgStatus::finished) {
       ++r.velocity_failures;
-      if (r.first_failure.empty()) {
+      if (r.first_velocity_failure.empty()) {
         const int d = std::max(vres.failed_dof, 0);
-        r.first_failure = describe("velocity interface", d, start[d], target[d], limits[d]);
+        r.first_velocity_failure =
+            describe(to_string(vres.status), d, start[d], target[d], limits[d]) +
+            ", synchronized duration " + std::to_string(vres.duration) + " s, brake " +
+            std::to_string(otg.brake_phases(d)) + " phases";
       }
     } else {
       for (std::size_t i = 0; i < n; ++i) {

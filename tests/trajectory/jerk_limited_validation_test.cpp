@@ -25,12 +25,12 @@ TEST(JerkLimitedValidation, SeededBatchKeepsLimitsAndReachesTargets) {
   EXPECT_LE(r.worst_target_error, 1e-8);
   EXPECT_LE(r.worst_velocity_target_error, 1e-8);
   EXPECT_LE(r.worst_sync_error, 1e-9);
-  EXPECT_EQ(r.velocity_failures, 0) << r.first_failure;
+  EXPECT_EQ(r.velocity_failures, 0) << r.first_velocity_failure;
   EXPECT_LE(r.position_failures, r.cases / 100) << r.first_failure;
   EXPECT_GT(r.braking_dofs, 0);
   EXPECT_EQ(r.reference_cases, 10);
-  EXPECT_EQ(r.optimality_mismatches, 0) << r.first_failure;
-  EXPECT_EQ(r.blocked_mismatches, 0) << r.first_failure;
+  EXPECT_EQ(r.optimality_mismatches, 0) << r.first_reference_failure;
+  EXPECT_EQ(r.blocked_mismatches, 0) << r.first_reference_failure;
 }
 
 TEST(JerkLimitedValidation, RejectsBadOptions) {

@@ -40,6 +40,7 @@ struct OtgValidationResult {
   double worst_velocity_target_error = 0.0;  ///< max |end − target| over v, a (velocity)
   double worst_sync_error = 0.0;             ///< max |DoF duration − synchronized duration| [s]
   std::string first_failure;                 ///< description of the first failure (empty when none)
+  std::string first_velocity_failure;        ///< the first velocity-interface failure (empty: none)
   double mean_us = 0.0;                      ///< mean position calculation time [µs]
   double median_us = 0.0;                    ///< median [µs]
   double p99_us = 0.0;                       ///< 99th percentile [µs]
@@ -52,8 +53,8 @@ struct OtgValidationResult {
   /// minimum is beaten: a definite error), or where none exists within 3 % above it (the
   /// reference disagrees; checked when the grid's velocity margin j·h²/8 is ≤ 1 % of v_max).
   int optimality_mismatches = 0;
-  int blocked_checked = 0;     ///< blocked intervals probed by the reference
-  int blocked_mismatches = 0;  ///< of those, midpoints where a grid motion exists
+  int blocked_checked = 0;              ///< blocked intervals probed by the reference
+  int blocked_mismatches = 0;           ///< of those, midpoints where a grid motion exists
   std::string first_reference_failure;  ///< the first reference mismatch (empty when none)
 };
 
