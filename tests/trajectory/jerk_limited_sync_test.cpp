@@ -64,7 +64,7 @@ TEST(JerkLimitedSync, TheSlowestDoFSetsTheDurationUnlessAnotherBlocksIt) {
     // an interval's upper end reached through an offset that does not round-trip exactly
     const double offsets[] = {0.0, 0.7};  // (7.77… + 0.7) − 0.7 < 7.77… in doubles
     const JerkBlock blocks[] = {
-        block(2.2227094490612549),
+        block(3.0),
         block(1.2896800400012693, {1.6077583663995674, 7.7748450053870037})};
     ASSERT_TRUE(synchronize(blocks, offsets, sync));
     EXPECT_NEAR(sync.duration, 7.7748450053870037 + 0.7, 1e-15);
