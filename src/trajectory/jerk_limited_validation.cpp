@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <ctime>
 #include <random>
 #include <vector>
 
@@ -77,6 +78,18 @@ std::string describe(const char* what, int dof, const KinematicState& s, const K
   return buffer;
 }
 
+/// Now in µs on the steady clock or, when @p cpu, the calling thread's CPU clock.
+double otg_now_us(bool cpu) {
+  if (cpu) {
+    timespec ts{};
+    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+    return 1e6 * static_cast<double>(ts.tv_sec) + 1e-3 * static_cast<double>(ts.tv_nsec);
+  }
+  return std::chrono::duration<double, std::micro>(
+             std::chrono::steady_clock::now().time_since_epoch())
+      .count();
+}
+
 double percentile(std::vector<double>& sorted, double q) {
   if (sorted.empty()) return 0.0;
   const std::size_t i = std::min(sorted.size() - 1, static_cast<std::size_t>(q * sorted.size()));
@@ -137,7 +150,6 @@ OtgValidationResult run_otg_validation(const OtgValidationOptions& options) {
   std::vector<double> times;
   times.reserve(static_cast<std::size_t>(options.cases));
   double velocity_total_us = 0.0;
-  using Clock = std::chrono::steady_clock;
 
   for (int c = 0; c < options.cases; ++c) {
     for (std::size_t i = 0; i < n; ++i) {
@@ -153,11 +165,11 @@ OtgValidationResult run_otg_validation(const OtgValidationOptions& options) {
     JerkLimitedGenerator otg(limits);
     // position interface
     const std::uint64_t a0 = r.allocations_counted ? options.allocation_count() : 0;
-    const Clock::time_point t0 = Clock::now();
+    const double t0 = otg_now_us(options.thread_cpu_clock);
     const OtgResult res = otg.calculate(start, target);
-    const Clock::time_point t1 = Clock::now();
+    const double t1 = otg_now_us(options.thread_cpu_clock);
     if (r.allocations_counted) r.allocations += options.allocation_count() - a0;
-    times.push_back(std::chrono::duration<double, std::micro>(t1 - t0).count());
+    times.push_back(t1 - t0);
     if (res.status != OtgStatus::working && res.status != OtgStatus::finished) {
       ++r.position_failures;
       if (r.first_failure.empty()) {
@@ -186,11 +198,11 @@ OtgValidationResult run_otg_validation(const OtgValidationOptions& options) {
     }
     // velocity interface (the same states; positions ignored)
     const std::uint64_t b0 = r.allocations_counted ? options.allocation_count() : 0;
-    const Clock::time_point t2 = Clock::now();
+    const double t2 = otg_now_us(options.thread_cpu_clock);
     const OtgResult vres = otg.calculate_velocity(start, target);
-    const Clock::time_point t3 = Clock::now();
+    const double t3 = otg_now_us(options.thread_cpu_clock);
     if (r.allocations_counted) r.allocations += options.allocation_count() - b0;
-    velocity_total_us += std::chrono::duration<double, std::micro>(t3 - t2).count();
+    velocity_total_us += t3 - t2;
     if (vres.status != OtgStatus::working && vres.status != OtgStatus::finished) {
       ++r.velocity_failures;
       if (r.first_velocity_failure.empty()) {

@@ -21,6 +21,9 @@ struct OtgValidationOptions {
   /// One-DoF cases checked against the grid reference (a QP per duration probed: slow).
   int reference_cases = 0;
   int reference_steps = 100;  ///< jerk steps of the reference grid
+  /// Time the calculations on the calling thread's CPU clock instead of the steady wall clock
+  /// (on a shared machine, time the thread was not running is not counted).
+  bool thread_cpu_clock = false;
   /// Heap allocations of the process so far (optional; counted around each calculation).
   std::function<std::uint64_t()> allocation_count;
   /// Called now and then with (cases done, cases) (optional).
