@@ -288,7 +288,9 @@ bool fixed_time_profile(const KinematicState& start, const KinematicState& targe
   if (!(duration >= 0.0) || !std::isfinite(duration)) return false;
   profile.reset(start);
   if (duration == 0.0 || duration <= 1e-12) return reaches_within_limits(profile, target, limits);
-  for (const double sign : {1.0, -1.0}) {
+  // the direction of the displacement first: its structures usually hold the answer
+  const double first = target.p >= start.p ? 1.0 : -1.0;
+  for (const double sign : {first, -first}) {
     FixedProblem fp;
     fp.start = start;
     fp.target = target;
