@@ -281,6 +281,46 @@ bool solve_limit_cruise(const FixedProblem& fp, bool hold_in_rise, JerkProfile& 
   return solve_structure(fp, st, 0.0, T, profile);
 }
 
+/// No cruise, no hold: (+j_r, −j_r, +j_r) with a reduced jerk j_r ≤ j_max. With y = 1/j_r and
+/// δ = a_f − a₀: t₂ = (T − δy)/2, t₁ + t₃ = S = (T + δy)/2, and the velocity equation gives
+/// t₁ = N(y)/(2t₂) with N = (Δv − a₀T)·y − (S²/2 − t₂²/2 − t₂S). The jerk part of the position
+/// is a homogeneous cubic P in the durations, so (2t₂)³·(position residual)·y is the polynomial
+/// y·(2t₂)³·(v₀T + a₀T²/2 − D) + P(N, 2t₂², 2t₂S − N) of degree ≤ 7 in y.
+bool solve_reduced_jerk(const FixedProblem& fp, JerkProfile& profile) noexcept {
+  const double J = fp.limits.jerk, T = fp.duration, a0 = fp.a0, v0 = fp.v0;
+  const double d = fp.af - a0;
+  const Polynomial t2 = linear(0.5 * T, -0.5 * d);
+  const Polynomial S = linear(0.5 * T, 0.5 * d);
+  const Polynomial N =
+      linear(0.0, fp.vf - v0 - a0 * T) - (0.5 * (S * S) - 0.5 * (t2 * t2) - t2 * S);
+  const Polynomial two_t2 = 2.0 * t2;
+  SymbolicPhases jerk_part(Polynomial{}, 0.0, 0.0);
+  jerk_part.phase(1.0, ext(N));
+  jerk_part.phase(-1.0, ext(two_t2 * t2));
+  jerk_part.phase(1.0, ext(two_t2 * S - N));
+  const Polynomial cube = two_t2 * two_t2 * two_t2;
+  const Polynomial residual =
+      linear(0.0, v0 * T + 0.5 * a0 * T * T - fp.distance) * cube + jerk_part.position().a;
+  std::array<double, kMaxRoots> roots{};
+  const int n = real_roots(residual, 1.0 / J, HUGE_VAL, roots);
+  for (int k = 0; k < n; ++k) {
+    const double y = roots[k];
+    const double h2 = t2(y);
+    if (!(h2 > 0.0)) continue;
+    const double h1 = N(y) / (2.0 * h2), h3 = S(y) - h1;
+    if (!(h1 >= -1e-12 && h3 >= -1e-12)) continue;
+    const double jr = 1.0 / y;
+    profile.reset(fp.start);
+    if (h1 > 0.0) profile.append(fp.sign * jr, h1);
+    profile.append(-fp.sign * jr, h2);
+    if (h3 > 0.0) profile.append(fp.sign * jr, h3);
+    if (std::abs(profile.duration() - T) <= 1e-9 * std::max(1.0, T) &&
+        reaches_within_limits(profile, fp.target, fp.limits))
+      return true;
+  }
+  return false;
+}
+
 }  // namespace
 
 bool fixed_time_profile(const KinematicState& start, const KinematicState& target,
@@ -314,6 +354,7 @@ bool fixed_time_profile(const KinematicState& start, const KinematicState& targe
       if (solve_end_hold(fp, at_start, profile)) return true;
     for (const bool hold_in_rise : {false, true})
       if (solve_limit_cruise(fp, hold_in_rise, profile)) return true;
+    if (solve_reduced_jerk(fp, profile)) return true;
   }
   return false;
 }

@@ -22,6 +22,34 @@ TEST(JerkLimitedFixedTime, RestToRestSlowerThanNeeded) {
   EXPECT_FALSE(fixed_time_profile({0.0, 0.0, 0.0}, {1.0, 0.0, 0.0}, l, std::nan(""), p));
 }
 
+// Cases the full-jerk structures miss and the reduced-jerk one (+j_r, −j_r, +j_r) solves.
+TEST(JerkLimitedFixedTime, AReducedJerkFillsTheGapsOfTheFullJerkStructures) {
+  const struct {
+    JerkLimits l;
+    KinematicState s, f;
+    double t;
+  } cases[] = {{{1.8410291779337169, 5.3574362183148114, 14.729014180350156},
+                {0.75605777311114997, 1.4312142524741733, -4.3759436702624006},
+                {0.49741712714757647, -1.1359316408645193, 1.5900263631719189},
+                1.0313789629063685},
+               {{2.9440450182521913, 3.8592108536896896, 7.1660528537031434},
+                {1.6825385604135703, 2.1318898742140551, -0.82737233025247214},
+                {1.5386983370219003, -2.6980458454390011, -3.4385153327049718},
+                1.9019444206686771},
+               {{1.1470382772231527, 3.0292959783079856, 5.2668343997083449},
+                {0.0012544494176456311, -0.78109233019596302, 1.7169657493911601},
+                {0.71516881057161941, 0.38340132973053104, -2.5801736846812924},
+                1.8759649453961278}};
+  for (const auto& c : cases) {
+    JerkProfile p;
+    ASSERT_TRUE(fixed_time_profile(c.s, c.f, c.l, c.t, p));
+    EXPECT_NEAR(p.duration(), c.t, 1e-9);
+    EXPECT_LT(test::target_error(p, c.f), 1e-8);
+    EXPECT_TRUE(p.within(c.l, 1e-9));
+    EXPECT_LT(std::abs(p.jerk(0)), c.l.jerk);  // the jerk is reduced
+  }
+}
+
 // Every duration from the minimum up to four times it, outside blocked intervals, gets a
 // profile of exactly that duration. The structures of fixed_time_profile() do not cover every
 // case (see docs/trajectory_otg.md): the share of misses is bounded here, and each miss is one
