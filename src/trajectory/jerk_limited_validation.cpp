@@ -68,8 +68,8 @@ double limit_excess(const JerkProfile& profile, const JerkLimits& limits, int fi
   return worst;
 }
 
-std::string describe(const char* what, int dof, const KinematicState& s, const KinematicState& t,
-                     const JerkLimits& l) {
+std::string describe_otg_case(const char* what, int dof, const KinematicState& s,
+                              const KinematicState& t, const JerkLimits& l) {
   char buffer[400];
   std::snprintf(buffer, sizeof buffer,
                 "%s: DoF %d, limits (v %.17g, a %.17g, j %.17g), start (%.17g, %.17g, %.17g), "
@@ -90,7 +90,7 @@ double otg_now_us(bool cpu) {
       .count();
 }
 
-double percentile(std::vector<double>& sorted, double q) {
+double otg_percentile(std::vector<double>& sorted, double q) {
   if (sorted.empty()) return 0.0;
   const std::size_t i = std::min(sorted.size() - 1, static_cast<std::size_t>(q * sorted.size()));
   return sorted[i];
@@ -117,7 +117,7 @@ void check_against_reference(OtgCaseSampler& sampler, int steps, OtgValidationRe
   if (mismatch) {
     ++r.optimality_mismatches;
     if (r.first_reference_failure.empty())
-      r.first_reference_failure = describe("optimality", 0, s, t, l);
+      r.first_reference_failure = describe_otg_case("optimality", 0, s, t, l);
   }
   for (int k = 0; k < block.blocked_count; ++k) {
     ++r.blocked_checked;
@@ -125,7 +125,7 @@ void check_against_reference(OtgCaseSampler& sampler, int steps, OtgValidationRe
     if (grid_motion_exists(s, t, l, mid, steps)) {
       ++r.blocked_mismatches;
       if (r.first_reference_failure.empty())
-        r.first_reference_failure = describe("blocked interval", 0, s, t, l);
+        r.first_reference_failure = describe_otg_case("blocked interval", 0, s, t, l);
     }
   }
 }
@@ -174,8 +174,9 @@ OtgValidationResult run_otg_validation(const OtgValidationOptions& options) {
       ++r.position_failures;
       if (r.first_failure.empty()) {
         const int d = std::max(res.failed_dof, 0);
-        r.first_failure = describe(to_string(res.status), d, start[d], target[d], limits[d]) +
-                          ", synchronized duration " + std::to_string(res.duration) + " s";
+        r.first_failure =
+            describe_otg_case(to_string(res.status), d, start[d], target[d], limits[d]) +
+            ", synchronized duration " + std::to_string(res.duration) + " s";
       }
     } else {
       for (std::size_t i = 0; i < n; ++i) {
@@ -192,7 +193,7 @@ OtgValidationResult run_otg_validation(const OtgValidationOptions& options) {
           ++r.check_failures;
           if (r.first_failure.empty())
             r.first_failure =
-                describe("check", static_cast<int>(i), start[i], target[i], limits[i]);
+                describe_otg_case("check", static_cast<int>(i), start[i], target[i], limits[i]);
         }
       }
     }
@@ -208,7 +209,7 @@ OtgValidationResult run_otg_validation(const OtgValidationOptions& options) {
       if (r.first_velocity_failure.empty()) {
         const int d = std::max(vres.failed_dof, 0);
         r.first_velocity_failure =
-            describe(to_string(vres.status), d, start[d], target[d], limits[d]) +
+            describe_otg_case(to_string(vres.status), d, start[d], target[d], limits[d]) +
             ", synchronized duration " + std::to_string(vres.duration) + " s, brake " +
             std::to_string(otg.brake_phases(d)) + " phases";
       }
@@ -226,8 +227,8 @@ OtgValidationResult run_otg_validation(const OtgValidationOptions& options) {
         if (err > 1e-8 || excess > 1e-9 || sync > 1e-9 * std::max(1.0, vres.duration)) {
           ++r.check_failures;
           if (r.first_failure.empty())
-            r.first_failure =
-                describe("velocity check", static_cast<int>(i), start[i], target[i], limits[i]);
+            r.first_failure = describe_otg_case("velocity check", static_cast<int>(i), start[i],
+                                                target[i], limits[i]);
         }
       }
     }
@@ -241,8 +242,8 @@ OtgValidationResult run_otg_validation(const OtgValidationOptions& options) {
   for (const double t : times) total += t;
   r.mean_us = total / static_cast<double>(times.size());
   std::sort(times.begin(), times.end());
-  r.median_us = percentile(times, 0.5);
-  r.p99_us = percentile(times, 0.99);
+  r.median_us = otg_percentile(times, 0.5);
+  r.p99_us = otg_percentile(times, 0.99);
   r.max_us = times.back();
   r.velocity_mean_us = velocity_total_us / options.cases;
   return r;

@@ -7,7 +7,7 @@
 namespace mjarm {
 namespace {
 
-JerkProfile sample_profile() {
+JerkProfile sample_jerk_profile() {
   JerkProfile p;
   p.reset({0.5, -0.2, 0.4});
   p.append(2.0, 0.3);
@@ -19,7 +19,7 @@ JerkProfile sample_profile() {
 }
 
 TEST(JerkProfile, StateAtIsTheIntegralOfItsJerk) {
-  const JerkProfile p = sample_profile();
+  const JerkProfile p = sample_jerk_profile();
   EXPECT_NEAR(p.duration(), 1.85, 1e-15);
   // a fine explicit integration of the same jerk agrees with the closed form everywhere
   KinematicState s = p.start();
@@ -38,7 +38,7 @@ TEST(JerkProfile, StateAtIsTheIntegralOfItsJerk) {
 }
 
 TEST(JerkProfile, ClampsBeforeAndExtrapolatesAfter) {
-  const JerkProfile p = sample_profile();
+  const JerkProfile p = sample_jerk_profile();
   const JerkSample before = p.at(-1.0);
   EXPECT_EQ(before.p, 0.5);
   EXPECT_EQ(before.v, -0.2);
@@ -51,7 +51,7 @@ TEST(JerkProfile, ClampsBeforeAndExtrapolatesAfter) {
 }
 
 TEST(JerkProfile, ExtremaMatchADenseScan) {
-  const JerkProfile p = sample_profile();
+  const JerkProfile p = sample_jerk_profile();
   const JerkExtrema e = p.extrema();
   double v_min = 1e9, v_max = -1e9, a_min = 1e9, a_max = -1e9;
   for (int k = 0; k <= 200000; ++k) {
@@ -73,7 +73,7 @@ TEST(JerkProfile, ExtremaMatchADenseScan) {
 }
 
 TEST(JerkProfile, WithinChecksEveryLimit) {
-  const JerkProfile p = sample_profile();
+  const JerkProfile p = sample_jerk_profile();
   const JerkExtrema e = p.extrema();
   const double v = std::max(-e.v_min, e.v_max), a = std::max(-e.a_min, e.a_max);
   EXPECT_TRUE(p.within({v, a, 2.0}, 1e-12));

@@ -8,7 +8,7 @@ namespace mjarm {
 namespace {
 
 /// The monic polynomial with the given roots.
-Polynomial from_roots(std::initializer_list<double> roots) {
+Polynomial poly_from_roots(std::initializer_list<double> roots) {
   Polynomial p;
   p.c[0] = 1.0;
   p.degree = 0;
@@ -25,7 +25,7 @@ Polynomial from_roots(std::initializer_list<double> roots) {
 }
 
 TEST(JerkLimitedRoots, FindsEveryRootOfAProductInOrder) {
-  const Polynomial p = from_roots({-2.5, -0.3, 0.1, 0.7, 1.9, 4.0});
+  const Polynomial p = poly_from_roots({-2.5, -0.3, 0.1, 0.7, 1.9, 4.0});
   std::array<double, kMaxRoots> roots{};
   const int n = real_roots(p, -10.0, 10.0, roots);
   ASSERT_EQ(n, 6);
@@ -34,7 +34,7 @@ TEST(JerkLimitedRoots, FindsEveryRootOfAProductInOrder) {
 }
 
 TEST(JerkLimitedRoots, KeepsOnlyTheInterval) {
-  const Polynomial p = from_roots({-1.0, 0.5, 2.0, 3.0});
+  const Polynomial p = poly_from_roots({-1.0, 0.5, 2.0, 3.0});
   std::array<double, kMaxRoots> roots{};
   const int n = real_roots(p, 0.0, 2.5, roots);
   ASSERT_EQ(n, 2);
@@ -43,7 +43,7 @@ TEST(JerkLimitedRoots, KeepsOnlyTheInterval) {
 }
 
 TEST(JerkLimitedRoots, FindsADoubleRootWhereTheSignDoesNotChange) {
-  const Polynomial p = from_roots({0.25, 0.25, -1.0});
+  const Polynomial p = poly_from_roots({0.25, 0.25, -1.0});
   std::array<double, kMaxRoots> roots{};
   const int n = real_roots(p, -5.0, 5.0, roots);
   ASSERT_GE(n, 2);
@@ -61,7 +61,7 @@ TEST(JerkLimitedRoots, NoRealRootsAndDegenerateInput) {
   p.c[0] = std::nan("");
   EXPECT_EQ(real_roots(p, -1.0, 1.0, roots), 0);
   // an infinite interval is clipped to the root bound
-  const Polynomial q = from_roots({-300.0, 7.0, 1e3});
+  const Polynomial q = poly_from_roots({-300.0, 7.0, 1e3});
   ASSERT_EQ(real_roots(q, -HUGE_VAL, HUGE_VAL, roots), 3);
   EXPECT_NEAR(roots[2], 1e3, 1e-9);
 }
@@ -76,7 +76,7 @@ TEST(JerkLimitedRoots, RandomSexticsMatchTheirConstruction) {
     bool separated = true;
     for (int i = 1; i < 6; ++i) separated = separated && r[i] - r[i - 1] > 1e-3;
     if (!separated) continue;
-    const Polynomial p = from_roots({r[0], r[1], r[2], r[3], r[4], r[5]});
+    const Polynomial p = poly_from_roots({r[0], r[1], r[2], r[3], r[4], r[5]});
     std::array<double, kMaxRoots> roots{};
     ASSERT_EQ(real_roots(p, -4.0, 4.0, roots), 6) << k;
     for (int i = 0; i < 6; ++i) EXPECT_NEAR(roots[i], r[i], 1e-8) << k;
