@@ -196,6 +196,28 @@ OtgValidationResult run_otg_validation(const OtgValidationOptions& options) {
                 describe_otg_case("check", static_cast<int>(i), start[i], target[i], limits[i]);
         }
       }
+      // the limiting DoF cannot be faster: no grid motion just below its share of the duration
+      // (inside its blocked interval when the duration is an interval's end)
+      if (c < options.reference_cases && res.limiting_dof >= 0) {
+        const int d = res.limiting_dof;
+        const double local = res.duration - otg.brake_duration(d);
+        const JerkBlock& b = otg.block(d);
+        double probe = local * (1.0 - 1e-3);
+        for (int k = 0; k < b.blocked_count; ++k)
+          if (std::abs(b.blocked[k].upper - local) <= 1e-9 * std::max(1.0, local))
+            probe = std::max(probe, 0.5 * (b.blocked[k].lower + b.blocked[k].upper));
+        if (local > 1e-6) {
+          ++r.sync_reference_cases;
+          const JerkSample s = otg.profile(d).at(otg.brake_duration(d));
+          if (grid_motion_exists({s.p, s.v, s.a}, target[d], limits[d], probe,
+                                 options.reference_steps)) {
+            ++r.sync_mismatches;
+            if (r.first_reference_failure.empty())
+              r.first_reference_failure =
+                  describe_otg_case("synchronization", d, start[d], target[d], limits[d]);
+          }
+        }
+      }
     }
     // velocity interface (the same states; positions ignored)
     const std::uint64_t b0 = r.allocations_counted ? options.allocation_count() : 0;

@@ -31,6 +31,8 @@ TEST(JerkLimitedValidation, SeededBatchKeepsLimitsAndReachesTargets) {
   EXPECT_EQ(r.reference_cases, 10);
   EXPECT_EQ(r.optimality_mismatches, 0) << r.first_reference_failure;
   EXPECT_EQ(r.blocked_mismatches, 0) << r.first_reference_failure;
+  EXPECT_GE(r.sync_reference_cases, 9);
+  EXPECT_EQ(r.sync_mismatches, 0) << r.first_reference_failure;
 }
 
 TEST(JerkLimitedValidation, RejectsBadOptions) {

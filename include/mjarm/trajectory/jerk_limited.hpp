@@ -79,6 +79,8 @@ class JerkLimitedGenerator {
   /// Number of brake phases at the start of profile(@p i) (0 when the DoF started within its
   /// limits).
   int brake_phases(int i) const { return brake_phases_.at(static_cast<std::size_t>(i)); }
+  /// Duration of the brake phases of profile(@p i) [s].
+  double brake_duration(int i) const { return brake_durations_.at(static_cast<std::size_t>(i)); }
   /// What step 1 found for DoF @p i in the last position calculation.
   const JerkBlock& block(int i) const { return blocks_.at(static_cast<std::size_t>(i)); }
 

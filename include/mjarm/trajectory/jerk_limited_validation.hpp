@@ -56,6 +56,10 @@ struct OtgValidationResult {
   /// minimum is beaten: a definite error), or where none exists within 3 % above it (the
   /// reference disagrees; checked when the grid's velocity margin j·h²/8 is ≤ 1 % of v_max).
   int optimality_mismatches = 0;
+  /// n-DoF cases (the first reference_cases) whose limiting DoF was checked: no grid motion
+  /// of that DoF (after its brake) just shorter than the synchronized duration exists.
+  int sync_reference_cases = 0;
+  int sync_mismatches = 0;              ///< of those, cases where one exists
   int blocked_checked = 0;              ///< blocked intervals probed by the reference
   int blocked_mismatches = 0;           ///< of those, midpoints where a grid motion exists
   std::string first_reference_failure;  ///< the first reference mismatch (empty when none)
