@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "mjarm/trajectory/jerk_limited_block.hpp"
 #include "mjarm/trajectory/jerk_limited_min_time.hpp"
 #include "trajectory/jerk_limited_symbolic.hpp"
 
@@ -356,7 +357,19 @@ bool fixed_time_profile(const KinematicState& start, const KinematicState& targe
       if (solve_limit_cruise(fp, hold_in_rise, profile)) return true;
     if (solve_reduced_jerk(fp, profile)) return true;
   }
-  return false;
+  // last resort when an end is at rest: the time-optimal profile and a rest before or after it
+  const bool target_at_rest = target.v == 0.0 && target.a == 0.0;
+  const bool start_at_rest = start.v == 0.0 && start.a == 0.0;
+  if (!target_at_rest && !start_at_rest) return false;
+  JerkBlock block;
+  if (!min_time_profile(start, target, limits, block) || block.t_min > duration) return false;
+  const JerkProfile& fastest = block.fastest;
+  profile.reset(start);
+  if (!target_at_rest) profile.append(0.0, duration - block.t_min);
+  for (int i = 0; i < fastest.size(); ++i)
+    profile.append(fastest.jerk(i), fastest.phase_duration(i));
+  if (target_at_rest) profile.append(0.0, duration - block.t_min);
+  return reaches_within_limits(profile, target, limits);
 }
 
 }  // namespace mjarm

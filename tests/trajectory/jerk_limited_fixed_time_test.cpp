@@ -50,6 +50,21 @@ TEST(JerkLimitedFixedTime, AReducedJerkFillsTheGapsOfTheFullJerkStructures) {
   }
 }
 
+// A target at rest can always be reached later than the minimum: the time-optimal profile, then
+// a rest. This case (from `mjarm bench otg`) has no profile from the other structures at 10 s+.
+TEST(JerkLimitedFixedTime, ATargetAtRestWaitsWhenNothingElseFits) {
+  const JerkLimits l{1.5025581338088374, 0.57846248159748204, 13.720501381576257};
+  const KinematicState s{2.6683869852891609, -0.46675518089847673, 0.13980748995602732};
+  const KinematicState f{2.4740190392189598, 0.0, 0.0};
+  for (const double t : {10.0, 14.267559, 20.0}) {
+    JerkProfile p;
+    ASSERT_TRUE(fixed_time_profile(s, f, l, t, p)) << t;
+    EXPECT_NEAR(p.duration(), t, 1e-9);
+    EXPECT_LT(test::target_error(p, f), 1e-8);
+    EXPECT_TRUE(p.within(l, 1e-9));
+  }
+}
+
 // Every duration from the minimum up to four times it, outside blocked intervals, gets a
 // profile of exactly that duration. The structures of fixed_time_profile() do not cover every
 // case (see docs/trajectory_otg.md): the share of misses is bounded here, and each miss is one

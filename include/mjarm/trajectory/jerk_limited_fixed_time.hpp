@@ -15,6 +15,9 @@ namespace mjarm {
 ///   with an optional plateau at the limit): one unknown once the duration is fixed;
 /// - no cruise, jerk (+j, −j, +j) with a constant-acceleration hold at a free level after the
 ///   first or after the second ramp.
+/// - a reduced jerk (+j_r, −j_r, +j_r), j_r ≤ j_max;
+/// - when the target (start) is at rest and nothing above fits: the time-optimal profile with a
+///   rest after (before) it.
 /// Each reduces to a polynomial in one unknown (degree ≤ 8); the valid profile found first is
 /// returned (every valid one has the requested duration; they differ in shape only).
 ///
