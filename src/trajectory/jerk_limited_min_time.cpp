@@ -83,7 +83,7 @@ struct MinTimeCollector {
 
 /// Phases 1–3 and 5–7 merged (no velocity plateau): levels u (phase 2) and w (phase 6).
 void solve_without_plateau(const UpProblem& up, MinTimeCollector& out) noexcept {
-  const double V = up.limits.velocity, A = up.limits.acceleration, J = up.limits.jerk;
+  const double A = up.limits.acceleration, J = up.limits.jerk;
   const double a0 = up.a0, af = up.af, v0 = up.v0, D = up.distance;
   const double dv = up.vf - v0;
   std::array<double, kMaxRoots> roots{};
@@ -158,7 +158,6 @@ void solve_without_plateau(const UpProblem& up, MinTimeCollector& out) noexcept 
       out.offer(up, j, t, 5);
     }
   }
-  (void)V;
 }
 
 /// With a velocity plateau at +v_max (phase 4): both halves in closed form.
