@@ -255,9 +255,12 @@ Command add_bench_command(CLI::App& root) {
       ->check(CLI::IsMember({"wall", "cpu"}));
   add_json_flag(*app, options->json);
   const Command control = add_control_subcommand(*bench);
+  const Command otg = add_bench_otg_subcommand(
+      *bench, [] { return g_heap_allocations.load(std::memory_order_relaxed); });
 
-  return {bench, [options, app, control] {
+  return {bench, [options, app, control, otg] {
             if (control.app->parsed()) return control.run();
+            if (otg.app->parsed()) return otg.run();
             if (!app->parsed()) return;
             const Robot robot = load_model(options->model);
             const Chain chain(robot, resolve_site(robot, options->site));

@@ -1,0 +1,113 @@
+#pragma once
+/// @file
+/// `JerkLimitedGenerator`: time-optimal, jerk-limited, time-synchronized online trajectories for
+/// n degrees of freedom (after Berscheid & Kröger 2021, "Jerk-limited real-time trajectory
+/// generation with arbitrary target states"), fast enough to recompute at every control tick.
+///
+/// One calculation:
+/// 1. per DoF, a brake pre-trajectory when the current state is beyond the limits
+///    (jerk_limited_brake.hpp), then the time-optimal profile and the blocked intervals of
+///    durations (jerk_limited_min_time.hpp);
+/// 2. the synchronized duration: the smallest one every DoF can take (jerk_limited_sync.hpp);
+/// 3. for every DoF, a profile of exactly that duration (jerk_limited_fixed_time.hpp).
+/// The velocity interface does the same with velocity targets (jerk_limited_velocity.hpp).
+
+#include <span>
+#include <vector>
+
+#include "mjarm/trajectory/jerk_limited_block.hpp"
+#include "mjarm/trajectory/jerk_limited_profile.hpp"
+
+namespace mjarm {
+
+/// Outcome of a calculation or of a step along the trajectory.
+enum class OtgStatus {
+  working,                ///< a trajectory exists and the target is not reached yet
+  finished,               ///< the target is reached (the time is at or past the duration)
+  error_brake,            ///< a DoF's state is too far beyond its limits to brake in two phases
+  error_no_profile,       ///< step 1 found no time-optimal profile for a DoF
+  error_synchronization,  ///< a DoF has no profile of the synchronized duration
+};
+
+/// Short lowercase name of a status ("working", "error_synchronization", ...).
+const char* to_string(OtgStatus status) noexcept;
+
+/// Result of a calculation.
+struct OtgResult {
+  OtgStatus status = OtgStatus::error_no_profile;  ///< outcome
+  double duration = 0.0;                           ///< synchronized duration [s] (brake included)
+  int limiting_dof = -1;                           ///< the DoF that sets the duration
+  int failed_dof = -1;                             ///< the DoF that failed (error statuses only)
+};
+
+/// The generator. All storage is sized by the constructor; calculate(), at() and step()
+/// allocate nothing.
+class JerkLimitedGenerator {
+ public:
+  /// A generator for one DoF per entry of @p limits.
+  /// @throws Error when @p limits is empty or a limit is not positive and finite (the message
+  /// names the DoF and the limit).
+  explicit JerkLimitedGenerator(std::span<const JerkLimits> limits);
+
+  /// Number of degrees of freedom.
+  int dofs() const noexcept { return static_cast<int>(limits_.size()); }
+  /// The limits of DoF @p i.
+  const JerkLimits& limits(int i) const { return limits_.at(static_cast<std::size_t>(i)); }
+
+  /// Position interface: the synchronized time-optimal trajectory from @p current to @p target
+  /// (p, v, a each). A current state beyond the limits is braked into them first. Restarts the
+  /// clock of step() at 0.
+  /// @throws Error when a span's size is not dofs(), a value is not finite, or a target state
+  /// is outside the limits (|v| > v_max, |a| > a_max, or not reachable without exceeding v_max:
+  /// |v − a·|a|/(2 j_max)| > v_max); the message names the DoF and the value.
+  OtgResult calculate(std::span<const KinematicState> current,
+                      std::span<const KinematicState> target);
+
+  /// Velocity interface: reach the velocities and accelerations of @p target (positions
+  /// ignored) time-optimally under the acceleration and jerk limits, synchronized. A current
+  /// acceleration beyond its limit is ramped into it first. Restarts the clock of step() at 0.
+  /// @throws Error as calculate(); a target velocity may not exceed its limit either.
+  OtgResult calculate_velocity(std::span<const KinematicState> current,
+                               std::span<const KinematicState> target);
+
+  /// The result of the last calculation.
+  const OtgResult& result() const noexcept { return result_; }
+  /// Synchronized duration of the last calculation [s].
+  double duration() const noexcept { return result_.duration; }
+  /// The profile of DoF @p i from the last calculation (brake phases first).
+  const JerkProfile& profile(int i) const { return profiles_.at(static_cast<std::size_t>(i)); }
+  /// Number of brake phases at the start of profile(@p i) (0 when the DoF started within its
+  /// limits).
+  int brake_phases(int i) const { return brake_phases_.at(static_cast<std::size_t>(i)); }
+  /// Duration of the brake phases of profile(@p i) [s].
+  double brake_duration(int i) const { return brake_durations_.at(static_cast<std::size_t>(i)); }
+  /// What step 1 found for DoF @p i in the last position calculation.
+  const JerkBlock& block(int i) const { return blocks_.at(static_cast<std::size_t>(i)); }
+
+  /// The state of every DoF at time @p t [s] of the last trajectory into @p out (its first
+  /// min(size, dofs()) entries).
+  void at(double t, std::span<JerkSample> out) const noexcept;
+
+  /// Online use: advances the clock by @p dt [s] and writes the state then into @p state (its
+  /// first min(size, dofs()) entries). @return working, finished once the clock reached the
+  /// duration, or the error of the last calculation.
+  OtgStatus step(double dt, std::span<KinematicState> state) noexcept;
+  /// The clock of step() [s].
+  double time() const noexcept { return time_; }
+
+ private:
+  void check_states(std::span<const KinematicState> current, std::span<const KinematicState> target,
+                    bool velocity_interface) const;
+
+  std::vector<JerkLimits> limits_;
+  std::vector<JerkProfile> profiles_;
+  std::vector<JerkBlock> blocks_;
+  std::vector<double> brake_durations_;
+  std::vector<int> brake_phases_;
+  std::vector<KinematicState> after_brake_;
+  JerkProfile scratch_;
+  OtgResult result_;
+  double time_ = 0.0;
+};
+
+}  // namespace mjarm

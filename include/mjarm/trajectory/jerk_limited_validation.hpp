@@ -1,0 +1,75 @@
+#pragma once
+/// @file
+/// The validation protocol of the jerk-limited generator (`mjarm bench otg`, and the test suite
+/// with a reduced count): seeded random n-DoF cases through JerkLimitedGenerator, every result
+/// checked at the analytic extrema of every phase, calculation time and heap allocations per
+/// calculation measured, and time optimality checked against an independent grid search
+/// (jerk_limited_reference.hpp) on a subset.
+
+#include <cstdint>
+#include <functional>
+#include <string>
+
+namespace mjarm {
+
+/// What to run.
+struct OtgValidationOptions {
+  int cases = 10000;         ///< random n-DoF cases (position and velocity interface each)
+  int dofs = 7;              ///< DoFs per case
+  std::uint64_t seed = 0;    ///< seed of the case generator
+  double brake_share = 0.1;  ///< share of DoFs that start beyond their limits
+  /// One-DoF cases checked against the grid reference (a QP per duration probed: slow).
+  int reference_cases = 0;
+  int reference_steps = 100;  ///< jerk steps of the reference grid
+  /// Time the calculations on the calling thread's CPU clock instead of the steady wall clock
+  /// (on a shared machine, time the thread was not running is not counted).
+  bool thread_cpu_clock = false;
+  /// Heap allocations of the process so far (optional; counted around each calculation).
+  std::function<std::uint64_t()> allocation_count;
+  /// Called now and then with (cases done, cases) (optional).
+  std::function<void(int, int)> progress;
+};
+
+/// What was measured.
+struct OtgValidationResult {
+  int cases = 0;                       ///< n-DoF cases run (each interface)
+  int dofs = 0;                        ///< DoFs per case
+  int braking_dofs = 0;                ///< DoFs that started beyond their limits
+  int position_failures = 0;           ///< position calculations that did not succeed
+  int velocity_failures = 0;           ///< velocity calculations that did not succeed
+  int check_failures = 0;              ///< successful results that failed a check below
+  double worst_limit_violation = 0.0;  ///< max over results of (|v|/v_max, |a|/a_max) − 1, ≥ 0
+  double worst_target_error = 0.0;     ///< max |end − target| over p, v, a (position interface)
+  double worst_velocity_target_error = 0.0;  ///< max |end − target| over v, a (velocity)
+  double worst_sync_error = 0.0;             ///< max |DoF duration − synchronized duration| [s]
+  std::string first_failure;                 ///< description of the first failure (empty when none)
+  std::string first_velocity_failure;        ///< the first velocity-interface failure (empty: none)
+  double mean_us = 0.0;                      ///< mean position calculation time [µs]
+  double median_us = 0.0;                    ///< median [µs]
+  double p99_us = 0.0;                       ///< 99th percentile [µs]
+  double max_us = 0.0;                       ///< slowest [µs]
+  double velocity_mean_us = 0.0;             ///< mean velocity calculation time [µs]
+  std::uint64_t allocations = 0;     ///< heap allocations inside all calculations (when counted)
+  bool allocations_counted = false;  ///< whether allocation_count was given
+  int reference_cases = 0;           ///< one-DoF cases checked against the grid reference
+  /// Reference cases where a grid motion shorter than the computed minimum exists: the minimum
+  /// is beaten (a definite error, since a grid motion is a true motion).
+  int optimality_beaten = 0;
+  /// Reference cases where no grid motion exists within 3 % above the computed minimum (checked
+  /// when the grid's velocity margin j·h²/8 is ≤ 1 % of v_max): the grid is too coarse for the
+  /// profile's short phases, or the minimum is too short to be right.
+  int reference_not_within = 0;
+  /// n-DoF cases (the first reference_cases) whose limiting DoF was checked: no grid motion
+  /// of that DoF (after its brake) just shorter than the synchronized duration exists.
+  int sync_reference_cases = 0;
+  int sync_mismatches = 0;              ///< of those, cases where one exists
+  int blocked_checked = 0;              ///< blocked intervals probed by the reference
+  int blocked_mismatches = 0;           ///< of those, midpoints where a grid motion exists
+  std::string first_reference_failure;  ///< the first reference mismatch (empty when none)
+};
+
+/// Runs the protocol (see the file comment).
+/// @throws Error when cases < 1, dofs < 1 or brake_share is outside [0, 1].
+OtgValidationResult run_otg_validation(const OtgValidationOptions& options);
+
+}  // namespace mjarm

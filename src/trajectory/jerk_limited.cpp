@@ -1,0 +1,222 @@
+#include "mjarm/trajectory/jerk_limited.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <string>
+
+#include "mjarm/error.hpp"
+#include "mjarm/trajectory/jerk_limited_brake.hpp"
+#include "mjarm/trajectory/jerk_limited_fixed_time.hpp"
+#include "mjarm/trajectory/jerk_limited_min_time.hpp"
+#include "mjarm/trajectory/jerk_limited_sync.hpp"
+#include "mjarm/trajectory/jerk_limited_velocity.hpp"
+
+namespace mjarm {
+
+const char* to_string(OtgStatus status) noexcept {
+  switch (status) {
+    case OtgStatus::working:
+      return "working";
+    case OtgStatus::finished:
+      return "finished";
+    case OtgStatus::error_brake:
+      return "error_brake";
+    case OtgStatus::error_no_profile:
+      return "error_no_profile";
+    case OtgStatus::error_synchronization:
+      return "error_synchronization";
+  }
+  return "unknown";
+}
+
+namespace {
+
+std::string otg_number(double x) {
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%.17g", x);
+  return buffer;
+}
+
+void append_phases(const JerkProfile& from, JerkProfile& to) noexcept {
+  for (int i = 0; i < from.size(); ++i) to.append(from.jerk(i), from.phase_duration(i));
+}
+
+/// A profile of @p block with a duration within round-off of @p duration, or nullptr.
+const JerkProfile* extremal_profile(const JerkBlock& block, double duration) noexcept {
+  for (int k = 0; k < block.duration_count; ++k)
+    if (std::abs(block.durations[k] - duration) <= 1e-10 * std::max(1.0, duration))
+      return &block.profiles[k];
+  return nullptr;
+}
+
+}  // namespace
+
+JerkLimitedGenerator::JerkLimitedGenerator(std::span<const JerkLimits> limits)
+    : limits_(limits.begin(), limits.end()) {
+  if (limits_.empty()) throw Error("JerkLimitedGenerator: expected limits for at least one DoF");
+  for (std::size_t i = 0; i < limits_.size(); ++i) {
+    const JerkLimits& l = limits_[i];
+    const std::pair<const char*, double> entries[] = {
+        {"velocity", l.velocity}, {"acceleration", l.acceleration}, {"jerk", l.jerk}};
+    for (const auto& [name, value] : entries)
+      if (!(value > 0.0) || !std::isfinite(value))
+        throw Error("JerkLimitedGenerator: DoF " + std::to_string(i) + ": " + name +
+                    " limit must be positive and finite, got " + otg_number(value));
+  }
+  profiles_.resize(limits_.size());
+  blocks_.resize(limits_.size());
+  brake_durations_.resize(limits_.size());
+  brake_phases_.resize(limits_.size());
+  after_brake_.resize(limits_.size());
+}
+
+void JerkLimitedGenerator::check_states(std::span<const KinematicState> current,
+                                        std::span<const KinematicState> target,
+                                        bool velocity_interface) const {
+  const std::size_t n = limits_.size();
+  if (current.size() != n || target.size() != n)
+    throw Error("JerkLimitedGenerator: expected " + std::to_string(n) +
+                " current and target states, got " + std::to_string(current.size()) + " and " +
+                std::to_string(target.size()));
+  for (std::size_t i = 0; i < n; ++i) {
+    const KinematicState& c = current[i];
+    const KinematicState& t = target[i];
+    // the message prefix is built only on an error (the check runs at every tick)
+    const auto dof = [i] { return "JerkLimitedGenerator: DoF " + std::to_string(i) + ": "; };
+    if (!std::isfinite(c.p) || !std::isfinite(c.v) || !std::isfinite(c.a))
+      throw Error(dof() + "current state must be finite, got p " + otg_number(c.p) + ", v " +
+                  otg_number(c.v) + ", a " + otg_number(c.a));
+    if ((!velocity_interface && !std::isfinite(t.p)) || !std::isfinite(t.v) || !std::isfinite(t.a))
+      throw Error(dof() + "target state must be finite, got p " + otg_number(t.p) + ", v " +
+                  otg_number(t.v) + ", a " + otg_number(t.a));
+    const JerkLimits& l = limits_[i];
+    if (std::abs(t.v) > l.velocity)
+      throw Error(dof() + "target velocity " + otg_number(t.v) + " exceeds its limit " +
+                  otg_number(l.velocity));
+    if (std::abs(t.a) > l.acceleration)
+      throw Error(dof() + "target acceleration " + otg_number(t.a) + " exceeds its limit " +
+                  otg_number(l.acceleration));
+    if (!velocity_interface && !is_reachable(t, l))
+      throw Error(dof() + "target state (v " + otg_number(t.v) + ", a " + otg_number(t.a) +
+                  ") cannot be reached without exceeding the velocity limit " +
+                  otg_number(l.velocity) + " (|v − a·|a|/(2·jerk)| must be ≤ it)");
+  }
+}
+
+OtgResult JerkLimitedGenerator::calculate(std::span<const KinematicState> current,
+                                          std::span<const KinematicState> target) {
+  check_states(current, target, false);
+  time_ = 0.0;
+  result_ = OtgResult{};
+  const int n = dofs();
+  // step 1 per DoF, after its brake
+  for (int i = 0; i < n; ++i) {
+    JerkProfile& p = profiles_[i];
+    p.reset(current[i]);
+    if (!append_brake(current[i], limits_[i], p)) {
+      result_.status = OtgStatus::error_brake;
+      result_.failed_dof = i;
+      return result_;
+    }
+    brake_durations_[i] = p.duration();
+    brake_phases_[i] = p.size();
+    after_brake_[i] = p.end();
+    if (!min_time_profile(after_brake_[i], target[i], limits_[i], blocks_[i])) {
+      result_.status = OtgStatus::error_no_profile;
+      result_.failed_dof = i;
+      return result_;
+    }
+  }
+  // step 2
+  JerkSync sync;
+  if (!synchronize(blocks_, brake_durations_, sync)) {
+    result_.status = OtgStatus::error_synchronization;
+    return result_;
+  }
+  result_.duration = sync.duration;
+  result_.limiting_dof = sync.limiting_dof;
+  // step 3
+  for (int i = 0; i < n; ++i) {
+    const double local = sync.duration - brake_durations_[i];
+    const JerkProfile* main = extremal_profile(blocks_[i], local);
+    if (main == nullptr) {
+      if (!fixed_time_profile(after_brake_[i], target[i], limits_[i], local, scratch_)) {
+        result_.status = OtgStatus::error_synchronization;
+        result_.failed_dof = i;
+        return result_;
+      }
+      main = &scratch_;
+    }
+    append_phases(*main, profiles_[i]);
+  }
+  result_.status = sync.duration > 0.0 ? OtgStatus::working : OtgStatus::finished;
+  return result_;
+}
+
+OtgResult JerkLimitedGenerator::calculate_velocity(std::span<const KinematicState> current,
+                                                   std::span<const KinematicState> target) {
+  check_states(current, target, true);
+  time_ = 0.0;
+  result_ = OtgResult{};
+  const int n = dofs();
+  for (int i = 0; i < n; ++i) {
+    const JerkLimits& l = limits_[i];
+    JerkProfile& p = profiles_[i];
+    p.reset(current[i]);
+    // an acceleration beyond its limit first ramps into it at full jerk
+    if (std::abs(current[i].a) > l.acceleration)
+      p.append(current[i].a > 0.0 ? -l.jerk : l.jerk,
+               (std::abs(current[i].a) - l.acceleration) / l.jerk);
+    brake_durations_[i] = p.duration();
+    brake_phases_[i] = p.size();
+    after_brake_[i] = p.end();
+    if (!min_time_velocity_profile(after_brake_[i], target[i].v, target[i].a, l, blocks_[i])) {
+      result_.status = OtgStatus::error_no_profile;
+      result_.failed_dof = i;
+      return result_;
+    }
+  }
+  JerkSync sync;
+  if (!synchronize(blocks_, brake_durations_, sync)) {
+    result_.status = OtgStatus::error_synchronization;
+    return result_;
+  }
+  result_.duration = sync.duration;
+  result_.limiting_dof = sync.limiting_dof;
+  for (int i = 0; i < n; ++i) {
+    const double local = sync.duration - brake_durations_[i];
+    const JerkProfile* main = extremal_profile(blocks_[i], local);
+    if (main == nullptr) {
+      if (!fixed_time_velocity_profile(after_brake_[i], target[i].v, target[i].a, limits_[i], local,
+                                       scratch_)) {
+        result_.status = OtgStatus::error_synchronization;
+        result_.failed_dof = i;
+        return result_;
+      }
+      main = &scratch_;
+    }
+    append_phases(*main, profiles_[i]);
+  }
+  result_.status = sync.duration > 0.0 ? OtgStatus::working : OtgStatus::finished;
+  return result_;
+}
+
+void JerkLimitedGenerator::at(double t, std::span<JerkSample> out) const noexcept {
+  const std::size_t n = std::min(out.size(), profiles_.size());
+  for (std::size_t i = 0; i < n; ++i) out[i] = profiles_[i].at(t);
+}
+
+OtgStatus JerkLimitedGenerator::step(double dt, std::span<KinematicState> state) noexcept {
+  if (result_.status != OtgStatus::working && result_.status != OtgStatus::finished)
+    return result_.status;
+  time_ += dt;
+  const std::size_t n = std::min(state.size(), profiles_.size());
+  for (std::size_t i = 0; i < n; ++i) {
+    const JerkSample s = profiles_[i].at(time_);
+    state[i] = {s.p, s.v, s.a};
+  }
+  return time_ >= result_.duration ? OtgStatus::finished : OtgStatus::working;
+}
+
+}  // namespace mjarm

@@ -1,0 +1,277 @@
+#include "mjarm/trajectory/jerk_limited_validation.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <ctime>
+#include <random>
+#include <vector>
+
+#include "mjarm/error.hpp"
+#include "mjarm/trajectory/jerk_limited.hpp"
+#include "mjarm/trajectory/jerk_limited_brake.hpp"
+#include "mjarm/trajectory/jerk_limited_min_time.hpp"
+#include "mjarm/trajectory/jerk_limited_reference.hpp"
+
+namespace mjarm {
+
+namespace {
+
+/// Draws limits, a start and a target for one DoF.
+struct OtgCaseSampler {
+  std::mt19937_64 rng;
+  std::uniform_real_distribution<double> unit{-1.0, 1.0};
+  std::uniform_real_distribution<double> share{0.0, 1.0};
+
+  explicit OtgCaseSampler(std::uint64_t seed) : rng(seed) {}
+
+  double log_uniform(double lo, double hi) {
+    return lo * std::pow(hi / lo, 0.5 * (unit(rng) + 1.0));
+  }
+
+  JerkLimits limits() {
+    return {log_uniform(0.2, 4.0), log_uniform(0.3, 8.0), log_uniform(0.5, 40.0)};
+  }
+
+  KinematicState target(const JerkLimits& l) {
+    for (;;) {
+      KinematicState s{3.0 * unit(rng), l.velocity * unit(rng), l.acceleration * unit(rng)};
+      const double kind = share(rng);
+      if (kind < 0.2)
+        s.v = s.a = 0.0;  // at rest
+      else if (kind < 0.3)
+        s.a = 0.0;
+      if (is_reachable(s, l)) return s;
+    }
+  }
+
+  KinematicState start(const JerkLimits& l, bool beyond) {
+    for (;;) {
+      const double scale = beyond ? 1.6 : 1.0;
+      KinematicState s{3.0 * unit(rng), scale * l.velocity * unit(rng),
+                       scale * l.acceleration * unit(rng)};
+      if (!beyond && share(rng) < 0.2) s.v = s.a = 0.0;
+      if (beyond != is_startable(s, l)) return s;
+    }
+  }
+};
+
+/// Worst relative excess of @p profile over @p limits from phase @p first on (0 when within).
+double limit_excess(const JerkProfile& profile, const JerkLimits& limits, int first) {
+  const JerkExtrema e = profile.extrema(first);
+  double worst = 0.0;
+  worst = std::max(worst, std::max(-e.v_min, e.v_max) / limits.velocity - 1.0);
+  worst = std::max(worst, std::max(-e.a_min, e.a_max) / limits.acceleration - 1.0);
+  for (int i = first; i < profile.size(); ++i)
+    worst = std::max(worst, std::abs(profile.jerk(i)) / limits.jerk - 1.0);
+  return worst;
+}
+
+std::string describe_otg_case(const char* what, int dof, const KinematicState& s,
+                              const KinematicState& t, const JerkLimits& l) {
+  char buffer[400];
+  std::snprintf(buffer, sizeof buffer,
+                "%s: DoF %d, limits (v %.17g, a %.17g, j %.17g), start (%.17g, %.17g, %.17g), "
+                "target (%.17g, %.17g, %.17g)",
+                what, dof, l.velocity, l.acceleration, l.jerk, s.p, s.v, s.a, t.p, t.v, t.a);
+  return buffer;
+}
+
+/// Now in µs on the steady clock or, when @p cpu, the calling thread's CPU clock.
+double otg_now_us(bool cpu) {
+  if (cpu) {
+    timespec ts{};
+    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+    return 1e6 * static_cast<double>(ts.tv_sec) + 1e-3 * static_cast<double>(ts.tv_nsec);
+  }
+  return std::chrono::duration<double, std::micro>(
+             std::chrono::steady_clock::now().time_since_epoch())
+      .count();
+}
+
+double otg_percentile(std::vector<double>& sorted, double q) {
+  if (sorted.empty()) return 0.0;
+  const std::size_t i = std::min(sorted.size() - 1, static_cast<std::size_t>(q * sorted.size()));
+  return sorted[i];
+}
+
+/// The one-DoF reference checks of one case (see OtgValidationResult).
+void check_against_reference(OtgCaseSampler& sampler, int steps, OtgValidationResult& r) {
+  const JerkLimits l = sampler.limits();
+  const KinematicState s = sampler.start(l, false);
+  const KinematicState t = sampler.target(l);
+  JerkBlock block;
+  if (!min_time_profile(s, t, l, block)) return;  // counted by the main run's failures
+  ++r.reference_cases;
+  if (block.t_min <= 1e-9) return;
+  bool beaten = false;
+  for (const double f : {0.999, 0.99, 0.95, 0.8, 0.5})
+    if (grid_motion_exists(s, t, l, f * block.t_min, steps)) beaten = true;
+  if (beaten) {
+    ++r.optimality_beaten;
+    if (r.first_reference_failure.empty())
+      r.first_reference_failure = describe_otg_case("beaten", 0, s, t, l);
+  }
+  // the other side needs a grid fine enough that its velocity margin (j·h²/8) is small
+  const double above = 1.03 * block.t_min;
+  const double h = above / steps;
+  if (l.jerk * h * h / 8.0 <= 0.01 * l.velocity && !block.is_blocked(above) &&
+      !grid_motion_exists(s, t, l, above, steps)) {
+    ++r.reference_not_within;
+    if (r.first_reference_failure.empty())
+      r.first_reference_failure = describe_otg_case("no grid motion within 3 %", 0, s, t, l);
+  }
+  for (int k = 0; k < block.blocked_count; ++k) {
+    ++r.blocked_checked;
+    const double mid = 0.5 * (block.blocked[k].lower + block.blocked[k].upper);
+    if (grid_motion_exists(s, t, l, mid, steps)) {
+      ++r.blocked_mismatches;
+      if (r.first_reference_failure.empty())
+        r.first_reference_failure = describe_otg_case("blocked interval", 0, s, t, l);
+    }
+  }
+}
+
+}  // namespace
+
+OtgValidationResult run_otg_validation(const OtgValidationOptions& options) {
+  if (options.cases < 1 || options.dofs < 1)
+    throw Error("run_otg_validation: expected cases ≥ 1 and dofs ≥ 1, got " +
+                std::to_string(options.cases) + " and " + std::to_string(options.dofs));
+  if (!(options.brake_share >= 0.0 && options.brake_share <= 1.0))
+    throw Error("run_otg_validation: brake_share must be in [0, 1], got " +
+                std::to_string(options.brake_share));
+  OtgValidationResult r;
+  r.cases = options.cases;
+  r.dofs = options.dofs;
+  r.allocations_counted = static_cast<bool>(options.allocation_count);
+  OtgCaseSampler sampler(options.seed);
+  const std::size_t n = static_cast<std::size_t>(options.dofs);
+  std::vector<JerkLimits> limits(n);
+  std::vector<KinematicState> start(n), target(n);
+  std::vector<double> times;
+  times.reserve(static_cast<std::size_t>(options.cases));
+  double velocity_total_us = 0.0;
+
+  for (int c = 0; c < options.cases; ++c) {
+    for (std::size_t i = 0; i < n; ++i) {
+      limits[i] = sampler.limits();
+      // a start beyond the limits only where two brake phases can recover it
+      const JerkLimits& l = limits[i];
+      const bool beyond = sampler.share(sampler.rng) < options.brake_share &&
+                          l.acceleration * l.acceleration / (2.0 * l.jerk) <= l.velocity;
+      start[i] = sampler.start(l, beyond);
+      target[i] = sampler.target(l);
+      r.braking_dofs += beyond ? 1 : 0;
+    }
+    JerkLimitedGenerator otg(limits);
+    // position interface
+    const std::uint64_t a0 = r.allocations_counted ? options.allocation_count() : 0;
+    const double t0 = otg_now_us(options.thread_cpu_clock);
+    const OtgResult res = otg.calculate(start, target);
+    const double t1 = otg_now_us(options.thread_cpu_clock);
+    if (r.allocations_counted) r.allocations += options.allocation_count() - a0;
+    times.push_back(t1 - t0);
+    if (res.status != OtgStatus::working && res.status != OtgStatus::finished) {
+      ++r.position_failures;
+      if (r.first_failure.empty()) {
+        const int d = std::max(res.failed_dof, 0);
+        r.first_failure =
+            describe_otg_case(to_string(res.status), d, start[d], target[d], limits[d]) +
+            ", synchronized duration " + std::to_string(res.duration) + " s";
+      }
+    } else {
+      for (std::size_t i = 0; i < n; ++i) {
+        const JerkProfile& p = otg.profile(static_cast<int>(i));
+        const KinematicState e = p.end();
+        const double err = std::max({std::abs(e.p - target[i].p), std::abs(e.v - target[i].v),
+                                     std::abs(e.a - target[i].a)});
+        const double excess = limit_excess(p, limits[i], otg.brake_phases(static_cast<int>(i)));
+        const double sync = std::abs(p.duration() - res.duration);
+        r.worst_target_error = std::max(r.worst_target_error, err);
+        r.worst_limit_violation = std::max(r.worst_limit_violation, excess);
+        r.worst_sync_error = std::max(r.worst_sync_error, sync);
+        if (err > 1e-8 || excess > 1e-9 || sync > 1e-9 * std::max(1.0, res.duration)) {
+          ++r.check_failures;
+          if (r.first_failure.empty())
+            r.first_failure =
+                describe_otg_case("check", static_cast<int>(i), start[i], target[i], limits[i]);
+        }
+      }
+      // the limiting DoF cannot be faster: no grid motion just below its share of the duration
+      // (inside its blocked interval when the duration is an interval's end)
+      if (c < options.reference_cases && res.limiting_dof >= 0) {
+        const int d = res.limiting_dof;
+        const double local = res.duration - otg.brake_duration(d);
+        const JerkBlock& b = otg.block(d);
+        double probe = local * (1.0 - 1e-3);
+        for (int k = 0; k < b.blocked_count; ++k)
+          if (std::abs(b.blocked[k].upper - local) <= 1e-9 * std::max(1.0, local))
+            probe = std::max(probe, 0.5 * (b.blocked[k].lower + b.blocked[k].upper));
+        if (local > 1e-6) {
+          ++r.sync_reference_cases;
+          const JerkSample s = otg.profile(d).at(otg.brake_duration(d));
+          if (grid_motion_exists({s.p, s.v, s.a}, target[d], limits[d], probe,
+                                 options.reference_steps)) {
+            ++r.sync_mismatches;
+            if (r.first_reference_failure.empty())
+              r.first_reference_failure =
+                  describe_otg_case("synchronization", d, start[d], target[d], limits[d]);
+          }
+        }
+      }
+    }
+    // velocity interface (the same states; positions ignored)
+    const std::uint64_t b0 = r.allocations_counted ? options.allocation_count() : 0;
+    const double t2 = otg_now_us(options.thread_cpu_clock);
+    const OtgResult vres = otg.calculate_velocity(start, target);
+    const double t3 = otg_now_us(options.thread_cpu_clock);
+    if (r.allocations_counted) r.allocations += options.allocation_count() - b0;
+    velocity_total_us += t3 - t2;
+    if (vres.status != OtgStatus::working && vres.status != OtgStatus::finished) {
+      ++r.velocity_failures;
+      if (r.first_velocity_failure.empty()) {
+        const int d = std::max(vres.failed_dof, 0);
+        r.first_velocity_failure =
+            describe_otg_case(to_string(vres.status), d, start[d], target[d], limits[d]) +
+            ", synchronized duration " + std::to_string(vres.duration) + " s, brake " +
+            std::to_string(otg.brake_phases(d)) + " phases";
+      }
+    } else {
+      for (std::size_t i = 0; i < n; ++i) {
+        const JerkProfile& p = otg.profile(static_cast<int>(i));
+        const KinematicState e = p.end();
+        const double err = std::max(std::abs(e.v - target[i].v), std::abs(e.a - target[i].a));
+        const JerkExtrema x = p.extrema(otg.brake_phases(static_cast<int>(i)));
+        const double excess = std::max(-x.a_min, x.a_max) / limits[i].acceleration - 1.0;
+        r.worst_velocity_target_error = std::max(r.worst_velocity_target_error, err);
+        r.worst_limit_violation = std::max(r.worst_limit_violation, excess);
+        const double sync = std::abs(p.duration() - vres.duration);
+        r.worst_sync_error = std::max(r.worst_sync_error, sync);
+        if (err > 1e-8 || excess > 1e-9 || sync > 1e-9 * std::max(1.0, vres.duration)) {
+          ++r.check_failures;
+          if (r.first_failure.empty())
+            r.first_failure = describe_otg_case("velocity check", static_cast<int>(i), start[i],
+                                                target[i], limits[i]);
+        }
+      }
+    }
+    if (options.progress && (c % 1000 == 999 || c + 1 == options.cases))
+      options.progress(c + 1, options.cases);
+  }
+  for (int c = 0; c < options.reference_cases; ++c)
+    check_against_reference(sampler, options.reference_steps, r);
+
+  double total = 0.0;
+  for (const double t : times) total += t;
+  r.mean_us = total / static_cast<double>(times.size());
+  std::sort(times.begin(), times.end());
+  r.median_us = otg_percentile(times, 0.5);
+  r.p99_us = otg_percentile(times, 0.99);
+  r.max_us = times.back();
+  r.velocity_mean_us = velocity_total_us / options.cases;
+  return r;
+}
+
+}  // namespace mjarm

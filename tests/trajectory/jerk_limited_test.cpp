@@ -1,0 +1,172 @@
+#include "mjarm/trajectory/jerk_limited.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <vector>
+
+#include "ik/malloc_counter.hpp"
+#include "mjarm/error.hpp"
+#include "trajectory/jerk_limited_cases.hpp"
+
+// the allocation counter of test_trajectory is defined once, in malloc_counter_test.cpp
+
+namespace mjarm {
+namespace {
+
+std::vector<JerkLimits> seven_limits() {
+  return {{2.0, 5.0, 30.0}, {2.0, 5.0, 30.0}, {2.5, 6.0, 40.0}, {2.5, 6.0, 40.0},
+          {3.0, 8.0, 50.0}, {3.0, 8.0, 50.0}, {3.0, 8.0, 50.0}};
+}
+
+TEST(JerkLimitedGenerator, SynchronizesEveryDoFToTheSlowest) {
+  JerkLimitedGenerator otg(seven_limits());
+  std::vector<KinematicState> current(7), target(7);
+  for (int i = 0; i < 7; ++i) {
+    current[i] = {0.1 * i, 0.2 * (i % 3) - 0.2, 0.5 * (i % 2)};
+    target[i] = {1.0 - 0.3 * i, 0.0, 0.0};
+  }
+  const OtgResult r = otg.calculate(current, target);
+  ASSERT_EQ(r.status, OtgStatus::working);
+  ASSERT_GE(r.limiting_dof, 0);
+  EXPECT_NEAR(r.duration, otg.block(r.limiting_dof).t_min, 1e-12);
+  for (int i = 0; i < 7; ++i) {
+    EXPECT_NEAR(otg.profile(i).duration(), r.duration, 1e-9) << i;
+    EXPECT_LT(test::target_error(otg.profile(i), target[i]), 1e-8) << i;
+    EXPECT_TRUE(otg.profile(i).within(otg.limits(i), 1e-9)) << i;
+    EXPECT_GE(r.duration, otg.block(i).t_min - 1e-12);
+  }
+  // stepping along reaches the target
+  std::vector<KinematicState> state(7);
+  OtgStatus s = OtgStatus::working;
+  int ticks = 0;
+  while (s == OtgStatus::working && ticks < 100000) {
+    s = otg.step(0.001, state);
+    ++ticks;
+  }
+  EXPECT_EQ(s, OtgStatus::finished);
+  for (int i = 0; i < 7; ++i) EXPECT_NEAR(state[i].p, target[i].p, 1e-6);
+}
+
+TEST(JerkLimitedGenerator, AMovingTargetIsFollowedFromTheCurrentStateEveryTick) {
+  const std::vector<JerkLimits> limits(3, JerkLimits{1.0, 3.0, 20.0});
+  JerkLimitedGenerator otg(limits);
+  std::vector<KinematicState> state(3), target(3), next(3);
+  const double dt = 0.002;
+  double worst_jerk = 0.0;
+  for (int k = 0; k < 3000; ++k) {
+    const double t = k * dt;
+    for (int i = 0; i < 3; ++i) target[i] = {0.5 * std::sin(0.7 * t + i), 0.0, 0.0};
+    const OtgResult r = otg.calculate(state, target);
+    ASSERT_TRUE(r.status == OtgStatus::working || r.status == OtgStatus::finished) << k;
+    otg.step(dt, next);
+    for (int i = 0; i < 3; ++i) {
+      // the new state continues the old one: the acceleration changes by at most j·dt
+      worst_jerk = std::max(worst_jerk, std::abs(next[i].a - state[i].a) / dt);
+      EXPECT_LE(std::abs(next[i].v), 1.0 + 1e-9);
+      EXPECT_LE(std::abs(next[i].a), 3.0 + 1e-9);
+    }
+    state = next;
+  }
+  EXPECT_LE(worst_jerk, 20.0 * (1.0 + 1e-6));
+  EXPECT_GT(worst_jerk, 1.0);
+}
+
+TEST(JerkLimitedGenerator, BrakesFromBeyondTheLimitsFirst) {
+  const std::vector<JerkLimits> limits(2, JerkLimits{1.0, 2.0, 10.0});
+  JerkLimitedGenerator otg(limits);
+  const std::vector<KinematicState> current = {{0.0, 2.5, 0.0}, {0.0, 0.0, -3.0}};
+  const std::vector<KinematicState> target = {{1.0, 0.0, 0.0}, {0.5, 0.0, 0.0}};
+  const OtgResult r = otg.calculate(current, target);
+  ASSERT_EQ(r.status, OtgStatus::working);
+  for (int i = 0; i < 2; ++i) {
+    EXPECT_GT(otg.brake_phases(i), 0);
+    EXPECT_LT(test::target_error(otg.profile(i), target[i]), 1e-8);
+    // after the brake, the limits hold
+    const JerkExtrema e = otg.profile(i).extrema(otg.brake_phases(i));
+    EXPECT_LE(std::max(-e.v_min, e.v_max), 1.0 + 1e-9);
+    EXPECT_LE(std::max(-e.a_min, e.a_max), 2.0 + 1e-9);
+  }
+}
+
+TEST(JerkLimitedGenerator, VelocityInterfaceReachesVelocitiesTogether) {
+  JerkLimitedGenerator otg(seven_limits());
+  std::vector<KinematicState> current(7), target(7);
+  for (int i = 0; i < 7; ++i) {
+    current[i] = {0.0, 0.3 * i - 1.0, 1.0 - 0.25 * i};
+    target[i] = {0.0, 1.5 - 0.4 * i, 0.0};
+  }
+  const OtgResult r = otg.calculate_velocity(current, target);
+  ASSERT_EQ(r.status, OtgStatus::working);
+  for (int i = 0; i < 7; ++i) {
+    EXPECT_NEAR(otg.profile(i).duration(), r.duration, 1e-9);
+    EXPECT_NEAR(otg.profile(i).end().v, target[i].v, 1e-9);
+    EXPECT_NEAR(otg.profile(i).end().a, 0.0, 1e-9);
+  }
+}
+
+TEST(JerkLimitedGenerator, InvalidInputIsAnError) {
+  EXPECT_THROW(JerkLimitedGenerator(std::vector<JerkLimits>{}), Error);
+  for (const JerkLimits bad :
+       {JerkLimits{0.0, 1.0, 1.0}, JerkLimits{1.0, -1.0, 1.0}, JerkLimits{1.0, 1.0, std::nan("")},
+        JerkLimits{1.0, 1.0, HUGE_VAL}}) {
+    EXPECT_THROW(JerkLimitedGenerator(std::vector<JerkLimits>{bad}), Error);
+  }
+  try {
+    JerkLimitedGenerator(std::vector<JerkLimits>{{1.0, 1.0, 1.0}, {1.0, 0.0, 1.0}});
+    ADD_FAILURE() << "no error";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("DoF 1"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("acceleration"), std::string::npos) << e.what();
+  }
+  JerkLimitedGenerator otg(std::vector<JerkLimits>(1, JerkLimits{1.0, 2.0, 10.0}));
+  const std::vector<KinematicState> ok = {{0.0, 0.0, 0.0}};
+  const auto calc = [&otg, &ok](KinematicState c, KinematicState t) {
+    const std::vector<KinematicState> cs = {c}, ts = {t};
+    return otg.calculate(cs, ts);
+  };
+  EXPECT_THROW(calc({std::nan(""), 0.0, 0.0}, {1.0, 0.0, 0.0}), Error);
+  EXPECT_THROW(calc({0.0, 0.0, 0.0}, {HUGE_VAL, 0.0, 0.0}), Error);
+  EXPECT_THROW(calc({0.0, 0.0, 0.0}, {1.0, 1.5, 0.0}), Error);    // target v above its limit
+  EXPECT_THROW(calc({0.0, 0.0, 0.0}, {1.0, 0.0, -2.5}), Error);   // target a above its limit
+  EXPECT_THROW(calc({0.0, 0.0, 0.0}, {1.0, 0.95, -1.5}), Error);  // must overshoot to reach it
+  EXPECT_THROW(otg.calculate(ok, std::vector<KinematicState>(2)), Error);  // sizes
+  EXPECT_THROW(otg.calculate_velocity(ok, std::vector<KinematicState>{{0.0, 2.0, 0.0}}), Error);
+  // a start beyond the limits is not an error: it is braked
+  EXPECT_EQ(calc({0.0, 3.0, 4.0}, {1.0, 0.0, 0.0}).status, OtgStatus::working);
+}
+
+TEST(JerkLimitedGenerator, CalculatesWithoutAllocating) {
+  JerkLimitedGenerator otg(seven_limits());
+  test::JerkCaseGenerator cases(9);
+  std::vector<KinematicState> current(7), target(7), state(7);
+  std::vector<JerkSample> samples(7);
+  std::vector<JerkLimits> limits = seven_limits();
+  // warm up once (nothing is lazily allocated, but be fair to the counter)
+  otg.calculate(current, target);
+  std::uint64_t allocations = 0;
+  for (int k = 0; k < 200; ++k) {
+    for (int i = 0; i < 7; ++i) {
+      test::JerkCase c = cases.next();
+      // scale the drawn states into this generator's limits
+      const double sv = limits[i].velocity / c.limits.velocity;
+      const double sa = limits[i].acceleration / c.limits.acceleration;
+      current[i] = {c.start.p, 0.2 * c.start.v * sv, 0.2 * c.start.a * sa};
+      target[i] = {c.target.p, 0.2 * c.target.v * sv, 0.2 * c.target.a * sa};
+    }
+    const std::uint64_t before = test::malloc_calls();
+    otg.calculate(current, target);
+    otg.calculate_velocity(current, target);
+    otg.at(0.1, samples);
+    otg.step(0.001, state);
+    allocations += test::malloc_calls() - before;
+  }
+  EXPECT_EQ(allocations, 0u);
+  // the counter does see allocations
+  const std::uint64_t before = test::malloc_calls();
+  JerkLimitedGenerator another(seven_limits());
+  EXPECT_GT(test::malloc_calls() - before, 0u);
+}
+
+}  // namespace
+}  // namespace mjarm
