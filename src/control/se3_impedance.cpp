@@ -74,8 +74,9 @@ void se3_require_stiffness(const Matrix6d& K, const std::array<bool, 6>& release
     ++n;
   }
   if (n == 0) return;
-  Eigen::SelfAdjointEigenSolver<Matrix6d> solver(kept.topLeftCorner(n, n).eval(),
-                                                 Eigen::EigenvaluesOnly);
+  using Block = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, 6, 6>;
+  const Block block = kept.topLeftCorner(n, n);
+  Eigen::SelfAdjointEigenSolver<Block> solver(block, Eigen::EigenvaluesOnly);
   if (!(solver.eigenvalues()[0] > 1e-12 * scale)) {
     throw Error("se3: stiffness K must be positive definite on the axes not released [" + axes +
                 "] (only an axis named in release.axes may have zero stiffness); the eigenvalues "
