@@ -12,6 +12,7 @@
 #include "mjarm/lie/pose_error.hpp"
 #include "mjarm/lie/se3.hpp"
 #include "mjarm/lie/se3_jacobian.hpp"
+#include "mjarm/sim/simulation.hpp"
 
 namespace mjarm {
 namespace {
@@ -119,51 +120,55 @@ TEST(Se3Impedance, ClosedLoopHoldsOnLambdaAtRandomStates) {
   }
 }
 
-/// Free-space run on iiwa14_torque from home (gravity on, 2 ms Euler steps, split step
-/// mj_step1 → compute → ctrl → mj_step2): the controller's isotropic A, D = K = 20 and a 0.10 m
-/// step of the target along world x. Returns the overshoot [fraction of the step] and the largest
-/// deviation [m] of the error along x from the solution of A·ë + D·ė + K·e = 0, e(0) = 0.1.
+/// Free-space run of a torque-mode `Simulation` of iiwa14_torque from home (gravity on, 2 ms
+/// Euler steps, one control tick per step: mj_step1 → compute → motors → mj_step2) with the
+/// controller's isotropic A, D = K = 20 and a 0.10 m step of the target along world x. Returns
+/// the overshoot [fraction of the step], the largest deviation [m] of the error along x from the
+/// solution of A·ë + D·ė + K·e = 0, e(0) = 0.1, and the final distance [m].
 struct Se3StepResult {
   double overshoot = 0.0;
   double deviation = 0.0;
   double final_error = 0.0;
+  int saturated = 0;  // ticks with a clipped motor
 };
 
 Se3StepResult se3_step_response(double a, double seconds) {
-  Rig rig("iiwa14_torque", "attachment_site");
-  mj_resetDataKeyframe(&rig.m(), &rig.d(), rig.robot.keyframe("home"));
-  mj_forward(&rig.m(), &rig.d());
+  const Robot robot = Robot::bundled("iiwa14_torque");
+  const Chain chain(robot, "attachment_site");
+  Simulation sim(robot);  // torque mode, control period = timestep
+  sim.reset("home");
   Se3ImpedanceOptions o;
   o.inertia = a * Matrix6d::Identity();
   o.damping = 20.0 * Matrix6d::Identity();
   o.stiffness = 20.0 * Matrix6d::Identity();
-  Se3ImpedanceController c(rig.chain, o);
-  const int site = rig.chain.frame().id;
+  Se3ImpedanceController c(chain, o);
+  sim.add_controller(c);
+  const int site = chain.frame().id;
   Reference ref;
-  ref.task.X_WE = test::site_pose(rig.d(), site);
+  ref.task.X_WE = test::site_pose(sim.data(), site);
   ref.task.X_WE.p.x() += 0.10;
-  JointCommand command{CommandKind::torque, VectorX::Zero(rig.chain.size())};
-  const double dt = rig.m().opt.timestep;
-  // the scalar reference, integrated with a much finer step (RK4 would do; semi-implicit Euler
-  // at dt/100 is exact to ~1e-6 m here)
+  const double dt = sim.control_period();
+  // the scalar reference, integrated with a much finer step (semi-implicit Euler at dt/100:
+  // exact to ~1e-6 m here)
   double e = 0.1, e_dot = 0.0;
   Se3StepResult r;
   const int steps = static_cast<int>(seconds / dt);
   for (int k = 0; k < steps; ++k) {
-    mj_step1(&rig.m(), &rig.d());
-    const double measured = ref.task.X_WE.p.x() - test::site_pose(rig.d(), site).p.x();
+    // the pose the tick starts from (sim.data()'s kinematics belong to the start of the last
+    // step, where e is)
+    const TickResult t = sim.tick(ref);
+    EXPECT_TRUE(t.ok());
+    r.saturated += t.saturated > 0 ? 1 : 0;
+    const double measured = ref.task.X_WE.p.x() - test::site_pose(sim.data(), site).p.x();
     r.overshoot = std::max(r.overshoot, -measured / 0.1);
     r.deviation = std::max(r.deviation, std::abs(measured - e));
-    c.compute(rig.d(), ref, command);
-    test::apply_torque(rig.chain, command.value, rig.d());
-    mj_step2(&rig.m(), &rig.d());
     for (int j = 0; j < 100; ++j) {
       e_dot += -(20.0 * e_dot + 20.0 * e) / a * (dt / 100);
       e += e_dot * (dt / 100);
     }
   }
-  mj_forward(&rig.m(), &rig.d());
-  r.final_error = (test::site_pose(rig.d(), site).p - ref.task.X_WE.p).norm();
+  sim.forward();
+  r.final_error = (test::site_pose(sim.data(), site).p - ref.task.X_WE.p).norm();
   return r;
 }
 
@@ -178,6 +183,7 @@ TEST(Se3Impedance, StepOvershootFollowsTheApparentInertia) {
   ASSERT_NEAR(expected, 0.486, 5e-4);
   const Se3StepResult soft = se3_step_response(100.0, 9.0);
   EXPECT_NEAR(soft.overshoot, expected, 0.01);
+  EXPECT_EQ(soft.saturated, 0);
   EXPECT_LT(soft.deviation, 1e-3);
   for (double a : {0.5, 5.0}) {
     const Se3StepResult r = se3_step_response(a, 8.0);
