@@ -479,6 +479,23 @@ TEST(Se3Impedance, BadWrenchAndBadStateNeverGiveNaN) {
   EXPECT_EQ(command.value.norm(), 0.0);
 }
 
+TEST(Se3Impedance, AtTheStretchedSingularityTheStatusSaysDamped) {
+  // q = 0: the iiwa14 stands straight up, joints 1, 3, 5, 7 share one axis; Λ is floored
+  Rig rig("iiwa14_torque", "attachment_site");
+  mj_resetData(&rig.m(), &rig.d());
+  mj_forward(&rig.m(), &rig.d());
+  Reference ref;
+  ref.task.X_WE = test::site_pose(rig.d(), rig.chain.frame().id);
+  ref.task.X_WE.p.x() += 0.05;
+  Se3ImpedanceController c(rig.chain);
+  JointCommand command{CommandKind::torque, VectorX::Zero(7)};
+  c.compute(rig.d(), ref, command);
+  EXPECT_EQ(c.status(), Se3ImpedanceStatus::damped);
+  EXPECT_EQ(c.internal_values()[14], 1.0);
+  EXPECT_TRUE(command.value.allFinite());
+  EXPECT_GT(c.internal_values()[13], 1e3);  // task_condition
+}
+
 TEST(Se3Impedance, InternalsAreNamedSizedAndFinite) {
   Se3RestCase s;
   Se3ImpedanceController c(s.rig.chain);
