@@ -8,7 +8,8 @@
 // - References: per state, a desired pose up to 0.1 m and 0.5 rad away, random desired twist,
 //   acceleration and wrench, joint reference at mid-range.
 // - Cases: ChainDynamics::update, TaskSpaceDynamics::update (6 and 3 rows), and
-//   Controller::compute of every controller in `default_benchmark_controllers` (default options);
+//   Controller::compute of every controller in `default_benchmark_controllers` (default options),
+//   and the SE(3) impedance controller again on the bundled iiwa14_torque (same protocol);
 //   then one physics step from home: mj_step alone (constant torque = bias forces at home, so the
 //   arm stays near home), and mj_step1 + OSC compute + mj_step2 with the torque applied (the
 //   closed loop of `mjarm bench control`, here holding the home pose).
@@ -25,6 +26,7 @@
 
 #include "mjarm/control/control_benchmark.hpp"
 #include "mjarm/control/operational_space.hpp"
+#include "mjarm/control/se3_impedance.hpp"
 #include "mjarm/dynamics/chain_dynamics.hpp"
 #include "mjarm/dynamics/task_space.hpp"
 #include "mjarm/model/chain.hpp"
@@ -135,7 +137,57 @@ void BM_ControllerCompute(benchmark::State& state) {
   }
   state.SetLabel(std::string(c.name()) + ", panda, 64 random states");
 }
-BENCHMARK(BM_ControllerCompute)->DenseRange(0, 5);
+BENCHMARK(BM_ControllerCompute)->DenseRange(0, 6);
+
+/// The SE(3) impedance controller on the iiwa14 (issue 13's target: ≤ 5 µs per tick), same
+/// protocol as the panda cases (64 random states, seed 2024, targets up to 0.1 m and 0.5 rad
+/// away), with a measured wrench set so that the γ and −J_bᵀ·F_E terms run too.
+void BM_Se3ImpedanceIiwa14(benchmark::State& state) {
+  const mjarm::Robot robot = mjarm::Robot::bundled("iiwa14_torque");
+  const mjarm::Chain chain(robot, "attachment_site");
+  const mjModel& m = robot.model();
+  std::mt19937_64 rng(2024);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  std::vector<mjarm::DataPtr> states;
+  std::vector<mjarm::Reference> references;
+  while (static_cast<int>(states.size()) < kStates) {
+    mjarm::DataPtr d = robot.make_data();
+    for (int i = 0; i < chain.size(); ++i) {
+      const double lo = chain.lower()[i], hi = chain.upper()[i];
+      d->qpos[chain.qpos_address(i)] = 0.5 * (lo + hi) + 0.45 * (hi - lo) * (2 * unit(rng) - 1);
+      d->qvel[chain.dof_address(i)] = 2 * unit(rng) - 1;
+    }
+    mj_forward(&m, d.get());
+    if (d->ncon > 0) continue;
+    const int site = chain.frame().id;
+    mjarm::Reference r;
+    r.task.X_WE.p =
+        Eigen::Map<const Eigen::Vector3d>(d->site_xpos + 3 * site) +
+        0.1 * unit(rng) * Eigen::Vector3d(unit(rng) - 0.5, unit(rng) - 0.5, unit(rng) - 0.5);
+    r.task.X_WE.R =
+        Eigen::AngleAxisd(0.5 * unit(rng), Eigen::Vector3d(unit(rng), unit(rng), 1).normalized())
+            .toRotationMatrix() *
+        Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(d->site_xmat + 9 * site);
+    for (int k = 0; k < 6; ++k) {
+      r.task.V_WE[k] = unit(rng) - 0.5;
+      r.task.A_WE[k] = 2 * unit(rng) - 1;
+    }
+    r.joint.q = chain.center();
+    states.push_back(std::move(d));
+    references.push_back(std::move(r));
+  }
+  mjarm::Se3ImpedanceController c(chain);
+  c.set_measured_wrench((mjarm::Vector6d() << 0.5, -0.3, 1.0, 0.02, 0.0, -0.01).finished());
+  mjarm::JointCommand command{mjarm::CommandKind::torque, Eigen::VectorXd::Zero(chain.size())};
+  int k = 0;
+  for (auto _ : state) {
+    c.compute(*states[k], references[k], command);
+    benchmark::DoNotOptimize(command.value.data());
+    k = (k + 1) % kStates;
+  }
+  state.SetLabel("se3, iiwa14, 64 random states, measured wrench");
+}
+BENCHMARK(BM_Se3ImpedanceIiwa14);
 
 /// One physics step from home, alone or with OSC in the loop (fixed target: home pose).
 void BM_Step(benchmark::State& state) {

@@ -10,6 +10,7 @@
 #include "mjarm/control/gravity_compensation.hpp"
 #include "mjarm/control/joint_pd.hpp"
 #include "mjarm/control/operational_space.hpp"
+#include "mjarm/control/se3_impedance.hpp"
 #include "mjarm/control/task_pd.hpp"
 #include "mjarm/error.hpp"
 #include "mjarm/kinematics/chain_kinematics.hpp"
@@ -192,6 +193,7 @@ std::vector<std::unique_ptr<Controller>> default_benchmark_controllers(const Cha
   controllers.push_back(std::make_unique<TaskPdController>(chain));
   controllers.push_back(std::make_unique<AccelerationController>(chain));
   controllers.push_back(std::make_unique<OperationalSpaceController>(chain));
+  controllers.push_back(std::make_unique<Se3ImpedanceController>(chain));
   return controllers;
 }
 

@@ -31,7 +31,7 @@ TEST(BenchControl, JsonReportsEveryControllerWithZeroAllocations) {
   EXPECT_EQ(j["steps"], 300);
   EXPECT_EQ(j["warmup"], 20);
   EXPECT_DOUBLE_EQ(j["timestep"].get<double>(), 0.002);
-  const std::vector<std::string> names{"joint-pd", "gravity", "ct", "task-pd", "accel", "osc"};
+  const std::vector<std::string> names{"joint-pd", "gravity", "ct", "task-pd", "accel", "osc", "se3"};
   ASSERT_EQ(j["controllers"].size(), names.size());
   for (std::size_t i = 0; i < names.size(); ++i) {
     const json& c = j["controllers"][i];
@@ -56,7 +56,7 @@ TEST(BenchControl, TextReportHasTheTables) {
       run_cli({"bench", "control", "panda_torque", "--steps", "50", "--warmup", "0"});
   ASSERT_EQ(run.exit_code, 0) << run.err;
   for (const char* text : {"median [µs]", "p99 [µs]", "alloc/step", "osc + mj_step", "mj_step only",
-                           "joint-pd", "gravity", "ct", "task-pd", "accel", "osc"}) {
+                           "joint-pd", "gravity", "ct", "task-pd", "accel", "osc", "se3"}) {
     EXPECT_NE(run.out.find(text), std::string::npos) << text << " not in:\n" << run.out;
   }
   EXPECT_TRUE(run.err.empty()) << run.err;  // no progress line when stderr is not a terminal

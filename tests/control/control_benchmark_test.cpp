@@ -23,16 +23,16 @@ TEST(ControlBenchmark, TimesEveryControllerWithoutAllocations) {
   int last_phase = 0;
   o.progress = [&](int done, int total) {
     EXPECT_EQ(done, last_phase + 1);
-    EXPECT_EQ(total, 8);
+    EXPECT_EQ(total, 9);
     last_phase = done;
   };
   const ControlBenchmarkResult r = run_control_benchmark(chain, o);
-  EXPECT_EQ(last_phase, 8);
+  EXPECT_EQ(last_phase, 9);
   EXPECT_EQ(r.robot, "panda_torque");
   EXPECT_EQ(r.joints, 7);
   EXPECT_DOUBLE_EQ(r.timestep, 0.002);
   EXPECT_DOUBLE_EQ(r.frequency, 0.5);  // 1000 steps per period
-  const std::vector<std::string> names{"joint-pd", "gravity", "ct", "task-pd", "accel", "osc"};
+  const std::vector<std::string> names{"joint-pd", "gravity", "ct", "task-pd", "accel", "osc", "se3"};
   ASSERT_EQ(r.controllers.size(), names.size());
   for (std::size_t i = 0; i < names.size(); ++i) {
     const auto& c = r.controllers[i];
@@ -49,9 +49,10 @@ TEST(ControlBenchmark, TimesEveryControllerWithoutAllocations) {
       EXPECT_LT(c.rms_position_error, 0.02) << c.name;
     }
   }
-  // computed torque and OSC cancel the dynamics: they track tightly
+  // computed torque, OSC and SE(3) impedance cancel the dynamics: they track tightly
   EXPECT_LT(r.controllers[2].rms_position_error, 1e-3);
   EXPECT_LT(r.controllers[5].rms_position_error, 2e-3);
+  EXPECT_LT(r.controllers[6].rms_position_error, 2e-3);  // se3: the same exact cancellation
   EXPECT_EQ(r.loop_allocations, 0);
   EXPECT_GT(r.osc_real_time_factor, 0.0);
   EXPECT_GT(r.passive_real_time_factor, 0.0);

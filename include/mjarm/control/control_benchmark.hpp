@@ -99,7 +99,7 @@ struct ControlBenchmarkResult {
 };
 
 /// The controllers the benchmark times on @p chain, in report order: joint-pd (with gravity
-/// compensation), gravity (hold), ct, task-pd, accel, osc, each with its default options.
+/// compensation), gravity (hold), ct, task-pd, accel, osc, se3, each with its default options.
 /// @throws Error from the controllers' constructors.
 std::vector<std::unique_ptr<Controller>> default_benchmark_controllers(const Chain& chain);
 
