@@ -40,7 +40,8 @@ void set_free_pose(const Robot& robot, mjData& data, std::string_view body, cons
   if (norm < 1e-9)
     throw Error("pose of '" + std::string(body) + "': zero quaternion, expected (w, x, y, z)");
   for (int i = 0; i < 3; ++i) data.qpos[adr + i] = X_WB.p_WB[static_cast<std::size_t>(i)];
-  for (int i = 0; i < 4; ++i) data.qpos[adr + 3 + i] = X_WB.quat_WB[static_cast<std::size_t>(i)] / norm;
+  for (int i = 0; i < 4; ++i)
+    data.qpos[adr + 3 + i] = X_WB.quat_WB[static_cast<std::size_t>(i)] / norm;
 }
 
 FreePose free_pose(const Robot& robot, const mjData& data, std::string_view body) {

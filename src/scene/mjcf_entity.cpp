@@ -19,11 +19,10 @@ namespace {
 
 // attributes whose value names another element (or a default class)
 const std::set<std::string, std::less<>> kReferenceAttrs = {
-    "class",   "childclass", "joint",     "jointinparent", "joint1",    "joint2",  "tendon",
-    "tendon1", "tendon2",    "site",      "sidesite",      "slidersite", "cranksite",
-    "refsite", "body",       "body1",     "body2",         "geom",      "geom1",   "geom2",
-    "actuator", "mesh",      "material",  "texture",       "hfield",    "objname", "refname",
-    "target"};
+    "class",   "childclass", "joint",   "jointinparent", "joint1",     "joint2",    "tendon",
+    "tendon1", "tendon2",    "site",    "sidesite",      "slidersite", "cranksite", "refsite",
+    "body",    "body1",      "body2",   "geom",          "geom1",      "geom2",     "actuator",
+    "mesh",    "material",   "texture", "hfield",        "objname",    "refname",   "target"};
 
 // elements that accept a class attribute (MuJoCo 2.2.2 schema)
 bool takes_class(std::string_view tag, std::string_view parent) {
@@ -110,7 +109,8 @@ std::vector<PartKey> take_keys(XmlNode& root) {
       for (const auto& [joint, size] : layout) {
         if (at + static_cast<std::size_t>(size) > qpos.size()) break;
         if (!joint.empty())
-          key.qpos.emplace_back(joint, std::vector<double>(qpos.begin() + at, qpos.begin() + at + size));
+          key.qpos.emplace_back(joint,
+                                std::vector<double>(qpos.begin() + at, qpos.begin() + at + size));
         at += static_cast<std::size_t>(size);
       }
       const auto ctrl = mjcf_detail::numbers(k, "ctrl");
@@ -157,8 +157,8 @@ std::string name_kind(std::string_view tag, std::string_view parent) {
   if (tag == "default") return "default";
   if (parent == "default") return "";
   static const std::set<std::string, std::less<>> kNamed = {
-      "body", "joint", "geom", "site", "camera", "light", "mesh", "texture", "material",
-      "hfield", "skin", "pair", "exclude", "numeric", "text", "tuple"};
+      "body",     "joint",  "geom", "site", "camera",  "light",   "mesh", "texture",
+      "material", "hfield", "skin", "pair", "exclude", "numeric", "text", "tuple"};
   return kNamed.count(tag) ? std::string(tag) : std::string();
 }
 
@@ -210,7 +210,9 @@ void normalize_part(XmlNode& root) {
 Part load_part(const fs::path& file, std::string source) {
   const std::string text = read_checked(file);
   MjcfTranslation translated = translate_mjcf(text, fs::absolute(file).parent_path());
-  Part part{mjcf_detail::parse_document(translated.xml, nullptr), {}, std::move(translated.warnings),
+  Part part{mjcf_detail::parse_document(translated.xml, nullptr),
+            {},
+            std::move(translated.warnings),
             std::move(source)};
   if (part.root.tag != "mujoco")
     throw Error(part.source + ": '" + file.string() + "' is not MJCF (root <" + part.root.tag +

@@ -23,10 +23,9 @@ using scene_detail::XmlNode;
 namespace {
 
 // root sections in MJCF order; all exist from the start, so pointers into the worldbody stay valid
-constexpr const char* kSections[] = {"compiler", "option",  "size",     "visual",
-                                     "statistic", "default", "custom",  "asset",
-                                     "worldbody", "contact", "equality", "tendon",
-                                     "actuator",  "sensor"};
+constexpr const char* kSections[] = {"compiler", "option", "size",     "visual",    "statistic",
+                                     "default",  "custom", "asset",    "worldbody", "contact",
+                                     "equality", "tendon", "actuator", "sensor"};
 
 // global settings merged attribute by attribute: the first part that sets one keeps it
 bool is_global_section(std::string_view tag) {
@@ -171,8 +170,8 @@ struct Scene::Impl {
   void merge(Part part, XmlNode& parent, std::optional<XmlNode> mount,
              const std::vector<std::string>& local_keys) {
     std::vector<NameKey> names;
-    collect_names(part.root, names);
     if (mount) names.emplace_back("body", *mount->find("name"));
+    collect_names(part.root, names);
     check_free(names, part.source);
     XmlNode& compiler = root.children.front();
     for (const auto& c : part.root.children) {
@@ -279,8 +278,9 @@ void Scene::add_robot(const RobotSpec& spec) {
   const fs::path file = resolve_model(spec.model, Robot::models_dir(), "robot");
   Part part = scene_detail::load_part(file, "robot '" + spec.name + "' (" + file.string() + ")");
   if (!spec.keep_arena) scene_detail::strip_arena(part.root);
-  XmlNode mount = element("body", {{"name", spec.name}, {"pos", numbers_text(spec.pos)},
-                                   {"quat", numbers_text(spec.quat)}});
+  XmlNode mount = element(
+      "body",
+      {{"name", spec.name}, {"pos", numbers_text(spec.pos)}, {"quat", numbers_text(spec.quat)}});
   impl_->add_part(std::move(part), spec.name, impl_->sec("worldbody"), std::move(mount));
   impl_->robots.insert(spec.name);
 }
@@ -304,7 +304,7 @@ void Scene::attach_gripper(const GripperSpec& spec) {
         frames.push_back(key.second.substr(spec.robot.size() + 1));
     }
     std::string message = "gripper '" + spec.name + "': unknown attachment frame '" + spec.frame +
-                           "' on robot '" + spec.robot + "' (expected one of its sites or bodies)";
+                          "' on robot '" + spec.robot + "' (expected one of its sites or bodies)";
     const auto close = closest_names(spec.frame, frames, 3);
     if (!close.empty()) message += "; closest: " + list(close);
     throw Error(message);
@@ -327,16 +327,18 @@ void Scene::attach_gripper(const GripperSpec& spec) {
 
 void Scene::add_object(const ObjectSpec& spec) {
   Part part = scene_detail::object_part(spec, true);
-  XmlNode mount = element("body", {{"name", spec.name}, {"pos", numbers_text(spec.pos)},
-                                   {"quat", numbers_text(spec.quat)}});
+  XmlNode mount = element(
+      "body",
+      {{"name", spec.name}, {"pos", numbers_text(spec.pos)}, {"quat", numbers_text(spec.quat)}});
   impl_->add_part(std::move(part), spec.name, impl_->sec("worldbody"), std::move(mount));
 }
 
 void Scene::add_fixture(const ObjectSpec& spec) {
   Part part = scene_detail::object_part(spec, false);
   part.source = "fixture '" + spec.name + "'";
-  XmlNode mount = element("body", {{"name", spec.name}, {"pos", numbers_text(spec.pos)},
-                                   {"quat", numbers_text(spec.quat)}});
+  XmlNode mount = element(
+      "body",
+      {{"name", spec.name}, {"pos", numbers_text(spec.pos)}, {"quat", numbers_text(spec.quat)}});
   impl_->add_part(std::move(part), spec.name, impl_->sec("worldbody"), std::move(mount));
 }
 
@@ -345,8 +347,8 @@ void Scene::add_camera(const CameraSpec& spec) {
   const std::string source = "camera '" + spec.name + "'";
   impl_->check_single("camera", spec.name, source);
   XmlNode camera = element("camera", {{"name", spec.name}, {"pos", numbers_text(spec.pos)}});
-  const bool axes = std::any_of(spec.xyaxes.begin(), spec.xyaxes.end(),
-                                [](double v) { return v != 0.0; });
+  const bool axes =
+      std::any_of(spec.xyaxes.begin(), spec.xyaxes.end(), [](double v) { return v != 0.0; });
   if (axes) {
     camera.set("xyaxes", numbers_text(spec.xyaxes));
   } else {
@@ -368,11 +370,12 @@ void Scene::add_site(const SiteSpec& spec) {
   const std::string source = "site '" + spec.name + "'";
   impl_->check_single("site", spec.name, source);
   XmlNode& parent = impl_->body_or_world(spec.body, source + " parent");
-  parent.children.push_back(element(
-      "site", {{"name", spec.name}, {"pos", numbers_text(spec.pos)},
-               {"quat", numbers_text(spec.quat)},
-               {"size", numbers_text(std::span<const double>(&spec.size, 1))},
-               {"rgba", numbers_text(spec.rgba)}}));
+  parent.children.push_back(
+      element("site", {{"name", spec.name},
+                       {"pos", numbers_text(spec.pos)},
+                       {"quat", numbers_text(spec.quat)},
+                       {"size", numbers_text(std::span<const double>(&spec.size, 1))},
+                       {"rgba", numbers_text(spec.rgba)}}));
   impl_->claim({{"site", spec.name}}, source);
 }
 
@@ -421,10 +424,12 @@ void Scene::add_weld(const WeldSpec& spec) {
   impl_->check_single("equality", spec.name, source);
   impl_->require("body", spec.body1, source + " body1");
   impl_->require("body", spec.body2, source + " body2");
-  impl_->sec("equality").children.push_back(
-      element("weld", {{"name", spec.name}, {"body1", spec.body1}, {"body2", spec.body2},
-                       {"active", spec.active ? "true" : "false"},
-                       {"solref", numbers_text(spec.solref)}}));
+  impl_->sec("equality")
+      .children.push_back(element("weld", {{"name", spec.name},
+                                           {"body1", spec.body1},
+                                           {"body2", spec.body2},
+                                           {"active", spec.active ? "true" : "false"},
+                                           {"solref", numbers_text(spec.solref)}}));
   impl_->claim({{"equality", spec.name}}, source);
 }
 
@@ -460,13 +465,13 @@ void Scene::set_attribute(std::string_view kind, std::string_view element_name,
                           std::string_view attr, std::span<const double> values) {
   for (double v : values) {
     if (!std::isfinite(v)) {
-      throw Error(std::string(kind) + " '" + std::string(element_name) + "': " +
-                  std::string(attr) + " must be finite numbers");
+      throw Error(std::string(kind) + " '" + std::string(element_name) + "': " + std::string(attr) +
+                  " must be finite numbers");
     }
   }
   if (values.empty())
-    throw Error(std::string(kind) + " '" + std::string(element_name) + "': " +
-                std::string(attr) + " needs at least one value");
+    throw Error(std::string(kind) + " '" + std::string(element_name) + "': " + std::string(attr) +
+                " needs at least one value");
   set_attribute(kind, element_name, attr, std::string_view(numbers_text(values)));
 }
 
@@ -500,7 +505,8 @@ Robot Scene::compile() const {
         if (id < 0) continue;
         const int adr = m.jnt_qposadr[id];
         const int size = id + 1 < m.njnt ? m.jnt_qposadr[id + 1] - adr : m.nq - adr;
-        if (static_cast<int>(values.size()) == size) std::copy(values.begin(), values.end(), qpos.begin() + adr);
+        if (static_cast<int>(values.size()) == size)
+          std::copy(values.begin(), values.end(), qpos.begin() + adr);
       }
       for (const auto& [actuator, value] : impl_->keys[j].ctrl) {
         const int id = try_find_object(m, mjOBJ_ACTUATOR, actuator);

@@ -97,7 +97,8 @@ void validate(const GripperSpec& spec) {
   const std::string what = "gripper '" + spec.name + "'";
   if (spec.robot.empty()) throw Error(what + " needs the robot it attaches to");
   if (spec.model.empty()) throw Error(what + " needs a model (name or file)");
-  if (spec.frame.empty()) throw Error(what + " needs the robot frame (site or body) it attaches to");
+  if (spec.frame.empty())
+    throw Error(what + " needs the robot frame (site or body) it attaches to");
 }
 
 void validate(const ObjectSpec& spec) {
@@ -110,18 +111,26 @@ void validate(const ObjectSpec& spec) {
   check_rgba(spec.rgba, what);
   std::size_t expected = 0;
   switch (spec.shape) {
-    case ObjectShape::box: expected = 3; break;
-    case ObjectShape::sphere: expected = 1; break;
+    case ObjectShape::box:
+      expected = 3;
+      break;
+    case ObjectShape::sphere:
+      expected = 1;
+      break;
     case ObjectShape::cylinder:
-    case ObjectShape::capsule: expected = 2; break;
-    case ObjectShape::mesh: expected = spec.size.empty() ? 0 : 3; break;
+    case ObjectShape::capsule:
+      expected = 2;
+      break;
+    case ObjectShape::mesh:
+      expected = spec.size.empty() ? 0 : 3;
+      break;
   }
   if (spec.size.size() != expected) {
     throw Error(what + " size expects " + std::to_string(expected) + " value(s) (" +
-                (spec.shape == ObjectShape::box        ? "half extents x y z"
-                 : spec.shape == ObjectShape::sphere   ? "radius"
-                 : spec.shape == ObjectShape::mesh     ? "scale x y z, or none"
-                                                       : "radius, half length") +
+                (spec.shape == ObjectShape::box      ? "half extents x y z"
+                 : spec.shape == ObjectShape::sphere ? "radius"
+                 : spec.shape == ObjectShape::mesh   ? "scale x y z, or none"
+                                                     : "radius, half length") +
                 "), got " + std::to_string(spec.size.size()));
   }
   for (double s : spec.size)

@@ -83,7 +83,8 @@ TEST(Scene, PrefixedReferencesResolveToThePartsOwnElements) {
       const int id = robot.geom(std::string(prefix) + "/" + n);
       EXPECT_EQ(m.geom_contype[id], a.geom_contype[g]) << n;
       EXPECT_EQ(m.geom_conaffinity[id], a.geom_conaffinity[g]) << n;
-      for (int k = 0; k < 3; ++k) EXPECT_EQ(m.geom_friction[3 * id + k], a.geom_friction[3 * g + k]) << n;
+      for (int k = 0; k < 3; ++k)
+        EXPECT_EQ(m.geom_friction[3 * id + k], a.geom_friction[3 * g + k]) << n;
       for (int k = 0; k < 3; ++k) EXPECT_EQ(m.geom_size[3 * id + k], a.geom_size[3 * g + k]) << n;
     }
     for (int j = 0; j < a.njnt; ++j) {
@@ -206,7 +207,8 @@ TEST(Scene, CopiesAreIndependent) {
 TEST(Scene, SensorsCamerasSitesAndAnInactiveWeld) {
   Scene scene = two_robots_two_objects();
   scene.add_site({"left/pad", "left/link6", {0, 0, 0.12}, {1, 0, 0, 0}, 0.01, {1, 0, 0, 1}});
-  scene.add_camera({"overview", "", {1.5, 0, 1.2}, {0, 1, 0, -0.6, 0, 0.8}, {1, 0, 0, 0}, 50.0, ""});
+  scene.add_camera(
+      {"overview", "", {1.5, 0, 1.2}, {0, 1, 0, -0.6, 0, 0.8}, {1, 0, 0, 0}, 50.0, ""});
   scene.add_camera({"follow", "", {1.0, 1.0, 1.0}, {}, {1, 0, 0, 0}, 45.0, "cube"});
   scene.add_sensor({"q1", SensorType::jointpos, "left/joint1"});
   scene.add_sensor({"cube_p", SensorType::framepos, "cube"});
@@ -270,7 +272,10 @@ TEST(Scene, NameClashesAreNamed) {
   // an object named like a robot takes its mount body's name
   message = error_of([&] { scene.add_object(cube_spec("right", 0.3)); });
   EXPECT_TRUE(contains(message, "body 'right'")) << message;
-  message = error_of([&] { scene.add_sensor({"q", SensorType::jointpos, "left/joint1"}); scene.add_sensor({"q", SensorType::jointpos, "left/joint2"}); });
+  message = error_of([&] {
+    scene.add_sensor({"q", SensorType::jointpos, "left/joint1"});
+    scene.add_sensor({"q", SensorType::jointpos, "left/joint2"});
+  });
   EXPECT_TRUE(contains(message, "sensor 'q'")) << message;
   message = error_of([&] { scene.add_arena(); });
   EXPECT_TRUE(contains(message, "already has an arena")) << message;
@@ -281,25 +286,33 @@ TEST(Scene, NameClashesAreNamed) {
 TEST(Scene, UnknownAttachmentFrameNamesTheClosestFrames) {
   Scene scene;
   scene.add_robot({"arm", "panda", {}, {1, 0, 0, 0}, false});
-  const std::string message =
-      error_of([&] { scene.attach_gripper({"arm", "franka_hand", "attachment_sit", "hand"}); });
+  const std::string message = error_of([&] {
+    scene.attach_gripper({"arm", "franka_hand", "attachment_sit", "hand"});
+  });
   EXPECT_TRUE(contains(message, "unknown attachment frame 'attachment_sit' on robot 'arm'"))
       << message;
   EXPECT_TRUE(contains(message, "closest: attachment_site")) << message;
-  EXPECT_TRUE(contains(error_of([&] { scene.attach_gripper({"arn", "franka_hand", "link7", "hand"}); }),
+  EXPECT_TRUE(contains(error_of([&] {
+                         scene.attach_gripper({"arn", "franka_hand", "link7", "hand"});
+                       }),
                        "no robot named 'arn'"));
 }
 
 TEST(Scene, UnknownRobotGripperAndShapeNamedWithSuggestions) {
   Scene scene;
-  std::string message = error_of([&] { scene.add_robot({"a", "pandahand", {}, {1, 0, 0, 0}, false}); });
-  EXPECT_TRUE(contains(message, "unknown robot 'pandahand'; closest: panda_hand")) << message;
+  std::string message = error_of([&] {
+    scene.add_robot({"a", "pandahand", {}, {1, 0, 0, 0}, false});
+  });
+  EXPECT_TRUE(contains(message, "unknown robot 'pandahand'; closest: panda, panda_hand"))
+      << message;
   scene.add_robot({"arm", "panda", {}, {1, 0, 0, 0}, false});
   message = error_of([&] { scene.attach_gripper({"arm", "franka_hnd", "link7", "hand"}); });
   EXPECT_TRUE(contains(message, "unknown gripper 'franka_hnd'; closest: franka_hand")) << message;
   message = error_of([] { object_shape("cilinder"); });
   EXPECT_TRUE(contains(message, "unknown object shape 'cilinder'; closest: cylinder")) << message;
-  message = error_of([&] { scene.add_robot({"b", "/nonexistent/arm.xml", {}, {1, 0, 0, 0}, false}); });
+  message = error_of([&] {
+    scene.add_robot({"b", "/nonexistent/arm.xml", {}, {1, 0, 0, 0}, false});
+  });
   EXPECT_TRUE(contains(message, "'/nonexistent/arm.xml' does not exist")) << message;
 }
 
@@ -317,19 +330,12 @@ TEST(Scene, MissingMeshFileIsNamed) {
 }
 
 TEST(Scene, MeshObjectsLoadFromAnAbsolutePath) {
-  // a tetrahedron as an ASCII STL
-  const auto file = test::scratch() / "tetra.stl";
+  // a tetrahedron as a Wavefront OBJ
+  const auto file = test::scratch() / "tetra.obj";
   {
     std::ofstream out(file);
-    out << "solid t\n";
-    const double v[4][3] = {{0, 0, 0}, {0.04, 0, 0}, {0, 0.04, 0}, {0, 0, 0.04}};
-    const int f[4][3] = {{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}};
-    for (const auto& t : f) {
-      out << "facet normal 0 0 0\nouter loop\n";
-      for (int i : t) out << "vertex " << v[i][0] << " " << v[i][1] << " " << v[i][2] << "\n";
-      out << "endloop\nendfacet\n";
-    }
-    out << "endsolid t\n";
+    out << "v 0 0 0\nv 0.04 0 0\nv 0 0.04 0\nv 0 0 0.04\n";
+    out << "f 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n";
   }
   Scene scene;
   ObjectSpec tetra;
@@ -365,9 +371,13 @@ TEST(Scene, BadValuesAreNamed) {
   const std::string message = error_of([&] { scene.compile(); });
   EXPECT_TRUE(contains(message, "scene 'two_arms' does not compile")) << message;
   EXPECT_TRUE(contains(message, "size")) << message;
-  EXPECT_TRUE(contains(error_of([&] { scene.add_weld({"w", "left/link6", "cub", false, {0.002, 1}}); }),
+  EXPECT_TRUE(contains(error_of([&] {
+                         scene.add_weld({"w", "left/link6", "cub", false, {0.002, 1}});
+                       }),
                        "no body named 'cub'"));
-  EXPECT_TRUE(contains(error_of([&] { scene.add_sensor({"s", SensorType::touch, "left/grp"}); }),
+  EXPECT_TRUE(contains(error_of([&] {
+                         scene.add_sensor({"s", SensorType::touch, "left/grp"});
+                       }),
                        "closest: left/grip"));
 }
 

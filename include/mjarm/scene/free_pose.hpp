@@ -14,7 +14,7 @@ namespace mjarm {
 
 /// Pose of a free body B in world W.
 struct FreePose {
-  std::array<double, 3> p_WB{0.0, 0.0, 0.0};        ///< position [m]
+  std::array<double, 3> p_WB{0.0, 0.0, 0.0};          ///< position [m]
   std::array<double, 4> quat_WB{1.0, 0.0, 0.0, 0.0};  ///< orientation (w, x, y, z), unit
 };
 

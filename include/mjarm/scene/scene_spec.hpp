@@ -13,11 +13,11 @@ namespace mjarm {
 /// Floor, lights and an optional table. Names: `arena/floor`, `arena/table` (body),
 /// `arena/table_top` (geom), `arena/table_surface` (site at the centre of the top surface).
 struct ArenaSpec {
-  std::array<double, 2> floor_half_size{2.0, 2.0};  ///< plane half extents x, y [m]
-  bool table = false;                               ///< add a table
-  std::array<double, 2> table_center{0.5, 0.0};     ///< table centre x, y in world [m]
-  std::array<double, 2> table_half_size{0.4, 0.6};  ///< top half extents x, y [m]
-  double table_height = 0.4;                        ///< height of the top surface [m]
+  std::array<double, 2> floor_half_size{2.0, 2.0};           ///< plane half extents x, y [m]
+  bool table = false;                                        ///< add a table
+  std::array<double, 2> table_center{0.5, 0.0};              ///< table centre x, y in world [m]
+  std::array<double, 2> table_half_size{0.4, 0.6};           ///< top half extents x, y [m]
+  double table_height = 0.4;                                 ///< height of the top surface [m]
   std::array<double, 3> table_friction{1.0, 0.005, 0.0001};  ///< sliding, torsional, rolling
 };
 
@@ -25,9 +25,9 @@ struct ArenaSpec {
 /// files are translated). Every name in it gets the prefix `name + "/"` ("left/joint1"); the
 /// robot's root bodies go inside a fixed body called `name` placed at `pos`, `quat` in world.
 struct RobotSpec {
-  std::string name;                          ///< prefix, unique in the scene
-  std::string model;                         ///< bundled name or MJCF/URDF file path
-  std::array<double, 3> pos{0.0, 0.0, 0.0};  ///< mount position in world [m]
+  std::string name;                                ///< prefix, unique in the scene
+  std::string model;                               ///< bundled name or MJCF/URDF file path
+  std::array<double, 3> pos{0.0, 0.0, 0.0};        ///< mount position in world [m]
   std::array<double, 4> quat{1.0, 0.0, 0.0, 0.0};  ///< mount orientation (w, x, y, z)
   /// Keep the model's own floor planes and lights (bundled models include a floor).
   bool keep_arena = false;
@@ -38,10 +38,10 @@ struct RobotSpec {
 /// `robot + "/" + name + "/"`; the gripper's root bodies go inside a body `robot/name` placed at
 /// the frame.
 struct GripperSpec {
-  std::string robot;              ///< name of a robot already in the scene
-  std::string model;              ///< bundled gripper name ("franka_hand") or MJCF file path
-  std::string frame;              ///< site or body of the robot, unprefixed ("attachment_site")
-  std::string name = "gripper";   ///< prefix inside the robot's
+  std::string robot;             ///< name of a robot already in the scene
+  std::string model;             ///< bundled gripper name ("franka_hand") or MJCF file path
+  std::string frame;             ///< site or body of the robot, unprefixed ("attachment_site")
+  std::string name = "gripper";  ///< prefix inside the robot's
 };
 
 /// Shapes of objects and fixtures.
@@ -62,34 +62,34 @@ struct ObjectSpec {
   /// box: 3 half extents; sphere: radius; cylinder and capsule: radius, half length [m];
   /// mesh: 3 scale factors (or empty for 1 1 1).
   std::vector<double> size{0.02, 0.02, 0.02};
-  std::string mesh_file;                       ///< STL/OBJ/MSH file, for shape mesh
-  double mass = 0.1;                           ///< [kg], > 0
+  std::string mesh_file;                               ///< STL/OBJ/MSH file, for shape mesh
+  double mass = 0.1;                                   ///< [kg], > 0
   std::array<double, 3> friction{1.0, 0.005, 0.0001};  ///< sliding, torsional, rolling, >= 0
-  std::array<double, 3> pos{0.0, 0.0, 0.0};    ///< position in world [m]
-  std::array<double, 4> quat{1.0, 0.0, 0.0, 0.0};  ///< orientation in world (w, x, y, z)
+  std::array<double, 3> pos{0.0, 0.0, 0.0};            ///< position in world [m]
+  std::array<double, 4> quat{1.0, 0.0, 0.0, 0.0};      ///< orientation in world (w, x, y, z)
   std::array<double, 4> rgba{0.8, 0.3, 0.2, 1.0};
 };
 
 /// A camera fixed to a body (or the world), optionally tracking a body.
 struct CameraSpec {
   std::string name;
-  std::string body;                            ///< parent body, empty for the world
-  std::array<double, 3> pos{0.0, 0.0, 0.0};    ///< in the parent body [m]
+  std::string body;                          ///< parent body, empty for the world
+  std::array<double, 3> pos{0.0, 0.0, 0.0};  ///< in the parent body [m]
   /// x and y axes of the image in the parent body (the camera looks along −z); all zero to
   /// use `quat` instead.
   std::array<double, 6> xyaxes{0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
   std::array<double, 4> quat{1.0, 0.0, 0.0, 0.0};
-  double fovy = 45.0;                          ///< vertical field of view [deg]
-  std::string target;                          ///< body to look at (mode targetbody), or empty
+  double fovy = 45.0;  ///< vertical field of view [deg]
+  std::string target;  ///< body to look at (mode targetbody), or empty
 };
 
 /// A site on a body (or the world).
 struct SiteSpec {
   std::string name;
-  std::string body;                            ///< parent body, empty for the world
-  std::array<double, 3> pos{0.0, 0.0, 0.0};    ///< in the parent body [m]
+  std::string body;                          ///< parent body, empty for the world
+  std::array<double, 3> pos{0.0, 0.0, 0.0};  ///< in the parent body [m]
   std::array<double, 4> quat{1.0, 0.0, 0.0, 0.0};
-  double size = 0.005;                         ///< sphere radius [m]
+  double size = 0.005;  ///< sphere radius [m]
   std::array<double, 4> rgba{0.2, 0.8, 0.2, 1.0};
 };
 
@@ -114,8 +114,8 @@ struct SensorSpec {
 /// unless @p active: the grasp switches it on.
 struct WeldSpec {
   std::string name;
-  std::string body1;                      ///< e.g. "arm/hand"
-  std::string body2;                      ///< e.g. "cube"
+  std::string body1;  ///< e.g. "arm/hand"
+  std::string body2;  ///< e.g. "cube"
   bool active = false;
   std::array<double, 2> solref{0.002, 1.0};  ///< time constant [s], damping ratio
 };
