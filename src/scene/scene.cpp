@@ -342,7 +342,7 @@ void Scene::add_fixture(const ObjectSpec& spec) {
   impl_->add_part(std::move(part), spec.name, impl_->sec("worldbody"), std::move(mount));
 }
 
-void Scene::add_camera(const CameraSpec& spec) {
+void Scene::add_camera(const SceneCameraSpec& spec) {
   validate(spec);
   const std::string source = "camera '" + spec.name + "'";
   impl_->check_single("camera", spec.name, source);

@@ -267,7 +267,7 @@ Scene parse_scene(std::string_view text, const fs::path& base_dir, const std::st
   for (std::size_t i = 0; i < cameras.size(); ++i) {
     const Fields f(cameras[i], entry_name(cameras[i], "camera", i),
                    {"name", "body", "pos", "xyaxes", "quat", "fovy", "target"}, source);
-    CameraSpec spec;
+    SceneCameraSpec spec;
     spec.name = f.text("name");
     f.read("body", spec.body);
     f.read("pos", spec.pos);

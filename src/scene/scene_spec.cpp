@@ -145,7 +145,7 @@ void validate(const ObjectSpec& spec) {
     throw Error(what + " has a mesh file but its shape is not mesh");
 }
 
-void validate(const CameraSpec& spec) {
+void validate(const SceneCameraSpec& spec) {
   check_name(spec.name, "camera");
   const std::string what = "camera '" + spec.name + "'";
   check_finite(spec.pos, what + " pos");

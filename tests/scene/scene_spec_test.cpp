@@ -70,7 +70,7 @@ TEST(SceneSpec, RobotsCamerasSitesWeldsAndArenasAreChecked) {
                      validate(GripperSpec{"a", "franka_hand", "", "g"});
                    }),
                    "needs the robot frame"));
-  CameraSpec camera;
+  SceneCameraSpec camera;
   camera.name = "c";
   camera.fovy = 190.0;
   EXPECT_TRUE(says(error_of([&] { validate(camera); }), "fovy must lie in (0, 180)"));

@@ -54,7 +54,7 @@ class Scene {
   /// Adds a fixture: an object fixed to the world (no joint).
   void add_fixture(const ObjectSpec& spec);
   /// Adds a camera. @throws Error for an unknown parent or target body or a name clash.
-  void add_camera(const CameraSpec& spec);
+  void add_camera(const SceneCameraSpec& spec);
   /// Adds a site. @throws Error for an unknown parent body or a name clash.
   void add_site(const SiteSpec& spec);
   /// Adds a sensor. @throws Error when its target does not exist (with the closest names).

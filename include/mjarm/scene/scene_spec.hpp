@@ -71,7 +71,7 @@ struct ObjectSpec {
 };
 
 /// A camera fixed to a body (or the world), optionally tracking a body.
-struct CameraSpec {
+struct SceneCameraSpec {
   std::string name;
   std::string body;                          ///< parent body, empty for the world
   std::array<double, 3> pos{0.0, 0.0, 0.0};  ///< in the parent body [m]
@@ -125,7 +125,7 @@ struct WeldSpec {
 void validate(const RobotSpec& spec);
 void validate(const GripperSpec& spec);
 void validate(const ObjectSpec& spec);
-void validate(const CameraSpec& spec);
+void validate(const SceneCameraSpec& spec);
 void validate(const SiteSpec& spec);
 void validate(const WeldSpec& spec);
 void validate(const ArenaSpec& spec);
