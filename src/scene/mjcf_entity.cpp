@@ -1,5 +1,6 @@
 #include "mjcf_entity.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <numbers>
@@ -271,6 +272,12 @@ void prefix_part(Part& part, const std::string& prefix) {
 
 void strip_arena(XmlNode& root) {
   for (auto& c : root.children) {
+    if (c.tag == "asset") {
+      std::erase_if(c.children, [](const XmlNode& a) {
+        const std::string* type = a.find("type");
+        return a.tag == "texture" && type && *type == "skybox";
+      });
+    }
     if (c.tag != "worldbody") continue;
     std::vector<XmlNode> kept;
     for (auto& e : c.children) {

@@ -47,7 +47,7 @@ void normalize_part(XmlNode& root);
 /// `prefix/main`, and gives every element that would have used the main class that class.
 void prefix_part(Part& part, const std::string& prefix);
 
-/// Removes floor planes and lights placed directly in the part's worldbody.
+/// Removes floor planes and lights placed directly in the part's worldbody, and skybox textures.
 void strip_arena(XmlNode& root);
 
 /// The MuJoCo namespace an element's name lives in ("body", "joint", "actuator", ...), or ""

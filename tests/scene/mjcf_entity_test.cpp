@@ -138,5 +138,32 @@ TEST(MjcfEntity, TwoCopiesOfOnePartKeepTheirOwnClassesAndMeshes) {
   EXPECT_TRUE(scene.has("default", "d/arm6_finger"));
 }
 
+TEST(MjcfEntity, MuJoCo3PartsAreTranslatedAndTheirRewritesReported) {
+  // 3.x: implicitfast, a range relying on autolimits, a position actuator with kv
+  const auto file = write_part("v3/v3.xml", R"(
+<mujoco model="v3">
+  <option integrator="implicitfast"/>
+  <worldbody>
+    <body name="b"><joint name="j" axis="0 0 1" range="-1 1"/><geom size="0.05"/></body>
+  </worldbody>
+  <actuator><position name="p" joint="j" kp="50" kv="2"/></actuator>
+</mujoco>)");
+  Scene scene;
+  scene.add_robot({"v3", file.string(), {}, {1, 0, 0, 0}, false});
+  ASSERT_FALSE(scene.warnings().empty());
+  EXPECT_NE(scene.warnings().front().find("robot 'v3'"), std::string::npos);
+  bool integrator = false;
+  for (const auto& w : scene.warnings())
+    integrator = integrator || w.find("implicitfast") != std::string::npos;
+  EXPECT_TRUE(integrator);
+  const Robot robot = scene.compile();
+  const mjModel& m = robot.model();
+  const int j = robot.joint("v3/j");
+  EXPECT_TRUE(m.jnt_limited[j]);
+  EXPECT_EQ(m.jnt_range[2 * j + 1], 1.0);
+  // the kv of 3.x becomes the bias of the 2.2.2 servo
+  EXPECT_EQ(m.actuator_biasprm[robot.actuator("v3/p") * mjNBIAS + 2], -2.0);
+}
+
 }  // namespace
 }  // namespace mjarm

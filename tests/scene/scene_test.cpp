@@ -60,6 +60,18 @@ TEST(Scene, TwoRobotsAndTwoObjectsCompileWithoutClash) {
   EXPECT_EQ(try_find_object(robot.model(), mjOBJ_GEOM, "left/floor"), -1);
   EXPECT_GE(robot.geom("arena/floor"), 0);
   EXPECT_GE(robot.geom("arena/table_top"), 0);
+  int skyboxes = 0;
+  for (int t = 0; t < robot.model().ntex; ++t)
+    skyboxes += robot.model().tex_type[t] == mjTEXTURE_SKYBOX;
+  EXPECT_EQ(skyboxes, 1);
+}
+
+TEST(Scene, KeepArenaKeepsARobotsOwnFloorAndLights) {
+  Scene scene;
+  scene.add_robot({"arm", "arm6", {}, {1, 0, 0, 0}, true});
+  const Robot robot = scene.compile();
+  EXPECT_GE(robot.geom("arm/floor"), 0);
+  EXPECT_EQ(robot.model().nlight, Robot::bundled("arm6").model().nlight);
 }
 
 TEST(Scene, PrefixedReferencesResolveToThePartsOwnElements) {

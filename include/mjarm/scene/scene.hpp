@@ -39,8 +39,9 @@ class Scene {
   void add_arena(const ArenaSpec& arena = {});
 
   /// Adds a robot; its names get the prefix `spec.name + "/"`.
-  /// @throws Error for an unknown bundled name (with the closest ones), a missing or invalid
-  ///         file, a robot name used twice, or a compiler setting that clashes with another part.
+  /// @throws Error for an unknown bundled name (with the closest ones), a missing, invalid or
+  ///         non-MJCF file, a robot name used twice, or a compiler setting that clashes with
+  ///         another part.
   void add_robot(const RobotSpec& spec);
 
   /// Attaches a gripper rigidly at a site or body of a robot already in the scene.

@@ -22,14 +22,15 @@ struct ArenaSpec {
 };
 
 /// A robot from any MJCF: a bundled name ("arm6", "panda_hand", ...) or a file path (MuJoCo 3.x
-/// files are translated). Every name in it gets the prefix `name + "/"` ("left/joint1"); the
-/// robot's root bodies go inside a fixed body called `name` placed at `pos`, `quat` in world.
+/// files are translated; URDF is not merged: convert it to MJCF first). Every name in it gets the
+/// prefix `name + "/"` ("left/joint1"); the robot's root bodies go inside a fixed body called
+/// `name` placed at `pos`, `quat` in world.
 struct RobotSpec {
   std::string name;                                ///< prefix, unique in the scene
-  std::string model;                               ///< bundled name or MJCF/URDF file path
+  std::string model;                               ///< bundled name or MJCF file path
   std::array<double, 3> pos{0.0, 0.0, 0.0};        ///< mount position in world [m]
   std::array<double, 4> quat{1.0, 0.0, 0.0, 0.0};  ///< mount orientation (w, x, y, z)
-  /// Keep the model's own floor planes and lights (bundled models include a floor).
+  /// Keep the model's own floor planes, lights and skybox (bundled models include them).
   bool keep_arena = false;
 };
 
