@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <fstream>
+#include <numbers>
 #include <random>
 
 #include "mjarm/model/names.hpp"
@@ -160,7 +161,10 @@ TEST(MjcfEntity, MuJoCo3PartsAreTranslatedAndTheirRewritesReported) {
   const mjModel& m = robot.model();
   const int j = robot.joint("v3/j");
   EXPECT_TRUE(m.jnt_limited[j]);
-  EXPECT_EQ(m.jnt_range[2 * j + 1], 1.0);
+  // no compiler angle: degrees, as MuJoCo reads the file alone
+  const Robot alone = Robot::from_file(file);
+  EXPECT_NEAR(m.jnt_range[2 * j + 1], alone.model().jnt_range[1], 1e-15);
+  EXPECT_NEAR(m.jnt_range[2 * j + 1], std::numbers::pi / 180.0, 1e-15);
   // the kv of 3.x becomes the bias of the 2.2.2 servo
   EXPECT_EQ(m.actuator_biasprm[robot.actuator("v3/p") * mjNBIAS + 2], -2.0);
 }
