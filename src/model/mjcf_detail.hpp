@@ -49,6 +49,9 @@ std::string format_numbers(std::span<const double> v);
 XmlNode parse_document(std::string_view text, std::shared_ptr<const std::filesystem::path> file);
 /// Serializes `root` as an indented XML document.
 std::string write_document(const XmlNode& root);
+/// The whole text of a model file; throws mjarm::Error naming the file when it is missing, a
+/// directory or unreadable.
+std::string read_model_file(const std::filesystem::path& path);
 
 /// Calls `fn(node, parent)` for every element below `root` in pre-order (parent is never null).
 template <class Fn>

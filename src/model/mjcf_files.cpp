@@ -4,6 +4,7 @@
 #include <set>
 #include <sstream>
 
+#include "mjarm/error.hpp"
 #include "mjcf_detail.hpp"
 
 namespace mjarm::mjcf_detail {
@@ -71,6 +72,18 @@ bool is_file_attr(std::string_view tag, std::string_view key) {
 }
 
 }  // namespace
+
+std::string read_model_file(const fs::path& path) {
+  std::error_code ec;
+  if (!fs::exists(path, ec)) throw Error("model file '" + path.string() + "' does not exist");
+  if (fs::is_directory(path, ec))
+    throw Error("model path '" + path.string() + "' is a directory, expected an MJCF or URDF file");
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw Error("model file '" + path.string() + "' cannot be read");
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
 
 void inline_includes(XmlNode& root, Context& ctx) {
   std::vector<fs::path> stack;

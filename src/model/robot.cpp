@@ -6,14 +6,13 @@
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
-#include <fstream>
 #include <iostream>
 #include <mutex>
-#include <sstream>
 
 #include "mjarm/error.hpp"
 #include "mjarm/model/mjcf_translate.hpp"
 #include "mjarm/model/names.hpp"
+#include "mjcf_detail.hpp"
 
 namespace mjarm {
 namespace {
@@ -23,18 +22,6 @@ namespace {
 }
 
 void print_mujoco_warning(const char* message) { std::cerr << "mujoco warning: " << message << "\n"; }
-
-std::string read_text(const std::filesystem::path& path) {
-  std::error_code ec;
-  if (!std::filesystem::exists(path, ec)) throw Error("model file '" + path.string() + "' does not exist");
-  if (std::filesystem::is_directory(path, ec))
-    throw Error("model path '" + path.string() + "' is a directory, expected an MJCF or URDF file");
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw Error("model file '" + path.string() + "' cannot be read");
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
 
 /// The root element's name ("mujoco" or "robot").
 /// @throws Error with the parser's message and line when the XML is malformed.
@@ -144,7 +131,7 @@ Robot::Robot(mjModel* model, std::string source, std::vector<std::string> warnin
 
 Robot Robot::from_file(const std::filesystem::path& path) {
   install_mujoco_handlers();
-  const std::string xml = read_text(path);
+  const std::string xml = mjcf_detail::read_model_file(path);
   const std::string source = "'" + path.string() + "'";
   if (root_element(xml, source) != "mujoco") return Robot(load_from_disk(path), path.string(), {});
   MjcfTranslation translated = translate_mjcf(xml, std::filesystem::absolute(path).parent_path());

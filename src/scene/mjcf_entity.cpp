@@ -2,10 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
-#include <fstream>
 #include <numbers>
 #include <set>
-#include <sstream>
 
 #include "mjarm/error.hpp"
 #include "mjarm/model/mjcf_translate.hpp"
@@ -34,18 +32,6 @@ bool takes_class(std::string_view tag, std::string_view parent) {
   if (parent == "equality" || parent == "actuator") return true;
   if (parent == "tendon") return tag == "spatial" || tag == "fixed";
   return false;
-}
-
-std::string read_checked(const fs::path& path) {
-  std::error_code ec;
-  if (!fs::exists(path, ec)) throw Error("model file '" + path.string() + "' does not exist");
-  if (fs::is_directory(path, ec))
-    throw Error("model path '" + path.string() + "' is a directory, expected an MJCF file");
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw Error("model file '" + path.string() + "' cannot be read");
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
 }
 
 int coordinates(std::string_view type) {
@@ -209,7 +195,7 @@ void normalize_part(XmlNode& root) {
 }
 
 Part load_part(const fs::path& file, std::string source) {
-  const std::string text = read_checked(file);
+  const std::string text = mjcf_detail::read_model_file(file);
   MjcfTranslation translated = translate_mjcf(text, fs::absolute(file).parent_path());
   Part part{mjcf_detail::parse_document(translated.xml, nullptr),
             {},
