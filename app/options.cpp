@@ -10,8 +10,10 @@
 #include <cstring>
 #include <filesystem>
 #include <limits>
+#include <iostream>
 
 #include "mjarm/error.hpp"
+#include "mjarm/scene/scene_file.hpp"
 #include "output.hpp"
 
 namespace mjarm::cli {
@@ -143,8 +145,10 @@ PixelSize parse_pixel_size(const std::string& text) {
 }
 
 CLI::Option* add_model_argument(CLI::App& command, std::string& model) {
-  return command.add_option("MODEL", model,
-                            "bundled model name (see `mjarm models`) or path to an MJCF/URDF file");
+  return command.add_option(
+      "MODEL", model,
+      "bundled model name (see `mjarm models`), path to an MJCF/URDF file, or a "
+      "scene file (.yaml/.yml/.json, docs/scene.md)");
 }
 
 CLI::Option* add_site_option(CLI::App& command, std::string& site) {
@@ -156,7 +160,12 @@ CLI::Option* add_json_flag(CLI::App& command, bool& json) {
   return command.add_flag("--json", json, "print one JSON document to stdout instead of tables");
 }
 
-Robot load_model(const std::string& model) { return Robot::load(model); }
+Robot load_model(const std::string& model) {
+  if (!is_scene_file(model)) return Robot::load(model);
+  const Scene scene = load_scene_file(model);
+  for (const auto& warning : scene.warnings()) std::cerr << "mjarm: " << warning << "\n";
+  return scene.compile();
+}
 
 std::string resolve_site(const Robot& robot, const std::string& site) {
   if (!site.empty()) return site;

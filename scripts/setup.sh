@@ -6,6 +6,8 @@ packages=(
   build-essential cmake pkg-config
   libmujoco-dev libeigen3-dev libtinyxml2-dev libcli11-dev nlohmann-json3-dev
   libgtest-dev libgmock-dev libbenchmark-dev
+  # scene files (YAML, and JSON through the same parser)
+  libyaml-cpp-dev
   # render room (part of the default build, tested headless): EGL + desktop GL headers, Mesa's
   # EGL vendor and software rasteriser (no GPU, no display), PNG frames, ffmpeg for MP4 video
   libegl-dev libgl-dev libegl-mesa0 libgl1-mesa-dri libpng-dev ffmpeg

@@ -150,6 +150,20 @@ TEST(Cli, InfoReportsTranslationWarningsAndSensors) {
   EXPECT_NEAR(doc["joints"][0]["range"][1].get<double>(), std::numbers::pi / 180.0, 1e-15);
 }
 
+TEST(Cli, InfoDescribesASceneFile) {
+  const fs::path scene = fs::path(MJARM_MODELS_DIR) / "scenes" / "pick_table.yaml";
+  const json doc = run_json({"info", scene.string(), "--json"});
+  EXPECT_EQ(doc["name"], "pick_table");
+  EXPECT_EQ(doc["nq"], 7 + 2 + 7 + 7);
+  EXPECT_EQ(doc["nu"], 9);
+  EXPECT_EQ(doc["joints"][8]["name"], "panda/hand/finger_right");
+  EXPECT_EQ(doc["joints"][9]["type"], "free");
+  EXPECT_EQ(doc["sensors"].size(), 4u);
+  expect_error(
+      {"info", write_file("bad_scene.yaml", "objects:\n  - {name: c, mass: heavy}\n").string()}, 1,
+      "bad_scene.yaml:2: key 'mass' in object 'c' expects a number, got 'heavy'");
+}
+
 TEST(Cli, FkOfPlanar2MatchesClosedForm) {
   const json zero = run_json({"fk", "planar2", "--site", "tip", "--q", "0", "0", "--json"});
   const Eigen::Vector3d p = to_vector(zero["position"]);

@@ -1,0 +1,134 @@
+#pragma once
+/// @file
+/// What a scene is made of: plain descriptions of an arena, robots, grippers, objects, cameras,
+/// sites, sensors and welds, checked by `validate()` before they are composed (see `Scene`).
+
+#include <array>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace mjarm {
+
+/// Floor, lights and an optional table. Names: `arena/floor`, `arena/table` (body),
+/// `arena/table_top` (geom), `arena/table_surface` (site at the centre of the top surface).
+struct ArenaSpec {
+  std::array<double, 2> floor_half_size{2.0, 2.0};           ///< plane half extents x, y [m]
+  bool table = false;                                        ///< add a table
+  std::array<double, 2> table_center{0.5, 0.0};              ///< table centre x, y in world [m]
+  std::array<double, 2> table_half_size{0.4, 0.6};           ///< top half extents x, y [m]
+  double table_height = 0.4;                                 ///< height of the top surface [m]
+  std::array<double, 3> table_friction{1.0, 0.005, 0.0001};  ///< sliding, torsional, rolling
+};
+
+/// A robot from any MJCF: a bundled name ("arm6", "panda_hand", ...) or a file path (MuJoCo 3.x
+/// files are translated; URDF is not merged: convert it to MJCF first). Every name in it gets the
+/// prefix `name + "/"` ("left/joint1"); the robot's root bodies go inside a fixed body called
+/// `name` placed at `pos`, `quat` in world.
+struct RobotSpec {
+  std::string name;                                ///< prefix, unique in the scene
+  std::string model;                               ///< bundled name or MJCF file path
+  std::array<double, 3> pos{0.0, 0.0, 0.0};        ///< mount position in world [m]
+  std::array<double, 4> quat{1.0, 0.0, 0.0, 0.0};  ///< mount orientation (w, x, y, z)
+  /// Keep the model's own floor planes, lights and skybox (bundled models include them).
+  bool keep_arena = false;
+};
+
+/// A gripper MJCF attached rigidly to a robot frame (no joint is added between them: the
+/// scene's nq grows by the gripper's own joints only). Names get the prefix
+/// `robot + "/" + name + "/"`; the gripper's root bodies go inside a body `robot/name` placed at
+/// the frame.
+struct GripperSpec {
+  std::string robot;             ///< name of a robot already in the scene
+  std::string model;             ///< bundled gripper name ("franka_hand") or MJCF file path
+  std::string frame;             ///< site or body of the robot, unprefixed ("attachment_site")
+  std::string name = "gripper";  ///< prefix inside the robot's
+};
+
+/// Shapes of objects and fixtures.
+enum class ObjectShape { box, sphere, cylinder, capsule, mesh };
+
+/// Human name of a shape ("box", ...).
+const char* to_string(ObjectShape shape) noexcept;
+/// The shape called @p name.
+/// @throws Error naming the closest shape names when @p name is not one.
+ObjectShape object_shape(std::string_view name);
+
+/// A rigid object: free (`Scene::add_object`, adds a free joint: nq += 7, nv += 6) or fixed to
+/// the world (`Scene::add_fixture`). Names: body `name`, geom `name/geom`, site `name/center`,
+/// free joint `name/joint`, mesh asset `name/mesh`.
+struct ObjectSpec {
+  std::string name;
+  ObjectShape shape = ObjectShape::box;
+  /// box: 3 half extents; sphere: radius; cylinder and capsule: radius, half length [m];
+  /// mesh: 3 scale factors (or empty for 1 1 1).
+  std::vector<double> size{0.02, 0.02, 0.02};
+  std::string mesh_file;                               ///< STL/OBJ/MSH file, for shape mesh
+  double mass = 0.1;                                   ///< [kg], > 0
+  std::array<double, 3> friction{1.0, 0.005, 0.0001};  ///< sliding, torsional, rolling, >= 0
+  std::array<double, 3> pos{0.0, 0.0, 0.0};            ///< position in world [m]
+  std::array<double, 4> quat{1.0, 0.0, 0.0, 0.0};      ///< orientation in world (w, x, y, z)
+  std::array<double, 4> rgba{0.8, 0.3, 0.2, 1.0};
+};
+
+/// A camera fixed to a body (or the world), optionally tracking a body.
+struct SceneCameraSpec {
+  std::string name;
+  std::string body;                          ///< parent body, empty for the world
+  std::array<double, 3> pos{0.0, 0.0, 0.0};  ///< in the parent body [m]
+  /// x and y axes of the image in the parent body (the camera looks along −z); all zero to
+  /// use `quat` instead.
+  std::array<double, 6> xyaxes{0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
+  std::array<double, 4> quat{1.0, 0.0, 0.0, 0.0};
+  double fovy = 45.0;  ///< vertical field of view [deg]
+  std::string target;  ///< body to look at (mode targetbody), or empty
+};
+
+/// A site on a body (or the world).
+struct SiteSpec {
+  std::string name;
+  std::string body;                          ///< parent body, empty for the world
+  std::array<double, 3> pos{0.0, 0.0, 0.0};  ///< in the parent body [m]
+  std::array<double, 4> quat{1.0, 0.0, 0.0, 0.0};
+  double size = 0.005;  ///< sphere radius [m]
+  std::array<double, 4> rgba{0.2, 0.8, 0.2, 1.0};
+};
+
+/// Sensor types a scene can add.
+enum class SensorType { jointpos, framepos, framequat, touch, force, torque };
+
+/// Human name of a sensor type ("jointpos", ...).
+const char* to_string(SensorType type) noexcept;
+/// The sensor type called @p name.
+/// @throws Error naming the closest sensor types when @p name is not one.
+SensorType sensor_type(std::string_view name);
+
+/// A sensor on a named element: a joint (jointpos), a site (touch, force, torque) or a site,
+/// body, geom or camera (framepos, framequat; a body's frame, not its centre of mass).
+struct SensorSpec {
+  std::string name;
+  SensorType type = SensorType::framepos;
+  std::string target;
+};
+
+/// A weld equality between two bodies (e.g. a gripper body and an object), declared inactive
+/// unless @p active: the grasp switches it on.
+struct WeldSpec {
+  std::string name;
+  std::string body1;  ///< e.g. "arm/hand"
+  std::string body2;  ///< e.g. "cube"
+  bool active = false;
+  std::array<double, 2> solref{0.002, 1.0};  ///< time constant [s], damping ratio
+};
+
+/// Checks sizes, masses, frictions, quaternions and names of a spec.
+/// @throws Error naming the spec and the bad value with what was expected.
+void validate(const RobotSpec& spec);
+void validate(const GripperSpec& spec);
+void validate(const ObjectSpec& spec);
+void validate(const SceneCameraSpec& spec);
+void validate(const SiteSpec& spec);
+void validate(const WeldSpec& spec);
+void validate(const ArenaSpec& spec);
+
+}  // namespace mjarm

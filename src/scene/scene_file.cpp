@@ -1,0 +1,346 @@
+#include "mjarm/scene/scene_file.hpp"
+
+#include <yaml-cpp/yaml.h>
+
+#include <fstream>
+#include <map>
+#include <sstream>
+
+#include "mjarm/error.hpp"
+#include "mjarm/model/names.hpp"
+
+namespace mjarm {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+/// One YAML mapping whose keys were checked against the known ones.
+class Fields {
+ public:
+  Fields(const YAML::Node& node, std::string what, std::vector<std::string> known,
+         const std::string& source)
+      : node_(node), what_(std::move(what)), source_(source) {
+    if (!node.IsMap()) fail(node, what_ + " must be a mapping of keys to values");
+    for (const auto& entry : node) {
+      const std::string key = entry.first.Scalar();
+      if (std::find(known.begin(), known.end(), key) == known.end()) {
+        std::string message = "unknown key '" + key + "' in " + what_;
+        const auto close = closest_names(key, known, 1);
+        if (!close.empty()) message += "; closest: " + close.front();
+        std::string all;
+        for (std::size_t i = 0; i < known.size(); ++i) all += (i ? ", " : "") + known[i];
+        fail(entry.first, message + "; keys: " + all);
+      }
+      if (!values_.emplace(key, entry.second).second)
+        fail(entry.first, "key '" + key + "' appears twice in " + what_);
+    }
+  }
+
+  [[noreturn]] void fail(const YAML::Node& n, const std::string& message) const {
+    const YAML::Mark mark = n.Mark();
+    throw Error(source_ + (mark.is_null() ? std::string() : ":" + std::to_string(mark.line + 1)) +
+                ": " + message);
+  }
+
+  bool has(const std::string& key) const { return values_.count(key) > 0; }
+  const YAML::Node& at(const std::string& key) const {
+    const auto it = values_.find(key);
+    if (it == values_.end()) fail(node_, what_ + " needs the key '" + key + "'");
+    return it->second;
+  }
+  int line() const { return node_.Mark().is_null() ? 0 : node_.Mark().line + 1; }
+
+  std::string text(const std::string& key) const {
+    const YAML::Node& n = at(key);
+    if (!n.IsScalar()) fail(n, "key '" + key + "' in " + what_ + " expects a string");
+    return n.Scalar();
+  }
+  double number(const std::string& key) const { return number_of(at(key), key); }
+  bool flag(const std::string& key) const {
+    const YAML::Node& n = at(key);
+    try {
+      if (n.IsScalar()) return n.as<bool>();
+    } catch (const YAML::Exception&) {
+    }
+    fail(n, "key '" + key + "' in " + what_ + " expects true or false, got '" + n.Scalar() + "'");
+  }
+  std::vector<double> numbers(const std::string& key) const {
+    const YAML::Node& n = at(key);
+    if (n.IsScalar()) return {number_of(n, key)};
+    if (!n.IsSequence()) fail(n, "key '" + key + "' in " + what_ + " expects a list of numbers");
+    std::vector<double> out;
+    for (const auto& v : n) out.push_back(number_of(v, key));
+    return out;
+  }
+  template <std::size_t N>
+  void read(const std::string& key, std::array<double, N>& out) const {
+    if (!has(key)) return;
+    const auto v = numbers(key);
+    if (v.size() != N) {
+      fail(at(key), "key '" + key + "' in " + what_ + " expects " + std::to_string(N) +
+                        " numbers, got " + std::to_string(v.size()));
+    }
+    std::copy(v.begin(), v.end(), out.begin());
+  }
+  void read(const std::string& key, double& out) const {
+    if (has(key)) out = number(key);
+  }
+  void read(const std::string& key, std::string& out) const {
+    if (has(key)) out = text(key);
+  }
+  void read(const std::string& key, bool& out) const {
+    if (has(key)) out = flag(key);
+  }
+
+  /// Runs @p add, prefixing any error with this entry's place.
+  template <class Fn>
+  void apply(Fn&& add) const {
+    try {
+      add();
+    } catch (const Error& e) {
+      throw Error(source_ + ":" + std::to_string(line()) + ": " + what_ + ": " + e.what());
+    }
+  }
+
+ private:
+  double number_of(const YAML::Node& n, const std::string& key) const {
+    if (n.IsScalar()) {
+      try {
+        return n.as<double>();
+      } catch (const YAML::Exception&) {
+      }
+    }
+    fail(n, "key '" + key + "' in " + what_ + " expects a number" +
+                (n.IsScalar() ? ", got '" + n.Scalar() + "'" : std::string()));
+  }
+
+  YAML::Node node_;
+  std::string what_;
+  const std::string& source_;
+  std::map<std::string, YAML::Node> values_;
+};
+
+// the entries of a top-level list
+std::vector<YAML::Node> entries(const Fields& top, const std::string& key) {
+  if (!top.has(key)) return {};
+  const YAML::Node& n = top.at(key);
+  if (!n.IsSequence()) top.fail(n, "key '" + key + "' expects a list");
+  return {n.begin(), n.end()};
+}
+
+std::string entry_name(const YAML::Node& n, const std::string& kind, std::size_t index) {
+  if (n.IsMap() && n["name"] && n["name"].IsScalar()) return kind + " '" + n["name"].Scalar() + "'";
+  return kind + " #" + std::to_string(index + 1);
+}
+
+std::string resolve(const std::string& path, const fs::path& base_dir, bool maybe_bundled) {
+  const fs::path p(path);
+  if (maybe_bundled && !p.has_extension() && !p.has_parent_path()) return path;
+  return p.is_absolute() ? path : (base_dir / p).lexically_normal().string();
+}
+
+ObjectSpec read_object(const Fields& f, const fs::path& base_dir) {
+  ObjectSpec spec;
+  spec.name = f.text("name");
+  if (f.has("shape")) {
+    const std::string shape = f.text("shape");
+    try {
+      spec.shape = object_shape(shape);
+    } catch (const Error& e) {
+      f.fail(f.at("shape"), e.what());
+    }
+  }
+  if (f.has("size"))
+    spec.size = f.numbers("size");
+  else if (spec.shape == ObjectShape::mesh)
+    spec.size.clear();
+  if (f.has("mesh")) spec.mesh_file = resolve(f.text("mesh"), base_dir, false);
+  f.read("mass", spec.mass);
+  f.read("friction", spec.friction);
+  f.read("pos", spec.pos);
+  f.read("quat", spec.quat);
+  f.read("rgba", spec.rgba);
+  return spec;
+}
+
+void read_arena(Scene& scene, const Fields& top, const std::string& source) {
+  if (!top.has("arena")) return;
+  const YAML::Node& node = top.at("arena");
+  ArenaSpec arena;
+  if (node.IsNull()) {
+    scene.add_arena(arena);
+    return;
+  }
+  const Fields f(node, "arena", {"floor", "table"}, source);
+  f.read("floor", arena.floor_half_size);
+  if (f.has("table")) {
+    const YAML::Node& t = f.at("table");
+    if (t.IsScalar()) {
+      arena.table = f.flag("table");
+    } else {
+      arena.table = true;
+      const Fields tf(t, "arena table", {"center", "size", "height", "friction"}, source);
+      tf.read("center", arena.table_center);
+      tf.read("size", arena.table_half_size);
+      tf.read("height", arena.table_height);
+      tf.read("friction", arena.table_friction);
+    }
+  }
+  f.apply([&] { scene.add_arena(arena); });
+}
+
+}  // namespace
+
+bool is_scene_file(const fs::path& path) {
+  const std::string ext = path.extension().string();
+  return ext == ".yaml" || ext == ".yml" || ext == ".json";
+}
+
+Scene parse_scene(std::string_view text, const fs::path& base_dir, const std::string& source) {
+  YAML::Node doc;
+  try {
+    doc = YAML::Load(std::string(text));
+  } catch (const YAML::ParserException& e) {
+    throw Error(source + ":" + std::to_string(e.mark.line + 1) +
+                ": not valid YAML or JSON: " + e.msg);
+  }
+  if (!doc.IsMap())
+    throw Error(source + ": a scene file must be a mapping (name, arena, robots, ...)");
+  const Fields top(doc, "the scene",
+                   {"name", "arena", "robots", "objects", "fixtures", "cameras", "sites", "sensors",
+                    "welds", "edits"},
+                   source);
+  std::string name = source.empty() || source.front() == '<' ? std::string("scene")
+                                                             : fs::path(source).stem().string();
+  top.read("name", name);
+  Scene scene(name);
+  read_arena(scene, top, source);
+
+  const auto robots = entries(top, "robots");
+  for (std::size_t i = 0; i < robots.size(); ++i) {
+    const Fields f(robots[i], entry_name(robots[i], "robot", i),
+                   {"name", "model", "pos", "quat", "keep_arena", "gripper"}, source);
+    RobotSpec spec;
+    spec.name = f.text("name");
+    spec.model = resolve(f.text("model"), base_dir, true);
+    f.read("pos", spec.pos);
+    f.read("quat", spec.quat);
+    f.read("keep_arena", spec.keep_arena);
+    f.apply([&] { scene.add_robot(spec); });
+    if (!f.has("gripper")) continue;
+    const Fields g(f.at("gripper"), "gripper of robot '" + spec.name + "'",
+                   {"model", "frame", "name"}, source);
+    GripperSpec gripper;
+    gripper.robot = spec.name;
+    gripper.model = resolve(g.text("model"), base_dir, true);
+    gripper.frame = g.text("frame");
+    g.read("name", gripper.name);
+    g.apply([&] { scene.attach_gripper(gripper); });
+  }
+  const std::vector<std::string> object_keys{"name",     "shape", "size", "mesh", "mass",
+                                             "friction", "pos",   "quat", "rgba"};
+  for (const char* kind : {"objects", "fixtures"}) {
+    const auto list = entries(top, kind);
+    const bool free = std::string(kind) == "objects";
+    for (std::size_t i = 0; i < list.size(); ++i) {
+      const Fields f(list[i], entry_name(list[i], free ? "object" : "fixture", i), object_keys,
+                     source);
+      const ObjectSpec spec = read_object(f, base_dir);
+      f.apply([&] { free ? scene.add_object(spec) : scene.add_fixture(spec); });
+    }
+  }
+  const auto sites = entries(top, "sites");
+  for (std::size_t i = 0; i < sites.size(); ++i) {
+    const Fields f(sites[i], entry_name(sites[i], "site", i),
+                   {"name", "body", "pos", "quat", "size", "rgba"}, source);
+    SiteSpec spec;
+    spec.name = f.text("name");
+    f.read("body", spec.body);
+    f.read("pos", spec.pos);
+    f.read("quat", spec.quat);
+    f.read("size", spec.size);
+    f.read("rgba", spec.rgba);
+    f.apply([&] { scene.add_site(spec); });
+  }
+  const auto cameras = entries(top, "cameras");
+  for (std::size_t i = 0; i < cameras.size(); ++i) {
+    const Fields f(cameras[i], entry_name(cameras[i], "camera", i),
+                   {"name", "body", "pos", "xyaxes", "quat", "fovy", "target"}, source);
+    SceneCameraSpec spec;
+    spec.name = f.text("name");
+    f.read("body", spec.body);
+    f.read("pos", spec.pos);
+    f.read("xyaxes", spec.xyaxes);
+    f.read("quat", spec.quat);
+    f.read("fovy", spec.fovy);
+    f.read("target", spec.target);
+    f.apply([&] { scene.add_camera(spec); });
+  }
+  const auto sensors = entries(top, "sensors");
+  for (std::size_t i = 0; i < sensors.size(); ++i) {
+    const Fields f(sensors[i], entry_name(sensors[i], "sensor", i), {"name", "type", "target"},
+                   source);
+    SensorSpec spec;
+    spec.name = f.text("name");
+    try {
+      spec.type = sensor_type(f.text("type"));
+    } catch (const Error& e) {
+      f.fail(f.at("type"), e.what());
+    }
+    spec.target = f.text("target");
+    f.apply([&] { scene.add_sensor(spec); });
+  }
+  const auto welds = entries(top, "welds");
+  for (std::size_t i = 0; i < welds.size(); ++i) {
+    const Fields f(welds[i], entry_name(welds[i], "weld", i),
+                   {"name", "body1", "body2", "active", "solref"}, source);
+    WeldSpec spec;
+    spec.name = f.text("name");
+    spec.body1 = f.text("body1");
+    spec.body2 = f.text("body2");
+    f.read("active", spec.active);
+    f.read("solref", spec.solref);
+    f.apply([&] { scene.add_weld(spec); });
+  }
+  const auto edits = entries(top, "edits");
+  for (std::size_t i = 0; i < edits.size(); ++i) {
+    const Fields f(edits[i], "edit #" + std::to_string(i + 1), {"element", "name", "set"}, source);
+    const std::string kind = f.text("element");
+    const std::string element_name = f.text("name");
+    const YAML::Node& set = f.at("set");
+    if (!set.IsMap()) f.fail(set, "key 'set' expects a mapping of attributes to values");
+    for (const auto& entry : set) {
+      const std::string attr = entry.first.Scalar();
+      if (entry.second.IsSequence()) {
+        std::vector<double> values;
+        for (const auto& v : entry.second) {
+          try {
+            values.push_back(v.as<double>());
+          } catch (const YAML::Exception&) {
+            f.fail(v, "attribute '" + attr + "' expects numbers, got '" + v.Scalar() + "'");
+          }
+        }
+        f.apply([&] { scene.set_attribute(kind, element_name, attr, values); });
+      } else if (entry.second.IsScalar()) {
+        f.apply([&] { scene.set_attribute(kind, element_name, attr, entry.second.Scalar()); });
+      } else {
+        f.fail(entry.second, "attribute '" + attr + "' expects a value or a list of numbers");
+      }
+    }
+  }
+  return scene;
+}
+
+Scene load_scene_file(const fs::path& path) {
+  std::error_code ec;
+  if (!fs::is_regular_file(path, ec))
+    throw Error("scene file '" + path.string() + "' does not exist");
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw Error("scene file '" + path.string() + "' cannot be read");
+  std::ostringstream text;
+  text << in.rdbuf();
+  return parse_scene(text.str(), fs::absolute(path).parent_path(), path.string());
+}
+
+}  // namespace mjarm

@@ -1,0 +1,178 @@
+#include "mjarm/scene/scene_spec.hpp"
+
+#include <cmath>
+#include <span>
+
+#include "mjarm/error.hpp"
+#include "mjarm/model/names.hpp"
+
+namespace mjarm {
+namespace {
+
+constexpr const char* kShapeNames[] = {"box", "sphere", "cylinder", "capsule", "mesh"};
+constexpr const char* kSensorNames[] = {"jointpos", "framepos", "framequat",
+                                        "touch",    "force",    "torque"};
+
+std::string joined(std::span<const char* const> names) {
+  std::string out;
+  for (std::size_t i = 0; i < names.size(); ++i) out += (i ? ", " : "") + std::string(names[i]);
+  return out;
+}
+
+template <std::size_t N>
+int index_of(std::string_view name, const char* const (&names)[N], const char* what) {
+  for (std::size_t i = 0; i < N; ++i)
+    if (name == names[i]) return static_cast<int>(i);
+  const std::vector<std::string> all(std::begin(names), std::end(names));
+  std::string message = "unknown " + std::string(what) + " '" + std::string(name) + "'";
+  const auto close = closest_names(name, all, 2);
+  if (!close.empty()) message += "; closest: " + close.front();
+  throw Error(message + "; " + what + "s: " + joined(names));
+}
+
+void check_name(const std::string& name, const std::string& what) {
+  if (name.empty()) throw Error(what + " needs a non-empty name");
+  if (name.find('"') != std::string::npos || name.find('<') != std::string::npos ||
+      name.find('&') != std::string::npos)
+    throw Error(what + " '" + name + "': a name may not contain '\"', '<' or '&'");
+}
+
+void check_finite(std::span<const double> v, const std::string& what) {
+  for (double x : v)
+    if (!std::isfinite(x)) throw Error(what + " holds a non-finite value");
+}
+
+void check_quat(const std::array<double, 4>& q, const std::string& what) {
+  check_finite(q, what);
+  const double norm = std::sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3]);
+  if (norm < 1e-9) throw Error(what + " is a zero quaternion; expected (w, x, y, z) of norm 1");
+}
+
+void check_rgba(const std::array<double, 4>& rgba, const std::string& what) {
+  for (double c : rgba)
+    if (!(c >= 0.0 && c <= 1.0)) throw Error(what + " rgba values must lie in [0, 1]");
+}
+
+}  // namespace
+
+const char* to_string(ObjectShape shape) noexcept { return kShapeNames[static_cast<int>(shape)]; }
+
+ObjectShape object_shape(std::string_view name) {
+  return static_cast<ObjectShape>(index_of(name, kShapeNames, "object shape"));
+}
+
+const char* to_string(SensorType type) noexcept { return kSensorNames[static_cast<int>(type)]; }
+
+SensorType sensor_type(std::string_view name) {
+  return static_cast<SensorType>(index_of(name, kSensorNames, "sensor type"));
+}
+
+void validate(const ArenaSpec& spec) {
+  check_finite(spec.floor_half_size, "arena floor_half_size");
+  check_finite(spec.table_center, "arena table_center");
+  check_finite(spec.table_half_size, "arena table_half_size");
+  check_finite(spec.table_friction, "arena table_friction");
+  for (double s : spec.floor_half_size)
+    if (s <= 0.0) throw Error("arena floor_half_size must be positive");
+  if (!spec.table) return;
+  for (double s : spec.table_half_size)
+    if (s <= 0.0) throw Error("arena table_half_size must be positive");
+  if (!std::isfinite(spec.table_height) || spec.table_height <= 0.05)
+    throw Error("arena table_height must be > 0.05 m, got " + std::to_string(spec.table_height));
+  for (double f : spec.table_friction)
+    if (f < 0.0) throw Error("arena table_friction must be >= 0");
+}
+
+void validate(const RobotSpec& spec) {
+  check_name(spec.name, "robot");
+  if (spec.name.find('/') != std::string::npos)
+    throw Error("robot '" + spec.name + "': a robot name may not contain '/'");
+  if (spec.model.empty()) throw Error("robot '" + spec.name + "' needs a model (name or file)");
+  check_finite(spec.pos, "robot '" + spec.name + "' pos");
+  check_quat(spec.quat, "robot '" + spec.name + "' quat");
+}
+
+void validate(const GripperSpec& spec) {
+  check_name(spec.name, "gripper");
+  const std::string what = "gripper '" + spec.name + "'";
+  if (spec.robot.empty()) throw Error(what + " needs the robot it attaches to");
+  if (spec.model.empty()) throw Error(what + " needs a model (name or file)");
+  if (spec.frame.empty())
+    throw Error(what + " needs the robot frame (site or body) it attaches to");
+}
+
+void validate(const ObjectSpec& spec) {
+  check_name(spec.name, "object");
+  const std::string what = std::string(to_string(spec.shape)) + " object '" + spec.name + "'";
+  check_finite(spec.size, what + " size");
+  check_finite(spec.pos, what + " pos");
+  check_finite(spec.friction, what + " friction");
+  check_quat(spec.quat, what + " quat");
+  check_rgba(spec.rgba, what);
+  std::size_t expected = 0;
+  switch (spec.shape) {
+    case ObjectShape::box:
+      expected = 3;
+      break;
+    case ObjectShape::sphere:
+      expected = 1;
+      break;
+    case ObjectShape::cylinder:
+    case ObjectShape::capsule:
+      expected = 2;
+      break;
+    case ObjectShape::mesh:
+      expected = spec.size.empty() ? 0 : 3;
+      break;
+  }
+  if (spec.size.size() != expected) {
+    throw Error(what + " size expects " + std::to_string(expected) + " value(s) (" +
+                (spec.shape == ObjectShape::box      ? "half extents x y z"
+                 : spec.shape == ObjectShape::sphere ? "radius"
+                 : spec.shape == ObjectShape::mesh   ? "scale x y z, or none"
+                                                     : "radius, half length") +
+                "), got " + std::to_string(spec.size.size()));
+  }
+  for (double s : spec.size)
+    if (s <= 0.0) throw Error(what + " size must be positive, got " + std::to_string(s));
+  if (!std::isfinite(spec.mass) || spec.mass <= 0.0)
+    throw Error(what + " mass must be positive [kg], got " + std::to_string(spec.mass));
+  for (double f : spec.friction)
+    if (f < 0.0) throw Error(what + " friction must be >= 0, got " + std::to_string(f));
+  if (spec.shape == ObjectShape::mesh && spec.mesh_file.empty())
+    throw Error(what + " needs a mesh file");
+  if (spec.shape != ObjectShape::mesh && !spec.mesh_file.empty())
+    throw Error(what + " has a mesh file but its shape is not mesh");
+}
+
+void validate(const SceneCameraSpec& spec) {
+  check_name(spec.name, "camera");
+  const std::string what = "camera '" + spec.name + "'";
+  check_finite(spec.pos, what + " pos");
+  check_finite(spec.xyaxes, what + " xyaxes");
+  check_quat(spec.quat, what + " quat");
+  if (!std::isfinite(spec.fovy) || spec.fovy <= 0.0 || spec.fovy >= 180.0)
+    throw Error(what + " fovy must lie in (0, 180) degrees, got " + std::to_string(spec.fovy));
+}
+
+void validate(const SiteSpec& spec) {
+  check_name(spec.name, "site");
+  const std::string what = "site '" + spec.name + "'";
+  check_finite(spec.pos, what + " pos");
+  check_quat(spec.quat, what + " quat");
+  check_rgba(spec.rgba, what);
+  if (!std::isfinite(spec.size) || spec.size <= 0.0)
+    throw Error(what + " size must be positive, got " + std::to_string(spec.size));
+}
+
+void validate(const WeldSpec& spec) {
+  check_name(spec.name, "weld");
+  const std::string what = "weld '" + spec.name + "'";
+  if (spec.body1.empty() || spec.body2.empty()) throw Error(what + " needs body1 and body2");
+  if (spec.body1 == spec.body2) throw Error(what + " welds body '" + spec.body1 + "' to itself");
+  check_finite(spec.solref, what + " solref");
+  if (spec.solref[0] <= 0.0 || spec.solref[1] <= 0.0)
+    throw Error(what + " solref must be positive (time constant [s], damping ratio)");
+}
+
+}  // namespace mjarm

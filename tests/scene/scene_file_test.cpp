@@ -1,0 +1,132 @@
+#include "mjarm/scene/scene_file.hpp"
+
+#include <gtest/gtest.h>
+
+#include <fstream>
+
+#include "mjarm/model/names.hpp"
+#include "support/error_message.hpp"
+#include "support/files.hpp"
+
+namespace mjarm {
+namespace {
+
+using test::error_of;
+
+const std::filesystem::path kExample =
+    std::filesystem::path(MJARM_MODELS_DIR) / "scenes" / "pick_table.yaml";
+
+bool mentions(const std::string& text, const std::string& part) {
+  return text.find(part) != std::string::npos;
+}
+
+// a small scene whose one line (line 6) is replaced by each bad-input test
+std::string small_scene(const std::string& line6) {
+  return "name: small\n"
+         "arena: {table: true}\n"
+         "objects:\n"
+         "  - name: cube\n"
+         "    shape: box\n" +
+         line6 + "\n" + "    pos: [0.5, 0, 0.45]\n";
+}
+
+TEST(SceneFile, TheExampleComposesThePandaWithItsHandObjectsAndSensors) {
+  ASSERT_TRUE(is_scene_file(kExample));
+  const Scene scene = load_scene_file(kExample);
+  EXPECT_EQ(scene.name(), "pick_table");
+  const Robot robot = scene.compile();
+  EXPECT_EQ(robot.nq(), 7 + 2 + 7 + 7);
+  EXPECT_EQ(robot.nu(), 9);
+  EXPECT_EQ(robot.sensors().size(), 4u);
+  const mjModel& m = robot.model();
+  const int weld = try_find_object(m, mjOBJ_EQUALITY, "grasp");
+  ASSERT_GE(weld, 0);
+  EXPECT_EQ(m.eq_active[weld], 0);
+  const int finger = robot.actuator("panda/hand/finger_left");
+  EXPECT_EQ(m.actuator_ctrlrange[2 * finger + 1], 0.012);
+  EXPECT_EQ(m.actuator_gainprm[finger * mjNGAIN], 3200.0);
+  EXPECT_NEAR(m.geom_size[3 * robot.geom("cube/geom")], 0.0075, 1e-15);
+  // the fixture has no joint
+  EXPECT_EQ(m.body_jntnum[robot.body("bin")], 0);
+  // the home key puts the arm at the panda's home
+  const auto home = robot.keyframe_qpos("home");
+  EXPECT_EQ(home[static_cast<std::size_t>(m.jnt_qposadr[robot.joint("panda/joint4")])], -2.356);
+}
+
+TEST(SceneFile, JsonReadsTheSameWay) {
+  const auto file = test::scratch() / "small.json";
+  std::ofstream(file) << R"({"name": "js", "arena": {"table": {"height": 0.5}},
+    "robots": [{"name": "arm", "model": "arm6", "pos": [-1, 0, 0]}],
+    "objects": [{"name": "ball", "shape": "sphere", "size": [0.02], "pos": [0.5, 0, 0.55]}]})";
+  const Robot robot = load_scene_file(file).compile();
+  EXPECT_EQ(robot.name(), "js");
+  EXPECT_EQ(robot.nq(), 8 + 7);
+  const mjModel& m = robot.model();
+  EXPECT_NEAR(m.geom_size[3 * robot.geom("arena/table_top") + 2], 0.02, 1e-15);
+}
+
+TEST(SceneFile, WrongTypesNameTheLineAndTheKey) {
+  std::string message =
+      error_of([] { parse_scene(small_scene("    mass: heavy"), ".", "s.yaml"); });
+  EXPECT_TRUE(
+      mentions(message, "s.yaml:6: key 'mass' in object 'cube' expects a number, got 'heavy'"))
+      << message;
+  message = error_of([] { parse_scene(small_scene("    size: [0.1, x, 0.1]"), ".", "s.yaml"); });
+  EXPECT_TRUE(mentions(message, "s.yaml:6: key 'size'")) << message;
+  message = error_of([] { parse_scene(small_scene("    friction: {a: 1}"), ".", "s.yaml"); });
+  EXPECT_TRUE(mentions(message, "s.yaml:6: key 'friction' in object 'cube' expects a list"))
+      << message;
+  message = error_of([] { parse_scene(small_scene("    rgba: [1, 0.5]"), ".", "s.yaml"); });
+  EXPECT_TRUE(mentions(message, "s.yaml:6: key 'rgba' in object 'cube' expects 4 numbers, got 2"))
+      << message;
+  message = error_of([] { parse_scene("name: x\nrobots: {name: a}\n", ".", "s.yaml"); });
+  EXPECT_TRUE(mentions(message, "s.yaml:2: key 'robots' expects a list")) << message;
+}
+
+TEST(SceneFile, UnknownKeysNameTheLineAndTheClosestKey) {
+  std::string message =
+      error_of([] { parse_scene(small_scene("    frction: [1, 0, 0]"), ".", "s.yaml"); });
+  EXPECT_TRUE(
+      mentions(message, "s.yaml:6: unknown key 'frction' in object 'cube'; closest: friction"))
+      << message;
+  message = error_of([] { parse_scene("name: x\nrobot: []\n", ".", "s.yaml"); });
+  EXPECT_TRUE(mentions(message, "s.yaml:2: unknown key 'robot' in the scene; closest: robots"))
+      << message;
+}
+
+TEST(SceneFile, BadPartsNameTheEntryAndTheReason) {
+  std::string message = error_of([] { parse_scene(small_scene("    mass: -2"), ".", "s.yaml"); });
+  EXPECT_TRUE(mentions(message, "s.yaml:4: object 'cube': box object 'cube' mass must be positive"))
+      << message;
+  message = error_of([] { parse_scene("robots:\n  - {name: a, model: pnda}\n", ".", "s.yaml"); });
+  EXPECT_TRUE(mentions(message, "s.yaml:2: robot 'a': unknown robot 'pnda'; closest: panda"))
+      << message;
+  message = error_of([] {
+    parse_scene(
+        "robots:\n  - name: a\n    model: panda\n    gripper: {model: franka_hand, frame: "
+        "flange}\n",
+        ".", "s.yaml");
+  });
+  EXPECT_TRUE(mentions(message, "unknown attachment frame 'flange'")) << message;
+  message = error_of([] { parse_scene("objects:\n  - {name: c, shape: cub}\n", ".", "s.yaml"); });
+  EXPECT_TRUE(mentions(message, "s.yaml:2: unknown object shape 'cub'; closest: box")) << message;
+  message = error_of([] { parse_scene(small_scene("    shape: sphere"), ".", "s.yaml"); });
+  EXPECT_TRUE(mentions(message, "s.yaml:6: key 'shape' appears twice in object 'cube'")) << message;
+  message = error_of([] { parse_scene("objects:\n  - {shape: box}\n", ".", "s.yaml"); });
+  EXPECT_TRUE(mentions(message, "s.yaml:2: object #1 needs the key 'name'")) << message;
+  message = error_of([] { parse_scene("name: [unclosed\n", ".", "s.yaml"); });
+  EXPECT_TRUE(mentions(message, "s.yaml:")) << message;
+  EXPECT_TRUE(mentions(message, "not valid YAML or JSON")) << message;
+  message = error_of([] {
+    parse_scene("objects:\n  - {name: m, shape: mesh, mesh: meshes/none.obj}\n", "/tmp/nowhere",
+                "s.yaml");
+  });
+  EXPECT_TRUE(
+      mentions(message, "mesh file '/tmp/nowhere/meshes/none.obj' of object 'm' does not exist"))
+      << message;
+  EXPECT_TRUE(mentions(error_of([] { load_scene_file("/nonexistent/scene.yaml"); }),
+                       "scene file '/nonexistent/scene.yaml' does not exist"));
+}
+
+}  // namespace
+}  // namespace mjarm
