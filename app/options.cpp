@@ -256,8 +256,12 @@ void check_output_file(const std::string& path, const std::string& option, bool 
     // an existing file (or device, e.g. /dev/null): it must open for writing, without waiting
     // on a FIFO nobody reads and without truncating it yet
     const int fd = open(file.c_str(), O_WRONLY | O_NONBLOCK | O_CLOEXEC);
-    if (fd < 0)
-      throw UsageError(option + ": cannot write " + shown(file) + ": " + std::strerror(errno));
+    if (fd < 0) {
+      const int error = errno;
+      throw UsageError(
+          option + ": cannot write " + shown(file) + ": " + std::strerror(error) +
+          (fs::is_fifo(status) && error == ENXIO ? " (a FIFO that nothing reads)" : ""));
+    }
     close(fd);
     return;
   }

@@ -230,7 +230,8 @@ TEST(RunCli, AllExitsOneWhenPicksFailWhateverTheFormat) {
   EXPECT_EQ(doc.exit_code, 1) << doc.err;
   EXPECT_NE(doc.err.find("some shelf picks did not hold"), std::string::npos) << doc.err;
   ASSERT_TRUE(json::accept(doc.out)) << doc.out;  // the figures are still printed
-  for (const json& row : json::parse(doc.out)["rows"]) EXPECT_EQ(row["held"], 0) << row;
+  const json parsed = json::parse(doc.out);
+  for (const json& row : parsed["rows"]) EXPECT_EQ(row["held"], 0) << row;
 }
 
 TEST(RunCli, DemoRunsTheShelfPickAndRecordsIntoOutDemo) {

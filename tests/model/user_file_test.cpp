@@ -59,7 +59,9 @@ TEST(UserFile, NamesWhatIsWrongWithThePath) {
   fs::create_symlink("nowhere.xml", dir / "dangling.xml");
   expect_contains(error_of([&] { read_user_file(dir / "dangling.xml", "model file"); }),
                   "does not exist");
-  expect_contains(error_of([&] { read_user_file(dir / "bytes.bin" / "x", "model file"); }),
+  // a regular file used as a folder (made here: every test runs in its own process)
+  std::ofstream(dir / "plain.txt") << "x";
+  expect_contains(error_of([&] { read_user_file(dir / "plain.txt" / "x", "model file"); }),
                   "not a directory");
 }
 

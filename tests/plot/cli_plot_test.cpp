@@ -87,9 +87,9 @@ TEST(PlotCli, BadInputFailsWithAMessage) {
   test::write_file(dir.path() / "a-file", "x");
   const CliResult unwritable =
       run_cli("plot " + rec.string() + " --out " + (dir.path() / "a-file" / "p").string(), dir);
-  EXPECT_EQ(unwritable.exit_code, 1);
-  EXPECT_NE(unwritable.err.find("cannot create the plot folder"), std::string::npos)
-      << unwritable.err;
+  // refused before any plotting, as a usage error naming what is in the way
+  EXPECT_EQ(unwritable.exit_code, 2);
+  EXPECT_NE(unwritable.err.find("a-file' is not a folder"), std::string::npos) << unwritable.err;
 
   const CliResult help = run_cli("plot --help", dir);
   EXPECT_EQ(help.exit_code, 0);

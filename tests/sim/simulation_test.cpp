@@ -89,17 +89,26 @@ TEST(Simulation, ControlPeriodMustBeAWholeMultipleOfTheTimestep) {
 }
 
 TEST(Simulation, RejectsZeroNegativeAndNanTimesteps) {
-  for (const char* timestep : {"0", "-0.001", "nan"}) {
-    const std::string xml = std::string("<mujoco><option timestep=\"") + timestep +
-                            "\"/><worldbody><body><joint name=\"j\"/><geom size=\"0.1\"/></body>"
-                            "</worldbody></mujoco>";
-    const Robot robot = Robot::from_string(xml);
+  auto xml = [](const char* timestep) {
+    return std::string("<mujoco><option timestep=\"") + timestep +
+           "\"/><worldbody><body><joint name=\"j\"/><geom size=\"0.1\"/></body>"
+           "</worldbody></mujoco>";
+  };
+  for (const char* timestep : {"0", "-0.001"}) {
+    const Robot robot = Robot::from_string(xml(timestep));
     try {
       Simulation sim(robot);
       FAIL() << "timestep " << timestep << " accepted";
     } catch (const Error& e) {
       EXPECT_NE(std::string(e.what()).find("timestep"), std::string::npos) << e.what();
     }
+  }
+  // a NaN timestep never reaches a simulation: the model is refused at load, naming it
+  try {
+    (void)Robot::from_string(xml("nan"));
+    FAIL() << "timestep nan accepted";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("timestep = nan"), std::string::npos) << e.what();
   }
 }
 
