@@ -1,0 +1,98 @@
+#include "mjarm/tasks/docking.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+
+#include "support/error_message.hpp"
+
+namespace mjarm {
+namespace {
+
+using test::error_of;
+
+constexpr double kDeg = std::numbers::pi / 180.0;
+
+std::shared_ptr<const DockingScene> shared_scene() {
+  static const auto s = std::make_shared<const DockingScene>(build_docking_scene());
+  return s;
+}
+
+/// A shorter run than the command's (start 30 mm above the socket, insertion at 20 mm/s,
+/// 1.2 s hold): about 2 000 control ticks.
+DockingOptions quick(double dx_mm, double dy_mm, double dyaw_deg) {
+  DockingOptions o;
+  o.scene = shared_scene();
+  o.offset = {dx_mm * 1e-3, dy_mm * 1e-3, dyaw_deg * kDeg};
+  o.motion.start_height = 0.03;
+  o.motion.approach_time = 0.6;
+  o.motion.insertion_speed = 0.02;
+  o.motion.hold_time = 1.2;
+  return o;
+}
+
+std::string why(const DockingReport& r) {
+  std::string out = docking_result_line(r);
+  return out;
+}
+
+TEST(Docking, Se3ImpedanceSeatsThePegUnderOffsets) {
+  for (const auto& [dx, dy, dyaw] :
+       {std::tuple{0.0, 0.0, 0.0}, std::tuple{6.0, -6.0, 15.0}, std::tuple{-6.0, 6.0, -15.0}}) {
+    const DockingReport r = run_docking(quick(dx, dy, dyaw));
+    EXPECT_TRUE(r.ok()) << dx << " " << dy << " " << dyaw << ": " << why(r);
+    const DockingMetrics& m = r.metrics;
+    EXPECT_LE(m.peak_force, 30.0) << why(r);
+    EXPECT_NEAR(m.steady_axial_force, 5.0, 0.25) << why(r);
+    EXPECT_GE(m.min_depth, r.plan.full_depth - 1e-3);
+    EXPECT_LE(m.max_lateral, 0.5e-3);
+    EXPECT_EQ(r.run.status, RunStatus::finished);
+    EXPECT_EQ(r.samples.size(), static_cast<std::size_t>(r.run.ticks));
+    // at rest in the hold the filtered sensor reads the true contact force (means over 0.5 s)
+    Eigen::Vector3d measured = Eigen::Vector3d::Zero(), truth = Eigen::Vector3d::Zero();
+    const std::size_t window = 250;
+    for (std::size_t k = r.samples.size() - window; k < r.samples.size(); ++k) {
+      measured += r.samples[k].F_measured.head<3>() / window;
+      truth += r.samples[k].F_peg.head<3>() / window;
+    }
+    EXPECT_LT((measured - truth).norm(), 0.02)
+        << measured.transpose() << " | " << truth.transpose();
+    const DockingSample& last = r.samples.back();
+    // the lateral axes were released on contact, the others kept
+    EXPECT_EQ(last.stiffness[0], 0.0);
+    EXPECT_EQ(last.stiffness[2], 1000.0);
+    if (dx != 0.0) {
+      EXPECT_GT(m.first_contact_time, 0.6);  // on the chamfer, after the approach
+    }
+  }
+}
+
+TEST(Docking, SensorlessSe3SeatsAndHoldsThePreload) {
+  DockingOptions o = quick(6.0, 6.0, 15.0);
+  o.controller.source = ForceSource::observer;
+  const DockingReport r = run_docking(o);
+  EXPECT_TRUE(r.ok()) << why(r);
+  EXPECT_NEAR(r.metrics.steady_axial_force, o.motion.preload, 0.05 * o.motion.preload);
+  EXPECT_EQ(r.bad_wrench_ticks, 0);
+}
+
+TEST(Docking, ASensorControllerOnASceneWithoutTheSensorStopsBeforeTheRun) {
+  DockingSceneOptions scene_options;
+  scene_options.ft_sensor = false;
+  DockingOptions o = quick(0.0, 0.0, 0.0);
+  o.scene = std::make_shared<const DockingScene>(build_docking_scene(scene_options));
+  const std::string message = error_of([&] { run_docking(o); });
+  EXPECT_NE(message.find("site 'iiwa/peg/ft'"), std::string::npos) << message;
+  o.joint_friction = true;  // the scene given is the plain one
+  EXPECT_NE(error_of([&] { run_docking(o); }).find("joint friction"), std::string::npos);
+  o = quick(0.0, 0.0, 0.0);
+  o.criteria.max_force = 0.0;
+  EXPECT_NE(error_of([&] { run_docking(o); }).find("max_force"), std::string::npos);
+  o = quick(0.0, 0.0, 0.0);
+  o.offset.dx = std::nan("");
+  EXPECT_NE(error_of([&] { run_docking(o); }).find("dx and dy"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace mjarm
