@@ -5,7 +5,9 @@
 #include <cmath>
 #include <numbers>
 
+#include "mjarm/tasks/docking_plot.hpp"
 #include "support/error_message.hpp"
+#include "support/files.hpp"
 
 namespace mjarm {
 namespace {
@@ -66,6 +68,24 @@ TEST(Docking, Se3ImpedanceSeatsThePegUnderOffsets) {
       EXPECT_GT(m.first_contact_time, 0.6);  // on the chamfer, after the approach
     }
   }
+}
+
+TEST(Docking, TheFigureShowsTheForcesTheStiffnessAndWhereTheTipIs) {
+  const DockingReport r = run_docking(quick(6.0, 0.0, 0.0));
+  const plot::TimeSeriesFigure f = docking_figure(r);
+  ASSERT_EQ(f.panels.size(), 3u);
+  ASSERT_EQ(f.t.size(), r.samples.size());
+  const std::size_t k = r.samples.size() - 1;
+  EXPECT_DOUBLE_EQ(f.panels[0].series[0].values[k], r.samples[k].F_peg[2]);  // z_S = world z
+  EXPECT_DOUBLE_EQ(f.panels[1].series[2].values[k], 1000.0);
+  EXPECT_NEAR(f.panels[2].series[0].values[k], 50.0, 0.05);  // seated: 50 mm deep
+  ASSERT_EQ(f.bands.size(), 3u);
+  EXPECT_EQ(f.bands[1].label, "insert");
+  EXPECT_DOUBLE_EQ(f.bands[2].start, r.plan.approach_time + r.plan.insert_time);
+  const plot::PlotInfo info = plot_docking(r, test::scratch() / "docking-plot");
+  EXPECT_TRUE(std::filesystem::exists(info.path));
+  DockingReport empty;
+  EXPECT_NE(error_of([&] { docking_figure(empty); }).find("no samples"), std::string::npos);
 }
 
 TEST(Docking, SensorlessSe3SeatsAndHoldsThePreload) {

@@ -34,8 +34,10 @@ struct DockingGeometry {
   double friction = 0.3;  ///< sliding friction of peg and socket (steel on aluminium, dry)
   /// Contact softness (MuJoCo solref: time constant [s], damping ratio) of peg and socket.
   std::array<double, 2> solref{0.01, 1.0};
-  /// MuJoCo solimp of peg and socket (dmin, dmax, width [m]).
-  std::array<double, 3> solimp{0.95, 0.99, 0.0005};
+  /// MuJoCo solimp of peg and socket (dmin, dmax, width [m]): MuJoCo's default. A stiffer
+  /// impedance (0.95, 0.99) leaves the seated peg a few micrometres deep, where it loses and
+  /// regains contact ten times a second under the preload.
+  std::array<double, 3> solimp{0.9, 0.95, 0.001};
 };
 
 /// The Franka Emika Panda's identified joint Coulomb friction [N·m] (the --friction variant puts
