@@ -59,7 +59,7 @@ std::string docking_result_line(const DockingReport& r) {
 
 namespace {
 
-DockingOutcome outcome_of(const RunResult& run, bool seated) {
+DockingOutcome docking_outcome_of(const RunResult& run, bool seated) {
   switch (run.status) {
     case RunStatus::finished:
     case RunStatus::duration_reached:
@@ -190,7 +190,7 @@ DockingReport run_docking(const DockingOptions& options) {
   const DockingGoal goal{report.plan.X_WS, report.plan.full_depth};
   report.metrics = evaluate_docking(samples, goal, options.criteria);
   report.bad_wrench_ticks = controller.bad_wrench_ticks();
-  report.outcome = outcome_of(report.run, report.metrics.seated);
+  report.outcome = docking_outcome_of(report.run, report.metrics.seated);
   if (report.run.status != RunStatus::finished && report.run.status != RunStatus::duration_reached)
     report.metrics.failures.push_back(to_string(report.outcome));
   if (options.keep_samples) report.samples = std::move(samples);

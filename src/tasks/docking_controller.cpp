@@ -4,6 +4,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "docking_checks.hpp"
 #include "mjarm/error.hpp"
 #include "mjarm/lie/se3.hpp"
 
@@ -13,21 +14,10 @@ namespace {
 
 constexpr std::array<DockingLaw, 3> kLaws{DockingLaw::cic, DockingLaw::hqp_ac, DockingLaw::se3};
 
-void require_positive(double value, const std::string& what) {
-  if (!(value > 0.0) || !std::isfinite(value))
-    throw Error("docking controller: " + what + " must be positive and finite, got " +
-                std::to_string(value));
-}
-
-void require_non_negative(double value, const std::string& what) {
-  if (!(value >= 0.0) || !std::isfinite(value))
-    throw Error("docking controller: " + what + " must be ≥ 0 and finite, got " +
-                std::to_string(value));
-}
-
 void require_gains(const Vector6d& v, const std::string& what) {
   static const char* const kAxes[] = {"x", "y", "z", "rx", "ry", "rz"};
-  for (int i = 0; i < 6; ++i) require_positive(v[i], what + " " + kAxes[i]);
+  for (int i = 0; i < 6; ++i)
+    docking_detail::require_positive(v[i], "docking controller", what + " " + kAxes[i]);
 }
 
 }  // namespace
@@ -63,14 +53,17 @@ void check(const DockingControllerOptions& o) {
                 std::to_string(o.sensor_cutoff));
   require_gains(o.se3_inertia, "se3_inertia");
   require_gains(o.se3_stiffness, "se3_stiffness");
-  require_positive(o.se3_damping_ratio, "se3_damping_ratio");
-  require_positive(o.release_force, "release_force [N]");
-  require_positive(o.release_duration, "release_duration [s]");
+  docking_detail::require_positive(o.se3_damping_ratio, "docking controller", "se3_damping_ratio");
+  docking_detail::require_positive(o.release_force, "docking controller", "release_force [N]");
+  docking_detail::require_positive(o.release_duration, "docking controller",
+                                   "release_duration [s]");
   require_gains(o.cic_stiffness, "cic_stiffness");
-  require_positive(o.cic_damping_ratio, "cic_damping_ratio");
-  require_non_negative(o.nullspace_stiffness, "nullspace_stiffness");
-  require_non_negative(o.nullspace_damping, "nullspace_damping");
-  require_positive(o.control_period, "control_period [s]");
+  docking_detail::require_positive(o.cic_damping_ratio, "docking controller", "cic_damping_ratio");
+  docking_detail::require_non_negative(o.nullspace_stiffness, "docking controller",
+                                       "nullspace_stiffness");
+  docking_detail::require_non_negative(o.nullspace_damping, "docking controller",
+                                       "nullspace_damping");
+  docking_detail::require_positive(o.control_period, "docking controller", "control_period [s]");
 }
 
 DockingController::DockingController(const DockingScene& scene,

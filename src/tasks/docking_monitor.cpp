@@ -4,18 +4,13 @@
 #include <cmath>
 #include <numbers>
 
+#include "docking_checks.hpp"
 #include "mjarm/error.hpp"
 #include "mjarm/lie/so3.hpp"
 
 namespace mjarm {
 
 namespace {
-
-void require_positive(double value, const char* what) {
-  if (!(value > 0.0) || !std::isfinite(value))
-    throw Error(std::string("docking criteria: ") + what + " must be positive and finite, got " +
-                std::to_string(value));
-}
 
 /// Angle between the peg's axis z_E and the bore's axis −z_S [rad].
 double tilt_of(const Pose& X_WE, const Pose& X_WS) {
@@ -26,16 +21,19 @@ double tilt_of(const Pose& X_WE, const Pose& X_WS) {
 }  // namespace
 
 void check(const DockingCriteria& c) {
-  require_positive(c.window, "window [s]");
-  require_positive(c.depth_tolerance, "depth_tolerance [m]");
-  require_positive(c.max_lateral, "max_lateral [m]");
-  require_positive(c.max_tilt, "max_tilt [rad]");
-  require_positive(c.max_speed, "max_speed [m/s]");
-  require_positive(c.max_angular_speed, "max_angular_speed [rad/s]");
-  require_positive(c.max_force, "max_force [N]");
-  require_positive(c.max_axial_moment, "max_axial_moment [N·m]");
-  require_positive(c.min_contact_fraction, "min_contact_fraction");
-  require_positive(c.max_saturation, "max_saturation");
+  docking_detail::require_positive(c.window, "docking criteria", "window [s]");
+  docking_detail::require_positive(c.depth_tolerance, "docking criteria", "depth_tolerance [m]");
+  docking_detail::require_positive(c.max_lateral, "docking criteria", "max_lateral [m]");
+  docking_detail::require_positive(c.max_tilt, "docking criteria", "max_tilt [rad]");
+  docking_detail::require_positive(c.max_speed, "docking criteria", "max_speed [m/s]");
+  docking_detail::require_positive(c.max_angular_speed, "docking criteria",
+                                   "max_angular_speed [rad/s]");
+  docking_detail::require_positive(c.max_force, "docking criteria", "max_force [N]");
+  docking_detail::require_positive(c.max_axial_moment, "docking criteria",
+                                   "max_axial_moment [N·m]");
+  docking_detail::require_positive(c.min_contact_fraction, "docking criteria",
+                                   "min_contact_fraction");
+  docking_detail::require_positive(c.max_saturation, "docking criteria", "max_saturation");
   if (c.min_contact_fraction > 1.0 || c.max_saturation > 1.0)
     throw Error(
         "docking criteria: min_contact_fraction and max_saturation are fractions in (0, 1]");

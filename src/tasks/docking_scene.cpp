@@ -4,6 +4,7 @@
 #include <numbers>
 #include <string>
 
+#include "docking_checks.hpp"
 #include "mjarm/error.hpp"
 #include "mjarm/lie/rotation.hpp"
 
@@ -14,19 +15,13 @@ namespace {
 constexpr double kPlate = 0.010;  // bottom plate thickness [m]
 constexpr std::array<double, 4> kSocketColor{0.35, 0.45, 0.6, 1.0};
 
-void require_positive(double value, const char* what) {
-  if (!(value > 0.0) || !std::isfinite(value))
-    throw Error(std::string("docking scene: ") + what + " must be positive and finite, got " +
-                std::to_string(value));
-}
-
 void check_geometry(const DockingGeometry& g) {
-  require_positive(g.peg_radius, "peg_radius [m]");
-  require_positive(g.peg_length, "peg_length [m]");
-  require_positive(g.bore_radius, "bore_radius [m]");
-  require_positive(g.bore_depth, "bore_depth [m]");
-  require_positive(g.chamfer, "chamfer [m]");
-  require_positive(g.wall, "wall [m]");
+  docking_detail::require_positive(g.peg_radius, "docking scene", "peg_radius [m]");
+  docking_detail::require_positive(g.peg_length, "docking scene", "peg_length [m]");
+  docking_detail::require_positive(g.bore_radius, "docking scene", "bore_radius [m]");
+  docking_detail::require_positive(g.bore_depth, "docking scene", "bore_depth [m]");
+  docking_detail::require_positive(g.chamfer, "docking scene", "chamfer [m]");
+  docking_detail::require_positive(g.wall, "docking scene", "wall [m]");
   if (!(g.bore_radius > g.peg_radius))
     throw Error("docking scene: the bore (radius " + std::to_string(g.bore_radius) +
                 " m) must be wider than the peg (radius " + std::to_string(g.peg_radius) + " m)");
@@ -39,8 +34,8 @@ void check_geometry(const DockingGeometry& g) {
   if (!(g.friction >= 0.0) || !std::isfinite(g.friction))
     throw Error("docking scene: friction must be ≥ 0 and finite, got " +
                 std::to_string(g.friction));
-  require_positive(g.solref[0], "solref time constant [s]");
-  require_positive(g.solref[1], "solref damping ratio");
+  docking_detail::require_positive(g.solref[0], "docking scene", "solref time constant [s]");
+  docking_detail::require_positive(g.solref[1], "docking scene", "solref damping ratio");
   const auto& s = g.solimp;
   if (!(s[0] > 0.0 && s[0] < 1.0 && s[1] > 0.0 && s[1] < 1.0 && s[0] <= s[1]) || !(s[2] > 0.0) ||
       !std::isfinite(s[2]))

@@ -5,6 +5,7 @@
 #include <numbers>
 #include <string>
 
+#include "docking_checks.hpp"
 #include "mjarm/error.hpp"
 #include "mjarm/ik/pose_ik.hpp"
 #include "mjarm/sim/recorder.hpp"
@@ -12,12 +13,6 @@
 namespace mjarm {
 
 namespace {
-
-void require_positive(double value, const char* what) {
-  if (!(value > 0.0) || !std::isfinite(value))
-    throw Error(std::string("docking motion: ") + what + " must be positive and finite, got " +
-                std::to_string(value));
-}
 
 Pose rotation_z(double angle, const Eigen::Vector3d& p) {
   Pose X;
@@ -68,13 +63,14 @@ DockingReference docking_reference(std::string_view name) {
 }
 
 void check(const DockingMotion& m) {
-  require_positive(m.start_height, "start_height [m]");
-  require_positive(m.approach_time, "approach_time [s]");
-  require_positive(m.insertion_speed, "insertion_speed [m/s]");
-  require_positive(m.insertion_acceleration, "insertion_acceleration [m/s²]");
-  require_positive(m.single_time, "single_time [s]");
-  require_positive(m.preload_ramp, "preload_ramp [s]");
-  require_positive(m.hold_time, "hold_time [s]");
+  docking_detail::require_positive(m.start_height, "docking motion", "start_height [m]");
+  docking_detail::require_positive(m.approach_time, "docking motion", "approach_time [s]");
+  docking_detail::require_positive(m.insertion_speed, "docking motion", "insertion_speed [m/s]");
+  docking_detail::require_positive(m.insertion_acceleration, "docking motion",
+                                   "insertion_acceleration [m/s²]");
+  docking_detail::require_positive(m.single_time, "docking motion", "single_time [s]");
+  docking_detail::require_positive(m.preload_ramp, "docking motion", "preload_ramp [s]");
+  docking_detail::require_positive(m.hold_time, "docking motion", "hold_time [s]");
   if (!(m.standoff >= 0.0) || !(m.standoff < m.start_height))
     throw Error("docking motion: standoff must be ≥ 0 and below start_height (" +
                 std::to_string(m.start_height) + " m), got " + std::to_string(m.standoff) + " m");

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "docking_checks.hpp"
 #include "mjarm/error.hpp"
 #include "mjarm/ik/pose_ik.hpp"
 #include "mjarm/lie/so3.hpp"
@@ -13,12 +14,6 @@
 namespace mjarm {
 
 namespace {
-
-void require_positive(double value, const char* what) {
-  if (!(value > 0.0) || !std::isfinite(value))
-    throw Error(std::string("tracking gate: ") + what + " must be positive and finite, got " +
-                std::to_string(value));
-}
 
 /// φ, φ̇, φ̈ of one loop at @p t: the speed ω·smootherstep ramps in over T_r, holds, ramps out;
 /// the loop covers 2π in T = 1/f + T_r.
@@ -104,11 +99,12 @@ class GateSource final : public ReferenceSource {
 }  // namespace
 
 void check(const TrackingGateOptions& o) {
-  require_positive(o.radius, "radius [m]");
-  require_positive(o.frequency, "frequency [Hz]");
-  require_positive(o.ramp_time, "ramp_time [s]");
-  require_positive(o.height, "height [m]");
-  require_positive(o.max_acceleration, "max_acceleration [rad/s²]");
+  docking_detail::require_positive(o.radius, "tracking gate", "radius [m]");
+  docking_detail::require_positive(o.frequency, "tracking gate", "frequency [Hz]");
+  docking_detail::require_positive(o.ramp_time, "tracking gate", "ramp_time [s]");
+  docking_detail::require_positive(o.height, "tracking gate", "height [m]");
+  docking_detail::require_positive(o.max_acceleration, "tracking gate",
+                                   "max_acceleration [rad/s²]");
   if (!(o.settle_time >= 0.0) || !std::isfinite(o.settle_time))
     throw Error("tracking gate: settle_time must be ≥ 0 and finite [s]");
   if (!(o.ramp_time < 1.0 / o.frequency))

@@ -8,15 +8,14 @@
 #include "ik/malloc_counter.hpp"
 #include "mjarm/tasks/docking_task.hpp"
 #include "support/error_message.hpp"
+#include "tasks/docking_test_support.hpp"
 
 namespace mjarm {
 namespace {
 
+using test::contains;
 using test::error_of;
-
-bool contains(const std::string& text, const std::string& part) {
-  return text.find(part) != std::string::npos;
-}
+using test::kDockingDeg;
 
 const DockingScene& plain_scene() {
   static const DockingScene s = build_docking_scene();

@@ -7,15 +7,14 @@
 
 #include "mjarm/sim/interrupt.hpp"
 #include "support/error_message.hpp"
+#include "tasks/docking_test_support.hpp"
 
 namespace mjarm {
 namespace {
 
+using test::contains;
 using test::error_of;
-
-bool contains(const std::string& text, const std::string& part) {
-  return text.find(part) != std::string::npos;
-}
+using test::kDockingDeg;
 
 /// Two offsets along x, the test's quick motion (see docking_test.cpp), two threads.
 DockingGridOptions small_grid() {

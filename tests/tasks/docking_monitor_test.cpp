@@ -10,13 +10,15 @@
 #include "mjarm/sim/contact_query.hpp"
 #include "mjarm/tasks/docking_task.hpp"
 #include "support/error_message.hpp"
+#include "tasks/docking_test_support.hpp"
 
 namespace mjarm {
 namespace {
 
+using test::contains;
 using test::error_of;
+using test::kDockingDeg;
 
-constexpr double kDeg = std::numbers::pi / 180.0;
 constexpr double kDepth = 0.050;
 
 /// The socket at (0.6, 0, 0.2), z up; E seated at depth @p depth with the peg pointing down.
@@ -81,23 +83,23 @@ TEST(DockingMonitor, RmsIsTakenOverTheFreeMotionOnly) {
   for (DockingSample& s : samples) {
     const bool free = s.contacts == 0;
     s.X_WD.p = s.X_WE.p + Eigen::Vector3d(free ? 1e-3 : 5e-3, 0.0, 0.0);
-    s.X_WD.R =
-        s.X_WE.R * Eigen::AngleAxisd(free ? 0.1 * kDeg : 2.0 * kDeg, Eigen::Vector3d::UnitZ())
-                       .toRotationMatrix();
+    s.X_WD.R = s.X_WE.R * Eigen::AngleAxisd(free ? 0.1 * kDockingDeg : 2.0 * kDockingDeg,
+                                            Eigen::Vector3d::UnitZ())
+                              .toRotationMatrix();
   }
   const DockingMetrics m = evaluate_docking(samples, goal());
   EXPECT_NEAR(m.position_rms, 1e-3, 1e-12);
-  EXPECT_NEAR(m.orientation_rms, 0.1 * kDeg, 1e-12);
+  EXPECT_NEAR(m.orientation_rms, 0.1 * kDockingDeg, 1e-12);
 }
 
 TEST(DockingMonitor, LateralTiltAndDepthAreMeasuredFromTheTrueSocket) {
   auto samples = seated_run();
   for (DockingSample& s : samples)
-    if (s.contacts > 0) s.X_WE = tip_at(kDepth - 0.4e-3, 0.3e-3, 0.2 * kDeg);
+    if (s.contacts > 0) s.X_WE = tip_at(kDepth - 0.4e-3, 0.3e-3, 0.2 * kDockingDeg);
   const DockingMetrics m = evaluate_docking(samples, goal());
   EXPECT_NEAR(m.max_lateral, 0.3e-3, 1e-12);
   EXPECT_NEAR(m.steady_lateral, 0.3e-3, 1e-12);
-  EXPECT_NEAR(m.max_tilt, 0.2 * kDeg, 1e-9);
+  EXPECT_NEAR(m.max_tilt, 0.2 * kDockingDeg, 1e-9);
   EXPECT_NEAR(m.min_depth, kDepth - 0.4e-3, 1e-12);
   EXPECT_TRUE(m.seated);
 }
@@ -125,7 +127,7 @@ TEST(DockingMonitor, EachCriterionFailsOnItsOwn) {
       "lateral");
   check_fails(
       [](DockingSample& s) {
-        if (s.contacts) s.X_WE = tip_at(kDepth, 0, 0.6 * kDeg);
+        if (s.contacts) s.X_WE = tip_at(kDepth, 0, 0.6 * kDockingDeg);
       },
       "tilt");
   check_fails(
@@ -135,7 +137,7 @@ TEST(DockingMonitor, EachCriterionFailsOnItsOwn) {
       "not_settled");
   check_fails(
       [](DockingSample& s) {
-        if (s.t > 2.5) s.V_WE[5] = 3.0 * kDeg;
+        if (s.t > 2.5) s.V_WE[5] = 3.0 * kDockingDeg;
       },
       "not_settled");
   check_fails(

@@ -9,15 +9,14 @@
 #include "mjarm/ik/pose_ik.hpp"
 #include "mjarm/sim/contact_query.hpp"
 #include "support/error_message.hpp"
+#include "tasks/docking_test_support.hpp"
 
 namespace mjarm {
 namespace {
 
+using test::contains;
 using test::error_of;
-
-bool contains(const std::string& text, const std::string& part) {
-  return text.find(part) != std::string::npos;
-}
+using test::kDockingDeg;
 
 TEST(DockingScene, ComposesTheArmThePegTheSensorAndTheSocket) {
   const DockingScene scene = build_docking_scene();

@@ -9,17 +9,14 @@
 #include "mjarm/kinematics/chain_kinematics.hpp"
 #include "mjarm/lie/so3.hpp"
 #include "support/error_message.hpp"
+#include "tasks/docking_test_support.hpp"
 
 namespace mjarm {
 namespace {
 
+using test::contains;
 using test::error_of;
-
-constexpr double kDeg = std::numbers::pi / 180.0;
-
-bool contains(const std::string& text, const std::string& part) {
-  return text.find(part) != std::string::npos;
-}
+using test::kDockingDeg;
 
 const DockingScene& scene() {
   static const DockingScene s = build_docking_scene();
@@ -35,13 +32,13 @@ Reference reference_at(DockingTask& task, mjData& d, double t0, double t) {
 }
 
 TEST(DockingPlan, PosesFollowTheTrueAndTheBelievedSocket) {
-  const DockingOffset offset{0.006, -0.004, 15.0 * kDeg};
+  const DockingOffset offset{0.006, -0.004, 15.0 * kDockingDeg};
   DockingMotion motion;
   const DockingPlan plan = plan_docking(scene(), offset, motion);
   const Pose& S = plan.X_WS;
   // the believed socket: shifted and yawed in the true socket's frame
   EXPECT_LT((plan.X_WB.p - (S.p + Eigen::Vector3d(0.006, -0.004, 0.0))).norm(), 1e-15);
-  EXPECT_NEAR(so3::angle(S.R.transpose() * plan.X_WB.R), 15.0 * kDeg, 1e-12);
+  EXPECT_NEAR(so3::angle(S.R.transpose() * plan.X_WB.R), 15.0 * kDockingDeg, 1e-12);
   // start above the true socket, standoff above the believed one, seated in the believed one
   EXPECT_LT((plan.X_start.p - (S.p + Eigen::Vector3d(0.0, 0.0, motion.start_height))).norm(),
             1e-12);
@@ -70,7 +67,7 @@ TEST(DockingTask, TheReferenceIsContinuousAndItsVelocityIsTheRateOfItsPosition) 
        {DockingReference::two_phase, DockingReference::single_segment}) {
     DockingMotion motion;
     motion.reference = kind;
-    const DockingPlan plan = plan_docking(scene(), {0.006, 0.006, -15.0 * kDeg}, motion);
+    const DockingPlan plan = plan_docking(scene(), {0.006, 0.006, -15.0 * kDockingDeg}, motion);
     DataPtr d = scene().robot.make_data();
     DockingTask task(plan, motion);
     const double t0 = 1.25;
@@ -103,7 +100,7 @@ TEST(DockingTask, PhasesAndThePreloadRampAlongTheBelievedAxis) {
   DockingMotion motion;
   motion.preload = 5.0;
   motion.preload_ramp = 0.4;
-  const DockingPlan plan = plan_docking(scene(), {0.0, 0.0, 30.0 * kDeg}, motion);
+  const DockingPlan plan = plan_docking(scene(), {0.0, 0.0, 30.0 * kDockingDeg}, motion);
   DataPtr d = scene().robot.make_data();
   DockingTask task(plan, motion);
   Reference r;

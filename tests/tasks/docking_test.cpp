@@ -8,13 +8,14 @@
 #include "mjarm/tasks/docking_plot.hpp"
 #include "support/error_message.hpp"
 #include "support/files.hpp"
+#include "tasks/docking_test_support.hpp"
 
 namespace mjarm {
 namespace {
 
+using test::contains;
 using test::error_of;
-
-constexpr double kDeg = std::numbers::pi / 180.0;
+using test::kDockingDeg;
 
 std::shared_ptr<const DockingScene> shared_scene() {
   static const auto s = std::make_shared<const DockingScene>(build_docking_scene());
@@ -26,7 +27,7 @@ std::shared_ptr<const DockingScene> shared_scene() {
 DockingOptions quick(double dx_mm, double dy_mm, double dyaw_deg) {
   DockingOptions o;
   o.scene = shared_scene();
-  o.offset = {dx_mm * 1e-3, dy_mm * 1e-3, dyaw_deg * kDeg};
+  o.offset = {dx_mm * 1e-3, dy_mm * 1e-3, dyaw_deg * kDockingDeg};
   o.motion.start_height = 0.03;
   o.motion.approach_time = 0.6;
   o.motion.insertion_speed = 0.02;

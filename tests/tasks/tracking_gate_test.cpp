@@ -7,15 +7,14 @@
 
 #include "mjarm/lie/so3.hpp"
 #include "support/error_message.hpp"
+#include "tasks/docking_test_support.hpp"
 
 namespace mjarm {
 namespace {
 
+using test::contains;
 using test::error_of;
-
-bool contains(const std::string& text, const std::string& part) {
-  return text.find(part) != std::string::npos;
-}
+using test::kDockingDeg;
 
 Pose start() {
   Pose X;
