@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <optional>
 
+#include "docking_run_loop.hpp"
 #include "mjarm/error.hpp"
 #include "mjarm/model/names.hpp"
 #include "mjarm/sim/interrupt.hpp"
@@ -74,88 +75,19 @@ DockingOutcome docking_outcome_of(const RunResult& run, bool seated) {
   return DockingOutcome::not_seated;
 }
 
-/// The run loop: `Simulation::run` with a sample of the ground truth after every tick (the
-/// contacts and constraint forces of the step just taken are consistent only then).
-RunResult run_loop(Simulation& sim, DockingTask& task, DockingProbe& probe,
-                   const DockingController& controller, Recorder* recorder,
-                   std::vector<DockingSample>& samples) {
-  RunResult run;
-  run.start_time = sim.time();
-  const std::int64_t ticks0 = sim.ticks();
-  const std::int64_t steps0 = sim.physics_steps();
-  DockingSample sample;
-  for (;;) {
-    if (interrupt_requested()) {
-      run.status = RunStatus::interrupted;
-      break;
-    }
-    const TickResult tick = sim.tick(task, recorder);
-    if (!tick.ok()) {
-      run.fault = tick.fault;
-      run.status = tick.status == TickStatus::finished   ? RunStatus::finished
-                   : tick.status == TickStatus::diverged ? RunStatus::diverged
-                                                         : RunStatus::bad_command;
-      break;
-    }
-    const std::span<const std::uint8_t> saturated = sim.saturated();
-    const bool any =
-        std::any_of(saturated.begin(), saturated.end(), [](std::uint8_t s) { return s != 0; });
-    // the step's state is the one at d.time − timestep
-    probe.sample(sim.model(), sim.data(), sim.time() - sim.timestep() - task.start_time(),
-                 task.reference_pose(), any, sample);
-    sample.F_measured = controller.measured_wrench();
-    sample.stiffness = controller.stiffness();
-    samples.push_back(sample);
-  }
-  run.end_time = sim.time();
-  run.ticks = sim.ticks() - ticks0;
-  run.physics_steps = sim.physics_steps() - steps0;
-  char line[160];
-  switch (run.status) {
-    case RunStatus::finished:
-    case RunStatus::duration_reached:
-      std::snprintf(line, sizeof line, "docking finished at t = %.3f s (%lld control ticks)",
-                    run.end_time, static_cast<long long>(run.ticks));
-      run.message = line;
-      break;
-    case RunStatus::interrupted:
-      std::snprintf(line, sizeof line, "interrupted by a signal at t = %.3f s", run.end_time);
-      run.message = line;
-      if (recorder != nullptr) recorder->event(run.end_time, "interrupt", run.message);
-      break;
-    case RunStatus::diverged:
-    case RunStatus::bad_command:
-      run.message = sim.describe(run.fault);
-      break;
-  }
-  if (recorder != nullptr) recorder->on_run_end(run);
-  return run;
-}
-
 }  // namespace
 
 DockingReport run_docking(const DockingOptions& options) {
   check(options.criteria);
   check(options.controller);
-  std::shared_ptr<const DockingScene> scene = options.scene;
-  if (!scene) {
-    DockingSceneOptions scene_options;
-    scene_options.joint_friction = options.joint_friction;
-    scene = std::make_shared<const DockingScene>(build_docking_scene(scene_options));
-  } else if (scene->options.joint_friction != options.joint_friction) {
-    throw Error("docking: the scene given was built " +
-                std::string(scene->options.joint_friction ? "with" : "without") +
-                " joint friction, the options ask for the other variant");
-  }
+  const std::shared_ptr<const DockingScene> scene =
+      shared_docking_scene(options.scene, options.joint_friction);
   DockingReport report{.plan = plan_docking(*scene, options.offset, options.motion)};
   report.controller = to_string(options.controller.law);
   report.source = options.controller.source;
   report.joint_friction = options.joint_friction;
 
-  SimulationOptions sim_options;
-  sim_options.mode = SimulationMode::torque;
-  sim_options.max_acceleration = options.max_acceleration;
-  Simulation sim(scene->robot, sim_options);
+  Simulation sim(scene->robot, docking_detail::torque_simulation(options.max_acceleration));
   DockingControllerOptions controller_options = options.controller;
   controller_options.control_period = sim.control_period();
   DockingController controller(*scene, controller_options);
@@ -185,7 +117,19 @@ DockingReport run_docking(const DockingOptions& options) {
   DockingProbe probe(*scene, iiwa14_max_velocity());
   std::vector<DockingSample> samples;
   samples.reserve(static_cast<std::size_t>(report.plan.duration() / sim.control_period()) + 8);
-  report.run = run_loop(sim, task, probe, controller, recorder ? &*recorder : nullptr, samples);
+  DockingSample sample;
+  report.run =
+      docking_detail::run_ticks(sim, task, recorder ? &*recorder : nullptr, "docking", [&] {
+        const std::span<const std::uint8_t> saturated = sim.saturated();
+        const bool any =
+            std::any_of(saturated.begin(), saturated.end(), [](std::uint8_t s) { return s != 0; });
+        // the step just taken: its state is the one at d.time − timestep
+        probe.sample(sim.model(), sim.data(), sim.time() - sim.timestep() - task.start_time(),
+                     task.reference_pose(), any, sample);
+        sample.F_measured = controller.measured_wrench();
+        sample.stiffness = controller.stiffness();
+        samples.push_back(sample);
+      });
 
   const DockingGoal goal{report.plan.X_WS, report.plan.full_depth};
   report.metrics = evaluate_docking(samples, goal, options.criteria);

@@ -60,11 +60,7 @@ DockingGridResult run_docking_grid(const DockingGridOptions& options,
 
   DockingOptions base = options.base;
   base.keep_samples = false;
-  if (!base.scene) {
-    DockingSceneOptions scene_options;
-    scene_options.joint_friction = base.joint_friction;
-    base.scene = std::make_shared<const DockingScene>(build_docking_scene(scene_options));
-  }
+  base.scene = shared_docking_scene(base.scene, base.joint_friction);
   std::vector<DockingOffset> offsets;
   for (double x : options.x)
     for (double y : options.y)

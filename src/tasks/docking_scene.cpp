@@ -213,4 +213,18 @@ DockingScene build_docking_scene(const DockingSceneOptions& options) {
   return scene;
 }
 
+std::shared_ptr<const DockingScene> shared_docking_scene(std::shared_ptr<const DockingScene> given,
+                                                         bool joint_friction) {
+  if (!given) {
+    DockingSceneOptions options;
+    options.joint_friction = joint_friction;
+    return std::make_shared<const DockingScene>(build_docking_scene(options));
+  }
+  if (given->options.joint_friction != joint_friction)
+    throw Error("docking: the scene given was built " +
+                std::string(given->options.joint_friction ? "with" : "without") +
+                " joint friction, the options ask for the other variant");
+  return given;
+}
+
 }  // namespace mjarm

@@ -114,19 +114,23 @@ DockingPlan plan_docking(const DockingScene& scene, const DockingOffset& offset,
   }
   plan.hold_time = motion.hold_time;
 
-  // the start configuration: IK from the home keyframe, pulled towards it
-  const Robot& robot = scene.robot;
-  const Eigen::VectorXd q_home = scene.chain.gather(robot.keyframe_qpos("home").data());
+  plan.q_start = docking_start_configuration(scene, plan.X_start);
+  return plan;
+}
+
+Eigen::VectorXd docking_start_configuration(const DockingScene& scene, const Pose& X_WE) {
+  const Eigen::VectorXd q_home = scene.chain.gather(scene.robot.keyframe_qpos("home").data());
   PoseIkOptions ik_options;
   ik_options.posture.q_pref = q_home;
   ik_options.posture.gain = 0.2;
   PoseIk ik(scene.chain, ik_options);
-  const IkResult result = ik.solve(plan.X_start, q_home);
+  const IkResult result = ik.solve(X_WE, q_home);
   if (result.status != IkStatus::converged)
-    throw Error("docking: the start pose above the socket is out of reach of the iiwa14 (IK " +
-                std::string(to_string(result.status)) + "); move the socket closer");
-  plan.q_start = result.q;
-  return plan;
+    throw Error("docking: the start pose (tip at (" + std::to_string(X_WE.p.x()) + ", " +
+                std::to_string(X_WE.p.y()) + ", " + std::to_string(X_WE.p.z()) +
+                ") m) is out of reach of the iiwa14 (IK " + std::string(to_string(result.status)) +
+                "); move the socket closer");
+  return result.q;
 }
 
 DockingTask::DockingTask(const DockingPlan& plan, const DockingMotion& motion, double velocity_lag,

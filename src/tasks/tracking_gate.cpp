@@ -4,11 +4,11 @@
 #include <numbers>
 
 #include "docking_checks.hpp"
+#include "docking_run_loop.hpp"
 #include "mjarm/error.hpp"
-#include "mjarm/ik/pose_ik.hpp"
 #include "mjarm/lie/so3.hpp"
-#include "mjarm/sim/interrupt.hpp"
 #include "mjarm/sim/simulation.hpp"
+#include "mjarm/tasks/docking_task.hpp"
 #include "mjarm/trajectory/smoothstep.hpp"
 
 namespace mjarm {
@@ -155,12 +155,8 @@ bool passes(const TrackingGateReport& report, const TrackingGateTargets& targets
 TrackingGateReport run_tracking_gate(const TrackingGateOptions& options) {
   check(options);
   check(options.controller);
-  std::shared_ptr<const DockingScene> scene = options.scene;
-  if (!scene) {
-    DockingSceneOptions scene_options;
-    scene_options.joint_friction = options.joint_friction;
-    scene = std::make_shared<const DockingScene>(build_docking_scene(scene_options));
-  }
+  const std::shared_ptr<const DockingScene> scene =
+      shared_docking_scene(options.scene, options.joint_friction);
   TrackingGateReport report;
   report.controller = to_string(options.controller.law);
   report.source = options.controller.source;
@@ -169,48 +165,20 @@ TrackingGateReport run_tracking_gate(const TrackingGateOptions& options) {
   report.X_start = scene->seated();
   report.X_start.p += (g.chamfer + g.bore_depth + options.height) * scene->options.X_WS.R.col(2);
   const Robot& robot = scene->robot;
-  const Eigen::VectorXd q_home = scene->chain.gather(robot.keyframe_qpos("home").data());
-  PoseIkOptions ik_options;
-  ik_options.posture.q_pref = q_home;
-  ik_options.posture.gain = 0.2;
-  PoseIk ik(scene->chain, ik_options);
-  const IkResult start = ik.solve(report.X_start, q_home);
-  if (start.status != IkStatus::converged)
-    throw Error("tracking gate: the start point is out of reach (IK " +
-                std::string(to_string(start.status)) + ")");
-
-  SimulationOptions sim_options;
-  sim_options.mode = SimulationMode::torque;
-  sim_options.max_acceleration = options.max_acceleration;
-  Simulation sim(robot, sim_options);
+  const Eigen::VectorXd q_start = docking_start_configuration(*scene, report.X_start);
+  Simulation sim(robot, docking_detail::torque_simulation(options.max_acceleration));
   DockingControllerOptions controller_options = options.controller;
   controller_options.control_period = sim.control_period();
   DockingController controller(*scene, controller_options);
   sim.add_controller(controller);
   std::vector<double> qpos(static_cast<std::size_t>(robot.nq()), 0.0);
-  scene->chain.scatter(start.q, qpos.data());
+  scene->chain.scatter(q_start, qpos.data());
   sim.set_state(qpos, std::vector<double>(static_cast<std::size_t>(robot.nv()), 0.0));
-  GateSource source(options, report.X_start, start.q, sim.uses_rk4() ? 0.0 : 0.5 * sim.timestep());
+  GateSource source(options, report.X_start, q_start, sim.uses_rk4() ? 0.0 : 0.5 * sim.timestep());
 
   const int tip = robot.site(DockingNames::tip);
   const double loop = 1.0 / options.frequency + options.ramp_time;
-  RunResult& run = report.run;
-  run.start_time = sim.time();
-  for (;;) {
-    if (interrupt_requested()) {
-      run.status = RunStatus::interrupted;
-      run.message = "interrupted by a signal";
-      break;
-    }
-    const TickResult tick = sim.tick(source);
-    if (!tick.ok()) {
-      run.fault = tick.fault;
-      run.status = tick.status == TickStatus::finished   ? RunStatus::finished
-                   : tick.status == TickStatus::diverged ? RunStatus::diverged
-                                                         : RunStatus::bad_command;
-      run.message = run.status == RunStatus::finished ? "gate finished" : sim.describe(tick.fault);
-      break;
-    }
+  report.run = docking_detail::run_ticks(sim, source, nullptr, "gate", [&] {
     // the step just taken: kinematics and contacts of its start state, the tick's reference
     const mjData& d = sim.data();
     if (d.ncon > 0) ++report.contact_ticks;
@@ -219,13 +187,9 @@ TrackingGateReport run_tracking_gate(const TrackingGateOptions& options) {
     const Pose& X_ref = source.reference_pose();
     const double position = (p - X_ref.p).norm();
     const double angle = so3::angle(X_ref.R.transpose() * R);
-    const double t = source.time();
-    add(t < loop ? report.loops[0] : report.loops[1], position, angle);
+    add(source.time() < loop ? report.loops[0] : report.loops[1], position, angle);
     add(report.total, position, angle);
-  }
-  run.end_time = sim.time();
-  run.ticks = sim.ticks();
-  run.physics_steps = sim.physics_steps();
+  });
   for (TrackingErrors& e : report.loops) finish(e);
   finish(report.total);
   return report;

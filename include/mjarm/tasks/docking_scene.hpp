@@ -5,6 +5,7 @@
 /// polygonal bore with a chamfered entry — on a pedestal (docs/docking.md).
 
 #include <array>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -100,5 +101,11 @@ Scene docking_scene(const DockingSceneOptions& options = {});
 /// Compiles `docking_scene(options)` and looks up its names.
 /// @throws Error as `docking_scene`, or when the scene does not compile.
 DockingScene build_docking_scene(const DockingSceneOptions& options = {});
+
+/// @p given when set (it must be the @p joint_friction variant), else a new scene of that
+/// variant: the scene a run shares or builds.
+/// @throws Error when @p given is the other variant, or as `build_docking_scene`.
+std::shared_ptr<const DockingScene> shared_docking_scene(std::shared_ptr<const DockingScene> given,
+                                                         bool joint_friction);
 
 }  // namespace mjarm

@@ -92,6 +92,11 @@ struct DockingPlan {
   double duration() const noexcept { return approach_time + insert_time + hold_time; }
 };
 
+/// The arm at @p X_WE (E: the peg tip): pose IK from the `home` keyframe with a pull towards it
+/// (the start of a docking run and of the tracking gate).
+/// @throws Error naming the pose when IK does not converge.
+Eigen::VectorXd docking_start_configuration(const DockingScene& scene, const Pose& X_WE);
+
 /// The plan of a docking run: poses, the start configuration by IK (pose IK from the home
 /// keyframe with a pull towards it), segment durations.
 /// @throws Error for a bad offset or motion, or when IK cannot reach the start.
