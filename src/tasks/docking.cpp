@@ -32,8 +32,8 @@ const char* to_string(DockingOutcome outcome) noexcept {
 
 CameraSpec docking_camera(const DockingScene& scene, std::string_view camera) {
   const Eigen::Vector3d top = scene.options.X_WS.p;
-  if (camera.empty())  // close to the socket, from the front right and a little above
-    return CameraSpec::free_camera(top + Eigen::Vector3d(0.0, 0.0, 0.03), 0.45, 150.0, -15.0);
+  if (camera.empty())  // close to the socket, from the front right and above
+    return CameraSpec::free_camera(top + Eigen::Vector3d(0.0, 0.0, 0.03), 0.5, 150.0, -30.0);
   if (camera == "follow") return CameraSpec::follow(DockingNames::tip, 0.35, 150.0, -15.0);
   const Robot& robot = scene.robot;
   for (int c = 0; c < robot.model().ncam; ++c)
