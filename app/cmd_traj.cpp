@@ -120,8 +120,7 @@ TrajProfile build_ramp(const TrajRequest& r, SmoothRamp::Kind kind) {
   };
   p.peak_velocity = SmoothRamp::peak_slope(kind) / T * d.cwiseAbs();
   p.peak_acceleration = SmoothRamp::peak_curvature(kind) / (T * T) * d.cwiseAbs();
-  // |s‴| is largest at the ends: 12 (smoothstep), 60 (smootherstep)
-  p.peak_jerk = (kind == SmoothRamp::Kind::smoothstep ? 12.0 : 60.0) / (T * T * T) * d.cwiseAbs();
+  p.peak_jerk = SmoothRamp::peak_jerk(kind) / (T * T * T) * d.cwiseAbs();
   p.notes = {
       {"limiting axis", limiting},
       {"continuity", kind == SmoothRamp::Kind::smoothstep ? "C¹: acceleration steps at both ends"

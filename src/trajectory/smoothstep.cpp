@@ -58,6 +58,10 @@ double SmoothRamp::peak_curvature(Kind kind) noexcept {
   return kind == Kind::smoothstep ? 6.0 : 5.773502691896258;  // 10/√3
 }
 
+double SmoothRamp::peak_jerk(Kind kind) noexcept {
+  return kind == Kind::smoothstep ? 12.0 : 60.0;  // |−12|; 60(6x² − 6x + 1) at x = 0, 1
+}
+
 double SmoothRamp::duration_for(Kind kind, double distance, double max_velocity,
                                 double max_acceleration) {
   require_ramp_value(distance, "distance", true);

@@ -7,7 +7,7 @@
 #include <random>
 
 #include "mjarm/error.hpp"
-#include "mjarm/trajectory/min_jerk.hpp"
+#include "mjarm/trajectory/smoothstep.hpp"
 #include "support/error_message.hpp"
 
 namespace mjarm {
@@ -42,15 +42,15 @@ TEST(Quintic, MeetsArbitraryBoundaryConditions) {
 
 TEST(Quintic, RestToRestIsTheMinimumJerkProfile) {
   const Quintic q({1.0, 0.0, 0.0}, {3.0, 0.0, 0.0}, 0.8);
-  const MinJerkProfile s(0.8);
+  const SmoothRamp s(SmoothRamp::Kind::smootherstep, 0.8);  // the minimum-jerk scaling
   for (double t = -0.1; t <= 0.9; t += 0.05) {
     EXPECT_NEAR(q.at(t).p, 1.0 + 2.0 * s.at(t).s, 1e-14);
     EXPECT_NEAR(q.at(t).v, 2.0 * s.at(t).ds, 1e-12);
     EXPECT_NEAR(q.at(t).a, 2.0 * s.at(t).dds, 1e-10);
   }
   const Quintic::Peaks peaks = q.peaks();
-  EXPECT_NEAR(peaks.velocity, 2.0 * MinJerkProfile::kPeakVelocity / 0.8, 1e-12);
-  EXPECT_NEAR(peaks.acceleration, 2.0 * MinJerkProfile::kPeakAcceleration / 0.64, 1e-10);
+  EXPECT_NEAR(peaks.velocity, 2.0 * 1.875 / 0.8, 1e-12);
+  EXPECT_NEAR(peaks.acceleration, 2.0 * (10.0 / std::sqrt(3.0)) / 0.64, 1e-10);
   EXPECT_NEAR(peaks.jerk, 2.0 * 60.0 / (0.8 * 0.8 * 0.8), 1e-9);  // s‴(0) = 60
   // clamped outside, jerk 0 there
   EXPECT_EQ(q.at(5.0).p, 3.0);

@@ -47,9 +47,14 @@ TEST(Se3Interpolation, StartsWithTheGivenTwistAndRateAndEndsAtRest) {
   EXPECT_LT((a.A_WE - A0).norm(), 1e-13);
   const Se3Interpolation::Sample b = s.at(0.8);
   EXPECT_TRUE(b.X_WE.is_approx(X1, 1e-12));
-  EXPECT_LT(b.V_WE.norm(), 1e-12);
-  EXPECT_LT(b.A_WE.norm(), 1e-10);
+  EXPECT_EQ(b.V_WE.norm(), 0.0);  // at rest exactly from T on
+  EXPECT_EQ(b.A_WE.norm(), 0.0);
+  EXPECT_EQ(b.X_WE.p, X1.p);
   EXPECT_TRUE(s.at(3.0).X_WE.is_approx(X1, 1e-12));
+  // just before T the polynomials agree with the exact end (no visible step)
+  const Se3Interpolation::Sample c = s.at(0.8 - 1e-9);
+  EXPECT_TRUE(c.X_WE.is_approx(b.X_WE, 1e-12));
+  EXPECT_LT(c.V_WE.norm(), 1e-9);
 }
 
 TEST(Se3Interpolation, TwistAndRateAreTheTrueDerivativesOfThePose) {
