@@ -175,7 +175,7 @@ struct ViewerSession::Rig {
 ViewerSession::ViewerSession(const Robot& robot, const ViewerSessionOptions& options)
     : site_(options.site.empty() ? default_viewer_site(robot) : options.site),
       options_(options),
-      filter_(options.max_speed, options.max_angular_speed) {
+      filter_(options.reference_limits) {
   if (!(options.max_joint_speed > 0.0) || !std::isfinite(options.max_joint_speed)) {
     throw Error("viewer: max_joint_speed must be positive and finite");
   }
@@ -350,6 +350,7 @@ bool ViewerSession::tick(Rig& rig) noexcept {
   } else {
     rig.reference.task.X_WE = X_WR;
     rig.reference.task.V_WE = filter_.velocity();
+    rig.reference.task.A_WE = filter_.acceleration();
     rig.reference.joint.q = rig.q_home;  // null-space posture
   }
   const TickResult result = rig.sim->tick(rig.reference);

@@ -11,7 +11,9 @@
 /// - torque: operational-space impedance control of the reference on the model's `_torque`
 ///   variant (the file `<name>_torque.xml` beside the model; `<name>.xml` is the position
 ///   variant of a `_torque` model).
-/// In every mode the reference follows the panel target at bounded speed (`TargetFilter`).
+/// In every mode the reference follows the panel target as a jerk-limited motion (`TargetFilter`:
+/// the jerk-limited generator, recalculated from the reference's current state whenever the
+/// target changes).
 
 #include <mujoco/mujoco.h>
 
@@ -26,6 +28,7 @@
 #include "mjarm/render/viewer_panel.hpp"
 #include "mjarm/sim/contact_query.hpp"
 #include "mjarm/sim/simulation.hpp"
+#include "mjarm/trajectory/target_filter.hpp"
 
 namespace mjarm {
 
@@ -41,8 +44,9 @@ struct ViewerSessionOptions {
   double kinematic_period = 0.01;
   /// Position and torque modes: control period [s]; 0 means one physics step.
   double control_period = 0.0;
-  double max_speed = 0.5;          ///< reference speed limit [m/s] (> 0)
-  double max_angular_speed = 1.5;  ///< reference angular speed limit [rad/s] (> 0)
+  /// Limits of the reference that follows the panel target (per world axis and per rotation
+  /// vector component: velocity, acceleration, jerk; all > 0).
+  TargetFilterLimits reference_limits;
   /// Kinematic and position modes: largest joint speed of the IK output [rad/s or m/s] (> 0).
   double max_joint_speed = 2.0;
   int ik_iterations = 10;            ///< IK iterations per tick, warm-started (≥ 1)
