@@ -366,6 +366,8 @@ Command add_traj_command(CLI::App& root) {
   return {
       app, [options] {
         const Options& o = *options;
+        if (!o.out.empty()) check_output_file(o.out, "--out");  // before the work
+        if (!o.plot.empty()) check_output_folder(o.plot, "--plot");
         const TrajKind& kind = *std::find_if(kTrajKinds.begin(), kTrajKinds.end(),
                                              [&](const TrajKind& k) { return o.kind == k.name; });
         const auto n = static_cast<Eigen::Index>(o.start.size());

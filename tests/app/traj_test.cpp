@@ -192,6 +192,12 @@ TEST(CliTraj, BadCommandLinesFailCleanly) {
   expect_error({"traj", "quintic", "--start", "0", "--target", "1e4", "--v-max", "1e-3"}, 2,
                "lower --rate");
   expect_error({"traj", "jerk-limited", "--start", "0", "--target", "1"}, 2, "needs --j-max");
+  // outputs that cannot be written are refused before the work
+  expect_error(
+      {"traj", "quintic", "--start", "0", "--target", "1", "--out", "/nonexistent_dir/sub/t.csv"},
+      2, "--out");
+  expect_error({"traj", "quintic", "--start", "0", "--target", "1", "--plot", "/proc/version/x"}, 2,
+               "--plot");
   expect_error(
       {"traj", "jerk-limited", "--start", "0", "--target", "1", "--j-max", "5", "--duration", "2"},
       2, "time-optimal");
