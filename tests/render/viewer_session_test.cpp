@@ -210,6 +210,15 @@ TEST(ViewerSession, BadFrameOrKeyframeIsAnError) {
   options.site.clear();
   options.keyframe = "hom";
   EXPECT_THROW(ViewerSession(Robot::bundled("panda"), options), Error);
+  // reference limits that are not positive and finite are named
+  options.keyframe.clear();
+  options.reference_limits.angular_jerk = 0.0;
+  try {
+    ViewerSession session(Robot::bundled("panda"), options);
+    FAIL() << "no error";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("angular jerk"), std::string::npos) << e.what();
+  }
   // several sites and none called tcp: the message lists them
   try {
     default_viewer_site(Robot::bundled("dual_arm"));

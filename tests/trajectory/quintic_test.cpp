@@ -123,6 +123,17 @@ TEST(Quintic, RejectsBadInput) {
   EXPECT_THROW(Quintic({nan, 0, 0}, {1, 0, 0}, 1.0), Error);
   EXPECT_THROW(Quintic({0, inf, 0}, {1, 0, 0}, 1.0), Error);
   EXPECT_THROW(Quintic({0, 0, 0}, {1, 0, nan}, 1.0), Error);
+  // durations out of scale with the move overflow the polynomial: an error, not NaN samples
+  EXPECT_NE(test::error_of([] {
+              Quintic({0, 0, 0}, {1, 0, 0}, 1e-300);
+            }).find("out of scale"),
+            std::string::npos);
+  EXPECT_THROW(Quintic({0, 0, 1}, {1, 0, 0}, 1e300), Error);
+  // while wide but representable scales still work
+  const Quintic slow({0, 0, 0}, {1e-3, 0, 0}, 1e4);
+  EXPECT_NEAR(slow.at(5e3).p, 5e-4, 1e-15);
+  const Quintic fast({0, 0, 0}, {1e3, 0, 0}, 1e-3);
+  EXPECT_NEAR(fast.at(1e-3).p, 1e3, 1e-9);
   const Eigen::VectorXd z2 = Eigen::VectorXd::Zero(2), z3 = Eigen::VectorXd::Zero(3);
   EXPECT_THROW(QuinticTrajectory({z2, z2, z2}, {z3, z3, z3}, 1.0), Error);
   EXPECT_THROW(QuinticTrajectory({Eigen::VectorXd(), Eigen::VectorXd(), Eigen::VectorXd()},

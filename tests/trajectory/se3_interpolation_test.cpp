@@ -113,6 +113,10 @@ TEST(Se3Interpolation, RejectsBadInput) {
   EXPECT_THROW(Se3Interpolation(X, zero, zero, X, 0.0), Error);
   EXPECT_THROW(Se3Interpolation(X, zero, zero, X, -1.0), Error);
   EXPECT_THROW(Se3Interpolation(X, zero, zero, X, std::numeric_limits<double>::infinity()), Error);
+  EXPECT_THROW(Se3Interpolation(X, zero, zero, X, nan), Error);
+  // a duration far out of scale with the move: an error, not NaN poses
+  const Pose far = pose_of({1, 0, 0}, {0.1, 0.2, 0.3});
+  EXPECT_THROW(Se3Interpolation(X, zero, zero, far, 1e-300), Error);
   EXPECT_THROW(Se3Interpolation(X, six(0, 0, nan, 0, 0, 0), zero, X, 1.0), Error);
   EXPECT_THROW(Se3Interpolation(X, zero, six(0, 0, 0, 0, 0, nan), X, 1.0), Error);
   Pose bad = X;

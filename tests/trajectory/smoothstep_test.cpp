@@ -94,6 +94,10 @@ TEST(SmoothRamp, RejectsBadInput) {
   EXPECT_THROW(SmoothRamp::duration_for(K::smoothstep, -0.1, 1.0, 1.0), Error);
   EXPECT_THROW(SmoothRamp::duration_for(K::smoothstep, 0.1, 0.0, 1.0), Error);
   EXPECT_THROW(SmoothRamp::duration_for(K::smoothstep, 0.1, 1.0, std::nan("")), Error);
+  EXPECT_THROW(SmoothRamp(K::smoothstep, std::nan("")), Error);
+  EXPECT_THROW(SmoothRamp::duration_for(K::smootherstep, std::nan(""), 1.0, 1.0), Error);
+  // finite input whose duration overflows
+  EXPECT_THROW(SmoothRamp::duration_for(K::smootherstep, 1e300, 1e-300, 1.0), Error);
 }
 
 }  // namespace
