@@ -11,6 +11,7 @@
 #include "ik/malloc_counter.hpp"
 #include "mjarm/error.hpp"
 #include "mjarm/lie/so3.hpp"
+#include "mjarm/trajectory/smoothstep.hpp"
 
 // ---- allocation counter (see tests/ik/malloc_counter.hpp) ----
 // Weak definitions: if another test file of this executable counts allocations the same way,
@@ -243,7 +244,16 @@ TEST(ViewerSession, GripperFollowsItsSliderInEveryMode) {
     PanelState panel = session.initial_panel();
     panel.gripper = 0.75;
     session.set_target(panel);
+    // the command ramps to the slider: smoothstep over 0.75 × 0.5 s (the default full travel)
+    const double T = 0.75 * ViewerSessionOptions{}.gripper_travel_time;
+    const double dt = session.control_period();
+    const int half = static_cast<int>(std::lround(0.5 * T / dt));
+    ASSERT_EQ(session.step(half), half);
+    EXPECT_NEAR(session.stats().gripper, 0.75 * smoothstep(half * dt / T).s, 1e-12);
+    EXPECT_GT(session.stats().gripper, 0.2);
+    EXPECT_LT(session.stats().gripper, 0.55);
     run_for(session, 1.0);
+    EXPECT_EQ(session.stats().gripper, 0.75);
     EXPECT_NEAR(width(), 0.02, 2e-3) << to_string(options.mode);
     EXPECT_LT(session.stats().target_position, 5e-3) << "the arm holds still meanwhile";
   }
