@@ -156,7 +156,7 @@ ProfileBenchmarkResult run_profile_benchmark(const ProfileBenchmarkOptions& o) {
                                  bench_vector(2, 2.0), 1.3);
   const auto t_quintic = bench_instants(quintic.duration());
   if (!add(
-          {"quintic, 7 joints (q, q̇, q̈)", "QuinticTrajectory::at", 0, 0, 0, 0,
+          {"quintic, 7 joints (q, qd, qdd)", "QuinticTrajectory::at", 0, 0, 0, 0,
            kProfileEvaluationTargetNs, -1},
           [&](std::int64_t k) {
             quintic.at(t_quintic[k & 255], q, qd, qdd);
