@@ -92,7 +92,6 @@ const Pose& TargetFilter::update(const Pose& X_WT, double dt) noexcept {
 
   status_ = otg_.step(dt, state_);
   if (status_ == OtgStatus::finished) {  // land exactly, at rest
-    X_WR_ = X_WT_;
     reset(X_WT_);
     return X_WR_;
   }

@@ -63,6 +63,8 @@ class TargetFilter {
   bool settled() const noexcept { return settled_; }
   /// Outcome of the last calculation or step: working, finished, or an error of the generator
   /// (then the reference has stopped where it was, at rest; the next target change retries).
+  /// (No error was seen in 50 000 seeded random 6-DoF starts within the default limits towards
+  /// targets at rest, a one-off check, not a test.)
   OtgStatus status() const noexcept { return status_; }
   /// Duration of the motion planned at the last recalculation [s].
   double motion_duration() const noexcept { return otg_.duration(); }
