@@ -38,18 +38,6 @@ std::string otg_number(double x) {
   return buffer;
 }
 
-void append_phases(const JerkProfile& from, JerkProfile& to) noexcept {
-  for (int i = 0; i < from.size(); ++i) to.append(from.jerk(i), from.phase_duration(i));
-}
-
-/// A profile of @p block with a duration within round-off of @p duration, or nullptr.
-const JerkProfile* extremal_profile(const JerkBlock& block, double duration) noexcept {
-  for (int k = 0; k < block.duration_count; ++k)
-    if (std::abs(block.durations[k] - duration) <= 1e-10 * std::max(1.0, duration))
-      return &block.profiles[k];
-  return nullptr;
-}
-
 }  // namespace
 
 JerkLimitedGenerator::JerkLimitedGenerator(std::span<const JerkLimits> limits)
@@ -136,19 +124,17 @@ OtgResult JerkLimitedGenerator::calculate(std::span<const KinematicState> curren
   }
   result_.duration = sync.duration;
   result_.limiting_dof = sync.limiting_dof;
-  // step 3
+  // step 3: the extremal profile of that duration, or a blend of the reachable extremes
   for (int i = 0; i < n; ++i) {
     const double local = sync.duration - brake_durations_[i];
-    const JerkProfile* main = extremal_profile(blocks_[i], local);
-    if (main == nullptr) {
-      if (!fixed_time_profile(after_brake_[i], target[i], limits_[i], local, scratch_)) {
-        result_.status = OtgStatus::error_synchronization;
-        result_.failed_dof = i;
-        return result_;
-      }
-      main = &scratch_;
+    if (const JerkPhases* extremal = blocks_[i].profile_of(local)) {
+      extremal->append_to(profiles_[i]);
+    } else if (!append_fixed_time_profile(after_brake_[i], target[i], limits_[i], local,
+                                          profiles_[i])) {
+      result_.status = OtgStatus::error_synchronization;
+      result_.failed_dof = i;
+      return result_;
     }
-    append_phases(*main, profiles_[i]);
   }
   result_.status = sync.duration > 0.0 ? OtgStatus::working : OtgStatus::finished;
   return result_;
@@ -186,17 +172,14 @@ OtgResult JerkLimitedGenerator::calculate_velocity(std::span<const KinematicStat
   result_.limiting_dof = sync.limiting_dof;
   for (int i = 0; i < n; ++i) {
     const double local = sync.duration - brake_durations_[i];
-    const JerkProfile* main = extremal_profile(blocks_[i], local);
-    if (main == nullptr) {
-      if (!fixed_time_velocity_profile(after_brake_[i], target[i].v, target[i].a, limits_[i], local,
-                                       scratch_)) {
-        result_.status = OtgStatus::error_synchronization;
-        result_.failed_dof = i;
-        return result_;
-      }
-      main = &scratch_;
+    if (const JerkPhases* extremal = blocks_[i].profile_of(local)) {
+      extremal->append_to(profiles_[i]);
+    } else if (!append_fixed_time_velocity_profile(after_brake_[i], target[i].v, target[i].a,
+                                                   limits_[i], local, profiles_[i])) {
+      result_.status = OtgStatus::error_synchronization;
+      result_.failed_dof = i;
+      return result_;
     }
-    append_phases(*main, profiles_[i]);
   }
   result_.status = sync.duration > 0.0 ? OtgStatus::working : OtgStatus::finished;
   return result_;

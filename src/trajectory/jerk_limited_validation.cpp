@@ -157,10 +157,8 @@ OtgValidationResult run_otg_validation(const OtgValidationOptions& options) {
   for (int c = 0; c < options.cases; ++c) {
     for (std::size_t i = 0; i < n; ++i) {
       limits[i] = sampler.limits();
-      // a start beyond the limits only where two brake phases can recover it
       const JerkLimits& l = limits[i];
-      const bool beyond = sampler.share(sampler.rng) < options.brake_share &&
-                          l.acceleration * l.acceleration / (2.0 * l.jerk) <= l.velocity;
+      const bool beyond = sampler.share(sampler.rng) < options.brake_share;
       start[i] = sampler.start(l, beyond);
       target[i] = sampler.target(l);
       r.braking_dofs += beyond ? 1 : 0;

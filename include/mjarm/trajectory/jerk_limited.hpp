@@ -24,7 +24,7 @@ namespace mjarm {
 enum class OtgStatus {
   working,                ///< a trajectory exists and the target is not reached yet
   finished,               ///< the target is reached (the time is at or past the duration)
-  error_brake,            ///< a DoF's state is too far beyond its limits to brake in two phases
+  error_brake,            ///< a DoF's brake did not fit its profile (not expected: ≤ 2 phases)
   error_no_profile,       ///< step 1 found no time-optimal profile for a DoF
   error_synchronization,  ///< a DoF has no profile of the synchronized duration
 };
@@ -105,7 +105,6 @@ class JerkLimitedGenerator {
   std::vector<double> brake_durations_;
   std::vector<int> brake_phases_;
   std::vector<KinematicState> after_brake_;
-  JerkProfile scratch_;
   OtgResult result_;
   double time_ = 0.0;
 };

@@ -1,0 +1,124 @@
+#include "mjarm/trajectory/jerk_limited_reach.hpp"
+
+#include <cmath>
+
+#include "mjarm/trajectory/jerk_limited_min_time.hpp"
+#include "trajectory/jerk_limited_up.hpp"
+
+namespace mjarm {
+
+namespace {
+
+using jerk_detail::UpForm;
+
+/// Relative slack of the limit checks.
+constexpr double kSlack = 1.0 + JerkTolerance::kLimits;
+
+/// Clamps @p t to ≥ 0 into @p out; false when a duration is negative beyond round-off.
+bool accept(const double* t, double* out) noexcept {
+  for (int i = 0; i < 7; ++i) out[i] = t[i];
+  return jerk_detail::clamp_durations(out);
+}
+
+/// The hold at +A with a free lowest level w (see the file comment) for @p q, which is @p up or
+/// its time-reversed problem (then the durations are read backwards: the hold at −A).
+bool hold_at_top(const UpForm& q, bool reverse, double T, double* out) noexcept {
+  const double A = q.A, J = q.J;
+  const double c = q.k + A * A - A * J * T + A * (q.af - q.a0);
+  const double disc = A * A - c;
+  if (disc < 0.0) return false;
+  const double w = A - std::sqrt(disc);
+  // w ≥ −A, and the velocity peak (F + 2w²)/(2J) ≤ V when w < 0
+  if (w < -A * kSlack || (w < 0.0 && q.f + 2.0 * w * w > 2.0 * J * q.V * kSlack)) return false;
+  const double t[7] = {
+      (A - q.a0) / J, T - (2.0 * A - q.a0 + q.af - 2.0 * w) / J, (A - w) / J, 0.0, 0.0, 0.0,
+      (q.af - w) / J};
+  if (!reverse) return accept(t, out);
+  double r[7];
+  jerk_detail::reverse_durations(t, r);
+  return accept(r, out);
+}
+
+/// The durations of the highest up profile of duration @p T in @p t; false when there is none.
+/// At most one structure is valid for a given T (they meet only where their profiles coincide),
+/// so the first valid one is it. Validity as in jerk_limited_min_time.cpp: durations ≥ 0, levels
+/// within ±A, and the velocity peak (where the acceleration turns from u > 0 to w < 0) ≤ V.
+bool highest_profile(const UpForm& up, double T, double* t) noexcept {
+  const double A = up.A, J = up.J, V = up.V;
+  {  // a cruise at +V
+    double u = 0.0, h2 = 0.0, w = 0.0, h6 = 0.0;
+    if (jerk_detail::rise_to_limit(up.v0, up.a0, V, A, J, u, h2) &&
+        jerk_detail::rise_to_limit(up.vf, -up.af, V, A, J, w, h6)) {
+      const double c[7] = {(u - up.a0) / J, h2, u / J, 0.0, w / J, h6, (up.af + w) / J};
+      double rest = T;
+      for (const double x : c) rest -= x;
+      if (rest >= -jerk_detail::kDurationSlack) {
+        const double r[7] = {c[0], c[1], c[2], rest, c[4], c[5], c[6]};
+        if (accept(r, t)) return true;
+      }
+    }
+  }
+  {  // no hold: u − w = S, u + w = K/S
+    const double S = 0.5 * (J * T + up.a0 - up.af);
+    if (S > 0.0) {
+      const double ks = up.k / S;
+      const double u = 0.5 * (S + ks), w = 0.5 * (ks - S);
+      if (u <= A * kSlack && w >= -A * kSlack &&
+          !(u > 0.0 && w < 0.0 && up.f0 + 2.0 * u * u > 2.0 * J * V * kSlack)) {
+        const double c[7] = {(u - up.a0) / J, 0.0, S / J, 0.0, 0.0, 0.0, (up.af - w) / J};
+        if (accept(c, t)) return true;
+      }
+    }
+  }
+  {  // holds at +A and −A: h2 + h6 = H, h2 − h6 = K/(A·J)
+    const double H = T - (4.0 * A - up.a0 + up.af) / J;
+    const double g = up.k / (A * J);
+    const double h2 = 0.5 * (H + g);
+    if (up.f0 + 2.0 * A * A + 2.0 * J * A * h2 <= 2.0 * J * V * kSlack) {
+      const double c[7] = {(A - up.a0) / J, h2, 2.0 * A / J, 0.0, 0.0, 0.5 * (H - g),
+                           (up.af + A) / J};
+      if (accept(c, t)) return true;
+    }
+  }
+  return hold_at_top(up, false, T, t) || hold_at_top(jerk_detail::reversed(up), true, T, t);
+}
+
+}  // namespace
+
+bool reach_range(const KinematicState& start, double v_target, double a_target,
+                 const JerkLimits& limits, double duration, JerkReach& reach) noexcept {
+  if (!(duration >= 0.0) || !std::isfinite(duration)) return false;
+  if (duration <= jerk_detail::kDurationSlack) {
+    // no time: only the start itself, when it has the target's velocity and acceleration
+    if (std::abs(start.v - v_target) > 1e-9 * std::max(1.0, std::abs(v_target)) ||
+        std::abs(start.a - a_target) > 1e-9 * std::max(1.0, std::abs(a_target)))
+      return false;
+    reach.p_min = reach.p_max = start.p;
+    reach.lowest = reach.highest = JerkPhases{};
+    return true;
+  }
+  for (const double sign : {1.0, -1.0}) {
+    const UpForm up = jerk_detail::make_up_form(start, 0.0, v_target, a_target, limits, sign);
+    double t[7];
+    if (!highest_profile(up, duration, t)) return false;
+    const double p = jerk_detail::uddu_end(up, t).p;
+    if (sign > 0.0) {
+      reach.p_max = start.p + p;
+      reach.highest = jerk_detail::to_phases(up, t);
+    } else {
+      reach.p_min = start.p - p;
+      reach.lowest = jerk_detail::to_phases(up, t);
+    }
+  }
+  return true;
+}
+
+bool duration_feasible(const KinematicState& start, const KinematicState& target,
+                       const JerkLimits& limits, double duration) noexcept {
+  JerkReach r;
+  if (!reach_range(start, target.v, target.a, limits, duration, r)) return false;
+  const double tol = JerkTolerance::kTarget * std::max(1.0, std::abs(target.p));
+  return target.p <= r.p_max + tol && target.p >= r.p_min - tol;
+}
+
+}  // namespace mjarm

@@ -1,0 +1,156 @@
+#pragma once
+// The "up" form of a one-DoF jerk-limited problem, shared by the profile solvers of the trajectory
+// room (private). Every problem is solved in the direction `sign` = ±1 after multiplying all its
+// states by it, so that the solvers know one profile shape only, UDDU: seven phases with jerk
+// (+J, 0, −J, 0, −J, 0, +J); phase 2 holds the acceleration at its peak level u, phase 4 the
+// velocity (a = 0), phase 6 the acceleration at its lowest level w. The mirrored direction gives
+// the profiles that go down first.
+
+#include <algorithm>
+#include <cmath>
+
+#include "mjarm/trajectory/jerk_limited_profile.hpp"
+
+namespace mjarm::jerk_detail {
+
+/// Jerk of each UDDU phase divided by J.
+inline constexpr double kUddu[7] = {1.0, 0.0, -1.0, 0.0, -1.0, 0.0, 1.0};
+
+/// Durations within this of zero [s] count as zero (round-off of the solvers).
+inline constexpr double kDurationSlack = 1e-12;
+
+/// A one-DoF problem in its up form: start (0, v0, a0), target (d, vf, af), all times `sign`.
+struct UpForm {
+  double sign = 1.0;
+  double v0 = 0.0, a0 = 0.0;  ///< start velocity and acceleration
+  double vf = 0.0, af = 0.0;  ///< target velocity and acceleration
+  double d = 0.0;             ///< distance to go
+  double V = 1.0, A = 1.0, J = 1.0;
+  // shorthands of the velocity and position equations (units of acceleration powers):
+  double f0 = 0.0;  ///< 2J·v0 − a0²
+  double f = 0.0;   ///< 2J·vf − af²
+  double k = 0.0;   ///< J·(vf − v0) + (a0² − af²)/2 = (f − f0)/2
+  double m = 0.0;   ///< (f0 + f)/2
+  double e = 0.0;   ///< 3J²·d + 3J·(a0·v0 − af·vf) − a0³ + af³
+
+  /// Fills the shorthands from the fields above.
+  void derive() noexcept {
+    f0 = 2.0 * J * v0 - a0 * a0;
+    f = 2.0 * J * vf - af * af;
+    k = 0.5 * (f - f0);
+    m = 0.5 * (f0 + f);
+    e = 3.0 * J * J * d + 3.0 * J * (a0 * v0 - af * vf) - a0 * a0 * a0 + af * af * af;
+  }
+};
+
+/// The problem from @p start to (target distance @p d, @p vf, @p af) seen in direction @p sign.
+inline UpForm make_up_form(const KinematicState& start, double d, double vf, double af,
+                           const JerkLimits& limits, double sign) noexcept {
+  UpForm up;
+  up.sign = sign;
+  up.v0 = sign * start.v;
+  up.a0 = sign * start.a;
+  up.vf = sign * vf;
+  up.af = sign * af;
+  up.d = sign * d;
+  up.V = limits.velocity;
+  up.A = limits.acceleration;
+  up.J = limits.jerk;
+  up.derive();
+  return up;
+}
+
+/// The time-reversed problem: a UDDU profile t₁ … t₇ of it, read backwards (t₇ … t₁), is a UDDU
+/// profile of @p up (r(t) = p₀ + p_f − p(T − t) starts at (v_f, −a_f) and ends at (v₀, −a₀)).
+inline UpForm reversed(const UpForm& up) noexcept {
+  UpForm r = up;
+  r.v0 = up.vf;
+  r.a0 = -up.af;
+  r.vf = up.v0;
+  r.af = -up.a0;
+  r.derive();
+  return r;
+}
+
+/// The state at the end of the UDDU profile @p t (durations ≥ 0) of @p up, from (0, v0, a0).
+inline KinematicState uddu_end(const UpForm& up, const double* t) noexcept {
+  KinematicState s{0.0, up.v0, up.a0};
+  for (int i = 0; i < 7; ++i) {
+    if (!(t[i] > 0.0)) continue;
+    if (i == JerkPhases::kCruise) s.a = 0.0;  // the plateau (see JerkPhases)
+    s = integrate_jerk(s, kUddu[i] * up.J, t[i]);
+  }
+  return s;
+}
+
+/// Integrates the UDDU profile @p t (durations ≥ 0) of @p up from (0, v0, a0) into @p end; true
+/// when it keeps |v| ≤ V and |a| ≤ A within the relative @p slack, checked at the ends of its
+/// phases and where the acceleration crosses zero inside one (the velocity's turning points).
+inline bool uddu_within(const UpForm& up, const double* t, double slack,
+                        KinematicState& end) noexcept {
+  const double vmax = up.V * (1.0 + slack), amax = up.A * (1.0 + slack);
+  KinematicState s{0.0, up.v0, up.a0};
+  bool within = true;
+  for (int i = 0; i < 7; ++i) {
+    const double ti = t[i];
+    if (!(ti > 0.0)) continue;
+    const double j = kUddu[i] * up.J;
+    const KinematicState n = integrate_jerk(s, j, ti);
+    if (j != 0.0 && ((s.a < 0.0) != (n.a < 0.0))) {
+      const double tz = std::clamp(-s.a / j, 0.0, ti);
+      within = within && std::abs(s.v + tz * (s.a + 0.5 * j * tz)) <= vmax;
+    }
+    within = within && std::abs(n.v) <= vmax && std::abs(n.a) <= amax;
+    s = n;
+  }
+  end = s;
+  return within;
+}
+
+/// Clamps durations within kDurationSlack of zero to zero; false when one is more negative or
+/// not finite.
+inline bool clamp_durations(double* t) noexcept {
+  for (int i = 0; i < 7; ++i) {
+    if (!(t[i] >= -kDurationSlack) || !(t[i] < HUGE_VAL)) return false;
+    if (t[i] < 0.0) t[i] = 0.0;
+  }
+  return true;
+}
+
+/// The phases of the UDDU profile @p t of @p up in the original direction.
+inline JerkPhases to_phases(const UpForm& up, const double* t) noexcept {
+  JerkPhases p;
+  for (int i = 0; i < 7; ++i) {
+    p.jerk[i] = up.sign * kUddu[i] * up.J;
+    p.duration[i] = t[i];
+  }
+  return p;
+}
+
+/// Durations of @p up's reversed problem read backwards (see reversed()).
+inline void reverse_durations(const double* in, double* out) noexcept {
+  for (int i = 0; i < 7; ++i) out[i] = in[6 - i];
+}
+
+/// The rise from (v0, a0) to (V, 0) at full jerk: level u (≤ A, with a hold h2 at A when u would
+/// pass it); false when the start cannot rise to V without overshooting.
+inline bool rise_to_limit(double v0, double a0, double V, double A, double J, double& u,
+                          double& h) noexcept {
+  const double u2 = J * (V - v0) + 0.5 * a0 * a0;
+  if (!(u2 >= 0.0)) return false;
+  u = std::sqrt(u2);
+  h = 0.0;
+  if (u > A) {
+    u = A;
+    h = (V - v0 - (2.0 * A * A - a0 * a0) / (2.0 * J)) / A;
+  }
+  // a level below a₀ by round-off only is a₀ itself (t₁ = 0 exactly: the ramps then still end at
+  // a = 0, which a long cruise after them needs)
+  if (u < a0) {
+    if (u < a0 - 1e-12 * A) return false;
+    u = a0;
+  }
+  return true;
+}
+
+}  // namespace mjarm::jerk_detail
