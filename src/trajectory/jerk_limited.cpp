@@ -11,6 +11,7 @@
 #include "mjarm/trajectory/jerk_limited_min_time.hpp"
 #include "mjarm/trajectory/jerk_limited_sync.hpp"
 #include "mjarm/trajectory/jerk_limited_velocity.hpp"
+#include "trajectory/jerk_limited_up.hpp"
 
 namespace mjarm {
 
@@ -31,6 +32,36 @@ const char* to_string(OtgStatus status) noexcept {
 }
 
 namespace {
+
+/// A cheap guess of the minimum duration of one DoF (brake excluded), to pick the DoF whose
+/// step 1 comes first: the duration of the profile with a cruise at ±v_max when one is valid (the
+/// optimum of most long moves), else the rest-to-rest minimum for the same distance.
+double duration_estimate(const KinematicState& start, const KinematicState& target,
+                         const JerkLimits& limits) noexcept {
+  const double d = target.p - start.p;
+  double best = HUGE_VAL;
+  for (const double sign : {1.0, -1.0}) {
+    const jerk_detail::UpForm up =
+        jerk_detail::make_up_form(start, d, target.v, target.a, limits, sign);
+    double u = 0.0, h2 = 0.0, w = 0.0, h6 = 0.0;
+    if (!jerk_detail::rise_to_limit(up.v0, up.a0, up.V, up.A, up.J, u, h2) ||
+        !jerk_detail::rise_to_limit(up.vf, -up.af, up.V, up.A, up.J, w, h6))
+      continue;
+    const double t[7] = {(u - up.a0) * up.ij, h2, u * up.ij,          0.0,
+                         w * up.ij,           h6, (up.af + w) * up.ij};
+    const double cruise = (up.d - jerk_detail::uddu_end(up, t).p) / up.V;
+    if (cruise >= 0.0) best = std::min(best, cruise + t[0] + t[1] + t[2] + t[4] + t[5] + t[6]);
+  }
+  if (best < HUGE_VAL) return best;
+  // rest to rest over |d|: jerk only, with a hold at a_max, or with a cruise at v_max
+  const double V = limits.velocity, A = limits.acceleration, J = limits.jerk;
+  const double D = std::abs(d);
+  const double a_peak = std::min(A, std::sqrt(V * J));  // the level reached on the way to v_max
+  const double t_acc = a_peak / J + V / a_peak;         // 0 → v_max → 0 acceleration
+  if (D >= V * t_acc) return D / V + t_acc;
+  if (D <= 2.0 * A * A * A / (J * J)) return 4.0 * std::cbrt(D / (2.0 * J));
+  return A / J + std::sqrt(A * A / (J * J) + 4.0 * D / A);
+}
 
 std::string otg_number(double x) {
   char buffer[32];
@@ -54,6 +85,10 @@ JerkLimitedGenerator::JerkLimitedGenerator(std::span<const JerkLimits> limits)
   }
   profiles_.resize(limits_.size());
   blocks_.resize(limits_.size());
+  reach_.resize(limits_.size());
+  targets_.resize(limits_.size());
+  estimates_.resize(limits_.size());
+  solved_.resize(limits_.size());
   brake_durations_.resize(limits_.size());
   brake_phases_.resize(limits_.size());
   after_brake_.resize(limits_.size());
@@ -92,14 +127,23 @@ void JerkLimitedGenerator::check_states(std::span<const KinematicState> current,
   }
 }
 
+bool JerkLimitedGenerator::solve_step1(int i) noexcept {
+  solved_[i] = 1;
+  return min_time_profile(after_brake_[i], targets_[i], limits_[i], blocks_[i]);
+}
+
 OtgResult JerkLimitedGenerator::calculate(std::span<const KinematicState> current,
                                           std::span<const KinematicState> target) {
   check_states(current, target, false);
   time_ = 0.0;
   result_ = OtgResult{};
+  velocity_interface_ = false;
   const int n = dofs();
-  // step 1 per DoF, after its brake
+  // the brakes, and a guess of which DoF is slowest
+  int first = 0;
   for (int i = 0; i < n; ++i) {
+    targets_[i] = target[i];
+    solved_[i] = 0;
     JerkProfile& p = profiles_[i];
     p.reset(current[i]);
     if (!append_brake(current[i], limits_[i], p)) {
@@ -110,27 +154,55 @@ OtgResult JerkLimitedGenerator::calculate(std::span<const KinematicState> curren
     brake_durations_[i] = p.duration();
     brake_phases_[i] = p.size();
     after_brake_[i] = p.end();
-    if (!min_time_profile(after_brake_[i], target[i], limits_[i], blocks_[i])) {
-      result_.status = OtgStatus::error_no_profile;
-      result_.failed_dof = i;
+    estimates_[i] = p.duration() + duration_estimate(after_brake_[i], target[i], limits_[i]);
+    if (estimates_[i] > estimates_[first]) first = i;
+  }
+  // step 1 for the DoFs that decide the duration only: the one guessed slowest, then every DoF
+  // that has no profile of the duration synchronized over those so far (it is slower, or the
+  // duration lies in one of its blocked intervals). A duration that every DoF can take and
+  // that is the smallest some of them can take is the smallest all can take.
+  if (!solve_step1(first)) {
+    result_.status = OtgStatus::error_no_profile;
+    result_.failed_dof = first;
+    return result_;
+  }
+  JerkSync sync;
+  for (;;) {
+    if (!synchronize(blocks_, brake_durations_, solved_, sync)) {
+      result_.status = OtgStatus::error_synchronization;
       return result_;
     }
-  }
-  // step 2
-  JerkSync sync;
-  if (!synchronize(blocks_, brake_durations_, sync)) {
-    result_.status = OtgStatus::error_synchronization;
-    return result_;
+    bool added = false;
+    for (int i = 0; i < n; ++i) {
+      if (solved_[i]) continue;
+      const double local = sync.duration - brake_durations_[i];
+      if (reach_range(after_brake_[i], target[i].v, target[i].a, limits_[i], local, reach_[i]) &&
+          reach_contains(reach_[i], target[i].p))
+        continue;
+      if (!solve_step1(i)) {
+        result_.status = OtgStatus::error_no_profile;
+        result_.failed_dof = i;
+        return result_;
+      }
+      added = true;
+    }
+    if (!added) break;
   }
   result_.duration = sync.duration;
   result_.limiting_dof = sync.limiting_dof;
   // step 3: the extremal profile of that duration, or a blend of the reachable extremes
   for (int i = 0; i < n; ++i) {
     const double local = sync.duration - brake_durations_[i];
-    if (const JerkPhases* extremal = blocks_[i].profile_of(local)) {
-      extremal->append_to(profiles_[i]);
-    } else if (!append_fixed_time_profile(after_brake_[i], target[i], limits_[i], local,
-                                          profiles_[i])) {
+    const JerkPhases* extremal = solved_[i] ? blocks_[i].profile_of(local) : nullptr;
+    bool ok = true;
+    if (extremal != nullptr) {
+      ok = extremal->append_to(profiles_[i]);
+    } else {
+      if (solved_[i])
+        ok = reach_range(after_brake_[i], target[i].v, target[i].a, limits_[i], local, reach_[i]);
+      ok = ok && append_blended_profile(reach_[i], target[i], local, profiles_[i]);
+    }
+    if (!ok) {
       result_.status = OtgStatus::error_synchronization;
       result_.failed_dof = i;
       return result_;
@@ -140,11 +212,22 @@ OtgResult JerkLimitedGenerator::calculate(std::span<const KinematicState> curren
   return result_;
 }
 
+const JerkBlock& JerkLimitedGenerator::block(int i) const {
+  const std::size_t k = static_cast<std::size_t>(i);
+  if (!velocity_interface_ && !solved_.at(k)) {
+    // step 1 of a DoF the synchronization did not need, on demand
+    solved_[k] = 1;
+    min_time_profile(after_brake_[k], targets_[k], limits_[k], blocks_[k]);
+  }
+  return blocks_.at(k);
+}
+
 OtgResult JerkLimitedGenerator::calculate_velocity(std::span<const KinematicState> current,
                                                    std::span<const KinematicState> target) {
   check_states(current, target, true);
   time_ = 0.0;
   result_ = OtgResult{};
+  velocity_interface_ = true;
   const int n = dofs();
   for (int i = 0; i < n; ++i) {
     const JerkLimits& l = limits_[i];

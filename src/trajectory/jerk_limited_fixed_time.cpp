@@ -46,13 +46,9 @@ bool append_blend(const JerkPhases& hi, const JerkPhases& lo, double lambda, dou
 
 }  // namespace
 
-bool append_fixed_time_profile(const KinematicState& start, const KinematicState& target,
-                               const JerkLimits& limits, double duration,
-                               JerkProfile& profile) noexcept {
-  JerkReach reach;
-  if (!reach_range(start, target.v, target.a, limits, duration, reach)) return false;
-  const double tol = JerkTolerance::kTarget * std::max(1.0, std::abs(target.p));
-  if (target.p > reach.p_max + tol || target.p < reach.p_min - tol) return false;
+bool append_blended_profile(const JerkReach& reach, const KinematicState& target, double duration,
+                            JerkProfile& profile) noexcept {
+  if (!reach_contains(reach, target.p)) return false;
   const double span = reach.p_max - reach.p_min;
   const double lambda = span > 0.0 ? std::clamp((target.p - reach.p_min) / span, 0.0, 1.0) : 1.0;
   if (duration > 0.0 && !append_blend(reach.highest, reach.lowest, lambda, duration, profile))
@@ -63,6 +59,14 @@ bool append_fixed_time_profile(const KinematicState& start, const KinematicState
     return std::abs(x - y) <= JerkTolerance::kTarget * std::max(1.0, std::abs(y));
   };
   return near(e.p, target.p) && near(e.v, target.v) && near(e.a, target.a);
+}
+
+bool append_fixed_time_profile(const KinematicState& start, const KinematicState& target,
+                               const JerkLimits& limits, double duration,
+                               JerkProfile& profile) noexcept {
+  JerkReach reach;
+  return reach_range(start, target.v, target.a, limits, duration, reach) &&
+         append_blended_profile(reach, target, duration, profile);
 }
 
 bool fixed_time_profile(const KinematicState& start, const KinematicState& target,

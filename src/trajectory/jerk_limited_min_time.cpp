@@ -77,12 +77,13 @@ void for_roots(const Polynomial& p, double lo, double hi, double slack, F&& f) n
 /// A cruise at +V: the rise to (V, 0) and the fall from it in closed form.
 void with_cruise(const UpForm& up, MinTimeCollector& out) noexcept {
   const double A = up.A, J = up.J, V = up.V;
+  const double iJ = up.ij;
   double u = 0.0, h2 = 0.0, w = 0.0, h6 = 0.0;
   if (!jerk_detail::rise_to_limit(up.v0, up.a0, V, A, J, u, h2)) return;
   if (!jerk_detail::rise_to_limit(up.vf, -up.af, V, A, J, w, h6)) return;
   w = -w;
-  double t[7] = {std::max((u - up.a0) / J, 0.0), h2, u / J, 0.0, -w / J, h6,
-                 std::max((up.af - w) / J, 0.0)};
+  double t[7] = {std::max((u - up.a0) * iJ, 0.0), h2, u * iJ, 0.0, -w * iJ, h6,
+                 std::max((up.af - w) * iJ, 0.0)};
   // the cruise closes the distance at the velocity the rise ends at (V, or a hair above it when
   // the start is on the edge of the startable states: a long cruise must use the true one)
   KinematicState rise{0.0, up.v0, up.a0};
@@ -95,6 +96,7 @@ void with_cruise(const UpForm& up, MinTimeCollector& out) noexcept {
 /// A·x² + (3A² + F)·x + (48A⁴ + 6A²F₀ + 42A²F − 8A·E − 3F₀² + 3F²)/(24A) = 0; h₂ = h₆ + K/(A·J).
 void with_both_holds(const UpForm& up, MinTimeCollector& out) noexcept {
   const double A = up.A, J = up.J, F0 = up.f0, F = up.f;
+  const double iJ = up.ij;
   // the peak (F₀ + 2A²)/(2J) + A·h₂ ≤ V bounds h₂, and so x
   const double h2_max = (up.V * kVelocitySlack - (F0 + 2.0 * A * A) / (2.0 * J)) / A;
   const double x_lo = std::max(0.0, -up.k / A), x_hi = J * h2_max - up.k / A;
@@ -107,9 +109,9 @@ void with_both_holds(const UpForm& up, MinTimeCollector& out) noexcept {
             3.0 * F0 * F0 + 3.0 * F * F) /
            (24.0 * A);
   for_roots(p, x_lo, x_hi, 1e-9 * A, [&](double x) {
-    const double h6 = x / J;
-    double t[7] = {(A - up.a0) / J, h6 + up.k / (A * J), 2.0 * A / J, 0.0, 0.0, h6,
-                   (up.af + A) / J};
+    const double h6 = x * iJ;
+    double t[7] = {(A - up.a0) * iJ, h6 + up.k * iJ / A, 2.0 * A * iJ, 0.0, 0.0, h6,
+                   (up.af + A) * iJ};
     out.offer(up, t);
   });
 }
@@ -121,6 +123,7 @@ void with_both_holds(const UpForm& up, MinTimeCollector& out) noexcept {
 void with_top_hold(const UpForm& up, const UpForm& q, bool reverse,
                    MinTimeCollector& out) noexcept {
   const double A = q.A, J = q.J, V = q.V, F0 = q.f0, F = q.f;
+  const double iJ = q.ij;
   // w in [−A, a_f], h₂ ≥ 0 (w² ≥ A² − K), and a velocity peak (F + 2w²)/(2J) ≤ V when w < 0
   const double lo = std::max(-A, -std::sqrt(std::max(0.0, J * V * kVelocitySlack - 0.5 * F)));
   const double hi = std::min(q.af, A);
@@ -136,8 +139,8 @@ void with_top_hold(const UpForm& up, const UpForm& q, bool reverse,
   p.c[1] = -2.0 * A * F;
   p.c[0] = -(8.0 * A * q.e - 6.0 * A * A * (F0 + F) + 3.0 * F0 * F0 - 3.0 * F * F) / 12.0;
   const auto solution = [&](double w) {
-    double t[7] = {(A - q.a0) / J, (w * w - g) / (A * J), (A - w) / J, 0.0, 0.0, 0.0,
-                   (q.af - w) / J};
+    double t[7] = {(A - q.a0) * iJ, (w * w - g) * iJ / A, (A - w) * iJ, 0.0, 0.0, 0.0,
+                   (q.af - w) * iJ};
     if (reverse)
       out.offer_reversed(up, t);
     else
@@ -157,6 +160,7 @@ void with_top_hold(const UpForm& up, const UpForm& q, bool reverse,
 /// (so every root is a solution, with the sign of u it gives).
 void without_holds(const UpForm& up, MinTimeCollector& out) noexcept {
   const double A = up.A, J = up.J, K = up.k, E = up.e, F = up.f, M = up.m;
+  const double iJ = up.ij;
   const double g = A * A - K;  // |u| ≤ A
   if (g < -1e-9 * A * A) return;
   // w in [−A, a_f] with −K ≤ w² ≤ A² − K; when u ≥ a₀ > 0, also w² ≥ a₀² − K, and a w < 0 makes
@@ -181,7 +185,7 @@ void without_holds(const UpForm& up, MinTimeCollector& out) noexcept {
     const double n = w * (w * w + F) + E / 3.0, q = w * w + M;
     const auto offer_level = [&](double u) {
       if (u > A * kVelocitySlack || (u > 0.0 && w < 0.0 && 2.0 * u * u > v_peak)) return;
-      double t[7] = {(u - up.a0) / J, 0.0, (u - w) / J, 0.0, 0.0, 0.0, (up.af - w) / J};
+      double t[7] = {(u - up.a0) * iJ, 0.0, (u - w) * iJ, 0.0, 0.0, 0.0, (up.af - w) * iJ};
       out.offer(up, t);
     };
     if (std::abs(q) > 1e-9 * (w * w + std::abs(M)) && std::abs(n / q) > 1e-6 * r) {

@@ -24,6 +24,7 @@ bool accept(const double* t, double* out) noexcept {
 /// its time-reversed problem (then the durations are read backwards: the hold at −A).
 bool hold_at_top(const UpForm& q, bool reverse, double T, double* out) noexcept {
   const double A = q.A, J = q.J;
+  const double iJ = q.ij;
   const double c = q.k + A * A - A * J * T + A * (q.af - q.a0);
   const double disc = A * A - c;
   if (disc < 0.0) return false;
@@ -31,8 +32,8 @@ bool hold_at_top(const UpForm& q, bool reverse, double T, double* out) noexcept 
   // w ≥ −A, and the velocity peak (F + 2w²)/(2J) ≤ V when w < 0
   if (w < -A * kSlack || (w < 0.0 && q.f + 2.0 * w * w > 2.0 * J * q.V * kSlack)) return false;
   const double t[7] = {
-      (A - q.a0) / J, T - (2.0 * A - q.a0 + q.af - 2.0 * w) / J, (A - w) / J, 0.0, 0.0, 0.0,
-      (q.af - w) / J};
+      (A - q.a0) * iJ, T - (2.0 * A - q.a0 + q.af - 2.0 * w) * iJ, (A - w) * iJ, 0.0, 0.0, 0.0,
+      (q.af - w) * iJ};
   if (!reverse) return accept(t, out);
   double r[7];
   jerk_detail::reverse_durations(t, r);
@@ -45,11 +46,12 @@ bool hold_at_top(const UpForm& q, bool reverse, double T, double* out) noexcept 
 /// within ±A, and the velocity peak (where the acceleration turns from u > 0 to w < 0) ≤ V.
 bool highest_profile(const UpForm& up, double T, double* t) noexcept {
   const double A = up.A, J = up.J, V = up.V;
+  const double iJ = up.ij;
   {  // a cruise at +V
     double u = 0.0, h2 = 0.0, w = 0.0, h6 = 0.0;
     if (jerk_detail::rise_to_limit(up.v0, up.a0, V, A, J, u, h2) &&
         jerk_detail::rise_to_limit(up.vf, -up.af, V, A, J, w, h6)) {
-      const double c[7] = {(u - up.a0) / J, h2, u / J, 0.0, w / J, h6, (up.af + w) / J};
+      const double c[7] = {(u - up.a0) * iJ, h2, u * iJ, 0.0, w * iJ, h6, (up.af + w) * iJ};
       double rest = T;
       for (const double x : c) rest -= x;
       if (rest >= -jerk_detail::kDurationSlack) {
@@ -65,18 +67,18 @@ bool highest_profile(const UpForm& up, double T, double* t) noexcept {
       const double u = 0.5 * (S + ks), w = 0.5 * (ks - S);
       if (u <= A * kSlack && w >= -A * kSlack &&
           !(u > 0.0 && w < 0.0 && up.f0 + 2.0 * u * u > 2.0 * J * V * kSlack)) {
-        const double c[7] = {(u - up.a0) / J, 0.0, S / J, 0.0, 0.0, 0.0, (up.af - w) / J};
+        const double c[7] = {(u - up.a0) * iJ, 0.0, S * iJ, 0.0, 0.0, 0.0, (up.af - w) * iJ};
         if (accept(c, t)) return true;
       }
     }
   }
   {  // holds at +A and −A: h2 + h6 = H, h2 − h6 = K/(A·J)
-    const double H = T - (4.0 * A - up.a0 + up.af) / J;
-    const double g = up.k / (A * J);
+    const double H = T - (4.0 * A - up.a0 + up.af) * iJ;
+    const double g = up.k * iJ / A;
     const double h2 = 0.5 * (H + g);
     if (up.f0 + 2.0 * A * A + 2.0 * J * A * h2 <= 2.0 * J * V * kSlack) {
-      const double c[7] = {(A - up.a0) / J, h2, 2.0 * A / J, 0.0, 0.0, 0.5 * (H - g),
-                           (up.af + A) / J};
+      const double c[7] = {(A - up.a0) * iJ, h2, 2.0 * A * iJ, 0.0, 0.0, 0.5 * (H - g),
+                           (up.af + A) * iJ};
       if (accept(c, t)) return true;
     }
   }
@@ -113,12 +115,15 @@ bool reach_range(const KinematicState& start, double v_target, double a_target,
   return true;
 }
 
+bool reach_contains(const JerkReach& reach, double position) noexcept {
+  const double tol = JerkTolerance::kTarget * std::max(1.0, std::abs(position));
+  return position <= reach.p_max + tol && position >= reach.p_min - tol;
+}
+
 bool duration_feasible(const KinematicState& start, const KinematicState& target,
                        const JerkLimits& limits, double duration) noexcept {
   JerkReach r;
-  if (!reach_range(start, target.v, target.a, limits, duration, r)) return false;
-  const double tol = JerkTolerance::kTarget * std::max(1.0, std::abs(target.p));
-  return target.p <= r.p_max + tol && target.p >= r.p_min - tol;
+  return reach_range(start, target.v, target.a, limits, duration, r) && reach_contains(r, target.p);
 }
 
 }  // namespace mjarm

@@ -26,6 +26,7 @@ struct UpForm {
   double vf = 0.0, af = 0.0;  ///< target velocity and acceleration
   double d = 0.0;             ///< distance to go
   double V = 1.0, A = 1.0, J = 1.0;
+  double ij = 1.0;  ///< 1/J
   // shorthands of the velocity and position equations (units of acceleration powers):
   double f0 = 0.0;  ///< 2J·v0 − a0²
   double f = 0.0;   ///< 2J·vf − af²
@@ -35,6 +36,7 @@ struct UpForm {
 
   /// Fills the shorthands from the fields above.
   void derive() noexcept {
+    ij = 1.0 / J;
     f0 = 2.0 * J * v0 - a0 * a0;
     f = 2.0 * J * vf - af * af;
     k = 0.5 * (f - f0);

@@ -4,6 +4,7 @@
 /// DoF's minimum and outside its blocked intervals), used to synchronize it with the others.
 
 #include "mjarm/trajectory/jerk_limited_profile.hpp"
+#include "mjarm/trajectory/jerk_limited_reach.hpp"
 
 namespace mjarm {
 
@@ -30,5 +31,11 @@ bool fixed_time_profile(const KinematicState& start, const KinematicState& targe
 bool append_fixed_time_profile(const KinematicState& start, const KinematicState& target,
                                const JerkLimits& limits, double duration,
                                JerkProfile& profile) noexcept;
+
+/// The blend of fixed_time_profile() from @p reach, computed already for @p duration [s] and the
+/// target's velocity and acceleration, appended to @p profile (which must end at the start of
+/// @p reach). False when @p target.p is out of reach or the profile is full.
+bool append_blended_profile(const JerkReach& reach, const KinematicState& target, double duration,
+                            JerkProfile& profile) noexcept;
 
 }  // namespace mjarm

@@ -39,6 +39,10 @@ struct JerkReach {
 bool reach_range(const KinematicState& start, double v_target, double a_target,
                  const JerkLimits& limits, double duration, JerkReach& reach) noexcept;
 
+/// True when @p position lies in [p_min, p_max] of @p reach, to the target tolerance
+/// (JerkTolerance::kTarget relative to max(1, |position|)).
+bool reach_contains(const JerkReach& reach, double position) noexcept;
+
 /// True when a profile of exactly @p duration [s] from @p start to @p target exists:
 /// reach_range() holds target.p, to the target tolerance (JerkTolerance::kTarget).
 bool duration_feasible(const KinematicState& start, const KinematicState& target,
