@@ -36,23 +36,14 @@ namespace {
 /// A cheap guess of the minimum duration of one DoF (brake excluded), to pick the DoF whose
 /// step 1 comes first: the duration of the profile with a cruise at ±v_max when one is valid (the
 /// optimum of most long moves), else the rest-to-rest minimum for the same distance.
-double duration_estimate(const KinematicState& start, const KinematicState& target,
-                         const JerkLimits& limits) noexcept {
-  const double d = target.p - start.p;
-  double best = HUGE_VAL;
-  for (const double sign : {1.0, -1.0}) {
-    const jerk_detail::UpForm up =
-        jerk_detail::make_up_form(start, d, target.v, target.a, limits, sign);
-    double u = 0.0, h2 = 0.0, w = 0.0, h6 = 0.0;
-    if (!jerk_detail::rise_to_limit(up.v0, up.a0, up.V, up.A, up.J, u, h2) ||
-        !jerk_detail::rise_to_limit(up.vf, -up.af, up.V, up.A, up.J, w, h6))
-      continue;
-    const double t[7] = {(u - up.a0) * up.ij, h2, u * up.ij,          0.0,
-                         w * up.ij,           h6, (up.af + w) * up.ij};
-    const double cruise = (up.d - jerk_detail::uddu_end(up, t).p) / up.V;
-    if (cruise >= 0.0) best = std::min(best, cruise + t[0] + t[1] + t[2] + t[4] + t[5] + t[6]);
+double duration_estimate(const jerk_detail::UpPair& up, const JerkLimits& limits) noexcept {
+  const double d = up.form[0].d;
+  for (const int k : {d >= 0.0 ? 0 : 1, d >= 0.0 ? 1 : 0}) {
+    const jerk_detail::CruiseShape& c = up.cruise[k];
+    if (!c.valid) continue;
+    const double cruise = (up.form[k].d - c.p) / c.v;
+    if (cruise >= 0.0) return c.duration + cruise;
   }
-  if (best < HUGE_VAL) return best;
   // rest to rest over |d|: jerk only, with a hold at a_max, or with a cruise at v_max
   const double V = limits.velocity, A = limits.acceleration, J = limits.jerk;
   const double D = std::abs(d);
@@ -89,6 +80,8 @@ JerkLimitedGenerator::JerkLimitedGenerator(std::span<const JerkLimits> limits)
   targets_.resize(limits_.size());
   estimates_.resize(limits_.size());
   solved_.resize(limits_.size());
+  order_.resize(limits_.size());
+  problems_.resize(limits_.size());
   brake_durations_.resize(limits_.size());
   brake_phases_.resize(limits_.size());
   after_brake_.resize(limits_.size());
@@ -127,9 +120,15 @@ void JerkLimitedGenerator::check_states(std::span<const KinematicState> current,
   }
 }
 
-bool JerkLimitedGenerator::solve_step1(int i) noexcept {
+JerkLimitedGenerator::~JerkLimitedGenerator() = default;
+JerkLimitedGenerator::JerkLimitedGenerator(const JerkLimitedGenerator&) = default;
+JerkLimitedGenerator::JerkLimitedGenerator(JerkLimitedGenerator&&) noexcept = default;
+JerkLimitedGenerator& JerkLimitedGenerator::operator=(const JerkLimitedGenerator&) = default;
+JerkLimitedGenerator& JerkLimitedGenerator::operator=(JerkLimitedGenerator&&) noexcept = default;
+
+bool JerkLimitedGenerator::solve_step1(int i) const noexcept {
   solved_[i] = 1;
-  return min_time_profile(after_brake_[i], targets_[i], limits_[i], blocks_[i]);
+  return jerk_detail::min_time_profile(problems_[i], after_brake_[i], targets_[i], blocks_[i]);
 }
 
 OtgResult JerkLimitedGenerator::calculate(std::span<const KinematicState> current,
@@ -154,7 +153,9 @@ OtgResult JerkLimitedGenerator::calculate(std::span<const KinematicState> curren
     brake_durations_[i] = p.duration();
     brake_phases_[i] = p.size();
     after_brake_[i] = p.end();
-    estimates_[i] = p.duration() + duration_estimate(after_brake_[i], target[i], limits_[i]);
+    problems_[i].set(after_brake_[i], target[i].p - after_brake_[i].p, target[i].v, target[i].a,
+                     limits_[i]);
+    estimates_[i] = p.duration() + duration_estimate(problems_[i], limits_[i]);
     if (estimates_[i] > estimates_[first]) first = i;
   }
   // step 1 for the DoFs that decide the duration only: the one guessed slowest, then every DoF
@@ -166,27 +167,33 @@ OtgResult JerkLimitedGenerator::calculate(std::span<const KinematicState> curren
     result_.failed_dof = first;
     return result_;
   }
+  // the others in the order of their guesses, slowest first: a DoF that cannot take the
+  // duration gets its step 1, and the checks start again at the new duration
+  for (int i = 0; i < n; ++i) order_[i] = i;
+  std::sort(order_.begin(), order_.end(),
+            [this](int a, int b) { return estimates_[a] > estimates_[b]; });
   JerkSync sync;
-  for (;;) {
+  if (!synchronize(blocks_, brake_durations_, solved_, sync)) {
+    result_.status = OtgStatus::error_synchronization;
+    return result_;
+  }
+  for (int k = 0; k < n; ++k) {
+    const int i = order_[k];
+    if (solved_[i]) continue;
+    const double local = sync.duration - brake_durations_[i];
+    if (jerk_detail::reach_range(problems_[i], after_brake_[i].p, local, reach_[i]) &&
+        reach_contains(reach_[i], target[i].p))
+      continue;
+    if (!solve_step1(i)) {
+      result_.status = OtgStatus::error_no_profile;
+      result_.failed_dof = i;
+      return result_;
+    }
     if (!synchronize(blocks_, brake_durations_, solved_, sync)) {
       result_.status = OtgStatus::error_synchronization;
       return result_;
     }
-    bool added = false;
-    for (int i = 0; i < n; ++i) {
-      if (solved_[i]) continue;
-      const double local = sync.duration - brake_durations_[i];
-      if (reach_range(after_brake_[i], target[i].v, target[i].a, limits_[i], local, reach_[i]) &&
-          reach_contains(reach_[i], target[i].p))
-        continue;
-      if (!solve_step1(i)) {
-        result_.status = OtgStatus::error_no_profile;
-        result_.failed_dof = i;
-        return result_;
-      }
-      added = true;
-    }
-    if (!added) break;
+    k = -1;  // every check again, at the new duration
   }
   result_.duration = sync.duration;
   result_.limiting_dof = sync.limiting_dof;
@@ -199,7 +206,7 @@ OtgResult JerkLimitedGenerator::calculate(std::span<const KinematicState> curren
       ok = extremal->append_to(profiles_[i]);
     } else {
       if (solved_[i])
-        ok = reach_range(after_brake_[i], target[i].v, target[i].a, limits_[i], local, reach_[i]);
+        ok = jerk_detail::reach_range(problems_[i], after_brake_[i].p, local, reach_[i]);
       ok = ok && append_blended_profile(reach_[i], target[i], local, profiles_[i]);
     }
     if (!ok) {
@@ -214,11 +221,7 @@ OtgResult JerkLimitedGenerator::calculate(std::span<const KinematicState> curren
 
 const JerkBlock& JerkLimitedGenerator::block(int i) const {
   const std::size_t k = static_cast<std::size_t>(i);
-  if (!velocity_interface_ && !solved_.at(k)) {
-    // step 1 of a DoF the synchronization did not need, on demand
-    solved_[k] = 1;
-    min_time_profile(after_brake_[k], targets_[k], limits_[k], blocks_[k]);
-  }
+  if (!velocity_interface_ && !solved_.at(k)) solve_step1(i);  // one the sync did not need
   return blocks_.at(k);
 }
 

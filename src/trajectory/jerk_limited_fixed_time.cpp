@@ -10,36 +10,54 @@ namespace mjarm {
 
 namespace {
 
+/// The phases of nonzero duration of @p p: their end times (the last pinned to @p duration; the
+/// sums differ from it by round-off only), jerks and whether each is the cruise slot.
+struct Switches {
+  double end[JerkPhases::kSize];
+  double jerk[JerkPhases::kSize];
+  bool cruise[JerkPhases::kSize];
+  int size = 0;
+
+  Switches(const JerkPhases& p, double duration) noexcept {
+    double t = 0.0;
+    for (int i = 0; i < JerkPhases::kSize; ++i) {
+      if (!(p.duration[i] > 0.0)) continue;
+      t += p.duration[i];
+      end[size] = std::min(t, duration);
+      jerk[size] = p.jerk[i];
+      cruise[size] = i == JerkPhases::kCruise && p.jerk[i] == 0.0;
+      ++size;
+    }
+    if (size == 0) {  // a profile of no duration: rest at the target's acceleration
+      end[0] = duration;
+      jerk[0] = 0.0;
+      cruise[0] = false;
+      size = 1;
+    }
+    end[size - 1] = duration;
+  }
+};
+
 /// Appends λ·@p hi + (1 − λ)·@p lo, both of duration @p duration, phase by phase over the union
 /// of their switching times.
 bool append_blend(const JerkPhases& hi, const JerkPhases& lo, double lambda, double duration,
                   JerkProfile& profile) noexcept {
-  // switching times of each, the last one pinned to the duration (their sums differ by
-  // round-off only)
-  double end_hi[JerkPhases::kSize], end_lo[JerkPhases::kSize];
-  double t_hi = 0.0, t_lo = 0.0;
-  for (int i = 0; i < JerkPhases::kSize; ++i) {
-    t_hi += hi.duration[i];
-    t_lo += lo.duration[i];
-    end_hi[i] = std::min(t_hi, duration);
-    end_lo[i] = std::min(t_lo, duration);
-  }
-  end_hi[JerkPhases::kSize - 1] = end_lo[JerkPhases::kSize - 1] = duration;
+  const Switches h(hi, duration), l(lo, duration);
   int i = 0, k = 0;
   double now = 0.0;
-  while (now < duration) {
-    while (i < JerkPhases::kSize - 1 && end_hi[i] <= now) ++i;
-    while (k < JerkPhases::kSize - 1 && end_lo[k] <= now) ++k;
-    const double next = std::min(end_hi[i], end_lo[k]);
-    if (!(next > now)) break;
-    // both cruising: the plateau at zero acceleration (see JerkPhases)
-    const bool ok =
-        i == JerkPhases::kCruise && k == JerkPhases::kCruise && hi.jerk[i] == 0.0 &&
-                lo.jerk[k] == 0.0
-            ? profile.append_cruise(next - now)
-            : profile.append(lambda * hi.jerk[i] + (1.0 - lambda) * lo.jerk[k], next - now);
-    if (!ok) return false;
-    now = next;
+  while (i < h.size && k < l.size) {
+    const double next = std::min(h.end[i], l.end[k]);
+    if (next > now) {
+      // both cruising: the plateau at zero acceleration (see JerkPhases)
+      const bool ok =
+          h.cruise[i] && l.cruise[k]
+              ? profile.append_cruise(next - now)
+              : profile.append(lambda * h.jerk[i] + (1.0 - lambda) * l.jerk[k], next - now);
+      if (!ok) return false;
+      now = next;
+    }
+    if (h.end[i] <= now) ++i;
+    if (l.end[k] <= now) ++k;
   }
   return true;
 }

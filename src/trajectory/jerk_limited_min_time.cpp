@@ -74,21 +74,14 @@ void for_roots(const Polynomial& p, double lo, double hi, double slack, F&& f) n
   for (int i = 0; i < k; ++i) f(roots[i]);
 }
 
-/// A cruise at +V: the rise to (V, 0) and the fall from it in closed form.
-void with_cruise(const UpForm& up, MinTimeCollector& out) noexcept {
-  const double A = up.A, J = up.J, V = up.V;
-  const double iJ = up.ij;
-  double u = 0.0, h2 = 0.0, w = 0.0, h6 = 0.0;
-  if (!jerk_detail::rise_to_limit(up.v0, up.a0, V, A, J, u, h2)) return;
-  if (!jerk_detail::rise_to_limit(up.vf, -up.af, V, A, J, w, h6)) return;
-  w = -w;
-  double t[7] = {std::max((u - up.a0) * iJ, 0.0), h2, u * iJ, 0.0, -w * iJ, h6,
-                 std::max((up.af - w) * iJ, 0.0)};
-  // the cruise closes the distance at the velocity the rise ends at (V, or a hair above it when
-  // the start is on the edge of the startable states: a long cruise must use the true one)
-  KinematicState rise{0.0, up.v0, up.a0};
-  for (int i = 0; i < 3; ++i) rise = integrate_jerk(rise, jerk_detail::kUddu[i] * J, t[i]);
-  t[3] = (up.d - jerk_detail::uddu_end(up, t).p) / rise.v;
+/// A cruise at +V: the rise to (V, 0) and the fall from it in closed form (the cruise shape), the
+/// cruise closes the distance.
+void with_cruise(const UpForm& up, const jerk_detail::CruiseShape& cruise,
+                 MinTimeCollector& out) noexcept {
+  if (!cruise.valid) return;
+  double t[7];
+  for (int i = 0; i < 7; ++i) t[i] = cruise.t[i];
+  t[3] = (up.d - cruise.p) / cruise.v;
   out.offer(up, t);
 }
 
@@ -205,8 +198,10 @@ void without_holds(const UpForm& up, MinTimeCollector& out) noexcept {
 
 }  // namespace
 
-bool min_time_profile(const KinematicState& start, const KinematicState& target,
-                      const JerkLimits& limits, JerkBlock& block) noexcept {
+namespace jerk_detail {
+
+bool min_time_profile(const UpPair& up, const KinematicState& start, const KinematicState& target,
+                      JerkBlock& block) noexcept {
   block.start = start;
   block.duration_count = 0;
   block.blocked_count = 0;
@@ -222,24 +217,34 @@ bool min_time_profile(const KinematicState& start, const KinematicState& target,
     block.record(0.0, JerkPhases{});  // already there
     out.found = true;
   }
-  for (const double sign : {1.0, -1.0}) {
-    const UpForm up = jerk_detail::make_up_form(start, d, target.v, target.a, limits, sign);
-    with_cruise(up, out);
-    with_both_holds(up, out);
-    with_top_hold(up, up, false, out);
-    with_top_hold(up, jerk_detail::reversed(up), true, out);
-    without_holds(up, out);
+  for (int k = 0; k < 2; ++k) {
+    const UpForm& f = up.form[k];
+    with_cruise(f, up.cruise[k], out);
+    with_both_holds(f, out);
+    with_top_hold(f, f, false, out);
+    with_top_hold(f, reversed(f), true, out);
+    without_holds(f, out);
   }
   if (!out.found) return false;
   block.t_min = block.durations[0];
   // the target is out of reach inside a blocked interval: test one duration between each pair
+  JerkReach reach;
   for (int k = 0; k + 1 < block.duration_count && block.blocked_count < JerkBlock::kMaxBlocked;
        ++k) {
     const double lower = block.durations[k], upper = block.durations[k + 1];
-    if (!duration_feasible(start, target, limits, 0.5 * (lower + upper)))
+    if (!reach_range(up, start.p, 0.5 * (lower + upper), reach) || !reach_contains(reach, target.p))
       block.blocked[block.blocked_count++] = {lower, upper};
   }
   return true;
+}
+
+}  // namespace jerk_detail
+
+bool min_time_profile(const KinematicState& start, const KinematicState& target,
+                      const JerkLimits& limits, JerkBlock& block) noexcept {
+  jerk_detail::UpPair up;
+  up.set(start, target.p - start.p, target.v, target.a, limits);
+  return jerk_detail::min_time_profile(up, start, target, block);
 }
 
 }  // namespace mjarm

@@ -40,26 +40,26 @@ bool hold_at_top(const UpForm& q, bool reverse, double T, double* out) noexcept 
   return accept(r, out);
 }
 
-/// The durations of the highest up profile of duration @p T in @p t; false when there is none.
-/// At most one structure is valid for a given T (they meet only where their profiles coincide),
-/// so the first valid one is it. Validity as in jerk_limited_min_time.cpp: durations ≥ 0, levels
-/// within ±A, and the velocity peak (where the acceleration turns from u > 0 to w < 0) ≤ V.
-bool highest_profile(const UpForm& up, double T, double* t) noexcept {
+/// The durations of the highest up profile of duration @p T in @p t and its end position in
+/// @p p; false when there is none. At most one structure is valid for a given T (they meet only
+/// where their profiles coincide), so the first valid one is it. Validity as in
+/// jerk_limited_min_time.cpp: durations ≥ 0, levels within ±A, and the velocity peak (where the
+/// acceleration turns from u > 0 to w < 0) ≤ V.
+bool highest_profile(const UpForm& up, const jerk_detail::CruiseShape& cruise, double T, double* t,
+                     double& p) noexcept {
   const double A = up.A, J = up.J, V = up.V;
   const double iJ = up.ij;
-  {  // a cruise at +V
-    double u = 0.0, h2 = 0.0, w = 0.0, h6 = 0.0;
-    if (jerk_detail::rise_to_limit(up.v0, up.a0, V, A, J, u, h2) &&
-        jerk_detail::rise_to_limit(up.vf, -up.af, V, A, J, w, h6)) {
-      const double c[7] = {(u - up.a0) * iJ, h2, u * iJ, 0.0, w * iJ, h6, (up.af + w) * iJ};
-      double rest = T;
-      for (const double x : c) rest -= x;
-      if (rest >= -jerk_detail::kDurationSlack) {
-        const double r[7] = {c[0], c[1], c[2], rest, c[4], c[5], c[6]};
-        if (accept(r, t)) return true;
-      }
+  if (cruise.valid && T - cruise.duration >= -jerk_detail::kDurationSlack) {
+    // a cruise at +V fills the time: the most common case once synchronized to a slower DoF
+    const double rest = std::max(T - cruise.duration, 0.0);
+    for (int i = 0; i < 7; ++i) t[i] = cruise.t[i];
+    t[3] = rest;
+    if (jerk_detail::clamp_durations(t)) {
+      p = cruise.p + cruise.v * rest;
+      return true;
     }
   }
+  bool found = false;
   {  // no hold: u − w = S, u + w = K/S
     const double S = 0.5 * (J * T + up.a0 - up.af);
     if (S > 0.0) {
@@ -68,51 +68,63 @@ bool highest_profile(const UpForm& up, double T, double* t) noexcept {
       if (u <= A * kSlack && w >= -A * kSlack &&
           !(u > 0.0 && w < 0.0 && up.f0 + 2.0 * u * u > 2.0 * J * V * kSlack)) {
         const double c[7] = {(u - up.a0) * iJ, 0.0, S * iJ, 0.0, 0.0, 0.0, (up.af - w) * iJ};
-        if (accept(c, t)) return true;
+        found = accept(c, t);
       }
     }
   }
-  {  // holds at +A and −A: h2 + h6 = H, h2 − h6 = K/(A·J)
+  if (!found) {  // holds at +A and −A: h2 + h6 = H, h2 − h6 = K/(A·J)
     const double H = T - (4.0 * A - up.a0 + up.af) * iJ;
     const double g = up.k * iJ / A;
     const double h2 = 0.5 * (H + g);
     if (up.f0 + 2.0 * A * A + 2.0 * J * A * h2 <= 2.0 * J * V * kSlack) {
       const double c[7] = {(A - up.a0) * iJ, h2, 2.0 * A * iJ, 0.0, 0.0, 0.5 * (H - g),
                            (up.af + A) * iJ};
-      if (accept(c, t)) return true;
+      found = accept(c, t);
     }
   }
-  return hold_at_top(up, false, T, t) || hold_at_top(jerk_detail::reversed(up), true, T, t);
+  found =
+      found || hold_at_top(up, false, T, t) || hold_at_top(jerk_detail::reversed(up), true, T, t);
+  if (found) p = jerk_detail::uddu_end(up, t).p;
+  return found;
 }
 
 }  // namespace
 
-bool reach_range(const KinematicState& start, double v_target, double a_target,
-                 const JerkLimits& limits, double duration, JerkReach& reach) noexcept {
+namespace jerk_detail {
+
+bool reach_range(const UpPair& up, double p0, double duration, JerkReach& reach) noexcept {
   if (!(duration >= 0.0) || !std::isfinite(duration)) return false;
-  if (duration <= jerk_detail::kDurationSlack) {
+  const UpForm& f = up.form[0];
+  if (duration <= kDurationSlack) {
     // no time: only the start itself, when it has the target's velocity and acceleration
-    if (std::abs(start.v - v_target) > 1e-9 * std::max(1.0, std::abs(v_target)) ||
-        std::abs(start.a - a_target) > 1e-9 * std::max(1.0, std::abs(a_target)))
+    if (std::abs(f.v0 - f.vf) > 1e-9 * std::max(1.0, std::abs(f.vf)) ||
+        std::abs(f.a0 - f.af) > 1e-9 * std::max(1.0, std::abs(f.af)))
       return false;
-    reach.p_min = reach.p_max = start.p;
+    reach.p_min = reach.p_max = p0;
     reach.lowest = reach.highest = JerkPhases{};
     return true;
   }
-  for (const double sign : {1.0, -1.0}) {
-    const UpForm up = jerk_detail::make_up_form(start, 0.0, v_target, a_target, limits, sign);
-    double t[7];
-    if (!highest_profile(up, duration, t)) return false;
-    const double p = jerk_detail::uddu_end(up, t).p;
-    if (sign > 0.0) {
-      reach.p_max = start.p + p;
-      reach.highest = jerk_detail::to_phases(up, t);
+  for (int k = 0; k < 2; ++k) {
+    double t[7], p = 0.0;
+    if (!highest_profile(up.form[k], up.cruise[k], duration, t, p)) return false;
+    if (k == 0) {
+      reach.p_max = p0 + p;
+      reach.highest = to_phases(up.form[k], t);
     } else {
-      reach.p_min = start.p - p;
-      reach.lowest = jerk_detail::to_phases(up, t);
+      reach.p_min = p0 - p;
+      reach.lowest = to_phases(up.form[k], t);
     }
   }
   return true;
+}
+
+}  // namespace jerk_detail
+
+bool reach_range(const KinematicState& start, double v_target, double a_target,
+                 const JerkLimits& limits, double duration, JerkReach& reach) noexcept {
+  jerk_detail::UpPair up;
+  up.set(start, 0.0, v_target, a_target, limits);
+  return jerk_detail::reach_range(up, start.p, duration, reach);
 }
 
 bool reach_contains(const JerkReach& reach, double position) noexcept {

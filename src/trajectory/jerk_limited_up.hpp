@@ -9,7 +9,9 @@
 #include <algorithm>
 #include <cmath>
 
+#include "mjarm/trajectory/jerk_limited_block.hpp"
 #include "mjarm/trajectory/jerk_limited_profile.hpp"
+#include "mjarm/trajectory/jerk_limited_reach.hpp"
 
 namespace mjarm::jerk_detail {
 
@@ -154,5 +156,64 @@ inline bool rise_to_limit(double v0, double a0, double V, double A, double J, do
   }
   return true;
 }
+
+/// The UDDU profile with a cruise at +V of one direction, without its cruise: it does not depend
+/// on the duration or the distance, so it is computed once and serves step 1 (the cruise that
+/// closes the distance) and the reachable range at any duration (the cruise that fills it).
+struct CruiseShape {
+  bool valid = false;     ///< the start can rise to (V, 0) and the target be reached from it
+  double t[7] = {};       ///< durations, t[3] (the cruise) = 0
+  double duration = 0.0;  ///< their sum [s]
+  double p = 0.0;         ///< the position they cover, from 0 [u]
+  double v = 0.0;  ///< the velocity of the cruise: V, or a hair above it when the start is on the
+                   ///< edge of the startable states (a long cruise must use the true one)
+};
+
+/// The cruise shape of @p up.
+inline CruiseShape cruise_shape(const UpForm& up) noexcept {
+  CruiseShape c;
+  double u = 0.0, h2 = 0.0, w = 0.0, h6 = 0.0;
+  if (!rise_to_limit(up.v0, up.a0, up.V, up.A, up.J, u, h2) ||
+      !rise_to_limit(up.vf, -up.af, up.V, up.A, up.J, w, h6))
+    return c;
+  c.valid = true;
+  c.t[0] = (u - up.a0) * up.ij;
+  c.t[1] = h2;
+  c.t[2] = u * up.ij;
+  c.t[4] = w * up.ij;
+  c.t[5] = h6;
+  c.t[6] = (up.af + w) * up.ij;
+  KinematicState s{0.0, up.v0, up.a0};
+  for (int i = 0; i < 3; ++i) s = integrate_jerk(s, kUddu[i] * up.J, c.t[i]);
+  c.v = s.v;
+  s.a = 0.0;
+  for (int i = 4; i < 7; ++i) s = integrate_jerk(s, kUddu[i] * up.J, c.t[i]);
+  c.p = s.p;
+  for (const double x : c.t) c.duration += x;
+  return c;
+}
+
+/// A one-DoF problem in both directions with their cruise shapes: everything about it that does
+/// not depend on the duration.
+struct UpPair {
+  UpForm form[2];         ///< up (sign +1) and down (−1)
+  CruiseShape cruise[2];  ///< their cruise shapes
+
+  /// The problem from @p start to (distance @p d, @p vf, @p af) under @p limits.
+  void set(const KinematicState& start, double d, double vf, double af,
+           const JerkLimits& limits) noexcept {
+    for (int k = 0; k < 2; ++k) {
+      form[k] = make_up_form(start, d, vf, af, limits, k == 0 ? 1.0 : -1.0);
+      cruise[k] = cruise_shape(form[k]);
+    }
+  }
+};
+
+/// reach_range() for @p up (its distance is not used) from a start at position @p p0.
+bool reach_range(const UpPair& up, double p0, double duration, JerkReach& reach) noexcept;
+
+/// min_time_profile() for @p up, the problem from @p start to @p target.
+bool min_time_profile(const UpPair& up, const KinematicState& start, const KinematicState& target,
+                      JerkBlock& block) noexcept;
 
 }  // namespace mjarm::jerk_detail

@@ -25,6 +25,10 @@
 
 namespace mjarm {
 
+namespace jerk_detail {
+struct UpPair;  // a DoF's problem in both directions (src/trajectory/jerk_limited_up.hpp)
+}  // namespace jerk_detail
+
 /// Outcome of a calculation or of a step along the trajectory.
 enum class OtgStatus {
   working,                ///< a trajectory exists and the target is not reached yet
@@ -53,6 +57,11 @@ class JerkLimitedGenerator {
   /// @throws Error when @p limits is empty or a limit is not positive and finite (the message
   /// names the DoF and the limit).
   explicit JerkLimitedGenerator(std::span<const JerkLimits> limits);
+  ~JerkLimitedGenerator();
+  JerkLimitedGenerator(const JerkLimitedGenerator&);
+  JerkLimitedGenerator(JerkLimitedGenerator&&) noexcept;
+  JerkLimitedGenerator& operator=(const JerkLimitedGenerator&);
+  JerkLimitedGenerator& operator=(JerkLimitedGenerator&&) noexcept;
 
   /// Number of degrees of freedom.
   int dofs() const noexcept { return static_cast<int>(limits_.size()); }
@@ -105,7 +114,7 @@ class JerkLimitedGenerator {
  private:
   void check_states(std::span<const KinematicState> current, std::span<const KinematicState> target,
                     bool velocity_interface) const;
-  bool solve_step1(int i) noexcept;
+  bool solve_step1(int i) const noexcept;
 
   std::vector<JerkLimits> limits_;
   std::vector<JerkProfile> profiles_;
@@ -113,6 +122,8 @@ class JerkLimitedGenerator {
   std::vector<JerkReach> reach_;
   std::vector<KinematicState> targets_;
   std::vector<double> estimates_;
+  std::vector<int> order_;
+  std::vector<jerk_detail::UpPair> problems_;  // per DoF, after its brake
   mutable std::vector<char> solved_;  // step 1 done for the DoF (for blocks_)
   bool velocity_interface_ = false;
   std::vector<double> brake_durations_;
