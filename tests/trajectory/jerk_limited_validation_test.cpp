@@ -31,6 +31,12 @@ TEST(JerkLimitedValidation, SeededBatchKeepsLimitsAndReachesTargets) {
   EXPECT_EQ(r.optimality_beaten, 0) << r.first_reference_failure;
   EXPECT_EQ(r.reference_not_within, 0) << r.first_reference_failure;
   EXPECT_EQ(r.blocked_mismatches, 0) << r.first_reference_failure;
+  // cases drawn with a blocked interval: no motion inside (grid), a profile just outside its ends
+  // (the generator's step 3), confirmed by the grid
+  EXPECT_EQ(r.blocked_cases, 2);
+  EXPECT_GE(r.blocked_checked, 2);
+  EXPECT_EQ(r.blocked_end_failures, 0) << r.first_reference_failure;
+  EXPECT_EQ(r.blocked_end_not_confirmed, 0);
   EXPECT_GE(r.sync_reference_cases, 9);
   EXPECT_EQ(r.sync_mismatches, 0) << r.first_reference_failure;
 }
