@@ -102,9 +102,9 @@ void with_both_holds(const UpForm& up, MinTimeCollector& out) noexcept {
             3.0 * F0 * F0 + 3.0 * F * F) /
            (24.0 * A);
   for_roots(p, x_lo, x_hi, 1e-9 * A, [&](double x) {
-    const double h6 = x * iJ;
-    double t[7] = {(A - up.a0) * iJ, h6 + up.k * iJ / A, 2.0 * A * iJ, 0.0, 0.0, h6,
-                   (up.af + A) * iJ};
+    const double h6 = x * iJ, h2 = h6 + up.k * iJ / A;
+    if (F0 + 2.0 * A * A + 2.0 * J * A * h2 > 2.0 * J * up.V * kVelocitySlack) return;
+    double t[7] = {(A - up.a0) * iJ, h2, 2.0 * A * iJ, 0.0, 0.0, h6, (up.af + A) * iJ};
     out.offer(up, t);
   });
 }
@@ -132,6 +132,9 @@ void with_top_hold(const UpForm& up, const UpForm& q, bool reverse,
   p.c[1] = -2.0 * A * F;
   p.c[0] = -(8.0 * A * q.e - 6.0 * A * A * (F0 + F) + 3.0 * F0 * F0 - 3.0 * F * F) / 12.0;
   const auto solution = [&](double w) {
+    // the spans are widened by round-off: the limits are checked on the root itself
+    if (w < -A * kVelocitySlack || (w < 0.0 && F + 2.0 * w * w > 2.0 * J * V * kVelocitySlack))
+      return;
     double t[7] = {(A - q.a0) * iJ, (w * w - g) * iJ / A, (A - w) * iJ, 0.0, 0.0, 0.0,
                    (q.af - w) * iJ};
     if (reverse)
@@ -174,6 +177,7 @@ void without_holds(const UpForm& up, MinTimeCollector& out) noexcept {
   p.c[0] = E * E / 9.0 - K * M * M;
   const double v_peak = 2.0 * J * up.V * kVelocitySlack - up.f0;  // 2u² ≤ this when u > 0 > w
   const auto solution = [&](double w) {
+    if (w < -A * kVelocitySlack) return;
     const double r = std::sqrt(std::max(w * w + K, 0.0));
     const double n = w * (w * w + F) + E / 3.0, q = w * w + M;
     const auto offer_level = [&](double u) {

@@ -1,5 +1,6 @@
 #include "mjarm/trajectory/jerk_limited_reach.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include "mjarm/trajectory/jerk_limited_min_time.hpp"

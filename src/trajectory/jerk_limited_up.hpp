@@ -87,30 +87,6 @@ inline KinematicState uddu_end(const UpForm& up, const double* t) noexcept {
   return s;
 }
 
-/// Integrates the UDDU profile @p t (durations ≥ 0) of @p up from (0, v0, a0) into @p end; true
-/// when it keeps |v| ≤ V and |a| ≤ A within the relative @p slack, checked at the ends of its
-/// phases and where the acceleration crosses zero inside one (the velocity's turning points).
-inline bool uddu_within(const UpForm& up, const double* t, double slack,
-                        KinematicState& end) noexcept {
-  const double vmax = up.V * (1.0 + slack), amax = up.A * (1.0 + slack);
-  KinematicState s{0.0, up.v0, up.a0};
-  bool within = true;
-  for (int i = 0; i < 7; ++i) {
-    const double ti = t[i];
-    if (!(ti > 0.0)) continue;
-    const double j = kUddu[i] * up.J;
-    const KinematicState n = integrate_jerk(s, j, ti);
-    if (j != 0.0 && ((s.a < 0.0) != (n.a < 0.0))) {
-      const double tz = std::clamp(-s.a / j, 0.0, ti);
-      within = within && std::abs(s.v + tz * (s.a + 0.5 * j * tz)) <= vmax;
-    }
-    within = within && std::abs(n.v) <= vmax && std::abs(n.a) <= amax;
-    s = n;
-  }
-  end = s;
-  return within;
-}
-
 /// Clamps durations within kDurationSlack of zero to zero; false when one is more negative or
 /// not finite.
 inline bool clamp_durations(double* t) noexcept {

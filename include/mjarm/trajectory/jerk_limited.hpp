@@ -33,7 +33,7 @@ struct UpPair;  // a DoF's problem in both directions (src/trajectory/jerk_limit
 enum class OtgStatus {
   working,                ///< a trajectory exists and the target is not reached yet
   finished,               ///< the target is reached (the time is at or past the duration)
-  error_brake,            ///< a DoF's brake did not fit its profile (not expected: ≤ 2 phases)
+  error_brake,            ///< a DoF's brake did not fit its profile (not expected: ≤ 3 phases)
   error_no_profile,       ///< step 1 found no time-optimal profile for a DoF
   error_synchronization,  ///< a DoF has no profile of the synchronized duration
 };

@@ -1,7 +1,7 @@
 #pragma once
 /// @file
 /// `JerkProfile`: one degree of freedom moved by piecewise-constant jerk (at most 16 phases: a
-/// brake pre-trajectory of up to 2 phases and a jerk-limited profile of up to 13), with its state
+/// brake pre-trajectory of up to 3 phases and a jerk-limited profile of up to 13), with its state
 /// at any time and the analytic extrema of velocity and acceleration over every phase.
 /// `JerkPhases`: the seven phases of one profile structure without a start state, the compact
 /// form in which the solvers pass profiles around. Also the per-DoF `JerkLimits` and the
@@ -48,7 +48,7 @@ struct JerkExtrema {
 /// and jerk jᵢ from a start state. Fixed capacity, no allocation.
 class JerkProfile {
  public:
-  /// Most phases a profile holds: a brake (≤ 2) and a synchronized profile (≤ 13, the blend of
+  /// Most phases a profile holds: a brake (≤ 3) and a synchronized profile (≤ 13, the blend of
   /// two seven-phase profiles, jerk_limited_fixed_time.hpp).
   static constexpr int kMaxPhases = 16;
 
