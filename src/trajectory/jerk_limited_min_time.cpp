@@ -212,7 +212,7 @@ bool min_time_profile(const UpPair& up, const KinematicState& start, const Kinem
   block.t_min = 0.0;
   MinTimeCollector out;
   out.block = &block;
-  out.tol_p = JerkTolerance::kTarget * std::max(1.0, std::abs(target.p));
+  out.tol_p = JerkTolerance::kTarget * std::max({1.0, std::abs(target.p), std::abs(start.p)});
   out.tol_v = JerkTolerance::kTarget * std::max(1.0, std::abs(target.v));
   out.tol_a = JerkTolerance::kTarget * std::max(1.0, std::abs(target.a));
   const double d = target.p - start.p;

@@ -129,7 +129,9 @@ bool reach_range(const KinematicState& start, double v_target, double a_target,
 }
 
 bool reach_contains(const JerkReach& reach, double position) noexcept {
-  const double tol = JerkTolerance::kTarget * std::max(1.0, std::abs(position));
+  const double tol =
+      JerkTolerance::kTarget *
+      std::max({1.0, std::abs(position), std::abs(reach.p_min), std::abs(reach.p_max)});
   return position <= reach.p_max + tol && position >= reach.p_min - tol;
 }
 

@@ -102,6 +102,32 @@ TEST(JerkLimitedFixedTime, EveryFeasibleDurationGetsAProfileAndNoOtherDoes) {
   EXPECT_GT(blocked, 10);
 }
 
+// A high jerk between long holds: the blend's two profiles end at the duration only to its
+// round-off, and a ramp lengthened by that, times a jerk of 10⁴–10⁵, would miss the target's
+// acceleration by 10⁻⁹ (the round-off goes into an overlap of two holds instead).
+TEST(JerkLimitedFixedTime, HighJerkBetweenLongHoldsStaysOnTarget) {
+  const struct {
+    JerkLimits l;
+    KinematicState s, f;
+    double t;
+  } cases[] = {{{40.729610056932152, 1.3446199006964121, 88295.275003642426},
+                {-11.547435532192353, 0.0, 0.0},
+                {65.267168133437366, 0.0, 0.0},
+                41.333456486530025},
+               {{84.549374835165963, 0.026119145934900216, 6519.5044523097749},
+                {0.41527998074297301, -13.731914938312061, -0.011791882775163996},
+                {-0.83268343423783198, -17.760317217620585, 0.011591935779517459},
+                7549.4109950902975}};
+  for (const auto& c : cases) {
+    JerkProfile p;
+    ASSERT_TRUE(fixed_time_profile(c.s, c.f, c.l, c.t, p));
+    EXPECT_NEAR(p.end().a, c.f.a, 1e-12);
+    EXPECT_NEAR(p.end().v, c.f.v, 1e-11);
+    EXPECT_NEAR(p.end().p, c.f.p, 1e-9);
+    EXPECT_TRUE(p.within(c.l, 1e-12));
+  }
+}
+
 // Long durations integrate in double precision: a cruise of hours at exactly zero acceleration
 // still ends on target (the plateau's acceleration is set to zero, not left at round-off).
 TEST(JerkLimitedFixedTime, HoursLongProfilesStayOnTarget) {

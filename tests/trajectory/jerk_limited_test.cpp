@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <random>
 #include <vector>
 
 #include "ik/malloc_counter.hpp"
@@ -153,6 +154,47 @@ TEST(JerkLimitedGenerator, LazyStepOneGivesTheFullSynchronization) {
     ++checked;
   }
   EXPECT_EQ(checked, 400);
+}
+
+// Limits over four decades each (v, a in [0.01, 100], j in [0.1, 10⁴]), positions in ±10, a
+// tenth of the DoFs starting beyond their limits: every calculation succeeds, within the limits,
+// on target to 1e-9 relative to the largest position involved (see JerkTolerance).
+TEST(JerkLimitedGenerator, WideRangesOfLimitsSucceed) {
+  std::mt19937_64 rng(23);
+  std::uniform_real_distribution<double> u(-1.0, 1.0), share(0.0, 1.0);
+  const auto log_uniform = [&](double lo, double hi) { return lo * std::pow(hi / lo, share(rng)); };
+  for (int k = 0; k < 300; ++k) {
+    std::vector<JerkLimits> limits(7);
+    std::vector<KinematicState> current(7), target(7);
+    for (int i = 0; i < 7; ++i) {
+      const JerkLimits l{log_uniform(0.01, 100.0), log_uniform(0.01, 100.0), log_uniform(0.1, 1e4)};
+      limits[i] = l;
+      const bool beyond = share(rng) < 0.1;
+      do {
+        const double scale = beyond ? 1.6 : 1.0;
+        current[i] = {10.0 * u(rng), scale * l.velocity * u(rng), scale * l.acceleration * u(rng)};
+      } while (beyond == is_startable(current[i], l));
+      do target[i] = {10.0 * u(rng), l.velocity * u(rng), l.acceleration * u(rng)};
+      while (!is_reachable(target[i], l));
+    }
+    JerkLimitedGenerator otg(limits);
+    const OtgResult r = otg.calculate(current, target);
+    ASSERT_TRUE(r.status == OtgStatus::working || r.status == OtgStatus::finished)
+        << k << " " << to_string(r.status) << " DoF " << r.failed_dof;
+    for (int i = 0; i < 7; ++i) {
+      const JerkProfile& p = otg.profile(i);
+      const JerkExtrema e = p.extrema(otg.brake_phases(i));
+      EXPECT_LE(std::max(-e.v_min, e.v_max), limits[i].velocity * (1.0 + 1e-9)) << k;
+      EXPECT_LE(std::max(-e.a_min, e.a_max), limits[i].acceleration * (1.0 + 1e-9)) << k;
+      const KinematicState end = p.end();
+      double scale = 1.0;
+      for (int q = 0; q <= p.size(); ++q)
+        scale = std::max(scale, std::abs(p.at(p.duration_until(q)).p));
+      EXPECT_LE(std::abs(end.p - target[i].p), 1e-9 * scale) << k;
+      EXPECT_LE(std::abs(end.v - target[i].v), 1e-9 * std::max(1.0, std::abs(target[i].v))) << k;
+      EXPECT_LE(std::abs(end.a - target[i].a), 1e-9 * std::max(1.0, std::abs(target[i].a))) << k;
+    }
+  }
 }
 
 TEST(JerkLimitedGenerator, VelocityInterfaceReachesVelocitiesTogether) {

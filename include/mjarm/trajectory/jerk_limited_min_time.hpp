@@ -12,7 +12,9 @@ namespace mjarm {
 /// Tolerances of the profile solvers.
 struct JerkTolerance {
   /// A profile counts as reaching the target when |Δp|, |Δv|, |Δa| at its end are each below
-  /// this times max(1, |target value|).
+  /// this times max(1, |target value|) — for the position, times max(1, the largest position
+  /// magnitude the computation involves: start, target, the reachable extremes), since double
+  /// precision cannot place an end closer than its round-off (a move over 10⁶ units, say).
   static constexpr double kTarget = 1e-9;
   /// A profile counts as within the limits when every extremum is within (1 + this)·limit.
   static constexpr double kLimits = 1e-12;
