@@ -12,8 +12,20 @@ namespace {
 
 /// One phase of a blend: the phase slots of both profiles it lies in, and its duration.
 struct BlendPhase {
-  int h = 0, l = 0;
-  double duration = 0.0;
+  int h, l;
+  double duration;
+};
+
+/// The first and last slots of nonzero duration of @p p (first > last when there is none).
+struct SlotRange {
+  int first = JerkPhases::kSize, last = -1;
+  explicit SlotRange(const JerkPhases& p) noexcept {
+    for (int i = 0; i < JerkPhases::kSize; ++i)
+      if (p.duration[i] > 0.0) {
+        first = std::min(first, i);
+        last = i;
+      }
+  }
 };
 
 /// Walks the phases of nonzero duration of two profiles together, from their start
@@ -28,16 +40,15 @@ struct BlendWalk {
   int last_h = 0, last_l = 0;  ///< the slots of the last phases in this direction
   double rest_h = 0.0, rest_l = 0.0;
 
-  BlendWalk(const JerkPhases& a, const JerkPhases& b, int direction) noexcept
+  BlendWalk(const JerkPhases& a, const JerkPhases& b, const SlotRange& ra, const SlotRange& rb,
+            int direction) noexcept
       : hi(&a), lo(&b), step(direction) {
-    const int first = direction > 0 ? 0 : JerkPhases::kSize - 1;
-    const int last = direction > 0 ? JerkPhases::kSize - 1 : 0;
-    h = advance(*hi, first);
-    l = advance(*lo, first);
-    step = -direction;
-    last_h = advance(*hi, last);
-    last_l = advance(*lo, last);
-    step = direction;
+    h = direction > 0 ? ra.first : ra.last;
+    l = direction > 0 ? rb.first : rb.last;
+    last_h = direction > 0 ? ra.last : ra.first;
+    last_l = direction > 0 ? rb.last : rb.first;
+    if (!valid(h)) h = last_h = -2;  // a profile of no phase: ended at once
+    if (!valid(l)) l = last_l = -2;
     rest_h = valid(h) ? hi->duration[h] : 0.0;
     rest_l = valid(l) ? lo->duration[l] : 0.0;
   }
@@ -128,14 +139,15 @@ bool append_blend(const JerkPhases& hi, const JerkPhases& lo, double lambda, dou
   BlendPhase back[kMax];
   int nb = 0;
   double t_back = 0.0;
-  BlendWalk backward(hi, lo, -1);
+  const SlotRange rh(hi), rl(lo);
+  BlendWalk backward(hi, lo, rh, rl, -1);
   while (calm && !backward.done() && nb < kMax && !(backward.h == mh && backward.l == ml)) {
     back[nb] = backward.next();
     t_back += back[nb++].duration;
   }
   const int first = profile.size();
   double t_front = 0.0;
-  BlendWalk forward(hi, lo, +1);
+  BlendWalk forward(hi, lo, rh, rl, +1);
   if (calm && backward.h == mh && backward.l == ml) {
     while (!forward.done() && !(forward.h == mh && forward.l == ml)) {
       const BlendPhase b = forward.next();
@@ -153,7 +165,7 @@ bool append_blend(const JerkPhases& hi, const JerkPhases& lo, double lambda, dou
   // no such overlap (profiles of ramps only: short), or switching times equal to round-off seen
   // in another order from each end: the merge from the start
   profile.truncate(first);
-  BlendWalk all(hi, lo, +1);
+  BlendWalk all(hi, lo, rh, rl, +1);
   while (!all.done())
     if (!add(all.next())) return false;
   return true;
