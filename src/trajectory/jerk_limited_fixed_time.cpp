@@ -119,8 +119,71 @@ bool longest_calm_overlap(const JerkPhases& hi, const JerkPhases& lo, int& mh, i
 /// merged from one end only, that difference would lengthen a ramp at the other end, and times
 /// the jerk it becomes an acceleration error (10⁻⁹ after holds of hours at a jerk of 10⁴). In an
 /// overlap without jerk it only moves the velocity by a·δ.
+/// The phases of a run of slots (ramps and holds before or after a cruise), in walking order.
+struct Run {
+  double duration[3];
+  double jerk[3];
+  int size = 0;
+  /// Slots @p first, first + step, first + 2·step of @p p, those of nonzero duration.
+  Run(const JerkPhases& p, int first, int step) noexcept {
+    for (int k = 0, i = first; k < 3; ++k, i += step)
+      if (p.duration[i] > 0.0) {
+        duration[size] = p.duration[i];
+        jerk[size++] = p.jerk[i];
+      }
+  }
+};
+
+/// Merges the runs @p a and @p b (blended with weights λ and 1 − λ) by remainders, as BlendWalk:
+/// a run that has ended is in its cruise (no jerk). Writes at most 5 phases; returns their number
+/// and their total duration in @p total.
+int merge_runs(const Run& a, const Run& b, double lambda, double* duration, double* jerk,
+               double& total) noexcept {
+  int i = 0, k = 0, n = 0;
+  double ra = a.size > 0 ? a.duration[0] : 0.0, rb = b.size > 0 ? b.duration[0] : 0.0;
+  total = 0.0;
+  while (i < a.size || k < b.size) {
+    const bool va = i < a.size, vb = k < b.size;
+    const bool end_a = va && (!vb || ra <= rb), end_b = vb && (!va || rb <= ra);
+    const double dt = end_a ? ra : rb;
+    duration[n] = dt;
+    jerk[n++] = lambda * (va ? a.jerk[i] : 0.0) + (1.0 - lambda) * (vb ? b.jerk[k] : 0.0);
+    total += dt;
+    if (end_a) {
+      ra = ++i < a.size ? a.duration[i] : 0.0;
+    } else if (va) {
+      ra -= dt;
+    }
+    if (end_b) {
+      rb = ++k < b.size ? b.duration[k] : 0.0;
+    } else if (vb) {
+      rb -= dt;
+    }
+  }
+  return n;
+}
+
 bool append_blend(const JerkPhases& hi, const JerkPhases& lo, double lambda, double duration,
                   JerkProfile& profile) noexcept {
+  constexpr int c = JerkPhases::kCruise;
+  if (hi.duration[c] > 0.0 && lo.duration[c] > 0.0 && hi.jerk[c] == 0.0 && lo.jerk[c] == 0.0) {
+    // the common case, two cruise profiles: the runs before the cruises merged from the start,
+    // those after them back from the end, the overlap of the cruises (when they overlap)
+    // lasting what is left
+    const Run before_h(hi, 0, 1), before_l(lo, 0, 1), after_h(hi, 6, -1), after_l(lo, 6, -1);
+    double front_d[6], front_j[6], back_d[6], back_j[6], t_front = 0.0, t_back = 0.0;
+    const int nf = merge_runs(before_h, before_l, lambda, front_d, front_j, t_front);
+    const int nb = merge_runs(after_h, after_l, lambda, back_d, back_j, t_back);
+    const double middle = duration - t_front - t_back;
+    if (middle >= 0.0) {
+      for (int k = 0; k < nf; ++k)
+        if (!profile.append(front_j[k], front_d[k])) return false;
+      if (middle > 0.0 && !profile.append_cruise(middle)) return false;
+      for (int k = nb - 1; k >= 0; --k)
+        if (!profile.append(back_j[k], back_d[k])) return false;
+      return true;
+    }
+  }
   const auto jerk = [&](const BlendPhase& b) {
     const double jh = BlendWalk::valid(b.h) ? hi.jerk[b.h] : 0.0;
     const double jl = BlendWalk::valid(b.l) ? lo.jerk[b.l] : 0.0;
