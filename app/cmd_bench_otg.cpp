@@ -92,6 +92,9 @@ Command add_bench_otg_subcommand(CLI::App& bench, std::function<std::uint64_t()>
                              {"sync_mismatches", r.sync_mismatches},
                              {"blocked_intervals_checked", r.blocked_checked},
                              {"blocked_mismatches", r.blocked_mismatches},
+                             {"blocked_cases", r.blocked_cases},
+                             {"blocked_end_failures", r.blocked_end_failures},
+                             {"blocked_end_not_confirmed", r.blocked_end_not_confirmed},
                              {"first_reference_failure", r.first_reference_failure}});
         }
         print_fields(
@@ -128,8 +131,11 @@ Command add_bench_otg_subcommand(CLI::App& bench, std::function<std::uint64_t()>
                   << " beaten by a grid motion, " << r.reference_not_within
                   << " without a grid motion within 3 % above; limiting DoF of "
                   << r.sync_reference_cases << " n-DoF cases: " << r.sync_mismatches
-                  << " with a shorter motion; blocked intervals: " << r.blocked_checked
-                  << " probed, " << r.blocked_mismatches << " with a motion inside\n";
+                  << " with a shorter motion; blocked intervals (" << r.blocked_cases
+                  << " cases drawn with one): " << r.blocked_checked << " probed, "
+                  << r.blocked_mismatches << " with a motion inside, " << r.blocked_end_failures
+                  << " ends without a profile just outside, " << r.blocked_end_not_confirmed
+                  << " ends the grid does not confirm\n";
         if (!r.first_reference_failure.empty())
           std::cout << "first reference mismatch: " << r.first_reference_failure << '\n';
       }};

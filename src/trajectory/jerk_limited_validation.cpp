@@ -11,6 +11,7 @@
 #include "mjarm/error.hpp"
 #include "mjarm/trajectory/jerk_limited.hpp"
 #include "mjarm/trajectory/jerk_limited_brake.hpp"
+#include "mjarm/trajectory/jerk_limited_fixed_time.hpp"
 #include "mjarm/trajectory/jerk_limited_min_time.hpp"
 #include "mjarm/trajectory/jerk_limited_reference.hpp"
 
@@ -133,6 +134,47 @@ void check_against_reference(OtgCaseSampler& sampler, int steps, OtgValidationRe
   }
 }
 
+/// The reference checks of one case with a blocked interval (see OtgValidationResult).
+void check_blocked_against_reference(OtgCaseSampler& sampler, int steps, OtgValidationResult& r) {
+  JerkLimits l;
+  KinematicState s, t;
+  JerkBlock block;
+  for (int draw = 0;; ++draw) {
+    if (draw == 100000) return;
+    l = sampler.limits();
+    s = sampler.start(l, false);
+    t = sampler.target(l);
+    if (min_time_profile(s, t, l, block) && block.blocked_count > 0) break;
+  }
+  ++r.blocked_cases;
+  for (int k = 0; k < block.blocked_count; ++k) {
+    const JerkInterval in = block.blocked[k];
+    ++r.blocked_checked;
+    if (grid_motion_exists(s, t, l, 0.5 * (in.lower + in.upper), steps)) {
+      ++r.blocked_mismatches;
+      if (r.first_reference_failure.empty())
+        r.first_reference_failure = describe_otg_case("blocked interval", 0, s, t, l);
+    }
+    const double margin = 1e-2 * (in.upper - in.lower);
+    for (const double outside : {in.lower - margin, in.upper + margin}) {
+      if (block.is_blocked(outside)) continue;  // an interval of feasible durations too short
+      JerkProfile p;
+      if (!fixed_time_profile(s, t, l, outside, p)) {
+        ++r.blocked_end_failures;
+        if (r.first_reference_failure.empty())
+          r.first_reference_failure = describe_otg_case("blocked interval end", 0, s, t, l);
+        continue;
+      }
+      // a coarse grid misses motions close to an end: a grid three times finer decides
+      const double h = outside / steps;
+      if (l.jerk * h * h / 8.0 <= 0.01 * l.velocity &&
+          !grid_motion_exists(s, t, l, outside, steps) &&
+          !grid_motion_exists(s, t, l, outside, 3 * steps))
+        ++r.blocked_end_not_confirmed;
+    }
+  }
+}
+
 }  // namespace
 
 OtgValidationResult run_otg_validation(const OtgValidationOptions& options) {
@@ -157,10 +199,8 @@ OtgValidationResult run_otg_validation(const OtgValidationOptions& options) {
   for (int c = 0; c < options.cases; ++c) {
     for (std::size_t i = 0; i < n; ++i) {
       limits[i] = sampler.limits();
-      // a start beyond the limits only where two brake phases can recover it
       const JerkLimits& l = limits[i];
-      const bool beyond = sampler.share(sampler.rng) < options.brake_share &&
-                          l.acceleration * l.acceleration / (2.0 * l.jerk) <= l.velocity;
+      const bool beyond = sampler.share(sampler.rng) < options.brake_share;
       start[i] = sampler.start(l, beyond);
       target[i] = sampler.target(l);
       r.braking_dofs += beyond ? 1 : 0;
@@ -262,6 +302,8 @@ OtgValidationResult run_otg_validation(const OtgValidationOptions& options) {
   }
   for (int c = 0; c < options.reference_cases; ++c)
     check_against_reference(sampler, options.reference_steps, r);
+  for (int c = 0; c < options.reference_cases / 4; ++c)
+    check_blocked_against_reference(sampler, options.reference_steps, r);
 
   double total = 0.0;
   for (const double t : times) total += t;

@@ -65,6 +65,15 @@ struct OtgValidationResult {
   int sync_mismatches = 0;              ///< of those, cases where one exists
   int blocked_checked = 0;              ///< blocked intervals probed by the reference
   int blocked_mismatches = 0;           ///< of those, midpoints where a grid motion exists
+  /// One-DoF cases drawn until they have a blocked interval (reference_cases / 4 of them; such
+  /// cases are about 1 % of random draws): each interval's midpoint is probed as above, and the
+  /// durations 1 % of its width outside its ends must get a profile (fixed_time_profile).
+  int blocked_cases = 0;
+  int blocked_end_failures = 0;  ///< of their interval ends, ones without a profile just outside
+  /// Of those ends, where the grid is fine enough (j·h²/8 ≤ 1 % of v_max), ones where neither
+  /// the reference grid nor one three times finer has a motion just outside (grid resolution, or
+  /// an end in the wrong place).
+  int blocked_end_not_confirmed = 0;
   std::string first_reference_failure;  ///< the first reference mismatch (empty when none)
 };
 
