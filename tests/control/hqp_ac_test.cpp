@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <numbers>
 #include <random>
 #include <string>
@@ -129,6 +130,10 @@ void hqp_stress(Rig& rig, int trials, std::uint64_t seed, bool sensor) {
     EXPECT_EQ(hqp_worst_violation(rig, c, command.value), 0.0)
         << "state " << done << ", status " << to_string(t.status);
   }
+  std::printf(
+      "hqp-ac stress, %s: %d states, main QP solved %d (null-space step dropped %d), "
+      "least squares %d\n",
+      rig.robot.name().c_str(), trials, solved, dropped, fallbacks);
   EXPECT_EQ(c.counters().ticks, trials);
   EXPECT_EQ(c.counters().least_squares, fallbacks);
   EXPECT_EQ(c.counters().null_space_dropped, dropped);
@@ -220,6 +225,7 @@ TEST(HqpAc, FreeSpaceStepIsCriticallyDamped) {
     if (k == 500) at_1s = (p - ref.task.X_WE.p).norm();
   }
   sim.forward();
+  std::printf("hqp-ac 5 cm step: overshoot %.2g m, error %.3f mm at 1 s\n", overshoot, 1e3 * at_1s);
   EXPECT_LT(overshoot, 1e-5);
   EXPECT_GT(at_1s, 1e-4);  // K_r = K0/2 = 400 N/m on the arm's own inertia: a gentle close
   EXPECT_LT((test::site_pose(sim.data(), site).p - ref.task.X_WE.p).norm(), 1e-5);
@@ -264,6 +270,10 @@ TEST(HqpAc, StiffnessAdaptsToAKnownPush) {
     EXPECT_EQ(scale, 0.5) << to_string(kind);
     EXPECT_NEAR(small.y(), 1.0 / 750.0, 0.02 / 750.0) << to_string(kind);
     const Eigen::Vector3d large = hqp_deflection(kind, Eigen::Vector3d(0.0, 10.0, 0.0), scale);
+    std::printf(
+        "hqp-ac push, %s: 1 N → %.4f mm (1/750 m = 1.3333), 10 N → %.3f mm "
+        "(10/450 m = 22.222)\n",
+        to_string(kind), 1e3 * small.y(), 1e3 * large.y());
     EXPECT_NEAR(scale, 0.3, 1e-9) << to_string(kind);
     EXPECT_NEAR(large.y(), 10.0 / 450.0, 0.02 * 10.0 / 450.0) << to_string(kind);
     EXPECT_LT(std::abs(large.x()) + std::abs(large.z()), 0.05 * large.y());
@@ -313,6 +323,10 @@ TEST(HqpAc, PreloadIsReachedInContact) {
     }
     force /= samples;
     expected /= samples;
+    std::printf(
+        "hqp-ac preload 5 N, %s: steady table force %.3f N (P + K_r·e = %.3f N), "
+        "half ramp %.3f N\n",
+        to_string(kind), force, expected, half_ramp);
     ASSERT_GE(contact_time, 0.0) << to_string(kind);
     EXPECT_NEAR(half_ramp, 2.5, 0.05) << to_string(kind);
     EXPECT_NEAR(force, 5.0, 0.25) << to_string(kind);
@@ -522,6 +536,7 @@ TEST(HqpAc, ReferenceDampingIsDefiniteNearHomeAndRarelyIndefiniteElsewhere) {
       EXPECT_GT(lowest, -0.05 * c.compliance().damping().norm()) << model;
       ++total;
     }
+    std::printf("hqp-ac D_r, %s: indefinite at %d of 1000 random states\n", model, indefinite);
     EXPECT_LE(indefinite, 20) << model;
   }
 }
