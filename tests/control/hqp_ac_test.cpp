@@ -517,7 +517,7 @@ TEST(HqpAc, ReferenceDampingIsDefiniteNearHomeAndRarelyIndefiniteElsewhere) {
     HqpAcController c(rig.chain);
     JointCommand command{CommandKind::torque, VectorX::Zero(7)};
     const std::vector<double> home = rig.robot.keyframe_qpos("home");
-    for (int k = 0; k < 300; ++k) {
+    for (int k = 0; k < 100; ++k) {
       for (int i = 0; i < 7; ++i) rig.d().qpos[i] = home[i] + u(rng);
       mj_forward(&rig.m(), &rig.d());
       Reference ref;
@@ -526,7 +526,7 @@ TEST(HqpAc, ReferenceDampingIsDefiniteNearHomeAndRarelyIndefiniteElsewhere) {
       EXPECT_GT(c.compliance().damping_min_eigenvalue(), 0.0) << model << " state " << k;
     }
     int indefinite = 0, total = 0;
-    while (total < 1000) {
+    while (total < 500) {
       if (!hqp_random_state(rig, rng, 1.0, 0.9)) continue;
       Reference ref;
       ref.task.X_WE = test::site_pose(rig.d(), rig.chain.frame().id);
@@ -536,8 +536,8 @@ TEST(HqpAc, ReferenceDampingIsDefiniteNearHomeAndRarelyIndefiniteElsewhere) {
       EXPECT_GT(lowest, -0.05 * c.compliance().damping().norm()) << model;
       ++total;
     }
-    std::printf("hqp-ac D_r, %s: indefinite at %d of 1000 random states\n", model, indefinite);
-    EXPECT_LE(indefinite, 20) << model;
+    std::printf("hqp-ac D_r, %s: indefinite at %d of 500 random states\n", model, indefinite);
+    EXPECT_LE(indefinite, 10) << model;
   }
 }
 
