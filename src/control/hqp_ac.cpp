@@ -296,16 +296,17 @@ void HqpAcController::build_bounds() noexcept {
 }
 
 bool HqpAcController::solve_main() noexcept {
+  // H = JᵀJ + ε·(tr(JᵀJ)/tr(M))·M: positive definite, unit-consistent regularization; the
+  // least-squares fallback needs them too
+  H_.noalias() = J_.transpose() * J_;
+  const double scale = options_.regularization * H_.trace() / M_.trace();
+  H_ += scale * M_;
+  g_.noalias() = -J_.transpose() * b_;
   // an empty box or torque interval is infeasible before any solve
   if ((lb_.array() > ub_.array()).any() || (row_lo_.array() > row_hi_.array()).any()) {
     tick_.main_qp = qp::QpStatus::infeasible;
     return false;
   }
-  // H = JᵀJ + ε·(tr(JᵀJ)/tr(M))·M: positive definite, unit-consistent regularization
-  H_.noalias() = J_.transpose() * J_;
-  const double scale = options_.regularization * H_.trace() / M_.trace();
-  H_ += scale * M_;
-  g_.noalias() = -J_.transpose() * b_;
   main_qp_.set_hessian(H_);
   main_qp_.set_gradient(g_);
   main_qp_.set_inequalities(M_, row_lo_, row_hi_);
@@ -320,12 +321,8 @@ bool HqpAcController::solve_main() noexcept {
 }
 
 void HqpAcController::least_squares() noexcept {
-  // the main QP's unconstrained minimizer, H·q̈ = −g, clamped into the box (a crossed pair of
-  // bounds clamps between them)
-  H_.noalias() = J_.transpose() * J_;
-  const double scale = options_.regularization * H_.trace() / M_.trace();
-  H_ += scale * M_;
-  g_.noalias() = -J_.transpose() * b_;
+  // the main QP's unconstrained minimizer, H·q̈ = −g (H and g of solve_main), clamped into the
+  // box (a crossed pair of bounds clamps between them)
   llt_.compute(H_);
   if (llt_.info() == Eigen::Success) {
     qdd_ = -g_;
