@@ -10,6 +10,7 @@
 #include "mjarm/lie/coefficients.hpp"
 #include "mjarm/lie/se3.hpp"
 #include "mjarm/lie/se3_jacobian.hpp"
+#include "mjarm/trajectory/smoothstep.hpp"
 
 namespace mjarm {
 namespace {
@@ -85,12 +86,6 @@ void se3_require_stiffness(const Matrix6d& K, const std::array<bool, 6>& release
   }
 }
 
-/// Smoothstep s(x) = x²(3 − 2x) on [0, 1], clamped outside.
-double release_smoothstep(double x) noexcept {
-  x = std::clamp(x, 0.0, 1.0);
-  return x * x * (3.0 - 2.0 * x);
-}
-
 /// blkdiag(R, R)·x for a linear-first 6-vector.
 Vector6d se3_rotate6(const Eigen::Matrix3d& R, const Vector6d& x) noexcept {
   Vector6d y;
@@ -156,7 +151,7 @@ void Se3ImpedanceController::start_release(double time) noexcept {
 
 void Se3ImpedanceController::update_release(double t) noexcept {
   release_ =
-      release_started_ ? release_smoothstep((t - release_start_) / options_.release.duration) : 0.0;
+      release_started_ ? smoothstep((t - release_start_) / options_.release.duration).s : 0.0;
   const Vector6d s = Vector6d::Ones() - release_ * release_mask_;
   stiffness_now_ = s.asDiagonal() * options_.stiffness * s.asDiagonal();
 }

@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "mjarm/error.hpp"
-#include "mjarm/trajectory/min_jerk.hpp"
+#include "mjarm/trajectory/smoothstep.hpp"
 
 namespace mjarm {
 
@@ -20,12 +20,12 @@ double worst_ratio(const Chain& chain, mjData* d, std::span<const double> qpos_s
                    const Eigen::VectorXd& q_start, const Eigen::VectorXd& dq, double T,
                    const std::vector<double>& allowed) {
   const mjModel& m = chain.robot().model();
-  const MinJerkProfile profile(T);
+  const SmoothRamp profile(SmoothRamp::Kind::smootherstep, T);  // the minimum-jerk scaling
   const int n = chain.size();
   double worst = 0.0;
   constexpr int kSamples = 64;
   for (int k = 0; k <= kSamples; ++k) {
-    const MinJerkProfile::Sample s = profile.at(T * k / kSamples);
+    const RampSample s = profile.at(T * k / kSamples);
     std::copy(qpos_start.begin(), qpos_start.end(), d->qpos);
     chain.scatter(q_start + s.s * dq, d->qpos);
     // at rest first: gravity (and springs) alone

@@ -39,7 +39,7 @@ TEST(PlanCli, HelpNamesTheOptions) {
   EXPECT_EQ(run.exit_code, 0);
   for (const char* option :
        {"--waypoints", "--site", "--q", "--key", "--velocity-limit", "--acceleration-limit",
-        "--torque-limit", "--min-sigma", "--out", "--rate", "--json"})
+        "--torque-limit", "--min-sigma", "--out", "--rate", "--plot", "--size", "--json"})
     EXPECT_NE(run.out.find(option), std::string::npos) << option;
 }
 
@@ -66,6 +66,27 @@ TEST(PlanCli, JsonReportsEveryWaypointAndCsvHoldsTheTrajectory) {
   const json slow = run_json({"plan", "panda_torque", "--waypoints", plan_file("five.json", kFive),
                               "--velocity-limit", "0.5", "--json"});
   EXPECT_GT(slow["duration"].get<double>(), 1.5 * duration);
+}
+
+TEST(PlanCli, PlotDrawsTheJointTrajectoryAgainstItsLimits) {
+  const fs::path plots = scratch() / "plan_plot";
+  const json doc =
+      run_json({"plan", "panda_torque", "--waypoints", plan_file("five.json", kFive), "--plot",
+                plots.string(), "--rate", "50", "--size", "640x800", "--json"});
+  EXPECT_EQ(doc["status"], "ok");
+  EXPECT_EQ(doc["plot"], (plots / "trajectory.png").string());
+  const std::string png = slurp(plots / "trajectory.png");
+  ASSERT_GT(png.size(), 1000u);
+  EXPECT_EQ(png.substr(1, 3), "PNG");
+  // the figure's data: 7 joints, the velocity limit of 1 rad/s dashed
+  const std::string script = slurp(plots / "gnuplot" / "trajectory.gp");
+  EXPECT_NE(script.find("joint7"), std::string::npos);
+  EXPECT_NE(script.find("velocity"), std::string::npos);
+  // an output that cannot be written is refused before the plan (exit 2)
+  const std::string file = plan_file("not_a_folder", "x");
+  expect_error({"plan", "panda_torque", "--waypoints", plan_file("five.json", kFive), "--plot",
+                file + "/sub"},
+               2, "--plot");
 }
 
 TEST(PlanCli, AFailedPlanPrintsTheChecksAndExitsOne) {

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 
 #include "mjarm/dynamics/chain_dynamics.hpp"
 #include "mjarm/error.hpp"
@@ -180,9 +181,41 @@ TEST(WaypointPlanner, AStartInCollisionIsReported) {
   EXPECT_NE(r.message.find("start configuration fails"), std::string::npos);
 }
 
+TEST_F(PandaPlan, AStartBeyondTheJointLimitsIsAnHonestStatus) {
+  Eigen::VectorXd q = home_q(robot);
+  q[3] = 0.5;  // joint4's range is [−3.07, −0.07]
+  const PlanResult r = WaypointPlanner(chain).plan(q, five_waypoints());
+  EXPECT_EQ(r.status, PlanStatus::start_failed);
+  EXPECT_FALSE(r.ok());
+  EXPECT_NE(r.message.find("joint4"), std::string::npos) << r.message;
+  EXPECT_EQ(r.trajectory.duration(), 0.0);  // no trajectory to follow
+}
+
 TEST_F(PandaPlan, BadInputIsAnError) {
   WaypointPlanner planner(chain);
   EXPECT_THROW(planner.plan(home_q(robot), {}), Error);
+  // a start that is not finite
+  Eigen::VectorXd q_nan = home_q(robot);
+  q_nan[2] = std::numeric_limits<double>::infinity();
+  EXPECT_THROW(planner.plan(q_nan, five_waypoints()), Error);
+  // a waypoint rotation that is not a rotation
+  std::vector<Pose> skewed = five_waypoints();
+  skewed[1].R(0, 1) += 0.1;
+  EXPECT_THROW(planner.plan(home_q(robot), skewed), Error);
+  // zero, negative or NaN limits, named
+  for (double bad : {0.0, -1.0, std::nan("")}) {
+    for (int which = 0; which < 3; ++which) {
+      PlanOptions limited;
+      Eigen::VectorXd v = Eigen::VectorXd::Ones(7);
+      v[4] = bad;
+      (which == 0   ? limited.limits.max_velocity
+       : which == 1 ? limited.limits.max_acceleration
+                    : limited.limits.max_torque) = v;
+      const std::string message = test::error_of(
+          [&] { WaypointPlanner(chain, limited).plan(home_q(robot), five_waypoints()); });
+      EXPECT_FALSE(message.empty()) << "limit " << which << " = " << bad;
+    }
+  }
   std::vector<Pose> path = five_waypoints();
   path[3].p.x() = std::nan("");
   EXPECT_THROW(planner.plan(home_q(robot), path), Error);

@@ -47,9 +47,14 @@ TEST(Se3Interpolation, StartsWithTheGivenTwistAndRateAndEndsAtRest) {
   EXPECT_LT((a.A_WE - A0).norm(), 1e-13);
   const Se3Interpolation::Sample b = s.at(0.8);
   EXPECT_TRUE(b.X_WE.is_approx(X1, 1e-12));
-  EXPECT_LT(b.V_WE.norm(), 1e-12);
-  EXPECT_LT(b.A_WE.norm(), 1e-10);
+  EXPECT_EQ(b.V_WE.norm(), 0.0);  // at rest exactly from T on
+  EXPECT_EQ(b.A_WE.norm(), 0.0);
+  EXPECT_EQ(b.X_WE.p, X1.p);
   EXPECT_TRUE(s.at(3.0).X_WE.is_approx(X1, 1e-12));
+  // just before T the polynomials agree with the exact end (no visible step)
+  const Se3Interpolation::Sample c = s.at(0.8 - 1e-9);
+  EXPECT_TRUE(c.X_WE.is_approx(b.X_WE, 1e-12));
+  EXPECT_LT(c.V_WE.norm(), 1e-9);
 }
 
 TEST(Se3Interpolation, TwistAndRateAreTheTrueDerivativesOfThePose) {
@@ -108,6 +113,10 @@ TEST(Se3Interpolation, RejectsBadInput) {
   EXPECT_THROW(Se3Interpolation(X, zero, zero, X, 0.0), Error);
   EXPECT_THROW(Se3Interpolation(X, zero, zero, X, -1.0), Error);
   EXPECT_THROW(Se3Interpolation(X, zero, zero, X, std::numeric_limits<double>::infinity()), Error);
+  EXPECT_THROW(Se3Interpolation(X, zero, zero, X, nan), Error);
+  // a duration far out of scale with the move: an error, not NaN poses
+  const Pose far = pose_of({1, 0, 0}, {0.1, 0.2, 0.3});
+  EXPECT_THROW(Se3Interpolation(X, zero, zero, far, 1e-300), Error);
   EXPECT_THROW(Se3Interpolation(X, six(0, 0, nan, 0, 0, 0), zero, X, 1.0), Error);
   EXPECT_THROW(Se3Interpolation(X, zero, six(0, 0, 0, 0, 0, nan), X, 1.0), Error);
   Pose bad = X;
