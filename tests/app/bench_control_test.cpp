@@ -31,11 +31,16 @@ TEST(BenchControl, JsonReportsEveryControllerWithZeroAllocations) {
   EXPECT_EQ(j["steps"], 300);
   EXPECT_EQ(j["warmup"], 20);
   EXPECT_DOUBLE_EQ(j["timestep"].get<double>(), 0.002);
-  const std::vector<std::string> names{"joint-pd", "gravity", "ct", "task-pd", "accel", "osc", "se3"};
+  const std::vector<std::string> names{"joint-pd", "gravity", "ct",  "task-pd", "accel",
+                                       "osc",      "se3",     "cic", "hqp-ac",  "observer"};
   ASSERT_EQ(j["controllers"].size(), names.size());
   for (std::size_t i = 0; i < names.size(); ++i) {
     const json& c = j["controllers"][i];
     EXPECT_EQ(c["name"], names[i]);
+    // the targets (issue 13's se3 ≤ 5, hqp-ac ≤ 25, observer ≤ 2 µs; the earlier ones) or null
+    const bool targeted = names[i] != "task-pd" && names[i] != "accel" && names[i] != "cic";
+    EXPECT_EQ(c["target_median_us"].is_number(), targeted) << names[i];
+    EXPECT_EQ(c["meets_target"].is_boolean(), targeted) << names[i];
     EXPECT_EQ(c["steps"], 300);
     EXPECT_EQ(c["allocations"], 0) << names[i];
     EXPECT_EQ(c["allocations_per_step"], 0.0) << names[i];
@@ -55,8 +60,9 @@ TEST(BenchControl, TextReportHasTheTables) {
   const CliRun run =
       run_cli({"bench", "control", "panda_torque", "--steps", "50", "--warmup", "0"});
   ASSERT_EQ(run.exit_code, 0) << run.err;
-  for (const char* text : {"median [µs]", "p99 [µs]", "alloc/step", "osc + mj_step", "mj_step only",
-                           "joint-pd", "gravity", "ct", "task-pd", "accel", "osc", "se3"}) {
+  for (const char* text : {"median [µs]", "target [µs]", "p99 [µs]", "alloc/step", "osc + mj_step",
+                           "mj_step only", "joint-pd", "gravity", "ct", "task-pd", "accel", "osc",
+                           "se3", "cic", "hqp-ac", "observer", "≤ 25"}) {
     EXPECT_NE(run.out.find(text), std::string::npos) << text << " not in:\n" << run.out;
   }
   EXPECT_TRUE(run.err.empty()) << run.err;  // no progress line when stderr is not a terminal

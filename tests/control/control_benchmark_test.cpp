@@ -23,16 +23,17 @@ TEST(ControlBenchmark, TimesEveryControllerWithoutAllocations) {
   int last_phase = 0;
   o.progress = [&](int done, int total) {
     EXPECT_EQ(done, last_phase + 1);
-    EXPECT_EQ(total, 9);
+    EXPECT_EQ(total, 12);
     last_phase = done;
   };
   const ControlBenchmarkResult r = run_control_benchmark(chain, o);
-  EXPECT_EQ(last_phase, 9);
+  EXPECT_EQ(last_phase, 12);
   EXPECT_EQ(r.robot, "panda_torque");
   EXPECT_EQ(r.joints, 7);
   EXPECT_DOUBLE_EQ(r.timestep, 0.002);
   EXPECT_DOUBLE_EQ(r.frequency, 0.5);  // 1000 steps per period
-  const std::vector<std::string> names{"joint-pd", "gravity", "ct", "task-pd", "accel", "osc", "se3"};
+  const std::vector<std::string> names{"joint-pd", "gravity", "ct",  "task-pd", "accel",
+                                       "osc",      "se3",     "cic", "hqp-ac",  "observer"};
   ASSERT_EQ(r.controllers.size(), names.size());
   for (std::size_t i = 0; i < names.size(); ++i) {
     const auto& c = r.controllers[i];
@@ -53,6 +54,10 @@ TEST(ControlBenchmark, TimesEveryControllerWithoutAllocations) {
   EXPECT_LT(r.controllers[2].rms_position_error, 1e-3);
   EXPECT_LT(r.controllers[5].rms_position_error, 2e-3);
   EXPECT_LT(r.controllers[6].rms_position_error, 2e-3);  // se3: the same exact cancellation
+  EXPECT_LT(r.controllers[7].rms_position_error, 2e-3);  // cic
+  EXPECT_LT(r.controllers[8].rms_position_error, 2e-3);  // hqp-ac
+  // the observer rides along an OSC loop: the same tracking as OSC's own phase
+  EXPECT_NEAR(r.controllers[9].rms_position_error, r.controllers[5].rms_position_error, 1e-9);
   EXPECT_EQ(r.loop_allocations, 0);
   EXPECT_GT(r.osc_real_time_factor, 0.0);
   EXPECT_GT(r.passive_real_time_factor, 0.0);
