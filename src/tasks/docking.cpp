@@ -90,6 +90,8 @@ DockingReport run_docking(const DockingOptions& options) {
   Simulation sim(scene->robot, docking_detail::torque_simulation(options.max_acceleration));
   DockingControllerOptions controller_options = options.controller;
   controller_options.control_period = sim.control_period();
+  controller_options.hqp_preload = options.motion.preload;  // HQP-AC's own preload
+  controller_options.hqp_preload_ramp = options.motion.preload_ramp;
   DockingController controller(*scene, controller_options);
   sim.add_controller(controller);
   std::vector<double> qpos(static_cast<std::size_t>(scene->robot.nq()), 0.0);

@@ -58,6 +58,10 @@ void check(const DockingControllerOptions& o) {
   docking_detail::require_positive(o.release_duration, "docking controller",
                                    "release_duration [s]");
   require_gains(o.cic_stiffness, "cic_stiffness");
+  require_gains(o.hqp_stiffness, "hqp_stiffness");
+  docking_detail::require_non_negative(o.hqp_preload, "docking controller", "hqp_preload [N]");
+  docking_detail::require_positive(o.hqp_preload_ramp, "docking controller",
+                                   "hqp_preload_ramp [s]");
   docking_detail::require_positive(o.cic_damping_ratio, "docking controller", "cic_damping_ratio");
   docking_detail::require_non_negative(o.nullspace_stiffness, "docking controller",
                                        "nullspace_stiffness");
@@ -66,18 +70,30 @@ void check(const DockingControllerOptions& o) {
   docking_detail::require_positive(o.control_period, "docking controller", "control_period [s]");
 }
 
+namespace {
+
+WrenchSourceOptions source_options(const DockingControllerOptions& o) {
+  WrenchSourceOptions w;
+  if (o.source == ForceSource::sensor) {
+    w.kind = WrenchSourceKind::sensor;
+    w.site = DockingNames::ft_site;
+  } else {
+    w.kind = WrenchSourceKind::observer;
+    w.control_period = o.control_period;
+  }
+  return w;
+}
+
+}  // namespace
+
 DockingController::DockingController(const DockingScene& scene,
                                      const DockingControllerOptions& options)
     : options_(options),
       dynamics_(scene.chain),
-      friction_(scene.chain, friction_options_for(true, options.friction_mode)),
-      peg_mass_(scene.peg_mass),
-      peg_com_E_(scene.peg_com_E) {
+      friction_(scene.chain, friction_options_for(true, options.friction_mode)) {
   check(options);
   const Chain& chain = scene.chain;
   const mjModel& m = scene.robot.model();
-  if (!(m.opt.disableflags & mjDSBL_GRAVITY))
-    gravity_ = Eigen::Map<const Eigen::Vector3d>(m.opt.gravity);
   switch (options.law) {
     case DockingLaw::se3: {
       Se3ImpedanceOptions o;
@@ -93,38 +109,43 @@ DockingController::DockingController(const DockingScene& scene,
       o.nullspace_damping = options.nullspace_damping;
       se3_ = std::make_unique<Se3ImpedanceController>(chain, o);
       law_ = se3_.get();
+      source_.emplace(chain, source_options(options));  // names the site when it is missing
+      if (options.source == ForceSource::sensor && std::isfinite(options.sensor_cutoff))
+        alpha_ = 1.0 -
+                 std::exp(-2.0 * std::numbers::pi * options.sensor_cutoff * options.control_period);
       break;
     }
     case DockingLaw::cic: {
-      OperationalSpaceOptions o;
-      o.mode = TaskMode::pose;
-      o.task_inertia = true;  // the arm's own Λ: passive against contact, no measurement needed
+      CartesianImpedanceOptions o;
       o.stiffness = options.cic_stiffness;
       o.damping = Vector6d::Constant(-1.0);
       o.damping_ratio = options.cic_damping_ratio;
       o.nullspace_stiffness = options.nullspace_stiffness;
       o.nullspace_damping = options.nullspace_damping;
-      cic_ = std::make_unique<OperationalSpaceController>(chain, o);
+      o.friction_feed_forward = options.friction_feed_forward;
+      o.friction.mode = options.friction_mode;
+      o.force = source_options(options);
+      cic_ = std::make_unique<CartesianImpedanceController>(chain, o);
       law_ = cic_.get();
       stiffness_ = options.cic_stiffness;
       break;
     }
-    case DockingLaw::hqp_ac:
-      throw Error(
-          "docking controller: hqp-ac is not available in this build yet (it comes with "
-          "the HQP-AC controller of control/); use cic or se3");
-  }
-  if (options.source == ForceSource::sensor) {
-    sensor_.emplace(scene.robot, DockingNames::ft_site);  // names the site when it is missing
-    if (std::isfinite(options.sensor_cutoff)) {
-      filtered_ = true;
-      alpha_ =
-          1.0 - std::exp(-2.0 * std::numbers::pi * options.sensor_cutoff * options.control_period);
+    case DockingLaw::hqp_ac: {
+      HqpAcOptions o;
+      o.compliance.stiffness = options.hqp_stiffness.asDiagonal();
+      o.preload.force = options.hqp_preload;
+      o.preload.axis = Eigen::Vector3d::UnitZ();  // the peg points along E's z
+      o.preload.ramp_time = options.hqp_preload_ramp;
+      o.max_velocity = iiwa14_max_velocity();
+      o.friction_feed_forward = options.friction_feed_forward;
+      o.friction.mode = options.friction_mode;
+      o.force = source_options(options);
+      hqp_ = std::make_unique<HqpAcController>(chain, o);
+      law_ = hqp_.get();
+      break;
     }
-  } else {
-    observer_.emplace(chain, friction_);
   }
-  // motor ranges, for the torque the observer is told about
+  // motor ranges, for the torque the observer is told about (se3)
   const int n = chain.size();
   lower_ = Eigen::VectorXd::Constant(n, -std::numeric_limits<double>::infinity());
   upper_ = Eigen::VectorXd::Constant(n, std::numeric_limits<double>::infinity());
@@ -155,75 +176,65 @@ DockingController::~DockingController() = default;
 
 void DockingController::reset() noexcept {
   law_->reset();
-  if (observer_) observer_->reset();
+  if (source_) source_->reset();
   wrench_.setZero();
   bad_wrench_ticks_ = 0;
 }
 
-void DockingController::measure(const mjData& data) noexcept {
-  const Pose& X_WE = dynamics_.pose();
-  if (observer_) {
-    wrench_ = observer_->contact_wrench();  // from the previous tick's update
-    return;
-  }
-  const WrenchReading reading = sensor_->read_world(data, X_WE.p);
-  if (!reading.ok()) {
-    ++bad_wrench_ticks_;
-    return;  // keep the last filtered value: a lost sample, not a zero force
-  }
-  // the environment's wrench on the peg: the sensor holds the peg against its weight and the
-  // contact, −S = m·g + F_env (quasi-static)
-  Vector6d F;
-  const Eigen::Vector3d weight = peg_mass_ * gravity_;
-  F.head<3>() = -reading.wrench.head<3>() - weight;
-  F.tail<3>() = -reading.wrench.tail<3>() - (X_WE.R * peg_com_E_).cross(weight);
-  if (filtered_) {
-    wrench_ += alpha_ * (F - wrench_);
+void DockingController::compute(const mjData& data, const Reference& reference,
+                                JointCommand& command) noexcept {
+  if (command.value.size() != dynamics_.size()) return;
+  if (se3_) return compute_se3(data, reference, command);
+  law_->compute(data, reference, command);
+  if (cic_) {
+    wrench_ = cic_->measured_wrench();
+    if (cic_->wrench_source().status() != WrenchStatus::ok) ++bad_wrench_ticks_;
   } else {
-    wrench_ = F;
+    wrench_ = hqp_->measured_wrench();
+    stiffness_ = hqp_->compliance().stiffness().diagonal();
+    if (!hqp_->last_tick().wrench_valid) ++bad_wrench_ticks_;
   }
 }
 
-void DockingController::compute(const mjData& data, const Reference& reference,
-                                JointCommand& command) noexcept {
+void DockingController::compute_se3(const mjData& data, const Reference& reference,
+                                    JointCommand& command) noexcept {
   const int n = dynamics_.size();
-  if (command.value.size() != n) return;
   dynamics_.update(data);
-  measure(data);
-  if (se3_) {
-    const Pose& X_WE = dynamics_.pose();
-    Vector6d F_E;
-    F_E.head<3>() = X_WE.R.transpose() * wrench_.head<3>();
-    F_E.tail<3>() = X_WE.R.transpose() * wrench_.tail<3>();
-    se3_->set_measured_wrench(F_E);
-    // the preload: shift the target so that the spring pushes with F_ext (D's axes)
-    reference_.task = reference.task;
-    reference_.gripper = reference.gripper;
-    if (reference.joint.q.size() == n) {
-      reference_.joint.q = reference.joint.q;
-      reference_.joint.qd = reference.joint.qd;
-      reference_.joint.qdd = reference.joint.qdd;
-    }
-    const Vector6d& F_ext = reference.task.F_ext;
-    if (F_ext.allFinite() && !F_ext.isZero(0.0)) {
-      const Eigen::Matrix3d& R_WD = reference.task.X_WE.R;
-      Vector6d F_D;
-      F_D.head<3>() = R_WD.transpose() * F_ext.head<3>();
-      F_D.tail<3>() = R_WD.transpose() * F_ext.tail<3>();
-      Vector6d shift = Vector6d::Zero();
-      const Matrix6d& K = se3_->stiffness();
-      for (int i = 0; i < 6; ++i)
-        if (!options_.se3_release[static_cast<std::size_t>(i)] && K(i, i) > 0.0)
-          shift[i] = F_D[i] / K(i, i);
-      reference_.task.X_WE = reference.task.X_WE * se3::exp(shift);
-    }
-    se3_->compute(data, reference_, command);
-    stiffness_ = se3_->stiffness().diagonal();
+  const Pose& X_WE = dynamics_.pose();
+  if (source_->measure(data, X_WE) == WrenchStatus::ok) {
+    wrench_ += alpha_ * (source_->wrench() - wrench_);  // α = 1: no filter (the observer)
   } else {
-    cic_->compute(data, reference, command);
+    ++bad_wrench_ticks_;  // keep the last good value: a lost sample, not a zero force
   }
+  Vector6d F_E;
+  F_E.head<3>() = X_WE.R.transpose() * wrench_.head<3>();
+  F_E.tail<3>() = X_WE.R.transpose() * wrench_.tail<3>();
+  se3_->set_measured_wrench(F_E);
+  // the preload: shift the target so that the spring pushes with F_ext (D's axes)
+  reference_.task = reference.task;
+  reference_.gripper = reference.gripper;
+  if (reference.joint.q.size() == n) {
+    reference_.joint.q = reference.joint.q;
+    reference_.joint.qd = reference.joint.qd;
+    reference_.joint.qdd = reference.joint.qdd;
+  }
+  const Vector6d& F_ext = reference.task.F_ext;
+  if (F_ext.allFinite() && !F_ext.isZero(0.0)) {
+    const Eigen::Matrix3d& R_WD = reference.task.X_WE.R;
+    Vector6d F_D;
+    F_D.head<3>() = R_WD.transpose() * F_ext.head<3>();
+    F_D.tail<3>() = R_WD.transpose() * F_ext.tail<3>();
+    Vector6d shift = Vector6d::Zero();
+    const Matrix6d& K = se3_->stiffness();
+    for (int i = 0; i < 6; ++i)
+      if (!options_.se3_release[static_cast<std::size_t>(i)] && K(i, i) > 0.0)
+        shift[i] = F_D[i] / K(i, i);
+    reference_.task.X_WE = reference.task.X_WE * se3::exp(shift);
+  }
+  se3_->compute(data, reference_, command);
+  stiffness_ = se3_->stiffness().diagonal();
   if (options_.friction_feed_forward && friction_.active()) {
-    // the part of τ that moves the joints sets the feed-forward's sign
+    // the part of τ that moves the joints sets the torque mode's sign
     const Eigen::VectorXd& h = dynamics_.bias();
     for (int i = 0; i < n; ++i)
       move_[i] = command.value[i] - h[i] + data.qfrc_passive[dynamics_.chain().dof_address(i)];
@@ -231,10 +242,8 @@ void DockingController::compute(const mjData& data, const Reference& reference,
     friction_.apply(dynamics_.qd(), tau_);
     command.value += tau_ - move_;
   }
-  if (observer_) {
-    tau_ = command.value.cwiseMax(lower_).cwiseMin(upper_);
-    observer_->update(data, dynamics_, tau_, options_.control_period);
-  }
+  tau_ = command.value.cwiseMax(lower_).cwiseMin(upper_);
+  source_->record_command(data, dynamics_, tau_);  // the observer only
 }
 
 std::span<const double> DockingController::internal_values() const noexcept {

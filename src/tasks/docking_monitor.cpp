@@ -143,11 +143,6 @@ DockingMetrics evaluate_docking(std::span<const DockingSample> samples, const Do
   return m;
 }
 
-Eigen::VectorXd iiwa14_max_velocity() {
-  Eigen::VectorXd v(7);
-  v << 85.0, 85.0, 100.0, 75.0, 130.0, 135.0, 135.0;
-  return v * (std::numbers::pi / 180.0);
-}
 
 DockingProbe::DockingProbe(const DockingScene& scene, const Eigen::VectorXd& max_velocity)
     : chain_(scene.chain),

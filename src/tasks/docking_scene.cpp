@@ -126,6 +126,12 @@ void add_socket(Scene& scene, const Pose& X_WS, const DockingGeometry& g) {
 
 }  // namespace
 
+Eigen::VectorXd iiwa14_max_velocity() {
+  Eigen::VectorXd v(7);
+  v << 85.0, 85.0, 100.0, 75.0, 130.0, 135.0, 135.0;
+  return v * (std::numbers::pi / 180.0);
+}
+
 Scene docking_scene(const DockingSceneOptions& options) {
   const DockingGeometry& g = options.geometry;
   check_geometry(g);

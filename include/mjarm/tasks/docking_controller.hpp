@@ -12,13 +12,13 @@
 #include <string_view>
 #include <vector>
 
+#include "mjarm/control/cartesian_impedance.hpp"
 #include "mjarm/control/controller.hpp"
-#include "mjarm/control/operational_space.hpp"
+#include "mjarm/control/hqp_ac.hpp"
 #include "mjarm/control/se3_impedance.hpp"
+#include "mjarm/control/wrench_source.hpp"
 #include "mjarm/dynamics/chain_dynamics.hpp"
-#include "mjarm/dynamics/force_torque_sensor.hpp"
 #include "mjarm/dynamics/friction_feed_forward.hpp"
-#include "mjarm/dynamics/momentum_observer.hpp"
 #include "mjarm/lie/types.hpp"
 #include "mjarm/tasks/docking_scene.hpp"
 
@@ -26,9 +26,10 @@ namespace mjarm {
 
 /// The control laws the docking task compares.
 enum class DockingLaw {
-  cic,     ///< Cartesian impedance (operational space, the arm's own task inertia)
-  hqp_ac,  ///< hierarchical QP with adaptive compliance
+  cic,     ///< Cartesian impedance control (`CartesianImpedanceController`, the arm's own Λ)
+  hqp_ac,  ///< hierarchical QP with adaptive compliance (`HqpAcController`)
   se3      ///< SE(3) Lie-group impedance with a contact-triggered lateral release
+           ///< (`Se3ImpedanceController`)
 };
 
 /// Human name ("cic", "hqp-ac", "se3").
@@ -70,10 +71,19 @@ struct DockingControllerOptions {
   Vector6d cic_stiffness =
       (Vector6d() << 1000.0, 1000.0, 1000.0, 60.0, 60.0, 60.0).finished();  ///< K [N/m; N·m/rad]
   double cic_damping_ratio = 1.0;  ///< D = 2ζ·√(Λ_ii·K_i)
+  // ---- hqp-ac
+  /// K0 [N/m; N·m/rad] (world axes); in free space K_r = K0/2, in contact down to 0.3·K0.
+  Vector6d hqp_stiffness = (Vector6d() << 1500.0, 1500.0, 1500.0, 150.0, 150.0, 150.0).finished();
+  /// Its own preload along E's z (the insertion axis), ramped in over `hqp_preload_ramp` once
+  /// the measured ‖f‖ reaches 2 N [N] (≥ 0). HQP-AC does not read reference.task.F_ext: the run
+  /// sets this from `DockingMotion::preload`.
+  double hqp_preload = 0.0;
+  double hqp_preload_ramp = 0.3;  ///< [s] (> 0)
   // ---- all
   double nullspace_stiffness = 10.0;  ///< posture toward reference.joint.q [N·m/rad]
   double nullspace_damping = 5.0;     ///< [N·m·s/rad]
-  /// Friction feed-forward from the model's dof_frictionloss (a no-op on the plain model).
+  /// Friction feed-forward from the model's dof_frictionloss (a no-op on the plain model); cic
+  /// and hqp-ac add their own, se3 gets the wrapper's.
   bool friction_feed_forward = true;
   /// Its sign: the joint velocity (measured: 0.7 mm RMS in free motion with the Franka friction
   /// against 1.9 mm following the torque, docs/docking.md) or the commanded torque.
@@ -84,26 +94,28 @@ struct DockingControllerOptions {
 /// @throws Error naming the option when a gain or setting is out of range.
 void check(const DockingControllerOptions& options);
 
-/// One of the docking laws with its force source. Each tick:
-/// 1. the measured wrench F_m of the environment on E (world axes, about E's origin): the
-///    sensor's reading −S − [m·g; (c − p_E) × m·g] (S moved to world axes about p_E, the peg's
-///    weight m·g at its centre of mass c taken out; one physics step old) through the low-pass,
-///    or the observer's contact-only F̂ (one control period old);
-/// 2. the law: se3 gets F_m in E's axes (`Se3ImpedanceController::set_measured_wrench`); the
-///    preload reference.task.F_ext (the wrench E should exert, world axes) becomes a shift of
-///    its target by K⁻¹·F_ext on the axes not released (the SE(3) law has no force
-///    feed-forward: its spring makes the force); cic feeds F_ext forward itself;
-/// 3. the friction feed-forward (`friction_mode`): velocity mode f⊙tanh(q̇/v₀), or torque mode
-///    f⊙tanh(s·τ_m/f) on the part τ_m = τ − h + τ_passive of the torque that moves the joints
-///    (following the whole τ would push every joint against gravity at rest); the joint
-///    damping is cancelled by the law already (qfrc_passive), not twice;
-/// 4. the observer is told the torque the motors will apply (τ clipped to their ranges).
-/// A non-finite sensor reading is taken as zero for the tick and counted. `compute` allocates
-/// nothing and never throws.
+/// One of the docking laws with its force source, the wrench of the environment on E (world
+/// axes, about E's origin) from `WrenchSource`: the F/T sensor at the flange (the peg's weight
+/// taken out; one physics step old) or the momentum observer's contact-only estimate (one
+/// control period old).
+/// - **cic**: `CartesianImpedanceController` (natural inertia, integral on with joint friction,
+///   friction feed-forward), owning its source; the preload reference.task.F_ext fed forward.
+/// - **hqp-ac**: `HqpAcController` (adaptive compliance, two QPs with hard bounds; the iiwa14's
+///   joint speed limits, the motors' torque ranges), owning its source; its own preload
+///   (`hqp_preload`).
+/// - **se3**: `Se3ImpedanceController`, fed by this wrapper: the sensor's wrench through a
+///   first-order low-pass (`sensor_cutoff`), in E's axes; the preload as a shift of the target by
+///   K⁻¹·F_ext on the axes it keeps (the SE(3) law has no force feed-forward: its spring makes
+///   the force); the friction feed-forward (`friction_mode`; velocity mode f⊙tanh(q̇/v₀), or
+///   torque mode f⊙tanh(s·τ_m/f) on the part τ_m = τ − h + τ_passive that moves the joints; the
+///   damping is cancelled by the law already); the observer told the torque the motors apply
+///   (clipped to their ranges). A non-finite sensor reading is skipped (the last good value
+///   kept) and counted.
+/// `compute` allocates nothing and never throws.
 class DockingController final : public Controller {
  public:
-  /// @throws Error for bad options, for `ForceSource::sensor` on a scene without the F/T sensor
-  ///         pair (naming the site), or for hqp-ac before that law is built.
+  /// @throws Error for bad options, or for `ForceSource::sensor` on a scene without the F/T
+  ///         sensor pair (naming the site).
   DockingController(const DockingScene& scene, const DockingControllerOptions& options);
   ~DockingController() override;
 
@@ -119,31 +131,30 @@ class DockingController final : public Controller {
   /// The measured wrench the law used at the last compute (world axes, about E) [N; N·m].
   const Vector6d& measured_wrench() const noexcept { return wrench_; }
   /// The diagonal of the stiffness in force at the last compute [N/m; N·m/rad] (se3: K(t)
-  /// during a release).
+  /// during a release; hqp-ac: the adaptive K_r; cic: K).
   const Vector6d& stiffness() const noexcept { return stiffness_; }
-  /// Ticks whose sensor reading was not finite (taken as zero).
+  /// Ticks whose sensor reading was not finite (taken as zero, or the last good value for se3).
   std::int64_t bad_wrench_ticks() const noexcept { return bad_wrench_ticks_; }
-  /// The SE(3) law (null for the others).
+  /// The laws (null for the others).
   const Se3ImpedanceController* se3() const noexcept { return se3_.get(); }
+  const CartesianImpedanceController* cic() const noexcept { return cic_.get(); }
+  const HqpAcController* hqp_ac() const noexcept { return hqp_.get(); }
 
   std::span<const std::string> internal_names() const noexcept override { return names_; }
   std::span<const double> internal_values() const noexcept override;
 
  private:
-  void measure(const mjData& data) noexcept;
+  void compute_se3(const mjData& data, const Reference& reference, JointCommand& command) noexcept;
 
   DockingControllerOptions options_;
   ChainDynamics dynamics_;
   std::unique_ptr<Se3ImpedanceController> se3_;
-  std::unique_ptr<OperationalSpaceController> cic_;
+  std::unique_ptr<CartesianImpedanceController> cic_;
+  std::unique_ptr<HqpAcController> hqp_;
   Controller* law_ = nullptr;
-  std::optional<ForceTorqueSensor> sensor_;
-  std::optional<MomentumObserver> observer_;
+  std::optional<WrenchSource> source_;  // se3 only: the others own theirs
   FrictionFeedForward friction_;
-  double peg_mass_ = 0.0;
-  Eigen::Vector3d peg_com_E_ = Eigen::Vector3d::Zero();
-  Eigen::Vector3d gravity_ = Eigen::Vector3d::Zero();
-  double alpha_ = 1.0;  // low-pass gain per physics step
+  double alpha_ = 1.0;  // low-pass gain per control tick
   bool filtered_ = false;
   Vector6d wrench_ = Vector6d::Zero();
   Vector6d stiffness_ = Vector6d::Zero();

@@ -141,8 +141,5 @@ class DockingProbe {
   Manipulability manipulability_;
 };
 
-/// The iiwa14's joint speed limits (KUKA LBR iiwa 14 R820 datasheet: 85, 85, 100, 75, 130, 135,
-/// 135 °/s) [rad/s].
-Eigen::VectorXd iiwa14_max_velocity();
 
 }  // namespace mjarm

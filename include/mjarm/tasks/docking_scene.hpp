@@ -46,6 +46,10 @@ struct DockingGeometry {
 inline constexpr std::array<double, 7> kFrankaFrictionLoss{1.137, 1.137, 1.137, 1.137,
                                                            0.763, 0.44,  0.248};
 
+/// The iiwa14's joint speed limits (KUKA LBR iiwa 14 R820 datasheet: 85, 85, 100, 75, 130, 135,
+/// 135 °/s) [rad/s].
+Eigen::VectorXd iiwa14_max_velocity();
+
 /// How to build the scene.
 struct DockingSceneOptions {
   DockingGeometry geometry;
