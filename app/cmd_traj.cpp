@@ -15,6 +15,7 @@
 #include "commands.hpp"
 #include "mjarm/error.hpp"
 #include "mjarm/file_writer.hpp"
+#include "mjarm/plot/gnuplot.hpp"
 #include "mjarm/plot/trajectory_plot.hpp"
 #include "mjarm/trajectory/quintic.hpp"
 #include "mjarm/trajectory/quintic_duration.hpp"
@@ -297,6 +298,12 @@ Command add_traj_command(CLI::App& root) {
   return {
       app, [options] {
         const Options& o = *options;
+        // outputs first: a path that cannot be written is a usage error before any work
+        if (!o.out.empty()) check_output_file(o.out, "--out");
+        if (!o.plot.empty()) {
+          check_output_folder(o.plot, "--plot");
+          plot::find_gnuplot();
+        }
         const TrajKind& kind = *std::find_if(kTrajKinds.begin(), kTrajKinds.end(),
                                              [&](const TrajKind& k) { return o.kind == k.name; });
         const auto n = static_cast<Eigen::Index>(o.start.size());
