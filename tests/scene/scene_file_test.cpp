@@ -124,7 +124,7 @@ TEST(SceneFile, BadPartsNameTheEntryAndTheReason) {
                 "s.yaml");
   });
   EXPECT_TRUE(
-      mentions(message, "mesh file '/tmp/nowhere/meshes/none.obj' of object 'm' does not exist"))
+      mentions(message, "mesh file '/tmp/nowhere/meshes/none.obj' does not exist (object 'm')"))
       << message;
   EXPECT_TRUE(mentions(error_of([] { load_scene_file("/nonexistent/scene.yaml"); }),
                        "scene file '/nonexistent/scene.yaml' does not exist"));
@@ -139,6 +139,20 @@ TEST(SceneFile, OnlyRegularFilesOfBoundedSizeAreRead) {
     const std::string message = test::error_without_blocking(
         bad.path, [](const std::filesystem::path& p) { load_scene_file(p); });
     EXPECT_TRUE(mentions(message, "scene file '" + bad.path.string() + "'")) << message;
+    EXPECT_TRUE(mentions(message, bad.expected)) << message;
+  }
+}
+
+// the same for an object's mesh: a FIFO or /dev/zero was "does not exist"
+TEST(SceneFile, AnObjectsMeshIsARegularFileOfBoundedSize) {
+  for (const test::UnreadablePath& bad : test::unreadable_paths(
+           test::scratch() / "scene_meshes", "mesh", ".stl", kMaxDataFileBytes + 1)) {
+    const std::string message = test::error_without_blocking(bad.path, [](const auto& p) {
+      parse_scene("objects:\n  - {name: m, shape: mesh, mesh: '" + p.string() + "'}\n", ".",
+                  "s.yaml");
+    });
+    EXPECT_TRUE(mentions(message, "s.yaml:2: object 'm': mesh file '" + bad.path.string() + "'"))
+        << message;
     EXPECT_TRUE(mentions(message, bad.expected)) << message;
   }
 }
