@@ -81,6 +81,16 @@ TEST(CliInterrupt, OtgBenchmarkPrintsTheCasesDone) {
   EXPECT_GT(doc["mean_us"].get<double>(), 0.0);
 }
 
+TEST(CliInterrupt, IkBenchmarkPrintsTheSamplesDone) {
+  const auto cli = start_cli({"bench", "ik", "panda", "--samples", "10000000"}, "ik_int");
+  interrupt_after_cpu(cli, 0.5);
+  const CliRun run = finish_cli(cli);
+  expect_interrupted(run, "bench ik: interrupted after ");
+  EXPECT_NE(run.err.find(" of 10000000 samples (mid_range seeds)"), std::string::npos) << run.err;
+  EXPECT_NE(run.out.find("done)"), std::string::npos) << run.out;
+  EXPECT_NE(run.out.find("success [%]"), std::string::npos) << run.out;
+}
+
 TEST(CliInterrupt, DemoKeepsTheReportsOfTheFinishedParts) {
   const fs::path cwd = scratch() / "demo_interrupt";
   fs::create_directories(cwd);
