@@ -292,7 +292,9 @@ Command add_bench_command(CLI::App& root) {
             const Robot robot = load_model(options->model);
             const Chain chain(robot, resolve_site(robot, options->site));
             std::vector<IkBenchmarkResult> results;
+            const InterruptGuard interrupts;  // Ctrl-C: the figures of the samples done
             for (const IkSeedMode mode : {IkSeedMode::mid_range, IkSeedMode::random}) {
+              if (!results.empty() && results.back().interrupted) break;
               IkBenchmarkOptions protocol;
               protocol.samples = options->samples;
               protocol.seed = options->seed;
@@ -303,20 +305,31 @@ Command add_bench_command(CLI::App& root) {
               Progress progress(std::string("solving (") + to_string(mode) + " seeds)",
                                 options->samples);
               protocol.progress = [&progress](int done, int) { progress.update(done); };
+              protocol.stop = [] { return interrupt_requested(); };
               results.push_back(run_ik_benchmark(chain, protocol));
               progress.finish();
             }
+            const auto stopped = [&] {
+              if (!results.back().interrupted) return;
+              throw InterruptedError("bench ik: interrupted after " +
+                                         std::to_string(results.back().samples) + " of " +
+                                         std::to_string(options->samples) + " samples (" +
+                                         to_string(results.back().seed_mode) + " seeds)",
+                                     interrupt_signal());
+            };
             if (options->json) {
               Json runs = Json::array();
               for (const auto& r : results) runs.push_back(result_json(r));
-              return print_json({{"model", robot.name()},
-                                 {"frame", chain.frame().name},
-                                 {"joints", chain.size()},
-                                 {"samples", options->samples},
-                                 {"timeout_ms", options->timeout_ms},
-                                 {"seed", options->seed},
-                                 {"clock", to_string(results.front().clock)},
-                                 {"runs", runs}});
+              print_json({{"model", robot.name()},
+                          {"frame", chain.frame().name},
+                          {"joints", chain.size()},
+                          {"samples", options->samples},
+                          {"timeout_ms", options->timeout_ms},
+                          {"seed", options->seed},
+                          {"clock", to_string(results.front().clock)},
+                          {"interrupted", results.back().interrupted},
+                          {"runs", runs}});
+              return stopped();
             }
             print_fields(std::cout, {{"model", robot.name()},
                                      {"frame", chain.frame().name},
@@ -334,12 +347,14 @@ Command add_bench_command(CLI::App& root) {
                          {"max [ms]"},
                          {"iterations"}});
             for (const auto& r : results) {
-              table.add_row({to_string(r.seed_mode), fixed(100.0 * r.success_rate, 2),
-                             fixed(r.mean_time_ms, 4), fixed(r.median_time_ms, 4),
-                             fixed(r.p99_time_ms, 4), fixed(r.max_time_ms, 3),
-                             fixed(r.mean_iterations, 1)});
+              table.add_row({to_string(r.seed_mode) +
+                                 (r.interrupted ? " (" + std::to_string(r.samples) + " done)" : ""),
+                             fixed(100.0 * r.success_rate, 2), fixed(r.mean_time_ms, 4),
+                             fixed(r.median_time_ms, 4), fixed(r.p99_time_ms, 4),
+                             fixed(r.max_time_ms, 3), fixed(r.mean_iterations, 1)});
             }
             table.print(std::cout);
+            stopped();
           }};
 }
 

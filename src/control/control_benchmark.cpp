@@ -114,6 +114,24 @@ double percentile(const std::vector<double>& sorted, double p) {
   return sorted[std::clamp<std::size_t>(rank, 1, sorted.size()) - 1];
 }
 
+/// The controllers drive the chain's joints only: a free or ball joint (or a joint left out of
+/// the chain) between the world and the frame lets the base fall or swing, with or without a
+/// MuJoCo warning, and the figures would measure that motion.
+void check_fixed_base(const Chain& chain) {
+  const std::vector<int> unmoved = chain.unmoved_path_joints();
+  if (unmoved.empty()) return;
+  const mjModel& m = chain.robot().model();
+  const int j = unmoved.front();
+  const char* name = mj_id2name(&m, mjOBJ_JOINT, j);
+  throw Error("control benchmark: the frame '" + chain.frame().name + "' of model '" +
+              chain.robot().name() + "' hangs from " +
+              to_string(static_cast<JointType>(m.jnt_type[j])) + " joint '" +
+              (name != nullptr ? std::string(name) : "#" + std::to_string(j)) +
+              "', which no controller drives: the base would fall or swing and the figures would "
+              "measure that; the benchmark needs an arm on a fixed base (every joint between the "
+              "world and the frame in the chain)");
+}
+
 void check_options(const ControlBenchmarkOptions& o) {
   if (o.steps < 1)
     throw Error("control benchmark: steps must be >= 1, got " + std::to_string(o.steps));
@@ -159,8 +177,8 @@ bool check_warnings(const mjData& d, const std::string& phase, ControlBenchmarkR
                      std::to_string(times) + (times == 1 ? " time" : " times") + " (dof or index " +
                      std::to_string(d.warning[w].lastinfo) + ") while running '" + phase +
                      "' and reset the simulation, so the timings and errors are meaningless; "
-                     "the model's dynamics (e.g. a free or ball joint the controllers do not "
-                     "drive) cannot follow this benchmark";
+                     "the model's dynamics (e.g. links too light for the motors' torques) "
+                     "cannot follow this benchmark";
     return true;
   }
   return false;
@@ -234,6 +252,7 @@ ControlBenchmarkResult run_control_benchmark(const Chain& chain,
                   "' must be a torque controller of " + std::to_string(n) + " joints");
     }
   }
+  check_fixed_base(chain);
   const Motors motors(chain);
   OperationalSpaceController osc(chain);
 

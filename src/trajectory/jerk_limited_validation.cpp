@@ -196,7 +196,13 @@ OtgValidationResult run_otg_validation(const OtgValidationOptions& options) {
   times.reserve(static_cast<std::size_t>(options.cases));
   double velocity_total_us = 0.0;
 
+  const int total = options.cases + options.reference_cases + options.reference_cases / 4;
   for (int c = 0; c < options.cases; ++c) {
+    if (c % 1000 == 0 && options.stop && options.stop()) {
+      r.interrupted = true;
+      r.cases = c;
+      break;
+    }
     for (std::size_t i = 0; i < n; ++i) {
       limits[i] = sampler.limits();
       const JerkLimits& l = limits[i];
@@ -298,21 +304,34 @@ OtgValidationResult run_otg_validation(const OtgValidationOptions& options) {
       }
     }
     if (options.progress && (c % 1000 == 999 || c + 1 == options.cases))
-      options.progress(c + 1, options.cases);
+      options.progress(c + 1, total);
   }
-  for (int c = 0; c < options.reference_cases; ++c)
+  for (int c = 0; c < options.reference_cases && !r.interrupted; ++c) {
+    if (options.stop && options.stop()) {
+      r.interrupted = true;
+      break;
+    }
     check_against_reference(sampler, options.reference_steps, r);
-  for (int c = 0; c < options.reference_cases / 4; ++c)
+    if (options.progress) options.progress(options.cases + c + 1, total);
+  }
+  for (int c = 0; c < options.reference_cases / 4 && !r.interrupted; ++c) {
+    if (options.stop && options.stop()) {
+      r.interrupted = true;
+      break;
+    }
     check_blocked_against_reference(sampler, options.reference_steps, r);
+    if (options.progress) options.progress(options.cases + options.reference_cases + c + 1, total);
+  }
 
-  double total = 0.0;
-  for (const double t : times) total += t;
-  r.mean_us = total / static_cast<double>(times.size());
+  if (times.empty()) return r;  // stopped before the first case: no figures
+  double sum = 0.0;
+  for (const double t : times) sum += t;
+  r.mean_us = sum / static_cast<double>(times.size());
   std::sort(times.begin(), times.end());
   r.median_us = otg_percentile(times, 0.5);
   r.p99_us = otg_percentile(times, 0.99);
   r.max_us = times.back();
-  r.velocity_mean_us = velocity_total_us / options.cases;
+  r.velocity_mean_us = velocity_total_us / static_cast<double>(times.size());
   return r;
 }
 

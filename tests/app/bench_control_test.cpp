@@ -82,23 +82,26 @@ TEST(BenchControl, BadCommandLinesFailCleanly) {
 }
 
 TEST(BenchControl, MuJoCoBadStateWarningsFailTheCommand) {
-  // a free-floating base the controllers do not drive: MuJoCo warns about qacc and resets the
-  // state, so the timings mean nothing: exit 1 with a message, no figures
-  const fs::path model = scratch() / "floating_arm.xml";
-  std::ofstream(model) << R"(<mujoco model="floating_arm">
+  // links that weigh almost nothing: the first torques accelerate them beyond MuJoCo's bound, it
+  // warns about qacc and resets the state, so the timings mean nothing: exit 1, no figures
+  const fs::path model = scratch() / "feather_arm.xml";
+  std::ofstream(model) << R"(<mujoco model="feather_arm">
   <compiler autolimits="true"/>
   <worldbody>
-    <body name="base" pos="0 0 1">
-      <freejoint/>
-      <geom type="box" size="0.1 0.1 0.1" mass="1"/>
-      <body name="link1">
-        <joint name="j1" type="hinge" axis="0 1 0" range="-2 2"/>
-        <geom type="capsule" fromto="0 0 0 0.4 0 0" size="0.03" mass="1"/>
-        <site name="tip" pos="0.4 0 0"/>
+    <body name="link1" pos="0 0 0.5">
+      <joint name="j1" type="hinge" axis="0 1 0" range="-2 2"/>
+      <inertial pos="0 0 0" mass="1e-9" diaginertia="1e-14 1e-14 1e-14"/>
+      <body name="link2" pos="0.4 0 0">
+        <joint name="j2" type="hinge" axis="0 1 0" range="-2 2"/>
+        <inertial pos="0.2 0 0" mass="1e-9" diaginertia="1e-14 1e-14 1e-14"/>
+        <site name="tip" pos="0.35 0 0"/>
       </body>
     </body>
   </worldbody>
-  <actuator><motor joint="j1" gear="1"/></actuator>
+  <actuator>
+    <motor joint="j1" gear="1"/>
+    <motor joint="j2" gear="1"/>
+  </actuator>
 </mujoco>)";
   for (const bool json_output : {false, true}) {
     std::vector<std::string> args{"bench", "control", model.string(), "--steps", "2000"};
@@ -106,11 +109,43 @@ TEST(BenchControl, MuJoCoBadStateWarningsFailTheCommand) {
     const CliRun run = run_cli(args);
     EXPECT_EQ(run.exit_code, 1) << run.err;
     EXPECT_TRUE(run.out.empty()) << run.out;
-    EXPECT_NE(run.err.find("mjarm: error: bench control on model 'floating_arm': MuJoCo warned "
+    EXPECT_NE(run.err.find("mjarm: error: bench control on model 'feather_arm': MuJoCo warned "
                            "'bad qacc'"),
               std::string::npos)
         << run.err;
     EXPECT_NE(run.err.find("meaningless"), std::string::npos) << run.err;
+  }
+}
+
+// issue 16, item 6: a free-floating base falls (and a ball joint swings) without any MuJoCo
+// warning when it is damped; the "tracking error" then measures the fall: exit 1, no figures
+TEST(BenchControl, AnArmWhoseBaseIsNotFixedFailsTheCommand) {
+  for (const std::string joint : {"freejoint", "joint type=\"ball\""}) {
+    const fs::path model = scratch() / (joint == "freejoint" ? "free_base.xml" : "ball_base.xml");
+    std::ofstream(model) << R"(<mujoco model="loose_base">
+  <compiler autolimits="true"/>
+  <worldbody>
+    <body name="base" pos="0 0 1">
+      <)" + joint + R"( name="root"/>
+      <geom type="box" size="0.1 0.1 0.1" mass="5"/>
+      <body name="link1" pos="0 0 0.1">
+        <joint name="j1" axis="0 1 0" range="-2 2" damping="1"/>
+        <geom type="capsule" fromto="0 0 0 0.3 0 0" size="0.03" mass="1"/>
+        <site name="tip" pos="0.3 0 0"/>
+      </body>
+    </body>
+  </worldbody>
+  <actuator><motor joint="j1" ctrlrange="-50 50"/></actuator>
+</mujoco>)";
+    for (const bool json_output : {false, true}) {
+      std::vector<std::string> args{"bench", "control", model.string(), "--steps", "200"};
+      if (json_output) args.push_back("--json");
+      const CliRun run = run_cli(args);
+      EXPECT_EQ(run.exit_code, 1) << model << "\n" << run.out << run.err;
+      EXPECT_TRUE(run.out.empty()) << run.out;
+      EXPECT_NE(run.err.find("joint 'root'"), std::string::npos) << run.err;
+      EXPECT_NE(run.err.find("fixed base"), std::string::npos) << run.err;
+    }
   }
 }
 

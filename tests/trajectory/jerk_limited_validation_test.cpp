@@ -41,6 +41,28 @@ TEST(JerkLimitedValidation, SeededBatchKeepsLimitsAndReachesTargets) {
   EXPECT_EQ(r.sync_mismatches, 0) << r.first_reference_failure;
 }
 
+// a stop request (Ctrl-C in `mjarm bench otg`) ends the batch with the figures of the cases done
+TEST(JerkLimitedValidation, AStopRequestEndsTheBatchWithTheCasesDone) {
+  OtgValidationOptions options;
+  options.cases = 100000;
+  options.reference_cases = 50;
+  int asked = 0;
+  options.stop = [&] { return ++asked > 2; };
+  const OtgValidationResult r = run_otg_validation(options);
+  EXPECT_TRUE(r.interrupted);
+  EXPECT_GT(r.cases, 0);
+  EXPECT_LT(r.cases, 100000);
+  EXPECT_EQ(r.reference_cases, 0);
+  EXPECT_GT(r.mean_us, 0.0);
+  EXPECT_GE(r.max_us, r.p99_us);
+  // stopped before the first case: no figures, no crash
+  options.stop = [] { return true; };
+  const OtgValidationResult none = run_otg_validation(options);
+  EXPECT_TRUE(none.interrupted);
+  EXPECT_EQ(none.cases, 0);
+  EXPECT_EQ(none.mean_us, 0.0);
+}
+
 TEST(JerkLimitedValidation, RejectsBadOptions) {
   OtgValidationOptions options;
   options.cases = 0;

@@ -110,8 +110,10 @@ std::vector<std::unique_ptr<Controller>> default_benchmark_controllers(const Cha
 /// Runs the protocol for @p controllers (torque controllers on the same chain as @p chain; the
 /// real-time runs use a default `OperationalSpaceController`).
 /// @throws Error when steps < 1, warmup < 0, amplitude < 0 or frequency ≤ 0 (or not finite), when
-/// a controller is not a torque controller or has another chain size, or when a chain joint is
-/// not driven by a motor (torque actuators: load the `_torque` variant of a bundled robot).
+/// a controller is not a torque controller or has another chain size, when a chain joint is
+/// not driven by a motor (torque actuators: load the `_torque` variant of a bundled robot), or
+/// when the frame hangs from a joint the chain does not move (a free or ball joint: the base
+/// would fall or swing, warned about by MuJoCo or not, and the figures would measure that).
 /// A bad state reported by MuJoCo is not thrown: the run stops at the end of that phase with
 /// `ControlBenchmarkStatus::faulted` (MuJoCo's warning counters are read after every phase).
 ControlBenchmarkResult run_control_benchmark(const Chain& chain,

@@ -26,12 +26,18 @@ struct OtgValidationOptions {
   bool thread_cpu_clock = false;
   /// Heap allocations of the process so far (optional; counted around each calculation).
   std::function<std::uint64_t()> allocation_count;
-  /// Called now and then with (cases done, cases) (optional).
+  /// Called now and then with (cases done, cases), reference cases counted after the n-DoF
+  /// cases: (cases + k, cases + reference_cases) (optional).
   std::function<void(int, int)> progress;
+  /// Asked every thousand cases and before every reference case whether to stop (e.g.
+  /// `interrupt_requested` after Ctrl-C; optional). A stop ends the batch with the figures of
+  /// the cases done so far and `OtgValidationResult::interrupted` set.
+  std::function<bool()> stop;
 };
 
 /// What was measured.
 struct OtgValidationResult {
+  bool interrupted = false;            ///< the stop request ended the batch early
   int cases = 0;                       ///< n-DoF cases run (each interface)
   int dofs = 0;                        ///< DoFs per case
   int braking_dofs = 0;                ///< DoFs that started beyond their limits
