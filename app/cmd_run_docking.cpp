@@ -21,7 +21,10 @@ constexpr double kDockDeg = std::numbers::pi / 180.0;
 
 /// The laws named by --controller: one, or every law built ("all").
 std::vector<DockingLaw> docking_laws_of(const std::string& name) {
-  if (name == "all") return {DockingLaw::cic, DockingLaw::se3};  // hqp-ac: not built yet
+  if (name == "all") {
+    const std::span<const DockingLaw> all = docking_laws();
+    return {all.begin(), all.end()};
+  }
   try {
     return {docking_law(name)};
   } catch (const Error& e) {
@@ -93,6 +96,7 @@ DockingOptions base_options(const DockingCliOptions& cli) {
     if (!(k.array() > 0.0).all()) throw UsageError("--stiffness values must be positive");
     o.controller.se3_stiffness = k;
     o.controller.cic_stiffness = k;
+    o.controller.hqp_stiffness = k;  // K0
   }
   if (!cli.offset.empty()) {
     o.offset = {cli.offset[0] * 1e-3, cli.offset[1] * 1e-3, cli.offset[2] * kDockDeg};

@@ -90,14 +90,13 @@ DockingReport run_docking(const DockingOptions& options) {
   Simulation sim(scene->robot, docking_detail::torque_simulation(options.max_acceleration));
   DockingControllerOptions controller_options = options.controller;
   controller_options.control_period = sim.control_period();
-  controller_options.hqp_preload = options.motion.preload;  // HQP-AC's own preload
-  controller_options.hqp_preload_ramp = options.motion.preload_ramp;
   DockingController controller(*scene, controller_options);
   sim.add_controller(controller);
   std::vector<double> qpos(static_cast<std::size_t>(scene->robot.nq()), 0.0);
   scene->chain.scatter(report.plan.q_start, qpos.data());
   const std::vector<double> qvel(static_cast<std::size_t>(scene->robot.nv()), 0.0);
   sim.set_state(qpos, qvel);
+  docking_detail::start_held(sim, scene->chain);
   report.control_period = sim.control_period();
 
   std::optional<RunVideo> video;

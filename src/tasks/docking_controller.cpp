@@ -7,6 +7,7 @@
 #include "docking_checks.hpp"
 #include "mjarm/error.hpp"
 #include "mjarm/lie/se3.hpp"
+#include "mjarm/trajectory/smoothstep.hpp"
 
 namespace mjarm {
 
@@ -59,9 +60,10 @@ void check(const DockingControllerOptions& o) {
                                    "release_duration [s]");
   require_gains(o.cic_stiffness, "cic_stiffness");
   require_gains(o.hqp_stiffness, "hqp_stiffness");
-  docking_detail::require_non_negative(o.hqp_preload, "docking controller", "hqp_preload [N]");
-  docking_detail::require_positive(o.hqp_preload_ramp, "docking controller",
-                                   "hqp_preload_ramp [s]");
+  if (o.law == DockingLaw::hqp_ac && (o.release_axes[3] || o.release_axes[4] || o.release_axes[5]))
+    throw Error(
+        "docking controller: hqp-ac releases translational axes only (release_axes rx, ry, rz "
+        "must be off)");
   docking_detail::require_positive(o.cic_damping_ratio, "docking controller", "cic_damping_ratio");
   docking_detail::require_non_negative(o.nullspace_stiffness, "docking controller",
                                        "nullspace_stiffness");
@@ -102,7 +104,7 @@ DockingController::DockingController(const DockingScene& scene,
       o.damping = (2.0 * options.se3_damping_ratio *
                    options.se3_inertia.cwiseProduct(options.se3_stiffness).cwiseSqrt())
                       .asDiagonal();
-      o.release.axes = options.se3_release;
+      o.release.axes = options.release_axes;
       o.release.contact_force = options.release_force;
       o.release.duration = options.release_duration;
       o.nullspace_stiffness = options.nullspace_stiffness;
@@ -133,15 +135,14 @@ DockingController::DockingController(const DockingScene& scene,
     case DockingLaw::hqp_ac: {
       HqpAcOptions o;
       o.compliance.stiffness = options.hqp_stiffness.asDiagonal();
-      o.preload.force = options.hqp_preload;
-      o.preload.axis = Eigen::Vector3d::UnitZ();  // the peg points along E's z
-      o.preload.ramp_time = options.hqp_preload_ramp;
+      o.preload.force = 0.0;  // the task's F_ext instead (compute_hqp)
       o.max_velocity = iiwa14_max_velocity();
       o.friction_feed_forward = options.friction_feed_forward;
       o.friction.mode = options.friction_mode;
       o.force = source_options(options);
       hqp_ = std::make_unique<HqpAcController>(chain, o);
       law_ = hqp_.get();
+      task_space_.emplace(chain.size(), 6, o.task_space);  // as the law's own
       break;
     }
   }
@@ -177,6 +178,8 @@ DockingController::~DockingController() = default;
 void DockingController::reset() noexcept {
   law_->reset();
   if (source_) source_->reset();
+  release_started_ = false;
+  release_ = 0.0;
   wrench_.setZero();
   bad_wrench_ticks_ = 0;
 }
@@ -185,15 +188,55 @@ void DockingController::compute(const mjData& data, const Reference& reference,
                                 JointCommand& command) noexcept {
   if (command.value.size() != dynamics_.size()) return;
   if (se3_) return compute_se3(data, reference, command);
-  law_->compute(data, reference, command);
-  if (cic_) {
-    wrench_ = cic_->measured_wrench();
-    if (cic_->wrench_source().status() != WrenchStatus::ok) ++bad_wrench_ticks_;
-  } else {
-    wrench_ = hqp_->measured_wrench();
-    stiffness_ = hqp_->compliance().stiffness().diagonal();
-    if (!hqp_->last_tick().wrench_valid) ++bad_wrench_ticks_;
+  if (hqp_) return compute_hqp(data, reference, command);
+  cic_->compute(data, reference, command);
+  wrench_ = cic_->measured_wrench();
+  if (cic_->wrench_source().status() != WrenchStatus::ok) ++bad_wrench_ticks_;
+}
+
+void DockingController::copy_reference(const Reference& reference) noexcept {
+  const Eigen::Index n = dynamics_.size();
+  reference_.task = reference.task;
+  reference_.gripper = reference.gripper;
+  if (reference.joint.q.size() == n) {
+    reference_.joint.q = reference.joint.q;
+    reference_.joint.qd = reference.joint.qd;
+    reference_.joint.qdd = reference.joint.qdd;
   }
+}
+
+void DockingController::compute_hqp(const mjData& data, const Reference& reference,
+                                    JointCommand& command) noexcept {
+  dynamics_.update(data);
+  copy_reference(reference);
+  // the preload: A_d + Λ⁻¹·F_ext is the law's own b with F_p = F_ext (same Λ⁻¹, unfloored)
+  const Vector6d& F_ext = reference.task.F_ext;
+  if (F_ext.allFinite() && !F_ext.isZero(0.0) && dynamics_.q().allFinite() &&
+      task_space_->update(dynamics_) != TaskSpaceStatus::not_positive_definite)
+    reference_.task.A_WE.noalias() += task_space_->lambda_inverse() * F_ext;
+  // the release: the target follows E along the released axes, K_r acts on (I − s·P)·e
+  if (!release_started_ &&
+      hqp_->measured_wrench().head<3>().norm() >= options_.release_force) {  // previous tick
+    release_started_ = true;
+    release_start_ = data.time;
+  }
+  release_ = release_started_
+                 ? smoothstep((data.time - release_start_) / options_.release_duration).s
+                 : 0.0;
+  const Pose& X_WE = dynamics_.pose();
+  Eigen::Matrix3d P = Eigen::Matrix3d::Zero();
+  for (int i = 0; i < 3; ++i)
+    if (options_.release_axes[static_cast<std::size_t>(i)])
+      P.noalias() += X_WE.R.col(i) * X_WE.R.col(i).transpose();
+  if (release_ > 0.0 && X_WE.p.allFinite())
+    reference_.task.X_WE.p += release_ * (P * (X_WE.p - reference.task.X_WE.p));
+  hqp_->compute(data, reference_, command);
+  wrench_ = hqp_->measured_wrench();
+  const Matrix6d& K = hqp_->compliance().stiffness();
+  stiffness_ = K.diagonal();
+  stiffness_.head<3>() =
+      (K.topLeftCorner<3, 3>() * (Eigen::Matrix3d::Identity() - release_ * P)).diagonal();
+  if (!hqp_->last_tick().wrench_valid) ++bad_wrench_ticks_;
 }
 
 void DockingController::compute_se3(const mjData& data, const Reference& reference,
@@ -211,13 +254,7 @@ void DockingController::compute_se3(const mjData& data, const Reference& referen
   F_E.tail<3>() = X_WE.R.transpose() * wrench_.tail<3>();
   se3_->set_measured_wrench(F_E);
   // the preload: shift the target so that the spring pushes with F_ext (D's axes)
-  reference_.task = reference.task;
-  reference_.gripper = reference.gripper;
-  if (reference.joint.q.size() == n) {
-    reference_.joint.q = reference.joint.q;
-    reference_.joint.qd = reference.joint.qd;
-    reference_.joint.qdd = reference.joint.qdd;
-  }
+  copy_reference(reference);
   const Vector6d& F_ext = reference.task.F_ext;
   if (F_ext.allFinite() && !F_ext.isZero(0.0)) {
     const Eigen::Matrix3d& R_WD = reference.task.X_WE.R;
@@ -227,7 +264,7 @@ void DockingController::compute_se3(const mjData& data, const Reference& referen
     Vector6d shift = Vector6d::Zero();
     const Matrix6d& K = se3_->stiffness();
     for (int i = 0; i < 6; ++i)
-      if (!options_.se3_release[static_cast<std::size_t>(i)] && K(i, i) > 0.0)
+      if (!options_.release_axes[static_cast<std::size_t>(i)] && K(i, i) > 0.0)
         shift[i] = F_D[i] / K(i, i);
     reference_.task.X_WE = reference.task.X_WE * se3::exp(shift);
   }

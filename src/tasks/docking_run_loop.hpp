@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <cstdio>
 
+#include "mjarm/model/chain.hpp"
 #include "mjarm/sim/interrupt.hpp"
 #include "mjarm/sim/recorder.hpp"
 #include "mjarm/sim/simulation.hpp"
@@ -61,6 +62,24 @@ RunResult run_ticks(Simulation& sim, ReferenceSource& source, Recorder* recorder
   }
   if (recorder != nullptr) recorder->on_run_end(run);
   return run;
+}
+
+/// Makes the start of @p sim (set by `set_state`, at rest) one where the arm is already held:
+/// each motor of @p chain commands the bias torque (gravity, at rest) and mj_forward recomputes
+/// the sensors. The first tick's force/torque reading is one physics step old; without this it
+/// belongs to the arm falling under zero torque, where the sensor carries nothing and reads the
+/// whole tool weight as an external force (2.1 N), which latched HQP-AC's contact and its preload
+/// in free space. A real arm's controller holds it before the task begins.
+inline void start_held(Simulation& sim, const Chain& chain) {
+  const mjModel& m = sim.model();
+  mjData& d = sim.data();
+  for (int i = 0; i < chain.size(); ++i) {
+    const std::optional<int> a = chain.actuator(i);
+    if (!a) continue;
+    const double gain = m.actuator_gear[6 * *a] * m.actuator_gainprm[mjNGAIN * *a];
+    if (gain != 0.0) d.ctrl[*a] = d.qfrc_bias[chain.dof_address(i)] / gain;
+  }
+  sim.forward();
 }
 
 /// A torque-mode simulation of @p robot at its own timestep with the divergence bound

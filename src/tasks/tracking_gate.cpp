@@ -174,6 +174,7 @@ TrackingGateReport run_tracking_gate(const TrackingGateOptions& options) {
   std::vector<double> qpos(static_cast<std::size_t>(robot.nq()), 0.0);
   scene->chain.scatter(q_start, qpos.data());
   sim.set_state(qpos, std::vector<double>(static_cast<std::size_t>(robot.nv()), 0.0));
+  docking_detail::start_held(sim, scene->chain);
   GateSource source(options, report.X_start, q_start, sim.uses_rk4() ? 0.0 : 0.5 * sim.timestep());
 
   const int tip = robot.site(DockingNames::tip);

@@ -19,6 +19,7 @@
 #include "mjarm/control/wrench_source.hpp"
 #include "mjarm/dynamics/chain_dynamics.hpp"
 #include "mjarm/dynamics/friction_feed_forward.hpp"
+#include "mjarm/dynamics/task_space.hpp"
 #include "mjarm/lie/types.hpp"
 #include "mjarm/tasks/docking_scene.hpp"
 
@@ -49,7 +50,7 @@ enum class ForceSource {
 const char* to_string(ForceSource source) noexcept;
 
 /// Gains and settings, per law where they differ (docs/docking.md lists the tuned values and
-/// why). Matrices act on [x, y, z, rx, ry, rz]: E's axes for se3, world axes for cic.
+/// why). Matrices act on [x, y, z, rx, ry, rz]: E's axes for se3, world axes for cic and hqp-ac.
 struct DockingControllerOptions {
   DockingLaw law = DockingLaw::se3;
   ForceSource source = ForceSource::sensor;
@@ -63,10 +64,13 @@ struct DockingControllerOptions {
   Vector6d se3_stiffness =
       (Vector6d() << 1000.0, 1000.0, 1000.0, 60.0, 60.0, 60.0).finished();  ///< K [N/m; N·m/rad]
   double se3_damping_ratio = 1.0;  ///< D = 2ζ·√(A·K) per axis
-  /// The axes released on contact (E's x and y: the peg yields sideways to the chamfer).
-  std::array<bool, 6> se3_release{true, true, false, false, false, false};
-  double release_force = 3.0;      ///< ‖f‖ that starts the release [N]
-  double release_duration = 0.25;  ///< smoothstep [s]
+  // ---- se3 and hqp-ac
+  /// The axes released on contact, E's own [x, y, z, rx, ry, rz] (E's x and y: the peg yields
+  /// sideways to the chamfer and to the bore). se3: its stiffness on them goes to zero; hqp-ac
+  /// (translational axes only): the reference follows E along them (see `DockingController`).
+  std::array<bool, 6> release_axes{true, true, false, false, false, false};
+  double release_force = 3.0;      ///< measured ‖f‖ that starts the release [N] (> 0)
+  double release_duration = 0.25;  ///< smoothstep [s] (> 0)
   // ---- cic
   Vector6d cic_stiffness =
       (Vector6d() << 1000.0, 1000.0, 1000.0, 60.0, 60.0, 60.0).finished();  ///< K [N/m; N·m/rad]
@@ -74,11 +78,6 @@ struct DockingControllerOptions {
   // ---- hqp-ac
   /// K0 [N/m; N·m/rad] (world axes); in free space K_r = K0/2, in contact down to 0.3·K0.
   Vector6d hqp_stiffness = (Vector6d() << 1500.0, 1500.0, 1500.0, 150.0, 150.0, 150.0).finished();
-  /// Its own preload along E's z (the insertion axis), ramped in over `hqp_preload_ramp` once
-  /// the measured ‖f‖ reaches 2 N [N] (≥ 0). HQP-AC does not read reference.task.F_ext: the run
-  /// sets this from `DockingMotion::preload`.
-  double hqp_preload = 0.0;
-  double hqp_preload_ramp = 0.3;  ///< [s] (> 0)
   // ---- all
   double nullspace_stiffness = 10.0;  ///< posture toward reference.joint.q [N·m/rad]
   double nullspace_damping = 5.0;     ///< [N·m·s/rad]
@@ -101,8 +100,15 @@ void check(const DockingControllerOptions& options);
 /// - **cic**: `CartesianImpedanceController` (natural inertia, integral on with joint friction,
 ///   friction feed-forward), owning its source; the preload reference.task.F_ext fed forward.
 /// - **hqp-ac**: `HqpAcController` (adaptive compliance, two QPs with hard bounds; the iiwa14's
-///   joint speed limits, the motors' torque ranges), owning its source; its own preload
-///   (`hqp_preload`).
+///   joint speed limits, the motors' torque ranges), owning its source. Its reference gets two
+///   things from this wrapper: the preload reference.task.F_ext folded into the acceleration
+///   target, A_d + Λ⁻¹·F_ext (exactly the force F_p of its b = A_d + Λ⁻¹·(F_r + F_p) − J̇·q̇, at
+///   the hold as for the other laws; its own contact-latched preload is off), and the release:
+///   once the measured ‖f‖ of the previous tick reaches `release_force`, the target position is
+///   moved by s(t)·P·(p − p_d), P the projector on E's released axes, s a smoothstep over
+///   `release_duration`, so that K_r acts on (I − s·P)·e. K_r ≥ 0.3·K0 by design: without the
+///   release its spring holds the peg against the wall of a bore whose believed axis is off by
+///   more than the radial clearance (docs/docking.md).
 /// - **se3**: `Se3ImpedanceController`, fed by this wrapper: the sensor's wrench through a
 ///   first-order low-pass (`sensor_cutoff`), in E's axes; the preload as a shift of the target by
 ///   K⁻¹·F_ext on the axes it keeps (the SE(3) law has no force feed-forward: its spring makes
@@ -131,7 +137,8 @@ class DockingController final : public Controller {
   /// The measured wrench the law used at the last compute (world axes, about E) [N; N·m].
   const Vector6d& measured_wrench() const noexcept { return wrench_; }
   /// The diagonal of the stiffness in force at the last compute [N/m; N·m/rad] (se3: K(t)
-  /// during a release; hqp-ac: the adaptive K_r; cic: K).
+  /// during a release; hqp-ac: the adaptive K_r, (I − s·P)·K_r during the release, world axes;
+  /// cic: K).
   const Vector6d& stiffness() const noexcept { return stiffness_; }
   /// Ticks whose sensor reading was not finite (taken as zero, or the last good value for se3).
   std::int64_t bad_wrench_ticks() const noexcept { return bad_wrench_ticks_; }
@@ -145,6 +152,9 @@ class DockingController final : public Controller {
 
  private:
   void compute_se3(const mjData& data, const Reference& reference, JointCommand& command) noexcept;
+  void compute_hqp(const mjData& data, const Reference& reference, JointCommand& command) noexcept;
+  /// reference_ = @p reference (no allocation after the first tick).
+  void copy_reference(const Reference& reference) noexcept;
 
   DockingControllerOptions options_;
   ChainDynamics dynamics_;
@@ -153,9 +163,12 @@ class DockingController final : public Controller {
   std::unique_ptr<HqpAcController> hqp_;
   Controller* law_ = nullptr;
   std::optional<WrenchSource> source_;  // se3 only: the others own theirs
+  std::optional<TaskSpaceDynamics> task_space_;  // hqp-ac: Λ⁻¹ for the preload
+  bool release_started_ = false;                 // hqp-ac's release
+  double release_start_ = 0.0;
+  double release_ = 0.0;
   FrictionFeedForward friction_;
   double alpha_ = 1.0;  // low-pass gain per control tick
-  bool filtered_ = false;
   Vector6d wrench_ = Vector6d::Zero();
   Vector6d stiffness_ = Vector6d::Zero();
   std::int64_t bad_wrench_ticks_ = 0;
