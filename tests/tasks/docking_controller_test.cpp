@@ -59,7 +59,7 @@ TEST(DockingController, AMissingForceTorqueSensorNamesTheSite) {
   DockingSceneOptions options;
   options.ft_sensor = false;
   const DockingScene scene = build_docking_scene(options);
-  for (const DockingLaw law : {DockingLaw::se3, DockingLaw::cic}) {
+  for (const DockingLaw law : docking_laws()) {
     DockingControllerOptions o;
     o.law = law;
     o.source = ForceSource::sensor;
@@ -118,6 +118,111 @@ TEST(DockingController, BadOptionsAreNamed) {
   EXPECT_TRUE(contains(message([](auto& o) { o.release_force = -2.0; }), "release_force"));
   EXPECT_TRUE(contains(message([](auto& o) { o.nullspace_damping = -1.0; }), "nullspace_damping"));
   EXPECT_TRUE(contains(message([](auto& o) { o.control_period = 0.0; }), "control_period"));
+  EXPECT_TRUE(contains(message([](auto& o) { o.hqp_stiffness[3] = 0.0; }), "hqp_stiffness rx"));
+  EXPECT_TRUE(contains(message([](auto& o) { o.release_duration = 0.0; }), "release_duration"));
+  const std::string rotational = message([](auto& o) {
+    o.law = DockingLaw::hqp_ac;
+    o.release_axes[5] = true;
+  });
+  EXPECT_TRUE(contains(rotational, "translational axes only")) << rotational;
+}
+
+TEST(DockingController, ANonFiniteReadingNeverReachesTheTorqueOfCicOrHqpAc) {
+  const mjModel& m = plain_scene().robot.model();
+  const int force = m.sensor_adr[mj_name2id(&m, mjOBJ_SENSOR, DockingNames::force)];
+  for (const DockingLaw law : {DockingLaw::cic, DockingLaw::hqp_ac}) {
+    DockingControllerOptions o;
+    o.law = law;
+    DockingController controller(plain_scene(), o);
+    State s(plain_scene(), start_q(), Eigen::VectorXd::Zero(7));
+    JointCommand good{CommandKind::torque, Eigen::VectorXd::Zero(7)};
+    controller.compute(*s.d, s.reference, good);
+    JointCommand command = good;
+    for (const double bad : {std::nan(""), -std::numeric_limits<double>::infinity()}) {
+      s.d->sensordata[force] = bad;
+      controller.compute(*s.d, s.reference, command);
+      EXPECT_TRUE(command.value.allFinite()) << to_string(law);
+      EXPECT_TRUE(controller.measured_wrench().allFinite()) << to_string(law);
+      // taken as zero: at rest the torque is the one of a good reading (the peg's weight out)
+      EXPECT_LT((command.value - good.value).norm(), 1e-6) << to_string(law);
+    }
+    EXPECT_EQ(controller.bad_wrench_ticks(), 2) << to_string(law);
+  }
+}
+
+TEST(DockingController, HqpAcGetsThePreloadAsItsOwnForceTermThroughTheTarget) {
+  DockingControllerOptions o;
+  o.law = DockingLaw::hqp_ac;
+  o.source = ForceSource::observer;
+  DockingController with(plain_scene(), o), without(plain_scene(), o);
+  State s(plain_scene(), start_q(), Eigen::VectorXd::Zero(7));
+  JointCommand a{CommandKind::torque, Eigen::VectorXd::Zero(7)};
+  JointCommand b = a;
+  without.compute(*s.d, s.reference, b);
+  s.reference.task.F_ext << 0.0, 0.0, -5.0, 0.0, 0.0, 0.0;
+  with.compute(*s.d, s.reference, a);
+  // Λ⁻¹ = J·M⁻¹·Jᵀ from MuJoCo directly (the tip site's Jacobian, the dense mass matrix)
+  const mjModel& m = plain_scene().robot.model();
+  Eigen::MatrixXd M(m.nv, m.nv), Jp(3, m.nv), Jr(3, m.nv);
+  Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> Mr(m.nv, m.nv),
+      jp(3, m.nv), jr(3, m.nv);
+  mj_fullM(&m, Mr.data(), s.d->qM);
+  mj_jacSite(&m, s.d.get(), jp.data(), jr.data(), mj_name2id(&m, mjOBJ_SITE, DockingNames::tip));
+  Eigen::MatrixXd J(6, m.nv);
+  J << jp, jr;
+  M = Mr;
+  const Matrix6d Lambda_inv = J * M.ldlt().solve(J.transpose());
+  const Vector6d expected = Lambda_inv * s.reference.task.F_ext;
+  const Vector6d got = with.hqp_ac()->target() - without.hqp_ac()->target();
+  EXPECT_LT((got - expected).norm(), 1e-9 * expected.norm()) << got.transpose();
+  EXPECT_LT(expected.head<3>().dot(Eigen::Vector3d::UnitZ()), 0.0);  // it accelerates E down
+  // τ changes by Jᵀ·F_ext when no bound is active (the main QP is exact, ε aside)
+  const Eigen::VectorXd dtau = a.value - b.value;
+  EXPECT_LT((dtau - J.transpose() * s.reference.task.F_ext).norm(), 1e-3) << dtau.transpose();
+}
+
+TEST(DockingController, HqpAcReleasesTheLateralAxesOnContact) {
+  DockingControllerOptions o;
+  o.law = DockingLaw::hqp_ac;
+  o.sensor_cutoff = std::numeric_limits<double>::infinity();
+  DockingController controller(plain_scene(), o);
+  State s(plain_scene(), start_q(), Eigen::VectorXd::Zero(7));
+  s.reference.task.X_WE.p += Eigen::Vector3d(0.004, -0.003, 0.002);  // 5 mm aside, 2 mm up
+  JointCommand command{CommandKind::torque, Eigen::VectorXd::Zero(7)};
+  controller.compute(*s.d, s.reference, command);
+  const double K0 = o.hqp_stiffness[0];
+  EXPECT_NEAR(controller.stiffness()[0], 0.5 * K0, 1e-9);  // free space: K_r = K0/2
+  // a 6 N push upwards on the peg (the sensor reads its opposite, plus the weight it carries)
+  const mjModel& m = plain_scene().robot.model();
+  const int force = m.sensor_adr[mj_name2id(&m, mjOBJ_SENSOR, DockingNames::force)];
+  const int site = m.sensor_objid[mj_name2id(&m, mjOBJ_SENSOR, DockingNames::force)];
+  const Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>> R_WS(s.d->site_xmat +
+                                                                            9 * site);
+  const Eigen::Vector3d reading = Eigen::Map<const Eigen::Vector3d>(s.d->sensordata + force);
+  const Eigen::Vector3d push = R_WS.transpose() * Eigen::Vector3d(0.0, 0.0, 6.0);
+  Eigen::Map<Eigen::Vector3d>(s.d->sensordata + force) = reading - push;
+  const int ticks = static_cast<int>(std::lround(o.release_duration / 0.002)) + 2;
+  for (int k = 0; k < ticks; ++k) {
+    s.d->time += 0.002;
+    controller.compute(*s.d, s.reference, command);
+  }
+  EXPECT_GT(controller.measured_wrench()[2], 5.9);
+  // released: no stiffness on E's x, y (world x, y with the peg pointing down), K_r on z
+  EXPECT_LT(controller.stiffness().head<2>().norm(), 1e-9);
+  EXPECT_NEAR(controller.stiffness()[2], controller.hqp_ac()->compliance().stiffness()(2, 2), 1e-9);
+  // the law's position error is the vertical 2 mm only
+  const auto names = controller.hqp_ac()->internal_names();
+  const auto values = controller.hqp_ac()->internal_values();
+  const auto it = std::find(names.begin(), names.end(), "position_error");
+  ASSERT_NE(it, names.end());
+  EXPECT_NEAR(values[static_cast<std::size_t>(it - names.begin())], 0.002, 1e-6);
+  EXPECT_TRUE(command.value.allFinite());
+  // reset forgets the release
+  controller.reset();
+  s.d->time = 0.0;
+  Eigen::Map<Eigen::Vector3d>(s.d->sensordata + force) = reading;
+  controller.compute(*s.d, s.reference, command);
+  EXPECT_NEAR(controller.stiffness()[0], 0.5 * K0, 1e-9);
 }
 
 TEST(DockingController, ThePreloadShiftsTheSe3TargetByForceOverStiffness) {
@@ -165,10 +270,11 @@ TEST(DockingController, TheFrictionFeedForwardAddsExactlyTheModelsFrictionAlongT
 
 TEST(DockingController, ComputeAllocatesNothing) {
   for (const ForceSource source : {ForceSource::sensor, ForceSource::observer}) {
-    for (const DockingLaw law : {DockingLaw::se3, DockingLaw::cic}) {
+    for (const DockingLaw law : docking_laws()) {
       DockingControllerOptions o;
       o.law = law;
       o.source = source;
+      o.release_force = 1e-9;  // hqp-ac: the release path runs too
       DockingController controller(plain_scene(), o);
       State s(plain_scene(), start_q(), Eigen::VectorXd::Constant(7, 0.01));
       s.reference.task.F_ext[2] = -3.0;

@@ -98,6 +98,36 @@ TEST(Docking, SensorlessSe3SeatsAndHoldsThePreload) {
   EXPECT_EQ(r.bad_wrench_ticks, 0);
 }
 
+TEST(Docking, HqpAcSeatsThePegWithTheSensorAndSensorless) {
+  for (const auto& [dx, dy, dyaw, source] : {std::tuple{6.0, -6.0, 15.0, ForceSource::sensor},
+                                             std::tuple{0.0, 0.0, 0.0, ForceSource::sensor},
+                                             std::tuple{-6.0, 6.0, -15.0, ForceSource::observer}}) {
+    DockingOptions o = quick(dx, dy, dyaw);
+    o.controller.law = DockingLaw::hqp_ac;
+    o.controller.source = source;
+    const DockingReport r = run_docking(o);
+    EXPECT_TRUE(r.ok()) << dx << " " << dy << " " << dyaw << ": " << why(r);
+    const DockingMetrics& m = r.metrics;
+    EXPECT_LE(m.peak_force, 30.0) << why(r);
+    // the task's preload, fed forward at the hold, is the steady force (also with no offset,
+    // where nothing touches the peg before the bottom)
+    EXPECT_NEAR(m.steady_axial_force, o.motion.preload, 0.05 * o.motion.preload) << why(r);
+    // the arm starts held: the first reading is of the peg at rest (it was its whole weight,
+    // 2.1 N, read from an arm falling under zero torque), and the free motion tracks
+    EXPECT_LT(r.samples.front().F_measured.norm(), 0.05) << r.samples.front().F_measured;
+    EXPECT_LT(m.position_rms, 0.02e-3);
+    const DockingSample& last = r.samples.back();
+    const HqpAcOptions defaults;
+    // K_r at its floor (E's x, y tilt by thousandths of a degree from the world's: 1e-6 N/m)
+    EXPECT_NEAR(last.stiffness[2], 0.3 * defaults.compliance.stiffness(2, 2), 1e-3);
+    if (dx != 0.0) {
+      EXPECT_LT(last.stiffness.head<2>().norm(), 1e-3);  // released: E's x, y are world x, y here
+    } else {
+      EXPECT_GT(last.stiffness[0], 0.0);  // nothing touched the peg before the bottom
+    }
+  }
+}
+
 TEST(Docking, ASensorControllerOnASceneWithoutTheSensorStopsBeforeTheRun) {
   DockingSceneOptions scene_options;
   scene_options.ft_sensor = false;
