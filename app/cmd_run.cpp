@@ -393,7 +393,7 @@ Command add_run_command(CLI::App& root) {
               }
               return run_docking_scenario(o->docking,
                                           controller->count() > 0 ? o->controller : "se3", video,
-                                          o->record, o->json);
+                                          o->record, o->json, kMaxVideoFrames);
             }
             for (const CLI::Option* docking : docking_only)
               if (docking->count() > 0)

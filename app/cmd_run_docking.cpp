@@ -2,6 +2,7 @@
 // grid per controller in parallel, or the free-space tracking gate.
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <iostream>
 #include <numbers>
@@ -11,6 +12,7 @@
 #include "mjarm/sim/interrupt.hpp"
 #include "mjarm/tasks/docking_grid.hpp"
 #include "mjarm/tasks/docking_plot.hpp"
+#include "mjarm/tasks/docking_task.hpp"
 #include "mjarm/tasks/tracking_gate.hpp"
 
 namespace mjarm::cli {
@@ -150,8 +152,10 @@ void print_docking(std::ostream& os, const DockingReport& r) {
         {"recording", r.recording.string() +
                           (r.recording_error.empty() ? "" : " (not written: see the error)")});
   if (!r.video.empty())
-    fields.push_back({"video", r.video.string() + " (" + std::to_string(r.video_frames) +
-                                   " frames; " + r.video_camera + ")"});
+    fields.push_back({"video", r.video.string() + " (" +
+                                   (r.video_written ? std::to_string(r.video_frames) + " frames"
+                                                    : std::string("not written: see the error")) +
+                                   "; " + r.video_camera + ")"});
   print_fields(os, fields, 2);
 }
 
@@ -176,6 +180,7 @@ Json docking_json(const DockingReport& r) {
       {"video", r.video.empty() ? Json(nullptr)
                                 : Json{{"path", r.video.string()},
                                        {"frames", r.video_frames},
+                                       {"written", r.video_written},
                                        {"camera", r.video_camera},
                                        {"error", r.video_error.empty() ? Json(nullptr)
                                                                        : Json(r.video_error)}}}};
@@ -417,8 +422,21 @@ void add_docking_options(CLI::App& app, DockingCliOptions& o) {
 }
 
 void run_docking_scenario(const DockingCliOptions& cli, const std::string& controller,
-                          const DockingVideo& video, const std::string& record, bool json) {
+                          const DockingVideo& video, const std::string& record, bool json,
+                          double max_video_frames) {
   const std::vector<DockingLaw> laws = docking_laws_of(controller);
+  if (!video.path.empty()) {
+    // the work before it starts: every simulated second of the run films --fps frames
+    const std::array<double, 3> t =
+        docking_phase_times(base_options(cli).motion, DockingGeometry{});
+    const double seconds = t[0] + t[1] + t[2];
+    const double frames = std::floor(seconds * video.options.fps) + 1.0;
+    if (frames > max_video_frames)
+      throw UsageError("--video at --fps " + compact(video.options.fps) + " of a " +
+                       fixed(seconds, 1) + " s docking run would film " + compact(frames) +
+                       " frames; at most " + compact(max_video_frames) +
+                       " (lower --fps or raise --insertion-speed)");
+  }
   if ((cli.grid || cli.gate) &&
       (!cli.offset.empty() || !record.empty() || !video.path.empty() || !cli.plot.empty()))
     throw UsageError(

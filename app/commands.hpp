@@ -98,9 +98,11 @@ struct DockingCliOptions {
 };
 /// Registers the docking options on `mjarm run` (cmd_run_docking.cpp).
 void add_docking_options(CLI::App& app, DockingCliOptions& options);
-/// `mjarm run docking --controller C …`: one run, `--grid` or `--gate`.
+/// `mjarm run docking --controller C …`: one run, `--grid` or `--gate`; a video of more than
+/// @p max_video_frames frames is refused before the work.
 void run_docking_scenario(const DockingCliOptions& options, const std::string& controller,
-                          const DockingVideo& video, const std::string& record, bool json);
+                          const DockingVideo& video, const std::string& record, bool json,
+                          double max_video_frames);
 
 /// Everything `info` reports about a model, as JSON.
 Json model_json(const Robot& robot);

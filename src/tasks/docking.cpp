@@ -154,6 +154,7 @@ DockingReport run_docking(const DockingOptions& options) {
       report.video_error = e.what();
     }
     report.video_frames = video->frames();
+    report.video_written = video->complete();
   }
   return report;
 }

@@ -104,18 +104,24 @@ DockingPlan plan_docking(const DockingScene& scene, const DockingOffset& offset,
   plan.X_start = above(scene, plan.X_WS, motion.start_height);
   plan.X_standoff = above(scene, plan.X_WB, motion.standoff);
   plan.X_seated = scene.seated(plan.X_WB);
-  if (motion.reference == DockingReference::two_phase) {
-    plan.approach_time = motion.approach_time;
-    plan.insert_time = TrapezoidProfile(motion.standoff + plan.full_depth, motion.insertion_speed,
-                                        motion.insertion_acceleration)
-                           .duration();
-  } else {
-    plan.approach_time = motion.single_time;
-  }
-  plan.hold_time = motion.hold_time;
+  const std::array<double, 3> times = docking_phase_times(motion, g);
+  plan.approach_time = times[0];
+  plan.insert_time = times[1];
+  plan.hold_time = times[2];
 
   plan.q_start = docking_start_configuration(scene, plan.X_start);
   return plan;
+}
+
+std::array<double, 3> docking_phase_times(const DockingMotion& motion,
+                                          const DockingGeometry& geometry) {
+  check(motion);
+  if (motion.reference == DockingReference::single_segment)
+    return {motion.single_time, 0.0, motion.hold_time};
+  const double insert = TrapezoidProfile(motion.standoff + geometry.chamfer + geometry.bore_depth,
+                                         motion.insertion_speed, motion.insertion_acceleration)
+                            .duration();
+  return {motion.approach_time, insert, motion.hold_time};
 }
 
 Eigen::VectorXd docking_start_configuration(const DockingScene& scene, const Pose& X_WE) {

@@ -81,6 +81,7 @@ struct DockingReport {
   std::int64_t video_frames = 0;
   std::string video_camera{};
   std::string video_error{};
+  bool video_written = false;  ///< the MP4 is complete at its path (an old file is kept if not)
   bool ok() const noexcept { return outcome == DockingOutcome::seated; }
 };
 

@@ -92,6 +92,12 @@ struct DockingPlan {
   double duration() const noexcept { return approach_time + insert_time + hold_time; }
 };
 
+/// The phase durations of a run with @p motion in a socket of @p geometry: approach, insert
+/// (0 for single-segment), hold [s] (as `plan_docking` sets them).
+/// @throws Error for a bad motion.
+std::array<double, 3> docking_phase_times(const DockingMotion& motion,
+                                          const DockingGeometry& geometry);
+
 /// The arm at @p X_WE (E: the peg tip): pose IK from the `home` keyframe with a pull towards it
 /// (the start of a docking run and of the tracking gate).
 /// @throws Error naming the pose when IK does not converge.
