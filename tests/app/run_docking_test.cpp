@@ -87,7 +87,7 @@ TEST(RunDockingCli, BadCommandLinesAreRefusedBeforeTheWork) {
   expect_error({"run", "docking", "--plot", (file / "sub").string()}, 2, "--plot");
   expect_error({"run", "docking", "--video", (file / "sub.mp4").string()}, 2, "--video");
   expect_error({"run", "docking", "--record", (file / "sub").string()}, 2, "--record");
-  // a 65 s run (insertion at 1 mm/s) at 240 fps: 15 600 frames, refused before the work
+  // a 58 s run (insertion at 1 mm/s) at 240 fps: 13 925 frames, refused before the work
   const fs::path mp4 = scratch() / "dock_bound.mp4";
   expect_error(
       {"run", "docking", "--video", mp4.string(), "--fps", "240", "--insertion-speed", "0.001"}, 2,
