@@ -147,6 +147,10 @@ void print_docking(std::ostream& os, const DockingReport& r) {
       {"saturation", fixed(100.0 * m.saturation, 2) + " % of the ticks"}};
   if (r.bad_wrench_ticks > 0)
     fields.push_back({"bad sensor readings", std::to_string(r.bad_wrench_ticks)});
+  if (r.controller == "hqp-ac")
+    fields.push_back({"QP fallbacks", "least squares " + std::to_string(r.qp_least_squares) +
+                                          ", null space dropped " +
+                                          std::to_string(r.qp_null_space_dropped) + " ticks"});
   if (!r.recording.empty())
     fields.push_back(
         {"recording", r.recording.string() +
@@ -175,6 +179,8 @@ Json docking_json(const DockingReport& r) {
       {"end_time", r.run.end_time},
       {"metrics", metrics_json(r.metrics)},
       {"bad_wrench_ticks", r.bad_wrench_ticks},
+      {"qp_fallbacks",
+       {{"least_squares", r.qp_least_squares}, {"null_space_dropped", r.qp_null_space_dropped}}},
       {"recording", r.recording.empty() ? Json(nullptr) : Json(r.recording.string())},
       {"recording_error", r.recording_error.empty() ? Json(nullptr) : Json(r.recording_error)},
       {"video", r.video.empty() ? Json(nullptr)

@@ -135,6 +135,10 @@ DockingReport run_docking(const DockingOptions& options) {
   const DockingGoal goal{report.plan.X_WS, report.plan.full_depth};
   report.metrics = evaluate_docking(samples, goal, options.criteria);
   report.bad_wrench_ticks = controller.bad_wrench_ticks();
+  if (const HqpAcController* hqp = controller.hqp_ac()) {
+    report.qp_least_squares = hqp->counters().least_squares;
+    report.qp_null_space_dropped = hqp->counters().null_space_dropped;
+  }
   report.outcome = docking_outcome_of(report.run, report.metrics.seated);
   if (report.run.status != RunStatus::finished && report.run.status != RunStatus::duration_reached)
     report.metrics.failures.push_back(to_string(report.outcome));

@@ -63,6 +63,20 @@ TEST(RunDockingCli, OneRunSeatsAndReportsEveryFigure) {
   EXPECT_EQ(doc["plot"], (fs::absolute(plot) / "docking.png").string());
 }
 
+TEST(RunDockingCli, HqpAcReportsItsQpFallbacks) {
+  const json doc = run_json({"run", "docking", "--controller", "hqp-ac", "--insertion-speed",
+                             "0.02", "--sensorless", "--json"});
+  EXPECT_EQ(doc["controller"], "hqp-ac");
+  EXPECT_EQ(doc["source"], "observer");
+  EXPECT_EQ(doc["outcome"], "seated");
+  EXPECT_EQ(doc["qp_fallbacks"]["least_squares"], 0);
+  EXPECT_EQ(doc["qp_fallbacks"]["null_space_dropped"], 0);
+  const CliRun text = run_cli(
+      {"run", "docking", "--controller", "hqp-ac", "--insertion-speed", "0.02", "--sensorless"});
+  EXPECT_EQ(text.exit_code, 0) << text.err;
+  EXPECT_NE(text.out.find("QP fallbacks"), std::string::npos) << text.out;
+}
+
 TEST(RunDockingCli, BadCommandLinesAreRefusedBeforeTheWork) {
   expect_error({"run", "docking", "--offset", "60", "0", "0"}, 2, "within ±50 mm");
   expect_error({"run", "docking", "--offset", "0", "0", "200"}, 2, "DYAW within ±180°");

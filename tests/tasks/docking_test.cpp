@@ -116,6 +116,8 @@ TEST(Docking, HqpAcSeatsThePegWithTheSensorAndSensorless) {
     // 2.1 N, read from an arm falling under zero torque), and the free motion tracks
     EXPECT_LT(r.samples.front().F_measured.norm(), 0.05) << r.samples.front().F_measured;
     EXPECT_LT(m.position_rms, 0.02e-3);
+    EXPECT_EQ(r.qp_least_squares, 0);  // counted, and none here: every QP solved
+    EXPECT_EQ(r.qp_null_space_dropped, 0);
     const DockingSample& last = r.samples.back();
     const HqpAcOptions defaults;
     // K_r at its floor (E's x, y tilt by thousandths of a degree from the world's: 1e-6 N/m)

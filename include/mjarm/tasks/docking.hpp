@@ -74,6 +74,10 @@ struct DockingReport {
   DockingOutcome outcome = DockingOutcome::not_seated;
   double control_period = 0.0;           ///< [s]
   std::int64_t bad_wrench_ticks = 0;     ///< non-finite sensor readings (taken as zero)
+  /// hqp-ac: ticks whose main QP failed (least-squares fallback) and whose null-space QP failed
+  /// (its step dropped); 0 for the other laws.
+  std::int64_t qp_least_squares = 0;
+  std::int64_t qp_null_space_dropped = 0;
   std::vector<DockingSample> samples{};  ///< every tick (when `keep_samples`)
   std::filesystem::path recording{};
   std::string recording_error{};  ///< why the recording is incomplete (empty when fine)
