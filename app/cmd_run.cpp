@@ -1,5 +1,6 @@
 // `mjarm run SCENARIO`: runs a ready-made closed-loop scenario in simulation and prints its
-// figures, optionally with a video of the run. Scenario: shelf-pick (docs/tasks.md).
+// figures, optionally with a video of the run. Scenarios: shelf-pick (docs/tasks.md), plan
+// (docs/planning.md), docking (docs/docking.md, cmd_run_docking.cpp).
 
 #include <algorithm>
 #include <cmath>
@@ -19,7 +20,7 @@ namespace mjarm::cli {
 
 namespace {
 
-const std::vector<std::string> kScenarios{"shelf-pick", "plan"};
+const std::vector<std::string> kScenarios{"shelf-pick", "plan", "docking"};
 
 /// Most frames `run --video` may film after the approach (--fps × --settle-time): 5 minutes of
 /// video at 30 fps, about 20 minutes of software rendering at 640x480.
@@ -287,19 +288,23 @@ Command add_run_command(CLI::App& root) {
     std::string size = "640x480";
     double fps = 30.0;
     bool json = false;
-    PlanCliOptions plan;  // run plan ROBOT --waypoints FILE (cmd_run_plan.cpp)
+    PlanCliOptions plan;        // run plan ROBOT --waypoints FILE (cmd_run_plan.cpp)
+    DockingCliOptions docking;  // run docking … (cmd_run_docking.cpp)
   };
   auto o = std::make_shared<Options>();
   CLI::App* app = root.add_subcommand(
-      "run", "run a closed-loop scenario in simulation and print its figures (shelf-pick)");
+      "run",
+      "run a closed-loop scenario in simulation and print its figures (shelf-pick, plan, docking)");
   app->add_option("scenario", o->scenario, "scenario to run: " + join(kScenarios))->required();
   app->add_option("plan_robot", o->plan.model, "run plan: the robot (planar2 | panda)");
   add_plan_options(*app, o->plan, false);
   app->get_option("--waypoints")->required(false);
   app->add_option("--robot", o->robot, "planar2 | panda (torque-motor models)")
       ->capture_default_str();
-  app->add_option("--controller", o->controller, "ct | osc | task-pd | accel")
-      ->capture_default_str();
+  CLI::Option* controller =
+      app->add_option("--controller", o->controller,
+                      "ct | osc | task-pd | accel; docking: cic | hqp-ac | se3 (default) | all")
+          ->capture_default_str();
   CLI::Option* pick = app->add_option("--pick", o->pick,
                                       "pick point x y z in the world [m] "
                                       "(default: drawn from the seed)")
@@ -346,8 +351,53 @@ Command add_run_command(CLI::App& root) {
       ->check(count_in(1, 10000))
       ->capture_default_str();
   add_json_flag(*app, o->json);
+  add_docking_options(*app, o->docking);
+  CLI::Option* robot = app->get_option("--robot");
+  CLI::Option* seeds = app->get_option("--seeds");
+  CLI::Option* seed = app->get_option("--seed");
+  CLI::Option* settle = app->get_option("--settle-time");
+  CLI::Option* period = app->get_option("--control-period");
+  CLI::Option* max_acceleration = app->get_option("--max-acceleration");
+  CLI::Option* all = app->get_option("--all");
+  const std::vector<CLI::Option*> docking_only{app->get_option("--sensorless"),
+                                               app->get_option("--friction"),
+                                               app->get_option("--offset"),
+                                               app->get_option("--grid"),
+                                               app->get_option("--gate"),
+                                               app->get_option("--reference"),
+                                               app->get_option("--insertion-speed"),
+                                               app->get_option("--preload"),
+                                               app->get_option("--stiffness"),
+                                               app->get_option("--plot"),
+                                               app->get_option("--jobs")};
 
-  return {app, [o] {
+  return {app, [o, controller, robot, seed, seeds, settle, period, max_acceleration, all, pick,
+                docking_only] {
+            if (o->scenario == "docking") {
+              for (const CLI::Option* shelf :
+                   {robot, pick, seed, seeds, settle, period, max_acceleration, all})
+                if (shelf->count() > 0)
+                  throw UsageError(shelf->get_name() + " is not a docking option");
+              if (!o->plan.model.empty() || !o->plan.waypoints.empty())
+                throw UsageError("ROBOT and --waypoints belong to 'run plan'");
+              if (!o->record.empty()) check_output_folder(o->record, "--record");
+              DockingVideo video;
+              if (!o->video.empty()) {
+                check_output_file(o->video, "--video");
+                const PixelSize size = parse_pixel_size(o->size);
+                video.path = o->video;
+                video.camera = o->camera;
+                video.options.width = size.width;
+                video.options.height = size.height;
+                video.options.fps = o->fps;
+              }
+              return run_docking_scenario(o->docking,
+                                          controller->count() > 0 ? o->controller : "se3", video,
+                                          o->record, o->json, kMaxVideoFrames);
+            }
+            for (const CLI::Option* docking : docking_only)
+              if (docking->count() > 0)
+                throw UsageError(docking->get_name() + " is a docking option ('run docking')");
             if (o->scenario == "plan") {
               if (o->plan.waypoints.empty()) throw UsageError("run plan needs --waypoints FILE");
               const InterruptGuard interrupts;

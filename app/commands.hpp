@@ -15,6 +15,7 @@
 #include "mjarm/kinematics/workspace.hpp"
 #include "mjarm/model/robot.hpp"
 #include "mjarm/planning/waypoint_planner.hpp"
+#include "mjarm/tasks/docking.hpp"
 #include "options.hpp"
 #include "output.hpp"
 
@@ -80,6 +81,28 @@ void print_plan(std::ostream& os, const PlannedPath& plan);
 void run_plan_scenario(const PlanCliOptions& options, const std::string& controller,
                        double settle_time, double control_period, double max_acceleration,
                        bool json);
+
+/// What `mjarm run docking` reads from the command line besides the shared run options.
+struct DockingCliOptions {
+  bool sensorless = false;              ///< --sensorless: the observer instead of the F/T sensor
+  bool friction = false;                ///< --friction: the joint-friction variant
+  std::vector<double> offset;           ///< --offset DX DY [mm] DYAW [°] (empty: none)
+  bool grid = false;                    ///< --grid: the 27 offsets
+  bool gate = false;                    ///< --gate: the tracking gate
+  std::string reference = "two-phase";  ///< --reference
+  double insertion_speed = 0.01;        ///< --insertion-speed [m/s]
+  double preload = 5.0;                 ///< --preload [N]
+  std::vector<double> stiffness;        ///< --stiffness (6 values; empty: the law's default)
+  std::string plot;                     ///< --plot DIR
+  int jobs = 0;                         ///< --jobs
+};
+/// Registers the docking options on `mjarm run` (cmd_run_docking.cpp).
+void add_docking_options(CLI::App& app, DockingCliOptions& options);
+/// `mjarm run docking --controller C …`: one run, `--grid` or `--gate`; a video of more than
+/// @p max_video_frames frames is refused before the work.
+void run_docking_scenario(const DockingCliOptions& options, const std::string& controller,
+                          const DockingVideo& video, const std::string& record, bool json,
+                          double max_video_frames);
 
 /// Everything `info` reports about a model, as JSON.
 Json model_json(const Robot& robot);

@@ -4,6 +4,9 @@
 #include <cmath>
 
 #include "figures.hpp"
+#include "mjarm/error.hpp"
+#include "mjarm/file_writer.hpp"
+#include "quoted_path.hpp"
 
 namespace mjarm::plot::detail {
 
@@ -78,6 +81,51 @@ std::string common_style() {
 std::string time_figure_preamble(const Recording& recording, const std::string& title) {
   return common_style() + phase_background(recording) + "set title " + gnuplot_string(title) +
          " font ',16'\n";
+}
+
+void check_single_figure(const PlotOptions& options, int min_height) {
+  if (options.width < 200 || options.height < min_height || options.width > 16384 ||
+      options.height > 16384)
+    throw Error("plot size " + std::to_string(options.width) + "x" +
+                std::to_string(options.height) + " is out of range (200x" +
+                std::to_string(min_height) + " … 16384x16384 pixels)");
+  if (!(options.timeout_s > 0.0)) throw Error("plot timeout must be positive");
+}
+
+std::filesystem::path single_figure_folder(const std::filesystem::path& out_dir) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  const fs::path out = fs::absolute(out_dir, ec);
+  fs::create_directories(out / "gnuplot", ec);
+  if (ec || !fs::is_directory(out, ec))
+    throw Error("cannot create the plot folder " + quoted(out_dir) +
+                (ec ? ": " + ec.message() : std::string(" (not a directory)")));
+  return out;
+}
+
+std::string single_figure_preamble(const std::filesystem::path& png, const PlotOptions& options,
+                                   const std::string& comment) {
+  const int font = std::max(9, options.height / 70);
+  return "# " + comment + "\nset terminal pngcairo noenhanced size " +
+         std::to_string(options.width) + "," + std::to_string(options.height) +
+         " font 'DejaVu Sans," + std::to_string(font) +
+         "' linewidth 1\nset encoding utf8\nset output " + gnuplot_string(png.string()) + "\n" +
+         common_style();
+}
+
+void draw_single_figure(const std::filesystem::path& data_file, const std::string& data,
+                        const std::filesystem::path& script_file, const std::string& script,
+                        const std::filesystem::path& png, double timeout_s) {
+  write_file(data_file, data);
+  write_file(script_file, script);
+  std::error_code ec;
+  std::filesystem::remove(png, ec);  // no stale figure survives a failure
+  run_gnuplot(script_file, timeout_s);
+  if (!png_complete(png)) {
+    std::filesystem::remove(png, ec);  // a whole figure or none
+    throw Error("gnuplot did not write " + quoted(png) + " completely (script " +
+                quoted(script_file) + "; is the disk full?)");
+  }
 }
 
 }  // namespace mjarm::plot::detail

@@ -40,6 +40,23 @@ std::string common_style();
 // The start of a figure over the run's time: common style, phase background, title.
 std::string time_figure_preamble(const Recording& recording, const std::string& title);
 
+/// One figure in its own PNG (`plot_trajectory`, `plot_time_series`): the checks and the
+/// drawing they share.
+/// @throws Error when the size (at least 200 × @p min_height) or the timeout is out of range.
+void check_single_figure(const PlotOptions& options, int min_height = 300);
+/// The absolute @p out_dir with its `gnuplot/` folder created.
+/// @throws Error naming the folder when it cannot be created.
+std::filesystem::path single_figure_folder(const std::filesystem::path& out_dir);
+/// `set terminal pngcairo …` at the options' size and `set output` the PNG, with the common
+/// style; @p comment is the script's first line (without '#').
+std::string single_figure_preamble(const std::filesystem::path& png, const PlotOptions& options,
+                                   const std::string& comment);
+/// Writes the data and the script, runs gnuplot and checks the PNG (a whole figure or none).
+/// @throws Error as `run_gnuplot`, or naming the PNG when it is incomplete.
+void draw_single_figure(const std::filesystem::path& data_file, const std::string& data,
+                        const std::filesystem::path& script_file, const std::string& script,
+                        const std::filesystem::path& png, double timeout_s);
+
 /// True when @p path is a whole PNG file (its signature first, the IEND chunk last): gnuplot
 /// exits 0 on a full disk, leaving an empty or cut PNG.
 bool png_complete(const std::filesystem::path& path);

@@ -39,21 +39,11 @@ void check_trajectory_series(const TrajectorySeries& s) {
 
 PlotInfo plot_trajectory(const TrajectorySeries& series, const fs::path& out_dir,
                          const PlotOptions& options) {
-  if (options.width < 200 || options.height < 300 || options.width > 16384 ||
-      options.height > 16384)
-    throw Error("plot size " + std::to_string(options.width) + "x" +
-                std::to_string(options.height) + " is out of range (200x300 … 16384x16384 pixels)");
-  if (!(options.timeout_s > 0.0)) throw Error("plot timeout must be positive");
+  detail::check_single_figure(options);
   check_trajectory_series(series);
   find_gnuplot();  // fail before anything is written
-
-  std::error_code ec;
-  const fs::path out = fs::absolute(out_dir, ec);
+  const fs::path out = detail::single_figure_folder(out_dir);
   const fs::path data_dir = out / "gnuplot";
-  fs::create_directories(data_dir, ec);
-  if (ec || !fs::is_directory(out, ec))
-    throw Error("cannot create the plot folder " + quoted(out_dir) +
-                (ec ? ": " + ec.message() : std::string(" (not a directory)")));
 
   const std::size_t n = series.axes.size();
   // one row per sample: t, then positions, velocities, accelerations, jerks of every axis
@@ -73,13 +63,8 @@ PlotInfo plot_trajectory(const TrajectorySeries& series, const fs::path& out_dir
   const std::array<const char*, 4> names{"position", "velocity", "acceleration", "jerk"};
   const std::array<std::string, 4> units{series.unit, series.unit + "/s", series.unit + "/s²",
                                          series.unit + "/s³"};
-  const int font = std::max(9, options.height / 70);
-  std::string script =
-      "# drawn by `mjarm traj --plot`; run `gnuplot trajectory.gp` to redraw\n"
-      "set terminal pngcairo noenhanced size " +
-      std::to_string(options.width) + "," + std::to_string(options.height) + " font 'DejaVu Sans," +
-      std::to_string(font) + "' linewidth 1\nset encoding utf8\nset output " +
-      gnuplot_string(info.path.string()) + "\n" + detail::common_style();
+  std::string script = detail::single_figure_preamble(
+      info.path, options, "drawn by `mjarm traj --plot`; run `gnuplot trajectory.gp` to redraw");
   const double t0 = series.t.front();
   const double t1 = series.t.back() > t0 ? series.t.back() : t0 + 1e-3;
   script += "set xrange [" + detail::gp_number(t0) + ":" + detail::gp_number(t1) + "]\n";
@@ -117,15 +102,8 @@ PlotInfo plot_trajectory(const TrajectorySeries& series, const fs::path& out_dir
     info.notes.push_back("no jerk limit given");
 
   const fs::path script_file = data_dir / "trajectory.gp";
-  write_file(data_file, data);
-  write_file(script_file, script);
-  fs::remove(info.path, ec);  // no stale figure survives a failure
-  run_gnuplot(script_file, options.timeout_s);
-  if (!detail::png_complete(info.path)) {
-    fs::remove(info.path, ec);  // a whole figure or none
-    throw Error("gnuplot did not write " + quoted(info.path) + " completely (script " +
-                quoted(script_file) + "; is the disk full?)");
-  }
+  detail::draw_single_figure(data_file, data, data_dir / "trajectory.gp", script, info.path,
+                             options.timeout_s);
   return info;
 }
 

@@ -342,6 +342,14 @@ void Scene::add_fixture(const ObjectSpec& spec) {
   impl_->add_part(std::move(part), spec.name, impl_->sec("worldbody"), std::move(mount));
 }
 
+void Scene::add_fixture(const CompoundFixtureSpec& spec) {
+  Part part = scene_detail::compound_part(spec);
+  XmlNode mount = element(
+      "body",
+      {{"name", spec.name}, {"pos", numbers_text(spec.pos)}, {"quat", numbers_text(spec.quat)}});
+  impl_->add_part(std::move(part), spec.name, impl_->sec("worldbody"), std::move(mount));
+}
+
 void Scene::add_camera(const SceneCameraSpec& spec) {
   validate(spec);
   const std::string source = "camera '" + spec.name + "'";

@@ -1,6 +1,8 @@
 #include "scene_parts.hpp"
 
+#include <algorithm>
 #include <filesystem>
+#include <iterator>
 
 #include "mjarm/error.hpp"
 #include "mjarm/model/user_file.hpp"
@@ -103,12 +105,11 @@ Part arena_part(const ArenaSpec& spec) {
   return part;
 }
 
-Part object_part(const ObjectSpec& spec, bool free) {
-  validate(spec);
-  Part part{element("mujoco", {{"model", spec.name}}), {}, {}, "object '" + spec.name + "'"};
-  XmlNode world = element("worldbody");
-  if (free) world.children.push_back(element("freejoint", {{"name", "joint"}}));
-  XmlNode geom = element("geom", {{"name", "geom"}, {"type", to_string(spec.shape)}});
+namespace {
+
+/// The geom of @p spec called @p name (with its mesh asset in @p part when it is a mesh).
+XmlNode object_geom(const ObjectSpec& spec, const std::string& name, Part& part) {
+  XmlNode geom = element("geom", {{"name", name}, {"type", to_string(spec.shape)}});
   if (spec.shape == ObjectShape::mesh) {
     namespace fs = std::filesystem;
     std::error_code ec;
@@ -121,19 +122,51 @@ Part object_part(const ObjectSpec& spec, bool free) {
                   (file.string() == spec.mesh_file ? "" : ", given as '" + spec.mesh_file + "'") +
                   ")");
     }
-    XmlNode mesh = element("mesh", {{"name", "mesh"}, {"file", file.lexically_normal().string()}});
+    const std::string mesh_name = name == "geom" ? "mesh" : name + "_mesh";
+    XmlNode mesh =
+        element("mesh", {{"name", mesh_name}, {"file", file.lexically_normal().string()}});
     if (!spec.size.empty()) mesh.set("scale", numbers_text(spec.size));
-    XmlNode asset = element("asset");
-    asset.children.push_back(std::move(mesh));
-    part.root.children.push_back(std::move(asset));
-    geom.set("mesh", "mesh");
+    auto asset = std::find_if(part.root.children.begin(), part.root.children.end(),
+                              [](const XmlNode& n) { return n.tag == "asset"; });
+    if (asset == part.root.children.end()) {
+      part.root.children.push_back(element("asset"));
+      asset = std::prev(part.root.children.end());
+    }
+    asset->children.push_back(std::move(mesh));
+    geom.set("mesh", mesh_name);
   } else {
     geom.set("size", numbers_text(spec.size));
   }
   geom.set("mass", numbers_text(std::span<const double>(&spec.mass, 1)));
   geom.set("friction", numbers_text(spec.friction));
   geom.set("rgba", numbers_text(spec.rgba));
-  world.children.push_back(std::move(geom));
+  return geom;
+}
+
+}  // namespace
+
+Part object_part(const ObjectSpec& spec, bool free) {
+  validate(spec);
+  Part part{element("mujoco", {{"model", spec.name}}), {}, {}, "object '" + spec.name + "'"};
+  XmlNode world = element("worldbody");
+  if (free) world.children.push_back(element("freejoint", {{"name", "joint"}}));
+  world.children.push_back(object_geom(spec, "geom", part));
+  world.children.push_back(
+      element("site", {{"name", "center"}, {"size", "0.002"}, {"group", "3"}}));
+  part.root.children.push_back(std::move(world));
+  return part;
+}
+
+Part compound_part(const CompoundFixtureSpec& spec) {
+  validate(spec);
+  Part part{element("mujoco", {{"model", spec.name}}), {}, {}, "fixture '" + spec.name + "'"};
+  XmlNode world = element("worldbody");
+  for (const ObjectSpec& piece : spec.pieces) {
+    XmlNode geom = object_geom(piece, piece.name, part);
+    geom.set("pos", numbers_text(piece.pos));
+    geom.set("quat", numbers_text(piece.quat));
+    world.children.push_back(std::move(geom));
+  }
   world.children.push_back(
       element("site", {{"name", "center"}, {"size", "0.002"}, {"group", "3"}}));
   part.root.children.push_back(std::move(world));

@@ -25,4 +25,9 @@ Part arena_part(const ArenaSpec& spec);
 /// @throws Error when its mesh file does not exist.
 Part object_part(const ObjectSpec& spec, bool free);
 
+/// A compound fixture's geoms (named after the pieces, at their poses) and its centre site
+/// (unprefixed names), to be mounted in a body at the fixture's pose.
+/// @throws Error when a piece's mesh file does not exist.
+Part compound_part(const CompoundFixtureSpec& spec);
+
 }  // namespace mjarm::scene_detail

@@ -145,6 +145,25 @@ void validate(const ObjectSpec& spec) {
     throw Error(what + " has a mesh file but its shape is not mesh");
 }
 
+void validate(const CompoundFixtureSpec& spec) {
+  check_name(spec.name, "fixture");
+  const std::string what = "fixture '" + spec.name + "'";
+  check_finite(spec.pos, what + " pos");
+  check_quat(spec.quat, what + " quat");
+  if (spec.pieces.empty()) throw Error(what + " has no pieces");
+  for (std::size_t i = 0; i < spec.pieces.size(); ++i) {
+    const ObjectSpec& piece = spec.pieces[i];
+    try {
+      validate(piece);
+    } catch (const Error& e) {
+      throw Error(what + ": " + e.what());
+    }
+    for (std::size_t j = 0; j < i; ++j)
+      if (spec.pieces[j].name == piece.name)
+        throw Error(what + ": piece name '" + piece.name + "' is used twice");
+  }
+}
+
 void validate(const SceneCameraSpec& spec) {
   check_name(spec.name, "camera");
   const std::string what = "camera '" + spec.name + "'";

@@ -395,5 +395,62 @@ TEST(Scene, BadValuesAreNamed) {
                        "closest: left/grip"));
 }
 
+TEST(Scene, CompoundFixtureIsOneStaticBodyWithItsPiecesInPlace) {
+  Scene scene("compound");
+  scene.add_arena();
+  CompoundFixtureSpec bin;
+  bin.name = "bin";
+  bin.pos = {0.5, 0.1, 0.2};
+  const double s = std::sqrt(0.5);
+  bin.quat = {s, 0.0, 0.0, s};  // 90° about z
+  ObjectSpec floor_piece = cube_spec("floor", 0.0);
+  floor_piece.size = {0.1, 0.1, 0.005};
+  floor_piece.pos = {0.0, 0.0, 0.0};
+  ObjectSpec wall = cube_spec("wall", 0.0);
+  wall.size = {0.005, 0.1, 0.05};
+  wall.pos = {0.1, 0.0, 0.05};
+  wall.quat = {s, s, 0.0, 0.0};  // 90° about x
+  bin.pieces = {floor_piece, wall};
+  scene.add_fixture(bin);
+  const Robot robot = scene.compile();
+  const mjModel& m = robot.model();
+  const int body = robot.body("bin");
+  EXPECT_EQ(m.body_weldid[body], 0);  // static: welded to the world
+  const int floor_geom = robot.geom("bin/floor");
+  const int wall_geom = robot.geom("bin/wall");
+  EXPECT_EQ(m.geom_bodyid[floor_geom], body);
+  EXPECT_EQ(m.geom_bodyid[wall_geom], body);
+  DataPtr d = robot.make_data();
+  mj_forward(&m, d.get());
+  // the wall's centre: (0.5, 0.1, 0.2) + R_z(90°)·(0.1, 0, 0.05) = (0.5, 0.2, 0.25)
+  EXPECT_NEAR(d->geom_xpos[3 * wall_geom + 0], 0.5, 1e-12);
+  EXPECT_NEAR(d->geom_xpos[3 * wall_geom + 1], 0.2, 1e-12);
+  EXPECT_NEAR(d->geom_xpos[3 * wall_geom + 2], 0.25, 1e-12);
+  // its y axis is R_z(90°)·R_x(90°)·ŷ = R_z(90°)·ẑ = ẑ
+  EXPECT_NEAR(d->geom_xmat[9 * wall_geom + 5], 0.0, 1e-12);
+  EXPECT_NEAR(d->geom_xmat[9 * wall_geom + 8], 0.0, 1e-12);
+  EXPECT_NEAR(d->geom_xmat[9 * wall_geom + 7], 1.0, 1e-12);
+  EXPECT_TRUE(scene.has("site", "bin/center"));
+  EXPECT_DOUBLE_EQ(m.geom_size[3 * wall_geom + 2], 0.05);
+}
+
+TEST(Scene, CompoundFixtureRefusesBadPieces) {
+  Scene scene("compound");
+  CompoundFixtureSpec bin;
+  bin.name = "bin";
+  EXPECT_TRUE(contains(error_of([&] { scene.add_fixture(bin); }), "fixture 'bin' has no pieces"));
+  bin.pieces = {cube_spec("a", 0.0), cube_spec("a", 0.1)};
+  EXPECT_TRUE(contains(error_of([&] { scene.add_fixture(bin); }), "piece name 'a' is used twice"));
+  bin.pieces = {cube_spec("a", 0.0)};
+  bin.pieces[0].size = {0.1};
+  EXPECT_TRUE(contains(error_of([&] { scene.add_fixture(bin); }), "fixture 'bin': "));
+  bin.pieces[0].size = {0.1, 0.1, 0.1};
+  bin.pos = {0.0, std::nan(""), 0.0};
+  EXPECT_TRUE(contains(error_of([&] { scene.add_fixture(bin); }), "fixture 'bin' pos"));
+  bin.pos = {0.0, 0.0, 0.0};
+  scene.add_fixture(bin);
+  EXPECT_TRUE(contains(error_of([&] { scene.add_fixture(bin); }), "name clash"));
+}
+
 }  // namespace
 }  // namespace mjarm

@@ -54,6 +54,10 @@ class Scene {
   void add_object(const ObjectSpec& spec);
   /// Adds a fixture: an object fixed to the world (no joint).
   void add_fixture(const ObjectSpec& spec);
+  /// Adds a fixture of several pieces in one static body (see `CompoundFixtureSpec`).
+  /// @throws Error for a bad piece (named), a piece name used twice, no pieces, a missing mesh
+  ///         file, or a name clash.
+  void add_fixture(const CompoundFixtureSpec& spec);
   /// Adds a camera. @throws Error for an unknown parent or target body or a name clash.
   void add_camera(const SceneCameraSpec& spec);
   /// Adds a site. @throws Error for an unknown parent body or a name clash.

@@ -71,6 +71,19 @@ struct ObjectSpec {
   std::array<double, 4> rgba{0.8, 0.3, 0.2, 1.0};
 };
 
+/// A fixture made of several pieces in one static body: a hollow part (a socket, a bin) has to
+/// be built from convex pieces, since MuJoCo collides a mesh through its convex hull. One body
+/// instead of one per piece also keeps MuJoCo's broad phase from pairing the pieces with each
+/// other at every step. Names: body `name`, geoms `name/<piece name>`, site `name/center`.
+struct CompoundFixtureSpec {
+  std::string name;
+  std::array<double, 3> pos{0.0, 0.0, 0.0};        ///< position of the body in world [m]
+  std::array<double, 4> quat{1.0, 0.0, 0.0, 0.0};  ///< orientation in world (w, x, y, z)
+  /// The pieces: each one's `pos` and `quat` are in the fixture's frame; `mass` is not used
+  /// (the body is static); names are unique within the fixture.
+  std::vector<ObjectSpec> pieces;
+};
+
 /// A camera fixed to a body (or the world), optionally tracking a body.
 struct SceneCameraSpec {
   std::string name;
@@ -126,6 +139,7 @@ struct WeldSpec {
 void validate(const RobotSpec& spec);
 void validate(const GripperSpec& spec);
 void validate(const ObjectSpec& spec);
+void validate(const CompoundFixtureSpec& spec);
 void validate(const SceneCameraSpec& spec);
 void validate(const SiteSpec& spec);
 void validate(const WeldSpec& spec);

@@ -1,0 +1,134 @@
+#include "mjarm/tasks/docking_scene.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+
+#include "mjarm/dynamics/force_torque_sensor.hpp"
+#include "mjarm/ik/pose_ik.hpp"
+#include "mjarm/sim/contact_query.hpp"
+#include "support/error_message.hpp"
+#include "tasks/docking_test_support.hpp"
+
+namespace mjarm {
+namespace {
+
+using test::contains;
+using test::error_of;
+using test::kDockingDeg;
+
+TEST(DockingScene, ComposesTheArmThePegTheSensorAndTheSocket) {
+  const DockingScene scene = build_docking_scene();
+  const Robot& robot = scene.robot;
+  const mjModel& m = robot.model();
+  const DockingGeometry& g = scene.options.geometry;
+  EXPECT_EQ(m.nq, 7);
+  EXPECT_EQ(m.nu, 7);
+  EXPECT_EQ(scene.chain.size(), 7);
+  EXPECT_EQ(scene.chain.frame().name, DockingNames::tip);
+  // the pieces: walls and chamfer per side, the bottom plate and the pedestal, one body
+  EXPECT_EQ(scene.socket.size(), 2 * g.sides + 2);
+  EXPECT_EQ(scene.peg.size(), 1);
+  // an aluminium cylinder Ø30 × 100 mm
+  EXPECT_NEAR(scene.peg_mass, std::numbers::pi * 0.015 * 0.015 * 0.1 * 2700.0, 1e-9);
+  EXPECT_NEAR(scene.peg_com_E.z(), -0.05, 1e-12);
+  EXPECT_NEAR(scene.peg_com_E.head<2>().norm(), 0.0, 1e-12);
+  // the F/T pair sits on the flange site of the peg's own body
+  const ForceTorqueSensor sensor(robot, DockingNames::ft_site);
+  EXPECT_EQ(m.site_bodyid[sensor.site_id()], scene.peg_body);
+  // gravity on, torque motors clipped at the iiwa's limits
+  EXPECT_DOUBLE_EQ(m.opt.gravity[2], -9.81);
+  EXPECT_DOUBLE_EQ(m.actuator_ctrlrange[2 * 5 + 1], 40.0);
+  for (int j = 0; j < 7; ++j) EXPECT_DOUBLE_EQ(m.dof_frictionloss[j], 0.0);
+}
+
+TEST(DockingScene, TheBoreIsAPolygonTangentToItsCircleAndTheChamferOpensAt45Degrees) {
+  const DockingScene scene = build_docking_scene();
+  const Robot& robot = scene.robot;
+  const mjModel& m = robot.model();
+  const DockingGeometry& g = scene.options.geometry;
+  DataPtr d = robot.make_data();
+  mj_forward(&m, d.get());
+  const Eigen::Vector3d p_S = scene.options.X_WS.p;
+  for (int k = 0; k < g.sides; ++k) {
+    const std::string n = (k < 10 ? "0" : "") + std::to_string(k);
+    const int wall = robot.geom("socket/bore_" + n);
+    const Eigen::Vector3d c = Eigen::Map<const Eigen::Vector3d>(d->geom_xpos + 3 * wall) - p_S;
+    const Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>> R(d->geom_xmat + 9 * wall);
+    // inner face: centre − half thickness along the box's x axis, which points outwards
+    const Eigen::Vector3d inner = c - m.geom_size[3 * wall] * R.col(0);
+    EXPECT_NEAR(inner.head<2>().norm(), g.bore_radius, 1e-12) << n;
+    EXPECT_NEAR(R.col(0).z(), 0.0, 1e-12);
+    EXPECT_NEAR(c.z(), -(g.chamfer + 0.5 * g.bore_depth), 1e-12);
+    const int chamfer = robot.geom("socket/chamfer_" + n);
+    const Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>> Rc(d->geom_xmat +
+                                                                            9 * chamfer);
+    EXPECT_NEAR(std::abs(Rc.col(0).z()), std::sqrt(0.5), 1e-12);  // 45°
+  }
+  // the peg seated on the bottom, centred: it touches nothing but the bottom plate
+  const Pose X = scene.seated();
+  PoseIk ik(scene.chain);
+  Eigen::VectorXd seed(7);
+  seed << 0.0, 0.8, 0.0, -1.5, 0.0, 0.83, 0.0;
+  const IkResult r = ik.solve(Pose{X.R, X.p + Eigen::Vector3d(0.0, 0.0, 0.2e-3)}, seed);
+  ASSERT_EQ(r.status, IkStatus::converged);
+  scene.chain.scatter(r.q, d->qpos);
+  mj_forward(&m, d.get());
+  EXPECT_EQ(contact_between(m, *d, scene.peg, scene.socket, false).contacts, 0);
+  // 0.45 mm sideways still clears the walls; 0.6 mm does not (0.5 mm clearance)
+  for (const auto& [shift, touches] : {std::pair{0.45e-3, false}, std::pair{0.6e-3, true}}) {
+    const IkResult s = ik.solve(Pose{X.R, X.p + Eigen::Vector3d(shift, 0.0, 5e-3)}, r.q);
+    ASSERT_EQ(s.status, IkStatus::converged);
+    scene.chain.scatter(s.q, d->qpos);
+    mj_forward(&m, d.get());
+    EXPECT_EQ(contact_between(m, *d, scene.peg, scene.socket, false).contacts > 0, touches)
+        << shift;
+  }
+}
+
+TEST(DockingScene, TheFrictionVariantCarriesTheFrankaValues) {
+  DockingSceneOptions options;
+  options.joint_friction = true;
+  const DockingScene scene = build_docking_scene(options);
+  const mjModel& m = scene.robot.model();
+  for (int j = 0; j < 7; ++j) {
+    EXPECT_DOUBLE_EQ(m.dof_frictionloss[scene.chain.dof_address(j)], kFrankaFrictionLoss[j]);
+    EXPECT_GT(m.dof_damping[scene.chain.dof_address(j)], 0.0);
+  }
+}
+
+TEST(DockingScene, WithoutTheSensorTheSiteHasNone) {
+  DockingSceneOptions options;
+  options.ft_sensor = false;
+  const DockingScene scene = build_docking_scene(options);
+  EXPECT_EQ(scene.robot.model().nsensor, 0);
+  const std::string message =
+      error_of([&] { ForceTorqueSensor(scene.robot, DockingNames::ft_site); });
+  EXPECT_TRUE(contains(message, "iiwa/peg/ft")) << message;
+  EXPECT_TRUE(contains(message, "no force sensor")) << message;
+}
+
+TEST(DockingScene, BadGeometryIsNamed) {
+  auto message = [](auto edit) {
+    DockingSceneOptions options;
+    edit(options);
+    return error_of([&] { docking_scene(options); });
+  };
+  EXPECT_TRUE(contains(message([](auto& o) { o.geometry.bore_radius = 0.014; }),
+                       "must be wider than the peg"));
+  EXPECT_TRUE(contains(message([](auto& o) { o.geometry.sides = 6; }), "sides must be 8"));
+  EXPECT_TRUE(contains(message([](auto& o) { o.geometry.peg_length = 0.04; }),
+                       "longer than the hole is deep"));
+  EXPECT_TRUE(contains(message([](auto& o) { o.geometry.chamfer = std::nan(""); }), "chamfer"));
+  EXPECT_TRUE(contains(message([](auto& o) { o.geometry.solimp = {0.99, 0.9, 0.001}; }), "solimp"));
+  EXPECT_TRUE(contains(message([](auto& o) { o.X_WS.p.z() = 0.03; }), "below the floor"));
+  EXPECT_TRUE(contains(message([](auto& o) {
+                         o.X_WS.R =
+                             Eigen::AngleAxisd(0.1, Eigen::Vector3d::UnitX()).toRotationMatrix();
+                       }),
+                       "straight up"));
+}
+
+}  // namespace
+}  // namespace mjarm
