@@ -1,4 +1,4 @@
-#include "mjarm/render/viewer_session.hpp"
+#include "mjarm/teleop/viewer_session.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -12,7 +12,7 @@
 #include "mjarm/ik/pose_ik.hpp"
 #include "mjarm/kinematics/frame_state.hpp"
 #include "mjarm/lie/so3.hpp"
-#include "mjarm/render/viewer_controllers.hpp"
+#include "mjarm/teleop/viewer_controllers.hpp"
 
 namespace mjarm {
 
