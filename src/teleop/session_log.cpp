@@ -198,9 +198,11 @@ SessionLog read_session_log(const std::filesystem::path& path) {
   next("the model");
   r.expect("model");
   log.model = r.word("the model name");
+  r.done();
   next("the fingerprint");
   r.expect("fingerprint");
   for (int i = 0; i < 4; ++i) log.fingerprint += (i ? " " : "") + r.word("the fingerprint");
+  r.done();
   next("the hands");
   r.expect("hands");
   std::string hand;
@@ -216,17 +218,21 @@ SessionLog read_session_log(const std::filesystem::path& path) {
   log.options.lift = r.word("the lift joint");
   if (log.options.lift == "-") log.options.lift.clear();
   log.options.lift_in_ik = r.integer("lift_in_ik") != 0;
+  r.done();
   next("the keyframe");
   r.expect("keyframe");
   log.options.keyframe = r.word("the keyframe");
   if (log.options.keyframe == "-") log.options.keyframe.clear();
+  r.done();
   next("the mode");
   r.expect("mode");
   log.options.mode = parse_mode(r.word("the mode"), r.where());
+  r.done();
   next("the periods");
   r.expect("periods");
   log.options.kinematic_period = r.real("the kinematic period");
   log.options.control_period = r.real("the control period");
+  r.done();
   next("the tasks");
   r.expect("tasks");
   std::string task;
@@ -237,9 +243,13 @@ SessionLog read_session_log(const std::filesystem::path& path) {
   next("the event count");
   r.expect("events");
   const std::int64_t count = r.integer("the event count");
+  r.done();
   for (std::int64_t k = 0; k < count; ++k) {
     next(("event " + std::to_string(k + 1) + " of " + std::to_string(count)).c_str());
     SessionEvent e;
+    if (line.rfind("end", 0) == 0)
+      throw Error(r.where() + ": the file announces " + std::to_string(count) +
+                  " events but ends after " + std::to_string(k));
     e.tick = r.integer("the tick");
     if (!log.events.empty() && e.tick < log.events.back().tick)
       throw Error(r.where() + ": tick " + std::to_string(e.tick) + " comes before the one above");
