@@ -1,5 +1,6 @@
 #include "mjarm/teleop/session_log.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -179,6 +180,12 @@ void write_session_log(const SessionLog& log, const std::filesystem::path& path)
 
 SessionLog read_session_log(const std::filesystem::path& path) {
   const std::string text = read_user_file(path, "teleop session");
+  // every record ends with a newline: a file that does not was cut off mid-line
+  if (!text.empty() && text.back() != '\n') {
+    const auto lines = std::count(text.begin(), text.end(), '\n') + 1;
+    throw Error("session file '" + path.string() + "' is truncated: its last line (line " +
+                std::to_string(lines) + ") is incomplete");
+  }
   std::istringstream lines(text);
   LineReader r;
   r.file = path.string();
@@ -366,8 +373,7 @@ SessionLog SessionRecorder::log() const {
   return log;
 }
 
-ReplayResult replay_session(const Robot& robot, const SessionLog& log,
-                            const std::function<void(const TeleopSession&)>& on_tick) {
+SessionReplay::SessionReplay(const Robot& robot, const SessionLog& log) : log_(log) {
   const std::string fingerprint = model_fingerprint(robot);
   if (fingerprint != log.fingerprint) {
     throw Error("the session was recorded on model '" + log.model + "' (fingerprint " +
@@ -379,36 +385,55 @@ ReplayResult replay_session(const Robot& robot, const SessionLog& log,
   for (auto& h : options.hands) {
     if (h.fingers.empty()) h.fingers = detail::gripper_joints(Chain(robot, h.frame));
   }
-  TeleopSession session(robot, options);
-  ReplayResult result;
-  std::size_t next = 0;
-  for (std::int64_t t = 0; t <= log.ticks; ++t) {
-    for (; next < log.events.size() && log.events[next].tick == t; ++next) {
-      const SessionEvent& e = log.events[next];
-      switch (e.kind) {
-        case SessionEvent::Kind::targets:
-          session.set_targets(e.targets);
-          break;
-        case SessionEvent::Kind::mode:
-          session.set_mode(e.mode);
-          break;
-        case SessionEvent::Kind::task:
-          session.set_task(e.hand, e.task);
-          break;
-        case SessionEvent::Kind::reset:
-          session.reset();
-          break;
-      }
+  session_ = std::make_unique<TeleopSession>(robot, options);
+  apply_due();
+}
+
+void SessionReplay::apply_due() {
+  for (; next_ < log_.events.size() && log_.events[next_].tick == tick_; ++next_) {
+    const SessionEvent& e = log_.events[next_];
+    switch (e.kind) {
+      case SessionEvent::Kind::targets:
+        session_->set_targets(e.targets);
+        break;
+      case SessionEvent::Kind::mode:
+        session_->set_mode(e.mode);
+        break;
+      case SessionEvent::Kind::task:
+        session_->set_task(e.hand, e.task);
+        break;
+      case SessionEvent::Kind::reset:
+        session_->reset();
+        break;
     }
-    if (t == log.ticks) break;
-    if (session.step(1) != 1) break;
-    ++result.ticks;
-    if (on_tick) on_tick(session);
   }
-  result.digest = state_digest(session);
-  result.matches = result.digest == log.digest && result.ticks == log.ticks;
-  result.stats = session.stats();
-  return result;
+}
+
+bool SessionReplay::step() {
+  if (stopped_ || tick_ >= log_.ticks) return false;
+  if (session_->step(1) != 1) {
+    stopped_ = true;
+    return false;
+  }
+  ++tick_;
+  apply_due();
+  return true;
+}
+
+ReplayResult SessionReplay::result() const {
+  ReplayResult r;
+  r.ticks = tick_;
+  r.digest = state_digest(*session_);
+  r.matches = r.digest == log_.digest && r.ticks == log_.ticks;
+  r.stats = session_->stats();
+  return r;
+}
+
+ReplayResult replay_session(const Robot& robot, const SessionLog& log) {
+  SessionReplay replay(robot, log);
+  while (replay.step()) {
+  }
+  return replay.result();
 }
 
 }  // namespace mjarm

@@ -27,7 +27,7 @@
 
 #include <cstdint>
 #include <filesystem>
-#include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -101,11 +101,33 @@ struct ReplayResult {
   TeleopStats stats;     ///< at the end
 };
 
-/// Replays @p log on @p robot: a new session with the recorded options, the events applied at
-/// their ticks; @p on_tick (optional) sees the session after every tick.
-/// @throws Error when @p robot's fingerprint is not the recorded one (naming both models), or the
-///         session cannot be built.
-ReplayResult replay_session(const Robot& robot, const SessionLog& log,
-                            const std::function<void(const TeleopSession&)>& on_tick = {});
+/// A replay in progress: a new session with the recorded options, the events applied at their
+/// ticks. `step` until it returns false; the session can be drawn in between.
+class SessionReplay {
+ public:
+  /// @throws Error when @p robot's fingerprint is not the recorded one (naming both models), or
+  ///         the session cannot be built.
+  SessionReplay(const Robot& robot, const SessionLog& log);
+  const TeleopSession& session() const noexcept { return *session_; }
+  /// Applies the events due and simulates one tick; false (nothing done) once every recorded
+  /// tick is done or after a fault.
+  bool step();
+  /// Ticks replayed so far.
+  std::int64_t ticks() const noexcept { return tick_; }
+  /// The outcome so far (the digest of the current state).
+  ReplayResult result() const;
+
+ private:
+  const SessionLog& log_;
+  std::unique_ptr<TeleopSession> session_;
+  std::size_t next_ = 0;
+  std::int64_t tick_ = 0;
+  bool stopped_ = false;
+  void apply_due();
+};
+
+/// Replays @p log on @p robot to its end.
+/// @throws Error as `SessionReplay`.
+ReplayResult replay_session(const Robot& robot, const SessionLog& log);
 
 }  // namespace mjarm
