@@ -32,7 +32,7 @@ std::string hex(std::uint64_t h) {
   return text;
 }
 
-std::string number(double v) {
+std::string exact_text(double v) {
   char text[32];
   std::snprintf(text, sizeof text, "%.17g", v);
   return text;
@@ -145,19 +145,20 @@ void write_session_log(const SessionLog& log, const std::filesystem::path& path)
   text += "\nlift " + (o.lift.empty() ? std::string("-") : o.lift) + " " +
           (o.lift_in_ik ? "1" : "0") + "\nkeyframe " +
           (o.keyframe.empty() ? std::string("-") : o.keyframe) + "\nmode " + mode_name(o.mode) +
-          "\nperiods " + number(o.kinematic_period) + " " + number(o.control_period) + "\ntasks";
+          "\nperiods " + exact_text(o.kinematic_period) + " " + exact_text(o.control_period) +
+          "\ntasks";
   for (const auto& t : o.tasks) text += " " + task_text(t);
   text += "\nevents " + std::to_string(log.events.size()) + "\n";
   for (const auto& e : log.events) {
     text += std::to_string(e.tick);
     switch (e.kind) {
       case SessionEvent::Kind::targets:
-        text += " targets " + number(e.targets.lift);
+        text += " targets " + exact_text(e.targets.lift);
         for (const auto& h : e.targets.hands) {
-          for (int k = 0; k < 3; ++k) text += " " + number(h.X_WT.p[k]);
+          for (int k = 0; k < 3; ++k) text += " " + exact_text(h.X_WT.p[k]);
           for (int r = 0; r < 3; ++r)
-            for (int c = 0; c < 3; ++c) text += " " + number(h.X_WT.R(r, c));
-          text += " " + number(h.gripper);
+            for (int c = 0; c < 3; ++c) text += " " + exact_text(h.X_WT.R(r, c));
+          text += " " + exact_text(h.gripper);
         }
         break;
       case SessionEvent::Kind::mode:

@@ -226,7 +226,9 @@ struct TeleopSession::Rig {
     q.setZero(n);
     q_cmd.setZero(n);
     ik_result.q.setZero(n);
-    q_finger.setZero(2);
+    int most_fingers = 0;
+    for (const auto& f : fingers) most_fingers = std::max(most_fingers, f ? f->size() : 0);
+    q_finger.setZero(most_fingers);
     qfull.setZero(robot.nq());
     qpos.assign(static_cast<std::size_t>(robot.nq()), 0.0);
     const int na = all ? all->size() : 0;
@@ -517,8 +519,9 @@ bool TeleopSession::tick(Rig& rig) noexcept {
     rig.arms.scatter(rig.q_cmd, rig.qfull.data());
     for (std::size_t i = 0; i < nh; ++i) {
       if (!rig.fingers[i]) continue;
-      rig.finger_map[i]->targets(smooth_->grippers[i].value(), rig.q_finger);
-      rig.fingers[i]->scatter(rig.q_finger, rig.qfull.data());
+      const int n = rig.fingers[i]->size();
+      rig.finger_map[i]->targets(smooth_->grippers[i].value(), rig.q_finger.head(n));
+      rig.fingers[i]->scatter(rig.q_finger.head(n), rig.qfull.data());
     }
     std::copy(rig.qfull.data(), rig.qfull.data() + rig.robot.nq(), rig.qpos.begin());
     try {
@@ -538,9 +541,10 @@ bool TeleopSession::tick(Rig& rig) noexcept {
     k += rig.arms.size();
     for (std::size_t i = 0; i < nh; ++i) {
       if (!rig.fingers[i]) continue;
-      rig.finger_map[i]->targets(smooth_->grippers[i].value(), rig.q_finger);
-      rig.reference.joint.q.segment(k, rig.fingers[i]->size()) = rig.q_finger;
-      k += rig.fingers[i]->size();
+      const int n = rig.fingers[i]->size();
+      rig.finger_map[i]->targets(smooth_->grippers[i].value(), rig.q_finger.head(n));
+      rig.reference.joint.q.segment(k, n) = rig.q_finger.head(n);
+      k += n;
     }
   }
   const TickResult result = rig.sim->tick(rig.reference);

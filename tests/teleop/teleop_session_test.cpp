@@ -60,6 +60,19 @@ TEST(TeleopSession, PandaHandHasOneHandNamedHand) {
       std::string::npos);
 }
 
+// one hand, no lift: the session is not only for two
+TEST(TeleopSession, OneHandedPandaReachesItsTarget) {
+  TeleopSession session(Robot::bundled("panda_hand"));
+  EXPECT_FALSE(session.has_lift());
+  TeleopTargets t = session.initial_targets();
+  t.hands[0].X_WT.p += Eigen::Vector3d(0.05, -0.05, -0.05);
+  t.hands[0].gripper = 1.0;
+  session.set_targets(t);
+  run_seconds(session, 2.0);
+  EXPECT_LT((session.stats().hands[0].X_WE.p - t.hands[0].X_WT.p).norm(), 3e-3);
+  EXPECT_DOUBLE_EQ(session.stats().hands[0].gripper, 1.0);
+}
+
 // every mode: the two hands go to different targets (left 10 cm forward and down, right 10 cm
 // aside and up), the lift rises 5 cm, and the grippers close
 TEST(TeleopSession, EveryModeReachesBothHandTargetsAndTheLift) {
