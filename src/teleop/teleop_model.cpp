@@ -55,6 +55,29 @@ std::vector<std::string> gripper_joints(const Chain& arm) {
   return names;
 }
 
+void reset_simulation(Simulation& sim, const std::string& keyframe) {
+  const auto keys = sim.robot().keyframe_names();
+  if (!keyframe.empty() && std::find(keys.begin(), keys.end(), keyframe) != keys.end()) {
+    sim.reset(keyframe);
+  } else {
+    sim.reset();
+  }
+}
+
+void carry_state(const Simulation& from, Simulation& to) {
+  const mjModel& mf = from.model();
+  const mjModel& mt = to.model();
+  if (mf.nq == mt.nq && mf.nv == mt.nv) {
+    const mjData& d = from.data();
+    const std::vector<double> qvel(d.qvel, d.qvel + mt.nv);
+    to.set_state(std::span<const double>(d.qpos, static_cast<std::size_t>(mt.nq)), qvel);
+    to.data().time = d.time;  // the clock goes on across the switch
+  } else {
+    to.reset();
+  }
+  for (int c = 0; c < to.controller_count(); ++c) to.controller(c).reset();
+}
+
 std::string root_body(const mjModel& m, int joint) {
   int b = m.jnt_bodyid[joint];
   while (b > 0 && m.body_parentid[b] > 0) b = m.body_parentid[b];

@@ -8,6 +8,7 @@
 
 #include "mjarm/model/chain.hpp"
 #include "mjarm/model/robot.hpp"
+#include "mjarm/sim/simulation.hpp"
 
 namespace mjarm::detail {
 
@@ -21,6 +22,13 @@ std::string model_variant_missing(const Robot& robot, bool torque);
 
 /// Limited hinge/slide joints below @p arm's last joint that the arm does not move (the fingers).
 std::vector<std::string> gripper_joints(const Chain& arm);
+
+/// Resets @p sim to keyframe @p keyframe when its model has one by that name, else to qpos0.
+void reset_simulation(Simulation& sim, const std::string& keyframe);
+
+/// A mode switch: @p to takes @p from's state (qpos, qvel, time) when the models have the same
+/// sizes (else it is reset), and its controllers are reset.
+void carry_state(const Simulation& from, Simulation& to);
 
 /// The top-level body holding the joint @p joint ("" when unnamed).
 std::string root_body(const mjModel& m, int joint);

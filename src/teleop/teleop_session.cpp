@@ -399,16 +399,7 @@ void TeleopSession::set_mode(SimulationMode mode) {
   if (!available(mode)) throw Error("teleop: " + unavailable_reason(mode));
   Rig& from = *rigs_[static_cast<int>(mode_)];
   Rig& to = *rigs_[static_cast<int>(mode)];
-  const mjModel& mt = to.robot.model();
-  if (from.robot.model().nq == mt.nq && from.robot.model().nv == mt.nv) {
-    const mjData& d = from.sim->data();
-    const std::vector<double> qvel(d.qvel, d.qvel + mt.nv);
-    to.sim->set_state(std::span<const double>(d.qpos, static_cast<std::size_t>(mt.nq)), qvel);
-    to.sim->data().time = d.time;
-  } else {
-    to.sim->reset();
-  }
-  for (int c = 0; c < to.sim->controller_count(); ++c) to.sim->controller(c).reset();
+  detail::carry_state(*from.sim, *to.sim);
   to.ticks = from.ticks;
   mode_ = mode;
   restart_references();
@@ -430,13 +421,7 @@ void TeleopSession::set_targets(const TeleopTargets& targets) {
 
 void TeleopSession::reset() {
   Rig& rig = *rigs_[static_cast<int>(mode_)];
-  const auto keys = rig.robot.keyframe_names();
-  if (!options_.keyframe.empty() &&
-      std::find(keys.begin(), keys.end(), options_.keyframe) != keys.end()) {
-    rig.sim->reset(options_.keyframe);
-  } else {
-    rig.sim->reset();
-  }
+  detail::reset_simulation(*rig.sim, options_.keyframe);
   rig.ticks = 0;
   stats_.rollbacks = 0;
   for (std::size_t i = 0; i < hands_.size(); ++i) smooth_->grippers[i].reset(0.0);

@@ -198,19 +198,7 @@ double ViewerSession::control_period() const noexcept {
 void ViewerSession::set_mode(SimulationMode mode) {
   if (mode == mode_) return;
   if (!available(mode)) throw Error("viewer: " + unavailable_reason(mode));
-  Rig& from = *rigs_[static_cast<int>(mode_)];
-  Rig& to = *rigs_[static_cast<int>(mode)];
-  const mjModel& mf = from.robot.model();
-  const mjModel& mt = to.robot.model();
-  if (mf.nq == mt.nq && mf.nv == mt.nv) {
-    const mjData& d = from.sim->data();
-    const std::vector<double> qvel(d.qvel, d.qvel + mt.nv);
-    to.sim->set_state(std::span<const double>(d.qpos, static_cast<std::size_t>(mt.nq)), qvel);
-    to.sim->data().time = d.time;  // the clock goes on across the switch
-  } else {
-    to.sim->reset();
-  }
-  for (int c = 0; c < to.sim->controller_count(); ++c) to.sim->controller(c).reset();
+  detail::carry_state(*rigs_[static_cast<int>(mode_)]->sim, *rigs_[static_cast<int>(mode)]->sim);
   mode_ = mode;
   restart_reference();
 }
@@ -223,13 +211,7 @@ void ViewerSession::set_target(const PanelState& panel) noexcept {
 
 void ViewerSession::reset() {
   Rig& rig = *rigs_[static_cast<int>(mode_)];
-  const auto keys = rig.robot.keyframe_names();
-  if (!options_.keyframe.empty() &&
-      std::find(keys.begin(), keys.end(), options_.keyframe) != keys.end()) {
-    rig.sim->reset(options_.keyframe);
-  } else {
-    rig.sim->reset();
-  }
+  detail::reset_simulation(*rig.sim, options_.keyframe);
   rig.read_q();
   rig.q_home = rig.q;
   gripper_ramp_.reset(0.0);  // the initial command: open
