@@ -6,7 +6,7 @@
 
 #include "commands.hpp"
 #include "mjarm/lie/rotation.hpp"
-#include "mjarm/render/viewer.hpp"
+#include "mjarm/teleop/viewer.hpp"
 #include "output.hpp"
 
 namespace mjarm::cli {

@@ -43,6 +43,8 @@ Command add_bench_traj_subcommand(CLI::App& bench, std::function<std::uint64_t()
 Command add_bench_plan_subcommand(CLI::App& bench);
 Command add_render_command(CLI::App& root);  ///< `mjarm render MODEL --out P` (cmd_render.cpp)
 Command add_view_command(CLI::App& root);    ///< `mjarm view [MODEL]` (cmd_view.cpp)
+Command add_replay_command(CLI::App& root);  ///< `mjarm replay FILE` (cmd_teleop.cpp)
+Command add_bimanual_command(CLI::App& root);  ///< `mjarm bimanual` (cmd_teleop.cpp)
 Command add_run_command(CLI::App& root);     ///< `mjarm run shelf-pick …` (cmd_run.cpp)
 Command add_plot_command(CLI::App& root);    ///< `mjarm plot RECORDING …` (cmd_plot.cpp)
 Command add_traj_command(CLI::App& root);    ///< `mjarm traj KIND …` (cmd_traj.cpp)

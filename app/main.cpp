@@ -45,6 +45,8 @@ int main(int argc, char** argv) {
   commands.push_back(add_bench_command(app));
   commands.push_back(add_render_command(app));
   commands.push_back(add_view_command(app));
+  commands.push_back(add_replay_command(app));
+  commands.push_back(add_bimanual_command(app));
   commands.push_back(add_run_command(app));
   commands.push_back(add_plot_command(app));
   commands.push_back(add_traj_command(app));

@@ -41,7 +41,7 @@ const std::vector<Bundle>& bundles() {
       {"panda_hand", {"attachment_site", "tcp"}, 9},
       {"iiwa14", {"attachment_site"}, 7},
       {"ur5e", {"attachment_site"}, 6},
-      {"dual_arm", {"left_hand", "right_hand"}, 15},
+      {"dual_arm", {"left_hand", "left_tcp", "right_hand", "right_tcp"}, 19},
   };
   return kBundles;
 }

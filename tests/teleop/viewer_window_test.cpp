@@ -23,7 +23,7 @@
 #include <vector>
 
 #include "mjarm/render/png.hpp"
-#include "mjarm/render/viewer_session.hpp"
+#include "mjarm/teleop/viewer_session.hpp"
 #include "support/files.hpp"
 
 namespace mjarm {

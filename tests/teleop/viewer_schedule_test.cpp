@@ -1,4 +1,4 @@
-#include "mjarm/render/viewer_schedule.hpp"
+#include "mjarm/teleop/viewer_schedule.hpp"
 
 #include <gtest/gtest.h>
 

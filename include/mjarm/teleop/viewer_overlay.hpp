@@ -9,7 +9,7 @@
 #include <span>
 #include <string>
 
-#include "mjarm/render/viewer_session.hpp"
+#include "mjarm/teleop/viewer_session.hpp"
 
 namespace mjarm {
 

@@ -14,7 +14,7 @@
 #include <optional>
 #include <string_view>
 
-#include "mjarm/render/viewer_panel.hpp"
+#include "mjarm/teleop/viewer_panel.hpp"
 
 namespace mjarm {
 

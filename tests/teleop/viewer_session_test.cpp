@@ -1,6 +1,6 @@
 // The viewer's simulation without a window: every mode reaches a target set on the panel, mode
 // switches carry the state over, the gripper follows its slider, and a step allocates nothing.
-#include "mjarm/render/viewer_session.hpp"
+#include "mjarm/teleop/viewer_session.hpp"
 
 #include <gtest/gtest.h>
 

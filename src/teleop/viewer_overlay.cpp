@@ -1,4 +1,4 @@
-#include "mjarm/render/viewer_overlay.hpp"
+#include "mjarm/teleop/viewer_overlay.hpp"
 
 #include <cmath>
 #include <cstdio>

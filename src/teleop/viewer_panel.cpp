@@ -1,4 +1,4 @@
-#include "mjarm/render/viewer_panel.hpp"
+#include "mjarm/teleop/viewer_panel.hpp"
 
 #include <algorithm>
 #include <charconv>

@@ -1,4 +1,4 @@
-#include "mjarm/render/viewer_script.hpp"
+#include "mjarm/teleop/viewer_script.hpp"
 
 #include <mujoco/mjui.h>
 
@@ -9,7 +9,7 @@
 
 #include "mjarm/error.hpp"
 #include "mjarm/model/user_file.hpp"
-#include "mjarm/render/viewer_panel.hpp"
+#include "mjarm/teleop/viewer_panel.hpp"
 
 namespace mjarm {
 

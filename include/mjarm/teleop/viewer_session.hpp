@@ -25,7 +25,7 @@
 #include "mjarm/lie/pose.hpp"
 #include "mjarm/model/chain.hpp"
 #include "mjarm/model/robot.hpp"
-#include "mjarm/render/viewer_panel.hpp"
+#include "mjarm/teleop/viewer_panel.hpp"
 #include "mjarm/sim/contact_query.hpp"
 #include "mjarm/sim/simulation.hpp"
 #include "mjarm/trajectory/ramped_command.hpp"

@@ -21,10 +21,10 @@
 #include <vector>
 
 #include "mjarm/model/robot.hpp"
-#include "mjarm/render/viewer_panel.hpp"
-#include "mjarm/render/viewer_schedule.hpp"
-#include "mjarm/render/viewer_script.hpp"
-#include "mjarm/render/viewer_session.hpp"
+#include "mjarm/teleop/viewer_panel.hpp"
+#include "mjarm/teleop/viewer_schedule.hpp"
+#include "mjarm/teleop/viewer_script.hpp"
+#include "mjarm/teleop/viewer_session.hpp"
 
 namespace mjarm {
 

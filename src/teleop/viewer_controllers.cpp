@@ -1,4 +1,4 @@
-#include "mjarm/render/viewer_controllers.hpp"
+#include "mjarm/teleop/viewer_controllers.hpp"
 
 #include <algorithm>
 #include <cmath>

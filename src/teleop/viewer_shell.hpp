@@ -10,9 +10,9 @@
 #include <string>
 
 #include "mjarm/render/image.hpp"
-#include "mjarm/render/viewer.hpp"
-#include "mjarm/render/viewer_overlay.hpp"
-#include "mjarm/render/viewer_ui.hpp"
+#include "mjarm/teleop/viewer.hpp"
+#include "mjarm/teleop/viewer_overlay.hpp"
+#include "mjarm/teleop/viewer_ui.hpp"
 
 struct GLFWwindow;
 

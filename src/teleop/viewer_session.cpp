@@ -1,4 +1,4 @@
-#include "mjarm/render/viewer_session.hpp"
+#include "mjarm/teleop/viewer_session.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -12,68 +12,14 @@
 #include "mjarm/ik/pose_ik.hpp"
 #include "mjarm/kinematics/frame_state.hpp"
 #include "mjarm/lie/so3.hpp"
-#include "mjarm/render/viewer_controllers.hpp"
+#include "mjarm/teleop/viewer_controllers.hpp"
+#include "teleop_model.hpp"
 
 namespace mjarm {
 
+using detail::gripper_joints;
+
 namespace {
-
-constexpr const char* kTorqueSuffix = "_torque";
-
-bool ends_with(const std::string& s, const std::string& suffix) {
-  return s.size() >= suffix.size() &&
-         s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
-}
-
-// the model file of the other flavour (position servos / torque motors), or nullopt
-std::optional<Robot> variant(const Robot& robot, bool torque) {
-  const std::filesystem::path source = robot.source();
-  if (source.empty() || robot.source() == "<string>") return std::nullopt;
-  const std::string stem = source.stem().string();
-  if (ends_with(stem, kTorqueSuffix) == torque) return robot;  // already that flavour
-  const std::string other = torque
-                                ? stem + kTorqueSuffix
-                                : stem.substr(0, stem.size() - std::string(kTorqueSuffix).size());
-  const std::filesystem::path path = source.parent_path() / (other + source.extension().string());
-  if (!std::filesystem::exists(path)) return std::nullopt;
-  return Robot::from_file(path);
-}
-
-std::string variant_missing(const Robot& robot, bool torque) {
-  const std::filesystem::path source = robot.source();
-  const std::string stem = source.stem().string();
-  return std::string(torque ? "torque" : "position") + " mode needs the model's " +
-         (torque ? "torque-motor variant '" + stem + kTorqueSuffix + source.extension().string()
-                 : "position-servo variant") +
-         "' beside '" + robot.source() + "'";
-}
-
-// limited hinge/slide joints below the arm's last joint that the arm does not move
-std::vector<std::string> gripper_joints(const Chain& arm) {
-  const mjModel& m = arm.robot().model();
-  const int last_body = m.jnt_bodyid[arm.joint_ids().back()];
-  std::vector<std::string> names;
-  for (int j = 0; j < m.njnt; ++j) {
-    const auto& ids = arm.joint_ids();
-    if (std::find(ids.begin(), ids.end(), j) != ids.end()) continue;
-    if ((m.jnt_type[j] != mjJNT_HINGE && m.jnt_type[j] != mjJNT_SLIDE) || !m.jnt_limited[j])
-      continue;
-    int b = m.jnt_bodyid[j];
-    while (b > 0 && b != last_body) b = m.body_parentid[b];
-    const char* name = mj_id2name(&m, mjOBJ_JOINT, j);
-    if (b == last_body && name != nullptr) names.emplace_back(name);
-  }
-  return names;
-}
-
-// the top-level body holding the arm, for the robot-vs-rest contact watch ("" when unnamed)
-std::string root_body(const Chain& arm) {
-  const mjModel& m = arm.robot().model();
-  int b = m.jnt_bodyid[arm.joint_ids().front()];
-  while (b > 0 && m.body_parentid[b] > 0) b = m.body_parentid[b];
-  const char* name = mj_id2name(&m, mjOBJ_BODY, b);
-  return name != nullptr ? name : "";
-}
 
 double rotation_angle(const Eigen::Matrix3d& R_a, const Eigen::Matrix3d& R_b) noexcept {
   return so3::angle(R_b * R_a.transpose());
@@ -151,7 +97,7 @@ struct ViewerSession::Rig {
       ik_options.max_iterations = std::max(1, o.ik_iterations);
       ik = std::make_unique<PoseIk>(arm, ik_options);
     }
-    const std::string root = root_body(arm);
+    const std::string root = detail::root_body(robot.model(), arm.joint_ids().front());
     if (!root.empty()) watch = sim->watch_contacts(GeomSet::of_bodies(robot, {root}), GeomSet());
     const int n = arm.size();
     q.setZero(n);
@@ -194,9 +140,10 @@ ViewerSession::ViewerSession(const Robot& robot, const ViewerSessionOptions& opt
     const auto mode = static_cast<SimulationMode>(m);
     try {
       std::optional<Robot> model = robot;
-      if (mode != SimulationMode::kinematic) model = variant(robot, mode == SimulationMode::torque);
+      if (mode != SimulationMode::kinematic)
+        model = detail::model_variant(robot, mode == SimulationMode::torque);
       if (!model) {
-        reasons_[m] = variant_missing(robot, mode == SimulationMode::torque);
+        reasons_[m] = detail::model_variant_missing(robot, mode == SimulationMode::torque);
         continue;
       }
       rigs_[m] = std::make_unique<Rig>(*model, mode, site_, options_);
@@ -251,19 +198,7 @@ double ViewerSession::control_period() const noexcept {
 void ViewerSession::set_mode(SimulationMode mode) {
   if (mode == mode_) return;
   if (!available(mode)) throw Error("viewer: " + unavailable_reason(mode));
-  Rig& from = *rigs_[static_cast<int>(mode_)];
-  Rig& to = *rigs_[static_cast<int>(mode)];
-  const mjModel& mf = from.robot.model();
-  const mjModel& mt = to.robot.model();
-  if (mf.nq == mt.nq && mf.nv == mt.nv) {
-    const mjData& d = from.sim->data();
-    const std::vector<double> qvel(d.qvel, d.qvel + mt.nv);
-    to.sim->set_state(std::span<const double>(d.qpos, static_cast<std::size_t>(mt.nq)), qvel);
-    to.sim->data().time = d.time;  // the clock goes on across the switch
-  } else {
-    to.sim->reset();
-  }
-  for (int c = 0; c < to.sim->controller_count(); ++c) to.sim->controller(c).reset();
+  detail::carry_state(*rigs_[static_cast<int>(mode_)]->sim, *rigs_[static_cast<int>(mode)]->sim);
   mode_ = mode;
   restart_reference();
 }
@@ -276,13 +211,7 @@ void ViewerSession::set_target(const PanelState& panel) noexcept {
 
 void ViewerSession::reset() {
   Rig& rig = *rigs_[static_cast<int>(mode_)];
-  const auto keys = rig.robot.keyframe_names();
-  if (!options_.keyframe.empty() &&
-      std::find(keys.begin(), keys.end(), options_.keyframe) != keys.end()) {
-    rig.sim->reset(options_.keyframe);
-  } else {
-    rig.sim->reset();
-  }
+  detail::reset_simulation(*rig.sim, options_.keyframe);
   rig.read_q();
   rig.q_home = rig.q;
   gripper_ramp_.reset(0.0);  // the initial command: open

@@ -1,7 +1,7 @@
 // The viewer's window-free pieces: panel state ↔ target mapping, named edits, the panel
 // definition (mjui without OpenGL), scripts and overlay text. The target filter is tested in
 // tests/trajectory/target_filter_test.cpp.
-#include "mjarm/render/viewer_panel.hpp"
+#include "mjarm/teleop/viewer_panel.hpp"
 
 #include <gtest/gtest.h>
 
@@ -11,9 +11,9 @@
 #include "mjarm/error.hpp"
 #include "mjarm/lie/rotation.hpp"
 #include "mjarm/lie/so3.hpp"
-#include "mjarm/render/viewer_overlay.hpp"
-#include "mjarm/render/viewer_script.hpp"
-#include "mjarm/render/viewer_ui.hpp"
+#include "mjarm/teleop/viewer_overlay.hpp"
+#include "mjarm/teleop/viewer_script.hpp"
+#include "mjarm/teleop/viewer_ui.hpp"
 
 namespace mjarm {
 namespace {

@@ -1,4 +1,4 @@
-#include "mjarm/render/viewer_ui.hpp"
+#include "mjarm/teleop/viewer_ui.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -1,5 +1,5 @@
 // The viewer's loop (wall clock or virtual clock) and the script runner.
-#include "mjarm/render/viewer.hpp"
+#include "mjarm/teleop/viewer.hpp"
 
 #include <GLFW/glfw3.h>
 

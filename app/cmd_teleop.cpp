@@ -1,0 +1,236 @@
+// `mjarm replay FILE`: replays a recorded teleoperation session headless (optionally to a video);
+// `mjarm bimanual`: the scripted bimanual lift through the same session code (docs/teleop.md).
+
+#include <iostream>
+#include <memory>
+#include <optional>
+
+#include "commands.hpp"
+#include "mjarm/error.hpp"
+#include "mjarm/sim/interrupt.hpp"
+#include "mjarm/tasks/run_video.hpp"
+#include "mjarm/teleop/bimanual_lift.hpp"
+
+namespace mjarm::cli {
+
+namespace {
+
+struct TeleopVideoOptions {
+  std::string path;
+  std::string size = "640x480";
+  double fps = 30.0;
+};
+
+void add_teleop_video_options(CLI::App& app, TeleopVideoOptions& o) {
+  CLI::Option* video = app.add_option(
+      "--video", o.path, "write an MP4 of the session (rendered headless; needs Debian's ffmpeg)");
+  app.add_option("--size", o.size, "video size WIDTHxHEIGHT [pixels], even")
+      ->check(pixel_size({2, 2}, true, {4096, 4096}))
+      ->needs(video)
+      ->capture_default_str();
+  app.add_option("--fps", o.fps, "video frames per simulated second")
+      ->check(number_in(1.0, 240.0))
+      ->needs(video)
+      ->capture_default_str();
+}
+
+// the video of a session: frames on the simulation clock, from a camera framing the robot
+class TeleopVideo {
+ public:
+  TeleopVideo(const TeleopSession& session, const TeleopVideoOptions& o) {
+    const PixelSize size = parse_pixel_size(o.size);
+    RunVideoOptions options;
+    options.width = size.width;
+    options.height = size.height;
+    options.fps = o.fps;
+    const mjData& d = session.simulation().data();
+    // from the front and above, looking at the middle between the hands
+    Eigen::Vector3d lookat = Eigen::Vector3d::Zero();
+    for (const auto& h : session.stats().hands) lookat += h.X_WE.p;
+    lookat /= static_cast<double>(session.stats().hands.size());
+    lookat.z() -= 0.1;
+    const CameraSpec camera = CameraSpec::free_camera(lookat, 2.2, 155.0, -30.0);
+    video_ = std::make_unique<RunVideo>(session.robot(), d, o.path, camera, options);
+  }
+  void on_tick(const TeleopSession& session) { video_->on_tick(session.simulation().data()); }
+  void finish(const TeleopSession& session) { video_->finish(session.simulation().data()); }
+  std::int64_t frames() const { return video_->frames(); }
+
+ private:
+  std::unique_ptr<RunVideo> video_;
+};
+
+Json hand_stats_json(const TeleopSession& session, const TeleopStats& s) {
+  Json hands = Json::array();
+  for (std::size_t i = 0; i < s.hands.size(); ++i) {
+    const HandStats& h = s.hands[i];
+    hands.push_back({{"name", session.hands()[i].name},
+                     {"position", vector_json(h.X_WE.p)},
+                     {"tracking_error", h.tracking_position},
+                     {"touching", h.touching},
+                     {"grasp_force", h.grasp_force},
+                     {"gripper", h.gripper}});
+  }
+  return hands;
+}
+
+}  // namespace
+
+Command add_replay_command(CLI::App& root) {
+  CLI::App* app = root.add_subcommand(
+      "replay", "replay a recorded teleoperation session headless, deterministically");
+  struct Options {
+    std::string file;
+    std::string model;
+    TeleopVideoOptions video;
+    bool json = false;
+  };
+  auto o = std::make_shared<Options>();
+  app->add_option("FILE", o->file,
+                  "session file (mjarm view --record-session, mjarm bimanual "
+                  "--record-session)")
+      ->required();
+  app->add_option("--model", o->model,
+                  "model to replay on (default: the one the file names); it must be the model "
+                  "the session was recorded on");
+  add_teleop_video_options(*app, o->video);
+  add_json_flag(*app, o->json);
+  return {app, [o] {
+            if (!o->video.path.empty()) check_output_file(o->video.path, "--video");
+            const SessionLog log = read_session_log(o->file);
+            const Robot robot = load_model(o->model.empty() ? log.model : o->model);
+            const InterruptGuard interrupts;
+            SessionReplay replay(robot, log);
+            std::optional<TeleopVideo> video;
+            if (!o->video.path.empty()) video.emplace(replay.session(), o->video);
+            Progress progress("replay", std::max<std::int64_t>(1, log.ticks),
+                              !o->json && stderr_is_terminal());
+            while (replay.step()) {
+              if (video) video->on_tick(replay.session());
+              if (replay.ticks() % 100 == 0) progress.update(replay.ticks());
+              if (interrupt_requested()) break;
+            }
+            progress.finish();
+            if (video) video->finish(replay.session());
+            const ReplayResult r = replay.result();
+            if (interrupt_requested())
+              throw InterruptedError("replay stopped after " + std::to_string(r.ticks) + " of " +
+                                         std::to_string(log.ticks) + " ticks",
+                                     interrupt_signal());
+            const TeleopSession& session = replay.session();
+            if (o->json) {
+              Json doc{{"file", o->file},
+                       {"model", robot.name()},
+                       {"ticks", r.ticks},
+                       {"recorded_ticks", log.ticks},
+                       {"sim_time", r.stats.time},
+                       {"mode", to_string(r.stats.mode)},
+                       {"digest", r.digest},
+                       {"recorded_digest", log.digest},
+                       {"deterministic", r.matches},
+                       {"hands", hand_stats_json(session, r.stats)},
+                       {"video", video ? Json{{"path", o->video.path}, {"frames", video->frames()}}
+                                       : Json(nullptr)}};
+              print_json(doc);
+            } else {
+              print_fields(
+                  std::cout,
+                  {{"session", o->file},
+                   {"model", robot.name()},
+                   {"ticks", std::to_string(r.ticks) + " of " + std::to_string(log.ticks) + " (" +
+                                 fixed(r.stats.time, 3) + " s simulated, " +
+                                 to_string(r.stats.mode) + " mode at the end)"},
+                   {"final state", r.digest + (r.matches ? " (the recorded one)"
+                                                         : " (recorded: " + log.digest + ")")}});
+              if (video)
+                std::cout << "video: " << o->video.path << " (" << video->frames() << " frames)\n";
+            }
+            if (!r.matches)
+              throw Error("the replay did not reach the recorded state" +
+                          std::string(r.stats.faulted ? ": " + r.stats.fault : ""));
+          }};
+}
+
+Command add_bimanual_command(CLI::App& root) {
+  CLI::App* app = root.add_subcommand(
+      "bimanual",
+      "the scripted bimanual task: both hands grasp the bar of dual_arm_box by its "
+      "ends and lift it 0.2 m, through the teleoperation session");
+  struct Options {
+    std::string model = "dual_arm_box";
+    std::string mode = "position";
+    std::string record;
+    double lift_height = 0.2;
+    TeleopVideoOptions video;
+    bool json = false;
+  };
+  auto o = std::make_shared<Options>();
+  app->add_option("--model", o->model, "scene with two hands and a free body 'bar'")
+      ->capture_default_str();
+  app->add_option("--mode", o->mode, "kinematic | position | torque (motor)")
+      ->check(CLI::IsMember({"kinematic", "position", "torque"}))
+      ->capture_default_str();
+  app->add_option("--lift", o->lift_height, "how high to lift the bar [m]")
+      ->check(number_in(0.0, 0.5))
+      ->capture_default_str();
+  app->add_option("--record-session", o->record, "write the session to FILE (mjarm replay FILE)");
+  add_teleop_video_options(*app, o->video);
+  add_json_flag(*app, o->json);
+  return {
+      app, [o] {
+        if (!o->record.empty()) check_output_file(o->record, "--record-session");
+        if (!o->video.path.empty()) check_output_file(o->video.path, "--video");
+        const Robot robot = load_model(o->model);
+        TeleopOptions options;
+        for (int k = 0; k < 3; ++k)
+          if (o->mode == to_string(static_cast<SimulationMode>(k)))
+            options.mode = static_cast<SimulationMode>(k);
+        const InterruptGuard interrupts;
+        TeleopSession session(robot, options);
+        SessionRecorder recorder(session);
+        std::optional<TeleopVideo> video;
+        if (!o->video.path.empty()) video.emplace(session, o->video);
+        BimanualLiftOptions lift;
+        lift.lift_height = o->lift_height;
+        const BimanualLiftResult r = run_bimanual_lift(recorder, lift, [&](const TeleopSession& s) {
+          if (video) video->on_tick(s);
+          if (interrupt_requested())
+            throw InterruptedError("bimanual lift stopped at " + fixed(s.stats().time, 3) + " s",
+                                   interrupt_signal());
+        });
+        if (video) video->finish(session);
+        if (!o->record.empty()) write_session_log(recorder.log(), o->record);
+        if (o->json) {
+          print_json({{"model", robot.name()},
+                      {"mode", o->mode},
+                      {"success", r.success},
+                      {"failure", r.failure.empty() ? Json(nullptr) : Json(r.failure)},
+                      {"start_z", r.start_z},
+                      {"end_z", r.end_z},
+                      {"lifted", r.lifted},
+                      {"sag", r.sag},
+                      {"grasp_force", {r.grasp_force[0], r.grasp_force[1]}},
+                      {"ticks", r.ticks},
+                      {"sim_time", session.stats().time},
+                      {"hands", hand_stats_json(session, session.stats())},
+                      {"session", o->record.empty() ? Json(nullptr) : Json(o->record)},
+                      {"video", video ? Json(o->video.path) : Json(nullptr)}});
+        } else {
+          print_fields(std::cout,
+                       {{"scene", robot.name() + " (" + o->mode + " mode)"},
+                        {"outcome", r.success ? "lifted" : "failed: " + r.failure},
+                        {"bar height [m]", fixed(r.start_z, 4) + " → " + fixed(r.end_z, 4) +
+                                               " (lifted " + fixed(r.lifted, 4) + ")"},
+                        {"sag while held [mm]", fixed(r.sag * 1e3, 2)},
+                        {"grasp force [N]", fixed(r.grasp_force[0], 1) + " left, " +
+                                                fixed(r.grasp_force[1], 1) + " right"},
+                        {"simulated", fixed(session.stats().time, 3) + " s, " +
+                                          std::to_string(r.ticks) + " ticks"}});
+          if (!o->record.empty()) std::cout << "session: " << o->record << '\n';
+          if (video) std::cout << "video: " << o->video.path << '\n';
+        }
+        if (!r.success) throw Error("bimanual lift failed: " + r.failure);
+      }};
+}
+
+}  // namespace mjarm::cli
