@@ -53,17 +53,28 @@ class Simulation {
 
   // ---- model, data, timing ----
   const Robot& robot() const noexcept { return robot_; }
-  const mjModel& model() const noexcept { return robot_.model(); }
+  /// The model this simulation steps. With `SimulationOptions::own_model` it is the
+  /// simulation's own copy, which its owner may edit between steps (`editable_model`: domain
+  /// randomization); `robot().model()` keeps the values of the file. Otherwise it is the robot's
+  /// shared model.
+  const mjModel& model() const noexcept { return *model_; }
+  /// True when `model()` is this simulation's own copy.
+  bool owns_model() const noexcept { return own_model_ != nullptr; }
+  /// The simulation's own model copy, for its owner to edit between steps (masses, friction,
+  /// damping, gains, sizes; call `mj_setConst` after changing masses or inertias), or null when
+  /// the model is the robot's shared one. Controllers keep reading the robot's model for its
+  /// structure and the state's dynamics (mass matrix, bias forces) from the data.
+  mjModel* editable_model() noexcept { return own_model_.get(); }
   /// The simulation's data. Writing qpos/qvel directly is allowed; call `forward` afterwards.
   mjData& data() noexcept { return *data_; }
   const mjData& data() const noexcept { return *data_; }
   const SimulationOptions& options() const noexcept { return options_; }
   SimulationMode mode() const noexcept { return options_.mode; }
-  double timestep() const noexcept { return robot_.model().opt.timestep; }         ///< [s]
+  double timestep() const noexcept { return model_->opt.timestep; }                ///< [s]
   double control_period() const noexcept { return timestep() * steps_per_tick_; }  ///< [s]
   int steps_per_tick() const noexcept { return steps_per_tick_; }
   double time() const noexcept { return data_->time; }  ///< simulated time [s]
-  bool uses_rk4() const noexcept { return robot_.model().opt.integrator == mjINT_RK4; }
+  bool uses_rk4() const noexcept { return model_->opt.integrator == mjINT_RK4; }
   std::int64_t ticks() const noexcept { return ticks_; }          ///< control ticks since reset
   std::int64_t physics_steps() const noexcept { return steps_; }  ///< physics steps since reset
 
@@ -166,7 +177,13 @@ class Simulation {
   void refresh_watches(bool with_forces) noexcept;
   void after_reset();
 
+  struct ModelDeleter {
+    void operator()(mjModel* m) const noexcept { mj_deleteModel(m); }
+  };
+
   Robot robot_;
+  std::unique_ptr<mjModel, ModelDeleter> own_model_;  // copy with SimulationOptions::own_model
+  const mjModel* model_ = nullptr;                    // own_model_ or the robot's
   SimulationOptions options_;
   DataPtr data_;
   int steps_per_tick_ = 1;
