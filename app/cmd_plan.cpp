@@ -2,14 +2,15 @@
 // waypoints (docs/planning.md) and prints the per-waypoint checks; `--out` writes it as CSV.
 
 #include <cmath>
+#include <cstdio>
 #include <iostream>
 #include <memory>
-#include <sstream>
 
 #include "commands.hpp"
 #include "mjarm/error.hpp"
 #include "mjarm/file_writer.hpp"
 #include "mjarm/planning/waypoint_file.hpp"
+#include "mjarm/plot/gnuplot.hpp"
 #include "mjarm/plot/trajectory_plot.hpp"
 
 namespace mjarm::cli {
@@ -30,28 +31,36 @@ Eigen::VectorXd per_joint(const std::vector<double>& values, int n, const char* 
 
 std::string plan_mm(double metres) { return fixed(metres * 1e3, 3); }
 
-/// Writes t, q, q̇, q̈ and the tool position every @p period seconds.
+/// Most CSV rows `--out` writes (as `mjarm traj`): a rate × duration beyond it is a usage error.
+constexpr double kMaxCsvRows = 1e6;
+
+/// Writes t, q, q̇, q̈ and the tool position every @p period seconds, row by row.
 void write_csv(const std::string& path, const Chain& chain, const JointSpline& s, double period) {
-  std::ostringstream out;
+  FileWriter out(path, FileWriter::Mode::replace, "trajectory CSV");
   const int n = chain.size();
-  out << "t";
+  std::string header = "t";
   for (const char* kind : {"q", "qd", "qdd"})
-    for (int i = 0; i < n; ++i) out << ',' << kind << '_' << chain.joint_names()[i];
-  out << ",x,y,z\n";
+    for (int i = 0; i < n; ++i) header += std::string(",") + kind + "_" + chain.joint_names()[i];
+  out.write(header + ",x,y,z\n");
   ChainKinematics kin(chain);
   Eigen::VectorXd q(n), qd(n), qdd(n);
   const auto steps = static_cast<std::int64_t>(std::ceil(s.duration() / period - 1e-9));
-  out.precision(10);
+  char number[32];
+  const auto put = [&](const char* format, double value) {
+    out.write(number,
+              static_cast<std::size_t>(std::snprintf(number, sizeof number, format, value)));
+  };
   for (std::int64_t k = 0; k <= steps; ++k) {
     const double t = std::min(s.duration(), static_cast<double>(k) * period);
     s.at(t, q, qd, qdd);
-    out << t;
+    put("%.10g", t);
     for (const Eigen::VectorXd* v : {&q, &qd, &qdd})
-      for (int i = 0; i < n; ++i) out << ',' << (*v)[i];
+      for (int i = 0; i < n; ++i) put(",%.10g", (*v)[i]);
     const Eigen::Vector3d p = kin.update(q).p;
-    out << ',' << p.x() << ',' << p.y() << ',' << p.z() << '\n';
+    for (int i = 0; i < 3; ++i) put(",%.10g", p[i]);
+    out.write("\n");
   }
-  write_file(path, out.str(), "trajectory CSV");  // whole or not at all, errors name the file
+  out.commit();  // the whole CSV or the old file: a write error names the file and the reason
 }
 
 /// Draws @p dir/trajectory.png: q, q̇, q̈ and the jerk of every joint sampled every @p period
@@ -244,7 +253,10 @@ Command add_plan_command(CLI::App& root) {
               throw UsageError("--rate must be in (0, 100000] Hz, got " + compact(*rate));
             if (o->min_sigma < 0.0) throw UsageError("--min-sigma must be >= 0");
             if (!out->empty()) check_output_file(*out, "--out");  // before the work
-            if (!plot_dir->empty()) check_output_folder(*plot_dir, "--plot");
+            if (!plot_dir->empty()) {
+              check_output_folder(*plot_dir, "--plot");
+              plot::find_gnuplot();
+            }
             const PlannedPath p = plan_path(*o);
             std::string plot_path;
             if (p.result.ok() && !plot_dir->empty())
@@ -257,6 +269,12 @@ Command add_plan_command(CLI::App& root) {
               print_plan(std::cout, p);
             }
             if (!p.result.ok()) throw Error("no plan: " + p.result.message);
+            const double duration = p.result.trajectory.duration();
+            if (!out->empty() && std::ceil(duration * *rate) + 1 > kMaxCsvRows)
+              throw UsageError("the trajectory lasts " + compact(duration) + " s: at --rate " +
+                               compact(*rate) + " Hz the CSV would have " +
+                               compact(std::ceil(duration * *rate) + 1) +
+                               " rows, more than 10⁶: lower --rate");
             if (!out->empty()) {
               write_csv(*out, *p.chain, p.result.trajectory, 1.0 / *rate);
               if (!*json) std::cout << "  trajectory written to " << *out << '\n';

@@ -15,6 +15,7 @@
 #include "commands.hpp"
 #include "mjarm/error.hpp"
 #include "mjarm/file_writer.hpp"
+#include "mjarm/plot/gnuplot.hpp"
 #include "mjarm/plot/trajectory_plot.hpp"
 #include "mjarm/trajectory/jerk_limited.hpp"
 #include "mjarm/trajectory/quintic.hpp"
@@ -366,8 +367,12 @@ Command add_traj_command(CLI::App& root) {
   return {
       app, [options] {
         const Options& o = *options;
-        if (!o.out.empty()) check_output_file(o.out, "--out");  // before the work
-        if (!o.plot.empty()) check_output_folder(o.plot, "--plot");
+        // outputs first: a path that cannot be written is a usage error before any work
+        if (!o.out.empty()) check_output_file(o.out, "--out");
+        if (!o.plot.empty()) {
+          check_output_folder(o.plot, "--plot");
+          plot::find_gnuplot();
+        }
         const TrajKind& kind = *std::find_if(kTrajKinds.begin(), kTrajKinds.end(),
                                              [&](const TrajKind& k) { return o.kind == k.name; });
         const auto n = static_cast<Eigen::Index>(o.start.size());

@@ -13,26 +13,6 @@
 
 namespace mjarm {
 
-double joint_torque_limit(const Chain& chain, int i) {
-  const mjModel& m = chain.robot().model();
-  const std::optional<int> a = chain.actuator(i);
-  double limit = std::numeric_limits<double>::infinity();
-  if (!a) return limit;
-  const double gear = std::abs(m.actuator_gear[6 * *a]);
-  if (m.actuator_ctrllimited[*a]) {
-    const double c = std::max(std::abs(m.actuator_ctrlrange[2 * *a]),
-                              std::abs(m.actuator_ctrlrange[2 * *a + 1]));
-    // a motor's force is gain·ctrl (gain = gainprm[0])
-    limit = std::min(limit, c * std::abs(m.actuator_gainprm[mjNGAIN * *a]) * gear);
-  }
-  if (m.actuator_forcelimited[*a]) {
-    const double f = std::max(std::abs(m.actuator_forcerange[2 * *a]),
-                              std::abs(m.actuator_forcerange[2 * *a + 1]));
-    limit = std::min(limit, f * gear);
-  }
-  return limit;
-}
-
 namespace {
 
 /// Largest ratio (dynamic torque) / (allowed dynamic torque) over the move of duration @p T.

@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -100,7 +101,9 @@ TEST(PlanCli, AFailedPlanPrintsTheChecksAndExitsOne) {
 TEST(PlanCli, BadInputFailsClearly) {
   expect_error({"plan", "panda_torque"}, 2, "--waypoints is required");
   expect_error({"plan", "panda_torque", "--waypoints", "/nonexistent/w.json"}, 1,
-               "cannot read the waypoint file");
+               "waypoint file '/nonexistent/w.json' does not exist");
+  expect_error({"plan", "panda_torque", "--waypoints", "/dev/zero"}, 1,
+               "waypoint file '/dev/zero' is a character device, expected a regular file");
   expect_error({"plan", "panda_torque", "--waypoints", plan_file("nan.csv", "0.4,nan,0.5\n")}, 1,
                "'nan' is not a finite number");
   expect_error(
@@ -112,6 +115,30 @@ TEST(PlanCli, BadInputFailsClearly) {
   expect_error(
       {"plan", "panda_torque", "--waypoints", plan_file("five.json", kFive), "--rate", "0"}, 2,
       "--rate must be in (0, 100000] Hz");
+  // issue 16, item 9's rule: the output path is checked before the plan is made
+  expect_error({"plan", "panda_torque", "--waypoints", plan_file("five.json", kFive), "--out",
+                "/proc/plan.csv"},
+               2, "--out: cannot create '/proc/plan.csv'");
+}
+
+// issue 16, item 4's rule in `mjarm plan`: slow limits ran for minutes (--velocity-limit 0.0001)
+// and --out --rate 100000 on a 5-minute plan built gigabytes in memory; both are bounded
+TEST(PlanCli, AbsurdWorkIsRefusedNamingTheBound) {
+  const std::string waypoints = plan_file("five.json", kFive);
+  const auto start = std::chrono::steady_clock::now();
+  const CliRun slow =
+      run_cli({"plan", "panda_torque", "--waypoints", waypoints, "--velocity-limit", "0.0001"});
+  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 10.0);
+  EXPECT_EQ(slow.exit_code, 1) << slow.err;
+  EXPECT_NE(slow.err.find("samples a segment may have"), std::string::npos) << slow.err;
+  // 0.05 rad/s: a plan of about a minute, sampled at 100 kHz would be millions of CSV rows
+  const fs::path csv = scratch() / "huge_plan.csv";
+  const CliRun rows = run_cli({"plan", "panda_torque", "--waypoints", waypoints, "--velocity-limit",
+                               "0.05", "--out", csv.string(), "--rate", "100000"});
+  EXPECT_EQ(rows.exit_code, 2) << rows.err;
+  EXPECT_NE(rows.err.find("rows, more than 10⁶: lower --rate"), std::string::npos) << rows.err;
+  EXPECT_NE(rows.out.find("result: ok"), std::string::npos) << rows.out;  // the plan is shown
+  EXPECT_FALSE(fs::exists(csv));
 }
 
 TEST(RunPlanCli, TracksThePlanAndReportsTheError) {

@@ -207,6 +207,11 @@ TEST(CliTraj, BadCommandLinesFailCleanly) {
   expect_error({"traj", "jerk-limited", "--start", "0", "--target", "1", "--j-max", "5",
                 "--target-velocity", "0.5"},
                1, "target velocity 0.5 exceeds its limit");
+  // issue 16, item 9's rule: output paths are checked before the work, as usage errors
+  expect_error({"traj", "trapezoid", "--start", "0", "--target", "1", "--out", "/proc/x.csv"}, 2,
+               "--out: cannot create '/proc/x.csv'");
+  expect_error({"traj", "trapezoid", "--start", "0", "--target", "1", "--plot", "/proc/x"}, 2,
+               "--plot: cannot write into '/proc'");
   // a start beyond the velocity limit: no duration keeps it, the command fails (exit 1)
   expect_error({"traj", "quintic", "--start", "0", "--target", "1", "--start-velocity", "0.5"}, 1,
                "start beyond limits (axis 0, velocity)");

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <cmath>
 #include <limits>
 
@@ -232,8 +233,40 @@ TEST_F(PandaPlan, BadInputIsAnError) {
   options.limits.max_acceleration = Eigen::VectorXd::Constant(7, 1e-6);
   EXPECT_NE(test::error_of([&] {
               WaypointPlanner(chain, options).plan(home_q(robot), five_waypoints());
-            }).find("more than 1e7 samples"),
+            }).find("beyond the 100000 samples a segment may have"),
             std::string::npos);
+  options = PlanOptions{};
+  options.max_samples = 0;
+  EXPECT_THROW(WaypointPlanner(chain, options), Error);
+  options = PlanOptions{};
+  options.max_segment_samples = 0;
+  EXPECT_THROW(WaypointPlanner(chain, options), Error);
+}
+
+// issue 16, item 4's rule in the planner: slow limits made `mjarm plan` check a motion of hours
+// at every 10 ms (--velocity-limit 0.0001: over a minute, no end in sight); the work is bounded
+// and refused before the checks, naming the bound
+TEST_F(PandaPlan, SlowLimitsAreRefusedBeforeTheChecksNotAfterMinutes) {
+  PlanOptions options;
+  options.limits.max_velocity = Eigen::VectorXd::Constant(7, 1e-4);
+  const auto start = std::chrono::steady_clock::now();
+  const std::string message = test::error_of(
+      [&] { WaypointPlanner(chain, options).plan(home_q(robot), five_waypoints()); });
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  EXPECT_NE(message.find("beyond the 100000 samples a segment may have"), std::string::npos)
+      << message;
+  EXPECT_LT(seconds, 5.0);
+  // the work of a whole plan is bounded too: a small budget refuses even the usual five
+  // waypoints, at the segment that would pass it
+  PlanOptions small;
+  small.max_samples = 200;
+  const std::string total =
+      test::error_of([&] { WaypointPlanner(chain, small).plan(home_q(robot), five_waypoints()); });
+  EXPECT_NE(total.find("beyond the 200 samples a plan may check in all"), std::string::npos)
+      << total;
+  small.max_samples = PlanOptions{}.max_samples;
+  EXPECT_TRUE(WaypointPlanner(chain, small).plan(home_q(robot), five_waypoints()).ok());
 }
 
 }  // namespace

@@ -7,6 +7,7 @@
 #include <random>
 
 #include "mjarm/error.hpp"
+#include "mjarm/kinematics/finite_difference.hpp"
 #include "mjarm/lie/so3.hpp"
 
 namespace mjarm {
@@ -25,13 +26,13 @@ Vector6d six(double a, double b, double c, double d, double e, double f) {
   return v;
 }
 
-// the world twist [ṗ; ω] of the pose path by central differences
+// the world twist [ṗ; ω] of the pose path by central differences (the public helper, with the
+// time as its one argument: the world-aligned column is (p₊ − p₋)/Δ, log(R₊·R₋ᵀ)/Δ)
 Vector6d finite_twist(const Se3Interpolation& s, double t, double h) {
-  const Pose a = s.at(t - h).X_WE, b = s.at(t + h).X_WE;
-  Vector6d V;
-  V.head<3>() = (b.p - a.p) / (2 * h);
-  V.tail<3>() = so3::log(b.R * a.R.transpose()) / (2 * h);
-  return V;
+  const auto pose = [&](const Eigen::VectorXd& x) { return s.at(x[0]).X_WE; };
+  return finite_difference_pose_jacobian(pose, Eigen::VectorXd::Constant(1, t),
+                                         JacobianFrame::world_aligned, h)
+      .col(0);
 }
 
 TEST(Se3Interpolation, StartsWithTheGivenTwistAndRateAndEndsAtRest) {
