@@ -1,9 +1,11 @@
 #include "mjarm/sim/simulation.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
 #include "mjarm/error.hpp"
+#include "mjarm/model/names.hpp"
 #include "mjarm/sim/recorder.hpp"
 
 namespace mjarm {
@@ -38,9 +40,17 @@ void check_finite(std::span<const double> values, std::size_t size, const char* 
   }
 }
 
-// a private copy of the model when the options ask for one
+void check_equality_id(const mjModel& m, int id) {
+  if (id < 0 || id >= m.neq) {
+    throw Error("simulation: equality id " + std::to_string(id) + " out of range [0, " +
+                std::to_string(m.neq) + ")");
+  }
+}
+
+// a private copy of the model when the simulation switches its equality constraints (MuJoCo 2.2.2
+// keeps eq_active in mjModel) or when its owner asks for one to edit (domain randomization)
 mjModel* copy_if_owned(const Robot& robot, const SimulationOptions& options) {
-  if (!options.own_model) return nullptr;
+  if (!options.own_model && robot.model().neq == 0) return nullptr;
   mjModel* copy = mj_copyModel(nullptr, &robot.model());
   if (copy == nullptr) throw Error("simulation: could not copy model '" + robot.name() + "'");
   return copy;
@@ -213,6 +223,49 @@ std::span<const double> Simulation::sensor(int id) const {
                 std::to_string(m.nsensor) + ")");
   }
   return {data_->sensordata + m.sensor_adr[id], static_cast<std::size_t>(m.sensor_dim[id])};
+}
+
+int Simulation::equality(std::string_view name) const {
+  return find_object(model(), mjOBJ_EQUALITY, name);
+}
+
+bool Simulation::equality_active(int id) const {
+  check_equality_id(model(), id);
+  return model_->eq_active[id] != 0;
+}
+
+bool Simulation::set_equality_active(int id, bool active) noexcept {
+  if (!own_model_ || id < 0 || id >= own_model_->neq) return false;
+  own_model_->eq_active[id] = active ? 1 : 0;
+  return true;
+}
+
+std::span<const double> Simulation::equality_data(int id) const noexcept {
+  if (id < 0 || id >= model_->neq) return {};
+  return {model_->eq_data + static_cast<std::size_t>(id) * mjNEQDATA, mjNEQDATA};
+}
+
+bool Simulation::set_equality_data(int id, std::span<const double> values) noexcept {
+  if (!own_model_ || id < 0 || id >= own_model_->neq || values.size() != mjNEQDATA) return false;
+  for (double v : values) {
+    if (!std::isfinite(v)) return false;
+  }
+  std::copy(values.begin(), values.end(),
+            own_model_->eq_data + static_cast<std::size_t>(id) * mjNEQDATA);
+  return true;
+}
+
+void Simulation::set_equality_solref(int id, double time_constant, double damping_ratio) {
+  check_equality_id(model(), id);
+  if (!(std::isfinite(time_constant) && time_constant > 0.0) ||
+      !(std::isfinite(damping_ratio) && damping_ratio > 0.0)) {
+    throw Error(
+        "simulation: equality solref needs a positive time constant [s] and damping "
+        "ratio, got " +
+        std::to_string(time_constant) + ", " + std::to_string(damping_ratio));
+  }
+  own_model_->eq_solref[id * mjNREF] = time_constant;
+  own_model_->eq_solref[id * mjNREF + 1] = damping_ratio;
 }
 
 int Simulation::watch_contacts(const GeomSet& a, const GeomSet& b) {

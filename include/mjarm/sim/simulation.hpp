@@ -53,10 +53,12 @@ class Simulation {
 
   // ---- model, data, timing ----
   const Robot& robot() const noexcept { return robot_; }
-  /// The model this simulation steps. With `SimulationOptions::own_model` it is the
-  /// simulation's own copy, which its owner may edit between steps (`editable_model`: domain
-  /// randomization); `robot().model()` keeps the values of the file. Otherwise it is the robot's
-  /// shared model.
+  /// The model this simulation steps: the simulation's own copy when the robot's model has
+  /// equality constraints (MuJoCo 2.2.2 keeps `eq_active` in `mjModel`, so switching a constraint
+  /// — a weld grasp — changes the model: two simulations of one `Robot` never see each other's
+  /// constraints) or when `SimulationOptions::own_model` asks for one (domain randomization);
+  /// `robot().model()` keeps the values of the file either way. Otherwise the robot's shared
+  /// model.
   const mjModel& model() const noexcept { return *model_; }
   /// True when `model()` is this simulation's own copy.
   bool owns_model() const noexcept { return own_model_ != nullptr; }
@@ -139,6 +141,26 @@ class Simulation {
   /// A sentence describing @p fault (time, cause, joint or controller).
   std::string describe(const StepFault& fault) const;
 
+  // ---- equality constraints (this simulation's own model copy) ----
+  /// Id of the equality constraint called @p name.
+  /// @throws Error naming the model's equality constraints closest to @p name.
+  int equality(std::string_view name) const;
+  /// Whether equality @p id is switched on. @throws Error for an id out of range.
+  bool equality_active(int id) const;
+  /// Switches equality @p id on or off in this simulation's model copy; the next step sees it.
+  /// Allocation-free; returns false (nothing changed) for an id out of range.
+  bool set_equality_active(int id, bool active) noexcept;
+  /// The constraint data of equality @p id (mjNEQDATA values: for a weld in MuJoCo 2.2.2, the
+  /// anchor in body2's frame [0..2], the pose of body2 in body1's frame, position [3..5] and
+  /// quaternion w x y z [6..9], and the torque scale [10]). Empty for an id out of range.
+  std::span<const double> equality_data(int id) const noexcept;
+  /// Writes the data of equality @p id (mjNEQDATA values, see `equality_data`). Allocation-free;
+  /// false (nothing written) for an id out of range, a wrong size or a non-finite value.
+  bool set_equality_data(int id, std::span<const double> values) noexcept;
+  /// Sets the solver reference of equality @p id: time constant [s] and damping ratio.
+  /// @throws Error for an id out of range or values that are not positive and finite.
+  void set_equality_solref(int id, double time_constant, double damping_ratio);
+
   // ---- sensors and contacts ----
   /// Values of the sensor called @p name (fresh as of the start of the last physics step).
   /// @throws Error for an unknown sensor (listing close names).
@@ -182,7 +204,7 @@ class Simulation {
   };
 
   Robot robot_;
-  std::unique_ptr<mjModel, ModelDeleter> own_model_;  // copy with SimulationOptions::own_model
+  std::unique_ptr<mjModel, ModelDeleter> own_model_;  // with equalities or own_model
   const mjModel* model_ = nullptr;                    // own_model_ or the robot's
   SimulationOptions options_;
   DataPtr data_;
