@@ -169,6 +169,9 @@ const Reference& ActionDriver::apply(std::span<const double> action, const mjDat
       X_WG_.p += dp;
       X_WG_.R = so3::exp(r) * X_WG_.R;
       ik_->set_target(0, X_WG_);  // finite and a rotation: cannot throw
+      // from the measured q clamped into the limits: a joint the arm has pushed past its limit
+      // (MuJoCo's limits are soft: contact, a blocked tool) never takes the reference out
+      for (int i = 0; i < n; ++i) q_[i] = std::clamp(q_[i], chain_.lower()[i], chain_.upper()[i]);
       const DiffIkStep& step = ik_->step(q_);
       X_WR_ = kinematics_->update(step.q_next);
       kinematics_->jacobian(J_);

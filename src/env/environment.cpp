@@ -63,8 +63,11 @@ Environment::Impl::Impl(std::unique_ptr<EnvTask> t, const EnvironmentOptions& o)
   const Chain& chain = task->chain();
   const double h = robot.model().opt.timestep;
   // the control step: whole physics steps, whole controller periods
+  // 0: the joint PD runs every physics step (a servo loop), the other spaces once per step
+  const bool servo =
+      o.action_space == ActionSpace::joint_positions || o.action_space == ActionSpace::joint_deltas;
   const double controller_period =
-      o.controller_period == 0.0 ? o.control_period : o.controller_period;
+      o.controller_period != 0.0 ? o.controller_period : (servo ? h : o.control_period);
   physics_per_step =
       whole_multiple(o.control_period, h, "environment: control_period", "the physics timestep");
   whole_multiple(controller_period, h, "environment: controller_period", "the physics timestep");

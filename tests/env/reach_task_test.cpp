@@ -56,25 +56,25 @@ TEST(ReachTask, RewardIsMinusTheDistance) {
 }
 
 TEST(ReachTask, AProportionalPolicyReachesAndTerminates) {
-  // action = the offset to the target, clipped by the environment: a few seconds at most
+  // action = 0.3 × the offset to the target. The action moves a goal that the arm follows about
+  // two steps behind (the operational-space controller closes at 20 rad/s, its torque held over
+  // the 20 ms step), so a proportional policy on an integrating action needs a gain well below 1:
+  // at 1 the goal overshoots every time and the tool circles the target for seconds.
   Environment env(test::reach_task());
   for (std::uint64_t seed : {1, 2, 3}) {
     TimeStep ts = env.reset(seed);
-    double previous = -INFINITY;
+    const double start = take3(ts.observation["target_offset"]).norm();
     int steps = 0;
     while (!ts.last()) {
-      const Eigen::Vector3d offset = take3(ts.observation["target_offset"]);
-      ts = env.step(std::vector<double>{offset.x(), offset.y(), offset.z(), 0.0, 0.0, 0.0});
+      const Eigen::Vector3d a = 0.3 * take3(ts.observation["target_offset"]);
+      ts = env.step(std::vector<double>{a.x(), a.y(), a.z(), 0.0, 0.0, 0.0});
       ++steps;
-      if (steps > 20) {
-        EXPECT_GE(*ts.reward, previous - 1e-3);  // closing in
-      }
-      previous = *ts.reward;
     }
     EXPECT_EQ(ts.end, EpisodeEnd::terminated) << seed;
     EXPECT_EQ(*ts.discount, 0.0);
     EXPECT_GE(*ts.reward, -0.01);  // within the success distance
-    EXPECT_LT(steps, 150) << seed;
+    EXPECT_GT(start, 0.05) << seed;  // from several centimetres away
+    EXPECT_LT(steps, 40) << seed;    // in well under a second
   }
 }
 
