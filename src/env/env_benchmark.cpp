@@ -168,7 +168,17 @@ VectorRun vector_run(VectorEnvironment& batch, const std::vector<double>& action
   run.threads = batch.threads();
   const double cpu0 = clock_seconds(CLOCK_PROCESS_CPUTIME_ID);
   const double wall0 = wall_seconds();
-  for (int k = 0; k < steps; ++k) batch.step(row(warmup + k));
+  for (int k = 0; k < steps; ++k) {
+    batch.step(row(warmup + k));
+    const std::vector<double>& cpu = batch.last_thread_cpu_seconds();
+    double sum = 0.0, most = 0.0;
+    for (double c : cpu) {
+      sum += c;
+      most = std::max(most, c);
+    }
+    run.work_cpu_s += sum;
+    run.critical_cpu_s += most;
+  }
   run.wall_s = wall_seconds() - wall0;
   run.cpu_s = clock_seconds(CLOCK_PROCESS_CPUTIME_ID) - cpu0;
   run.steps_per_second = static_cast<double>(steps) * batch.size() / run.wall_s;
@@ -288,6 +298,13 @@ EnvBenchmarkResult run_env_benchmark(const EnvBenchmarkOptions& options) {
     if (best != nullptr) r.best.push_back(*best);
   }
   if (r.best.size() == 2) r.speedup = r.best[1].steps_per_second / r.best[0].steps_per_second;
+  double work = INFINITY, critical = INFINITY;
+  for (const VectorRun& run : r.vector_runs) {
+    if (run.threads == 1) work = std::min(work, run.work_cpu_s);
+    if (run.threads == counts.back()) critical = std::min(critical, run.critical_cpu_s);
+  }
+  if (counts.size() == 2 && std::isfinite(work) && std::isfinite(critical) && critical > 0.0)
+    r.cpu_speedup = work / critical;
   return r;
 }
 

@@ -36,6 +36,19 @@ TEST(EnvBenchmark, ReplaysTheSamePhysicsAndComparesThreadCounts) {
   EXPECT_EQ(r.best[1].threads, 2);
   EXPECT_TRUE(r.threads_identical);
   EXPECT_GT(r.speedup, 0.0);
+  // the CPU-clock scaling: the critical path of a step is at least half its work on 2 threads
+  // and at most all of it
+  for (const VectorRun& run : r.vector_runs) {
+    EXPECT_GT(run.critical_cpu_s, 0.0);
+    EXPECT_LE(run.critical_cpu_s, run.work_cpu_s * (1.0 + 1e-12));
+    if (run.threads == 2) {
+      EXPECT_GE(run.critical_cpu_s, 0.5 * run.work_cpu_s * (1.0 - 1e-12));
+    } else {
+      EXPECT_DOUBLE_EQ(run.critical_cpu_s, run.work_cpu_s);
+    }
+  }
+  EXPECT_GT(r.cpu_speedup, 0.5);
+  EXPECT_LE(r.cpu_speedup, 2.5);
   EXPECT_EQ(calls, 3);
 }
 

@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <atomic>
+#include <cmath>
 #include <stdexcept>
 
 #include "env/env_test_support.hpp"
@@ -40,6 +41,27 @@ TEST(WorkerPool, RethrowsTheFirstExceptionAfterEveryJobRan) {
   auto fine = [&](int) { ran.fetch_add(1); };
   EXPECT_NO_THROW(pool.run(5, fine));  // the pool stays usable
   EXPECT_EQ(ran.load(), 15);
+}
+
+// the CPU time of each thread's share: one entry per thread, the caller's first; a run where the
+// caller does all the work (one job) puts (nearly) all of it in entry 0
+TEST(WorkerPool, ReportsEachThreadsCpuTime) {
+  WorkerPool pool(2);
+  volatile double sink = 0.0;
+  auto busy = [&](int) {
+    double x = 0.0;
+    for (int k = 0; k < 2000000; ++k) x += std::sqrt(static_cast<double>(k));
+    sink = sink + x;
+  };
+  pool.run(8, busy);
+  ASSERT_EQ(pool.last_cpu_seconds().size(), 2u);
+  const double total = pool.last_cpu_seconds()[0] + pool.last_cpu_seconds()[1];
+  EXPECT_GT(total, 0.0);
+  for (double c : pool.last_cpu_seconds()) EXPECT_GE(c, 0.0);
+  WorkerPool single(1);
+  single.run(2, busy);
+  ASSERT_EQ(single.last_cpu_seconds().size(), 1u);
+  EXPECT_GT(single.last_cpu_seconds()[0], 0.0);
 }
 
 TEST(WorkerPool, ThreadCountsOutOfRangeAreErrors) {

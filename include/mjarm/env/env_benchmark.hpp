@@ -21,8 +21,15 @@
 ///    threads, alternating, `rounds` times; the best rate of each thread count is kept (the
 ///    least disturbed by other processes), the speedup is their ratio, and the process CPU time
 ///    of each run is reported with the load average before and after (/proc/loadavg), because
-///    on a shared machine the scaling depends on what else runs. The final batch arrays of the
-///    thread counts are compared bit for bit.
+///    on a shared machine the wall-clock scaling depends on what else runs. The CPU clock gives
+///    a figure that does not: each thread's CPU time in each batch step
+///    (`VectorEnvironment::last_thread_cpu_seconds`) — their sum is the step's work, their
+///    maximum its critical path when every thread has a core of its own. CPU speedup = the work
+///    of the one-thread run / the critical path of the max-thread run (each the least over the
+///    rounds): the wall-clock speedup two free cores would give, with the extra CPU that
+///    threads cost (caches, wake-ups) and the imbalance of the batch included, the waiting for a
+///    core that other processes cause left out. The final batch arrays of the thread counts are
+///    compared bit for bit.
 
 #include <array>
 #include <cstdint>
@@ -80,6 +87,8 @@ struct VectorRun {
   double wall_s = 0.0;            ///< wall time of the timed batch steps [s]
   double cpu_s = 0.0;             ///< process CPU time over the same stretch [s]
   double steps_per_second = 0.0;  ///< environment steps (batch steps × envs) per wall second
+  double work_cpu_s = 0.0;        ///< Σ over batch steps of every thread's CPU time [s]
+  double critical_cpu_s = 0.0;    ///< Σ over batch steps of the busiest thread's CPU time [s]
 };
 
 /// Figures of one benchmark.
@@ -101,6 +110,8 @@ struct EnvBenchmarkResult {
   std::vector<VectorRun> vector_runs;   ///< every run, in order
   std::vector<VectorRun> best;          ///< the best run of each thread count (1, then max)
   double speedup = 0.0;                 ///< best rate at max threads / best rate at 1 thread
+  /// least work_cpu_s at 1 thread / least critical_cpu_s at max threads (see the protocol)
+  double cpu_speedup = 0.0;
   bool threads_identical = false;       ///< batch arrays equal bit for bit across thread counts
   std::array<double, 3> load_before{};  ///< 1, 5, 15-minute load averages before the scaling runs
   std::array<double, 3> load_after{};

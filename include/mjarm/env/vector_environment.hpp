@@ -53,6 +53,10 @@ class VectorEnvironment {
 
   int size() const noexcept { return static_cast<int>(environments_.size()); }
   int threads() const noexcept { return pool_.threads(); }
+  /// CPU time [s] each thread spent in the last `reset` or `step` (`WorkerPool::last_cpu_seconds`).
+  const std::vector<double>& last_thread_cpu_seconds() const noexcept {
+    return pool_.last_cpu_seconds();
+  }
   const ArraySpec& action_spec() const noexcept { return environments_.front()->action_spec(); }
   const ObservationSpec& observation_spec() const noexcept {
     return environments_.front()->observation_spec();

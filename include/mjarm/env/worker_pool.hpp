@@ -30,6 +30,12 @@ class WorkerPool {
 
   int threads() const noexcept { return static_cast<int>(workers_.size()) + 1; }
 
+  /// The CPU time [s] each thread spent in the last `run` (CLOCK_THREAD_CPUTIME_ID, read at the
+  /// start and end of its share: two clock reads per thread and run): entry 0 the caller's,
+  /// entry k worker k's. Their sum is the run's work; their maximum the run's critical path on
+  /// free cores, whatever else the machine runs (time a thread waits for a core is not counted).
+  const std::vector<double>& last_cpu_seconds() const noexcept { return cpu_seconds_; }
+
   /// Calls @p job(i) for every i in [0, count), in parallel.
   template <class Job>
   void run(int count, Job& job) {
@@ -40,8 +46,8 @@ class WorkerPool {
  private:
   using Function = void (*)(void*, int);
   void run_erased(int count, Function function, void* context);
-  void work() noexcept;
-  void worker_loop() noexcept;
+  void work(int slot) noexcept;
+  void worker_loop(int slot) noexcept;
 
   std::vector<std::thread> workers_;
   std::mutex mutex_;
@@ -56,6 +62,7 @@ class WorkerPool {
   int count_ = 0;
   std::atomic<int> next_{0};
   std::exception_ptr error_;
+  std::vector<double> cpu_seconds_;  // per thread, of the last run
 };
 
 }  // namespace mjarm
