@@ -166,18 +166,18 @@ VectorRun vector_run(VectorEnvironment& batch, const std::vector<double>& action
   for (int k = 0; k < warmup; ++k) batch.step(row(k));
   VectorRun run;
   run.threads = batch.threads();
+  std::vector<double> free_at(static_cast<std::size_t>(batch.threads()), 0.0);
   const double cpu0 = clock_seconds(CLOCK_PROCESS_CPUTIME_ID);
   const double wall0 = wall_seconds();
   for (int k = 0; k < steps; ++k) {
     batch.step(row(warmup + k));
-    const std::vector<double>& cpu = batch.last_thread_cpu_seconds();
-    double sum = 0.0, most = 0.0;
-    for (double c : cpu) {
-      sum += c;
-      most = std::max(most, c);
+    // the environments handed out in index order to the first free of T threads
+    std::fill(free_at.begin(), free_at.end(), 0.0);
+    for (double c : batch.last_env_cpu_seconds()) {
+      run.work_cpu_s += c;
+      *std::min_element(free_at.begin(), free_at.end()) += c;
     }
-    run.work_cpu_s += sum;
-    run.critical_cpu_s += most;
+    run.critical_cpu_s += *std::max_element(free_at.begin(), free_at.end());
   }
   run.wall_s = wall_seconds() - wall0;
   run.cpu_s = clock_seconds(CLOCK_PROCESS_CPUTIME_ID) - cpu0;

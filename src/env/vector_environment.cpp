@@ -1,5 +1,7 @@
 #include "mjarm/env/vector_environment.hpp"
 
+#include <time.h>
+
 #include <cmath>
 #include <cstdio>
 #include <limits>
@@ -16,6 +18,12 @@ int checked_count(int count) {
     throw Error("vector environment: the number of environments must be from 1 to 4096, got " +
                 std::to_string(count));
   return count;
+}
+
+double thread_cpu_now() noexcept {
+  timespec t{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
 }
 
 std::string number_text(double v) {
@@ -41,6 +49,7 @@ VectorEnvironment::VectorEnvironment(std::unique_ptr<EnvTask> task,
   ends_.assign(n, EpisodeEnd::running);
   rewards_.assign(n, std::numeric_limits<double>::quiet_NaN());
   discounts_.assign(n, std::numeric_limits<double>::quiet_NaN());
+  env_cpu_.assign(n, 0.0);
   observations_.assign(n * static_cast<std::size_t>(observation_spec().size()), 0.0);
 }
 
@@ -71,7 +80,11 @@ void VectorEnvironment::record(int i, const TimeStep& ts) noexcept {
 }
 
 void VectorEnvironment::reset() {
-  auto job = [this](int i) { record(i, environments_[static_cast<std::size_t>(i)]->reset()); };
+  auto job = [this](int i) {
+    const double start = thread_cpu_now();
+    record(i, environments_[static_cast<std::size_t>(i)]->reset());
+    env_cpu_[static_cast<std::size_t>(i)] = thread_cpu_now() - start;
+  };
   pool_.run(size(), job);
   started_ = true;
 }
@@ -101,12 +114,14 @@ void VectorEnvironment::step(std::span<const double> actions) {
   }
   actions_ = actions;
   auto job = [this, width](int i) {
+    const double start = thread_cpu_now();
     Environment& env = *environments_[static_cast<std::size_t>(i)];
     if (step_types_[static_cast<std::size_t>(i)] == StepType::last) {
       record(i, env.reset());
     } else {
       record(i, env.step(actions_.subspan(static_cast<std::size_t>(i) * width, width)));
     }
+    env_cpu_[static_cast<std::size_t>(i)] = thread_cpu_now() - start;
   };
   pool_.run(size(), job);
 }

@@ -21,14 +21,17 @@
 ///    threads, alternating, `rounds` times; the best rate of each thread count is kept (the
 ///    least disturbed by other processes), the speedup is their ratio, and the process CPU time
 ///    of each run is reported with the load average before and after (/proc/loadavg), because
-///    on a shared machine the wall-clock scaling depends on what else runs. The CPU clock gives
-///    a figure that does not: each thread's CPU time in each batch step
-///    (`VectorEnvironment::last_thread_cpu_seconds`) — their sum is the step's work, their
-///    maximum its critical path when every thread has a core of its own. CPU speedup = the work
-///    of the one-thread run / the critical path of the max-thread run (each the least over the
-///    rounds): the wall-clock speedup two free cores would give, with the extra CPU that
-///    threads cost (caches, wake-ups) and the imbalance of the batch included, the waiting for a
-///    core that other processes cause left out. The final batch arrays of the thread counts are
+///    on a shared machine the wall-clock scaling depends on what else runs (a worker that
+///    gets no core leaves the caller's thread to step the whole batch). The CPU clock gives a
+///    figure that does not: the thread CPU time of each environment's part of each batch step
+///    (`VectorEnvironment::last_env_cpu_seconds`), measured in the run of each thread count.
+///    Work = their sum; critical path = for each batch step, the time the last of T threads
+///    finishes when the environments are handed out in index order to whichever thread is free
+///    first (the pool's rule) with every thread on a core of its own, summed over the steps.
+///    CPU speedup = the least work of the one-thread runs / the least critical path of the
+///    max-thread runs: what free cores would give, with the extra CPU each environment step
+///    costs in the threaded run and the batch's imbalance included, the pool's wake-up latency
+///    and the waits for a core left out. The final batch arrays of the thread counts are
 ///    compared bit for bit.
 
 #include <array>
@@ -87,8 +90,8 @@ struct VectorRun {
   double wall_s = 0.0;            ///< wall time of the timed batch steps [s]
   double cpu_s = 0.0;             ///< process CPU time over the same stretch [s]
   double steps_per_second = 0.0;  ///< environment steps (batch steps × envs) per wall second
-  double work_cpu_s = 0.0;        ///< Σ over batch steps of every thread's CPU time [s]
-  double critical_cpu_s = 0.0;    ///< Σ over batch steps of the busiest thread's CPU time [s]
+  double work_cpu_s = 0.0;        ///< Σ over batch steps of every environment's CPU time [s]
+  double critical_cpu_s = 0.0;    ///< Σ over batch steps of the scheduled critical path [s]
 };
 
 /// Figures of one benchmark.

@@ -57,6 +57,9 @@ class VectorEnvironment {
   const std::vector<double>& last_thread_cpu_seconds() const noexcept {
     return pool_.last_cpu_seconds();
   }
+  /// CPU time [s] of each environment's part of the last `reset` or `step` (N; the thread CPU
+  /// clock of the thread that ran it, read before and after: two clock reads per environment).
+  std::span<const double> last_env_cpu_seconds() const noexcept { return env_cpu_; }
   const ArraySpec& action_spec() const noexcept { return environments_.front()->action_spec(); }
   const ObservationSpec& observation_spec() const noexcept {
     return environments_.front()->observation_spec();
@@ -82,6 +85,7 @@ class VectorEnvironment {
   std::vector<StepType> step_types_;
   std::vector<EpisodeEnd> ends_;
   std::vector<double> rewards_, discounts_, observations_;
+  std::vector<double> env_cpu_;      // per environment, of the last reset or step
   std::span<const double> actions_;  // the batch being stepped
   bool started_ = false;
 };
