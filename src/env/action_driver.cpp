@@ -139,6 +139,7 @@ void ActionDriver::reset(const mjData& d) {
   reference_.joint.qdd.setZero();
   reference_.task = TaskReference{};
   if (ik_) {
+    ik_->reset_warm_start();  // an episode never depends on the ones before it
     X_WR_ = kinematics_->update(q_);
     X_WG_ = X_WR_;
     reference_.task.X_WE = X_WR_;

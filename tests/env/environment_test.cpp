@@ -283,6 +283,34 @@ TEST(Environment, SameSeedAndActionsGiveTheSameObservationsBitForBit) {
   }
 }
 
+// reset(seed) starts the same episode on an environment that has run others before (nothing
+// carries over: the QP's warm start, the controller's state, MuJoCo's warm start)
+TEST(Environment, AnEpisodeRepeatsWhateverRanBeforeIt) {
+  for (ActionSpace space : {ActionSpace::ee_pose_deltas, ActionSpace::ee_velocities,
+                            ActionSpace::joint_deltas, ActionSpace::joint_torques}) {
+    EnvironmentOptions o;
+    o.action_space = space;
+    Environment env(reach_task(), o);
+    const std::vector<double> actions = test::uniform_actions(env.action_spec(), 30, 9);
+    const std::size_t width = static_cast<std::size_t>(env.action_spec().size());
+    auto episode = [&](std::uint64_t seed) {
+      std::vector<double> trace;
+      TimeStep ts = env.reset(seed);
+      for (std::size_t k = 0; k * width < actions.size() && !ts.last(); ++k) {
+        ts = env.step(std::span<const double>(actions).subspan(k * width, width));
+        trace.insert(trace.end(), ts.observation.values().begin(), ts.observation.values().end());
+      }
+      return trace;
+    };
+    const std::vector<double> first = episode(4);
+    episode(5);
+    const std::vector<double> again = episode(4);
+    ASSERT_EQ(first.size(), again.size());
+    EXPECT_EQ(std::memcmp(first.data(), again.data(), first.size() * sizeof(double)), 0)
+        << to_string(space);
+  }
+}
+
 TEST(Environment, StepAllocatesNothing) {
   for (ActionSpace space : action_spaces()) {
     EnvironmentOptions options;
