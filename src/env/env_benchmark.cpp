@@ -298,13 +298,13 @@ EnvBenchmarkResult run_env_benchmark(const EnvBenchmarkOptions& options) {
     if (best != nullptr) r.best.push_back(*best);
   }
   if (r.best.size() == 2) r.speedup = r.best[1].steps_per_second / r.best[0].steps_per_second;
-  double work = INFINITY, critical = INFINITY;
+  std::vector<double> work, critical;
   for (const VectorRun& run : r.vector_runs) {
-    if (run.threads == 1) work = std::min(work, run.work_cpu_s);
-    if (run.threads == counts.back()) critical = std::min(critical, run.critical_cpu_s);
+    if (run.threads == 1) work.push_back(run.work_cpu_s);
+    if (counts.size() == 2 && run.threads == counts.back()) critical.push_back(run.critical_cpu_s);
   }
-  if (counts.size() == 2 && std::isfinite(work) && std::isfinite(critical) && critical > 0.0)
-    r.cpu_speedup = work / critical;
+  if (!work.empty() && !critical.empty() && median(critical) > 0.0)
+    r.cpu_speedup = median(work) / median(critical);
   return r;
 }
 

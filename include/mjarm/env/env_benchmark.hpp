@@ -28,7 +28,7 @@
 ///    Work = their sum; critical path = for each batch step, the time the last of T threads
 ///    finishes when the environments are handed out in index order to whichever thread is free
 ///    first (the pool's rule) with every thread on a core of its own, summed over the steps.
-///    CPU speedup = the least work of the one-thread runs / the least critical path of the
+///    CPU speedup = the median work of the one-thread runs / the median critical path of the
 ///    max-thread runs: what free cores would give, with the extra CPU each environment step
 ///    costs in the threaded run and the batch's imbalance included, the pool's wake-up latency
 ///    and the waits for a core left out. The final batch arrays of the thread counts are
@@ -113,7 +113,7 @@ struct EnvBenchmarkResult {
   std::vector<VectorRun> vector_runs;   ///< every run, in order
   std::vector<VectorRun> best;          ///< the best run of each thread count (1, then max)
   double speedup = 0.0;                 ///< best rate at max threads / best rate at 1 thread
-  /// least work_cpu_s at 1 thread / least critical_cpu_s at max threads (see the protocol)
+  /// median work_cpu_s at 1 thread / median critical_cpu_s at max threads (see the protocol)
   double cpu_speedup = 0.0;
   bool threads_identical = false;       ///< batch arrays equal bit for bit across thread counts
   std::array<double, 3> load_before{};  ///< 1, 5, 15-minute load averages before the scaling runs
