@@ -298,13 +298,17 @@ EnvBenchmarkResult run_env_benchmark(const EnvBenchmarkOptions& options) {
     if (best != nullptr) r.best.push_back(*best);
   }
   if (r.best.size() == 2) r.speedup = r.best[1].steps_per_second / r.best[0].steps_per_second;
-  std::vector<double> work, critical;
+  std::vector<double> work_1, work_t, parallelism;
   for (const VectorRun& run : r.vector_runs) {
-    if (run.threads == 1) work.push_back(run.work_cpu_s);
-    if (counts.size() == 2 && run.threads == counts.back()) critical.push_back(run.critical_cpu_s);
+    if (run.threads == 1) work_1.push_back(run.work_cpu_s);
+    if (counts.size() == 2 && run.threads == counts.back() && run.critical_cpu_s > 0.0) {
+      work_t.push_back(run.work_cpu_s);
+      parallelism.push_back(run.work_cpu_s / run.critical_cpu_s);
+    }
   }
-  if (!work.empty() && !critical.empty() && median(critical) > 0.0)
-    r.cpu_speedup = median(work) / median(critical);
+  if (!parallelism.empty()) r.cpu_speedup = median(parallelism);
+  if (!work_1.empty() && !work_t.empty() && median(work_1) > 0.0)
+    r.cpu_cost_ratio = median(work_t) / median(work_1);
   return r;
 }
 

@@ -28,11 +28,13 @@
 ///    Work = their sum; critical path = for each batch step, the time the last of T threads
 ///    finishes when the environments are handed out in index order to whichever thread is free
 ///    first (the pool's rule) with every thread on a core of its own, summed over the steps.
-///    CPU speedup = the median work of the one-thread runs / the median critical path of the
-///    max-thread runs: what free cores would give, with the extra CPU each environment step
-///    costs in the threaded run and the batch's imbalance included, the pool's wake-up latency
-///    and the waits for a core left out. The final batch arrays of the thread counts are
-///    compared bit for bit.
+///    CPU speedup = the median over the max-thread runs of work / critical path: the speedup
+///    free cores would give at the CPU cost per environment step measured in the threaded run
+///    (the batch's imbalance included; the pool's wake-up latency and the waits for a core left
+///    out). CPU cost ratio = the median work of the max-thread runs / that of the one-thread
+///    runs: what threading adds to each environment step's CPU time (caches shared by the
+///    threads), which on a loaded machine also carries the run-to-run spread of the CPU clock.
+///    The final batch arrays of the thread counts are compared bit for bit.
 
 #include <array>
 #include <cstdint>
@@ -113,8 +115,10 @@ struct EnvBenchmarkResult {
   std::vector<VectorRun> vector_runs;   ///< every run, in order
   std::vector<VectorRun> best;          ///< the best run of each thread count (1, then max)
   double speedup = 0.0;                 ///< best rate at max threads / best rate at 1 thread
-  /// median work_cpu_s at 1 thread / median critical_cpu_s at max threads (see the protocol)
+  /// median over the max-thread runs of work_cpu_s / critical_cpu_s (see the protocol)
   double cpu_speedup = 0.0;
+  /// median work_cpu_s at max threads / median work_cpu_s at 1 thread
+  double cpu_cost_ratio = 0.0;
   bool threads_identical = false;       ///< batch arrays equal bit for bit across thread counts
   std::array<double, 3> load_before{};  ///< 1, 5, 15-minute load averages before the scaling runs
   std::array<double, 3> load_after{};
