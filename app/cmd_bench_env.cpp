@@ -108,6 +108,7 @@ Command add_bench_env_subcommand(CLI::App& bench) {
                       {"vector_runs", runs_json},
                       {"speedup_wall", r.speedup},
                       {"speedup_cpu", r.cpu_speedup},
+                      {"cpu_cost_ratio", r.cpu_cost_ratio},
                       {"threads_identical", r.threads_identical},
                       {"load_before", r.load_before},
                       {"load_after", r.load_after},
@@ -146,6 +147,7 @@ Command add_bench_env_subcommand(CLI::App& bench) {
                 {{"batch", std::to_string(r.envs) + " environments × " +
                                std::to_string(r.batch_steps) + " steps per run"},
                  {"speedup (CPU clocks)", fixed(r.cpu_speedup, 2) + "× (target ≥ 1.8×)"},
+                 {"CPU per step, threaded / single", fixed(r.cpu_cost_ratio, 3)},
                  {"speedup (wall, best runs)", fixed(r.speedup, 2) + "×"},
                  {"load average", fixed(r.load_before[0], 2) + " before, " +
                                       fixed(r.load_after[0], 2) + " after, " +
