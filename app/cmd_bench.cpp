@@ -256,7 +256,8 @@ Command add_bench_command(CLI::App& root) {
   CLI::App* bench = root.add_subcommand(
       "bench",
       "benchmarks of the library: ik, control, otg (jerk-limited generator), traj (motion "
-      "profiles), plan (5-waypoint panda path); see `mjarm bench NAME --help`");
+      "profiles), plan (5-waypoint panda path), env (learning environment); see `mjarm bench NAME "
+      "--help`");
   bench->require_subcommand(1);
   CLI::App* app = bench->add_subcommand(
       "ik",
@@ -282,12 +283,14 @@ Command add_bench_command(CLI::App& root) {
   const Command traj = add_bench_traj_subcommand(
       *bench, [] { return g_heap_allocations.load(std::memory_order_relaxed); });
   const Command plan = add_bench_plan_subcommand(*bench);
+  const Command env = add_bench_env_subcommand(*bench);
 
-  return {bench, [options, app, control, otg, traj, plan] {
+  return {bench, [options, app, control, otg, traj, plan, env] {
             if (control.app->parsed()) return control.run();
             if (otg.app->parsed()) return otg.run();
             if (traj.app->parsed()) return traj.run();
             if (plan.app->parsed()) return plan.run();
+            if (env.app->parsed()) return env.run();
             if (!app->parsed()) return;
             const Robot robot = load_model(options->model);
             const Chain chain(robot, resolve_site(robot, options->site));

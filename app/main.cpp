@@ -51,6 +51,7 @@ int main(int argc, char** argv) {
   commands.push_back(add_plot_command(app));
   commands.push_back(add_traj_command(app));
   commands.push_back(add_plan_command(app));
+  commands.push_back(add_env_command(app));
   commands.push_back(add_demo_command(app));
 
   // name an unknown command instead of CLI11's generic "a subcommand is required"

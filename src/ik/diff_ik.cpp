@@ -268,4 +268,6 @@ const DiffIkStep& DiffIk::step(const Eigen::Ref<const Eigen::VectorXd>& q) {
   return step_;
 }
 
+void DiffIk::reset_warm_start() noexcept { qp_.reset_warm_start(); }
+
 }  // namespace mjarm

@@ -1,9 +1,11 @@
 #include "mjarm/sim/simulation.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
 #include "mjarm/error.hpp"
+#include "mjarm/model/names.hpp"
 #include "mjarm/sim/recorder.hpp"
 
 namespace mjarm {
@@ -23,13 +25,7 @@ int steps_per_tick_of(const mjModel& m, double period) {
         "step), got " +
         std::to_string(period) + " s");
   }
-  const double n = std::round(period / h);
-  if (n < 1.0 || std::abs(n * h - period) > 1e-9 * period) {
-    throw Error("simulation: control_period " + std::to_string(period) +
-                " s is not a whole multiple of the timestep " + std::to_string(h) +
-                " s (nearest: " + std::to_string(std::max(n, 1.0) * h) + " s)");
-  }
-  return static_cast<int>(n);
+  return whole_multiple(period, h, "simulation: control_period", "the timestep");
 }
 
 void check_finite(std::span<const double> values, std::size_t size, const char* what) {
@@ -44,10 +40,43 @@ void check_finite(std::span<const double> values, std::size_t size, const char* 
   }
 }
 
+void check_equality_id(const mjModel& m, int id) {
+  if (id < 0 || id >= m.neq) {
+    throw Error("simulation: equality id " + std::to_string(id) + " out of range [0, " +
+                std::to_string(m.neq) + ")");
+  }
+}
+
+// a private copy of the model when the simulation switches its equality constraints (MuJoCo 2.2.2
+// keeps eq_active in mjModel) or when its owner asks for one to edit (domain randomization)
+mjModel* copy_if_owned(const Robot& robot, const SimulationOptions& options) {
+  if (!options.own_model && robot.model().neq == 0) return nullptr;
+  mjModel* copy = mj_copyModel(nullptr, &robot.model());
+  if (copy == nullptr) throw Error("simulation: could not copy model '" + robot.name() + "'");
+  return copy;
+}
+
 }  // namespace
+
+int whole_multiple(double period, double step, std::string_view what, std::string_view step_name) {
+  if (!(std::isfinite(period) && period > 0.0)) {
+    throw Error(std::string(what) + " must be positive and finite, got " + std::to_string(period) +
+                " s");
+  }
+  const double n = std::round(period / step);
+  if (n < 1.0 || std::abs(n * step - period) > 1e-9 * period) {
+    throw Error(std::string(what) + " " + std::to_string(period) +
+                " s is not a whole multiple of " + std::string(step_name) + " " +
+                std::to_string(step) + " s (nearest: " + std::to_string(std::max(n, 1.0) * step) +
+                " s)");
+  }
+  return static_cast<int>(n);
+}
 
 Simulation::Simulation(const Robot& robot, const SimulationOptions& options)
     : robot_(robot),
+      own_model_(copy_if_owned(robot, options)),
+      model_(own_model_ ? own_model_.get() : &robot_.model()),
       options_(options),
       steps_per_tick_(steps_per_tick_of(robot.model(), options.control_period)),
       detector_(options.max_acceleration) {
@@ -59,7 +88,7 @@ Simulation::Simulation(const Robot& robot, const SimulationOptions& options)
       !options.contact_check_b.empty()) {
     throw Error("simulation: contact_check_b is set but contact_check_a is empty");
   }
-  const mjModel& m = robot_.model();
+  const mjModel& m = model();
   data_ = robot_.make_data();
   commanded_by_.assign(m.nu, -1);
   saturated_.assign(m.nu, 0);
@@ -88,7 +117,7 @@ Simulation::Simulation(const Robot& robot, const SimulationOptions& options)
 Simulation::~Simulation() = default;
 
 void Simulation::after_reset() {
-  const mjModel& m = robot_.model();
+  const mjModel& m = model();
   mj_forward(&m, data_.get());
   fault_ = StepFault{};
   detector_.rebase(*data_);
@@ -102,17 +131,17 @@ void Simulation::after_reset() {
 }
 
 void Simulation::reset() {
-  mj_resetData(&robot_.model(), data_.get());
+  mj_resetData(&model(), data_.get());
   after_reset();
 }
 
 void Simulation::reset(std::string_view keyframe) {
-  mj_resetDataKeyframe(&robot_.model(), data_.get(), robot_.keyframe(keyframe));
+  mj_resetDataKeyframe(&model(), data_.get(), robot_.keyframe(keyframe));
   after_reset();
 }
 
 void Simulation::set_state(std::span<const double> qpos, std::span<const double> qvel) {
-  const mjModel& m = robot_.model();
+  const mjModel& m = model();
   check_finite(qpos, m.nq, "qpos");
   check_finite(qvel, m.nv, "qvel");
   std::copy(qpos.begin(), qpos.end(), data_->qpos);
@@ -124,7 +153,7 @@ void Simulation::set_state(std::span<const double> qpos, std::span<const double>
 }
 
 void Simulation::forward() {
-  mj_forward(&robot_.model(), data_.get());
+  mj_forward(&model(), data_.get());
   refresh_watches(options_.mode != SimulationMode::kinematic);
 }
 
@@ -180,7 +209,7 @@ std::string Simulation::describe(const StepFault& fault) const {
   std::string controller_name;
   if (fault.controller >= 0 && fault.controller < controller_count())
     controller_name = std::string(controllers_[fault.controller].controller->name());
-  return mjarm::describe(robot_.model(), fault, controller_name);
+  return mjarm::describe(model(), fault, controller_name);
 }
 
 std::span<const double> Simulation::sensor(std::string_view name) const {
@@ -188,12 +217,55 @@ std::span<const double> Simulation::sensor(std::string_view name) const {
 }
 
 std::span<const double> Simulation::sensor(int id) const {
-  const mjModel& m = robot_.model();
+  const mjModel& m = model();
   if (id < 0 || id >= m.nsensor) {
     throw Error("simulation: sensor id " + std::to_string(id) + " out of range [0, " +
                 std::to_string(m.nsensor) + ")");
   }
   return {data_->sensordata + m.sensor_adr[id], static_cast<std::size_t>(m.sensor_dim[id])};
+}
+
+int Simulation::equality(std::string_view name) const {
+  return find_object(model(), mjOBJ_EQUALITY, name);
+}
+
+bool Simulation::equality_active(int id) const {
+  check_equality_id(model(), id);
+  return model_->eq_active[id] != 0;
+}
+
+bool Simulation::set_equality_active(int id, bool active) noexcept {
+  if (!own_model_ || id < 0 || id >= own_model_->neq) return false;
+  own_model_->eq_active[id] = active ? 1 : 0;
+  return true;
+}
+
+std::span<const double> Simulation::equality_data(int id) const noexcept {
+  if (id < 0 || id >= model_->neq) return {};
+  return {model_->eq_data + static_cast<std::size_t>(id) * mjNEQDATA, mjNEQDATA};
+}
+
+bool Simulation::set_equality_data(int id, std::span<const double> values) noexcept {
+  if (!own_model_ || id < 0 || id >= own_model_->neq || values.size() != mjNEQDATA) return false;
+  for (double v : values) {
+    if (!std::isfinite(v)) return false;
+  }
+  std::copy(values.begin(), values.end(),
+            own_model_->eq_data + static_cast<std::size_t>(id) * mjNEQDATA);
+  return true;
+}
+
+void Simulation::set_equality_solref(int id, double time_constant, double damping_ratio) {
+  check_equality_id(model(), id);
+  if (!(std::isfinite(time_constant) && time_constant > 0.0) ||
+      !(std::isfinite(damping_ratio) && damping_ratio > 0.0)) {
+    throw Error(
+        "simulation: equality solref needs a positive time constant [s] and damping "
+        "ratio, got " +
+        std::to_string(time_constant) + ", " + std::to_string(damping_ratio));
+  }
+  own_model_->eq_solref[id * mjNREF] = time_constant;
+  own_model_->eq_solref[id * mjNREF + 1] = damping_ratio;
 }
 
 int Simulation::watch_contacts(const GeomSet& a, const GeomSet& b) {
@@ -205,7 +277,7 @@ int Simulation::watch_contacts(const GeomSet& a, const GeomSet& b) {
 
 void Simulation::refresh_watches(bool with_forces) noexcept {
   for (Watch& w : watches_) {
-    w.summary = contact_between(robot_.model(), *data_, w.a, w.b, with_forces);
+    w.summary = contact_between(model(), *data_, w.a, w.b, with_forces);
   }
 }
 

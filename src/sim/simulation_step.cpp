@@ -48,7 +48,7 @@ TickResult Simulation::tick_impl(ReferenceSource* source, const Reference* refer
   if (options_.mode == SimulationMode::kinematic) {
     throw Error("simulation: tick() needs position or torque mode; kinematic mode moves with move()");
   }
-  const mjModel& m = robot_.model();
+  const mjModel& m = model();
   mjData* d = data_.get();
   TickResult result;
   if (!fault_.ok()) {  // a fault stops the simulation until reset or set_state
@@ -151,7 +151,7 @@ void Simulation::compensate_gravity() noexcept {
 }
 
 void Simulation::take_snapshot() noexcept {
-  const mjModel& m = robot_.model();
+  const mjModel& m = model();
   const mjData& d = *data_;
   snapshot_.time = d.time;
   std::copy(d.qpos, d.qpos + m.nq, snapshot_.qpos.begin());
@@ -170,7 +170,7 @@ void Simulation::restore_snapshot() noexcept {
   std::copy(snapshot_.act.begin(), snapshot_.act.end(), d->act);
   std::copy(snapshot_.ctrl.begin(), snapshot_.ctrl.end(), d->ctrl);
   std::copy(snapshot_.qfrc_applied.begin(), snapshot_.qfrc_applied.end(), d->qfrc_applied);
-  if (all_finite(snapshot_.qpos) && all_finite(snapshot_.qvel)) mj_forward(&robot_.model(), d);
+  if (all_finite(snapshot_.qpos) && all_finite(snapshot_.qvel)) mj_forward(&model(), d);
   detector_.rebase(*d);
 }
 
@@ -244,7 +244,7 @@ KinematicStep Simulation::move(std::span<const double> qpos, double dt, Recorder
     throw Error("simulation: move() needs kinematic mode; this simulation runs in " +
                 std::string(to_string(options_.mode)) + " mode");
   }
-  const mjModel& m = robot_.model();
+  const mjModel& m = model();
   mjData* d = data_.get();
   if (qpos.size() != static_cast<std::size_t>(m.nq)) {
     throw Error("simulation: move needs " + std::to_string(m.nq) + " qpos values, got " +
@@ -302,7 +302,7 @@ KinematicStep Simulation::move(const Chain& chain, const Eigen::Ref<const Eigen:
   }
   chain.check(q, "move q");
   const mjData& d = *data_;
-  move_qpos_.assign(d.qpos, d.qpos + robot_.model().nq);
+  move_qpos_.assign(d.qpos, d.qpos + model().nq);
   chain.scatter(q, move_qpos_.data());
   return move(move_qpos_, dt, recorder);
 }

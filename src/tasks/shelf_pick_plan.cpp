@@ -111,6 +111,19 @@ double unit_draw(std::uint64_t bits) noexcept {
   return static_cast<double>(bits >> 11) * 0x1.0p-53;
 }
 
+Eigen::Vector3d draw_shelf_pick(const ShelfPickRobot& robot, const Chain& chain,
+                                std::mt19937_64& rng, std::span<double> qpos) noexcept {
+  Eigen::Vector3d pick;
+  for (int i = 0; i < 3; ++i)
+    pick[i] = robot.pick_center[i] + (2.0 * unit_draw(rng()) - 1.0) * robot.pick_half_width[i];
+  for (int i = 0; i < chain.size(); ++i) {
+    double& q = qpos[static_cast<std::size_t>(chain.qpos_address(i))];
+    q += (2.0 * unit_draw(rng()) - 1.0) * robot.start_perturbation;
+    q = std::clamp(q, chain.lower()[i], chain.upper()[i]);
+  }
+  return pick;
+}
+
 ShelfPickPlan plan_shelf_pick(const ShelfPickRequest& request) {
   const ShelfPickRobot& robot = shelf_pick_robot(request.robot);
   check_shelf_pick_controller(request.controller);
@@ -128,17 +141,11 @@ ShelfPickPlan plan_shelf_pick(const ShelfPickRequest& request) {
 
   // the seed: the pick point first (always drawn), then the start perturbation
   std::mt19937_64 rng(request.seed);
-  Eigen::Vector3d drawn;
-  for (int i = 0; i < 3; ++i)
-    drawn[i] = robot.pick_center[i] + (2.0 * unit_draw(rng()) - 1.0) * robot.pick_half_width[i];
+  plan.qpos_start = model.keyframe_qpos("home");
+  const Eigen::Vector3d drawn = draw_shelf_pick(robot, chain, rng, plan.qpos_start);
   plan.pick_drawn = !request.pick.has_value();
   plan.pick = request.pick.value_or(drawn);
-  plan.qpos_start = model.keyframe_qpos("home");
-  Eigen::VectorXd q_start = chain.gather(plan.qpos_start.data());
-  for (int i = 0; i < n; ++i)
-    q_start[i] += (2.0 * unit_draw(rng()) - 1.0) * robot.start_perturbation;
-  q_start = chain.clamp(q_start);
-  chain.scatter(q_start, plan.qpos_start.data());
+  const Eigen::VectorXd q_start = chain.gather(plan.qpos_start.data());
 
   // the pick point: finite, in the arm's plane, above the floor, reachable
   const Eigen::Vector3d& pick = plan.pick;

@@ -469,6 +469,56 @@ TEST(Simulation, SensorsByName) {
   EXPECT_THROW(sim.sensor(7), Error);
 }
 
+// With own_model the simulation steps a private copy that its owner may edit: the edit changes
+// this simulation's physics and nothing else (the robot's model, another simulation of it).
+TEST(Simulation, OwnModelIsAnEditableCopy) {
+  const Robot robot = Robot::bundled("planar2_torque");
+  const Chain chain(robot, "tip");
+  SimulationOptions own_options;
+  own_options.own_model = true;
+  Simulation own(robot, own_options), shared(robot), reference(robot);
+  ASSERT_NE(own.editable_model(), nullptr);
+  EXPECT_TRUE(own.owns_model());
+  EXPECT_EQ(shared.editable_model(), nullptr);
+  EXPECT_NE(&own.model(), &robot.model());
+  EXPECT_EQ(&shared.model(), &robot.model());
+  const double damping = robot.model().dof_damping[0];
+  own.editable_model()->dof_damping[0] = damping + 5.0;
+  EXPECT_EQ(robot.model().dof_damping[0], damping);
+  FixedTorque a(chain, Eigen::VectorXd::Constant(2, 3.0)),
+      b(chain, Eigen::VectorXd::Constant(2, 3.0)), c(chain, Eigen::VectorXd::Constant(2, 3.0));
+  own.add_controller(a);
+  shared.add_controller(b);
+  reference.add_controller(c);
+  for (int k = 0; k < 100; ++k) {
+    own.tick(Reference{});
+    shared.tick(Reference{});
+    reference.tick(Reference{});
+  }
+  EXPECT_EQ(shared.data().qpos[0], reference.data().qpos[0]);
+  EXPECT_LT(std::abs(own.data().qvel[0]), std::abs(shared.data().qvel[0]));  // more damping
+}
+
+// whole_multiple: the check behind every control period, with the nearest multiple named
+TEST(Simulation, WholeMultipleNamesThePeriodAndTheNearestMultiple) {
+  EXPECT_EQ(whole_multiple(0.02, 0.002, "x", "the timestep"), 10);
+  EXPECT_EQ(whole_multiple(0.002, 0.002, "x", "the timestep"), 1);
+  try {
+    whole_multiple(0.015, 0.002, "env: control_period", "the step");
+    ADD_FAILURE() << "no error";
+  } catch (const Error& e) {
+    const std::string m = e.what();
+    EXPECT_NE(
+        m.find("env: control_period 0.015000 s is not a whole multiple of the step 0.002000 s"),
+        std::string::npos)
+        << m;
+    EXPECT_NE(m.find("nearest: 0.016000 s"), std::string::npos) << m;
+  }
+  EXPECT_THROW(whole_multiple(0.0, 0.002, "x", "y"), Error);
+  EXPECT_THROW(whole_multiple(std::numeric_limits<double>::quiet_NaN(), 0.002, "x", "y"), Error);
+  EXPECT_THROW(whole_multiple(0.001, 0.002, "x", "y"), Error);
+}
+
 // A control tick (split step, controllers, actuators, divergence checks, recorder rows) allocates
 // nothing once running.
 TEST(Simulation, TickAllocatesNothing) {

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <random>
 #include <string>
 
 #include "mjarm/error.hpp"
@@ -67,6 +68,23 @@ TEST(ShelfPickPlan, TheSeedDrawsThePickAndTheStart) {
     EXPECT_FALSE(d.pick_drawn);
     EXPECT_EQ(d.pick, c.pick);
     EXPECT_EQ(d.qpos_start, a.qpos_start);
+  }
+}
+
+// draw_shelf_pick is the plan's draw, in the documented order: three numbers for the pick
+// point, then one per joint for the start
+TEST(ShelfPickPlan, DrawShelfPickIsWhatThePlanDraws) {
+  for (const char* robot : {"planar2", "panda"}) {
+    const ShelfPickRobot& spec = shelf_pick_robot(robot);
+    const ShelfPickPlan plan = plan_shelf_pick(request(robot, 7));
+    std::vector<double> qpos = plan.model.keyframe_qpos("home");
+    std::mt19937_64 rng(7);
+    const Eigen::Vector3d pick = draw_shelf_pick(spec, plan.chain, rng, qpos);
+    EXPECT_EQ(pick, plan.pick);
+    EXPECT_EQ(qpos, plan.qpos_start);
+    std::mt19937_64 again(7);
+    const double u = unit_draw(again());
+    EXPECT_EQ(pick.x(), spec.pick_center.x() + (2.0 * u - 1.0) * spec.pick_half_width.x());
   }
 }
 

@@ -134,6 +134,10 @@ class DiffIk {
   /// The result of the last `step()`.
   const DiffIkStep& last_step() const noexcept { return step_; }
 
+  /// Forgets the QP's working set kept for warm starts: the next `step()` starts cold, so that
+  /// a sequence of steps does not depend on what was solved before it (bit for bit).
+  void reset_warm_start() noexcept;
+
  private:
   struct Task;
   Task& task_at(int task, const char* what);

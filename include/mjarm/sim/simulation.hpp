@@ -53,17 +53,30 @@ class Simulation {
 
   // ---- model, data, timing ----
   const Robot& robot() const noexcept { return robot_; }
-  const mjModel& model() const noexcept { return robot_.model(); }
+  /// The model this simulation steps: the simulation's own copy when the robot's model has
+  /// equality constraints (MuJoCo 2.2.2 keeps `eq_active` in `mjModel`, so switching a constraint
+  /// — a weld grasp — changes the model: two simulations of one `Robot` never see each other's
+  /// constraints) or when `SimulationOptions::own_model` asks for one (domain randomization);
+  /// `robot().model()` keeps the values of the file either way. Otherwise the robot's shared
+  /// model.
+  const mjModel& model() const noexcept { return *model_; }
+  /// True when `model()` is this simulation's own copy.
+  bool owns_model() const noexcept { return own_model_ != nullptr; }
+  /// The simulation's own model copy, for its owner to edit between steps (masses, friction,
+  /// damping, gains, sizes; call `mj_setConst` after changing masses or inertias), or null when
+  /// the model is the robot's shared one. Controllers keep reading the robot's model for its
+  /// structure and the state's dynamics (mass matrix, bias forces) from the data.
+  mjModel* editable_model() noexcept { return own_model_.get(); }
   /// The simulation's data. Writing qpos/qvel directly is allowed; call `forward` afterwards.
   mjData& data() noexcept { return *data_; }
   const mjData& data() const noexcept { return *data_; }
   const SimulationOptions& options() const noexcept { return options_; }
   SimulationMode mode() const noexcept { return options_.mode; }
-  double timestep() const noexcept { return robot_.model().opt.timestep; }         ///< [s]
+  double timestep() const noexcept { return model_->opt.timestep; }                ///< [s]
   double control_period() const noexcept { return timestep() * steps_per_tick_; }  ///< [s]
   int steps_per_tick() const noexcept { return steps_per_tick_; }
   double time() const noexcept { return data_->time; }  ///< simulated time [s]
-  bool uses_rk4() const noexcept { return robot_.model().opt.integrator == mjINT_RK4; }
+  bool uses_rk4() const noexcept { return model_->opt.integrator == mjINT_RK4; }
   std::int64_t ticks() const noexcept { return ticks_; }          ///< control ticks since reset
   std::int64_t physics_steps() const noexcept { return steps_; }  ///< physics steps since reset
 
@@ -128,6 +141,26 @@ class Simulation {
   /// A sentence describing @p fault (time, cause, joint or controller).
   std::string describe(const StepFault& fault) const;
 
+  // ---- equality constraints (this simulation's own model copy) ----
+  /// Id of the equality constraint called @p name.
+  /// @throws Error naming the model's equality constraints closest to @p name.
+  int equality(std::string_view name) const;
+  /// Whether equality @p id is switched on. @throws Error for an id out of range.
+  bool equality_active(int id) const;
+  /// Switches equality @p id on or off in this simulation's model copy; the next step sees it.
+  /// Allocation-free; returns false (nothing changed) for an id out of range.
+  bool set_equality_active(int id, bool active) noexcept;
+  /// The constraint data of equality @p id (mjNEQDATA values: for a weld in MuJoCo 2.2.2, the
+  /// anchor in body2's frame [0..2], the pose of body2 in body1's frame, position [3..5] and
+  /// quaternion w x y z [6..9], and the torque scale [10]). Empty for an id out of range.
+  std::span<const double> equality_data(int id) const noexcept;
+  /// Writes the data of equality @p id (mjNEQDATA values, see `equality_data`). Allocation-free;
+  /// false (nothing written) for an id out of range, a wrong size or a non-finite value.
+  bool set_equality_data(int id, std::span<const double> values) noexcept;
+  /// Sets the solver reference of equality @p id: time constant [s] and damping ratio.
+  /// @throws Error for an id out of range or values that are not positive and finite.
+  void set_equality_solref(int id, double time_constant, double damping_ratio);
+
   // ---- sensors and contacts ----
   /// Values of the sensor called @p name (fresh as of the start of the last physics step).
   /// @throws Error for an unknown sensor (listing close names).
@@ -166,7 +199,13 @@ class Simulation {
   void refresh_watches(bool with_forces) noexcept;
   void after_reset();
 
+  struct ModelDeleter {
+    void operator()(mjModel* m) const noexcept { mj_deleteModel(m); }
+  };
+
   Robot robot_;
+  std::unique_ptr<mjModel, ModelDeleter> own_model_;  // with equalities or own_model
+  const mjModel* model_ = nullptr;                    // own_model_ or the robot's
   SimulationOptions options_;
   DataPtr data_;
   int steps_per_tick_ = 1;

@@ -3,6 +3,7 @@
 /// How a `Simulation` runs: its mode, control period and divergence bound.
 
 #include <limits>
+#include <string_view>
 
 #include "mjarm/sim/contact_query.hpp"
 
@@ -23,6 +24,14 @@ enum class SimulationMode {
 /// Human name ("kinematic", "position", "torque").
 const char* to_string(SimulationMode mode) noexcept;
 
+/// The number of whole @p step periods [s] in @p period [s] (to 1e-9 relative), for a control
+/// period made of physics steps (or of controller periods).
+/// @param what names the period in the message ("simulation: control_period")
+/// @param step_name names the step ("the timestep")
+/// @throws Error "<what> 0.015 s is not a whole multiple of the timestep 0.002 s (nearest:
+///         0.016 s)", or when @p period is not positive and finite.
+int whole_multiple(double period, double step, std::string_view what, std::string_view step_name);
+
 /// Options of a `Simulation`; checked by its constructor.
 struct SimulationOptions {
   SimulationMode mode = SimulationMode::torque;
@@ -41,6 +50,12 @@ struct SimulationOptions {
   /// Divergence bound on |qacc| [rad/s² or m/s²]: a larger acceleration stops the run as diverged.
   /// +infinity leaves only the NaN/inf checks and MuJoCo's own (|x| > 1e10).
   double max_acceleration = 1e6;
+
+  /// Step a private copy of the model (`Simulation::editable_model`) instead of the robot's
+  /// shared one, so that its owner can change parameters between steps without touching other
+  /// users of the `Robot` (domain randomization). A model with equality constraints gets its
+  /// own copy anyway (its constraints are switched in the model); this asks for one otherwise.
+  bool own_model = false;
 
   /// Kinematic mode only: a `move` that puts a geom of `contact_check_a` in contact with a geom of
   /// `contact_check_b` (as MuJoCo's collision detection reports it, i.e. within the geoms'

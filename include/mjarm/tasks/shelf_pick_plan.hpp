@@ -7,6 +7,8 @@
 #include <Eigen/Core>
 #include <cstdint>
 #include <optional>
+#include <random>
+#include <span>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -78,9 +80,17 @@ struct ShelfPickPlan {
 /// every platform, unlike std::uniform_real_distribution).
 double unit_draw(std::uint64_t bits) noexcept;
 
-/// Checks @p request and builds the plan. The seed's generator (std::mt19937_64) draws, in
-/// order: three numbers for the pick point (drawn even when one is given, so that a seed
-/// perturbs the start the same way with or without --pick), then one per joint for the start.
+/// What a seed's generator draws for a shelf pick, in this order: three numbers for the pick
+/// point (uniform in the robot's box), then one per chain joint for the start (the joint moved
+/// by a uniform offset in ±start_perturbation, clipped into its limits). Allocation-free.
+/// @param qpos in: a full configuration (nq), the `home` keyframe; out: the start
+/// @return the pick point drawn (world, m)
+Eigen::Vector3d draw_shelf_pick(const ShelfPickRobot& robot, const Chain& chain,
+                                std::mt19937_64& rng, std::span<double> qpos) noexcept;
+
+/// Checks @p request and builds the plan. The seed's generator (std::mt19937_64) draws as
+/// `draw_shelf_pick` (the pick point is drawn even when one is given, so that a seed perturbs
+/// the start the same way with or without --pick).
 /// @throws Error for an unknown robot or controller (listing the choices), a pick point that
 ///         is not finite, off the arm's plane, below the floor or out of reach (the message
 ///         gives its distance from the shoulder and the arm's reach), or criteria that are not

@@ -1,0 +1,131 @@
+#pragma once
+/// @file
+/// The environment benchmark: what an environment step costs beyond the physics it runs, and
+/// how a vectorized batch scales from one thread to several.
+///
+/// Protocol.
+/// 1. Overhead, one thread, thread CPU time (CLOCK_THREAD_CPUTIME_ID, so that other processes
+///    on a shared machine do not count). An `Environment` (task, action space, control period)
+///    takes `steps` steps with actions drawn uniformly within the action bounds (seeded, drawn
+///    before the clock starts), resetting (timed too) whenever an episode ends, after `warmup`
+///    untimed steps. The state at each episode's start and the actuator inputs of every step
+///    are kept; then the same physics is replayed with bare `mj_step` calls on a fresh
+///    `mjData` — each episode from its start state, each control step's inputs held over its
+///    physics steps — and only the `mj_step` calls are timed. The replay must end in the
+///    environment's final state bit for bit (reported). Overhead = environment time / bare
+///    time − 1: everything an environment step adds to its physics (action checks, the QP
+///    and controller, the simulation's bookkeeping and divergence checks, observation, reward,
+///    resets). `rounds` rounds alternate the two; the median is reported.
+/// 2. Scaling, wall clock. A `VectorEnvironment` of `envs` environments takes `batch_steps`
+///    batch steps (seeded random actions, automatic resets) on 1 thread and on `max_threads`
+///    threads, alternating, `rounds` times; the best rate of each thread count is kept (the
+///    least disturbed by other processes), the speedup is their ratio, and the process CPU time
+///    of each run is reported with the load average before and after (/proc/loadavg), because
+///    on a shared machine the wall-clock scaling depends on what else runs (a worker that
+///    gets no core leaves the caller's thread to step the whole batch). The CPU clock gives a
+///    figure that does not: the thread CPU time of each environment's part of each batch step
+///    (`VectorEnvironment::last_env_cpu_seconds`), measured in the run of each thread count.
+///    Work = their sum; critical path = for each batch step, the time the last of T threads
+///    finishes when the environments are handed out in index order to whichever thread is free
+///    first (the pool's rule) with every thread on a core of its own, summed over the steps.
+///    CPU speedup = the median over the max-thread runs of work / critical path: the speedup
+///    free cores would give at the CPU cost per environment step measured in the threaded run
+///    (the batch's imbalance included; the pool's wake-up latency and the waits for a core left
+///    out). CPU cost ratio = the median work of the max-thread runs / that of the one-thread
+///    runs: what threading adds to each environment step's CPU time (caches shared by the
+///    threads), which on a loaded machine also carries the run-to-run spread of the CPU clock.
+///    The final batch arrays of the thread counts are compared bit for bit.
+
+#include <array>
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "mjarm/env/action_space.hpp"
+
+namespace mjarm {
+
+/// Settings of `run_env_benchmark`.
+struct EnvBenchmarkOptions {
+  std::string task = "reach";
+  ActionSpace action_space = ActionSpace::ee_pose_deltas;
+  double control_period = 0.02;  ///< [s]: 10 physics steps of 2 ms on the bundled models
+  int steps = 5000;              ///< timed environment steps per round (≥ 1)
+  int warmup = 100;              ///< untimed steps before each timed run (≥ 0)
+  int rounds = 3;                ///< rounds of each measurement (≥ 1)
+  int envs = 8;                  ///< environments of the vectorized batch (≥ 1)
+  int batch_steps = 250;         ///< timed batch steps per run (≥ 1)
+  int max_threads = 2;           ///< thread count compared with one (≥ 1)
+  std::uint64_t seed = 1;        ///< seed of the actions and of the environments
+  /// Called after each run with (runs done, runs total); may be empty.
+  std::function<void(int done, int total)> progress;
+  /// Asked between runs whether to stop (e.g. `interrupt_requested`); may be empty.
+  std::function<bool()> stop;
+
+  /// @throws Error naming the first setting out of range.
+  void check() const;
+};
+
+/// How a benchmark ended.
+enum class EnvBenchmarkStatus {
+  ok,          ///< every run completed
+  interrupted  ///< the stop request said so; the figures cover the runs done
+};
+
+/// "ok", "interrupted".
+const char* to_string(EnvBenchmarkStatus status) noexcept;
+
+/// One round of the overhead measurement.
+struct EnvOverheadRound {
+  double env_cpu_s = 0.0;         ///< thread CPU time of the environment steps [s]
+  double bare_cpu_s = 0.0;        ///< thread CPU time of the same physics as bare mj_step calls [s]
+  double env_wall_s = 0.0;        ///< wall time of the environment steps [s]
+  double overhead = 0.0;          ///< env_cpu_s / bare_cpu_s − 1
+  int episodes = 0;               ///< episodes started in the timed steps
+  bool replay_identical = false;  ///< the replay ended in the environment's state bit for bit
+};
+
+/// One vectorized run.
+struct VectorRun {
+  int threads = 1;
+  double wall_s = 0.0;            ///< wall time of the timed batch steps [s]
+  double cpu_s = 0.0;             ///< process CPU time over the same stretch [s]
+  double steps_per_second = 0.0;  ///< environment steps (batch steps × envs) per wall second
+  double work_cpu_s = 0.0;        ///< Σ over batch steps of every environment's CPU time [s]
+  double critical_cpu_s = 0.0;    ///< Σ over batch steps of the scheduled critical path [s]
+};
+
+/// Figures of one benchmark.
+struct EnvBenchmarkResult {
+  EnvBenchmarkStatus status = EnvBenchmarkStatus::ok;
+  std::string task;
+  std::string model;
+  ActionSpace action_space = ActionSpace::ee_pose_deltas;
+  double control_period = 0.0;  ///< [s]
+  int physics_steps_per_step = 0;
+  int steps = 0;  ///< timed steps per round
+  std::vector<EnvOverheadRound> rounds;
+  double env_us_per_step = 0.0;   ///< median over rounds, thread CPU [µs]
+  double bare_us_per_step = 0.0;  ///< median over rounds, thread CPU [µs]
+  double overhead = 0.0;          ///< median over rounds
+  bool replay_identical = false;  ///< in every round
+  int envs = 0;
+  int batch_steps = 0;
+  std::vector<VectorRun> vector_runs;   ///< every run, in order
+  std::vector<VectorRun> best;          ///< the best run of each thread count (1, then max)
+  double speedup = 0.0;                 ///< best rate at max threads / best rate at 1 thread
+  /// median over the max-thread runs of work_cpu_s / critical_cpu_s (see the protocol)
+  double cpu_speedup = 0.0;
+  /// median work_cpu_s at max threads / median work_cpu_s at 1 thread
+  double cpu_cost_ratio = 0.0;
+  bool threads_identical = false;       ///< batch arrays equal bit for bit across thread counts
+  std::array<double, 3> load_before{};  ///< 1, 5, 15-minute load averages before the scaling runs
+  std::array<double, 3> load_after{};
+  int hardware_threads = 0;  ///< std::thread::hardware_concurrency()
+};
+
+/// Runs the protocol above. @throws Error for bad options or an unknown task.
+EnvBenchmarkResult run_env_benchmark(const EnvBenchmarkOptions& options);
+
+}  // namespace mjarm

@@ -1,0 +1,106 @@
+#pragma once
+/// @file
+/// `EnvTask`: what an environment asks of a task (dm_control's `Task`): the model and arm, the
+/// episode's start, the hooks around the physics, the task's own observations, the reward and
+/// the termination. And `EpisodeRandom`, the random state of one episode.
+
+#include <cstdint>
+#include <memory>
+#include <random>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "mjarm/env/array_spec.hpp"
+#include "mjarm/lie/pose.hpp"
+#include "mjarm/lie/types.hpp"
+#include "mjarm/model/chain.hpp"
+#include "mjarm/model/robot.hpp"
+#include "mjarm/sim/simulation.hpp"
+
+namespace mjarm {
+
+/// The random state of one episode: two `std::mt19937_64` generators seeded from the episode's
+/// seed — the task's with the seed itself, the domain randomization's with splitmix64(seed) —
+/// so that a task draws the same start and goal for a seed whether or not the model is
+/// randomized. Draw doubles with `unit_draw` (tasks/shelf_pick_plan.hpp): the same numbers on
+/// every platform.
+struct EpisodeRandom {
+  std::uint64_t seed = 0;
+  std::mt19937_64 task;
+  std::mt19937_64 randomization;
+
+  explicit EpisodeRandom(std::uint64_t seed = 0) { reseed(seed); }
+  /// Seeds both generators from @p seed (allocation-free).
+  void reseed(std::uint64_t seed) noexcept;
+  /// A uniform draw in [lo, hi) from @p rng (53 bits of one 64-bit draw).
+  static double uniform(std::mt19937_64& rng, double lo, double hi) noexcept;
+};
+
+/// SplitMix64's finalizer: a well-mixed 64-bit function of @p x (for derived seeds).
+std::uint64_t splitmix64(std::uint64_t x) noexcept;
+
+/// What the task's hooks see of the environment after the physics of a step (or after the
+/// episode's start): the simulation and the end-effector state computed from the current qpos
+/// and qvel by `ChainKinematics` (MuJoCo's own derived quantities in `mjData` lag one physics
+/// step, see `Simulation`).
+struct StepContext {
+  const Simulation* sim = nullptr;
+  Pose X_WE;                         ///< pose of the chain's frame E in W
+  Vector6d V_WE = Vector6d::Zero();  ///< its twist [v; ω], world axes
+  int step = 0;                      ///< control steps since the episode's start
+  double time = 0.0;                 ///< simulated time since the episode's start [s]
+
+  const Simulation& simulation() const noexcept { return *sim; }
+  const mjData& data() const noexcept { return sim->data(); }
+};
+
+/// A task of an environment. The environment owns it, calls its hooks in this order and never
+/// concurrently:
+///
+///     reset:  initialize_episode → observation
+///     step:   before_step → physics → after_step → observation → reward → terminated
+///
+/// Hooks after construction must not allocate (the environment's step allocates nothing) and
+/// must not throw; `initialize_episode` may do both.
+class EnvTask {
+ public:
+  virtual ~EnvTask() = default;
+
+  /// An independent copy (its own episode state) sharing the immutable model: for the
+  /// environments of a vectorized batch.
+  virtual std::unique_ptr<EnvTask> clone() const = 0;
+
+  /// Short name ("reach").
+  virtual std::string_view name() const noexcept = 0;
+  /// One line on what the task asks, for listings.
+  virtual std::string_view description() const noexcept = 0;
+  /// The model the environment simulates (torque motors on the chain's joints).
+  virtual const Robot& robot() const noexcept = 0;
+  /// The arm actions drive; its frame is the end effector.
+  virtual const Chain& chain() const noexcept = 0;
+
+  /// The task's own observations (e.g. "target", "object_pose"): name, shape, bounds.
+  virtual std::vector<ArraySpec> observation_specs() const { return {}; }
+  /// Observation names used when the environment is given none.
+  virtual std::vector<std::string> default_observations() const;
+  /// Geoms whose size the domain randomization may scale (the task's objects); none by default.
+  virtual std::vector<int> object_geoms() const { return {}; }
+
+  /// Starts an episode: puts the simulation in its start state (reset, set_state) and draws
+  /// the episode's goal from @p random.task. The model is already randomized.
+  virtual void initialize_episode(Simulation& sim, EpisodeRandom& random) = 0;
+  /// Before the physics, with the clipped action.
+  virtual void before_step(const StepContext& context, std::span<const double> action) noexcept;
+  /// After the physics.
+  virtual void after_step(const StepContext& context) noexcept;
+  /// Writes task observation @p index (of `observation_specs()`) into @p out (its size).
+  virtual void observe(int index, const StepContext& context, std::span<double> out) const noexcept;
+  /// The reward of the step that led to @p context.
+  virtual double reward(const StepContext& context) const noexcept = 0;
+  /// True when the episode ends here by the task's own rule (discount 0).
+  virtual bool terminated(const StepContext& context) const noexcept;
+};
+
+}  // namespace mjarm

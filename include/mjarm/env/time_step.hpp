@@ -1,0 +1,70 @@
+#pragma once
+/// @file
+/// `TimeStep`: what an environment returns from `reset` and `step`, with dm_env's semantics —
+/// the step type, the reward and discount (none on the first step) and the observation.
+
+#include <optional>
+#include <span>
+#include <string_view>
+
+#include "mjarm/env/array_spec.hpp"
+
+namespace mjarm {
+
+/// Where a time step stands in its episode (dm_env's `StepType`).
+enum class StepType {
+  first,  ///< returned by `reset`: no reward, no discount
+  mid,    ///< an ordinary step
+  last    ///< the episode ended: by termination (discount 0) or by the time limit (discount 1)
+};
+
+/// "first", "mid", "last".
+const char* to_string(StepType type) noexcept;
+
+/// Why an episode ended (an addition to dm_env, which tells only by the discount).
+enum class EpisodeEnd {
+  running,     ///< not ended
+  terminated,  ///< the task ended it (success or failure): discount 0
+  truncated,   ///< the time limit was reached: discount 1 (the state is not terminal)
+  diverged     ///< the physics diverged (`Simulation` fault) and was stopped: discount 0
+};
+
+/// "running", "terminated", "truncated", "diverged".
+const char* to_string(EpisodeEnd end) noexcept;
+
+/// A read-only view of one observation: the arrays of an `ObservationSpec`, back to back.
+/// It points into the environment's buffer and is valid until the next `step` or `reset`:
+/// copy what must outlive that.
+class Observation {
+ public:
+  Observation() = default;
+  Observation(const ObservationSpec* spec, std::span<const double> values) noexcept
+      : spec_(spec), values_(values) {}
+
+  /// Every value, in spec order (spec().size() doubles).
+  std::span<const double> values() const noexcept { return values_; }
+  /// The array called @p name. @throws Error naming it and listing the arrays.
+  std::span<const double> operator[](std::string_view name) const;
+  /// Array @p i of the spec. @throws Error for an index out of range.
+  std::span<const double> at(int i) const;
+  const ObservationSpec& spec() const noexcept { return *spec_; }
+
+ private:
+  const ObservationSpec* spec_ = nullptr;
+  std::span<const double> values_;
+};
+
+/// One step of an episode.
+struct TimeStep {
+  StepType step_type = StepType::first;
+  std::optional<double> reward;    ///< none on FIRST
+  std::optional<double> discount;  ///< none on FIRST; 0 on a termination, 1 otherwise
+  Observation observation;
+  EpisodeEnd end = EpisodeEnd::running;  ///< set on LAST
+
+  bool first() const noexcept { return step_type == StepType::first; }
+  bool mid() const noexcept { return step_type == StepType::mid; }
+  bool last() const noexcept { return step_type == StepType::last; }
+};
+
+}  // namespace mjarm

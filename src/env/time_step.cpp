@@ -1,0 +1,49 @@
+#include "mjarm/env/time_step.hpp"
+
+#include <string>
+
+#include "mjarm/error.hpp"
+
+namespace mjarm {
+
+const char* to_string(StepType type) noexcept {
+  switch (type) {
+    case StepType::first:
+      return "first";
+    case StepType::mid:
+      return "mid";
+    case StepType::last:
+      return "last";
+  }
+  return "?";
+}
+
+const char* to_string(EpisodeEnd end) noexcept {
+  switch (end) {
+    case EpisodeEnd::running:
+      return "running";
+    case EpisodeEnd::terminated:
+      return "terminated";
+    case EpisodeEnd::truncated:
+      return "truncated";
+    case EpisodeEnd::diverged:
+      return "diverged";
+  }
+  return "?";
+}
+
+std::span<const double> Observation::operator[](std::string_view name) const {
+  if (spec_ == nullptr) throw Error("observation: empty (no reset yet)");
+  return at(spec_->index(name));
+}
+
+std::span<const double> Observation::at(int i) const {
+  if (spec_ == nullptr) throw Error("observation: empty (no reset yet)");
+  if (i < 0 || i >= spec_->count())
+    throw Error("observation: array index " + std::to_string(i) + " out of range [0, " +
+                std::to_string(spec_->count()) + ")");
+  return values_.subspan(static_cast<std::size_t>(spec_->offset(i)),
+                         static_cast<std::size_t>(spec_->arrays()[i].size()));
+}
+
+}  // namespace mjarm

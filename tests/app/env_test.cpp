@@ -1,0 +1,82 @@
+// Drives `mjarm env list`, `mjarm env run` and `mjarm bench env`: the tasks and their specs, the
+// returns of seeded episodes (the same on every thread count), the benchmark's JSON, and clean
+// failures for bad command lines.
+
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "app/cli_runner.hpp"
+
+namespace {
+
+using mjarm::test::CliRun;
+using mjarm::test::expect_error;
+using mjarm::test::run_cli;
+using mjarm::test::run_json;
+using nlohmann::json;
+
+TEST(EnvCommand, ListsTheTasksWithTheirSpecs) {
+  const json j = run_json({"env", "list", "--json"});
+  ASSERT_EQ(j["tasks"].size(), 2u);
+  EXPECT_EQ(j["tasks"][0]["name"], "reach");
+  EXPECT_EQ(j["tasks"][1]["name"], "shelf-pick");
+  for (const json& task : j["tasks"]) {
+    EXPECT_EQ(task["physics_steps_per_step"], 10);
+    ASSERT_EQ(task["action_spaces"].size(), 5u);
+    const json& ee = task["action_spaces"][3];
+    EXPECT_EQ(ee["action_space"], "ee_pose_deltas");
+    EXPECT_EQ(ee["spec"]["shape"], json::array({6}));
+    EXPECT_DOUBLE_EQ(ee["spec"]["maximum"][0].get<double>(), 0.02);
+    EXPECT_EQ(task["action_spaces"][0]["spec"]["shape"], json::array({7}));
+  }
+  // unbounded sides are null in JSON
+  EXPECT_TRUE(j["tasks"][0]["default_observations"][1]["maximum"][0].is_null());
+  const CliRun text = run_cli({"env", "list"});
+  EXPECT_EQ(text.exit_code, 0);
+  EXPECT_NE(text.out.find("ee_pose_deltas: action: float64[6]"), std::string::npos) << text.out;
+}
+
+TEST(EnvCommand, RunsSeededEpisodesTheSameOnAnyThreadCount) {
+  auto run = [](const std::string& threads) {
+    return run_json({"env", "run", "reach", "--episodes", "3", "--envs", "2", "--threads", threads,
+                     "--time-limit", "0.2", "--seed", "5", "--json"});
+  };
+  const json one = run("1"), two = run("2");
+  ASSERT_EQ(one["episodes"].size(), 3u);
+  EXPECT_EQ(one["episodes"], two["episodes"]);
+  for (const json& e : one["episodes"]) {
+    EXPECT_EQ(e["steps"], 10);
+    EXPECT_EQ(e["end"], "truncated");
+    EXPECT_LT(e["return"].get<double>(), 0.0);
+  }
+  EXPECT_GT(one["steps_per_second"].get<double>(), 0.0);
+  const json zero = run_json({"env", "run", "shelf-pick", "--policy", "zero", "--episodes", "1",
+                              "--time-limit", "0.1", "--json"});
+  EXPECT_EQ(zero["episodes"][0]["steps"], 5);
+}
+
+TEST(EnvCommand, BenchReportsOverheadAndScaling) {
+  const json j = run_json({"bench", "env", "--steps", "60", "--warmup", "2", "--rounds", "1",
+                           "--envs", "2", "--batch-steps", "3", "--json"});
+  EXPECT_EQ(j["status"], "ok");
+  EXPECT_EQ(j["physics_steps_per_step"], 10);
+  EXPECT_TRUE(j["replay_identical"].get<bool>());
+  EXPECT_TRUE(j["threads_identical"].get<bool>());
+  EXPECT_GT(j["bare_us_per_step"].get<double>(), 0.0);
+  EXPECT_EQ(j["vector_runs"].size(), 2u);
+  EXPECT_GE(j["speedup_cpu"].get<double>(), 1.0);
+}
+
+TEST(EnvCommand, BadCommandLinesAreUsageErrors) {
+  expect_error({"env", "run", "reachh"}, 2, "reachh");
+  expect_error({"env", "run", "reach", "--episodes", "0"}, 2, "--episodes");
+  expect_error({"env", "run", "reach", "--action-space", "ee_pose_delta"}, 2, "ee_pose_delta");
+  expect_error({"env", "run", "reach", "--time-limit", "nan"}, 2, "--time-limit");
+  expect_error({"bench", "env", "--threads", "0"}, 2, "--threads");
+  expect_error({"env"}, 2, "subcommand");
+}
+
+}  // namespace
