@@ -102,4 +102,22 @@ py::array_t<double> writable_view(double* data, Eigen::Index size, py::handle ow
   return py::array_t<double>({size}, {static_cast<py::ssize_t>(sizeof(double))}, data, owner);
 }
 
+namespace {
+thread_local std::exception_ptr callback_error;
+}
+
+void keep_callback_error(std::exception_ptr error) noexcept {
+  if (!callback_error) callback_error = std::move(error);  // the first one is the cause
+}
+
+void raise_callback_error() {
+  if (callback_error) {
+    std::exception_ptr e = std::move(callback_error);
+    callback_error = nullptr;
+    std::rethrow_exception(e);
+  }
+}
+
+void clear_callback_error() noexcept { callback_error = nullptr; }
+
 }  // namespace mjarm::python
