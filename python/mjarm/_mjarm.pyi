@@ -551,6 +551,7 @@ class ReferenceSource:
     def __init__(*args: Any, **kwargs: Any) -> Any: ...
 
 class ConstantReferenceSource(ReferenceSource):
+    """Gives the same Reference every tick."""
     def __init__(self: ConstantReferenceSource, reference: Reference) -> None:
         ...
 
@@ -724,7 +725,7 @@ class DiffIkTaskKind:
     def __int__(self) -> int: ...
 
 class Error:
-    ...
+    """Bad input at an API boundary (unknown name, wrong size, non-finite value, unloadable model); the message is the library's, naming the thing and what was expected."""
 
 class FaultCause:
     """Members:

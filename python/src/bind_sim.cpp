@@ -171,7 +171,8 @@ void bind_sim(py::module_& m) {
       .def_readwrite("contact_check_b", &SimulationOptions::contact_check_b);
 
   py::class_<ReferenceSource>(m, "ReferenceSource", "Produces each control tick's reference.");
-  py::class_<ConstantReferenceSource, ReferenceSource>(m, "ConstantReferenceSource")
+  py::class_<ConstantReferenceSource, ReferenceSource>(m, "ConstantReferenceSource",
+                                                       "Gives the same Reference every tick.")
       .def(py::init<Reference>(), py::arg("reference"));
   py::class_<PyFunctionSource, ReferenceSource>(
       m, "FunctionReferenceSource",

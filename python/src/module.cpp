@@ -10,7 +10,9 @@ PYBIND11_MODULE(_mjarm, m) {
       "mjarm.Error (a ValueError) with the library's message.";
   mjarm::install_mujoco_handlers();
   // mjarm::Error keeps its message and is a ValueError: bad input at an API boundary
-  py::register_exception<mjarm::Error>(m, "Error", PyExc_ValueError);
+  py::register_exception<mjarm::Error>(m, "Error", PyExc_ValueError).attr("__doc__") =
+      "Bad input at an API boundary (unknown name, wrong size, non-finite value, unloadable "
+      "model); the message is the library's, naming the thing and what was expected.";
   mjarm::python::bind_model(m);
   mjarm::python::bind_lie(m);
   mjarm::python::bind_kinematics(m);
