@@ -63,3 +63,22 @@ def test_examples_exist():
     names = [os.path.basename(p) for p in EXAMPLES]
     assert any("ik" in n for n in names) and any("clik" in n for n in names)
     assert any("torque" in n for n in names)
+
+
+def test_video_from_rendered_frames(panda, tmp_path):
+    os.environ.setdefault("EGL_PLATFORM", "surfaceless")
+    data = panda.make_data()
+    renderer = mjarm.OffscreenRenderer(panda, 64, 48)
+    camera = mjarm.frame_robot(panda, data)
+    path = tmp_path / "clip.mp4"
+    video = mjarm.VideoWriter(str(path), 64, 48, 25.0)
+    home = panda.keyframe_qpos("home")
+    for k in range(5):
+        data.qpos[:] = home * (k / 4.0)
+        data.forward()
+        video.write(renderer.render(data, camera))
+    with pytest.raises(ValueError, match=r"frame: expected a uint8 array of shape \(48, 64, 3\)"):
+        video.write(np.zeros((10, 10, 3), dtype=np.uint8))
+    video.close()
+    assert video.frames == 5 and video.complete
+    assert path.stat().st_size > 0
