@@ -55,6 +55,27 @@ IkResult solve_released(F&& solve) {
   return r;
 }
 
+/// One solve per target from the same seed, the GIL released for the whole batch; an observer's
+/// exception is raised afterwards.
+template <typename Ik, typename Target>
+std::vector<IkResult> solve_each(Ik& ik, const std::vector<Target>& targets,
+                                 const Eigen::VectorXd& q_seed) {
+  std::vector<IkResult> results(targets.size());
+  clear_callback_error();
+  {
+    py::gil_scoped_release release;
+    for (std::size_t i = 0; i < targets.size(); ++i) ik.solve(targets[i], q_seed, results[i]);
+  }
+  raise_callback_error();
+  return results;
+}
+
+std::vector<Pose> poses_of(const std::vector<py::object>& targets) {
+  std::vector<Pose> poses;
+  for (const auto& t : targets) poses.push_back(to_pose(t, "X_WT"));
+  return poses;
+}
+
 template <typename Options, typename Class>
 void local_options(Class& cls) {
   cls.def(py::init<>())
@@ -148,16 +169,9 @@ void bind_ik(py::module_& m) {
           "solve_batch",
           [](PositionIk& ik, py::handle targets, py::handle seed) {
             const Eigen::MatrixXd P = to_matrix(targets, "p_WT", -1, 3);
-            const Eigen::VectorXd q = seed_of(ik.chain(), seed);
-            std::vector<IkResult> results(static_cast<std::size_t>(P.rows()));
-            clear_callback_error();
-            {
-              py::gil_scoped_release release;
-              for (Eigen::Index i = 0; i < P.rows(); ++i)
-                ik.solve(P.row(i).transpose(), q, results[static_cast<std::size_t>(i)]);
-            }
-            raise_callback_error();
-            return results;
+            std::vector<Eigen::Vector3d> points;
+            for (Eigen::Index i = 0; i < P.rows(); ++i) points.emplace_back(P.row(i).transpose());
+            return solve_each(ik, points, seed_of(ik.chain(), seed));
           },
           py::arg("p_WT"), py::arg("q_seed"),
           "One solve per row of p_WT (k, 3) from the same seed, without the GIL.");
@@ -193,17 +207,7 @@ void bind_ik(py::module_& m) {
       .def(
           "solve_batch",
           [](PoseIk& ik, const std::vector<py::object>& targets, py::handle seed) {
-            std::vector<Pose> poses;
-            for (const auto& t : targets) poses.push_back(to_pose(t, "X_WT"));
-            const Eigen::VectorXd q = seed_of(ik.chain(), seed);
-            std::vector<IkResult> results(poses.size());
-            clear_callback_error();
-            {
-              py::gil_scoped_release release;
-              for (std::size_t i = 0; i < poses.size(); ++i) ik.solve(poses[i], q, results[i]);
-            }
-            raise_callback_error();
-            return results;
+            return solve_each(ik, poses_of(targets), seed_of(ik.chain(), seed));
           },
           py::arg("X_WT"), py::arg("q_seed"),
           "One solve per pose in the list from the same seed, without the GIL.");
@@ -398,13 +402,7 @@ void bind_ik(py::module_& m) {
       .def(
           "solve_batch",
           [](GlobalIk& ik, const std::vector<py::object>& targets, py::handle seed) {
-            std::vector<Pose> poses;
-            for (const auto& t : targets) poses.push_back(to_pose(t, "X_WT"));
-            const Eigen::VectorXd q = seed_of(ik.chain(), seed);
-            std::vector<IkResult> results(poses.size());
-            py::gil_scoped_release release;
-            for (std::size_t i = 0; i < poses.size(); ++i) ik.solve(poses[i], q, results[i]);
-            return results;
+            return solve_each(ik, poses_of(targets), seed_of(ik.chain(), seed));
           },
           py::arg("X_WT"), py::arg("q_seed"), "One solve per pose, without the GIL.")
       .def_property_readonly("stats", &GlobalIk::stats);
