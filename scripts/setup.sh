@@ -15,6 +15,8 @@ packages=(
   libglfw3-dev xvfb xauth
   # plots of a recording (`mjarm plot`, the demo)
   gnuplot-nox
+  # Python bindings (python/, `import mjarm`) for Debian's /usr/bin/python3, and their tests
+  pybind11-dev python3-dev python3-numpy python3-pytest
 )
 
 missing=()

@@ -1,0 +1,160 @@
+"""Binding-overhead benchmark: ``python3 -m mjarm.bench [--cpp PATH] [--json]``.
+
+Times, from Python, the calls that bench/python_binding_bench.cpp times in C++ on the same
+inputs (its comment states the protocol): forward kinematics, a position IK solve, one
+operational-space controller step, and a loop of Simulation.tick (real-time factor); also the
+tick loop with the same joint PD written as a Python Controller. With --cpp it runs the C++
+benchmark program and prints the per-call overhead (Python − C++) and the ratio of real-time
+factors. Figures are medians of --repeats rounds.
+"""
+import argparse
+import json
+import math
+import os
+import statistics
+import subprocess
+import sys
+import time
+
+import numpy as np
+
+import mjarm
+
+
+def configurations(chain):
+    lo, hi = chain.lower, chain.upper
+    qs = []
+    for k in range(64):
+        q = np.empty(chain.size)
+        for i in range(chain.size):
+            x = 0.6180339887 * (k + 1) + 0.4142135624 * (i + 1)
+            q[i] = lo[i] + (hi[i] - lo[i]) * (0.05 + 0.9 * (x - math.floor(x)))
+        qs.append(q)
+    return qs
+
+
+def per_call(fn, args, rounds, calls):
+    """Median over rounds of the mean time per call [s]."""
+    results = []
+    n = len(args)
+    for _ in range(rounds):
+        start = time.perf_counter()
+        for i in range(calls):
+            fn(args[i % n])
+        results.append((time.perf_counter() - start) / calls)
+    return statistics.median(results)
+
+
+class PythonPd(mjarm.Controller):
+    def __init__(self, chain, kp, kd):
+        mjarm.Controller.__init__(self, chain, mjarm.CommandKind.torque, "py-pd")
+        self.qa = chain.qpos_addresses
+        self.da = chain.dof_addresses
+        self.kp, self.kd = kp, kd
+
+    def compute(self, data, reference):
+        return (self.kp * (reference.joint.q - data.qpos[self.qa])
+                + self.kd * (reference.joint.qd - data.qvel[self.da]) + data.qfrc_bias[self.da])
+
+
+def tick_loop_rtf(robot, chain, controller, ticks, rounds):
+    sim = mjarm.Simulation(robot, mjarm.SimulationOptions(mjarm.SimulationMode.torque, 0.0))
+    sim.add_controller(controller)
+    ref = mjarm.Reference()
+    ref.joint.q = chain.gather(robot.keyframe_qpos("home"))
+    ref.joint.qd = np.zeros(chain.size)
+    ref.joint.qdd = np.zeros(chain.size)
+    rtfs = []
+    for _ in range(rounds):
+        sim.reset("home")
+        tick = sim.tick
+        start = time.perf_counter()
+        for _ in range(ticks):
+            tick(ref)
+        rtfs.append(sim.time / (time.perf_counter() - start))
+    return statistics.median(rtfs)
+
+
+def measure(rounds, calls, ticks):
+    panda = mjarm.Robot.bundled("panda")
+    chain = mjarm.Chain(panda, "attachment_site")
+    kin = mjarm.ChainKinematics(chain)
+    qs = configurations(chain)
+    out = {"fk_us": 1e6 * per_call(kin.update, qs, rounds, calls)}
+    targets = [kin.update(q).p for q in qs]
+    seed = chain.gather(panda.keyframe_qpos("home"))
+    ik = mjarm.PositionIk(chain)
+    out["ik_us"] = 1e6 * per_call(lambda p: ik.solve(p, seed), targets, rounds, max(calls // 20, 64))
+
+    robot = mjarm.Robot.bundled("panda_torque")
+    tchain = mjarm.Chain(robot, "attachment_site")
+    data = robot.make_data()
+    data.qpos[:] = robot.keyframe_qpos("home")
+    data.forward()
+    ref = mjarm.Reference()
+    home_q = tchain.gather(robot.keyframe_qpos("home"))
+    X = mjarm.forward_kinematics(tchain, home_q)
+    X.p = X.p + [0.05, 0.0, 0.0]
+    ref.task.X_WE = X
+    ref.joint.q = home_q
+    ref.joint.qd = np.zeros(7)
+    ref.joint.qdd = np.zeros(7)
+    osc = mjarm.OperationalSpaceController(tchain)
+    out["controller_us"] = 1e6 * per_call(lambda r: osc.compute(data, r), [ref], rounds, calls)
+    out["tick_rtf"] = tick_loop_rtf(robot, tchain, mjarm.JointPdController(tchain), ticks, rounds)
+    gains = mjarm.JointPdOptions().gains
+    out["tick_rtf_python_controller"] = tick_loop_rtf(
+        robot, tchain, PythonPd(tchain, gains.kp[0], gains.kd[0]), ticks, rounds)
+    return out
+
+
+def cpp_figures(path, min_time):
+    result = subprocess.run([path, "--benchmark_format=json", f"--benchmark_min_time={min_time}"],
+                            capture_output=True, text=True, check=True)
+    figures = {}
+    for b in json.loads(result.stdout)["benchmarks"]:
+        scale = {"ns": 1e-3, "us": 1.0, "ms": 1e3}[b["time_unit"]]
+        name = b["name"]
+        if name == "BM_Fk":
+            figures["fk_us"] = b["real_time"] * scale
+        elif name == "BM_PositionIk":
+            figures["ik_us"] = b["real_time"] * scale
+        elif name == "BM_ControllerStep":
+            figures["controller_us"] = b["real_time"] * scale
+        elif name == "BM_TickLoop":
+            figures["tick_rtf"] = b["rtf"]
+    return figures
+
+
+def main(argv=None):
+    parser = argparse.ArgumentParser(prog="python3 -m mjarm.bench", description=__doc__,
+                                     formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("--cpp", help="path of bench_python_binding (the C++ side)")
+    parser.add_argument("--rounds", type=int, default=5, help="rounds per figure (median), 1..100")
+    parser.add_argument("--calls", type=int, default=20000, help="calls per round, 100..10^7")
+    parser.add_argument("--ticks", type=int, default=5000, help="ticks per loop round, 100..10^7")
+    parser.add_argument("--json", action="store_true", help="print one JSON object")
+    args = parser.parse_args(argv)
+    if not 1 <= args.rounds <= 100 or not 100 <= args.calls <= 10**7 or not 100 <= args.ticks <= 10**7:
+        parser.error("--rounds must be in 1..100, --calls and --ticks in 100..10^7")
+    if args.cpp and not os.access(args.cpp, os.X_OK):
+        parser.error(f"--cpp: {args.cpp} is not an executable")
+    py = measure(args.rounds, args.calls, args.ticks)
+    cpp = cpp_figures(args.cpp, 0.5) if args.cpp else {}
+    if args.json:
+        print(json.dumps({"python": py, "cpp": cpp}))
+        return 0
+    print(f"{'call':34} {'Python':>12} {'C++':>12} {'overhead':>12}")
+    for key, label in (("fk_us", "FK (ChainKinematics.update)"), ("ik_us", "PositionIk.solve"),
+                       ("controller_us", "OSC controller step")):
+        c = cpp.get(key)
+        print(f"{label:34} {py[key]:10.3f}us " + (f"{c:10.3f}us {py[key] - c:10.3f}us" if c else ""))
+    c = cpp.get("tick_rtf")
+    print(f"{'Simulation.tick loop (RTF)':34} {py['tick_rtf']:11.1f}x "
+          + (f"{c:11.1f}x {c / py['tick_rtf']:10.2f}x slower" if c else ""))
+    print(f"{'  ... with a Python Controller':34} {py['tick_rtf_python_controller']:11.1f}x")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

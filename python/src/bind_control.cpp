@@ -1,0 +1,312 @@
+// control room: Reference, the Controller interface (subclassable in Python), every controller.
+#include "bindings.hpp"
+#include "mjarm/control/acceleration_control.hpp"
+#include "mjarm/control/cartesian_impedance.hpp"
+#include "mjarm/control/computed_torque.hpp"
+#include "mjarm/control/gravity_compensation.hpp"
+#include "mjarm/control/gripper_pd.hpp"
+#include "mjarm/control/hqp_ac.hpp"
+#include "mjarm/control/joint_pd.hpp"
+#include "mjarm/control/operational_space.hpp"
+#include "mjarm/control/se3_impedance.hpp"
+#include "mjarm/control/task_pd.hpp"
+#include "python_controller.hpp"
+
+namespace mjarm::python {
+namespace {
+
+template <typename C, typename O>
+void controller_class(py::module_& m, const char* name, const char* doc) {
+  py::class_<C, Controller>(m, name, doc)
+      .def(py::init<const Chain&, const O&>(), py::arg("chain"), py::arg("options") = O{})
+      .def_property_readonly("options", [](const C& c) { return c.options(); });
+}
+
+template <typename O, typename Class>
+void task_options(Class& cls) {
+  cls.def(py::init<>()).def_readwrite("mode", &O::mode);
+  fixed_property<O>(cls, "stiffness", &O::stiffness, "(6,) linear first");
+  fixed_property<O>(cls, "damping", &O::damping, "(6,) linear first");
+}
+
+}  // namespace
+
+void bind_control(py::module_& m) {
+  py::enum_<CommandKind>(m, "CommandKind", "What a controller's output means.")
+      .value("torque", CommandKind::torque)
+      .value("position", CommandKind::position);
+  py::enum_<TaskMode>(m, "TaskMode")
+      .value("pose", TaskMode::pose)
+      .value("position", TaskMode::position);
+  py::enum_<BiasTerm>(m, "BiasTerm")
+      .value("gravity", BiasTerm::gravity)
+      .value("full", BiasTerm::full);
+
+  auto joint =
+      py::class_<JointReference>(m, "JointReference", "Desired joint motion (chain order).");
+  joint.def(py::init<>());
+  vector_property<JointReference>(joint, "q", &JointReference::q, "(n,) [rad or m]");
+  vector_property<JointReference>(joint, "qd", &JointReference::qd, "(n,)");
+  vector_property<JointReference>(joint, "qdd", &JointReference::qdd, "(n,)");
+  auto task =
+      py::class_<TaskReference>(m, "TaskReference", "Desired motion of the frame E, world axes.");
+  task.def(py::init<>())
+      .def_property(
+          "X_WE", [](const TaskReference& t) { return t.X_WE; },
+          [](TaskReference& t, py::handle X) { t.X_WE = to_pose(X, "X_WE"); }, "desired pose");
+  fixed_property<TaskReference>(task, "V_WE", &TaskReference::V_WE, "desired twist (6,)");
+  fixed_property<TaskReference>(task, "A_WE", &TaskReference::A_WE, "desired acceleration (6,)");
+  fixed_property<TaskReference>(task, "F_ext", &TaskReference::F_ext, "desired wrench (6,)");
+  py::class_<Reference>(m, "Reference", "What a controller tracks this tick.")
+      .def(py::init<>())
+      .def_readwrite("joint", &Reference::joint)
+      .def_readwrite("task", &Reference::task)
+      .def_readwrite("gripper", &Reference::gripper, "0 open .. 1 closed")
+      .def("copy", [](const Reference& r) { return r; });
+
+  py::class_<Controller, PyController>(
+      m, "Controller",
+      "One control law. Subclass it in Python: call Controller.__init__(self, chain, kind, name) "
+      "and define compute(self, data, reference) -> ndarray (n,) (torques or position targets in "
+      "chain order); optionally reset(self). The simulation calls it every control tick; an "
+      "exception it raises stops the run and is raised by Simulation.tick/run.")
+      .def(py::init<const Chain&, CommandKind, std::string>(), py::arg("chain"),
+           py::arg("kind") = CommandKind::torque, py::arg("name") = "python")
+      .def_property_readonly("name", [](const Controller& c) { return std::string(c.name()); })
+      .def_property_readonly("command_kind", &Controller::command_kind)
+      .def_property_readonly("chain", &Controller::chain)
+      .def_property_readonly("compensates_bias", &Controller::compensates_bias)
+      .def("reset", &Controller::reset, "forgets integrators and filters")
+      .def_property_readonly("internal_names",
+                             [](const Controller& c) {
+                               const auto s = c.internal_names();
+                               return std::vector<std::string>(s.begin(), s.end());
+                             })
+      .def_property_readonly("internal_values",
+                             [](const Controller& c) {
+                               const auto s = c.internal_values();
+                               return to_array(s.data(), static_cast<Eigen::Index>(s.size()));
+                             })
+      .def(
+          "compute",
+          [](Controller& c, const DataHandle& d, const Reference& ref) {
+            if (&c.chain().robot().model() != &d.model())
+              throw Error("compute: the data belongs to another model than the controller's chain");
+            JointCommand command{c.command_kind(), Eigen::VectorXd::Zero(c.chain().size())};
+            c.compute(d.get(), ref, command);
+            return command.value;
+          },
+          py::arg("data"), py::arg("reference"),
+          "One tick's command (n,) for the state in data (fresh after forward).");
+
+  auto gains = py::class_<JointPdGains>(m, "JointPdGains", "Per-joint (or uniform, size 1) gains.");
+  gains.def(py::init<>())
+      .def_static("uniform", &JointPdGains::uniform, py::arg("kp"), py::arg("kd"))
+      .def_static("critically_damped", &JointPdGains::critically_damped, py::arg("omega"));
+  vector_property<JointPdGains>(gains, "kp", &JointPdGains::kp, "stiffness (n,) or (1,)");
+  vector_property<JointPdGains>(gains, "kd", &JointPdGains::kd, "damping (n,) or (1,)");
+
+  py::class_<JointPdOptions>(m, "JointPdOptions")
+      .def(py::init<>())
+      .def_readwrite("gains", &JointPdOptions::gains)
+      .def_readwrite("gravity_compensation", &JointPdOptions::gravity_compensation);
+  py::class_<JointPdController, Controller>(m, "JointPdController", "Joint PD + gravity (torque).")
+      .def(py::init<const Chain&, const JointPdOptions&>(), py::arg("chain"),
+           py::arg("options") = JointPdOptions{})
+      .def_property_readonly("gains", &JointPdController::gains);
+  py::class_<GravityCompensationController, Controller>(
+      m, "GravityCompensationController", "Servo targets offset to cancel gravity (position mode).")
+      .def(py::init<const Chain&, BiasTerm>(), py::arg("chain"),
+           py::arg("term") = BiasTerm::gravity);
+  py::class_<GravityHoldController, Controller>(m, "GravityHoldController",
+                                                "Torques that cancel gravity (torque mode).")
+      .def(py::init<const Chain&, BiasTerm>(), py::arg("chain"),
+           py::arg("term") = BiasTerm::gravity);
+
+  py::class_<ComputedTorqueOptions>(m, "ComputedTorqueOptions")
+      .def(py::init<>())
+      .def_readwrite("gains", &ComputedTorqueOptions::gains)
+      .def_readwrite("compensate_passive", &ComputedTorqueOptions::compensate_passive);
+  py::class_<ComputedTorqueController, Controller>(m, "ComputedTorqueController",
+                                                   "tau = M (qdd_d + PD) + h.")
+      .def(py::init<const Chain&, const ComputedTorqueOptions&>(), py::arg("chain"),
+           py::arg("options") = ComputedTorqueOptions{});
+
+  auto task_pd = py::class_<TaskPdOptions>(m, "TaskPdOptions");
+  task_options<TaskPdOptions>(task_pd);
+  task_pd.def_readwrite("gravity_compensation", &TaskPdOptions::gravity_compensation)
+      .def_readwrite("joint_damping", &TaskPdOptions::joint_damping);
+  controller_class<TaskPdController, TaskPdOptions>(m, "TaskPdController",
+                                                    "tau = J^T (K e + D ė) + g.");
+
+  auto accel = py::class_<AccelerationControlOptions>(m, "AccelerationControlOptions");
+  task_options<AccelerationControlOptions>(accel);
+  accel
+      .def_readwrite("manipulability_threshold",
+                     &AccelerationControlOptions::manipulability_threshold)
+      .def_readwrite("max_damping", &AccelerationControlOptions::max_damping)
+      .def_readwrite("nullspace_damping", &AccelerationControlOptions::nullspace_damping)
+      .def_readwrite("nullspace_stiffness", &AccelerationControlOptions::nullspace_stiffness)
+      .def_readwrite("compensate_passive", &AccelerationControlOptions::compensate_passive);
+  controller_class<AccelerationController, AccelerationControlOptions>(
+      m, "AccelerationController",
+      "Resolved task acceleration through damped J^+, then M qdd + h.");
+
+  auto osc = py::class_<OperationalSpaceOptions>(m, "OperationalSpaceOptions");
+  task_options<OperationalSpaceOptions>(osc);
+  osc.def_readwrite("damping_ratio", &OperationalSpaceOptions::damping_ratio)
+      .def_readwrite("task_inertia", &OperationalSpaceOptions::task_inertia)
+      .def_readwrite("nullspace_damping", &OperationalSpaceOptions::nullspace_damping)
+      .def_readwrite("nullspace_stiffness", &OperationalSpaceOptions::nullspace_stiffness)
+      .def_readwrite("compensate_passive", &OperationalSpaceOptions::compensate_passive)
+      .def_readwrite("wrench_feedback", &OperationalSpaceOptions::wrench_feedback)
+      .def_readwrite("integral_hold_force", &OperationalSpaceOptions::integral_hold_force)
+      .def_readwrite("task_space", &OperationalSpaceOptions::task_space);
+  fixed_property<OperationalSpaceOptions>(osc, "inertia", &OperationalSpaceOptions::inertia,
+                                          "(6,)");
+  fixed_property<OperationalSpaceOptions>(osc, "integral_gain",
+                                          &OperationalSpaceOptions::integral_gain, "(6,)");
+  fixed_property<OperationalSpaceOptions>(osc, "integral_limit",
+                                          &OperationalSpaceOptions::integral_limit, "(6,)");
+  py::class_<OperationalSpaceController, Controller>(m, "OperationalSpaceController",
+                                                     "Operational-space impedance (osc).")
+      .def(py::init<const Chain&, const OperationalSpaceOptions&>(), py::arg("chain"),
+           py::arg("options") = OperationalSpaceOptions{})
+      .def_property_readonly("options", &OperationalSpaceController::options)
+      .def(
+          "set_measured_wrench",
+          [](OperationalSpaceController& c, py::handle F) {
+            c.set_measured_wrench(to_fixed<6>(F, "F_W"));
+          },
+          py::arg("F_W"))
+      .def_property_readonly(
+          "integral", [](const OperationalSpaceController& c) { return Vector6d(c.integral()); })
+      .def_property_readonly("task_force", [](const OperationalSpaceController& c) {
+        return Vector6d(c.task_force());
+      });
+
+  py::class_<StiffnessRelease>(m, "StiffnessRelease")
+      .def(py::init<>())
+      .def_readwrite("axes", &StiffnessRelease::axes)
+      .def_readwrite("contact_force", &StiffnessRelease::contact_force)
+      .def_readwrite("duration", &StiffnessRelease::duration);
+  auto se3o = py::class_<Se3ImpedanceOptions>(m, "Se3ImpedanceOptions");
+  se3o.def(py::init<>())
+      .def_readwrite("release", &Se3ImpedanceOptions::release)
+      .def_readwrite("nullspace_damping", &Se3ImpedanceOptions::nullspace_damping)
+      .def_readwrite("nullspace_stiffness", &Se3ImpedanceOptions::nullspace_stiffness)
+      .def_readwrite("compensate_passive", &Se3ImpedanceOptions::compensate_passive)
+      .def_readwrite("task_space", &Se3ImpedanceOptions::task_space);
+  fixed_property<Se3ImpedanceOptions>(se3o, "inertia", &Se3ImpedanceOptions::inertia, "A (6, 6)");
+  fixed_property<Se3ImpedanceOptions>(se3o, "damping", &Se3ImpedanceOptions::damping, "D (6, 6)");
+  fixed_property<Se3ImpedanceOptions>(se3o, "stiffness", &Se3ImpedanceOptions::stiffness,
+                                      "K (6, 6)");
+  py::enum_<Se3ImpedanceStatus>(m, "Se3ImpedanceStatus")
+      .value("ok", Se3ImpedanceStatus::ok)
+      .value("damped", Se3ImpedanceStatus::damped)
+      .value("invalid_target", Se3ImpedanceStatus::invalid_target)
+      .value("invalid_wrench", Se3ImpedanceStatus::invalid_wrench)
+      .value("invalid_state", Se3ImpedanceStatus::invalid_state);
+  py::class_<Se3ImpedanceController, Controller>(m, "Se3ImpedanceController",
+                                                 "SE(3) Lie-group impedance (full 6x6 A, D, K).")
+      .def(py::init<const Chain&, const Se3ImpedanceOptions&>(), py::arg("chain"),
+           py::arg("options") = Se3ImpedanceOptions{})
+      .def_property_readonly("options", &Se3ImpedanceController::options)
+      .def_property_readonly("status", &Se3ImpedanceController::status)
+      .def_property_readonly("error",
+                             [](const Se3ImpedanceController& c) { return Vector6d(c.error()); })
+      .def(
+          "set_measured_wrench",
+          [](Se3ImpedanceController& c, py::handle F) {
+            c.set_measured_wrench(to_fixed<6>(F, "F_E"));
+          },
+          py::arg("F_E"))
+      .def("start_release", &Se3ImpedanceController::start_release, py::arg("time"));
+
+  py::enum_<CicInertia>(m, "CicInertia")
+      .value("natural", CicInertia::natural)
+      .value("exact", CicInertia::exact);
+  py::enum_<CicIntegral>(m, "CicIntegral")
+      .value("automatic", CicIntegral::automatic)
+      .value("on", CicIntegral::on)
+      .value("off", CicIntegral::off);
+  auto cic = py::class_<CartesianImpedanceOptions>(m, "CartesianImpedanceOptions");
+  cic.def(py::init<>())
+      .def_readwrite("damping_ratio", &CartesianImpedanceOptions::damping_ratio)
+      .def_readwrite("inertia", &CartesianImpedanceOptions::inertia)
+      .def_readwrite("integral", &CartesianImpedanceOptions::integral)
+      .def_readwrite("integral_gain", &CartesianImpedanceOptions::integral_gain)
+      .def_readwrite("integral_bound", &CartesianImpedanceOptions::integral_bound)
+      .def_readwrite("integral_hold_force", &CartesianImpedanceOptions::integral_hold_force)
+      .def_readwrite("nullspace_damping", &CartesianImpedanceOptions::nullspace_damping)
+      .def_readwrite("nullspace_stiffness", &CartesianImpedanceOptions::nullspace_stiffness)
+      .def_readwrite("friction_feed_forward", &CartesianImpedanceOptions::friction_feed_forward)
+      .def_readwrite("task_space", &CartesianImpedanceOptions::task_space);
+  fixed_property<CartesianImpedanceOptions>(cic, "stiffness", &CartesianImpedanceOptions::stiffness,
+                                            "(6,)");
+  fixed_property<CartesianImpedanceOptions>(cic, "damping", &CartesianImpedanceOptions::damping,
+                                            "(6,)");
+  fixed_property<CartesianImpedanceOptions>(cic, "desired_inertia",
+                                            &CartesianImpedanceOptions::desired_inertia, "(6,)");
+  py::class_<CartesianImpedanceController, Controller>(
+      m, "CartesianImpedanceController", "Cartesian impedance with a measured wrench (CIC).")
+      .def(py::init<const Chain&, const CartesianImpedanceOptions&>(), py::arg("chain"),
+           py::arg("options") = CartesianImpedanceOptions{});
+
+  auto hqp = py::class_<HqpAcOptions>(m, "HqpAcOptions");
+  hqp.def(py::init<>())
+      .def_readwrite("horizon", &HqpAcOptions::horizon)
+      .def_readwrite("regularization", &HqpAcOptions::regularization)
+      .def_readwrite("manipulability_threshold", &HqpAcOptions::manipulability_threshold)
+      .def_readwrite("singularity_gain", &HqpAcOptions::singularity_gain)
+      .def_readwrite("posture_stiffness", &HqpAcOptions::posture_stiffness)
+      .def_readwrite("posture_damping", &HqpAcOptions::posture_damping)
+      .def_readwrite("compensate_passive", &HqpAcOptions::compensate_passive)
+      .def_readwrite("friction_feed_forward", &HqpAcOptions::friction_feed_forward)
+      .def_readwrite("task_space", &HqpAcOptions::task_space);
+  vector_property<HqpAcOptions>(hqp, "max_velocity", &HqpAcOptions::max_velocity,
+                                "(n,) or (1,) [rad/s]");
+  vector_property<HqpAcOptions>(hqp, "max_torque", &HqpAcOptions::max_torque,
+                                "(n,); empty = the model's");
+  py::enum_<HqpAcStatus>(m, "HqpAcStatus")
+      .value("ok", HqpAcStatus::ok)
+      .value("damped", HqpAcStatus::damped)
+      .value("invalid_wrench", HqpAcStatus::invalid_wrench)
+      .value("null_space_dropped", HqpAcStatus::null_space_dropped)
+      .value("least_squares", HqpAcStatus::least_squares)
+      .value("invalid_target", HqpAcStatus::invalid_target)
+      .value("invalid_state", HqpAcStatus::invalid_state);
+  py::class_<HqpAcController, Controller>(m, "HqpAcController",
+                                          "HQP-AC: adaptive compliance, two QPs under hard bounds.")
+      .def(py::init<const Chain&, const HqpAcOptions&>(), py::arg("chain"),
+           py::arg("options") = HqpAcOptions{})
+      .def_property_readonly("status", &HqpAcController::status)
+      .def_property_readonly("acceleration", [](const HqpAcController& c) {
+        return Eigen::VectorXd(c.acceleration());
+      });
+
+  auto grip = py::class_<GripperPdOptions>(m, "GripperPdOptions");
+  grip.def(py::init<>())
+      .def_readwrite("gains", &GripperPdOptions::gains)
+      .def_readwrite("max_force", &GripperPdOptions::max_force)
+      .def_readwrite("gravity_compensation", &GripperPdOptions::gravity_compensation);
+  vector_property<GripperPdOptions>(grip, "open", &GripperPdOptions::open,
+                                    "finger joints open (n,)");
+  vector_property<GripperPdOptions>(grip, "closed", &GripperPdOptions::closed,
+                                    "finger joints closed (n,)");
+  py::class_<GripperPdController, Controller>(
+      m, "GripperPdController", "Fingers follow reference.gripper (0 open, 1 closed).")
+      .def(py::init<const Chain&, const GripperPdOptions&>(), py::arg("fingers"),
+           py::arg("options") = GripperPdOptions{})
+      .def_property_readonly("open",
+                             [](const GripperPdController& c) { return Eigen::VectorXd(c.open()); })
+      .def_property_readonly(
+          "closed", [](const GripperPdController& c) { return Eigen::VectorXd(c.closed()); });
+
+  m.def(
+      "task_error",
+      [](py::handle a, py::handle b) { return task_error(to_pose(a, "X_WE"), to_pose(b, "X_WD")); },
+      py::arg("X_WE"), py::arg("X_WD"), "task-space error (6,) world axes, linear first");
+}
+
+}  // namespace mjarm::python

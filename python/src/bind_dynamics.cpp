@@ -1,0 +1,212 @@
+// dynamics room: ChainDynamics, TaskSpaceDynamics, F/T sensor, momentum observer, friction.
+#include "bindings.hpp"
+#include "mjarm/dynamics/chain_dynamics.hpp"
+#include "mjarm/dynamics/force_torque_sensor.hpp"
+#include "mjarm/dynamics/friction_feed_forward.hpp"
+#include "mjarm/dynamics/momentum_observer.hpp"
+#include "mjarm/dynamics/task_space.hpp"
+
+namespace mjarm::python {
+namespace {
+
+void same_model(const Chain& chain, const DataHandle& d, const char* who) {
+  if (&chain.robot().model() != &d.model()) {
+    throw Error(std::string(who) + ": the data belongs to model '" + d.robot.name() +
+                "', not to the chain's model '" + chain.robot().name() + "'");
+  }
+}
+
+}  // namespace
+
+void bind_dynamics(py::module_& m) {
+  py::class_<ChainDynamics>(m, "ChainDynamics",
+                            "Joint-space dynamics of a chain read from an up-to-date Data (after "
+                            "forward): M, bias h, gravity g, J, J̇q̇, inverse dynamics.")
+      .def(py::init<const Chain&>(), py::arg("chain"))
+      .def_property_readonly("chain", &ChainDynamics::chain)
+      .def_property_readonly("size", &ChainDynamics::size)
+      .def(
+          "update",
+          [](ChainDynamics& dyn, const DataHandle& d) {
+            same_model(dyn.chain(), d, "ChainDynamics.update");
+            dyn.update(d.get());
+          },
+          py::arg("data"), "Reads everything from data (never writes it).")
+      .def_property_readonly("q", [](const ChainDynamics& d) { return Eigen::VectorXd(d.q()); })
+      .def_property_readonly("qd", [](const ChainDynamics& d) { return Eigen::VectorXd(d.qd()); })
+      .def_property_readonly(
+          "mass_matrix", [](const ChainDynamics& d) { return Eigen::MatrixXd(d.mass_matrix()); },
+          "M (n, n) [kg m^2 or kg]")
+      .def_property_readonly(
+          "bias", [](const ChainDynamics& d) { return Eigen::VectorXd(d.bias()); },
+          "h = C qd + g (n,)")
+      .def_property_readonly(
+          "gravity", [](const ChainDynamics& d) { return Eigen::VectorXd(d.gravity()); }, "g (n,)")
+      .def_property_readonly("pose", [](const ChainDynamics& d) { return d.pose(); })
+      .def_property_readonly(
+          "jacobian", [](const ChainDynamics& d) { return Matrix6Xd(d.jacobian()); },
+          "world-aligned J (6, n)")
+      .def_property_readonly("velocity",
+                             [](const ChainDynamics& d) { return Vector6d(d.velocity()); })
+      .def_property_readonly("bias_acceleration",
+                             [](const ChainDynamics& d) { return Vector6d(d.bias_acceleration()); })
+      .def(
+          "inverse_dynamics",
+          [](ChainDynamics& dyn, const DataHandle& d, py::handle qdd) {
+            same_model(dyn.chain(), d, "ChainDynamics.inverse_dynamics");
+            Eigen::VectorXd tau(dyn.size());
+            dyn.inverse_dynamics(d.get(), to_vector(qdd, "qdd", dyn.size()), tau);
+            return tau;
+          },
+          py::arg("data"), py::arg("qdd"), "tau = M qdd + h (n,)");
+
+  py::enum_<TaskSpaceStatus>(m, "TaskSpaceStatus")
+      .value("ok", TaskSpaceStatus::ok)
+      .value("damped", TaskSpaceStatus::damped)
+      .value("not_positive_definite", TaskSpaceStatus::not_positive_definite);
+  py::class_<TaskSpaceOptions>(m, "TaskSpaceOptions")
+      .def(py::init<>())
+      .def_readwrite("min_eigenvalue", &TaskSpaceOptions::min_eigenvalue)
+      .def_readwrite("always_eigendecompose", &TaskSpaceOptions::always_eigendecompose);
+  py::class_<TaskSpaceDynamics>(m, "TaskSpaceDynamics",
+                                "Lambda = (J M^-1 J^T)^-1, Jbar and the null-space projector, "
+                                "bounded near singularities.")
+      .def(py::init<int, int, TaskSpaceOptions>(), py::arg("dofs"), py::arg("task_rows") = 6,
+           py::arg("options") = TaskSpaceOptions{})
+      .def(
+          "update",
+          [](TaskSpaceDynamics& t, py::handle M, py::handle J) {
+            return t.update(to_matrix(M, "M", t.dofs(), t.dofs()),
+                            to_matrix(J, "J", t.task_rows(), t.dofs()));
+          },
+          py::arg("M"), py::arg("J"))
+      .def(
+          "update_from",
+          [](TaskSpaceDynamics& t, const ChainDynamics& d) {
+            if (d.size() != t.dofs()) throw Error("TaskSpaceDynamics.update_from: dofs differ");
+            return t.update(d);
+          },
+          py::arg("dynamics"))
+      .def_property_readonly("status", &TaskSpaceDynamics::status)
+      .def_property_readonly("lambda_",
+                             [](const TaskSpaceDynamics& t) { return Eigen::MatrixXd(t.lambda()); })
+      .def_property_readonly(
+          "lambda_inverse",
+          [](const TaskSpaceDynamics& t) { return Eigen::MatrixXd(t.lambda_inverse()); })
+      .def_property_readonly("jbar",
+                             [](const TaskSpaceDynamics& t) { return Eigen::MatrixXd(t.jbar()); })
+      .def_property_readonly(
+          "nullspace", [](const TaskSpaceDynamics& t) { return Eigen::MatrixXd(t.nullspace()); })
+      .def_property_readonly(
+          "mass_inverse",
+          [](const TaskSpaceDynamics& t) { return Eigen::MatrixXd(t.mass_inverse()); })
+      .def_property_readonly(
+          "eigenvalues",
+          [](const TaskSpaceDynamics& t) { return Eigen::VectorXd(t.eigenvalues()); })
+      .def_property_readonly("min_singular_value", &TaskSpaceDynamics::min_singular_value)
+      .def_property_readonly("condition", &TaskSpaceDynamics::condition);
+
+  py::enum_<SensorTiming>(m, "SensorTiming")
+      .value("after_step", SensorTiming::after_step)
+      .value("after_forward", SensorTiming::after_forward);
+  py::enum_<WrenchStatus>(m, "WrenchStatus")
+      .value("ok", WrenchStatus::ok)
+      .value("non_finite", WrenchStatus::non_finite);
+  py::class_<WrenchReading>(m, "WrenchReading")
+      .def_property_readonly(
+          "wrench", [](const WrenchReading& r) { return Vector6d(r.wrench); },
+          "[f; tau] (6,) [N; N m]")
+      .def_readonly("time", &WrenchReading::time)
+      .def_readonly("age", &WrenchReading::age)
+      .def_readonly("status", &WrenchReading::status)
+      .def("ok", &WrenchReading::ok);
+  py::class_<ForceTorqueSensor>(m, "ForceTorqueSensor", "F/T sensor pair on a site.")
+      .def(py::init<const Robot&, std::string_view, SensorTiming>(), py::arg("robot"),
+           py::arg("site"), py::arg("timing") = SensorTiming::after_step, py::keep_alive<1, 2>())
+      .def_property_readonly("site", &ForceTorqueSensor::site)
+      .def(
+          "read_site",
+          [](const ForceTorqueSensor& s, const DataHandle& d) { return s.read_site(d.get()); },
+          py::arg("data"), "wrench in the site's frame")
+      .def(
+          "read_world",
+          [](const ForceTorqueSensor& s, const DataHandle& d, py::handle p) {
+            return s.read_world(d.get(), to_fixed<3>(p, "p_WP"));
+          },
+          py::arg("data"), py::arg("p_WP"), "wrench in world axes about p_WP")
+      .def(
+          "read_body",
+          [](const ForceTorqueSensor& s, const DataHandle& d, py::handle X) {
+            return s.read_body(d.get(), to_pose(X, "X_WE"));
+          },
+          py::arg("data"), py::arg("X_WE"));
+  m.def(
+      "shift_wrench",
+      [](py::handle F, py::handle a, py::handle b) {
+        return shift_wrench(to_fixed<6>(F, "F"), to_fixed<3>(a, "p_A"), to_fixed<3>(b, "p_B"));
+      },
+      py::arg("F"), py::arg("p_A"), py::arg("p_B"), "moves the torque's reference point");
+
+  py::enum_<FrictionMode>(m, "FrictionMode")
+      .value("torque", FrictionMode::torque)
+      .value("velocity", FrictionMode::velocity);
+  py::class_<FrictionFeedForwardOptions>(m, "FrictionFeedForwardOptions")
+      .def(py::init<>())
+      .def_readwrite("mode", &FrictionFeedForwardOptions::mode)
+      .def_readwrite("torque_sharpness", &FrictionFeedForwardOptions::torque_sharpness)
+      .def_readwrite("velocity_scale", &FrictionFeedForwardOptions::velocity_scale);
+  py::class_<FrictionFeedForward>(m, "FrictionFeedForward", "Friction and damping feed-forward.")
+      .def(py::init<const Chain&, FrictionFeedForwardOptions>(), py::arg("chain"),
+           py::arg("options") = FrictionFeedForwardOptions{})
+      .def_property_readonly(
+          "friction", [](const FrictionFeedForward& f) { return Eigen::VectorXd(f.friction()); })
+      .def_property_readonly(
+          "damping", [](const FrictionFeedForward& f) { return Eigen::VectorXd(f.damping()); })
+      .def("active", &FrictionFeedForward::active)
+      .def(
+          "apply",
+          [](const FrictionFeedForward& f, py::handle qd, py::handle tau) {
+            Eigen::VectorXd t = to_vector(tau, "tau", f.size());
+            f.apply(to_vector(qd, "qd", f.size()), t);
+            return t;
+          },
+          py::arg("qd"), py::arg("tau"), "tau with the feed-forward added (n,)")
+      .def(
+          "model_force",
+          [](const FrictionFeedForward& f, py::handle qd) {
+            Eigen::VectorXd out(f.size());
+            f.model_force(to_vector(qd, "qd", f.size()), out);
+            return out;
+          },
+          py::arg("qd"));
+
+  py::enum_<ObserverStatus>(m, "ObserverStatus")
+      .value("ok", ObserverStatus::ok)
+      .value("bad_input", ObserverStatus::bad_input)
+      .value("non_finite", ObserverStatus::non_finite);
+  py::class_<MomentumObserverOptions>(m, "MomentumObserverOptions")
+      .def(py::init<>())
+      .def_readwrite("kp", &MomentumObserverOptions::kp)
+      .def_readwrite("ki", &MomentumObserverOptions::ki)
+      .def_readwrite("integral_limit", &MomentumObserverOptions::integral_limit)
+      .def_readwrite("wrench_damping", &MomentumObserverOptions::wrench_damping);
+  py::class_<MomentumObserver>(m, "MomentumObserver", "Sensorless external wrench estimate.")
+      .def(py::init<const Chain&, MomentumObserverOptions>(), py::arg("chain"),
+           py::arg("options") = MomentumObserverOptions{})
+      .def("reset", &MomentumObserver::reset)
+      .def(
+          "update",
+          [](MomentumObserver& o, const DataHandle& d, const ChainDynamics& dyn, py::handle tau,
+             double dt) { return o.update(d.get(), dyn, to_vector(tau, "tau", o.size()), dt); },
+          py::arg("data"), py::arg("dynamics"), py::arg("tau"), py::arg("dt"))
+      .def_property_readonly(
+          "residual", [](const MomentumObserver& o) { return Eigen::VectorXd(o.residual()); })
+      .def_property_readonly(
+          "momentum", [](const MomentumObserver& o) { return Eigen::VectorXd(o.momentum()); })
+      .def_property_readonly("wrench",
+                             [](const MomentumObserver& o) { return Vector6d(o.wrench()); })
+      .def_property_readonly(
+          "contact_wrench", [](const MomentumObserver& o) { return Vector6d(o.contact_wrench()); });
+}
+
+}  // namespace mjarm::python

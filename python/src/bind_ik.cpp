@@ -1,0 +1,411 @@
+// ik room: position DLS, pose IK, multi-target, differential-IK QP, global IK; options, IkResult.
+#include <pybind11/functional.h>
+
+#include "bindings.hpp"
+#include "mjarm/ik/diff_ik.hpp"
+#include "mjarm/ik/global_ik.hpp"
+#include "mjarm/ik/multi_target_ik.hpp"
+#include "mjarm/ik/pose_ik.hpp"
+#include "mjarm/ik/position_ik.hpp"
+
+namespace mjarm::python {
+namespace {
+
+/// An `IkIterationCallback` that calls a Python function with (iteration, position_error,
+/// orientation_error, q) under the GIL; an exception it raises is kept and raised by the solve.
+IkIterationCallback python_observer(py::object f) {
+  if (f.is_none()) return nullptr;
+  auto fn = std::make_shared<py::object>(std::move(f));
+  // the solver's copy of the std::function may be destroyed without the GIL: release the
+  // Python object under it
+  auto holder = std::shared_ptr<py::object>(fn.get(), [fn](py::object*) mutable {
+    py::gil_scoped_acquire gil;
+    fn.reset();
+  });
+  return [holder](const IkIteration& it) {
+    py::gil_scoped_acquire gil;
+    try {
+      (*holder)(it.iteration, it.position_error, it.orientation_error,
+                it.q ? to_array(it.q->data(), it.q->size()) : py::array_t<double>());
+    } catch (py::error_already_set&) {
+      keep_callback_error(std::current_exception());
+    }
+  };
+}
+
+template <typename Options, typename Class>
+void observer_property(Class& cls) {
+  cls.def_property(
+      "on_iteration", [](const Options& o) { return static_cast<bool>(o.on_iteration); },
+      [](Options& o, py::object f) { o.on_iteration = python_observer(std::move(f)); },
+      "callable(iteration, position_error, orientation_error, q) called for every iterate, or "
+      "None; reading gives whether one is set");
+}
+
+/// Runs @p solve without the GIL and raises an observer's exception afterwards.
+template <typename F>
+IkResult solve_released(F&& solve) {
+  clear_callback_error();
+  IkResult r;
+  {
+    py::gil_scoped_release release;
+    r = solve();
+  }
+  raise_callback_error();
+  return r;
+}
+
+/// One solve per target from the same seed, the GIL released for the whole batch; an observer's
+/// exception is raised afterwards.
+template <typename Ik, typename Target>
+std::vector<IkResult> solve_each(Ik& ik, const std::vector<Target>& targets,
+                                 const Eigen::VectorXd& q_seed) {
+  std::vector<IkResult> results(targets.size());
+  clear_callback_error();
+  {
+    py::gil_scoped_release release;
+    for (std::size_t i = 0; i < targets.size(); ++i) ik.solve(targets[i], q_seed, results[i]);
+  }
+  raise_callback_error();
+  return results;
+}
+
+std::vector<Pose> poses_of(const std::vector<py::object>& targets) {
+  std::vector<Pose> poses;
+  for (const auto& t : targets) poses.push_back(to_pose(t, "X_WT"));
+  return poses;
+}
+
+template <typename Options, typename Class>
+void local_options(Class& cls) {
+  cls.def(py::init<>())
+      .def_readwrite("step", &Options::step)
+      .def_readwrite("max_backtracks", &Options::max_backtracks)
+      .def_readwrite("null_space_damping", &Options::null_space_damping)
+      .def_readwrite("max_step", &Options::max_step)
+      .def_readwrite("secondary_ratio", &Options::secondary_ratio)
+      .def_readwrite("limits", &Options::limits)
+      .def_readwrite("posture", &Options::posture)
+      .def_readwrite("max_iterations", &Options::max_iterations)
+      .def_readwrite("stall_iterations", &Options::stall_iterations)
+      .def_readwrite("stall_progress", &Options::stall_progress)
+      .def_readwrite("collision", &Options::collision);
+  observer_property<Options>(cls);
+}
+
+Eigen::VectorXd seed_of(const Chain& chain, py::handle q_seed) {
+  return to_vector(q_seed, "q_seed", chain.size());
+}
+
+}  // namespace
+
+void bind_ik(py::module_& m) {
+  py::enum_<IkStatus>(m, "IkStatus", "How an IK solve ended.")
+      .value("converged", IkStatus::converged)
+      .value("not_converged", IkStatus::not_converged)
+      .value("timeout", IkStatus::timeout)
+      .value("invalid_input", IkStatus::invalid_input);
+  py::class_<IkResult>(m, "IkResult", "The best configuration found, with its errors.")
+      .def(py::init<>())
+      .def_readonly("q", &IkResult::q, "joint values (n,)")
+      .def_readonly("status", &IkResult::status)
+      .def_readonly("position_error", &IkResult::position_error, "[m]")
+      .def_readonly("orientation_error", &IkResult::orientation_error, "[rad]")
+      .def_readonly("iterations", &IkResult::iterations)
+      .def("ok", &IkResult::ok, "status is converged")
+      .def("__repr__", [](const IkResult& r) {
+        return std::string("<IkResult ") + to_string(r.status) + " after " +
+               std::to_string(r.iterations) + " iterations, " + std::to_string(r.position_error) +
+               " m, " + std::to_string(r.orientation_error) + " rad>";
+      });
+
+  py::class_<LimitBias>(m, "LimitBias", "Centre pull and limit repulsion (per-iteration steps).")
+      .def(py::init<>())
+      .def(py::init([](double c, double r, double z) {
+             return LimitBias{c, r, z};
+           }),
+           py::arg("centre_gain"), py::arg("repulsion_gain") = 0.0,
+           py::arg("repulsion_zone") = 0.15)
+      .def_readwrite("centre_gain", &LimitBias::centre_gain)
+      .def_readwrite("repulsion_gain", &LimitBias::repulsion_gain)
+      .def_readwrite("repulsion_zone", &LimitBias::repulsion_zone);
+  auto posture = py::class_<Posture>(m, "Posture", "A preferred configuration (null-space pull).");
+  posture.def(py::init<>()).def_readwrite("gain", &Posture::gain);
+  vector_property<Posture>(posture, "q_pref", &Posture::q_pref,
+                           "preferred joints (n,); empty = the middle of each range");
+  py::class_<CollisionSpec>(m, "CollisionSpec", "Geoms that must not touch during a solve.")
+      .def(py::init<>())
+      .def_readwrite("pairs", &CollisionSpec::pairs)
+      .def_readwrite("geoms", &CollisionSpec::geoms)
+      .def_readwrite("margin", &CollisionSpec::margin)
+      .def_readwrite("max_halvings", &CollisionSpec::max_halvings);
+
+  auto position_options = py::class_<PositionIkOptions>(m, "PositionIkOptions");
+  local_options<PositionIkOptions>(position_options);
+  position_options.def_readwrite("damping", &PositionIkOptions::damping)
+      .def_readwrite("tolerance", &PositionIkOptions::tolerance, "[m]");
+  py::class_<PositionIk>(m, "PositionIk",
+                         "Position-only damped least squares with centre pull and limit "
+                         "repulsion. solve() releases the GIL.")
+      .def(py::init<const Chain&, const PositionIkOptions&>(), py::arg("chain"),
+           py::arg("options") = PositionIkOptions{})
+      .def_property_readonly("chain", &PositionIk::chain)
+      .def_property_readonly("options", &PositionIk::options)
+      .def(
+          "set_fixed_qpos",
+          [](PositionIk& ik, py::handle q) {
+            ik.set_fixed_qpos(to_vector(q, "qpos", ik.chain().robot().nq()));
+          },
+          py::arg("qpos"))
+      .def(
+          "solve",
+          [](PositionIk& ik, py::handle p, py::handle seed) {
+            const Eigen::Vector3d target = to_fixed<3>(p, "p_WT");
+            const Eigen::VectorXd q = seed_of(ik.chain(), seed);
+            return solve_released([&] { return ik.solve(target, q); });
+          },
+          py::arg("p_WT"), py::arg("q_seed"), "Moves the frame origin to p_WT (3,) [m].")
+      .def(
+          "solve_batch",
+          [](PositionIk& ik, py::handle targets, py::handle seed) {
+            const Eigen::MatrixXd P = to_matrix(targets, "p_WT", -1, 3);
+            std::vector<Eigen::Vector3d> points;
+            for (Eigen::Index i = 0; i < P.rows(); ++i) points.emplace_back(P.row(i).transpose());
+            return solve_each(ik, points, seed_of(ik.chain(), seed));
+          },
+          py::arg("p_WT"), py::arg("q_seed"),
+          "One solve per row of p_WT (k, 3) from the same seed, without the GIL.");
+
+  auto pose_options = py::class_<PoseIkOptions>(m, "PoseIkOptions");
+  local_options<PoseIkOptions>(pose_options);
+  pose_options.def_readwrite("damping", &PoseIkOptions::damping)
+      .def_readwrite("error_damping", &PoseIkOptions::error_damping)
+      .def_readwrite("position_weight", &PoseIkOptions::position_weight)
+      .def_readwrite("orientation_weight", &PoseIkOptions::orientation_weight)
+      .def_readwrite("position_tolerance", &PoseIkOptions::position_tolerance)
+      .def_readwrite("orientation_tolerance", &PoseIkOptions::orientation_tolerance);
+  py::class_<PoseIk>(m, "PoseIk",
+                     "Full-pose closed-loop IK on the SE(3) log error. solve() releases the GIL.")
+      .def(py::init<const Chain&, const PoseIkOptions&>(), py::arg("chain"),
+           py::arg("options") = PoseIkOptions{})
+      .def_property_readonly("chain", &PoseIk::chain)
+      .def_property_readonly("options", &PoseIk::options)
+      .def(
+          "set_fixed_qpos",
+          [](PoseIk& ik, py::handle q) {
+            ik.set_fixed_qpos(to_vector(q, "qpos", ik.chain().robot().nq()));
+          },
+          py::arg("qpos"))
+      .def(
+          "solve",
+          [](PoseIk& ik, py::handle X, py::handle seed) {
+            const Pose target = to_pose(X, "X_WT");
+            const Eigen::VectorXd q = seed_of(ik.chain(), seed);
+            return solve_released([&] { return ik.solve(target, q); });
+          },
+          py::arg("X_WT"), py::arg("q_seed"))
+      .def(
+          "solve_batch",
+          [](PoseIk& ik, const std::vector<py::object>& targets, py::handle seed) {
+            return solve_each(ik, poses_of(targets), seed_of(ik.chain(), seed));
+          },
+          py::arg("X_WT"), py::arg("q_seed"),
+          "One solve per pose in the list from the same seed, without the GIL.");
+
+  py::enum_<TargetKind>(m, "TargetKind")
+      .value("position", TargetKind::position)
+      .value("pose", TargetKind::pose);
+  py::class_<FrameTarget>(m, "FrameTarget", "A target for one frame of a multi-target solve.")
+      .def(py::init([](std::string frame, TargetKind kind, py::handle X, double wp, double wo,
+                       int priority) {
+             return FrameTarget{std::move(frame), kind, to_pose(X, "X_WT"), wp, wo, priority};
+           }),
+           py::arg("frame"), py::arg("kind") = TargetKind::pose, py::arg("X_WT") = Pose(),
+           py::arg("position_weight") = 1.0, py::arg("orientation_weight") = 1.0,
+           py::arg("priority") = 0)
+      .def_readwrite("frame", &FrameTarget::frame)
+      .def_readwrite("kind", &FrameTarget::kind)
+      .def_readwrite("X_WT", &FrameTarget::X_WT)
+      .def_readwrite("position_weight", &FrameTarget::position_weight)
+      .def_readwrite("orientation_weight", &FrameTarget::orientation_weight)
+      .def_readwrite("priority", &FrameTarget::priority);
+  py::enum_<MultiTargetMode>(m, "MultiTargetMode")
+      .value("stacked", MultiTargetMode::stacked)
+      .value("prioritized", MultiTargetMode::prioritized);
+  auto multi_options = py::class_<MultiTargetIkOptions>(m, "MultiTargetIkOptions");
+  local_options<MultiTargetIkOptions>(multi_options);
+  multi_options.def_readwrite("mode", &MultiTargetIkOptions::mode)
+      .def_readwrite("damping", &MultiTargetIkOptions::damping)
+      .def_readwrite("error_damping", &MultiTargetIkOptions::error_damping)
+      .def_readwrite("position_tolerance", &MultiTargetIkOptions::position_tolerance)
+      .def_readwrite("orientation_tolerance", &MultiTargetIkOptions::orientation_tolerance);
+  py::class_<MultiTargetIk>(m, "MultiTargetIk", "Several frames at once, with strict priorities.")
+      .def(py::init<const Robot&, const std::vector<std::string>&, const std::vector<FrameTarget>&,
+                    const MultiTargetIkOptions&>(),
+           py::arg("robot"), py::arg("joints"), py::arg("targets"),
+           py::arg("options") = MultiTargetIkOptions{})
+      .def_property_readonly("chain", &MultiTargetIk::chain)
+      .def_property_readonly("target_count", &MultiTargetIk::target_count)
+      .def("target", &MultiTargetIk::target, py::arg("i"))
+      .def(
+          "set_target",
+          [](MultiTargetIk& ik, int i, py::handle X) { ik.set_target(i, to_pose(X, "X_WT")); },
+          py::arg("i"), py::arg("X_WT"))
+      .def(
+          "set_fixed_qpos",
+          [](MultiTargetIk& ik, py::handle q) {
+            ik.set_fixed_qpos(to_vector(q, "qpos", ik.chain().robot().nq()));
+          },
+          py::arg("qpos"))
+      .def(
+          "solve",
+          [](MultiTargetIk& ik, py::handle seed) {
+            const Eigen::VectorXd q = seed_of(ik.chain(), seed);
+            return solve_released([&] { return ik.solve(q); });
+          },
+          py::arg("q_seed"))
+      .def(
+          "target_errors",
+          [](const MultiTargetIk& ik, int i) {
+            const FrameErrors& e = ik.target_errors(i);
+            return py::make_tuple(e.position, e.orientation);
+          },
+          py::arg("i"), "(position [m], orientation [rad]) of target i after the last solve");
+
+  auto diff_options = py::class_<DiffIkOptions>(m, "DiffIkOptions");
+  diff_options.def(py::init<>())
+      .def_readwrite("dt", &DiffIkOptions::dt, "control period [s]")
+      .def_readwrite("damping", &DiffIkOptions::damping)
+      .def_readwrite("max_step", &DiffIkOptions::max_step);
+  vector_property<DiffIkOptions>(diff_options, "velocity_limit", &DiffIkOptions::velocity_limit,
+                                 "joint velocity limits (n,) [rad/s]; empty = none");
+  py::enum_<DiffIkTaskKind>(m, "DiffIkTaskKind")
+      .value("pose", DiffIkTaskKind::pose)
+      .value("position", DiffIkTaskKind::position)
+      .value("posture", DiffIkTaskKind::posture);
+  py::class_<DiffIkStep>(m, "DiffIkStep")
+      .def_readonly("v", &DiffIkStep::v, "joint velocity (n,)")
+      .def_readonly("q_next", &DiffIkStep::q_next, "q + v dt clipped into the limits (n,)")
+      .def_property_readonly("qp_status",
+                             [](const DiffIkStep& s) { return static_cast<int>(s.qp_status); })
+      .def_readonly("qp_iterations", &DiffIkStep::qp_iterations)
+      .def_readonly("pulled_back", &DiffIkStep::pulled_back);
+  py::class_<DiffIk>(m, "DiffIk", "Differential IK as a QP with exact joint and velocity limits.")
+      .def(py::init<const Chain&, const DiffIkOptions&>(), py::arg("chain"),
+           py::arg("options") = DiffIkOptions{})
+      .def_property_readonly("chain", &DiffIk::chain)
+      .def("add_pose_task", &DiffIk::add_pose_task, py::arg("frame") = "",
+           py::arg("position_weight") = 1.0, py::arg("orientation_weight") = 1.0,
+           py::arg("gain") = 1.0)
+      .def("add_position_task", &DiffIk::add_position_task, py::arg("frame") = "",
+           py::arg("weight") = 1.0, py::arg("gain") = 1.0)
+      .def(
+          "add_posture_task",
+          [](DiffIk& ik, py::handle q, double w, double g) {
+            return ik.add_posture_task(to_vector(q, "q_ref", ik.chain().size()), w, g);
+          },
+          py::arg("q_ref"), py::arg("weight") = 1e-3, py::arg("gain") = 1.0)
+      .def(
+          "set_target",
+          [](DiffIk& ik, int task, py::handle target) {
+            if (py::isinstance<Pose>(target)) {
+              ik.set_target(task, target.cast<Pose>());
+            } else if (py::isinstance<py::array>(target) &&
+                       py::reinterpret_borrow<py::array>(target).ndim() == 2) {
+              ik.set_target(task, to_pose(target, "target"));
+            } else {
+              ik.set_target(task, Eigen::Vector3d(to_fixed<3>(target, "target")));
+            }
+          },
+          py::arg("task"), py::arg("target"), "a Pose (or 4x4), or a position (3,)")
+      .def(
+          "set_posture",
+          [](DiffIk& ik, int task, py::handle q) {
+            ik.set_posture(task, to_vector(q, "q_ref", ik.chain().size()));
+          },
+          py::arg("task"), py::arg("q_ref"))
+      .def("set_weight", &DiffIk::set_weight, py::arg("task"), py::arg("weight"))
+      .def_property_readonly("task_count", &DiffIk::task_count)
+      .def("task_kind", &DiffIk::task_kind, py::arg("task"))
+      .def(
+          "task_error", [](const DiffIk& ik, int t) { return Eigen::VectorXd(ik.task_error(t)); },
+          py::arg("task"))
+      .def(
+          "step",
+          [](DiffIk& ik, py::handle q) { return ik.step(to_vector(q, "q", ik.chain().size())); },
+          py::arg("q"), "One QP step from q (n,): DiffIkStep (v, q_next).");
+
+  py::enum_<GlobalIkMode>(m, "GlobalIkMode")
+      .value("speed", GlobalIkMode::speed)
+      .value("distance", GlobalIkMode::distance)
+      .value("manipulability", GlobalIkMode::manipulability);
+  py::enum_<GlobalIkMethods>(m, "GlobalIkMethods")
+      .value("alternate", GlobalIkMethods::alternate)
+      .value("levenberg_marquardt", GlobalIkMethods::levenberg_marquardt)
+      .value("sqp", GlobalIkMethods::sqp);
+  auto tolerance = py::class_<PoseTolerance>(m, "PoseTolerance", "Per-component bounds (TRAC-IK).");
+  tolerance.def(py::init<>()).def_static("uniform", &PoseTolerance::uniform, py::arg("value"));
+  fixed_property<PoseTolerance>(tolerance, "bound", &PoseTolerance::bound,
+                                "[x, y, z] m then rotation-vector components rad (6,)");
+  py::class_<GlobalIkOptions>(m, "GlobalIkOptions")
+      .def(py::init<>())
+      .def_readwrite("mode", &GlobalIkOptions::mode)
+      .def_readwrite("methods", &GlobalIkOptions::methods)
+      .def_property(
+          "timeout", [](const GlobalIkOptions& o) { return o.timeout.count(); },
+          [](GlobalIkOptions& o, double s) { o.timeout = std::chrono::duration<double>(s); },
+          "wall-clock budget of one solve [s]")
+      .def_readwrite("tolerance", &GlobalIkOptions::tolerance)
+      .def_readwrite("max_restarts", &GlobalIkOptions::max_restarts)
+      .def_readwrite("seed", &GlobalIkOptions::seed)
+      .def_readwrite("max_attempt_iterations", &GlobalIkOptions::max_attempt_iterations)
+      .def_readwrite("stall_iterations", &GlobalIkOptions::stall_iterations)
+      .def_readwrite("stall_ratio", &GlobalIkOptions::stall_ratio)
+      .def_readwrite("damping", &GlobalIkOptions::damping)
+      .def_readwrite("max_step", &GlobalIkOptions::max_step);
+  py::class_<GlobalIkStats>(m, "GlobalIkStats")
+      .def_readonly("attempts", &GlobalIkStats::attempts)
+      .def_readonly("solutions", &GlobalIkStats::solutions)
+      .def_readonly("lm_solutions", &GlobalIkStats::lm_solutions)
+      .def_readonly("sqp_solutions", &GlobalIkStats::sqp_solutions)
+      .def_readonly("manipulability", &GlobalIkStats::manipulability)
+      .def_readonly("elapsed", &GlobalIkStats::elapsed, "[s]");
+  py::class_<GlobalIk>(m, "GlobalIk",
+                       "Random restarts of local methods within a time budget "
+                       "(GIL released during solves).")
+      .def(py::init<const Chain&, const GlobalIkOptions&>(), py::arg("chain"),
+           py::arg("options") = GlobalIkOptions{})
+      .def_property_readonly("chain", &GlobalIk::chain)
+      .def_property("options", &GlobalIk::options, &GlobalIk::set_options)
+      .def(
+          "set_fixed_qpos",
+          [](GlobalIk& ik, py::handle q) {
+            ik.set_fixed_qpos(to_vector(q, "qpos", ik.chain().robot().nq()));
+          },
+          py::arg("qpos"))
+      .def(
+          "solve",
+          [](GlobalIk& ik, py::handle X, py::handle seed) {
+            const Pose target = to_pose(X, "X_WT");
+            const Eigen::VectorXd q = seed_of(ik.chain(), seed);
+            return solve_released([&] { return ik.solve(target, q); });
+          },
+          py::arg("X_WT"), py::arg("q_seed"))
+      .def(
+          "solve_position",
+          [](GlobalIk& ik, py::handle p, py::handle seed) {
+            const Eigen::Vector3d target = to_fixed<3>(p, "p_WT");
+            const Eigen::VectorXd q = seed_of(ik.chain(), seed);
+            return solve_released([&] { return ik.solve_position(target, q); });
+          },
+          py::arg("p_WT"), py::arg("q_seed"))
+      .def(
+          "solve_batch",
+          [](GlobalIk& ik, const std::vector<py::object>& targets, py::handle seed) {
+            return solve_each(ik, poses_of(targets), seed_of(ik.chain(), seed));
+          },
+          py::arg("X_WT"), py::arg("q_seed"), "One solve per pose, without the GIL.")
+      .def_property_readonly("stats", &GlobalIk::stats);
+}
+
+}  // namespace mjarm::python

@@ -1,0 +1,243 @@
+// kinematics room: FK, Jacobians, J̇q̇, manipulability, singularity reports, workspace sampling.
+#include "bindings.hpp"
+#include "mjarm/kinematics/chain_kinematics.hpp"
+#include "mjarm/kinematics/frame_state.hpp"
+#include "mjarm/kinematics/manipulability.hpp"
+#include "mjarm/kinematics/singularity.hpp"
+#include "mjarm/kinematics/singularity_kind.hpp"
+#include "mjarm/kinematics/workspace.hpp"
+#include "mjarm/model/chain.hpp"
+
+namespace mjarm::python {
+namespace {
+
+std::vector<std::string> kind_names(const std::vector<SingularityKind>& kinds) {
+  std::vector<std::string> names;
+  for (const SingularityKind k : kinds) names.emplace_back(to_string(k));
+  return names;
+}
+
+}  // namespace
+
+void bind_kinematics(py::module_& m) {
+  py::enum_<JacobianFrame>(m, "JacobianFrame", "How the rows of a frame Jacobian are expressed.")
+      .value("world_aligned", JacobianFrame::world_aligned,
+             "velocity of the frame origin and angular velocity, world axes (mj_jacSite)")
+      .value("local", JacobianFrame::local, "the same twist in the frame's axes (body twist)")
+      .value("world", JacobianFrame::world, "spatial twist (point at the world origin)");
+
+  py::class_<ChainKinematics>(m, "ChainKinematics",
+                              "Forward kinematics and Jacobians of a Chain on the chain's own "
+                              "bodies (agrees with mj_kinematics + mj_jacSite to ~1e-15).")
+      .def(py::init<const Chain&>(), py::arg("chain"))
+      .def_property_readonly("chain", &ChainKinematics::chain)
+      .def(
+          "set_fixed_qpos",
+          [](ChainKinematics& k, py::handle qpos) {
+            k.set_fixed_qpos(to_vector(qpos, "qpos", k.chain().robot().nq()));
+          },
+          py::arg("qpos"), "configuration (nq,) of the joints outside the chain")
+      .def(
+          "update",
+          [](ChainKinematics& k, py::handle q) {
+            const Eigen::VectorXd v = to_vector(q, "q", k.chain().size());
+            k.chain().check(v);
+            return k.update(v);
+          },
+          py::arg("q"), "Pose X_WE of the chain's frame at joint values q (n,).")
+      .def_property_readonly(
+          "pose", [](const ChainKinematics& k) { return k.pose(); },
+          "X_WE from the last update (a copy)")
+      .def(
+          "jacobian",
+          [](const ChainKinematics& k, JacobianFrame frame) {
+            Matrix6Xd J(6, k.chain().size());
+            k.jacobian(J, frame);
+            return J;
+          },
+          py::arg("frame") = JacobianFrame::world_aligned,
+          "6 x n frame Jacobian at the last update, rows linear first [v; w].")
+      .def(
+          "bias_acceleration",
+          [](const ChainKinematics& k, py::handle qd) {
+            return k.bias_acceleration(to_vector(qd, "qd", k.chain().size()));
+          },
+          py::arg("qd"),
+          "J̇ q̇ (6,) at the last update, world-aligned, for joint velocities qd (n,).")
+      .def(
+          "axis",
+          [](const ChainKinematics& k, int i) {
+            if (i < 0 || i >= k.chain().size()) throw Error("axis: joint index out of range");
+            return Eigen::Vector3d(k.axis(i));
+          },
+          py::arg("i"), "world axis of chain joint i at the last update")
+      .def(
+          "anchor",
+          [](const ChainKinematics& k, int i) {
+            if (i < 0 || i >= k.chain().size()) throw Error("anchor: joint index out of range");
+            return Eigen::Vector3d(k.anchor(i));
+          },
+          py::arg("i"), "world anchor of chain joint i at the last update [m]");
+
+  m.def(
+      "forward_kinematics",
+      [](const Chain& chain, py::handle q) {
+        return forward_kinematics(chain, to_vector(q, "q", chain.size()));
+      },
+      py::arg("chain"), py::arg("q"),
+      "X_WE at q (n,), other joints at qpos0 (builds a ChainKinematics per call).");
+  m.def(
+      "frame_pose",
+      [](const Robot& robot, const DataHandle& d, py::handle frame) {
+        return frame_pose(robot.model(), d.get(), find_frame(robot, frame.cast<std::string>()));
+      },
+      py::arg("robot"), py::arg("data"), py::arg("frame"),
+      "The pose of a site or body read from MuJoCo's data (after forward).");
+
+  py::enum_<JacobianBlock>(m, "JacobianBlock")
+      .value("full", JacobianBlock::full)
+      .value("position", JacobianBlock::position)
+      .value("orientation", JacobianBlock::orientation);
+  py::enum_<SingularityStatus>(m, "SingularityStatus")
+      .value("regular", SingularityStatus::regular)
+      .value("near_singular", SingularityStatus::near_singular)
+      .value("singular", SingularityStatus::singular);
+  py::class_<ManipulabilityOptions>(m, "ManipulabilityOptions")
+      .def(py::init<>())
+      .def_readwrite("block", &ManipulabilityOptions::block, "rows of J measured")
+      .def_readwrite("singular_tolerance", &ManipulabilityOptions::singular_tolerance)
+      .def_readwrite("near_singular_threshold", &ManipulabilityOptions::near_singular_threshold);
+  py::class_<ManipulabilityResult>(m, "ManipulabilityResult")
+      .def_readonly("manipulability", &ManipulabilityResult::manipulability, "Yoshikawa w")
+      .def_readonly("sigma_max", &ManipulabilityResult::sigma_max)
+      .def_readonly("sigma_min", &ManipulabilityResult::sigma_min)
+      .def_readonly("condition_number", &ManipulabilityResult::condition_number)
+      .def_readonly("status", &ManipulabilityResult::status);
+  py::class_<Manipulability>(m, "Manipulability",
+                             "Manipulability measures of a chain, with the analytic gradient.")
+      .def(py::init<const Chain&, const ManipulabilityOptions&>(), py::arg("chain"),
+           py::arg("options") = ManipulabilityOptions{})
+      .def_property_readonly("rows", &Manipulability::rows)
+      .def(
+          "evaluate",
+          [](Manipulability& mm, py::handle q) {
+            return mm.evaluate(to_vector(q, "q", mm.chain().size()));
+          },
+          py::arg("q"))
+      .def(
+          "gradient",
+          [](Manipulability& mm, py::handle q) {
+            Eigen::VectorXd g(mm.chain().size());
+            const ManipulabilityResult r = mm.evaluate(to_vector(q, "q", mm.chain().size()), g);
+            return py::make_tuple(r, g);
+          },
+          py::arg("q"), "(result, dw/dq (n,))")
+      .def_property_readonly(
+          "singular_values",
+          [](const Manipulability& mm) { return Eigen::VectorXd(mm.singular_values()); })
+      .def_property_readonly("jacobian_block", [](const Manipulability& mm) {
+        return Eigen::MatrixXd(mm.jacobian_block());
+      });
+  m.def(
+      "manipulability",
+      [](const Chain& chain, py::handle q, const ManipulabilityOptions& o) {
+        return manipulability(chain, to_vector(q, "q", chain.size()), o);
+      },
+      py::arg("chain"), py::arg("q"), py::arg("options") = ManipulabilityOptions{});
+
+  py::class_<SingularityThresholds>(m, "SingularityThresholds")
+      .def(py::init<>())
+      .def_readwrite("sigma_min", &SingularityThresholds::sigma_min)
+      .def_readwrite("condition_number", &SingularityThresholds::condition_number)
+      .def_readwrite("geometric_tolerance", &SingularityThresholds::geometric_tolerance);
+  py::class_<SingularityEntry>(m, "SingularityEntry")
+      .def_readonly("name", &SingularityEntry::name)
+      .def_readonly("q", &SingularityEntry::q)
+      .def_property_readonly(
+          "singular_values",
+          [](const SingularityEntry& e) { return Eigen::VectorXd(e.singular_values); })
+      .def_readonly("sigma_min", &SingularityEntry::sigma_min)
+      .def_readonly("condition_number", &SingularityEntry::condition_number)
+      .def_readonly("manipulability", &SingularityEntry::manipulability)
+      .def_readonly("status", &SingularityEntry::status)
+      .def_readonly("below_sigma_min", &SingularityEntry::below_sigma_min)
+      .def_readonly("above_condition_number", &SingularityEntry::above_condition_number)
+      .def_property_readonly(
+          "kinds", [](const SingularityEntry& e) { return kind_names(e.kinds); },
+          "'wrist', 'elbow', 'shoulder' or 'unclassified'")
+      .def_readonly("null_direction", &SingularityEntry::null_direction);
+  m.def(
+      "singularity_report",
+      [](const Chain& chain, const std::vector<std::pair<std::string, py::object>>& extra,
+         const ManipulabilityOptions& o, const SingularityThresholds& t) {
+        std::vector<NamedConfiguration> named;
+        for (const auto& [name, q] : extra)
+          named.push_back({name, to_vector(q, name.c_str(), chain.size())});
+        return singularity_report(chain, named, o, t).entries;
+      },
+      py::arg("chain"), py::arg("extra") = std::vector<std::pair<std::string, py::object>>{},
+      py::arg("options") = ManipulabilityOptions{}, py::arg("thresholds") = SingularityThresholds{},
+      "Entries for qpos0, centre, every keyframe and the (name, q) pairs in extra.");
+  py::class_<SingularityScan>(m, "SingularityScan")
+      .def_readonly("samples", &SingularityScan::samples)
+      .def_readonly("seed", &SingularityScan::seed)
+      .def_readonly("singular_count", &SingularityScan::singular_count)
+      .def_readonly("near_singular_count", &SingularityScan::near_singular_count)
+      .def_readonly("flagged_count", &SingularityScan::flagged_count)
+      .def_readonly("worst", &SingularityScan::worst);
+  m.def(
+      "scan_singularities",
+      [](const Chain& chain, std::size_t samples, std::uint64_t seed, std::size_t keep_worst) {
+        py::gil_scoped_release release;
+        return scan_singularities(chain, samples, seed, keep_worst);
+      },
+      py::arg("chain"), py::arg("samples"), py::arg("seed"), py::arg("keep_worst") = 10,
+      "Seeded random scan keeping the lowest-sigma_min samples (GIL released).");
+
+  py::class_<WorkspaceResult>(m, "WorkspaceResult")
+      .def_readonly("samples", &WorkspaceResult::samples)
+      .def_readonly("seed", &WorkspaceResult::seed)
+      .def_readonly("lower", &WorkspaceResult::lower, "bounding-box minimum (3,) [m]")
+      .def_readonly("upper", &WorkspaceResult::upper, "bounding-box maximum (3,) [m]")
+      .def_readonly("centroid", &WorkspaceResult::centroid)
+      .def_readonly("p_WB", &WorkspaceResult::p_WB, "the chain's base (3,) [m]")
+      .def_readonly("max_reach_from_base", &WorkspaceResult::max_reach_from_base)
+      .def_readonly("max_reach_from_origin", &WorkspaceResult::max_reach_from_origin)
+      .def_readonly("min_manipulability", &WorkspaceResult::min_manipulability)
+      .def_readonly("max_manipulability", &WorkspaceResult::max_manipulability)
+      .def_readonly("mean_manipulability", &WorkspaceResult::mean_manipulability)
+      .def_property_readonly(
+          "points",
+          [](const WorkspaceResult& r) {
+            Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor> P(r.points.size(), 3);
+            for (std::size_t i = 0; i < r.points.size(); ++i) P.row(i) = r.points[i].p_WE;
+            return P;
+          },
+          "frame positions (samples, 3) [m]")
+      .def_property_readonly(
+          "manipulabilities",
+          [](const WorkspaceResult& r) {
+            Eigen::VectorXd w(r.points.size());
+            for (std::size_t i = 0; i < r.points.size(); ++i) w[i] = r.points[i].manipulability;
+            return w;
+          },
+          "w per sample (samples,)")
+      .def("write_csv", &WorkspaceResult::write_csv, py::arg("path"));
+  m.def(
+      "sample_workspace",
+      [](const Chain& chain, std::size_t samples, std::uint64_t seed, bool compute_manipulability,
+         bool keep_points) {
+        WorkspaceOptions o;
+        o.samples = samples;
+        o.seed = seed;
+        o.compute_manipulability = compute_manipulability;
+        o.keep_points = keep_points;
+        py::gil_scoped_release release;
+        return sample_workspace(chain, o);
+      },
+      py::arg("chain"), py::arg("samples") = 10000, py::arg("seed") = 1,
+      py::arg("compute_manipulability") = true, py::arg("keep_points") = true,
+      "Seeded Monte-Carlo workspace sampling (GIL released).");
+}
+
+}  // namespace mjarm::python

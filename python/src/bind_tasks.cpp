@@ -1,0 +1,113 @@
+// tasks room: the shelf pick (plan, run, report, metrics). Pick-and-place and docking are bound
+// once their branches are merged.
+#include "bindings.hpp"
+#include "mjarm/tasks/shelf_pick.hpp"
+
+namespace mjarm::python {
+
+void bind_tasks(py::module_& m) {
+  py::class_<PickCriteria>(m, "PickCriteria", "When a pick counts as held.")
+      .def(py::init<>())
+      .def_readwrite("tolerance", &PickCriteria::tolerance, "[m]")
+      .def_readwrite("hold_time", &PickCriteria::hold_time, "[s]")
+      .def_readwrite("steady_window", &PickCriteria::steady_window, "[s]");
+  py::class_<PickMetrics>(m, "PickMetrics")
+      .def_readonly("held", &PickMetrics::held)
+      .def_readonly("first_entry_time", &PickMetrics::first_entry_time)
+      .def_readonly("time_to_tolerance", &PickMetrics::time_to_tolerance)
+      .def_readonly("hold_end_time", &PickMetrics::hold_end_time)
+      .def_readonly("overshoot", &PickMetrics::overshoot)
+      .def_readonly("hold_mean", &PickMetrics::hold_mean)
+      .def_readonly("hold_max", &PickMetrics::hold_max)
+      .def_readonly("steady_state_mean", &PickMetrics::steady_state_mean)
+      .def_readonly("steady_state_max", &PickMetrics::steady_state_max)
+      .def_readonly("orientation_error_max", &PickMetrics::orientation_error_max)
+      .def_readonly("exits", &PickMetrics::exits)
+      .def_readonly("final_error", &PickMetrics::final_error)
+      .def_readonly("samples", &PickMetrics::samples);
+  py::enum_<PickOutcome>(m, "PickOutcome")
+      .value("held", PickOutcome::held)
+      .value("not_held", PickOutcome::not_held)
+      .value("diverged", PickOutcome::diverged)
+      .value("bad_command", PickOutcome::bad_command)
+      .value("interrupted", PickOutcome::interrupted);
+  py::enum_<PickPhase>(m, "PickPhase")
+      .value("approach", PickPhase::approach)
+      .value("settle", PickPhase::settle)
+      .value("hold", PickPhase::hold)
+      .value("release", PickPhase::release);
+  py::class_<ShelfPickRequest>(m, "ShelfPickRequest")
+      .def(py::init<>())
+      .def_readwrite("robot", &ShelfPickRequest::robot)
+      .def_readwrite("controller", &ShelfPickRequest::controller)
+      .def_property(
+          "pick",
+          [](const ShelfPickRequest& r) -> py::object {
+            return r.pick ? py::cast(Eigen::Vector3d(*r.pick)) : py::none();
+          },
+          [](ShelfPickRequest& r, py::handle p) {
+            if (p.is_none())
+              r.pick.reset();
+            else
+              r.pick = to_fixed<3>(p, "pick");
+          },
+          "pick point (3,) [m], or None: drawn from the seed")
+      .def_readwrite("seed", &ShelfPickRequest::seed)
+      .def_readwrite("criteria", &ShelfPickRequest::criteria);
+  py::class_<ShelfPickOptions>(m, "ShelfPickOptions")
+      .def(py::init<>())
+      .def_readwrite("request", &ShelfPickOptions::request)
+      .def_readwrite("record", &ShelfPickOptions::record, "recording directory ('' = none)")
+      .def_readwrite("control_period", &ShelfPickOptions::control_period)
+      .def_readwrite("max_acceleration", &ShelfPickOptions::max_acceleration)
+      .def_readwrite("settle_time", &ShelfPickOptions::settle_time)
+      .def_readwrite("state_decimation", &ShelfPickOptions::state_decimation)
+      .def_property(
+          "video", [](const ShelfPickOptions& o) { return o.video.path; },
+          [](ShelfPickOptions& o, const std::filesystem::path& p) { o.video.path = p; },
+          "MP4 of the run ('' = none)")
+      .def_property(
+          "video_camera", [](const ShelfPickOptions& o) { return o.video.camera; },
+          [](ShelfPickOptions& o, const std::string& c) { o.video.camera = c; });
+  py::class_<ShelfPickReport>(m, "ShelfPickReport")
+      .def_property_readonly("robot", [](const ShelfPickReport& r) { return r.plan.robot->name; })
+      .def_property_readonly("controller",
+                             [](const ShelfPickReport& r) { return r.plan.controller; })
+      .def_property_readonly("pick",
+                             [](const ShelfPickReport& r) { return Eigen::Vector3d(r.plan.pick); })
+      .def_property_readonly("approach_time",
+                             [](const ShelfPickReport& r) { return r.plan.goal.approach_time; })
+      .def_property_readonly("q_start",
+                             [](const ShelfPickReport& r) { return r.plan.goal.q_start; })
+      .def_property_readonly("q_target",
+                             [](const ShelfPickReport& r) { return r.plan.goal.q_target; })
+      .def_readonly("run", &ShelfPickReport::run)
+      .def_readonly("metrics", &ShelfPickReport::metrics)
+      .def_readonly("outcome", &ShelfPickReport::outcome)
+      .def_readonly("final_phase", &ShelfPickReport::final_phase)
+      .def_readonly("time_limit", &ShelfPickReport::time_limit)
+      .def_readonly("control_period", &ShelfPickReport::control_period)
+      .def_readonly("saturated_ticks", &ShelfPickReport::saturated_ticks)
+      .def_readonly("recording", &ShelfPickReport::recording)
+      .def_readonly("recording_error", &ShelfPickReport::recording_error)
+      .def_readonly("video", &ShelfPickReport::video)
+      .def_readonly("video_frames", &ShelfPickReport::video_frames)
+      .def_readonly("video_written", &ShelfPickReport::video_written)
+      .def("ok", &ShelfPickReport::ok);
+  m.def("shelf_pick_robots", [] {
+    std::vector<std::string> names;
+    for (const auto& r : shelf_pick_robots()) names.push_back(r.name);
+    return names;
+  });
+  m.def("shelf_pick_controllers", &shelf_pick_controllers);
+  m.def(
+      "run_shelf_pick",
+      [](const ShelfPickOptions& options) {
+        py::gil_scoped_release release;
+        return run_shelf_pick(options);
+      },
+      py::arg("options"),
+      "Plans, simulates and measures one shelf pick (GIL released); see docs/tasks.md.");
+}
+
+}  // namespace mjarm::python
