@@ -1,13 +1,12 @@
 #include "mjarm/trajectory/jerk_limited_validation.hpp"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <ctime>
 #include <random>
 #include <vector>
 
+#include "mjarm/benchmark_timing.hpp"
 #include "mjarm/error.hpp"
 #include "mjarm/trajectory/jerk_limited.hpp"
 #include "mjarm/trajectory/jerk_limited_brake.hpp"
@@ -81,22 +80,7 @@ std::string describe_otg_case(const char* what, int dof, const KinematicState& s
 }
 
 /// Now in µs on the steady clock or, when @p cpu, the calling thread's CPU clock.
-double otg_now_us(bool cpu) {
-  if (cpu) {
-    timespec ts{};
-    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
-    return 1e6 * static_cast<double>(ts.tv_sec) + 1e-3 * static_cast<double>(ts.tv_nsec);
-  }
-  return std::chrono::duration<double, std::micro>(
-             std::chrono::steady_clock::now().time_since_epoch())
-      .count();
-}
-
-double otg_percentile(std::vector<double>& sorted, double q) {
-  if (sorted.empty()) return 0.0;
-  const std::size_t i = std::min(sorted.size() - 1, static_cast<std::size_t>(q * sorted.size()));
-  return sorted[i];
-}
+double otg_now_us(bool cpu) noexcept { return 1e6 * benchmark_seconds(cpu); }
 
 /// The structure-search checks of one case whose generator block is @p block (see
 /// OtgValidationResult); @p search_ms accumulates the search time.
@@ -387,8 +371,8 @@ OtgValidationResult run_otg_validation(const OtgValidationOptions& options) {
   for (const double t : times) sum += t;
   r.mean_us = sum / static_cast<double>(times.size());
   std::sort(times.begin(), times.end());
-  r.median_us = otg_percentile(times, 0.5);
-  r.p99_us = otg_percentile(times, 0.99);
+  r.median_us = nearest_rank(times, 0.5);
+  r.p99_us = nearest_rank(times, 0.99);
   r.max_us = times.back();
   r.velocity_mean_us = velocity_total_us / static_cast<double>(times.size());
   return r;
