@@ -120,6 +120,7 @@ Command add_bench_otg_subcommand(CLI::App& bench, std::function<std::uint64_t()>
                       {"first_reference_failure", r.first_reference_failure},
                       {"structure_seeds", options->structure_seeds},
                       {"structure_cases", r.structure_cases},
+                      {"structure_retries", r.structure_retries},
                       {"structure_not_found", r.structure_not_found},
                       {"structure_shorter", r.structure_shorter},
                       {"structure_longer", r.structure_longer},

@@ -8,7 +8,6 @@
 #include "mjarm/benchmark_timing.hpp"
 #include "mjarm/error.hpp"
 #include "mjarm/kinematics/chain_kinematics.hpp"
-#include "mjarm/lie/so3.hpp"
 #include "mjarm/planning/waypoint_planner.hpp"
 #include "mjarm/trajectory/quintic.hpp"
 #include "mjarm/trajectory/se3_interpolation.hpp"
@@ -31,13 +30,6 @@ Eigen::VectorXd bench_vector(unsigned seed, double scale) {
   Eigen::VectorXd v(MotionBenchmarkProfiles::kJoints);
   for (double& x : v) x = u(rng);
   return v;
-}
-
-Pose bench_pose(const Eigen::Vector3d& p, const Eigen::Vector3d& w) {
-  Pose X;
-  X.p = p;
-  X.R = so3::exp(w);
-  return X;
 }
 
 Vector6d bench_twist(double v0, double v1, double v2, double w0, double w1, double w2) {
@@ -92,9 +84,9 @@ MotionBenchmarkProfiles::MotionBenchmarkProfiles()
       quintic_start{bench_vector(1, 2.0), bench_vector(3, 0.5), bench_vector(4, 2.0)},
       quintic_goal(bench_vector(2, 2.0)),
       quintic(QuinticTrajectory::to_rest(quintic_start, quintic_goal, 1.3)),
-      se3(bench_pose({0.4, -0.1, 0.6}, {0.3, -0.8, 0.2}),
+      se3(Pose::from_rotation_vector({0.4, -0.1, 0.6}, {0.3, -0.8, 0.2}),
           bench_twist(0.2, -0.1, 0.05, 1.5, 0.7, -2.0), bench_twist(-1.0, 0.5, 2.0, 3.0, -4.0, 1.0),
-          bench_pose({0.1, 0.3, 0.5}, {-1.2, 0.4, 1.9}), 0.8),
+          Pose::from_rotation_vector({0.1, 0.3, 0.5}, {-1.2, 0.4, 1.9}), 0.8),
       ramp(SmoothRamp::Kind::smootherstep, 0.4) {}
 
 std::array<double, 256> motion_benchmark_instants(double T) {
@@ -177,8 +169,8 @@ ProfileBenchmarkResult run_profile_benchmark(const ProfileBenchmarkOptions& o) {
     return result;
 
   // the viewer's target filter: a tick along a motion under way
-  const Pose start = bench_pose({0.3, 0.0, 0.5}, {3.0, 0.0, 0.0});
-  const Pose jump = bench_pose({0.6, 0.2, 0.3}, {2.2, 0.5, 0.4});
+  const Pose start = Pose::from_rotation_vector({0.3, 0.0, 0.5}, {3.0, 0.0, 0.0});
+  const Pose jump = Pose::from_rotation_vector({0.6, 0.2, 0.3}, {2.2, 0.5, 0.4});
   TargetFilter filter;
   const auto restart = [&] {
     filter.reset(start);
@@ -196,7 +188,7 @@ ProfileBenchmarkResult run_profile_benchmark(const ProfileBenchmarkOptions& o) {
 
   // …and a tick whose target moved: a 6-DoF recalculation every call
   restart();
-  const Pose other = bench_pose({0.5, -0.1, 0.4}, {2.8, -0.3, 0.1});
+  const Pose other = Pose::from_rotation_vector({0.5, -0.1, 0.4}, {2.8, -0.3, 0.1});
   ProfileBenchmarkOptions recalculating = o;
   recalculating.calls = o.recalculations;
   recalculating.block = 16;

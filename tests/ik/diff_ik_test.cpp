@@ -2,7 +2,6 @@
 
 #include <gtest/gtest.h>
 
-#include <atomic>
 #include <cmath>
 #include <cstdlib>
 #include <random>
@@ -14,36 +13,6 @@
 #include "support/random_configurations.hpp"
 #include "support/reference_linear_algebra.hpp"
 #include "support/test_models.hpp"
-
-// ---- allocation counter (see malloc_counter.hpp) ----
-namespace {
-std::atomic<std::uint64_t> g_malloc_calls{0};
-}  // namespace
-
-#if defined(__SANITIZE_ADDRESS__)
-// from the sanitizer runtime's allocator interface (GCC does not install its header)
-extern "C" int __sanitizer_install_malloc_and_free_hooks(void (*malloc_hook)(const volatile void*,
-                                                                             std::size_t),
-                                                         void (*free_hook)(const volatile void*));
-namespace {
-void count_allocation(const volatile void*, std::size_t) {
-  g_malloc_calls.fetch_add(1, std::memory_order_relaxed);
-}
-void ignore_free(const volatile void*) {}  // the runtime wants both hooks
-[[maybe_unused]] const int g_hook_installed =
-    __sanitizer_install_malloc_and_free_hooks(count_allocation, ignore_free);
-}  // namespace
-#else
-extern "C" void* __libc_malloc(std::size_t size) noexcept;
-extern "C" void* malloc(std::size_t size) noexcept {
-  g_malloc_calls.fetch_add(1, std::memory_order_relaxed);
-  return __libc_malloc(size);
-}
-#endif
-
-namespace mjarm::test {
-std::uint64_t malloc_calls() noexcept { return g_malloc_calls.load(std::memory_order_relaxed); }
-}  // namespace mjarm::test
 
 namespace mjarm {
 namespace {

@@ -88,7 +88,10 @@ struct OtgValidationResult {
 
   /// Reference cases (both kinds above) also given to the structure search.
   int structure_cases = 0;
-  /// Of those, cases where the search found no motion at all although the generator did.
+  /// Of those, cases whose search missed t_min or a blocked interval's end with
+  /// structure_seeds and was run again with four times as many (the counts below are after it).
+  int structure_retries = 0;
+  /// Cases where the search found no motion at all although the generator did.
   int structure_not_found = 0;
   /// Cases where the search's shortest motion is shorter than t_min by more than 1e-9 relative:
   /// the minimum is beaten (a definite error, since every solution of the search is a motion).
