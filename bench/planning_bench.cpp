@@ -13,7 +13,6 @@
 #include <string>
 #include <vector>
 
-#include "mjarm/kinematics/chain_kinematics.hpp"
 #include "mjarm/planning/motion_benchmark.hpp"
 #include "mjarm/planning/waypoint_planner.hpp"
 
@@ -35,15 +34,11 @@ const char* kBoxScene = R"(<mujoco model="panda_box">
 </mujoco>)";
 
 void run(benchmark::State& state, const mjarm::Robot& robot) {
-  const mjarm::Chain chain(robot, "attachment_site");
-  const std::vector<double> home = robot.keyframe_qpos("home");
-  const Eigen::VectorXd q_home = chain.gather(home.data());
-  mjarm::ChainKinematics fk(chain);
-  const std::vector<mjarm::Pose> path = mjarm::motion_benchmark_waypoints(fk.update(q_home).R);
-  mjarm::WaypointPlanner planner(chain);
+  const mjarm::MotionBenchmarkPath problem = mjarm::motion_benchmark_path(robot);
+  mjarm::WaypointPlanner planner(problem.chain);
   mjarm::PlanResult result;
   for (auto _ : state) {
-    result = planner.plan(q_home, path);
+    result = planner.plan(problem.q_home, problem.waypoints);
     benchmark::DoNotOptimize(result);
   }
   if (!result.ok()) state.SkipWithError(result.message.c_str());

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "mjarm/benchmark_timing.hpp"
 #include "mjarm/control/acceleration_control.hpp"
 #include "mjarm/control/cartesian_impedance.hpp"
 #include "mjarm/control/computed_torque.hpp"
@@ -107,12 +108,6 @@ class Motors {
   std::vector<int> ids_;
   std::vector<double> gears_;
 };
-
-/// Nearest-rank percentile of sorted values.
-double percentile(const std::vector<double>& sorted, double p) {
-  const auto rank = static_cast<std::size_t>(std::ceil(p * static_cast<double>(sorted.size())));
-  return sorted[std::clamp<std::size_t>(rank, 1, sorted.size()) - 1];
-}
 
 /// The controllers drive the chain's joints only: a free or ball joint (or a joint left out of
 /// the chain) between the world and the frame lets the base fall or swing, with or without a
@@ -320,8 +315,8 @@ ControlBenchmarkResult run_control_benchmark(const Chain& chain,
     for (double t : times) b.mean_us += t;
     b.mean_us /= options.steps;
     std::sort(times.begin(), times.end());
-    b.median_us = percentile(times, 0.5);
-    b.p99_us = percentile(times, 0.99);
+    b.median_us = nearest_rank(times, 0.5);
+    b.p99_us = nearest_rank(times, 0.99);
     b.max_us = times.back();
     if (count) {
       b.allocations = static_cast<std::int64_t>(allocations);

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <ctime>
 #include <limits>
 #include <memory>
 #include <numbers>
@@ -10,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "mjarm/benchmark_timing.hpp"
 #include "mjarm/error.hpp"
 #include "mjarm/kinematics/chain_kinematics.hpp"
 
@@ -42,19 +42,9 @@ class ConfigurationSampler {
 };
 
 /// CPU time consumed by the calling thread [ms].
-double thread_cpu_ms() noexcept {
-  timespec t{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
-  return static_cast<double>(t.tv_sec) * 1e3 + static_cast<double>(t.tv_nsec) * 1e-6;
-}
+double thread_cpu_ms() noexcept { return 1e3 * thread_cpu_seconds(); }
 
 constexpr double kCpuModeWallFactor = 20.0;
-
-double nearest_rank(const std::vector<double>& sorted, double fraction) {
-  const auto n = static_cast<double>(sorted.size());
-  const auto rank = static_cast<std::size_t>(std::max(1.0, std::ceil(fraction * n)));
-  return sorted[std::min(rank, sorted.size()) - 1];
-}
 
 }  // namespace
 

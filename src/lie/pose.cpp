@@ -1,6 +1,7 @@
 #include "mjarm/lie/pose.hpp"
 
 #include "mjarm/lie/rotation.hpp"
+#include "mjarm/lie/so3.hpp"
 
 namespace mjarm {
 
@@ -16,6 +17,10 @@ Pose Pose::from_matrix(const Eigen::Matrix4d& M) noexcept {
 
 Pose Pose::from_quaternion(const Eigen::Vector3d& p, const Eigen::Vector4d& q_wxyz) {
   return Pose{rotation_from_quaternion(q_wxyz), p};
+}
+
+Pose Pose::from_rotation_vector(const Eigen::Vector3d& p, const Eigen::Vector3d& phi) noexcept {
+  return Pose{so3::exp(phi), p};
 }
 
 Pose Pose::from_rpy(const Eigen::Vector3d& p, const Eigen::Vector3d& rpy) noexcept {

@@ -1,16 +1,13 @@
 #include "mjarm/planning/motion_benchmark.hpp"
 
-#include <time.h>
-
 #include <algorithm>
 #include <array>
-#include <chrono>
 #include <cmath>
 #include <random>
 
+#include "mjarm/benchmark_timing.hpp"
 #include "mjarm/error.hpp"
 #include "mjarm/kinematics/chain_kinematics.hpp"
-#include "mjarm/lie/so3.hpp"
 #include "mjarm/planning/waypoint_planner.hpp"
 #include "mjarm/trajectory/quintic.hpp"
 #include "mjarm/trajectory/se3_interpolation.hpp"
@@ -25,40 +22,20 @@ namespace {
 constexpr int kBenchJoints = 7;
 
 /// Now in ns on the steady clock or, when @p cpu, the calling thread's CPU clock.
-double motion_now_ns(bool cpu) noexcept {
-  if (cpu) {
-    timespec ts{};
-    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
-    return 1e9 * static_cast<double>(ts.tv_sec) + static_cast<double>(ts.tv_nsec);
-  }
-  return static_cast<double>(std::chrono::duration_cast<std::chrono::nanoseconds>(
-                                 std::chrono::steady_clock::now().time_since_epoch())
-                                 .count());
-}
-
-/// The nearest-rank percentile @p q ∈ (0, 1] of @p values (sorted here).
-double nearest_rank(std::vector<double>& values, double q) {
-  if (values.empty()) return 0.0;
-  std::sort(values.begin(), values.end());
-  const auto rank = static_cast<std::size_t>(std::ceil(q * static_cast<double>(values.size())));
-  return values[std::clamp<std::size_t>(rank, 1, values.size()) - 1];
-}
-
-// 256 seeded instants over [−0.05·T, 1.05·T]
-std::array<double, 256> bench_instants(double T) {
-  std::mt19937_64 rng(3);
-  std::uniform_real_distribution<double> u(-0.05 * T, 1.05 * T);
-  std::array<double, 256> t{};
-  for (double& x : t) x = u(rng);
-  return t;
-}
+double motion_now_ns(bool cpu) noexcept { return 1e9 * benchmark_seconds(cpu); }
 
 Eigen::VectorXd bench_vector(unsigned seed, double scale) {
   std::mt19937_64 rng(seed);
   std::uniform_real_distribution<double> u(-scale, scale);
-  Eigen::VectorXd v(kBenchJoints);
-  for (int i = 0; i < kBenchJoints; ++i) v[i] = u(rng);
+  Eigen::VectorXd v(MotionBenchmarkProfiles::kJoints);
+  for (double& x : v) x = u(rng);
   return v;
+}
+
+Vector6d bench_twist(double v0, double v1, double v2, double w0, double w1, double w2) {
+  Vector6d V;
+  V << v0, v1, v2, w0, w1, w2;
+  return V;
 }
 
 /// Times @p call(k) for k = 0, 1, … in blocks (see the file comment) and fills @p out's
@@ -89,6 +66,7 @@ bool time_case(const ProfileBenchmarkOptions& o, ProfileBenchmarkCase& out, Call
   out.calls = k;
   out.mean_ns = k > 0 ? total / static_cast<double>(k) : 0.0;
   std::vector<double> sorted = per_call;
+  std::sort(sorted.begin(), sorted.end());
   out.median_ns = nearest_rank(sorted, 0.5);
   out.p99_ns = nearest_rank(sorted, 0.99);
   if (o.allocation_count && k > 0)
@@ -96,14 +74,28 @@ bool time_case(const ProfileBenchmarkOptions& o, ProfileBenchmarkCase& out, Call
   return !stopped;
 }
 
-Pose bench_pose(const Eigen::Vector3d& p, const Eigen::Vector3d& w) {
-  Pose X;
-  X.p = p;
-  X.R = so3::exp(w);
-  return X;
-}
-
 }  // namespace
+
+MotionBenchmarkProfiles::MotionBenchmarkProfiles()
+    : trapezoid(trap_profile(0.5)),
+      v_max(Eigen::VectorXd::Constant(kJoints, 1.5)),
+      a_max(Eigen::VectorXd::Constant(kJoints, 4.0)),
+      synced(bench_vector(1, 2.0), bench_vector(2, 2.0), v_max, a_max),
+      quintic_start{bench_vector(1, 2.0), bench_vector(3, 0.5), bench_vector(4, 2.0)},
+      quintic_goal(bench_vector(2, 2.0)),
+      quintic(QuinticTrajectory::to_rest(quintic_start, quintic_goal, 1.3)),
+      se3(Pose::from_rotation_vector({0.4, -0.1, 0.6}, {0.3, -0.8, 0.2}),
+          bench_twist(0.2, -0.1, 0.05, 1.5, 0.7, -2.0), bench_twist(-1.0, 0.5, 2.0, 3.0, -4.0, 1.0),
+          Pose::from_rotation_vector({0.1, 0.3, 0.5}, {-1.2, 0.4, 1.9}), 0.8),
+      ramp(SmoothRamp::Kind::smootherstep, 0.4) {}
+
+std::array<double, 256> motion_benchmark_instants(double T) {
+  std::mt19937_64 rng(3);
+  std::uniform_real_distribution<double> u(-0.05 * T, 1.05 * T);
+  std::array<double, 256> t{};
+  for (double& x : t) x = u(rng);
+  return t;
+}
 
 ProfileBenchmarkResult run_profile_benchmark(const ProfileBenchmarkOptions& o) {
   if (o.block < 1 || o.calls < o.block)
@@ -126,69 +118,59 @@ ProfileBenchmarkResult run_profile_benchmark(const ProfileBenchmarkOptions& o) {
     return finished;
   };
 
+  const MotionBenchmarkProfiles m;
+  constexpr int n = MotionBenchmarkProfiles::kJoints;
+
   // the classic trapezoid, one axis
-  const TrapezoidProfile trap = trap_profile(0.5);
-  const auto t_trap = bench_instants(trap.duration());
+  const auto t_trap = motion_benchmark_instants(m.trapezoid.duration());
   if (!add(
           {"trapezoid", "TrapezoidProfile::at", 0, 0, 0, 0, kProfileEvaluationTargetNs, -1},
-          [&](std::int64_t k) { sink += trap.at(t_trap[k & 255]).position; }, none))
+          [&](std::int64_t k) { sink += m.trapezoid.at(t_trap[k & 255]).position; }, none))
     return result;
 
   // seven axes finishing together
-  const SyncedTrapezoid synced(bench_vector(1, 2.0), bench_vector(2, 2.0),
-                               Eigen::VectorXd::Constant(kBenchJoints, 1.5),
-                               Eigen::VectorXd::Constant(kBenchJoints, 4.0));
-  const auto t_synced = bench_instants(synced.duration());
-  Eigen::VectorXd q(kBenchJoints), qd(kBenchJoints), qdd(kBenchJoints);
+  const auto t_synced = motion_benchmark_instants(m.synced.duration());
+  Eigen::VectorXd q(n), qd(n), qdd(n);
   if (!add(
           {"synced trapezoid, 7 axes", "SyncedTrapezoid::at", 0, 0, 0, 0,
            kProfileEvaluationTargetNs, -1},
           [&](std::int64_t k) {
-            synced.at(t_synced[k & 255], q, qd, qdd);
+            m.synced.at(t_synced[k & 255], q, qd, qdd);
             sink += q[0];
           },
           none))
     return result;
 
   // the 7-joint quintic from a moving start to rest
-  const QuinticTrajectory quintic =
-      QuinticTrajectory::to_rest({bench_vector(1, 2.0), bench_vector(3, 0.5), bench_vector(4, 2.0)},
-                                 bench_vector(2, 2.0), 1.3);
-  const auto t_quintic = bench_instants(quintic.duration());
+  const auto t_quintic = motion_benchmark_instants(m.quintic.duration());
   if (!add(
           {"quintic, 7 joints (q, qd, qdd)", "QuinticTrajectory::at", 0, 0, 0, 0,
            kProfileEvaluationTargetNs, -1},
           [&](std::int64_t k) {
-            quintic.at(t_quintic[k & 255], q, qd, qdd);
+            m.quintic.at(t_quintic[k & 255], q, qd, qdd);
             sink += q[0];
           },
           none))
     return result;
 
   // the SE(3) interpolation from a moving start (ω not parallel to the rotation axis)
-  Vector6d V0, A0;
-  V0 << 0.2, -0.1, 0.05, 1.5, 0.7, -2.0;
-  A0 << -1.0, 0.5, 2.0, 3.0, -4.0, 1.0;
-  const Se3Interpolation se3(bench_pose({0.4, -0.1, 0.6}, {0.3, -0.8, 0.2}), V0, A0,
-                             bench_pose({0.1, 0.3, 0.5}, {-1.2, 0.4, 1.9}), 0.8);
-  const auto t_se3 = bench_instants(se3.duration());
+  const auto t_se3 = motion_benchmark_instants(m.se3.duration());
   if (!add(
           {"SE(3) interpolation (pose, twist, rate)", "Se3Interpolation::at", 0, 0, 0, 0,
            kProfileEvaluationTargetNs, -1},
-          [&](std::int64_t k) { sink += se3.at(t_se3[k & 255]).X_WE.p[0]; }, none))
+          [&](std::int64_t k) { sink += m.se3.at(t_se3[k & 255]).X_WE.p[0]; }, none))
     return result;
 
   // smootherstep in time
-  const SmoothRamp ramp(SmoothRamp::Kind::smootherstep, 0.4);
-  const auto t_ramp = bench_instants(ramp.duration());
+  const auto t_ramp = motion_benchmark_instants(m.ramp.duration());
   if (!add(
           {"smootherstep ramp", "SmoothRamp::at", 0, 0, 0, 0, kProfileEvaluationTargetNs, -1},
-          [&](std::int64_t k) { sink += ramp.at(t_ramp[k & 255]).s; }, none))
+          [&](std::int64_t k) { sink += m.ramp.at(t_ramp[k & 255]).s; }, none))
     return result;
 
   // the viewer's target filter: a tick along a motion under way
-  const Pose start = bench_pose({0.3, 0.0, 0.5}, {3.0, 0.0, 0.0});
-  const Pose jump = bench_pose({0.6, 0.2, 0.3}, {2.2, 0.5, 0.4});
+  const Pose start = Pose::from_rotation_vector({0.3, 0.0, 0.5}, {3.0, 0.0, 0.0});
+  const Pose jump = Pose::from_rotation_vector({0.6, 0.2, 0.3}, {2.2, 0.5, 0.4});
   TargetFilter filter;
   const auto restart = [&] {
     filter.reset(start);
@@ -206,7 +188,7 @@ ProfileBenchmarkResult run_profile_benchmark(const ProfileBenchmarkOptions& o) {
 
   // …and a tick whose target moved: a 6-DoF recalculation every call
   restart();
-  const Pose other = bench_pose({0.5, -0.1, 0.4}, {2.8, -0.3, 0.1});
+  const Pose other = Pose::from_rotation_vector({0.5, -0.1, 0.4}, {2.8, -0.3, 0.1});
   ProfileBenchmarkOptions recalculating = o;
   recalculating.calls = o.recalculations;
   recalculating.block = 16;
@@ -235,16 +217,23 @@ std::vector<Pose> motion_benchmark_waypoints(const Eigen::Matrix3d& R_WE) {
   return path;
 }
 
+MotionBenchmarkPath motion_benchmark_path(const Robot& robot) {
+  Chain chain(robot, "attachment_site");
+  const std::vector<double> home = robot.keyframe_qpos("home");
+  Eigen::VectorXd q_home = chain.gather(home.data());
+  ChainKinematics fk(chain);
+  std::vector<Pose> waypoints = motion_benchmark_waypoints(fk.update(q_home).R);
+  return {std::move(chain), std::move(q_home), std::move(waypoints)};
+}
+
 PlanBenchmarkResult run_plan_benchmark(const PlanBenchmarkOptions& o) {
   if (o.plans < 1) throw Error("plan benchmark: plans must be ≥ 1, got " + std::to_string(o.plans));
   PlanBenchmarkResult out;
   const Robot robot = Robot::bundled("panda_torque");
-  const Chain chain(robot, "attachment_site");
-  const std::vector<double> home = robot.keyframe_qpos("home");
-  const Eigen::VectorXd q_home = chain.gather(home.data());
-  ChainKinematics fk(chain);
-  const std::vector<Pose> path = motion_benchmark_waypoints(fk.update(q_home).R);
-  WaypointPlanner planner(chain);
+  const MotionBenchmarkPath problem = motion_benchmark_path(robot);
+  const Eigen::VectorXd& q_home = problem.q_home;
+  const std::vector<Pose>& path = problem.waypoints;
+  WaypointPlanner planner(problem.chain);
   out.model = robot.name();
   out.waypoints = static_cast<int>(path.size());
   PlanResult plan = planner.plan(q_home, path);  // untimed: warms caches, checks the path
@@ -274,9 +263,10 @@ PlanBenchmarkResult run_plan_benchmark(const PlanBenchmarkOptions& o) {
   double total = 0.0;
   for (double v : ms) total += v;
   out.mean_ms = ms.empty() ? 0.0 : total / static_cast<double>(ms.size());
+  std::sort(ms.begin(), ms.end());
   out.median_ms = nearest_rank(ms, 0.5);
   out.p99_ms = nearest_rank(ms, 0.99);
-  out.max_ms = ms.empty() ? 0.0 : ms.back();  // sorted by nearest_rank
+  out.max_ms = ms.empty() ? 0.0 : ms.back();
   return out;
 }
 

@@ -68,12 +68,18 @@ PlotInfo plot_trajectory(const TrajectorySeries& series, const fs::path& out_dir
   const double t0 = series.t.front();
   const double t1 = series.t.back() > t0 ? series.t.back() : t0 + 1e-3;
   script += "set xrange [" + detail::gp_number(t0) + ":" + detail::gp_number(t1) + "]\n";
-  // the same margins in every panel keep their time axes aligned; limits off the frame
-  script += "set lmargin 12\nset rmargin 4\nset offsets 0, 0, graph 0.08, graph 0.08\n";
+  // the same margins in every panel keep their time axes aligned; limits off the frame; the
+  // legend stands in the right margin, wide enough for the longest axis name, never on a curve
+  std::size_t longest = 0;
+  for (const std::string& axis : series.axes) longest = std::max(longest, axis.size());
+  const std::size_t right_margin = longest + 9;  // the sample line, its gaps, the border
+  script += "set lmargin 12\nset rmargin " + std::to_string(right_margin) +
+            "\nset offsets 0, 0, graph 0.08, graph 0.08\n";
   script += "set multiplot layout 4,1 title " + gnuplot_string(series.title) + " font ',14'\n";
   for (std::size_t k = 0; k < 4; ++k) {
     script += "set ylabel " + gnuplot_string(std::string(names[k]) + " [" + units[k] + "]") + "\n";
-    script += k == 0 ? "set key inside left top\n" : "unset key\n";
+    script +=
+        k == 0 ? "set key outside right top vertical Left reverse samplen 2\n" : "unset key\n";
     if (k < 3)
       script += "set xlabel ''\n";
     else

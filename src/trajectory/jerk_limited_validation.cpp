@@ -1,19 +1,19 @@
 #include "mjarm/trajectory/jerk_limited_validation.hpp"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <ctime>
 #include <random>
 #include <vector>
 
+#include "mjarm/benchmark_timing.hpp"
 #include "mjarm/error.hpp"
 #include "mjarm/trajectory/jerk_limited.hpp"
 #include "mjarm/trajectory/jerk_limited_brake.hpp"
 #include "mjarm/trajectory/jerk_limited_fixed_time.hpp"
 #include "mjarm/trajectory/jerk_limited_min_time.hpp"
 #include "mjarm/trajectory/jerk_limited_reference.hpp"
+#include "mjarm/trajectory/jerk_limited_structure_search.hpp"
 
 namespace mjarm {
 
@@ -80,31 +80,96 @@ std::string describe_otg_case(const char* what, int dof, const KinematicState& s
 }
 
 /// Now in µs on the steady clock or, when @p cpu, the calling thread's CPU clock.
-double otg_now_us(bool cpu) {
-  if (cpu) {
-    timespec ts{};
-    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
-    return 1e6 * static_cast<double>(ts.tv_sec) + 1e-3 * static_cast<double>(ts.tv_nsec);
-  }
-  return std::chrono::duration<double, std::micro>(
-             std::chrono::steady_clock::now().time_since_epoch())
-      .count();
+double otg_now_us(bool cpu) noexcept { return 1e6 * benchmark_seconds(cpu); }
+
+/// Durations equal to 1e-9 relative (absolute below 1 s).
+bool near_duration(double a, double b) { return std::abs(a - b) <= 1e-9 * std::max(1.0, b); }
+
+/// Whether the structure search @p search misses something of @p block: t_min (its shortest
+/// motion is longer) or a blocked interval's end (not among its extremal durations).
+bool structure_search_misses(const StructureSearchResult& search, const JerkBlock& block) {
+  if (search.status != StructureSearchStatus::found ||
+      search.duration > block.t_min + 1e-9 * std::max(1.0, block.t_min))
+    return true;
+  for (int k = 0; k < block.blocked_count; ++k)
+    for (const double end : {block.blocked[k].lower, block.blocked[k].upper})
+      if (std::none_of(search.durations.begin(), search.durations.end(),
+                       [&](double d) { return near_duration(d, end); }))
+        return true;
+  return false;
 }
 
-double otg_percentile(std::vector<double>& sorted, double q) {
-  if (sorted.empty()) return 0.0;
-  const std::size_t i = std::min(sorted.size() - 1, static_cast<std::size_t>(q * sorted.size()));
-  return sorted[i];
+/// The structure-search checks of one case whose generator block is @p block (see
+/// OtgValidationResult); @p search_ms accumulates the search time. A search that misses t_min or
+/// an interval's end is run again with four times the seeds (other ones) before it counts.
+void check_against_structures(const KinematicState& s, const KinematicState& t, const JerkLimits& l,
+                              const JerkBlock& block, int seeds, OtgValidationResult& r,
+                              double& search_ms) {
+  if (seeds < 1) return;
+  const double t0 = otg_now_us(false);
+  const auto seed = static_cast<std::uint64_t>(r.structure_cases);
+  StructureSearchResult search = structure_search_min_time(s, t, l, {seeds, seed});
+  if (structure_search_misses(search, block)) {
+    ++r.structure_retries;
+    StructureSearchResult again = structure_search_min_time(s, t, l, {4 * seeds, seed + 1000003});
+    // every solution of either run is a motion: the union of what they found
+    if (again.status == StructureSearchStatus::found &&
+        (search.status != StructureSearchStatus::found || again.duration < search.duration)) {
+      search.status = again.status;
+      search.duration = again.duration;
+      search.best = again.best;
+    }
+    for (const double d : again.durations) search.durations.push_back(d);
+    for (const double d : again.feasible_durations) search.feasible_durations.push_back(d);
+  }
+  search_ms += 1e-3 * (otg_now_us(false) - t0);
+  ++r.structure_cases;
+  const auto fail = [&](const char* what) {
+    if (r.first_structure_failure.empty())
+      r.first_structure_failure = describe_otg_case(what, 0, s, t, l);
+  };
+  const auto tolerance = [](double d) { return 1e-9 * std::max(1.0, d); };
+  if (search.status != StructureSearchStatus::found) {
+    ++r.structure_not_found;
+    fail("structure search found no motion");
+  } else if (search.duration < block.t_min - tolerance(block.t_min)) {
+    ++r.structure_shorter;
+    fail("structure search beats t_min");
+  } else if (search.duration > block.t_min + tolerance(block.t_min)) {
+    ++r.structure_longer;
+    fail("structure search longer than t_min");
+  }
+  bool inside = false;
+  for (int k = 0; k < block.blocked_count; ++k) {
+    const JerkInterval in = block.blocked[k];
+    for (const double d : search.feasible_durations)
+      if (d > in.lower + tolerance(in.lower) && d < in.upper - tolerance(in.upper)) inside = true;
+    for (const double end : {in.lower, in.upper}) {
+      ++r.structure_blocked_ends;
+      const bool found = std::any_of(search.durations.begin(), search.durations.end(),
+                                     [&](double d) { return near_duration(d, end); });
+      if (!found) {
+        ++r.structure_blocked_ends_missing;
+        fail("blocked interval end not found by the structure search");
+      }
+    }
+  }
+  if (inside) {
+    ++r.structure_inside_blocked;
+    fail("structure search motion inside a blocked interval");
+  }
 }
 
 /// The one-DoF reference checks of one case (see OtgValidationResult).
-void check_against_reference(OtgCaseSampler& sampler, int steps, OtgValidationResult& r) {
+void check_against_reference(OtgCaseSampler& sampler, int steps, int seeds, OtgValidationResult& r,
+                             double& search_ms) {
   const JerkLimits l = sampler.limits();
   const KinematicState s = sampler.start(l, false);
   const KinematicState t = sampler.target(l);
   JerkBlock block;
   if (!min_time_profile(s, t, l, block)) return;  // counted by the main run's failures
   ++r.reference_cases;
+  check_against_structures(s, t, l, block, seeds, r, search_ms);
   if (block.t_min <= 1e-9) return;
   bool beaten = false;
   for (const double f : {0.999, 0.99, 0.95, 0.8, 0.5})
@@ -135,7 +200,8 @@ void check_against_reference(OtgCaseSampler& sampler, int steps, OtgValidationRe
 }
 
 /// The reference checks of one case with a blocked interval (see OtgValidationResult).
-void check_blocked_against_reference(OtgCaseSampler& sampler, int steps, OtgValidationResult& r) {
+void check_blocked_against_reference(OtgCaseSampler& sampler, int steps, int seeds,
+                                     OtgValidationResult& r, double& search_ms) {
   JerkLimits l;
   KinematicState s, t;
   JerkBlock block;
@@ -147,6 +213,7 @@ void check_blocked_against_reference(OtgCaseSampler& sampler, int steps, OtgVali
     if (min_time_profile(s, t, l, block) && block.blocked_count > 0) break;
   }
   ++r.blocked_cases;
+  check_against_structures(s, t, l, block, seeds, r, search_ms);
   for (int k = 0; k < block.blocked_count; ++k) {
     const JerkInterval in = block.blocked[k];
     ++r.blocked_checked;
@@ -184,6 +251,9 @@ OtgValidationResult run_otg_validation(const OtgValidationOptions& options) {
   if (!(options.brake_share >= 0.0 && options.brake_share <= 1.0))
     throw Error("run_otg_validation: brake_share must be in [0, 1], got " +
                 std::to_string(options.brake_share));
+  if (options.structure_seeds < 0)
+    throw Error("run_otg_validation: structure_seeds must be ≥ 0, got " +
+                std::to_string(options.structure_seeds));
   OtgValidationResult r;
   r.cases = options.cases;
   r.dofs = options.dofs;
@@ -195,6 +265,7 @@ OtgValidationResult run_otg_validation(const OtgValidationOptions& options) {
   std::vector<double> times;
   times.reserve(static_cast<std::size_t>(options.cases));
   double velocity_total_us = 0.0;
+  double search_ms = 0.0;  // structure search time over the reference cases
 
   const int total = options.cases + options.reference_cases + options.reference_cases / 4;
   for (int c = 0; c < options.cases; ++c) {
@@ -311,7 +382,8 @@ OtgValidationResult run_otg_validation(const OtgValidationOptions& options) {
       r.interrupted = true;
       break;
     }
-    check_against_reference(sampler, options.reference_steps, r);
+    check_against_reference(sampler, options.reference_steps, options.structure_seeds, r,
+                            search_ms);
     if (options.progress) options.progress(options.cases + c + 1, total);
   }
   for (int c = 0; c < options.reference_cases / 4 && !r.interrupted; ++c) {
@@ -319,17 +391,19 @@ OtgValidationResult run_otg_validation(const OtgValidationOptions& options) {
       r.interrupted = true;
       break;
     }
-    check_blocked_against_reference(sampler, options.reference_steps, r);
+    check_blocked_against_reference(sampler, options.reference_steps, options.structure_seeds, r,
+                                    search_ms);
     if (options.progress) options.progress(options.cases + options.reference_cases + c + 1, total);
   }
 
+  if (r.structure_cases > 0) r.structure_mean_ms = search_ms / r.structure_cases;
   if (times.empty()) return r;  // stopped before the first case: no figures
   double sum = 0.0;
   for (const double t : times) sum += t;
   r.mean_us = sum / static_cast<double>(times.size());
   std::sort(times.begin(), times.end());
-  r.median_us = otg_percentile(times, 0.5);
-  r.p99_us = otg_percentile(times, 0.99);
+  r.median_us = nearest_rank(times, 0.5);
+  r.p99_us = nearest_rank(times, 0.99);
   r.max_us = times.back();
   r.velocity_mean_us = velocity_total_us / static_cast<double>(times.size());
   return r;

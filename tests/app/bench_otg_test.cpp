@@ -18,8 +18,9 @@ using mjarm::test::run_cli;
 using nlohmann::json;
 
 TEST(BenchOtg, JsonReportsTheValidation) {
-  const CliRun run = run_cli({"bench", "otg", "--cases", "200", "--reference-cases", "3",
-                              "--reference-steps", "60", "--seed", "4", "--json"});
+  const CliRun run =
+      run_cli({"bench", "otg", "--cases", "200", "--reference-cases", "3", "--reference-steps",
+               "60", "--structure-seeds", "4", "--seed", "4", "--json"});
   ASSERT_EQ(run.exit_code, 0) << run.err;
   ASSERT_TRUE(json::accept(run.out)) << run.out;
   const json j = json::parse(run.out);
@@ -34,6 +35,12 @@ TEST(BenchOtg, JsonReportsTheValidation) {
   EXPECT_EQ(j["allocations_per_calculation"], 0.0);
   EXPECT_EQ(j["reference_cases"], 3);
   EXPECT_EQ(j["optimality_beaten"], 0);
+  // the structure search on the same one-DoF cases: never a motion shorter than t_min or inside
+  // a blocked interval (each of its solutions is a motion, whatever its seeds)
+  EXPECT_EQ(j["structure_seeds"], 4);
+  EXPECT_EQ(j["structure_cases"], 3);
+  EXPECT_EQ(j["structure_shorter"], 0) << j["first_structure_failure"];
+  EXPECT_EQ(j["structure_inside_blocked"], 0) << j["first_structure_failure"];
   for (const char* key : {"mean_us", "median_us", "p99_us", "max_us", "velocity_mean_us"})
     EXPECT_GT(j[key].get<double>(), 0.0) << key;
   EXPECT_LE(j["median_us"].get<double>(), j["p99_us"].get<double>());
@@ -43,7 +50,7 @@ TEST(BenchOtg, TextReportAndBadCommandLines) {
   const CliRun run = run_cli({"bench", "otg", "--cases", "50", "--reference-cases", "0"});
   ASSERT_EQ(run.exit_code, 0) << run.err;
   for (const char* text : {"position failures", "worst limit violation", "p99 [µs]", "alloc/calc",
-                           "time optimality"}) {
+                           "time optimality", "switching structures"}) {
     EXPECT_NE(run.out.find(text), std::string::npos) << text << " not in:\n" << run.out;
   }
   const CliRun zero = run_cli({"bench", "otg", "--cases", "0"});
@@ -58,7 +65,8 @@ TEST(BenchOtg, TextReportAndBadCommandLines) {
             "--cases: '100000000' is not a whole number "
             "from 1 to 10000000"},
            {{"bench", "otg", "--reference-cases", "1000000"}, "from 0 to 100000"},
-           {{"bench", "otg", "--reference-steps", "2000"}, "from 10 to 400"}}) {
+           {{"bench", "otg", "--reference-steps", "2000"}, "from 10 to 400"},
+           {{"bench", "otg", "--structure-seeds", "1000"}, "from 0 to 256"}}) {
     const CliRun bad = run_cli(args);
     EXPECT_EQ(bad.exit_code, 2) << bad.err;
     EXPECT_NE(bad.err.find(range), std::string::npos) << bad.err;

@@ -2,7 +2,6 @@
 
 #include <gtest/gtest.h>
 
-#include <atomic>
 #include <random>
 #include <vector>
 
@@ -11,35 +10,6 @@
 #include "mjarm/kinematics/finite_difference.hpp"
 #include "mjarm/kinematics/frame_state.hpp"
 #include "support/test_models.hpp"
-
-// ---- allocation counter (see tests/ik/malloc_counter.hpp); defined once per test executable ----
-namespace {
-std::atomic<std::uint64_t> g_malloc_calls{0};
-}  // namespace
-
-#if defined(__SANITIZE_ADDRESS__)
-extern "C" int __sanitizer_install_malloc_and_free_hooks(void (*malloc_hook)(const volatile void*,
-                                                                             std::size_t),
-                                                         void (*free_hook)(const volatile void*));
-namespace {
-void count_allocation(const volatile void*, std::size_t) {
-  g_malloc_calls.fetch_add(1, std::memory_order_relaxed);
-}
-void ignore_free(const volatile void*) {}
-[[maybe_unused]] const int g_hook_installed =
-    __sanitizer_install_malloc_and_free_hooks(count_allocation, ignore_free);
-}  // namespace
-#else
-extern "C" void* __libc_malloc(std::size_t size) noexcept;
-extern "C" void* malloc(std::size_t size) noexcept {
-  g_malloc_calls.fetch_add(1, std::memory_order_relaxed);
-  return __libc_malloc(size);
-}
-#endif
-
-namespace mjarm::test {
-std::uint64_t malloc_calls() noexcept { return g_malloc_calls.load(std::memory_order_relaxed); }
-}  // namespace mjarm::test
 
 namespace mjarm {
 namespace {

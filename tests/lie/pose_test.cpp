@@ -65,6 +65,15 @@ TEST(Pose, FromQuaternionAndRpy) {
   const Pose Xr = Pose::from_rpy(p, Eigen::Vector3d(0.0, 0.0, std::numbers::pi));
   EXPECT_TRUE(Xr.is_approx(Xq, 1e-15));
   EXPECT_THROW(Pose::from_quaternion(p, Eigen::Vector4d::Zero()), Error);
+  // π about z as a rotation vector, and a general one against the quaternion of axis·angle
+  EXPECT_TRUE(Pose::from_rotation_vector(p, Eigen::Vector3d(0.0, 0.0, std::numbers::pi))
+                  .is_approx(Xq, 1e-15));
+  const Eigen::Vector3d axis = Eigen::Vector3d(1.0, -2.0, 0.5).normalized();
+  const double angle = 0.7;
+  const Eigen::Vector4d q(std::cos(angle / 2), std::sin(angle / 2) * axis.x(),
+                          std::sin(angle / 2) * axis.y(), std::sin(angle / 2) * axis.z());
+  EXPECT_TRUE(
+      Pose::from_rotation_vector(p, angle * axis).is_approx(Pose::from_quaternion(p, q), 1e-15));
 }
 
 TEST(Pose, IsApproxDetectsDifferences) {

@@ -5,6 +5,10 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <vector>
+
+#include "mjarm/benchmark_timing.hpp"
 #include "mjarm/error.hpp"
 
 namespace mjarm {
@@ -33,6 +37,47 @@ TEST(MotionBenchmark, EveryProfileCaseRuns) {
   }
   EXPECT_EQ(r.cases.back().target_ns, kFilterRecalculationTargetNs);
   EXPECT_EQ(r.cases.front().target_ns, kProfileEvaluationTargetNs);
+}
+
+// the profiles shared with bench_trajectory: the seeded cases as the file comment states them
+TEST(MotionBenchmark, SharedProfilesAndInstants) {
+  const MotionBenchmarkProfiles m;
+  EXPECT_NEAR(m.trapezoid.at(m.trapezoid.duration()).position, 0.5, 1e-12);
+  EXPECT_EQ(m.quintic_start.q.size(), MotionBenchmarkProfiles::kJoints);
+  EXPECT_DOUBLE_EQ(m.quintic.duration(), 1.3);
+  EXPECT_DOUBLE_EQ(m.se3.duration(), 0.8);
+  EXPECT_DOUBLE_EQ(m.ramp.duration(), 0.4);
+  Eigen::VectorXd q(7), qd(7), qdd(7);
+  m.quintic.at(0.0, q, qd, qdd);
+  EXPECT_TRUE(q.isApprox(m.quintic_start.q, 1e-12));
+  EXPECT_TRUE(qd.isApprox(m.quintic_start.qd, 1e-12));
+  m.synced.at(m.synced.duration(), q, qd, qdd);
+  EXPECT_LE(qd.cwiseAbs().maxCoeff(), 1e-12);
+  const auto t = motion_benchmark_instants(2.0);
+  for (const double x : t) {
+    EXPECT_GE(x, -0.1);
+    EXPECT_LE(x, 2.1);
+  }
+  EXPECT_EQ(t, motion_benchmark_instants(2.0));  // seeded
+  const MotionBenchmarkPath path = motion_benchmark_path(Robot::bundled("panda_torque"));
+  EXPECT_EQ(path.waypoints.size(), 5u);
+  EXPECT_EQ(path.q_home.size(), path.chain.size());
+}
+
+// the clocks and the percentile every benchmark protocol uses
+TEST(MotionBenchmark, TimingHelpers) {
+  const double c0 = thread_cpu_seconds(), w0 = steady_seconds();
+  volatile double sink = 0.0;
+  for (int i = 0; i < 200000; ++i) sink = sink + std::sqrt(static_cast<double>(i));
+  EXPECT_GT(thread_cpu_seconds(), c0);
+  EXPECT_GE(steady_seconds(), w0);
+  EXPECT_GE(benchmark_seconds(true), c0);
+  EXPECT_GE(benchmark_seconds(false), w0);
+  const std::vector<double> sorted{1, 2, 3, 4, 5, 6, 7, 8, 9, 10};
+  EXPECT_EQ(nearest_rank(sorted, 0.5), 5.0);
+  EXPECT_EQ(nearest_rank(sorted, 0.99), 10.0);
+  EXPECT_EQ(nearest_rank(sorted, 0.01), 1.0);
+  EXPECT_EQ(nearest_rank({}, 0.5), 0.0);
 }
 
 TEST(MotionBenchmark, AStopRequestEndsTheRun) {

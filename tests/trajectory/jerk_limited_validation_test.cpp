@@ -18,6 +18,7 @@ TEST(JerkLimitedValidation, SeededBatchKeepsLimitsAndReachesTargets) {
   options.seed = 1;
   options.reference_cases = 10;
   options.reference_steps = 80;
+  options.structure_seeds = 8;
   const OtgValidationResult r = run_otg_validation(options);
   EXPECT_EQ(r.check_failures, 0) << r.first_failure;
   EXPECT_LE(r.worst_limit_violation, 1e-9);
@@ -39,6 +40,14 @@ TEST(JerkLimitedValidation, SeededBatchKeepsLimitsAndReachesTargets) {
   EXPECT_EQ(r.blocked_end_not_confirmed, 0);
   EXPECT_GE(r.sync_reference_cases, 9);
   EXPECT_EQ(r.sync_mismatches, 0) << r.first_reference_failure;
+  // the same one-DoF cases through the exhaustive search over the switching structures
+  EXPECT_EQ(r.structure_cases, 12);
+  EXPECT_EQ(r.structure_not_found, 0) << r.first_structure_failure;
+  EXPECT_EQ(r.structure_shorter, 0) << r.first_structure_failure;
+  EXPECT_EQ(r.structure_longer, 0) << r.first_structure_failure;
+  EXPECT_EQ(r.structure_inside_blocked, 0) << r.first_structure_failure;
+  EXPECT_GE(r.structure_blocked_ends, 4);
+  EXPECT_GT(r.structure_mean_ms, 0.0);
 }
 
 // a stop request (Ctrl-C in `mjarm bench otg`) ends the batch with the figures of the cases done
@@ -69,6 +78,9 @@ TEST(JerkLimitedValidation, RejectsBadOptions) {
   EXPECT_THROW(run_otg_validation(options), Error);
   options.cases = 1;
   options.brake_share = 1.5;
+  EXPECT_THROW(run_otg_validation(options), Error);
+  options.brake_share = 0.1;
+  options.structure_seeds = -1;
   EXPECT_THROW(run_otg_validation(options), Error);
 }
 

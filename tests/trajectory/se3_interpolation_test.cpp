@@ -13,13 +13,6 @@
 namespace mjarm {
 namespace {
 
-Pose pose_of(const Eigen::Vector3d& p, const Eigen::Vector3d& w) {
-  Pose X;
-  X.p = p;
-  X.R = so3::exp(w);
-  return X;
-}
-
 Vector6d six(double a, double b, double c, double d, double e, double f) {
   Vector6d v;
   v << a, b, c, d, e, f;
@@ -37,8 +30,8 @@ Vector6d finite_twist(const Se3Interpolation& s, double t, double h) {
 
 TEST(Se3Interpolation, StartsWithTheGivenTwistAndRateAndEndsAtRest) {
   // ω₀ far from parallel to the rotation axis of the move
-  const Pose X0 = pose_of({0.4, -0.1, 0.6}, {0.3, -0.8, 0.2});
-  const Pose X1 = pose_of({0.1, 0.3, 0.5}, {-1.2, 0.4, 1.9});
+  const Pose X0 = Pose::from_rotation_vector({0.4, -0.1, 0.6}, {0.3, -0.8, 0.2});
+  const Pose X1 = Pose::from_rotation_vector({0.1, 0.3, 0.5}, {-1.2, 0.4, 1.9});
   const Vector6d V0 = six(0.2, -0.1, 0.05, 1.5, 0.7, -2.0);
   const Vector6d A0 = six(-1.0, 0.5, 2.0, 3.0, -4.0, 1.0);
   const Se3Interpolation s(X0, V0, A0, X1, 0.8);
@@ -65,8 +58,8 @@ TEST(Se3Interpolation, TwistAndRateAreTheTrueDerivativesOfThePose) {
     return Eigen::Vector3d(u(rng), u(rng), u(rng)) * scale;
   };
   for (int trial = 0; trial < 20; ++trial) {
-    const Pose X0 = pose_of(vec(0.5), vec(2.0));
-    const Pose X1 = pose_of(vec(0.5), vec(2.0));
+    const Pose X0 = Pose::from_rotation_vector(vec(0.5), vec(2.0));
+    const Pose X1 = Pose::from_rotation_vector(vec(0.5), vec(2.0));
     Vector6d V0, A0;
     V0 << vec(0.5), vec(3.0);
     A0 << vec(2.0), vec(8.0);
@@ -86,8 +79,8 @@ TEST(Se3Interpolation, TwistAndRateAreTheTrueDerivativesOfThePose) {
 
 TEST(Se3Interpolation, TheParallelShortcutWouldBeWrongHere) {
   // ω(t) = R₀·Jl(θ)·θ̇; the shortcut R₀·θ̇ misses the turn of θ̇ around θ
-  const Pose X0 = pose_of({0, 0, 0}, {0, 0, 0});
-  const Pose X1 = pose_of({0, 0, 0}, {0, 0, 1.5});
+  const Pose X0 = Pose::from_rotation_vector({0, 0, 0}, {0, 0, 0});
+  const Pose X1 = Pose::from_rotation_vector({0, 0, 0}, {0, 0, 1.5});
   const Se3Interpolation s(X0, six(0, 0, 0, 2.0, 0, 0), Vector6d::Zero(), X1, 1.0);
   const double t = 0.5;
   Eigen::Vector3d theta, theta_dot, theta_ddot;
@@ -99,8 +92,8 @@ TEST(Se3Interpolation, TheParallelShortcutWouldBeWrongHere) {
 }
 
 TEST(Se3Interpolation, GoesTheShortWayNearAHalfTurn) {
-  const Pose X0 = pose_of({0, 0, 0}, {0, 0, 0});
-  const Pose X1 = pose_of({1, 0, 0}, {0, 3.1, 0});
+  const Pose X0 = Pose::from_rotation_vector({0, 0, 0}, {0, 0, 0});
+  const Pose X1 = Pose::from_rotation_vector({1, 0, 0}, {0, 3.1, 0});
   const Se3Interpolation s(X0, Vector6d::Zero(), Vector6d::Zero(), X1, 2.0);
   EXPECT_NEAR(s.rotation().norm(), 3.1, 1e-12);
   EXPECT_TRUE(s.at(2.0).X_WE.is_approx(X1, 1e-12));
@@ -108,7 +101,7 @@ TEST(Se3Interpolation, GoesTheShortWayNearAHalfTurn) {
 }
 
 TEST(Se3Interpolation, RejectsBadInput) {
-  const Pose X = pose_of({0, 0, 0}, {0.1, 0.2, 0.3});
+  const Pose X = Pose::from_rotation_vector({0, 0, 0}, {0.1, 0.2, 0.3});
   const Vector6d zero = Vector6d::Zero();
   const double nan = std::numeric_limits<double>::quiet_NaN();
   EXPECT_THROW(Se3Interpolation(X, zero, zero, X, 0.0), Error);
@@ -116,7 +109,7 @@ TEST(Se3Interpolation, RejectsBadInput) {
   EXPECT_THROW(Se3Interpolation(X, zero, zero, X, std::numeric_limits<double>::infinity()), Error);
   EXPECT_THROW(Se3Interpolation(X, zero, zero, X, nan), Error);
   // a duration far out of scale with the move: an error, not NaN poses
-  const Pose far = pose_of({1, 0, 0}, {0.1, 0.2, 0.3});
+  const Pose far = Pose::from_rotation_vector({1, 0, 0}, {0.1, 0.2, 0.3});
   EXPECT_THROW(Se3Interpolation(X, zero, zero, far, 1e-300), Error);
   EXPECT_THROW(Se3Interpolation(X, six(0, 0, nan, 0, 0, 0), zero, X, 1.0), Error);
   EXPECT_THROW(Se3Interpolation(X, zero, six(0, 0, 0, 0, 0, nan), X, 1.0), Error);

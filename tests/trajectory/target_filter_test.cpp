@@ -15,13 +15,6 @@
 namespace mjarm {
 namespace {
 
-Pose filter_pose(const Eigen::Vector3d& p, const Eigen::Vector3d& w) {
-  Pose X;
-  X.p = p;
-  X.R = so3::exp(w);
-  return X;
-}
-
 /// Largest |coordinate rate| / limit over the linear (first three) or angular coordinates.
 struct Usage {
   double v = 0.0, a = 0.0;
@@ -74,8 +67,8 @@ int run_checked(TargetFilter& f, const Pose& X_WT, double dt, double seconds, Us
 
 TEST(TargetFilter, AJumpBecomesAMotionWithinTheLimitsThatLandsExactly) {
   TargetFilter filter;  // 0.5 m/s, 2 m/s², 20 m/s³; 1.5 rad/s, 6 rad/s², 60 rad/s³
-  const Pose start = filter_pose({0.3, 0.0, 0.5}, {3.0, 0.1, 0.0});
-  const Pose goal = filter_pose({0.55, 0.1, 0.35}, {2.6, -0.3, 0.7});
+  const Pose start = Pose::from_rotation_vector({0.3, 0.0, 0.5}, {3.0, 0.1, 0.0});
+  const Pose goal = Pose::from_rotation_vector({0.55, 0.1, 0.35}, {2.6, -0.3, 0.7});
   filter.reset(start);
   EXPECT_TRUE(filter.settled());
   Usage peak;
@@ -97,8 +90,8 @@ TEST(TargetFilter, TheTwistAndItsRateAreTheDerivativesOfThePose) {
   TargetFilterLimits limits;
   limits.angular_velocity = 3.0;
   TargetFilter a(limits), b(limits);
-  const Pose start = filter_pose({0.3, 0.0, 0.5}, {0.2, 0.1, -0.4});
-  const Pose goal = filter_pose({0.1, 0.2, 0.6}, {-0.9, 1.2, 1.5});
+  const Pose start = Pose::from_rotation_vector({0.3, 0.0, 0.5}, {0.2, 0.1, -0.4});
+  const Pose goal = Pose::from_rotation_vector({0.1, 0.2, 0.6}, {-0.9, 1.2, 1.5});
   a.reset(start);
   b.reset(start);
   // b runs h behind a: (pose_a − pose_b)/h is the twist at the middle
@@ -122,18 +115,18 @@ TEST(TargetFilter, TheTwistAndItsRateAreTheDerivativesOfThePose) {
 TEST(TargetFilter, ATargetMovedMidMotionContinuesFromTheCurrentVelocity) {
   TargetFilter filter;
   const TargetFilterLimits& l = filter.limits();
-  const Pose start = filter_pose({0.3, 0.0, 0.5}, {3.0, 0.0, 0.0});
+  const Pose start = Pose::from_rotation_vector({0.3, 0.0, 0.5}, {3.0, 0.0, 0.0});
   filter.reset(start);
   const double dt = 0.002;
   Usage peak;
   // towards +x (and a turn); stop checking after 0.3 s, well into the motion
-  const Pose first = filter_pose({0.7, 0.0, 0.5}, {3.0, 0.0, 0.5});
+  const Pose first = Pose::from_rotation_vector({0.7, 0.0, 0.5}, {3.0, 0.0, 0.5});
   ASSERT_EQ(run_checked(filter, first, dt, 0.3, peak), -1);
   const Vector6d V_before = filter.velocity();
   const Vector6d A_before = filter.acceleration();
   ASSERT_GT(V_before[0], 0.3);  // moving fast along +x
   // the target jumps behind and to the side
-  const Pose second = filter_pose({0.2, 0.2, 0.45}, {2.9, 0.2, -0.3});
+  const Pose second = Pose::from_rotation_vector({0.2, 0.2, 0.45}, {2.9, 0.2, -0.3});
   filter.update(second, dt);
   const Vector6d V_after = filter.velocity();
   // continuous: the velocity changes by at most a_max·dt per coordinate, the acceleration by
@@ -160,16 +153,17 @@ TEST(TargetFilter, ADraggedTargetIsFollowedWithinTheLimitsWithoutAllocating) {
   // the target moves every tick, faster than the limits allow: the reference lags, stays within
   // the limits, recalculates every tick without allocating, and settles once the target stops
   TargetFilter filter;
-  const Pose start = filter_pose({0.3, 0.0, 0.5}, {3.0, 0.0, 0.0});
+  const Pose start = Pose::from_rotation_vector({0.3, 0.0, 0.5}, {3.0, 0.0, 0.0});
   filter.reset(start);
   const double dt = 0.01;
   Usage peak;
   Pose target = start;
-  filter.update(filter_pose({0.31, 0.0, 0.5}, {3.0, 0.0, 0.0}), dt);  // warm-up
+  filter.update(Pose::from_rotation_vector({0.31, 0.0, 0.5}, {3.0, 0.0, 0.0}), dt);  // warm-up
   const std::uint64_t before = test::malloc_calls();
   for (int k = 0; k < 60; ++k) {
     const double s = 0.02 * k;
-    target = filter_pose({0.3 + 0.8 * s, 0.2 * std::sin(5 * s), 0.5}, {3.0, 0.0, 0.4 * s});
+    target = Pose::from_rotation_vector({0.3 + 0.8 * s, 0.2 * std::sin(5 * s), 0.5},
+                                        {3.0, 0.0, 0.4 * s});
     ASSERT_EQ(run_checked(filter, target, dt, dt, peak), -1) << k;
   }
   const std::uint64_t after = test::malloc_calls();
@@ -200,8 +194,8 @@ TEST(TargetFilter, BadInputIsRefusedOrIgnored) {
     EXPECT_NE(std::string(e.what()).find("angular jerk"), std::string::npos) << e.what();
   }
   TargetFilter filter;
-  const Pose start = filter_pose({0.3, 0.0, 0.5}, {3.0, 0.0, 0.0});
-  const Pose goal = filter_pose({0.4, 0.0, 0.5}, {3.0, 0.0, 0.0});
+  const Pose start = Pose::from_rotation_vector({0.3, 0.0, 0.5}, {3.0, 0.0, 0.0});
+  const Pose goal = Pose::from_rotation_vector({0.4, 0.0, 0.5}, {3.0, 0.0, 0.0});
   filter.reset(start);
   // a bad dt leaves the reference where it is
   for (double dt : {0.0, -0.01, std::nan(""), inf}) {

@@ -32,6 +32,9 @@ struct Pose {
   /// From a position (m) and roll-pitch-yaw (rad), R = Rz(yaw)·Ry(pitch)·Rx(roll).
   static Pose from_rpy(const Eigen::Vector3d& p, const Eigen::Vector3d& rpy) noexcept;
 
+  /// From a position (m) and a rotation vector φ (rad; axis·angle), R = exp([φ]×).
+  static Pose from_rotation_vector(const Eigen::Vector3d& p, const Eigen::Vector3d& phi) noexcept;
+
   /// As an Eigen isometry.
   Eigen::Isometry3d to_isometry() const noexcept;
 

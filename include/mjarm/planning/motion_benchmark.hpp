@@ -19,6 +19,7 @@
 /// `motion_benchmark_waypoints` with the tool's home orientation, default `PlanOptions`; each
 /// plan timed alone.
 
+#include <array>
 #include <cstdint>
 #include <functional>
 #include <string>
@@ -26,8 +27,37 @@
 
 #include "mjarm/lie/pose.hpp"
 #include "mjarm/model/chain.hpp"
+#include "mjarm/trajectory/quintic.hpp"
+#include "mjarm/trajectory/se3_interpolation.hpp"
+#include "mjarm/trajectory/smoothstep.hpp"
+#include "mjarm/trajectory/trapezoid.hpp"
 
 namespace mjarm {
+
+/// The seeded profiles the profile benchmark evaluates (`mjarm bench traj` here, and the Google
+/// Benchmark binary bench_trajectory): built once, the same in both.
+struct MotionBenchmarkProfiles {
+  static constexpr int kJoints = 7;  ///< joints of the multi-axis profiles
+  /// Builds them (see each member).
+  MotionBenchmarkProfiles();
+
+  /// The classic trapezoid over 0.5 m (defaults v_max = 0.18 m/s, a_max = 0.9 m/s²).
+  TrapezoidProfile trapezoid;
+  Eigen::VectorXd v_max;  ///< 1.5 rad/s per joint (the synced trapezoid, the shortest quintic)
+  Eigen::VectorXd a_max;  ///< 4 rad/s² per joint
+  /// Seven axes between seeded positions in [−2, 2] rad, finishing together.
+  SyncedTrapezoid synced;
+  QuinticTrajectory::State quintic_start;  ///< seeded q, q̇, q̈ (7 joints)
+  Eigen::VectorXd quintic_goal;            ///< seeded rest position (7 joints) [rad]
+  QuinticTrajectory quintic;               ///< quintic_start → quintic_goal at rest, 1.3 s
+  /// From a moving start (ω not parallel to the rotation axis) over 0.8 s.
+  Se3Interpolation se3;
+  SmoothRamp ramp;  ///< smootherstep over 0.4 s
+};
+
+/// 256 seeded instants spread over [−0.05·T, 1.05·T] for a profile of duration @p T [s] (the
+/// clamped ends included), evaluated cycled.
+std::array<double, 256> motion_benchmark_instants(double T);
 
 /// Settings of `run_profile_benchmark`.
 struct ProfileBenchmarkOptions {
@@ -106,6 +136,19 @@ struct PlanBenchmarkResult {
 /// Runs the planning benchmark (see the file comment).
 /// @throws Error when plans < 1.
 PlanBenchmarkResult run_plan_benchmark(const PlanBenchmarkOptions& options);
+
+/// The planning benchmark's problem on one robot: its chain to `attachment_site`, the `home`
+/// keyframe and the waypoints of `motion_benchmark_waypoints` with the tool's home rotation.
+struct MotionBenchmarkPath {
+  Chain chain;                  ///< the robot's joints to `attachment_site`
+  Eigen::VectorXd q_home;       ///< the `home` keyframe on the chain [rad]
+  std::vector<Pose> waypoints;  ///< the five waypoints
+};
+
+/// The planning benchmark's problem on @p robot (a panda: `mjarm bench plan` uses the bundled
+/// `panda_torque`; bench_planning also a panda with a box in the way).
+/// @throws Error when the robot has no `attachment_site` or `home` keyframe.
+MotionBenchmarkPath motion_benchmark_path(const Robot& robot);
 
 /// The 5 waypoints of the planning benchmark on the panda: positions [m] in the world frame
 /// (0.45, 0, 0.5), (0.45, 0.2, 0.4), (0.35, 0.25, 0.35), (0.3, 0.1, 0.45), (0.4, −0.15, 0.5),

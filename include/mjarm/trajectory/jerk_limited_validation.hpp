@@ -3,8 +3,9 @@
 /// The validation protocol of the jerk-limited generator (`mjarm bench otg`, and the test suite
 /// with a reduced count): seeded random n-DoF cases through JerkLimitedGenerator, every result
 /// checked at the analytic extrema of every phase, calculation time and heap allocations per
-/// calculation measured, and time optimality checked against an independent grid search
-/// (jerk_limited_reference.hpp) on a subset.
+/// calculation measured, and time optimality checked on a subset of one-DoF cases against two
+/// independent methods: a grid search (jerk_limited_reference.hpp) and the exhaustive search
+/// over the switching structures (jerk_limited_structure_search.hpp).
 
 #include <cstdint>
 #include <functional>
@@ -21,6 +22,9 @@ struct OtgValidationOptions {
   /// One-DoF cases checked against the grid reference (a QP per duration probed: slow).
   int reference_cases = 0;
   int reference_steps = 100;  ///< jerk steps of the reference grid
+  /// Starting points per structure of the structure search run on every reference case (0: no
+  /// structure search).
+  int structure_seeds = 32;
   /// Time the calculations on the calling thread's CPU clock instead of the steady wall clock
   /// (on a shared machine, time the thread was not running is not counted).
   bool thread_cpu_clock = false;
@@ -81,10 +85,33 @@ struct OtgValidationResult {
   /// an end in the wrong place).
   int blocked_end_not_confirmed = 0;
   std::string first_reference_failure;  ///< the first reference mismatch (empty when none)
+
+  /// Reference cases (both kinds above) also given to the structure search.
+  int structure_cases = 0;
+  /// Of those, cases whose search missed t_min or a blocked interval's end with
+  /// structure_seeds and was run again with four times as many (the counts below are after it).
+  int structure_retries = 0;
+  /// Cases where the search found no motion at all although the generator did.
+  int structure_not_found = 0;
+  /// Cases where the search's shortest motion is shorter than t_min by more than 1e-9 relative:
+  /// the minimum is beaten (a definite error, since every solution of the search is a motion).
+  int structure_shorter = 0;
+  /// Cases where the search's shortest motion is longer than t_min by more than 1e-9 relative
+  /// (the search missed the minimum's structure, or t_min is not a motion).
+  int structure_longer = 0;
+  /// Cases where a motion the search found has a duration inside a blocked interval (by more than
+  /// 1e-9 relative): the interval is not blocked (a definite error).
+  int structure_inside_blocked = 0;
+  int structure_blocked_ends = 0;  ///< blocked interval ends of those cases
+  /// Of those ends, ones that are not the duration of an extremal motion the search found (within
+  /// 1e-9 relative): the search missed it, or the end is in the wrong place.
+  int structure_blocked_ends_missing = 0;
+  double structure_mean_ms = 0.0;       ///< mean search time per case [ms] (wall clock)
+  std::string first_structure_failure;  ///< the first structure-search mismatch (empty: none)
 };
 
 /// Runs the protocol (see the file comment).
-/// @throws Error when cases < 1, dofs < 1 or brake_share is outside [0, 1].
+/// @throws Error when cases < 1, dofs < 1, brake_share is outside [0, 1] or structure_seeds < 0.
 OtgValidationResult run_otg_validation(const OtgValidationOptions& options);
 
 }  // namespace mjarm

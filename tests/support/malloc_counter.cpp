@@ -1,8 +1,8 @@
-// The ONE definition of the allocation counter of test_trajectory (see
-// tests/ik/malloc_counter.hpp). Every other test of this executable just includes
-// "ik/malloc_counter.hpp" and calls mjarm::test::malloc_calls(); defining malloc twice would not
-// link. The file name ends in _test.cpp so that the test glob compiles it; it also checks the
-// counter itself.
+// The one definition of the allocation counter (tests/ik/malloc_counter.hpp), compiled into the
+// test executables of the rooms listed in tests/CMakeLists.txt (MJARM_MALLOC_COUNTER_ROOMS);
+// their tests include "ik/malloc_counter.hpp" and call mjarm::test::malloc_calls(). Defining
+// malloc twice in one executable would not link. It also checks the counter itself, in each of
+// those executables.
 
 #include "ik/malloc_counter.hpp"
 
@@ -15,7 +15,7 @@
 #include <memory>
 
 namespace {
-std::atomic<std::uint64_t> g_malloc_calls{0};
+std::atomic<std::uint64_t> g_support_malloc_calls{0};
 }  // namespace
 
 #if defined(__SANITIZE_ADDRESS__)
@@ -24,23 +24,25 @@ extern "C" int __sanitizer_install_malloc_and_free_hooks(void (*malloc_hook)(con
                                                                              std::size_t),
                                                          void (*free_hook)(const volatile void*));
 namespace {
-void count_allocation(const volatile void*, std::size_t) {
-  g_malloc_calls.fetch_add(1, std::memory_order_relaxed);
+void count_support_allocation(const volatile void*, std::size_t) {
+  g_support_malloc_calls.fetch_add(1, std::memory_order_relaxed);
 }
-void ignore_free(const volatile void*) {}  // the runtime wants both hooks
-[[maybe_unused]] const int g_hook_installed =
-    __sanitizer_install_malloc_and_free_hooks(count_allocation, ignore_free);
+void ignore_support_free(const volatile void*) {}  // the runtime wants both hooks
+[[maybe_unused]] const int g_support_hook_installed =
+    __sanitizer_install_malloc_and_free_hooks(count_support_allocation, ignore_support_free);
 }  // namespace
 #else
 extern "C" void* __libc_malloc(std::size_t size) noexcept;
 extern "C" void* malloc(std::size_t size) noexcept {
-  g_malloc_calls.fetch_add(1, std::memory_order_relaxed);
+  g_support_malloc_calls.fetch_add(1, std::memory_order_relaxed);
   return __libc_malloc(size);
 }
 #endif
 
 namespace mjarm::test {
-std::uint64_t malloc_calls() noexcept { return g_malloc_calls.load(std::memory_order_relaxed); }
+std::uint64_t malloc_calls() noexcept {
+  return g_support_malloc_calls.load(std::memory_order_relaxed);
+}
 }  // namespace mjarm::test
 
 namespace {
