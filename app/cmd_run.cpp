@@ -19,7 +19,7 @@ namespace mjarm::cli {
 
 namespace {
 
-const std::vector<std::string> kScenarios{"shelf-pick", "plan"};
+const std::vector<std::string> kScenarios{"shelf-pick", "plan", "pick-place"};
 
 /// Most frames `run --video` may film after the approach (--fps × --settle-time): 5 minutes of
 /// video at 30 fps, about 20 minutes of software rendering at 640x480.
@@ -271,18 +271,23 @@ Command add_run_command(CLI::App& root) {
     double fps = 30.0;
     bool json = false;
     PlanCliOptions plan;  // run plan ROBOT --waypoints FILE (cmd_run_plan.cpp)
+    PickPlaceCliOptions pick_place;  // run pick-place … (cmd_run_pick_place.cpp)
   };
   auto o = std::make_shared<Options>();
   CLI::App* app = root.add_subcommand(
-      "run", "run a closed-loop scenario in simulation and print its figures (shelf-pick)");
+      "run",
+      "run a closed-loop scenario in simulation and print its figures (shelf-pick, plan, "
+      "pick-place)");
   app->add_option("scenario", o->scenario, "scenario to run: " + join(kScenarios))->required();
   app->add_option("plan_robot", o->plan.model, "run plan: the robot (planar2 | panda)");
   add_plan_options(*app, o->plan, false);
   app->get_option("--waypoints")->required(false);
-  app->add_option("--robot", o->robot, "planar2 | panda (torque-motor models)")
-      ->capture_default_str();
-  app->add_option("--controller", o->controller, "ct | osc | task-pd | accel")
-      ->capture_default_str();
+  CLI::Option* robot = app->add_option(
+      "--robot", o->robot,
+      "shelf-pick: planar2 | panda (default panda); pick-place: arm6 | panda_hand (default arm6)");
+  CLI::Option* controller =
+      app->add_option("--controller", o->controller, "shelf-pick: ct | osc | task-pd | accel")
+          ->capture_default_str();
   CLI::Option* pick = app->add_option("--pick", o->pick,
                                       "pick point x y z in the world [m] "
                                       "(default: drawn from the seed)")
@@ -329,8 +334,39 @@ Command add_run_command(CLI::App& root) {
       ->check(count_in(1, 10000))
       ->capture_default_str();
   add_json_flag(*app, o->json);
+  add_pick_place_options(*app, o->pick_place);
+  const std::vector<std::string> pick_place_only{
+      "--grasp",          "--mode",        "--trials",          "--threads",
+      "--classic",        "--object",      "--target",          "--object-size",
+      "--grasp-force",    "--weld-solref", "--noslip",          "--approach-height",
+      "--descend-height", "--lift-height", "--move-height",     "--place-height",
+      "--dwell",          "--grip-time",   "--release-time",    "--max-speed",
+      "--max-accel",      "--cameras",     "--video-per-camera"};
 
-  return {app, [o] {
+  return {app, [o, app, robot, controller, pick_place_only] {
+            if (o->scenario == "pick-place") {
+              if (o->all || !o->pick.empty() || controller->count() > 0 ||
+                  app->count("--camera") > 0 || app->count("--seeds") > 0 ||
+                  !o->plan.model.empty() || !o->plan.waypoints.empty())
+                throw UsageError(
+                    "--all, --seeds, --pick, --controller, --camera, ROBOT and --waypoints are "
+                    "not pick-place options (see mjarm run --help)");
+              RunCommonOptions common;
+              common.robot = robot->count() > 0 ? o->robot : "";
+              common.seed = o->seed;
+              common.record = o->record;
+              common.control_period = o->control_period;
+              common.max_acceleration = o->max_acceleration;
+              common.settle_time = o->settle_time;
+              common.video = o->video;
+              common.size = o->size;
+              common.fps = o->fps;
+              common.json = o->json;
+              return run_pick_place_scenario(o->pick_place, common);
+            }
+            for (const std::string& name : pick_place_only) {
+              if (app->count(name) > 0) throw UsageError(name + " is a pick-place option");
+            }
             if (o->scenario == "plan") {
               if (o->plan.waypoints.empty()) throw UsageError("run plan needs --waypoints FILE");
               const InterruptGuard interrupts;
