@@ -71,6 +71,7 @@ Json pick_place_trial_json(const PickPlaceReport& r) {
               {"grasp_force", finite_or_null(r.trace.transport_force_mean)},
               {"grasp_force_max", finite_or_null(r.trace.transport_force_max)},
               {"weld_jump", finite_or_null(r.trace.weld_jump)},
+              {"weld_settle", finite_or_null(r.trace.weld_settle)},
               {"max_slip", r.trace.max_slip},
               {"closed", r.trace.closed},
               {"slipped", r.trace.slipped},
@@ -107,7 +108,9 @@ void print_pick_place_trial(std::ostream& os, const PickPlaceOptions& options,
       {"largest slip [mm]", millimetres(r.trace.max_slip)}};
   if (r.grasp == GraspKind::weld)
     fields.push_back(
-        {"weld jump [mm]", millimetres(r.trace.weld_jump, 5) + " (switching the weld on)"});
+        {"weld jump [mm]", millimetres(r.trace.weld_jump, 5) + " (first " +
+                               compact(kWeldJumpWindow * 1e3) + " ms after switching it on; " +
+                               millimetres(r.trace.weld_settle, 5) + " over DWELL_C)"});
   if (!r.recording.empty())
     fields.push_back(
         {"recording", r.recording.string() +
@@ -145,7 +148,10 @@ void print_pick_place_batch(std::ostream& os, const PickPlaceCliOptions& cli,
   row("placement error [mm]", s.placement_error, 1e3, 3);
   row("cycle time [s]", s.cycle_time, 1.0, 2);
   row("grasp force [N]", s.grasp_force, 1.0, 2);
-  if (o.grasp == GraspKind::weld) row("weld jump [mm]", s.weld_jump, 1e3, 5);
+  if (o.grasp == GraspKind::weld) {
+    row("weld jump [mm]", s.weld_jump, 1e3, 5);
+    row("weld settle [mm]", s.weld_settle, 1e3, 5);
+  }
   row("largest slip [mm]", s.max_slip, 1e3, 3);
   table.print(os, 2);
   os << "  (placement, cycle time and grasp force over the successful trials)\n";

@@ -159,7 +159,7 @@ PickPlaceScene build_pick_place_scene(const PickPlaceSceneOptions& options) {
   // three views of the workspace, from the front, the side and above
   const double cx = robot.mount[0] + 0.5 * (robot.min_radius + robot.max_radius);
   const double cy = robot.mount[1], cz = robot.table_height;
-  const double d = 2.2 * robot.max_radius + 0.3;
+  const double d = 1.3 * robot.max_radius + 0.25;
   const double tilt = 0.6;
   SceneCameraSpec front;
   front.name = "front";

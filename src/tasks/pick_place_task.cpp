@@ -210,7 +210,7 @@ void PickPlaceTask::enter(PickPlaceState state, double t) noexcept {
       grasp_event(t, message_.data());
       if (goal_.grasp == GraspKind::weld && weld_ != nullptr) {
         trace_.welded = weld_->activate();
-        trace_.weld_jump = 0.0;
+        trace_.weld_jump = trace_.weld_settle = 0.0;
         const Eigen::Vector3d& p = weld_->relative_pose().p;
         if (trace_.welded)
           std::snprintf(message_.data(), message_.size(),
@@ -279,8 +279,11 @@ bool PickPlaceTask::update(const mjData& data, Reference& reference) noexcept {
                                      ? r.force
                                      : std::max(trace_.transport_force_max, r.force);
   }
-  if (state == PickPlaceState::dwell_c && trace_.welded)
-    trace_.weld_jump = std::max(trace_.weld_jump, weld_->deviation());
+  if (state == PickPlaceState::dwell_c && trace_.welded) {
+    const double deviation = weld_->deviation();
+    trace_.weld_settle = std::max(trace_.weld_settle, deviation);
+    if (since <= kWeldJumpWindow) trace_.weld_jump = std::max(trace_.weld_jump, deviation);
+  }
 
   // the criteria the whole run is held to: the table, the actuators
   if (!trace_.table_contact && simulation_->contacts(table_watch_).contacts > 0) {

@@ -38,7 +38,10 @@ PickPlaceSummary summarize(const std::vector<PickPlaceReport>& reports) {
     }
     ++s.trials;
     ++s.failures[static_cast<std::size_t>(r.failure)];
-    if (r.trace.welded) s.weld_jump.add(r.trace.weld_jump);
+    if (r.trace.welded) {
+      s.weld_jump.add(r.trace.weld_jump);
+      s.weld_settle.add(r.trace.weld_settle);
+    }
     if (r.trace.closed) s.max_slip.add(r.trace.max_slip);
     if (!r.success) continue;
     ++s.successes;

@@ -49,20 +49,25 @@ struct FingerForceOptions {
 };
 
 /// Per finger i, with s = clamp(reference.gripper, 0, 1) (NaN keeps the previous s),
-/// q_d = open + s·(closed − open), e = q_d − q:
+/// q_d = open + s·(closed − open), e = q_d − q, c = ±1 the closing direction of the joint, and
+/// o = c·(closed − q) ≥ 0 how far it stands open (ō the fingers' mean):
 ///
-///     free:     f = clamp(K_free·e − D_free·q̇, ±max_force)
-///     contact:  f = clamp(K_contact·e − D_contact·q̇, ±F_grasp)
+///     touching the object and e·c > 0 (still asked to close):
+///               f = c·(F_grasp + K_centre·(o − ō)) − D_contact·q̇
+///     otherwise f = K_free·e − D_free·q̇
+///     then      f = clamp(f, ±max_force)
 ///
-/// A closing finger stops on the object with e ≠ 0: K_contact·|e| exceeds F_grasp within a few
-/// tenths of a millimetre and the squeeze settles at F_grasp exactly, whatever the object's
-/// size. Opening (s decreasing) moves q_d past q, the force reverses and the finger leaves. The
-/// soft contact gains keep the force loop stable against the stiff contact; the free gains keep
-/// the fingers where they are asked to be.
+/// The gains depend on the contact: in free motion a stiff PD puts the fingers where the
+/// fraction says; on the object the position loop gives way to force control — each finger
+/// pushes with F_grasp whatever the object's size (the measured squeeze equals F_grasp,
+/// tests/control/finger_force_test.cpp), and the centring term, which sums to zero over the two
+/// fingers, keeps the object midway between them as a mechanically coupled gripper would (pure
+/// force control would leave it wherever the first finger pushed it). Opening (s decreasing)
+/// moves q_d past q: the PD takes over and the fingers leave.
 ///
 /// Torque mode: τ = f (+ gravity). Position mode: the servo force kp·(ctrl − q) − kv·q̇ equals f
 /// for ctrl = q + (f + kv·q̇)/kp (kp, kv read from each finger's actuator), with f bounded so
-/// that ctrl stays inside ctrlrange.
+/// that ctrl stays inside ctrlrange — a servo can push at most kp·(q − ctrl lower) closed.
 ///
 /// Contacts are read from data.contact (geometry: fresh inside a control tick); constraint forces
 /// are not (MuJoCo computes them later in the step) — a grasp monitor reads those after the step.

@@ -93,6 +93,9 @@ struct PickPlaceGoal {
   double velocity_lag = 0.0;
 };
 
+/// The window after the weld is switched on over which its jump is measured [s].
+inline constexpr double kWeldJumpWindow = 0.05;
+
 /// What the machine saw while it ran (NaN: did not happen).
 struct PickPlaceTrace {
   static constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
@@ -102,9 +105,13 @@ struct PickPlaceTrace {
   bool closed = false;      ///< both fingers touched the object when GRASP ended
   double closing_force = kNaN;  ///< grasp force then [N]
   bool welded = false;          ///< the weld was switched on
-  /// Largest deviation of the object from the pose the weld was switched on with, from the
-  /// activation to the end of DWELL_C (the gripper at rest): the weld jump [m].
+  /// Largest deviation of the object from the pose the weld was switched on with (the weld's
+  /// `WeldGrasp::deviation`) over the first `kWeldJumpWindow` after switching it on: the weld
+  /// jump [m]. A weld written from a stale pose jumps by centimetres within milliseconds.
   double weld_jump = kNaN;
+  /// The same over the whole DWELL_C (the gripper at rest, the object still on the table): how far
+  /// the soft weld lets the object settle under the load once it holds it [m].
+  double weld_settle = kNaN;
   bool slipped = false;        ///< the object moved > slip_distance relative to the gripper
   bool dropped = false;        ///< ... > drop_distance: lost between GRASP and RELEASE
   double dropped_time = kNaN;  ///< relative to the start [s]

@@ -47,6 +47,7 @@ struct PickPlaceSummary {
   PickPlaceStat cycle_time;       ///< [s], successful trials
   PickPlaceStat grasp_force;      ///< transport mean per trial [N], successful trials
   PickPlaceStat weld_jump;        ///< [m], trials whose weld was switched on
+  PickPlaceStat weld_settle;      ///< [m], trials whose weld was switched on
   PickPlaceStat max_slip;         ///< [m], trials that closed on the object
   /// Success rate in [0, 1] (NaN without trials).
   double success_rate() const noexcept;
