@@ -153,12 +153,16 @@ void FingerForceController::compute(const mjData& data, const Reference& referen
 
   const bool torque = options_.command == CommandKind::torque;
   if (torque && options_.gravity_compensation) dynamics_.update(data);
-  // the fingers' mean opening: a finger on the object is pulled towards it (centring)
-  double mean_opening = 0.0;
+  // the fingers' mean opening (a finger on the object is pulled towards it: centring) and the
+  // mean opening asked for; while the reference asks for less, the fingers on the object squeeze
+  // — all of them switch together, so that one finger never pushes the object alone
+  double mean_opening = 0.0, mean_target = 0.0;
   for (int i = 0; i < n; ++i) {
     const double closing = closed_[i] < open_[i] ? -1.0 : 1.0;
     mean_opening -= closing * (data.qpos[chain.qpos_address(i)] - closed_[i]) / n;
+    mean_target += (1.0 - fraction_) * std::abs(open_[i] - closed_[i]) / n;
   }
+  const bool squeezing = mean_target < mean_opening;
   double squeeze = 0.0;
   int touching = 0;
   for (int i = 0; i < n; ++i) {
@@ -167,7 +171,7 @@ void FingerForceController::compute(const mjData& data, const Reference& referen
     const double e = open_[i] + fraction_ * (closed_[i] - open_[i]) - q;
     // on the object and still asked to close: push with the grasp force (closing direction)
     const double closing = closed_[i] < open_[i] ? -1.0 : 1.0;
-    const bool contact = touching_[static_cast<std::size_t>(i)] && e * closing > 0.0;
+    const bool contact = touching_[static_cast<std::size_t>(i)] && squeezing;
     double lower = -options_.max_force, upper = options_.max_force;
     if (!torque) {
       // what the servo can push from here without its target leaving ctrlrange

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <stdexcept>
 #include <string>
 
 #include "mjarm/error.hpp"
@@ -175,7 +176,12 @@ PickPlaceTask::PickPlaceTask(Simulation& simulation, const Chain& arm, const Pic
       segments_(segments_of(goal, motion)) {
   if (goal.grasp == GraspKind::weld && weld == nullptr)
     throw Error("pick and place: the weld grasp needs a WeldGrasp");
-  (void)simulation.contacts(table_watch);  // throws for a bad handle
+  try {
+    (void)simulation.contacts(table_watch);
+  } catch (const std::out_of_range&) {
+    throw Error("pick and place: contact watch " + std::to_string(table_watch) +
+                " is not one of this simulation's (Simulation::watch_contacts)");
+  }
   const double durations[kStates] = {
       segments_[0].duration(), motion.dwell_time, segments_[1].duration(), motion.dwell_time,
       motion.grip_time,        motion.dwell_time, segments_[2].duration(), motion.dwell_time,
@@ -211,6 +217,7 @@ void PickPlaceTask::enter(PickPlaceState state, double t) noexcept {
       if (goal_.grasp == GraspKind::weld && weld_ != nullptr) {
         trace_.welded = weld_->activate();
         trace_.weld_jump = trace_.weld_settle = 0.0;
+        p_weld_ = Eigen::Map<const Eigen::Vector3d>(simulation_->data().xpos + 3 * weld_->body2());
         const Eigen::Vector3d& p = weld_->relative_pose().p;
         if (trace_.welded)
           std::snprintf(message_.data(), message_.size(),
@@ -280,9 +287,11 @@ bool PickPlaceTask::update(const mjData& data, Reference& reference) noexcept {
                                      : std::max(trace_.transport_force_max, r.force);
   }
   if (state == PickPlaceState::dwell_c && trace_.welded) {
-    const double deviation = weld_->deviation();
-    trace_.weld_settle = std::max(trace_.weld_settle, deviation);
-    if (since <= kWeldJumpWindow) trace_.weld_jump = std::max(trace_.weld_jump, deviation);
+    trace_.weld_settle = std::max(trace_.weld_settle, weld_->deviation());
+    if (since <= kWeldJumpWindow) {
+      const Eigen::Map<const Eigen::Vector3d> p(data.xpos + 3 * weld_->body2());
+      trace_.weld_jump = std::max(trace_.weld_jump, (p - p_weld_).norm());
+    }
   }
 
   // the criteria the whole run is held to: the table, the actuators

@@ -52,7 +52,8 @@ struct FingerForceOptions {
 /// q_d = open + s·(closed − open), e = q_d − q, c = ±1 the closing direction of the joint, and
 /// o = c·(closed − q) ≥ 0 how far it stands open (ō the fingers' mean):
 ///
-///     touching the object and e·c > 0 (still asked to close):
+///     touching the object while ō_d < ō (the reference asks the fingers to close further than
+///     they stand, on average, ō_d = (1 − s)·|open − closed| averaged):
 ///               f = c·(F_grasp + K_centre·(o − ō)) − D_contact·q̇
 ///     otherwise f = K_free·e − D_free·q̇
 ///     then      f = clamp(f, ±max_force)
@@ -63,7 +64,8 @@ struct FingerForceOptions {
 /// tests/control/finger_force_test.cpp), and the centring term, which sums to zero over the two
 /// fingers, keeps the object midway between them as a mechanically coupled gripper would (pure
 /// force control would leave it wherever the first finger pushed it). Opening (s decreasing)
-/// moves q_d past q: the PD takes over and the fingers leave.
+/// moves ō_d past ō: the PD takes over for every finger at the same tick and they leave
+/// together (one finger still pushing while the other leaves shoves the object aside).
 ///
 /// Torque mode: τ = f (+ gravity). Position mode: the servo force kp·(ctrl − q) − kv·q̇ equals f
 /// for ctrl = q + (f + kv·q̇)/kp (kp, kv read from each finger's actuator), with f bounded so

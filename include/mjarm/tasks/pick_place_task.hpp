@@ -105,12 +105,13 @@ struct PickPlaceTrace {
   bool closed = false;      ///< both fingers touched the object when GRASP ended
   double closing_force = kNaN;  ///< grasp force then [N]
   bool welded = false;          ///< the weld was switched on
-  /// Largest deviation of the object from the pose the weld was switched on with (the weld's
-  /// `WeldGrasp::deviation`) over the first `kWeldJumpWindow` after switching it on: the weld
-  /// jump [m]. A weld written from a stale pose jumps by centimetres within milliseconds.
+  /// How far the object moved (world) in the first `kWeldJumpWindow` after the weld was
+  /// switched on, the gripper at rest: the weld jump [m]. A weld written from a stale pose
+  /// yanks it by centimetres within milliseconds.
   double weld_jump = kNaN;
-  /// The same over the whole DWELL_C (the gripper at rest, the object still on the table): how far
-  /// the soft weld lets the object settle under the load once it holds it [m].
+  /// Largest deviation of the object from the pose the weld holds it at (relative to the
+  /// gripper, `WeldGrasp::deviation`) over DWELL_C: how far the soft weld stretches under the
+  /// finger forces and the arm's own settling [m].
   double weld_settle = kNaN;
   bool slipped = false;        ///< the object moved > slip_distance relative to the gripper
   bool dropped = false;        ///< ... > drop_distance: lost between GRASP and RELEASE
@@ -184,6 +185,7 @@ class PickPlaceTask final : public ReferenceSource {
   double force_sum_ = 0.0;
   std::int64_t force_samples_ = 0;
   std::vector<std::int64_t> saturation_run_;  // per actuator: consecutive saturated ticks
+  Eigen::Vector3d p_weld_ = Eigen::Vector3d::Zero();  // object position when welded (world)
   std::array<char, 200> message_{};
 };
 
