@@ -373,6 +373,7 @@ void run_pick_place_scenario(PickPlaceCliOptions cli, const RunCommonOptions& co
                   {"cycle_time", pick_place_stat_json(s.cycle_time)},
                   {"grasp_force", pick_place_stat_json(s.grasp_force)},
                   {"weld_jump", pick_place_stat_json(s.weld_jump)},
+                  {"weld_settle", pick_place_stat_json(s.weld_settle)},
                   {"max_slip", pick_place_stat_json(s.max_slip)}}},
                 {"recording", common.record.empty() ? Json(nullptr) : Json(common.record)},
                 {"trials", trials}});

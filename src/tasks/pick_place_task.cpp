@@ -217,7 +217,11 @@ void PickPlaceTask::enter(PickPlaceState state, double t) noexcept {
       if (goal_.grasp == GraspKind::weld && weld_ != nullptr) {
         trace_.welded = weld_->activate();
         trace_.weld_jump = trace_.weld_settle = 0.0;
-        p_weld_ = Eigen::Map<const Eigen::Vector3d>(simulation_->data().xpos + 3 * weld_->body2());
+        const mjData& d = simulation_->data();
+        p_weld_ = Eigen::Map<const Eigen::Vector3d>(d.xpos + 3 * weld_->body2());
+        mjtNum velocity[6];  // [ω; v] at the body frame's origin, world axes
+        mj_objectVelocity(&simulation_->model(), &d, mjOBJ_XBODY, weld_->body2(), velocity, 0);
+        v_weld_ = Eigen::Vector3d(velocity[3], velocity[4], velocity[5]);
         const Eigen::Vector3d& p = weld_->relative_pose().p;
         if (trace_.welded)
           std::snprintf(message_.data(), message_.size(),
@@ -290,7 +294,7 @@ bool PickPlaceTask::update(const mjData& data, Reference& reference) noexcept {
     trace_.weld_settle = std::max(trace_.weld_settle, weld_->deviation());
     if (since <= kWeldJumpWindow) {
       const Eigen::Map<const Eigen::Vector3d> p(data.xpos + 3 * weld_->body2());
-      trace_.weld_jump = std::max(trace_.weld_jump, (p - p_weld_).norm());
+      trace_.weld_jump = std::max(trace_.weld_jump, (p - p_weld_ - since * v_weld_).norm());
     }
   }
 

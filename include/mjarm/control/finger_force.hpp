@@ -24,7 +24,7 @@ struct FingerForceOptions {
   CommandKind command = CommandKind::torque;
   double free_stiffness = 1000.0;  ///< K_free [N/m]: positioning while not touching (> 0)
   double free_damping = 10.0;      ///< D_free [N·s/m] (≥ 0)
-  double contact_damping = 4.0;    ///< D_contact [N·s/m]: once touching (≥ 0)
+  double contact_damping = 20.0;   ///< D_contact [N·s/m]: once touching (≥ 0)
   /// K_centre [N/m] (≥ 0): once touching, each finger's force grows by K_centre times how much
   /// more open it is than the fingers' mean, which keeps the object centred between them (the
   /// squeeze alone would let it sit anywhere along the closing axis).

@@ -93,8 +93,10 @@ struct PickPlaceGoal {
   double velocity_lag = 0.0;
 };
 
-/// The window after the weld is switched on over which its jump is measured [s].
-inline constexpr double kWeldJumpWindow = 0.05;
+/// The window after the weld is switched on over which its jump is measured [s]: 2.5 time
+/// constants of the stiffest weld MuJoCo allows at a 2 ms step (it clamps the time constant to
+/// two steps), so a weld written from a stale pose has done most of its yank by then.
+inline constexpr double kWeldJumpWindow = 0.01;
 
 /// What the machine saw while it ran (NaN: did not happen).
 struct PickPlaceTrace {
@@ -105,9 +107,11 @@ struct PickPlaceTrace {
   bool closed = false;      ///< both fingers touched the object when GRASP ended
   double closing_force = kNaN;  ///< grasp force then [N]
   bool welded = false;          ///< the weld was switched on
-  /// How far the object moved (world) in the first `kWeldJumpWindow` after the weld was
-  /// switched on, the gripper at rest: the weld jump [m]. A weld written from a stale pose
-  /// yanks it by centimetres within milliseconds.
+  /// The weld jump [m]: how far switching the weld on moved the object — the largest distance,
+  /// over the first `kWeldJumpWindow`, between the object and where its velocity at the switch
+  /// would have carried it (the arm and fingers are still settling at a fraction of a mm/s when
+  /// GRASP ends; that drift is not the switch's doing). A weld written from a stale pose yanks
+  /// the object by millimetres within that window.
   double weld_jump = kNaN;
   /// Largest deviation of the object from the pose the weld holds it at (relative to the
   /// gripper, `WeldGrasp::deviation`) over DWELL_C: how far the soft weld stretches under the
@@ -186,6 +190,7 @@ class PickPlaceTask final : public ReferenceSource {
   std::int64_t force_samples_ = 0;
   std::vector<std::int64_t> saturation_run_;  // per actuator: consecutive saturated ticks
   Eigen::Vector3d p_weld_ = Eigen::Vector3d::Zero();  // object position when welded (world)
+  Eigen::Vector3d v_weld_ = Eigen::Vector3d::Zero();  // ... and its velocity
   std::array<char, 200> message_{};
 };
 
