@@ -6,6 +6,7 @@
 #include <memory>
 
 #include "commands.hpp"
+#include "mjarm/sim/interrupt.hpp"
 #include "mjarm/trajectory/jerk_limited_validation.hpp"
 #include "output.hpp"
 
@@ -29,15 +30,16 @@ Command add_bench_otg_subcommand(CLI::App& bench, std::function<std::uint64_t()>
       "interface, some DoFs starting beyond their limits) — failures, worst limit violation at "
       "the analytic extrema, worst target error, mean/p99 calculation time, heap allocations per "
       "calculation; and time optimality of K one-DoF cases against an independent grid search");
-  app->add_option("--cases", options->cases, "random n-DoF cases N")
-      ->check(CLI::Range(1, 100000000));
+  // bounds that run in minutes here, not days (10^7 cases: about an hour; a reference case of
+  // 400 steps: about 2 s, of 2000: minutes); Ctrl-C keeps the figures of the cases done
+  app->add_option("--cases", options->cases, "random n-DoF cases N")->check(count_in(1, 10000000));
   app->add_option("--dofs", options->dofs, "degrees of freedom per case")->check(CLI::Range(1, 64));
   app->add_option("--seed", options->seed, "seed of the cases")->check(non_negative_integer());
   app->add_option("--reference-cases", options->reference_cases,
                   "one-DoF cases checked against the grid reference (a QP per probed duration)")
-      ->check(CLI::Range(0, 1000000));
+      ->check(count_in(0, 100000));
   app->add_option("--reference-steps", options->reference_steps, "jerk steps of the reference grid")
-      ->check(CLI::Range(10, 2000));
+      ->check(count_in(10, 400));
   app->add_option("--brake-share", options->brake_share,
                   "share of DoFs that start beyond their limits")
       ->check(CLI::Range(0.0, 1.0));
@@ -57,42 +59,59 @@ Command add_bench_otg_subcommand(CLI::App& bench, std::function<std::uint64_t()>
         protocol.brake_share = options->brake_share;
         protocol.thread_cpu_clock = options->clock == "cpu";
         protocol.allocation_count = allocations;
-        Progress progress("validating", options->cases);
+        Progress progress("validating",
+                          options->cases + options->reference_cases + options->reference_cases / 4);
         protocol.progress = [&progress](int done, int) { progress.update(done); };
+        const InterruptGuard interrupts;  // Ctrl-C: the figures of the cases done so far
+        protocol.stop = [] { return interrupt_requested(); };
         const OtgValidationResult r = run_otg_validation(protocol);
         progress.finish();
+        const auto stopped = [&] {
+          if (r.interrupted)
+            throw InterruptedError("bench otg: interrupted after " + std::to_string(r.cases) +
+                                       " of " + std::to_string(options->cases) + " cases and " +
+                                       std::to_string(r.reference_cases) + " of " +
+                                       std::to_string(options->reference_cases) +
+                                       " reference cases",
+                                   interrupt_signal());
+        };
         const double calculations = 2.0 * r.cases;
         const double per_calculation =
             r.allocations_counted ? static_cast<double>(r.allocations) / calculations : -1.0;
         if (options->json) {
-          return print_json({{"cases", r.cases},
-                             {"dofs", r.dofs},
-                             {"seed", options->seed},
-                             {"braking_dofs", r.braking_dofs},
-                             {"position_failures", r.position_failures},
-                             {"velocity_failures", r.velocity_failures},
-                             {"check_failures", r.check_failures},
-                             {"worst_limit_violation", r.worst_limit_violation},
-                             {"worst_target_error", r.worst_target_error},
-                             {"worst_velocity_target_error", r.worst_velocity_target_error},
-                             {"worst_sync_error_s", r.worst_sync_error},
-                             {"first_failure", r.first_failure},
-                             {"first_velocity_failure", r.first_velocity_failure},
-                             {"clock", options->clock},
-                             {"mean_us", r.mean_us},
-                             {"median_us", r.median_us},
-                             {"p99_us", r.p99_us},
-                             {"max_us", r.max_us},
-                             {"velocity_mean_us", r.velocity_mean_us},
-                             {"allocations_per_calculation", per_calculation},
-                             {"reference_cases", r.reference_cases},
-                             {"optimality_beaten", r.optimality_beaten},
-                             {"reference_not_within_3_percent", r.reference_not_within},
-                             {"sync_reference_cases", r.sync_reference_cases},
-                             {"sync_mismatches", r.sync_mismatches},
-                             {"blocked_intervals_checked", r.blocked_checked},
-                             {"blocked_mismatches", r.blocked_mismatches},
-                             {"first_reference_failure", r.first_reference_failure}});
+          print_json({{"interrupted", r.interrupted},
+                      {"cases", r.cases},
+                      {"dofs", r.dofs},
+                      {"seed", options->seed},
+                      {"braking_dofs", r.braking_dofs},
+                      {"position_failures", r.position_failures},
+                      {"velocity_failures", r.velocity_failures},
+                      {"check_failures", r.check_failures},
+                      {"worst_limit_violation", r.worst_limit_violation},
+                      {"worst_target_error", r.worst_target_error},
+                      {"worst_velocity_target_error", r.worst_velocity_target_error},
+                      {"worst_sync_error_s", r.worst_sync_error},
+                      {"first_failure", r.first_failure},
+                      {"first_velocity_failure", r.first_velocity_failure},
+                      {"clock", options->clock},
+                      {"mean_us", r.mean_us},
+                      {"median_us", r.median_us},
+                      {"p99_us", r.p99_us},
+                      {"max_us", r.max_us},
+                      {"velocity_mean_us", r.velocity_mean_us},
+                      {"allocations_per_calculation", per_calculation},
+                      {"reference_cases", r.reference_cases},
+                      {"optimality_beaten", r.optimality_beaten},
+                      {"reference_not_within_3_percent", r.reference_not_within},
+                      {"sync_reference_cases", r.sync_reference_cases},
+                      {"sync_mismatches", r.sync_mismatches},
+                      {"blocked_intervals_checked", r.blocked_checked},
+                      {"blocked_mismatches", r.blocked_mismatches},
+                      {"blocked_cases", r.blocked_cases},
+                      {"blocked_end_failures", r.blocked_end_failures},
+                      {"blocked_end_not_confirmed", r.blocked_end_not_confirmed},
+                      {"first_reference_failure", r.first_reference_failure}});
+          return stopped();
         }
         print_fields(
             std::cout,
@@ -128,10 +147,14 @@ Command add_bench_otg_subcommand(CLI::App& bench, std::function<std::uint64_t()>
                   << " beaten by a grid motion, " << r.reference_not_within
                   << " without a grid motion within 3 % above; limiting DoF of "
                   << r.sync_reference_cases << " n-DoF cases: " << r.sync_mismatches
-                  << " with a shorter motion; blocked intervals: " << r.blocked_checked
-                  << " probed, " << r.blocked_mismatches << " with a motion inside\n";
+                  << " with a shorter motion; blocked intervals (" << r.blocked_cases
+                  << " cases drawn with one): " << r.blocked_checked << " probed, "
+                  << r.blocked_mismatches << " with a motion inside, " << r.blocked_end_failures
+                  << " ends without a profile just outside, " << r.blocked_end_not_confirmed
+                  << " ends the grid does not confirm\n";
         if (!r.first_reference_failure.empty())
           std::cout << "first reference mismatch: " << r.first_reference_failure << '\n';
+        stopped();
       }};
 }
 

@@ -21,6 +21,8 @@ namespace mjarm::cli {
 // the shelf pick's printing, shared with `mjarm run` (defined in cmd_run.cpp)
 Json shelf_pick_json(const ShelfPickReport& report);
 void print_shelf_pick(std::ostream& os, const ShelfPickReport& report);
+/// "; the recording is in …; <why the video failed>": every output of the run and its failure.
+std::string run_outputs_text(const ShelfPickReport& report);
 
 namespace {
 
@@ -90,10 +92,13 @@ void run_demo(const DemoOptions& options) {
     print_shelf_pick(os, report);
     os.flush();
   }
+  // a failed recording or video fails the demo too, after the report (issue 16, items 6, 8)
+  const std::string outputs = run_outputs_text(report);
   if (!report.ok())
     fail("the shelf pick ended " + std::string(to_string(report.outcome)) + ": " +
-         report.run.message + "; recording in " + report.recording.string());
-  if (!report.recording_error.empty()) fail(report.recording_error);
+         report.run.message + outputs);
+  if (!report.recording_error.empty() || !report.video_error.empty())
+    fail(outputs.substr(2));  // without the leading "; "
   // plots of the recording, beside it (docs/plot.md)
   std::vector<std::filesystem::path> plots;
   try {

@@ -2,14 +2,16 @@
 // waypoints (docs/planning.md) and prints the per-waypoint checks; `--out` writes it as CSV.
 
 #include <cmath>
+#include <cstdio>
 #include <iostream>
 #include <memory>
-#include <sstream>
 
 #include "commands.hpp"
 #include "mjarm/error.hpp"
 #include "mjarm/file_writer.hpp"
 #include "mjarm/planning/waypoint_file.hpp"
+#include "mjarm/plot/gnuplot.hpp"
+#include "mjarm/plot/trajectory_plot.hpp"
 
 namespace mjarm::cli {
 
@@ -29,28 +31,71 @@ Eigen::VectorXd per_joint(const std::vector<double>& values, int n, const char* 
 
 std::string plan_mm(double metres) { return fixed(metres * 1e3, 3); }
 
-/// Writes t, q, q̇, q̈ and the tool position every @p period seconds.
+/// Most CSV rows `--out` writes (as `mjarm traj`): a rate × duration beyond it is a usage error.
+constexpr double kMaxCsvRows = 1e6;
+
+/// Writes t, q, q̇, q̈ and the tool position every @p period seconds, row by row.
 void write_csv(const std::string& path, const Chain& chain, const JointSpline& s, double period) {
-  std::ostringstream out;
+  FileWriter out(path, FileWriter::Mode::replace, "trajectory CSV");
   const int n = chain.size();
-  out << "t";
+  std::string header = "t";
   for (const char* kind : {"q", "qd", "qdd"})
-    for (int i = 0; i < n; ++i) out << ',' << kind << '_' << chain.joint_names()[i];
-  out << ",x,y,z\n";
+    for (int i = 0; i < n; ++i) header += std::string(",") + kind + "_" + chain.joint_names()[i];
+  out.write(header + ",x,y,z\n");
   ChainKinematics kin(chain);
   Eigen::VectorXd q(n), qd(n), qdd(n);
   const auto steps = static_cast<std::int64_t>(std::ceil(s.duration() / period - 1e-9));
-  out.precision(10);
+  char number[32];
+  const auto put = [&](const char* format, double value) {
+    out.write(number,
+              static_cast<std::size_t>(std::snprintf(number, sizeof number, format, value)));
+  };
   for (std::int64_t k = 0; k <= steps; ++k) {
     const double t = std::min(s.duration(), static_cast<double>(k) * period);
     s.at(t, q, qd, qdd);
-    out << t;
+    put("%.10g", t);
     for (const Eigen::VectorXd* v : {&q, &qd, &qdd})
-      for (int i = 0; i < n; ++i) out << ',' << (*v)[i];
+      for (int i = 0; i < n; ++i) put(",%.10g", (*v)[i]);
     const Eigen::Vector3d p = kin.update(q).p;
-    out << ',' << p.x() << ',' << p.y() << ',' << p.z() << '\n';
+    for (int i = 0; i < 3; ++i) put(",%.10g", p[i]);
+    out.write("\n");
   }
-  write_file(path, out.str(), "trajectory CSV");  // whole or not at all, errors name the file
+  out.commit();  // the whole CSV or the old file: a write error names the file and the reason
+}
+
+/// Draws @p dir/trajectory.png: q, q̇, q̈ and the jerk of every joint sampled every @p period
+/// seconds, with the plan's velocity and acceleration limits dashed. Returns the PNG's path.
+std::string plot_plan(const std::string& dir, const PlannedPath& p, double period,
+                      const std::string& size_text) {
+  const JointSpline& s = p.result.trajectory;
+  const Chain& chain = *p.chain;
+  const int n = chain.size();
+  plot::TrajectorySeries series;
+  series.title = "plan on " + p.robot.name() + ", " + std::to_string(p.poses.size()) +
+                 " waypoints, T = " + compact(s.duration()) + " s";
+  series.unit = "rad";
+  for (int i = 0; i < n; ++i) series.axes.push_back(chain.joint_names()[i]);
+  const auto steps = static_cast<std::int64_t>(std::ceil(s.duration() / period - 1e-9));
+  for (std::int64_t k = 0; k <= steps; ++k)
+    series.t.push_back(std::min(s.duration(), static_cast<double>(k) * period));
+  for (auto& v : series.values)
+    v.assign(static_cast<std::size_t>(n), std::vector<double>(series.t.size()));
+  Eigen::VectorXd x[4] = {Eigen::VectorXd(n), Eigen::VectorXd(n), Eigen::VectorXd(n),
+                          Eigen::VectorXd(n)};
+  for (std::size_t j = 0; j < series.t.size(); ++j) {
+    s.at(series.t[j], x[0], x[1], x[2], x[3]);
+    for (std::size_t k = 0; k < 4; ++k)
+      for (int i = 0; i < n; ++i) series.values[k][static_cast<std::size_t>(i)][j] = x[k][i];
+  }
+  const Eigen::VectorXd& v = p.result.limits.max_velocity;
+  const Eigen::VectorXd& a = p.result.limits.max_acceleration;
+  series.limits[1].assign(v.data(), v.data() + v.size());
+  series.limits[2].assign(a.data(), a.data() + a.size());
+  const PixelSize size = parse_pixel_size(size_text);
+  plot::PlotOptions options;
+  options.width = size.width;
+  options.height = size.height;
+  return plot::plot_trajectory(series, dir, options).path.string();
 }
 
 }  // namespace
@@ -185,31 +230,56 @@ Command add_plan_command(CLI::App& root) {
   auto out = std::make_shared<std::string>();
   auto rate = std::make_shared<double>(500.0);
   auto json = std::make_shared<bool>(false);
+  auto plot_dir = std::make_shared<std::string>();
+  auto size = std::make_shared<std::string>("1280x1200");
   CLI::App* app = root.add_subcommand(
       "plan", "plan a checked joint trajectory through Cartesian waypoints (docs/planning.md)");
   add_model_argument(*app, o->model);
   add_site_option(*app, o->site);
   add_plan_options(*app, *o, true);
   app->add_option("--out", *out, "write the trajectory as CSV (t, q, qd, qdd, tool x y z)");
-  app->add_option("--rate", *rate, "CSV rows per second [Hz]")
+  app->add_option("--rate", *rate, "CSV rows (and plot samples) per second [Hz]")
       ->check(finite_number())
       ->capture_default_str();
+  app->add_option("--plot", *plot_dir,
+                  "draw DIR/trajectory.png: joint position, velocity, acceleration and jerk "
+                  "against the plan's limits (needs gnuplot)");
+  app->add_option("--size", *size, "plot size WIDTHxHEIGHT [pixels]")
+      ->capture_default_str()
+      ->check(pixel_size({200, 300}));
   add_json_flag(*app, *json);
-  return {app, [o, out, rate, json] {
+  return {app, [o, out, rate, json, plot_dir, size] {
             if (!(*rate > 0.0) || *rate > 1e5)
               throw UsageError("--rate must be in (0, 100000] Hz, got " + compact(*rate));
             if (o->min_sigma < 0.0) throw UsageError("--min-sigma must be >= 0");
+            if (!out->empty()) check_output_file(*out, "--out");  // before the work
+            if (!plot_dir->empty()) {
+              check_output_folder(*plot_dir, "--plot");
+              plot::find_gnuplot();
+            }
             const PlannedPath p = plan_path(*o);
+            std::string plot_path;
+            if (p.result.ok() && !plot_dir->empty())
+              plot_path = plot_plan(*plot_dir, p, 1.0 / *rate, *size);
             if (*json) {
-              print_json(plan_json(p));
+              Json document = plan_json(p);
+              if (!plot_path.empty()) document["plot"] = plot_path;
+              print_json(document);
             } else {
               print_plan(std::cout, p);
             }
             if (!p.result.ok()) throw Error("no plan: " + p.result.message);
+            const double duration = p.result.trajectory.duration();
+            if (!out->empty() && std::ceil(duration * *rate) + 1 > kMaxCsvRows)
+              throw UsageError("the trajectory lasts " + compact(duration) + " s: at --rate " +
+                               compact(*rate) + " Hz the CSV would have " +
+                               compact(std::ceil(duration * *rate) + 1) +
+                               " rows, more than 10⁶: lower --rate");
             if (!out->empty()) {
               write_csv(*out, *p.chain, p.result.trajectory, 1.0 / *rate);
               if (!*json) std::cout << "  trajectory written to " << *out << '\n';
             }
+            if (!plot_path.empty() && !*json) std::cout << "  plot: " << plot_path << '\n';
           }};
 }
 

@@ -96,6 +96,7 @@ Json shelf_pick_json(const ShelfPickReport& r) {
     doc["video"] = Json{{"path", r.video.string()},
                         {"frames", r.video_frames},
                         {"camera", r.video_camera},
+                        {"written", r.video_written},
                         {"error", r.video_error.empty() ? Json(nullptr) : Json(r.video_error)}};
   return doc;
 }
@@ -137,10 +138,26 @@ void print_shelf_pick(std::ostream& os, const ShelfPickReport& r) {
                                             ? " (state.csv, task.csv, events.csv, summary.json)"
                                             : " (not written: see the error)")});
   if (!r.video.empty())
-    fields.push_back({"video", r.video.string() + " (" + std::to_string(r.video_frames) +
-                                   " frames" + (r.video_error.empty() ? "" : ", stopped early") +
-                                   "; " + r.video_camera + ")"});
+    fields.push_back(
+        {"video", r.video.string() + " (" +
+                      (r.video_written ? std::to_string(r.video_frames) + " frames" +
+                                             (r.video_error.empty() ? "" : ", stopped early")
+                                       : std::string("not written: see the error")) +
+                      "; " + r.video_camera + ")"});
   print_fields(os, fields, 2);
+}
+
+std::string run_outputs_text(const ShelfPickReport& r) {
+  std::string text;
+  if (!r.recording_error.empty())
+    text += "; " + r.recording_error;
+  else if (!r.recording.empty())
+    text += "; the recording is in " + r.recording.string();
+  if (!r.video_error.empty())
+    text += "; " + r.video_error;
+  else if (r.video_written)
+    text += "; the video is in " + r.video.string();
+  return text;
 }
 
 namespace {
@@ -424,29 +441,17 @@ Command add_run_command(CLI::App& root) {
             } else {
               print_shelf_pick(std::cout, report);
             }
+            // every failure is named: the run's, the recording's and the video's
+            const std::string outputs = run_outputs_text(report);
             if (report.outcome == PickOutcome::interrupted)
-              throw InterruptedError(
-                  "the shelf pick was interrupted at t = " + fixed(report.run.end_time, 3) + " s" +
-                      (report.recording.empty()
-                           ? std::string()
-                           : "; the recording is in " + report.recording.string()) +
-                      (report.video.empty()         ? std::string()
-                       : report.video_error.empty() ? "; the video is in " + report.video.string()
-                                                    : "; " + report.video_error),
-                  interrupt_signal());
-            if (!report.ok()) {
-              std::string why = "the shelf pick ended " + std::string(to_string(report.outcome)) +
-                                ": " + report.run.message;
-              if (!report.recording_error.empty())
-                why += "; " + report.recording_error;
-              else if (!report.recording.empty())
-                why += "; the recording up to that point is in " + report.recording.string();
-              if (!report.video.empty())
-                why += "; the video up to that point is in " + report.video.string();
-              throw Error(why);
-            }
-            if (!report.recording_error.empty()) throw Error(report.recording_error);
-            if (!report.video_error.empty()) throw Error(report.video_error);
+              throw InterruptedError("the shelf pick was interrupted at t = " +
+                                         fixed(report.run.end_time, 3) + " s" + outputs,
+                                     interrupt_signal());
+            if (!report.ok())
+              throw Error("the shelf pick ended " + std::string(to_string(report.outcome)) + ": " +
+                          report.run.message + outputs);
+            if (!report.recording_error.empty() || !report.video_error.empty())
+              throw Error(outputs.substr(2));  // without the leading "; "
           }};
 }
 

@@ -15,7 +15,9 @@
 #include "commands.hpp"
 #include "mjarm/error.hpp"
 #include "mjarm/file_writer.hpp"
+#include "mjarm/plot/gnuplot.hpp"
 #include "mjarm/plot/trajectory_plot.hpp"
+#include "mjarm/trajectory/jerk_limited.hpp"
 #include "mjarm/trajectory/quintic.hpp"
 #include "mjarm/trajectory/quintic_duration.hpp"
 #include "mjarm/trajectory/smoothstep.hpp"
@@ -120,8 +122,7 @@ TrajProfile build_ramp(const TrajRequest& r, SmoothRamp::Kind kind) {
   };
   p.peak_velocity = SmoothRamp::peak_slope(kind) / T * d.cwiseAbs();
   p.peak_acceleration = SmoothRamp::peak_curvature(kind) / (T * T) * d.cwiseAbs();
-  // |s‴| is largest at the ends: 12 (smoothstep), 60 (smootherstep)
-  p.peak_jerk = (kind == SmoothRamp::Kind::smoothstep ? 12.0 : 60.0) / (T * T * T) * d.cwiseAbs();
+  p.peak_jerk = SmoothRamp::peak_jerk(kind) / (T * T * T) * d.cwiseAbs();
   p.notes = {
       {"limiting axis", limiting},
       {"continuity", kind == SmoothRamp::Kind::smoothstep ? "C¹: acceleration steps at both ends"
@@ -175,6 +176,67 @@ TrajProfile build_quintic(const TrajRequest& r) {
   return p;
 }
 
+TrajProfile build_jerk_limited(const TrajRequest& r) {
+  if (r.duration)
+    throw UsageError(
+        "jerk-limited: the duration is the time-optimal one under --v-max, --a-max and --j-max "
+        "(--duration is for quintic, smoothstep and smootherstep)");
+  const Eigen::Index n = r.q0.size();
+  if (r.j_max.hasNaN()) throw UsageError("jerk-limited needs --j-max (one value or one per axis)");
+  std::vector<JerkLimits> limits;
+  std::vector<KinematicState> start, target;
+  for (Eigen::Index i = 0; i < n; ++i) {
+    limits.push_back({r.v_max[i], r.a_max[i], r.j_max[i]});
+    start.push_back({r.q0[i], r.qd0[i], r.qdd0[i]});
+    target.push_back({r.q1[i], r.qd1[i], r.qdd1[i]});
+  }
+  auto otg = std::make_shared<JerkLimitedGenerator>(limits);
+  const OtgResult result = otg->calculate(start, target);  // an unreachable target throws
+  if (result.status != OtgStatus::working && result.status != OtgStatus::finished)
+    throw Error(std::string("jerk-limited: no trajectory (") + to_string(result.status) +
+                (result.failed_dof >= 0 ? ", axis " + std::to_string(result.failed_dof) : "") +
+                ")");
+  TrajProfile p;
+  p.duration = result.duration;
+  p.at = [otg, n](double t, VectorXd& q, VectorXd& qd, VectorXd& qdd, VectorXd& qddd) {
+    for (Eigen::Index i = 0; i < n; ++i) {
+      const JerkSample s = otg->profile(static_cast<int>(i)).at(t);
+      q[i] = s.p;
+      qd[i] = s.v;
+      qdd[i] = s.a;
+      qddd[i] = t <= otg->duration() ? s.j : 0.0;
+    }
+  };
+  p.peak_velocity.resize(n);
+  p.peak_acceleration.resize(n);
+  p.peak_jerk.resize(n);
+  std::string brakes;
+  for (Eigen::Index i = 0; i < n; ++i) {
+    const JerkProfile& profile = otg->profile(static_cast<int>(i));
+    // analytic extrema per phase, after the brake (a start beyond the limits is braked into them)
+    const int brake = otg->brake_phases(static_cast<int>(i));
+    const JerkExtrema e = profile.extrema(brake);
+    p.peak_velocity[i] = std::max(std::abs(e.v_min), std::abs(e.v_max));
+    p.peak_acceleration[i] = std::max(std::abs(e.a_min), std::abs(e.a_max));
+    p.peak_jerk[i] = 0.0;
+    for (int k = 0; k < profile.size(); ++k)
+      if (profile.phase_duration(k) > 0.0)
+        p.peak_jerk[i] = std::max(p.peak_jerk[i], std::abs(profile.jerk(k)));
+    if (brake > 0) {
+      const JerkExtrema b = profile.extrema();
+      brakes += (brakes.empty() ? "" : "; ") + std::string("axis ") + std::to_string(i) + " for " +
+                compact(otg->brake_duration(static_cast<int>(i))) + " s (peak |v| " +
+                compact(std::max(std::abs(b.v_min), std::abs(b.v_max))) + ", |a| " +
+                compact(std::max(std::abs(b.a_min), std::abs(b.a_max))) + " while braking)";
+    }
+  }
+  p.notes = {{"duration from", "the limits (time-optimal, synchronized)"},
+             {"limiting axis", std::to_string(result.limiting_dof)}};
+  if (!brakes.empty())
+    p.notes.push_back({"braking first", brakes + "; the peaks below are after the brake"});
+  return p;
+}
+
 // the kinds of `mjarm traj`; a new kind is a build function and a row here
 const std::array kTrajKinds{
     TrajKind{"trapezoid", "trapezoidal velocity, every axis finishing together (rest to rest)",
@@ -184,6 +246,10 @@ const std::array kTrajKinds{
     TrajKind{"smoothstep", "x²(3 − 2x) ramp, C¹ (rest to rest)", false, build_smoothstep},
     TrajKind{"smootherstep", "6x⁵ − 15x⁴ + 10x³ ramp, C², minimum jerk (rest to rest)", false,
              build_smootherstep},
+    TrajKind{"jerk-limited",
+             "time-optimal under velocity, acceleration and jerk limits (needs --j-max), any "
+             "start and target (p, v, a); a start beyond the limits brakes first",
+             true, build_jerk_limited},
 };
 
 // @p values as n entries: one value for all, or n values
@@ -267,15 +333,19 @@ Command add_traj_command(CLI::App& root) {
   };
   vector_option("--start", options->start, "start positions, one per axis [u]")->required();
   vector_option("--target", options->target, "target positions, one per axis [u]")->required();
-  vector_option("--start-velocity", options->start_velocity, "start velocities [u/s] (quintic)");
+  vector_option("--start-velocity", options->start_velocity,
+                "start velocities [u/s] (quintic, jerk-limited)");
   vector_option("--start-acceleration", options->start_acceleration,
-                "start accelerations [u/s²] (quintic)");
-  vector_option("--target-velocity", options->target_velocity, "target velocities [u/s] (quintic)");
+                "start accelerations [u/s²] (quintic, jerk-limited)");
+  vector_option("--target-velocity", options->target_velocity,
+                "target velocities [u/s] (quintic, jerk-limited)");
   vector_option("--target-acceleration", options->target_acceleration,
-                "target accelerations [u/s²] (quintic)");
+                "target accelerations [u/s²] (quintic, jerk-limited)");
   vector_option("--v-max", options->v_max, "velocity limits [u/s] (default 0.18)");
   vector_option("--a-max", options->a_max, "acceleration limits [u/s²] (default 0.9)");
-  vector_option("--j-max", options->j_max, "jerk limits [u/s³], drawn on the plot (default none)");
+  vector_option("--j-max", options->j_max,
+                "jerk limits [u/s³]: the jerk-limited kind's, drawn on the plot for every kind "
+                "(default none)");
   app->add_option("--duration", options->duration,
                   "the duration T [s] instead of the shortest within the limits (quintic, "
                   "smoothstep, smootherstep)")
@@ -297,6 +367,12 @@ Command add_traj_command(CLI::App& root) {
   return {
       app, [options] {
         const Options& o = *options;
+        // outputs first: a path that cannot be written is a usage error before any work
+        if (!o.out.empty()) check_output_file(o.out, "--out");
+        if (!o.plot.empty()) {
+          check_output_folder(o.plot, "--plot");
+          plot::find_gnuplot();
+        }
         const TrajKind& kind = *std::find_if(kTrajKinds.begin(), kTrajKinds.end(),
                                              [&](const TrajKind& k) { return o.kind == k.name; });
         const auto n = static_cast<Eigen::Index>(o.start.size());
@@ -324,7 +400,7 @@ Command add_traj_command(CLI::App& root) {
         if (moving && !kind.moving_ends)
           throw UsageError(std::string(kind.name) +
                            " moves from rest to rest: boundary velocities and accelerations "
-                           "need a kind that takes them (quintic)");
+                           "need a kind that takes them (quintic, jerk-limited)");
         const TrajProfile profile = kind.build(r);
 
         // samples at the rate, and the end

@@ -35,9 +35,13 @@ void check_workspace_csv(const std::string& out, std::size_t samples) {
       file.has_parent_path() ? file.parent_path() : std::filesystem::path("."), ec);
   const std::uintmax_t needed = kCsvLineBytes * samples;
   if (!ec && space.available < needed) {
-    throw UsageError("--out: " + out + " would need about " + std::to_string(needed >> 20) +
-                     " MiB for " + std::to_string(samples) + " samples; " +
-                     std::to_string(space.available >> 20) + " MiB are free there");
+    // one decimal: "about 1.7 MiB …; 1.1 MiB are free", never "1 MiB …; 1 MiB are free"
+    const auto mib = [](std::uintmax_t bytes) {
+      return fixed(static_cast<double>(bytes) / static_cast<double>(1 << 20), 1);
+    };
+    throw UsageError("--out: " + out + " would need about " + mib(needed) + " MiB for " +
+                     std::to_string(samples) + " samples; " + mib(space.available) +
+                     " MiB are free there");
   }
 }
 

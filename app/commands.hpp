@@ -37,6 +37,10 @@ Command add_ik_command(CLI::App& root);             ///< `mjarm ik MODEL …` (c
 Command add_bench_command(CLI::App& root);          ///< `mjarm bench ik MODEL …` (cmd_bench.cpp)
 /// `mjarm bench otg …` on @p bench (cmd_bench_otg.cpp); @p allocations counts heap allocations.
 Command add_bench_otg_subcommand(CLI::App& bench, std::function<std::uint64_t()> allocations);
+/// `mjarm bench traj …` on @p bench (cmd_bench_motion.cpp); @p allocations as above.
+Command add_bench_traj_subcommand(CLI::App& bench, std::function<std::uint64_t()> allocations);
+/// `mjarm bench plan …` on @p bench (cmd_bench_motion.cpp).
+Command add_bench_plan_subcommand(CLI::App& bench);
 Command add_render_command(CLI::App& root);  ///< `mjarm render MODEL --out P` (cmd_render.cpp)
 Command add_view_command(CLI::App& root);    ///< `mjarm view [MODEL]` (cmd_view.cpp)
 Command add_run_command(CLI::App& root);     ///< `mjarm run shelf-pick …` (cmd_run.cpp)

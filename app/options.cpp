@@ -250,6 +250,9 @@ void check_output_file(const std::string& path, const std::string& option, bool 
   const fs::path file(path);
   std::error_code ec;
   const fs::file_status status = fs::status(file, ec);
+  if (ec.value() == ELOOP)
+    throw UsageError(option + ": " + shown(file) +
+                     " is a symbolic link loop (ELOOP: too many levels of symbolic links)");
   if (fs::is_directory(status))
     throw UsageError(option + ": " + shown(file) + " is a folder, expected a file name");
   if (fs::exists(status)) {
@@ -286,6 +289,11 @@ void check_output_file(const std::string& path, const std::string& option, bool 
 void check_output_folder(const std::string& path, const std::string& option) {
   if (path.empty()) throw UsageError(option + ": the path is empty");
   const fs::path folder(path);
+  std::error_code loop;
+  (void)fs::status(folder, loop);
+  if (loop.value() == ELOOP)
+    throw UsageError(option + ": " + shown(folder) +
+                     " is a symbolic link loop (ELOOP: too many levels of symbolic links)");
   const fs::path ancestor = existing_ancestor(folder);
   std::error_code ec;
   if (!fs::is_directory(ancestor, ec)) {

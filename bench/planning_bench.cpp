@@ -5,6 +5,7 @@
 // mj_fwdPosition + mj_fwdVelocity each, the blended spline, its verification). Counters: the
 // plan's duration [s] and the samples checked. A second case puts a box in the way of the first
 // segment, so the planner tries other IK branches and a joint-space detour.
+// The same path is timed against its target by `mjarm bench plan`.
 // Run: build/bench_planning [--benchmark_min_time=2]
 
 #include <benchmark/benchmark.h>
@@ -13,25 +14,10 @@
 #include <vector>
 
 #include "mjarm/kinematics/chain_kinematics.hpp"
+#include "mjarm/planning/motion_benchmark.hpp"
 #include "mjarm/planning/waypoint_planner.hpp"
 
 namespace {
-
-std::vector<mjarm::Pose> five_waypoints(const mjarm::Chain& chain, const Eigen::VectorXd& home) {
-  mjarm::ChainKinematics fk(chain);
-  const Eigen::Matrix3d R = fk.update(home).R;
-  std::vector<mjarm::Pose> path;
-  for (const Eigen::Vector3d& p :
-       {Eigen::Vector3d(0.45, 0.0, 0.50), Eigen::Vector3d(0.45, 0.20, 0.40),
-        Eigen::Vector3d(0.35, 0.25, 0.35), Eigen::Vector3d(0.30, 0.10, 0.45),
-        Eigen::Vector3d(0.40, -0.15, 0.50)}) {
-    mjarm::Pose X;
-    X.R = R;
-    X.p = p;
-    path.push_back(X);
-  }
-  return path;
-}
 
 const char* kBoxScene = R"(<mujoco model="panda_box">
   <compiler angle="radian" autolimits="true"/>
@@ -52,7 +38,8 @@ void run(benchmark::State& state, const mjarm::Robot& robot) {
   const mjarm::Chain chain(robot, "attachment_site");
   const std::vector<double> home = robot.keyframe_qpos("home");
   const Eigen::VectorXd q_home = chain.gather(home.data());
-  const std::vector<mjarm::Pose> path = five_waypoints(chain, q_home);
+  mjarm::ChainKinematics fk(chain);
+  const std::vector<mjarm::Pose> path = mjarm::motion_benchmark_waypoints(fk.update(q_home).R);
   mjarm::WaypointPlanner planner(chain);
   mjarm::PlanResult result;
   for (auto _ : state) {

@@ -57,6 +57,12 @@ class FileWriter {
   std::string failure() const;
   /// The target path.
   const std::filesystem::path& path() const noexcept { return path_; }
+  /// The file the bytes go to: the temporary file beside the target in `replace` mode (until
+  /// `close`), else the target. A helper program that writes the file itself (ffmpeg) is given
+  /// this path; `close` then syncs it and renames it over the target as for any other file.
+  const std::filesystem::path& written_path() const noexcept {
+    return temporary_.empty() ? path_ : temporary_;
+  }
   /// Bytes accepted so far (written or buffered).
   std::size_t bytes() const noexcept { return bytes_; }
 

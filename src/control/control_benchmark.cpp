@@ -6,12 +6,16 @@
 #include <numbers>
 
 #include "mjarm/control/acceleration_control.hpp"
+#include "mjarm/control/cartesian_impedance.hpp"
 #include "mjarm/control/computed_torque.hpp"
 #include "mjarm/control/gravity_compensation.hpp"
+#include "mjarm/control/hqp_ac.hpp"
 #include "mjarm/control/joint_pd.hpp"
 #include "mjarm/control/operational_space.hpp"
 #include "mjarm/control/se3_impedance.hpp"
 #include "mjarm/control/task_pd.hpp"
+#include "mjarm/dynamics/chain_dynamics.hpp"
+#include "mjarm/dynamics/momentum_observer.hpp"
 #include "mjarm/error.hpp"
 #include "mjarm/kinematics/chain_kinematics.hpp"
 #include "mjarm/kinematics/frame_state.hpp"
@@ -110,6 +114,24 @@ double percentile(const std::vector<double>& sorted, double p) {
   return sorted[std::clamp<std::size_t>(rank, 1, sorted.size()) - 1];
 }
 
+/// The controllers drive the chain's joints only: a free or ball joint (or a joint left out of
+/// the chain) between the world and the frame lets the base fall or swing, with or without a
+/// MuJoCo warning, and the figures would measure that motion.
+void check_fixed_base(const Chain& chain) {
+  const std::vector<int> unmoved = chain.unmoved_path_joints();
+  if (unmoved.empty()) return;
+  const mjModel& m = chain.robot().model();
+  const int j = unmoved.front();
+  const char* name = mj_id2name(&m, mjOBJ_JOINT, j);
+  throw Error("control benchmark: the frame '" + chain.frame().name + "' of model '" +
+              chain.robot().name() + "' hangs from " +
+              to_string(static_cast<JointType>(m.jnt_type[j])) + " joint '" +
+              (name != nullptr ? std::string(name) : "#" + std::to_string(j)) +
+              "', which no controller drives: the base would fall or swing and the figures would "
+              "measure that; the benchmark needs an arm on a fixed base (every joint between the "
+              "world and the frame in the chain)");
+}
+
 void check_options(const ControlBenchmarkOptions& o) {
   if (o.steps < 1)
     throw Error("control benchmark: steps must be >= 1, got " + std::to_string(o.steps));
@@ -155,8 +177,8 @@ bool check_warnings(const mjData& d, const std::string& phase, ControlBenchmarkR
                      std::to_string(times) + (times == 1 ? " time" : " times") + " (dof or index " +
                      std::to_string(d.warning[w].lastinfo) + ") while running '" + phase +
                      "' and reset the simulation, so the timings and errors are meaningless; "
-                     "the model's dynamics (e.g. a free or ball joint the controllers do not "
-                     "drive) cannot follow this benchmark";
+                     "the model's dynamics (e.g. links too light for the motors' torques) "
+                     "cannot follow this benchmark";
     return true;
   }
   return false;
@@ -194,6 +216,8 @@ std::vector<std::unique_ptr<Controller>> default_benchmark_controllers(const Cha
   controllers.push_back(std::make_unique<AccelerationController>(chain));
   controllers.push_back(std::make_unique<OperationalSpaceController>(chain));
   controllers.push_back(std::make_unique<Se3ImpedanceController>(chain));
+  controllers.push_back(std::make_unique<CartesianImpedanceController>(chain));
+  controllers.push_back(std::make_unique<HqpAcController>(chain));
   return controllers;
 }
 
@@ -228,6 +252,7 @@ ControlBenchmarkResult run_control_benchmark(const Chain& chain,
                   "' must be a torque controller of " + std::to_string(n) + " joints");
     }
   }
+  check_fixed_base(chain);
   const Motors motors(chain);
   OperationalSpaceController osc(chain);
 
@@ -259,23 +284,24 @@ ControlBenchmarkResult run_control_benchmark(const Chain& chain,
   JointCommand command{CommandKind::torque, Eigen::VectorXd::Zero(n)};
   std::vector<double> times(static_cast<std::size_t>(options.steps));
   const auto& count = options.allocation_count;
-  const int phases = static_cast<int>(controllers.size()) + 2;
+  const int phases = static_cast<int>(controllers.size()) + 3;
   int phase = 0;
 
-  // every controller in closed loop, each compute timed
-  for (auto& controller : controllers) {
+  // one closed-loop phase from the reference's first state: each tick `untimed` (may be empty)
+  // then `timed` run after mj_step1, the latter timed, then the command goes to the motors
+  auto run_phase = [&](const std::string& name, auto&& untimed, auto&& timed) -> bool {
     table.load(0, ref);
     reset_start(chain, ref, qpos_home, d);
-    controller->reset();
     std::uint64_t allocations = 0;
     double error2 = 0.0;
     for (int k = 0; k < options.warmup + options.steps; ++k) {
-      if (stop_requested(options, k, result)) return result;
+      if (stop_requested(options, k, result)) return false;
       table.load(k, ref);
       mj_step1(&m, &d);
+      untimed();
       const std::uint64_t a0 = count ? count() : 0;
       const Clock::time_point t0 = Clock::now();
-      controller->compute(d, ref, command);
+      timed();
       const Clock::time_point t1 = Clock::now();
       const std::uint64_t a1 = count ? count() : 0;
       if (k >= options.warmup) {
@@ -286,9 +312,9 @@ ControlBenchmarkResult run_control_benchmark(const Chain& chain,
       motors.apply(command.value.data(), d);
       mj_step2(&m, &d);
     }
-    if (check_warnings(d, std::string(controller->name()), result)) return result;
+    if (check_warnings(d, name, result)) return false;
     ControllerBenchmark b;
-    b.name = std::string(controller->name());
+    b.name = name;
     b.steps = options.steps;
     b.mean_us = 0.0;
     for (double t : times) b.mean_us += t;
@@ -304,6 +330,33 @@ ControlBenchmarkResult run_control_benchmark(const Chain& chain,
     b.rms_position_error = std::sqrt(error2 / options.steps);
     result.controllers.push_back(std::move(b));
     if (options.progress) options.progress(++phase, phases);
+    return true;
+  };
+
+  // every controller in closed loop, each compute timed
+  for (auto& controller : controllers) {
+    controller->reset();
+    Controller& c = *controller;
+    if (!run_phase(
+            std::string(c.name()), [] {}, [&] { c.compute(d, ref, command); })) {
+      return result;
+    }
+  }
+
+  // the momentum observer (ChainDynamics::update + MomentumObserver::update) riding along an
+  // OSC loop: the OSC compute is not timed, the observer's update with OSC's torque is
+  {
+    ChainDynamics dynamics(chain);
+    MomentumObserver observer(chain);
+    osc.reset();
+    if (!run_phase(
+            "observer", [&] { osc.compute(d, ref, command); },
+            [&] {
+              dynamics.update(d);
+              observer.update(d, dynamics, command.value, dt);
+            })) {
+      return result;
+    }
   }
 
   // real-time factor of closed-loop OSC + physics, no per-tick clocks

@@ -5,10 +5,12 @@
 #include <mujoco/mujoco.h>
 
 #include <Eigen/Core>
+#include <Eigen/LU>
 #include <cmath>
 #include <sstream>
 #include <string>
 
+#include "mjarm/dynamics/chain_dynamics.hpp"
 #include "mjarm/error.hpp"
 #include "mjarm/model/chain.hpp"
 
@@ -58,6 +60,22 @@ inline void require_positive(double value, const char* owner, const char* what) 
     throw Error(std::string(owner) + ": " + what + " must be finite and > 0, got " +
                 std::to_string(value));
   }
+}
+
+/// True when @p R is finite, orthonormal to 1e-6 and a proper rotation (det > 0).
+inline bool is_rotation(const Eigen::Matrix3d& R) noexcept {
+  if (!R.allFinite()) return false;
+  const double off = (R.transpose() * R - Eigen::Matrix3d::Identity()).cwiseAbs().maxCoeff();
+  return off <= 1e-6 && R.determinant() > 0.0;
+}
+
+/// True when everything @p dynamics read from the state is finite (q, q̇, M, h, J, J̇·q̇, the
+/// velocity of E) and E's rotation is a rotation: a state a control law can run on.
+inline bool state_valid(const ChainDynamics& dynamics) noexcept {
+  return dynamics.q().allFinite() && dynamics.qd().allFinite() &&
+         dynamics.mass_matrix().allFinite() && dynamics.bias().allFinite() &&
+         dynamics.jacobian().allFinite() && dynamics.bias_acceleration().allFinite() &&
+         dynamics.velocity().allFinite() && is_rotation(dynamics.pose().R);
 }
 
 /// The passive forces (joint damping, springs) on the chain's dofs, from qfrc_passive [N·m or N].

@@ -25,6 +25,10 @@ OperationalSpaceController::OperationalSpaceController(const Chain& chain,
   detail::require_non_negative(options.integral_limit, rows_, owner, "integral limit");
   detail::require_non_negative(options.nullspace_damping, owner, "null-space damping");
   detail::require_non_negative(options.nullspace_stiffness, owner, "null-space stiffness");
+  if (!(options.integral_hold_force > 0.0)) {
+    throw Error("osc: integral hold force must be > 0 (+inf = never hold), got " +
+                std::to_string(options.integral_hold_force));
+  }
   // automatic damping for a fixed desired inertia is a constant
   for (int i = 0; i < 6; ++i) {
     const double d = options.damping[i];
@@ -41,6 +45,8 @@ OperationalSpaceController::OperationalSpaceController(const Chain& chain,
 void OperationalSpaceController::reset() noexcept {
   integral_.setZero();
   force_.setZero();
+  wrench_.setZero();
+  integral_held_ = false;
   has_last_time_ = false;
   last_time_ = 0.0;
 }
@@ -62,7 +68,10 @@ void OperationalSpaceController::compute(const mjData& data, const Reference& re
   const double dt = has_last_time_ ? std::max(0.0, data.time - last_time_) : 0.0;
   last_time_ = data.time;
   has_last_time_ = true;
-  if (dt > 0.0) {
+  Vector6d F_m = wrench_;
+  if (!F_m.allFinite()) F_m.setZero();
+  integral_held_ = F_m.head<3>().norm() >= options_.integral_hold_force;
+  if (dt > 0.0 && !integral_held_ && e.allFinite()) {
     for (int i = 0; i < m; ++i) {
       if (options_.integral_gain[i] == 0.0) continue;
       const double limit = options_.integral_limit[i];
@@ -82,10 +91,20 @@ void OperationalSpaceController::compute(const mjData& data, const Reference& re
   const Vector6d f = options_.stiffness.cwiseProduct(e) + damping.cwiseProduct(e_dot) +
                      options_.integral_gain.cwiseProduct(integral_);
   Vector6d u = task.A_WE - dynamics_.bias_acceleration();
-  if (!options_.task_inertia) u += f.cwiseQuotient(options_.inertia);
+  const bool feedback = options_.wrench_feedback && !options_.task_inertia;
+  if (feedback) {
+    // exact M_d: cancel the measured wrench, then feed it (and F_ext) back through M_d⁻¹
+    u += (f + F_m + task.F_ext).cwiseQuotient(options_.inertia);
+  } else if (!options_.task_inertia) {
+    u += f.cwiseQuotient(options_.inertia);
+  }
   force_.head(m).noalias() = Lambda * u.head(m);
   if (options_.task_inertia) force_.head(m) += f.head(m);
-  force_.head(m) += task.F_ext.head(m);
+  if (feedback) {
+    force_.head(m) -= F_m.head(m);
+  } else {
+    force_.head(m) += task.F_ext.head(m);
+  }
 
   // joint torques: task force, bias forces, null-space damping/posture
   auto tau = command.value.head(n);

@@ -10,6 +10,7 @@
 #include "mjarm/lie/coefficients.hpp"
 #include "mjarm/lie/se3.hpp"
 #include "mjarm/lie/se3_jacobian.hpp"
+#include "mjarm/trajectory/smoothstep.hpp"
 
 namespace mjarm {
 namespace {
@@ -85,19 +86,6 @@ void se3_require_stiffness(const Matrix6d& K, const std::array<bool, 6>& release
   }
 }
 
-/// Smoothstep s(x) = x²(3 − 2x) on [0, 1], clamped outside.
-double release_smoothstep(double x) noexcept {
-  x = std::clamp(x, 0.0, 1.0);
-  return x * x * (3.0 - 2.0 * x);
-}
-
-/// True when @p R is finite, orthonormal to 1e-6 and a proper rotation.
-bool se3_is_rotation(const Eigen::Matrix3d& R) noexcept {
-  if (!R.allFinite()) return false;
-  const double off = (R.transpose() * R - Eigen::Matrix3d::Identity()).cwiseAbs().maxCoeff();
-  return off <= 1e-6 && R.determinant() > 0.0;
-}
-
 /// blkdiag(R, R)·x for a linear-first 6-vector.
 Vector6d se3_rotate6(const Eigen::Matrix3d& R, const Vector6d& x) noexcept {
   Vector6d y;
@@ -163,7 +151,7 @@ void Se3ImpedanceController::start_release(double time) noexcept {
 
 void Se3ImpedanceController::update_release(double t) noexcept {
   release_ =
-      release_started_ ? release_smoothstep((t - release_start_) / options_.release.duration) : 0.0;
+      release_started_ ? smoothstep((t - release_start_) / options_.release.duration).s : 0.0;
   const Vector6d s = Vector6d::Ones() - release_ * release_mask_;
   stiffness_now_ = s.asDiagonal() * options_.stiffness * s.asDiagonal();
 }
@@ -190,11 +178,7 @@ void Se3ImpedanceController::compute(const mjData& data, const Reference& refere
   dynamics_.update(data);
 
   // state, then target: anything not finite gets the hold command and an honest status
-  if (!dynamics_.q().allFinite() || !dynamics_.qd().allFinite() ||
-      !dynamics_.mass_matrix().allFinite() || !dynamics_.bias().allFinite() ||
-      !dynamics_.jacobian().allFinite() || !dynamics_.bias_acceleration().allFinite() ||
-      !dynamics_.velocity().allFinite() || !se3_is_rotation(dynamics_.pose().R) ||
-      !std::isfinite(data.time)) {
+  if (!detail::state_valid(dynamics_) || !std::isfinite(data.time)) {
     return hold(data, tau, Se3ImpedanceStatus::invalid_state);
   }
   const TaskSpaceStatus task_status = task_space_.update(dynamics_);
@@ -202,8 +186,8 @@ void Se3ImpedanceController::compute(const mjData& data, const Reference& refere
     return hold(data, tau, Se3ImpedanceStatus::invalid_state);
   }
   const TaskReference& target = reference.task;
-  if (!target.X_WE.p.allFinite() || !se3_is_rotation(target.X_WE.R) || !target.V_WE.allFinite() ||
-      !target.A_WE.allFinite()) {
+  if (!target.X_WE.p.allFinite() || !detail::is_rotation(target.X_WE.R) ||
+      !target.V_WE.allFinite() || !target.A_WE.allFinite()) {
     return hold(data, tau, Se3ImpedanceStatus::invalid_target);
   }
   Se3ImpedanceStatus status =

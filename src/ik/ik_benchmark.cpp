@@ -124,6 +124,12 @@ IkBenchmarkResult run_ik_benchmark(const Chain& chain, const IkBenchmarkSolver& 
   out.samples = options.samples;
   double iterations = 0.0;
   for (int s = 0; s < options.samples; ++s) {
+    if (options.stop && options.stop()) {
+      out.interrupted = true;
+      out.samples = s;
+      times_ms.resize(static_cast<std::size_t>(s));
+      break;
+    }
     targets.draw(q_target);
     const Pose X_WT = kin.update(q_target);
     if (options.seed_mode == IkSeedMode::random) {
@@ -155,11 +161,12 @@ IkBenchmarkResult run_ik_benchmark(const Chain& chain, const IkBenchmarkSolver& 
     if (options.progress) options.progress(s + 1, options.samples);
   }
 
-  out.success_rate = static_cast<double>(out.successes) / options.samples;
+  if (out.samples == 0) return out;  // stopped before the first sample: no figures
+  out.success_rate = static_cast<double>(out.successes) / out.samples;
   double total = 0.0;
   for (double t : times_ms) total += t;
-  out.mean_time_ms = total / options.samples;
-  out.mean_iterations = iterations / options.samples;
+  out.mean_time_ms = total / out.samples;
+  out.mean_iterations = iterations / out.samples;
   std::sort(times_ms.begin(), times_ms.end());
   const std::size_t mid = times_ms.size() / 2;
   out.median_time_ms =

@@ -71,6 +71,17 @@ Chain::Chain(const Robot& robot, const std::vector<std::string>& joints, std::st
   finish();
 }
 
+std::vector<int> Chain::unmoved_path_joints() const {
+  const mjModel& m = robot_.model();
+  std::vector<int> unmoved;
+  for (int body = frame_body(m, frame_); body > 0; body = m.body_parentid[body]) {
+    for (int j = m.body_jntadr[body] + m.body_jntnum[body] - 1; j >= m.body_jntadr[body]; --j)
+      if (std::find(joints_.begin(), joints_.end(), j) == joints_.end()) unmoved.push_back(j);
+  }
+  std::reverse(unmoved.begin(), unmoved.end());
+  return unmoved;
+}
+
 void Chain::add_joint(int id) {
   const mjModel& m = robot_.model();
   joints_.push_back(id);

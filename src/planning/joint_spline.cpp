@@ -118,8 +118,7 @@ JointSpline JointSpline::timed(const std::vector<Eigen::VectorXd>& q,
   return JointSpline(q, v, durations);
 }
 
-void JointSpline::at(double t, Eigen::Ref<Eigen::VectorXd> q, Eigen::Ref<Eigen::VectorXd> qd,
-                     Eigen::Ref<Eigen::VectorXd> qdd) const {
+std::size_t JointSpline::segment_at(double& t) const {
   if (empty()) throw Error("joint spline: evaluated while empty");
   if (std::isnan(t)) t = 0.0;
   t = std::clamp(t, 0.0, duration());
@@ -127,8 +126,19 @@ void JointSpline::at(double t, Eigen::Ref<Eigen::VectorXd> q, Eigen::Ref<Eigen::
   const auto it = std::upper_bound(starts_.begin(), starts_.end(), t);
   std::size_t k = static_cast<std::size_t>(it - starts_.begin());
   k = k == 0 ? 0 : k - 1;
-  k = std::min(k, segments_.size() - 1);
+  return std::min(k, segments_.size() - 1);
+}
+
+void JointSpline::at(double t, Eigen::Ref<Eigen::VectorXd> q, Eigen::Ref<Eigen::VectorXd> qd,
+                     Eigen::Ref<Eigen::VectorXd> qdd) const {
+  const std::size_t k = segment_at(t);
   segments_[k].at(t - starts_[k], q, qd, qdd);
+}
+
+void JointSpline::at(double t, Eigen::Ref<Eigen::VectorXd> q, Eigen::Ref<Eigen::VectorXd> qd,
+                     Eigen::Ref<Eigen::VectorXd> qdd, Eigen::Ref<Eigen::VectorXd> qddd) const {
+  const std::size_t k = segment_at(t);
+  segments_[k].at(t - starts_[k], q, qd, qdd, qddd);
 }
 
 }  // namespace mjarm

@@ -3,11 +3,11 @@
 #include <cctype>
 #include <cmath>
 #include <cstdlib>
-#include <fstream>
 #include <nlohmann/json.hpp>
 #include <sstream>
 
 #include "mjarm/error.hpp"
+#include "mjarm/model/user_file.hpp"
 #include "quoted_path.hpp"
 
 namespace mjarm {
@@ -142,13 +142,11 @@ WaypointPath parse_waypoints_csv(std::string_view text, std::string_view source)
 }
 
 WaypointPath load_waypoints(const std::filesystem::path& path) {
-  std::ifstream file(path, std::ios::binary);
-  if (!file) throw Error("cannot read the waypoint file " + quoted(path));
-  std::ostringstream text;
-  text << file.rdbuf();
+  // the one checked reader of user files: regular files only, bounded, never blocking
+  const std::string text = read_user_file(path, "waypoint file");
   const std::string source = quoted(path);
-  if (path.extension() == ".json") return parse_waypoints_json(text.str(), source);
-  return parse_waypoints_csv(text.str(), source);
+  if (path.extension() == ".json") return parse_waypoints_json(text, source);
+  return parse_waypoints_csv(text, source);
 }
 
 }  // namespace mjarm

@@ -50,6 +50,9 @@ void check(const PlanOptions& o) {
   non_negative(o.ik_branches, "ik_branches");
   non_negative(o.detour_samples, "detour_samples");
   non_negative(o.stretch_attempts, "stretch_attempts");
+  if (o.max_segment_samples < 1 || o.max_samples < 1)
+    throw Error("plan options: max_segment_samples and max_samples must be >= 1, got " +
+                std::to_string(o.max_segment_samples) + " and " + std::to_string(o.max_samples));
   if (!(o.stretch_factor > 1.0) || !std::isfinite(o.stretch_factor))
     throw Error("plan options: stretch_factor must be > 1 and finite, got " +
                 std::to_string(o.stretch_factor));
@@ -115,13 +118,38 @@ double WaypointPlanner::sample_spacing() const noexcept {
   return std::min(options_.sample_period, options_.sample_step / limits_.max_velocity.maxCoeff());
 }
 
+namespace {
+
+// "checking a segment of 5000 s every 0.01 s would need 500001 samples, beyond the 100000
+// samples a segment may have (max_segment_samples); …"
+[[noreturn]] void throw_too_many_samples(double duration, double spacing, double needed,
+                                         std::int64_t bound, const std::string& what) {
+  throw Error("waypoint planner: checking a segment of " + std::to_string(duration) + " s every " +
+              std::to_string(spacing) + " s would need " +
+              std::to_string(static_cast<long long>(std::min(needed, 9e18))) +
+              " samples, beyond the " + std::to_string(bound) + " samples " + what +
+              "; the limits are out of proportion (very slow velocities or accelerations make "
+              "a motion of hours)");
+}
+
+}  // namespace
+
 int WaypointPlanner::sample_intervals(double duration) const {
   const double count = std::ceil(duration / sample_spacing());
-  if (!(count <= 1e7))  // also NaN
-    throw Error("waypoint planner: a segment of " + std::to_string(duration) + " s checked every " +
-                std::to_string(sample_spacing()) +
-                " s would need more than 1e7 samples; the limits are out of proportion");
+  if (!(count < static_cast<double>(options_.max_segment_samples)))  // also NaN
+    throw_too_many_samples(duration, sample_spacing(), count + 1, options_.max_segment_samples,
+                           "a segment may have (max_segment_samples)");
   return std::max(1, static_cast<int>(count));
+}
+
+void WaypointPlanner::spend_samples(int m, double duration) {
+  const std::int64_t total = checked_ + m + 1;
+  if (total > options_.max_samples)
+    throw_too_many_samples(duration, sample_spacing(), static_cast<double>(total),
+                           options_.max_samples,
+                           "a plan may check in all (max_samples; this one has checked " +
+                               std::to_string(checked_) + ")");
+  checked_ = total;
 }
 
 WaypointPlanner::SegmentCheck WaypointPlanner::check_rest_segment(const Eigen::VectorXd& a,
@@ -134,6 +162,7 @@ WaypointPlanner::SegmentCheck WaypointPlanner::check_rest_segment(const Eigen::V
   for (int attempt = 0; attempt <= options_.stretch_attempts; ++attempt) {
     const QuinticTrajectory segment(rest_state(a), rest_state(b), T);
     const int m = sample_intervals(T);
+    spend_samples(m, T);
     out = SegmentCheck{};
     out.ok = true;
     out.duration = T;
@@ -161,6 +190,7 @@ bool WaypointPlanner::check_spline_segment(const JointSpline& spline, int k, Seg
   const double t0 = spline.knot_time(k);
   const double T = spline.knot_time(k + 1) - t0;
   const int m = sample_intervals(T);
+  spend_samples(m, T);
   out = SegmentCheck{};
   out.ok = true;
   out.duration = T;
@@ -204,6 +234,7 @@ PlanResult WaypointPlanner::plan(const Eigen::VectorXd& q_start,
   ConfigurationChecker checker(chain_, limits_, options_.checks);
   checker.set_fixed_qpos(fixed_qpos_);
   checker_ = &checker;
+  checked_ = 0;
   rng_.seed(options_.seed);
 
   PlanResult result;

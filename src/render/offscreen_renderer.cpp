@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <numbers>
 #include <string>
@@ -39,6 +40,30 @@ const RenderOptions& checked(const RenderOptions& options) {
       throw Error("render marker: needs a finite position, a radius > 0 m and rgba in [0, 1]");
   }
   return options;
+}
+
+/// Refuses a camera placed so far from the model that none of it can be drawn: the model's
+/// bounding sphere (statistic center, radius extent) lies wholly beyond the far clipping plane
+/// (visual/map zfar × extent). A huge look-at point or distance (1e308 becomes infinite in the
+/// renderer's single precision) would otherwise give an empty picture and report success.
+void check_model_in_view(const mjModel& m, const std::string& model, const Eigen::Vector3d& p_WC) {
+  const Eigen::Vector3d centre(m.stat.center[0], m.stat.center[1], m.stat.center[2]);
+  const double gap = (p_WC - centre).stableNorm() - m.stat.extent;  // no overflow near 1e308
+  const double zfar = m.vis.map.zfar * m.stat.extent;
+  if (gap > zfar) {
+    const auto text = [](double v) {
+      char buffer[32];
+      std::snprintf(buffer, sizeof buffer, "%.4g", v);
+      return std::string(buffer);
+    };
+    throw Error("camera at [" + text(p_WC.x()) + ", " + text(p_WC.y()) + ", " + text(p_WC.z()) +
+                "] m is " + text(gap) + " m from model '" + model + "' (centre [" +
+                text(centre.x()) + ", " + text(centre.y()) + ", " + text(centre.z()) +
+                "] m, extent " + text(m.stat.extent) + " m), beyond the far clipping plane at " +
+                text(zfar) +
+                " m (visual/map zfar × extent): the picture would show nothing of it; move the "
+                "look-at point or the distance closer");
+  }
 }
 
 /// Refuses, before MuJoCo allocates anything, a size beyond the current context's OpenGL limits
@@ -168,7 +193,9 @@ struct OffscreenRenderer::Impl {
           }
         }
         // validates the numbers with the messages of the documented conventions
-        free_camera_view(lookat, spec.distance, spec.azimuth, spec.elevation, m.vis.global.fovy);
+        const CameraView view = free_camera_view(lookat, spec.distance, spec.azimuth,
+                                                 spec.elevation, m.vis.global.fovy);
+        check_model_in_view(m, robot.name(), view.position);
         camera.type = mjCAMERA_FREE;
         for (int i = 0; i < 3; ++i) camera.lookat[i] = lookat[i];
         camera.distance = spec.distance;

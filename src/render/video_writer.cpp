@@ -14,12 +14,14 @@
 #include <cstdlib>
 #include <cstring>
 #include <iostream>
+#include <optional>
 #include <sstream>
 #include <vector>
 
 #include "child_process.hpp"
 #include "executable_on_path.hpp"
 #include "mjarm/error.hpp"
+#include "mjarm/file_writer.hpp"
 #include "mjarm/sim/interrupt.hpp"
 #include "quoted_path.hpp"
 
@@ -152,6 +154,9 @@ std::string mp4_defect(const std::filesystem::path& path) {
 
 struct VideoWriter::Impl {
   std::filesystem::path path;
+  // the hidden temporary file ffmpeg writes, renamed over `path` once checked (file_writer.hpp)
+  std::optional<FileWriter> file;
+  bool complete = false;
   int width = 0;
   int height = 0;
   double fps = 0.0;
@@ -182,7 +187,8 @@ struct VideoWriter::Impl {
   }
 
   // Ends ffmpeg's input and gives it @p grace_s to exit; then kills it (and anything it
-  // started) and reaps it. Returns its wait status. For the error paths.
+  // started) and reaps it, and discards what it wrote. Returns its wait status. For the error
+  // paths.
   int stop(double grace_s) noexcept {
     if (pipe_fd >= 0) ::close(pipe_fd);
     pipe_fd = -1;
@@ -190,8 +196,12 @@ struct VideoWriter::Impl {
     if (grace_s <= 0.0 || !wait_child_until(pid, after(grace_s), status))
       status = kill_child(pid, true);
     pid = -1;
+    file.reset();  // removes the temporary file: no cut video is left
     return status;
   }
+
+  // The file ffmpeg writes (the temporary one beside the video).
+  const std::filesystem::path& output() const { return file->written_path(); }
 
   // Closes ffmpeg's input, waits for it to finalize the file (up to the timeout, less after an
   // interrupt), then checks the file itself: ffmpeg's exit status alone misses a full disk.
@@ -210,18 +220,27 @@ struct VideoWriter::Impl {
       throw Error("ffmpeg did not finalize video " + quoted(path) + " within " +
                   seconds_text(interrupted ? kInterruptGrace : timeout_s) + " s" +
                   (interrupted ? " of the interrupt" : "") + " and was stopped after " +
-                  std::to_string(frames) + " frames; the file is not playable: " + take_log());
+                  std::to_string(frames) + " frames; no video was written: " + take_log());
     }
     pid = -1;
     const std::string log = take_log();
-    if (!(WIFEXITED(status) && WEXITSTATUS(status) == 0))
+    if (!(WIFEXITED(status) && WEXITSTATUS(status) == 0)) {
+      file.reset();
       throw Error("ffmpeg failed to finalize video " + quoted(path) + " after " +
-                  std::to_string(frames) + " frames (" + describe_status(status) + "): " + log);
-    const std::string defect = mp4_defect(path);
-    if (!defect.empty())
+                  std::to_string(frames) + " frames (" + describe_status(status) +
+                  "); no video was written: " + log);
+    }
+    const std::string defect = mp4_defect(output());
+    if (!defect.empty()) {
+      file.reset();
       throw Error("ffmpeg reported success, but video " + quoted(path) +
                   " is not a complete MP4 (" + defect + ") after " + std::to_string(frames) +
-                  " frames; is the disk full? ffmpeg said: " + log);
+                  " frames, so no video was written; is the disk full? ffmpeg said: " + log);
+    }
+    // synced and renamed over the video (an old file stays until then); a failure removes it
+    file->commit();
+    file.reset();
+    complete = true;
   }
 };
 
@@ -241,16 +260,14 @@ VideoWriter::VideoWriter(const std::filesystem::path& path, int width, int heigh
   if (!std::isfinite(options.timeout_s) || !(options.timeout_s > 0.0))
     throw Error("video timeout must be a finite number > 0 s, got " +
                 seconds_text(options.timeout_s) + " for " + quoted(path));
-  // prove the path writable now, before any frame, with the system's reason when it is not
-  {
-    const int fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
-    if (fd < 0) throw Error("cannot write video " + quoted(path) + ": " + std::strerror(errno));
-    ::close(fd);
-  }
+  // ffmpeg first: without it nothing is created
   const std::string ffmpeg = find_executable(options.ffmpeg);
 
   auto impl = std::make_unique<Impl>();
   impl->path = path;
+  // the temporary file ffmpeg writes, beside the video: proves the folder writable now, before
+  // any frame, with the system's reason when it is not ("cannot write video 'x.mp4': …")
+  impl->file.emplace(path, FileWriter::Mode::replace, "video", 1);
   impl->width = width;
   impl->height = height;
   impl->fps = fps;
@@ -292,8 +309,8 @@ VideoWriter::VideoWriter(const std::filesystem::path& path, int width, int heigh
     const int q = options.quality == 20 ? 4 : options.quality;
     args.insert(args.end(), {"-q:v", std::to_string(q)});
   }
-  args.insert(args.end(),
-              {"-pix_fmt", "yuv420p", "-movflags", "+faststart", "-f", "mp4", ffmpeg_output(path)});
+  args.insert(args.end(), {"-pix_fmt", "yuv420p", "-movflags", "+faststart", "-f", "mp4",
+                           ffmpeg_output(impl->output())});
   // an argv array, never a shell; ffmpeg leads its own process group (a terminal's Ctrl-C
   // reaches mjarm only, which then ends ffmpeg's input) and dies with mjarm (child_process.hpp)
   int error = 0;
@@ -373,7 +390,7 @@ void VideoWriter::write(const Image& frame) {
     throw Error("ffmpeg did not take frame " + std::to_string(s.frames) + " of " + quoted(s.path) +
                 " within " + seconds_text(interrupted ? kInterruptGrace : s.timeout_s) + " s" +
                 (interrupted ? " of the interrupt" : "") +
-                " and was stopped; the file is not playable: " + s.take_log());
+                " and was stopped; no video was written: " + s.take_log());
   }
   // ffmpeg went away (or the pipe broke): collect its reason
   const int status = s.stop(kInterruptGrace);
@@ -388,6 +405,7 @@ void VideoWriter::close() {
 }
 
 bool VideoWriter::is_open() const noexcept { return impl_ && impl_->pid >= 0; }
+bool VideoWriter::complete() const noexcept { return impl_ && impl_->complete; }
 std::int64_t VideoWriter::frames() const noexcept { return impl_ ? impl_->frames : 0; }
 const std::filesystem::path& VideoWriter::path() const noexcept {
   static const std::filesystem::path none;

@@ -10,7 +10,6 @@
 #include "mjarm/error.hpp"
 #include "mjarm/kinematics/workspace.hpp"
 #include "mjarm/lie/rotation.hpp"
-#include "mjarm/lie/so3.hpp"
 
 namespace mjarm {
 
@@ -141,47 +140,6 @@ void set_panel_value(PanelState& state, const PanelRanges& ranges, std::string_v
   } else {
     state.gripper = number;
   }
-}
-
-TargetFilter::TargetFilter(double max_speed, double max_angular_speed)
-    : max_speed_(max_speed), max_angular_speed_(max_angular_speed) {
-  if (!std::isfinite(max_speed) || max_speed <= 0.0 || !std::isfinite(max_angular_speed) ||
-      max_angular_speed <= 0.0) {
-    throw Error("target filter: max_speed and max_angular_speed must be positive and finite, got " +
-                number_text(max_speed) + " m/s and " + number_text(max_angular_speed) + " rad/s");
-  }
-}
-
-void TargetFilter::reset(const Pose& X_WR) noexcept {
-  X_WR_ = X_WR;
-  V_WR_.setZero();
-  settled_ = true;
-}
-
-const Pose& TargetFilter::update(const Pose& X_WT, double dt) noexcept {
-  if (!std::isfinite(dt) || dt <= 0.0) return X_WR_;
-  // origin: straight towards the target, at most max_speed·dt
-  Eigen::Vector3d dp = X_WT.p - X_WR_.p;
-  const double distance = dp.norm();
-  const double max_step = max_speed_ * dt;
-  const bool position_reached = distance <= max_step;
-  if (!position_reached) dp *= max_step / distance;
-  // rotation: along the geodesic exp(ω)·R_WR = R_WT (world axes), at most max_angular_speed·dt
-  Eigen::Vector3d w = so3::log(X_WT.R * X_WR_.R.transpose());
-  const double angle = w.norm();
-  const double max_turn = max_angular_speed_ * dt;
-  const bool rotation_reached = angle <= max_turn;
-  if (!rotation_reached) w *= max_turn / angle;
-  if (position_reached && rotation_reached) {
-    X_WR_ = X_WT;  // land exactly: no drift from repeated small rotations
-  } else {
-    X_WR_.p += dp;
-    X_WR_.R = so3::exp(w) * X_WR_.R;
-  }
-  V_WR_.head<3>() = dp / dt;
-  V_WR_.tail<3>() = w / dt;
-  settled_ = position_reached && rotation_reached;
-  return X_WR_;
 }
 
 }  // namespace mjarm

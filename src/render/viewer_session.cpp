@@ -175,7 +175,8 @@ struct ViewerSession::Rig {
 ViewerSession::ViewerSession(const Robot& robot, const ViewerSessionOptions& options)
     : site_(options.site.empty() ? default_viewer_site(robot) : options.site),
       options_(options),
-      filter_(options.max_speed, options.max_angular_speed) {
+      filter_(options.reference_limits),
+      gripper_ramp_(options.gripper_travel_time) {
   if (!(options.max_joint_speed > 0.0) || !std::isfinite(options.max_joint_speed)) {
     throw Error("viewer: max_joint_speed must be positive and finite");
   }
@@ -284,6 +285,7 @@ void ViewerSession::reset() {
   }
   rig.read_q();
   rig.q_home = rig.q;
+  gripper_ramp_.reset(0.0);  // the initial command: open
   restart_reference();
 }
 
@@ -293,7 +295,7 @@ void ViewerSession::restart_reference() {
   rig.read_q();
   rig.q_cmd = rig.q;
   rig.reference.joint.q = rig.q;
-  rig.reference.gripper = gripper_;
+  rig.reference.gripper = gripper_ramp_.value();
   rig.reference.task.X_WE = frame_pose(rig.robot.model(), rig.sim->data(), rig.arm.frame());
   filter_.reset(rig.reference.task.X_WE);
   stats_.faulted = false;
@@ -316,7 +318,8 @@ int ViewerSession::step(int ticks) noexcept {
 bool ViewerSession::tick(Rig& rig) noexcept {
   const double dt = rig.period;
   const Pose& X_WR = filter_.update(X_WT_, dt);
-  rig.reference.gripper = gripper_;
+  const double gripper = gripper_ramp_.update(gripper_, dt);
+  rig.reference.gripper = gripper;
   stats_.ik_used = rig.ik != nullptr;
   if (rig.ik) {
     // IK from the current configuration (kinematic) or the last servo target (position),
@@ -333,7 +336,7 @@ bool ViewerSession::tick(Rig& rig) noexcept {
     std::copy(d.qpos, d.qpos + rig.robot.nq(), rig.qpos.begin());
     rig.arm.scatter(rig.q_cmd, rig.qpos.data());
     if (rig.grip) {
-      rig.grip->targets(gripper_, rig.q_grip);
+      rig.grip->targets(gripper, rig.q_grip);
       rig.gripper->scatter(rig.q_grip, rig.qpos.data());
     }
     try {
@@ -350,6 +353,7 @@ bool ViewerSession::tick(Rig& rig) noexcept {
   } else {
     rig.reference.task.X_WE = X_WR;
     rig.reference.task.V_WE = filter_.velocity();
+    rig.reference.task.A_WE = filter_.acceleration();
     rig.reference.joint.q = rig.q_home;  // null-space posture
   }
   const TickResult result = rig.sim->tick(rig.reference);
@@ -376,6 +380,7 @@ void ViewerSession::refresh_stats() noexcept {
   stats_.X_WE.p = Eigen::Vector3d(p[0], p[1], p[2]);
   stats_.X_WE.R = Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(R);
   stats_.X_WR = filter_.pose();
+  stats_.gripper = gripper_ramp_.value();
   stats_.X_WT = X_WT_;
   stats_.tracking_position = (stats_.X_WR.p - stats_.X_WE.p).norm();
   stats_.tracking_orientation = rotation_angle(stats_.X_WE.R, stats_.X_WR.R);

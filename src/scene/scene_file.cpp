@@ -1,13 +1,13 @@
 #include "mjarm/scene/scene_file.hpp"
 
+#include <yaml-cpp/depthguard.h>
 #include <yaml-cpp/yaml.h>
 
-#include <fstream>
 #include <map>
-#include <sstream>
 
 #include "mjarm/error.hpp"
 #include "mjarm/model/names.hpp"
+#include "mjarm/model/user_file.hpp"
 
 namespace mjarm {
 
@@ -201,6 +201,11 @@ Scene parse_scene(std::string_view text, const fs::path& base_dir, const std::st
   YAML::Node doc;
   try {
     doc = YAML::Load(std::string(text));
+  } catch (const YAML::DeepRecursion& e) {
+    // yaml-cpp's own message for this is "bad file"
+    throw Error(source + ":" + std::to_string(e.mark.line + 1) + ": nested more than " +
+                std::to_string(e.depth() - 2) +
+                " levels deep, the limit of the YAML parser (yaml-cpp); a scene needs a few");
   } catch (const YAML::ParserException& e) {
     throw Error(source + ":" + std::to_string(e.mark.line + 1) +
                 ": not valid YAML or JSON: " + e.msg);
@@ -333,14 +338,9 @@ Scene parse_scene(std::string_view text, const fs::path& base_dir, const std::st
 }
 
 Scene load_scene_file(const fs::path& path) {
-  std::error_code ec;
-  if (!fs::is_regular_file(path, ec))
-    throw Error("scene file '" + path.string() + "' does not exist");
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw Error("scene file '" + path.string() + "' cannot be read");
-  std::ostringstream text;
-  text << in.rdbuf();
-  return parse_scene(text.str(), fs::absolute(path).parent_path(), path.string());
+  // the one checked reader of user files: regular files only, bounded, never blocking
+  const std::string text = read_user_file(path, "scene file");
+  return parse_scene(text, fs::absolute(path).parent_path(), path.string());
 }
 
 }  // namespace mjarm

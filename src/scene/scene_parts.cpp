@@ -3,6 +3,7 @@
 #include <filesystem>
 
 #include "mjarm/error.hpp"
+#include "mjarm/model/user_file.hpp"
 
 namespace mjarm::scene_detail {
 
@@ -112,9 +113,13 @@ Part object_part(const ObjectSpec& spec, bool free) {
     namespace fs = std::filesystem;
     std::error_code ec;
     const fs::path file = fs::absolute(spec.mesh_file, ec);
-    if (ec || !fs::is_regular_file(file, ec)) {
-      throw Error("mesh file '" + spec.mesh_file + "' of object '" + spec.name +
-                  "' does not exist (looked at " + file.string() + ")");
+    try {
+      // a regular file within the asset limit, named for what it is when it is not
+      check_user_file(ec ? fs::path(spec.mesh_file) : file, "mesh file", kMaxDataFileBytes);
+    } catch (const Error& e) {
+      throw Error(std::string(e.what()) + " (object '" + spec.name + "'" +
+                  (file.string() == spec.mesh_file ? "" : ", given as '" + spec.mesh_file + "'") +
+                  ")");
     }
     XmlNode mesh = element("mesh", {{"name", "mesh"}, {"file", file.lexically_normal().string()}});
     if (!spec.size.empty()) mesh.set("scale", numbers_text(spec.size));

@@ -9,29 +9,9 @@
 #include <vector>
 
 #include "mjarm/error.hpp"
-#include "mjarm/trajectory/min_jerk.hpp"
+#include "mjarm/trajectory/smoothstep.hpp"
 
 namespace mjarm {
-
-double joint_torque_limit(const Chain& chain, int i) {
-  const mjModel& m = chain.robot().model();
-  const std::optional<int> a = chain.actuator(i);
-  double limit = std::numeric_limits<double>::infinity();
-  if (!a) return limit;
-  const double gear = std::abs(m.actuator_gear[6 * *a]);
-  if (m.actuator_ctrllimited[*a]) {
-    const double c = std::max(std::abs(m.actuator_ctrlrange[2 * *a]),
-                              std::abs(m.actuator_ctrlrange[2 * *a + 1]));
-    // a motor's force is gain·ctrl (gain = gainprm[0])
-    limit = std::min(limit, c * std::abs(m.actuator_gainprm[mjNGAIN * *a]) * gear);
-  }
-  if (m.actuator_forcelimited[*a]) {
-    const double f = std::max(std::abs(m.actuator_forcerange[2 * *a]),
-                              std::abs(m.actuator_forcerange[2 * *a + 1]));
-    limit = std::min(limit, f * gear);
-  }
-  return limit;
-}
 
 namespace {
 
@@ -40,12 +20,12 @@ double worst_ratio(const Chain& chain, mjData* d, std::span<const double> qpos_s
                    const Eigen::VectorXd& q_start, const Eigen::VectorXd& dq, double T,
                    const std::vector<double>& allowed) {
   const mjModel& m = chain.robot().model();
-  const MinJerkProfile profile(T);
+  const SmoothRamp profile(SmoothRamp::Kind::smootherstep, T);  // the minimum-jerk scaling
   const int n = chain.size();
   double worst = 0.0;
   constexpr int kSamples = 64;
   for (int k = 0; k <= kSamples; ++k) {
-    const MinJerkProfile::Sample s = profile.at(T * k / kSamples);
+    const RampSample s = profile.at(T * k / kSamples);
     std::copy(qpos_start.begin(), qpos_start.end(), d->qpos);
     chain.scatter(q_start + s.s * dq, d->qpos);
     // at rest first: gravity (and springs) alone

@@ -134,6 +134,7 @@ ShelfPickReport run_shelf_pick(const ShelfPickOptions& options) {
       report.video_error = e.what();
     }
     report.video_frames = video->frames();
+    report.video_written = video->complete();
   }
   return report;
 }

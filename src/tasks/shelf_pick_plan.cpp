@@ -1,5 +1,6 @@
 #include "mjarm/tasks/shelf_pick_plan.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <random>
@@ -10,7 +11,7 @@
 #include "mjarm/ik/position_ik.hpp"
 #include "mjarm/kinematics/chain_kinematics.hpp"
 #include "mjarm/tasks/approach_timing.hpp"
-#include "mjarm/trajectory/min_jerk.hpp"
+#include "mjarm/trajectory/smoothstep.hpp"
 
 namespace mjarm {
 
@@ -193,7 +194,8 @@ ShelfPickPlan plan_shelf_pick(const ShelfPickRequest& request) {
                            metres(plan.ik.orientation_error, "%.3g") + " rad away");
   }
 
-  // the approach: minimum jerk over a time chosen from the distance
+  // the approach: minimum jerk (the rest-to-rest quintic, i.e. smootherstep) over the shortest
+  // time that keeps the tip's peak speed and acceleration within the robot's bounds
   const double distance = (pick - X_WS.p).norm();
   plan.goal.X_WS = X_WS;
   plan.goal.X_WT = X_WT;
@@ -201,8 +203,9 @@ ShelfPickPlan plan_shelf_pick(const ShelfPickRequest& request) {
   plan.goal.q_target = plan.ik.q;
   plan.goal.approach_time = torque_feasible_duration(
       chain, plan.qpos_start, plan.ik.q,
-      MinJerkProfile::duration_for(distance, robot.max_speed, robot.max_acceleration,
-                                   robot.min_approach_time),
+      std::max(robot.min_approach_time,
+               SmoothRamp::duration_for(SmoothRamp::Kind::smootherstep, distance, robot.max_speed,
+                                        robot.max_acceleration)),
       robot.torque_fraction);
   plan.goal.position_only = robot.position_only;
   plan.goal.criteria = request.criteria;

@@ -34,10 +34,25 @@ const ShelfPickGoal& checked(const Chain& chain, const ShelfPickGoal& goal) {
   if (!finite_pose(goal.X_WT)) throw Error("ShelfPickTask: the target pose X_WT holds NaN/inf");
   chain.check(goal.q_start, "ShelfPickGoal::q_start");
   chain.check(goal.q_target, "ShelfPickGoal::q_target");
+  if (!(goal.approach_time > 0.0) || !std::isfinite(goal.approach_time))
+    throw Error("ShelfPickTask: approach_time must be positive and finite [s], got " +
+                std::to_string(goal.approach_time));
   if (!(goal.velocity_lag >= 0.0) || !std::isfinite(goal.velocity_lag))
     throw Error("ShelfPickTask: velocity_lag must be ≥ 0 and finite [s], got " +
                 std::to_string(goal.velocity_lag));
   return goal;
+}
+
+/// The pose the task interpolates to: the target, or in a position-only task the target
+/// position with the start rotation (the orientation is not a goal there).
+Pose approach_goal(const ShelfPickGoal& goal) {
+  Pose X = goal.X_WT;
+  if (goal.position_only) X.R = goal.X_WS.R;
+  return X;
+}
+
+QuinticTrajectory::State at_rest(const Eigen::VectorXd& q) {
+  return {q, Eigen::VectorXd::Zero(q.size()), Eigen::VectorXd::Zero(q.size())};
 }
 
 }  // namespace
@@ -46,10 +61,13 @@ ShelfPickTask::ShelfPickTask(const Chain& chain, const ShelfPickGoal& goal, Reco
     : chain_(chain),
       goal_(checked(chain, goal)),
       recorder_(recorder),
-      profile_(goal.approach_time),
+      approach_(goal.X_WS, Vector6d::Zero(), Vector6d::Zero(), approach_goal(goal),
+                goal.approach_time),
+      joints_(QuinticTrajectory::to_rest(at_rest(goal.q_start), goal.q_target, goal.approach_time)),
+      q_scratch_(goal.q_start.size()),
+      qdd_scratch_(goal.q_start.size()),
       monitor_(goal.X_WS.p, goal.X_WT.p, goal.criteria),
       t0_(std::numeric_limits<double>::quiet_NaN()) {
-  if (!goal.position_only) rotation_ = so3::log(goal.X_WT.R * goal.X_WS.R.transpose());
   X_WE_ = goal.X_WS;
 }
 
@@ -79,23 +97,23 @@ bool ShelfPickTask::update(const mjData& data, Reference& reference) noexcept {
   X_WE_.R = Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(R);
 
   // the references (storage is sized on the first tick only)
-  const MinJerkProfile::Sample s = profile_.at(t);
-  const double ds = profile_.at(t - goal_.velocity_lag).ds;
+  const Se3Interpolation::Sample x = approach_.at(t);
   TaskReference& task = reference.task;
-  const Eigen::Vector3d dp = goal_.X_WT.p - goal_.X_WS.p;
-  task.X_WE.p = goal_.X_WS.p + s.s * dp;
-  task.X_WE.R = goal_.position_only ? goal_.X_WT.R
-                                    : Eigen::Matrix3d(so3::exp(s.s * rotation_) * goal_.X_WS.R);
-  task.V_WE << ds * dp, ds * rotation_;
-  task.A_WE << s.dds * dp, s.dds * rotation_;
+  task.X_WE.p = x.X_WE.p;
+  task.X_WE.R = goal_.position_only ? goal_.X_WT.R : x.X_WE.R;
+  task.V_WE = approach_.at(t - goal_.velocity_lag).V_WE;
+  task.A_WE = x.A_WE;
+  if (goal_.position_only) {
+    task.V_WE.tail<3>().setZero();
+    task.A_WE.tail<3>().setZero();
+  }
   task.F_ext.setZero();
   JointReference& joint = reference.joint;
   if (joint.q.size() != n) joint.q.resize(n);
   if (joint.qd.size() != n) joint.qd.resize(n);
   if (joint.qdd.size() != n) joint.qdd.resize(n);
-  joint.q = goal_.q_start + s.s * (goal_.q_target - goal_.q_start);
-  joint.qd = ds * (goal_.q_target - goal_.q_start);
-  joint.qdd = s.dds * (goal_.q_target - goal_.q_start);
+  joints_.at(t - goal_.velocity_lag, q_scratch_, joint.qd, qdd_scratch_);
+  joints_.at(t, joint.q, q_scratch_, joint.qdd);
 
   // the pick's figures and phases
   const double orientation_error =
@@ -112,13 +130,13 @@ bool ShelfPickTask::update(const mjData& data, Reference& reference) noexcept {
                       goal_.criteria.tolerance * 1e3, monitor_.metrics().final_error * 1e3);
         recorder_->event(data.time, "warning", message_.data());
       }
-      enter(t < profile_.duration() ? PickPhase::approach : PickPhase::settle, data.time);
+      enter(t < approach_.duration() ? PickPhase::approach : PickPhase::settle, data.time);
       break;
     case PickEvent::held:
       enter(PickPhase::release, data.time);
       break;
     case PickEvent::none:
-      if (phase_ == PickPhase::approach && t >= profile_.duration())
+      if (phase_ == PickPhase::approach && t >= approach_.duration())
         enter(PickPhase::settle, data.time);
       break;
   }

@@ -11,6 +11,7 @@
 #include "mjarm/trajectory/jerk_limited_min_time.hpp"
 #include "mjarm/trajectory/jerk_limited_sync.hpp"
 #include "mjarm/trajectory/jerk_limited_velocity.hpp"
+#include "trajectory/jerk_limited_up.hpp"
 
 namespace mjarm {
 
@@ -32,22 +33,31 @@ const char* to_string(OtgStatus status) noexcept {
 
 namespace {
 
+/// A cheap guess of the minimum duration of one DoF (brake excluded), to pick the DoF whose
+/// step 1 comes first: the duration of the profile with a cruise at ±v_max when one is valid (the
+/// optimum of most long moves), else the rest-to-rest minimum for the same distance.
+double duration_estimate(const jerk_detail::UpPair& up, const JerkLimits& limits) noexcept {
+  const double d = up.form[0].d;
+  for (const int k : {d >= 0.0 ? 0 : 1, d >= 0.0 ? 1 : 0}) {
+    const jerk_detail::CruiseShape& c = up.cruise[k];
+    if (!c.valid) continue;
+    const double cruise = (up.form[k].d - c.p) / c.v;
+    if (cruise >= 0.0) return c.duration + cruise;
+  }
+  // rest to rest over |d|: jerk only, with a hold at a_max, or with a cruise at v_max
+  const double V = limits.velocity, A = limits.acceleration, J = limits.jerk;
+  const double D = std::abs(d);
+  const double a_peak = std::min(A, std::sqrt(V * J));  // the level reached on the way to v_max
+  const double t_acc = a_peak / J + V / a_peak;         // 0 → v_max → 0 acceleration
+  if (D >= V * t_acc) return D / V + t_acc;
+  if (D <= 2.0 * A * A * A / (J * J)) return 4.0 * std::cbrt(D / (2.0 * J));
+  return A / J + std::sqrt(A * A / (J * J) + 4.0 * D / A);
+}
+
 std::string otg_number(double x) {
   char buffer[32];
   std::snprintf(buffer, sizeof buffer, "%.17g", x);
   return buffer;
-}
-
-void append_phases(const JerkProfile& from, JerkProfile& to) noexcept {
-  for (int i = 0; i < from.size(); ++i) to.append(from.jerk(i), from.phase_duration(i));
-}
-
-/// A profile of @p block with a duration within round-off of @p duration, or nullptr.
-const JerkProfile* extremal_profile(const JerkBlock& block, double duration) noexcept {
-  for (int k = 0; k < block.duration_count; ++k)
-    if (std::abs(block.durations[k] - duration) <= 1e-10 * std::max(1.0, duration))
-      return &block.profiles[k];
-  return nullptr;
 }
 
 }  // namespace
@@ -66,6 +76,12 @@ JerkLimitedGenerator::JerkLimitedGenerator(std::span<const JerkLimits> limits)
   }
   profiles_.resize(limits_.size());
   blocks_.resize(limits_.size());
+  reach_.resize(limits_.size());
+  targets_.resize(limits_.size());
+  estimates_.resize(limits_.size());
+  solved_.resize(limits_.size());
+  order_.resize(limits_.size());
+  problems_.resize(limits_.size());
   brake_durations_.resize(limits_.size());
   brake_phases_.resize(limits_.size());
   after_brake_.resize(limits_.size());
@@ -104,14 +120,29 @@ void JerkLimitedGenerator::check_states(std::span<const KinematicState> current,
   }
 }
 
+JerkLimitedGenerator::~JerkLimitedGenerator() = default;
+JerkLimitedGenerator::JerkLimitedGenerator(const JerkLimitedGenerator&) = default;
+JerkLimitedGenerator::JerkLimitedGenerator(JerkLimitedGenerator&&) noexcept = default;
+JerkLimitedGenerator& JerkLimitedGenerator::operator=(const JerkLimitedGenerator&) = default;
+JerkLimitedGenerator& JerkLimitedGenerator::operator=(JerkLimitedGenerator&&) noexcept = default;
+
+bool JerkLimitedGenerator::solve_step1(int i) const noexcept {
+  solved_[i] = 1;
+  return jerk_detail::min_time_profile(problems_[i], after_brake_[i], targets_[i], blocks_[i]);
+}
+
 OtgResult JerkLimitedGenerator::calculate(std::span<const KinematicState> current,
                                           std::span<const KinematicState> target) {
   check_states(current, target, false);
   time_ = 0.0;
   result_ = OtgResult{};
+  velocity_interface_ = false;
   const int n = dofs();
-  // step 1 per DoF, after its brake
+  // the brakes, and a guess of which DoF is slowest
+  int first = 0;
   for (int i = 0; i < n; ++i) {
+    targets_[i] = target[i];
+    solved_[i] = 0;
     JerkProfile& p = profiles_[i];
     p.reset(current[i]);
     if (!append_brake(current[i], limits_[i], p)) {
@@ -122,36 +153,76 @@ OtgResult JerkLimitedGenerator::calculate(std::span<const KinematicState> curren
     brake_durations_[i] = p.duration();
     brake_phases_[i] = p.size();
     after_brake_[i] = p.end();
-    if (!min_time_profile(after_brake_[i], target[i], limits_[i], blocks_[i])) {
+    problems_[i].set(after_brake_[i], target[i].p - after_brake_[i].p, target[i].v, target[i].a,
+                     limits_[i]);
+    estimates_[i] = p.duration() + duration_estimate(problems_[i], limits_[i]);
+    if (estimates_[i] > estimates_[first]) first = i;
+  }
+  // step 1 for the DoFs that decide the duration only: the one guessed slowest, then every DoF
+  // that has no profile of the duration synchronized over those so far (it is slower, or the
+  // duration lies in one of its blocked intervals). A duration that every DoF can take and
+  // that is the smallest some of them can take is the smallest all can take.
+  if (!solve_step1(first)) {
+    result_.status = OtgStatus::error_no_profile;
+    result_.failed_dof = first;
+    return result_;
+  }
+  // the others in the order of their guesses, slowest first: a DoF that cannot take the
+  // duration gets its step 1, and the checks start again at the new duration
+  for (int i = 0; i < n; ++i) order_[i] = i;
+  std::sort(order_.begin(), order_.end(),
+            [this](int a, int b) { return estimates_[a] > estimates_[b]; });
+  JerkSync sync;
+  if (!synchronize(blocks_, brake_durations_, solved_, sync)) {
+    result_.status = OtgStatus::error_synchronization;
+    return result_;
+  }
+  for (int k = 0; k < n; ++k) {
+    const int i = order_[k];
+    if (solved_[i]) continue;
+    const double local = sync.duration - brake_durations_[i];
+    if (jerk_detail::reach_range(problems_[i], after_brake_[i].p, local, reach_[i]) &&
+        reach_contains(reach_[i], target[i].p))
+      continue;
+    if (!solve_step1(i)) {
       result_.status = OtgStatus::error_no_profile;
       result_.failed_dof = i;
       return result_;
     }
-  }
-  // step 2
-  JerkSync sync;
-  if (!synchronize(blocks_, brake_durations_, sync)) {
-    result_.status = OtgStatus::error_synchronization;
-    return result_;
+    if (!synchronize(blocks_, brake_durations_, solved_, sync)) {
+      result_.status = OtgStatus::error_synchronization;
+      return result_;
+    }
+    k = -1;  // every check again, at the new duration
   }
   result_.duration = sync.duration;
   result_.limiting_dof = sync.limiting_dof;
-  // step 3
+  // step 3: the extremal profile of that duration, or a blend of the reachable extremes
   for (int i = 0; i < n; ++i) {
     const double local = sync.duration - brake_durations_[i];
-    const JerkProfile* main = extremal_profile(blocks_[i], local);
-    if (main == nullptr) {
-      if (!fixed_time_profile(after_brake_[i], target[i], limits_[i], local, scratch_)) {
-        result_.status = OtgStatus::error_synchronization;
-        result_.failed_dof = i;
-        return result_;
-      }
-      main = &scratch_;
+    const JerkPhases* extremal = solved_[i] ? blocks_[i].profile_of(local) : nullptr;
+    bool ok = true;
+    if (extremal != nullptr) {
+      ok = extremal->append_to(profiles_[i]);
+    } else {
+      if (solved_[i])
+        ok = jerk_detail::reach_range(problems_[i], after_brake_[i].p, local, reach_[i]);
+      ok = ok && append_blended_profile(reach_[i], target[i], local, profiles_[i]);
     }
-    append_phases(*main, profiles_[i]);
+    if (!ok) {
+      result_.status = OtgStatus::error_synchronization;
+      result_.failed_dof = i;
+      return result_;
+    }
   }
   result_.status = sync.duration > 0.0 ? OtgStatus::working : OtgStatus::finished;
   return result_;
+}
+
+const JerkBlock& JerkLimitedGenerator::block(int i) const {
+  const std::size_t k = static_cast<std::size_t>(i);
+  if (!velocity_interface_ && !solved_.at(k)) solve_step1(i);  // one the sync did not need
+  return blocks_.at(k);
 }
 
 OtgResult JerkLimitedGenerator::calculate_velocity(std::span<const KinematicState> current,
@@ -159,6 +230,7 @@ OtgResult JerkLimitedGenerator::calculate_velocity(std::span<const KinematicStat
   check_states(current, target, true);
   time_ = 0.0;
   result_ = OtgResult{};
+  velocity_interface_ = true;
   const int n = dofs();
   for (int i = 0; i < n; ++i) {
     const JerkLimits& l = limits_[i];
@@ -186,17 +258,14 @@ OtgResult JerkLimitedGenerator::calculate_velocity(std::span<const KinematicStat
   result_.limiting_dof = sync.limiting_dof;
   for (int i = 0; i < n; ++i) {
     const double local = sync.duration - brake_durations_[i];
-    const JerkProfile* main = extremal_profile(blocks_[i], local);
-    if (main == nullptr) {
-      if (!fixed_time_velocity_profile(after_brake_[i], target[i].v, target[i].a, limits_[i], local,
-                                       scratch_)) {
-        result_.status = OtgStatus::error_synchronization;
-        result_.failed_dof = i;
-        return result_;
-      }
-      main = &scratch_;
+    if (const JerkPhases* extremal = blocks_[i].profile_of(local)) {
+      extremal->append_to(profiles_[i]);
+    } else if (!append_fixed_time_velocity_profile(after_brake_[i], target[i].v, target[i].a,
+                                                   limits_[i], local, profiles_[i])) {
+      result_.status = OtgStatus::error_synchronization;
+      result_.failed_dof = i;
+      return result_;
     }
-    append_phases(*main, profiles_[i]);
   }
   result_.status = sync.duration > 0.0 ? OtgStatus::working : OtgStatus::finished;
   return result_;

@@ -8,6 +8,10 @@ namespace mjarm {
 namespace {
 
 constexpr double kBrakeSlack = 1e-12;
+/// The brake aims this far (relative) inside the velocity limit: it can pass through velocities
+/// far above the limit (hundreds of times, for a large acceleration and a small jerk), whose
+/// round-off would otherwise leave its end a hair outside.
+constexpr double kBrakeMargin = 1e-10;
 
 /// The velocity once the acceleration is ramped to zero at full jerk.
 double settled_velocity(const KinematicState& s, double jerk) noexcept {
@@ -30,60 +34,54 @@ bool is_reachable(const KinematicState& s, const JerkLimits& limits) noexcept {
          std::abs(s.v - s.a * std::abs(s.a) / (2.0 * limits.jerk)) <= v;
 }
 
-namespace {
-
-/// One brake pass from @p start (see append_brake).
-void brake_pass(const KinematicState& start, const JerkLimits& limits,
-                JerkProfile& profile) noexcept {
-  const double V = limits.velocity, A = limits.acceleration, J = limits.jerk;
-  // the braking direction: a velocity violation decides it, else the acceleration's; the
-  // problem is then seen in "up" coordinates (all values times sign) with the violation on the
-  // positive side
-  const double f = settled_velocity(start, J);
-  double sign = 1.0;
-  if (start.v > V || f > V) {
-    sign = 1.0;
-  } else if (start.v < -V || f < -V) {
-    sign = -1.0;
-  } else {
-    sign = start.a > A ? 1.0 : -1.0;
-  }
-  const double v0 = sign * start.v, a0 = sign * start.a;
-  if (v0 > V || sign * f > V) {
-    if (a0 < -A) {
-      // more deceleration than allowed: ramp it up to −A, then hold until the velocity is V
-      profile.append(sign * J, (-A - a0) / J);
-      const double v1 = sign * profile.end().v;
-      if (v1 > V) profile.append(0.0, (v1 - V) / A);
-    } else {
-      // ramp the acceleration down at full jerk until v = V: v = f_peak − J·τ²/2 with τ the time
-      // since the (possibly past) instant where a = 0 on this ramp, f_peak = v0 + a0²/(2J);
-      // hold at −A when that needs more deceleration than the limit
-      const double f_peak = v0 + a0 * a0 / (2.0 * J);
-      const double tau = std::sqrt(2.0 * std::max(f_peak - V, 0.0) / J);
-      if (J * tau <= A) {
-        profile.append(-sign * J, std::max(a0 / J + tau, 0.0));
-      } else {
-        profile.append(-sign * J, (a0 + A) / J);
-        const double v1 = sign * profile.end().v;
-        profile.append(0.0, std::max((v1 - V) / A, 0.0));
-      }
-    }
-  } else if (a0 > A) {
-    profile.append(-sign * J, (a0 - A) / J);  // only the acceleration is too large
-  }
-}
-
-}  // namespace
-
 bool append_brake(const KinematicState& start, const JerkLimits& limits,
                   JerkProfile& profile) noexcept {
-  // a second pass handles a first one that overshoots to the other side (a deceleration far
-  // beyond its limit turns a too-high velocity into a too-low one while it is ramped back)
-  if (profile.size() == 0) profile.reset(start);
-  for (int pass = 0; pass < 2 && !is_startable(profile.end(), limits); ++pass)
-    brake_pass(profile.end(), limits, profile);
-  return is_startable(profile.end(), limits);
+  if (is_startable(start, limits)) return true;
+  const double V = limits.velocity * (1.0 - kBrakeMargin), A = limits.acceleration;
+  const double J = limits.jerk;
+  const double f = settled_velocity(start, J);
+  if (std::abs(f) <= V) {
+    // ramp the acceleration towards zero: f stays, v moves towards it, |a| falls
+    const double s = start.a > 0.0 ? 1.0 : -1.0;  // a ≠ 0 here, else v = f would be within
+    const double a = s * start.a, v = s * start.v;
+    double tau = std::max((a - A) / J, 0.0);
+    if (v < -V) tau = std::max(tau, (a - std::sqrt(std::max(a * a + 2.0 * J * (V + v), 0.0))) / J);
+    return profile.append(-s * J, std::min(tau, a / J));
+  }
+  // seen with the violation on the positive side (f > V): bring v down to V, ending on a +J ramp
+  // whose settled velocity is f_e (the velocity the acceleration would settle at): f_e = 0 when
+  // a_max²/(2j) ≥ V, else V − a_max²/(2j) (then the ramp is empty and the brake holds at −a_max)
+  const double s = f > V ? 1.0 : -1.0;
+  double a = s * start.a, v = s * start.v;
+  if (a < -A) {
+    // a deceleration beyond its limit: up to −A first (f stays > V on the way)
+    if (!profile.append(s * J, (-A - a) / J)) return false;
+    v = s * profile.end().v;
+    a = -A;
+  }
+  const double f_e = std::max(V - 0.5 * A * A / J, 0.0);
+  const double c = v + 0.5 * a * a / J;  // v + a²/(2J) stays c on a −J ramp
+  if (c <= 2.0 * V - f_e) {
+    // the −J ramp alone meets v = V (the later crossing: v + a·τ − J·τ²/2 = V) at a level in
+    // [−√(2J(V − f_e)), 0], where v − a²/(2J) = 2V − c ≥ f_e
+    const double tau = (a + std::sqrt(std::max(a * a + 2.0 * J * (v - V), 0.0))) / J;
+    return !(tau > 0.0) || profile.append(-s * J, tau);
+  }
+  // −J down to m (a hold there when m = −A), then +J up to a_e: v − a²/(2J) = f_e on that ramp
+  const double m = -std::min(std::sqrt(J * (c - f_e)), A);
+  if ((a - m) / J > 0.0 && !profile.append(-s * J, (a - m) / J)) return false;
+  // the later phases are timed from the integrated state, so that the brake ends on v = V to
+  // round-off even after passing through velocities far above it
+  KinematicState e = profile.end();
+  if (m == -A) {
+    const double hold = (s * e.v - (f_e + 0.5 * A * A / J)) / A;
+    if (hold > 0.0 && !profile.append(0.0, hold)) return false;
+    e = profile.end();
+  }
+  // +J until v = V: v + a·τ + J·τ²/2 = V, the first crossing
+  const double ve = s * e.v, ae = s * e.a;
+  const double tau = (-ae - std::sqrt(std::max(ae * ae - 2.0 * J * (ve - V), 0.0))) / J;
+  return !(tau > 0.0) || profile.append(s * J, tau);
 }
 
 }  // namespace mjarm

@@ -3,373 +3,270 @@
 #include <algorithm>
 #include <cmath>
 
-#include "mjarm/trajectory/jerk_limited_block.hpp"
 #include "mjarm/trajectory/jerk_limited_min_time.hpp"
-#include "trajectory/jerk_limited_symbolic.hpp"
+#include "mjarm/trajectory/jerk_limited_reach.hpp"
 
 namespace mjarm {
 
-using jerk_detail::evaluate;
-using jerk_detail::Ext;
-using jerk_detail::ext;
-using jerk_detail::linear;
-using jerk_detail::SymbolicPhases;
-using jerk_detail::operator+;
-using jerk_detail::operator-;
-using jerk_detail::operator*;
-
 namespace {
 
-/// A structure of up to 7 phases whose durations depend on one unknown x (and r = ±√Q(x)).
-struct FixedStructure {
-  int size = 0;
-  double jerk[7] = {};
-  Ext duration[7];
-  Polynomial q;  ///< r² = q(x); zero when r does not appear
-  void add(double j, const Ext& t) noexcept {
-    jerk[size] = j;
-    duration[size] = t;
-    ++size;
+/// One phase of a blend: the phase slots of both profiles it lies in, and its duration.
+struct BlendPhase {
+  int h, l;
+  double duration;
+};
+
+/// The first and last slots of nonzero duration of @p p (first > last when there is none).
+struct SlotRange {
+  int first = JerkPhases::kSize, last = -1;
+  explicit SlotRange(const JerkPhases& p) noexcept {
+    for (int i = 0; i < JerkPhases::kSize; ++i)
+      if (p.duration[i] > 0.0) {
+        first = std::min(first, i);
+        last = i;
+      }
   }
 };
 
-/// The fixed-duration problem in one direction (states times `sign`).
-struct FixedProblem {
-  KinematicState start, target;
-  JerkLimits limits;
-  double duration = 0.0;
-  double sign = 1.0;
-  double v0 = 0.0, a0 = 0.0, vf = 0.0, af = 0.0, distance = 0.0;
+/// Walks the phases of nonzero duration of two profiles together, from their start
+/// (@p step = +1) or back from their end (−1), each merged phase lasting the smaller of what
+/// remains of the two current phases: each profile's own phases are reproduced to the round-off
+/// of their own lengths.
+struct BlendWalk {
+  const JerkPhases* hi;
+  const JerkPhases* lo;
+  int step;
+  int h = 0, l = 0;            ///< current slots (out of range when a profile has ended)
+  int last_h = 0, last_l = 0;  ///< the slots of the last phases in this direction
+  double rest_h = 0.0, rest_l = 0.0;
+
+  BlendWalk(const JerkPhases& a, const JerkPhases& b, const SlotRange& ra, const SlotRange& rb,
+            int direction) noexcept
+      : hi(&a), lo(&b), step(direction) {
+    h = direction > 0 ? ra.first : ra.last;
+    l = direction > 0 ? rb.first : rb.last;
+    last_h = direction > 0 ? ra.last : ra.first;
+    last_l = direction > 0 ? rb.last : rb.first;
+    if (!valid(h)) h = last_h = -2;  // a profile of no phase: ended at once
+    if (!valid(l)) l = last_l = -2;
+    rest_h = valid(h) ? hi->duration[h] : 0.0;
+    rest_l = valid(l) ? lo->duration[l] : 0.0;
+  }
+  static bool valid(int i) noexcept { return i >= 0 && i < JerkPhases::kSize; }
+  int advance(const JerkPhases& p, int i) const noexcept {
+    while (valid(i) && !(p.duration[i] > 0.0)) i += step;
+    return i;
+  }
+  bool done() const noexcept { return !valid(h) && !valid(l); }
+  /// The next merged phase; the walk moves past it. The last phases of both end together (the
+  /// profiles' totals differ by round-off only).
+  BlendPhase next() noexcept {
+    BlendPhase b{h, l, 0.0};
+    const bool vh = valid(h), vl = valid(l);
+    if (h == last_h && l == last_l && vh && vl) {
+      b.duration = std::max(rest_h, rest_l);
+      h = l = step > 0 ? JerkPhases::kSize : -1;
+      return b;
+    }
+    b.duration = vh && vl ? std::min(rest_h, rest_l) : (vh ? rest_h : rest_l);
+    const bool end_h = vh && (!vl || rest_h <= rest_l), end_l = vl && (!vh || rest_l <= rest_h);
+    if (vh) rest_h = end_h ? 0.0 : rest_h - b.duration;
+    if (vl) rest_l = end_l ? 0.0 : rest_l - b.duration;
+    if (end_h) {
+      h = advance(*hi, h + step);
+      rest_h = valid(h) ? hi->duration[h] : 0.0;
+    }
+    if (end_l) {
+      l = advance(*lo, l + step);
+      rest_l = valid(l) ? lo->duration[l] : 0.0;
+    }
+    return b;
+  }
 };
 
-/// Solves @p st for x in [lo, hi]; on the first valid profile writes it and returns true.
-bool solve_structure(const FixedProblem& fp, const FixedStructure& st, double lo, double hi,
-                     JerkProfile& profile) noexcept {
-  SymbolicPhases s(st.q, fp.v0, fp.a0);
-  for (int i = 0; i < st.size; ++i) s.phase(st.jerk[i], st.duration[i]);
-  std::array<double, kMaxRoots> roots{};
-  const int n = real_roots(s.residual(fp.distance), lo, hi, roots);
-  for (int k = 0; k < n; ++k) {
-    const double x = roots[k];
-    const double qx = st.q(x);
-    if (qx < -1e-10) continue;
-    const double r = std::sqrt(std::max(qx, 0.0));
-    for (const double rr : {r, -r}) {
-      profile.reset(fp.start);
-      bool ok = true;
-      for (int i = 0; i < st.size && ok; ++i) {
-        double t = evaluate(st.duration[i], x, rr);
-        if (!(t >= -1e-12)) ok = false;  // also NaN
-        if (ok && t > 0.0) profile.append(fp.sign * st.jerk[i], t);
+/// The pair of slots (@p mh of @p hi, @p ml of @p lo) whose phases both have no jerk and overlap
+/// longest in time; false when no such pair overlaps.
+bool longest_calm_overlap(const JerkPhases& hi, const JerkPhases& lo, int& mh, int& ml) noexcept {
+  double start_h[JerkPhases::kSize], start_l[JerkPhases::kSize];
+  double th = 0.0, tl = 0.0;
+  for (int i = 0; i < JerkPhases::kSize; ++i) {
+    start_h[i] = th;
+    start_l[i] = tl;
+    th += hi.duration[i];
+    tl += lo.duration[i];
+  }
+  double best = 0.0;
+  for (int i = 1; i < JerkPhases::kSize; i += 2) {  // the slots without jerk: 1, 3, 5
+    if (hi.jerk[i] != 0.0 || !(hi.duration[i] > 0.0)) continue;
+    for (int k = 1; k < JerkPhases::kSize; k += 2) {
+      if (lo.jerk[k] != 0.0 || !(lo.duration[k] > 0.0)) continue;
+      const double overlap = std::min(start_h[i] + hi.duration[i], start_l[k] + lo.duration[k]) -
+                             std::max(start_h[i], start_l[k]);
+      if (overlap > best) {
+        best = overlap;
+        mh = i;
+        ml = k;
       }
-      if (ok && std::abs(profile.duration() - fp.duration) <= 1e-9 * std::max(1.0, fp.duration) &&
-          reaches_within_limits(profile, fp.target, fp.limits))
-        return true;
-      if (r == 0.0) break;
     }
   }
-  return false;
+  return best > 0.0;
 }
 
-/// Cruise at a free velocity: rise (+j, plateau?, −j) to (v_c, 0), cruise, then leave with
-/// (−j, plateau?, +j) when `leave_down`, else (+j, plateau?, −j).
-bool solve_cruise(const FixedProblem& fp, bool rise_plateau, bool leave_plateau, bool leave_down,
+/// Appends λ·@p hi + (1 − λ)·@p lo, both of duration @p duration, phase by phase over the union
+/// of their switching times: the phases before the longest overlap of two phases without jerk
+/// (holds, cruises) merged from the start, those after it back from the end, and the overlap
+/// lasting what is left. The two profiles' totals agree with the duration only to its round-off;
+/// merged from one end only, that difference would lengthen a ramp at the other end, and times
+/// the jerk it becomes an acceleration error (10⁻⁹ after holds of hours at a jerk of 10⁴). In an
+/// overlap without jerk it only moves the velocity by a·δ.
+/// The phases of a run of slots (ramps and holds before or after a cruise), in walking order.
+struct Run {
+  double duration[3];
+  double jerk[3];
+  int size = 0;
+  /// Slots @p first, first + step, first + 2·step of @p p, those of nonzero duration.
+  Run(const JerkPhases& p, int first, int step) noexcept {
+    for (int k = 0, i = first; k < 3; ++k, i += step)
+      if (p.duration[i] > 0.0) {
+        duration[size] = p.duration[i];
+        jerk[size++] = p.jerk[i];
+      }
+  }
+};
+
+/// Merges the runs @p a and @p b (blended with weights λ and 1 − λ) by remainders, as BlendWalk:
+/// a run that has ended is in its cruise (no jerk). Writes at most 5 phases; returns their number
+/// and their total duration in @p total.
+int merge_runs(const Run& a, const Run& b, double lambda, double* duration, double* jerk,
+               double& total) noexcept {
+  int i = 0, k = 0, n = 0;
+  double ra = a.size > 0 ? a.duration[0] : 0.0, rb = b.size > 0 ? b.duration[0] : 0.0;
+  total = 0.0;
+  while (i < a.size || k < b.size) {
+    const bool va = i < a.size, vb = k < b.size;
+    const bool end_a = va && (!vb || ra <= rb), end_b = vb && (!va || rb <= ra);
+    const double dt = end_a ? ra : rb;
+    duration[n] = dt;
+    jerk[n++] = lambda * (va ? a.jerk[i] : 0.0) + (1.0 - lambda) * (vb ? b.jerk[k] : 0.0);
+    total += dt;
+    if (end_a) {
+      ra = ++i < a.size ? a.duration[i] : 0.0;
+    } else if (va) {
+      ra -= dt;
+    }
+    if (end_b) {
+      rb = ++k < b.size ? b.duration[k] : 0.0;
+    } else if (vb) {
+      rb -= dt;
+    }
+  }
+  return n;
+}
+
+bool append_blend(const JerkPhases& hi, const JerkPhases& lo, double lambda, double duration,
                   JerkProfile& profile) noexcept {
-  const double A = fp.limits.acceleration, J = fp.limits.jerk;
-  const double a0 = fp.a0, af = fp.af;
-  FixedStructure st;
-  // the rise: x = u (level) or x = h1 (plateau length at A)
-  Polynomial vc;  // cruise velocity as a polynomial in x
-  Ext rise_time;
-  double lo = 0.0, hi = 0.0;
-  if (!rise_plateau) {
-    vc = linear(fp.v0 - a0 * a0 / (2.0 * J));
-    vc.c[2] = 1.0 / J;
-    vc.degree = 2;
-    st.add(J, ext(linear(-a0 / J, 1.0 / J)));
-    st.add(-J, ext(linear(0.0, 1.0 / J)));
-    rise_time = ext(linear(-a0 / J, 2.0 / J));
-    lo = std::max(a0, 0.0);
-    hi = A;
-  } else {
-    vc = linear(fp.v0 + (2.0 * A * A - a0 * a0) / (2.0 * J), A);
-    st.add(J, ext(linear((A - a0) / J)));
-    st.add(0.0, ext(linear(0.0, 1.0)));
-    st.add(-J, ext(linear(A / J)));
-    rise_time = ext(linear((2.0 * A - a0) / J, 1.0));
-    lo = 0.0;
-    hi = HUGE_VAL;
-  }
-  // the leave: level w = ∓r (no plateau) or ∓A with a plateau h5(x)
-  const double s = leave_down ? -1.0 : 1.0;  // sign of the leave's level
-  Ext leave[3];
-  int leave_size = 0;
-  Ext leave_time;
-  if (!leave_plateau) {
-    // vf − v_c = s·(w² − af²/2)/J·... : w² = J·s·(vf − v_c) + af²/2
-    st.q = (J * s) * (linear(fp.vf) - vc) + linear(0.5 * af * af);
-    leave[leave_size++] = ext(Polynomial{}, linear(1.0 / J));         // |w|/J
-    leave[leave_size++] = ext(linear(-s * af / J), linear(1.0 / J));  // (|w| − s·af)/J
-    leave_time = ext(linear(-s * af / J), linear(2.0 / J));
-  } else {
-    // vf − v_c = s·(2A² − af²)/(2J) + s·A·h5
-    const Polynomial h5 =
-        (s / A) * (linear(fp.vf) - vc) - linear((2.0 * A * A - af * af) / (2.0 * J * A));
-    leave[leave_size++] = ext(linear(A / J));
-    leave[leave_size++] = ext(h5);
-    leave[leave_size++] = ext(linear((A - s * af) / J));
-    leave_time = ext(linear((2.0 * A - s * af) / J) + h5);
-  }
-  // cruise = T − rise − leave
-  st.add(0.0, ext(linear(fp.duration)) - rise_time - leave_time);
-  const double jl[3] = {s * J, 0.0, -s * J};
-  if (!leave_plateau) {
-    st.add(s * J, leave[0]);
-    st.add(-s * J, leave[1]);
-  } else {
-    for (int i = 0; i < 3; ++i) st.add(jl[i], leave[i]);
-  }
-  return solve_structure(fp, st, lo, hi, profile);
-}
-
-/// No cruise: (+j, −j, +j) with a hold at a free level after the first ramp (`hold_first`) or
-/// after the second.
-bool solve_hold(const FixedProblem& fp, bool hold_first, JerkProfile& profile) noexcept {
-  const double A = fp.limits.acceleration, J = fp.limits.jerk, T = fp.duration;
-  const double a0 = fp.a0, af = fp.af, dv = fp.vf - fp.v0;
-  FixedStructure st;
-  if (!hold_first) {
-    // x = w (held), u = w + r with r² = w² − c(w)
-    // c(w) = w² + J·w·T + w·(a0 − af) + (af² − a0²)/2 − J·Δv
-    const Polynomial c = Polynomial{{(af * af - a0 * a0) / 2.0 - J * dv, J * T + a0 - af, 1.0}, 2};
-    st.q = Polynomial{{0.0, 0.0, 1.0}, 2} - c;
-    const Ext u = ext(linear(0.0, 1.0), linear(1.0));
-    st.add(J, (1.0 / J) * (u - ext(linear(a0))));
-    st.add(-J, (1.0 / J) * (u - ext(linear(0.0, 1.0))));
-    // hold = T − (2u − a0 − 2w + af)/J
-    st.add(0.0,
-           ext(linear(T)) - (1.0 / J) * (2.0 * u - ext(linear(a0 + 0.0, 2.0)) + ext(linear(af))));
-    st.add(J, ext(linear(af / J, -1.0 / J)));
-    return solve_structure(fp, st, -A, std::min(af, A), profile);
-  }
-  // x = u (held), w = u − r with r² = u² + c2(u)
-  // c2(u) = −u² + u·(a0 − af + J·T) + (af² − a0²)/2 − J·Δv
-  st.q = Polynomial{{(af * af - a0 * a0) / 2.0 - J * dv, a0 - af + J * T, 0.0}, 1};
-  const Ext w = ext(linear(0.0, 1.0), linear(-1.0));
-  const Ext u = ext(linear(0.0, 1.0));
-  st.add(J, ext(linear(-a0 / J, 1.0 / J)));
-  st.add(0.0, ext(linear(T)) - (1.0 / J) * (2.0 * u - ext(linear(a0)) - 2.0 * w + ext(linear(af))));
-  st.add(-J, (1.0 / J) * (u - w));
-  st.add(J, (1.0 / J) * (ext(linear(af)) - w));
-  return solve_structure(fp, st, std::max(a0, -A), A, profile);
-}
-
-/// No cruise: a plateau at a limit and a hold at a free level: (+j, A, −j, hold at w, +j) when
-/// `plateau_first`, else (+j, hold at u, −j, −A, +j). x = the free hold's length; the free level
-/// solves a quadratic (r² = discriminant).
-bool solve_plateau_and_hold(const FixedProblem& fp, bool plateau_first,
-                            JerkProfile& profile) noexcept {
-  const double A = fp.limits.acceleration, J = fp.limits.jerk, T = fp.duration;
-  const double a0 = fp.a0, af = fp.af, dv = fp.vf - fp.v0;
-  FixedStructure st;
-  const Polynomial b = linear(2.0 * A, J);  // J·x + 2A
-  const Ext x = ext(linear(0.0, 1.0));
-  if (plateau_first) {
-    // w² − (Jx + 2A)·w − E/2 = 0
-    const Polynomial e = linear(-2.0 * A * A - a0 * a0 + af * af + 2.0 * J * A * T + 2.0 * A * a0 -
-                                    2.0 * A * af - 2.0 * J * dv,
-                                -2.0 * J * A);
-    st.q = b * b + 2.0 * e;
-    const Ext w = ext(linear(A, 0.5 * J), linear(0.5));
-    st.add(J, ext(linear((A - a0) / J)));
-    st.add(0.0, ext(linear(T)) - x - (1.0 / J) * (ext(linear(2.0 * A - a0 + af)) - 2.0 * w));
-    st.add(-J, (1.0 / J) * (ext(linear(A)) - w));
-    st.add(0.0, x);
-    st.add(J, (1.0 / J) * (ext(linear(af)) - w));
-    return solve_structure(fp, st, 0.0, T, profile);
-  }
-  // u² + (Jx + 2A)·u + G/2 = 0
-  const Polynomial g = linear(2.0 * A * A - a0 * a0 + af * af - 2.0 * J * A * T - 2.0 * A * a0 +
-                                  2.0 * A * af - 2.0 * J * dv,
-                              2.0 * J * A);
-  st.q = b * b - 2.0 * g;
-  const Ext u = ext(linear(-A, -0.5 * J), linear(0.5));
-  st.add(J, (1.0 / J) * (u - ext(linear(a0))));
-  st.add(0.0, x);
-  st.add(-J, (1.0 / J) * (u + ext(linear(A))));
-  st.add(0.0, ext(linear(T)) - x - (1.0 / J) * (2.0 * u + ext(linear(2.0 * A - a0 + af))));
-  st.add(J, ext(linear((af + A) / J)));
-  return solve_structure(fp, st, 0.0, T, profile);
-}
-
-/// No cruise: (+j, −j, +j) with a hold at the start acceleration before it (`at_start`) or at
-/// the target acceleration after it. x = the middle level on the far side of the hold; the
-/// level next to the hold solves a quadratic (r² = discriminant).
-bool solve_end_hold(const FixedProblem& fp, bool at_start, JerkProfile& profile) noexcept {
-  const double A = fp.limits.acceleration, J = fp.limits.jerk, T = fp.duration;
-  const double a0 = fp.a0, af = fp.af, dv = fp.vf - fp.v0;
-  FixedStructure st;
-  const Ext x = ext(linear(0.0, 1.0));
-  if (at_start) {
-    // x = w; u² − 2a0·u + C(w)/2 = 0,
-    // C(w) = 2J·a0·T + a0² + 4a0·w − 2a0·af − 2w² + af² − 2J·Δv
-    const Polynomial c = Polynomial{
-        {2.0 * J * a0 * T + a0 * a0 - 2.0 * a0 * af + af * af - 2.0 * J * dv, 4.0 * a0, -2.0}, 2};
-    st.q = linear(a0 * a0) - 0.5 * c;
-    const Ext u = ext(linear(a0), linear(1.0));
-    st.add(0.0, ext(linear(T)) - (1.0 / J) * (2.0 * u - ext(linear(a0 + af)) - 2.0 * x));
-    st.add(J, (1.0 / J) * (u - ext(linear(a0))));
-    st.add(-J, (1.0 / J) * (u - x));
-    st.add(J, (1.0 / J) * (ext(linear(af)) - x));
-    return solve_structure(fp, st, -A, std::min(af, A), profile);
-  }
-  // x = u; w² − 2af·w − C′(u)/2 = 0,
-  // C′(u) = 2u² − 4af·u − a0² − af² + 2J·af·T + 2af·a0 − 2J·Δv
-  const Polynomial c = Polynomial{
-      {-a0 * a0 - af * af + 2.0 * J * af * T + 2.0 * af * a0 - 2.0 * J * dv, -4.0 * af, 2.0}, 2};
-  st.q = linear(af * af) + 0.5 * c;
-  const Ext w = ext(linear(af), linear(1.0));
-  st.add(J, (1.0 / J) * (x - ext(linear(a0))));
-  st.add(-J, (1.0 / J) * (x - w));
-  st.add(J, (1.0 / J) * (ext(linear(af)) - w));
-  st.add(0.0, ext(linear(T)) - (1.0 / J) * (2.0 * x - ext(linear(a0 - af)) - 2.0 * w));
-  return solve_structure(fp, st, std::max(a0, -A), A, profile);
-}
-
-/// A cruise at +v_max, reached by (+j, −j) and left by (−j, +j), with a hold at a free level in
-/// the rise (`hold_in_rise`) or in the leave. x = the hold's length; its level solves a
-/// quadratic (r² = discriminant).
-bool solve_limit_cruise(const FixedProblem& fp, bool hold_in_rise, JerkProfile& profile) noexcept {
-  const double V = fp.limits.velocity, A = fp.limits.acceleration, J = fp.limits.jerk;
-  const double T = fp.duration, a0 = fp.a0, af = fp.af;
-  FixedStructure st;
-  const Ext x = ext(linear(0.0, 1.0));
-  if (hold_in_rise) {
-    // V − v0 = (2u² − a0²)/(2J) + u·x;  leave: w² = J·(V − vf) + af²/2 (no hold)
-    const double w2 = J * (V - fp.vf) + 0.5 * af * af;
-    if (w2 < 0.0) return false;
-    const double w = -std::sqrt(w2);
-    st.q = Polynomial{{2.0 * a0 * a0 + 4.0 * J * (V - fp.v0), 0.0, J * J}, 2};
-    const Ext u = ext(linear(0.0, -0.5 * J), linear(0.5));
-    const Ext rise = (1.0 / J) * (2.0 * u - ext(linear(a0))) + x;
-    const double leave = (af - 2.0 * w) / J;
-    st.add(J, (1.0 / J) * (u - ext(linear(a0))));
-    st.add(0.0, x);
-    st.add(-J, (1.0 / J) * u);
-    st.add(0.0, ext(linear(T - leave)) - rise);
-    st.add(-J, ext(linear(-w / J)));
-    st.add(J, ext(linear((af - w) / J)));
-    return solve_structure(fp, st, 0.0, T, profile);
-  }
-  // rise without a hold: V − v0 = (2u² − a0²)/(2J) (+ a plateau at A when u would exceed it)
-  double u = std::sqrt(std::max(J * (V - fp.v0) + 0.5 * a0 * a0, 0.0)), h1 = 0.0;
-  if (u > A) {
-    u = A;
-    h1 = (V - fp.v0 - (2.0 * A * A - a0 * a0) / (2.0 * J)) / A;
-  }
-  // vf − V = (af² − 2w²)/(2J) + w·x
-  st.q = Polynomial{{2.0 * af * af - 4.0 * J * (fp.vf - V), 0.0, J * J}, 2};
-  const Ext w = ext(linear(0.0, 0.5 * J), linear(0.5));
-  const double rise = (2.0 * u - a0) / J + h1;
-  const Ext leave = (1.0 / J) * (ext(linear(af)) - 2.0 * w) + x;
-  st.add(J, ext(linear((u - a0) / J)));
-  st.add(0.0, ext(linear(h1)));
-  st.add(-J, ext(linear(u / J)));
-  st.add(0.0, ext(linear(T - rise)) - leave);
-  st.add(-J, (-1.0 / J) * w);
-  st.add(0.0, x);
-  st.add(J, (1.0 / J) * (ext(linear(af)) - w));
-  return solve_structure(fp, st, 0.0, T, profile);
-}
-
-/// No cruise, no hold: (+j_r, −j_r, +j_r) with a reduced jerk j_r ≤ j_max. With y = 1/j_r and
-/// δ = a_f − a₀: t₂ = (T − δy)/2, t₁ + t₃ = S = (T + δy)/2, and the velocity equation gives
-/// t₁ = N(y)/(2t₂) with N = (Δv − a₀T)·y − (S²/2 − t₂²/2 − t₂S). The jerk part of the position
-/// is a homogeneous cubic P in the durations, so (2t₂)³·(position residual)·y is the polynomial
-/// y·(2t₂)³·(v₀T + a₀T²/2 − D) + P(N, 2t₂², 2t₂S − N) of degree ≤ 7 in y.
-bool solve_reduced_jerk(const FixedProblem& fp, JerkProfile& profile) noexcept {
-  const double J = fp.limits.jerk, T = fp.duration, a0 = fp.a0, v0 = fp.v0;
-  const double d = fp.af - a0;
-  const Polynomial t2 = linear(0.5 * T, -0.5 * d);
-  const Polynomial S = linear(0.5 * T, 0.5 * d);
-  const Polynomial N =
-      linear(0.0, fp.vf - v0 - a0 * T) - (0.5 * (S * S) - 0.5 * (t2 * t2) - t2 * S);
-  const Polynomial two_t2 = 2.0 * t2;
-  SymbolicPhases jerk_part(Polynomial{}, 0.0, 0.0);
-  jerk_part.phase(1.0, ext(N));
-  jerk_part.phase(-1.0, ext(two_t2 * t2));
-  jerk_part.phase(1.0, ext(two_t2 * S - N));
-  const Polynomial cube = two_t2 * two_t2 * two_t2;
-  const Polynomial residual =
-      linear(0.0, v0 * T + 0.5 * a0 * T * T - fp.distance) * cube + jerk_part.position().a;
-  std::array<double, kMaxRoots> roots{};
-  const int n = real_roots(residual, 1.0 / J, HUGE_VAL, roots);
-  for (int k = 0; k < n; ++k) {
-    const double y = roots[k];
-    const double h2 = t2(y);
-    if (!(h2 > 0.0)) continue;
-    const double h1 = N(y) / (2.0 * h2), h3 = S(y) - h1;
-    if (!(h1 >= -1e-12 && h3 >= -1e-12)) continue;
-    const double jr = 1.0 / y;
-    profile.reset(fp.start);
-    if (h1 > 0.0) profile.append(fp.sign * jr, h1);
-    profile.append(-fp.sign * jr, h2);
-    if (h3 > 0.0) profile.append(fp.sign * jr, h3);
-    if (std::abs(profile.duration() - T) <= 1e-9 * std::max(1.0, T) &&
-        reaches_within_limits(profile, fp.target, fp.limits))
+  constexpr int c = JerkPhases::kCruise;
+  if (hi.duration[c] > 0.0 && lo.duration[c] > 0.0 && hi.jerk[c] == 0.0 && lo.jerk[c] == 0.0) {
+    // the common case, two cruise profiles: the runs before the cruises merged from the start,
+    // those after them back from the end, the overlap of the cruises (when they overlap)
+    // lasting what is left
+    const Run before_h(hi, 0, 1), before_l(lo, 0, 1), after_h(hi, 6, -1), after_l(lo, 6, -1);
+    double front_d[6], front_j[6], back_d[6], back_j[6], t_front = 0.0, t_back = 0.0;
+    const int nf = merge_runs(before_h, before_l, lambda, front_d, front_j, t_front);
+    const int nb = merge_runs(after_h, after_l, lambda, back_d, back_j, t_back);
+    const double middle = duration - t_front - t_back;
+    if (middle >= 0.0) {
+      for (int k = 0; k < nf; ++k)
+        if (!profile.append(front_j[k], front_d[k])) return false;
+      if (middle > 0.0 && !profile.append_cruise(middle)) return false;
+      for (int k = nb - 1; k >= 0; --k)
+        if (!profile.append(back_j[k], back_d[k])) return false;
       return true;
+    }
   }
-  return false;
+  const auto jerk = [&](const BlendPhase& b) {
+    const double jh = BlendWalk::valid(b.h) ? hi.jerk[b.h] : 0.0;
+    const double jl = BlendWalk::valid(b.l) ? lo.jerk[b.l] : 0.0;
+    return lambda * jh + (1.0 - lambda) * jl;
+  };
+  const auto add = [&](const BlendPhase& b) {
+    if (!(b.duration > 0.0)) return true;
+    // both cruising: the plateau at zero acceleration (see JerkPhases)
+    const bool cruise = b.h == JerkPhases::kCruise && b.l == JerkPhases::kCruise &&
+                        hi.jerk[b.h] == 0.0 && lo.jerk[b.l] == 0.0;
+    return cruise ? profile.append_cruise(b.duration) : profile.append(jerk(b), b.duration);
+  };
+  int mh = -1, ml = -1;
+  const bool calm = longest_calm_overlap(hi, lo, mh, ml);
+  constexpr int kMax = 2 * JerkPhases::kSize;
+  BlendPhase back[kMax];
+  int nb = 0;
+  double t_back = 0.0;
+  const SlotRange rh(hi), rl(lo);
+  BlendWalk backward(hi, lo, rh, rl, -1);
+  while (calm && !backward.done() && nb < kMax && !(backward.h == mh && backward.l == ml)) {
+    back[nb] = backward.next();
+    t_back += back[nb++].duration;
+  }
+  const int first = profile.size();
+  double t_front = 0.0;
+  BlendWalk forward(hi, lo, rh, rl, +1);
+  if (calm && backward.h == mh && backward.l == ml) {
+    while (!forward.done() && !(forward.h == mh && forward.l == ml)) {
+      const BlendPhase b = forward.next();
+      if (!add(b)) return false;
+      t_front += b.duration;
+    }
+    if (forward.h == mh && forward.l == ml) {
+      const BlendPhase middle{mh, ml, std::max(duration - t_front - t_back, 0.0)};
+      if (!add(middle)) return false;
+      for (int k = nb - 1; k >= 0; --k)
+        if (!add(back[k])) return false;
+      return true;
+    }
+  }
+  // no such overlap (profiles of ramps only: short), or switching times equal to round-off seen
+  // in another order from each end: the merge from the start
+  profile.truncate(first);
+  BlendWalk all(hi, lo, rh, rl, +1);
+  while (!all.done())
+    if (!add(all.next())) return false;
+  return true;
 }
 
 }  // namespace
 
+bool append_blended_profile(const JerkReach& reach, const KinematicState& target, double duration,
+                            JerkProfile& profile) noexcept {
+  if (!reach_contains(reach, target.p)) return false;
+  const double span = reach.p_max - reach.p_min;
+  const double lambda = span > 0.0 ? std::clamp((target.p - reach.p_min) / span, 0.0, 1.0) : 1.0;
+  if (duration > 0.0 && !append_blend(reach.highest, reach.lowest, lambda, duration, profile))
+    return false;
+  // the limits hold by construction (a blend of two motions within them); the end is checked,
+  // the position relative to the positions the blend is made of (see JerkTolerance)
+  const KinematicState e = profile.end();
+  const double scale_p =
+      std::max({1.0, std::abs(target.p), std::abs(reach.p_min), std::abs(reach.p_max)});
+  const auto near = [](double x, double y, double scale) {
+    return std::abs(x - y) <= JerkTolerance::kTarget * std::max(1.0, scale);
+  };
+  return near(e.p, target.p, scale_p) && near(e.v, target.v, std::abs(target.v)) &&
+         near(e.a, target.a, std::abs(target.a));
+}
+
+bool append_fixed_time_profile(const KinematicState& start, const KinematicState& target,
+                               const JerkLimits& limits, double duration,
+                               JerkProfile& profile) noexcept {
+  JerkReach reach;
+  return reach_range(start, target.v, target.a, limits, duration, reach) &&
+         append_blended_profile(reach, target, duration, profile);
+}
+
 bool fixed_time_profile(const KinematicState& start, const KinematicState& target,
                         const JerkLimits& limits, double duration, JerkProfile& profile) noexcept {
-  if (!(duration >= 0.0) || !std::isfinite(duration)) return false;
   profile.reset(start);
-  if (duration == 0.0 || duration <= 1e-12) return reaches_within_limits(profile, target, limits);
-  // the direction of the displacement first: its structures usually hold the answer
-  const double first = target.p >= start.p ? 1.0 : -1.0;
-  for (const double sign : {first, -first}) {
-    FixedProblem fp;
-    fp.start = start;
-    fp.target = target;
-    fp.limits = limits;
-    fp.duration = duration;
-    fp.sign = sign;
-    fp.v0 = sign * start.v;
-    fp.a0 = sign * start.a;
-    fp.vf = sign * target.v;
-    fp.af = sign * target.a;
-    fp.distance = sign * (target.p - start.p);
-    for (const bool leave_down : {true, false})
-      for (const bool rise_plateau : {false, true})
-        for (const bool leave_plateau : {false, true})
-          if (solve_cruise(fp, rise_plateau, leave_plateau, leave_down, profile)) return true;
-    for (const bool hold_first : {false, true})
-      if (solve_hold(fp, hold_first, profile)) return true;
-    for (const bool plateau_first : {true, false})
-      if (solve_plateau_and_hold(fp, plateau_first, profile)) return true;
-    for (const bool at_start : {true, false})
-      if (solve_end_hold(fp, at_start, profile)) return true;
-    for (const bool hold_in_rise : {false, true})
-      if (solve_limit_cruise(fp, hold_in_rise, profile)) return true;
-    if (solve_reduced_jerk(fp, profile)) return true;
-  }
-  // last resort when an end is at rest: the time-optimal profile and a rest before or after it
-  const bool target_at_rest = target.v == 0.0 && target.a == 0.0;
-  const bool start_at_rest = start.v == 0.0 && start.a == 0.0;
-  if (!target_at_rest && !start_at_rest) return false;
-  JerkBlock block;
-  if (!min_time_profile(start, target, limits, block) || block.t_min > duration) return false;
-  const JerkProfile& fastest = block.fastest;
-  profile.reset(start);
-  if (!target_at_rest) profile.append(0.0, duration - block.t_min);
-  for (int i = 0; i < fastest.size(); ++i)
-    profile.append(fastest.jerk(i), fastest.phase_duration(i));
-  if (target_at_rest) profile.append(0.0, duration - block.t_min);
-  return reaches_within_limits(profile, target, limits);
+  return append_fixed_time_profile(start, target, limits, duration, profile);
 }
 
 }  // namespace mjarm

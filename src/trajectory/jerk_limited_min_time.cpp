@@ -3,225 +3,252 @@
 #include <algorithm>
 #include <cmath>
 
-#include "trajectory/jerk_limited_symbolic.hpp"
+#include "mjarm/trajectory/jerk_limited_reach.hpp"
+#include "mjarm/trajectory/jerk_limited_roots.hpp"
+#include "trajectory/jerk_limited_up.hpp"
 
 namespace mjarm {
 
-using jerk_detail::Ext;
-using jerk_detail::ext;
-using jerk_detail::linear;
-using jerk_detail::SymbolicPhases;
-using jerk_detail::operator+;
-using jerk_detail::operator-;
-using jerk_detail::operator*;
+using jerk_detail::UpForm;
 
 bool reaches_within_limits(const JerkProfile& profile, const KinematicState& target,
-                           const JerkLimits& limits) noexcept {
+                           const JerkLimits& limits, int first_phase) noexcept {
   const KinematicState e = profile.end();
   auto near = [](double x, double y) {
     return std::abs(x - y) <= JerkTolerance::kTarget * std::max(1.0, std::abs(y));
   };
-  return near(e.p, target.p) && near(e.v, target.v) && near(e.a, target.a) &&
-         profile.within(limits, JerkTolerance::kLimits);
+  if (!near(e.p, target.p) || !near(e.v, target.v) || !near(e.a, target.a)) return false;
+  const JerkExtrema x = profile.extrema(first_phase);
+  const double v = limits.velocity * (1.0 + JerkTolerance::kLimits);
+  const double a = limits.acceleration * (1.0 + JerkTolerance::kLimits);
+  const double j = limits.jerk * (1.0 + JerkTolerance::kLimits);
+  for (int i = std::max(first_phase, 0); i < profile.size(); ++i)
+    if (std::abs(profile.jerk(i)) > j) return false;
+  return x.v_min >= -v && x.v_max <= v && x.a_min >= -a && x.a_max <= a;
 }
 
 namespace {
 
-/// One DoF's problem seen in the direction `sign` (every state multiplied by it), so that every
-/// structure is solved for its "up" form only: jerk pattern (+, 0, −, 0, −, 0, +).
-struct UpProblem {
-  KinematicState start;   ///< start in the original direction
-  KinematicState target;  ///< target in the original direction
-  JerkLimits limits;
-  double sign = 1.0;
-  double v0 = 0.0, a0 = 0.0, vf = 0.0, af = 0.0;  ///< velocities/accelerations times sign
-  double distance = 0.0;                          ///< (pf − p0)·sign
-};
-
-/// Collects the valid profiles of step 1.
+/// Verifies the profiles of step 1 and records the valid ones in the block.
+///
+/// Limits: the structures keep u ≤ A and w ≥ −A; the lowest velocity of a UDDU profile is at its
+/// start, its end, or where the acceleration crosses zero in its first or last ramp — there
+/// v₀ − a₀²/(2J) and v_f − a_f²/(2J), within the limits for a startable start and a reachable
+/// target — so the highest velocity, where the acceleration crosses zero between the levels u > 0
+/// and w < 0, is the one the structures check.
 struct MinTimeCollector {
   JerkBlock* block = nullptr;
-  JerkProfile candidate;
+  double tol_p = 0.0, tol_v = 0.0, tol_a = 0.0;  ///< target tolerances (absolute)
   bool found = false;
 
-  /// Builds the profile of up-form jerks @p j and durations @p t (n phases), verifies it and
-  /// records it.
-  void offer(const UpProblem& up, const double* j, const double* t, int n) noexcept {
-    candidate.reset(up.start);
-    for (int i = 0; i < n; ++i) {
-      double ti = t[i];
-      if (!(ti >= -1e-12)) return;  // also NaN
-      if (ti < 0.0) ti = 0.0;
-      if (ti == 0.0) continue;
-      candidate.append(up.sign * j[i], ti);
-    }
-    if (!reaches_within_limits(candidate, up.target, up.limits)) return;
-    record(candidate);
-    if (!found || candidate.duration() < block->t_min) {
-      block->fastest = candidate;
-      block->t_min = candidate.duration();
-    }
+  /// Offers the up-form durations @p t (clamped in place): recorded when ≥ 0 and on target.
+  void offer(const UpForm& up, double* t) noexcept {
+    if (!jerk_detail::clamp_durations(t)) return;
+    const KinematicState e = jerk_detail::uddu_end(up, t);
+    if (std::abs(e.p - up.d) > tol_p || std::abs(e.v - up.vf) > tol_v ||
+        std::abs(e.a - up.af) > tol_a)
+      return;
+    double total = 0.0;
+    for (int i = 0; i < 7; ++i) total += t[i];
+    block->record(total, jerk_detail::to_phases(up, t));
     found = true;
   }
-
-  void record(const JerkProfile& profile) noexcept {
-    const double duration = profile.duration();
-    JerkBlock& b = *block;
-    for (int i = 0; i < b.duration_count; ++i)
-      if (std::abs(b.durations[i] - duration) <= 1e-9 * std::max(1.0, duration)) return;
-    if (b.duration_count == JerkBlock::kMaxDurations) return;
-    int i = b.duration_count++;
-    while (i > 0 && b.durations[i - 1] > duration) {
-      b.durations[i] = b.durations[i - 1];
-      b.profiles[i] = b.profiles[i - 1];
-      --i;
-    }
-    b.durations[i] = duration;
-    b.profiles[i] = profile;
+  /// Offers durations @p t of the reversed problem of @p up, read backwards.
+  void offer_reversed(const UpForm& up, const double* t) noexcept {
+    double r[7];
+    jerk_detail::reverse_durations(t, r);
+    offer(up, r);
   }
 };
 
-/// Phases 1–3 and 5–7 merged (no velocity plateau): levels u (phase 2) and w (phase 6).
-void solve_without_plateau(const UpProblem& up, MinTimeCollector& out) noexcept {
-  const double A = up.limits.acceleration, J = up.limits.jerk;
-  const double a0 = up.a0, af = up.af, v0 = up.v0, D = up.distance;
-  const double dv = up.vf - v0;
-  std::array<double, kMaxRoots> roots{};
+/// Relative slack of the velocity checks.
+constexpr double kVelocitySlack = 1.0 + JerkTolerance::kLimits;
 
-  // velocity: Δv = (2u² − 2w² − a0² + af²)/(2J) + u·h1 + w·h5
-  {  // no acceleration plateau: x = w, r = u with u² = w² + J·Δv + (a0² − af²)/2
-    Polynomial q = linear(J * dv + 0.5 * (a0 * a0 - af * af));
-    q.c[2] = 1.0;
-    q.degree = 2;
-    SymbolicPhases s(q, v0, a0);
-    s.phase(J, ext(linear(-a0 / J), linear(1.0 / J)));
-    s.phase(-J, ext(linear(0.0, -1.0 / J), linear(1.0 / J)));
-    s.phase(J, ext(linear(af / J, -1.0 / J)));
-    const int n = real_roots(s.residual(D), -A, std::min(af, A), roots);
-    for (int i = 0; i < n; ++i) {
-      const double w = roots[i];
-      const double qw = q(w);
-      if (qw < -1e-12 * std::max(1.0, A * A)) continue;
-      for (const double u : {std::sqrt(std::max(qw, 0.0)), -std::sqrt(std::max(qw, 0.0))}) {
-        const double j[3] = {J, -J, J};
-        const double t[3] = {(u - a0) / J, (u - w) / J, (af - w) / J};
-        out.offer(up, j, t, 3);
-      }
-    }
-  }
-  {  // plateau at +a_max in phase 2: x = w, h1 polynomial in w
-    const Polynomial h1 = (1.0 / A) * (linear(dv - (2.0 * A * A - a0 * a0 + af * af) / (2.0 * J)) +
-                                       Polynomial{{0.0, 0.0, 1.0 / J}, 2});
-    SymbolicPhases s(Polynomial{}, v0, a0);
-    s.phase(J, ext(linear((A - a0) / J)));
-    s.phase(0.0, ext(h1));
-    s.phase(-J, ext(linear(A / J, -1.0 / J)));
-    s.phase(J, ext(linear(af / J, -1.0 / J)));
-    const int n = real_roots(s.residual(D), -A, std::min(af, A), roots);
-    for (int i = 0; i < n; ++i) {
-      const double w = roots[i];
-      const double j[4] = {J, 0.0, -J, J};
-      const double t[4] = {(A - a0) / J, h1(w), (A - w) / J, (af - w) / J};
-      out.offer(up, j, t, 4);
-    }
-  }
-  {  // plateau at −a_max in phase 6: x = u, h5 polynomial in u
-    const Polynomial h5 =
-        (-1.0 / A) * (linear(dv - (-2.0 * A * A - a0 * a0 + af * af) / (2.0 * J)) -
-                      Polynomial{{0.0, 0.0, 1.0 / J}, 2});
-    SymbolicPhases s(Polynomial{}, v0, a0);
-    s.phase(J, ext(linear(-a0 / J, 1.0 / J)));
-    s.phase(-J, ext(linear(A / J, 1.0 / J)));
-    s.phase(0.0, ext(h5));
-    s.phase(J, ext(linear((af + A) / J)));
-    const int n = real_roots(s.residual(D), std::max(a0, -A), A, roots);
-    for (int i = 0; i < n; ++i) {
-      const double u = roots[i];
-      const double j[4] = {J, -J, 0.0, J};
-      const double t[4] = {(u - a0) / J, (u + A) / J, h5(u), (af + A) / J};
-      out.offer(up, j, t, 4);
-    }
-  }
-  {  // both plateaus: x = h5, h1 = (Δv − (af² − a0²)/(2J) + A·h5)/A
-    const Polynomial h1 = linear((dv - (af * af - a0 * a0) / (2.0 * J)) / A, 1.0);
-    SymbolicPhases s(Polynomial{}, v0, a0);
-    s.phase(J, ext(linear((A - a0) / J)));
-    s.phase(0.0, ext(h1));
-    s.phase(-J, ext(linear(2.0 * A / J)));
-    s.phase(0.0, ext(linear(0.0, 1.0)));
-    s.phase(J, ext(linear((af + A) / J)));
-    const int n = real_roots(s.residual(D), 0.0, HUGE_VAL, roots);
-    for (int i = 0; i < n; ++i) {
-      const double h5 = roots[i];
-      const double j[5] = {J, 0.0, -J, 0.0, J};
-      const double t[5] = {(A - a0) / J, h1(h5), 2.0 * A / J, h5, (af + A) / J};
-      out.offer(up, j, t, 5);
-    }
+/// Roots of @p p (degree 2 or 4) in [lo, hi] widened by @p slack (so that a root on a
+/// structure's boundary is found by both structures that meet there); none when lo > hi.
+template <typename F>
+void for_roots(const Polynomial& p, double lo, double hi, double slack, F&& f) noexcept {
+  if (!(lo <= hi)) return;
+  std::array<double, kMaxRoots> roots{};
+  const int k = real_roots(p, lo - slack, hi + slack, roots);
+  for (int i = 0; i < k; ++i) f(roots[i]);
+}
+
+/// A cruise at +V: the rise to (V, 0) and the fall from it in closed form (the cruise shape), the
+/// cruise closes the distance.
+void with_cruise(const UpForm& up, const jerk_detail::CruiseShape& cruise,
+                 MinTimeCollector& out) noexcept {
+  if (!cruise.valid) return;
+  double t[7];
+  for (int i = 0; i < 7; ++i) t[i] = cruise.t[i];
+  t[3] = (up.d - cruise.p) / cruise.v;
+  out.offer(up, t);
+}
+
+/// Holds at +A and −A without a cruise: with x = J·h₆ the position is the quadratic
+/// A·x² + (3A² + F)·x + (48A⁴ + 6A²F₀ + 42A²F − 8A·E − 3F₀² + 3F²)/(24A) = 0; h₂ = h₆ + K/(A·J).
+void with_both_holds(const UpForm& up, MinTimeCollector& out) noexcept {
+  const double A = up.A, J = up.J, F0 = up.f0, F = up.f;
+  const double iJ = up.ij;
+  // the peak (F₀ + 2A²)/(2J) + A·h₂ ≤ V bounds h₂, and so x
+  const double h2_max = (up.V * kVelocitySlack - (F0 + 2.0 * A * A) / (2.0 * J)) / A;
+  const double x_lo = std::max(0.0, -up.k / A), x_hi = J * h2_max - up.k / A;
+  if (!(x_lo <= x_hi + 1e-9 * A)) return;
+  Polynomial p;
+  p.degree = 2;
+  p.c[2] = A;
+  p.c[1] = 3.0 * A * A + F;
+  p.c[0] = (48.0 * A * A * A * A + 6.0 * A * A * F0 + 42.0 * A * A * F - 8.0 * A * up.e -
+            3.0 * F0 * F0 + 3.0 * F * F) /
+           (24.0 * A);
+  for_roots(p, x_lo, x_hi, 1e-9 * A, [&](double x) {
+    const double h6 = x * iJ, h2 = h6 + up.k * iJ / A;
+    if (F0 + 2.0 * A * A + 2.0 * J * A * h2 > 2.0 * J * up.V * kVelocitySlack) return;
+    double t[7] = {(A - up.a0) * iJ, h2, 2.0 * A * iJ, 0.0, 0.0, h6, (up.af + A) * iJ};
+    out.offer(up, t);
+  });
+}
+
+/// A hold at +A, none at −A, no cruise: the quartic in the lowest level w
+/// w⁴ − 2A·w³ + (A² + F)·w² − 2A·F·w − (8A·E − 6A²(F₀ + F) + 3F₀² − 3F²)/12 = 0,
+/// h₂ = (w² − A² + K)/(A·J). For the time-reversed problem @p q of @p up (the hold at −A), the
+/// durations are read backwards.
+void with_top_hold(const UpForm& up, const UpForm& q, bool reverse,
+                   MinTimeCollector& out) noexcept {
+  const double A = q.A, J = q.J, V = q.V, F0 = q.f0, F = q.f;
+  const double iJ = q.ij;
+  // w in [−A, a_f], h₂ ≥ 0 (w² ≥ A² − K), and a velocity peak (F + 2w²)/(2J) ≤ V when w < 0
+  const double lo = std::max(-A, -std::sqrt(std::max(0.0, J * V * kVelocitySlack - 0.5 * F)));
+  const double hi = std::min(q.af, A);
+  const double g = A * A - q.k;
+  const double s = std::sqrt(std::max(g, 0.0));
+  const double lo_neg = lo, hi_neg = std::min(hi, -s), lo_pos = std::max(lo, s);
+  if (!(lo_neg <= hi_neg) && !(lo_pos <= hi)) return;
+  Polynomial p;
+  p.degree = 4;
+  p.c[4] = 1.0;
+  p.c[3] = -2.0 * A;
+  p.c[2] = A * A + F;
+  p.c[1] = -2.0 * A * F;
+  p.c[0] = -(8.0 * A * q.e - 6.0 * A * A * (F0 + F) + 3.0 * F0 * F0 - 3.0 * F * F) / 12.0;
+  const auto solution = [&](double w) {
+    // the spans are widened by round-off: the limits are checked on the root itself
+    if (w < -A * kVelocitySlack || (w < 0.0 && F + 2.0 * w * w > 2.0 * J * V * kVelocitySlack))
+      return;
+    double t[7] = {(A - q.a0) * iJ, (w * w - g) * iJ / A, (A - w) * iJ, 0.0, 0.0, 0.0,
+                   (q.af - w) * iJ};
+    if (reverse)
+      out.offer_reversed(up, t);
+    else
+      out.offer(up, t);
+  };
+  if (s > 0.0) {
+    for_roots(p, lo_neg, hi_neg, 1e-9 * A, solution);
+    for_roots(p, lo_pos, hi, 1e-9 * A, solution);
+  } else {
+    for_roots(p, lo, hi, 1e-9 * A, solution);
   }
 }
 
-/// With a velocity plateau at +v_max (phase 4): both halves in closed form.
-void solve_with_plateau(const UpProblem& up, MinTimeCollector& out) noexcept {
-  const double V = up.limits.velocity, A = up.limits.acceleration, J = up.limits.jerk;
-  const double a0 = up.a0, af = up.af;
-  // to (V, 0): V − v0 = (2u² − a0²)/(2J) + u·h1
-  double u2 = J * (V - up.v0) + 0.5 * a0 * a0;
-  if (u2 < 0.0) return;
-  double u = std::sqrt(u2), h1 = 0.0;
-  if (u > A) {
-    u = A;
-    h1 = (V - up.v0 - (2.0 * A * A - a0 * a0) / (2.0 * J)) / A;
+/// No hold, no cruise: (+J, −J, +J) through the levels u and w, u² = w² + K. The position
+/// residual is (w³ + F·w + E/3) − u·(w² + M) = 0 (times −1/J²); squared, the sextic terms cancel:
+/// K·w⁴ + (2E/3)·w³ + K²·w² + (2F·E/3)·w + E²/9 − K·M² = 0, and u = (w³ + F·w + E/3)/(w² + M)
+/// (so every root is a solution, with the sign of u it gives).
+void without_holds(const UpForm& up, MinTimeCollector& out) noexcept {
+  const double A = up.A, J = up.J, K = up.k, E = up.e, F = up.f, M = up.m;
+  const double iJ = up.ij;
+  const double g = A * A - K;  // |u| ≤ A
+  if (g < -1e-9 * A * A) return;
+  // w in [−A, a_f] with −K ≤ w² ≤ A² − K; when u ≥ a₀ > 0, also w² ≥ a₀² − K, and a w < 0 makes
+  // the velocity peak where the acceleration crosses zero: (F + 2w²)/(2J) ≤ V
+  const double hi = std::min(up.af, A);
+  double lo = -A, w2_min = std::max(-K, 0.0);
+  if (up.a0 >= 0.0) {
+    lo = std::max(lo, -std::sqrt(std::max(0.0, J * up.V * kVelocitySlack - 0.5 * F)));
+    w2_min = std::max(w2_min, up.a0 * up.a0 - K);
   }
-  // from (V, 0): vf − V = (af² − 2w²)/(2J) + w·h5
-  double w2 = J * (V - up.vf) + 0.5 * af * af;
-  if (w2 < 0.0) return;
-  double w = -std::sqrt(w2), h5 = 0.0;
-  if (w < -A) {
-    w = -A;
-    h5 = (up.vf - V - (af * af - 2.0 * A * A) / (2.0 * J)) / (-A);
+  const double s_hi = std::sqrt(std::max(g, 0.0)), s_lo = std::sqrt(w2_min);
+  Polynomial p;
+  p.degree = 4;
+  p.c[4] = K;
+  p.c[3] = 2.0 * E / 3.0;
+  p.c[2] = K * K;
+  p.c[1] = 2.0 * F * E / 3.0;
+  p.c[0] = E * E / 9.0 - K * M * M;
+  const double v_peak = 2.0 * J * up.V * kVelocitySlack - up.f0;  // 2u² ≤ this when u > 0 > w
+  const auto solution = [&](double w) {
+    if (w < -A * kVelocitySlack) return;
+    const double r = std::sqrt(std::max(w * w + K, 0.0));
+    const double n = w * (w * w + F) + E / 3.0, q = w * w + M;
+    const auto offer_level = [&](double u) {
+      if (u > A * kVelocitySlack || (u > 0.0 && w < 0.0 && 2.0 * u * u > v_peak)) return;
+      double t[7] = {(u - up.a0) * iJ, 0.0, (u - w) * iJ, 0.0, 0.0, 0.0, (up.af - w) * iJ};
+      out.offer(up, t);
+    };
+    if (std::abs(q) > 1e-9 * (w * w + std::abs(M)) && std::abs(n / q) > 1e-6 * r) {
+      offer_level(std::copysign(r, n / q));
+    } else {
+      offer_level(r);
+      if (r > 0.0) offer_level(-r);
+    }
+  };
+  if (s_lo > 0.0) {
+    for_roots(p, std::max(lo, -s_hi), std::min(hi, -s_lo), 1e-9 * A, solution);
+    for_roots(p, std::max(lo, s_lo), std::min(hi, s_hi), 1e-9 * A, solution);
+  } else {
+    for_roots(p, std::max(lo, -s_hi), std::min(hi, s_hi), 1e-9 * A, solution);
   }
-  const double j[7] = {J, 0.0, -J, 0.0, -J, 0.0, J};
-  double t[7] = {(u - a0) / J, h1, u / J, 0.0, -w / J, h5, (af - w) / J};
-  // the cruise closes the distance
-  KinematicState s{0.0, up.v0, a0};
-  for (int i = 0; i < 7; ++i) s = integrate_jerk(s, j[i], std::max(t[i], 0.0));
-  t[3] = (up.distance - s.p) / V;
-  out.offer(up, j, t, 7);
 }
 
 }  // namespace
 
-bool min_time_profile(const KinematicState& start, const KinematicState& target,
-                      const JerkLimits& limits, JerkBlock& block) noexcept {
+namespace jerk_detail {
+
+bool min_time_profile(const UpPair& up, const KinematicState& start, const KinematicState& target,
+                      JerkBlock& block) noexcept {
+  block.start = start;
   block.duration_count = 0;
   block.blocked_count = 0;
   block.t_min = 0.0;
   MinTimeCollector out;
   out.block = &block;
-  {  // already there
-    UpProblem still;
-    still.start = start;
-    still.target = target;
-    still.limits = limits;
-    out.offer(still, nullptr, nullptr, 0);
+  out.tol_p = JerkTolerance::kTarget * std::max({1.0, std::abs(target.p), std::abs(start.p)});
+  out.tol_v = JerkTolerance::kTarget * std::max(1.0, std::abs(target.v));
+  out.tol_a = JerkTolerance::kTarget * std::max(1.0, std::abs(target.a));
+  const double d = target.p - start.p;
+  if (std::abs(d) <= out.tol_p && std::abs(target.v - start.v) <= out.tol_v &&
+      std::abs(target.a - start.a) <= out.tol_a) {
+    block.record(0.0, JerkPhases{});  // already there
+    out.found = true;
   }
-  for (const double sign : {1.0, -1.0}) {
-    UpProblem up;
-    up.start = start;
-    up.target = target;
-    up.limits = limits;
-    up.sign = sign;
-    up.v0 = sign * start.v;
-    up.a0 = sign * start.a;
-    up.vf = sign * target.v;
-    up.af = sign * target.a;
-    up.distance = sign * (target.p - start.p);
-    solve_with_plateau(up, out);
-    solve_without_plateau(up, out);
+  for (int k = 0; k < 2; ++k) {
+    const UpForm& f = up.form[k];
+    with_cruise(f, up.cruise[k], out);
+    with_both_holds(f, out);
+    with_top_hold(f, f, false, out);
+    with_top_hold(f, reversed(f), true, out);
+    without_holds(f, out);
   }
   if (!out.found) return false;
-  block.set_blocked_from_durations();
+  block.t_min = block.durations[0];
+  // the target is out of reach inside a blocked interval: test one duration between each pair
+  JerkReach reach;
+  for (int k = 0; k + 1 < block.duration_count && block.blocked_count < JerkBlock::kMaxBlocked;
+       ++k) {
+    const double lower = block.durations[k], upper = block.durations[k + 1];
+    if (!reach_range(up, start.p, 0.5 * (lower + upper), reach) || !reach_contains(reach, target.p))
+      block.blocked[block.blocked_count++] = {lower, upper};
+  }
   return true;
+}
+
+}  // namespace jerk_detail
+
+bool min_time_profile(const KinematicState& start, const KinematicState& target,
+                      const JerkLimits& limits, JerkBlock& block) noexcept {
+  jerk_detail::UpPair up;
+  up.set(start, target.p - start.p, target.v, target.a, limits);
+  return jerk_detail::min_time_profile(up, start, target, block);
 }
 
 }  // namespace mjarm

@@ -5,14 +5,6 @@
 
 namespace mjarm {
 
-KinematicState integrate_jerk(const KinematicState& s, double j, double t) noexcept {
-  KinematicState out;
-  out.p = s.p + t * (s.v + t * (0.5 * s.a + t * (j / 6.0)));
-  out.v = s.v + t * (s.a + t * (0.5 * j));
-  out.a = s.a + t * j;
-  return out;
-}
-
 void JerkProfile::reset(const KinematicState& start) noexcept {
   size_ = 0;
   start_time_[0] = 0.0;
@@ -26,6 +18,12 @@ bool JerkProfile::append(double jerk, double duration) noexcept {
   state_[size_ + 1] = integrate_jerk(state_[size_], jerk, duration);
   ++size_;
   return true;
+}
+
+bool JerkProfile::append_cruise(double duration) noexcept {
+  if (size_ == kMaxPhases) return false;
+  state_[size_].a = 0.0;
+  return append(0.0, duration);
 }
 
 JerkSample JerkProfile::at(double t) const noexcept {
@@ -87,6 +85,36 @@ bool JerkProfile::within(const JerkLimits& limits, double relative) const noexce
   for (int i = 0; i < size_; ++i)
     if (std::abs(jerk_[i]) > j) return false;
   return e.v_min >= -v && e.v_max <= v && e.a_min >= -a && e.a_max <= a;
+}
+
+}  // namespace mjarm
+
+namespace mjarm {
+
+double JerkPhases::total() const noexcept {
+  double t = 0.0;
+  for (const double d : duration) t += d;
+  return t;
+}
+
+KinematicState JerkPhases::end(const KinematicState& start) const noexcept {
+  KinematicState s = start;
+  for (int i = 0; i < kSize; ++i) {
+    if (!(duration[i] > 0.0)) continue;
+    if (i == kCruise && jerk[i] == 0.0) s.a = 0.0;
+    s = integrate_jerk(s, jerk[i], duration[i]);
+  }
+  return s;
+}
+
+bool JerkPhases::append_to(JerkProfile& profile) const noexcept {
+  for (int i = 0; i < kSize; ++i) {
+    if (!(duration[i] > 0.0)) continue;
+    const bool ok = i == kCruise && jerk[i] == 0.0 ? profile.append_cruise(duration[i])
+                                                   : profile.append(jerk[i], duration[i]);
+    if (!ok) return false;
+  }
+  return true;
 }
 
 }  // namespace mjarm

@@ -11,6 +11,7 @@
 #include "mjarm/error.hpp"
 #include "mjarm/trajectory/jerk_limited.hpp"
 #include "mjarm/trajectory/jerk_limited_brake.hpp"
+#include "mjarm/trajectory/jerk_limited_fixed_time.hpp"
 #include "mjarm/trajectory/jerk_limited_min_time.hpp"
 #include "mjarm/trajectory/jerk_limited_reference.hpp"
 
@@ -133,6 +134,47 @@ void check_against_reference(OtgCaseSampler& sampler, int steps, OtgValidationRe
   }
 }
 
+/// The reference checks of one case with a blocked interval (see OtgValidationResult).
+void check_blocked_against_reference(OtgCaseSampler& sampler, int steps, OtgValidationResult& r) {
+  JerkLimits l;
+  KinematicState s, t;
+  JerkBlock block;
+  for (int draw = 0;; ++draw) {
+    if (draw == 100000) return;
+    l = sampler.limits();
+    s = sampler.start(l, false);
+    t = sampler.target(l);
+    if (min_time_profile(s, t, l, block) && block.blocked_count > 0) break;
+  }
+  ++r.blocked_cases;
+  for (int k = 0; k < block.blocked_count; ++k) {
+    const JerkInterval in = block.blocked[k];
+    ++r.blocked_checked;
+    if (grid_motion_exists(s, t, l, 0.5 * (in.lower + in.upper), steps)) {
+      ++r.blocked_mismatches;
+      if (r.first_reference_failure.empty())
+        r.first_reference_failure = describe_otg_case("blocked interval", 0, s, t, l);
+    }
+    const double margin = 1e-2 * (in.upper - in.lower);
+    for (const double outside : {in.lower - margin, in.upper + margin}) {
+      if (block.is_blocked(outside)) continue;  // an interval of feasible durations too short
+      JerkProfile p;
+      if (!fixed_time_profile(s, t, l, outside, p)) {
+        ++r.blocked_end_failures;
+        if (r.first_reference_failure.empty())
+          r.first_reference_failure = describe_otg_case("blocked interval end", 0, s, t, l);
+        continue;
+      }
+      // a coarse grid misses motions close to an end: a grid three times finer decides
+      const double h = outside / steps;
+      if (l.jerk * h * h / 8.0 <= 0.01 * l.velocity &&
+          !grid_motion_exists(s, t, l, outside, steps) &&
+          !grid_motion_exists(s, t, l, outside, 3 * steps))
+        ++r.blocked_end_not_confirmed;
+    }
+  }
+}
+
 }  // namespace
 
 OtgValidationResult run_otg_validation(const OtgValidationOptions& options) {
@@ -154,13 +196,17 @@ OtgValidationResult run_otg_validation(const OtgValidationOptions& options) {
   times.reserve(static_cast<std::size_t>(options.cases));
   double velocity_total_us = 0.0;
 
+  const int total = options.cases + options.reference_cases + options.reference_cases / 4;
   for (int c = 0; c < options.cases; ++c) {
+    if (c % 1000 == 0 && options.stop && options.stop()) {
+      r.interrupted = true;
+      r.cases = c;
+      break;
+    }
     for (std::size_t i = 0; i < n; ++i) {
       limits[i] = sampler.limits();
-      // a start beyond the limits only where two brake phases can recover it
       const JerkLimits& l = limits[i];
-      const bool beyond = sampler.share(sampler.rng) < options.brake_share &&
-                          l.acceleration * l.acceleration / (2.0 * l.jerk) <= l.velocity;
+      const bool beyond = sampler.share(sampler.rng) < options.brake_share;
       start[i] = sampler.start(l, beyond);
       target[i] = sampler.target(l);
       r.braking_dofs += beyond ? 1 : 0;
@@ -258,19 +304,34 @@ OtgValidationResult run_otg_validation(const OtgValidationOptions& options) {
       }
     }
     if (options.progress && (c % 1000 == 999 || c + 1 == options.cases))
-      options.progress(c + 1, options.cases);
+      options.progress(c + 1, total);
   }
-  for (int c = 0; c < options.reference_cases; ++c)
+  for (int c = 0; c < options.reference_cases && !r.interrupted; ++c) {
+    if (options.stop && options.stop()) {
+      r.interrupted = true;
+      break;
+    }
     check_against_reference(sampler, options.reference_steps, r);
+    if (options.progress) options.progress(options.cases + c + 1, total);
+  }
+  for (int c = 0; c < options.reference_cases / 4 && !r.interrupted; ++c) {
+    if (options.stop && options.stop()) {
+      r.interrupted = true;
+      break;
+    }
+    check_blocked_against_reference(sampler, options.reference_steps, r);
+    if (options.progress) options.progress(options.cases + options.reference_cases + c + 1, total);
+  }
 
-  double total = 0.0;
-  for (const double t : times) total += t;
-  r.mean_us = total / static_cast<double>(times.size());
+  if (times.empty()) return r;  // stopped before the first case: no figures
+  double sum = 0.0;
+  for (const double t : times) sum += t;
+  r.mean_us = sum / static_cast<double>(times.size());
   std::sort(times.begin(), times.end());
   r.median_us = otg_percentile(times, 0.5);
   r.p99_us = otg_percentile(times, 0.99);
   r.max_us = times.back();
-  r.velocity_mean_us = velocity_total_us / options.cases;
+  r.velocity_mean_us = velocity_total_us / static_cast<double>(times.size());
   return r;
 }
 

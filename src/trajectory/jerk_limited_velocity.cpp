@@ -9,41 +9,29 @@ namespace {
 
 constexpr double kVelocityTolerance = 1e-9;
 
-bool velocity_reached(const JerkProfile& p, double v, double a, const JerkLimits& limits) noexcept {
+bool velocity_reached(const JerkProfile& p, double v, double a, const JerkLimits& limits,
+                      int first_phase) noexcept {
   const KinematicState e = p.end();
-  const JerkExtrema x = p.extrema();
+  const JerkExtrema x = p.extrema(first_phase);
   const double amax = limits.acceleration * (1.0 + 1e-12);
   return std::abs(e.v - v) <= kVelocityTolerance * std::max(1.0, std::abs(v)) &&
          std::abs(e.a - a) <= kVelocityTolerance * std::max(1.0, std::abs(a)) && x.a_min >= -amax &&
          x.a_max <= amax;
 }
 
-/// Writes the rising form (sign +1) or the falling one (−1) with level u and plateau h.
-bool offer_level(const KinematicState& start, double sign, double u, double h, double a0, double af,
-                 double J, JerkProfile& profile) noexcept {
+/// The rising form (sign +1) or the falling one (−1) with level u and hold h, in @p phases;
+/// false when a duration is negative.
+bool level_phases(double sign, double u, double h, double a0, double af, double J,
+                  JerkPhases& phases) noexcept {
   const double t1 = (u - a0) / J, t3 = (u - af) / J;
   if (!(t1 >= -1e-12 && t3 >= -1e-12 && h >= -1e-12)) return false;
-  profile.reset(start);
-  if (t1 > 0.0) profile.append(sign * J, t1);
-  if (h > 0.0) profile.append(0.0, h);
-  if (t3 > 0.0) profile.append(-sign * J, t3);
+  phases = JerkPhases{};
+  phases.jerk[0] = sign * J;
+  phases.duration[0] = std::max(t1, 0.0);
+  phases.duration[1] = std::max(h, 0.0);
+  phases.jerk[2] = -sign * J;
+  phases.duration[2] = std::max(t3, 0.0);
   return true;
-}
-
-/// Adds @p p to the distinct extremal durations of @p block, ascending.
-void record_extremal(const JerkProfile& p, JerkBlock& block) noexcept {
-  const double d = p.duration();
-  for (int i = 0; i < block.duration_count; ++i)
-    if (std::abs(block.durations[i] - d) <= 1e-9 * std::max(1.0, d)) return;
-  if (block.duration_count == JerkBlock::kMaxDurations) return;
-  int i = block.duration_count++;
-  while (i > 0 && block.durations[i - 1] > d) {
-    block.durations[i] = block.durations[i - 1];
-    block.profiles[i] = block.profiles[i - 1];
-    --i;
-  }
-  block.durations[i] = d;
-  block.profiles[i] = p;
 }
 
 }  // namespace
@@ -51,9 +39,10 @@ void record_extremal(const JerkProfile& p, JerkBlock& block) noexcept {
 bool min_time_velocity_profile(const KinematicState& start, double v_target, double a_target,
                                const JerkLimits& limits, JerkBlock& block) noexcept {
   const double A = limits.acceleration, J = limits.jerk;
+  block.start = start;
   block.duration_count = 0;
   block.blocked_count = 0;
-  JerkProfile candidate;
+  const double amax = A * (1.0 + 1e-12);
   for (const double sign : {1.0, -1.0}) {
     const double a0 = sign * start.a, af = sign * a_target, dv = sign * (v_target - start.v);
     const double u2 = J * dv + 0.5 * (a0 * a0 + af * af);
@@ -64,14 +53,18 @@ bool min_time_velocity_profile(const KinematicState& start, double v_target, dou
         u = A;
         h = (dv - (2.0 * A * A - a0 * a0 - af * af) / (2.0 * J)) / A;
       }
-      if (!offer_level(start, sign, u, h, a0, af, J, candidate)) continue;
-      if (!velocity_reached(candidate, v_target, a_target, limits)) continue;
-      record_extremal(candidate, block);
+      if (u < -amax) continue;
+      JerkPhases phases;
+      if (!level_phases(sign, u, h, a0, af, J, phases)) continue;
+      const KinematicState e = phases.end(start);
+      if (std::abs(e.v - v_target) > kVelocityTolerance * std::max(1.0, std::abs(v_target)) ||
+          std::abs(e.a - a_target) > kVelocityTolerance * std::max(1.0, std::abs(a_target)))
+        continue;
+      block.record(phases.total(), phases);
     }
   }
   if (block.duration_count == 0) return false;
   block.t_min = block.durations[0];
-  block.fastest = block.profiles[0];
   block.set_blocked_from_durations();
   return true;
 }
@@ -79,8 +72,25 @@ bool min_time_velocity_profile(const KinematicState& start, double v_target, dou
 bool fixed_time_velocity_profile(const KinematicState& start, double v_target, double a_target,
                                  const JerkLimits& limits, double duration,
                                  JerkProfile& profile) noexcept {
+  profile.reset(start);
+  return append_fixed_time_velocity_profile(start, v_target, a_target, limits, duration, profile);
+}
+
+bool append_fixed_time_velocity_profile(const KinematicState& start, double v_target,
+                                        double a_target, const JerkLimits& limits, double duration,
+                                        JerkProfile& profile) noexcept {
   const double J = limits.jerk, T = duration;
   if (!(T >= 0.0) || !std::isfinite(T)) return false;
+  const int first = profile.size();
+  JerkPhases phases;
+  // tries one candidate: appended, kept when it reaches the target within the limits
+  const auto keep = [&](const JerkPhases& p) {
+    profile.truncate(first);
+    p.append_to(profile);
+    return std::abs(profile.duration() - profile.duration_until(first) - T) <=
+               1e-9 * std::max(1.0, T) &&
+           velocity_reached(profile, v_target, a_target, limits, first);
+  };
   for (const double sign : {1.0, -1.0}) {
     const double a0 = sign * start.a, af = sign * a_target, dv = sign * (v_target - start.v);
     // level form: u² − u·(J·T + a0 + af) + (a0² + af² + 2J·Δv)/2 = 0, h = T − (2u − a0 − af)/J
@@ -88,12 +98,9 @@ bool fixed_time_velocity_profile(const KinematicState& start, double v_target, d
     const double disc = b * b - 2.0 * (a0 * a0 + af * af + 2.0 * J * dv);
     if (disc >= -1e-12 * b * b) {
       const double r = std::sqrt(std::max(disc, 0.0));
-      for (const double u : {0.5 * (b - r), 0.5 * (b + r)}) {
-        if (!offer_level(start, sign, u, T - (2.0 * u - a0 - af) / J, a0, af, J, profile)) continue;
-        if (std::abs(profile.duration() - T) <= 1e-9 * std::max(1.0, T) &&
-            velocity_reached(profile, v_target, a_target, limits))
+      for (const double u : {0.5 * (b - r), 0.5 * (b + r)})
+        if (level_phases(sign, u, T - (2.0 * u - a0 - af) / J, a0, af, J, phases) && keep(phases))
           return true;
-      }
     }
     // monotone ramp a0 → af (falling when a0 > af) with a hold at a level m between them:
     // Δv = (a0² − af²)/(2J)·s + m·h with s = sign of the ramp
@@ -102,15 +109,17 @@ bool fixed_time_velocity_profile(const KinematicState& start, double v_target, d
       if (h > 0.0) {
         const double m = (dv - (a0 * a0 - af * af) / (2.0 * J)) / h;
         if (m <= a0 && m >= af) {
-          profile.reset(start);
-          if (a0 > m) profile.append(-sign * J, (a0 - m) / J);
-          profile.append(0.0, h);
-          if (m > af) profile.append(-sign * J, (m - af) / J);
-          if (velocity_reached(profile, v_target, a_target, limits)) return true;
+          phases = JerkPhases{};
+          phases.jerk[0] = phases.jerk[2] = -sign * J;
+          phases.duration[0] = (a0 - m) / J;
+          phases.duration[1] = h;
+          phases.duration[2] = (m - af) / J;
+          if (keep(phases)) return true;
         }
       }
     }
   }
+  profile.truncate(first);
   return false;
 }
 

@@ -82,6 +82,22 @@ Quintic::Quintic(const State& start, const State& end, double duration) : durati
     return;
   }
   c_ = quintic_coefficients(start, end, duration);
+  // a duration far outside the scale of the boundary values overflows the coefficients (or
+  // their evaluation): refuse it rather than return NaN later
+  const double T = duration;
+  const double scale = std::abs(start.p) + std::abs(end.p) +
+                       (std::abs(start.v) + std::abs(end.v)) * T +
+                       (std::abs(start.a) + std::abs(end.a)) * T * T;
+  const Sample e = evaluate_quintic(c_.data(), T);
+  const bool finite =
+      std::all_of(c_.begin(), c_.end(), [](double c) { return std::isfinite(c); }) &&
+      std::isfinite(scale) && std::isfinite(e.p) && std::isfinite(e.v) && std::isfinite(e.a) &&
+      std::isfinite(e.j);
+  if (!finite || std::abs(e.p - end.p) > 1e-9 * scale + 1e-300)
+    throw Error("quintic: the duration " + std::to_string(T) +
+                " s is out of scale with the boundary values (p " + std::to_string(start.p) +
+                " → " + std::to_string(end.p) +
+                "): its polynomial cannot be evaluated in double precision");
 }
 
 Quintic::Sample Quintic::at(double t) const noexcept {

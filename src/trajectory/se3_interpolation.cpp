@@ -56,7 +56,11 @@ Se3Interpolation::Se3Interpolation(const Pose& X_start, const Vector6d& V_start,
       // θ̇(0) = R₀ᵀω₀ and θ̈(0) = R₀ᵀω̇₀ (Jl(0) = I, J̇l(0, θ̇)·θ̇ = 0)
       angle_(axis_quintics(Eigen::Vector3d::Zero(), X_start.R.transpose() * V_start.tail<3>(),
                            X_start.R.transpose() * A_start.tail<3>(), theta_goal_, duration)),
-      duration_(duration) {}
+      duration_(duration) {
+  // the end, computed once: at and after T the sample is exactly this pose at rest
+  X_end_.R = X_start.R * so3::exp(theta_goal_);
+  X_end_.p = X_goal.p;
+}
 
 void Se3Interpolation::rotation_vector(double t, Eigen::Vector3d& theta, Eigen::Vector3d& theta_dot,
                                        Eigen::Vector3d& theta_ddot) const noexcept {
@@ -70,6 +74,10 @@ void Se3Interpolation::rotation_vector(double t, Eigen::Vector3d& theta, Eigen::
 
 Se3Interpolation::Sample Se3Interpolation::at(double t) const noexcept {
   Sample out;
+  if (t >= duration_) {  // at rest at the goal (no round-off twist from the polynomials)
+    out.X_WE = X_end_;
+    return out;
+  }
   for (int k = 0; k < 3; ++k) {
     const Quintic::Sample s = position_[static_cast<std::size_t>(k)].at(t);
     out.X_WE.p[k] = s.p;

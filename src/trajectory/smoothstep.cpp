@@ -58,14 +58,23 @@ double SmoothRamp::peak_curvature(Kind kind) noexcept {
   return kind == Kind::smoothstep ? 6.0 : 5.773502691896258;  // 10/√3
 }
 
+double SmoothRamp::peak_jerk(Kind kind) noexcept {
+  return kind == Kind::smoothstep ? 12.0 : 60.0;  // |−12|; 60(6x² − 6x + 1) at x = 0, 1
+}
+
 double SmoothRamp::duration_for(Kind kind, double distance, double max_velocity,
                                 double max_acceleration) {
   require_ramp_value(distance, "distance", true);
   require_ramp_value(max_velocity, "max velocity", false);
   require_ramp_value(max_acceleration, "max acceleration", false);
   // peak speed s′_max·d/T and peak acceleration s″_max·d/T² are both decreasing in T
-  return std::max(peak_slope(kind) * distance / max_velocity,
-                  std::sqrt(peak_curvature(kind) * distance / max_acceleration));
+  const double T = std::max(peak_slope(kind) * distance / max_velocity,
+                            std::sqrt(peak_curvature(kind) * distance / max_acceleration));
+  if (!std::isfinite(T))
+    throw Error("smooth ramp: " + std::to_string(distance) + " at max velocity " +
+                std::to_string(max_velocity) + " and max acceleration " +
+                std::to_string(max_acceleration) + " takes longer than a double can hold");
+  return T;
 }
 
 RampSample SmoothRamp::at(double t) const noexcept {

@@ -38,6 +38,10 @@ TrapezoidProfile::TrapezoidProfile(double distance, double max_velocity, double 
     peak_velocity_ = max_velocity;
   }
   duration_ = 2.0 * accel_time_ + cruise_time_;
+  if (!std::isfinite(duration_) || !std::isfinite(peak_velocity_))
+    throw Error("trapezoid profile: " + std::to_string(distance) + " at max velocity " +
+                std::to_string(max_velocity) + " and max acceleration " +
+                std::to_string(max_acceleration) + " takes longer than a double can hold");
 }
 
 TrapezoidProfile::Sample TrapezoidProfile::at(double t) const noexcept {

@@ -6,6 +6,8 @@
 
 #include <nlohmann/json.hpp>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "app/cli_runner.hpp"
 
@@ -49,6 +51,18 @@ TEST(BenchOtg, TextReportAndBadCommandLines) {
   EXPECT_NE(zero.err.find("--cases"), std::string::npos) << zero.err;
   const CliRun clock = run_cli({"bench", "otg", "--clock", "sundial"});
   EXPECT_EQ(clock.exit_code, 2);
+  // issue 16, item 4's rule: counts bounded to what runs in minutes, not days (10^8 cases were
+  // 13 h here and 800 MB of timings; 2000 reference steps about 4 min per reference case)
+  for (const auto& [args, range] : std::vector<std::pair<std::vector<std::string>, std::string>>{
+           {{"bench", "otg", "--cases", "100000000"},
+            "--cases: '100000000' is not a whole number "
+            "from 1 to 10000000"},
+           {{"bench", "otg", "--reference-cases", "1000000"}, "from 0 to 100000"},
+           {{"bench", "otg", "--reference-steps", "2000"}, "from 10 to 400"}}) {
+    const CliRun bad = run_cli(args);
+    EXPECT_EQ(bad.exit_code, 2) << bad.err;
+    EXPECT_NE(bad.err.find(range), std::string::npos) << bad.err;
+  }
 }
 
 }  // namespace

@@ -1,6 +1,7 @@
 // Ctrl-C in the long loops of the CLI: workspace sampling, the singularity scan, the control
-// benchmark and the demo's parts each stop, print what they did so far, and exit 130 (128 +
-// SIGINT, as `run` does) with a message that says so. SIGINT is sent once the process is busy (see cli_interrupt.hpp).
+// and otg benchmarks and the demo's parts each stop, print what they did so far, and exit 130 (128
+// + SIGINT, as `run` does) with a message that says so. SIGINT is sent once the process is busy
+// (see cli_interrupt.hpp).
 
 #include <gtest/gtest.h>
 
@@ -61,6 +62,33 @@ TEST(CliInterrupt, ControlBenchmarkStops) {
   const CliRun run = finish_cli(cli);
   expect_interrupted(run, "bench control on model 'panda_torque': interrupted");
   EXPECT_TRUE(run.out.empty()) << run.out;
+}
+
+// issue 16, item 4's rule in `mjarm bench otg` (added after the fixes): Ctrl-C killed it with
+// nothing printed; it stops and prints the figures of the cases done
+TEST(CliInterrupt, OtgBenchmarkPrintsTheCasesDone) {
+  const auto cli = start_cli(
+      {"bench", "otg", "--cases", "10000000", "--reference-cases", "0", "--json"}, "otg_int");
+  interrupt_after_cpu(cli, 0.5);
+  const CliRun run = finish_cli(cli);
+  expect_interrupted(run, "bench otg: interrupted after ");
+  EXPECT_NE(run.err.find(" of 10000000 cases"), std::string::npos) << run.err;
+  ASSERT_TRUE(json::accept(run.out)) << run.out;
+  const json doc = json::parse(run.out);
+  EXPECT_EQ(doc["interrupted"], true);
+  EXPECT_GT(doc["cases"].get<int>(), 0);
+  EXPECT_LT(doc["cases"].get<int>(), 10000000);
+  EXPECT_GT(doc["mean_us"].get<double>(), 0.0);
+}
+
+TEST(CliInterrupt, IkBenchmarkPrintsTheSamplesDone) {
+  const auto cli = start_cli({"bench", "ik", "panda", "--samples", "10000000"}, "ik_int");
+  interrupt_after_cpu(cli, 0.5);
+  const CliRun run = finish_cli(cli);
+  expect_interrupted(run, "bench ik: interrupted after ");
+  EXPECT_NE(run.err.find(" of 10000000 samples (mid_range seeds)"), std::string::npos) << run.err;
+  EXPECT_NE(run.out.find("done)"), std::string::npos) << run.out;
+  EXPECT_NE(run.out.find("success [%]"), std::string::npos) << run.out;
 }
 
 TEST(CliInterrupt, DemoKeepsTheReportsOfTheFinishedParts) {

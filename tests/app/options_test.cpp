@@ -128,6 +128,16 @@ TEST(CliOptions, OutputPathsAreCheckedBeforeTheWork) {
                "--record: cannot write into '/proc'");
   expect_error({"render", "planar2", "--out", "/proc/x.png"}, 2, "--out: cannot create");
   EXPECT_EQ(mjarm::test::slurp(file), "x");
+  // issue 16, item 6's symbolic link loop, on the output side: named for what it is (it was
+  // "File exists"), and left as it was
+  const fs::path loop = scratch() / "options_loop.csv", other = scratch() / "options_loop2.csv";
+  fs::create_symlink(other.filename(), loop);
+  fs::create_symlink(loop.filename(), other);
+  expect_error({"workspace", "planar2", "--out", loop.string()}, 2,
+               "--out: '" + loop.string() + "' is a symbolic link loop");
+  expect_error({"run", "shelf-pick", "--record", loop.string()}, 2,
+               "--record: '" + loop.string() + "' is a symbolic link loop");
+  EXPECT_TRUE(fs::is_symlink(fs::symlink_status(loop)));
   EXPECT_TRUE(fs::is_empty(folder));  // the probe leaves nothing behind
 }
 

@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -39,7 +40,7 @@ TEST(PlanCli, HelpNamesTheOptions) {
   EXPECT_EQ(run.exit_code, 0);
   for (const char* option :
        {"--waypoints", "--site", "--q", "--key", "--velocity-limit", "--acceleration-limit",
-        "--torque-limit", "--min-sigma", "--out", "--rate", "--json"})
+        "--torque-limit", "--min-sigma", "--out", "--rate", "--plot", "--size", "--json"})
     EXPECT_NE(run.out.find(option), std::string::npos) << option;
 }
 
@@ -68,6 +69,27 @@ TEST(PlanCli, JsonReportsEveryWaypointAndCsvHoldsTheTrajectory) {
   EXPECT_GT(slow["duration"].get<double>(), 1.5 * duration);
 }
 
+TEST(PlanCli, PlotDrawsTheJointTrajectoryAgainstItsLimits) {
+  const fs::path plots = scratch() / "plan_plot";
+  const json doc =
+      run_json({"plan", "panda_torque", "--waypoints", plan_file("five.json", kFive), "--plot",
+                plots.string(), "--rate", "50", "--size", "640x800", "--json"});
+  EXPECT_EQ(doc["status"], "ok");
+  EXPECT_EQ(doc["plot"], (plots / "trajectory.png").string());
+  const std::string png = slurp(plots / "trajectory.png");
+  ASSERT_GT(png.size(), 1000u);
+  EXPECT_EQ(png.substr(1, 3), "PNG");
+  // the figure's data: 7 joints, the velocity limit of 1 rad/s dashed
+  const std::string script = slurp(plots / "gnuplot" / "trajectory.gp");
+  EXPECT_NE(script.find("joint7"), std::string::npos);
+  EXPECT_NE(script.find("velocity"), std::string::npos);
+  // an output that cannot be written is refused before the plan (exit 2)
+  const std::string file = plan_file("not_a_folder", "x");
+  expect_error({"plan", "panda_torque", "--waypoints", plan_file("five.json", kFive), "--plot",
+                file + "/sub"},
+               2, "--plot");
+}
+
 TEST(PlanCli, AFailedPlanPrintsTheChecksAndExitsOne) {
   const CliRun run = run_cli({"plan", "panda_torque", "--waypoints",
                               plan_file("far.csv", "x,y,z\n0.45,0,0.5\n1.6,0,0.5\n")});
@@ -79,7 +101,9 @@ TEST(PlanCli, AFailedPlanPrintsTheChecksAndExitsOne) {
 TEST(PlanCli, BadInputFailsClearly) {
   expect_error({"plan", "panda_torque"}, 2, "--waypoints is required");
   expect_error({"plan", "panda_torque", "--waypoints", "/nonexistent/w.json"}, 1,
-               "cannot read the waypoint file");
+               "waypoint file '/nonexistent/w.json' does not exist");
+  expect_error({"plan", "panda_torque", "--waypoints", "/dev/zero"}, 1,
+               "waypoint file '/dev/zero' is a character device, expected a regular file");
   expect_error({"plan", "panda_torque", "--waypoints", plan_file("nan.csv", "0.4,nan,0.5\n")}, 1,
                "'nan' is not a finite number");
   expect_error(
@@ -91,6 +115,30 @@ TEST(PlanCli, BadInputFailsClearly) {
   expect_error(
       {"plan", "panda_torque", "--waypoints", plan_file("five.json", kFive), "--rate", "0"}, 2,
       "--rate must be in (0, 100000] Hz");
+  // issue 16, item 9's rule: the output path is checked before the plan is made
+  expect_error({"plan", "panda_torque", "--waypoints", plan_file("five.json", kFive), "--out",
+                "/proc/plan.csv"},
+               2, "--out: cannot create '/proc/plan.csv'");
+}
+
+// issue 16, item 4's rule in `mjarm plan`: slow limits ran for minutes (--velocity-limit 0.0001)
+// and --out --rate 100000 on a 5-minute plan built gigabytes in memory; both are bounded
+TEST(PlanCli, AbsurdWorkIsRefusedNamingTheBound) {
+  const std::string waypoints = plan_file("five.json", kFive);
+  const auto start = std::chrono::steady_clock::now();
+  const CliRun slow =
+      run_cli({"plan", "panda_torque", "--waypoints", waypoints, "--velocity-limit", "0.0001"});
+  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 10.0);
+  EXPECT_EQ(slow.exit_code, 1) << slow.err;
+  EXPECT_NE(slow.err.find("samples a segment may have"), std::string::npos) << slow.err;
+  // 0.05 rad/s: a plan of about a minute, sampled at 100 kHz would be millions of CSV rows
+  const fs::path csv = scratch() / "huge_plan.csv";
+  const CliRun rows = run_cli({"plan", "panda_torque", "--waypoints", waypoints, "--velocity-limit",
+                               "0.05", "--out", csv.string(), "--rate", "100000"});
+  EXPECT_EQ(rows.exit_code, 2) << rows.err;
+  EXPECT_NE(rows.err.find("rows, more than 10⁶: lower --rate"), std::string::npos) << rows.err;
+  EXPECT_NE(rows.out.find("result: ok"), std::string::npos) << rows.out;  // the plan is shown
+  EXPECT_FALSE(fs::exists(csv));
 }
 
 TEST(RunPlanCli, TracksThePlanAndReportsTheError) {

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -134,6 +135,54 @@ TEST(RunCli, AFullDiskStillPrintsTheReportAndNamesTheKeptRows) {
   EXPECT_EQ(doc["outcome"], "held");
   ASSERT_TRUE(doc["recording_error"].is_string()) << js.out;
   EXPECT_NE(doc["recording_error"].get<std::string>().find("File too large"), std::string::npos);
+}
+
+// issue 16, item 8 ("check every write; on failure report it"): when the recording and the
+// video both fail on a full disk, the error names both, and no cut MP4 is left behind
+TEST(RunCli, AFullDiskNamesAFailedVideoBesideAFailedRecording) {
+  const fs::path cwd = scratch() / "full_disk_video";
+  fs::create_directories(cwd);
+  const mjarm::test::LimitedRun run = mjarm::test::run_with_file_size_limit(
+      1024, MJARM_CLI,
+      {"run", "shelf-pick", "--record", "rec", "--video", "run.mp4", "--size", "64x48"}, cwd);
+  EXPECT_EQ(run.exit_code, 1);
+  EXPECT_NE(run.out.find("result: held"), std::string::npos) << run.out;
+  EXPECT_NE(run.err.find("state.csv': File too large"), std::string::npos) << run.err;
+  EXPECT_NE(run.err.find("video 'run.mp4' is not a complete MP4"), std::string::npos) << run.err;
+  EXPECT_NE(run.err.find("no video was written"), std::string::npos) << run.err;
+  EXPECT_NE(run.out.find("run.mp4 (not written: see the error;"), std::string::npos) << run.out;
+  EXPECT_FALSE(fs::exists(cwd / "run.mp4"));
+}
+
+// A folder holding a script called ffmpeg that reads every frame, then fails.
+fs::path failing_ffmpeg_dir() {
+  const fs::path dir = scratch() / "failing_ffmpeg";
+  fs::create_directories(dir);
+  std::ofstream(dir / "ffmpeg") << "#!/bin/sh\ncat > /dev/null\necho 'encoder broke' >&2\nexit 1\n";
+  fs::permissions(dir / "ffmpeg", fs::perms::owner_all);
+  return dir;
+}
+
+// issue 16, item 6 ("video ... reports success"), in the demo: a video that failed was only
+// "stopped early" in the table and the demo exited 0 with an empty out/demo.mp4
+TEST(RunCli, DemoFailsWhenItsVideoFails) {
+  const fs::path cwd = scratch() / "demo_failing_video";
+  fs::create_directories(cwd);
+  const std::string saved = std::getenv("PATH") != nullptr ? std::getenv("PATH") : "";
+  ::setenv("PATH", (failing_ffmpeg_dir().string() + ":" + saved).c_str(), 1);
+  const CliRun run = run_cli({"demo", "--samples", "1000"}, cwd);
+  const CliRun json_run = run_cli({"demo", "--samples", "1000", "--json"}, cwd);
+  ::setenv("PATH", saved.c_str(), 1);
+  EXPECT_EQ(run.exit_code, 1) << run.out << run.err;
+  EXPECT_NE(run.out.find("result: held"), std::string::npos) << run.out;  // the report stands
+  EXPECT_NE(run.err.find("out/demo.mp4"), std::string::npos) << run.err;
+  EXPECT_NE(run.err.find("encoder broke"), std::string::npos) << run.err;
+  EXPECT_FALSE(fs::exists(cwd / "out" / "demo.mp4"));
+  EXPECT_EQ(json_run.exit_code, 1) << json_run.err;
+  ASSERT_TRUE(json::accept(json_run.out)) << json_run.out;
+  const json video = json::parse(json_run.out)["shelf_pick"]["video"];
+  EXPECT_TRUE(video["error"].is_string()) << json_run.out;
+  EXPECT_EQ(video["written"], false) << json_run.out;
 }
 
 TEST(RunCli, BadInputFailsClearly) {
@@ -348,7 +397,7 @@ TEST(RunVideo, ADivergingRunLeavesAFinalizedVideo) {
   ASSERT_TRUE(json::accept(run.out)) << run.out;
   const json doc = json::parse(run.out);
   EXPECT_EQ(doc["outcome"], "diverged");
-  EXPECT_NE(run.err.find("the video up to that point is in " + video.string()), std::string::npos)
+  EXPECT_NE(run.err.find("the video is in " + video.string()), std::string::npos)
       << run.err;
   const int frames = expected_frames(doc["end_time"].get<double>(), 30.0);
   EXPECT_EQ(doc["video"]["frames"], frames);

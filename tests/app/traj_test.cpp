@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "app/cli_runner.hpp"
+#include "mjarm/trajectory/jerk_limited.hpp"
 #include "mjarm/trajectory/quintic_duration.hpp"
 #include "mjarm/trajectory/smoothstep.hpp"
 #include "mjarm/trajectory/trapezoid.hpp"
@@ -27,7 +28,8 @@ using mjarm::test::slurp;
 TEST(CliTraj, HelpNamesEveryKind) {
   const mjarm::test::CliRun run = run_cli({"traj", "--help"});
   EXPECT_EQ(run.exit_code, 0);
-  for (const char* kind : {"trapezoid", "quintic", "smoothstep", "smootherstep", "--plot"})
+  for (const char* kind :
+       {"trapezoid", "quintic", "smoothstep", "smootherstep", "jerk-limited", "--plot"})
     EXPECT_NE(run.out.find(kind), std::string::npos) << kind;
 }
 
@@ -88,6 +90,54 @@ TEST(CliTraj, SmoothRampsAndAGivenDuration) {
       mjarm::SmoothRamp::duration_for(mjarm::SmoothRamp::Kind::smoothstep, 0.2, 0.18, 0.9));
 }
 
+TEST(CliTraj, JerkLimitedMatchesTheGeneratorAndBrakesAStartBeyondTheLimits) {
+  // axis 0 starts faster than its limit: it brakes first, then the limits hold
+  const nlohmann::json j = run_json({"traj",
+                                     "jerk-limited",
+                                     "--start",
+                                     "0,0.5",
+                                     "--target",
+                                     "0.4,0.2",
+                                     "--start-velocity",
+                                     "0.35,0",
+                                     "--start-acceleration",
+                                     "0.5,-0.3",
+                                     "--target-velocity",
+                                     "0,-0.05",
+                                     "--v-max",
+                                     "0.3",
+                                     "--a-max",
+                                     "1",
+                                     "--j-max",
+                                     "8",
+                                     "--rate",
+                                     "1000",
+                                     "--json"});
+  const std::vector<mjarm::JerkLimits> limits(2, {0.3, 1.0, 8.0});
+  mjarm::JerkLimitedGenerator otg(limits);
+  const std::vector<mjarm::KinematicState> start{{0.0, 0.35, 0.5}, {0.5, 0.0, -0.3}};
+  const std::vector<mjarm::KinematicState> target{{0.4, 0.0, 0.0}, {0.2, -0.05, 0.0}};
+  const mjarm::OtgResult r = otg.calculate(start, target);
+  EXPECT_DOUBLE_EQ(j["duration"].get<double>(), r.duration);
+  EXPECT_TRUE(j["within_limits"].get<bool>());
+  EXPECT_NE(j["notes"]["braking first"].get<std::string>().find("axis 0"), std::string::npos);
+  const auto& samples = j["samples"];
+  EXPECT_DOUBLE_EQ(samples[0]["qd"][0].get<double>(), 0.35);
+  EXPECT_NEAR(samples.back()["q"][1].get<double>(), 0.2, 1e-8);
+  EXPECT_NEAR(samples.back()["qd"][1].get<double>(), -0.05, 1e-8);
+  const double brake = otg.brake_duration(0);
+  ASSERT_GT(brake, 0.0);
+  for (const auto& s : samples) {
+    for (int i = 0; i < 2; ++i) {
+      EXPECT_LE(std::abs(s["qddd"][i].get<double>()), 8.0 * (1 + 1e-12));
+      EXPECT_LE(std::abs(s["qdd"][i].get<double>()), 1.0 * (1 + 1e-9));
+      if (s["t"].get<double>() >= brake) {
+        EXPECT_LE(std::abs(s["qd"][i].get<double>()), 0.3 * (1 + 1e-9)) << s["t"];
+      }
+    }
+  }
+}
+
 TEST(CliTraj, WritesCsvAndPlot) {
   const fs::path csv = scratch() / "traj.csv";
   const fs::path plots = scratch() / "traj_plot";
@@ -141,6 +191,27 @@ TEST(CliTraj, BadCommandLinesFailCleanly) {
   expect_error({"traj", "quintic", "--start", "0", "--target", "1", "--rate", "0"}, 2, "--rate");
   expect_error({"traj", "quintic", "--start", "0", "--target", "1e4", "--v-max", "1e-3"}, 2,
                "lower --rate");
+  expect_error({"traj", "jerk-limited", "--start", "0", "--target", "1"}, 2, "needs --j-max");
+  // outputs that cannot be written are refused before the work
+  expect_error(
+      {"traj", "quintic", "--start", "0", "--target", "1", "--out", "/nonexistent_dir/sub/t.csv"},
+      2, "--out");
+  expect_error({"traj", "quintic", "--start", "0", "--target", "1", "--plot", "/proc/version/x"}, 2,
+               "--plot");
+  expect_error(
+      {"traj", "jerk-limited", "--start", "0", "--target", "1", "--j-max", "5", "--duration", "2"},
+      2, "time-optimal");
+  expect_error({"traj", "jerk-limited", "--start", "0", "--target", "1", "--j-max", "0"}, 2,
+               "--j-max must be positive");
+  // a target velocity above its limit: the generator refuses it, naming it (exit 1)
+  expect_error({"traj", "jerk-limited", "--start", "0", "--target", "1", "--j-max", "5",
+                "--target-velocity", "0.5"},
+               1, "target velocity 0.5 exceeds its limit");
+  // issue 16, item 9's rule: output paths are checked before the work, as usage errors
+  expect_error({"traj", "trapezoid", "--start", "0", "--target", "1", "--out", "/proc/x.csv"}, 2,
+               "--out: cannot create '/proc/x.csv'");
+  expect_error({"traj", "trapezoid", "--start", "0", "--target", "1", "--plot", "/proc/x"}, 2,
+               "--plot: cannot write into '/proc'");
   // a start beyond the velocity limit: no duration keeps it, the command fails (exit 1)
   expect_error({"traj", "quintic", "--start", "0", "--target", "1", "--start-velocity", "0.5"}, 1,
                "start beyond limits (axis 0, velocity)");

@@ -8,6 +8,7 @@
 #include "mjarm/control/gravity_compensation.hpp"
 #include "mjarm/control/operational_space.hpp"
 #include "mjarm/error.hpp"
+#include "support/error_message.hpp"
 
 namespace mjarm {
 namespace {
@@ -23,16 +24,17 @@ TEST(ControlBenchmark, TimesEveryControllerWithoutAllocations) {
   int last_phase = 0;
   o.progress = [&](int done, int total) {
     EXPECT_EQ(done, last_phase + 1);
-    EXPECT_EQ(total, 9);
+    EXPECT_EQ(total, 12);
     last_phase = done;
   };
   const ControlBenchmarkResult r = run_control_benchmark(chain, o);
-  EXPECT_EQ(last_phase, 9);
+  EXPECT_EQ(last_phase, 12);
   EXPECT_EQ(r.robot, "panda_torque");
   EXPECT_EQ(r.joints, 7);
   EXPECT_DOUBLE_EQ(r.timestep, 0.002);
   EXPECT_DOUBLE_EQ(r.frequency, 0.5);  // 1000 steps per period
-  const std::vector<std::string> names{"joint-pd", "gravity", "ct", "task-pd", "accel", "osc", "se3"};
+  const std::vector<std::string> names{"joint-pd", "gravity", "ct",  "task-pd", "accel",
+                                       "osc",      "se3",     "cic", "hqp-ac",  "observer"};
   ASSERT_EQ(r.controllers.size(), names.size());
   for (std::size_t i = 0; i < names.size(); ++i) {
     const auto& c = r.controllers[i];
@@ -53,6 +55,10 @@ TEST(ControlBenchmark, TimesEveryControllerWithoutAllocations) {
   EXPECT_LT(r.controllers[2].rms_position_error, 1e-3);
   EXPECT_LT(r.controllers[5].rms_position_error, 2e-3);
   EXPECT_LT(r.controllers[6].rms_position_error, 2e-3);  // se3: the same exact cancellation
+  EXPECT_LT(r.controllers[7].rms_position_error, 2e-3);  // cic
+  EXPECT_LT(r.controllers[8].rms_position_error, 2e-3);  // hqp-ac
+  // the observer rides along an OSC loop: the same tracking as OSC's own phase
+  EXPECT_NEAR(r.controllers[9].rms_position_error, r.controllers[5].rms_position_error, 1e-9);
   EXPECT_EQ(r.loop_allocations, 0);
   EXPECT_GT(r.osc_real_time_factor, 0.0);
   EXPECT_GT(r.passive_real_time_factor, 0.0);
@@ -98,24 +104,20 @@ TEST(ControlBenchmark, BadInputThrows) {
                Error);
 }
 
-/// Two motor-driven hinges on a base that floats (free joint): the controllers drive the hinges
-/// only, and MuJoCo soon flags a bad qacc and resets the state.
-constexpr const char* kFloatingArm = R"(
-<mujoco model="floating_arm">
+/// Two motor-driven hinges, on a fixed base, whose links weigh almost nothing: the first
+/// command accelerates them beyond MuJoCo's bound, so it flags a bad qacc and resets the state.
+constexpr const char* kFeatherArm = R"(
+<mujoco model="feather_arm">
   <compiler autolimits="true"/>
   <option timestep="0.002"/>
   <worldbody>
-    <body name="base" pos="0 0 1">
-      <freejoint name="float"/>
-      <geom type="box" size="0.1 0.1 0.1" mass="1"/>
-      <body name="link1">
-        <joint name="j1" type="hinge" axis="0 1 0" range="-2 2"/>
-        <geom type="capsule" fromto="0 0 0 0.4 0 0" size="0.03" mass="1"/>
-        <body name="link2" pos="0.4 0 0">
-          <joint name="j2" type="hinge" axis="0 1 0" range="-2 2"/>
-          <geom type="capsule" fromto="0 0 0 0.35 0 0" size="0.03" mass="1"/>
-          <site name="tip" pos="0.35 0 0"/>
-        </body>
+    <body name="link1" pos="0 0 0.5">
+      <joint name="j1" type="hinge" axis="0 1 0" range="-2 2"/>
+      <inertial pos="0 0 0" mass="1e-9" diaginertia="1e-14 1e-14 1e-14"/>
+      <body name="link2" pos="0.4 0 0">
+        <joint name="j2" type="hinge" axis="0 1 0" range="-2 2"/>
+        <inertial pos="0.2 0 0" mass="1e-9" diaginertia="1e-14 1e-14 1e-14"/>
+        <site name="tip" pos="0.35 0 0"/>
       </body>
     </body>
   </worldbody>
@@ -127,7 +129,7 @@ constexpr const char* kFloatingArm = R"(
 )";
 
 TEST(ControlBenchmark, MuJoCoBadStateWarningsFaultTheRun) {
-  const Robot robot = Robot::from_string(kFloatingArm);
+  const Robot robot = Robot::from_string(kFeatherArm);
   const Chain chain(robot, "tip");
   ControlBenchmarkOptions o;
   o.steps = 2000;
@@ -141,6 +143,58 @@ TEST(ControlBenchmark, MuJoCoBadStateWarningsFaultTheRun) {
   // the bundled torque panda runs clean
   o.steps = 50;
   EXPECT_EQ(run_control_benchmark(panda_torque(), o).status, ControlBenchmarkStatus::ok);
+}
+
+/// A damped two-hinge arm whose base hangs from @p base_joint (a free or a ball joint): the
+/// controllers drive the hinges only, so the base falls or swings with no MuJoCo warning, and
+/// the tracking figures measure that fall (kilometres of "tracking error" for a free base).
+std::string arm_on(const std::string& base_joint) {
+  return R"(
+<mujoco model="arm_on_)" +
+         base_joint + R"(">
+  <compiler autolimits="true"/>
+  <option timestep="0.002"/>
+  <worldbody>
+    <body name="base" pos="0 0 1">
+      )" +
+         (base_joint == "free" ? "<freejoint name=\"root\"/>"
+                               : "<joint name=\"root\" type=\"ball\"/>") +
+         R"(
+      <geom type="box" size="0.1 0.1 0.1" mass="5"/>
+      <body name="link1" pos="0 0 0.1">
+        <joint name="j1" axis="0 0 1" range="-2 2" damping="1"/>
+        <geom type="capsule" fromto="0 0 0 0 0 0.3" size="0.03" mass="1"/>
+        <body name="link2" pos="0 0 0.3">
+          <joint name="j2" axis="0 1 0" range="-2 2" damping="1"/>
+          <geom type="capsule" fromto="0 0 0 0.3 0 0" size="0.03" mass="1"/>
+          <site name="tip" pos="0.3 0 0"/>
+        </body>
+      </body>
+    </body>
+  </worldbody>
+  <actuator>
+    <motor joint="j1" ctrlrange="-50 50"/>
+    <motor joint="j2" ctrlrange="-50 50"/>
+  </actuator>
+</mujoco>)";
+}
+
+// issue 16, item 6: "a warning that means the numbers are meaningless must fail the command" —
+// the same meaningless numbers without any warning: an arm whose base is not fixed
+TEST(ControlBenchmark, AnArmWhoseBaseIsNotFixedIsRefused) {
+  ControlBenchmarkOptions o;
+  o.steps = 200;
+  o.warmup = 0;
+  for (const std::string joint : {"free", "ball"}) {
+    const Robot robot = Robot::from_string(arm_on(joint));
+    const Chain chain(robot, "tip");
+    const std::string message = test::error_of([&] { run_control_benchmark(chain, o); });
+    EXPECT_NE(message.find("control benchmark: the frame 'tip' of model 'arm_on_" + joint +
+                           "' hangs from " + joint + " joint 'root'"),
+              std::string::npos)
+        << message;
+    EXPECT_NE(message.find("fixed base"), std::string::npos) << message;
+  }
 }
 
 TEST(ControlBenchmark, AStopRequestInterruptsTheRun) {

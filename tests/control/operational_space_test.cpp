@@ -22,6 +22,7 @@ using test::VectorX;
 struct OscCase {
   Reference ref;
   OperationalSpaceOptions options;
+  Vector6d wrench = Vector6d::Zero();  // measured F_m (used with wrench_feedback)
 };
 
 /// τ of the operational-space law written straight from the docs with dense inverses.
@@ -50,11 +51,18 @@ VectorX reference_osc_torque(const mjModel& m, const mjData& d, int site, const 
       K.asDiagonal() * e + D.asDiagonal() * e_dot + Ki.asDiagonal() * integral.head(rows);
   // (each step into a named vector: GCC 12 reports a false use-after-free on the nested form)
   VectorX u = c.ref.task.A_WE.head(rows);
-  if (!o.task_inertia) u += o.inertia.head(rows).cwiseInverse().asDiagonal() * f;
+  const bool feedback = o.wrench_feedback && !o.task_inertia;
+  VectorX pushed = f;
+  if (feedback) pushed += c.wrench.head(rows) + c.ref.task.F_ext.head(rows);
+  if (!o.task_inertia) u += o.inertia.head(rows).cwiseInverse().asDiagonal() * pushed;
   u -= jdot_qd;
   VectorX F = Lambda * u;
   if (o.task_inertia) F += f;
-  F += c.ref.task.F_ext.head(rows);
+  if (feedback) {
+    F -= c.wrench.head(rows);
+  } else {
+    F += c.ref.task.F_ext.head(rows);
+  }
 
   const VectorX h = Eigen::Map<const VectorX>(d.qfrc_bias, m.nv);
   const VectorX passive = Eigen::Map<const VectorX>(d.qfrc_passive, m.nv);
@@ -96,14 +104,18 @@ void expect_close(const VectorX& actual, const VectorX& expected, double rel) {
       << "actual   " << actual.transpose() << "\nexpected " << expected.transpose();
 }
 
-void check_against_formula(TaskMode mode, bool task_inertia, std::uint64_t seed) {
+void check_against_formula(TaskMode mode, bool task_inertia, std::uint64_t seed,
+                           bool wrench_feedback = false) {
   Rig rig("panda_torque", "attachment_site");
   std::mt19937_64 rng(seed);
   int checked = 0;
   while (checked < 25) {
     if (!test::random_state(rig, rng)) continue;
     OscCase c = random_case(rig, rng, mode, task_inertia);
+    c.options.wrench_feedback = wrench_feedback;
+    c.wrench = test::random6(rng, 8.0);
     OperationalSpaceController osc(rig.chain, c.options);
+    osc.set_measured_wrench(c.wrench);
     JointCommand command{CommandKind::torque, VectorX::Zero(7)};
     // first call: no integral yet
     osc.compute(rig.d(), c.ref, command);
@@ -132,6 +144,105 @@ TEST(OperationalSpace, MatchesIndependentFormulaPosition) {
 TEST(OperationalSpace, MatchesIndependentFormulaTaskInertia) {
   check_against_formula(TaskMode::pose, true, 3);
   check_against_formula(TaskMode::position, true, 4);
+}
+
+TEST(OperationalSpace, MatchesIndependentFormulaWithWrenchFeedback) {
+  check_against_formula(TaskMode::pose, false, 5, true);
+  check_against_formula(TaskMode::position, false, 6, true);
+  // with M_d = Λ there is nothing to render: the measured wrench changes nothing
+  check_against_formula(TaskMode::pose, true, 7, true);
+}
+
+TEST(OperationalSpace, WrenchFeedbackRendersTheDesiredInertiaExactly) {
+  // the torque of one tick and a wrench on E (xfrc_applied, measured exactly) through MuJoCo's
+  // forward dynamics: E's acceleration is A_WD + M_d⁻¹·(K·e + D·ė + F_m + F_ext) — the arm
+  // responds to the contact wrench with M_d, not with its own Λ
+  Rig rig("panda_torque", "attachment_site");
+  std::mt19937_64 rng(17);
+  const int site = rig.chain.frame().id;
+  const int body = rig.m().site_bodyid[site];
+  int checked = 0;
+  while (checked < 10) {
+    if (!test::random_state(rig, rng)) continue;
+    OscCase c = random_case(rig, rng, TaskMode::pose, false);
+    c.options.wrench_feedback = true;
+    c.options.damping << 20.0, 15.0, 10.0, 3.0, 2.0, 1.0;
+    c.options.integral_gain.setZero();
+    const Vector6d F_m = test::random6(rng, 10.0);
+    OperationalSpaceController osc(rig.chain, c.options);
+    osc.set_measured_wrench(F_m);
+    JointCommand command{CommandKind::torque, VectorX::Zero(7)};
+    osc.compute(rig.d(), c.ref, command);
+    if (osc.task_space().status() != TaskSpaceStatus::ok) continue;
+    mjData& d = rig.d();
+    const Pose X = test::site_pose(d, site);
+    const Vector6d e = test::reference_error(X, c.ref.task.X_WE);
+    const MatrixX J = test::site_jacobian(rig.m(), d, site);
+    const VectorX qd = Eigen::Map<const VectorX>(d.qvel, rig.m().nv);
+    const Vector6d e_dot = c.ref.task.V_WE - J * qd;
+    const Vector6d jdot_qd = test::site_jdot_qdot(rig.m(), d, site);
+    // the wrench F_m at E's origin, as xfrc_applied at the body's centre of mass
+    const Eigen::Vector3d com = Eigen::Map<const Eigen::Vector3d>(d.xipos + 3 * body);
+    for (int i = 0; i < 3; ++i) {
+      d.xfrc_applied[6 * body + i] = F_m[i];
+      d.xfrc_applied[6 * body + 3 + i] = F_m[3 + i] + (X.p - com).cross(F_m.head<3>())[i];
+    }
+    for (int i = 0; i < 7; ++i) {
+      d.ctrl[*rig.chain.actuator(i)] = 0.0;
+      d.qfrc_applied[rig.chain.dof_address(i)] = command.value[i];
+    }
+    mj_forward(&rig.m(), &d);
+    const bool free = d.nefc == 0;  // a joint limit would add forces the law cannot know
+    const VectorX qacc = Eigen::Map<const VectorX>(d.qacc, rig.m().nv);
+    const Vector6d a = J * qacc + jdot_qd;
+    const Vector6d f = c.options.stiffness.cwiseProduct(e) + c.options.damping.cwiseProduct(e_dot);
+    const Vector6d expected =
+        c.ref.task.A_WE + (f + F_m + c.ref.task.F_ext).cwiseQuotient(c.options.inertia);
+    mju_zero(d.xfrc_applied, 6 * rig.m().nbody);
+    mju_zero(d.qfrc_applied, rig.m().nv);
+    if (!free) continue;
+    EXPECT_LE((a - expected).norm(), 1e-6 * expected.norm())
+        << "a " << a.transpose() << "\nexpected " << expected.transpose();
+    ++checked;
+  }
+}
+
+TEST(OperationalSpace, IntegralIsHeldWhileTheMeasuredForceIsLarge) {
+  Rig rig("panda_torque", "attachment_site");
+  mj_resetDataKeyframe(&rig.m(), &rig.d(), rig.robot.keyframe("home"));
+  mj_forward(&rig.m(), &rig.d());
+  Reference ref;
+  ref.task.X_WE = test::site_pose(rig.d(), rig.chain.frame().id);
+  ref.task.X_WE.p.x() += 0.01;
+  OperationalSpaceOptions o;
+  o.integral_gain = Vector6d::Constant(10.0);
+  o.integral_hold_force = 1.0;
+  OperationalSpaceController osc(rig.chain, o);
+  JointCommand command{CommandKind::torque, VectorX::Zero(7)};
+  osc.compute(rig.d(), ref, command);
+  rig.d().time += 0.01;
+  osc.compute(rig.d(), ref, command);
+  EXPECT_FALSE(osc.integral_held());
+  const double before = osc.integral()[0];
+  EXPECT_NEAR(before, 0.01 * 0.01, 1e-12);
+  osc.set_measured_wrench((Vector6d() << 0.0, 0.6, 0.8, 5.0, 0.0, 0.0).finished());  // ‖f‖ = 1 N
+  rig.d().time += 0.01;
+  osc.compute(rig.d(), ref, command);
+  EXPECT_TRUE(osc.integral_held());
+  EXPECT_EQ(osc.integral()[0], before);
+  osc.set_measured_wrench((Vector6d() << 0.0, 0.6, 0.7, 5.0, 0.0, 0.0).finished());  // below
+  rig.d().time += 0.01;
+  osc.compute(rig.d(), ref, command);
+  EXPECT_FALSE(osc.integral_held());
+  EXPECT_NEAR(osc.integral()[0], 2.0 * before, 1e-12);
+  // a non-finite wrench is taken as zero: no hold, no NaN
+  osc.set_measured_wrench(Vector6d::Constant(NAN));
+  rig.d().time += 0.01;
+  osc.compute(rig.d(), ref, command);
+  EXPECT_FALSE(osc.integral_held());
+  EXPECT_TRUE(command.value.allFinite());
+  osc.reset();
+  EXPECT_EQ(osc.measured_wrench().norm(), 0.0);
 }
 
 TEST(OperationalSpace, ZeroErrorAtRestHoldsAgainstGravity) {
@@ -301,6 +412,8 @@ TEST(OperationalSpace, BadOptionsThrow) {
   expect_throw([](auto& o) { o.nullspace_damping = -1.0; }, "null-space damping");
   expect_throw([](auto& o) { o.nullspace_stiffness = NAN; }, "null-space stiffness");
   expect_throw([](auto& o) { o.task_space.min_eigenvalue = 0.0; }, "min_eigenvalue");
+  expect_throw([](auto& o) { o.integral_hold_force = 0.0; }, "integral hold force");
+  expect_throw([](auto& o) { o.integral_hold_force = NAN; }, "integral hold force");
   // in position mode the rotational entries are not used, so they are not checked
   OperationalSpaceOptions o;
   o.mode = TaskMode::position;

@@ -8,6 +8,7 @@
 #include <Eigen/Dense>
 #include <Eigen/Geometry>
 #include <random>
+#include <utility>
 
 #include "mjarm/control/controller.hpp"
 #include "mjarm/kinematics/finite_difference.hpp"
@@ -28,6 +29,8 @@ struct Rig {
   DataPtr data;
   Rig(const char* model, const char* site)
       : robot(Robot::bundled(model)), chain(robot, site), data(robot.make_data()) {}
+  Rig(Robot r, const char* site)
+      : robot(std::move(r)), chain(robot, site), data(robot.make_data()) {}
   const mjModel& m() const { return robot.model(); }
   mjData& d() { return *data; }
 };

@@ -23,8 +23,11 @@ inline const std::vector<double>& franka_frictionloss() {
   return f;
 }
 
-/// The bundled iiwa14_torque with frictionloss f[k] on joint k+1 (none when @p f is empty).
-inline Robot iiwa_torque_with_friction(const std::vector<double>& f) {
+/// The MJCF of the bundled iiwa14_torque with frictionloss f[k] on joint k+1 (none when @p f is
+/// empty), @p in_link7 inserted at the end of link7's body (e.g. a tool body) and @p sensors
+/// as a <sensor> section; load it with `Robot::from_string(xml, Robot::models_dir())`.
+inline std::string iiwa_torque_xml(const std::vector<double>& f, const std::string& in_link7 = "",
+                                   const std::string& sensors = "") {
   const auto dir = Robot::models_dir();
   std::string main = slurp(dir / "iiwa14_torque.xml");
   std::string body = slurp(dir / "iiwa14" / "iiwa14_body.xml");
@@ -35,9 +38,22 @@ inline Robot iiwa_torque_with_friction(const std::vector<double>& f) {
     body.replace(body.find(name), name.size(),
                  name + " frictionloss=\"" + std::to_string(f[k]) + "\"");
   }
+  if (!in_link7.empty()) {
+    const std::string site = "<site name=\"attachment_site\" pos=\"0 0 0.126\"/>";
+    body.replace(body.find(site), site.size(), site + in_link7);
+  }
   const std::string include = "<include file=\"iiwa14/iiwa14_body.xml\"/>";
   main.replace(main.find(include), include.size(), body);
-  return Robot::from_string(main, dir);
+  if (!sensors.empty()) {
+    const std::string end = "</mujoco>";
+    main.replace(main.rfind(end), end.size(), "<sensor>" + sensors + "</sensor>" + end);
+  }
+  return main;
+}
+
+/// The bundled iiwa14_torque with frictionloss f[k] on joint k+1 (none when @p f is empty).
+inline Robot iiwa_torque_with_friction(const std::vector<double>& f) {
+  return Robot::from_string(iiwa_torque_xml(f), Robot::models_dir());
 }
 
 /// A torque-mode run of a chain whose actuator i drives chain joint i: each physics step is

@@ -173,6 +173,26 @@ TEST(IkBenchmark, HugeTimeoutsDoNotFailEverySample) {
   }
 }
 
+// a stop request (Ctrl-C in `mjarm bench ik`) ends the run with the figures of the samples done
+TEST(IkBenchmark, AStopRequestEndsTheRunWithTheSamplesDone) {
+  const Chain chain(Robot::bundled("panda"), "attachment_site");
+  IkBenchmarkOptions options;
+  options.samples = 1000;
+  int asked = 0;
+  options.stop = [&] { return ++asked > 20; };
+  const IkBenchmarkResult r = run_ik_benchmark(chain, options);
+  EXPECT_TRUE(r.interrupted);
+  EXPECT_EQ(r.samples, 20);
+  EXPECT_GT(r.successes, 0);
+  EXPECT_DOUBLE_EQ(r.success_rate, static_cast<double>(r.successes) / 20.0);
+  EXPECT_GT(r.mean_time_ms, 0.0);
+  options.stop = [] { return true; };
+  const IkBenchmarkResult none = run_ik_benchmark(chain, options);
+  EXPECT_TRUE(none.interrupted);
+  EXPECT_EQ(none.samples, 0);
+  EXPECT_EQ(none.mean_time_ms, 0.0);
+}
+
 TEST(IkBenchmark, BadInputsThrow) {
   const Chain chain = chain_of("panda");
   IkBenchmarkOptions options;

@@ -63,6 +63,17 @@ TEST(JointSpline, TimedPassesTheKnotsInMotionWithinTheLimits) {
       EXPECT_LE(std::abs(a[i]), amax[i] * (1 + 1e-9));
     }
   }
+  // the jerk is the derivative of the acceleration, inside each segment
+  Eigen::VectorXd j(3), p3(3), v3(3), a3(3), j3(3);
+  for (double t : {0.1, 0.37, s.knot_time(1) + 0.05, s.knot_time(2) + 0.11}) {
+    s.at(t, p, v, a, j);
+    s.at(t - 1e-6, p2, v2, a2);
+    s.at(t + 1e-6, p3, v3, a3);
+    EXPECT_LT((j - (a3 - a2) / 2e-6).norm(), 1e-4 * (1 + j.norm())) << t;
+    s.at(t, p2, v2, a2);
+    EXPECT_EQ(p, p2);  // the same q, q̇, q̈ as without the jerk
+    EXPECT_EQ(a, a2);
+  }
   // slower limits, longer motion: durations come from the limits
   const JointSpline slow =
       JointSpline::timed(q, 0.5 * vmax, 0.5 * amax, {0.05, 0.05, 0.05}, {0, 1, 1, 0});
@@ -72,12 +83,14 @@ TEST(JointSpline, TimedPassesTheKnotsInMotionWithinTheLimits) {
 TEST(JointSpline, EvaluationAllocatesNothing) {
   const JointSpline s = JointSpline::timed({vec({0, 0}), vec({1, 0.5}), vec({2, 0.2})}, vec({1, 1}),
                                            vec({2, 2}), {0.05, 0.05}, {0, 1, 0});
-  Eigen::VectorXd q(2), qd(2), qdd(2);
+  Eigen::VectorXd q(2), qd(2), qdd(2), qddd(2);
   double sink = 0.0;
   const std::uint64_t before = test::malloc_calls();
   for (int j = 0; j <= 100; ++j) {
     s.at(s.duration() * j / 100.0, q, qd, qdd);
     sink += q[0] + qd[1] + qdd[0];
+    s.at(s.duration() * j / 100.0, q, qd, qdd, qddd);
+    sink += qddd[1];
   }
   EXPECT_EQ(test::malloc_calls() - before, 0u);
   EXPECT_TRUE(std::isfinite(sink));

@@ -7,6 +7,7 @@
 #include "ik/malloc_counter.hpp"
 #include "mjarm/control/gravity_compensation.hpp"
 #include "mjarm/error.hpp"
+#include "mjarm/kinematics/finite_difference.hpp"
 #include "mjarm/planning/waypoint_planner.hpp"
 #include "mjarm/sim/simulation.hpp"
 #include "mjarm/tasks/shelf_pick_controllers.hpp"
@@ -29,21 +30,27 @@ TEST(PlannedReference, TaskReferenceIsTheDerivativeOfTheJointReference) {
   const Robot robot = Robot::bundled("panda_torque");
   const Chain chain(robot, "attachment_site");
   PlannedReference source(chain, plan_five(chain));
-  Reference a, b, c;
+  Reference b, r;
   const double h = 1e-5;
+  // the pose and the twist as functions of time, for the public finite-difference helpers
+  const auto pose = [&](const Eigen::VectorXd& t) {
+    source.evaluate(t[0], r);
+    return r.task.X_WE;
+  };
+  const auto twist = [&](double t) {
+    source.evaluate(t, r);
+    return Vector6d(r.task.V_WE);
+  };
   for (double t : {0.3, 0.9, 1.7, source.trajectory().knot_time(2)}) {
-    source.evaluate(t - h, a);
     source.evaluate(t, b);
-    source.evaluate(t + h, c);
-    // velocity: central difference of the position and of the rotation (world axes)
-    const Eigen::Vector3d v = (c.task.X_WE.p - a.task.X_WE.p) / (2 * h);
-    const Eigen::Matrix3d dR = (c.task.X_WE.R - a.task.X_WE.R) / (2 * h);
-    const Eigen::Matrix3d W = dR * b.task.X_WE.R.transpose();
-    const Eigen::Vector3d w(W(2, 1), W(0, 2), W(1, 0));
-    EXPECT_LT((v - b.task.V_WE.head<3>()).norm(), 1e-6) << t;
-    EXPECT_LT((w - b.task.V_WE.tail<3>()).norm(), 1e-6) << t;
+    // velocity: central difference of the pose, [ṗ; ω] in world axes
+    const Vector6d V = finite_difference_pose_jacobian(pose, Eigen::VectorXd::Constant(1, t),
+                                                       JacobianFrame::world_aligned, h)
+                           .col(0);
+    EXPECT_LT((V.head<3>() - b.task.V_WE.head<3>()).norm(), 1e-6) << t;
+    EXPECT_LT((V.tail<3>() - b.task.V_WE.tail<3>()).norm(), 1e-6) << t;
     // acceleration: central difference of the twist (J q̈ + J̇ q̇)
-    const Vector6d A = (c.task.V_WE - a.task.V_WE) / (2 * h);
+    const Vector6d A = finite_difference_derivative(twist, t, h);
     EXPECT_LT((A - b.task.A_WE).norm(), 1e-4) << t;
   }
 }

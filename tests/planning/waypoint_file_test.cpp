@@ -6,7 +6,10 @@
 #include <fstream>
 
 #include "mjarm/error.hpp"
+#include "mjarm/model/user_file.hpp"
 #include "support/error_message.hpp"
+#include "support/files.hpp"
+#include "support/unreadable_paths.hpp"
 
 namespace mjarm {
 namespace {
@@ -68,7 +71,7 @@ TEST(WaypointFile, BadFilesAreClearErrors) {
             std::string::npos);
   EXPECT_NE(error_of([] {
               load_waypoints("/nonexistent/path.json");
-            }).find("cannot read the waypoint file '/nonexistent/path.json'"),
+            }).find("waypoint file '/nonexistent/path.json' does not exist"),
             std::string::npos);
 }
 
@@ -81,6 +84,21 @@ TEST(WaypointFile, LoadPicksTheFormatByExtension) {
   EXPECT_EQ(load_waypoints(csv).waypoints.size(), 2u);
   std::remove(json.c_str());
   std::remove(csv.c_str());
+}
+
+// issue 16, item 7: the waypoint file is a user file like a model: a FIFO blocked for ever,
+// /dev/zero grew without bound, and a symbolic link loop or a folder had no reason given
+TEST(WaypointFile, OnlyRegularFilesOfBoundedSizeAreRead) {
+  for (const char* extension : {".json", ".csv"}) {
+    for (const test::UnreadablePath& bad : test::unreadable_paths(
+             test::scratch() / "waypoint_files", "waypoints", extension, kMaxTextFileBytes + 1)) {
+      const std::string message = test::error_without_blocking(
+          bad.path, [](const std::filesystem::path& p) { load_waypoints(p); });
+      EXPECT_NE(message.find("waypoint file '" + bad.path.string() + "'"), std::string::npos)
+          << message;
+      EXPECT_NE(message.find(bad.expected), std::string::npos) << message;
+    }
+  }
 }
 
 }  // namespace

@@ -2,7 +2,9 @@
 
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <cmath>
+#include <limits>
 
 #include "mjarm/dynamics/chain_dynamics.hpp"
 #include "mjarm/error.hpp"
@@ -180,9 +182,41 @@ TEST(WaypointPlanner, AStartInCollisionIsReported) {
   EXPECT_NE(r.message.find("start configuration fails"), std::string::npos);
 }
 
+TEST_F(PandaPlan, AStartBeyondTheJointLimitsIsAnHonestStatus) {
+  Eigen::VectorXd q = home_q(robot);
+  q[3] = 0.5;  // joint4's range is [−3.07, −0.07]
+  const PlanResult r = WaypointPlanner(chain).plan(q, five_waypoints());
+  EXPECT_EQ(r.status, PlanStatus::start_failed);
+  EXPECT_FALSE(r.ok());
+  EXPECT_NE(r.message.find("joint4"), std::string::npos) << r.message;
+  EXPECT_EQ(r.trajectory.duration(), 0.0);  // no trajectory to follow
+}
+
 TEST_F(PandaPlan, BadInputIsAnError) {
   WaypointPlanner planner(chain);
   EXPECT_THROW(planner.plan(home_q(robot), {}), Error);
+  // a start that is not finite
+  Eigen::VectorXd q_nan = home_q(robot);
+  q_nan[2] = std::numeric_limits<double>::infinity();
+  EXPECT_THROW(planner.plan(q_nan, five_waypoints()), Error);
+  // a waypoint rotation that is not a rotation
+  std::vector<Pose> skewed = five_waypoints();
+  skewed[1].R(0, 1) += 0.1;
+  EXPECT_THROW(planner.plan(home_q(robot), skewed), Error);
+  // zero, negative or NaN limits, named
+  for (double bad : {0.0, -1.0, std::nan("")}) {
+    for (int which = 0; which < 3; ++which) {
+      PlanOptions limited;
+      Eigen::VectorXd v = Eigen::VectorXd::Ones(7);
+      v[4] = bad;
+      (which == 0   ? limited.limits.max_velocity
+       : which == 1 ? limited.limits.max_acceleration
+                    : limited.limits.max_torque) = v;
+      const std::string message = test::error_of(
+          [&] { WaypointPlanner(chain, limited).plan(home_q(robot), five_waypoints()); });
+      EXPECT_FALSE(message.empty()) << "limit " << which << " = " << bad;
+    }
+  }
   std::vector<Pose> path = five_waypoints();
   path[3].p.x() = std::nan("");
   EXPECT_THROW(planner.plan(home_q(robot), path), Error);
@@ -199,8 +233,40 @@ TEST_F(PandaPlan, BadInputIsAnError) {
   options.limits.max_acceleration = Eigen::VectorXd::Constant(7, 1e-6);
   EXPECT_NE(test::error_of([&] {
               WaypointPlanner(chain, options).plan(home_q(robot), five_waypoints());
-            }).find("more than 1e7 samples"),
+            }).find("beyond the 100000 samples a segment may have"),
             std::string::npos);
+  options = PlanOptions{};
+  options.max_samples = 0;
+  EXPECT_THROW(WaypointPlanner(chain, options), Error);
+  options = PlanOptions{};
+  options.max_segment_samples = 0;
+  EXPECT_THROW(WaypointPlanner(chain, options), Error);
+}
+
+// issue 16, item 4's rule in the planner: slow limits made `mjarm plan` check a motion of hours
+// at every 10 ms (--velocity-limit 0.0001: over a minute, no end in sight); the work is bounded
+// and refused before the checks, naming the bound
+TEST_F(PandaPlan, SlowLimitsAreRefusedBeforeTheChecksNotAfterMinutes) {
+  PlanOptions options;
+  options.limits.max_velocity = Eigen::VectorXd::Constant(7, 1e-4);
+  const auto start = std::chrono::steady_clock::now();
+  const std::string message = test::error_of(
+      [&] { WaypointPlanner(chain, options).plan(home_q(robot), five_waypoints()); });
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  EXPECT_NE(message.find("beyond the 100000 samples a segment may have"), std::string::npos)
+      << message;
+  EXPECT_LT(seconds, 5.0);
+  // the work of a whole plan is bounded too: a small budget refuses even the usual five
+  // waypoints, at the segment that would pass it
+  PlanOptions small;
+  small.max_samples = 200;
+  const std::string total =
+      test::error_of([&] { WaypointPlanner(chain, small).plan(home_q(robot), five_waypoints()); });
+  EXPECT_NE(total.find("beyond the 200 samples a plan may check in all"), std::string::npos)
+      << total;
+  small.max_samples = PlanOptions{}.max_samples;
+  EXPECT_TRUE(WaypointPlanner(chain, small).plan(home_q(robot), five_waypoints()).ok());
 }
 
 }  // namespace

@@ -3,6 +3,7 @@
 
 #include <filesystem>
 #include <string>
+#include <vector>
 
 #include "mjarm/render/png.hpp"
 #include "mjarm/sim/recorder.hpp"
@@ -75,6 +76,22 @@ inline PixelStats pixel_stats(const std::filesystem::path& png) {
   s.variance = sum2 / n - (sum / n) * (sum / n);
   s.ink_fraction = static_cast<double>(ink) / n;
   return s;
+}
+
+// Text that runs `touch PWNEDk` if any part of it reaches gnuplot as a command: newlines, both
+// quotes, a backtick, $(), a trailing backslash and `system` (issue 16, item 3).
+inline std::string injection_text() {
+  return "x\nsystem \"touch PWNED1\"\n'\nsystem 'touch PWNED2'\n`touch PWNED3`$(touch PWNED4)"
+         "\"; system \"touch PWNED5\"; \"\\\nsystem \"touch PWNED6\"";
+}
+
+// Files under @p dir whose name starts with PWNED (what `touch` would have made).
+inline std::vector<std::filesystem::path> pwned_files(const std::filesystem::path& dir) {
+  std::vector<std::filesystem::path> found;
+  for (const auto& entry : std::filesystem::recursive_directory_iterator(dir))
+    if (entry.path().filename().string().rfind("PWNED", 0) == 0)  // the folders hold the word
+      found.push_back(entry.path());
+  return found;
 }
 
 inline void write_file(const std::filesystem::path& path, const std::string& text) {

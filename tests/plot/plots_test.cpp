@@ -147,21 +147,17 @@ TEST(Plots, BadSizesAreRefused) {
 // folder, the model, frame and controller names in summary.json (titles), the actuators' joint
 // names (curve titles), and events' kinds and phase names (labels). Each would run
 // `touch PWNED…` if it were written raw.
-std::string injection_text() {
-  return "x\nsystem \"touch PWNED1\"\n'\nsystem 'touch PWNED2'\n`touch PWNED3`$(touch PWNED4)"
-         "\"; system \"touch PWNED5\"; \"\\\nsystem \"touch PWNED6\"";
-}
 
 // the press recording in @p dir, its names replaced by the injection text
 void record_hostile_press(const fs::path& dir) {
   test::record_press(dir);
   nlohmann::json summary = nlohmann::json::parse(test::read_text(dir / "summary.json"));
-  summary["model"] = injection_text();
-  summary["frame"] = injection_text();
-  summary["controllers"] = nlohmann::json::array({{{"name", injection_text()}}});
-  for (auto& actuator : summary["actuators"]) actuator["joint"] = injection_text();
+  summary["model"] = test::injection_text();
+  summary["frame"] = test::injection_text();
+  summary["controllers"] = nlohmann::json::array({{{"name", test::injection_text()}}});
+  for (auto& actuator : summary["actuators"]) actuator["joint"] = test::injection_text();
   test::write_file(dir / "summary.json", summary.dump());
-  std::string csv_text = injection_text();  // a CSV cell: doubled quotes, in quotes
+  std::string csv_text = test::injection_text();  // a CSV cell: doubled quotes, in quotes
   for (std::size_t at = 0; (at = csv_text.find('"', at)) != std::string::npos; at += 2)
     csv_text.insert(at, 1, '"');
   std::string events = test::read_text(dir / "events.csv");
@@ -169,20 +165,13 @@ void record_hostile_press(const fs::path& dir) {
   test::write_file(dir / "events.csv", events);
 }
 
-std::vector<fs::path> pwned_files(const fs::path& dir) {
-  std::vector<fs::path> found;
-  for (const auto& entry : fs::recursive_directory_iterator(dir))
-    if (entry.path().filename().string().rfind("PWNED", 0) == 0)  // the folders hold the word
-      found.push_back(entry.path());
-  return found;
-}
 
 TEST(Plots, NoTextReachesGnuplotAsACommand) {
   test::TempDir dir("plot-injection");
   // the folder names themselves hold the payload (a name may hold anything but '/')
-  const fs::path recording = dir.path() / ("rec" + injection_text());
+  const fs::path recording = dir.path() / ("rec" + test::injection_text());
   record_hostile_press(recording);
-  const fs::path out = dir.path() / ("out" + injection_text());
+  const fs::path out = dir.path() / ("out" + test::injection_text());
   // gnuplot's working folder is this process's: the scratch folder, where `touch` would write
   const fs::path saved = fs::current_path();
   fs::current_path(dir.path());
@@ -196,7 +185,7 @@ TEST(Plots, NoTextReachesGnuplotAsACommand) {
   }
   fs::current_path(saved);
   ASSERT_EQ(error, "");
-  EXPECT_EQ(pwned_files(dir.path()), std::vector<fs::path>{});
+  EXPECT_EQ(test::pwned_files(dir.path()), std::vector<fs::path>{});
   // the figures came out where they were asked for, under the exact (hostile) names
   ASSERT_EQ(default_paths.size(), 4u);
   ASSERT_EQ(out_paths.size(), 4u);

@@ -70,5 +70,33 @@ TEST(TrajectoryPlot, InconsistentSeriesAreNamed) {
   EXPECT_FALSE(fs::exists(dir.path() / "trajectory.png"));
 }
 
+// issue 16, item 3: every text that reaches a gnuplot script goes through gnuplot_string; the
+// trajectory plot (`mjarm traj --plot DIR --unit U`) too: its folder, title, unit and axis names
+TEST(TrajectoryPlot, NoTextReachesGnuplotAsACommand) {
+  test::TempDir dir("trajectory-plot-injection");
+  TrajectorySeries s = sine_series();
+  s.title = test::injection_text();
+  s.unit = test::injection_text();
+  s.axes = {test::injection_text(), "b" + test::injection_text()};
+  const fs::path out = dir.path() / ("out" + test::injection_text());
+  // gnuplot's working folder is this process's: the scratch folder, where `touch` would write
+  const fs::path saved = fs::current_path();
+  fs::current_path(dir.path());
+  std::string error;
+  PlotInfo info;
+  try {
+    info = plot_trajectory(s, out, {800, 900, 60.0});
+  } catch (const std::exception& e) {
+    error = e.what();
+  }
+  fs::current_path(saved);
+  ASSERT_EQ(error, "");
+  EXPECT_EQ(test::pwned_files(dir.path()), std::vector<fs::path>{});
+  EXPECT_EQ(info.path, fs::absolute(out / "trajectory.png"));
+  EXPECT_GT(test::pixel_stats(info.path).ink_fraction, 0.01);
+  const std::string script = test::read_text(out / "gnuplot" / "trajectory.gp");
+  EXPECT_EQ(script.find("\nsystem"), std::string::npos);
+}
+
 }  // namespace
 }  // namespace mjarm::plot

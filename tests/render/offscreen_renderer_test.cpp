@@ -314,6 +314,30 @@ TEST(OffscreenRenderer, BadSizesAndNumbersAreErrors) {
             std::string::npos);
 }
 
+// issue 16, item 6's class (a number that overflows downstream gives a silently wrong result):
+// `mjarm render --lookat 1e308 0 0` or `--distance 1e39` wrote an all-black picture and exit 0
+// (single precision makes them infinite); a camera that cannot see any of the model is an error
+TEST(OffscreenRenderer, ACameraThatCannotSeeTheModelIsAnError) {
+  const Robot panda = Robot::bundled("panda");
+  DataPtr d = test::panda_home(panda);
+  OffscreenRenderer renderer(panda, kW, kH);
+  const mjModel& m = panda.model();
+  const double zfar = m.vis.map.zfar * m.stat.extent;  // the far clipping plane [m]
+  const Eigen::Vector3d centre(m.stat.center[0], m.stat.center[1], m.stat.center[2]);
+  for (const CameraSpec& far : {CameraSpec::free_camera({1e308, 0, 0}, 1.0, 90, -30),
+                                CameraSpec::free_camera(centre, 1e39, 90, -30),
+                                CameraSpec::free_camera(centre, zfar + 2.0 * m.stat.extent, 90, 0),
+                                CameraSpec::follow("attachment_site", 1e20, 90, -30)}) {
+    const std::string message = error_of([&] { renderer.render(*d, far); });
+    EXPECT_NE(message.find("beyond the far clipping plane"), std::string::npos) << message;
+    EXPECT_NE(message.find("model 'panda'"), std::string::npos) << message;
+  }
+  // just inside the plane the nearest part of the model is drawn: not an error
+  const Image image =
+      renderer.render(*d, CameraSpec::free_camera(centre, zfar + 0.5 * m.stat.extent, 90, 0));
+  EXPECT_EQ(image.width, kW);
+}
+
 TEST(OffscreenRenderer, LargerThanTheModelOffscreenBufferAndOddSizes) {
   const Robot panda = Robot::bundled("panda");
   DataPtr d = test::panda_home(panda);

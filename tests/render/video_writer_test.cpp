@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 #include <sys/resource.h>
 
+#include <algorithm>
 #include <cstdlib>
 #include <fstream>
 #include <stdexcept>
@@ -305,8 +306,18 @@ fs::path fake_ffmpeg(const std::string& name, const std::string& body) {
   return script;
 }
 
-// never reads its input, never exits by itself; leaves its pid in VIDEO.pid
-fs::path stuck_ffmpeg() { return fake_ffmpeg("stuck", "echo $$ > \"$out.pid\"\nexec sleep 300\n"); }
+// never reads its input, never exits by itself; leaves its pid in ffmpeg.pid beside the video
+// (the file it is given is a temporary one beside the video: VideoWriter renames it when complete)
+fs::path stuck_ffmpeg() {
+  return fake_ffmpeg("stuck", "echo $$ > \"$(dirname \"$out\")/ffmpeg.pid\"\nexec sleep 300\n");
+}
+
+// A folder of its own for one test's video (the stuck ffmpeg's pid file lives beside it).
+fs::path video_dir(const std::string& name) {
+  const fs::path dir = test::scratch() / name;
+  fs::create_directories(dir);
+  return dir;
+}
 
 pid_t read_pid(const fs::path& file) {
   const std::string text = test::slurp(file);
@@ -318,7 +329,7 @@ TEST(VideoWriter, AnFfmpegThatStopsReadingIsKilledAtTheDeadline) {
   VideoOptions options;
   options.ffmpeg = stuck_ffmpeg();
   options.timeout_s = 0.5;
-  const fs::path path = test::scratch() / "stuck.mp4";
+  const fs::path path = video_dir("stuck") / "stuck.mp4";
   VideoWriter video(path, 64, 48, 30.0, options);
   std::string message;
   for (int k = 0; k < 10000 && message.empty(); ++k) {
@@ -330,9 +341,9 @@ TEST(VideoWriter, AnFfmpegThatStopsReadingIsKilledAtTheDeadline) {
   }
   EXPECT_NE(message.find("did not take frame"), std::string::npos) << message;
   EXPECT_NE(message.find(path.string()), std::string::npos) << message;
-  EXPECT_NE(message.find("not playable"), std::string::npos) << message;
+  EXPECT_NE(message.find("no video was written"), std::string::npos) << message;
   EXPECT_FALSE(video.is_open());
-  const pid_t ffmpeg = read_pid(path.string() + ".pid");
+  const pid_t ffmpeg = read_pid(path.parent_path() / "ffmpeg.pid");
   ASSERT_GT(ffmpeg, 0);
   EXPECT_FALSE(test::process_alive(ffmpeg)) << "ffmpeg " << ffmpeg << " was left running";
   video.close();  // nothing left to do, no second error
@@ -343,12 +354,12 @@ TEST(VideoWriter, AnFfmpegThatNeverExitsIsKilledAtTheDeadline) {
   VideoOptions options;
   options.ffmpeg = stuck_ffmpeg();
   options.timeout_s = 0.5;
-  const fs::path path = test::scratch() / "never_exits.mp4";
+  const fs::path path = video_dir("never_exits") / "never_exits.mp4";
   VideoWriter video(path, 64, 48, 30.0, options);
   video.write(moving_square(64, 48, 0));  // fits in the pipe
   const std::string message = error_of([&] { video.close(); });
   EXPECT_NE(message.find("did not finalize video"), std::string::npos) << message;
-  const pid_t ffmpeg = read_pid(path.string() + ".pid");
+  const pid_t ffmpeg = read_pid(path.parent_path() / "ffmpeg.pid");
   ASSERT_GT(ffmpeg, 0);
   EXPECT_FALSE(test::process_alive(ffmpeg));
 }
@@ -402,6 +413,70 @@ TEST(VideoWriter, ASuccessfulExitWithAnIncompleteFileIsAFailure) {
     message = e.what();
   }
   EXPECT_NE(message.find(path.string()), std::string::npos) << message;
+}
+
+// issue 16, item 8's rule for the MP4: a complete video or none. A failed video leaves no file
+// (an empty or cut MP4 without its index is no video) and an existing file as it was: ffmpeg
+// writes a temporary file beside the video, renamed over it once ffmpeg finalized it and the
+// file checks out
+std::vector<std::string> files_in(const fs::path& dir) {
+  std::vector<std::string> names;
+  for (const auto& entry : fs::directory_iterator(dir)) names.push_back(entry.path().filename());
+  std::sort(names.begin(), names.end());
+  return names;
+}
+
+TEST(VideoWriter, AFailedVideoLeavesTheOldFileAndNothingElse) {
+  const Watchdog watchdog(120);
+  struct Case {
+    std::string name;
+    VideoOptions options;
+    bool write_frames = true;
+  };
+  std::vector<Case> cases(4);
+  cases[0].name = "quits";  // exits 0 at once, having written nothing
+  cases[0].options.ffmpeg = fake_ffmpeg("quits_at_once", "exit 0\n");
+  cases[1].name = "no_moov";  // what a full disk leaves: ftyp and mdat, no index
+  cases[1].options.ffmpeg = fake_ffmpeg(
+      "no_moov",
+      "cat > /dev/null\nprintf '\\000\\000\\000\\030ftypisom\\000\\000\\002\\000isomiso2"
+      "\\000\\000\\000\\010mdat' > \"$out\"\nexit 0\n");
+  cases[2].name = "stuck";  // never reads: killed at the deadline
+  cases[2].options.ffmpeg = stuck_ffmpeg();
+  cases[2].options.timeout_s = 0.5;
+  cases[3].name = "missing";  // no ffmpeg at all: fails before anything is created
+  cases[3].options.ffmpeg = "/nonexistent/bin/ffmpeg";
+  for (const Case& c : cases) {
+    for (const bool existed : {true, false}) {
+      const fs::path dir = video_dir("failed_video_" + c.name + (existed ? "_old" : "_new"));
+      const fs::path path = dir / "run.mp4";
+      if (existed) std::ofstream(path) << "old video\n";
+      const std::string message = error_of([&] {
+        VideoWriter video(path, 64, 48, 30.0, c.options);
+        for (int k = 0; k < 2000; ++k) video.write(moving_square(64, 48, k % 20));
+        video.close();
+      });
+      EXPECT_NE(message.find(c.name == "missing" ? "ffmpeg not found" : path.string()),
+                std::string::npos)
+          << c.name << ": " << message;
+      std::vector<std::string> expected;
+      if (existed) expected.push_back("run.mp4");
+      if (c.name == "stuck") expected.insert(expected.begin(), "ffmpeg.pid");
+      EXPECT_EQ(files_in(dir), expected) << c.name << ": " << message;
+      if (existed) {
+        EXPECT_EQ(test::slurp(path), "old video\n") << c.name;
+      }
+    }
+  }
+  // a video that succeeds replaces the old file, and leaves nothing beside it
+  const fs::path dir = video_dir("replaced_video");
+  const fs::path path = dir / "run.mp4";
+  std::ofstream(path) << "old video\n";
+  VideoWriter video(path, 64, 48, 30.0);
+  for (int k = 0; k < 4; ++k) video.write(moving_square(64, 48, k));
+  video.close();
+  EXPECT_EQ(probe(path).frames, 4);
+  EXPECT_EQ(files_in(dir), std::vector<std::string>{"run.mp4"});
 }
 
 // a real ffmpeg on a "full disk": `mjarm run --video` with RLIMIT_FSIZE = 2 KiB, set in a forked
@@ -460,7 +535,7 @@ TEST(VideoCli, SignalsEndARunWhoseFfmpegIsStuck) {
          (dir / "run.mp4").string(), "--size", "64x48", "--record", (dir / "rec").string()},
         dir, {path_env});
     ASSERT_TRUE(run.started());
-    const fs::path pid_file = dir / "run.mp4.pid";
+    const fs::path pid_file = dir / "ffmpeg.pid";
     ASSERT_TRUE(test::eventually(
         [&] { return (fs::exists(pid_file) && read_pid(pid_file) > 0) || run.wait(0); }, 60.0))
         << run.err();
@@ -504,7 +579,7 @@ TEST(VideoCli, FfmpegDiesWithAKilledRun) {
                             (dir / "run.mp4").string(), "--size", "64x48"},
                            dir, {path_env});
   ASSERT_TRUE(run.started());
-  const fs::path pid_file = dir / "run.mp4.pid";
+  const fs::path pid_file = dir / "ffmpeg.pid";
   ASSERT_TRUE(test::eventually(
       [&] { return (fs::exists(pid_file) && read_pid(pid_file) > 0) || run.wait(0); }, 60.0))
       << run.err();

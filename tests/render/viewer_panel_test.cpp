@@ -1,5 +1,6 @@
-// The viewer's window-free pieces: panel state ↔ target mapping, named edits, the target filter,
-// the panel definition (mjui without OpenGL), scripts and overlay text.
+// The viewer's window-free pieces: panel state ↔ target mapping, named edits, the panel
+// definition (mjui without OpenGL), scripts and overlay text. The target filter is tested in
+// tests/trajectory/target_filter_test.cpp.
 #include "mjarm/render/viewer_panel.hpp"
 
 #include <gtest/gtest.h>
@@ -95,36 +96,6 @@ TEST(ViewerPanel, NamedEditsAreCheckedAgainstTheSliders) {
   EXPECT_DOUBLE_EQ(state.target[slider_x], 0.4);  // failed edits change nothing
   state.mode = 7;
   EXPECT_THROW(panel_mode(state), Error);
-}
-
-TEST(TargetFilter, MovesAtBoundedSpeedAndLandsExactly) {
-  TargetFilter filter(0.5, 1.0);
-  const Pose start = pose(0.3, 0.0, 0.5, kPi, 0.0, 0.0);
-  const Pose goal = pose(0.5, 0.1, 0.4, kPi, 0.0, 0.6);
-  filter.reset(start);
-  const double dt = 0.01;
-  Pose previous = start;
-  int steps = 0;
-  while (!filter.settled() || steps == 0) {
-    const Pose& X = filter.update(goal, dt);
-    const double moved = (X.p - previous.p).norm();
-    const double turned = so3::angle(X.R * previous.R.transpose());
-    EXPECT_LE(moved, 0.5 * dt + 1e-12);
-    EXPECT_LE(turned, 1.0 * dt + 1e-9);
-    // the reported velocity is the motion of this update
-    EXPECT_NEAR(filter.velocity().head<3>().norm() * dt, moved, 1e-12);
-    previous = X;
-    ASSERT_LT(++steps, 1000);
-  }
-  EXPECT_TRUE(filter.pose().is_approx(goal, 0.0));
-  // distance 0.245 m at 0.5 m/s: 49 steps; 0.6 rad at 1 rad/s: 60 steps, the rotation decides
-  EXPECT_NEAR(steps, 60, 1);
-  // a bad dt leaves the reference where it is
-  filter.update(start, 0.0);
-  filter.update(start, std::nan(""));
-  EXPECT_TRUE(filter.pose().is_approx(goal, 0.0));
-  EXPECT_THROW(TargetFilter(0.0, 1.0), Error);
-  EXPECT_THROW(TargetFilter(1.0, INFINITY), Error);
 }
 
 TEST(ViewerUi, PanelItemsAreBoundToThePanelState) {

@@ -6,10 +6,12 @@
 
 #include <atomic>
 #include <cstdlib>
+#include <vector>
 
 #include "ik/malloc_counter.hpp"
 #include "mjarm/error.hpp"
 #include "mjarm/lie/so3.hpp"
+#include "mjarm/trajectory/smoothstep.hpp"
 
 // ---- allocation counter (see tests/ik/malloc_counter.hpp) ----
 // Weak definitions: if another test file of this executable counts allocations the same way,
@@ -110,12 +112,43 @@ TEST(ViewerSession, EveryModeReachesThePanelTarget) {
   }
 }
 
-TEST(ViewerSession, ReferenceSpeedLimitShapesTheMotion) {
+TEST(ViewerSession, ASliderJumpBecomesAJerkLimitedMotionThatContinuesWhenTheTargetMoves) {
+  // the reference X_WR, one sample per 10 ms tick, through a jump and a second jump made
+  // mid-motion: its differences bound the mean velocity, acceleration and jerk over each
+  // window (x_{k+1} − x_k = ∫v, second differences a weighted mean of a, third of jerk)
   ViewerSession session(Robot::bundled("panda"));
-  session.set_target(moved(session, 0.0, 0.2, 0.0));
-  run_for(session, 0.2);  // 0.5 m/s for 0.2 s: 0.1 m along the way
-  EXPECT_NEAR((session.stats().X_WR.p - panel_target(session.initial_panel()).p).norm(), 0.1, 1e-9);
-  EXPECT_NEAR(session.stats().target_position, 0.1, 2e-3);
+  const TargetFilterLimits limits;  // the session's defaults
+  const double dt = session.control_period();
+  std::vector<Eigen::Vector3d> p{session.stats().X_WR.p};
+  session.set_target(moved(session, 0.0, 0.2, -0.1));
+  for (int k = 0; k < 30; ++k) {
+    ASSERT_EQ(session.step(1), 1);
+    p.push_back(session.stats().X_WR.p);
+  }
+  const std::size_t change = p.size() - 1;
+  const Eigen::Vector3d v_before = (p[change] - p[change - 1]) / dt;
+  EXPECT_GT(v_before.y(), 0.3) << "moving fast towards +y when the target moves";
+  session.set_target(moved(session, 0.1, -0.1, 0.0));  // now behind it
+  for (int k = 0; k < 300; ++k) {
+    ASSERT_EQ(session.step(1), 1);
+    p.push_back(session.stats().X_WR.p);
+  }
+  EXPECT_TRUE(session.stats().X_WR.is_approx(session.stats().X_WT, 0.0)) << "arrived exactly";
+  const Eigen::Vector3d v_after = (p[change + 1] - p[change]) / dt;
+  EXPECT_GT(v_after.y(), 0.3) << "it continues from the current velocity (braking)";
+  EXPECT_LE((v_after - v_before).cwiseAbs().maxCoeff(), limits.acceleration * dt * (1 + 1e-9));
+  const double tol = 1 + 1e-6;
+  for (std::size_t k = 1; k < p.size(); ++k) {
+    EXPECT_LE(((p[k] - p[k - 1]) / dt).cwiseAbs().maxCoeff(), limits.velocity * tol) << k;
+    if (k >= 2) {
+      const Eigen::Vector3d a = (p[k] - 2 * p[k - 1] + p[k - 2]) / (dt * dt);
+      EXPECT_LE(a.cwiseAbs().maxCoeff(), limits.acceleration * tol) << k;
+    }
+    if (k >= 3) {
+      const Eigen::Vector3d j = (p[k] - 3 * p[k - 1] + 3 * p[k - 2] - p[k - 3]) / (dt * dt * dt);
+      EXPECT_LE(j.cwiseAbs().maxCoeff(), limits.jerk * tol) << k;
+    }
+  }
 }
 
 TEST(ViewerSession, ModeSwitchCarriesTheStateOver) {
@@ -178,6 +211,15 @@ TEST(ViewerSession, BadFrameOrKeyframeIsAnError) {
   options.site.clear();
   options.keyframe = "hom";
   EXPECT_THROW(ViewerSession(Robot::bundled("panda"), options), Error);
+  // reference limits that are not positive and finite are named
+  options.keyframe.clear();
+  options.reference_limits.angular_jerk = 0.0;
+  try {
+    ViewerSession session(Robot::bundled("panda"), options);
+    FAIL() << "no error";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("angular jerk"), std::string::npos) << e.what();
+  }
   // several sites and none called tcp: the message lists them
   try {
     default_viewer_site(Robot::bundled("dual_arm"));
@@ -202,7 +244,16 @@ TEST(ViewerSession, GripperFollowsItsSliderInEveryMode) {
     PanelState panel = session.initial_panel();
     panel.gripper = 0.75;
     session.set_target(panel);
+    // the command ramps to the slider: smoothstep over 0.75 × 0.5 s (the default full travel)
+    const double T = 0.75 * ViewerSessionOptions{}.gripper_travel_time;
+    const double dt = session.control_period();
+    const int half = static_cast<int>(std::lround(0.5 * T / dt));
+    ASSERT_EQ(session.step(half), half);
+    EXPECT_NEAR(session.stats().gripper, 0.75 * smoothstep(half * dt / T).s, 1e-12);
+    EXPECT_GT(session.stats().gripper, 0.2);
+    EXPECT_LT(session.stats().gripper, 0.55);
     run_for(session, 1.0);
+    EXPECT_EQ(session.stats().gripper, 0.75);
     EXPECT_NEAR(width(), 0.02, 2e-3) << to_string(options.mode);
     EXPECT_LT(session.stats().target_position, 5e-3) << "the arm holds still meanwhile";
   }

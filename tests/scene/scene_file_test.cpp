@@ -5,8 +5,10 @@
 #include <fstream>
 
 #include "mjarm/model/names.hpp"
+#include "mjarm/model/user_file.hpp"
 #include "support/error_message.hpp"
 #include "support/files.hpp"
+#include "support/unreadable_paths.hpp"
 
 namespace mjarm {
 namespace {
@@ -122,10 +124,50 @@ TEST(SceneFile, BadPartsNameTheEntryAndTheReason) {
                 "s.yaml");
   });
   EXPECT_TRUE(
-      mentions(message, "mesh file '/tmp/nowhere/meshes/none.obj' of object 'm' does not exist"))
+      mentions(message, "mesh file '/tmp/nowhere/meshes/none.obj' does not exist (object 'm')"))
       << message;
   EXPECT_TRUE(mentions(error_of([] { load_scene_file("/nonexistent/scene.yaml"); }),
                        "scene file '/nonexistent/scene.yaml' does not exist"));
+}
+
+// issue 16, items 6 and 7: a scene file is a user file like a model: read only when it is a
+// regular file within the size limit, and a FIFO, a device, a folder or a symbolic link loop is
+// named for what it is (all were "does not exist"; a huge file was read whole)
+TEST(SceneFile, OnlyRegularFilesOfBoundedSizeAreRead) {
+  for (const test::UnreadablePath& bad : test::unreadable_paths(
+           test::scratch() / "scene_files", "scene", ".yaml", kMaxTextFileBytes + 1)) {
+    const std::string message = test::error_without_blocking(
+        bad.path, [](const std::filesystem::path& p) { load_scene_file(p); });
+    EXPECT_TRUE(mentions(message, "scene file '" + bad.path.string() + "'")) << message;
+    EXPECT_TRUE(mentions(message, bad.expected)) << message;
+  }
+}
+
+// the same for an object's mesh: a FIFO or /dev/zero was "does not exist"
+TEST(SceneFile, AnObjectsMeshIsARegularFileOfBoundedSize) {
+  for (const test::UnreadablePath& bad : test::unreadable_paths(
+           test::scratch() / "scene_meshes", "mesh", ".stl", kMaxDataFileBytes + 1)) {
+    const std::string message = test::error_without_blocking(bad.path, [](const auto& p) {
+      parse_scene("objects:\n  - {name: m, shape: mesh, mesh: '" + p.string() + "'}\n", ".",
+                  "s.yaml");
+    });
+    EXPECT_TRUE(mentions(message, "s.yaml:2: object 'm': mesh file '" + bad.path.string() + "'"))
+        << message;
+    EXPECT_TRUE(mentions(message, bad.expected)) << message;
+  }
+}
+
+// issue 16, item 7's rule for the XML depth limit, in YAML: yaml-cpp refuses deep nesting with
+// the message "bad file"; the error says what the limit is instead
+TEST(SceneFile, NestingBeyondTheParsersLimitIsNamed) {
+  const std::string deep = "name: [" + std::string(600, '[') + std::string(601, ']') + "\n";
+  const std::string message = error_of([&] { parse_scene(deep, ".", "deep.yaml"); });
+  EXPECT_TRUE(mentions(message, "deep.yaml:1: nested more than")) << message;
+  EXPECT_TRUE(mentions(message, "levels deep, the limit of the YAML parser (yaml-cpp)")) << message;
+  EXPECT_FALSE(mentions(message, "bad file")) << message;
+  // well within the limit: read (and refused only for what it holds)
+  const std::string shallow = "name: [" + std::string(50, '[') + std::string(51, ']') + "\n";
+  EXPECT_FALSE(mentions(error_of([&] { parse_scene(shallow, ".", "s.yaml"); }), "nested"));
 }
 
 }  // namespace

@@ -336,7 +336,9 @@ TEST(Scene, MissingMeshFileIsNamed) {
   mug.size = {};
   mug.mesh_file = "no_such_dir/mug.stl";
   const std::string message = error_of([&] { scene.add_object(mug); });
-  EXPECT_TRUE(contains(message, "mesh file 'no_such_dir/mug.stl' of object 'mug' does not exist"))
+  EXPECT_TRUE(contains(message,
+                       "/no_such_dir/mug.stl' does not exist (object 'mug', given as "
+                       "'no_such_dir/mug.stl')"))
       << message;
   EXPECT_FALSE(scene.has("body", "mug"));
 }

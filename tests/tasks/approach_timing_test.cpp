@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "mjarm/error.hpp"
-#include "mjarm/trajectory/min_jerk.hpp"
+#include "mjarm/trajectory/smoothstep.hpp"
 
 namespace mjarm {
 namespace {
@@ -19,7 +19,7 @@ double worst_ratio(const Chain& chain, const std::vector<double>& qpos, const Ei
   const mjModel& m = chain.robot().model();
   DataPtr d = chain.robot().make_data();
   const Eigen::VectorXd q0 = chain.gather(qpos.data());
-  const MinJerkProfile profile(T);
+  const SmoothRamp profile(SmoothRamp::Kind::smootherstep, T);
   double worst = 0.0;
   for (int k = 0; k <= 1000; ++k) {
     const auto s = profile.at(T * k / 1000.0);

@@ -11,6 +11,8 @@
 #include "mjarm/error.hpp"
 #include "mjarm/kinematics/chain_kinematics.hpp"
 #include "mjarm/kinematics/finite_difference.hpp"
+#include "mjarm/lie/so3.hpp"
+#include "mjarm/trajectory/smoothstep.hpp"
 
 // ---- allocation counter for test_tasks (see tests/ik/malloc_counter.hpp) ----
 namespace {
@@ -78,7 +80,7 @@ Eigen::VectorXd panda_q(double a) {
   return q;
 }
 
-TEST(ShelfPickTask, ReferencesFollowTheMinimumJerkPath) {
+TEST(ShelfPickTask, ReferencesFollowTheMinimumJerkPathOfTheLibraryProfiles) {
   Fixture f("panda_torque", "attachment_site");
   const double T = 0.3;
   const ShelfPickGoal goal = goal_between(f.chain, panda_q(0.0), panda_q(0.25), T, false);
@@ -118,6 +120,15 @@ TEST(ShelfPickTask, ReferencesFollowTheMinimumJerkPath) {
     const Eigen::Vector3d along = goal.X_WT.p - goal.X_WS.p;
     const Eigen::Vector3d off = c.task.X_WE.p - goal.X_WS.p;
     EXPECT_LT((off - off.dot(along) / along.squaredNorm() * along).norm(), 1e-12);
+    // rest to rest the library's quintic and SE(3) interpolation are the minimum-jerk scaling
+    // s = smootherstep(t/T): p = p_S + s·(p_T − p_S), R = exp(s·ω)·R_S, q = q_S + s·(q_T − q_S)
+    const RampSample s = smootherstep(t / T);
+    const Eigen::Vector3d omega = so3::log(goal.X_WT.R * goal.X_WS.R.transpose());
+    EXPECT_LT((c.task.X_WE.p - (goal.X_WS.p + s.s * along)).norm(), 1e-14) << t;
+    EXPECT_LT((c.task.X_WE.R - so3::exp(s.s * omega) * goal.X_WS.R).norm(), 1e-14) << t;
+    EXPECT_LT((c.task.V_WE.tail<3>() - s.ds / T * omega).norm(), 1e-12) << t;
+    EXPECT_LT((c.joint.q - (goal.q_start + s.s * (goal.q_target - goal.q_start))).norm(), 1e-14)
+        << t;
   }
   const Reference end = at(T + 0.01);
   EXPECT_TRUE(end.task.X_WE.is_approx(goal.X_WT, 1e-12));

@@ -2,6 +2,7 @@
 // Seeded random one-DoF cases for the jerk-limited tests: limits, and start and target states
 // inside them (startable and reachable, see jerk_limited_brake.hpp).
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 

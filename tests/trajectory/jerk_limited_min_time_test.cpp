@@ -14,7 +14,7 @@ TEST(JerkLimitedMinTime, RestToRestMatchesTheClassicFormulas) {
   // long move: all three limits reached; T = d/v + v/a + a/j
   ASSERT_TRUE(min_time_profile({0.0, 0.0, 0.0}, {5.0, 0.0, 0.0}, l, b));
   EXPECT_NEAR(b.t_min, 5.0 / 1.0 + 1.0 / 2.0 + 2.0 / 10.0, 1e-12);
-  EXPECT_EQ(b.fastest.size(), 7);
+  EXPECT_EQ(b.fastest().size(), 7);
   // short move, no limit but jerk reached: T = 4·(d/(2j))^(1/3)
   ASSERT_TRUE(min_time_profile({0.0, 0.0, 0.0}, {0.01, 0.0, 0.0}, l, b));
   EXPECT_NEAR(b.t_min, 4.0 * std::cbrt(0.01 / 20.0), 1e-12);
@@ -33,10 +33,10 @@ TEST(JerkLimitedMinTime, EveryRandomCaseSucceedsWithinLimitsAndReachesTheTarget)
     const test::JerkCase c = cases.next();
     JerkBlock b;
     ASSERT_TRUE(min_time_profile(c.start, c.target, c.limits, b)) << k;
-    EXPECT_TRUE(b.fastest.within(c.limits, 1e-9)) << k;
-    worst_error = std::max(worst_error, test::target_error(b.fastest, c.target));
+    EXPECT_TRUE(b.fastest().within(c.limits, 1e-9)) << k;
+    worst_error = std::max(worst_error, test::target_error(b.fastest(), c.target));
     EXPECT_EQ(b.t_min, b.durations[0]);
-    EXPECT_NEAR(b.fastest.duration(), b.t_min, 1e-15);
+    EXPECT_NEAR(b.fastest().duration(), b.t_min, 1e-15);
   }
   EXPECT_LT(worst_error, 1e-8);
 }

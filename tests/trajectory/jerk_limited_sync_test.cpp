@@ -73,5 +73,23 @@ TEST(JerkLimitedSync, TheSlowestDoFSetsTheDurationUnlessAnotherBlocksIt) {
   EXPECT_FALSE(synchronize(one, none, sync));  // sizes differ
 }
 
+// Only the active DoFs count: an inactive DoF's minimum and blocked intervals are ignored.
+TEST(JerkLimitedSync, InactiveDoFsAreIgnored) {
+  const double none[] = {0.0, 0.0, 0.0};
+  const JerkBlock blocks[] = {jerk_block(1.0, {1.5, 2.5}), jerk_block(2.0), jerk_block(5.0)};
+  JerkSync sync;
+  const char first_two[] = {1, 1, 0};
+  ASSERT_TRUE(synchronize(blocks, none, first_two, sync));
+  EXPECT_EQ(sync.duration, 2.5);
+  EXPECT_EQ(sync.limiting_dof, 0);
+  const char second[] = {0, 1, 0};
+  ASSERT_TRUE(synchronize(blocks, none, second, sync));
+  EXPECT_EQ(sync.duration, 2.0);
+  const char nothing[] = {0, 0, 0};
+  EXPECT_FALSE(synchronize(blocks, none, nothing, sync));
+  const char wrong_size[] = {1, 1};
+  EXPECT_FALSE(synchronize(blocks, none, wrong_size, sync));
+}
+
 }  // namespace
 }  // namespace mjarm

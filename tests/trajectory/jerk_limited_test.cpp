@@ -3,10 +3,13 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <random>
 #include <vector>
 
 #include "ik/malloc_counter.hpp"
 #include "mjarm/error.hpp"
+#include "mjarm/trajectory/jerk_limited_brake.hpp"
+#include "mjarm/trajectory/jerk_limited_sync.hpp"
 #include "trajectory/jerk_limited_cases.hpp"
 
 // the allocation counter of test_trajectory is defined once, in malloc_counter_test.cpp
@@ -86,6 +89,111 @@ TEST(JerkLimitedGenerator, BrakesFromBeyondTheLimitsFirst) {
     const JerkExtrema e = otg.profile(i).extrema(otg.brake_phases(i));
     EXPECT_LE(std::max(-e.v_min, e.v_max), 1.0 + 1e-9);
     EXPECT_LE(std::max(-e.a_min, e.a_max), 2.0 + 1e-9);
+  }
+}
+
+// Limits with a_max²/(2 j_max) far above 2 v_max (a strong actuator on a slow axis): starts far
+// beyond them brake without overshooting to the other side, then reach the target.
+TEST(JerkLimitedGenerator, BrakesForAnyLimits) {
+  const std::vector<JerkLimits> limits = {{0.2, 8.0, 0.5}, {0.3, 6.0, 1.0}, {1.0, 2.0, 10.0}};
+  JerkLimitedGenerator otg(limits);
+  const std::vector<KinematicState> current = {
+      {0.0, 0.3, 12.0}, {0.0, -0.1, -9.0}, {0.0, 0.0, 0.0}};
+  const std::vector<KinematicState> target = {{0.5, 0.0, 0.0}, {-0.2, 0.1, 0.0}, {1.0, 0.0, 0.0}};
+  const OtgResult r = otg.calculate(current, target);
+  ASSERT_EQ(r.status, OtgStatus::working);
+  for (int i = 0; i < 3; ++i) {
+    EXPECT_NEAR(otg.profile(i).duration(), r.duration, 1e-9 * r.duration) << i;
+    EXPECT_LT(test::target_error(otg.profile(i), target[i]), 1e-8) << i;
+    const JerkExtrema e = otg.profile(i).extrema(otg.brake_phases(i));
+    EXPECT_LE(std::max(-e.v_min, e.v_max), limits[i].velocity * (1.0 + 1e-9)) << i;
+    EXPECT_LE(std::max(-e.a_min, e.a_max), limits[i].acceleration * (1.0 + 1e-9)) << i;
+  }
+  EXPECT_GT(otg.brake_phases(0), 0);
+  EXPECT_GT(otg.brake_phases(1), 0);
+  EXPECT_EQ(otg.brake_phases(2), 0);
+}
+
+// Step 1 runs only for the DoFs that decide the duration; the duration is the one a
+// synchronization over every DoF's blocked intervals gives (block(i) runs step 1 on demand).
+TEST(JerkLimitedGenerator, LazyStepOneGivesTheFullSynchronization) {
+  test::JerkCaseGenerator cases(17);
+  int checked = 0;
+  for (int k = 0; k < 400; ++k) {
+    std::vector<JerkLimits> limits(7);
+    std::vector<KinematicState> current(7), target(7);
+    for (int i = 0; i < 7; ++i) {
+      const test::JerkCase c = cases.next();
+      limits[i] = c.limits;
+      current[i] = c.start;
+      target[i] = c.target;
+    }
+    if (k % 4 == 0) {  // ties: two DoFs alike
+      limits[3] = limits[2];
+      current[3] = current[2];
+      target[3] = target[2];
+    }
+    JerkLimitedGenerator otg(limits);
+    const OtgResult r = otg.calculate(current, target);
+    ASSERT_TRUE(r.status == OtgStatus::working || r.status == OtgStatus::finished) << k;
+    std::vector<JerkBlock> blocks(7);
+    std::vector<double> offsets(7);
+    for (int i = 0; i < 7; ++i) {
+      blocks[i] = otg.block(i);
+      offsets[i] = otg.brake_duration(i);
+    }
+    JerkSync sync;
+    ASSERT_TRUE(synchronize(blocks, offsets, sync));
+    EXPECT_NEAR(r.duration, sync.duration, 1e-12 * std::max(1.0, sync.duration)) << k;
+    // the limiting DoF's minimum or the end of one of its blocked intervals
+    const JerkBlock& b = otg.block(r.limiting_dof);
+    bool at_an_end = std::abs(b.t_min - r.duration) <= 1e-12 * std::max(1.0, r.duration);
+    for (int i = 0; i < b.blocked_count; ++i)
+      at_an_end = at_an_end || std::abs(b.blocked[i].upper - r.duration) <= 1e-12 * r.duration;
+    EXPECT_TRUE(at_an_end) << k;
+    ++checked;
+  }
+  EXPECT_EQ(checked, 400);
+}
+
+// Limits over four decades each (v, a in [0.01, 100], j in [0.1, 10⁴]), positions in ±10, a
+// tenth of the DoFs starting beyond their limits: every calculation succeeds, within the limits,
+// on target to 1e-9 relative to the largest position involved (see JerkTolerance).
+TEST(JerkLimitedGenerator, WideRangesOfLimitsSucceed) {
+  std::mt19937_64 rng(23);
+  std::uniform_real_distribution<double> u(-1.0, 1.0), share(0.0, 1.0);
+  const auto log_uniform = [&](double lo, double hi) { return lo * std::pow(hi / lo, share(rng)); };
+  for (int k = 0; k < 300; ++k) {
+    std::vector<JerkLimits> limits(7);
+    std::vector<KinematicState> current(7), target(7);
+    for (int i = 0; i < 7; ++i) {
+      const JerkLimits l{log_uniform(0.01, 100.0), log_uniform(0.01, 100.0), log_uniform(0.1, 1e4)};
+      limits[i] = l;
+      const bool beyond = share(rng) < 0.1;
+      do {
+        const double scale = beyond ? 1.6 : 1.0;
+        current[i] = {10.0 * u(rng), scale * l.velocity * u(rng), scale * l.acceleration * u(rng)};
+      } while (beyond == is_startable(current[i], l));
+      do target[i] = {10.0 * u(rng), l.velocity * u(rng), l.acceleration * u(rng)};
+      while (!is_reachable(target[i], l));
+    }
+    JerkLimitedGenerator otg(limits);
+    const OtgResult r = otg.calculate(current, target);
+    ASSERT_TRUE(r.status == OtgStatus::working || r.status == OtgStatus::finished)
+        << k << " " << to_string(r.status) << " DoF " << r.failed_dof;
+    for (int i = 0; i < 7; ++i) {
+      const JerkProfile& p = otg.profile(i);
+      const JerkExtrema e = p.extrema(otg.brake_phases(i));
+      EXPECT_LE(std::max(-e.v_min, e.v_max), limits[i].velocity * (1.0 + 1e-9)) << k;
+      EXPECT_LE(std::max(-e.a_min, e.a_max), limits[i].acceleration * (1.0 + 1e-9)) << k;
+      const KinematicState end = p.end();
+      double scale = 1.0;
+      for (int q = 0; q <= p.size(); ++q)
+        scale = std::max(scale, std::abs(p.at(p.duration_until(q)).p));
+      EXPECT_LE(std::abs(end.p - target[i].p), 1e-9 * scale) << k;
+      EXPECT_LE(std::abs(end.v - target[i].v), 1e-9 * std::max(1.0, std::abs(target[i].v))) << k;
+      EXPECT_LE(std::abs(end.a - target[i].a), 1e-9 * std::max(1.0, std::abs(target[i].a))) << k;
+    }
   }
 }
 

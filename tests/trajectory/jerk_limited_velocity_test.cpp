@@ -23,7 +23,7 @@ TEST(JerkLimitedVelocity, RandomTargetsAreReachedInEveryFreeDuration) {
     const test::JerkCase c = cases.next();
     JerkBlock b;
     ASSERT_TRUE(min_time_velocity_profile(c.start, c.target.v, c.target.a, c.limits, b)) << k;
-    const KinematicState e = b.fastest.end();
+    const KinematicState e = b.fastest().end();
     EXPECT_NEAR(e.v, c.target.v, 1e-9);
     EXPECT_NEAR(e.a, c.target.a, 1e-9);
     blocked += b.blocked_count;

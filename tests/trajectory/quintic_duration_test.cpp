@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "mjarm/error.hpp"
-#include "mjarm/trajectory/min_jerk.hpp"
+#include "mjarm/trajectory/smoothstep.hpp"
 
 namespace mjarm {
 namespace {
@@ -62,11 +62,12 @@ TEST(QuinticDuration, RestToRestMatchesTheClosedForm) {
   const Eigen::Vector2d v_max(1.0, 1.0), a_max(4.0, 4.0);
   const QuinticDuration d = shortest_quintic_duration(a, b, v_max, a_max);
   ASSERT_EQ(d.status, QuinticDurationStatus::ok);
-  EXPECT_NEAR(d.duration, MinJerkProfile::duration_for(0.8, 1.0, 4.0, 1e-9), 1e-12);
+  EXPECT_NEAR(d.duration, SmoothRamp::duration_for(SmoothRamp::Kind::smootherstep, 0.8, 1.0, 4.0),
+              1e-12);
   EXPECT_EQ(d.limiting_joint, 0);
   EXPECT_TRUE(d.velocity_limited);  // 1.5 s by velocity > 1.07 s by acceleration
   const QuinticDuration da = shortest_quintic_duration(a, b, Eigen::Vector2d(10, 10), a_max);
-  EXPECT_NEAR(da.duration, std::sqrt(MinJerkProfile::kPeakAcceleration * 0.8 / 4.0), 1e-12);
+  EXPECT_NEAR(da.duration, std::sqrt(10.0 / std::sqrt(3.0) * 0.8 / 4.0), 1e-12);
   EXPECT_FALSE(da.velocity_limited);
 }
 

@@ -7,7 +7,7 @@
 #include <random>
 
 #include "mjarm/error.hpp"
-#include "mjarm/trajectory/min_jerk.hpp"
+#include "mjarm/trajectory/smoothstep.hpp"
 #include "support/error_message.hpp"
 
 namespace mjarm {
@@ -42,15 +42,15 @@ TEST(Quintic, MeetsArbitraryBoundaryConditions) {
 
 TEST(Quintic, RestToRestIsTheMinimumJerkProfile) {
   const Quintic q({1.0, 0.0, 0.0}, {3.0, 0.0, 0.0}, 0.8);
-  const MinJerkProfile s(0.8);
+  const SmoothRamp s(SmoothRamp::Kind::smootherstep, 0.8);  // the minimum-jerk scaling
   for (double t = -0.1; t <= 0.9; t += 0.05) {
     EXPECT_NEAR(q.at(t).p, 1.0 + 2.0 * s.at(t).s, 1e-14);
     EXPECT_NEAR(q.at(t).v, 2.0 * s.at(t).ds, 1e-12);
     EXPECT_NEAR(q.at(t).a, 2.0 * s.at(t).dds, 1e-10);
   }
   const Quintic::Peaks peaks = q.peaks();
-  EXPECT_NEAR(peaks.velocity, 2.0 * MinJerkProfile::kPeakVelocity / 0.8, 1e-12);
-  EXPECT_NEAR(peaks.acceleration, 2.0 * MinJerkProfile::kPeakAcceleration / 0.64, 1e-10);
+  EXPECT_NEAR(peaks.velocity, 2.0 * 1.875 / 0.8, 1e-12);
+  EXPECT_NEAR(peaks.acceleration, 2.0 * (10.0 / std::sqrt(3.0)) / 0.64, 1e-10);
   EXPECT_NEAR(peaks.jerk, 2.0 * 60.0 / (0.8 * 0.8 * 0.8), 1e-9);  // s‴(0) = 60
   // clamped outside, jerk 0 there
   EXPECT_EQ(q.at(5.0).p, 3.0);
@@ -123,6 +123,17 @@ TEST(Quintic, RejectsBadInput) {
   EXPECT_THROW(Quintic({nan, 0, 0}, {1, 0, 0}, 1.0), Error);
   EXPECT_THROW(Quintic({0, inf, 0}, {1, 0, 0}, 1.0), Error);
   EXPECT_THROW(Quintic({0, 0, 0}, {1, 0, nan}, 1.0), Error);
+  // durations out of scale with the move overflow the polynomial: an error, not NaN samples
+  EXPECT_NE(test::error_of([] {
+              Quintic({0, 0, 0}, {1, 0, 0}, 1e-300);
+            }).find("out of scale"),
+            std::string::npos);
+  EXPECT_THROW(Quintic({0, 0, 1}, {1, 0, 0}, 1e300), Error);
+  // while wide but representable scales still work
+  const Quintic slow({0, 0, 0}, {1e-3, 0, 0}, 1e4);
+  EXPECT_NEAR(slow.at(5e3).p, 5e-4, 1e-15);
+  const Quintic fast({0, 0, 0}, {1e3, 0, 0}, 1e-3);
+  EXPECT_NEAR(fast.at(1e-3).p, 1e3, 1e-9);
   const Eigen::VectorXd z2 = Eigen::VectorXd::Zero(2), z3 = Eigen::VectorXd::Zero(3);
   EXPECT_THROW(QuinticTrajectory({z2, z2, z2}, {z3, z3, z3}, 1.0), Error);
   EXPECT_THROW(QuinticTrajectory({Eigen::VectorXd(), Eigen::VectorXd(), Eigen::VectorXd()},

@@ -7,6 +7,7 @@
 #include <random>
 
 #include "mjarm/error.hpp"
+#include "mjarm/kinematics/finite_difference.hpp"
 #include "mjarm/lie/so3.hpp"
 
 namespace mjarm {
@@ -25,13 +26,13 @@ Vector6d six(double a, double b, double c, double d, double e, double f) {
   return v;
 }
 
-// the world twist [ṗ; ω] of the pose path by central differences
+// the world twist [ṗ; ω] of the pose path by central differences (the public helper, with the
+// time as its one argument: the world-aligned column is (p₊ − p₋)/Δ, log(R₊·R₋ᵀ)/Δ)
 Vector6d finite_twist(const Se3Interpolation& s, double t, double h) {
-  const Pose a = s.at(t - h).X_WE, b = s.at(t + h).X_WE;
-  Vector6d V;
-  V.head<3>() = (b.p - a.p) / (2 * h);
-  V.tail<3>() = so3::log(b.R * a.R.transpose()) / (2 * h);
-  return V;
+  const auto pose = [&](const Eigen::VectorXd& x) { return s.at(x[0]).X_WE; };
+  return finite_difference_pose_jacobian(pose, Eigen::VectorXd::Constant(1, t),
+                                         JacobianFrame::world_aligned, h)
+      .col(0);
 }
 
 TEST(Se3Interpolation, StartsWithTheGivenTwistAndRateAndEndsAtRest) {
@@ -47,9 +48,14 @@ TEST(Se3Interpolation, StartsWithTheGivenTwistAndRateAndEndsAtRest) {
   EXPECT_LT((a.A_WE - A0).norm(), 1e-13);
   const Se3Interpolation::Sample b = s.at(0.8);
   EXPECT_TRUE(b.X_WE.is_approx(X1, 1e-12));
-  EXPECT_LT(b.V_WE.norm(), 1e-12);
-  EXPECT_LT(b.A_WE.norm(), 1e-10);
+  EXPECT_EQ(b.V_WE.norm(), 0.0);  // at rest exactly from T on
+  EXPECT_EQ(b.A_WE.norm(), 0.0);
+  EXPECT_EQ(b.X_WE.p, X1.p);
   EXPECT_TRUE(s.at(3.0).X_WE.is_approx(X1, 1e-12));
+  // just before T the polynomials agree with the exact end (no visible step)
+  const Se3Interpolation::Sample c = s.at(0.8 - 1e-9);
+  EXPECT_TRUE(c.X_WE.is_approx(b.X_WE, 1e-12));
+  EXPECT_LT(c.V_WE.norm(), 1e-9);
 }
 
 TEST(Se3Interpolation, TwistAndRateAreTheTrueDerivativesOfThePose) {
@@ -108,6 +114,10 @@ TEST(Se3Interpolation, RejectsBadInput) {
   EXPECT_THROW(Se3Interpolation(X, zero, zero, X, 0.0), Error);
   EXPECT_THROW(Se3Interpolation(X, zero, zero, X, -1.0), Error);
   EXPECT_THROW(Se3Interpolation(X, zero, zero, X, std::numeric_limits<double>::infinity()), Error);
+  EXPECT_THROW(Se3Interpolation(X, zero, zero, X, nan), Error);
+  // a duration far out of scale with the move: an error, not NaN poses
+  const Pose far = pose_of({1, 0, 0}, {0.1, 0.2, 0.3});
+  EXPECT_THROW(Se3Interpolation(X, zero, zero, far, 1e-300), Error);
   EXPECT_THROW(Se3Interpolation(X, six(0, 0, nan, 0, 0, 0), zero, X, 1.0), Error);
   EXPECT_THROW(Se3Interpolation(X, zero, six(0, 0, 0, 0, 0, nan), X, 1.0), Error);
   Pose bad = X;

@@ -6,7 +6,7 @@
 #include <limits>
 
 #include "mjarm/error.hpp"
-#include "mjarm/trajectory/min_jerk.hpp"
+#include "mjarm/trajectory/quintic.hpp"
 
 namespace mjarm {
 namespace {
@@ -45,12 +45,22 @@ TEST(Smoothstep, DerivativesMatchFiniteDifferences) {
   }
 }
 
-TEST(Smoothstep, SmootherstepIsTheMinimumJerkScaling) {
-  const MinJerkProfile profile(2.0);
+TEST(Smoothstep, SmootherstepIsTheRestToRestQuintic) {
+  // the minimum-jerk scaling: the quintic from rest at 0 to rest at 1 (its own coefficients)
+  const Quintic q({0.0, 0.0, 0.0}, {1.0, 0.0, 0.0}, 2.0);
+  const SmoothRamp ramp(SmoothRamp::Kind::smootherstep, 2.0);
   for (double t = 0.0; t <= 2.0; t += 0.1) {
-    EXPECT_NEAR(smootherstep(t / 2.0).s, profile.at(t).s, 1e-15);
-    EXPECT_NEAR(SmoothRamp(SmoothRamp::Kind::smootherstep, 2.0).at(t).ds, profile.at(t).ds, 1e-15);
+    EXPECT_NEAR(ramp.at(t).s, q.at(t).p, 1e-15) << t;
+    EXPECT_NEAR(ramp.at(t).ds, q.at(t).v, 1e-14) << t;
+    EXPECT_NEAR(ramp.at(t).dds, q.at(t).a, 1e-13) << t;
+    EXPECT_NEAR(ramp.at(t).ddds, q.at(t).j, 1e-12) << t;
   }
+  const Quintic::Peaks peaks = q.peaks();
+  EXPECT_NEAR(peaks.velocity * 2.0, SmoothRamp::peak_slope(SmoothRamp::Kind::smootherstep), 1e-12);
+  EXPECT_NEAR(peaks.acceleration * 4.0, SmoothRamp::peak_curvature(SmoothRamp::Kind::smootherstep),
+              1e-10);
+  EXPECT_NEAR(peaks.jerk * 8.0, SmoothRamp::peak_jerk(SmoothRamp::Kind::smootherstep), 1e-9);
+  EXPECT_EQ(SmoothRamp::peak_jerk(SmoothRamp::Kind::smoothstep), 12.0);  // s‴ = −12 throughout
 }
 
 TEST(SmoothRamp, TimeDerivativesAndTheShortestDuration) {
@@ -84,6 +94,10 @@ TEST(SmoothRamp, RejectsBadInput) {
   EXPECT_THROW(SmoothRamp::duration_for(K::smoothstep, -0.1, 1.0, 1.0), Error);
   EXPECT_THROW(SmoothRamp::duration_for(K::smoothstep, 0.1, 0.0, 1.0), Error);
   EXPECT_THROW(SmoothRamp::duration_for(K::smoothstep, 0.1, 1.0, std::nan("")), Error);
+  EXPECT_THROW(SmoothRamp(K::smoothstep, std::nan("")), Error);
+  EXPECT_THROW(SmoothRamp::duration_for(K::smootherstep, std::nan(""), 1.0, 1.0), Error);
+  // finite input whose duration overflows
+  EXPECT_THROW(SmoothRamp::duration_for(K::smootherstep, 1e300, 1e-300, 1.0), Error);
 }
 
 }  // namespace

@@ -91,6 +91,15 @@ TEST(Trapezoid, RejectsBadInput) {
   EXPECT_THROW(trap_profile(0.1, 0.18, kInf), Error);
   EXPECT_NE(test::error_of([] { trap_profile(0.1, 0.18, 0.0); }).find("max acceleration"),
             std::string::npos);
+  // finite input whose duration overflows: an error, not T = inf
+  EXPECT_NE(test::error_of([] { trap_profile(1e300, 1e-300, 1e-300); }).find("longer than"),
+            std::string::npos);
+  EXPECT_THROW(SyncedTrapezoid(Eigen::Vector2d(0, 0), Eigen::Vector2d(1e300, 1), 1e-300, 1.0),
+               Error);
+  // a tiny distance is a valid, tiny profile
+  const TrapezoidProfile tiny = trap_profile(1e-300);
+  EXPECT_GT(tiny.duration(), 0.0);
+  EXPECT_EQ(tiny.fraction(tiny.duration()), 1.0);
 }
 
 TEST(SyncedTrapezoid, EveryAxisFinishesTogetherWithinItsLimits) {

@@ -17,10 +17,12 @@
 ///
 /// after `warmup` untimed ticks. Each compute is timed with std::chrono::steady_clock (the
 /// ~20–40 ns of the two clock reads are included), and the allocation hook, when given, is read
-/// around each compute. Then the real-time factor: the operational-space loop again without
-/// per-tick clocks (wall time of the whole loop, one thread), and `mj_step` alone replaying the
-/// torques that run recorded (same physics, no controller), in the same process right after.
-/// Real-time factor = simulated time / wall time.
+/// around each compute. Then the momentum observer: the same loop driven by a default
+/// `OperationalSpaceController` (untimed), timing `ChainDynamics::update` + `MomentumObserver::
+/// update` with OSC's torque (the "observer" row). Then the real-time factor: the operational-space
+/// loop again without per-tick clocks (wall time of the whole loop, one thread), and `mj_step`
+/// alone replaying the torques that run recorded (same physics, no controller), in the same process
+/// right after. Real-time factor = simulated time / wall time.
 
 #include <cstdint>
 #include <functional>
@@ -89,6 +91,7 @@ struct ControlBenchmarkResult {
   double timestep = 0.0;   ///< physics timestep [s]
   double frequency = 0.0;  ///< reference frequency actually used [Hz]
   int steps = 0;           ///< ticks per controller
+  /// One entry per controller, in order, then one named "observer" (see the protocol).
   std::vector<ControllerBenchmark> controllers;
   double osc_real_time_factor = 0.0;      ///< OSC compute + mj_step1/2, one thread
   double passive_real_time_factor = 0.0;  ///< mj_step alone (replayed torques)
@@ -99,15 +102,18 @@ struct ControlBenchmarkResult {
 };
 
 /// The controllers the benchmark times on @p chain, in report order: joint-pd (with gravity
-/// compensation), gravity (hold), ct, task-pd, accel, osc, se3, each with its default options.
+/// compensation), gravity (hold), ct, task-pd, accel, osc, se3, cic, hqp-ac, each with its
+/// default options (cic and hqp-ac without a force source).
 /// @throws Error from the controllers' constructors.
 std::vector<std::unique_ptr<Controller>> default_benchmark_controllers(const Chain& chain);
 
 /// Runs the protocol for @p controllers (torque controllers on the same chain as @p chain; the
 /// real-time runs use a default `OperationalSpaceController`).
 /// @throws Error when steps < 1, warmup < 0, amplitude < 0 or frequency ≤ 0 (or not finite), when
-/// a controller is not a torque controller or has another chain size, or when a chain joint is
-/// not driven by a motor (torque actuators: load the `_torque` variant of a bundled robot).
+/// a controller is not a torque controller or has another chain size, when a chain joint is
+/// not driven by a motor (torque actuators: load the `_torque` variant of a bundled robot), or
+/// when the frame hangs from a joint the chain does not move (a free or ball joint: the base
+/// would fall or swing, warned about by MuJoCo or not, and the figures would measure that).
 /// A bad state reported by MuJoCo is not thrown: the run stops at the end of that phase with
 /// `ControlBenchmarkStatus::faulted` (MuJoCo's warning counters are read after every phase).
 ControlBenchmarkResult run_control_benchmark(const Chain& chain,

@@ -5,6 +5,7 @@
 /// damping/posture and an optional integral term with anti-windup.
 
 #include <array>
+#include <limits>
 #include <span>
 #include <string>
 #include <string_view>
@@ -45,6 +46,15 @@ struct OperationalSpaceOptions {
   double nullspace_stiffness = 0.0;
   /// Cancels the model's passive forces (joint damping, springs: qfrc_passive).
   bool compensate_passive = true;
+  /// Render the desired inertia M_d exactly against contact with the measured wrench F_m
+  /// (`set_measured_wrench`): F = Λ·(A_WD + M_d⁻¹·(f + F_m + F_ext) − J̇·q̇) − F_m, so that
+  /// M_d·ë + D·ė + K·e = −(F_c + F_ext) with F_c the true contact wrench when F_m = F_c. Off:
+  /// F_m is not used by the law (contact then meets the arm's own Λ). No effect with
+  /// `task_inertia` (M_d = Λ needs no measurement).
+  bool wrench_feedback = false;
+  /// The integral ∫e is held (not integrated) while the force part of the measured wrench has
+  /// a norm ≥ this [N] (> 0; +infinity, the default: never held).
+  double integral_hold_force = std::numeric_limits<double>::infinity();
   /// The floor that bounds Λ near singularities.
   TaskSpaceOptions task_space;
 };
@@ -56,7 +66,8 @@ struct OperationalSpaceOptions {
 ///     e  = task_error(X_WE, X_WD),  ė = V_WD − J·q̇,  ∫e += e·Δt (clamped to ±limit)
 ///     f  = K·e + D·ė + K_i·∫e                                   (impedance wrench, m rows)
 ///     u  = A_WD + M_d⁻¹·f                                        (desired task acceleration)
-///     F  = Λ·(u − J̇·q̇) + F_ext           (with task_inertia: F = Λ·(A_WD − J̇·q̇) + f + F_ext)
+///     F  = Λ·(u − J̇·q̇) + F_ext           (with task_inertia: F = Λ·(A_WD − J̇·q̇) + f + F_ext;
+///                                          with wrench_feedback, see the option)
 ///     τ  = Jᵀ·F + h − τ_passive + Nᵀ·(K_n·(q_ref − q) − D_n·q̇)
 ///
 /// h = C·q̇ + g is MuJoCo's qfrc_bias on the chain's dofs, τ_passive its qfrc_passive. With the
@@ -87,6 +98,19 @@ class OperationalSpaceController final : public Controller {
   /// Clears the integral and the time of the previous tick.
   void reset() noexcept override;
 
+  /// The wrench F_m the environment exerts on E (world axes, torque about E's origin) [N; N·m],
+  /// from an F/T sensor or an observer (`WrenchSource`), used by the following `compute` calls
+  /// until changed: by the law with `wrench_feedback`, and to hold the integral
+  /// (`integral_hold_force`). Zero after construction and `reset`. A non-finite wrench is taken
+  /// as zero.
+  void set_measured_wrench(const Vector6d& F_W) noexcept { wrench_ = F_W; }
+  /// The wrench last given to `set_measured_wrench`.
+  const Vector6d& measured_wrench() const noexcept { return wrench_; }
+  /// True when the last `compute` held the integral (measured force at or above the threshold).
+  bool integral_held() const noexcept { return integral_held_; }
+  /// The joint-space dynamics of the last `compute` (M, h, J, pose of E).
+  const ChainDynamics& dynamics() const noexcept { return dynamics_; }
+
   /// ∫e dt after the last `compute` (first m entries used) [m·s; rad·s].
   const Vector6d& integral() const noexcept { return integral_; }
   /// Task-space force F of the last `compute` (first m entries used) [N; N·m].
@@ -106,6 +130,8 @@ class OperationalSpaceController final : public Controller {
   Vector6d damping_ = Vector6d::Zero();  // D with the automatic entries resolved (fixed M_d)
   Vector6d integral_ = Vector6d::Zero();
   Vector6d force_ = Vector6d::Zero();
+  Vector6d wrench_ = Vector6d::Zero();  // measured F_m
+  bool integral_held_ = false;
   double last_time_ = 0.0;
   bool has_last_time_ = false;
   // workspace

@@ -70,6 +70,10 @@ struct IkBenchmarkOptions {
   PoseTolerance tolerance;  ///< success test (TRAC-IK: 1e-5 on each component)
   /// Called after every sample with (samples done, N); may be empty.
   std::function<void(int done, int total)> progress;
+  /// Asked before every sample whether to stop (e.g. `interrupt_requested` after Ctrl-C); may
+  /// be empty. A stop ends the run with the figures of the samples done
+  /// (`IkBenchmarkResult::interrupted`).
+  std::function<bool()> stop;
 };
 
 /// Figures of one benchmark run.
@@ -80,7 +84,8 @@ struct IkBenchmarkResult {
   IkSeedMode seed_mode = IkSeedMode::mid_range;
   IkBenchmarkClock clock = IkBenchmarkClock::wall;
   double timeout_ms = 0.0;       ///< IkBenchmarkOptions::timeout [ms]
-  int samples = 0;               ///< N
+  bool interrupted = false;      ///< the stop request ended the run early
+  int samples = 0;               ///< N, or the samples done when interrupted
   int successes = 0;             ///< samples meeting the success test
   double success_rate = 0.0;     ///< successes / N, in [0, 1]
   double mean_time_ms = 0.0;     ///< mean wall-clock time per solve [ms], failures included

@@ -54,6 +54,10 @@ class Chain {
   const std::vector<int>& dof_addresses() const noexcept { return dof_addresses_; }
   /// The actuator driving joint i, if any (the first one found).
   std::optional<int> actuator(int i) const { return actuators_.at(i); }
+  /// Joint ids on the path from the world to the frame that the chain does not move (free and
+  /// ball joints, or hinge and slide joints left out of an explicit list), root first. Empty when
+  /// the chain holds every joint of the path: then the frame hangs from a fixed base.
+  std::vector<int> unmoved_path_joints() const;
 
   /// Joint bounds [rad or m]; unlimited joints give ∓infinity.
   const Eigen::VectorXd& lower() const noexcept { return lower_; }

@@ -65,7 +65,16 @@ class JointSpline {
   void at(double t, Eigen::Ref<Eigen::VectorXd> q, Eigen::Ref<Eigen::VectorXd> qd,
           Eigen::Ref<Eigen::VectorXd> qdd) const;
 
+  /// q, q̇, q̈ and the jerk q⃛ (that of the segment holding @p t) at @p t [s],
+  /// clamped as above. Allocates nothing.
+  /// @throws Error as above.
+  void at(double t, Eigen::Ref<Eigen::VectorXd> q, Eigen::Ref<Eigen::VectorXd> qd,
+          Eigen::Ref<Eigen::VectorXd> qdd, Eigen::Ref<Eigen::VectorXd> qddd) const;
+
  private:
+  /// The segment holding @p t, after clamping @p t to [0, duration] (NaN → 0).
+  std::size_t segment_at(double& t) const;
+
   std::vector<Eigen::VectorXd> q_, qd_;
   std::vector<QuinticTrajectory> segments_;
   std::vector<double> starts_;  // K + 1 entries: start of each segment, then the end

@@ -45,8 +45,10 @@ WaypointPath parse_waypoints_json(std::string_view text, std::string_view source
 ///         finite number (NaN, inf, text), a zero quaternion, or no waypoint.
 WaypointPath parse_waypoints_csv(std::string_view text, std::string_view source = "<string>");
 
-/// Reads @p path: JSON when it ends in ".json", CSV otherwise.
-/// @throws Error naming the file when it cannot be read, or as the parsers.
+/// Reads @p path: JSON when it ends in ".json", CSV otherwise. The file is read like every user
+/// file (`read_user_file`): a regular file of at most 64 MiB, never a FIFO or a device.
+/// @throws Error naming the file and what is wrong with it (missing, a symbolic link loop, a
+///         folder, a FIFO or device, too large, unreadable), or as the parsers.
 WaypointPath load_waypoints(const std::filesystem::path& path);
 
 }  // namespace mjarm

@@ -59,6 +59,15 @@ struct PlanOptions {
   int stretch_attempts = 4;     ///< a torque failure stretches a segment this often (≥ 0) …
   double stretch_factor = 1.5;  ///< … by this factor (> 1)
   std::uint64_t seed = 1;       ///< branch seeds and detours (same seed, same plan)
+  /// Samples one segment may have (≥ 1): at the default spacing of 10 ms, 100000 samples are
+  /// 1000 s of motion between two waypoints. Limits that make a longer segment (very slow
+  /// velocities or accelerations) are out of proportion: refused before that segment is checked.
+  std::int64_t max_segment_samples = 100000;
+  /// States one plan may check in all (every sample of every segment tried: branches, detours,
+  /// stretched and re-timed segments count again), ≥ 1. Checking takes tens of µs per sample, so
+  /// the default bounds a plan to well under a minute; a plan that would pass it is refused
+  /// before the segment that would.
+  std::int64_t max_samples = 1000000;
 };
 
 /// @throws Error naming the option out of range.
@@ -112,8 +121,9 @@ class WaypointPlanner {
   /// Plans from rest at @p q_start through @p waypoints (poses of the chain's frame in the world)
   /// to rest at the last one.
   /// @throws Error when @p waypoints is empty, a waypoint is not finite or not a rotation,
-  ///         @p q_start does not fit the chain, or the limits would need more than 1e7 samples
-  ///         in one segment.
+  ///         @p q_start does not fit the chain, or a segment would have more than
+  ///         `PlanOptions::max_segment_samples` samples or the plan more than `max_samples` in
+  ///         all (limits out of proportion).
   PlanResult plan(const Eigen::VectorXd& q_start, const std::vector<Pose>& waypoints);
 
  private:
@@ -131,8 +141,12 @@ class WaypointPlanner {
   bool check_spline_segment(const JointSpline& spline, int k, SegmentCheck& out);
   double sample_spacing() const noexcept;
   /// Sample intervals of a segment of @p duration [s] (≥ 1).
-  /// @throws Error beyond 1e7 (limits out of proportion: tiny accelerations, huge velocities).
+  /// @throws Error beyond `max_segment_samples` (limits out of proportion: tiny velocities or
+  ///         accelerations, or huge velocities with tiny accelerations).
   int sample_intervals(double duration) const;
+  /// Counts the m + 1 samples of a segment of @p duration against `max_samples`.
+  /// @throws Error, before any of them is checked, when the plan would pass the bound.
+  void spend_samples(int m, double duration);
 
   Chain chain_;
   PlanOptions options_;
@@ -141,6 +155,7 @@ class WaypointPlanner {
   Eigen::VectorXd fixed_qpos_;
   Eigen::VectorXd q_, qd_, qdd_;             // sample buffers
   ConfigurationChecker* checker_ = nullptr;  // valid during plan()
+  std::int64_t checked_ = 0;                 // samples checked by this plan() so far
 };
 
 }  // namespace mjarm

@@ -77,8 +77,10 @@ class OffscreenRenderer {
   /// `mj_forward`/`mj_step`) seen by @p camera into @p out, row 0 at the top. @p out is resized
   /// when its size differs, so reusing one `Image` allocates nothing per frame.
   /// @throws Error after `close()`, when @p data was made for another model, when a named
-  ///         camera, site or body does not exist (listing those that do), or when the camera
-  ///         numbers are out of range (distance ≤ 0, |elevation| ≥ 90°, not finite).
+  ///         camera, site or body does not exist (listing those that do), when the camera
+  ///         numbers are out of range (distance ≤ 0, |elevation| ≥ 90°, not finite), or when a
+  ///         free or follow camera is so far away that the whole model lies beyond the far
+  ///         clipping plane (visual/map zfar × statistic extent from it: an empty picture).
   void render(const mjData& data, const CameraSpec& camera, Image& out);
 
   /// Same as above, into a new image.

@@ -37,6 +37,12 @@ struct VideoOptions {
 /// must exist, be non-empty and be a complete MP4 (its top-level boxes tile the file and include
 /// `moov`), else `close()` throws naming the path (a full disk is caught this way).
 ///
+/// A complete video or none: ffmpeg writes a hidden temporary file beside @p path (through
+/// `FileWriter`, which makes it and proves the folder writable), and only a file that passed the
+/// check is synced and renamed over @p path. When ffmpeg fails, is stopped or leaves an
+/// incomplete file, the temporary file is removed and a file already at @p path keeps its old
+/// content; `complete()` says which happened.
+///
 /// ffmpeg is started with an argv array (never through a shell) and runs in its own process
 /// group, so a Ctrl-C aimed at the program does not cut it short; it gets SIGKILL if mjarm dies
 /// (PR_SET_PDEATHSIG: it never outlives the program, and a video being written when mjarm is
@@ -49,7 +55,8 @@ struct VideoOptions {
 /// Pushing frames at video rate from a run loop: see `FrameSchedule`.
 class VideoWriter {
  public:
-  /// Starts ffmpeg writing to @p path (overwritten; MP4 whatever the extension).
+  /// Starts ffmpeg writing the video for @p path (replaced once complete; MP4 whatever the
+  /// extension). ffmpeg is looked up first: when it is missing, nothing is created.
   /// @param width  frame width [pixels], even and ≥ 2
   /// @param height frame height [pixels], even and ≥ 2
   /// @param fps    frames per second of the video, > 0
@@ -81,6 +88,8 @@ class VideoWriter {
 
   /// False after `close()`, after a failed `write`, and for a moved-from writer.
   bool is_open() const noexcept;
+  /// True once the finalized, checked video is at `path()` (after a successful `close()`).
+  bool complete() const noexcept;
   /// Frames written so far.
   std::int64_t frames() const noexcept;
   /// Where the video goes.

@@ -2,7 +2,8 @@
 /// @file
 /// The viewer panel's state and what it means: slider values → end-effector target pose and
 /// gripper command, slider ranges from the arm's workspace, named edits (for scripts and the
-/// command line), and the rate-limited reference that follows the target.
+/// command line). The reference that follows the target is `TargetFilter`
+/// (trajectory/target_filter.hpp).
 ///
 /// None of this needs a window: the panel widgets (viewer_ui.hpp) write straight into
 /// `PanelState`, and everything else reads it.
@@ -67,38 +68,5 @@ SimulationMode panel_mode(const PanelState& state);
 ///         value that is not a finite number, or outside its range.
 void set_panel_value(PanelState& state, const PanelRanges& ranges, std::string_view name,
                      std::string_view value);
-
-/// The reference the controllers track: it follows the panel target at bounded linear and
-/// angular speed, so that a slider jump becomes a motion a real arm could make (and the
-/// tracking error measures the controller, not the jump). Allocation-free.
-class TargetFilter {
- public:
-  /// @param max_speed         largest speed of the reference origin [m/s] (> 0)
-  /// @param max_angular_speed largest angular speed of the reference [rad/s] (> 0)
-  /// @throws Error when a speed is not positive and finite.
-  TargetFilter(double max_speed, double max_angular_speed);
-
-  /// Puts the reference at @p X_WR, at rest.
-  void reset(const Pose& X_WR) noexcept;
-
-  /// Moves the reference towards @p X_WT over @p dt [s] (straight line for the origin, geodesic
-  /// for the rotation, each at most its speed × dt) and returns it. A non-positive or non-finite
-  /// @p dt leaves the reference where it is.
-  const Pose& update(const Pose& X_WT, double dt) noexcept;
-
-  /// The reference pose X_WR.
-  const Pose& pose() const noexcept { return X_WR_; }
-  /// Its twist over the last update, world axes, linear first [v; ω] [m/s; rad/s].
-  const Vector6d& velocity() const noexcept { return V_WR_; }
-  /// True when the last update reached the target exactly.
-  bool settled() const noexcept { return settled_; }
-
- private:
-  double max_speed_;
-  double max_angular_speed_;
-  Pose X_WR_;
-  Vector6d V_WR_ = Vector6d::Zero();
-  bool settled_ = true;
-};
 
 }  // namespace mjarm

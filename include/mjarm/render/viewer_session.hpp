@@ -11,7 +11,9 @@
 /// - torque: operational-space impedance control of the reference on the model's `_torque`
 ///   variant (the file `<name>_torque.xml` beside the model; `<name>.xml` is the position
 ///   variant of a `_torque` model).
-/// In every mode the reference follows the panel target at bounded speed (`TargetFilter`).
+/// In every mode the reference follows the panel target as a jerk-limited motion (`TargetFilter`:
+/// the jerk-limited generator, recalculated from the reference's current state whenever the
+/// target changes).
 
 #include <mujoco/mujoco.h>
 
@@ -26,6 +28,8 @@
 #include "mjarm/render/viewer_panel.hpp"
 #include "mjarm/sim/contact_query.hpp"
 #include "mjarm/sim/simulation.hpp"
+#include "mjarm/trajectory/ramped_command.hpp"
+#include "mjarm/trajectory/target_filter.hpp"
 
 namespace mjarm {
 
@@ -41,8 +45,12 @@ struct ViewerSessionOptions {
   double kinematic_period = 0.01;
   /// Position and torque modes: control period [s]; 0 means one physics step.
   double control_period = 0.0;
-  double max_speed = 0.5;          ///< reference speed limit [m/s] (> 0)
-  double max_angular_speed = 1.5;  ///< reference angular speed limit [rad/s] (> 0)
+  /// Limits of the reference that follows the panel target (per world axis and per rotation
+  /// vector component: velocity, acceleration, jerk; all > 0).
+  TargetFilterLimits reference_limits;
+  /// Duration of a full gripper opening or closing [s] (> 0): the gripper command follows its
+  /// slider along a smoothstep ramp (`RampedCommand`).
+  double gripper_travel_time = 0.5;
   /// Kinematic and position modes: largest joint speed of the IK output [rad/s or m/s] (> 0).
   double max_joint_speed = 2.0;
   int ik_iterations = 10;            ///< IK iterations per tick, warm-started (≥ 1)
@@ -63,6 +71,7 @@ struct ViewerStats {
   bool ik_used = false;                      ///< kinematic/position: an IK ran at the last tick
   IkStatus ik_status = IkStatus::converged;  ///< status of that IK
   int saturated = 0;  ///< actuators whose command was clipped at the last tick
+  double gripper = 0.0;  ///< the gripper command sent (0 open … 1 closed), ramped to the slider
   /// Contacts between the robot and everything else (forces invalid in kinematic mode).
   ContactSummary contacts;
   bool faulted = false;  ///< the simulation stopped on a fault; `reset` clears it
@@ -144,6 +153,7 @@ class ViewerSession {
   Pose X_WT_;
   double gripper_ = 0.0;
   TargetFilter filter_;
+  RampedCommand gripper_ramp_;
   ViewerStats stats_;
 };
 

@@ -6,6 +6,7 @@
 #include <Eigen/Core>
 #include <span>
 
+#include "mjarm/model/actuator_limits.hpp"  // joint_torque_limit
 #include "mjarm/model/chain.hpp"
 
 namespace mjarm {
@@ -23,9 +24,5 @@ namespace mjarm {
 double torque_feasible_duration(const Chain& chain, std::span<const double> qpos_start,
                                 const Eigen::Ref<const Eigen::VectorXd>& q_target, double duration,
                                 double torque_fraction);
-
-/// The torque limit of chain joint @p i [N·m or N]: the ctrlrange (and forcerange) of its
-/// actuator times the gear; +inf when it has no actuator or no limit.
-double joint_torque_limit(const Chain& chain, int i);
 
 }  // namespace mjarm

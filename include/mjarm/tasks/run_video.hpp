@@ -61,9 +61,10 @@ class RunVideo final : public TickObserver {
   RunVideo(const Robot& robot, const mjData& start, const std::filesystem::path& path,
            std::vector<CameraSpec> cameras, const RunVideoOptions& options = {}, int columns = 0);
 
-  /// Writes the frames due at data.time. Never throws: the first failure (ffmpeg died, a disk
-  /// full) is kept in `error()`, the file is finalized with the frames so far and no more frames
-  /// are rendered; the run goes on.
+  /// Writes the frames due at data.time. Never throws: the first failure is kept in `error()`
+  /// and no more frames are rendered; the run goes on. When the renderer failed, the file is
+  /// finalized with the frames so far; when ffmpeg failed (it died, a full disk), no video is
+  /// written (`complete()` is false; an old file at the path is left as it was).
   void on_tick(const mjData& data) noexcept override;
 
   /// Writes the frames due at @p last (the state the run ended in) and finalizes the file.
@@ -74,6 +75,8 @@ class RunVideo final : public TickObserver {
 
   /// Frames written so far.
   std::int64_t frames() const noexcept { return writer_.frames(); }
+  /// True once a finalized, checked MP4 is at `path()` (see `VideoWriter::complete`).
+  bool complete() const noexcept { return writer_.complete(); }
   const std::filesystem::path& path() const noexcept { return path_; }
   /// The (first) camera.
   const CameraSpec& camera() const noexcept { return renderer_.cameras().front(); }

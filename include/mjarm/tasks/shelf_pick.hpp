@@ -62,8 +62,11 @@ struct ShelfPickReport {
   std::int64_t video_frames = 0;      ///< frames in it: ⌊(end − start)·fps⌋ + 1
   std::string video_camera{};         ///< the camera, described (`CameraSpec::describe`)
   /// Why the video stopped early (ffmpeg died, disk full; empty when it did not). The run and
-  /// its figures are unaffected; the file holds the frames up to the failure.
+  /// its figures are unaffected.
   std::string video_error{};
+  /// Whether a complete, playable MP4 of the run is at `video` (false when ffmpeg failed: no
+  /// video is written then, and an old file at the path keeps its content).
+  bool video_written = false;
   bool ok() const noexcept { return outcome == PickOutcome::held; }
 };
 
@@ -74,8 +77,8 @@ struct ShelfPickReport {
 /// finalized with the run's status — also when the run diverges. With a video path, a
 /// `RunVideo` (camera from `shelf_pick_camera`, the pick point drawn as a green ball) is opened
 /// before the recorder and watches every control tick through `ShelfPickTask::set_observer`;
-/// the MP4 is finalized with the frames up to the end of the run whatever the outcome, and the
-/// figures are the same as without a video.
+/// the MP4 is finalized with the frames up to the end of the run whatever the outcome (a
+/// complete video or none: `video_written`), and the figures are the same as without a video.
 /// @throws Error for bad options (see `plan_shelf_pick`, a control period that is not a whole
 ///         multiple of the timestep, a non-positive settle time or bound), a recording
 ///         directory that cannot be created or written, or a video that cannot start (see

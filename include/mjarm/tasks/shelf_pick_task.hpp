@@ -14,7 +14,8 @@
 #include "mjarm/sim/run_result.hpp"
 #include "mjarm/tasks/pick_monitor.hpp"
 #include "mjarm/tasks/tick_observer.hpp"
-#include "mjarm/trajectory/min_jerk.hpp"
+#include "mjarm/trajectory/quintic.hpp"
+#include "mjarm/trajectory/se3_interpolation.hpp"
 
 namespace mjarm {
 
@@ -37,7 +38,7 @@ struct ShelfPickGoal {
   Pose X_WT;                   ///< pose to reach: position = pick point, rotation = tool to hold
   Eigen::VectorXd q_start;     ///< joint values at the start (chain order) [rad or m]
   Eigen::VectorXd q_target;    ///< joint values that put the tool at X_WT (from IK) [rad or m]
-  double approach_time = 0.3;  ///< duration T of the minimum-jerk approach [s] (> 0)
+  double approach_time = 0.3;  ///< duration T of the approach [s] (> 0)
   bool position_only = false;  ///< only the position counts (orientation error reported as 0)
   /// How far the integrator's velocities lag its positions [s] (≥ 0): velocity references are
   /// evaluated at t − velocity_lag. MuJoCo's semi-implicit Euler advances q_{k+1} = q_k +
@@ -49,12 +50,15 @@ struct ShelfPickGoal {
 };
 
 /// The shelf pick as a reference source. From the start time t₀ (data.time at the first
-/// `update`), with s(t) the minimum-jerk profile of duration T:
-/// - task reference: p(t) = p_S + (p_T − p_S)·s, R(t) = exp(s·ω)·R_S with ω = log(R_T·R_Sᵀ)
-///   (world axes), velocities and accelerations by ṡ and s̈ (linear first; velocities at
-///   t − velocity_lag);
-/// - joint reference: q(t) = q_S + (q_T − q_S)·s, q̇ and q̈ likewise (for computed torque, and as
-///   the null-space posture of the task-space controllers);
+/// `update`), with the approach of duration T built from the library's profiles (rest to rest,
+/// i.e. the minimum-jerk quintic):
+/// - task reference: the `Se3Interpolation` from X_S to X_T (position by a quintic per axis,
+///   orientation by a quintic in the rotation vector relative to R_S, which rest to rest is the
+///   geodesic R(t) = exp(s·ω)·R_S, ω = log(R_T·R_Sᵀ)); pose and twist rate at t, twist at
+///   t − velocity_lag (world axes, linear first);
+/// - joint reference: the `QuinticTrajectory` from q_S to q_T at rest (q = q_S + (q_T − q_S)·s),
+///   q and q̈ at t, q̇ at t − velocity_lag (for computed torque, and as the null-space posture of
+///   the task-space controllers);
 /// - the tip (the chain's frame, read from data) is fed to a `PickMonitor` with t − t₀; the
 ///   phase follows its events; when the hold is complete the phase becomes release, the gripper
 ///   reference opens and `update` returns false (the run ends as finished).
@@ -92,12 +96,13 @@ class ShelfPickTask final : public ReferenceSource {
   ShelfPickGoal goal_;
   Recorder* recorder_;
   TickObserver* observer_ = nullptr;
-  MinJerkProfile profile_;
+  Se3Interpolation approach_;                // the task-space reference
+  QuinticTrajectory joints_;                 // the joint-space reference
+  Eigen::VectorXd q_scratch_, qdd_scratch_;  // for the lagged q̇ (sized at construction)
   PickMonitor monitor_;
   PickPhase phase_ = PickPhase::approach;
   bool started_ = false;
   double t0_;
-  Eigen::Vector3d rotation_ = Eigen::Vector3d::Zero();  // ω = log(R_T·R_Sᵀ), world axes [rad]
   Pose X_WE_;
   std::array<char, 160> message_{};
 };

@@ -7,9 +7,13 @@
 /// One calculation:
 /// 1. per DoF, a brake pre-trajectory when the current state is beyond the limits
 ///    (jerk_limited_brake.hpp), then the time-optimal profile and the blocked intervals of
-///    durations (jerk_limited_min_time.hpp);
+///    durations (jerk_limited_min_time.hpp) — for the DoFs that decide the duration only: the
+///    one guessed slowest first, then each DoF that cannot take the duration synchronized so far
+///    (checked by the positions it can reach then, jerk_limited_reach.hpp);
 /// 2. the synchronized duration: the smallest one every DoF can take (jerk_limited_sync.hpp);
-/// 3. for every DoF, a profile of exactly that duration (jerk_limited_fixed_time.hpp).
+/// 3. for every DoF, a profile of exactly that duration: its extremal profile of that duration,
+///    or the blend of the profiles to its lowest and highest reachable positions
+///    (jerk_limited_fixed_time.hpp).
 /// The velocity interface does the same with velocity targets (jerk_limited_velocity.hpp).
 
 #include <span>
@@ -17,14 +21,19 @@
 
 #include "mjarm/trajectory/jerk_limited_block.hpp"
 #include "mjarm/trajectory/jerk_limited_profile.hpp"
+#include "mjarm/trajectory/jerk_limited_reach.hpp"
 
 namespace mjarm {
+
+namespace jerk_detail {
+struct UpPair;  // a DoF's problem in both directions (src/trajectory/jerk_limited_up.hpp)
+}  // namespace jerk_detail
 
 /// Outcome of a calculation or of a step along the trajectory.
 enum class OtgStatus {
   working,                ///< a trajectory exists and the target is not reached yet
   finished,               ///< the target is reached (the time is at or past the duration)
-  error_brake,            ///< a DoF's state is too far beyond its limits to brake in two phases
+  error_brake,            ///< a DoF's brake did not fit its profile (not expected: ≤ 3 phases)
   error_no_profile,       ///< step 1 found no time-optimal profile for a DoF
   error_synchronization,  ///< a DoF has no profile of the synchronized duration
 };
@@ -48,6 +57,11 @@ class JerkLimitedGenerator {
   /// @throws Error when @p limits is empty or a limit is not positive and finite (the message
   /// names the DoF and the limit).
   explicit JerkLimitedGenerator(std::span<const JerkLimits> limits);
+  ~JerkLimitedGenerator();
+  JerkLimitedGenerator(const JerkLimitedGenerator&);
+  JerkLimitedGenerator(JerkLimitedGenerator&&) noexcept;
+  JerkLimitedGenerator& operator=(const JerkLimitedGenerator&);
+  JerkLimitedGenerator& operator=(JerkLimitedGenerator&&) noexcept;
 
   /// Number of degrees of freedom.
   int dofs() const noexcept { return static_cast<int>(limits_.size()); }
@@ -81,8 +95,10 @@ class JerkLimitedGenerator {
   int brake_phases(int i) const { return brake_phases_.at(static_cast<std::size_t>(i)); }
   /// Duration of the brake phases of profile(@p i) [s].
   double brake_duration(int i) const { return brake_durations_.at(static_cast<std::size_t>(i)); }
-  /// What step 1 found for DoF @p i in the last position calculation.
-  const JerkBlock& block(int i) const { return blocks_.at(static_cast<std::size_t>(i)); }
+  /// What step 1 found for DoF @p i in the last calculation (after its brake). A position
+  /// calculation runs step 1 only for the DoFs that decide the synchronized duration; for the
+  /// others it runs here, on first use.
+  const JerkBlock& block(int i) const;
 
   /// The state of every DoF at time @p t [s] of the last trajectory into @p out (its first
   /// min(size, dofs()) entries).
@@ -98,14 +114,21 @@ class JerkLimitedGenerator {
  private:
   void check_states(std::span<const KinematicState> current, std::span<const KinematicState> target,
                     bool velocity_interface) const;
+  bool solve_step1(int i) const noexcept;
 
   std::vector<JerkLimits> limits_;
   std::vector<JerkProfile> profiles_;
-  std::vector<JerkBlock> blocks_;
+  mutable std::vector<JerkBlock> blocks_;  // filled on demand by block()
+  std::vector<JerkReach> reach_;
+  std::vector<KinematicState> targets_;
+  std::vector<double> estimates_;
+  std::vector<int> order_;
+  std::vector<jerk_detail::UpPair> problems_;  // per DoF, after its brake
+  mutable std::vector<char> solved_;  // step 1 done for the DoF (for blocks_)
+  bool velocity_interface_ = false;
   std::vector<double> brake_durations_;
   std::vector<int> brake_phases_;
   std::vector<KinematicState> after_brake_;
-  JerkProfile scratch_;
   OtgResult result_;
   double time_ = 0.0;
 };

@@ -1,30 +1,41 @@
 #pragma once
 /// @file
-/// Step 3 of the jerk-limited generator for one DoF: a profile of a given duration (longer than
-/// the DoF's minimum and outside its blocked intervals), used to synchronize it with the others.
+/// Step 3 of the jerk-limited generator for one DoF: a profile of a given duration (at least the
+/// DoF's minimum and outside its blocked intervals), used to synchronize it with the others.
 
 #include "mjarm/trajectory/jerk_limited_profile.hpp"
+#include "mjarm/trajectory/jerk_limited_reach.hpp"
 
 namespace mjarm {
 
 /// A jerk-limited profile of exactly @p duration [s] from @p start to @p target, in @p profile.
 ///
-/// Structures tried, in both directions (all states negated for the other):
-/// - a cruise at a free velocity v_c with zero acceleration (phase 4), reached by jerk +j then
-///   −j (with a plateau at +a_max when needed) and left by −j then +j or by +j then −j (each
-///   with an optional plateau at the limit): one unknown once the duration is fixed;
-/// - no cruise, jerk (+j, −j, +j) with a constant-acceleration hold at a free level after the
-///   first or after the second ramp.
-/// - a reduced jerk (+j_r, −j_r, +j_r), j_r ≤ j_max;
-/// - when the target (start) is at rest and nothing above fits: the time-optimal profile with a
-///   rest after (before) it.
-/// Each reduces to a polynomial in one unknown (degree ≤ 8); the valid profile found first is
-/// returned (every valid one has the requested duration; they differ in shape only).
+/// The profiles of one duration that end at the target velocity and acceleration form a convex
+/// set, and their end positions fill the interval [p_min, p_max] of jerk_limited_reach.hpp. When
+/// the target position lies in it, the blend λ·(profile to p_max) + (1 − λ)·(profile to p_min)
+/// with λ = (p_f − p_min)/(p_max − p_min) — jerk blended phase by phase over the union of both
+/// profiles' switching times, at most 13 phases — reaches it: its velocity and acceleration are
+/// the same blend of two motions within the limits, so they stay within them, and its jerk is
+/// within ±j_max. This finds a profile for every duration that has one, with no case left
+/// uncovered. For a rest-to-rest move it is the time-optimal profile of the longer duration
+/// scaled down (the classic synchronization by scaling).
 ///
-/// Preconditions as min_time_profile(). @return false when no structure gives a valid profile
-/// (the duration is then below the minimum, inside a blocked interval, or in a case the
-/// structures above do not cover). Never allocates, never throws.
+/// Preconditions as min_time_profile(). @return false when no profile of that duration exists
+/// (below the minimum or inside a blocked interval). Never allocates, never throws.
 bool fixed_time_profile(const KinematicState& start, const KinematicState& target,
                         const JerkLimits& limits, double duration, JerkProfile& profile) noexcept;
+
+/// As fixed_time_profile(), but appends the phases to @p profile, which must end at @p start
+/// (after a brake, say) and have room for 13 more phases. On failure @p profile may hold some of
+/// the phases.
+bool append_fixed_time_profile(const KinematicState& start, const KinematicState& target,
+                               const JerkLimits& limits, double duration,
+                               JerkProfile& profile) noexcept;
+
+/// The blend of fixed_time_profile() from @p reach, computed already for @p duration [s] and the
+/// target's velocity and acceleration, appended to @p profile (which must end at the start of
+/// @p reach). False when @p target.p is out of reach or the profile is full.
+bool append_blended_profile(const JerkReach& reach, const KinematicState& target, double duration,
+                            JerkProfile& profile) noexcept;
 
 }  // namespace mjarm

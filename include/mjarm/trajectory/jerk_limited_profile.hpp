@@ -1,9 +1,11 @@
 #pragma once
 /// @file
-/// `JerkProfile`: one degree of freedom moved by piecewise-constant jerk (at most 11 phases: a
-/// brake pre-trajectory of up to 4 phases and the 7 phases of a jerk-limited profile), with its
-/// state at any time and the analytic extrema of velocity and acceleration over every phase.
-/// Also the per-DoF `JerkLimits` and the `KinematicState` (p, v, a) the generator works on.
+/// `JerkProfile`: one degree of freedom moved by piecewise-constant jerk (at most 16 phases: a
+/// brake pre-trajectory of up to 3 phases and a jerk-limited profile of up to 13), with its state
+/// at any time and the analytic extrema of velocity and acceleration over every phase.
+/// `JerkPhases`: the seven phases of one profile structure without a start state, the compact
+/// form in which the solvers pass profiles around. Also the per-DoF `JerkLimits` and the
+/// `KinematicState` (p, v, a) the generator works on.
 
 #include <array>
 
@@ -46,8 +48,9 @@ struct JerkExtrema {
 /// and jerk jᵢ from a start state. Fixed capacity, no allocation.
 class JerkProfile {
  public:
-  /// Most phases a profile holds.
-  static constexpr int kMaxPhases = 11;
+  /// Most phases a profile holds: a brake (≤ 3) and a synchronized profile (≤ 13, the blend of
+  /// two seven-phase profiles, jerk_limited_fixed_time.hpp).
+  static constexpr int kMaxPhases = 16;
 
   /// An empty profile resting at the origin.
   JerkProfile() = default;
@@ -57,11 +60,22 @@ class JerkProfile {
   /// Appends a phase of @p duration [s] (≥ 0) with constant @p jerk [u/s³]; returns false (and
   /// changes nothing) when the profile is full.
   bool append(double jerk, double duration) noexcept;
+  /// Appends a cruise of @p duration [s]: zero jerk at zero acceleration. The acceleration at its
+  /// start, zero up to round-off by construction of the caller, is set to exactly zero, so that a
+  /// long cruise does not integrate that round-off into the position. False when full.
+  bool append_cruise(double duration) noexcept;
+
+  /// Drops the phases from index @p size on (nothing when the profile is not longer).
+  void truncate(int size) noexcept {
+    if (size >= 0 && size < size_) size_ = size;
+  }
 
   /// Number of phases.
   int size() const noexcept { return size_; }
   /// Total duration [s].
   double duration() const noexcept { return start_time_[size_]; }
+  /// Time at which phase @p i starts [s] (duration() for i = size()).
+  double duration_until(int i) const noexcept { return start_time_[i]; }
   /// Jerk of phase @p i [u/s³].
   double jerk(int i) const noexcept { return jerk_[i]; }
   /// Duration of phase @p i [s].
@@ -92,7 +106,28 @@ class JerkProfile {
   int size_ = 0;
 };
 
+/// The phases of a seven-phase profile (jerk_limited_min_time.hpp) without a start state: phase
+/// i lasts duration[i] ≥ 0 [s] with jerk jerk[i] [u/s³]; phases of zero duration are kept (a
+/// profile structure has fixed slots). Slot kCruise, when it has a duration and zero jerk, is the
+/// velocity plateau at zero acceleration (appended with JerkProfile::append_cruise()).
+struct JerkPhases {
+  static constexpr int kSize = 7;        ///< number of phase slots
+  static constexpr int kCruise = 3;      ///< the slot of the velocity plateau
+  std::array<double, kSize> jerk{};      ///< jerk of each phase [u/s³]
+  std::array<double, kSize> duration{};  ///< duration of each phase [s]
+
+  /// Sum of the durations [s].
+  double total() const noexcept;
+  /// The state reached from @p start at the end of the last phase.
+  KinematicState end(const KinematicState& start) const noexcept;
+  /// Appends the phases of nonzero duration to @p profile; false when it is full.
+  bool append_to(JerkProfile& profile) const noexcept;
+};
+
 /// The state reached from @p s after @p t [s] of constant jerk @p j.
-KinematicState integrate_jerk(const KinematicState& s, double j, double t) noexcept;
+inline KinematicState integrate_jerk(const KinematicState& s, double j, double t) noexcept {
+  return {s.p + t * (s.v + t * (0.5 * s.a + t * (j / 6.0))), s.v + t * (s.a + t * (0.5 * j)),
+          s.a + t * j};
+}
 
 }  // namespace mjarm

@@ -23,4 +23,9 @@ struct JerkSync {
 bool synchronize(std::span<const JerkBlock> blocks, std::span<const double> offsets,
                  JerkSync& sync) noexcept;
 
+/// As above over the DoFs i with @p active[i] ≠ 0 only (the others' blocks are not read);
+/// @p active has the size of @p blocks. @return false also when no DoF is active.
+bool synchronize(std::span<const JerkBlock> blocks, std::span<const double> offsets,
+                 std::span<const char> active, JerkSync& sync) noexcept;
+
 }  // namespace mjarm

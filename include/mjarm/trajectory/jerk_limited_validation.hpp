@@ -26,12 +26,18 @@ struct OtgValidationOptions {
   bool thread_cpu_clock = false;
   /// Heap allocations of the process so far (optional; counted around each calculation).
   std::function<std::uint64_t()> allocation_count;
-  /// Called now and then with (cases done, cases) (optional).
+  /// Called now and then with (cases done, cases), reference cases counted after the n-DoF
+  /// cases: (cases + k, cases + reference_cases) (optional).
   std::function<void(int, int)> progress;
+  /// Asked every thousand cases and before every reference case whether to stop (e.g.
+  /// `interrupt_requested` after Ctrl-C; optional). A stop ends the batch with the figures of
+  /// the cases done so far and `OtgValidationResult::interrupted` set.
+  std::function<bool()> stop;
 };
 
 /// What was measured.
 struct OtgValidationResult {
+  bool interrupted = false;            ///< the stop request ended the batch early
   int cases = 0;                       ///< n-DoF cases run (each interface)
   int dofs = 0;                        ///< DoFs per case
   int braking_dofs = 0;                ///< DoFs that started beyond their limits
@@ -65,6 +71,15 @@ struct OtgValidationResult {
   int sync_mismatches = 0;              ///< of those, cases where one exists
   int blocked_checked = 0;              ///< blocked intervals probed by the reference
   int blocked_mismatches = 0;           ///< of those, midpoints where a grid motion exists
+  /// One-DoF cases drawn until they have a blocked interval (reference_cases / 4 of them; such
+  /// cases are about 1 % of random draws): each interval's midpoint is probed as above, and the
+  /// durations 1 % of its width outside its ends must get a profile (fixed_time_profile).
+  int blocked_cases = 0;
+  int blocked_end_failures = 0;  ///< of their interval ends, ones without a profile just outside
+  /// Of those ends, where the grid is fine enough (j·h²/8 ≤ 1 % of v_max), ones where neither
+  /// the reference grid nor one three times finer has a motion just outside (grid resolution, or
+  /// an end in the wrong place).
+  int blocked_end_not_confirmed = 0;
   std::string first_reference_failure;  ///< the first reference mismatch (empty when none)
 };
 

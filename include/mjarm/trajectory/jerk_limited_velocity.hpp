@@ -32,4 +32,10 @@ bool fixed_time_velocity_profile(const KinematicState& start, double v_target, d
                                  const JerkLimits& limits, double duration,
                                  JerkProfile& profile) noexcept;
 
+/// As fixed_time_velocity_profile(), but appends the phases to @p profile, which must end at
+/// @p start and have room for 3 more phases (on failure nothing is appended).
+bool append_fixed_time_velocity_profile(const KinematicState& start, double v_target,
+                                        double a_target, const JerkLimits& limits, double duration,
+                                        JerkProfile& profile) noexcept;
+
 }  // namespace mjarm

@@ -47,7 +47,8 @@ class Se3Interpolation {
   /// The rotation vector θ(T) = Log(R₀ᵀR₁) [rad] (in the start frame).
   const Eigen::Vector3d& rotation() const noexcept { return theta_goal_; }
 
-  /// Pose, twist and twist rate at @p t [s] (clamped to [0, T]); allocates nothing.
+  /// Pose, twist and twist rate at @p t [s] (clamped to [0, T]; from T on exactly the goal
+  /// position with rotation R₀·Exp(θ(T)) and a zero twist and rate); allocates nothing.
   Sample at(double t) const noexcept;
 
   /// The rotation vector θ(t) and its first two time derivatives (start frame) at @p t [s].
@@ -56,6 +57,7 @@ class Se3Interpolation {
 
  private:
   Pose X_start_;
+  Pose X_end_;  // p_goal, R₀·Exp(θ(T))
   Eigen::Vector3d theta_goal_;
   std::array<Quintic, 3> position_;
   std::array<Quintic, 3> angle_;

@@ -20,8 +20,8 @@ RampSample smoothstep(double x) noexcept;
 
 /// smootherstep s(x) = 6x⁵ − 15x⁴ + 10x³ (C²: s′ = 30x²(1 − x)² and s″ = 60x(1 − x)(1 − 2x)
 /// are zero at both ends; s‴ = 60(6x² − 6x + 1) steps from 0 to 60 there). Clipped as
-/// `smoothstep`. It is the rest-to-rest minimum-jerk time scaling (`MinJerkProfile`). Peak
-/// slope 1.875 at x = ½, peak |s″| = 10/√3 at x = ½ ∓ √3/6.
+/// `smoothstep`. It is the rest-to-rest minimum-jerk time scaling (the rest-to-rest `Quintic`).
+/// Peak slope 1.875 at x = ½, peak |s″| = 10/√3 at x = ½ ∓ √3/6.
 RampSample smootherstep(double x) noexcept;
 
 /// A ramp of duration T run in time: s(t) = ramp(t/T) with ṡ = s′/T, s̈ = s″/T², s⃛ = s‴/T³.
@@ -49,6 +49,8 @@ class SmoothRamp {
   static double peak_slope(Kind kind) noexcept;
   /// Peak |s″| of @p kind (6 or 10/√3).
   static double peak_curvature(Kind kind) noexcept;
+  /// Peak |s‴| of @p kind (12 throughout for smoothstep; 60 at the ends for smootherstep).
+  static double peak_jerk(Kind kind) noexcept;
 
   /// The kind.
   Kind kind() const noexcept { return kind_; }

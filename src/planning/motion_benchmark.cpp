@@ -1,0 +1,283 @@
+#include "mjarm/planning/motion_benchmark.hpp"
+
+#include <time.h>
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <random>
+
+#include "mjarm/error.hpp"
+#include "mjarm/kinematics/chain_kinematics.hpp"
+#include "mjarm/lie/so3.hpp"
+#include "mjarm/planning/waypoint_planner.hpp"
+#include "mjarm/trajectory/quintic.hpp"
+#include "mjarm/trajectory/se3_interpolation.hpp"
+#include "mjarm/trajectory/smoothstep.hpp"
+#include "mjarm/trajectory/target_filter.hpp"
+#include "mjarm/trajectory/trapezoid.hpp"
+
+namespace mjarm {
+
+namespace {
+
+constexpr int kBenchJoints = 7;
+
+/// Now in ns on the steady clock or, when @p cpu, the calling thread's CPU clock.
+double motion_now_ns(bool cpu) noexcept {
+  if (cpu) {
+    timespec ts{};
+    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+    return 1e9 * static_cast<double>(ts.tv_sec) + static_cast<double>(ts.tv_nsec);
+  }
+  return static_cast<double>(std::chrono::duration_cast<std::chrono::nanoseconds>(
+                                 std::chrono::steady_clock::now().time_since_epoch())
+                                 .count());
+}
+
+/// The nearest-rank percentile @p q ∈ (0, 1] of @p values (sorted here).
+double nearest_rank(std::vector<double>& values, double q) {
+  if (values.empty()) return 0.0;
+  std::sort(values.begin(), values.end());
+  const auto rank = static_cast<std::size_t>(std::ceil(q * static_cast<double>(values.size())));
+  return values[std::clamp<std::size_t>(rank, 1, values.size()) - 1];
+}
+
+// 256 seeded instants over [−0.05·T, 1.05·T]
+std::array<double, 256> bench_instants(double T) {
+  std::mt19937_64 rng(3);
+  std::uniform_real_distribution<double> u(-0.05 * T, 1.05 * T);
+  std::array<double, 256> t{};
+  for (double& x : t) x = u(rng);
+  return t;
+}
+
+Eigen::VectorXd bench_vector(unsigned seed, double scale) {
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> u(-scale, scale);
+  Eigen::VectorXd v(kBenchJoints);
+  for (int i = 0; i < kBenchJoints; ++i) v[i] = u(rng);
+  return v;
+}
+
+/// Times @p call(k) for k = 0, 1, … in blocks (see the file comment) and fills @p out's
+/// figures. @p between(k) runs untimed after each block. Returns false when stopped.
+template <class Call, class Between>
+bool time_case(const ProfileBenchmarkOptions& o, ProfileBenchmarkCase& out, Call&& call,
+               Between&& between) {
+  const std::int64_t blocks = o.calls / o.block;
+  std::vector<double> per_call;
+  per_call.reserve(static_cast<std::size_t>(blocks));
+  double total = 0.0;
+  std::int64_t k = 0;
+  const std::uint64_t a0 = o.allocation_count ? o.allocation_count() : 0;
+  bool stopped = false;
+  for (std::int64_t b = 0; b < blocks; ++b) {
+    const double t0 = motion_now_ns(o.thread_cpu_clock);
+    for (int i = 0; i < o.block; ++i) call(k++);
+    const double t1 = motion_now_ns(o.thread_cpu_clock);
+    total += t1 - t0;
+    per_call.push_back((t1 - t0) / o.block);
+    between(k);
+    if (o.stop && o.stop()) {
+      stopped = true;
+      break;
+    }
+  }
+  const std::uint64_t a1 = o.allocation_count ? o.allocation_count() : 0;
+  out.calls = k;
+  out.mean_ns = k > 0 ? total / static_cast<double>(k) : 0.0;
+  std::vector<double> sorted = per_call;
+  out.median_ns = nearest_rank(sorted, 0.5);
+  out.p99_ns = nearest_rank(sorted, 0.99);
+  if (o.allocation_count && k > 0)
+    out.allocations_per_call = static_cast<double>(a1 - a0) / static_cast<double>(k);
+  return !stopped;
+}
+
+Pose bench_pose(const Eigen::Vector3d& p, const Eigen::Vector3d& w) {
+  Pose X;
+  X.p = p;
+  X.R = so3::exp(w);
+  return X;
+}
+
+}  // namespace
+
+ProfileBenchmarkResult run_profile_benchmark(const ProfileBenchmarkOptions& o) {
+  if (o.block < 1 || o.calls < o.block)
+    throw Error("profile benchmark: calls (" + std::to_string(o.calls) +
+                ") must be at least one block of " + std::to_string(o.block) + " (≥ 1)");
+  if (o.recalculations < 16)
+    throw Error("profile benchmark: recalculations must be ≥ 16, got " +
+                std::to_string(o.recalculations));
+  ProfileBenchmarkResult result;
+  constexpr int kCases = 7;
+  int done = 0;
+  double sink = 0.0;  // every result feeds it, so that nothing is optimized away
+  const auto none = [](std::int64_t) {};
+  const auto add = [&](ProfileBenchmarkCase c, auto&& call, auto&& between,
+                       const ProfileBenchmarkOptions* protocol = nullptr) {
+    const bool finished = time_case(protocol ? *protocol : o, c, call, between);
+    result.cases.push_back(c);
+    if (o.progress) o.progress(++done, kCases);
+    if (!finished) result.interrupted = true;
+    return finished;
+  };
+
+  // the classic trapezoid, one axis
+  const TrapezoidProfile trap = trap_profile(0.5);
+  const auto t_trap = bench_instants(trap.duration());
+  if (!add(
+          {"trapezoid", "TrapezoidProfile::at", 0, 0, 0, 0, kProfileEvaluationTargetNs, -1},
+          [&](std::int64_t k) { sink += trap.at(t_trap[k & 255]).position; }, none))
+    return result;
+
+  // seven axes finishing together
+  const SyncedTrapezoid synced(bench_vector(1, 2.0), bench_vector(2, 2.0),
+                               Eigen::VectorXd::Constant(kBenchJoints, 1.5),
+                               Eigen::VectorXd::Constant(kBenchJoints, 4.0));
+  const auto t_synced = bench_instants(synced.duration());
+  Eigen::VectorXd q(kBenchJoints), qd(kBenchJoints), qdd(kBenchJoints);
+  if (!add(
+          {"synced trapezoid, 7 axes", "SyncedTrapezoid::at", 0, 0, 0, 0,
+           kProfileEvaluationTargetNs, -1},
+          [&](std::int64_t k) {
+            synced.at(t_synced[k & 255], q, qd, qdd);
+            sink += q[0];
+          },
+          none))
+    return result;
+
+  // the 7-joint quintic from a moving start to rest
+  const QuinticTrajectory quintic =
+      QuinticTrajectory::to_rest({bench_vector(1, 2.0), bench_vector(3, 0.5), bench_vector(4, 2.0)},
+                                 bench_vector(2, 2.0), 1.3);
+  const auto t_quintic = bench_instants(quintic.duration());
+  if (!add(
+          {"quintic, 7 joints (q, qd, qdd)", "QuinticTrajectory::at", 0, 0, 0, 0,
+           kProfileEvaluationTargetNs, -1},
+          [&](std::int64_t k) {
+            quintic.at(t_quintic[k & 255], q, qd, qdd);
+            sink += q[0];
+          },
+          none))
+    return result;
+
+  // the SE(3) interpolation from a moving start (ω not parallel to the rotation axis)
+  Vector6d V0, A0;
+  V0 << 0.2, -0.1, 0.05, 1.5, 0.7, -2.0;
+  A0 << -1.0, 0.5, 2.0, 3.0, -4.0, 1.0;
+  const Se3Interpolation se3(bench_pose({0.4, -0.1, 0.6}, {0.3, -0.8, 0.2}), V0, A0,
+                             bench_pose({0.1, 0.3, 0.5}, {-1.2, 0.4, 1.9}), 0.8);
+  const auto t_se3 = bench_instants(se3.duration());
+  if (!add(
+          {"SE(3) interpolation (pose, twist, rate)", "Se3Interpolation::at", 0, 0, 0, 0,
+           kProfileEvaluationTargetNs, -1},
+          [&](std::int64_t k) { sink += se3.at(t_se3[k & 255]).X_WE.p[0]; }, none))
+    return result;
+
+  // smootherstep in time
+  const SmoothRamp ramp(SmoothRamp::Kind::smootherstep, 0.4);
+  const auto t_ramp = bench_instants(ramp.duration());
+  if (!add(
+          {"smootherstep ramp", "SmoothRamp::at", 0, 0, 0, 0, kProfileEvaluationTargetNs, -1},
+          [&](std::int64_t k) { sink += ramp.at(t_ramp[k & 255]).s; }, none))
+    return result;
+
+  // the viewer's target filter: a tick along a motion under way
+  const Pose start = bench_pose({0.3, 0.0, 0.5}, {3.0, 0.0, 0.0});
+  const Pose jump = bench_pose({0.6, 0.2, 0.3}, {2.2, 0.5, 0.4});
+  TargetFilter filter;
+  const auto restart = [&] {
+    filter.reset(start);
+    filter.update(jump, 1e-7);  // the recalculation, untimed
+  };
+  restart();
+  if (!add(
+          {"target filter, tick in motion (6 DoF)", "TargetFilter::update", 0, 0, 0, 0,
+           kProfileEvaluationTargetNs, -1},
+          [&](std::int64_t) { sink += filter.update(jump, 1e-7).p[0]; },
+          [&](std::int64_t) {
+            if (filter.settled()) restart();
+          }))
+    return result;
+
+  // …and a tick whose target moved: a 6-DoF recalculation every call
+  restart();
+  const Pose other = bench_pose({0.5, -0.1, 0.4}, {2.8, -0.3, 0.1});
+  ProfileBenchmarkOptions recalculating = o;
+  recalculating.calls = o.recalculations;
+  recalculating.block = 16;
+  if (!add(
+          {"target filter, target moved (6-DoF recalculation)", "TargetFilter::update", 0, 0, 0, 0,
+           kFilterRecalculationTargetNs, -1},
+          [&](std::int64_t k) { sink += filter.update((k & 1) ? jump : other, 1e-4).p[0]; }, none,
+          &recalculating))
+    return result;
+  volatile double keep = sink;  // the calls' results are used: nothing is optimized away
+  (void)keep;
+  return result;
+}
+
+std::vector<Pose> motion_benchmark_waypoints(const Eigen::Matrix3d& R_WE) {
+  std::vector<Pose> path;
+  for (const Eigen::Vector3d& p :
+       {Eigen::Vector3d(0.45, 0.0, 0.50), Eigen::Vector3d(0.45, 0.20, 0.40),
+        Eigen::Vector3d(0.35, 0.25, 0.35), Eigen::Vector3d(0.30, 0.10, 0.45),
+        Eigen::Vector3d(0.40, -0.15, 0.50)}) {
+    Pose X;
+    X.R = R_WE;
+    X.p = p;
+    path.push_back(X);
+  }
+  return path;
+}
+
+PlanBenchmarkResult run_plan_benchmark(const PlanBenchmarkOptions& o) {
+  if (o.plans < 1) throw Error("plan benchmark: plans must be ≥ 1, got " + std::to_string(o.plans));
+  PlanBenchmarkResult out;
+  const Robot robot = Robot::bundled("panda_torque");
+  const Chain chain(robot, "attachment_site");
+  const std::vector<double> home = robot.keyframe_qpos("home");
+  const Eigen::VectorXd q_home = chain.gather(home.data());
+  ChainKinematics fk(chain);
+  const std::vector<Pose> path = motion_benchmark_waypoints(fk.update(q_home).R);
+  WaypointPlanner planner(chain);
+  out.model = robot.name();
+  out.waypoints = static_cast<int>(path.size());
+  PlanResult plan = planner.plan(q_home, path);  // untimed: warms caches, checks the path
+  out.ok = plan.ok();
+  out.message = plan.message;
+  out.duration = plan.trajectory.duration();
+  out.samples = plan.samples;
+  if (!out.ok) return out;
+  std::vector<double> ms;
+  for (int k = 0; k < o.plans; ++k) {
+    const double t0 = motion_now_ns(o.thread_cpu_clock);
+    plan = planner.plan(q_home, path);
+    const double t1 = motion_now_ns(o.thread_cpu_clock);
+    ms.push_back((t1 - t0) * 1e-6);
+    if (!plan.ok()) {
+      out.ok = false;
+      out.message = plan.message;
+      break;
+    }
+    if (o.progress) o.progress(k + 1, o.plans);
+    if (o.stop && o.stop()) {
+      out.interrupted = true;
+      break;
+    }
+  }
+  out.plans = static_cast<int>(ms.size());
+  double total = 0.0;
+  for (double v : ms) total += v;
+  out.mean_ms = ms.empty() ? 0.0 : total / static_cast<double>(ms.size());
+  out.median_ms = nearest_rank(ms, 0.5);
+  out.p99_ms = nearest_rank(ms, 0.99);
+  out.max_ms = ms.empty() ? 0.0 : ms.back();  // sorted by nearest_rank
+  return out;
+}
+
+}  // namespace mjarm
