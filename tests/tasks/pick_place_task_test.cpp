@@ -7,6 +7,7 @@
 
 #include <memory>
 #include <optional>
+#include <vector>
 
 #include "ik/malloc_counter.hpp"
 #include "mjarm/error.hpp"
@@ -131,6 +132,30 @@ TEST(PickPlaceTask, TheWeldIsOnFromDwellCToRelease) {
   EXPECT_EQ(task.state(), PickPlaceState::done);
   EXPECT_NEAR(task.trace().done_time, s[13], 1e-9);
   EXPECT_LT(task.trace().weld_jump, 0.05e-3);
+}
+
+// the trace's weld jump sees a weld written from a stale pose: the data as compiled (the relative
+// pose at qpos0) put back right after the task switched the weld on yanks the object by
+// millimetres within the measuring window
+TEST(PickPlaceTask, TheWeldJumpSeesAStaleWeld) {
+  Rig rig(SimulationMode::position, GraspKind::weld);
+  PickPlaceTask task(rig.sim, rig.arm, rig.goal, quick(), *rig.monitor, &*rig.weld,
+                     rig.table_watch);
+  const int weld = rig.weld->equality();
+  const mjModel& file = rig.scene.model.model();
+  const std::vector<double> compiled(file.eq_data + mjNEQDATA * weld,
+                                     file.eq_data + mjNEQDATA * (weld + 1));
+  bool stale = false;
+  while (task.state() < PickPlaceState::lift) {
+    ASSERT_TRUE(rig.sim.tick(task).ok());
+    if (!stale && task.state() == PickPlaceState::dwell_c) {
+      ASSERT_TRUE(rig.weld->active());
+      ASSERT_TRUE(rig.sim.set_equality_data(weld, compiled));
+      stale = true;
+    }
+  }
+  ASSERT_TRUE(stale);
+  EXPECT_GT(task.trace().weld_jump, 1e-3);
 }
 
 TEST(PickPlaceTask, TheControlLoopAllocatesNothing) {
