@@ -1,4 +1,4 @@
-// 11_pick_place: the classic pick and place on the bundled six-axis arm — the 14-state machine
+// 14_pick_place: the classic pick and place on the bundled six-axis arm — the 14-state machine
 // (approach, descend, grasp, lift, move, place, release, with a dwell between), IK every control
 // tick into the servos, the fingers closed by force control and a weld switched on where the
 // cube is, the cube let go 45 mm above the table as the classic code does. Then the same trial held
