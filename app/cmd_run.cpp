@@ -20,7 +20,7 @@ namespace mjarm::cli {
 
 namespace {
 
-const std::vector<std::string> kScenarios{"shelf-pick", "plan", "docking"};
+const std::vector<std::string> kScenarios{"shelf-pick", "plan", "docking", "pick-place"};
 
 /// Most frames `run --video` may film after the approach (--fps × --settle-time): 5 minutes of
 /// video at 30 fps, about 20 minutes of software rendering at 640x480.
@@ -288,22 +288,26 @@ Command add_run_command(CLI::App& root) {
     std::string size = "640x480";
     double fps = 30.0;
     bool json = false;
-    PlanCliOptions plan;        // run plan ROBOT --waypoints FILE (cmd_run_plan.cpp)
-    DockingCliOptions docking;  // run docking … (cmd_run_docking.cpp)
+    PlanCliOptions plan;             // run plan ROBOT --waypoints FILE (cmd_run_plan.cpp)
+    DockingCliOptions docking;       // run docking … (cmd_run_docking.cpp)
+    PickPlaceCliOptions pick_place;  // run pick-place … (cmd_run_pick_place.cpp)
   };
   auto o = std::make_shared<Options>();
   CLI::App* app = root.add_subcommand(
       "run",
-      "run a closed-loop scenario in simulation and print its figures (shelf-pick, plan, docking)");
+      "run a closed-loop scenario in simulation and print its figures (shelf-pick, plan, docking, "
+      "pick-place)");
   app->add_option("scenario", o->scenario, "scenario to run: " + join(kScenarios))->required();
   app->add_option("plan_robot", o->plan.model, "run plan: the robot (planar2 | panda)");
   add_plan_options(*app, o->plan, false);
   app->get_option("--waypoints")->required(false);
-  app->add_option("--robot", o->robot, "planar2 | panda (torque-motor models)")
-      ->capture_default_str();
+  CLI::Option* robot = app->add_option(
+      "--robot", o->robot,
+      "shelf-pick: planar2 | panda (default panda); pick-place: arm6 | panda_hand (default arm6)");
   CLI::Option* controller =
-      app->add_option("--controller", o->controller,
-                      "ct | osc | task-pd | accel; docking: cic | hqp-ac | se3 (default) | all")
+      app->add_option(
+             "--controller", o->controller,
+             "shelf-pick: ct | osc | task-pd | accel; docking: cic | hqp-ac | se3 (default) | all")
           ->capture_default_str();
   CLI::Option* pick = app->add_option("--pick", o->pick,
                                       "pick point x y z in the world [m] "
@@ -352,7 +356,7 @@ Command add_run_command(CLI::App& root) {
       ->capture_default_str();
   add_json_flag(*app, o->json);
   add_docking_options(*app, o->docking);
-  CLI::Option* robot = app->get_option("--robot");
+  add_pick_place_options(*app, o->pick_place);
   CLI::Option* seeds = app->get_option("--seeds");
   CLI::Option* seed = app->get_option("--seed");
   CLI::Option* settle = app->get_option("--settle-time");
@@ -371,9 +375,19 @@ Command add_run_command(CLI::App& root) {
                                                app->get_option("--plot"),
                                                app->get_option("--jobs")};
 
-  return {app, [o, controller, robot, seed, seeds, settle, period, max_acceleration, all, pick,
-                docking_only] {
+  const std::vector<std::string> pick_place_only{
+      "--grasp",          "--mode",        "--trials",          "--threads",
+      "--classic",        "--object",      "--target",          "--object-size",
+      "--grasp-force",    "--weld-solref", "--noslip",          "--approach-height",
+      "--descend-height", "--lift-height", "--move-height",     "--place-height",
+      "--dwell",          "--grip-time",   "--release-time",    "--max-speed",
+      "--max-accel",      "--cameras",     "--video-per-camera"};
+
+  return {app, [o, app, controller, robot, seed, seeds, settle, period, max_acceleration, all, pick,
+                docking_only, pick_place_only] {
             if (o->scenario == "docking") {
+              for (const std::string& name : pick_place_only)
+                if (app->count(name) > 0) throw UsageError(name + " is a pick-place option");
               for (const CLI::Option* shelf :
                    {robot, pick, seed, seeds, settle, period, max_acceleration, all})
                 if (shelf->count() > 0)
@@ -398,6 +412,29 @@ Command add_run_command(CLI::App& root) {
             for (const CLI::Option* docking : docking_only)
               if (docking->count() > 0)
                 throw UsageError(docking->get_name() + " is a docking option ('run docking')");
+            if (o->scenario == "pick-place") {
+              if (o->all || !o->pick.empty() || controller->count() > 0 ||
+                  app->count("--camera") > 0 || app->count("--seeds") > 0 ||
+                  !o->plan.model.empty() || !o->plan.waypoints.empty())
+                throw UsageError(
+                    "--all, --seeds, --pick, --controller, --camera, ROBOT and --waypoints are "
+                    "not pick-place options (see mjarm run --help)");
+              RunCommonOptions common;
+              common.robot = robot->count() > 0 ? o->robot : "";
+              common.seed = o->seed;
+              common.record = o->record;
+              common.control_period = o->control_period;
+              common.max_acceleration = o->max_acceleration;
+              common.settle_time = o->settle_time;
+              common.video = o->video;
+              common.size = o->size;
+              common.fps = o->fps;
+              common.json = o->json;
+              return run_pick_place_scenario(o->pick_place, common);
+            }
+            for (const std::string& name : pick_place_only) {
+              if (app->count(name) > 0) throw UsageError(name + " is a pick-place option");
+            }
             if (o->scenario == "plan") {
               if (o->plan.waypoints.empty()) throw UsageError("run plan needs --waypoints FILE");
               const InterruptGuard interrupts;

@@ -16,6 +16,7 @@
 #include "mjarm/model/robot.hpp"
 #include "mjarm/planning/waypoint_planner.hpp"
 #include "mjarm/tasks/docking.hpp"
+#include "mjarm/tasks/pick_place.hpp"
 #include "options.hpp"
 #include "output.hpp"
 
@@ -108,6 +109,35 @@ void add_docking_options(CLI::App& app, DockingCliOptions& options);
 void run_docking_scenario(const DockingCliOptions& options, const std::string& controller,
                           const DockingVideo& video, const std::string& record, bool json,
                           double max_video_frames);
+/// The options of `mjarm run` that every scenario shares.
+struct RunCommonOptions {
+  std::string robot;  ///< empty: the scenario's default
+  std::uint64_t seed = 1;
+  std::string record;
+  double control_period = 0.0;
+  double max_acceleration = 1e6;
+  double settle_time = 1.0;
+  std::string video;
+  std::string size = "640x480";
+  double fps = 30.0;
+  bool json = false;
+};
+/// What `mjarm run pick-place` reads from the command line beyond the shared options.
+struct PickPlaceCliOptions {
+  PickPlaceOptions options;  ///< constants, criteria, classic edits
+  std::string grasp = "weld";
+  std::string mode = "position";
+  std::uint64_t trials = 1;
+  std::uint64_t threads = 0;
+  std::vector<double> object, target, solref;
+  double object_size = 0.0;
+  std::vector<std::string> cameras;
+  bool separate = false;
+};
+/// Registers the pick-place options on `run` (cmd_run_pick_place.cpp).
+void add_pick_place_options(CLI::App& app, PickPlaceCliOptions& options);
+/// `mjarm run pick-place …`: one trial, or a batch with its table.
+void run_pick_place_scenario(PickPlaceCliOptions options, const RunCommonOptions& common);
 
 /// Everything `info` reports about a model, as JSON.
 Json model_json(const Robot& robot);

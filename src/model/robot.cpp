@@ -49,6 +49,13 @@ struct MemoryFsDeleter {
 
 /// Loads XML text through MuJoCo's virtual file system; paths in it must be absolute. With
 /// @p translation, line numbers in MuJoCo's messages are mapped back to the user's files.
+// MuJoCo 2.2.2's XML loader keeps the last parsed model in a global (for mj_saveLastXML): loads
+// from several threads (parallel trial batches) take turns
+std::mutex& xml_loader_mutex() {
+  static std::mutex mutex;
+  return mutex;
+}
+
 mjModel* load_from_memory(const std::string& xml, const std::string& source,
                           const MjcfTranslation* translation = nullptr) {
   const std::unique_ptr<mjVFS, MemoryFsDeleter> vfs(new mjVFS);
@@ -59,7 +66,11 @@ mjModel* load_from_memory(const std::string& xml, const std::string& source,
   const int index = mj_findFileVFS(vfs.get(), file_name);
   std::memcpy(vfs->filedata[index], xml.data(), xml.size());
   char error[1024] = "";
-  mjModel* model = mj_loadXML(file_name, vfs.get(), error, sizeof(error));
+  mjModel* model = nullptr;
+  {
+    const std::lock_guard<std::mutex> guard(xml_loader_mutex());
+    model = mj_loadXML(file_name, vfs.get(), error, sizeof(error));
+  }
   const std::string message = translation ? translation->to_source_lines(error) : error;
   if (model == nullptr) throw Error("cannot load " + source + ": " + message);
   if (!message.empty()) print_mujoco_warning(message.c_str());
@@ -68,7 +79,11 @@ mjModel* load_from_memory(const std::string& xml, const std::string& source,
 
 mjModel* load_from_disk(const std::filesystem::path& path) {
   char error[1024] = "";
-  mjModel* model = mj_loadXML(path.c_str(), nullptr, error, sizeof(error));
+  mjModel* model = nullptr;
+  {
+    const std::lock_guard<std::mutex> guard(xml_loader_mutex());
+    model = mj_loadXML(path.c_str(), nullptr, error, sizeof(error));
+  }
   if (model == nullptr) throw Error("cannot load '" + path.string() + "': " + error);
   if (error[0] != '\0') print_mujoco_warning(error);
   return model;

@@ -483,6 +483,11 @@ void Scene::set_attribute(std::string_view kind, std::string_view element_name,
   set_attribute(kind, element_name, attr, std::string_view(numbers_text(values)));
 }
 
+void Scene::set_option(std::string_view attr, std::string_view value) {
+  if (attr.empty()) throw Error("scene '" + impl_->name + "': set_option needs an attribute name");
+  impl_->sec("option").set(std::string(attr), std::string(value));
+}
+
 std::string Scene::xml() const { return mjcf_detail::write_document(impl_->root); }
 
 Robot Scene::compile() const {

@@ -121,6 +121,11 @@ Recorder::Recorder(const Simulation& simulation, const std::filesystem::path& di
   } else if (simulation.controller_count() > 0) {
     frame = simulation.controller(0).chain().frame();
   }
+  for (const RecorderChannel& channel : options.channels) {
+    if (channel.value == nullptr || channel.name.empty()) {
+      throw Error("recorder: channel '" + channel.name + "' needs a name and a value to read");
+    }
+  }
   impl_ = std::make_unique<Impl>(simulation, directory, options);
   Impl& im = *impl_;
   im.frame = frame;
@@ -169,6 +174,15 @@ Recorder::Recorder(const Simulation& simulation, const std::filesystem::path& di
   for (int a : im.saturation_columns)
     task_columns.push_back("sat." + object_name(m, mjOBJ_ACTUATOR, a, "actuator"));
   im.saturation_counts.assign(im.saturation_columns.size(), 0);
+  for (const RecorderChannel& channel : options.channels) {
+    if (std::find(task_columns.begin(), task_columns.end(), channel.name) != task_columns.end()) {
+      // nothing was recorded yet: leave no staging folder behind
+      std::error_code ec;
+      std::filesystem::remove_all(im.staging.staging(), ec);
+      throw Error("recorder: channel '" + channel.name + "' repeats a task.csv column name");
+    }
+    task_columns.push_back(channel.name);
+  }
 
   try {
     im.state = std::make_unique<sim_detail::CsvStream>(im.staging.staged(kState), state_columns,
@@ -345,6 +359,7 @@ void Recorder::on_control_tick(const Simulation& simulation, const Reference& re
     im.saturation_counts[k] += s;
     csv.add(static_cast<double>(s));
   }
+  for (const RecorderChannel& channel : im.options.channels) csv.add(*channel.value);
   csv.end_row();
 }
 

@@ -27,12 +27,16 @@ const RunVideoOptions& checked(const RunVideoOptions& options) {
 
 RunVideo::RunVideo(const Robot& robot, const mjData& start, const std::filesystem::path& path,
                    CameraSpec camera, const RunVideoOptions& options)
+    : RunVideo(robot, start, path, std::vector<CameraSpec>{std::move(camera)}, options, 1) {}
+
+RunVideo::RunVideo(const Robot& robot, const mjData& start, const std::filesystem::path& path,
+                   std::vector<CameraSpec> cameras, const RunVideoOptions& options, int columns)
     : path_(path),
-      camera_(std::move(camera)),
-      renderer_(robot, checked(options).width, options.height, options.render),
-      frame_(renderer_.render(start, camera_)),  // checks the camera before ffmpeg starts
+      renderer_(robot, checked(options).width, options.height, std::move(cameras), columns,
+                options.render),
+      frame_(renderer_.render(start)),  // checks the cameras before ffmpeg starts
       schedule_(options.fps, start.time),
-      writer_(path, options.width, options.height, options.fps, options.encoding) {
+      writer_(path, renderer_.width(), renderer_.height(), options.fps, options.encoding) {
   // frame 0 is the start state
   for (int due = schedule_.frames_due(start.time); due > 0; --due) writer_.write(frame_);
 }
@@ -40,7 +44,7 @@ RunVideo::RunVideo(const Robot& robot, const mjData& start, const std::filesyste
 void RunVideo::write_due(const mjData& data) {
   const int due = schedule_.frames_due(data.time);
   if (due == 0) return;
-  renderer_.render(data, camera_, frame_);
+  renderer_.render(data, frame_);
   for (int k = 0; k < due; ++k) writer_.write(frame_);
 }
 

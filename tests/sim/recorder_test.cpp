@@ -307,6 +307,37 @@ TEST(Recorder, BadOptionsAndLateControllersAreRefused) {
   EXPECT_THROW(other.run(source, 0.1, &early), Error);
 }
 
+TEST(Recorder, ChannelsAreTaskColumnsReadEveryTick) {
+  Planar2Run p;
+  test::TempDir dir("channels");
+  double force = 0.0, slip = -1.0;
+  RecorderOptions options;
+  options.channels = {{"grasp.force", &force}, {"grasp.slip", &slip}};
+  Recorder recorder(p.sim, dir.path() / "run", options);
+  for (int k = 0; k < 5; ++k) {
+    force = 0.5 * k;
+    ASSERT_TRUE(p.sim.tick(p.reference, &recorder).ok());
+  }
+  recorder.finalize("finished");
+  const Csv task = read_csv(dir.path() / "run" / "task.csv");
+  ASSERT_EQ(task.header.back(), "grasp.slip");
+  ASSERT_EQ(task.header[task.header.size() - 2], "grasp.force");
+  ASSERT_EQ(task.rows.size(), 5u);
+  for (std::size_t k = 0; k < 5; ++k) {
+    EXPECT_EQ(task.value(k, "grasp.force"), 0.5 * static_cast<double>(k));
+    EXPECT_EQ(task.value(k, "grasp.slip"), -1.0);
+  }
+  // refused before anything touches the disk: no value, no name, a name already taken
+  for (const RecorderChannel& bad : {RecorderChannel{"x", nullptr}, RecorderChannel{"", &force},
+                                     RecorderChannel{"gripper_ref", &force}}) {
+    RecorderOptions o;
+    o.channels = {bad};
+    EXPECT_THROW(Recorder(p.sim, dir.path() / "bad", o), Error) << bad.name;
+    const std::filesystem::path folder = dir.path() / "bad";
+    EXPECT_TRUE(!std::filesystem::exists(folder) || test::partial_folders(folder) == 0);
+  }
+}
+
 // A caller that returns early without finalize still gets the run's status (here: interrupted).
 TEST(Recorder, DestroyedAfterARunKeepsTheRunStatus) {
   Planar2Run p;
@@ -352,7 +383,7 @@ TEST(Recorder, KinematicMovesAreStateRows) {
   Simulation sim(robot, options);
   test::TempDir dir("kinematic");
   {
-    Recorder recorder(sim, dir.path(), RecorderOptions{1, 256, "tip"});
+    Recorder recorder(sim, dir.path(), RecorderOptions{1, 256, "tip", {}});
     for (int k = 1; k <= 10; ++k) {
       const double q[2] = {0.01 * k, -0.02 * k};
       sim.move(q, 0.01, &recorder);

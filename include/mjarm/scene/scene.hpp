@@ -88,6 +88,12 @@ class Scene {
   void set_attribute(std::string_view kind, std::string_view name, std::string_view attribute,
                      std::span<const double> values);
 
+  /// Sets a global simulation option, `<option ATTRIBUTE="VALUE">` (timestep, impratio,
+  /// noslip_iterations, cone, ...), over whatever a part set. MuJoCo checks the value at the next
+  /// `compile()`.
+  /// @throws Error for an empty attribute name.
+  void set_option(std::string_view attribute, std::string_view value);
+
   /// The composed MJCF document (MuJoCo 2.2.2, radians, absolute asset paths).
   std::string xml() const;
 

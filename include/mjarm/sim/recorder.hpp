@@ -15,7 +15,8 @@
 ///   ee.qy ee.qz`), the reference pose (`ref.*`), the error `err.vx … err.wz` (task_error: world
 ///   axes, linear first, m and rad); `gripper_ref`; `qref.<joint>` of the first controller's chain
 ///   (NaN when reference.joint.q does not have that size); per controller `cmd.<ctrl>.<joint>`
-///   and `<ctrl>.<internal>`; `sat.<actuator>` (1 when clipped this tick).
+///   and `<ctrl>.<internal>`; `sat.<actuator>` (1 when clipped this tick); then the
+///   `RecorderOptions::channels` (a task's own figures: grasp force, slip).
 /// - events.csv: `t,kind,message` for phase changes, grasps, warnings, divergence, interrupts.
 /// - summary.json also lists the actuators: name, kind, joint, gear and `force_range`, the range
 ///   of the `force.<actuator>` column (forcerange, and gain·ctrlrange for motors; null when
@@ -27,8 +28,8 @@
 /// written so far stay in the .partial folder with a summary.json whose `write_error` names the
 /// failure (when the summary itself can still be written), and the error names both. The destructor
 /// finalizes a recording that was not finalized, with status "error" when an exception is
-/// unwinding, the status of the last `Simulation::run` when there was one, "aborted" otherwise. If the process is killed outright, the rows flushed so far
-/// stay in the .partial folder.
+/// unwinding, the status of the last `Simulation::run` when there was one, "aborted" otherwise. If
+/// the process is killed outright, the rows flushed so far stay in the .partial folder.
 ///
 /// Rows are formatted into preallocated buffers (shortest round-trip decimal) and written through
 /// stdio buffers owned by the recorder: recording a row allocates nothing.
@@ -49,6 +50,13 @@ namespace mjarm {
 
 class Simulation;
 
+/// An extra task.csv column: a value something else keeps up to date (a grasp monitor's force),
+/// read at every control tick after the controllers ran.
+struct RecorderChannel {
+  std::string name;               ///< column name, e.g. "grasp.force"
+  const double* value = nullptr;  ///< read each tick; must outlive the recorder's last row
+};
+
 /// Options of a `Recorder`.
 struct RecorderOptions {
   int state_decimation = 1;  ///< one state row every N physics steps (≥ 1)
@@ -56,6 +64,8 @@ struct RecorderOptions {
   /// Frame (site or body name) logged as the end effector in task.csv; empty: the frame of the
   /// first controller's chain; no pose columns when there is neither.
   std::string frame;
+  /// Extra task.csv columns, after the `sat.*` columns, in this order.
+  std::vector<RecorderChannel> channels;
 };
 
 /// Records the run of one `Simulation` into a directory. Build it after the controllers were

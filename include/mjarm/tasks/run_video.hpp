@@ -8,12 +8,14 @@
 #include <cstdint>
 #include <filesystem>
 #include <string>
+#include <vector>
 
 #include "mjarm/model/robot.hpp"
 #include "mjarm/render/camera.hpp"
 #include "mjarm/render/frame_schedule.hpp"
 #include "mjarm/render/image.hpp"
 #include "mjarm/render/offscreen_renderer.hpp"
+#include "mjarm/render/tiled_renderer.hpp"
 #include "mjarm/render/video_writer.hpp"
 #include "mjarm/tasks/tick_observer.hpp"
 
@@ -52,6 +54,13 @@ class RunVideo final : public TickObserver {
   RunVideo(const Robot& robot, const mjData& start, const std::filesystem::path& path,
            CameraSpec camera, const RunVideoOptions& options = {});
 
+  /// Several cameras at once: each frame is a grid of pictures of options.width ×
+  /// options.height, one per camera (`TiledRenderer`; @p columns 0 = one row up to three
+  /// cameras, else ⌈√n⌉ columns). The video is columns·width × rows·height pixels.
+  /// @throws Error as above, and for an empty camera list.
+  RunVideo(const Robot& robot, const mjData& start, const std::filesystem::path& path,
+           std::vector<CameraSpec> cameras, const RunVideoOptions& options = {}, int columns = 0);
+
   /// Writes the frames due at data.time. Never throws: the first failure is kept in `error()`
   /// and no more frames are rendered; the run goes on. When the renderer failed, the file is
   /// finalized with the frames so far; when ffmpeg failed (it died, a full disk), no video is
@@ -69,19 +78,21 @@ class RunVideo final : public TickObserver {
   /// True once a finalized, checked MP4 is at `path()` (see `VideoWriter::complete`).
   bool complete() const noexcept { return writer_.complete(); }
   const std::filesystem::path& path() const noexcept { return path_; }
-  const CameraSpec& camera() const noexcept { return camera_; }
+  /// The (first) camera.
+  const CameraSpec& camera() const noexcept { return renderer_.cameras().front(); }
+  /// Every camera, in tile order.
+  const std::vector<CameraSpec>& cameras() const noexcept { return renderer_.cameras(); }
   /// The first failure during the run (empty when none).
   const std::string& error() const noexcept { return error_; }
-  int width() const noexcept { return renderer_.width(); }    ///< [pixels]
-  int height() const noexcept { return renderer_.height(); }  ///< [pixels]
+  int width() const noexcept { return renderer_.width(); }    ///< of the video [pixels]
+  int height() const noexcept { return renderer_.height(); }  ///< of the video [pixels]
   double fps() const noexcept { return schedule_.fps(); }     ///< [frames/s]
 
  private:
   void write_due(const mjData& data);
 
   std::filesystem::path path_;
-  CameraSpec camera_;
-  OffscreenRenderer renderer_;
+  TiledRenderer renderer_;
   Image frame_;
   FrameSchedule schedule_;
   VideoWriter writer_;
