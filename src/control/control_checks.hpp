@@ -16,6 +16,32 @@
 
 namespace mjarm::detail {
 
+/// The finger positions of one end of a gripper's stroke: @p given (one per finger joint), or
+/// the joints' upper (@p upper) or lower limits when @p given is empty.
+/// @throws Error "<owner>: options.<what> …" for a wrong count, a non-finite value, or an
+/// infinite joint range with nothing given.
+inline Eigen::VectorXd finger_stroke_end(const Chain& chain, const Eigen::VectorXd& given,
+                                         bool upper, const char* owner, const char* what) {
+  const int n = chain.size();
+  if (given.size() == n) {
+    if (!given.allFinite())
+      throw Error(std::string(owner) + ": options." + what + " must be finite");
+    return given;
+  }
+  if (given.size() != 0) {
+    throw Error(std::string(owner) + ": options." + what + " needs " + std::to_string(n) +
+                " entries (one per finger joint) or none, got " + std::to_string(given.size()));
+  }
+  const Eigen::VectorXd& limit = upper ? chain.upper() : chain.lower();
+  for (int i = 0; i < n; ++i) {
+    if (!std::isfinite(limit[i])) {
+      throw Error(std::string(owner) + ": finger joint '" + chain.joint_names()[i] +
+                  "' has no finite range; give options.open and options.closed");
+    }
+  }
+  return limit;
+}
+
 /// "[a, b, c]" for error messages.
 inline std::string values_text(const Eigen::Ref<const Eigen::VectorXd>& v) {
   std::ostringstream os;

@@ -5,6 +5,7 @@
 #include <optional>
 #include <string>
 
+#include "control_checks.hpp"
 #include "mjarm/error.hpp"
 
 namespace mjarm {
@@ -19,28 +20,6 @@ void check_gain(double value, const char* what, bool zero_allowed) {
   }
 }
 
-Eigen::VectorXd stroke_end(const Chain& chain, const Eigen::VectorXd& given, bool upper,
-                           const char* what) {
-  const int n = chain.size();
-  if (given.size() == n) {
-    if (!given.allFinite())
-      throw Error(std::string("FingerForceController: options.") + what + " must be finite");
-    return given;
-  }
-  if (given.size() != 0) {
-    throw Error(std::string("FingerForceController: options.") + what + " needs " +
-                std::to_string(n) + " entries (one per finger joint) or none, got " +
-                std::to_string(given.size()));
-  }
-  const Eigen::VectorXd& limit = upper ? chain.upper() : chain.lower();
-  for (int i = 0; i < n; ++i) {
-    if (!std::isfinite(limit[i])) {
-      throw Error("FingerForceController: finger joint '" + chain.joint_names()[i] +
-                  "' has no finite range; give options.open and options.closed");
-    }
-  }
-  return limit;
-}
 
 }  // namespace
 
@@ -48,8 +27,10 @@ FingerForceController::FingerForceController(const Chain& fingers,
                                              const FingerForceOptions& options)
     : options_(options),
       dynamics_(fingers),
-      open_(stroke_end(fingers, options.open, true, "open")),
-      closed_(stroke_end(fingers, options.closed, false, "closed")) {
+      open_(
+          detail::finger_stroke_end(fingers, options.open, true, "FingerForceController", "open")),
+      closed_(detail::finger_stroke_end(fingers, options.closed, false, "FingerForceController",
+                                        "closed")) {
   const int n = fingers.size();
   if (n > kMaxFingers) {
     throw Error("FingerForceController: at most " + std::to_string(kMaxFingers) +

@@ -4,41 +4,19 @@
 #include <cmath>
 #include <string>
 
+#include "control_checks.hpp"
 #include "mjarm/error.hpp"
 
 namespace mjarm {
-namespace {
-
-// the finger positions for one end of the stroke: given, or a joint limit
-Eigen::VectorXd stroke_end(const Chain& chain, const Eigen::VectorXd& given, bool upper, const char* what) {
-  const int n = chain.size();
-  if (given.size() == n) {
-    if (!given.allFinite()) throw Error(std::string("GripperPdController: options.") + what + " must be finite");
-    return given;
-  }
-  if (given.size() != 0) {
-    throw Error(std::string("GripperPdController: options.") + what + " needs " + std::to_string(n) +
-                " entries (one per finger joint) or none, got " + std::to_string(given.size()));
-  }
-  const Eigen::VectorXd& limit = upper ? chain.upper() : chain.lower();
-  for (int i = 0; i < n; ++i) {
-    if (!std::isfinite(limit[i])) {
-      throw Error("GripperPdController: finger joint '" + chain.joint_names()[i] +
-                  "' has no finite range; give options.open and options.closed");
-    }
-  }
-  return limit;
-}
-
-}  // namespace
 
 GripperPdController::GripperPdController(const Chain& fingers, const GripperPdOptions& options)
     : gains_(options.gains.expanded(fingers.size(), "GripperPdController")),
       max_force_(options.max_force),
       gravity_(options.gravity_compensation),
       dynamics_(fingers),
-      open_(stroke_end(fingers, options.open, true, "open")),
-      closed_(stroke_end(fingers, options.closed, false, "closed")) {
+      open_(detail::finger_stroke_end(fingers, options.open, true, "GripperPdController", "open")),
+      closed_(detail::finger_stroke_end(fingers, options.closed, false, "GripperPdController",
+                                        "closed")) {
   if (!(max_force_ > 0.0) || !std::isfinite(max_force_)) {
     throw Error("GripperPdController: options.max_force must be finite and > 0, got " +
                 std::to_string(max_force_));

@@ -1,12 +1,11 @@
 #include "mjarm/env/vector_environment.hpp"
 
-#include <time.h>
-
 #include <cmath>
 #include <cstdio>
 #include <limits>
 #include <string>
 
+#include "mjarm/benchmark_timing.hpp"
 #include "mjarm/env/task_registry.hpp"
 #include "mjarm/error.hpp"
 
@@ -20,11 +19,6 @@ int checked_count(int count) {
   return count;
 }
 
-double thread_cpu_now() noexcept {
-  timespec t{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
-  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
-}
 
 std::string number_text(double v) {
   char text[40];
@@ -81,9 +75,9 @@ void VectorEnvironment::record(int i, const TimeStep& ts) noexcept {
 
 void VectorEnvironment::reset() {
   auto job = [this](int i) {
-    const double start = thread_cpu_now();
+    const double start = thread_cpu_seconds();
     record(i, environments_[static_cast<std::size_t>(i)]->reset());
-    env_cpu_[static_cast<std::size_t>(i)] = thread_cpu_now() - start;
+    env_cpu_[static_cast<std::size_t>(i)] = thread_cpu_seconds() - start;
   };
   pool_.run(size(), job);
   started_ = true;
@@ -114,14 +108,14 @@ void VectorEnvironment::step(std::span<const double> actions) {
   }
   actions_ = actions;
   auto job = [this, width](int i) {
-    const double start = thread_cpu_now();
+    const double start = thread_cpu_seconds();
     Environment& env = *environments_[static_cast<std::size_t>(i)];
     if (step_types_[static_cast<std::size_t>(i)] == StepType::last) {
       record(i, env.reset());
     } else {
       record(i, env.step(actions_.subspan(static_cast<std::size_t>(i) * width, width)));
     }
-    env_cpu_[static_cast<std::size_t>(i)] = thread_cpu_now() - start;
+    env_cpu_[static_cast<std::size_t>(i)] = thread_cpu_seconds() - start;
   };
   pool_.run(size(), job);
 }

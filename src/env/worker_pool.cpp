@@ -1,21 +1,11 @@
 #include "mjarm/env/worker_pool.hpp"
 
-#include <time.h>
-
 #include <string>
 
+#include "mjarm/benchmark_timing.hpp"
 #include "mjarm/error.hpp"
 
 namespace mjarm {
-namespace {
-
-double thread_cpu_now() noexcept {
-  timespec t{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
-  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
-}
-
-}  // namespace
 
 WorkerPool::WorkerPool(int threads) {
   if (threads < 1 || threads > 256)
@@ -35,7 +25,7 @@ WorkerPool::~WorkerPool() {
 }
 
 void WorkerPool::work(int slot) noexcept {
-  const double start = thread_cpu_now();
+  const double start = thread_cpu_seconds();
   for (int i = next_.fetch_add(1, std::memory_order_relaxed); i < count_;
        i = next_.fetch_add(1, std::memory_order_relaxed)) {
     try {
@@ -45,7 +35,7 @@ void WorkerPool::work(int slot) noexcept {
       if (!error_) error_ = std::current_exception();
     }
   }
-  cpu_seconds_[static_cast<std::size_t>(slot)] = thread_cpu_now() - start;  // this slot's own
+  cpu_seconds_[static_cast<std::size_t>(slot)] = thread_cpu_seconds() - start;  // this slot's own
 }
 
 void WorkerPool::worker_loop(int slot) noexcept {

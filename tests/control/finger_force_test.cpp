@@ -18,11 +18,11 @@
 namespace mjarm {
 namespace {
 
-struct Rig {
+struct FingerRig {
   Robot robot;
   Chain fingers{robot, {"left", "right"}, "hand"};
   DataPtr d = robot.make_data();
-  explicit Rig(bool servos, bool gravity = false, double kp = 400.0)
+  explicit FingerRig(bool servos, bool gravity = false, double kp = 400.0)
       : robot(Robot::from_string(test::finger_rig(servos, gravity, kp))) {
     d->qpos[robot.joint_info(robot.joint("left")).qpos_address] = 0.04;
     d->qpos[robot.joint_info(robot.joint("right")).qpos_address] = 0.04;
@@ -54,7 +54,7 @@ struct Rig {
 };
 
 TEST(FingerForceController, SqueezeSettlesAtTheGraspForceAndCentresTheObject) {
-  Rig rig(false);
+  FingerRig rig(false);
   FingerForceController fingers(rig.fingers, rig.options(CommandKind::torque, 6.0));
   test::run_loop(rig.robot, *rig.d, {&fingers}, 1000,
                  [](double, Reference& r) { r.gripper = 1.0; });
@@ -65,7 +65,7 @@ TEST(FingerForceController, SqueezeSettlesAtTheGraspForceAndCentresTheObject) {
   EXPECT_NEAR(rig.cube_y(), 0.0, 2e-4);  // started 5 mm off centre
   EXPECT_NEAR(fingers.internal_values()[2], 6.0, 0.05);
   // the force follows the setting, not the object's size
-  Rig other(false);
+  FingerRig other(false);
   FingerForceController stronger(other.fingers, other.options(CommandKind::torque, 12.0));
   test::run_loop(other.robot, *other.d, {&stronger}, 1000,
                  [](double, Reference& r) { r.gripper = 1.0; });
@@ -73,7 +73,7 @@ TEST(FingerForceController, SqueezeSettlesAtTheGraspForceAndCentresTheObject) {
 }
 
 TEST(FingerForceController, FreeFingersFollowTheFractionAndLetGo) {
-  Rig rig(false);
+  FingerRig rig(false);
   FingerForceOptions o = rig.options(CommandKind::torque);
   o.object_geoms.clear();  // never "touching": a position gripper
   o.finger_geoms.clear();
@@ -83,7 +83,7 @@ TEST(FingerForceController, FreeFingersFollowTheFractionAndLetGo) {
   EXPECT_NEAR(rig.fingers.gather(rig.d->qpos)[0], 0.03, 2e-4);
   EXPECT_EQ(free.touching_count(), 0);
 
-  Rig held(false);
+  FingerRig held(false);
   FingerForceController grip(held.fingers, held.options(CommandKind::torque));
   test::run_loop(held.robot, *held.d, {&grip}, 600, [](double, Reference& r) { r.gripper = 1.0; });
   ASSERT_EQ(grip.touching_count(), 2);
@@ -95,7 +95,7 @@ TEST(FingerForceController, FreeFingersFollowTheFractionAndLetGo) {
 
 TEST(FingerForceController, ServoTargetsGiveTheForceWithinTheServosReach) {
   // kp = 3200: the servo reaches kp·0.015 = 48 N from the cube's faces, so 6 N is met exactly
-  Rig rig(true, false, 3200.0);
+  FingerRig rig(true, false, 3200.0);
   FingerForceController fingers(rig.fingers, rig.options(CommandKind::position, 6.0));
   EXPECT_EQ(fingers.command_kind(), CommandKind::position);
   test::run_loop(rig.robot, *rig.d, {&fingers}, 1000,
@@ -104,7 +104,7 @@ TEST(FingerForceController, ServoTargetsGiveTheForceWithinTheServosReach) {
   EXPECT_NEAR(f[0], 6.0, 0.05);
   EXPECT_NEAR(f[1], 6.0, 0.05);
   // kp = 200: at most 200 N/m · 15 mm = 3 N before the target would leave ctrlrange [0, 0.04]
-  Rig weak(true, false, 200.0);
+  FingerRig weak(true, false, 200.0);
   FingerForceController capped(weak.fingers, weak.options(CommandKind::position, 6.0));
   Eigen::VectorXd lowest = Eigen::VectorXd::Constant(2, 1.0);
   test::run_loop(
@@ -121,7 +121,7 @@ TEST(FingerForceController, ServoTargetsGiveTheForceWithinTheServosReach) {
 }
 
 TEST(FingerForceController, ComputeAllocatesNothing) {
-  Rig rig(false);
+  FingerRig rig(false);
   FingerForceController fingers(rig.fingers, rig.options(CommandKind::torque));
   Reference r;
   r.gripper = 1.0;
@@ -133,7 +133,7 @@ TEST(FingerForceController, ComputeAllocatesNothing) {
 }
 
 TEST(FingerForceController, BadInput) {
-  Rig rig(false);
+  FingerRig rig(false);
   const auto error = [&](FingerForceOptions o) {
     return test::error_of([&] { FingerForceController(rig.fingers, o); });
   };

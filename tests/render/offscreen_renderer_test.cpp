@@ -18,6 +18,7 @@ namespace {
 using test::changed_pixels;
 using test::error_of;
 using test::pixel_stats;
+using test::same;
 
 constexpr int kW = 320;
 constexpr int kH = 240;
@@ -36,10 +37,6 @@ constexpr const char* kCameraScene = R"(
 </mujoco>)";
 
 const CameraSpec kFront = CameraSpec::free_camera({0.2, 0.0, 0.45}, 1.9, 150.0, -20.0);
-
-bool same(const Image& a, const Image& b) {
-  return a.width == b.width && a.height == b.height && a.rgb == b.rgb;
-}
 
 TEST(OffscreenRenderer, PandaFrameIsNotBlankAndRowZeroIsTheTop) {
   const Robot panda = Robot::bundled("panda");

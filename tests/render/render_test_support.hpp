@@ -69,6 +69,11 @@ inline PixelStats pixel_stats(const Image& image) {
   return s;
 }
 
+/// Same size and the same bytes, pixel for pixel.
+inline bool same(const Image& a, const Image& b) {
+  return a.width == b.width && a.height == b.height && a.rgb == b.rgb;
+}
+
 /// True where two images differ by more than @p threshold (sum of |Δ| over r, g, b).
 inline std::vector<bool> changed_pixels(const Image& a, const Image& b, int threshold = 30) {
   std::vector<bool> changed(a.pixels(), false);

@@ -13,6 +13,7 @@ namespace mjarm {
 namespace {
 
 using test::error_of;
+using test::same;
 
 constexpr const char* kTwoCameras = R"(
 <mujoco model="tiles">
@@ -31,10 +32,6 @@ Image tile_of(const Image& image, int column, int row, int w, int h) {
     for (int x = 0; x < w; ++x)
       for (int c = 0; c < 3; ++c) out.at(x, y)[c] = image.at(column * w + x, row * h + y)[c];
   return out;
-}
-
-bool same(const Image& a, const Image& b) {
-  return a.width == b.width && a.height == b.height && a.rgb == b.rgb;
 }
 
 TEST(TileGrid, OneRowUpToThreeThenASquare) {

@@ -18,14 +18,8 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::string slurp(const fs::path& path) {
-  std::ifstream in(path);
-  std::stringstream buffer;
-  buffer << in.rdbuf();
-  return buffer.str();
-}
-
 using test::scratch;
+using test::slurp;
 
 ShelfPickOptions options(const std::string& robot, const std::string& controller,
                          std::uint64_t seed) {
