@@ -34,6 +34,9 @@ bool has_several_hands(const Robot& robot) {
 
 ViewerReport run_viewer(const Robot& robot, const ViewerOptions& options) {
   require_display();
+  // Ctrl-C ends the session with its report (and its recording) from here on: also while the
+  // session and the window are being built, which takes seconds on a slow machine
+  const InterruptGuard interrupt_guard;
   detail::ViewerShell shell(robot, options);
   try {
     return shell.run();
@@ -57,7 +60,6 @@ ViewerReport ViewerShell::run() {
     execute(command);
   }
   schedule_ = ViewerSchedule(options_.rates, driver_->control_period(), clock_);
-  const InterruptGuard interrupt_guard;  // Ctrl-C ends the session with its report
   while (!quit_) {
     if (!scripted) clock_ = glfwGetTime();
     const ScheduleStep step = schedule_.update(clock_, paused_);
