@@ -41,19 +41,52 @@ Json pose_summary(const Pose& X) {
   return {{"position", vector_json(X.p)}, {"rpy", vector_json(rpy_from_rotation(X.R))}};
 }
 
-Json report_json(const Robot& robot, const ViewerReport& report, const std::string& site) {
-  const ViewerStats& s = report.stats;
+// what every viewer report holds
+Json common_report_json(const Robot& robot, const ViewerReport& report, SimulationMode mode,
+                        double sim_time) {
   Json doc;
   doc["model"] = robot.name();
-  doc["site"] = site;
   doc["ended_by"] = report.ended_by;
-  doc["mode"] = to_string(s.mode);
+  doc["mode"] = to_string(mode);
   doc["frames"] = report.frames;
   doc["input_polls"] = report.polls;
   doc["control_ticks"] = report.ticks;
-  doc["sim_time"] = s.time;
+  doc["sim_time"] = sim_time;
   doc["wall_seconds"] = report.wall_seconds;
   doc["dropped_sim_time"] = report.dropped;
+  return doc;
+}
+
+// a screenshot: the end effector and its target (one arm), or the lift and each hand
+Json screenshots_json(const ViewerReport& report) {
+  Json shots = Json::array();
+  for (const ViewerScreenshot& shot : report.screenshots) {
+    Json j{{"path", shot.path},     {"frame", shot.frame},
+           {"sim_time", shot.time}, {"mode", to_string(shot.mode)},
+           {"width", shot.width},   {"height", shot.height}};
+    if (report.teleop) {
+      Json hands = Json::array();
+      for (const ViewerHandShot& h : shot.hands) {
+        hands.push_back({{"name", h.name},
+                         {"position", vector_json(h.p_WE)},
+                         {"target", vector_json(h.p_WT)},
+                         {"gripper", h.gripper}});
+      }
+      j["lift"] = shot.lift;
+      j["hands"] = hands;
+    } else {
+      j["end_effector"] = vector_json(shot.p_WE);
+      j["target"] = vector_json(shot.p_WT);
+    }
+    shots.push_back(j);
+  }
+  return shots;
+}
+
+Json report_json(const Robot& robot, const ViewerReport& report, const std::string& site) {
+  const ViewerStats& s = report.stats;
+  Json doc = common_report_json(robot, report, s.mode, s.time);
+  doc["site"] = site;
   doc["end_effector"] = pose_summary(s.X_WE);
   doc["target"] = pose_summary(s.X_WT);
   doc["reference"] = pose_summary(s.X_WR);
@@ -64,18 +97,7 @@ Json report_json(const Robot& robot, const ViewerReport& report, const std::stri
   doc["saturated"] = s.saturated;
   doc["contacts"] = s.contacts.contacts;
   doc["fault"] = s.faulted ? Json(s.fault) : Json(nullptr);
-  Json shots = Json::array();
-  for (const ViewerScreenshot& shot : report.screenshots) {
-    shots.push_back({{"path", shot.path},
-                     {"frame", shot.frame},
-                     {"sim_time", shot.time},
-                     {"mode", to_string(shot.mode)},
-                     {"end_effector", vector_json(shot.p_WE)},
-                     {"target", vector_json(shot.p_WT)},
-                     {"width", shot.width},
-                     {"height", shot.height}});
-  }
-  doc["screenshots"] = shots;
+  doc["screenshots"] = screenshots_json(report);
   doc["gl"] = report.gl;
   return doc;
 }
@@ -84,16 +106,7 @@ Json hands_report_json(const Robot& robot, const ViewerReport& report) {
   const TeleopViewerReport& t = *report.teleop;
   const TeleopStats& s = t.stats;
   static constexpr const char* kPriorities[3] = {"equal", "right-over-left", "left-over-right"};
-  Json doc;
-  doc["model"] = robot.name();
-  doc["ended_by"] = report.ended_by;
-  doc["mode"] = to_string(s.mode);
-  doc["frames"] = report.frames;
-  doc["input_polls"] = report.polls;
-  doc["control_ticks"] = report.ticks;
-  doc["sim_time"] = s.time;
-  doc["wall_seconds"] = report.wall_seconds;
-  doc["dropped_sim_time"] = report.dropped;
+  Json doc = common_report_json(robot, report, s.mode, s.time);
   doc["lift"] = {{"position", s.lift}, {"reference", s.lift_reference}, {"panel", t.panel.lift}};
   doc["priority"] = t.panel.priority >= 0 && t.panel.priority < 3
                         ? Json(kPriorities[t.panel.priority])
@@ -128,25 +141,7 @@ Json hands_report_json(const Robot& robot, const ViewerReport& report) {
                     {"ticks", t.session_ticks},
                     {"digest", t.session_digest}};
   doc["fault"] = s.faulted ? Json(s.fault) : Json(nullptr);
-  Json shots = Json::array();
-  for (const ViewerScreenshot& shot : report.screenshots) {
-    Json shot_hands = Json::array();
-    for (const ViewerHandShot& h : shot.hands) {
-      shot_hands.push_back({{"name", h.name},
-                            {"position", vector_json(h.p_WE)},
-                            {"target", vector_json(h.p_WT)},
-                            {"gripper", h.gripper}});
-    }
-    shots.push_back({{"path", shot.path},
-                     {"frame", shot.frame},
-                     {"sim_time", shot.time},
-                     {"mode", to_string(shot.mode)},
-                     {"lift", shot.lift},
-                     {"hands", shot_hands},
-                     {"width", shot.width},
-                     {"height", shot.height}});
-  }
-  doc["screenshots"] = shots;
+  doc["screenshots"] = screenshots_json(report);
   doc["gl"] = report.gl;
   return doc;
 }

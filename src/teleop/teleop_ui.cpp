@@ -12,12 +12,6 @@ namespace mjarm {
 
 namespace {
 
-std::string slider_range(double lower, double upper) {
-  char text[64];
-  std::snprintf(text, sizeof(text), "%.6g %.6g", lower, upper);
-  return text;
-}
-
 std::string capitalized(std::string name) {
   if (!name.empty()) name[0] = static_cast<char>(std::toupper(static_cast<unsigned char>(name[0])));
   return name;
@@ -52,7 +46,7 @@ std::unique_ptr<ViewerUi> make_teleop_ui(TeleopPanel& panel, const TeleopSession
        {mjITEM_RADIO, "Priority", 1, &panel.priority, "Equal\nR over L\nL over R", "priority"},
        {mjITEM_RADIO, "Keys move", 1, &panel.selected, hand_names, "hand"},
        {mjITEM_SLIDERNUM, "lift [m]", session.has_lift() ? 1 : 0, &panel.lift,
-        slider_range(lift[0], std::max(lift[1], lift[0] + 1e-6)), "lift"},
+        ui_range(lift[0], std::max(lift[1], lift[0] + 1e-6)), "lift"},
        {mjITEM_BUTTON, "Pause", 1, nullptr, " #32", "pause"},
        {mjITEM_BUTTON, "Step", 1, nullptr, " #262", "step"},
        {mjITEM_BUTTON, "Reset", 1, nullptr, " #259", "reset"}});
@@ -63,7 +57,7 @@ std::unique_ptr<ViewerUi> make_teleop_ui(TeleopPanel& panel, const TeleopSession
     std::vector<UiItemDef> items;
     for (int k = 0; k < 6; ++k) {
       items.push_back({mjITEM_SLIDERNUM, kLabels[k], 1, &panel.hands[i].pose[k],
-                       slider_range(ranges[i].lower[k], ranges[i].upper[k]),
+                       ui_range(ranges[i].lower[k], ranges[i].upper[k]),
                        hands[i].name + "." + kNames[k]});
     }
     items.push_back({mjITEM_SLIDERNUM, "gripper", hands[i].fingers.empty() ? 0 : 1,

@@ -11,15 +11,11 @@
 
 namespace mjarm {
 
-namespace {
-
-std::string range_text(double lower, double upper) {
+std::string ui_range(double lower, double upper) {
   char text[64];
   std::snprintf(text, sizeof(text), "%.6g %.6g", lower, upper);
   return text;
 }
-
-}  // namespace
 
 ViewerUi::ViewerUi() : ui_(std::make_unique<mjUI>()) {
   std::memset(ui_.get(), 0, sizeof(mjUI));
@@ -39,7 +35,7 @@ ViewerUi::ViewerUi(PanelState& state, const PanelRanges& ranges, bool gripper) :
   std::vector<UiItemDef> target;
   for (int i = 0; i < 6; ++i) {
     target.push_back({mjITEM_SLIDERNUM, kLabels[i], 1, &state.target[i],
-                      range_text(ranges.lower[i], ranges.upper[i]), names[i]});
+                      ui_range(ranges.lower[i], ranges.upper[i]), names[i]});
   }
   target.push_back({mjITEM_SLIDERNUM, "gripper", gripper ? 1 : 0, &state.gripper, "0 1", names[6]});
   add_section("Target", target);

@@ -51,6 +51,10 @@ struct UiItemDef {
 /// Rectangle indices in the `mjuiState`.
 enum ViewerRect : int { rect_window = 0, rect_panel = 1, rect_view = 2 };
 
+/// A slider's range as mjui reads it from `UiItemDef::other`: "lower upper" (6 significant
+/// digits).
+std::string ui_range(double lower, double upper);
+
 /// The panel and the layout. Holds pointers into @p state: the state must outlive it and stay
 /// where it is.
 class ViewerUi {
