@@ -21,6 +21,7 @@ struct ViewOptions {
   std::string script;
   std::int64_t frames = -1;
   std::string screenshot;
+  std::string record_session;
   std::vector<std::string> set;
   std::string size = "1280x800";
   double render_hz = 60.0;
@@ -40,19 +41,52 @@ Json pose_summary(const Pose& X) {
   return {{"position", vector_json(X.p)}, {"rpy", vector_json(rpy_from_rotation(X.R))}};
 }
 
-Json report_json(const Robot& robot, const ViewerReport& report, const std::string& site) {
-  const ViewerStats& s = report.stats;
+// what every viewer report holds
+Json common_report_json(const Robot& robot, const ViewerReport& report, SimulationMode mode,
+                        double sim_time) {
   Json doc;
   doc["model"] = robot.name();
-  doc["site"] = site;
   doc["ended_by"] = report.ended_by;
-  doc["mode"] = to_string(s.mode);
+  doc["mode"] = to_string(mode);
   doc["frames"] = report.frames;
   doc["input_polls"] = report.polls;
   doc["control_ticks"] = report.ticks;
-  doc["sim_time"] = s.time;
+  doc["sim_time"] = sim_time;
   doc["wall_seconds"] = report.wall_seconds;
   doc["dropped_sim_time"] = report.dropped;
+  return doc;
+}
+
+// a screenshot: the end effector and its target (one arm), or the lift and each hand
+Json screenshots_json(const ViewerReport& report) {
+  Json shots = Json::array();
+  for (const ViewerScreenshot& shot : report.screenshots) {
+    Json j{{"path", shot.path},     {"frame", shot.frame},
+           {"sim_time", shot.time}, {"mode", to_string(shot.mode)},
+           {"width", shot.width},   {"height", shot.height}};
+    if (report.teleop) {
+      Json hands = Json::array();
+      for (const ViewerHandShot& h : shot.hands) {
+        hands.push_back({{"name", h.name},
+                         {"position", vector_json(h.p_WE)},
+                         {"target", vector_json(h.p_WT)},
+                         {"gripper", h.gripper}});
+      }
+      j["lift"] = shot.lift;
+      j["hands"] = hands;
+    } else {
+      j["end_effector"] = vector_json(shot.p_WE);
+      j["target"] = vector_json(shot.p_WT);
+    }
+    shots.push_back(j);
+  }
+  return shots;
+}
+
+Json report_json(const Robot& robot, const ViewerReport& report, const std::string& site) {
+  const ViewerStats& s = report.stats;
+  Json doc = common_report_json(robot, report, s.mode, s.time);
+  doc["site"] = site;
   doc["end_effector"] = pose_summary(s.X_WE);
   doc["target"] = pose_summary(s.X_WT);
   doc["reference"] = pose_summary(s.X_WR);
@@ -63,29 +97,99 @@ Json report_json(const Robot& robot, const ViewerReport& report, const std::stri
   doc["saturated"] = s.saturated;
   doc["contacts"] = s.contacts.contacts;
   doc["fault"] = s.faulted ? Json(s.fault) : Json(nullptr);
-  Json shots = Json::array();
-  for (const ViewerScreenshot& shot : report.screenshots) {
-    shots.push_back({{"path", shot.path},
-                     {"frame", shot.frame},
-                     {"sim_time", shot.time},
-                     {"mode", to_string(shot.mode)},
-                     {"end_effector", vector_json(shot.p_WE)},
-                     {"target", vector_json(shot.p_WT)},
-                     {"width", shot.width},
-                     {"height", shot.height}});
-  }
-  doc["screenshots"] = shots;
+  doc["screenshots"] = screenshots_json(report);
   doc["gl"] = report.gl;
   return doc;
 }
 
+Json hands_report_json(const Robot& robot, const ViewerReport& report) {
+  const TeleopViewerReport& t = *report.teleop;
+  const TeleopStats& s = t.stats;
+  static constexpr const char* kPriorities[3] = {"equal", "right-over-left", "left-over-right"};
+  Json doc = common_report_json(robot, report, s.mode, s.time);
+  doc["lift"] = {{"position", s.lift}, {"reference", s.lift_reference}, {"panel", t.panel.lift}};
+  doc["priority"] = t.panel.priority >= 0 && t.panel.priority < 3
+                        ? Json(kPriorities[t.panel.priority])
+                        : Json(nullptr);
+  doc["selected_hand"] = t.hands.at(static_cast<std::size_t>(t.panel.selected)).name;
+  Json hands = Json::array();
+  for (std::size_t i = 0; i < t.hands.size(); ++i) {
+    const HandStats& h = s.hands[i];
+    hands.push_back({{"name", t.hands[i].name},
+                     {"frame", t.hands[i].frame},
+                     {"hand", pose_summary(h.X_WE)},
+                     {"target", pose_summary(h.X_WT)},
+                     {"reference", pose_summary(h.X_WR)},
+                     {"tracking_error",
+                      {{"position", h.tracking_position}, {"orientation", h.tracking_orientation}}},
+                     {"ik_status", to_string(h.ik_status)},
+                     {"saturated", h.saturated},
+                     {"contacts", h.contacts},
+                     {"grasp_force", h.grasp_force},
+                     {"touching", h.touching},
+                     {"gripper", h.gripper},
+                     {"panel_gripper", t.panel.hands[i].gripper}});
+  }
+  doc["hands"] = hands;
+  const CameraPanel& c = t.panel.camera;
+  doc["camera"] = {{"azimuth", c.azimuth},
+                   {"elevation", c.elevation},
+                   {"distance", c.distance},
+                   {"lookat", {c.lookat[0], c.lookat[1], c.lookat[2]}}};
+  doc["session"] = {{"file", t.session_file.empty() ? Json(nullptr) : Json(t.session_file)},
+                    {"events", t.session_events},
+                    {"ticks", t.session_ticks},
+                    {"digest", t.session_digest}};
+  doc["fault"] = s.faulted ? Json(s.fault) : Json(nullptr);
+  doc["screenshots"] = screenshots_json(report);
+  doc["gl"] = report.gl;
+  return doc;
+}
+
+void print_hands_report(const Robot& robot, const ViewerReport& report) {
+  const TeleopViewerReport& t = *report.teleop;
+  const TeleopStats& s = t.stats;
+  print_fields(std::cout,
+               {{"model", robot.name()},
+                {"ended by", report.ended_by},
+                {"mode", to_string(s.mode)},
+                {"frames", std::to_string(report.frames)},
+                {"simulated", fixed(s.time, 3) + " s in " + fixed(report.wall_seconds, 2) + " s"},
+                {"lift", fixed(s.lift, 4) + " m"}});
+  for (std::size_t i = 0; i < t.hands.size(); ++i) {
+    std::cout << t.hands[i].name << " hand: " << vector_text(s.hands[i].X_WE.p) << " (target "
+              << vector_text(s.hands[i].X_WT.p) << ", grasp force "
+              << fixed(s.hands[i].grasp_force, 1) << " N)\n";
+  }
+  if (!t.session_file.empty()) {
+    std::cout << "session: " << t.session_file << " (" << t.session_events << " events, "
+              << t.session_ticks << " ticks; mjarm replay " << t.session_file << ")\n";
+  }
+  for (const ViewerScreenshot& shot : report.screenshots) {
+    std::cout << "screenshot " << shot.path << " (" << shot.width << "x" << shot.height << ")\n";
+  }
+}
+
 void run_view(const ViewOptions& o) {
   if (!o.screenshot.empty()) check_output_file(o.screenshot, "--screenshot");
+  if (!o.record_session.empty()) check_output_file(o.record_session, "--record-session");
   const Robot robot = load_model(o.model);
   ViewerOptions options;
   options.session.site = o.site;
   options.session.keyframe = o.key;
   options.session.mode = parse_mode(o.mode);
+  options.several_hands = has_several_hands(robot);
+  if (!o.record_session.empty() && !options.several_hands) {
+    throw UsageError("view: --record-session records sessions of several hands (e.g. dual_arm); '" +
+                     robot.name() + "' has one end effector");
+  }
+  if (options.several_hands && !o.site.empty()) {
+    throw UsageError("view: --site chooses the end effector of one arm; '" + robot.name() +
+                     "' has several hands (its '<name>_tcp' sites)");
+  }
+  options.teleop.keyframe = o.key;
+  options.teleop.mode = options.session.mode;
+  options.record_session = o.record_session;
   const PixelSize size = parse_pixel_size(o.size);
   options.width = size.width;
   options.height = size.height;
@@ -117,6 +221,14 @@ void run_view(const ViewOptions& o) {
   }
 
   const ViewerReport report = run_viewer(robot, options);
+  if (report.teleop) {
+    if (o.json) {
+      print_json(hands_report_json(robot, report));
+    } else {
+      print_hands_report(robot, report);
+    }
+    return;
+  }
   const std::string site =
       options.session.site.empty() ? default_viewer_site(robot) : options.session.site;
   if (o.json) {
@@ -145,9 +257,12 @@ Command add_view_command(CLI::App& root) {
   CLI::App* app = root.add_subcommand(
       "view",
       "Interactive viewer: a window with the model, a panel of end-effector target sliders, "
-      "gripper and simulation mode (kinematic, position, torque), and overlays. Mouse: left "
-      "drag rotates, right drag moves, scroll zooms; keys: space pause, right arrow step, "
-      "backspace reset, escape quit. Needs a display (DISPLAY, or xvfb-run).");
+      "gripper and simulation mode (kinematic, position, torque), and overlays. A model with "
+      "several hands (dual_arm) gets a section per hand, the lift, the task priority and a "
+      "camera section; W/S A/D R/F nudge the selected hand (shift: turn it), G its gripper, TAB "
+      "selects the next. Mouse: left drag rotates, right drag moves, scroll zooms; keys: space "
+      "pause, right arrow step, backspace reset, escape quit. Needs a display (DISPLAY, or "
+      "xvfb-run).");
   app->add_option("MODEL", options->model,
                   "bundled model name (see `mjarm models`) or path to an MJCF file; default panda");
   app->add_option("--site", options->site,
@@ -163,9 +278,14 @@ Command add_view_command(CLI::App& root) {
                   "scripted: draw N frames (after the script), then exit")
       ->check(count_in(0, 1000000));
   app->add_option("--screenshot", options->screenshot, "scripted: save the last frame as this PNG");
+  app->add_option("--record-session", options->record_session,
+                  "models with several hands (dual_arm): record the session to FILE, written when "
+                  "the viewer ends (window closed, escape, Ctrl-C, end of script, or an error); "
+                  "replay it with `mjarm replay FILE`");
   app->add_option("--set", options->set,
                   "panel value before the first frame, NAME=VALUE (x y z [m], roll pitch yaw "
-                  "[rad], gripper 0..1, mode); repeatable");
+                  "[rad], gripper 0..1, mode; with several hands left.z, right.gripper, lift, "
+                  "camera.preset, priority, hand, ...); repeatable");
   app->add_option("--size", options->size, "window size WIDTHxHEIGHT [pixels]; default 1280x800")
       ->check(pixel_size({1, 1}, false, {7680, 4320}));
   app->add_option("--render-hz", options->render_hz, "frames per second, 1 to 240; default 60")

@@ -137,6 +137,11 @@ std::string state_digest(const TeleopSession& session) {
 }
 
 void write_session_log(const SessionLog& log, const std::filesystem::path& path) {
+  FileWriter out(path, FileWriter::Mode::replace, "teleop session");
+  write_session_log(log, out);
+}
+
+void write_session_log(const SessionLog& log, FileWriter& out) {
   std::string text;
   const TeleopOptions& o = log.options;
   text += std::string(kMagic) + " 1\nmodel " + log.model + "\nfingerprint " + log.fingerprint +
@@ -174,7 +179,6 @@ void write_session_log(const SessionLog& log, const std::filesystem::path& path)
     text += "\n";
   }
   text += "end " + std::to_string(log.ticks) + " " + log.digest + "\n";
-  FileWriter out(path, FileWriter::Mode::replace, "teleop session");
   out.write(text);
   out.commit();
 }

@@ -9,7 +9,7 @@
 #include "mjarm/ik/diff_ik.hpp"
 #include "mjarm/ik/multi_target_ik.hpp"
 #include "mjarm/kinematics/frame_state.hpp"
-#include "mjarm/teleop/touch_finger_pd.hpp"
+#include "mjarm/teleop/hand_finger_force.hpp"
 #include "mjarm/teleop/viewer_controllers.hpp"
 #include "mjarm/trajectory/ramped_command.hpp"
 #include "teleop_model.hpp"
@@ -129,7 +129,7 @@ struct TeleopSession::Rig {
   std::unique_ptr<DiffIk> dik;
   std::unique_ptr<JointTargetController> servo;
   std::unique_ptr<ComputedTorqueController> ct;
-  std::vector<std::unique_ptr<TouchFingerPd>> finger_pd;
+  std::vector<std::unique_ptr<HandFingerForce>> finger_pd;
   std::vector<int> hand_watch, finger_watch;
   std::vector<std::vector<int>> hand_actuators;
   Reference reference;
@@ -186,7 +186,7 @@ struct TeleopSession::Rig {
           finger_pd.emplace_back();
           continue;
         }
-        finger_pd.push_back(std::make_unique<TouchFingerPd>(*f));
+        finger_pd.push_back(std::make_unique<HandFingerForce>(*f));
         sim->add_controller(*finger_pd.back());
       }
     }

@@ -24,10 +24,26 @@ void require_display() {
   if (display == nullptr || display[0] == '\0') throw Error(kNoDisplayMessage);
 }
 
+bool has_several_hands(const Robot& robot) {
+  try {
+    return find_teleop_hands(robot).size() > 1;
+  } catch (const Error&) {
+    return false;  // no hand frame at all: the single-arm viewer says what it needs
+  }
+}
+
 ViewerReport run_viewer(const Robot& robot, const ViewerOptions& options) {
   require_display();
+  // Ctrl-C ends the session with its report (and its recording) from here on: also while the
+  // session and the window are being built, which takes seconds on a slow machine
+  const InterruptGuard interrupt_guard;
   detail::ViewerShell shell(robot, options);
-  return shell.run();
+  try {
+    return shell.run();
+  } catch (...) {
+    shell.save();  // what was recorded up to the error is written
+    throw;
+  }
 }
 
 namespace detail {
@@ -43,8 +59,7 @@ ViewerReport ViewerShell::run() {
     command.value = value;
     execute(command);
   }
-  schedule_ = ViewerSchedule(options_.rates, session_.control_period(), clock_);
-  const InterruptGuard interrupt_guard;  // Ctrl-C ends the session with its report
+  schedule_ = ViewerSchedule(options_.rates, driver_->control_period(), clock_);
   while (!quit_) {
     if (!scripted) clock_ = glfwGetTime();
     const ScheduleStep step = schedule_.update(clock_, paused_);
@@ -59,13 +74,13 @@ ViewerReport ViewerShell::run() {
         ended_by_ = "interrupted";
       }
       if (scripted && !quit_) run_script();
-      session_.set_target(panel_);  // the panel is read at the input rate
+      driver_->read_panel();  // the panel is read at the input rate
     }
     if (quit_) break;
-    const int ticks = paused_ ? 0 : session_.step(step.ticks);  // a pause takes effect at once
+    const int ticks = paused_ ? 0 : driver_->step(step.ticks);  // a pause takes effect at once
     // the meters use the real clock, also in scripted runs: they report what the machine does
     const double wall = glfwGetTime();
-    speed_.add(wall, ticks * session_.control_period());
+    speed_.add(wall, ticks * driver_->control_period());
     if (step.render) {
       render(nullptr);
       fps_.add(wall);
@@ -87,9 +102,8 @@ ViewerReport ViewerShell::run() {
   report_.ticks = schedule_.ticks();
   report_.wall_seconds = glfwGetTime() - wall_start;
   report_.dropped = schedule_.dropped();
-  report_.stats = session_.stats();
-  report_.panel = panel_;
   report_.gl = gl_;
+  driver_->finish(report_);
   return report_;
 }
 
@@ -121,14 +135,13 @@ void ViewerShell::execute(const ScriptCommand& c) {
       wait_until_ = frames_ + c.frames;
       break;
     case ScriptAction::set:
-      set_panel_value(panel_, session_.ranges(), c.name, c.value);
-      if (c.name == "mode") {
-        const SimulationMode wanted = panel_mode(panel_);
-        apply_mode();  // reverts the panel and leaves a note when the mode is unavailable
-        if (session_.mode() != wanted) throw Error(session_.unavailable_reason(wanted));
+      try {
+        driver_->set_value(c.name, c.value, camera_);
+      } catch (...) {
+        changed();  // a mode refused still changed the note and the panel
+        throw;
       }
-      session_.set_target(panel_);
-      ui_.refresh(con_);
+      changed();
       break;
     case ScriptAction::slider: {
       const auto point = ui_.slider_point(c.name, c.x);
@@ -142,7 +155,10 @@ void ViewerShell::execute(const ScriptCommand& c) {
       s.type = mjEVENT_KEY;
       s.key = viewer_key_code(c.name);
       s.keytime = clock_;
+      const int shift = s.shift;
+      s.shift = c.value == "shift" ? 1 : 0;  // "key shift+w"
       on_event();
+      s.shift = shift;
       break;
     }
     case ScriptAction::drag: {
@@ -175,17 +191,14 @@ void ViewerShell::execute(const ScriptCommand& c) {
 }
 
 void ViewerShell::screenshot(const std::string& path) {
-  session_.set_target(panel_);
+  driver_->read_panel();
   Image image;
   render(&image);
   write_png(image, path);
   ViewerScreenshot shot;
   shot.path = path;
   shot.frame = frames_;
-  shot.time = session_.stats().time;
-  shot.mode = session_.mode();
-  shot.p_WE = session_.stats().X_WE.p;
-  shot.p_WT = panel_target(panel_).p;
+  driver_->describe(shot);
   shot.width = image.width;
   shot.height = image.height;
   report_.screenshots.push_back(shot);

@@ -95,4 +95,65 @@ void format_overlay(const ViewerStats& stats, const OverlayInfo& info, const mjM
   if (!info.note.empty()) line(out, "Note", info.note.c_str());
 }
 
+void format_teleop_overlay(const TeleopStats& stats, const std::vector<TeleopHand>& hands,
+                           const TeleopPanel& panel, const OverlayInfo& info, OverlayText& common,
+                           OverlayText& hands_text) {
+  static constexpr const char* kPriorities[3] = {"equal", "right over left", "left over right"};
+  common.labels.clear();
+  common.values.clear();
+  char text[256];
+  const bool kinematic = stats.mode == SimulationMode::kinematic;
+  std::snprintf(text, sizeof(text), "%s%s",
+                stats.mode == SimulationMode::torque ? "motor" : to_string(stats.mode),
+                info.paused ? "  (paused)" : "");
+  line(common, "Mode", text);
+  std::snprintf(text, sizeof(text), "%.2f s  (speed %.2fx)", stats.time, info.speed);
+  line(common, "Time", text);
+  std::snprintf(text, sizeof(text), "%.1f fps", info.fps);
+  line(common, "Frame rate", text);
+  std::snprintf(text, sizeof(text), "%.3f m  (reference %.3f m)", stats.lift, stats.lift_reference);
+  line(common, "Lift", text);
+  line(common, "Priority",
+       panel.priority >= 0 && panel.priority < 3 ? kPriorities[panel.priority] : "?");
+  if (kinematic) {
+    std::snprintf(text, sizeof(text), "%lld", static_cast<long long>(stats.rollbacks));
+    line(common, "Rollbacks", text);
+  }
+  if (stats.faulted) line(common, "FAULT", stats.fault.c_str());
+  if (!info.note.empty()) line(common, "Note", info.note.c_str());
+
+  hands_text.labels.clear();
+  hands_text.values.clear();
+  for (std::size_t i = 0; i < stats.hands.size() && i < hands.size(); ++i) {
+    const HandStats& h = stats.hands[i];
+    const bool selected = static_cast<int>(i) == panel.selected;
+    std::snprintf(text, sizeof(text), "%s hand", hands[i].name.c_str());
+    line(hands_text, text, selected ? "[keys]" : "");
+    std::snprintf(text, sizeof(text), "%.1f mm  %.2f deg", h.tracking_position * 1000.0,
+                  h.tracking_orientation * kDegrees);
+    line(hands_text, "  tracking", text);
+    std::snprintf(text, sizeof(text), "%s  (%.1f mm  %.2f deg)", to_string(h.ik_status),
+                  h.ik_position * 1000.0, h.ik_orientation * kDegrees);
+    line(hands_text, "  IK", text);
+    if (kinematic) {
+      std::snprintf(text, sizeof(text), "n/a (kinematic)");
+    } else {
+      std::snprintf(text, sizeof(text), "%d actuator%s", h.saturated, h.saturated == 1 ? "" : "s");
+    }
+    line(hands_text, "  saturated", text);
+    std::snprintf(text, sizeof(text), "%d", h.contacts);
+    line(hands_text, "  contacts", text);
+    if (kinematic) {
+      std::snprintf(text, sizeof(text), "n/a (kinematic)%s", h.touching ? ", touching" : "");
+    } else {
+      std::snprintf(text, sizeof(text), "%.1f N%s", h.grasp_force,
+                    h.touching ? "  (touching)" : "");
+    }
+    line(hands_text, "  grasp force", text);
+    const double asked = i < panel.hands.size() ? panel.hands[i].gripper : 0.0;
+    std::snprintf(text, sizeof(text), "%.2f  (asked %.2f)", h.gripper, asked);
+    line(hands_text, "  gripper", text);
+  }
+}
+
 }  // namespace mjarm

@@ -22,7 +22,25 @@ struct KeyName {
 constexpr KeyName kKeys[] = {{"space", 32},
                              {"right", mjKEY_RIGHT},
                              {"backspace", mjKEY_BACKSPACE},
-                             {"escape", mjKEY_ESCAPE}};
+                             {"escape", mjKEY_ESCAPE},
+                             {"tab", 258},
+                             {"w", 'W'},
+                             {"s", 'S'},
+                             {"a", 'A'},
+                             {"d", 'D'},
+                             {"r", 'R'},
+                             {"f", 'F'},
+                             {"g", 'G'}};
+constexpr const char* kKeyList =
+    "space, right, backspace, escape, and for the bimanual panel's nudges w s a d r f g tab "
+    "(shift+w … shift+f turn the hand)";
+
+// the bimanual panel's names (TeleopPanel): "<hand>.<value>", "camera.<value>", "lift",
+// "priority", "hand" — checked against the session's hands when the script runs
+bool teleop_name(const std::string& name) {
+  return name.find('.') != std::string::npos || name == "lift" || name == "priority" ||
+         name == "hand";
+}
 
 std::vector<std::string> split(std::string_view line) {
   std::vector<std::string> words;
@@ -113,8 +131,11 @@ ViewerScript ViewerScript::parse(std::string_view text, std::string_view source)
     } else if (verb == "set") {
       p.arguments(words, 2, "a name and a value: set NAME VALUE");
       const auto& names = panel_value_names();
-      if (std::find(names.begin(), names.end(), words[1]) == names.end()) {
-        p.fail("unknown panel value '" + words[1] + "'; values: x y z roll pitch yaw gripper mode");
+      if (std::find(names.begin(), names.end(), words[1]) == names.end() &&
+          !teleop_name(words[1])) {
+        p.fail("unknown panel value '" + words[1] +
+               "'; values: x y z roll pitch yaw gripper mode (one arm), <hand>.x … <hand>.gripper, "
+               "lift, camera.*, priority, hand (several hands)");
       }
       c.action = ScriptAction::set;
       c.name = words[1];
@@ -123,20 +144,28 @@ ViewerScript ViewerScript::parse(std::string_view text, std::string_view source)
       p.arguments(words, 2, "a slider and a fraction: slider NAME FRACTION");
       const auto& names = panel_value_names();
       const auto found = std::find(names.begin(), names.end(), words[1]);
-      if (found == names.end() || words[1] == "mode") {
-        p.fail("unknown slider '" + words[1] + "'; sliders: x y z roll pitch yaw gripper");
+      const bool teleop = teleop_name(words[1]) && words[1] != "priority" && words[1] != "hand" &&
+                          words[1] != "camera.preset";
+      if ((found == names.end() && !teleop) || words[1] == "mode") {
+        p.fail("unknown slider '" + words[1] +
+               "'; sliders: x y z roll pitch yaw gripper (one arm), <hand>.x … <hand>.gripper, "
+               "lift, camera.azimuth … camera.lookat_z (several hands)");
       }
       c.action = ScriptAction::slider;
       c.name = words[1];
       c.x = p.number(words[2], "the slider fraction");
       if (c.x < 0.0 || c.x > 1.0) p.fail("the slider fraction must lie in [0, 1]");
     } else if (verb == "key") {
-      p.arguments(words, 1, "a key name: key space|right|backspace|escape");
-      if (viewer_key_code(words[1]) == 0) {
-        p.fail("unknown key '" + words[1] + "'; keys: space, right, backspace, escape");
+      p.arguments(words, 1, "a key name: key space|right|backspace|escape|w|shift+w|…");
+      const bool shift = words[1].rfind("shift+", 0) == 0;
+      const std::string key = shift ? words[1].substr(6) : words[1];
+      const int code = viewer_key_code(key);
+      if (code == 0 || (shift && (code < 'A' || code > 'Z'))) {
+        p.fail("unknown key '" + words[1] + "'; keys: " + kKeyList);
       }
       c.action = ScriptAction::key;
-      c.name = words[1];
+      c.name = key;
+      if (shift) c.value = "shift";
     } else if (verb == "drag") {
       p.arguments(words, 3, "a button and a displacement: drag left|right|middle DX DY");
       if (words[1] != "left" && words[1] != "right" && words[1] != "middle") {

@@ -43,10 +43,10 @@ void WindowDeleter::operator()(GLFWwindow* window) const noexcept { glfwDestroyW
 
 ViewerShell::ViewerShell(const Robot& robot, const ViewerOptions& options)
     : options_(options),
-      session_(robot, options.session),
-      panel_(session_.initial_panel()),
-      ui_(panel_, session_.ranges(), session_.has_gripper()),
-      schedule_(options.rates, session_.control_period(), 0.0) {
+      driver_(options.several_hands ? make_teleop_driver(robot, options)
+                                    : make_arm_driver(robot, options)),
+      ui_(driver_->ui()),
+      schedule_(options.rates, driver_->control_period(), 0.0) {
   if (options.width < 320 || options.height < 240) {
     throw Error("viewer: the window must be at least 320×240 pixels, got " +
                 std::to_string(options.width) + "×" + std::to_string(options.height));
@@ -80,14 +80,7 @@ ViewerShell::ViewerShell(const Robot& robot, const ViewerOptions& options)
   mjv_defaultOption(&vis_);
   mjv_defaultScene(&scene_);
   mjr_defaultContext(&con_);
-  mjv_defaultFreeCamera(&session_.robot().model(), &camera_);
-  const Eigen::Vector3d p = session_.stats().X_WE.p;
-  camera_.lookat[0] = 0.5 * p.x();
-  camera_.lookat[1] = 0.5 * p.y();
-  camera_.lookat[2] = 0.4;
-  camera_.distance = 2.0;
-  camera_.azimuth = 135.0;
-  camera_.elevation = -20.0;
+  driver_->initial_camera(camera_);
   make_gl();
   install_callbacks(window_.get());
 }
@@ -98,7 +91,7 @@ ViewerShell::~ViewerShell() {
 }
 
 void ViewerShell::make_gl() {
-  const mjModel& m = session_.robot().model();
+  const mjModel& m = driver_->robot().model();
   mjv_makeScene(&m, &scene_, kMaxGeoms);
   mjr_makeContext(&m, &con_, mjFONTSCALE_100);
   gl_model_ = &m;
@@ -107,7 +100,7 @@ void ViewerShell::make_gl() {
   ui_.layout(width, height);
   ui_.attach(con_);
   // a first scene, so that camera moves before the first frame have a camera to move
-  mjv_updateScene(&m, &session_.simulation().data(), &vis_, nullptr, &camera_, mjCAT_ALL, &scene_);
+  mjv_updateScene(&m, &driver_->data(), &vis_, nullptr, &camera_, mjCAT_ALL, &scene_);
 }
 
 void ViewerShell::free_gl() noexcept {
@@ -119,35 +112,15 @@ void ViewerShell::free_gl() noexcept {
   gl_model_ = nullptr;
 }
 
-void ViewerShell::add_markers() {
-  const ViewerStats& s = session_.stats();
-  auto add = [this](int type, const mjtNum size[3], const Eigen::Vector3d& p,
-                    const float rgba[4]) -> mjvGeom* {
-    if (scene_.ngeom >= scene_.maxgeom) return nullptr;
-    mjvGeom* g = scene_.geoms + scene_.ngeom++;
-    const mjtNum pos[3] = {p.x(), p.y(), p.z()};
-    mjv_initGeom(g, type, size, pos, nullptr, rgba);
-    g->category = mjCAT_DECOR;
-    return g;
-  };
-  // the panel target: a translucent green ball with its axes (x red, y green, z blue)
-  const mjtNum ball[3] = {0.03, 0.0, 0.0};
-  const float green[4] = {0.2f, 0.9f, 0.3f, 0.4f};
-  add(mjGEOM_SPHERE, ball, s.X_WT.p, green);
-  const float axis_rgba[3][4] = {
-      {0.9f, 0.1f, 0.1f, 1.0f}, {0.1f, 0.8f, 0.1f, 1.0f}, {0.1f, 0.2f, 0.9f, 1.0f}};
-  const mjtNum none[3] = {0.0, 0.0, 0.0};
-  for (int i = 0; i < 3; ++i) {
-    const Eigen::Vector3d tip = s.X_WT.p + 0.08 * s.X_WT.R.col(i);
-    if (mjvGeom* g = add(mjGEOM_CAPSULE, none, s.X_WT.p, axis_rgba[i])) {
-      mjv_makeConnector(g, mjGEOM_CAPSULE, 0.004, s.X_WT.p.x(), s.X_WT.p.y(), s.X_WT.p.z(), tip.x(),
-                        tip.y(), tip.z());
-    }
+// after the driver changed something: rendering resources for a new model, the control period,
+// the panel redrawn at the next frame
+void ViewerShell::changed() {
+  if (&driver_->robot().model() != gl_model_) {
+    free_gl();
+    make_gl();
   }
-  // the reference the controller tracks: a small yellow ball
-  const mjtNum dot[3] = {0.012, 0.0, 0.0};
-  const float yellow[4] = {1.0f, 0.85f, 0.1f, 0.8f};
-  add(mjGEOM_SPHERE, dot, s.X_WR.p, yellow);
+  schedule_.set_control_period(driver_->control_period());
+  refresh_panel_ = true;
 }
 
 void ViewerShell::render(Image* capture) {
@@ -155,10 +128,14 @@ void ViewerShell::render(Image* capture) {
   glfwGetFramebufferSize(window_.get(), &width, &height);
   const mjrRect& window = ui_.input().rect[rect_window];
   if (width != window.width || height != window.height) ui_.layout(width, height);
-  mjData& d = session_.simulation().data();
-  const mjModel& m = session_.robot().model();
+  if (refresh_panel_) {
+    ui_.refresh(con_);
+    refresh_panel_ = false;
+  }
+  mjData& d = driver_->data();
+  const mjModel& m = driver_->robot().model();
   mjv_updateScene(&m, &d, &vis_, nullptr, &camera_, mjCAT_ALL, &scene_);
-  add_markers();
+  driver_->add_markers(scene_);
 
   mjr_setBuffer(mjFB_WINDOW, &con_);
   const mjrRect view = ui_.view();
@@ -166,14 +143,16 @@ void ViewerShell::render(Image* capture) {
   info_.paused = paused_;
   info_.fps = fps_.rate();
   info_.speed = speed_.rate();
-  format_overlay(session_.stats(), info_, m, session_.simulation().saturated(), overlay_);
+  info_.note = driver_->note;
+  driver_->overlay(info_, overlay_, overlay_right_);
   mjr_overlay(mjFONT_NORMAL, mjGRID_TOPLEFT, view, overlay_.labels.c_str(), overlay_.values.c_str(),
               &con_);
-  mjr_overlay(mjFONT_NORMAL, mjGRID_BOTTOMLEFT, view,
-              "drag: left rotate, right move, scroll zoom\n"
-              "space pause, right step, bksp reset, esc quit",
-              nullptr, &con_);
-  if (paused_) mjr_overlay(mjFONT_BIG, mjGRID_TOPRIGHT, view, "Paused", nullptr, &con_);
+  if (!overlay_right_.labels.empty()) {
+    mjr_overlay(mjFONT_NORMAL, mjGRID_TOPRIGHT, view, overlay_right_.labels.c_str(),
+                overlay_right_.values.c_str(), &con_);
+  }
+  mjr_overlay(mjFONT_NORMAL, mjGRID_BOTTOMLEFT, view, driver_->help(), nullptr, &con_);
+  if (paused_) mjr_overlay(mjFONT_BIG, mjGRID_BOTTOMRIGHT, view, "Paused", nullptr, &con_);
   mjui_render(&ui_.ui(), &ui_.input(), &con_);
 
   if (capture != nullptr) {
@@ -299,7 +278,7 @@ void ViewerShell::release(double x, double y) {
 void ViewerShell::on_event() {
   mjuiState& s = ui_.input();
   if (s.type == mjEVENT_KEY) {
-    on_key(s.key);
+    on_key(s.key, s.shift != 0);
     return;
   }
   if (s.type == mjEVENT_RESIZE || s.type == mjEVENT_NONE) return;
@@ -308,9 +287,11 @@ void ViewerShell::on_event() {
     on_panel(ui_.action(mjui_event(&ui_.ui(), &s, &con_)));
     return;
   }
-  const mjModel& m = session_.robot().model();
+  const mjModel& m = driver_->robot().model();
   if (s.type == mjEVENT_SCROLL) {
     mjv_moveCamera(&m, mjMOUSE_ZOOM, 0.0, -0.05 * s.sy, &scene_, &camera_);
+    driver_->camera_moved(camera_);
+    refresh_panel_ = true;
   } else if (s.type == mjEVENT_MOVE && s.dragrect == rect_view) {
     int action = mjMOUSE_NONE;
     if (s.left) {
@@ -321,17 +302,21 @@ void ViewerShell::on_event() {
       action = mjMOUSE_ZOOM;
     }
     const double h = std::max(1, ui_.view().height);
-    if (action != mjMOUSE_NONE) mjv_moveCamera(&m, action, s.dx / h, -s.dy / h, &scene_, &camera_);
+    if (action != mjMOUSE_NONE) {
+      mjv_moveCamera(&m, action, s.dx / h, -s.dy / h, &scene_, &camera_);
+      driver_->camera_moved(camera_);
+      refresh_panel_ = true;
+    }
   }
 }
 
-void ViewerShell::on_key(int key) {
+void ViewerShell::on_key(int key, bool shift) {
   switch (key) {
     case GLFW_KEY_SPACE:
       paused_ = !paused_;
       break;
     case GLFW_KEY_RIGHT:
-      if (paused_) session_.step(1);
+      if (paused_) driver_->step(1);
       break;
     case GLFW_KEY_BACKSPACE:
       reset();
@@ -341,6 +326,7 @@ void ViewerShell::on_key(int key) {
       ended_by_ = "escape";
       break;
     default:
+      if (driver_->on_key(key, shift)) changed();
       break;
   }
 }
@@ -349,52 +335,32 @@ void ViewerShell::on_panel(PanelAction action) {
   switch (action) {
     case PanelAction::none:
       break;
-    case PanelAction::target:
-      session_.set_target(panel_);
-      break;
-    case PanelAction::mode:
-      apply_mode();
-      break;
     case PanelAction::pause:
       paused_ = !paused_;
       break;
     case PanelAction::step:
       paused_ = true;
-      session_.step(1);
+      driver_->step(1);
       break;
     case PanelAction::reset:
       reset();
       break;
+    case PanelAction::target:
+    case PanelAction::mode:
+    case PanelAction::priority:
+    case PanelAction::camera:
+    case PanelAction::camera_preset:
+    case PanelAction::hand:
+      driver_->on_panel(action, camera_);
+      changed();
+      break;
   }
-}
-
-// the panel's mode radio → the session (and new rendering resources for a new model)
-void ViewerShell::apply_mode() {
-  const SimulationMode mode = panel_mode(panel_);
-  if (mode == session_.mode()) return;
-  if (!session_.available(mode)) {
-    info_.note = session_.unavailable_reason(mode);
-    panel_.mode = static_cast<int>(session_.mode());
-    ui_.refresh(con_);
-    return;
-  }
-  session_.set_mode(mode);
-  info_.note.clear();
-  if (&session_.robot().model() != gl_model_) {
-    free_gl();
-    make_gl();
-  }
-  schedule_.set_control_period(session_.control_period());
 }
 
 void ViewerShell::reset() {
-  session_.reset();
-  const int mode = panel_.mode;
-  panel_ = session_.initial_panel();
-  panel_.mode = mode;
-  session_.set_target(panel_);
+  driver_->reset();
   schedule_.clear_backlog();
-  ui_.refresh(con_);
+  changed();
 }
 
 }  // namespace mjarm::detail

@@ -1,7 +1,7 @@
 #pragma once
-// The GLFW shell of the interactive viewer (private to src/render): the window, MuJoCo's
+// The GLFW shell of the interactive viewer (private to src/teleop): the window, MuJoCo's
 // rendering resources, event routing and drawing (viewer_shell.cpp), the loop and the script
-// runner (viewer.cpp).
+// runner (viewer.cpp). What it drives is a `ViewerDriver` (viewer_driver.hpp).
 
 #include <mujoco/mujoco.h>
 
@@ -13,6 +13,7 @@
 #include "mjarm/teleop/viewer.hpp"
 #include "mjarm/teleop/viewer_overlay.hpp"
 #include "mjarm/teleop/viewer_ui.hpp"
+#include "viewer_driver.hpp"
 
 struct GLFWwindow;
 
@@ -39,20 +40,21 @@ class ViewerShell {
   ViewerShell& operator=(const ViewerShell&) = delete;
 
   ViewerReport run();  // viewer.cpp
+  /// On an error: the driver keeps what it recorded.
+  void save() noexcept { driver_->save(); }
 
  private:
   // viewer_shell.cpp: OpenGL resources and drawing
   void make_gl();
   void free_gl() noexcept;
   void render(Image* capture);
-  void add_markers();
+  void changed();  // after the driver changed: a new model, period or panel values
   // viewer_shell.cpp: events (real and synthetic share `on_event`)
   static void install_callbacks(GLFWwindow* window);
   void read_window_input();
   void on_event();
-  void on_key(int key);
+  void on_key(int key, bool shift);
   void on_panel(PanelAction action);
-  void apply_mode();
   void reset();
   void press(int button, double x, double y);
   void release(double x, double y);
@@ -74,9 +76,8 @@ class ViewerShell {
   void screenshot(const std::string& path);
 
   ViewerOptions options_;
-  ViewerSession session_;
-  PanelState panel_;
-  ViewerUi ui_;
+  std::unique_ptr<ViewerDriver> driver_;
+  ViewerUi& ui_;
   GlfwLibrary glfw_;
   std::unique_ptr<GLFWwindow, WindowDeleter> window_;
   double buffer_to_window_ = 1.0;
@@ -92,6 +93,8 @@ class ViewerShell {
   RateMeter speed_;
   OverlayInfo info_;
   OverlayText overlay_;
+  OverlayText overlay_right_;
+  bool refresh_panel_ = false;  // the panel's values changed in code: redraw it
   bool paused_ = false;
   bool quit_ = false;
   std::string ended_by_;

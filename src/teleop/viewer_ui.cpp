@@ -11,110 +11,99 @@
 
 namespace mjarm {
 
-namespace {
-
-mjuiDef definition(int type, const char* name, int state, void* data, const char* other) {
-  mjuiDef def{};
-  def.type = type;
-  std::snprintf(def.name, sizeof(def.name), "%s", name);
-  def.state = state;
-  def.pdata = data;
-  std::snprintf(def.other, sizeof(def.other), "%s", other);
-  return def;
-}
-
-std::string range_text(double lower, double upper) {
+std::string ui_range(double lower, double upper) {
   char text[64];
   std::snprintf(text, sizeof(text), "%.6g %.6g", lower, upper);
   return text;
 }
 
-const mjuiItem* find_item(const mjUI& ui, const void* data, int type) {
-  for (int s = 0; s < ui.nsect; ++s) {
-    for (int i = 0; i < ui.sect[s].nitem; ++i) {
-      const mjuiItem& it = ui.sect[s].item[i];
-      if (it.type == type && (data == nullptr || it.pdata == data)) return &it;
-    }
-  }
-  return nullptr;
-}
-
-const mjuiItem* find_named(const mjUI& ui, const char* name) {
-  for (int s = 0; s < ui.nsect; ++s) {
-    for (int i = 0; i < ui.sect[s].nitem; ++i) {
-      if (std::strcmp(ui.sect[s].item[i].name, name) == 0) return &ui.sect[s].item[i];
-    }
-  }
-  return nullptr;
-}
-
-}  // namespace
-
-ViewerUi::ViewerUi(PanelState& state, const PanelRanges& ranges, bool gripper)
-    : ui_(std::make_unique<mjUI>()), state_(state) {
+ViewerUi::ViewerUi() : ui_(std::make_unique<mjUI>()) {
   std::memset(ui_.get(), 0, sizeof(mjUI));
   ui_->spacing = mjui_themeSpacing(0);
   ui_->color = mjui_themeColor(0);
   ui_->rectid = rect_panel;
   ui_->auxid = 0;
-  ui_->radiocol = 1;  // one mode per row: the names fit
-
-  static const char* const kSliders[6] = {"x [m]",      "y [m]",       "z [m]",
-                                          "roll [rad]", "pitch [rad]", "yaw [rad]"};
-  std::vector<mjuiDef> defs;
-  defs.push_back(definition(mjITEM_SECTION, "Target", 1, nullptr, ""));
-  for (int i = 0; i < 6; ++i) {
-    defs.push_back(definition(mjITEM_SLIDERNUM, kSliders[i], 1, &state.target[i],
-                              range_text(ranges.lower[i], ranges.upper[i]).c_str()));
-  }
-  defs.push_back(definition(mjITEM_SLIDERNUM, "gripper", gripper ? 1 : 0, &state.gripper, "0 1"));
-  defs.push_back(definition(mjITEM_END, "", 0, nullptr, ""));
-  mjui_add(ui_.get(), defs.data());
-
-  defs.clear();
-  defs.push_back(definition(mjITEM_SECTION, "Simulation", 1, nullptr, ""));
-  defs.push_back(definition(mjITEM_RADIO, "Mode", 1, &state.mode, "Kinematic\nPosition\nTorque"));
-  defs.push_back(definition(mjITEM_BUTTON, "Pause", 1, nullptr, " #32"));
-  defs.push_back(definition(mjITEM_BUTTON, "Step", 1, nullptr, " #262"));
-  defs.push_back(definition(mjITEM_BUTTON, "Reset", 1, nullptr, " #259"));
-  defs.push_back(definition(mjITEM_END, "", 0, nullptr, ""));
-  mjui_add(ui_.get(), defs.data());
-
-  for (int i = 0; i < 6; ++i) items_[i] = find_item(*ui_, &state.target[i], mjITEM_SLIDERNUM);
-  items_[6] = find_item(*ui_, &state.gripper, mjITEM_SLIDERNUM);
-  items_[7] = find_item(*ui_, &state.mode, mjITEM_RADIO);
-  pause_ = find_named(*ui_, "Pause");
-  step_ = find_named(*ui_, "Step");
-  reset_ = find_named(*ui_, "Reset");
-  for (const mjuiItem* it : items_) {
-    if (it == nullptr) throw Error("viewer panel: a panel item was not created");
-  }
-  if (!pause_ || !step_ || !reset_) throw Error("viewer panel: a panel button was not created");
-
+  ui_->radiocol = 1;  // one choice per row: the names fit
   input_.nrect = 3;
   layout(1, 1);
 }
 
+ViewerUi::ViewerUi(PanelState& state, const PanelRanges& ranges, bool gripper) : ViewerUi() {
+  static const char* const kLabels[6] = {"x [m]",      "y [m]",       "z [m]",
+                                         "roll [rad]", "pitch [rad]", "yaw [rad]"};
+  const auto& names = panel_value_names();  // x y z roll pitch yaw gripper mode
+  std::vector<UiItemDef> target;
+  for (int i = 0; i < 6; ++i) {
+    target.push_back({mjITEM_SLIDERNUM, kLabels[i], 1, &state.target[i],
+                      ui_range(ranges.lower[i], ranges.upper[i]), names[i]});
+  }
+  target.push_back({mjITEM_SLIDERNUM, "gripper", gripper ? 1 : 0, &state.gripper, "0 1", names[6]});
+  add_section("Target", target);
+  add_section("Simulation",
+              {{mjITEM_RADIO, "Mode", 1, &state.mode, "Kinematic\nPosition\nTorque", names[7]},
+               {mjITEM_BUTTON, "Pause", 1, nullptr, " #32", "pause"},
+               {mjITEM_BUTTON, "Step", 1, nullptr, " #262", "step"},
+               {mjITEM_BUTTON, "Reset", 1, nullptr, " #259", "reset"}});
+}
+
 ViewerUi::~ViewerUi() = default;
 
+void ViewerUi::add_section(const std::string& title, const std::vector<UiItemDef>& items) {
+  if (ui_->nsect >= mjMAXUISECT || items.size() >= static_cast<std::size_t>(mjMAXUIITEM))
+    throw Error("viewer panel: no room for section '" + title + "'");
+  std::vector<mjuiDef> defs(items.size() + 2);
+  auto fill = [](mjuiDef& def, int type, const std::string& label, int state, void* data,
+                 const std::string& other) {
+    def = mjuiDef{};
+    def.type = type;
+    std::snprintf(def.name, sizeof(def.name), "%s", label.c_str());
+    def.state = state;
+    def.pdata = data;
+    std::snprintf(def.other, sizeof(def.other), "%s", other.c_str());
+  };
+  fill(defs.front(), mjITEM_SECTION, title, 1, nullptr, "");
+  for (std::size_t i = 0; i < items.size(); ++i) {
+    const UiItemDef& it = items[i];
+    fill(defs[i + 1], it.type, it.label, it.state, it.data, it.other);
+    if (!it.name.empty() && item(it.name) != nullptr)
+      throw Error("viewer panel: two items called '" + it.name + "'");
+  }
+  fill(defs.back(), mjITEM_END, "", 0, nullptr, "");
+  const int before = ui_->nsect;
+  mjui_add(ui_.get(), defs.data());
+  if (ui_->nsect != before + 1 || ui_->sect[before].nitem != static_cast<int>(items.size()))
+    throw Error("viewer panel: MuJoCo did not create section '" + title + "'");
+  for (std::size_t i = 0; i < items.size(); ++i) {
+    if (!items[i].name.empty()) named_.emplace_back(items[i].name, &ui_->sect[before].item[i]);
+  }
+}
+
 const mjuiItem* ViewerUi::item(std::string_view name) const noexcept {
-  const auto& names = panel_value_names();
-  for (std::size_t i = 0; i < names.size() && i < items_.size(); ++i) {
-    if (names[i] == name) return items_[i];
+  for (const auto& [n, it] : named_) {
+    if (n == name) return it;
   }
   return nullptr;
 }
 
-PanelAction ViewerUi::action(const mjuiItem* changed) const noexcept {
-  if (changed == nullptr) return PanelAction::none;
-  if (changed == items_[7]) return PanelAction::mode;
-  if (changed == pause_) return PanelAction::pause;
-  if (changed == step_) return PanelAction::step;
-  if (changed == reset_) return PanelAction::reset;
-  for (int i = 0; i < 7; ++i) {
-    if (changed == items_[i]) return PanelAction::target;
+std::string_view ViewerUi::name_of(const mjuiItem* item) const noexcept {
+  for (const auto& [n, it] : named_) {
+    if (it == item) return n;
   }
-  return PanelAction::none;
+  return {};
+}
+
+PanelAction ViewerUi::action(const mjuiItem* changed) const noexcept {
+  const std::string_view name = name_of(changed);
+  if (name.empty()) return PanelAction::none;
+  if (name == "mode") return PanelAction::mode;
+  if (name == "pause") return PanelAction::pause;
+  if (name == "step") return PanelAction::step;
+  if (name == "reset") return PanelAction::reset;
+  if (name == "priority") return PanelAction::priority;
+  if (name == "hand") return PanelAction::hand;
+  if (name == "camera.preset") return PanelAction::camera_preset;
+  if (name.substr(0, 7) == "camera.") return PanelAction::camera;
+  return PanelAction::target;
 }
 
 void ViewerUi::attach(mjrContext& con) {
@@ -161,6 +150,7 @@ std::optional<std::array<double, 2>> ViewerUi::slider_point(std::string_view nam
   double y = it->rect.bottom + 0.5 * it->rect.height + (r.height - ui.height) + r.bottom;
   if (ui.height > r.height) y += ui.scroll;
   const double x = r.left + it->rect.left + fraction * it->rect.width;
+  if (y < r.bottom || y > r.bottom + r.height) return std::nullopt;  // scrolled out of sight
   return std::array<double, 2>{x, y};
 }
 

@@ -23,6 +23,8 @@
 #include <vector>
 
 #include "mjarm/render/png.hpp"
+#include "mjarm/teleop/session_log.hpp"
+#include "mjarm/teleop/teleop_ui.hpp"
 #include "mjarm/teleop/viewer_session.hpp"
 #include "support/files.hpp"
 
@@ -369,6 +371,169 @@ TEST(ViewerWindow, FramesAreCountedExactlyWhateverTheRates) {
   const auto report = nlohmann::json::parse(r.out);
   EXPECT_EQ(report["frames"], 3);
   EXPECT_EQ(report["ended_by"], "end of script");
+  fs::remove_all(dir);
+}
+
+// The bimanual viewer on dual_arm: a slider click through mjui, key nudges of the selected hand,
+// named edits (priority, mode, lift), a camera drag the camera section follows, a reset — all
+// recorded; the session file replays headless to the window's final state bit for bit.
+TEST(ViewerWindow, BimanualPanelEditsAndNudgesAreRecordedAndReplayExactly) {
+  const auto prefix = display_prefix();
+  if (!prefix) return;
+  const fs::path dir = fresh_dir("bimanual");
+  const fs::path session_file = dir / "run.session";
+  {
+    std::ofstream script(dir / "session.txt");
+    script << "wait 2\n"
+              "slider left.z 0.75         # a click at 75 % of the left hand's z slider\n"
+              "key tab                    # the keys move the right hand\n"
+              "key r\n"
+              "key r                      # +2 cm in z\n"
+              "key shift+a                # +0.087 rad roll\n"
+              "key g                      # close its gripper\n"
+              "set priority right-over-left\n"
+              "wait 4\n"
+              "set mode torque\n"
+              "set lift 0.25\n"
+              "wait 3\n"
+              "drag left 120 0            # orbit: the camera section follows\n"
+              "screenshot "
+           << (dir / "a.png").string()
+           << "\n"
+              "key backspace              # reset: the hands' targets back where they started\n"
+              "wait 2\n";
+  }
+  const Outcome r = run_command(*prefix +
+                                    "'" MJARM_CLI
+                                    "' view dual_arm --size 640x480 --render-hz 10 --json "
+                                    "--script '" +
+                                    (dir / "session.txt").string() + "' --record-session '" +
+                                    session_file.string() + "'",
+                                dir);
+  ASSERT_EQ(r.status, 0) << r.err << r.out;
+  const auto report = nlohmann::json::parse(r.out);
+  EXPECT_EQ(report["ended_by"], "end of script");
+  EXPECT_EQ(report["mode"], "torque");
+  EXPECT_EQ(report["priority"], "right-over-left");
+  EXPECT_EQ(report["selected_hand"], "right");
+  EXPECT_TRUE(report["fault"].is_null()) << report["fault"];
+
+  // the edits reached the session as the panel shows them
+  const Robot robot = Robot::bundled("dual_arm");
+  const TeleopSession reference(robot);
+  const std::vector<PanelRanges> ranges = teleop_ranges(reference);
+  const Eigen::Vector3d left0 = reference.initial_targets().hands[0].X_WT.p;
+  const Eigen::Vector3d right0 = reference.initial_targets().hands[1].X_WT.p;
+  ASSERT_EQ(report["screenshots"].size(), 1u);
+  const auto& shot = report["screenshots"][0];
+  const auto& hands = shot["hands"];
+  ASSERT_EQ(hands.size(), 2u);
+  EXPECT_EQ(hands[0]["name"], "left");
+  const double z_range = ranges[0].upper[2] - ranges[0].lower[2];
+  EXPECT_NEAR(vec(hands[0]["target"]).z(), ranges[0].lower[2] + 0.75 * z_range, 0.01 * z_range);
+  EXPECT_NEAR(vec(hands[0]["target"]).x(), left0.x(), 1e-12);
+  EXPECT_NEAR(vec(hands[1]["target"]).z(), right0.z() + 0.02, 1e-12);
+  EXPECT_NEAR(vec(hands[1]["target"]).y(), right0.y(), 1e-12);
+  EXPECT_NEAR(shot["lift"].get<double>(), 0.25, 0.02);  // ramped towards 0.25 over 0.3 s
+  EXPECT_GT(hands[1]["gripper"].get<double>(), 0.5);    // closing (0.5 s for a full stroke)
+  EXPECT_NEAR(hands[0]["gripper"].get<double>(), 0.0, 1e-12);
+  // the right hand is where it was asked (motor mode, 0.3 s after the switch)
+  EXPECT_LT((vec(hands[1]["position"]) - vec(hands[1]["target"])).norm(), 0.01);
+  const Image image = read_png(shot["path"].get<std::string>());
+  const ChannelStats s = channel_stats(image);
+  EXPECT_GT(s.stddev, 20.0) << "the screenshot looks blank";
+  // the mouse moved the camera, and the camera section with it (front preset: azimuth 155°)
+  EXPECT_GT(std::abs(report["camera"]["azimuth"].get<double>() - 155.0), 1.0);
+  // after the reset the targets are the initial ones again
+  EXPECT_LT((vec(report["hands"][1]["target"]["position"]) - right0).norm(), 1e-12);
+
+  // the recorded session: every kind of event, and a headless replay to the same state
+  ASSERT_TRUE(fs::exists(session_file));
+  const SessionLog log = read_session_log(session_file);
+  EXPECT_EQ(log.model, "dual_arm");
+  EXPECT_EQ(log.ticks, report["control_ticks"].get<std::int64_t>());
+  EXPECT_EQ(log.digest, report["session"]["digest"].get<std::string>());
+  int kinds[4] = {0, 0, 0, 0};
+  for (const SessionEvent& e : log.events) ++kinds[static_cast<int>(e.kind)];
+  EXPECT_GE(kinds[0],
+            5);  // the initial targets, the slider, two nudges, roll, gripper, lift, reset
+  EXPECT_EQ(kinds[1], 1);  // kinematic → torque
+  EXPECT_EQ(kinds[2], 1);  // the left hand's task (position at priority 1); the right one kept
+  EXPECT_EQ(kinds[3], 1);  // the reset
+  const ReplayResult replay = replay_session(robot, log);
+  EXPECT_TRUE(replay.matches) << replay.digest << " vs " << log.digest;
+  for (std::size_t i = 0; i < 2; ++i) {
+    const Eigen::Vector3d p = vec(report["hands"][i]["hand"]["position"]);
+    EXPECT_EQ(replay.stats.hands[i].X_WE.p, p) << "hand " << i;
+  }
+  // the CLI's replay agrees
+  const Outcome cli =
+      run_command("'" MJARM_CLI "' replay '" + session_file.string() + "' --json", dir);
+  ASSERT_EQ(cli.status, 0) << cli.err;
+  EXPECT_TRUE(nlohmann::json::parse(cli.out)["deterministic"].get<bool>());
+  fs::remove_all(dir);
+}
+
+// What was recorded is written whatever ends the viewer: a script error, Ctrl-C.
+TEST(ViewerWindow, BimanualRecordingIsKeptOnAnErrorAndOnCtrlC) {
+  const auto prefix = display_prefix();
+  if (!prefix) return;
+  const fs::path dir = fresh_dir("bimanual_end");
+  {
+    std::ofstream script(dir / "bad.txt");
+    script << "wait 3\nkey r\nwait 2\nset left.x 99\n";
+  }
+  const fs::path broken = dir / "error.session";
+  const Outcome r = run_command(
+      *prefix + "'" MJARM_CLI "' view dual_arm --size 320x240 --render-hz 10 --script '" +
+          (dir / "bad.txt").string() + "' --record-session '" + broken.string() + "'",
+      dir);
+  EXPECT_EQ(r.status, 1) << r.err;
+  EXPECT_NE(r.err.find("line 4 (set)"), std::string::npos) << r.err;
+  ASSERT_TRUE(fs::exists(broken)) << "the session recorded before the error is lost";
+  const Robot robot = Robot::bundled("dual_arm");
+  const SessionLog log = read_session_log(broken);
+  ASSERT_EQ(log.events.size(), 2u);  // the initial targets and the nudge, after 3 frames
+  EXPECT_GT(log.events[1].tick, 0);
+  EXPECT_GT(log.ticks, log.events[1].tick);  // and the ticks of the 2 frames after it
+  EXPECT_TRUE(replay_session(robot, log).matches);
+
+  // an interactive session stopped by SIGINT (Ctrl-C) once its session file is being written
+  const fs::path sub = dir / "interactive";
+  fs::create_directories(sub);
+  const fs::path stopped = sub / "ctrl_c.session";
+  std::string display = prefix->substr(0, prefix->find(' '));
+  const std::string command =
+      display + " timeout -k 10 120 '" MJARM_CLI "' view dual_arm --size 320x240 --json " +
+      "--record-session '" + stopped.string() + "' & pid=$!; i=0; " + "while [ -z \"$(ls -A '" +
+      sub.string() + "')\" ] && [ $i -lt 600 ]; do sleep 0.1; " +
+      "i=$((i+1)); done; sleep 1; kill -INT $pid; wait $pid";
+  const Outcome c = run_command(command, dir);
+  EXPECT_EQ(c.status, 0) << c.err;
+  ASSERT_TRUE(nlohmann::json::accept(c.out)) << c.out << c.err;
+  EXPECT_EQ(nlohmann::json::parse(c.out)["ended_by"], "interrupted");
+  ASSERT_TRUE(fs::exists(stopped)) << c.err;
+  EXPECT_TRUE(replay_session(robot, read_session_log(stopped)).matches);
+  fs::remove_all(dir);
+}
+
+TEST(ViewerWindow, BimanualRecordPathIsCheckedBeforeTheWindowOpens) {
+  // no display at all: the unwritable session file is what is reported, so it was checked
+  // before anything needed a window
+  const fs::path dir = fresh_dir("bimanual_bad");
+  const Outcome r = run_command("env -u DISPLAY '" MJARM_CLI "' view dual_arm --record-session '" +
+                                    (dir / "missing" / "x.session").string() + "'",
+                                dir);
+  EXPECT_EQ(r.status, 2) << r.err;
+  EXPECT_NE(r.err.find("--record-session"), std::string::npos) << r.err;
+  EXPECT_EQ(r.err.find("no display"), std::string::npos) << r.err;
+  // one end effector: nothing to record
+  const Outcome one = run_command("env -u DISPLAY '" MJARM_CLI "' view panda --record-session '" +
+                                      (dir / "x.session").string() + "'",
+                                  dir);
+  EXPECT_EQ(one.status, 2) << one.err;
+  EXPECT_NE(one.err.find("records sessions of several hands"), std::string::npos) << one.err;
+  EXPECT_FALSE(fs::exists(dir / "x.session"));
   fs::remove_all(dir);
 }
 

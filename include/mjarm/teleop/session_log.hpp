@@ -31,6 +31,7 @@
 #include <string>
 #include <vector>
 
+#include "mjarm/file_writer.hpp"
 #include "mjarm/teleop/teleop_session.hpp"
 
 namespace mjarm {
@@ -65,6 +66,11 @@ std::string state_digest(const TeleopSession& session);
 /// Writes @p log to @p path through `FileWriter`.
 /// @throws Error when the file cannot be written (naming it and why).
 void write_session_log(const SessionLog& log, const std::filesystem::path& path);
+
+/// Writes @p log to @p out and commits it (a writer opened early, e.g. before a window opens,
+/// so that an unwritable path is reported before the session starts).
+/// @throws Error when the file cannot be written (naming it and why).
+void write_session_log(const SessionLog& log, FileWriter& out);
 
 /// Reads a session file (through `read_user_file`).
 /// @throws Error naming the file and line: not a session file, a malformed or unknown record,

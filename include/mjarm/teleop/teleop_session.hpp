@@ -12,7 +12,8 @@
 /// - motor (`SimulationMode::torque`, on the model's `_torque` variant): differential IK
 ///   (`DiffIk`) from the measured arm configuration every tick → joint velocity v and
 ///   q_d = q + v·dt → computed torque (`ComputedTorqueController`) on the lift and both arms;
-///   each gripper is a `TouchFingerPd` whose gains soften when its fingers touch.
+///   each gripper is a `HandFingerForce` (`FingerForceController`: PD in free motion, a set
+///   squeeze once its fingers touch).
 ///
 /// Task priority: each hand's target is a pose or a position, with a priority (0 first). In
 /// kinematic and position modes priorities are strict (prioritized `MultiTargetIk`: a lower

@@ -9,6 +9,7 @@
 #include <span>
 #include <string>
 
+#include "mjarm/teleop/teleop_panel.hpp"
 #include "mjarm/teleop/viewer_session.hpp"
 
 namespace mjarm {
@@ -54,5 +55,16 @@ struct OverlayText {
 /// and @p info's note. Reuses @p out's storage.
 void format_overlay(const ViewerStats& stats, const OverlayInfo& info, const mjModel& m,
                     std::span<const std::uint8_t> saturated, OverlayText& out);
+
+/// Formats the bimanual overlays. @p common: mode (and "paused"), simulated time and speed,
+/// frame rate, lift (position and reference), task priority, kinematic rollbacks, the fault and
+/// @p info's note. @p hands_text: per hand of @p hands (the one the keys move marked), from
+/// `TeleopStats::hands`: tracking error (hand vs reference, mm and degrees), IK status and
+/// residual, saturated actuators, contacts of the gripper with the rest, grasp force (the
+/// fingers' normal force on other bodies; n/a in kinematic mode) and whether the fingers touch,
+/// the gripper command sent and the one asked for. Reuses the outputs' storage.
+void format_teleop_overlay(const TeleopStats& stats, const std::vector<TeleopHand>& hands,
+                           const TeleopPanel& panel, const OverlayInfo& info, OverlayText& common,
+                           OverlayText& hands_text);
 
 }  // namespace mjarm

@@ -7,11 +7,14 @@
 ///
 ///     wait N                 let N rendered frames pass (physics advances with them)
 ///     set NAME VALUE         set a panel value: x y z [m], roll pitch yaw [rad], gripper 0…1,
-///                            mode kinematic|position|torque
-///     slider NAME FRACTION   press and release the mouse on slider NAME (x … gripper) at
-///                            FRACTION ∈ [0, 1] of its length: goes through the panel's events
+///                            mode kinematic|position|torque; with several hands the
+///                            `set_teleop_value` names (left.z, lift, camera.preset, priority, …)
+///     slider NAME FRACTION   press and release the mouse on slider NAME (x … gripper, or
+///                            left.x …, lift, camera.azimuth …) at FRACTION ∈ [0, 1] of its
+///                            length: goes through the panel's events
 ///     key NAME               press a key: space (pause), right (single step), backspace
-///                            (reset), escape (quit)
+///                            (reset), escape (quit); with several hands the nudges w s a d r f
+///                            (shift+w … shift+f turn), g (gripper), tab (next hand)
 ///     drag BUTTON DX DY      drag the mouse in the 3-D view: left rotates, right moves,
 ///                            middle zooms; DX, DY in pixels (y down)
 ///     scroll DY              scroll wheel in the 3-D view (positive zooms in)
@@ -39,7 +42,7 @@ struct ScriptCommand {
   ScriptAction action = ScriptAction::wait;
   int line = 0;       ///< 1-based line in the source (0 for commands built in code)
   std::string name;   ///< set/slider: value name; key: key name; drag: button; screenshot: path
-  std::string value;  ///< set: the value as written
+  std::string value;  ///< set: the value as written; key: "shift" for shift+KEY
   double x = 0.0;     ///< slider: fraction; drag: DX [pixels]; scroll: DY
   double y = 0.0;     ///< drag: DY [pixels]
   int frames = 0;     ///< wait: frame count

@@ -1,0 +1,80 @@
+#pragma once
+// What the viewer's window drives (private to src/teleop): the shell (viewer_shell.*) owns the
+// window, the GL resources, the camera, the schedule and the event routing; a driver owns the
+// session, its panel state and the mjui panel bound to it, and says what to draw. Two drivers:
+// one arm (`ViewerSession`, viewer_arm_driver.cpp) and several hands (`TeleopSession` with its
+// recorder, teleop_viewer_driver.cpp).
+
+#include <mujoco/mujoco.h>
+
+#include <memory>
+#include <string>
+
+#include "mjarm/model/robot.hpp"
+#include "mjarm/teleop/viewer.hpp"
+#include "mjarm/teleop/viewer_overlay.hpp"
+#include "mjarm/teleop/viewer_ui.hpp"
+
+namespace mjarm::detail {
+
+class ViewerDriver {
+ public:
+  virtual ~ViewerDriver() = default;
+
+  /// The model simulated in the current mode (a mode switch may change it: the shell then
+  /// rebuilds its rendering resources).
+  virtual const Robot& robot() const noexcept = 0;
+  virtual mjData& data() noexcept = 0;
+  virtual double control_period() const noexcept = 0;
+  virtual ViewerUi& ui() noexcept = 0;
+
+  /// Simulates @p ticks control ticks; returns those done.
+  virtual int step(int ticks) = 0;
+  /// The panel → the session (at every input poll, and after every edit).
+  virtual void read_panel() = 0;
+  /// A panel item changed (target, mode, priority, camera, hand; the shell handles pause, step
+  /// and reset). @p camera is the shell's camera, for the camera section.
+  virtual void on_panel(PanelAction action, mjvCamera& camera) = 0;
+  /// A key the shell does not handle itself; true when it did something.
+  virtual bool on_key(int key, bool shift) = 0;
+  /// A named panel edit (scripts, --set), through the same path as the panel's events.
+  /// @throws Error naming the value, or when a mode is unavailable.
+  virtual void set_value(const std::string& name, const std::string& value, mjvCamera& camera) = 0;
+  /// Back to the initial state (mode kept).
+  virtual void reset() = 0;
+
+  /// The camera at the start.
+  virtual void initial_camera(mjvCamera& camera) = 0;
+  /// The mouse moved the camera: a camera section follows it.
+  virtual void camera_moved(const mjvCamera& camera) { (void)camera; }
+
+  /// Markers drawn into @p scene after `mjv_updateScene` (targets, references).
+  virtual void add_markers(mjvScene& scene) const = 0;
+  /// The overlay texts of the 3-D view: a block at the top left, and one at the top right
+  /// (empty when none).
+  virtual void overlay(const OverlayInfo& info, OverlayText& left, OverlayText& right) const = 0;
+  /// The keyboard help line at the bottom left.
+  virtual const char* help() const noexcept = 0;
+
+  /// Fills a screenshot's session fields (time, mode, positions).
+  virtual void describe(ViewerScreenshot& shot) const = 0;
+  /// Fills the report at the end and writes what must be written (a recorded session).
+  /// @throws Error when the session file cannot be written.
+  virtual void finish(ViewerReport& report) = 0;
+  /// On an error: keeps what was recorded (writes the session file), never throws.
+  virtual void save() noexcept {}
+
+  /// A note for people (a mode that could not be selected, …); empty when none.
+  std::string note;
+};
+
+std::unique_ptr<ViewerDriver> make_arm_driver(const Robot& robot, const ViewerOptions& options);
+std::unique_ptr<ViewerDriver> make_teleop_driver(const Robot& robot, const ViewerOptions& options);
+
+/// Adds a target marker to @p scene: a translucent ball of @p radius [m] at the target X_WT with
+/// its axes (x red, y green, z blue), and a small ball at the reference p_WR; nothing when the
+/// scene is full.
+void add_target_marker(mjvScene& scene, const Pose& X_WT, const Eigen::Vector3d& p_WR,
+                       const float rgba[4], double radius);
+
+}  // namespace mjarm::detail
