@@ -2,10 +2,11 @@
 
 Times, from Python, the calls that bench/python_binding_bench.cpp times in C++ on the same
 inputs (its comment states the protocol): forward kinematics, a position IK solve, one
-operational-space controller step, and a loop of Simulation.tick (real-time factor); also the
-tick loop with the same joint PD written as a Python Controller. With --cpp it runs the C++
-benchmark program and prints the per-call overhead (Python − C++) and the ratio of real-time
-factors. Figures are medians of --repeats rounds.
+operational-space controller step, a loop of Simulation.tick (real-time factor), and an
+environment step (Environment.step: the cheapest configuration, one physics step a call, where
+the binding's share shows, and the default reach environment); also the tick loop with the same
+joint PD written as a Python Controller. With --cpp it runs the C++ benchmark program and
+prints the per-call overhead (Python − C++) and the ratio of real-time factors. Figures are medians of --repeats rounds.
 """
 import argparse
 import json
@@ -75,6 +76,23 @@ def tick_loop_rtf(robot, chain, controller, ticks, rounds):
     return statistics.median(rtfs)
 
 
+def env_step(env, rounds, calls):
+    """Median over rounds of the thread CPU time per Environment.step [s], reset(0) after LAST
+    (timed too), as bench/python_binding_bench.cpp's env_loop. CPU time, not wall time: on a
+    shared machine the wall time of a 15-200 us call varies by more than the binding costs."""
+    action = np.zeros(env.action_spec().shape)
+    step, reset = env.step, env.reset
+    results = []
+    for _ in range(rounds):
+        reset(0)
+        start = time.thread_time()
+        for _ in range(calls):
+            if step(action).last():
+                reset(0)
+        results.append((time.thread_time() - start) / calls)
+    return statistics.median(results)
+
+
 def measure(rounds, calls, ticks):
     panda = mjarm.Robot.bundled("panda")
     chain = mjarm.Chain(panda, "attachment_site")
@@ -101,6 +119,11 @@ def measure(rounds, calls, ticks):
     ref.joint.qdd = np.zeros(7)
     osc = mjarm.OperationalSpaceController(tchain)
     out["controller_us"] = 1e6 * per_call(lambda r: osc.compute(data, r), [ref], rounds, calls)
+    cheap = mjarm.Environment("reach", action_space="joint_torques", control_period=0.002,
+                              time_limit=2.0)
+    out["env_step_us"] = 1e6 * env_step(cheap, rounds, calls)
+    out["env_step_reach_us"] = 1e6 * env_step(mjarm.Environment("reach"), rounds,
+                                              max(calls // 20, 500))
     out["tick_rtf"] = tick_loop_rtf(robot, tchain, mjarm.JointPdController(tchain), ticks, rounds)
     gains = mjarm.JointPdOptions().gains
     out["tick_rtf_python_controller"] = tick_loop_rtf(
@@ -121,6 +144,10 @@ def cpp_figures(path, min_time):
             figures["ik_us"] = b["real_time"] * scale
         elif name == "BM_ControllerStep":
             figures["controller_us"] = b["real_time"] * scale
+        elif name == "BM_EnvStep":  # CPU time, as the Python side (env_step)
+            figures["env_step_us"] = b["cpu_time"] * scale
+        elif name == "BM_EnvStepReach":
+            figures["env_step_reach_us"] = b["cpu_time"] * scale
         elif name == "BM_TickLoop":
             figures["tick_rtf"] = b["rtf"]
     return figures
@@ -146,7 +173,9 @@ def main(argv=None):
         return 0
     print(f"{'call':34} {'Python':>12} {'C++':>12} {'overhead':>12}")
     for key, label in (("fk_us", "FK (ChainKinematics.update)"), ("ik_us", "PositionIk.solve"),
-                       ("controller_us", "OSC controller step")):
+                       ("controller_us", "OSC controller step"),
+                       ("env_step_us", "Environment.step (1 physics step)"),
+                       ("env_step_reach_us", "Environment.step (reach defaults)")):
         c = cpp.get(key)
         print(f"{label:34} {py[key]:10.3f}us " + (f"{c:10.3f}us {py[key] - c:10.3f}us" if c else ""))
     c = cpp.get("tick_rtf")

@@ -73,14 +73,25 @@ struct ObservationLayout {
   }
 };
 
-/// A time step handed to Python: it owns a copy of its observation.
+/// A time step handed to Python: it owns a copy of its observation, made at the step; the
+/// NumPy array and the dict are built from it on first use (a step that nobody reads costs one
+/// copy of a few dozen doubles).
 struct PyTimeStep {
   StepType step_type = StepType::first;
   std::optional<double> reward, discount;
   EpisodeEnd end = EpisodeEnd::running;
-  py::array_t<double> values;                       // the observation, spec order
+  std::vector<double> copy;                         // the observation, spec order
   std::shared_ptr<const ObservationLayout> layout;  // names and shapes
-  py::object observation;                           // the dict, built on first use
+  py::object values;                                // float64 array, made from copy on first use
+  py::object observation;                           // the dict of views of values, ditto
+
+  const py::object& array() {
+    if (!values) {
+      values = to_array(copy.data(), static_cast<Eigen::Index>(copy.size()));
+      copy = {};
+    }
+    return values;
+  }
 };
 
 /// N time steps of a vectorized environment, each array a contiguous copy.
@@ -113,6 +124,7 @@ struct PyEnvironment {
   std::unique_ptr<Environment> env;
   std::shared_ptr<const ObservationLayout> layout;
   std::string task;
+  std::vector<double> action;  // the action being stepped
   bool busy = false;
 
   PyTimeStep convert(const TimeStep& ts) const {
@@ -122,8 +134,7 @@ struct PyEnvironment {
     out.discount = ts.discount;
     out.end = ts.end;
     const auto values = ts.observation.values();
-    out.values = py::array_t<double>(static_cast<py::ssize_t>(values.size()));
-    std::copy(values.begin(), values.end(), out.values.mutable_data());
+    out.copy.assign(values.begin(), values.end());
     out.layout = layout;
     return out;
   }
@@ -154,6 +165,20 @@ struct PyVectorEnvironment {
     return out;
   }
 };
+
+/// Copies the action @p object into @p out (its size): a C-contiguous float64 array of that
+/// shape directly, anything else through `to_vector` (conversion, the shape's ValueError).
+void read_action(py::handle object, std::span<double> out) {
+  if (py::isinstance<py::array_t<double, py::array::c_style>>(object)) {
+    const auto a = py::reinterpret_borrow<py::array>(object);
+    if (a.ndim() == 1 && a.shape(0) == static_cast<py::ssize_t>(out.size())) {
+      std::copy_n(static_cast<const double*>(a.data()), out.size(), out.data());
+      return;
+    }
+  }
+  const Eigen::VectorXd v = to_vector(object, "action", static_cast<Eigen::Index>(out.size()));
+  std::copy_n(v.data(), out.size(), out.data());
+}
 
 /// The scalar spec dm_env gives rewards and discounts.
 ArraySpec scalar_spec(std::string name, double lo, double hi) {
@@ -424,14 +449,17 @@ void bind_time_steps(py::module_& m) {
       .def_property_readonly(
           "observation",
           [](PyTimeStep& ts) -> py::object {
-            if (!ts.observation) ts.observation = ts.layout->dict_of(ts.values);
+            if (!ts.observation)
+              ts.observation =
+                  ts.layout->dict_of(py::reinterpret_borrow<py::array_t<double>>(ts.array()));
             return ts.observation;
           },
           "dict name -> float64 array of the spec's shape, in spec order: views of `values`, "
           "owned by this time step")
-      .def_readonly("values", &PyTimeStep::values,
-                    "the whole observation, the spec's arrays back to back (float64, (size,)); "
-                    "owned by this time step")
+      .def_property_readonly(
+          "values", &PyTimeStep::array,
+          "the whole observation, the spec's arrays back to back (float64, (size,)); "
+          "owned by this time step")
       .def(
           "first", [](const PyTimeStep& t) { return t.step_type == StepType::first; },
           "True on the first step of an episode (from reset).")
@@ -503,6 +531,7 @@ PyEnvironment make_environment(const std::string& task, py::handle options,
   }
   e.layout = std::make_shared<const ObservationLayout>(e.env->observation_spec());
   e.task = task;
+  e.action.resize(static_cast<std::size_t>(e.env->action_spec().size()));
   return e;
 }
 
@@ -538,13 +567,12 @@ void bind_environment(py::module_& m) {
       .def(
           "step",
           [](PyEnvironment& e, py::handle action) {
-            const Eigen::VectorXd a = to_vector(action, "action", e.env->action_spec().size());
             Busy busy(e.busy, "Environment.step");
+            read_action(action, e.action);
             TimeStep ts;
             {
               py::gil_scoped_release release;
-              ts = e.env->step(
-                  std::span<const double>(a.data(), static_cast<std::size_t>(a.size())));
+              ts = e.env->step(e.action);
             }
             return e.convert(ts);
           },

@@ -2,6 +2,7 @@
 time steps that own their observations, the vectorized form, bad input, and the GIL released
 while stepping (two Python threads faster than one)."""
 import gc
+import os
 import threading
 import time
 
@@ -290,42 +291,77 @@ def test_one_environment_from_two_threads_is_refused():
     assert errors and "another thread" in errors[0]
 
 
+def test_gil_released_while_a_batch_steps():
+    """The main thread's Python code runs while another thread is inside VectorEnvironment.step
+    (with the GIL held it could not run at all). Needs no free core: the OS time-slices."""
+    vec = mjarm.VectorEnvironment("reach", 32, 1, time_limit=100.0)
+    vec.reset()
+    inside, done = threading.Event(), threading.Event()
+
+    def worker():
+        inside.set()
+        for _ in range(3):
+            vec.step(np.zeros((32, 6)))
+        done.set()
+
+    t = threading.Thread(target=worker)
+    t.start()
+    inside.wait()
+    count = 0
+    while not done.is_set():
+        count += 1
+    t.join()
+    assert count > 1000, count
+
+
 def test_gil_released_two_threads_faster_than_one():
-    """Two VectorEnvironments (one pool thread each) stepped from two Python threads at once
-    against the same work one after the other: with the GIL released during step, the threads
-    overlap. Best of three trials (the machine is shared)."""
+    """Two VectorEnvironments of 4 (one pool thread each) stepped from two Python threads at once,
+    against the same work one after the other: with the GIL released during step the threads
+    run on both cores. The machine is shared (and ctest may run other tests beside this one), so
+    each trial also times a control: the same 8 environments on mjarm's own 2-thread pool, which
+    the GIL does not touch. The best of up to six trials must be 1.3x faster on two Python
+    threads; if in no trial the pool itself got 1.5x (no free core), the Python threads must
+    have kept up with the pool instead (within 20 %)."""
     envs = [mjarm.VectorEnvironment("reach", 4, 1, time_limit=100.0, seed=s) for s in (1, 2)]
-    actions = np.zeros((4, 6))
-    for e in envs:
+    pool = mjarm.VectorEnvironment("reach", 8, 2, time_limit=100.0, seed=3)
+    actions, actions8 = np.zeros((4, 6)), np.zeros((8, 6))
+    for e in envs + [pool]:
         e.reset()
 
-    def run(e, steps):
+    def run(e, a, steps):
         for _ in range(steps):
-            e.step(actions)
+            e.step(a)
 
     start = time.perf_counter()
-    run(envs[0], 10)
-    per_step = (time.perf_counter() - start) / 10
-    steps = max(20, int(0.4 / per_step))  # about 0.4 s of work per environment
-    best = 0.0
-    for _ in range(3):
+    run(envs[0], actions, 10)
+    steps = max(10, int(0.2 / ((time.perf_counter() - start) / 10)))  # ~0.2 s per thread
+    trials = []
+    for _ in range(6):
         start = time.perf_counter()
-        run(envs[0], steps)
-        run(envs[1], steps)
+        run(envs[0], actions, steps)
+        run(envs[1], actions, steps)
         serial = time.perf_counter() - start
-        threads = [threading.Thread(target=run, args=(e, steps)) for e in envs]
+        threads = [threading.Thread(target=run, args=(e, actions, steps)) for e in envs]
         start = time.perf_counter()
         for t in threads:
             t.start()
         for t in threads:
             t.join()
-        parallel = time.perf_counter() - start
-        best = max(best, serial / parallel)
-        if best > 1.5:
+        python_threads = serial / (time.perf_counter() - start)
+        start = time.perf_counter()
+        run(pool, actions8, steps)
+        trials.append((python_threads, serial / (time.perf_counter() - start)))
+        if python_threads > 1.6:
             break
-    print(f"two Python threads: {best:.2f}x faster than one ({steps} batch steps of 4 reach "
-          f"environments each)")
-    assert best > 1.3
+    best = max(trials)
+    print(f"two Python threads against one: {best[0]:.2f}x (mjarm's 2-thread pool in the same "
+          f"trial: {best[1]:.2f}x; trials: {', '.join(f'{p:.2f}/{c:.2f}' for p, c in trials)}; "
+          f"{steps} batch steps of 4 reach environments per thread; load average "
+          f"{os.getloadavg()[0]:.1f})")
+    if max(c for _, c in trials) > 1.5:
+        assert best[0] > 1.3
+    else:  # no free core in any trial: as parallel as the pool was
+        assert max(p / c for p, c in trials) > 0.8
 
 
 # --- the Gymnasium-style adapter -------------------------------------------------------------
