@@ -202,7 +202,7 @@ py::array_t<double> shaped(const ArraySpec& s, const Eigen::VectorXd& v) {
   return a;
 }
 
-std::string shape_text(const std::vector<py::ssize_t>& shape) {
+std::string spec_shape_text(const std::vector<py::ssize_t>& shape) {
   std::string s = "(";
   for (std::size_t i = 0; i < shape.size(); ++i) s += (i ? ", " : "") + std::to_string(shape[i]);
   return s + (shape.size() == 1 ? ",)" : ")");
@@ -215,8 +215,8 @@ py::object validate(const ArraySpec& s, py::handle value) {
   std::vector<py::ssize_t> shape(a.shape(), a.shape() + a.ndim());
   const std::vector<py::ssize_t> expected(s.shape.begin(), s.shape.end());
   if (shape != expected) {
-    throw py::value_error(s.name + ": expected shape " + shape_text(expected) + ", got " +
-                          shape_text(shape));
+    throw py::value_error(s.name + ": expected shape " + spec_shape_text(expected) + ", got " +
+                          spec_shape_text(shape));
   }
   if (!a.dtype().is(py::dtype::of<double>())) {
     throw py::value_error(s.name + ": expected dtype float64, got " +
@@ -255,15 +255,15 @@ py::dict observation_specs(const ObservationSpec& spec) {
 /// An episode seed from Python: None, or an integer in [0, 2^64).
 std::optional<std::uint64_t> to_seed(py::handle seed) {
   if (seed.is_none()) return std::nullopt;
-  if (!py::isinstance<py::int_>(seed) || py::isinstance<py::bool_>(seed)) {
-    throw Error("reset: seed must be None or an integer in [0, 2^64), got " +
-                py::repr(seed).cast<std::string>());
-  }
-  const py::int_ i = py::reinterpret_borrow<py::int_>(seed);
-  if (i < py::int_(0) || i >= py::int_(py::module_::import("builtins").attr("pow")(2, 64))) {
-    throw Error("reset: seed must be an integer in [0, 2^64), got " +
-                py::str(seed).cast<std::string>());
-  }
+  const auto refuse = [&] {
+    return Error("reset: seed must be None or an integer in [0, 2^64), got " +
+                 py::repr(seed).cast<std::string>());
+  };
+  // any integer (Python's, NumPy's: whatever has __index__), not a bool
+  if (py::isinstance<py::bool_>(seed) || !py::hasattr(seed, "__index__")) throw refuse();
+  const py::int_ i = seed.attr("__index__")();
+  if (i < py::int_(0) || i >= py::int_(py::module_::import("builtins").attr("pow")(2, 64)))
+    throw refuse();
   return i.cast<std::uint64_t>();
 }
 
