@@ -14,6 +14,15 @@
 // - TickLoop: Simulation in torque mode, control period = timestep (2 ms), JointPdController
 //   (default options) holding the home keyframe with a fixed Reference; 5000 ticks per
 //   iteration (10 s simulated). Counter rtf = simulated time / wall time.
+// - EnvStep: Environment "reach" with joint_torques actions, control period = the physics
+//   timestep (one physics step per call: the cheapest step there is, so that the binding's
+//   share shows), time limit 2 s (1000 steps an episode), zero action; a LAST step is followed
+//   by reset(0) (timed too, once per 1000 steps). The first step follows reset(0).
+// - EnvStepReach: the same loop on the default reach environment (ee_pose_deltas, T = 20 ms,
+//   10 physics steps, the QP and the operational-space controller), 500 steps an episode.
+//   The environment figures compared are CPU times (Google Benchmark's cpu_time here, the
+//   thread CPU clock in Python): the wall time of a 15–200 µs call on a shared machine varies
+//   by more than the binding's cost.
 // Run: build/bench_python_binding [--benchmark_min_time=0.5]
 #include <benchmark/benchmark.h>
 
@@ -23,6 +32,7 @@
 
 #include "mjarm/control/joint_pd.hpp"
 #include "mjarm/control/operational_space.hpp"
+#include "mjarm/env/environment.hpp"
 #include "mjarm/ik/position_ik.hpp"
 #include "mjarm/kinematics/chain_kinematics.hpp"
 #include "mjarm/sim/simulation.hpp"
@@ -126,5 +136,33 @@ void BM_TickLoop(benchmark::State& state) {
   state.SetLabel("Simulation::tick x5000, torque mode, JointPd, panda_torque, 2 ms");
 }
 BENCHMARK(BM_TickLoop)->Unit(benchmark::kMillisecond);
+
+/// One environment step per iteration, reset(0) after LAST (the Python side's loop).
+void env_loop(benchmark::State& state, mjarm::Environment& env) {
+  const std::vector<double> action(static_cast<std::size_t>(env.action_spec().size()), 0.0);
+  env.reset(0);
+  for (auto _ : state) {
+    if (env.step(action).last()) env.reset(0);
+  }
+}
+
+void BM_EnvStep(benchmark::State& state) {
+  mjarm::EnvironmentOptions options;
+  options.action_space = mjarm::ActionSpace::joint_torques;
+  options.control_period = 0.002;
+  options.time_limit = 2.0;
+  mjarm::Environment env("reach", options);
+  env_loop(state, env);
+  state.SetLabel("Environment::step, reach, joint_torques, T = h (1 physics step)");
+}
+BENCHMARK(BM_EnvStep);
+
+void BM_EnvStepReach(benchmark::State& state) {
+  mjarm::EnvironmentOptions options;
+  mjarm::Environment env("reach", options);
+  env_loop(state, env);
+  state.SetLabel("Environment::step, reach defaults (ee_pose_deltas, T = 20 ms, 10 physics steps)");
+}
+BENCHMARK(BM_EnvStepReach);
 
 }  // namespace

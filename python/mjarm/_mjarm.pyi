@@ -90,6 +90,88 @@ class AccelerationController(Controller):
     def options(self) -> Any:
         ...
 
+class ActionOptions:
+    """Bounds and gains of the action spaces."""
+    def __init__(self: ActionOptions) -> None:
+        ...
+    def check(self: ActionOptions) -> None:
+        """Raises mjarm.Error naming an option out of range."""
+        ...
+    @property
+    def joint_bandwidth(self) -> Any:
+        """joint PD bandwidth [rad/s]"""
+        ...
+    @joint_bandwidth.setter
+    def joint_bandwidth(self, value: Any) -> None: ...
+    @property
+    def max_angular_speed(self) -> Any:
+        """ee_velocities: |w| per axis [rad/s]"""
+        ...
+    @max_angular_speed.setter
+    def max_angular_speed(self, value: Any) -> None: ...
+    @property
+    def max_joint_delta(self) -> Any:
+        """joint_deltas: |dq| per step [rad or m]"""
+        ...
+    @max_joint_delta.setter
+    def max_joint_delta(self, value: Any) -> None: ...
+    @property
+    def max_joint_speed(self) -> Any:
+        """joint speed limit of the differential-IK QP [rad/s or m/s]"""
+        ...
+    @max_joint_speed.setter
+    def max_joint_speed(self, value: Any) -> None: ...
+    @property
+    def max_linear_speed(self) -> Any:
+        """ee_velocities: |v| per axis [m/s]"""
+        ...
+    @max_linear_speed.setter
+    def max_linear_speed(self, value: Any) -> None: ...
+    @property
+    def max_rotation(self) -> Any:
+        """ee_pose_deltas: |r| per axis per step [rad]"""
+        ...
+    @max_rotation.setter
+    def max_rotation(self, value: Any) -> None: ...
+    @property
+    def max_translation(self) -> Any:
+        """ee_pose_deltas: |dp| per axis per step [m]"""
+        ...
+    @max_translation.setter
+    def max_translation(self, value: Any) -> None: ...
+    @property
+    def osc(self) -> Any:
+        """the operational-space controller's options"""
+        ...
+    @osc.setter
+    def osc(self, value: Any) -> None: ...
+
+class ActionSpace:
+    """What one action commands (n = the chain's joints); see docs/env.md.
+
+Members:
+
+  joint_torques : n torques [N m], held over the step
+
+  joint_positions : n joint targets [rad]
+
+  joint_deltas : n increments of the joint target [rad]
+
+  ee_pose_deltas : [dx dy dz rx ry rz] of the goal pose (world axes; m, rotation vector rad)
+
+  ee_velocities : [vx vy vz wx wy wz] (m/s, rad/s), integrated over the step"""
+    joint_torques: ClassVar[ActionSpace]
+    joint_positions: ClassVar[ActionSpace]
+    joint_deltas: ClassVar[ActionSpace]
+    ee_pose_deltas: ClassVar[ActionSpace]
+    ee_velocities: ClassVar[ActionSpace]
+    def __init__(self, value: int) -> None: ...
+    @property
+    def name(self) -> str: ...
+    @property
+    def value(self) -> int: ...
+    def __int__(self) -> int: ...
+
 class ActuatorInfo:
     """One actuator of the model."""
     def __init__(*args: Any, **kwargs: Any) -> Any: ...
@@ -153,6 +235,50 @@ Members:
     @property
     def value(self) -> int: ...
     def __int__(self) -> int: ...
+
+class ArraySpec:
+    """A named float64 array with its shape and element-wise bounds (dm_env's specs.Array / specs.BoundedArray: unbounded sides are -inf/+inf). validate() and generate_value() follow dm_env."""
+    def __init__(self: ArraySpec, name: str, shape: list[int], minimum: ArrayLike = ..., maximum: ArrayLike = ...) -> None:
+        """A spec of shape `shape` (a list; [] for a scalar); minimum/maximum: size() values flattened row-major, None for unbounded. Raises mjarm.Error for an empty name, a non-positive dimension, NaN bounds or minimum > maximum."""
+        ...
+    def __repr__(self: ArraySpec) -> str:
+        ...
+    def bounded(self: ArraySpec) -> bool:
+        """True when every element has finite bounds on both sides."""
+        ...
+    def describe(self: ArraySpec) -> str:
+        """One line: 'name: float64[7] in [...]'."""
+        ...
+    @property
+    def dtype(self) -> Any:
+        """numpy.dtype('float64'): every array of mjarm's environments holds doubles"""
+        ...
+    def generate_value(self: ArraySpec) -> NDArray[np.float64]:
+        """A valid value of the spec's shape: the minimum where finite, else the maximum where finite, else 0 (dm_env: zeros for an unbounded Array, the minimum for a BoundedArray)."""
+        ...
+    @property
+    def maximum(self) -> Any:
+        """upper bounds, an array of the spec's shape (+inf where unbounded)"""
+        ...
+    @property
+    def minimum(self) -> Any:
+        """lower bounds, an array of the spec's shape (-inf where unbounded)"""
+        ...
+    @property
+    def name(self) -> Any:
+        """name of the array"""
+        ...
+    @property
+    def shape(self) -> Any:
+        """shape (tuple; () for a scalar)"""
+        ...
+    @property
+    def size(self) -> Any:
+        """number of elements (1 for a scalar)"""
+        ...
+    def validate(self: ArraySpec, value: ArrayLike) -> ArrayLike:
+        """Returns value when it is a float64 array of the spec's shape within its bounds (NaN is refused); raises ValueError naming the shape, dtype or the element out of bounds otherwise (dm_env's validate)."""
+        ...
 
 class BiasTerm:
     """Members:
@@ -485,6 +611,20 @@ class CicIntegral:
     def value(self) -> int: ...
     def __int__(self) -> int: ...
 
+class ClipCounts:
+    """How often actions were clipped into their bounds."""
+    def __init__(*args: Any, **kwargs: Any) -> Any: ...
+    def __repr__(self: ClipCounts) -> str:
+        ...
+    @property
+    def steps(self) -> Any:
+        """steps with at least one value clipped"""
+        ...
+    @property
+    def values(self) -> Any:
+        """values clipped"""
+        ...
+
 class CollisionSpec:
     """Geoms that must not touch during a solve."""
     def __init__(self: CollisionSpec) -> None:
@@ -717,6 +857,162 @@ class DiffIkTaskKind:
     pose: ClassVar[DiffIkTaskKind]
     position: ClassVar[DiffIkTaskKind]
     posture: ClassVar[DiffIkTaskKind]
+    def __init__(self, value: int) -> None: ...
+    @property
+    def name(self) -> str: ...
+    @property
+    def value(self) -> int: ...
+    def __int__(self) -> int: ...
+
+class Environment:
+    """A learning environment with dm_env's interface on a task (reach, shelf-pick): reset() -> FIRST, step(action) -> MID or LAST; a time-limit LAST has discount 1 (truncation), a termination or divergence discount 0. Actions outside their bounds are clipped and counted (or refused with refuse_out_of_bounds). The GIL is released while it steps. Not thread-safe: one thread per environment. See docs/env.md and docs/python.md."""
+    def __enter__(self: ArrayLike) -> ArrayLike:
+        ...
+    def __exit__(self: Environment, *args) -> bool:
+        """Leaves a `with` block (close())."""
+        ...
+    def __init__(self: Environment, task: str, options: ArrayLike = ..., **kwargs) -> None:
+        """Environment(task, options=None, **overrides): the task by name (env_task_names()), with EnvironmentOptions (None: the defaults) whose fields keyword arguments override (e.g. time_limit=0.5, action_space='joint_torques'). Raises mjarm.Error for an unknown task, observation or option, and options out of range."""
+        ...
+    def action_spec(self: Environment) -> ArraySpec:
+        """ArraySpec 'action': shape (n,), float64, its bounds."""
+        ...
+    def close(self: Environment) -> None:
+        """Does nothing (dm_env's interface): memory goes with the object."""
+        ...
+    def discount_spec(self: Environment) -> ArraySpec:
+        """ArraySpec 'discount': a float64 scalar in [0, 1] (dm_env's default)."""
+        ...
+    @property
+    def end(self) -> Any:
+        """EpisodeEnd of the last time step (running until LAST)"""
+        ...
+    @property
+    def episode_clips(self) -> Any:
+        """ClipCounts of the current episode"""
+        ...
+    @property
+    def episode_seed(self) -> Any:
+        """seed of the current episode"""
+        ...
+    def observation_spec(self: Environment) -> dict:
+        """dict name -> ArraySpec, in the order of the observation."""
+        ...
+    @property
+    def options(self) -> Any:
+        """the EnvironmentOptions (a copy)"""
+        ...
+    @property
+    def physics_steps_per_step(self) -> Any:
+        """physics steps per control step (T / h)"""
+        ...
+    def reset(self: Environment, seed: ArrayLike = ...) -> TimeStep:
+        """Starts an episode and returns its FIRST TimeStep. seed: an integer in [0, 2^64) (the same seed and actions give the same observations bit for bit), or None: the next seed of the environment's own sequence (EnvironmentOptions.seed)."""
+        ...
+    def reward_spec(self: Environment) -> ArraySpec:
+        """ArraySpec 'reward': a float64 scalar, unbounded (dm_env's default)."""
+        ...
+    def step(self: Environment, action: ArrayLike) -> TimeStep:
+        """One control step with action (float64 array-like of shape action_spec().shape) -> MID or LAST TimeStep. Raises ValueError naming the expected shape for a wrong shape or dtype, mjarm.Error for NaN/inf, before the first reset and after LAST (call reset())."""
+        ...
+    @property
+    def step_limit(self) -> Any:
+        """steps after which an episode is truncated: ceil(time_limit / T)"""
+        ...
+    @property
+    def steps(self) -> Any:
+        """steps taken in the current episode"""
+        ...
+    @property
+    def task(self) -> Any:
+        """the task's name"""
+        ...
+    @property
+    def total_clips(self) -> Any:
+        """ClipCounts since construction"""
+        ...
+
+class EnvironmentOptions:
+    """Settings of an Environment (checked by its constructor); see docs/env.md. Environment(task, **overrides) also takes these fields as keywords."""
+    def __init__(self: EnvironmentOptions) -> None:
+        ...
+    @property
+    def action(self) -> Any:
+        """ActionOptions"""
+        ...
+    @action.setter
+    def action(self, value: Any) -> None: ...
+    @property
+    def action_space(self) -> Any:
+        """an ActionSpace, or its name ('ee_pose_deltas', ...)"""
+        ...
+    @action_space.setter
+    def action_space(self, value: Any) -> None: ...
+    @property
+    def control_period(self) -> Any:
+        """control step T [s], a whole multiple of the physics timestep"""
+        ...
+    @control_period.setter
+    def control_period(self, value: Any) -> None: ...
+    @property
+    def controller_period(self) -> Any:
+        """low-level controller period [s], a whole divisor of T (0: the action space's own)"""
+        ...
+    @controller_period.setter
+    def controller_period(self, value: Any) -> None: ...
+    @property
+    def max_acceleration(self) -> Any:
+        """divergence bound on |qdd| [rad/s^2 or m/s^2]"""
+        ...
+    @max_acceleration.setter
+    def max_acceleration(self, value: Any) -> None: ...
+    @property
+    def observations(self) -> Any:
+        """observation names ([]: the task's defaults); see env_observations(task)"""
+        ...
+    @observations.setter
+    def observations(self, value: Any) -> None: ...
+    @property
+    def randomization(self) -> Any:
+        """RandomizationOptions"""
+        ...
+    @randomization.setter
+    def randomization(self, value: Any) -> None: ...
+    @property
+    def refuse_out_of_bounds(self) -> Any:
+        """refuse (mjarm.Error) instead of clipping an action outside its bounds"""
+        ...
+    @refuse_out_of_bounds.setter
+    def refuse_out_of_bounds(self, value: Any) -> None: ...
+    @property
+    def seed(self) -> Any:
+        """seed of the episode seeds reset() without a seed draws"""
+        ...
+    @seed.setter
+    def seed(self, value: Any) -> None: ...
+    @property
+    def time_limit(self) -> Any:
+        """episode length [s]: LAST with discount 1 after ceil(time_limit / T) steps"""
+        ...
+    @time_limit.setter
+    def time_limit(self, value: Any) -> None: ...
+
+class EpisodeEnd:
+    """Why an episode ended (set on LAST).
+
+Members:
+
+  running : not ended
+
+  terminated : the task ended it: discount 0
+
+  truncated : the time limit: discount 1
+
+  diverged : the physics diverged: discount 0"""
+    running: ClassVar[EpisodeEnd]
+    terminated: ClassVar[EpisodeEnd]
+    truncated: ClassVar[EpisodeEnd]
+    diverged: ClassVar[EpisodeEnd]
     def __init__(self, value: int) -> None: ...
     @property
     def name(self) -> str: ...
@@ -2545,6 +2841,44 @@ class RampSample:
     def s(self) -> Any:
         ...
 
+class RandomizationOptions:
+    """Relative ranges r in [0, 1) of domain randomization: each parameter times a factor uniform in [1 - r, 1 + r], drawn at every reset."""
+    def __init__(self: RandomizationOptions) -> None:
+        ...
+    def any(self: RandomizationOptions) -> bool:
+        """True when any range is non-zero."""
+        ...
+    @property
+    def damping(self) -> Any:
+        """joint damping"""
+        ...
+    @damping.setter
+    def damping(self, value: Any) -> None: ...
+    @property
+    def friction(self) -> Any:
+        """geom friction"""
+        ...
+    @friction.setter
+    def friction(self, value: Any) -> None: ...
+    @property
+    def gain(self) -> Any:
+        """actuator gains"""
+        ...
+    @gain.setter
+    def gain(self, value: Any) -> None: ...
+    @property
+    def mass(self) -> Any:
+        """body masses and inertias"""
+        ...
+    @mass.setter
+    def mass(self, value: Any) -> None: ...
+    @property
+    def object_size(self) -> Any:
+        """the task's object geoms (size, mass, inertia)"""
+        ...
+    @object_size.setter
+    def object_size(self, value: Any) -> None: ...
+
 class Recorder:
     """Records a Simulation into a directory (state/task/events CSV + summary.json, atomic). Use as a context manager, or call finalize()."""
     def __enter__(self: ArrayLike) -> ArrayLike:
@@ -3362,6 +3696,26 @@ class StepFault:
     def value(self) -> Any:
         ...
 
+class StepType:
+    """Where a time step stands in its episode (dm_env's StepType: FIRST = 0, MID = 1, LAST = 2).
+
+Members:
+
+  FIRST : returned by reset: no reward, no discount
+
+  MID : an ordinary step
+
+  LAST : the episode ended (termination or time limit)"""
+    FIRST: ClassVar[StepType]
+    MID: ClassVar[StepType]
+    LAST: ClassVar[StepType]
+    def __init__(self, value: int) -> None: ...
+    @property
+    def name(self) -> str: ...
+    @property
+    def value(self) -> int: ...
+    def __int__(self) -> int: ...
+
 class StiffnessRelease:
     def __init__(self: StiffnessRelease) -> None:
         ...
@@ -3599,6 +3953,47 @@ class TickStatus:
     def value(self) -> int: ...
     def __int__(self) -> int: ...
 
+class TimeStep:
+    """One step of an episode (dm_env's TimeStep): step_type, reward and discount (None on FIRST), observation (dict name -> float64 array), and end (why the episode ended, on LAST). The observation is the time step's own copy: it never changes when the environment steps again, and can be kept as long as wanted. Iterates as (step_type, reward, discount, observation), like dm_env's namedtuple."""
+    def __init__(*args: Any, **kwargs: Any) -> Any: ...
+    def __len__(self: TimeStep) -> int:
+        ...
+    def __repr__(self: TimeStep) -> str:
+        ...
+    @property
+    def discount(self) -> Any:
+        """None on FIRST; 0 on a termination or divergence, 1 otherwise (a time-limit truncation included)"""
+        ...
+    @property
+    def end(self) -> Any:
+        """EpisodeEnd: running, or why the episode ended"""
+        ...
+    def first(self: TimeStep) -> bool:
+        """True on the first step of an episode (from reset)."""
+        ...
+    def last(self: TimeStep) -> bool:
+        """True on the last step of an episode."""
+        ...
+    def mid(self: TimeStep) -> bool:
+        """True on an ordinary step."""
+        ...
+    @property
+    def observation(self) -> Any:
+        """dict name -> float64 array of the spec's shape, in spec order: views of `values`, owned by this time step"""
+        ...
+    @property
+    def reward(self) -> Any:
+        """float, None on FIRST"""
+        ...
+    @property
+    def step_type(self) -> Any:
+        """StepType"""
+        ...
+    @property
+    def values(self) -> Any:
+        """the whole observation, the spec's arrays back to back (float64, (size,)); owned by this time step"""
+        ...
+
 class TrapezoidProfile:
     """Rest-to-rest trapezoidal velocity profile."""
     def __init__(self: TrapezoidProfile, distance: float, max_velocity: float = ..., max_acceleration: float = ...) -> None:
@@ -3633,6 +4028,86 @@ class TrapezoidSample:
         ...
     @property
     def velocity(self) -> Any:
+        ...
+
+class VectorEnvironment:
+    """N environments of one task stepped together on a thread pool (the GIL released), with automatic resets: a row whose last step was LAST is reset by the next step (its action row checked but unused) and returns FIRST. Environment i is seeded splitmix64(seed + i): the results are the same bit for bit whatever the thread count."""
+    def __init__(self: VectorEnvironment, task: str, count: int, threads: int = ..., options: ArrayLike = ..., **kwargs) -> None:
+        """VectorEnvironment(task, count, threads=1, options=None, **overrides): count environments (1..4096) on threads threads (1..256). Raises mjarm.Error as Environment, and for counts out of range."""
+        ...
+    def __len__(self: VectorEnvironment) -> int:
+        ...
+    def action_spec(self: VectorEnvironment) -> ArraySpec:
+        """ArraySpec of one environment's action (a batch is (N, *shape))."""
+        ...
+    def episode_clips(self: VectorEnvironment, i: int) -> ClipCounts:
+        """ClipCounts of environment i's current episode."""
+        ...
+    @property
+    def last_env_cpu_seconds(self) -> Any:
+        """(N,) CPU time [s] of each environment's part of the last reset or step"""
+        ...
+    @property
+    def last_thread_cpu_seconds(self) -> Any:
+        """CPU time [s] of each pool thread in the last reset or step"""
+        ...
+    def observation_spec(self: VectorEnvironment) -> dict:
+        """dict name -> ArraySpec of one environment's observation."""
+        ...
+    def reset(self: VectorEnvironment) -> VectorTimeStep:
+        """Resets every environment (the next seed of each one's sequence): every row FIRST."""
+        ...
+    @property
+    def size(self) -> Any:
+        """number of environments N"""
+        ...
+    def step(self: VectorEnvironment, actions: ArrayLike) -> VectorTimeStep:
+        """One step of every environment with actions (N, action size); rows whose last step was LAST are reset instead. Returns a VectorTimeStep. Raises ValueError naming the expected shape, mjarm.Error for NaN/inf (naming the row) or before reset(); nothing is stepped then."""
+        ...
+    @property
+    def task(self) -> Any:
+        """the task's name"""
+        ...
+    @property
+    def threads(self) -> Any:
+        """threads of the pool"""
+        ...
+
+class VectorTimeStep:
+    """The time steps of a VectorEnvironment, row i for environment i, each a contiguous array owned by this object (copies: the next step does not change them)."""
+    def __init__(*args: Any, **kwargs: Any) -> Any: ...
+    @property
+    def discount(self) -> Any:
+        """(N,) float64, NaN on FIRST rows"""
+        ...
+    @property
+    def end(self) -> Any:
+        """(N,) int8: EpisodeEnd values"""
+        ...
+    def first(self: VectorTimeStep) -> numpy.ndarray:
+        """(N,) bool: rows on FIRST"""
+        ...
+    def last(self: VectorTimeStep) -> numpy.ndarray:
+        """(N,) bool: rows on LAST"""
+        ...
+    def mid(self: VectorTimeStep) -> numpy.ndarray:
+        """(N,) bool: rows on MID"""
+        ...
+    @property
+    def observation(self) -> Any:
+        """dict name -> (N, *shape) float64 contiguous array"""
+        ...
+    @property
+    def reward(self) -> Any:
+        """(N,) float64, NaN on FIRST rows"""
+        ...
+    @property
+    def step_type(self) -> Any:
+        """(N,) int8: StepType values (FIRST 0, MID 1, LAST 2)"""
+        ...
+    @property
+    def values(self) -> Any:
+        """(N, observation size) float64: each row the spec's arrays back to back"""
         ...
 
 class VideoWriter:
@@ -3784,6 +4259,12 @@ class WrenchStatus:
     def value(self) -> int: ...
     def __int__(self) -> int: ...
 
+def env_observations(task: str) -> list[str]:
+    """Every observation name task can give (built-in, the task's, one 'sensor:NAME' per sensor). Raises mjarm.Error for an unknown task."""
+    ...
+def env_task_names() -> list[str]:
+    """The environment tasks' names ('reach', ...)."""
+    ...
 def find_frame(robot: Robot, name: str) -> FrameRef:
     """The frame called name: a site first, then a body."""
     ...

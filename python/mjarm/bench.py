@@ -2,10 +2,11 @@
 
 Times, from Python, the calls that bench/python_binding_bench.cpp times in C++ on the same
 inputs (its comment states the protocol): forward kinematics, a position IK solve, one
-operational-space controller step, and a loop of Simulation.tick (real-time factor); also the
-tick loop with the same joint PD written as a Python Controller. With --cpp it runs the C++
-benchmark program and prints the per-call overhead (Python − C++) and the ratio of real-time
-factors. Figures are medians of --repeats rounds.
+operational-space controller step, a loop of Simulation.tick (real-time factor), and an
+environment step (Environment.step: the cheapest configuration, one physics step a call, where
+the binding's share shows, and the default reach environment); also the tick loop with the same
+joint PD written as a Python Controller. With --cpp it runs the C++ benchmark program and
+prints the per-call overhead (Python − C++) and the ratio of real-time factors. Figures are medians of --repeats rounds.
 """
 import argparse
 import json
@@ -75,6 +76,50 @@ def tick_loop_rtf(robot, chain, controller, ticks, rounds):
     return statistics.median(rtfs)
 
 
+def env_step(env, rounds, calls):
+    """Median over rounds of the thread CPU time per Environment.step [s], reset(0) after LAST
+    (timed too), as bench/python_binding_bench.cpp's env_loop. CPU time, not wall time: on a
+    shared machine the wall time of a 15-200 us call varies by more than the binding costs."""
+    action = np.zeros(env.action_spec().shape)
+    step, reset = env.step, env.reset
+    results = []
+    for _ in range(rounds):
+        reset(0)
+        start = time.thread_time()
+        for _ in range(calls):
+            if step(action).last():
+                reset(0)
+        results.append((time.thread_time() - start) / calls)
+    return statistics.median(results)
+
+
+ENV_KEYS = ("env_step_us", "env_step_reach_us")
+
+
+def env_figures(rounds, calls, cpp_path):
+    """The environment steps, paired: each round runs the C++ side's two environment benchmarks
+    (with cpp_path) and right after one Python round of each, so that a change of the machine's
+    load moves both sides of a pair; the overhead is the median of the paired differences."""
+    cheap = mjarm.Environment("reach", action_space="joint_torques", control_period=0.002,
+                              time_limit=2.0)
+    reach = mjarm.Environment("reach")
+    py, cpp = {k: [] for k in ENV_KEYS}, {k: [] for k in ENV_KEYS}
+    for _ in range(rounds):
+        if cpp_path:
+            figures = cpp_figures(cpp_path, 0.2, "^BM_EnvStep")
+            for k in ENV_KEYS:
+                cpp[k].append(figures[k])
+        py["env_step_us"].append(1e6 * env_step(cheap, 1, calls))
+        py["env_step_reach_us"].append(1e6 * env_step(reach, 1, max(calls // 20, 500)))
+    out = {"python": {k: statistics.median(v) for k, v in py.items()}, "cpp": {}, "overhead": {}}
+    if cpp_path:
+        for k in ENV_KEYS:
+            out["cpp"][k] = statistics.median(cpp[k])
+            out["overhead"][k] = statistics.median(p - c for p, c in zip(py[k], cpp[k]))
+    out["rounds"] = {"python": py, "cpp": cpp}
+    return out
+
+
 def measure(rounds, calls, ticks):
     panda = mjarm.Robot.bundled("panda")
     chain = mjarm.Chain(panda, "attachment_site")
@@ -108,9 +153,11 @@ def measure(rounds, calls, ticks):
     return out
 
 
-def cpp_figures(path, min_time):
-    result = subprocess.run([path, "--benchmark_format=json", f"--benchmark_min_time={min_time}"],
-                            capture_output=True, text=True, check=True)
+def cpp_figures(path, min_time, benchmark_filter=None):
+    command = [path, "--benchmark_format=json", f"--benchmark_min_time={min_time}"]
+    if benchmark_filter:
+        command.append(f"--benchmark_filter={benchmark_filter}")
+    result = subprocess.run(command, capture_output=True, text=True, check=True)
     figures = {}
     for b in json.loads(result.stdout)["benchmarks"]:
         scale = {"ns": 1e-3, "us": 1.0, "ms": 1e3}[b["time_unit"]]
@@ -121,6 +168,10 @@ def cpp_figures(path, min_time):
             figures["ik_us"] = b["real_time"] * scale
         elif name == "BM_ControllerStep":
             figures["controller_us"] = b["real_time"] * scale
+        elif name == "BM_EnvStep":  # CPU time, as the Python side (env_step)
+            figures["env_step_us"] = b["cpu_time"] * scale
+        elif name == "BM_EnvStepReach":
+            figures["env_step_reach_us"] = b["cpu_time"] * scale
         elif name == "BM_TickLoop":
             figures["tick_rtf"] = b["rtf"]
     return figures
@@ -140,15 +191,24 @@ def main(argv=None):
     if args.cpp and not os.access(args.cpp, os.X_OK):
         parser.error(f"--cpp: {args.cpp} is not an executable")
     py = measure(args.rounds, args.calls, args.ticks)
-    cpp = cpp_figures(args.cpp, 0.5) if args.cpp else {}
+    cpp = cpp_figures(args.cpp, 0.5, "-BM_EnvStep") if args.cpp else {}
+    env = env_figures(args.rounds, args.calls, args.cpp)
+    py.update(env["python"])
+    cpp.update(env["cpp"])
     if args.json:
-        print(json.dumps({"python": py, "cpp": cpp}))
+        print(json.dumps({"python": py, "cpp": cpp, "env_overhead": env["overhead"],
+                          "env_rounds": env["rounds"]}))
         return 0
     print(f"{'call':34} {'Python':>12} {'C++':>12} {'overhead':>12}")
     for key, label in (("fk_us", "FK (ChainKinematics.update)"), ("ik_us", "PositionIk.solve"),
                        ("controller_us", "OSC controller step")):
         c = cpp.get(key)
         print(f"{label:34} {py[key]:10.3f}us " + (f"{c:10.3f}us {py[key] - c:10.3f}us" if c else ""))
+    for key, label in (("env_step_us", "Environment.step (1 physics step)"),
+                       ("env_step_reach_us", "Environment.step (reach defaults)")):
+        c, d = cpp.get(key), env["overhead"].get(key)
+        print(f"{label:34} {py[key]:10.3f}us " + (f"{c:10.3f}us {d:10.3f}us (CPU time, "
+                                                    "median of paired rounds)" if c else ""))
     c = cpp.get("tick_rtf")
     print(f"{'Simulation.tick loop (RTF)':34} {py['tick_rtf']:11.1f}x "
           + (f"{c:11.1f}x {c / py['tick_rtf']:10.2f}x slower" if c else ""))

@@ -96,5 +96,6 @@ void bind_trajectory(py::module_& m);
 void bind_planning(py::module_& m);
 void bind_tasks(py::module_& m);
 void bind_render(py::module_& m);
+void bind_env(py::module_& m);
 
 }  // namespace mjarm::python

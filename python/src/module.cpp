@@ -24,4 +24,5 @@ PYBIND11_MODULE(_mjarm, m) {
   mjarm::python::bind_planning(m);
   mjarm::python::bind_tasks(m);
   mjarm::python::bind_render(m);
+  mjarm::python::bind_env(m);
 }
