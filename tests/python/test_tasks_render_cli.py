@@ -62,7 +62,7 @@ def test_example_runs(path):
 def test_examples_exist():
     names = [os.path.basename(p) for p in EXAMPLES]
     assert any("ik" in n for n in names) and any("clik" in n for n in names)
-    assert any("torque" in n for n in names)
+    assert any("torque" in n for n in names) and any("pick_and_place" in n for n in names)
 
 
 def test_video_from_rendered_frames(panda, tmp_path):
