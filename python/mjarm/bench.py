@@ -2,8 +2,10 @@
 
 Times, from Python, the calls that bench/python_binding_bench.cpp times in C++ on the same
 inputs (its comment states the protocol): forward kinematics, a position IK solve, one
-operational-space controller step, and a loop of Simulation.tick (real-time factor); also the
-tick loop with the same joint PD written as a Python Controller. With --cpp it runs the C++
+operational-space controller step (``compute(data, ref)``, a new array per call, and
+``compute(data, ref, out)``, written into a preallocated array as the C++ loop writes into its
+command), and a loop of Simulation.tick (real-time factor); also the tick loop with the same
+joint PD written as a Python Controller. With --cpp it runs the C++
 benchmark program and prints the per-call overhead (Python − C++) and the ratio of real-time
 factors. Figures are medians of --repeats rounds.
 """
@@ -41,6 +43,23 @@ def per_call(fn, args, rounds, calls):
         start = time.perf_counter()
         for i in range(calls):
             fn(args[i % n])
+        results.append((time.perf_counter() - start) / calls)
+    return statistics.median(results)
+
+
+def step_per_call(compute, data, reference, out, rounds, calls):
+    """Median over rounds of the mean time per controller step [s]: the call as a user's control
+    loop makes it, compute(data, reference) (a new array each call) or, with out, compute(data,
+    reference, out) (the command written into out)."""
+    results = []
+    for _ in range(rounds):
+        start = time.perf_counter()
+        if out is None:
+            for _ in range(calls):
+                compute(data, reference)
+        else:
+            for _ in range(calls):
+                compute(data, reference, out)
         results.append((time.perf_counter() - start) / calls)
     return statistics.median(results)
 
@@ -100,7 +119,8 @@ def measure(rounds, calls, ticks):
     ref.joint.qd = np.zeros(7)
     ref.joint.qdd = np.zeros(7)
     osc = mjarm.OperationalSpaceController(tchain)
-    out["controller_us"] = 1e6 * per_call(lambda r: osc.compute(data, r), [ref], rounds, calls)
+    out["controller_us"] = 1e6 * step_per_call(osc.compute, data, ref, None, rounds, calls)
+    out["controller_out_us"] = 1e6 * step_per_call(osc.compute, data, ref, np.zeros(7), rounds, calls)
     out["tick_rtf"] = tick_loop_rtf(robot, tchain, mjarm.JointPdController(tchain), ticks, rounds)
     gains = mjarm.JointPdOptions().gains
     out["tick_rtf_python_controller"] = tick_loop_rtf(
@@ -139,15 +159,19 @@ def main(argv=None):
         parser.error("--rounds must be in 1..100, --calls and --ticks in 100..10^7")
     if args.cpp and not os.access(args.cpp, os.X_OK):
         parser.error(f"--cpp: {args.cpp} is not an executable")
+    load_start = os.getloadavg()[0]
     py = measure(args.rounds, args.calls, args.ticks)
     cpp = cpp_figures(args.cpp, 0.5) if args.cpp else {}
+    load = [load_start, os.getloadavg()[0]]  # 1-minute load average before and after
     if args.json:
-        print(json.dumps({"python": py, "cpp": cpp}))
+        print(json.dumps({"python": py, "cpp": cpp, "load_average": load}))
         return 0
+    print(f"load average (1 min): {load[0]:.2f} at the start, {load[1]:.2f} at the end")
     print(f"{'call':34} {'Python':>12} {'C++':>12} {'overhead':>12}")
     for key, label in (("fk_us", "FK (ChainKinematics.update)"), ("ik_us", "PositionIk.solve"),
-                       ("controller_us", "OSC controller step")):
-        c = cpp.get(key)
+                       ("controller_us", "OSC controller step"),
+                       ("controller_out_us", "  ... compute(data, ref, out)")):
+        c = cpp.get(key.replace("_out", ""))
         print(f"{label:34} {py[key]:10.3f}us " + (f"{c:10.3f}us {py[key] - c:10.3f}us" if c else ""))
     c = cpp.get("tick_rtf")
     print(f"{'Simulation.tick loop (RTF)':34} {py['tick_rtf']:11.1f}x "

@@ -3,6 +3,7 @@
 #include <exception>
 #include <memory>
 
+#include "controller_step.hpp"
 #include "mjarm/tasks/docking.hpp"
 #include "mjarm/tasks/docking_grid.hpp"
 #include "mjarm/tasks/tracking_gate.hpp"
@@ -160,21 +161,23 @@ void bind_scene_and_controller(py::module_& m) {
       .def_readwrite("friction_mode", &DockingControllerOptions::friction_mode)
       .def_readwrite("control_period", &DockingControllerOptions::control_period, "[s]");
 
-  py::class_<DockingController, Controller>(
-      m, "DockingController",
-      "A docking law with its force source (torque mode); usable in a Simulation like any "
-      "controller.")
-      .def(py::init<const DockingScene&, const DockingControllerOptions&>(), py::arg("scene"),
-           py::arg("options") = DockingControllerOptions{})
-      .def_property_readonly("options", &DockingController::options)
-      .def_property_readonly(
-          "measured_wrench",
-          [](const DockingController& c) { return Vector6d(c.measured_wrench()); },
-          "wrench on E at the last compute, world axes (6,) [N; N m]")
-      .def_property_readonly(
-          "stiffness", [](const DockingController& c) { return Vector6d(c.stiffness()); },
-          "stiffness diagonal in force at the last compute (6,)")
-      .def_property_readonly("bad_wrench_ticks", &DockingController::bad_wrench_ticks);
+  auto docking =
+      py::class_<DockingController, Controller>(
+          m, "DockingController",
+          "A docking law with its force source (torque mode); usable in a Simulation like any "
+          "controller.")
+          .def(py::init<const DockingScene&, const DockingControllerOptions&>(), py::arg("scene"),
+               py::arg("options") = DockingControllerOptions{})
+          .def_property_readonly("options", &DockingController::options)
+          .def_property_readonly(
+              "measured_wrench",
+              [](const DockingController& c) { return Vector6d(c.measured_wrench()); },
+              "wrench on E at the last compute, world axes (6,) [N; N m]")
+          .def_property_readonly(
+              "stiffness", [](const DockingController& c) { return Vector6d(c.stiffness()); },
+              "stiffness diagonal in force at the last compute (6,)")
+          .def_property_readonly("bad_wrench_ticks", &DockingController::bad_wrench_ticks);
+  bind_compute<DockingController>(docking);
 }
 
 void bind_motion(py::module_& m) {
