@@ -247,7 +247,7 @@ void bind_motion(py::module_& m) {
       "The plan of a run: poses, the start configuration by IK, durations.");
 }
 
-void bind_results(py::module_& m) {
+void bind_docking_results(py::module_& m) {
   py::class_<DockingMetrics>(m, "DockingMetrics",
                              "Metrics of one run: whole run, final window, verdict. Forces [N], "
                              "moments [N m], lengths [m], angles [rad].")
@@ -485,7 +485,7 @@ void bind_gate(py::module_& m) {
 void bind_docking(py::module_& m) {
   bind_scene_and_controller(m);
   bind_motion(m);
-  bind_results(m);
+  bind_docking_results(m);
   bind_runs(m);
   bind_gate(m);
 }

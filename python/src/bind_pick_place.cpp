@@ -32,7 +32,7 @@ void optional_pair(Class& cls, const char* name, std::optional<std::array<double
       doc);
 }
 
-void bind_options(py::module_& m) {
+void bind_pick_place_options(py::module_& m) {
   py::enum_<GraspKind>(m, "GraspKind", "How the object is held.")
       .value("weld", GraspKind::weld)
       .value("friction", GraspKind::friction);
@@ -193,7 +193,7 @@ void bind_options(py::module_& m) {
       .def_readwrite("video", &PickPlaceOptions::video, "PickPlaceVideo");
 }
 
-void bind_results(py::module_& m) {
+void bind_pick_place_results(py::module_& m) {
   py::class_<PickPlaceTrace>(m, "PickPlaceTrace", "What the machine saw (NaN: did not happen).")
       .def_readonly("state", &PickPlaceTrace::state, "the state at the end")
       .def_readonly("start_time", &PickPlaceTrace::start_time, "[s]")
@@ -329,8 +329,8 @@ void bind_scene_of_a_trial(py::module_& m) {
 }  // namespace
 
 void bind_pick_place(py::module_& m) {
-  bind_options(m);
-  bind_results(m);
+  bind_pick_place_options(m);
+  bind_pick_place_results(m);
   bind_scene_of_a_trial(m);
 
   auto batch = py::class_<PickPlaceBatchOptions>(

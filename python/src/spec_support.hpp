@@ -45,13 +45,13 @@ template <typename T>
 T spec_of(const py::object& spec, const py::kwargs& fields, const char* call, const char* type) {
   if (spec.is_none()) {
     if (fields.empty()) {
-      throw py::type_error(std::string(call) + ": expected a " + type +
+      throw py::type_error(std::string(call) + ": expected " + type +
                            " or its fields as keywords, got None");
     }
     return from_fields<T>(fields, type);
   }
   if (!py::isinstance<T>(spec)) {
-    throw py::type_error(std::string(call) + ": expected a " + type + ", got " +
+    throw py::type_error(std::string(call) + ": expected " + type + ", got " +
                          py::str(py::type::of(spec).attr("__name__")).cast<std::string>());
   }
   return fields.empty() ? spec.cast<T>() : from_fields<T>(fields, type, spec.cast<T>());

@@ -139,10 +139,10 @@ def test_refused_parts_name_the_problem_and_leave_the_scene_unchanged():
 
 def test_none_and_wrong_types_where_a_spec_is_required():
     scene = mjarm.Scene()
-    with pytest.raises(TypeError, match="add_robot: expected a RobotSpec or its fields as "
+    with pytest.raises(TypeError, match="add_robot: expected RobotSpec or its fields as "
                                         "keywords, got None"):
         scene.add_robot(None)
-    with pytest.raises(TypeError, match="add_object: expected a ObjectSpec, got RobotSpec"):
+    with pytest.raises(TypeError, match="add_object: expected ObjectSpec, got RobotSpec"):
         scene.add_object(mjarm.RobotSpec(name="x", model="panda"))
     with pytest.raises(TypeError):
         scene.has(None, "x")
