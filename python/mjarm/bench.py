@@ -7,7 +7,8 @@ operational-space controller step (``compute(data, ref)``, a new array per call,
 command), and a loop of Simulation.tick (real-time factor); also the tick loop with the same
 joint PD written as a Python Controller. With --cpp it runs the C++
 benchmark program and prints the per-call overhead (Python − C++) and the ratio of real-time
-factors. Figures are medians of --repeats rounds.
+factors; with --repeat N it measures both sides N times, one after the other, and each overhead
+is the median of the N differences. Python figures are medians of --rounds rounds.
 """
 import argparse
 import json
@@ -21,6 +22,10 @@ import time
 import numpy as np
 
 import mjarm
+
+# the clock of the per-call figures: wall time, or this thread's CPU time (--clock cpu, for a
+# shared machine: time the thread waits for a core is not counted, on either side)
+CLOCK = [time.perf_counter]
 
 
 def configurations(chain):
@@ -40,10 +45,10 @@ def per_call(fn, args, rounds, calls):
     results = []
     n = len(args)
     for _ in range(rounds):
-        start = time.perf_counter()
+        start = CLOCK[0]()
         for i in range(calls):
             fn(args[i % n])
-        results.append((time.perf_counter() - start) / calls)
+        results.append((CLOCK[0]() - start) / calls)
     return statistics.median(results)
 
 
@@ -53,14 +58,14 @@ def step_per_call(compute, data, reference, out, rounds, calls):
     reference, out) (the command written into out)."""
     results = []
     for _ in range(rounds):
-        start = time.perf_counter()
+        start = CLOCK[0]()
         if out is None:
             for _ in range(calls):
                 compute(data, reference)
         else:
             for _ in range(calls):
                 compute(data, reference, out)
-        results.append((time.perf_counter() - start) / calls)
+        results.append((CLOCK[0]() - start) / calls)
     return statistics.median(results)
 
 
@@ -128,7 +133,7 @@ def measure(rounds, calls, ticks):
     return out
 
 
-def cpp_figures(path, min_time):
+def cpp_figures(path, min_time, field="real_time"):
     result = subprocess.run([path, "--benchmark_format=json", f"--benchmark_min_time={min_time}"],
                             capture_output=True, text=True, check=True)
     figures = {}
@@ -136,11 +141,11 @@ def cpp_figures(path, min_time):
         scale = {"ns": 1e-3, "us": 1.0, "ms": 1e3}[b["time_unit"]]
         name = b["name"]
         if name == "BM_Fk":
-            figures["fk_us"] = b["real_time"] * scale
+            figures["fk_us"] = b[field] * scale
         elif name == "BM_PositionIk":
-            figures["ik_us"] = b["real_time"] * scale
+            figures["ik_us"] = b[field] * scale
         elif name == "BM_ControllerStep":
-            figures["controller_us"] = b["real_time"] * scale
+            figures["controller_us"] = b[field] * scale
         elif name == "BM_TickLoop":
             figures["tick_rtf"] = b["rtf"]
     return figures
@@ -153,29 +158,54 @@ def main(argv=None):
     parser.add_argument("--rounds", type=int, default=5, help="rounds per figure (median), 1..100")
     parser.add_argument("--calls", type=int, default=20000, help="calls per round, 100..10^7")
     parser.add_argument("--ticks", type=int, default=5000, help="ticks per loop round, 100..10^7")
+    parser.add_argument("--repeat", type=int, default=1,
+                        help="with --cpp: measure Python then C++ this many times, 1..50, and "
+                             "give each overhead as the median of the pairs' differences (a load "
+                             "change between the two sides then moves one pair, not the figure)")
+    parser.add_argument("--clock", choices=("wall", "cpu"), default="wall",
+                        help="per-call figures in wall time (default) or the thread's CPU time, "
+                             "Google Benchmark's cpu_time on the C++ side (the tick loop's "
+                             "real-time factors stay in wall time)")
     parser.add_argument("--json", action="store_true", help="print one JSON object")
     args = parser.parse_args(argv)
     if not 1 <= args.rounds <= 100 or not 100 <= args.calls <= 10**7 or not 100 <= args.ticks <= 10**7:
         parser.error("--rounds must be in 1..100, --calls and --ticks in 100..10^7")
+    if not 1 <= args.repeat <= 50:
+        parser.error("--repeat must be in 1..50")
     if args.cpp and not os.access(args.cpp, os.X_OK):
         parser.error(f"--cpp: {args.cpp} is not an executable")
+    if args.clock == "cpu":
+        CLOCK[0] = time.thread_time
     load_start = os.getloadavg()[0]
-    py = measure(args.rounds, args.calls, args.ticks)
-    cpp = cpp_figures(args.cpp, 0.5) if args.cpp else {}
+    pairs = []
+    for _ in range(args.repeat if args.cpp else 1):
+        py = measure(args.rounds, args.calls, args.ticks)
+        field = "cpu_time" if args.clock == "cpu" else "real_time"
+        pairs.append((py, cpp_figures(args.cpp, 0.5, field) if args.cpp else {}))
     load = [load_start, os.getloadavg()[0]]  # 1-minute load average before and after
+    keys = [("fk_us", "fk_us"), ("ik_us", "ik_us"), ("controller_us", "controller_us"),
+            ("controller_out_us", "controller_us")]  # (Python figure, the C++ figure it matches)
+    py = {k: statistics.median(p[k] for p, _ in pairs) for k in pairs[0][0]}
+    cpp = {k: statistics.median(c[k] for _, c in pairs) for k in pairs[0][1]}
+    overhead = {k: statistics.median(p[k] - c[ck] for p, c in pairs) for k, ck in keys if ck in cpp}
+    if "tick_rtf" in cpp:
+        overhead["tick_rtf_ratio"] = statistics.median(c["tick_rtf"] / p["tick_rtf"] for p, c in pairs)
     if args.json:
-        print(json.dumps({"python": py, "cpp": cpp, "load_average": load}))
+        print(json.dumps({"python": py, "cpp": cpp, "overhead": overhead, "repeat": len(pairs),
+                          "clock": args.clock, "load_average": load}))
         return 0
-    print(f"load average (1 min): {load[0]:.2f} at the start, {load[1]:.2f} at the end")
+    print(f"{args.clock} clock; load average (1 min): {load[0]:.2f} at the start, {load[1]:.2f} at the end"
+          + (f"; medians of {len(pairs)} Python/C++ pairs" if len(pairs) > 1 else ""))
     print(f"{'call':34} {'Python':>12} {'C++':>12} {'overhead':>12}")
-    for key, label in (("fk_us", "FK (ChainKinematics.update)"), ("ik_us", "PositionIk.solve"),
-                       ("controller_us", "OSC controller step"),
-                       ("controller_out_us", "  ... compute(data, ref, out)")):
-        c = cpp.get(key.replace("_out", ""))
-        print(f"{label:34} {py[key]:10.3f}us " + (f"{c:10.3f}us {py[key] - c:10.3f}us" if c else ""))
+    labels = ("FK (ChainKinematics.update)", "PositionIk.solve", "OSC controller step",
+              "  ... compute(data, ref, out)")
+    for (key, ckey), label in zip(keys, labels):
+        c = cpp.get(ckey)
+        print(f"{label:34} {py[key]:10.3f}us "
+              + (f"{c:10.3f}us {overhead[key]:10.3f}us" if c else ""))
     c = cpp.get("tick_rtf")
     print(f"{'Simulation.tick loop (RTF)':34} {py['tick_rtf']:11.1f}x "
-          + (f"{c:11.1f}x {c / py['tick_rtf']:10.2f}x slower" if c else ""))
+          + (f"{c:11.1f}x {overhead['tick_rtf_ratio']:10.2f}x slower" if c else ""))
     print(f"{'  ... with a Python Controller':34} {py['tick_rtf_python_controller']:11.1f}x")
     return 0
 
