@@ -380,29 +380,12 @@ void bind_runs(py::module_& m) {
       m, "DockingGridOptions",
       "The matrix of offsets (x, y [m], yaw [rad] values) and the base options of every run.");
   fields_init<DockingGridOptions>(grid, "DockingGridOptions");
-  grid.def_readwrite("base", &DockingGridOptions::base, "DockingOptions (no record or video)")
-      .def_property(
-          "x", [](const DockingGridOptions& o) { return to_array(o.x.data(), o.x.size()); },
-          [](DockingGridOptions& o, py::handle v) {
-            const Eigen::VectorXd x = to_vector(v, "x");
-            o.x.assign(x.data(), x.data() + x.size());
-          },
-          "dx values (n,) [m]")
-      .def_property(
-          "y", [](const DockingGridOptions& o) { return to_array(o.y.data(), o.y.size()); },
-          [](DockingGridOptions& o, py::handle v) {
-            const Eigen::VectorXd y = to_vector(v, "y");
-            o.y.assign(y.data(), y.data() + y.size());
-          },
-          "dy values (n,) [m]")
-      .def_property(
-          "yaw", [](const DockingGridOptions& o) { return to_array(o.yaw.data(), o.yaw.size()); },
-          [](DockingGridOptions& o, py::handle v) {
-            const Eigen::VectorXd y = to_vector(v, "yaw");
-            o.yaw.assign(y.data(), y.data() + y.size());
-          },
-          "dyaw values (n,) [rad]")
-      .def_readwrite("jobs", &DockingGridOptions::jobs, "threads; 0: one per core");
+  grid.def_readwrite("base", &DockingGridOptions::base, "DockingOptions (no record or video)");
+  list_property<DockingGridOptions>(grid, "x", &DockingGridOptions::x, "dx values (n,) [m]");
+  list_property<DockingGridOptions>(grid, "y", &DockingGridOptions::y, "dy values (n,) [m]");
+  list_property<DockingGridOptions>(grid, "yaw", &DockingGridOptions::yaw,
+                                    "dyaw values (n,) [rad]");
+  grid.def_readwrite("jobs", &DockingGridOptions::jobs, "threads; 0: one per core");
   m.def(
       "run_docking_grid",
       [](const DockingGridOptions& options, const py::object& progress) {
