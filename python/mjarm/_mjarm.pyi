@@ -66,8 +66,8 @@ class Controller:
     @property
     def compensates_bias(self) -> Any:
         ...
-    def compute(self: Controller, data: Data, reference: Reference) -> NDArray[np.float64]:
-        """One tick's command (n,) for the state in data (fresh after forward)."""
+    def compute(self: Controller, data: Data, reference: Reference, out: ArrayLike = ...) -> NDArray[np.float64]:
+        """One tick's command (n,) for the state in data (fresh after forward): torques or position targets in chain order. With out (a writable float64 array (n,)) the command is written there and out is returned, so a loop allocates nothing."""
         ...
     @property
     def internal_names(self) -> Any:
@@ -85,6 +85,9 @@ class Controller:
 class AccelerationController(Controller):
     """Resolved task acceleration through damped J^+, then M qdd + h."""
     def __init__(self: AccelerationController, chain: Chain, options: AccelerationControlOptions = ...) -> None:
+        ...
+    def compute(self: AccelerationController, data: Data, reference: Reference, out: ArrayLike = ...) -> NDArray[np.float64]:
+        """One tick's command (n,) for the state in data (fresh after forward): torques or position targets in chain order. With out (a writable float64 array (n,)) the command is written there and out is returned, so a loop allocates nothing."""
         ...
     @property
     def options(self) -> Any:
@@ -236,6 +239,48 @@ Members:
     def value(self) -> int: ...
     def __int__(self) -> int: ...
 
+class ArenaSpec:
+    """Floor, two lights and an optional table. Names: arena/floor, arena/table (body), arena/table_top (geom), arena/table_surface (site on the top's centre)."""
+    def __init__(self: ArenaSpec, **kwargs) -> None:
+        """Default values, with any field set by keyword."""
+        ...
+    @property
+    def floor_half_size(self) -> Any:
+        """floor plane half extents x, y (2,) [m]"""
+        ...
+    @floor_half_size.setter
+    def floor_half_size(self, value: Any) -> None: ...
+    @property
+    def table(self) -> Any:
+        """add a table"""
+        ...
+    @table.setter
+    def table(self, value: Any) -> None: ...
+    @property
+    def table_center(self) -> Any:
+        """table centre x, y in world (2,) [m]"""
+        ...
+    @table_center.setter
+    def table_center(self, value: Any) -> None: ...
+    @property
+    def table_friction(self) -> Any:
+        """sliding, torsional, rolling (3,)"""
+        ...
+    @table_friction.setter
+    def table_friction(self, value: Any) -> None: ...
+    @property
+    def table_half_size(self) -> Any:
+        """table top half extents x, y (2,) [m]"""
+        ...
+    @table_half_size.setter
+    def table_half_size(self, value: Any) -> None: ...
+    @property
+    def table_height(self) -> Any:
+        """top surface height [m]"""
+        ...
+    @table_height.setter
+    def table_height(self, value: Any) -> None: ...
+
 class ArraySpec:
     """A named float64 array with its shape and element-wise bounds (dm_env's specs.Array / specs.BoundedArray: unbounded sides are -inf/+inf). validate() and generate_value() follow dm_env."""
     def __init__(self: ArraySpec, name: str, shape: list[int], minimum: ArrayLike = ..., maximum: ArrayLike = ...) -> None:
@@ -364,6 +409,9 @@ class CartesianImpedanceController(Controller):
     """Cartesian impedance with a measured wrench (CIC)."""
     def __init__(self: CartesianImpedanceController, chain: Chain, options: CartesianImpedanceOptions = ...) -> None:
         ...
+    def compute(self: CartesianImpedanceController, data: Data, reference: Reference, out: ArrayLike = ...) -> NDArray[np.float64]:
+        """One tick's command (n,) for the state in data (fresh after forward): torques or position targets in chain order. With out (a writable float64 array (n,)) the command is written there and out is returned, so a loop allocates nothing."""
+        ...
 
 class CartesianImpedanceOptions:
     def __init__(self: CartesianImpedanceOptions) -> None:
@@ -436,6 +484,36 @@ class CartesianImpedanceOptions:
         ...
     @task_space.setter
     def task_space(self, value: Any) -> None: ...
+
+class CartesianLimits:
+    """Limits of a Cartesian trapezoid segment."""
+    def __init__(self: CartesianLimits, **kwargs) -> None:
+        """Default values, with any field set by keyword."""
+        ...
+    @property
+    def max_acceleration(self) -> Any:
+        """[m/s^2]"""
+        ...
+    @max_acceleration.setter
+    def max_acceleration(self, value: Any) -> None: ...
+    @property
+    def max_angular_acceleration(self) -> Any:
+        """[rad/s^2]"""
+        ...
+    @max_angular_acceleration.setter
+    def max_angular_acceleration(self, value: Any) -> None: ...
+    @property
+    def max_angular_velocity(self) -> Any:
+        """[rad/s]"""
+        ...
+    @max_angular_velocity.setter
+    def max_angular_velocity(self, value: Any) -> None: ...
+    @property
+    def max_velocity(self) -> Any:
+        """along the line [m/s]"""
+        ...
+    @max_velocity.setter
+    def max_velocity(self, value: Any) -> None: ...
 
 class Chain:
     """The joints an algorithm moves, in order (index i = column i of a Jacobian), and the end-effector frame (a site or a body)."""
@@ -667,9 +745,41 @@ Members:
     def value(self) -> int: ...
     def __int__(self) -> int: ...
 
+class CompoundFixtureSpec:
+    """A fixture of several pieces (ObjectSpec, each at its pose in the fixture's frame) in one static body. Names: body 'name', geoms 'name/<piece>', site 'name/center'."""
+    def __init__(self: CompoundFixtureSpec, **kwargs) -> None:
+        """Default values, with any field set by keyword."""
+        ...
+    @property
+    def name(self) -> Any:
+        ...
+    @name.setter
+    def name(self, value: Any) -> None: ...
+    @property
+    def pieces(self) -> Any:
+        """list[ObjectSpec]; a copy: assign the whole list"""
+        ...
+    @pieces.setter
+    def pieces(self, value: Any) -> None: ...
+    @property
+    def pos(self) -> Any:
+        """position of the body in world (3,) [m]"""
+        ...
+    @pos.setter
+    def pos(self, value: Any) -> None: ...
+    @property
+    def quat(self) -> Any:
+        """orientation (4,) w, x, y, z"""
+        ...
+    @quat.setter
+    def quat(self, value: Any) -> None: ...
+
 class ComputedTorqueController(Controller):
     """tau = M (qdd_d + PD) + h."""
     def __init__(self: ComputedTorqueController, chain: Chain, options: ComputedTorqueOptions = ...) -> None:
+        ...
+    def compute(self: ComputedTorqueController, data: Data, reference: Reference, out: ArrayLike = ...) -> NDArray[np.float64]:
+        """One tick's command (n,) for the state in data (fresh after forward): torques or position targets in chain order. With out (a writable float64 array (n,)) the command is written there and out is returned, so a loop allocates nothing."""
         ...
 
 class ComputedTorqueOptions:
@@ -864,6 +974,884 @@ class DiffIkTaskKind:
     def value(self) -> int: ...
     def __int__(self) -> int: ...
 
+class DockingController(Controller):
+    """A docking law with its force source (torque mode); usable in a Simulation like any controller."""
+    def __init__(self: DockingController, scene: DockingScene, options: DockingControllerOptions = ...) -> None:
+        ...
+    @property
+    def bad_wrench_ticks(self) -> Any:
+        ...
+    def compute(self: DockingController, data: Data, reference: Reference, out: ArrayLike = ...) -> NDArray[np.float64]:
+        """One tick's command (n,) for the state in data (fresh after forward): torques or position targets in chain order. With out (a writable float64 array (n,)) the command is written there and out is returned, so a loop allocates nothing."""
+        ...
+    @property
+    def measured_wrench(self) -> Any:
+        """wrench on E at the last compute, world axes (6,) [N; N m]"""
+        ...
+    @property
+    def options(self) -> Any:
+        ...
+    @property
+    def stiffness(self) -> Any:
+        """stiffness diagonal in force at the last compute (6,)"""
+        ...
+
+class DockingControllerOptions:
+    """Law, force source and gains ([x, y, z, rx, ry, rz]; E's axes for se3, world for cic and hqp-ac). docs/docking.md has the tuned values."""
+    def __init__(self: DockingControllerOptions, **kwargs) -> None:
+        """Default values, with any field set by keyword."""
+        ...
+    @property
+    def cic_damping_ratio(self) -> Any:
+        ...
+    @cic_damping_ratio.setter
+    def cic_damping_ratio(self, value: Any) -> None: ...
+    @property
+    def cic_stiffness(self) -> Any:
+        """K (6,)"""
+        ...
+    @cic_stiffness.setter
+    def cic_stiffness(self, value: Any) -> None: ...
+    @property
+    def control_period(self) -> Any:
+        """[s]"""
+        ...
+    @control_period.setter
+    def control_period(self, value: Any) -> None: ...
+    @property
+    def friction_feed_forward(self) -> Any:
+        ...
+    @friction_feed_forward.setter
+    def friction_feed_forward(self, value: Any) -> None: ...
+    @property
+    def friction_mode(self) -> Any:
+        ...
+    @friction_mode.setter
+    def friction_mode(self, value: Any) -> None: ...
+    @property
+    def hqp_stiffness(self) -> Any:
+        """K0 (6,)"""
+        ...
+    @hqp_stiffness.setter
+    def hqp_stiffness(self, value: Any) -> None: ...
+    @property
+    def law(self) -> Any:
+        """DockingLaw or 'cic', 'hqp-ac', 'se3'"""
+        ...
+    @law.setter
+    def law(self, value: Any) -> None: ...
+    @property
+    def nullspace_damping(self) -> Any:
+        ...
+    @nullspace_damping.setter
+    def nullspace_damping(self, value: Any) -> None: ...
+    @property
+    def nullspace_stiffness(self) -> Any:
+        ...
+    @nullspace_stiffness.setter
+    def nullspace_stiffness(self, value: Any) -> None: ...
+    @property
+    def release_axes(self) -> Any:
+        """released on contact, E's [x, y, z, rx, ry, rz] (6 bools)"""
+        ...
+    @release_axes.setter
+    def release_axes(self, value: Any) -> None: ...
+    @property
+    def release_duration(self) -> Any:
+        """[s]"""
+        ...
+    @release_duration.setter
+    def release_duration(self, value: Any) -> None: ...
+    @property
+    def release_force(self) -> Any:
+        """[N]"""
+        ...
+    @release_force.setter
+    def release_force(self, value: Any) -> None: ...
+    @property
+    def se3_damping_ratio(self) -> Any:
+        ...
+    @se3_damping_ratio.setter
+    def se3_damping_ratio(self, value: Any) -> None: ...
+    @property
+    def se3_inertia(self) -> Any:
+        """A (6,)"""
+        ...
+    @se3_inertia.setter
+    def se3_inertia(self, value: Any) -> None: ...
+    @property
+    def se3_stiffness(self) -> Any:
+        """K (6,)"""
+        ...
+    @se3_stiffness.setter
+    def se3_stiffness(self, value: Any) -> None: ...
+    @property
+    def sensor_cutoff(self) -> Any:
+        """[Hz]; inf: none"""
+        ...
+    @sensor_cutoff.setter
+    def sensor_cutoff(self, value: Any) -> None: ...
+    @property
+    def source(self) -> Any:
+        """ForceSource or 'sensor', 'observer'"""
+        ...
+    @source.setter
+    def source(self, value: Any) -> None: ...
+
+class DockingCriteria:
+    """Seating criteria (final window and whole run)."""
+    def __init__(self: DockingCriteria, **kwargs) -> None:
+        """Default values, with any field set by keyword."""
+        ...
+    @property
+    def depth_tolerance(self) -> Any:
+        """[m]"""
+        ...
+    @depth_tolerance.setter
+    def depth_tolerance(self, value: Any) -> None: ...
+    @property
+    def max_angular_speed(self) -> Any:
+        """[rad/s]"""
+        ...
+    @max_angular_speed.setter
+    def max_angular_speed(self, value: Any) -> None: ...
+    @property
+    def max_axial_moment(self) -> Any:
+        """[N m]"""
+        ...
+    @max_axial_moment.setter
+    def max_axial_moment(self, value: Any) -> None: ...
+    @property
+    def max_force(self) -> Any:
+        """[N]"""
+        ...
+    @max_force.setter
+    def max_force(self, value: Any) -> None: ...
+    @property
+    def max_lateral(self) -> Any:
+        """[m]"""
+        ...
+    @max_lateral.setter
+    def max_lateral(self, value: Any) -> None: ...
+    @property
+    def max_saturation(self) -> Any:
+        """fraction of ticks"""
+        ...
+    @max_saturation.setter
+    def max_saturation(self, value: Any) -> None: ...
+    @property
+    def max_speed(self) -> Any:
+        """[m/s]"""
+        ...
+    @max_speed.setter
+    def max_speed(self, value: Any) -> None: ...
+    @property
+    def max_tilt(self) -> Any:
+        """[rad]"""
+        ...
+    @max_tilt.setter
+    def max_tilt(self, value: Any) -> None: ...
+    @property
+    def min_contact_fraction(self) -> Any:
+        ...
+    @min_contact_fraction.setter
+    def min_contact_fraction(self, value: Any) -> None: ...
+    @property
+    def window(self) -> Any:
+        """[s]"""
+        ...
+    @window.setter
+    def window(self, value: Any) -> None: ...
+
+class DockingGeometry:
+    """Sizes [m] and contact settings of peg and socket."""
+    def __init__(self: DockingGeometry, **kwargs) -> None:
+        """Default values, with any field set by keyword."""
+        ...
+    @property
+    def bore_depth(self) -> Any:
+        ...
+    @bore_depth.setter
+    def bore_depth(self, value: Any) -> None: ...
+    @property
+    def bore_radius(self) -> Any:
+        ...
+    @bore_radius.setter
+    def bore_radius(self, value: Any) -> None: ...
+    @property
+    def chamfer(self) -> Any:
+        ...
+    @chamfer.setter
+    def chamfer(self, value: Any) -> None: ...
+    @property
+    def friction(self) -> Any:
+        ...
+    @friction.setter
+    def friction(self, value: Any) -> None: ...
+    @property
+    def peg_length(self) -> Any:
+        ...
+    @peg_length.setter
+    def peg_length(self, value: Any) -> None: ...
+    @property
+    def peg_radius(self) -> Any:
+        ...
+    @peg_radius.setter
+    def peg_radius(self, value: Any) -> None: ...
+    @property
+    def sides(self) -> Any:
+        """faces of the polygonal bore (>= 8)"""
+        ...
+    @sides.setter
+    def sides(self, value: Any) -> None: ...
+    @property
+    def solimp(self) -> Any:
+        """dmin, dmax, width [m] (3,)"""
+        ...
+    @solimp.setter
+    def solimp(self, value: Any) -> None: ...
+    @property
+    def solref(self) -> Any:
+        """time constant [s], damping ratio (2,)"""
+        ...
+    @solref.setter
+    def solref(self, value: Any) -> None: ...
+    @property
+    def wall(self) -> Any:
+        ...
+    @wall.setter
+    def wall(self, value: Any) -> None: ...
+
+class DockingGridOptions:
+    """The matrix of offsets (x, y [m], yaw [rad] values) and the base options of every run."""
+    def __init__(self: DockingGridOptions, **kwargs) -> None:
+        """Default values, with any field set by keyword."""
+        ...
+    @property
+    def base(self) -> Any:
+        """DockingOptions (no record or video)"""
+        ...
+    @base.setter
+    def base(self, value: Any) -> None: ...
+    @property
+    def jobs(self) -> Any:
+        """threads; 0: one per core"""
+        ...
+    @jobs.setter
+    def jobs(self, value: Any) -> None: ...
+    @property
+    def x(self) -> Any:
+        """dx values (n,) [m]"""
+        ...
+    @x.setter
+    def x(self, value: Any) -> None: ...
+    @property
+    def y(self) -> Any:
+        """dy values (n,) [m]"""
+        ...
+    @y.setter
+    def y(self, value: Any) -> None: ...
+    @property
+    def yaw(self) -> Any:
+        """dyaw values (n,) [rad]"""
+        ...
+    @yaw.setter
+    def yaw(self, value: Any) -> None: ...
+
+class DockingGridResult:
+    """The grid's runs (x slowest, then y, then yaw) and summary."""
+    def __init__(*args: Any, **kwargs: Any) -> Any: ...
+    @property
+    def controller(self) -> Any:
+        ...
+    @property
+    def failures(self) -> Any:
+        """reason -> runs"""
+        ...
+    @property
+    def interrupted(self) -> Any:
+        ...
+    @property
+    def joint_friction(self) -> Any:
+        ...
+    @property
+    def max_lateral(self) -> Any:
+        """[m]"""
+        ...
+    @property
+    def max_orientation_rms(self) -> Any:
+        """[rad]"""
+        ...
+    @property
+    def max_peak_axial_force(self) -> Any:
+        """[N]"""
+        ...
+    @property
+    def max_peak_axial_moment(self) -> Any:
+        """[N m]"""
+        ...
+    @property
+    def max_peak_force(self) -> Any:
+        """[N]"""
+        ...
+    @property
+    def max_position_rms(self) -> Any:
+        """[m]"""
+        ...
+    @property
+    def max_steady_axial_force(self) -> Any:
+        """[N]"""
+        ...
+    @property
+    def max_tilt(self) -> Any:
+        """[rad]"""
+        ...
+    @property
+    def min_steady_axial_force(self) -> Any:
+        """[N]"""
+        ...
+    @property
+    def planned(self) -> Any:
+        ...
+    @property
+    def runs(self) -> Any:
+        ...
+    @property
+    def seated(self) -> Any:
+        ...
+    @property
+    def source(self) -> Any:
+        ...
+
+class DockingGridRun:
+    """One run of the grid."""
+    def __init__(*args: Any, **kwargs: Any) -> Any: ...
+    @property
+    def message(self) -> Any:
+        ...
+    @property
+    def metrics(self) -> Any:
+        ...
+    @property
+    def offset(self) -> Any:
+        ...
+    @property
+    def outcome(self) -> Any:
+        ...
+
+class DockingLaw:
+    """The control laws the docking compares.
+
+Members:
+
+  cic
+
+  hqp_ac
+
+  se3"""
+    cic: ClassVar[DockingLaw]
+    hqp_ac: ClassVar[DockingLaw]
+    se3: ClassVar[DockingLaw]
+    def __init__(self, value: int) -> None: ...
+    @property
+    def name(self) -> str: ...
+    @property
+    def value(self) -> int: ...
+    def __int__(self) -> int: ...
+
+class DockingMetrics:
+    """Metrics of one run: whole run, final window, verdict. Forces [N], moments [N m], lengths [m], angles [rad]."""
+    def __init__(*args: Any, **kwargs: Any) -> Any: ...
+    @property
+    def contact_fraction(self) -> Any:
+        ...
+    @property
+    def failures(self) -> Any:
+        """why not seated: list of names"""
+        ...
+    @property
+    def finite(self) -> Any:
+        ...
+    @property
+    def first_contact_time(self) -> Any:
+        """-1: never"""
+        ...
+    @property
+    def free_samples(self) -> Any:
+        ...
+    @property
+    def joint_limits_ok(self) -> Any:
+        ...
+    @property
+    def max_angular_speed(self) -> Any:
+        ...
+    @property
+    def max_joint_position(self) -> Any:
+        """[% of limit]"""
+        ...
+    @property
+    def max_joint_velocity(self) -> Any:
+        """[% of limit]"""
+        ...
+    @property
+    def max_lateral(self) -> Any:
+        ...
+    @property
+    def max_speed(self) -> Any:
+        ...
+    @property
+    def max_tilt(self) -> Any:
+        ...
+    @property
+    def min_depth(self) -> Any:
+        ...
+    @property
+    def min_manipulability(self) -> Any:
+        ...
+    @property
+    def orientation_rms(self) -> Any:
+        """free motion"""
+        ...
+    @property
+    def other_contact(self) -> Any:
+        ...
+    @property
+    def peak_axial_force(self) -> Any:
+        ...
+    @property
+    def peak_axial_moment(self) -> Any:
+        ...
+    @property
+    def peak_force(self) -> Any:
+        ...
+    @property
+    def peak_wrench(self) -> Any:
+        ...
+    @property
+    def position_rms(self) -> Any:
+        """free motion"""
+        ...
+    @property
+    def samples(self) -> Any:
+        ...
+    @property
+    def saturation(self) -> Any:
+        """fraction of ticks"""
+        ...
+    @property
+    def seated(self) -> Any:
+        ...
+    @property
+    def steady_axial_force(self) -> Any:
+        ...
+    @property
+    def steady_lateral(self) -> Any:
+        ...
+    @property
+    def steady_tilt(self) -> Any:
+        ...
+    @property
+    def steady_wrench(self) -> Any:
+        ...
+
+class DockingMotion:
+    """Timing [s] and sizes [m] of the motion, the preload."""
+    def __init__(self: DockingMotion, **kwargs) -> None:
+        """Default values, with any field set by keyword."""
+        ...
+    @property
+    def approach_time(self) -> Any:
+        ...
+    @approach_time.setter
+    def approach_time(self, value: Any) -> None: ...
+    @property
+    def hold_time(self) -> Any:
+        ...
+    @hold_time.setter
+    def hold_time(self, value: Any) -> None: ...
+    @property
+    def insertion_acceleration(self) -> Any:
+        """[m/s^2]"""
+        ...
+    @insertion_acceleration.setter
+    def insertion_acceleration(self, value: Any) -> None: ...
+    @property
+    def insertion_speed(self) -> Any:
+        """[m/s]"""
+        ...
+    @insertion_speed.setter
+    def insertion_speed(self, value: Any) -> None: ...
+    @property
+    def preload(self) -> Any:
+        """[N]"""
+        ...
+    @preload.setter
+    def preload(self, value: Any) -> None: ...
+    @property
+    def preload_ramp(self) -> Any:
+        ...
+    @preload_ramp.setter
+    def preload_ramp(self, value: Any) -> None: ...
+    @property
+    def reference(self) -> Any:
+        """DockingReference or 'two-phase', 'single'"""
+        ...
+    @reference.setter
+    def reference(self, value: Any) -> None: ...
+    @property
+    def single_time(self) -> Any:
+        ...
+    @single_time.setter
+    def single_time(self, value: Any) -> None: ...
+    @property
+    def standoff(self) -> Any:
+        ...
+    @standoff.setter
+    def standoff(self, value: Any) -> None: ...
+    @property
+    def start_height(self) -> Any:
+        ...
+    @start_height.setter
+    def start_height(self, value: Any) -> None: ...
+
+class DockingOffset:
+    """Error of the believed socket pose, in the socket's frame: dx, dy [m], dyaw [rad]."""
+    def __init__(self: DockingOffset, dx: float = ..., dy: float = ..., dyaw: float = ...) -> None:
+        ...
+    @property
+    def dx(self) -> Any:
+        """[m]"""
+        ...
+    @dx.setter
+    def dx(self, value: Any) -> None: ...
+    @property
+    def dy(self) -> Any:
+        """[m]"""
+        ...
+    @dy.setter
+    def dy(self, value: Any) -> None: ...
+    @property
+    def dyaw(self) -> Any:
+        """[rad]"""
+        ...
+    @dyaw.setter
+    def dyaw(self, value: Any) -> None: ...
+
+class DockingOptions:
+    """How to run one docking."""
+    def __init__(self: DockingOptions, **kwargs) -> None:
+        """Default values, with any field set by keyword."""
+        ...
+    @property
+    def controller(self) -> Any:
+        """DockingControllerOptions"""
+        ...
+    @controller.setter
+    def controller(self, value: Any) -> None: ...
+    @property
+    def criteria(self) -> Any:
+        """DockingCriteria"""
+        ...
+    @criteria.setter
+    def criteria(self, value: Any) -> None: ...
+    @property
+    def joint_friction(self) -> Any:
+        ...
+    @joint_friction.setter
+    def joint_friction(self, value: Any) -> None: ...
+    @property
+    def keep_samples(self) -> Any:
+        """keep every tick's sample"""
+        ...
+    @keep_samples.setter
+    def keep_samples(self, value: Any) -> None: ...
+    @property
+    def max_acceleration(self) -> Any:
+        """[rad/s^2]"""
+        ...
+    @max_acceleration.setter
+    def max_acceleration(self, value: Any) -> None: ...
+    @property
+    def motion(self) -> Any:
+        """DockingMotion"""
+        ...
+    @motion.setter
+    def motion(self, value: Any) -> None: ...
+    @property
+    def offset(self) -> Any:
+        """DockingOffset"""
+        ...
+    @offset.setter
+    def offset(self, value: Any) -> None: ...
+    @property
+    def record(self) -> Any:
+        """recording directory; '' = none"""
+        ...
+    @record.setter
+    def record(self, value: Any) -> None: ...
+    @property
+    def scene(self) -> Any:
+        """a compiled DockingScene shared by runs, or None: built per run"""
+        ...
+    @scene.setter
+    def scene(self, value: Any) -> None: ...
+    @property
+    def video(self) -> Any:
+        """DockingVideo"""
+        ...
+    @video.setter
+    def video(self, value: Any) -> None: ...
+
+class DockingOutcome:
+    """How a docking run ended.
+
+Members:
+
+  seated
+
+  not_seated
+
+  diverged
+
+  bad_command
+
+  interrupted"""
+    seated: ClassVar[DockingOutcome]
+    not_seated: ClassVar[DockingOutcome]
+    diverged: ClassVar[DockingOutcome]
+    bad_command: ClassVar[DockingOutcome]
+    interrupted: ClassVar[DockingOutcome]
+    def __init__(self, value: int) -> None: ...
+    @property
+    def name(self) -> str: ...
+    @property
+    def value(self) -> int: ...
+    def __int__(self) -> int: ...
+
+class DockingPlan:
+    """Everything fixed before a run (poses in world)."""
+    @property
+    def X_WB(self) -> Any:
+        """the believed socket"""
+        ...
+    @property
+    def X_WS(self) -> Any:
+        """the true socket"""
+        ...
+    @property
+    def X_seated(self) -> Any:
+        """in the believed socket"""
+        ...
+    @property
+    def X_standoff(self) -> Any:
+        ...
+    @property
+    def X_start(self) -> Any:
+        ...
+    def __init__(*args: Any, **kwargs: Any) -> Any: ...
+    @property
+    def approach_time(self) -> Any:
+        """[s]"""
+        ...
+    def duration(self: DockingPlan) -> float:
+        """[s]"""
+        ...
+    @property
+    def full_depth(self) -> Any:
+        """[m]"""
+        ...
+    @property
+    def hold_time(self) -> Any:
+        """[s]"""
+        ...
+    @property
+    def insert_time(self) -> Any:
+        """[s]"""
+        ...
+    @property
+    def offset(self) -> Any:
+        ...
+    @property
+    def q_start(self) -> Any:
+        """(7,)"""
+        ...
+
+class DockingReference:
+    """The shape of the reference.
+
+Members:
+
+  two_phase
+
+  single_segment"""
+    two_phase: ClassVar[DockingReference]
+    single_segment: ClassVar[DockingReference]
+    def __init__(self, value: int) -> None: ...
+    @property
+    def name(self) -> str: ...
+    @property
+    def value(self) -> int: ...
+    def __int__(self) -> int: ...
+
+class DockingReport:
+    """What a docking run did."""
+    def __init__(*args: Any, **kwargs: Any) -> Any: ...
+    @property
+    def bad_wrench_ticks(self) -> Any:
+        ...
+    @property
+    def control_period(self) -> Any:
+        """[s]"""
+        ...
+    @property
+    def controller(self) -> Any:
+        """'cic', 'hqp-ac', 'se3'"""
+        ...
+    @property
+    def joint_friction(self) -> Any:
+        ...
+    @property
+    def metrics(self) -> Any:
+        ...
+    def ok(self: DockingReport) -> bool:
+        """True when seated"""
+        ...
+    @property
+    def outcome(self) -> Any:
+        ...
+    @property
+    def plan(self) -> Any:
+        ...
+    @property
+    def qp_least_squares(self) -> Any:
+        ...
+    @property
+    def qp_null_space_dropped(self) -> Any:
+        ...
+    @property
+    def recording(self) -> Any:
+        ...
+    @property
+    def recording_error(self) -> Any:
+        ...
+    def result_line(self: DockingReport) -> str:
+        """One line with the figures."""
+        ...
+    @property
+    def run(self) -> Any:
+        """RunResult"""
+        ...
+    @property
+    def sample_count(self) -> Any:
+        ...
+    def samples(self: DockingReport) -> dict:
+        """Every tick's ground truth as arrays (N = sample_count; empty without keep_samples): t (N,), p_WE (N, 3), R_WE (N, 3, 3), V_WE (N, 6), p_WD (N, 3), F_peg (N, 6), F_measured (N, 6), stiffness (N, 6), joint_position_ratio, joint_velocity_ratio, manipulability (N,), contacts (N,) int, saturated, other_contact, within_limits, finite (N,) bool."""
+        ...
+    @property
+    def source(self) -> Any:
+        ...
+    @property
+    def video(self) -> Any:
+        ...
+    @property
+    def video_error(self) -> Any:
+        ...
+    @property
+    def video_frames(self) -> Any:
+        ...
+    @property
+    def video_written(self) -> Any:
+        ...
+
+class DockingScene:
+    """The compiled docking scene (iiwa14 torque motors, peg, socket); immutable, shared by runs through DockingOptions.scene."""
+    def __init__(*args: Any, **kwargs: Any) -> Any: ...
+    @property
+    def chain(self) -> Any:
+        """iiwa joints 1-7, frame: the peg tip"""
+        ...
+    @property
+    def options(self) -> Any:
+        ...
+    @property
+    def peg(self) -> Any:
+        """GeomSet"""
+        ...
+    @property
+    def peg_body(self) -> Any:
+        ...
+    @property
+    def peg_com_E(self) -> Any:
+        """(3,)"""
+        ...
+    @property
+    def peg_mass(self) -> Any:
+        """[kg]"""
+        ...
+    @property
+    def robot(self) -> Any:
+        ...
+    def seated(self: DockingScene) -> Pose:
+        """Pose of the tip seated at the bottom of the hole."""
+        ...
+    @property
+    def socket(self) -> Any:
+        """GeomSet"""
+        ...
+
+class DockingSceneOptions:
+    """How to build the docking scene."""
+    @property
+    def X_WS(self) -> Any:
+        """pose of the socket frame S (z out of the hole)"""
+        ...
+    @X_WS.setter
+    def X_WS(self, value: Any) -> None: ...
+    def __init__(self: DockingSceneOptions, **kwargs) -> None:
+        """Default values, with any field set by keyword."""
+        ...
+    @property
+    def ft_sensor(self) -> Any:
+        """F/T sensor pair at the flange"""
+        ...
+    @ft_sensor.setter
+    def ft_sensor(self, value: Any) -> None: ...
+    @property
+    def geometry(self) -> Any:
+        ...
+    @geometry.setter
+    def geometry(self, value: Any) -> None: ...
+    @property
+    def joint_friction(self) -> Any:
+        """Franka joint friction on joints 1-7"""
+        ...
+    @joint_friction.setter
+    def joint_friction(self, value: Any) -> None: ...
+
+class DockingVideo:
+    """A video of a docking run."""
+    def __init__(self: DockingVideo, **kwargs) -> None:
+        """Default values, with any field set by keyword."""
+        ...
+    @property
+    def camera(self) -> Any:
+        """'' (default view), 'follow' or a camera"""
+        ...
+    @camera.setter
+    def camera(self, value: Any) -> None: ...
+    @property
+    def options(self) -> Any:
+        """RunVideoOptions"""
+        ...
+    @options.setter
+    def options(self, value: Any) -> None: ...
+    @property
+    def path(self) -> Any:
+        """MP4; '' = none"""
+        ...
+    @path.setter
+    def path(self, value: Any) -> None: ...
+
 class Environment:
     """A learning environment with dm_env's interface on a task (reach, shelf-pick): reset() -> FIRST, step(action) -> MID or LAST; a time-limit LAST has discount 1 (truncation), a termination or divergence discount 0. Actions outside their bounds are clipped and counted (or refused with refuse_out_of_bounds). The GIL is released while it steps. Not thread-safe: one thread per environment. See docs/env.md and docs/python.md."""
     def __enter__(self: ArrayLike) -> ArrayLike:
@@ -1053,6 +2041,23 @@ class FaultCause:
     def value(self) -> int: ...
     def __int__(self) -> int: ...
 
+class ForceSource:
+    """Where the measured wrench comes from.
+
+Members:
+
+  sensor
+
+  observer"""
+    sensor: ClassVar[ForceSource]
+    observer: ClassVar[ForceSource]
+    def __init__(self, value: int) -> None: ...
+    @property
+    def name(self) -> str: ...
+    @property
+    def value(self) -> int: ...
+    def __int__(self) -> int: ...
+
 class ForceTorqueSensor:
     """F/T sensor pair on a site."""
     def __init__(self: ForceTorqueSensor, robot: Robot, site: str, timing: SensorTiming = ...) -> None:
@@ -1131,6 +2136,24 @@ class FrameTarget:
         ...
     @priority.setter
     def priority(self, value: Any) -> None: ...
+
+class FreePose:
+    """Pose of a free body B in world W."""
+    def __init__(self: FreePose, **kwargs) -> None:
+        """Default values, with any field set by keyword."""
+        ...
+    @property
+    def p_WB(self) -> Any:
+        """position (3,) [m]"""
+        ...
+    @p_WB.setter
+    def p_WB(self, value: Any) -> None: ...
+    @property
+    def quat_WB(self) -> Any:
+        """orientation (4,) w, x, y, z"""
+        ...
+    @quat_WB.setter
+    def quat_WB(self, value: Any) -> None: ...
 
 class FrictionFeedForward:
     """Friction and damping feed-forward."""
@@ -1354,14 +2377,55 @@ class GlobalIkStats:
     def sqp_solutions(self) -> Any:
         ...
 
+class GraspKind:
+    """How the object is held.
+
+Members:
+
+  weld
+
+  friction"""
+    weld: ClassVar[GraspKind]
+    friction: ClassVar[GraspKind]
+    def __init__(self, value: int) -> None: ...
+    @property
+    def name(self) -> str: ...
+    @property
+    def value(self) -> int: ...
+    def __int__(self) -> int: ...
+
+class GraspMonitorOptions:
+    """When a held object has slipped or is lost."""
+    def __init__(self: GraspMonitorOptions, **kwargs) -> None:
+        """Default values, with any field set by keyword."""
+        ...
+    @property
+    def drop_distance(self) -> Any:
+        """[m]"""
+        ...
+    @drop_distance.setter
+    def drop_distance(self, value: Any) -> None: ...
+    @property
+    def slip_distance(self) -> Any:
+        """[m]"""
+        ...
+    @slip_distance.setter
+    def slip_distance(self, value: Any) -> None: ...
+
 class GravityCompensationController(Controller):
     """Servo targets offset to cancel gravity (position mode)."""
     def __init__(self: GravityCompensationController, chain: Chain, term: BiasTerm = ...) -> None:
+        ...
+    def compute(self: GravityCompensationController, data: Data, reference: Reference, out: ArrayLike = ...) -> NDArray[np.float64]:
+        """One tick's command (n,) for the state in data (fresh after forward): torques or position targets in chain order. With out (a writable float64 array (n,)) the command is written there and out is returned, so a loop allocates nothing."""
         ...
 
 class GravityHoldController(Controller):
     """Torques that cancel gravity (torque mode)."""
     def __init__(self: GravityHoldController, chain: Chain, term: BiasTerm = ...) -> None:
+        ...
+    def compute(self: GravityHoldController, data: Data, reference: Reference, out: ArrayLike = ...) -> NDArray[np.float64]:
+        """One tick's command (n,) for the state in data (fresh after forward): torques or position targets in chain order. With out (a writable float64 array (n,)) the command is written there and out is returned, so a loop allocates nothing."""
         ...
 
 class GripperPdController(Controller):
@@ -1370,6 +2434,9 @@ class GripperPdController(Controller):
         ...
     @property
     def closed(self) -> Any:
+        ...
+    def compute(self: GripperPdController, data: Data, reference: Reference, out: ArrayLike = ...) -> NDArray[np.float64]:
+        """One tick's command (n,) for the state in data (fresh after forward): torques or position targets in chain order. With out (a writable float64 array (n,)) the command is written there and out is returned, so a loop allocates nothing."""
         ...
     @property
     def open(self) -> Any:
@@ -1406,12 +2473,45 @@ class GripperPdOptions:
     @open.setter
     def open(self, value: Any) -> None: ...
 
+class GripperSpec:
+    """A gripper MJCF attached rigidly at a site or body of a robot (no joint in between); names get the prefix robot + '/' + name + '/'."""
+    def __init__(self: GripperSpec, **kwargs) -> None:
+        """Default values, with any field set by keyword."""
+        ...
+    @property
+    def frame(self) -> Any:
+        """site or body of the robot, unprefixed"""
+        ...
+    @frame.setter
+    def frame(self, value: Any) -> None: ...
+    @property
+    def model(self) -> Any:
+        """bundled gripper name or MJCF file path"""
+        ...
+    @model.setter
+    def model(self, value: Any) -> None: ...
+    @property
+    def name(self) -> Any:
+        """prefix inside the robot's"""
+        ...
+    @name.setter
+    def name(self, value: Any) -> None: ...
+    @property
+    def robot(self) -> Any:
+        """a robot already in the scene"""
+        ...
+    @robot.setter
+    def robot(self, value: Any) -> None: ...
+
 class HqpAcController(Controller):
     """HQP-AC: adaptive compliance, two QPs under hard bounds."""
     def __init__(self: HqpAcController, chain: Chain, options: HqpAcOptions = ...) -> None:
         ...
     @property
     def acceleration(self) -> Any:
+        ...
+    def compute(self: HqpAcController, data: Data, reference: Reference, out: ArrayLike = ...) -> NDArray[np.float64]:
+        """One tick's command (n,) for the state in data (fresh after forward): torques or position targets in chain order. With out (a writable float64 array (n,)) the command is written there and out is returned, so a loop allocates nothing."""
         ...
     @property
     def status(self) -> Any:
@@ -1660,6 +2760,9 @@ class JointInfo:
 class JointPdController(Controller):
     """Joint PD + gravity (torque)."""
     def __init__(self: JointPdController, chain: Chain, options: JointPdOptions = ...) -> None:
+        ...
+    def compute(self: JointPdController, data: Data, reference: Reference, out: ArrayLike = ...) -> NDArray[np.float64]:
+        """One tick's command (n,) for the state in data (fresh after forward): torques or position targets in chain order. With out (a writable float64 array (n,)) the command is written there and out is returned, so a loop allocates nothing."""
         ...
     @property
     def gains(self) -> Any:
@@ -2042,6 +3145,91 @@ class MultiTargetMode:
     def value(self) -> int: ...
     def __int__(self) -> int: ...
 
+class ObjectShape:
+    """Shapes of objects and fixtures.
+
+Members:
+
+  box
+
+  sphere
+
+  cylinder
+
+  capsule
+
+  mesh"""
+    box: ClassVar[ObjectShape]
+    sphere: ClassVar[ObjectShape]
+    cylinder: ClassVar[ObjectShape]
+    capsule: ClassVar[ObjectShape]
+    mesh: ClassVar[ObjectShape]
+    def __init__(self, value: int) -> None: ...
+    @property
+    def name(self) -> str: ...
+    @property
+    def value(self) -> int: ...
+    def __int__(self) -> int: ...
+
+class ObjectSpec:
+    """A rigid object: free (Scene.add_object: a free joint, nq += 7) or fixed (Scene.add_fixture). Names: body 'name', geom 'name/geom', site 'name/center', joint 'name/joint', mesh 'name/mesh'."""
+    def __init__(self: ObjectSpec, **kwargs) -> None:
+        """Default values, with any field set by keyword."""
+        ...
+    @property
+    def friction(self) -> Any:
+        """sliding, torsional, rolling (3,), >= 0"""
+        ...
+    @friction.setter
+    def friction(self, value: Any) -> None: ...
+    @property
+    def mass(self) -> Any:
+        """[kg], > 0"""
+        ...
+    @mass.setter
+    def mass(self, value: Any) -> None: ...
+    @property
+    def mesh_file(self) -> Any:
+        """STL/OBJ/MSH file, for shape mesh"""
+        ...
+    @mesh_file.setter
+    def mesh_file(self, value: Any) -> None: ...
+    @property
+    def name(self) -> Any:
+        ...
+    @name.setter
+    def name(self, value: Any) -> None: ...
+    @property
+    def pos(self) -> Any:
+        """position in world (3,) [m]"""
+        ...
+    @pos.setter
+    def pos(self, value: Any) -> None: ...
+    @property
+    def quat(self) -> Any:
+        """orientation (4,) w, x, y, z"""
+        ...
+    @quat.setter
+    def quat(self, value: Any) -> None: ...
+    @property
+    def rgba(self) -> Any:
+        """colour (4,)"""
+        ...
+    @rgba.setter
+    def rgba(self, value: Any) -> None: ...
+    @property
+    def shape(self) -> Any:
+        """ObjectShape or its name ('box', 'sphere', 'cylinder', 'capsule', 'mesh')"""
+        ...
+    @shape.setter
+    def shape(self, value: Any) -> None: ...
+    @property
+    def size(self) -> Any:
+        """box: 3 half extents; sphere: radius; cylinder, capsule: radius, half length [m]; mesh: 3 scale factors or empty"""
+        ...
+    @size.setter
+    def size(self, value: Any) -> None: ...
+
 class ObserverStatus:
     """Members:
 
@@ -2081,6 +3269,9 @@ class OffscreenRenderer:
 class OperationalSpaceController(Controller):
     """Operational-space impedance (osc)."""
     def __init__(self: OperationalSpaceController, chain: Chain, options: OperationalSpaceOptions = ...) -> None:
+        ...
+    def compute(self: OperationalSpaceController, data: Data, reference: Reference, out: ArrayLike = ...) -> NDArray[np.float64]:
+        """One tick's command (n,) for the state in data (fresh after forward): torques or position targets in chain order. With out (a writable float64 array (n,)) the command is written there and out is returned, so a loop allocates nothing."""
         ...
     @property
     def integral(self) -> Any:
@@ -2321,6 +3512,842 @@ class PickPhase:
     @property
     def value(self) -> int: ...
     def __int__(self) -> int: ...
+
+class PickPlaceBatch:
+    """What a batch did."""
+    def __init__(*args: Any, **kwargs: Any) -> Any: ...
+    @property
+    def interrupted(self) -> Any:
+        ...
+    @property
+    def reports(self) -> Any:
+        """list[PickPlaceReport], seed order"""
+        ...
+    @property
+    def summary(self) -> Any:
+        """PickPlaceSummary"""
+        ...
+
+class PickPlaceBatchOptions:
+    """A batch: trial k runs base with seed base.seed + k, on threads workers (0: one per core)."""
+    def __init__(self: PickPlaceBatchOptions, **kwargs) -> None:
+        """Default values, with any field set by keyword."""
+        ...
+    @property
+    def base(self) -> Any:
+        """PickPlaceOptions of every trial"""
+        ...
+    @base.setter
+    def base(self, value: Any) -> None: ...
+    @property
+    def record(self) -> Any:
+        """when set, trial k records into record/seed_<seed>"""
+        ...
+    @record.setter
+    def record(self, value: Any) -> None: ...
+    @property
+    def threads(self) -> Any:
+        """>= 0; 0: one per core"""
+        ...
+    @threads.setter
+    def threads(self, value: Any) -> None: ...
+    @property
+    def trials(self) -> Any:
+        """>= 1"""
+        ...
+    @trials.setter
+    def trials(self, value: Any) -> None: ...
+
+class PickPlaceCriteria:
+    """What a trial is judged by."""
+    def __init__(self: PickPlaceCriteria, **kwargs) -> None:
+        """Default values, with any field set by keyword."""
+        ...
+    @property
+    def grasp(self) -> Any:
+        """GraspMonitorOptions"""
+        ...
+    @grasp.setter
+    def grasp(self, value: Any) -> None: ...
+    @property
+    def max_saturation_time(self) -> Any:
+        """[s]"""
+        ...
+    @max_saturation_time.setter
+    def max_saturation_time(self, value: Any) -> None: ...
+    @property
+    def max_tilt(self) -> Any:
+        """[rad]"""
+        ...
+    @max_tilt.setter
+    def max_tilt(self, value: Any) -> None: ...
+    @property
+    def placement_tolerance(self) -> Any:
+        """horizontal object-target distance at the end [m]"""
+        ...
+    @placement_tolerance.setter
+    def placement_tolerance(self, value: Any) -> None: ...
+    @property
+    def rest_speed(self) -> Any:
+        """[m/s]"""
+        ...
+    @rest_speed.setter
+    def rest_speed(self, value: Any) -> None: ...
+
+class PickPlaceFailure:
+    """Why a trial failed: the first that applies, in this order.
+
+Members:
+
+  none
+
+  diverged
+
+  bad_command
+
+  interrupted
+
+  time_limit
+
+  not_grasped
+
+  dropped
+
+  table_contact
+
+  saturated
+
+  misplaced
+
+  tilted
+
+  not_resting"""
+    none: ClassVar[PickPlaceFailure]
+    diverged: ClassVar[PickPlaceFailure]
+    bad_command: ClassVar[PickPlaceFailure]
+    interrupted: ClassVar[PickPlaceFailure]
+    time_limit: ClassVar[PickPlaceFailure]
+    not_grasped: ClassVar[PickPlaceFailure]
+    dropped: ClassVar[PickPlaceFailure]
+    table_contact: ClassVar[PickPlaceFailure]
+    saturated: ClassVar[PickPlaceFailure]
+    misplaced: ClassVar[PickPlaceFailure]
+    tilted: ClassVar[PickPlaceFailure]
+    not_resting: ClassVar[PickPlaceFailure]
+    def __init__(self, value: int) -> None: ...
+    @property
+    def name(self) -> str: ...
+    @property
+    def value(self) -> int: ...
+    def __int__(self) -> int: ...
+
+class PickPlaceMotion:
+    """Every constant of the machine (the classic defaults). Heights of the tool frame above the object's centre or above the target [m]; times [s]."""
+    def __init__(self: PickPlaceMotion, **kwargs) -> None:
+        """Default values, with any field set by keyword."""
+        ...
+    @property
+    def approach_height(self) -> Any:
+        ...
+    @approach_height.setter
+    def approach_height(self, value: Any) -> None: ...
+    @property
+    def descend_height(self) -> Any:
+        ...
+    @descend_height.setter
+    def descend_height(self, value: Any) -> None: ...
+    @property
+    def dwell_time(self) -> Any:
+        """each DWELL_* [s]"""
+        ...
+    @dwell_time.setter
+    def dwell_time(self, value: Any) -> None: ...
+    @property
+    def grip_time(self) -> Any:
+        """GRASP finger closing [s]"""
+        ...
+    @grip_time.setter
+    def grip_time(self, value: Any) -> None: ...
+    @property
+    def lift_height(self) -> Any:
+        ...
+    @lift_height.setter
+    def lift_height(self, value: Any) -> None: ...
+    @property
+    def limits(self) -> Any:
+        """CartesianLimits of the segments"""
+        ...
+    @limits.setter
+    def limits(self, value: Any) -> None: ...
+    @property
+    def move_height(self) -> Any:
+        ...
+    @move_height.setter
+    def move_height(self, value: Any) -> None: ...
+    @property
+    def place_height(self) -> Any:
+        ...
+    @place_height.setter
+    def place_height(self, value: Any) -> None: ...
+    @property
+    def release_time(self) -> Any:
+        """RELEASE finger opening [s]"""
+        ...
+    @release_time.setter
+    def release_time(self, value: Any) -> None: ...
+    @property
+    def settle_time(self) -> Any:
+        """DONE lasts this long [s]"""
+        ...
+    @settle_time.setter
+    def settle_time(self, value: Any) -> None: ...
+
+class PickPlaceObject:
+    """The object to pick, upright on the table."""
+    def __init__(self: PickPlaceObject, **kwargs) -> None:
+        """Default values, with any field set by keyword."""
+        ...
+    @property
+    def friction(self) -> Any:
+        """sliding friction"""
+        ...
+    @friction.setter
+    def friction(self, value: Any) -> None: ...
+    @property
+    def mass(self) -> Any:
+        """[kg]"""
+        ...
+    @mass.setter
+    def mass(self, value: Any) -> None: ...
+    @property
+    def position(self) -> Any:
+        """centre on the table x, y (2,) [m]"""
+        ...
+    @position.setter
+    def position(self, value: Any) -> None: ...
+    @property
+    def shape(self) -> Any:
+        """'box' or 'cylinder'"""
+        ...
+    @shape.setter
+    def shape(self, value: Any) -> None: ...
+    @property
+    def size(self) -> Any:
+        """box: half extents (3,); cylinder: radius, half height (2,) [m]"""
+        ...
+    @size.setter
+    def size(self, value: Any) -> None: ...
+    @property
+    def yaw(self) -> Any:
+        """[rad]"""
+        ...
+    @yaw.setter
+    def yaw(self, value: Any) -> None: ...
+
+class PickPlaceOptions:
+    """How to run one pick and place: robot ('arm6', 'panda_hand'), grasp, mode, seed, fixed positions instead of drawn ones, the classic edits, motion, criteria."""
+    def __init__(self: PickPlaceOptions, **kwargs) -> None:
+        """Default values, with any field set by keyword."""
+        ...
+    @property
+    def classic(self) -> Any:
+        """7.5 mm cube, finger travel [0, 0.012] m, finger servo gain 3200"""
+        ...
+    @classic.setter
+    def classic(self, value: Any) -> None: ...
+    @property
+    def control_period(self) -> Any:
+        """[s]; 0 = one step"""
+        ...
+    @control_period.setter
+    def control_period(self, value: Any) -> None: ...
+    @property
+    def criteria(self) -> Any:
+        """PickPlaceCriteria"""
+        ...
+    @criteria.setter
+    def criteria(self, value: Any) -> None: ...
+    @property
+    def grasp(self) -> Any:
+        """GraspKind or 'weld' / 'friction'"""
+        ...
+    @grasp.setter
+    def grasp(self, value: Any) -> None: ...
+    @property
+    def grasp_force(self) -> Any:
+        """finger squeeze [N]"""
+        ...
+    @grasp_force.setter
+    def grasp_force(self, value: Any) -> None: ...
+    @property
+    def impratio(self) -> Any:
+        """>= 1"""
+        ...
+    @impratio.setter
+    def impratio(self, value: Any) -> None: ...
+    @property
+    def max_acceleration(self) -> Any:
+        """divergence bound on |qdd|"""
+        ...
+    @max_acceleration.setter
+    def max_acceleration(self, value: Any) -> None: ...
+    @property
+    def mode(self) -> Any:
+        """SimulationMode.position (IK into servos) or .torque (operational space), or the name"""
+        ...
+    @mode.setter
+    def mode(self, value: Any) -> None: ...
+    @property
+    def motion(self) -> Any:
+        """PickPlaceMotion"""
+        ...
+    @motion.setter
+    def motion(self, value: Any) -> None: ...
+    @property
+    def noslip_iterations(self) -> Any:
+        """0: off"""
+        ...
+    @noslip_iterations.setter
+    def noslip_iterations(self, value: Any) -> None: ...
+    @property
+    def object_half_size(self) -> Any:
+        """cube half extent [m], or None: drawn"""
+        ...
+    @object_half_size.setter
+    def object_half_size(self, value: Any) -> None: ...
+    @property
+    def object_position(self) -> Any:
+        """object centre x, y (2,) [m], or None: drawn"""
+        ...
+    @object_position.setter
+    def object_position(self, value: Any) -> None: ...
+    @property
+    def ranges(self) -> Any:
+        """PickPlaceRanges"""
+        ...
+    @ranges.setter
+    def ranges(self, value: Any) -> None: ...
+    @property
+    def record(self) -> Any:
+        """recording directory; '' = none"""
+        ...
+    @record.setter
+    def record(self, value: Any) -> None: ...
+    @property
+    def robot(self) -> Any:
+        """'arm6' or 'panda_hand'"""
+        ...
+    @robot.setter
+    def robot(self, value: Any) -> None: ...
+    @property
+    def seed(self) -> Any:
+        """draws what is not fixed"""
+        ...
+    @seed.setter
+    def seed(self, value: Any) -> None: ...
+    @property
+    def state_decimation(self) -> Any:
+        ...
+    @state_decimation.setter
+    def state_decimation(self, value: Any) -> None: ...
+    @property
+    def target_position(self) -> Any:
+        """target x, y (2,) [m], or None: drawn"""
+        ...
+    @target_position.setter
+    def target_position(self, value: Any) -> None: ...
+    @property
+    def video(self) -> Any:
+        """PickPlaceVideo"""
+        ...
+    @video.setter
+    def video(self, value: Any) -> None: ...
+    @property
+    def weld(self) -> Any:
+        """WeldGraspOptions"""
+        ...
+    @weld.setter
+    def weld(self, value: Any) -> None: ...
+
+class PickPlaceRanges:
+    """Where a seed draws a trial from (uniform, [lo, hi])."""
+    def __init__(self: PickPlaceRanges, **kwargs) -> None:
+        """Default values, with any field set by keyword."""
+        ...
+    @property
+    def friction(self) -> Any:
+        """(2,)"""
+        ...
+    @friction.setter
+    def friction(self, value: Any) -> None: ...
+    @property
+    def half_size(self) -> Any:
+        """cube half extent (2,) [m]"""
+        ...
+    @half_size.setter
+    def half_size(self, value: Any) -> None: ...
+    @property
+    def mass(self) -> Any:
+        """(2,) [kg]"""
+        ...
+    @mass.setter
+    def mass(self, value: Any) -> None: ...
+    @property
+    def min_separation(self) -> Any:
+        """object start to target, horizontal [m]"""
+        ...
+    @min_separation.setter
+    def min_separation(self, value: Any) -> None: ...
+    @property
+    def yaw(self) -> Any:
+        """(2,) [rad]"""
+        ...
+    @yaw.setter
+    def yaw(self, value: Any) -> None: ...
+
+class PickPlaceReport:
+    """What one trial did."""
+    def __init__(*args: Any, **kwargs: Any) -> Any: ...
+    @property
+    def control_period(self) -> Any:
+        """[s]"""
+        ...
+    @property
+    def cycle_time(self) -> Any:
+        """[s]"""
+        ...
+    @property
+    def failure(self) -> Any:
+        """PickPlaceFailure"""
+        ...
+    @property
+    def final_speed(self) -> Any:
+        """[m/s]"""
+        ...
+    @property
+    def grasp(self) -> Any:
+        ...
+    @property
+    def mode(self) -> Any:
+        ...
+    def ok(self: PickPlaceReport) -> bool:
+        """True on success"""
+        ...
+    @property
+    def placement_error(self) -> Any:
+        """horizontal [m]"""
+        ...
+    @property
+    def reason(self) -> Any:
+        """one line; '' on success"""
+        ...
+    @property
+    def recording(self) -> Any:
+        ...
+    @property
+    def recording_error(self) -> Any:
+        ...
+    @property
+    def robot(self) -> Any:
+        ...
+    @property
+    def run(self) -> Any:
+        """RunResult"""
+        ...
+    @property
+    def success(self) -> Any:
+        ...
+    @property
+    def tilt(self) -> Any:
+        """[rad]"""
+        ...
+    @property
+    def trace(self) -> Any:
+        """PickPlaceTrace"""
+        ...
+    @property
+    def trial(self) -> Any:
+        """PickPlaceTrial: the draw"""
+        ...
+    @property
+    def video_error(self) -> Any:
+        ...
+    @property
+    def video_frames(self) -> Any:
+        ...
+    @property
+    def videos(self) -> Any:
+        ...
+
+class PickPlaceRobot:
+    """A robot the pick and place knows (names unprefixed, world [m])."""
+    def __init__(*args: Any, **kwargs: Any) -> Any: ...
+    @property
+    def fingers(self) -> Any:
+        ...
+    @property
+    def hand(self) -> Any:
+        ...
+    @property
+    def max_bearing(self) -> Any:
+        """[rad]"""
+        ...
+    @property
+    def max_radius(self) -> Any:
+        ...
+    @property
+    def min_radius(self) -> Any:
+        ...
+    @property
+    def mount(self) -> Any:
+        """(3,)"""
+        ...
+    @property
+    def name(self) -> Any:
+        ...
+    @property
+    def own_table(self) -> Any:
+        ...
+    @property
+    def position_model(self) -> Any:
+        ...
+    @property
+    def table_height(self) -> Any:
+        ...
+    @property
+    def tool(self) -> Any:
+        ...
+    @property
+    def torque_model(self) -> Any:
+        ...
+
+class PickPlaceScene:
+    """A composed pick-and-place scene and the (prefixed) names a run needs."""
+    def __init__(*args: Any, **kwargs: Any) -> Any: ...
+    @property
+    def arm_joints(self) -> Any:
+        ...
+    @property
+    def cameras(self) -> Any:
+        ...
+    @property
+    def fingers(self) -> Any:
+        ...
+    @property
+    def hand(self) -> Any:
+        ...
+    @property
+    def model(self) -> Any:
+        """Robot: the compiled scene"""
+        ...
+    @property
+    def object(self) -> Any:
+        ...
+    @property
+    def robot_root(self) -> Any:
+        ...
+    @property
+    def table(self) -> Any:
+        ...
+    @property
+    def table_height(self) -> Any:
+        """[m]"""
+        ...
+    @property
+    def target(self) -> Any:
+        ...
+    @property
+    def tool(self) -> Any:
+        ...
+    @property
+    def weld(self) -> Any:
+        ...
+
+class PickPlaceSceneOptions:
+    """What the scene of one trial is made of."""
+    def __init__(self: PickPlaceSceneOptions, **kwargs) -> None:
+        """Default values, with any field set by keyword."""
+        ...
+    @property
+    def finger_servo_gain(self) -> Any:
+        """0: model's"""
+        ...
+    @finger_servo_gain.setter
+    def finger_servo_gain(self, value: Any) -> None: ...
+    @property
+    def finger_travel(self) -> Any:
+        """[lower, upper] per finger [m]; empty: the model's"""
+        ...
+    @finger_travel.setter
+    def finger_travel(self, value: Any) -> None: ...
+    @property
+    def impratio(self) -> Any:
+        ...
+    @impratio.setter
+    def impratio(self, value: Any) -> None: ...
+    @property
+    def mode(self) -> Any:
+        """servo or motor model"""
+        ...
+    @mode.setter
+    def mode(self, value: Any) -> None: ...
+    @property
+    def noslip_iterations(self) -> Any:
+        ...
+    @noslip_iterations.setter
+    def noslip_iterations(self, value: Any) -> None: ...
+    @property
+    def object(self) -> Any:
+        ...
+    @object.setter
+    def object(self, value: Any) -> None: ...
+    @property
+    def robot(self) -> Any:
+        ...
+    @robot.setter
+    def robot(self, value: Any) -> None: ...
+    @property
+    def target(self) -> Any:
+        """x, y (2,) [m]"""
+        ...
+    @target.setter
+    def target(self, value: Any) -> None: ...
+
+class PickPlaceStat:
+    """Mean and largest of a figure (NaN when none)."""
+    def __init__(*args: Any, **kwargs: Any) -> Any: ...
+    @property
+    def count(self) -> Any:
+        ...
+    @property
+    def max(self) -> Any:
+        ...
+    @property
+    def mean(self) -> Any:
+        ...
+
+class PickPlaceState:
+    """The 14 states of the machine, in order.
+
+Members:
+
+  approach
+
+  dwell_a
+
+  descend
+
+  dwell_b
+
+  grasp
+
+  dwell_c
+
+  lift
+
+  dwell_d
+
+  move
+
+  dwell_e
+
+  place
+
+  dwell_f
+
+  release
+
+  done"""
+    approach: ClassVar[PickPlaceState]
+    dwell_a: ClassVar[PickPlaceState]
+    descend: ClassVar[PickPlaceState]
+    dwell_b: ClassVar[PickPlaceState]
+    grasp: ClassVar[PickPlaceState]
+    dwell_c: ClassVar[PickPlaceState]
+    lift: ClassVar[PickPlaceState]
+    dwell_d: ClassVar[PickPlaceState]
+    move: ClassVar[PickPlaceState]
+    dwell_e: ClassVar[PickPlaceState]
+    place: ClassVar[PickPlaceState]
+    dwell_f: ClassVar[PickPlaceState]
+    release: ClassVar[PickPlaceState]
+    done: ClassVar[PickPlaceState]
+    def __init__(self, value: int) -> None: ...
+    @property
+    def name(self) -> str: ...
+    @property
+    def value(self) -> int: ...
+    def __int__(self) -> int: ...
+
+class PickPlaceSummary:
+    """The figures of a batch."""
+    def __init__(*args: Any, **kwargs: Any) -> Any: ...
+    @property
+    def cycle_time(self) -> Any:
+        """[s], successes"""
+        ...
+    @property
+    def failures(self) -> Any:
+        """failures per reason: {name: count} (every reason)"""
+        ...
+    @property
+    def grasp_force(self) -> Any:
+        """transport mean [N]"""
+        ...
+    @property
+    def interrupted(self) -> Any:
+        """cut short (not in trials)"""
+        ...
+    @property
+    def max_slip(self) -> Any:
+        """[m]"""
+        ...
+    @property
+    def placement_error(self) -> Any:
+        """[m], successes"""
+        ...
+    def success_rate(self: PickPlaceSummary) -> float:
+        """in [0, 1]; NaN without trials"""
+        ...
+    @property
+    def successes(self) -> Any:
+        ...
+    @property
+    def trials(self) -> Any:
+        """trials that ran to their end"""
+        ...
+    @property
+    def weld_jump(self) -> Any:
+        """[m]"""
+        ...
+    @property
+    def weld_settle(self) -> Any:
+        """[m]"""
+        ...
+
+class PickPlaceTrace:
+    """What the machine saw (NaN: did not happen)."""
+    def __init__(*args: Any, **kwargs: Any) -> Any: ...
+    @property
+    def closed(self) -> Any:
+        """both fingers touched when GRASP ended"""
+        ...
+    @property
+    def closing_force(self) -> Any:
+        """[N]"""
+        ...
+    @property
+    def done_time(self) -> Any:
+        """DONE entered: the cycle time [s]"""
+        ...
+    @property
+    def dropped(self) -> Any:
+        ...
+    @property
+    def dropped_time(self) -> Any:
+        """[s]"""
+        ...
+    @property
+    def longest_saturation(self) -> Any:
+        """[ticks]"""
+        ...
+    @property
+    def max_slip(self) -> Any:
+        """[m]"""
+        ...
+    @property
+    def saturated_actuator(self) -> Any:
+        """-1: none"""
+        ...
+    @property
+    def slipped(self) -> Any:
+        ...
+    @property
+    def start_time(self) -> Any:
+        """[s]"""
+        ...
+    @property
+    def state(self) -> Any:
+        """the state at the end"""
+        ...
+    @property
+    def table_contact(self) -> Any:
+        ...
+    @property
+    def table_contact_time(self) -> Any:
+        """[s]"""
+        ...
+    @property
+    def transport_force_max(self) -> Any:
+        """[N]"""
+        ...
+    @property
+    def transport_force_mean(self) -> Any:
+        """[N]"""
+        ...
+    @property
+    def weld_jump(self) -> Any:
+        """object moved by the switch [m]"""
+        ...
+    @property
+    def weld_settle(self) -> Any:
+        """weld stretch over DWELL_C [m]"""
+        ...
+    @property
+    def welded(self) -> Any:
+        ...
+
+class PickPlaceTrial:
+    """One trial's draw."""
+    def __init__(self: PickPlaceTrial, **kwargs) -> None:
+        """Default values, with any field set by keyword."""
+        ...
+    @property
+    def object(self) -> Any:
+        ...
+    @object.setter
+    def object(self, value: Any) -> None: ...
+    @property
+    def seed(self) -> Any:
+        ...
+    @seed.setter
+    def seed(self, value: Any) -> None: ...
+    @property
+    def target(self) -> Any:
+        """x, y (2,) [m]"""
+        ...
+    @target.setter
+    def target(self, value: Any) -> None: ...
+
+class PickPlaceVideo:
+    """A video of a trial."""
+    def __init__(self: PickPlaceVideo, **kwargs) -> None:
+        """Default values, with any field set by keyword."""
+        ...
+    @property
+    def cameras(self) -> Any:
+        """'front', 'side', 'top', 'follow'; empty: front"""
+        ...
+    @cameras.setter
+    def cameras(self, value: Any) -> None: ...
+    @property
+    def options(self) -> Any:
+        """RunVideoOptions"""
+        ...
+    @options.setter
+    def options(self, value: Any) -> None: ...
+    @property
+    def path(self) -> Any:
+        """MP4 to write; '' = none"""
+        ...
+    @path.setter
+    def path(self, value: Any) -> None: ...
+    @property
+    def tiled(self) -> Any:
+        """one tiled file (else one per camera)"""
+        ...
+    @tiled.setter
+    def tiled(self, value: Any) -> None: ...
 
 class PlanOptions:
     def __init__(self: PlanOptions) -> None:
@@ -3094,6 +5121,42 @@ class Robot:
         """physics timestep [s]"""
         ...
 
+class RobotSpec:
+    """A robot from any MJCF (bundled name or file); its names get the prefix name + '/', its root bodies sit in a fixed body 'name' at pos, quat."""
+    def __init__(self: RobotSpec, **kwargs) -> None:
+        """Default values, with any field set by keyword."""
+        ...
+    @property
+    def keep_arena(self) -> Any:
+        """keep the model's own floor planes, lights and skybox"""
+        ...
+    @keep_arena.setter
+    def keep_arena(self, value: Any) -> None: ...
+    @property
+    def model(self) -> Any:
+        """bundled name or MJCF file path"""
+        ...
+    @model.setter
+    def model(self, value: Any) -> None: ...
+    @property
+    def name(self) -> Any:
+        """prefix, unique in the scene"""
+        ...
+    @name.setter
+    def name(self, value: Any) -> None: ...
+    @property
+    def pos(self) -> Any:
+        """mount position in world (3,) [m]"""
+        ...
+    @pos.setter
+    def pos(self, value: Any) -> None: ...
+    @property
+    def quat(self) -> Any:
+        """mount orientation (4,) w, x, y, z"""
+        ...
+    @quat.setter
+    def quat(self, value: Any) -> None: ...
+
 class RunResult:
     def __init__(*args: Any, **kwargs: Any) -> Any: ...
     @property
@@ -3144,9 +5207,164 @@ class RunStatus:
     def value(self) -> int: ...
     def __int__(self) -> int: ...
 
+class RunVideoOptions:
+    """Size and rate of a run's video."""
+    def __init__(self: RunVideoOptions, **kwargs) -> None:
+        """Default values, with any field set by keyword."""
+        ...
+    @property
+    def fps(self) -> Any:
+        """frames per simulated second"""
+        ...
+    @fps.setter
+    def fps(self, value: Any) -> None: ...
+    @property
+    def height(self) -> Any:
+        """[pixels], even"""
+        ...
+    @height.setter
+    def height(self, value: Any) -> None: ...
+    @property
+    def width(self) -> Any:
+        """[pixels], even"""
+        ...
+    @width.setter
+    def width(self, value: Any) -> None: ...
+
+class Scene:
+    """One MuJoCo model composed of parts (arena, robots, grippers, objects, fixtures, cameras, sites, sensors, welds), every part's names prefixed; found and edited by name, then compiled into a Robot. Every add_* takes a spec or its fields as keywords, checks it and leaves the scene unchanged when it raises mjarm.Error. A Scene is a value: copy() it per trial. docs/scene.md."""
+    def __init__(self: Scene, name: str = ...) -> None:
+        """An empty scene (no floor)."""
+        ...
+    def add_arena(self: Scene, spec: ArrayLike = ..., **kwargs) -> None:
+        """add_arena(spec: ArenaSpec | None = None, **fields): floor, lights, optional table"""
+        ...
+    @overload
+    def add_camera(self: Scene, spec: ArrayLike = ..., **kwargs) -> None:
+        ...
+    @overload
+    def add_camera(spec: SceneCameraSpec | None = ..., **fields) -> None:
+        ...
+    def add_fixture(self: Scene, spec: ArrayLike = ..., **kwargs) -> None:
+        """add_fixture(spec: ObjectSpec | CompoundFixtureSpec | None = None, **fields): an object fixed to the world, or several pieces in one static body"""
+        ...
+    @overload
+    def add_object(self: Scene, spec: ArrayLike = ..., **kwargs) -> None:
+        ...
+    @overload
+    def add_object(spec: ObjectSpec | None = ..., **fields): a free ArrayLike (nq + = ...) -> None:
+        ...
+    def add_robot(self: Scene, spec: ArrayLike = ..., **kwargs) -> None:
+        """add_robot(spec: RobotSpec | None = None, **fields): a robot, names prefixed 'name/'"""
+        ...
+    @overload
+    def add_sensor(self: Scene, spec: ArrayLike = ..., **kwargs) -> None:
+        ...
+    @overload
+    def add_sensor(spec: SensorSpec | None = ..., **fields) -> None:
+        ...
+    @overload
+    def add_site(self: Scene, spec: ArrayLike = ..., **kwargs) -> None:
+        ...
+    @overload
+    def add_site(spec: SiteSpec | None = ..., **fields) -> None:
+        ...
+    def add_weld(self: Scene, spec: ArrayLike = ..., **kwargs) -> None:
+        """add_weld(spec: WeldSpec | None = None, **fields): a weld, inactive unless asked"""
+        ...
+    def attach_gripper(self: Scene, spec: ArrayLike = ..., **kwargs) -> None:
+        """attach_gripper(spec: GripperSpec | None = None, **fields): a gripper at a robot's site or body"""
+        ...
+    def attribute(self: Scene, kind: str, name: str, attribute: str) -> str | None:
+        """The attribute's text, or None when it is not set on the element; an unknown element raises mjarm.Error with the closest names."""
+        ...
+    @staticmethod
+    def bundled_grippers() -> list[str]:
+        """Names of the bundled grippers, sorted."""
+        ...
+    def compile(self: Scene) -> Robot:
+        """Compiles the scene into a Robot (GIL released); keyframes combined by name ('home' holds every part's home). MuJoCo's message on failure."""
+        ...
+    def copy(self: Scene) -> Scene:
+        """An independent copy."""
+        ...
+    def has(self: Scene, kind: str, name: str) -> bool:
+        """Whether an element of kind ('body', 'joint', 'geom', 'site', 'camera', 'light', 'actuator', 'sensor', 'tendon', 'equality', 'mesh', 'material', 'texture', 'default') is called name."""
+        ...
+    @property
+    def name(self) -> Any:
+        """the scene's (and the model's) name"""
+        ...
+    def names(self: Scene, kind: str) -> list[str]:
+        """Names of the elements of kind, sorted."""
+        ...
+    def set_attribute(self: Scene, kind: str, name: str, attribute: str, value: ArrayLike) -> None:
+        """Sets an attribute (text, a number or numbers (n,)); takes effect at the next compile(), where MuJoCo judges the value. Renaming is refused."""
+        ...
+    def set_option(self: Scene, attribute: str, value: str) -> None:
+        """Sets <option attribute=value> (timestep, impratio, noslip_iterations, ...)."""
+        ...
+    @property
+    def warnings(self) -> Any:
+        """3.x translation rewrites and part settings the scene did not take"""
+        ...
+    def xml(self: Scene) -> str:
+        """The composed MJCF document (MuJoCo 2.2.2, radians)."""
+        ...
+
+class SceneCameraSpec:
+    """A camera fixed to a body (or the world), optionally tracking a body."""
+    def __init__(self: SceneCameraSpec, **kwargs) -> None:
+        """Default values, with any field set by keyword."""
+        ...
+    @property
+    def body(self) -> Any:
+        """parent body, '' for the world"""
+        ...
+    @body.setter
+    def body(self, value: Any) -> None: ...
+    @property
+    def fovy(self) -> Any:
+        """vertical field of view [deg]"""
+        ...
+    @fovy.setter
+    def fovy(self, value: Any) -> None: ...
+    @property
+    def name(self) -> Any:
+        ...
+    @name.setter
+    def name(self, value: Any) -> None: ...
+    @property
+    def pos(self) -> Any:
+        """in the parent body (3,) [m]"""
+        ...
+    @pos.setter
+    def pos(self, value: Any) -> None: ...
+    @property
+    def quat(self) -> Any:
+        """(4,) w, x, y, z"""
+        ...
+    @quat.setter
+    def quat(self, value: Any) -> None: ...
+    @property
+    def target(self) -> Any:
+        """body to look at, or ''"""
+        ...
+    @target.setter
+    def target(self, value: Any) -> None: ...
+    @property
+    def xyaxes(self) -> Any:
+        """image x and y axes in the parent body (6,); zeros: use quat"""
+        ...
+    @xyaxes.setter
+    def xyaxes(self, value: Any) -> None: ...
+
 class Se3ImpedanceController(Controller):
     """SE(3) Lie-group impedance (full 6x6 A, D, K)."""
     def __init__(self: Se3ImpedanceController, chain: Chain, options: Se3ImpedanceOptions = ...) -> None:
+        ...
+    def compute(self: Se3ImpedanceController, data: Data, reference: Reference, out: ArrayLike = ...) -> NDArray[np.float64]:
+        """One tick's command (n,) for the state in data (fresh after forward): torques or position targets in chain order. With out (a writable float64 array (n,)) the command is written there and out is returned, so a loop allocates nothing."""
         ...
     @property
     def error(self) -> Any:
@@ -3274,6 +5492,29 @@ class SensorInfo:
     def type(self) -> Any:
         ...
 
+class SensorSpec:
+    """A sensor on a named element: a joint (jointpos), a site (touch, force, torque) or a site, body, geom or camera (framepos, framequat)."""
+    def __init__(self: SensorSpec, **kwargs) -> None:
+        """Default values, with any field set by keyword."""
+        ...
+    @property
+    def name(self) -> Any:
+        ...
+    @name.setter
+    def name(self, value: Any) -> None: ...
+    @property
+    def target(self) -> Any:
+        """the element it reads"""
+        ...
+    @target.setter
+    def target(self, value: Any) -> None: ...
+    @property
+    def type(self) -> Any:
+        """SensorType or its name"""
+        ...
+    @type.setter
+    def type(self, value: Any) -> None: ...
+
 class SensorTiming:
     """Members:
 
@@ -3282,6 +5523,35 @@ class SensorTiming:
   after_forward"""
     after_step: ClassVar[SensorTiming]
     after_forward: ClassVar[SensorTiming]
+    def __init__(self, value: int) -> None: ...
+    @property
+    def name(self) -> str: ...
+    @property
+    def value(self) -> int: ...
+    def __int__(self) -> int: ...
+
+class SensorType:
+    """Sensor types a scene can add.
+
+Members:
+
+  jointpos
+
+  framepos
+
+  framequat
+
+  touch
+
+  force
+
+  torque"""
+    jointpos: ClassVar[SensorType]
+    framepos: ClassVar[SensorType]
+    framequat: ClassVar[SensorType]
+    touch: ClassVar[SensorType]
+    force: ClassVar[SensorType]
+    torque: ClassVar[SensorType]
     def __init__(self, value: int) -> None: ...
     @property
     def name(self) -> str: ...
@@ -3670,6 +5940,47 @@ class SingularityThresholds:
     @sigma_min.setter
     def sigma_min(self, value: Any) -> None: ...
 
+class SiteSpec:
+    """A site on a body (or the world)."""
+    def __init__(self: SiteSpec, **kwargs) -> None:
+        """Default values, with any field set by keyword."""
+        ...
+    @property
+    def body(self) -> Any:
+        """parent body, '' for the world"""
+        ...
+    @body.setter
+    def body(self, value: Any) -> None: ...
+    @property
+    def name(self) -> Any:
+        ...
+    @name.setter
+    def name(self, value: Any) -> None: ...
+    @property
+    def pos(self) -> Any:
+        """in the parent body (3,) [m]"""
+        ...
+    @pos.setter
+    def pos(self, value: Any) -> None: ...
+    @property
+    def quat(self) -> Any:
+        """(4,) w, x, y, z"""
+        ...
+    @quat.setter
+    def quat(self, value: Any) -> None: ...
+    @property
+    def rgba(self) -> Any:
+        """colour (4,)"""
+        ...
+    @rgba.setter
+    def rgba(self, value: Any) -> None: ...
+    @property
+    def size(self) -> Any:
+        """sphere radius [m]"""
+        ...
+    @size.setter
+    def size(self, value: Any) -> None: ...
+
 class StepFault:
     def __init__(*args: Any, **kwargs: Any) -> Any: ...
     @property
@@ -3782,6 +6093,9 @@ class TaskMode:
 class TaskPdController(Controller):
     """tau = J^T (K e + D ė) + g."""
     def __init__(self: TaskPdController, chain: Chain, options: TaskPdOptions = ...) -> None:
+        ...
+    def compute(self: TaskPdController, data: Data, reference: Reference, out: ArrayLike = ...) -> NDArray[np.float64]:
+        """One tick's command (n,) for the state in data (fresh after forward): torques or position targets in chain order. With out (a writable float64 array (n,)) the command is written there and out is returned, so a loop allocates nothing."""
         ...
     @property
     def options(self) -> Any:
@@ -3994,6 +6308,117 @@ class TimeStep:
         """the whole observation, the spec's arrays back to back (float64, (size,)); owned by this time step"""
         ...
 
+class TrackingErrors:
+    """Errors over a stretch of the gate."""
+    def __init__(*args: Any, **kwargs: Any) -> Any: ...
+    @property
+    def max_orientation(self) -> Any:
+        """[rad]"""
+        ...
+    @property
+    def max_position(self) -> Any:
+        """[m]"""
+        ...
+    @property
+    def orientation_rms(self) -> Any:
+        """[rad]"""
+        ...
+    @property
+    def position_rms(self) -> Any:
+        """[m]"""
+        ...
+    @property
+    def samples(self) -> Any:
+        ...
+
+class TrackingGateOptions:
+    """The free-space tracking gate: a circle then a figure-eight in the y-z plane."""
+    def __init__(self: TrackingGateOptions, **kwargs) -> None:
+        """Default values, with any field set by keyword."""
+        ...
+    @property
+    def controller(self) -> Any:
+        ...
+    @controller.setter
+    def controller(self, value: Any) -> None: ...
+    @property
+    def frequency(self) -> Any:
+        """[Hz]"""
+        ...
+    @frequency.setter
+    def frequency(self, value: Any) -> None: ...
+    @property
+    def height(self) -> Any:
+        """[m]"""
+        ...
+    @height.setter
+    def height(self, value: Any) -> None: ...
+    @property
+    def joint_friction(self) -> Any:
+        ...
+    @joint_friction.setter
+    def joint_friction(self, value: Any) -> None: ...
+    @property
+    def max_acceleration(self) -> Any:
+        ...
+    @max_acceleration.setter
+    def max_acceleration(self, value: Any) -> None: ...
+    @property
+    def radius(self) -> Any:
+        """[m]"""
+        ...
+    @radius.setter
+    def radius(self, value: Any) -> None: ...
+    @property
+    def ramp_time(self) -> Any:
+        """[s]"""
+        ...
+    @ramp_time.setter
+    def ramp_time(self, value: Any) -> None: ...
+    @property
+    def scene(self) -> Any:
+        """a compiled DockingScene, or None: built"""
+        ...
+    @scene.setter
+    def scene(self, value: Any) -> None: ...
+    @property
+    def settle_time(self) -> Any:
+        """[s]"""
+        ...
+    @settle_time.setter
+    def settle_time(self, value: Any) -> None: ...
+
+class TrackingGateReport:
+    """What the gate measured."""
+    @property
+    def X_start(self) -> Any:
+        ...
+    def __init__(*args: Any, **kwargs: Any) -> Any: ...
+    @property
+    def contact_ticks(self) -> Any:
+        ...
+    @property
+    def controller(self) -> Any:
+        ...
+    @property
+    def loops(self) -> Any:
+        """circle, figure-eight"""
+        ...
+    def ok(self: TrackingGateReport) -> bool:
+        ...
+    def passes(self: TrackingGateReport, position_rms: float = ..., orientation_rms: float = ...) -> bool:
+        """Finished without contact and both RMS within the targets [m], [rad]."""
+        ...
+    @property
+    def run(self) -> Any:
+        ...
+    @property
+    def source(self) -> Any:
+        ...
+    @property
+    def total(self) -> Any:
+        ...
+
 class TrapezoidProfile:
     """Rest-to-rest trapezoidal velocity profile."""
     def __init__(self: TrapezoidProfile, distance: float, max_velocity: float = ..., max_acceleration: float = ...) -> None:
@@ -4177,6 +6602,57 @@ class WaypointReport:
     def time(self) -> Any:
         ...
 
+class WeldGraspOptions:
+    """The weld's solref."""
+    def __init__(self: WeldGraspOptions, **kwargs) -> None:
+        """Default values, with any field set by keyword."""
+        ...
+    @property
+    def damping_ratio(self) -> Any:
+        ...
+    @damping_ratio.setter
+    def damping_ratio(self, value: Any) -> None: ...
+    @property
+    def time_constant(self) -> Any:
+        """[s]"""
+        ...
+    @time_constant.setter
+    def time_constant(self, value: Any) -> None: ...
+
+class WeldSpec:
+    """A weld equality between two bodies, inactive unless active is set."""
+    def __init__(self: WeldSpec, **kwargs) -> None:
+        """Default values, with any field set by keyword."""
+        ...
+    @property
+    def active(self) -> Any:
+        ...
+    @active.setter
+    def active(self, value: Any) -> None: ...
+    @property
+    def body1(self) -> Any:
+        """e.g. 'arm/hand'"""
+        ...
+    @body1.setter
+    def body1(self, value: Any) -> None: ...
+    @property
+    def body2(self) -> Any:
+        """e.g. 'cube'"""
+        ...
+    @body2.setter
+    def body2(self, value: Any) -> None: ...
+    @property
+    def name(self) -> Any:
+        ...
+    @name.setter
+    def name(self, value: Any) -> None: ...
+    @property
+    def solref(self) -> Any:
+        """time constant [s], damping ratio (2,)"""
+        ...
+    @solref.setter
+    def solref(self, value: Any) -> None: ...
+
 class WorkspaceResult:
     def __init__(*args: Any, **kwargs: Any) -> Any: ...
     @property
@@ -4259,6 +6735,18 @@ class WrenchStatus:
     def value(self) -> int: ...
     def __int__(self) -> int: ...
 
+def build_docking_scene(options: DockingSceneOptions = ...) -> DockingScene:
+    """Composes and compiles the docking scene (GIL released)."""
+    ...
+def build_pick_place_scene(options: PickPlaceSceneOptions) -> PickPlaceScene:
+    """Composes and compiles the scene of one trial (GIL released)."""
+    ...
+def docking_scene(options: DockingSceneOptions = ...) -> Scene:
+    """The docking scene's parts as a Scene, not compiled."""
+    ...
+def draw_pick_place_trial(options: PickPlaceOptions) -> PickPlaceTrial:
+    """The trial options.seed draws (object, target), fixed values of the options in place."""
+    ...
 def env_observations(task: str) -> list[str]:
     """Every observation name task can give (built-in, the task's, one 'sensor:NAME' per sensor). Raises mjarm.Error for an unknown task."""
     ...
@@ -4280,6 +6768,18 @@ def frame_pose(robot: Robot, data: Data, frame: ArrayLike) -> Pose:
 def frame_robot(robot: Robot, data: Data, azimuth: float = ..., elevation: float = ...) -> CameraSpec:
     """A free camera that frames the whole robot."""
     ...
+def free_pose(robot: Robot, data: Data, body: str) -> FreePose:
+    """The pose of a free body read from data.qpos (FreePose)."""
+    ...
+def free_qpos_address(robot: Robot, body: str) -> int:
+    """The qpos address of the free joint of a body (or of the free joint by name)."""
+    ...
+def is_scene_file(path: str | os.PathLike[str]) -> bool:
+    """Whether path names a scene file (.yaml, .yml, .json)."""
+    ...
+def load_scene_file(path: str | os.PathLike[str]) -> Scene:
+    """A Scene from a YAML or JSON file (docs/scene.md); errors name the line and the key."""
+    ...
 def log_error(X_WE: ArrayLike, X_WT: ArrayLike) -> NDArray[np.float64]:
     """Body pose error log(X_EW X_WT) = [v; w] (6,), in E."""
     ...
@@ -4293,6 +6793,18 @@ def log_error_world_aligned_jacobian(e_W: ArrayLike) -> NDArray[np.float64]:
     ...
 def manipulability(chain: Chain, q: ArrayLike, options: ManipulabilityOptions = ...) -> ManipulabilityResult:
     ...
+def parse_scene(text: str, base_dir: str | os.PathLike[str] = ..., source: str = ...) -> Scene:
+    """A Scene from YAML/JSON text; base_dir resolves relative paths, source names it in errors."""
+    ...
+def pick_place_robot(name: str) -> PickPlaceRobot:
+    """The robot called name (mjarm.Error listing the choices)."""
+    ...
+def pick_place_robots() -> list[PickPlaceRobot]:
+    """The robots of the pick and place, in order."""
+    ...
+def plan_docking(scene: DockingScene, offset: DockingOffset = ..., motion: DockingMotion = ...) -> DockingPlan:
+    """The plan of a run: poses, the start configuration by IK, durations."""
+    ...
 def quaternion_from_rotation(R: ArrayLike) -> NDArray[np.float64]:
     ...
 def rotation_from_quaternion(q_wxyz: ArrayLike) -> NDArray[np.float64]:
@@ -4301,14 +6813,32 @@ def rotation_from_rpy(rpy: ArrayLike) -> NDArray[np.float64]:
     ...
 def rpy_from_rotation(R: ArrayLike) -> NDArray[np.float64]:
     ...
+def run_docking(options: DockingOptions = ...) -> DockingReport:
+    """One peg-in-hole run (GIL released): scene, plan, simulation under the docking controller, metrics and verdict. Bad options raise mjarm.Error before the first step; Ctrl-C raises KeyboardInterrupt."""
+    ...
+def run_docking_grid(options: DockingGridOptions = ..., progress: ArrayLike = ...) -> DockingGridResult:
+    """Runs the grid in options.jobs threads sharing one scene (GIL released); progress(done, planned) is called as runs complete. Ctrl-C raises KeyboardInterrupt."""
+    ...
+def run_pick_place(options: PickPlaceOptions) -> PickPlaceReport:
+    """Runs one trial (GIL released): scene, reach check, the 14-state machine, the verdict. A trial that fails or diverges is a report with its reason; bad options or an unreachable object raise mjarm.Error; Ctrl-C raises KeyboardInterrupt."""
+    ...
+def run_pick_place_trials(options: PickPlaceBatchOptions, on_progress: ArrayLike = ...) -> PickPlaceBatch:
+    """Runs options.trials trials in parallel (GIL released; the workers share nothing). on_progress(done) is called after each trial, one call at a time. Returns a PickPlaceBatch; Ctrl-C raises KeyboardInterrupt."""
+    ...
 def run_shelf_pick(options: ShelfPickOptions) -> ShelfPickReport:
     """Plans, simulates and measures one shelf pick (GIL released); see docs/tasks.md."""
+    ...
+def run_tracking_gate(options: TrackingGateOptions = ...) -> TrackingGateReport:
+    """Runs the gate under a docking controller (GIL released)."""
     ...
 def sample_workspace(chain: Chain, samples: int = ..., seed: int = ..., compute_manipulability: bool = ..., keep_points: bool = ...) -> WorkspaceResult:
     """Seeded Monte-Carlo workspace sampling (GIL released)."""
     ...
 def scan_singularities(chain: Chain, samples: int, seed: int, keep_worst: int = ...) -> SingularityScan:
     """Seeded random scan keeping the lowest-sigma_min samples (GIL released)."""
+    ...
+def set_free_pose(robot: Robot, data: Data, body: str, p_WB: ArrayLike, quat_WB: ArrayLike = ...) -> None:
+    """Writes a free body's pose p_WB (3,) [m], quat_WB (4,) w x y z (normalized) into owned data's qpos; call data.forward() after."""
     ...
 def shelf_pick_controllers() -> list[str]:
     ...
@@ -4328,6 +6858,9 @@ def smootherstep(x: float) -> RampSample:
     ...
 def smoothstep(x: float) -> RampSample:
     """x^2 (3 - 2x) and its derivatives"""
+    ...
+def summarize(reports: list[PickPlaceReport]) -> PickPlaceSummary:
+    """The PickPlaceSummary of a list of PickPlaceReport."""
     ...
 def task_error(X_WE: ArrayLike, X_WD: ArrayLike) -> NDArray[np.float64]:
     """task-space error (6,) world axes, linear first"""

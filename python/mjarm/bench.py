@@ -2,11 +2,15 @@
 
 Times, from Python, the calls that bench/python_binding_bench.cpp times in C++ on the same
 inputs (its comment states the protocol): forward kinematics, a position IK solve, one
-operational-space controller step, a loop of Simulation.tick (real-time factor), and an
-environment step (Environment.step: the cheapest configuration, one physics step a call, where
-the binding's share shows, and the default reach environment); also the tick loop with the same
-joint PD written as a Python Controller. With --cpp it runs the C++ benchmark program and
-prints the per-call overhead (Python − C++) and the ratio of real-time factors. Figures are medians of --repeats rounds.
+operational-space controller step (``compute(data, ref)``, a new array per call, and
+``compute(data, ref, out)``, written into a preallocated array as the C++ loop writes into its
+command), a loop of Simulation.tick (real-time factor), and an environment step
+(Environment.step: the cheapest configuration, one physics step a call, where the binding's share
+shows, and the default reach environment); also the tick loop with the same joint PD written as a
+Python Controller. With --cpp it runs the C++
+benchmark program and prints the per-call overhead (Python − C++) and the ratio of real-time
+factors; with --repeat N it measures both sides N times, one after the other, and each overhead
+is the median of the N differences. Python figures are medians of --rounds rounds.
 """
 import argparse
 import json
@@ -20,6 +24,10 @@ import time
 import numpy as np
 
 import mjarm
+
+# the clock of the per-call figures: wall time, or this thread's CPU time (--clock cpu, for a
+# shared machine: time the thread waits for a core is not counted, on either side)
+CLOCK = [time.perf_counter]
 
 
 def configurations(chain):
@@ -39,10 +47,27 @@ def per_call(fn, args, rounds, calls):
     results = []
     n = len(args)
     for _ in range(rounds):
-        start = time.perf_counter()
+        start = CLOCK[0]()
         for i in range(calls):
             fn(args[i % n])
-        results.append((time.perf_counter() - start) / calls)
+        results.append((CLOCK[0]() - start) / calls)
+    return statistics.median(results)
+
+
+def step_per_call(compute, data, reference, out, rounds, calls):
+    """Median over rounds of the mean time per controller step [s]: the call as a user's control
+    loop makes it, compute(data, reference) (a new array each call) or, with out, compute(data,
+    reference, out) (the command written into out)."""
+    results = []
+    for _ in range(rounds):
+        start = CLOCK[0]()
+        if out is None:
+            for _ in range(calls):
+                compute(data, reference)
+        else:
+            for _ in range(calls):
+                compute(data, reference, out)
+        results.append((CLOCK[0]() - start) / calls)
     return statistics.median(results)
 
 
@@ -76,6 +101,40 @@ def tick_loop_rtf(robot, chain, controller, ticks, rounds):
     return statistics.median(rtfs)
 
 
+def measure(rounds, calls, ticks):
+    panda = mjarm.Robot.bundled("panda")
+    chain = mjarm.Chain(panda, "attachment_site")
+    kin = mjarm.ChainKinematics(chain)
+    qs = configurations(chain)
+    out = {"fk_us": 1e6 * per_call(kin.update, qs, rounds, calls)}
+    targets = [kin.update(q).p for q in qs]
+    seed = chain.gather(panda.keyframe_qpos("home"))
+    ik = mjarm.PositionIk(chain)
+    out["ik_us"] = 1e6 * per_call(lambda p: ik.solve(p, seed), targets, rounds, max(calls // 20, 64))
+
+    robot = mjarm.Robot.bundled("panda_torque")
+    tchain = mjarm.Chain(robot, "attachment_site")
+    data = robot.make_data()
+    data.qpos[:] = robot.keyframe_qpos("home")
+    data.forward()
+    ref = mjarm.Reference()
+    home_q = tchain.gather(robot.keyframe_qpos("home"))
+    X = mjarm.forward_kinematics(tchain, home_q)
+    X.p = X.p + [0.05, 0.0, 0.0]
+    ref.task.X_WE = X
+    ref.joint.q = home_q
+    ref.joint.qd = np.zeros(7)
+    ref.joint.qdd = np.zeros(7)
+    osc = mjarm.OperationalSpaceController(tchain)
+    out["controller_us"] = 1e6 * step_per_call(osc.compute, data, ref, None, rounds, calls)
+    out["controller_out_us"] = 1e6 * step_per_call(osc.compute, data, ref, np.zeros(7), rounds, calls)
+    out["tick_rtf"] = tick_loop_rtf(robot, tchain, mjarm.JointPdController(tchain), ticks, rounds)
+    gains = mjarm.JointPdOptions().gains
+    out["tick_rtf_python_controller"] = tick_loop_rtf(
+        robot, tchain, PythonPd(tchain, gains.kp[0], gains.kd[0]), ticks, rounds)
+    return out
+
+
 def env_step(env, rounds, calls):
     """Median over rounds of the thread CPU time per Environment.step [s], reset(0) after LAST
     (timed too), as bench/python_binding_bench.cpp's env_loop. CPU time, not wall time: on a
@@ -106,7 +165,7 @@ def env_figures(rounds, calls, cpp_path):
     py, cpp = {k: [] for k in ENV_KEYS}, {k: [] for k in ENV_KEYS}
     for _ in range(rounds):
         if cpp_path:
-            figures = cpp_figures(cpp_path, 0.2, "^BM_EnvStep")
+            figures = cpp_figures(cpp_path, 0.2, benchmark_filter="^BM_EnvStep")
             for k in ENV_KEYS:
                 cpp[k].append(figures[k])
         py["env_step_us"].append(1e6 * env_step(cheap, 1, calls))
@@ -120,40 +179,7 @@ def env_figures(rounds, calls, cpp_path):
     return out
 
 
-def measure(rounds, calls, ticks):
-    panda = mjarm.Robot.bundled("panda")
-    chain = mjarm.Chain(panda, "attachment_site")
-    kin = mjarm.ChainKinematics(chain)
-    qs = configurations(chain)
-    out = {"fk_us": 1e6 * per_call(kin.update, qs, rounds, calls)}
-    targets = [kin.update(q).p for q in qs]
-    seed = chain.gather(panda.keyframe_qpos("home"))
-    ik = mjarm.PositionIk(chain)
-    out["ik_us"] = 1e6 * per_call(lambda p: ik.solve(p, seed), targets, rounds, max(calls // 20, 64))
-
-    robot = mjarm.Robot.bundled("panda_torque")
-    tchain = mjarm.Chain(robot, "attachment_site")
-    data = robot.make_data()
-    data.qpos[:] = robot.keyframe_qpos("home")
-    data.forward()
-    ref = mjarm.Reference()
-    home_q = tchain.gather(robot.keyframe_qpos("home"))
-    X = mjarm.forward_kinematics(tchain, home_q)
-    X.p = X.p + [0.05, 0.0, 0.0]
-    ref.task.X_WE = X
-    ref.joint.q = home_q
-    ref.joint.qd = np.zeros(7)
-    ref.joint.qdd = np.zeros(7)
-    osc = mjarm.OperationalSpaceController(tchain)
-    out["controller_us"] = 1e6 * per_call(lambda r: osc.compute(data, r), [ref], rounds, calls)
-    out["tick_rtf"] = tick_loop_rtf(robot, tchain, mjarm.JointPdController(tchain), ticks, rounds)
-    gains = mjarm.JointPdOptions().gains
-    out["tick_rtf_python_controller"] = tick_loop_rtf(
-        robot, tchain, PythonPd(tchain, gains.kp[0], gains.kd[0]), ticks, rounds)
-    return out
-
-
-def cpp_figures(path, min_time, benchmark_filter=None):
+def cpp_figures(path, min_time, field="real_time", benchmark_filter=None):
     command = [path, "--benchmark_format=json", f"--benchmark_min_time={min_time}"]
     if benchmark_filter:
         command.append(f"--benchmark_filter={benchmark_filter}")
@@ -163,17 +189,17 @@ def cpp_figures(path, min_time, benchmark_filter=None):
         scale = {"ns": 1e-3, "us": 1.0, "ms": 1e3}[b["time_unit"]]
         name = b["name"]
         if name == "BM_Fk":
-            figures["fk_us"] = b["real_time"] * scale
+            figures["fk_us"] = b[field] * scale
         elif name == "BM_PositionIk":
-            figures["ik_us"] = b["real_time"] * scale
+            figures["ik_us"] = b[field] * scale
         elif name == "BM_ControllerStep":
-            figures["controller_us"] = b["real_time"] * scale
+            figures["controller_us"] = b[field] * scale
+        elif name == "BM_TickLoop":
+            figures["tick_rtf"] = b["rtf"]
         elif name == "BM_EnvStep":  # CPU time, as the Python side (env_step)
             figures["env_step_us"] = b["cpu_time"] * scale
         elif name == "BM_EnvStepReach":
             figures["env_step_reach_us"] = b["cpu_time"] * scale
-        elif name == "BM_TickLoop":
-            figures["tick_rtf"] = b["rtf"]
     return figures
 
 
@@ -184,35 +210,65 @@ def main(argv=None):
     parser.add_argument("--rounds", type=int, default=5, help="rounds per figure (median), 1..100")
     parser.add_argument("--calls", type=int, default=20000, help="calls per round, 100..10^7")
     parser.add_argument("--ticks", type=int, default=5000, help="ticks per loop round, 100..10^7")
+    parser.add_argument("--repeat", type=int, default=1,
+                        help="with --cpp: measure Python then C++ this many times, 1..50, and "
+                             "give each overhead as the median of the pairs' differences (a load "
+                             "change between the two sides then moves one pair, not the figure)")
+    parser.add_argument("--clock", choices=("wall", "cpu"), default="wall",
+                        help="per-call figures in wall time (default) or the thread's CPU time, "
+                             "Google Benchmark's cpu_time on the C++ side (the tick loop's "
+                             "real-time factors stay in wall time)")
     parser.add_argument("--json", action="store_true", help="print one JSON object")
     args = parser.parse_args(argv)
     if not 1 <= args.rounds <= 100 or not 100 <= args.calls <= 10**7 or not 100 <= args.ticks <= 10**7:
         parser.error("--rounds must be in 1..100, --calls and --ticks in 100..10^7")
+    if not 1 <= args.repeat <= 50:
+        parser.error("--repeat must be in 1..50")
     if args.cpp and not os.access(args.cpp, os.X_OK):
         parser.error(f"--cpp: {args.cpp} is not an executable")
-    py = measure(args.rounds, args.calls, args.ticks)
-    cpp = cpp_figures(args.cpp, 0.5, "-BM_EnvStep") if args.cpp else {}
+    if args.clock == "cpu":
+        CLOCK[0] = time.thread_time
+    load_start = os.getloadavg()[0]
+    pairs = []
+    for _ in range(args.repeat if args.cpp else 1):
+        py = measure(args.rounds, args.calls, args.ticks)
+        field = "cpu_time" if args.clock == "cpu" else "real_time"
+        pairs.append((py, cpp_figures(args.cpp, 0.5, field, "-BM_EnvStep") if args.cpp else {}))
     env = env_figures(args.rounds, args.calls, args.cpp)
+    load = [load_start, os.getloadavg()[0]]  # 1-minute load average before and after
+    keys = [("fk_us", "fk_us"), ("ik_us", "ik_us"), ("controller_us", "controller_us"),
+            ("controller_out_us", "controller_us")]  # (Python figure, the C++ figure it matches)
+    py = {k: statistics.median(p[k] for p, _ in pairs) for k in pairs[0][0]}
+    cpp = {k: statistics.median(c[k] for _, c in pairs) for k in pairs[0][1]}
+    overhead = {k: statistics.median(p[k] - c[ck] for p, c in pairs) for k, ck in keys if ck in cpp}
     py.update(env["python"])
     cpp.update(env["cpp"])
+    overhead.update(env["overhead"])
+    if "tick_rtf" in cpp:
+        overhead["tick_rtf_ratio"] = statistics.median(c["tick_rtf"] / p["tick_rtf"] for p, c in pairs)
     if args.json:
-        print(json.dumps({"python": py, "cpp": cpp, "env_overhead": env["overhead"],
+        print(json.dumps({"python": py, "cpp": cpp, "overhead": overhead, "repeat": len(pairs),
+                          "clock": args.clock, "load_average": load,
                           "env_rounds": env["rounds"]}))
         return 0
+    print(f"{args.clock} clock; load average (1 min): {load[0]:.2f} at the start, {load[1]:.2f} at the end"
+          + (f"; medians of {len(pairs)} Python/C++ pairs" if len(pairs) > 1 else ""))
     print(f"{'call':34} {'Python':>12} {'C++':>12} {'overhead':>12}")
-    for key, label in (("fk_us", "FK (ChainKinematics.update)"), ("ik_us", "PositionIk.solve"),
-                       ("controller_us", "OSC controller step")):
-        c = cpp.get(key)
-        print(f"{label:34} {py[key]:10.3f}us " + (f"{c:10.3f}us {py[key] - c:10.3f}us" if c else ""))
-    for key, label in (("env_step_us", "Environment.step (1 physics step)"),
-                       ("env_step_reach_us", "Environment.step (reach defaults)")):
-        c, d = cpp.get(key), env["overhead"].get(key)
-        print(f"{label:34} {py[key]:10.3f}us " + (f"{c:10.3f}us {d:10.3f}us (CPU time, "
-                                                    "median of paired rounds)" if c else ""))
+    labels = ("FK (ChainKinematics.update)", "PositionIk.solve", "OSC controller step",
+              "  ... compute(data, ref, out)")
+    for (key, ckey), label in zip(keys, labels):
+        c = cpp.get(ckey)
+        print(f"{label:34} {py[key]:10.3f}us "
+              + (f"{c:10.3f}us {overhead[key]:10.3f}us" if c else ""))
     c = cpp.get("tick_rtf")
     print(f"{'Simulation.tick loop (RTF)':34} {py['tick_rtf']:11.1f}x "
-          + (f"{c:11.1f}x {c / py['tick_rtf']:10.2f}x slower" if c else ""))
+          + (f"{c:11.1f}x {overhead['tick_rtf_ratio']:10.2f}x slower" if c else ""))
     print(f"{'  ... with a Python Controller':34} {py['tick_rtf_python_controller']:11.1f}x")
+    for key, label in (("env_step_us", "Environment.step (1 physics step)"),
+                       ("env_step_reach_us", "Environment.step (reach defaults)")):
+        c, d = cpp.get(key), overhead.get(key)
+        print(f"{label:34} {py[key]:10.3f}us " + (f"{c:10.3f}us {d:10.3f}us (CPU time, "
+                                                    "median of paired rounds)" if c else ""))
     return 0
 
 

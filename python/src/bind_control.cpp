@@ -1,5 +1,6 @@
 // control room: Reference, the Controller interface (subclassable in Python), every controller.
 #include "bindings.hpp"
+#include "controller_step.hpp"
 #include "mjarm/control/acceleration_control.hpp"
 #include "mjarm/control/cartesian_impedance.hpp"
 #include "mjarm/control/computed_torque.hpp"
@@ -17,9 +18,10 @@ namespace {
 
 template <typename C, typename O>
 void controller_class(py::module_& m, const char* name, const char* doc) {
-  py::class_<C, Controller>(m, name, doc)
-      .def(py::init<const Chain&, const O&>(), py::arg("chain"), py::arg("options") = O{})
+  auto cls = py::class_<C, Controller>(m, name, doc);
+  cls.def(py::init<const Chain&, const O&>(), py::arg("chain"), py::arg("options") = O{})
       .def_property_readonly("options", [](const C& c) { return c.options(); });
+  bind_compute<C>(cls);
 }
 
 template <typename O, typename Class>
@@ -89,15 +91,10 @@ void bind_control(py::module_& m) {
                              })
       .def(
           "compute",
-          [](Controller& c, const DataHandle& d, const Reference& ref) {
-            if (&c.chain().robot().model() != &d.model())
-              throw Error("compute: the data belongs to another model than the controller's chain");
-            JointCommand command{c.command_kind(), Eigen::VectorXd::Zero(c.chain().size())};
-            c.compute(d.get(), ref, command);
-            return command.value;
+          [](Controller& c, const DataHandle& d, const Reference& reference, py::handle out) {
+            return controller_step(c, d, reference, out);
           },
-          py::arg("data"), py::arg("reference"),
-          "One tick's command (n,) for the state in data (fresh after forward).");
+          py::arg("data"), py::arg("reference"), py::arg("out") = py::none(), kComputeDoc);
 
   auto gains = py::class_<JointPdGains>(m, "JointPdGains", "Per-joint (or uniform, size 1) gains.");
   gains.def(py::init<>())
@@ -110,27 +107,34 @@ void bind_control(py::module_& m) {
       .def(py::init<>())
       .def_readwrite("gains", &JointPdOptions::gains)
       .def_readwrite("gravity_compensation", &JointPdOptions::gravity_compensation);
-  py::class_<JointPdController, Controller>(m, "JointPdController", "Joint PD + gravity (torque).")
+  auto joint_pd = py::class_<JointPdController, Controller>(m, "JointPdController",
+                                                            "Joint PD + gravity (torque).");
+  joint_pd
       .def(py::init<const Chain&, const JointPdOptions&>(), py::arg("chain"),
            py::arg("options") = JointPdOptions{})
       .def_property_readonly("gains", &JointPdController::gains);
-  py::class_<GravityCompensationController, Controller>(
-      m, "GravityCompensationController", "Servo targets offset to cancel gravity (position mode).")
-      .def(py::init<const Chain&, BiasTerm>(), py::arg("chain"),
-           py::arg("term") = BiasTerm::gravity);
-  py::class_<GravityHoldController, Controller>(m, "GravityHoldController",
-                                                "Torques that cancel gravity (torque mode).")
-      .def(py::init<const Chain&, BiasTerm>(), py::arg("chain"),
-           py::arg("term") = BiasTerm::gravity);
+  bind_compute<JointPdController>(joint_pd);
+  auto gravity_servo = py::class_<GravityCompensationController, Controller>(
+      m, "GravityCompensationController",
+      "Servo targets offset to cancel gravity (position mode).");
+  gravity_servo.def(py::init<const Chain&, BiasTerm>(), py::arg("chain"),
+                    py::arg("term") = BiasTerm::gravity);
+  bind_compute<GravityCompensationController>(gravity_servo);
+  auto gravity_hold = py::class_<GravityHoldController, Controller>(
+      m, "GravityHoldController", "Torques that cancel gravity (torque mode).");
+  gravity_hold.def(py::init<const Chain&, BiasTerm>(), py::arg("chain"),
+                   py::arg("term") = BiasTerm::gravity);
+  bind_compute<GravityHoldController>(gravity_hold);
 
   py::class_<ComputedTorqueOptions>(m, "ComputedTorqueOptions")
       .def(py::init<>())
       .def_readwrite("gains", &ComputedTorqueOptions::gains)
       .def_readwrite("compensate_passive", &ComputedTorqueOptions::compensate_passive);
-  py::class_<ComputedTorqueController, Controller>(m, "ComputedTorqueController",
-                                                   "tau = M (qdd_d + PD) + h.")
-      .def(py::init<const Chain&, const ComputedTorqueOptions&>(), py::arg("chain"),
-           py::arg("options") = ComputedTorqueOptions{});
+  auto computed_torque = py::class_<ComputedTorqueController, Controller>(
+      m, "ComputedTorqueController", "tau = M (qdd_d + PD) + h.");
+  computed_torque.def(py::init<const Chain&, const ComputedTorqueOptions&>(), py::arg("chain"),
+                      py::arg("options") = ComputedTorqueOptions{});
+  bind_compute<ComputedTorqueController>(computed_torque);
 
   auto task_pd = py::class_<TaskPdOptions>(m, "TaskPdOptions");
   task_options<TaskPdOptions>(task_pd);
@@ -168,8 +172,9 @@ void bind_control(py::module_& m) {
                                           &OperationalSpaceOptions::integral_gain, "(6,)");
   fixed_property<OperationalSpaceOptions>(osc, "integral_limit",
                                           &OperationalSpaceOptions::integral_limit, "(6,)");
-  py::class_<OperationalSpaceController, Controller>(m, "OperationalSpaceController",
-                                                     "Operational-space impedance (osc).")
+  auto osc_controller = py::class_<OperationalSpaceController, Controller>(
+      m, "OperationalSpaceController", "Operational-space impedance (osc).");
+  osc_controller
       .def(py::init<const Chain&, const OperationalSpaceOptions&>(), py::arg("chain"),
            py::arg("options") = OperationalSpaceOptions{})
       .def_property_readonly("options", &OperationalSpaceController::options)
@@ -184,6 +189,7 @@ void bind_control(py::module_& m) {
       .def_property_readonly("task_force", [](const OperationalSpaceController& c) {
         return Vector6d(c.task_force());
       });
+  bind_compute<OperationalSpaceController>(osc_controller);
 
   py::class_<StiffnessRelease>(m, "StiffnessRelease")
       .def(py::init<>())
@@ -207,8 +213,9 @@ void bind_control(py::module_& m) {
       .value("invalid_target", Se3ImpedanceStatus::invalid_target)
       .value("invalid_wrench", Se3ImpedanceStatus::invalid_wrench)
       .value("invalid_state", Se3ImpedanceStatus::invalid_state);
-  py::class_<Se3ImpedanceController, Controller>(m, "Se3ImpedanceController",
-                                                 "SE(3) Lie-group impedance (full 6x6 A, D, K).")
+  auto se3_controller = py::class_<Se3ImpedanceController, Controller>(
+      m, "Se3ImpedanceController", "SE(3) Lie-group impedance (full 6x6 A, D, K).");
+  se3_controller
       .def(py::init<const Chain&, const Se3ImpedanceOptions&>(), py::arg("chain"),
            py::arg("options") = Se3ImpedanceOptions{})
       .def_property_readonly("options", &Se3ImpedanceController::options)
@@ -222,6 +229,7 @@ void bind_control(py::module_& m) {
           },
           py::arg("F_E"))
       .def("start_release", &Se3ImpedanceController::start_release, py::arg("time"));
+  bind_compute<Se3ImpedanceController>(se3_controller);
 
   py::enum_<CicInertia>(m, "CicInertia")
       .value("natural", CicInertia::natural)
@@ -248,10 +256,11 @@ void bind_control(py::module_& m) {
                                             "(6,)");
   fixed_property<CartesianImpedanceOptions>(cic, "desired_inertia",
                                             &CartesianImpedanceOptions::desired_inertia, "(6,)");
-  py::class_<CartesianImpedanceController, Controller>(
-      m, "CartesianImpedanceController", "Cartesian impedance with a measured wrench (CIC).")
-      .def(py::init<const Chain&, const CartesianImpedanceOptions&>(), py::arg("chain"),
-           py::arg("options") = CartesianImpedanceOptions{});
+  auto cic_controller = py::class_<CartesianImpedanceController, Controller>(
+      m, "CartesianImpedanceController", "Cartesian impedance with a measured wrench (CIC).");
+  cic_controller.def(py::init<const Chain&, const CartesianImpedanceOptions&>(), py::arg("chain"),
+                     py::arg("options") = CartesianImpedanceOptions{});
+  bind_compute<CartesianImpedanceController>(cic_controller);
 
   auto hqp = py::class_<HqpAcOptions>(m, "HqpAcOptions");
   hqp.def(py::init<>())
@@ -276,14 +285,16 @@ void bind_control(py::module_& m) {
       .value("least_squares", HqpAcStatus::least_squares)
       .value("invalid_target", HqpAcStatus::invalid_target)
       .value("invalid_state", HqpAcStatus::invalid_state);
-  py::class_<HqpAcController, Controller>(m, "HqpAcController",
-                                          "HQP-AC: adaptive compliance, two QPs under hard bounds.")
+  auto hqp_controller = py::class_<HqpAcController, Controller>(
+      m, "HqpAcController", "HQP-AC: adaptive compliance, two QPs under hard bounds.");
+  hqp_controller
       .def(py::init<const Chain&, const HqpAcOptions&>(), py::arg("chain"),
            py::arg("options") = HqpAcOptions{})
       .def_property_readonly("status", &HqpAcController::status)
       .def_property_readonly("acceleration", [](const HqpAcController& c) {
         return Eigen::VectorXd(c.acceleration());
       });
+  bind_compute<HqpAcController>(hqp_controller);
 
   auto grip = py::class_<GripperPdOptions>(m, "GripperPdOptions");
   grip.def(py::init<>())
@@ -294,14 +305,16 @@ void bind_control(py::module_& m) {
                                     "finger joints open (n,)");
   vector_property<GripperPdOptions>(grip, "closed", &GripperPdOptions::closed,
                                     "finger joints closed (n,)");
-  py::class_<GripperPdController, Controller>(
-      m, "GripperPdController", "Fingers follow reference.gripper (0 open, 1 closed).")
+  auto gripper_controller = py::class_<GripperPdController, Controller>(
+      m, "GripperPdController", "Fingers follow reference.gripper (0 open, 1 closed).");
+  gripper_controller
       .def(py::init<const Chain&, const GripperPdOptions&>(), py::arg("fingers"),
            py::arg("options") = GripperPdOptions{})
       .def_property_readonly("open",
                              [](const GripperPdController& c) { return Eigen::VectorXd(c.open()); })
       .def_property_readonly(
           "closed", [](const GripperPdController& c) { return Eigen::VectorXd(c.closed()); });
+  bind_compute<GripperPdController>(gripper_controller);
 
   m.def(
       "task_error",

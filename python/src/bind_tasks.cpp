@@ -1,7 +1,8 @@
-// tasks room: the shelf pick (plan, run, report, metrics). Pick-and-place and docking are bound
-// once their branches are merged.
+// tasks room: the shelf pick (plan, run, report, metrics); pick and place (bind_pick_place.cpp)
+// and docking (bind_docking.cpp).
 #include "bindings.hpp"
 #include "mjarm/tasks/shelf_pick.hpp"
+#include "spec_support.hpp"
 
 namespace mjarm::python {
 
@@ -108,6 +109,8 @@ void bind_tasks(py::module_& m) {
       },
       py::arg("options"),
       "Plans, simulates and measures one shelf pick (GIL released); see docs/tasks.md.");
+  bind_pick_place(m);
+  bind_docking(m);
 }
 
 }  // namespace mjarm::python

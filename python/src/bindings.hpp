@@ -94,6 +94,7 @@ void bind_control(py::module_& m);
 void bind_sim(py::module_& m);
 void bind_trajectory(py::module_& m);
 void bind_planning(py::module_& m);
+void bind_scene(py::module_& m);
 void bind_tasks(py::module_& m);
 void bind_render(py::module_& m);
 void bind_env(py::module_& m);

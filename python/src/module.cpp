@@ -22,6 +22,7 @@ PYBIND11_MODULE(_mjarm, m) {
   mjarm::python::bind_sim(m);
   mjarm::python::bind_trajectory(m);
   mjarm::python::bind_planning(m);
+  mjarm::python::bind_scene(m);
   mjarm::python::bind_tasks(m);
   mjarm::python::bind_render(m);
   mjarm::python::bind_env(m);

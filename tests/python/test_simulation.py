@@ -213,3 +213,36 @@ def test_every_cpp_controller_steps(panda_torque, panda):
         assert len(c.internal_names) == len(c.internal_values)
     servo = mjarm.GravityCompensationController(mjarm.Chain(panda, "attachment_site"))
     assert servo.command_kind == mjarm.CommandKind.position and servo.compensates_bias
+
+
+def test_compute_into_a_preallocated_array(panda_torque, panda):
+    chain = mjarm.Chain(panda_torque, "attachment_site")
+    data = panda_torque.make_data()
+    data.qpos[:] = panda_torque.keyframe_qpos("home")
+    data.forward()
+    ref = joint_reference(chain.gather(data.qpos) + 0.1)
+    ref.task.X_WE = mjarm.forward_kinematics(chain, chain.gather(data.qpos))
+    for c in (mjarm.JointPdController(chain), mjarm.OperationalSpaceController(chain)):
+        fresh = c.compute(data, ref)
+        assert fresh.dtype == np.float64 and fresh.shape == (7,) and fresh.flags.writeable
+        out = np.full(7, np.nan)
+        assert c.compute(data, ref, out) is out
+        np.testing.assert_array_equal(out, fresh)
+        assert c.compute(data, ref, out=out) is out
+        # each call's array is its own: a later call does not change an earlier result
+        before = fresh.copy()
+        c.compute(data, joint_reference(chain.gather(data.qpos)))
+        np.testing.assert_array_equal(fresh, before)
+        for bad in (np.zeros(6), np.zeros(7, dtype=np.float32), np.zeros((7, 1)), np.zeros(14)[::2],
+                    [0.0] * 7):
+            with pytest.raises(ValueError, match=r"out: expected a writable contiguous float64 "
+                                                 r"array of shape \(7,\)"):
+                c.compute(data, ref, bad)
+        frozen = np.zeros(7)
+        frozen.flags.writeable = False
+        with pytest.raises(ValueError, match="out: expected a writable"):
+            c.compute(data, ref, frozen)
+        with pytest.raises(TypeError):
+            c.compute(None, ref)
+        with pytest.raises(mjarm.Error, match="another model"):
+            c.compute(panda.make_data(), ref)

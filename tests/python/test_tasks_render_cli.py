@@ -1,6 +1,7 @@
 """The shelf pick from Python, the renderer (images as NumPy arrays), python3 -m mjarm, and the
 examples under examples/python (each run to completion)."""
 import glob
+import json
 import os
 import subprocess
 import sys
@@ -62,7 +63,7 @@ def test_example_runs(path):
 def test_examples_exist():
     names = [os.path.basename(p) for p in EXAMPLES]
     assert any("ik" in n for n in names) and any("clik" in n for n in names)
-    assert any("torque" in n for n in names)
+    assert any("torque" in n for n in names) and any("pick_and_place" in n for n in names)
 
 
 def test_video_from_rendered_frames(panda, tmp_path):
@@ -82,3 +83,17 @@ def test_video_from_rendered_frames(panda, tmp_path):
     video.close()
     assert video.frames == 5 and video.complete
     assert path.stat().st_size > 0
+
+
+def test_binding_benchmark_runs_and_reports_both_controller_forms():
+    out = subprocess.run([sys.executable, "-m", "mjarm.bench", "--rounds", "1", "--calls", "100",
+                          "--ticks", "100", "--clock", "cpu", "--json"],
+                         capture_output=True, text=True, timeout=300)
+    assert out.returncode == 0, out.stderr
+    figures = json.loads(out.stdout)
+    for key in ("fk_us", "ik_us", "controller_us", "controller_out_us", "tick_rtf"):
+        assert figures["python"][key] > 0, key
+    assert figures["clock"] == "cpu" and len(figures["load_average"]) == 2
+    bad = subprocess.run([sys.executable, "-m", "mjarm.bench", "--repeat", "0"],
+                         capture_output=True, text=True)
+    assert bad.returncode == 2 and "--repeat must be in 1..50" in bad.stderr

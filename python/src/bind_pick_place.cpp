@@ -1,0 +1,391 @@
+// tasks room, pick and place: options, one trial, parallel trials and their summary, the scene of
+// a trial, the robots it knows. docs/pick_place.md.
+#include <exception>
+#include <memory>
+#include <mutex>
+
+#include "mjarm/tasks/pick_place.hpp"
+#include "mjarm/tasks/pick_place_trials.hpp"
+#include "spec_support.hpp"
+
+namespace mjarm::python {
+namespace {
+
+/// An optional x y pair: None or a float64 array (2,).
+template <typename T, typename Class>
+void optional_pair(Class& cls, const char* name, std::optional<std::array<double, 2>> T::*member,
+                   const char* doc) {
+  cls.def_property(
+      name,
+      [member](const T& o) -> py::object {
+        if (!(o.*member)) return py::none();
+        return to_array((o.*member)->data(), 2);
+      },
+      [member, name](T& o, py::handle v) {
+        if (v.is_none()) {
+          (o.*member).reset();
+          return;
+        }
+        const Eigen::Vector2d x = to_fixed<2>(v, name);
+        o.*member = std::array<double, 2>{x[0], x[1]};
+      },
+      doc);
+}
+
+void bind_pick_place_options(py::module_& m) {
+  py::enum_<GraspKind>(m, "GraspKind", "How the object is held.")
+      .value("weld", GraspKind::weld)
+      .value("friction", GraspKind::friction);
+  py::enum_<PickPlaceState>(m, "PickPlaceState", "The 14 states of the machine, in order.")
+      .value("approach", PickPlaceState::approach)
+      .value("dwell_a", PickPlaceState::dwell_a)
+      .value("descend", PickPlaceState::descend)
+      .value("dwell_b", PickPlaceState::dwell_b)
+      .value("grasp", PickPlaceState::grasp)
+      .value("dwell_c", PickPlaceState::dwell_c)
+      .value("lift", PickPlaceState::lift)
+      .value("dwell_d", PickPlaceState::dwell_d)
+      .value("move", PickPlaceState::move)
+      .value("dwell_e", PickPlaceState::dwell_e)
+      .value("place", PickPlaceState::place)
+      .value("dwell_f", PickPlaceState::dwell_f)
+      .value("release", PickPlaceState::release)
+      .value("done", PickPlaceState::done);
+  py::enum_<PickPlaceFailure>(m, "PickPlaceFailure",
+                              "Why a trial failed: the first that applies, in this order.")
+      .value("none", PickPlaceFailure::none)
+      .value("diverged", PickPlaceFailure::diverged)
+      .value("bad_command", PickPlaceFailure::bad_command)
+      .value("interrupted", PickPlaceFailure::interrupted)
+      .value("time_limit", PickPlaceFailure::time_limit)
+      .value("not_grasped", PickPlaceFailure::not_grasped)
+      .value("dropped", PickPlaceFailure::dropped)
+      .value("table_contact", PickPlaceFailure::table_contact)
+      .value("saturated", PickPlaceFailure::saturated)
+      .value("misplaced", PickPlaceFailure::misplaced)
+      .value("tilted", PickPlaceFailure::tilted)
+      .value("not_resting", PickPlaceFailure::not_resting);
+
+  auto limits =
+      py::class_<CartesianLimits>(m, "CartesianLimits", "Limits of a Cartesian trapezoid segment.");
+  fields_init<CartesianLimits>(limits, "CartesianLimits");
+  limits.def_readwrite("max_velocity", &CartesianLimits::max_velocity, "along the line [m/s]")
+      .def_readwrite("max_acceleration", &CartesianLimits::max_acceleration, "[m/s^2]")
+      .def_readwrite("max_angular_velocity", &CartesianLimits::max_angular_velocity, "[rad/s]")
+      .def_readwrite("max_angular_acceleration", &CartesianLimits::max_angular_acceleration,
+                     "[rad/s^2]");
+
+  auto motion = py::class_<PickPlaceMotion>(
+      m, "PickPlaceMotion",
+      "Every constant of the machine (the classic defaults). Heights of the tool frame above "
+      "the object's centre or above the target [m]; times [s].");
+  fields_init<PickPlaceMotion>(motion, "PickPlaceMotion");
+  motion.def_readwrite("approach_height", &PickPlaceMotion::approach_height)
+      .def_readwrite("descend_height", &PickPlaceMotion::descend_height)
+      .def_readwrite("lift_height", &PickPlaceMotion::lift_height)
+      .def_readwrite("move_height", &PickPlaceMotion::move_height)
+      .def_readwrite("place_height", &PickPlaceMotion::place_height)
+      .def_readwrite("dwell_time", &PickPlaceMotion::dwell_time, "each DWELL_* [s]")
+      .def_readwrite("grip_time", &PickPlaceMotion::grip_time, "GRASP finger closing [s]")
+      .def_readwrite("release_time", &PickPlaceMotion::release_time, "RELEASE finger opening [s]")
+      .def_readwrite("limits", &PickPlaceMotion::limits, "CartesianLimits of the segments")
+      .def_readwrite("settle_time", &PickPlaceMotion::settle_time, "DONE lasts this long [s]");
+
+  auto monitor = py::class_<GraspMonitorOptions>(m, "GraspMonitorOptions",
+                                                 "When a held object has slipped or is lost.");
+  fields_init<GraspMonitorOptions>(monitor, "GraspMonitorOptions");
+  monitor.def_readwrite("slip_distance", &GraspMonitorOptions::slip_distance, "[m]")
+      .def_readwrite("drop_distance", &GraspMonitorOptions::drop_distance, "[m]");
+  auto weld = py::class_<WeldGraspOptions>(m, "WeldGraspOptions", "The weld's solref.");
+  fields_init<WeldGraspOptions>(weld, "WeldGraspOptions");
+  weld.def_readwrite("time_constant", &WeldGraspOptions::time_constant, "[s]")
+      .def_readwrite("damping_ratio", &WeldGraspOptions::damping_ratio);
+
+  auto criteria =
+      py::class_<PickPlaceCriteria>(m, "PickPlaceCriteria", "What a trial is judged by.");
+  fields_init<PickPlaceCriteria>(criteria, "PickPlaceCriteria");
+  criteria
+      .def_readwrite("placement_tolerance", &PickPlaceCriteria::placement_tolerance,
+                     "horizontal object-target distance at the end [m]")
+      .def_readwrite("rest_speed", &PickPlaceCriteria::rest_speed, "[m/s]")
+      .def_readwrite("max_tilt", &PickPlaceCriteria::max_tilt, "[rad]")
+      .def_readwrite("max_saturation_time", &PickPlaceCriteria::max_saturation_time, "[s]")
+      .def_readwrite("grasp", &PickPlaceCriteria::grasp, "GraspMonitorOptions");
+
+  auto ranges = py::class_<PickPlaceRanges>(m, "PickPlaceRanges",
+                                            "Where a seed draws a trial from (uniform, [lo, hi]).");
+  fields_init<PickPlaceRanges>(ranges, "PickPlaceRanges");
+  array_property<PickPlaceRanges>(ranges, "half_size", &PickPlaceRanges::half_size,
+                                  "cube half extent (2,) [m]");
+  array_property<PickPlaceRanges>(ranges, "mass", &PickPlaceRanges::mass, "(2,) [kg]");
+  array_property<PickPlaceRanges>(ranges, "friction", &PickPlaceRanges::friction, "(2,)");
+  array_property<PickPlaceRanges>(ranges, "yaw", &PickPlaceRanges::yaw, "(2,) [rad]");
+  ranges.def_readwrite("min_separation", &PickPlaceRanges::min_separation,
+                       "object start to target, horizontal [m]");
+
+  auto object = py::class_<PickPlaceObject>(m, "PickPlaceObject",
+                                            "The object to pick, upright on the table.");
+  fields_init<PickPlaceObject>(object, "PickPlaceObject");
+  object.def_readwrite("shape", &PickPlaceObject::shape, "'box' or 'cylinder'");
+  list_property<PickPlaceObject>(object, "size", &PickPlaceObject::size,
+                                 "box: half extents (3,); cylinder: radius, half height (2,) [m]");
+  object.def_readwrite("mass", &PickPlaceObject::mass, "[kg]")
+      .def_readwrite("friction", &PickPlaceObject::friction, "sliding friction");
+  array_property<PickPlaceObject>(object, "position", &PickPlaceObject::position,
+                                  "centre on the table x, y (2,) [m]");
+  object.def_readwrite("yaw", &PickPlaceObject::yaw, "[rad]");
+
+  auto trial = py::class_<PickPlaceTrial>(m, "PickPlaceTrial", "One trial's draw.");
+  fields_init<PickPlaceTrial>(trial, "PickPlaceTrial");
+  trial.def_readwrite("seed", &PickPlaceTrial::seed)
+      .def_readwrite("object", &PickPlaceTrial::object);
+  array_property<PickPlaceTrial>(trial, "target", &PickPlaceTrial::target, "x, y (2,) [m]");
+
+  auto video_options =
+      py::class_<RunVideoOptions>(m, "RunVideoOptions", "Size and rate of a run's video.");
+  fields_init<RunVideoOptions>(video_options, "RunVideoOptions");
+  video_options.def_readwrite("width", &RunVideoOptions::width, "[pixels], even")
+      .def_readwrite("height", &RunVideoOptions::height, "[pixels], even")
+      .def_readwrite("fps", &RunVideoOptions::fps, "frames per simulated second");
+  auto video = py::class_<PickPlaceVideo>(m, "PickPlaceVideo", "A video of a trial.");
+  fields_init<PickPlaceVideo>(video, "PickPlaceVideo");
+  video.def_readwrite("path", &PickPlaceVideo::path, "MP4 to write; '' = none")
+      .def_readwrite("cameras", &PickPlaceVideo::cameras,
+                     "'front', 'side', 'top', 'follow'; empty: front")
+      .def_readwrite("tiled", &PickPlaceVideo::tiled, "one tiled file (else one per camera)")
+      .def_readwrite("options", &PickPlaceVideo::options, "RunVideoOptions");
+
+  auto options = py::class_<PickPlaceOptions>(
+      m, "PickPlaceOptions",
+      "How to run one pick and place: robot ('arm6', 'panda_hand'), grasp, mode, seed, fixed "
+      "positions instead of drawn ones, the classic edits, motion, criteria.");
+  fields_init<PickPlaceOptions>(options, "PickPlaceOptions");
+  options.def_readwrite("robot", &PickPlaceOptions::robot, "'arm6' or 'panda_hand'");
+  enum_property<PickPlaceOptions>(
+      options, "grasp", &PickPlaceOptions::grasp,
+      [](const std::string& s) { return grasp_kind(s); }, "GraspKind or 'weld' / 'friction'");
+  enum_property<PickPlaceOptions>(
+      options, "mode", &PickPlaceOptions::mode,
+      [](const std::string& s) { return simulation_mode_named(s); },
+      "SimulationMode.position (IK into servos) or .torque (operational space), or the name");
+  options.def_readwrite("seed", &PickPlaceOptions::seed, "draws what is not fixed")
+      .def_readwrite("ranges", &PickPlaceOptions::ranges, "PickPlaceRanges");
+  optional_pair<PickPlaceOptions>(options, "object_position", &PickPlaceOptions::object_position,
+                                  "object centre x, y (2,) [m], or None: drawn");
+  optional_pair<PickPlaceOptions>(options, "target_position", &PickPlaceOptions::target_position,
+                                  "target x, y (2,) [m], or None: drawn");
+  options
+      .def_readwrite("object_half_size", &PickPlaceOptions::object_half_size,
+                     "cube half extent [m], or None: drawn")
+      .def_readwrite("classic", &PickPlaceOptions::classic,
+                     "7.5 mm cube, finger travel [0, 0.012] m, finger servo gain 3200")
+      .def_readwrite("motion", &PickPlaceOptions::motion, "PickPlaceMotion")
+      .def_readwrite("criteria", &PickPlaceOptions::criteria, "PickPlaceCriteria")
+      .def_readwrite("weld", &PickPlaceOptions::weld, "WeldGraspOptions")
+      .def_readwrite("grasp_force", &PickPlaceOptions::grasp_force, "finger squeeze [N]")
+      .def_readwrite("noslip_iterations", &PickPlaceOptions::noslip_iterations, "0: off")
+      .def_readwrite("impratio", &PickPlaceOptions::impratio, ">= 1")
+      .def_readwrite("control_period", &PickPlaceOptions::control_period, "[s]; 0 = one step")
+      .def_readwrite("max_acceleration", &PickPlaceOptions::max_acceleration,
+                     "divergence bound on |qdd|")
+      .def_readwrite("record", &PickPlaceOptions::record, "recording directory; '' = none")
+      .def_readwrite("state_decimation", &PickPlaceOptions::state_decimation)
+      .def_readwrite("video", &PickPlaceOptions::video, "PickPlaceVideo");
+}
+
+void bind_pick_place_results(py::module_& m) {
+  py::class_<PickPlaceTrace>(m, "PickPlaceTrace", "What the machine saw (NaN: did not happen).")
+      .def_readonly("state", &PickPlaceTrace::state, "the state at the end")
+      .def_readonly("start_time", &PickPlaceTrace::start_time, "[s]")
+      .def_readonly("done_time", &PickPlaceTrace::done_time, "DONE entered: the cycle time [s]")
+      .def_readonly("closed", &PickPlaceTrace::closed, "both fingers touched when GRASP ended")
+      .def_readonly("closing_force", &PickPlaceTrace::closing_force, "[N]")
+      .def_readonly("welded", &PickPlaceTrace::welded)
+      .def_readonly("weld_jump", &PickPlaceTrace::weld_jump, "object moved by the switch [m]")
+      .def_readonly("weld_settle", &PickPlaceTrace::weld_settle, "weld stretch over DWELL_C [m]")
+      .def_readonly("slipped", &PickPlaceTrace::slipped)
+      .def_readonly("dropped", &PickPlaceTrace::dropped)
+      .def_readonly("dropped_time", &PickPlaceTrace::dropped_time, "[s]")
+      .def_readonly("max_slip", &PickPlaceTrace::max_slip, "[m]")
+      .def_readonly("transport_force_mean", &PickPlaceTrace::transport_force_mean, "[N]")
+      .def_readonly("transport_force_max", &PickPlaceTrace::transport_force_max, "[N]")
+      .def_readonly("table_contact", &PickPlaceTrace::table_contact)
+      .def_readonly("table_contact_time", &PickPlaceTrace::table_contact_time, "[s]")
+      .def_readonly("longest_saturation", &PickPlaceTrace::longest_saturation, "[ticks]")
+      .def_readonly("saturated_actuator", &PickPlaceTrace::saturated_actuator, "-1: none");
+
+  py::class_<PickPlaceReport>(m, "PickPlaceReport", "What one trial did.")
+      .def_readonly("trial", &PickPlaceReport::trial, "PickPlaceTrial: the draw")
+      .def_readonly("robot", &PickPlaceReport::robot)
+      .def_readonly("grasp", &PickPlaceReport::grasp)
+      .def_readonly("mode", &PickPlaceReport::mode)
+      .def_readonly("run", &PickPlaceReport::run, "RunResult")
+      .def_readonly("trace", &PickPlaceReport::trace, "PickPlaceTrace")
+      .def_readonly("success", &PickPlaceReport::success)
+      .def_readonly("failure", &PickPlaceReport::failure, "PickPlaceFailure")
+      .def_readonly("reason", &PickPlaceReport::reason, "one line; '' on success")
+      .def_readonly("placement_error", &PickPlaceReport::placement_error, "horizontal [m]")
+      .def_readonly("final_speed", &PickPlaceReport::final_speed, "[m/s]")
+      .def_readonly("tilt", &PickPlaceReport::tilt, "[rad]")
+      .def_readonly("cycle_time", &PickPlaceReport::cycle_time, "[s]")
+      .def_readonly("control_period", &PickPlaceReport::control_period, "[s]")
+      .def_readonly("recording", &PickPlaceReport::recording)
+      .def_readonly("recording_error", &PickPlaceReport::recording_error)
+      .def_readonly("videos", &PickPlaceReport::videos)
+      .def_readonly("video_frames", &PickPlaceReport::video_frames)
+      .def_readonly("video_error", &PickPlaceReport::video_error)
+      .def("ok", &PickPlaceReport::ok, "True on success");
+
+  py::class_<PickPlaceStat>(m, "PickPlaceStat", "Mean and largest of a figure (NaN when none).")
+      .def_readonly("count", &PickPlaceStat::count)
+      .def_readonly("mean", &PickPlaceStat::mean)
+      .def_readonly("max", &PickPlaceStat::max);
+  py::class_<PickPlaceSummary>(m, "PickPlaceSummary", "The figures of a batch.")
+      .def_readonly("trials", &PickPlaceSummary::trials, "trials that ran to their end")
+      .def_readonly("successes", &PickPlaceSummary::successes)
+      .def_readonly("interrupted", &PickPlaceSummary::interrupted, "cut short (not in trials)")
+      .def_property_readonly(
+          "failures",
+          [](const PickPlaceSummary& s) {
+            py::dict d;
+            for (std::size_t i = 1; i < s.failures.size(); ++i)
+              d[to_string(static_cast<PickPlaceFailure>(i))] = s.failures[i];
+            return d;
+          },
+          "failures per reason: {name: count} (every reason)")
+      .def_readonly("placement_error", &PickPlaceSummary::placement_error, "[m], successes")
+      .def_readonly("cycle_time", &PickPlaceSummary::cycle_time, "[s], successes")
+      .def_readonly("grasp_force", &PickPlaceSummary::grasp_force, "transport mean [N]")
+      .def_readonly("weld_jump", &PickPlaceSummary::weld_jump, "[m]")
+      .def_readonly("weld_settle", &PickPlaceSummary::weld_settle, "[m]")
+      .def_readonly("max_slip", &PickPlaceSummary::max_slip, "[m]")
+      .def("success_rate", &PickPlaceSummary::success_rate, "in [0, 1]; NaN without trials");
+  py::class_<PickPlaceBatch>(m, "PickPlaceBatch", "What a batch did.")
+      .def_readonly("reports", &PickPlaceBatch::reports, "list[PickPlaceReport], seed order")
+      .def_readonly("summary", &PickPlaceBatch::summary, "PickPlaceSummary")
+      .def_readonly("interrupted", &PickPlaceBatch::interrupted);
+}
+
+void bind_scene_of_a_trial(py::module_& m) {
+  py::class_<PickPlaceRobot>(m, "PickPlaceRobot",
+                             "A robot the pick and place knows (names unprefixed, world [m]).")
+      .def_readonly("name", &PickPlaceRobot::name)
+      .def_readonly("position_model", &PickPlaceRobot::position_model)
+      .def_readonly("torque_model", &PickPlaceRobot::torque_model)
+      .def_readonly("tool", &PickPlaceRobot::tool)
+      .def_readonly("hand", &PickPlaceRobot::hand)
+      .def_readonly("fingers", &PickPlaceRobot::fingers)
+      .def_property_readonly(
+          "mount", [](const PickPlaceRobot& r) { return to_array(r.mount.data(), 3); }, "(3,)")
+      .def_readonly("own_table", &PickPlaceRobot::own_table)
+      .def_readonly("table_height", &PickPlaceRobot::table_height)
+      .def_readonly("min_radius", &PickPlaceRobot::min_radius)
+      .def_readonly("max_radius", &PickPlaceRobot::max_radius)
+      .def_readonly("max_bearing", &PickPlaceRobot::max_bearing, "[rad]");
+  m.def("pick_place_robots", &pick_place_robots, "The robots of the pick and place, in order.");
+  m.def("pick_place_robot", &pick_place_robot, py::arg("name"), py::return_value_policy::copy,
+        "The robot called name (mjarm.Error listing the choices).");
+
+  auto scene_options = py::class_<PickPlaceSceneOptions>(m, "PickPlaceSceneOptions",
+                                                         "What the scene of one trial is made of.");
+  fields_init<PickPlaceSceneOptions>(scene_options, "PickPlaceSceneOptions");
+  scene_options.def_readwrite("robot", &PickPlaceSceneOptions::robot);
+  enum_property<PickPlaceSceneOptions>(
+      scene_options, "mode", &PickPlaceSceneOptions::mode,
+      [](const std::string& s) { return simulation_mode_named(s); }, "servo or motor model");
+  scene_options.def_readwrite("object", &PickPlaceSceneOptions::object);
+  array_property<PickPlaceSceneOptions>(scene_options, "target", &PickPlaceSceneOptions::target,
+                                        "x, y (2,) [m]");
+  list_property<PickPlaceSceneOptions>(scene_options, "finger_travel",
+                                       &PickPlaceSceneOptions::finger_travel,
+                                       "[lower, upper] per finger [m]; empty: the model's");
+  scene_options
+      .def_readwrite("finger_servo_gain", &PickPlaceSceneOptions::finger_servo_gain, "0: model's")
+      .def_readwrite("noslip_iterations", &PickPlaceSceneOptions::noslip_iterations)
+      .def_readwrite("impratio", &PickPlaceSceneOptions::impratio);
+  py::class_<PickPlaceScene>(
+      m, "PickPlaceScene", "A composed pick-and-place scene and the (prefixed) names a run needs.")
+      .def_readonly("model", &PickPlaceScene::model, "Robot: the compiled scene")
+      .def_readonly("tool", &PickPlaceScene::tool)
+      .def_readonly("hand", &PickPlaceScene::hand)
+      .def_readonly("fingers", &PickPlaceScene::fingers)
+      .def_readonly("arm_joints", &PickPlaceScene::arm_joints)
+      .def_readonly("table", &PickPlaceScene::table)
+      .def_readonly("robot_root", &PickPlaceScene::robot_root)
+      .def_readonly("object", &PickPlaceScene::object)
+      .def_readonly("target", &PickPlaceScene::target)
+      .def_readonly("weld", &PickPlaceScene::weld)
+      .def_readonly("cameras", &PickPlaceScene::cameras)
+      .def_readonly("table_height", &PickPlaceScene::table_height, "[m]");
+  m.def(
+      "build_pick_place_scene",
+      [](const PickPlaceSceneOptions& o) {
+        py::gil_scoped_release release;
+        return build_pick_place_scene(o);
+      },
+      py::arg("options"), "Composes and compiles the scene of one trial (GIL released).");
+}
+
+}  // namespace
+
+void bind_pick_place(py::module_& m) {
+  bind_pick_place_options(m);
+  bind_pick_place_results(m);
+  bind_scene_of_a_trial(m);
+
+  auto batch = py::class_<PickPlaceBatchOptions>(
+      m, "PickPlaceBatchOptions",
+      "A batch: trial k runs base with seed base.seed + k, on threads workers (0: one per core).");
+  fields_init<PickPlaceBatchOptions>(batch, "PickPlaceBatchOptions");
+  batch.def_readwrite("base", &PickPlaceBatchOptions::base, "PickPlaceOptions of every trial")
+      .def_readwrite("trials", &PickPlaceBatchOptions::trials, ">= 1")
+      .def_readwrite("threads", &PickPlaceBatchOptions::threads, ">= 0; 0: one per core")
+      .def_readwrite("record", &PickPlaceBatchOptions::record,
+                     "when set, trial k records into record/seed_<seed>");
+
+  m.def("draw_pick_place_trial", &draw_pick_place_trial, py::arg("options"),
+        "The trial options.seed draws (object, target), fixed values of the options in place.");
+  m.def(
+      "run_pick_place",
+      [](const PickPlaceOptions& options) {
+        return call_released([&] { return run_pick_place(options); });
+      },
+      py::arg("options"),
+      "Runs one trial (GIL released): scene, reach check, the 14-state machine, the verdict. A "
+      "trial that fails or diverges is a report with its reason; bad options or an unreachable "
+      "object raise mjarm.Error; Ctrl-C raises KeyboardInterrupt.");
+  m.def(
+      "run_pick_place_trials",
+      [](const PickPlaceBatchOptions& options, const py::object& on_progress) {
+        PickPlaceBatchOptions o = options;
+        // called from the workers, one at a time; a Python error is raised after the batch
+        struct Progress {
+          py::object f;
+          std::exception_ptr error;
+        };
+        auto progress = std::make_shared<Progress>();
+        if (!on_progress.is_none()) {
+          progress->f = on_progress;
+          o.on_progress = [progress](int done) {
+            py::gil_scoped_acquire gil;
+            if (progress->error) return;
+            try {
+              progress->f(done);
+            } catch (...) {
+              progress->error = std::current_exception();
+            }
+          };
+        }
+        PickPlaceBatch result = call_released([&] { return run_pick_place_trials(o); });
+        if (progress->error) std::rethrow_exception(progress->error);
+        return result;
+      },
+      py::arg("options"), py::arg("on_progress") = py::none(),
+      "Runs options.trials trials in parallel (GIL released; the workers share nothing). "
+      "on_progress(done) is called after each trial, one call at a time. Returns a "
+      "PickPlaceBatch; Ctrl-C raises KeyboardInterrupt.");
+  m.def("summarize", &summarize, py::arg("reports"),
+        "The PickPlaceSummary of a list of PickPlaceReport.");
+}
+
+}  // namespace mjarm::python
