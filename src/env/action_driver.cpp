@@ -136,6 +136,10 @@ const DiffIkStep* ActionDriver::ik_step() const noexcept {
   return ik_ ? &ik_->last_step() : nullptr;
 }
 
+ChainKinematics* ActionDriver::measured_kinematics() noexcept {
+  return ik_ ? &ik_->task_kinematics(0) : nullptr;
+}
+
 void ActionDriver::read_q(const mjData& d) noexcept {
   for (int i = 0; i < chain_.size(); ++i) q_[i] = d.qpos[chain_.qpos_address(i)];
 }

@@ -117,8 +117,11 @@ void Environment::Impl::update_context() noexcept {
     q[i] = d.qpos[chain.qpos_address(i)];
     qd[i] = d.qvel[chain.dof_address(i)];
   }
-  context.X_WE = kinematics->update(q);
-  kinematics->jacobian(J);
+  // the end-effector spaces' QP starts the next step from this q: its kinematics do the work
+  ChainKinematics* shared = driver->measured_kinematics();
+  ChainKinematics& k = shared != nullptr ? *shared : *kinematics;
+  context.X_WE = k.update(q);
+  k.jacobian(J);
   context.V_WE.noalias() = J * qd;
   context.time = d.time - episode_start;
 }

@@ -73,6 +73,10 @@ class ActionDriver {
   const Reference& reference() const noexcept { return reference_; }
   /// The QP's last step (end-effector spaces; null otherwise).
   const DiffIkStep* ik_step() const noexcept;
+  /// End-effector spaces: the QP's own kinematics of the chain's frame, for the environment's
+  /// end-effector state after a step — the next `apply` then starts from that work at the same
+  /// measured q instead of repeating it. Null for the joint spaces.
+  ChainKinematics* measured_kinematics() noexcept;
 
  private:
   void read_q(const mjData& d) noexcept;
