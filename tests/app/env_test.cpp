@@ -34,7 +34,9 @@ TEST(EnvCommand, ListsTheTasksWithTheirSpecs) {
     EXPECT_EQ(ee["spec"]["shape"], json::array({6 + gripper}));
     EXPECT_DOUBLE_EQ(ee["spec"]["maximum"][0].get<double>(), 0.02);
     EXPECT_EQ(task["action_spaces"][0]["spec"]["shape"], json::array({7 + gripper}));
-    if (gripper) EXPECT_DOUBLE_EQ(ee["spec"]["maximum"][6].get<double>(), 1.0);
+    if (gripper) {
+      EXPECT_DOUBLE_EQ(ee["spec"]["maximum"][6].get<double>(), 1.0);
+    }
   }
   // unbounded sides are null in JSON
   EXPECT_TRUE(j["tasks"][0]["default_observations"][1]["maximum"][0].is_null());

@@ -21,6 +21,23 @@ const DockingEnvTask& docking(const Environment& env) {
   return static_cast<const DockingEnvTask&>(env.task());
 }
 
+/// One docking task with the default options built per test process (its scene, and the IK of
+/// its start, take a while under the sanitizers), cloned per environment.
+std::unique_ptr<EnvTask> docking_task() {
+  static const DockingEnvTask prototype;
+  return prototype.clone();
+}
+
+/// One with the believed socket on the true one.
+std::unique_ptr<EnvTask> aligned_docking_task() {
+  static const DockingEnvTask prototype = [] {
+    DockingEnvOptions options;
+    options.offset_range = {0.0, 0.0, 0.0};
+    return DockingEnvTask(options);
+  }();
+  return prototype.clone();
+}
+
 /// A proportional policy on the pose error to the believed seat, its translation clipped to
 /// @p max_step per step [m] (the environment's own bound is 20 mm: far too fast for a 0.5 mm
 /// clearance).
@@ -31,7 +48,7 @@ std::vector<double> insert_action(const Environment& env, double max_step) {
 }
 
 TEST(DockingEnvTask, StartsAboveTheSocketAsTheDockingRunAndDrawsTheBelievedSocket) {
-  Environment env("docking");
+  Environment env(docking_task());
   const DockingEnvTask& task = docking(env);
   const DockingPlan plan = plan_docking(task.scene(), DockingOffset{}, task.options().motion);
   for (std::uint64_t seed : {1, 2}) {
@@ -59,9 +76,8 @@ TEST(DockingEnvTask, StartsAboveTheSocketAsTheDockingRunAndDrawsTheBelievedSocke
 }
 
 TEST(DockingEnvTask, AScriptedInsertionSeatsThePegAndTerminates) {
-  DockingEnvOptions options;
-  options.offset_range = {0.0, 0.0, 0.0};  // the believed socket is the true one
-  Environment env(std::make_unique<DockingEnvTask>(options));
+  const DockingEnvOptions options;
+  Environment env(aligned_docking_task());  // the believed socket is the true one
   const DockingEnvTask& task = docking(env);
   TimeStep ts = env.reset(3);
   while (!ts.last()) {
@@ -82,9 +98,8 @@ TEST(DockingEnvTask, AScriptedInsertionSeatsThePegAndTerminates) {
 }
 
 TEST(DockingEnvTask, RammingThePegInFailsOnTheForce) {
-  DockingEnvOptions options;
-  options.offset_range = {0.0, 0.0, 0.0};
-  Environment env(std::make_unique<DockingEnvTask>(options));
+  const DockingEnvOptions options;
+  Environment env(aligned_docking_task());
   const DockingEnvTask& task = docking(env);
   TimeStep ts = env.reset(1);
   double peak = 0.0;
@@ -106,7 +121,7 @@ TEST(DockingEnvTask, HoveringIsTruncatedAtTheTimeLimitAndTheWrenchIsObservable) 
   EnvironmentOptions o;
   o.time_limit = 0.2;
   o.observations = {"ee_pose", "wrench", "insertion", "sensor:iiwa/peg/ft_force"};
-  Environment env("docking", o);
+  Environment env(docking_task(), o);
   TimeStep ts = env.reset(4);
   const std::vector<double> zero(6, 0.0);
   while (!ts.last()) ts = env.step(zero);
@@ -132,8 +147,8 @@ TEST(DockingEnvTask, TheSameSeedAndActionsGiveTheSameStepsBitForBit) {
     }
     return out;
   };
-  Environment a("docking");
-  Environment b("docking");
+  Environment a(docking_task());
+  Environment b(docking_task());
   b.reset(99);  // an earlier episode changes nothing
   const std::vector<double> ta = trace(a), tb = trace(b);
   ASSERT_EQ(ta.size(), tb.size());
@@ -159,7 +174,7 @@ TEST(DockingEnvTask, BadOptionsAreErrors) {
   // an observation the docking does not provide
   EnvironmentOptions e;
   e.observations = {"object_pose"};
-  test::expect_error_containing([&] { Environment env("docking", e); },
+  test::expect_error_containing([&] { Environment env(docking_task(), e); },
                                 {"'object_pose' is switched off", "docking"});
 }
 
