@@ -63,8 +63,8 @@ Eigen::VectorXd pose_bounds(double linear, double angular) {
 }  // namespace
 
 ActionDriver::ActionDriver(ActionSpace space, const Chain& chain, const ActionOptions& options,
-                           double control_period)
-    : space_(space), chain_(chain), options_(options), period_(control_period) {
+                           double control_period, bool gripper)
+    : space_(space), chain_(chain), options_(options), period_(control_period), gripper_(gripper) {
   options.check();
   if (!(std::isfinite(control_period) && control_period > 0.0))
     throw Error("action driver: the control period must be positive and finite, got " +
@@ -119,12 +119,25 @@ ActionDriver::ActionDriver(ActionSpace space, const Chain& chain, const ActionOp
       break;
     }
   }
+  if (gripper_) {
+    // one more entry, last: the gripper command in [0, 1]
+    const Eigen::Index k = spec_.minimum.size();
+    spec_.minimum.conservativeResize(k + 1);
+    spec_.maximum.conservativeResize(k + 1);
+    spec_.minimum[k] = 0.0;
+    spec_.maximum[k] = 1.0;
+    spec_.shape = {static_cast<int>(k + 1)};
+  }
 }
 
 ActionDriver::~ActionDriver() = default;
 
 const DiffIkStep* ActionDriver::ik_step() const noexcept {
   return ik_ ? &ik_->last_step() : nullptr;
+}
+
+ChainKinematics* ActionDriver::measured_kinematics() noexcept {
+  return ik_ ? &ik_->task_kinematics(0) : nullptr;
 }
 
 void ActionDriver::read_q(const mjData& d) noexcept {
@@ -138,6 +151,7 @@ void ActionDriver::reset(const mjData& d) {
   reference_.joint.qd.setZero();
   reference_.joint.qdd.setZero();
   reference_.task = TaskReference{};
+  reference_.gripper = 0.0;  // open
   if (ik_) {
     ik_->reset_warm_start();  // an episode never depends on the ones before it
     X_WR_ = kinematics_->update(q_);
@@ -149,6 +163,7 @@ void ActionDriver::reset(const mjData& d) {
 const Reference& ActionDriver::apply(std::span<const double> action, const mjData& d) noexcept {
   const int n = chain_.size();
   read_q(d);
+  if (gripper_) reference_.gripper = action[action.size() - 1];
   switch (space_) {
     case ActionSpace::joint_torques:
       for (int i = 0; i < n; ++i) torque_[i] = action[i];

@@ -66,8 +66,10 @@ Environment::Impl::Impl(std::unique_ptr<EnvTask> t, const EnvironmentOptions& o)
   // 0: the joint PD runs every physics step (a servo loop), the other spaces once per step
   const bool servo =
       o.action_space == ActionSpace::joint_positions || o.action_space == ActionSpace::joint_deltas;
-  const double controller_period =
-      o.controller_period != 0.0 ? o.controller_period : (servo ? h : o.control_period);
+  const double controller_period = o.controller_period != 0.0         ? o.controller_period
+                                   : task->controller_period() != 0.0 ? task->controller_period()
+                                   : servo                            ? h
+                                                                      : o.control_period;
   physics_per_step =
       whole_multiple(o.control_period, h, "environment: control_period", "the physics timestep");
   whole_multiple(controller_period, h, "environment: controller_period", "the physics timestep");
@@ -85,9 +87,11 @@ Environment::Impl::Impl(std::unique_ptr<EnvTask> t, const EnvironmentOptions& o)
   sim_options.max_acceleration = o.max_acceleration;
   sim_options.own_model = o.randomization.any();
   o.randomization.check();
-  driver = std::make_unique<ActionDriver>(o.action_space, chain, o.action, o.control_period);
+  driver = std::make_unique<ActionDriver>(o.action_space, chain, o.action, o.control_period,
+                                          task->gripper_action());
   sim = std::make_unique<Simulation>(robot, sim_options);
   sim->add_controller(driver->controller());
+  if (Controller* own = task->auxiliary_controller()) sim->add_controller(*own);
   if (o.randomization.any())
     randomizer =
         std::make_unique<DomainRandomizer>(robot.model(), o.randomization, task->object_geoms());
@@ -113,8 +117,11 @@ void Environment::Impl::update_context() noexcept {
     q[i] = d.qpos[chain.qpos_address(i)];
     qd[i] = d.qvel[chain.dof_address(i)];
   }
-  context.X_WE = kinematics->update(q);
-  kinematics->jacobian(J);
+  // the end-effector spaces' QP starts the next step from this q: its kinematics do the work
+  ChainKinematics* shared = driver->measured_kinematics();
+  ChainKinematics& k = shared != nullptr ? *shared : *kinematics;
+  context.X_WE = k.update(q);
+  k.jacobian(J);
   context.V_WE.noalias() = J * qd;
   context.time = d.time - episode_start;
 }

@@ -54,7 +54,8 @@ void check_contacts_on(const Robot& robot, const GeomSet& arm, const std::string
 }  // namespace
 
 const std::vector<std::string>& ObservationSet::task_names() {
-  static const std::vector<std::string> names{"target", "object_pose"};
+  static const std::vector<std::string> names{
+      "target", "target_offset", "object_pose", "object_velocity", "wrench", "insertion", "grasp"};
   return names;
 }
 

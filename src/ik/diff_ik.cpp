@@ -185,6 +185,12 @@ const Eigen::VectorXd& DiffIk::task_error(int task) const {
   return task_at(task, "task_error").error;
 }
 
+ChainKinematics& DiffIk::task_kinematics(int task) {
+  Task& t = task_at(task, "task_kinematics");
+  if (!t.kin) throw Error("DiffIk::task_kinematics: task is a posture task");
+  return *t.kin;
+}
+
 const DiffIkStep& DiffIk::step(const Eigen::Ref<const Eigen::VectorXd>& q) {
   chain_.check(q, "q");
   const int n = chain_.size();

@@ -1,6 +1,7 @@
 #include "mjarm/kinematics/chain_kinematics.hpp"
 
 #include <cmath>
+#include <cstring>
 
 namespace mjarm {
 namespace {
@@ -72,14 +73,20 @@ ChainKinematics::ChainKinematics(const Chain& chain) : chain_(chain) {
   fixed_qpos_ = Eigen::Map<const Eigen::VectorXd>(m.qpos0, m.nq);
   axes_.assign(n, Eigen::Vector3d::Zero());
   anchors_.assign(n, Eigen::Vector3d::Zero());
+  last_q_ = Eigen::VectorXd::Zero(n);
 }
 
 void ChainKinematics::set_fixed_qpos(const Eigen::Ref<const Eigen::VectorXd>& qpos) {
   chain_.check_qpos(qpos, "fixed qpos");
   fixed_qpos_ = qpos;
+  current_ = false;
 }
 
 const Pose& ChainKinematics::update(const Eigen::Ref<const Eigen::VectorXd>& q) noexcept {
+  if (current_ && q.size() == last_q_.size() &&
+      std::memcmp(q.data(), last_q_.data(), sizeof(double) * static_cast<std::size_t>(q.size())) ==
+          0)
+    return X_WE_;
   Eigen::Matrix3d R = Eigen::Matrix3d::Identity();
   Eigen::Vector3d p = Eigen::Vector3d::Zero();
   for (const PathBody& body : bodies_) {
@@ -120,6 +127,10 @@ const Pose& ChainKinematics::update(const Eigen::Ref<const Eigen::VectorXd>& q) 
   }
   X_WE_.p = p + R * frame_pos_;
   X_WE_.R = R * frame_rot_;
+  if (q.size() == last_q_.size()) {
+    last_q_ = q;
+    current_ = true;
+  }
   return X_WE_;
 }
 

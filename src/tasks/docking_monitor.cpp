@@ -20,6 +20,16 @@ double tilt_of(const Pose& X_WE, const Pose& X_WS) {
 
 }  // namespace
 
+DockingInsertion docking_insertion(const Pose& X_WE, const Pose& X_WS) noexcept {
+  const Eigen::Vector3d z_S = X_WS.R.col(2);
+  const Eigen::Vector3d r = X_WE.p - X_WS.p;
+  DockingInsertion in;
+  in.depth = -r.dot(z_S);
+  in.lateral = (r + in.depth * z_S).norm();
+  in.tilt = tilt_of(X_WE, X_WS);
+  return in;
+}
+
 void check(const DockingCriteria& c) {
   docking_detail::require_positive(c.window, "docking criteria", "window [s]");
   docking_detail::require_positive(c.depth_tolerance, "docking criteria", "depth_tolerance [m]");
@@ -90,10 +100,7 @@ DockingMetrics evaluate_docking(std::span<const DockingSample> samples, const Do
     if (s.t < t_window - 1e-12) continue;
     // the final window
     ++window;
-    const Eigen::Vector3d r = s.X_WE.p - goal.X_WS.p;
-    const double depth = -r.dot(z_S);
-    const double lateral = (r + depth * z_S).norm();
-    const double tilt = tilt_of(s.X_WE, goal.X_WS);
+    const auto [depth, lateral, tilt] = docking_insertion(s.X_WE, goal.X_WS);
     m.steady_axial_force += f.dot(z_S);
     m.steady_wrench += s.F_peg.norm();
     m.steady_lateral += lateral;

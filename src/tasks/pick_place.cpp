@@ -75,27 +75,6 @@ std::string fixed(double v, const char* format = "%.3f") {
   return buffer;
 }
 
-// the tool pointing straight down, turned about the vertical by `yaw` from the home heading
-Eigen::Matrix3d grasp_rotation(const Eigen::Matrix3d& R_home, double yaw) {
-  Eigen::Vector3d x = R_home.col(0);
-  x.z() = 0.0;
-  if (x.norm() < 1e-6) x = Eigen::Vector3d::UnitX();
-  x.normalize();
-  const Eigen::Vector3d z(0.0, 0.0, -1.0);
-  Eigen::Matrix3d R_down;
-  R_down.col(0) = x;
-  R_down.col(1) = z.cross(x);
-  R_down.col(2) = z;
-  return so3::exp(Eigen::Vector3d(0.0, 0.0, yaw)) * R_down;
-}
-
-// the grasp yaw closest to zero that puts the fingers across the object's faces
-double grasp_yaw(const PickPlaceObject& object) {
-  if (object.shape != "box") return 0.0;
-  const double period = object.size[0] == object.size[1] ? 0.5 * M_PI : M_PI;
-  return object.yaw - period * std::round(object.yaw / period);
-}
-
 // every tool pose of the machine, solved one after the other from the home posture
 void check_reach(const PickPlaceScene& scene, const Chain& arm, const PickPlaceGoal& goal,
                  const PickPlaceMotion& motion, const Eigen::VectorXd& q_home) {
@@ -210,6 +189,25 @@ std::string result_line(const PickPlaceReport& r) {
 }
 
 }  // namespace
+
+Eigen::Matrix3d grasp_rotation(const Eigen::Matrix3d& R_home, double yaw) {
+  Eigen::Vector3d x = R_home.col(0);
+  x.z() = 0.0;
+  if (x.norm() < 1e-6) x = Eigen::Vector3d::UnitX();
+  x.normalize();
+  const Eigen::Vector3d z(0.0, 0.0, -1.0);
+  Eigen::Matrix3d R_down;
+  R_down.col(0) = x;
+  R_down.col(1) = z.cross(x);
+  R_down.col(2) = z;
+  return so3::exp(Eigen::Vector3d(0.0, 0.0, yaw)) * R_down;
+}
+
+double grasp_yaw(const PickPlaceObject& object) {
+  if (object.shape != "box") return 0.0;
+  const double period = object.size[0] == object.size[1] ? 0.5 * M_PI : M_PI;
+  return object.yaw - period * std::round(object.yaw / period);
+}
 
 PickPlaceTrial draw_pick_place_trial(const PickPlaceOptions& options) {
   const PickPlaceRobot& robot = pick_place_robot(options.robot);

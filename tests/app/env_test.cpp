@@ -20,17 +20,23 @@ using nlohmann::json;
 
 TEST(EnvCommand, ListsTheTasksWithTheirSpecs) {
   const json j = run_json({"env", "list", "--json"});
-  ASSERT_EQ(j["tasks"].size(), 2u);
-  EXPECT_EQ(j["tasks"][0]["name"], "reach");
-  EXPECT_EQ(j["tasks"][1]["name"], "shelf-pick");
-  for (const json& task : j["tasks"]) {
+  const std::vector<std::string> names{"reach", "shelf-pick", "pick-place", "docking"};
+  ASSERT_EQ(j["tasks"].size(), names.size());
+  for (std::size_t i = 0; i < names.size(); ++i) {
+    const json& task = j["tasks"][i];
+    EXPECT_EQ(task["name"], names[i]);
     EXPECT_EQ(task["physics_steps_per_step"], 10);
     ASSERT_EQ(task["action_spaces"].size(), 5u);
+    // pick-place's action ends with the gripper command in [0, 1]
+    const int gripper = names[i] == "pick-place" ? 1 : 0;
     const json& ee = task["action_spaces"][3];
     EXPECT_EQ(ee["action_space"], "ee_pose_deltas");
-    EXPECT_EQ(ee["spec"]["shape"], json::array({6}));
+    EXPECT_EQ(ee["spec"]["shape"], json::array({6 + gripper}));
     EXPECT_DOUBLE_EQ(ee["spec"]["maximum"][0].get<double>(), 0.02);
-    EXPECT_EQ(task["action_spaces"][0]["spec"]["shape"], json::array({7}));
+    EXPECT_EQ(task["action_spaces"][0]["spec"]["shape"], json::array({7 + gripper}));
+    if (gripper) {
+      EXPECT_DOUBLE_EQ(ee["spec"]["maximum"][6].get<double>(), 1.0);
+    }
   }
   // unbounded sides are null in JSON
   EXPECT_TRUE(j["tasks"][0]["default_observations"][1]["maximum"][0].is_null());
@@ -56,6 +62,14 @@ TEST(EnvCommand, RunsSeededEpisodesTheSameOnAnyThreadCount) {
   const json zero = run_json({"env", "run", "shelf-pick", "--policy", "zero", "--episodes", "1",
                               "--time-limit", "0.1", "--json"});
   EXPECT_EQ(zero["episodes"][0]["steps"], 5);
+  for (const char* task : {"pick-place", "docking"}) {
+    const json tasks_room = run_json(
+        {"env", "run", task, "--episodes", "1", "--time-limit", "0.1", "--seed", "3", "--json"});
+    EXPECT_EQ(tasks_room["task"], task);
+    EXPECT_EQ(tasks_room["episodes"].size(), 1u);
+    EXPECT_LE(tasks_room["episodes"][0]["steps"].get<int>(), 5);
+    EXPECT_LT(tasks_room["episodes"][0]["return"].get<double>(), 0.0);
+  }
 }
 
 TEST(EnvCommand, BenchReportsOverheadAndScaling) {

@@ -38,20 +38,27 @@ namespace mjarm {
 ///   never runs away. A zero action holds the goal. The goal integrates the actions and the arm
 ///   follows it about two steps behind, so a proportional policy on a pose error wants a gain
 ///   well below 1 (0.3 reaches the reach task's targets in under 25 steps).
+/// With a gripper (a task whose `EnvTask::gripper_action()` is true) the action has one more
+/// entry, last, in [0, 1]: the gripper command (0 open, 1 closed), written to the reference's
+/// `gripper` field for the task's own finger controller.
 /// `apply` allocates nothing.
 class ActionDriver {
  public:
   /// @param chain the joints actions drive (each needs a torque motor in the simulation)
   /// @param control_period T [s] (> 0)
+  /// @param gripper the action ends with a gripper command in [0, 1]
   /// @throws Error for options out of range (`ActionOptions::check`) or a bad period.
   ActionDriver(ActionSpace space, const Chain& chain, const ActionOptions& options,
-               double control_period);
+               double control_period, bool gripper = false);
   ~ActionDriver();
   ActionDriver(const ActionDriver&) = delete;
   ActionDriver& operator=(const ActionDriver&) = delete;
 
   ActionSpace space() const noexcept { return space_; }
-  /// The action's spec: name "action", shape [n] or [6], bounds of the space.
+  /// True when the action's last entry is a gripper command.
+  bool gripper() const noexcept { return gripper_; }
+  /// The action's spec: name "action", shape [n] or [6] (+1 with a gripper), bounds of the
+  /// space (and [0, 1] for the gripper).
   const ArraySpec& spec() const noexcept { return spec_; }
   /// The controller to add to the simulation (torque commands on the chain).
   Controller& controller() noexcept { return *controller_; }
@@ -66,6 +73,10 @@ class ActionDriver {
   const Reference& reference() const noexcept { return reference_; }
   /// The QP's last step (end-effector spaces; null otherwise).
   const DiffIkStep* ik_step() const noexcept;
+  /// End-effector spaces: the QP's own kinematics of the chain's frame, for the environment's
+  /// end-effector state after a step — the next `apply` then starts from that work at the same
+  /// measured q instead of repeating it. Null for the joint spaces.
+  ChainKinematics* measured_kinematics() noexcept;
 
  private:
   void read_q(const mjData& d) noexcept;
@@ -74,6 +85,7 @@ class ActionDriver {
   Chain chain_;
   ActionOptions options_;
   double period_;
+  bool gripper_ = false;
   ArraySpec spec_;
   std::unique_ptr<Controller> controller_;
   Eigen::VectorXd torque_;  // joint_torques: the action, read by the pass-through controller

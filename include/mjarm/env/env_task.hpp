@@ -12,6 +12,7 @@
 #include <string_view>
 #include <vector>
 
+#include "mjarm/control/controller.hpp"
 #include "mjarm/env/array_spec.hpp"
 #include "mjarm/lie/pose.hpp"
 #include "mjarm/lie/types.hpp"
@@ -87,6 +88,17 @@ class EnvTask {
   virtual std::vector<std::string> default_observations() const;
   /// Geoms whose size the domain randomization may scale (the task's objects); none by default.
   virtual std::vector<int> object_geoms() const { return {}; }
+  /// True when the task has a gripper the agent commands: the action then ends with one more
+  /// entry in [0, 1] (0 open, 1 closed), passed to the controllers as `Reference::gripper`.
+  virtual bool gripper_action() const noexcept { return false; }
+  /// A controller of the task's own for the joints the chain does not hold (e.g. the fingers),
+  /// added to the environment's simulation after the action's controller: it runs at the same
+  /// period on the same reference (the gripper command in `Reference::gripper`). Null by
+  /// default. The task owns it; each clone has its own.
+  virtual Controller* auxiliary_controller() noexcept { return nullptr; }
+  /// The controller period the task needs [s] (a whole divisor of the control step), used when
+  /// `EnvironmentOptions::controller_period` is 0; 0 (the default): the action space's own.
+  virtual double controller_period() const noexcept { return 0.0; }
 
   /// Starts an episode: puts the simulation in its start state (reset, set_state) and draws
   /// the episode's goal from @p random.task. The model is already randomized.

@@ -30,7 +30,8 @@ struct EnvironmentOptions {
   /// (10 physics steps of 2 ms on the bundled models).
   double control_period = 0.02;
   /// Period of the low-level controller [s]: a whole divisor of T (the controller then runs
-  /// T / controller_period times per step on the step's reference). 0: the action space's own —
+  /// T / controller_period times per step on the step's reference). 0: the task's
+  /// (`EnvTask::controller_period`) when it names one, else the action space's own —
   /// the physics timestep for joint_positions and joint_deltas (the joint PD is a servo loop:
   /// held over a whole control step its damping would not be stable on the light wrist
   /// joints), T for the others (the torques and the operational-space controller's output are

@@ -1,6 +1,6 @@
 #pragma once
 /// @file
-/// The environment tasks by name: "reach", "shelf-pick".
+/// The environment tasks by name: "reach", "shelf-pick", "pick-place", "docking".
 
 #include <memory>
 #include <string>

@@ -125,6 +125,11 @@ class DiffIk {
   /// The task's error e_k at the q of the last `step()` (6 pose, 3 position, n posture; units
   /// of the task). @throws Error for a bad index
   const Eigen::VectorXd& task_error(int task) const;
+  /// The kinematics of frame task @p task, which `step()` updates at its q. A caller that needs
+  /// the task frame's pose or Jacobian at the q of the coming step may update it here: `step()`
+  /// then reuses that work (`ChainKinematics::update` skips the q it has just computed).
+  /// @throws Error for a bad index or a posture task
+  ChainKinematics& task_kinematics(int task);
 
   /// One step from configuration @p q (n): solves the QP and returns v and q⁺ = q + v·dt.
   /// Allocates nothing.

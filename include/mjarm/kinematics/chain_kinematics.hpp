@@ -40,6 +40,8 @@ class ChainKinematics {
 
   /// Computes the pose X_WE of the chain's frame at joint values @p q (chain order, size n) and
   /// the joint axes used by `jacobian()`. Unchecked: validate q with `Chain::check` first.
+  /// The same q as the last call (bit for bit, fixed joints unchanged) returns the last result
+  /// without recomputing it, so two users of one instance at one q pay once.
   const Pose& update(const Eigen::Ref<const Eigen::VectorXd>& q) noexcept;
 
   /// Pose X_WE from the last `update()`.
@@ -86,6 +88,8 @@ class ChainKinematics {
   Eigen::Matrix3d frame_rot_;
   // workspace
   Pose X_WE_;
+  Eigen::VectorXd last_q_;  // q of the last update (size n)
+  bool current_ = false;    // X_WE_, axes_ and anchors_ belong to last_q_
   std::vector<Eigen::Vector3d> axes_;
   std::vector<Eigen::Vector3d> anchors_;
   std::vector<char> on_path_;

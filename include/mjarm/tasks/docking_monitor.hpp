@@ -71,6 +71,16 @@ struct DockingGoal {
   double full_depth = 0.0;  ///< chamfer + bore depth [m]: the tip's depth when seated
 };
 
+/// Where the tip E stands in a socket S.
+struct DockingInsertion {
+  double depth = 0.0;    ///< below the top face, along the insertion direction −z_S [m]
+  double lateral = 0.0;  ///< distance to the bore's axis [m]
+  double tilt = 0.0;     ///< angle between the peg's axis z_E and the bore's axis −z_S [rad]
+};
+
+/// The insertion of the tip at @p X_WE in the socket at @p X_WS (what the seating criteria judge).
+DockingInsertion docking_insertion(const Pose& X_WE, const Pose& X_WS) noexcept;
+
 /// Metrics of one run. Axial = along the insertion direction −z_S; forces are the socket's on
 /// the peg (positive axial force: the peg pushes into the socket).
 struct DockingMetrics {

@@ -116,6 +116,14 @@ struct PickPlaceReport {
   bool ok() const noexcept { return success; }
 };
 
+/// The tool pointing straight down (z_T = −z_W), its heading the home tool heading @p R_home's x
+/// axis in the horizontal plane, turned about the vertical by @p yaw [rad].
+Eigen::Matrix3d grasp_rotation(const Eigen::Matrix3d& R_home, double yaw);
+
+/// The grasp yaw closest to zero that puts the fingers across the faces of a box @p object (its
+/// yaw reduced modulo a quarter turn for a square box, half a turn otherwise); 0 for a cylinder.
+double grasp_yaw(const PickPlaceObject& object);
+
 /// The trial a seed draws for @p robot (object and target in the robot's table region, at least
 /// `min_separation` apart; size, mass, friction, yaw in their ranges), with the options' fixed
 /// values in place of the drawn ones.
