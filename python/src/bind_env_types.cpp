@@ -75,7 +75,7 @@ const char* kTimeStepDoc =
     "steps again, and can be kept as long as wanted. Iterates as (step_type, reward, "
     "discount, observation), like dm_env's namedtuple.";
 
-void bind_specs(py::module_& m) {
+void bind_array_specs(py::module_& m) {
   py::class_<ArraySpec>(
       m, "ArraySpec",
       "A named float64 array with its shape and element-wise bounds (dm_env's specs.Array / "
@@ -308,7 +308,7 @@ void bind_time_steps(py::module_& m) {
 }  // namespace
 
 void bind_env_types(py::module_& m) {
-  bind_specs(m);
+  bind_array_specs(m);
   bind_options(m);
   bind_time_steps(m);
 }

@@ -29,7 +29,7 @@ mjData& writable_data(const Robot& robot, DataHandle& h, const char* call) {
   return h.get();
 }
 
-void bind_specs(py::module_& m) {
+void bind_scene_specs(py::module_& m) {
   py::enum_<ObjectShape>(m, "ObjectShape", "Shapes of objects and fixtures.")
       .value("box", ObjectShape::box)
       .value("sphere", ObjectShape::sphere)
@@ -168,7 +168,7 @@ void bind_specs(py::module_& m) {
 }  // namespace
 
 void bind_scene(py::module_& m) {
-  bind_specs(m);
+  bind_scene_specs(m);
   py::class_<Scene>(
       m, "Scene",
       "One MuJoCo model composed of parts (arena, robots, grippers, objects, fixtures, cameras, "
