@@ -67,7 +67,7 @@ void check(const DiffIkOptions& options, int n) {
 }
 
 DiffIk::DiffIk(const Chain& chain, const DiffIkOptions& options)
-    : chain_(chain), options_(options), qp_(chain.size(), 0, 0) {
+    : chain_(chain), options_(options), qp_(chain.size()) {
   const int n = chain_.size();
   check(options_, n);
   step_.v = Eigen::VectorXd::Zero(n);
@@ -253,7 +253,7 @@ const DiffIkStep& DiffIk::step(const Eigen::Ref<const Eigen::VectorXd>& q) {
   qp_.set_hessian(H_);
   qp_.set_gradient(g_);
   qp_.set_bounds(lo_, hi_);
-  const qp::QpResult& r = qp_.solve(qp::QpStart::warm);
+  const qp::BoxQpResult& r = qp_.solve(qp::QpStart::warm);
   step_.qp_status = r.status;
   step_.qp_iterations = r.iterations;
   if (r.x.allFinite()) {
