@@ -55,18 +55,14 @@ BoxQp::BoxQp(int n) : n_(box_checked_size(n)) {
 
 void BoxQp::set_hessian(const Eigen::Ref<const Eigen::MatrixXd>& H) {
   box_check_size("H", H.rows(), H.cols(), n_, n_);
-  // mirror the lower triangle; a non-finite entry turns the sum of entry·0 into nan
-  double probe = 0.0, max_diag = 0.0;
+  // the lower triangle, mirrored
+  H_ = H;
+  double max_diag = 0.0;
   for (int j = 0; j < n_; ++j) {
-    max_diag = std::max(max_diag, std::abs(H(j, j)));
-    for (int i = j; i < n_; ++i) {
-      const double v = H(i, j);
-      H_(i, j) = v;
-      H_(j, i) = v;
-      probe += v * 0.0;
-    }
+    max_diag = std::max(max_diag, std::abs(H_(j, j)));
+    for (int i = j + 1; i < n_; ++i) H_(j, i) = H_(i, j);
   }
-  hessian_ok_ = probe == 0.0;
+  hessian_ok_ = H_.allFinite();
   pivot_min_ = 1e-14 * max_diag;
 }
 
@@ -103,18 +99,26 @@ const BoxQpResult& BoxQp::solve(QpStart start) noexcept {
 bool BoxQp::factor_rows(int from, int to) noexcept {
   // up-looking Cholesky of H in working order: row k of L from rows 0..k−1, so rows before the
   // first changed position stay valid when the order changes after it
+  const int n = n_;
   const int* order = order_.data();
+  double* L = L_.data();
+  double* inv_diag = inv_diag_.data();
   for (int k = from; k < to; ++k) {
     const double* h = &H_(0, order[k]);  // column order[k]: entry order[m] is H(order[m], order[k])
-    double* lk = &L_(k, 0);
+    double* lk = L + k * n;
+    double diag = h[order[k]];
     for (int m = 0; m < k; ++m) {
-      lk[m] = (h[order[m]] - short_dot(lk, &L_(m, 0), m)) * inv_diag_[m];
+      const double* lm = L + m * n;
+      double s = h[order[m]];
+      for (int i = 0; i < m; ++i) s -= lk[i] * lm[i];
+      s *= inv_diag[m];
+      lk[m] = s;
+      diag -= s * s;
     }
-    const double s = h[order[k]] - short_dot(lk, lk, k);
-    if (!(s > pivot_min_)) return false;  // also catches nan
-    const double d = std::sqrt(s);
+    if (!(diag > pivot_min_)) return false;  // also catches nan
+    const double d = std::sqrt(diag);
     lk[k] = d;
-    inv_diag_[k] = 1.0 / d;
+    inv_diag[k] = 1.0 / d;
   }
   return true;
 }
@@ -215,22 +219,26 @@ QpStatus BoxQp::run(bool warm, int& iterations) noexcept {
       x_[j] = box_clamp(z_[k], lb_[j], ub_[j]);
     }
 
-    // at the minimizer on the working set: release the bound with the most wrong-sign multiplier
+    // at the minimizer on the working set: the gradient entries of the bound variables are their
+    // multipliers (y_j = −(H x + g)_j); release the one with the most wrong sign
     gradient();
     double worst = 0.0;
     int release = -1;
     for (int a = nf_; a < n; ++a) {
       const int j = order[a];
       const int s = state_[j];
-      if (s == 2) continue;
-      const double v = s == -1 ? grad_[j] : -grad_[j];  // −y_j at lb, y_j at ub: must be ≥ 0
-      if (!(v < worst)) continue;
-      double scale = std::abs(g_[j]);
-      for (int m = 0; m < n; ++m) scale += std::abs(H_(j, m) * x_[m]);
-      if (v < -tolerance * scale) {
+      const double v = s == -1 ? grad_[j] : (s == 1 ? -grad_[j] : 0.0);  // −y_j at lb, y_j at ub
+      if (v < worst) {
         worst = v;
         release = a;
       }
+    }
+    if (release >= 0) {
+      // released only when clearly wrong: beyond the round-off scale of its gradient entry
+      const int j = order[release];
+      double scale = std::abs(g_[j]);
+      for (int m = 0; m < n; ++m) scale += std::abs(H_(j, m) * x_[m]);
+      if (!(worst < -tolerance * scale)) release = -1;
     }
     if (release < 0) return QpStatus::solved;
     const int j = order[release];
@@ -256,24 +264,25 @@ void BoxQp::finalize(QpStatus status, int iterations, bool warm) noexcept {
     return;
   }
   if (status != QpStatus::solved) gradient();  // a solved run has just computed it at x
-  if (status == QpStatus::solved && !(x_.allFinite() && grad_.allFinite())) {
-    status = QpStatus::iteration_limit;  // numerical breakdown
-  }
-  res.status = status;
   res.x = x_;
-  double residual = 0.0;
+  double residual = 0.0, objective = 0.0;
+  bool finite = true;
   for (int j = 0; j < n_; ++j) {
     const int s = state_[j];
-    const double gj = grad_[j];
+    const double gj = grad_[j], xj = x_[j];
+    finite &= std::isfinite(gj) & std::isfinite(xj);
+    objective += xj * (gj + g_[j]);  // xᵀ(Hx + g) + gᵀx = xᵀHx + 2gᵀx
     res.y_bound[j] = s == 0 ? 0.0 : -gj;
     const double dual = s == 0 ? std::abs(gj) : (s == -1 ? -gj : (s == 1 ? gj : 0.0));
-    const double primal = std::max(lb_[j] - x_[j], x_[j] - ub_[j]);
+    const double primal = std::max(lb_[j] - xj, xj - ub_[j]);
     residual = std::max(residual, std::max(dual, primal));
   }
+  // a non-finite iterate is a numerical breakdown
+  res.status = status == QpStatus::solved && !finite ? QpStatus::iteration_limit : status;
   res.kkt_residual = residual;
-  res.objective = 0.5 * x_.dot(grad_ + g_);
+  res.objective = 0.5 * objective;
   res.active_count = n_ - nf_;
-  have_warm_ = status == QpStatus::solved;
+  have_warm_ = res.status == QpStatus::solved;
 }
 
 }  // namespace mjarm::qp
