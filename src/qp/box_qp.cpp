@@ -55,14 +55,23 @@ BoxQp::BoxQp(int n) : n_(box_checked_size(n)) {
 
 void BoxQp::set_hessian(const Eigen::Ref<const Eigen::MatrixXd>& H) {
   box_check_size("H", H.rows(), H.cols(), n_, n_);
-  // the lower triangle, mirrored
-  H_ = H;
-  double max_diag = 0.0;
-  for (int j = 0; j < n_; ++j) {
-    max_diag = std::max(max_diag, std::abs(H_(j, j)));
-    for (int i = j + 1; i < n_; ++i) H_(j, i) = H_(i, j);
+  // the lower triangle, mirrored; a non-finite entry turns the sum of entry·0 into nan
+  const int n = n_;
+  const double* src = H.data();
+  const Eigen::Index ld = H.outerStride();
+  double* dst = H_.data();
+  double probe = 0.0, max_diag = 0.0;
+  for (int j = 0; j < n; ++j) {
+    const double* col = src + j * ld;
+    max_diag = std::max(max_diag, std::abs(col[j]));
+    for (int i = j; i < n; ++i) {
+      const double v = col[i];
+      dst[j * n + i] = v;
+      dst[i * n + j] = v;
+      probe += v * 0.0;
+    }
   }
-  hessian_ok_ = H_.allFinite();
+  hessian_ok_ = probe == 0.0;
   pivot_min_ = 1e-14 * max_diag;
 }
 
@@ -266,19 +275,18 @@ void BoxQp::finalize(QpStatus status, int iterations, bool warm) noexcept {
   if (status != QpStatus::solved) gradient();  // a solved run has just computed it at x
   res.x = x_;
   double residual = 0.0, objective = 0.0;
-  bool finite = true;
   for (int j = 0; j < n_; ++j) {
     const int s = state_[j];
     const double gj = grad_[j], xj = x_[j];
-    finite &= std::isfinite(gj) & std::isfinite(xj);
     objective += xj * (gj + g_[j]);  // xᵀ(Hx + g) + gᵀx = xᵀHx + 2gᵀx
     res.y_bound[j] = s == 0 ? 0.0 : -gj;
     const double dual = s == 0 ? std::abs(gj) : (s == -1 ? -gj : (s == 1 ? gj : 0.0));
     const double primal = std::max(lb_[j] - xj, xj - ub_[j]);
     residual = std::max(residual, std::max(dual, primal));
   }
-  // a non-finite iterate is a numerical breakdown
-  res.status = status == QpStatus::solved && !finite ? QpStatus::iteration_limit : status;
+  // a non-finite iterate (which makes the objective non-finite) is a numerical breakdown
+  res.status =
+      status == QpStatus::solved && !std::isfinite(objective) ? QpStatus::iteration_limit : status;
   res.kkt_residual = residual;
   res.objective = 0.5 * objective;
   res.active_count = n_ - nf_;
