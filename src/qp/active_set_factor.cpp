@@ -6,13 +6,10 @@
 
 #include "mjarm/error.hpp"
 #include "mjarm/qp/dense_kernels.hpp"
-#include "short_dot.hpp"
 
 namespace mjarm::qp {
 
 namespace {
-
-using detail::short_dot;
 
 // length of (a, b) without underflow or overflow of a² + b² (b != 0)
 inline double pythag(double a, double b) noexcept {
@@ -24,6 +21,19 @@ inline double pythag(double a, double b) noexcept {
   }
   const double t = abs_a / abs_b;
   return abs_b * std::sqrt(1.0 + t * t);
+}
+
+// Σ a[k]·b[k] for the short rows of R: inline (no kernel call), two accumulators against the
+// add latency
+inline double short_dot(const double* a, const double* b, int len) noexcept {
+  double s0 = 0.0, s1 = 0.0;
+  int k = 0;
+  for (; k + 2 <= len; k += 2) {
+    s0 += a[k] * b[k];
+    s1 += a[k + 1] * b[k + 1];
+  }
+  if (k < len) s0 += a[k] * b[k];
+  return s0 + s1;
 }
 
 // below this length, loops run inline rather than through a kernel call

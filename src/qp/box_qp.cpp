@@ -7,13 +7,10 @@
 
 #include "mjarm/error.hpp"
 #include "mjarm/qp/dense_kernels.hpp"
-#include "short_dot.hpp"
 
 namespace mjarm::qp {
 
 namespace {
-
-using detail::short_dot;
 
 constexpr double kBoxInf = std::numeric_limits<double>::infinity();
 
@@ -133,23 +130,33 @@ bool BoxQp::factor_rows(int from, int to) noexcept {
 }
 
 void BoxQp::solve_free() noexcept {
-  // z = H_FF⁻¹·(−g_F − H_FA·x_A), in working order
+  // z = H_FF⁻¹·(−g_F − H_FA·x_A), in working order (raw loops: a few entries each)
   const int n = n_, nf = nf_;
   const int* order = order_.data();
+  const double* H = H_.data();
+  const double* g = g_.data();
+  const double* x = x_.data();
+  const double* L = L_.data();
+  const double* inv_diag = inv_diag_.data();
   double* z = z_.data();
-  for (int k = 0; k < nf; ++k) z[k] = -g_[order[k]];
+  for (int k = 0; k < nf; ++k) z[k] = -g[order[k]];
   for (int a = nf; a < n; ++a) {
     const int j = order[a];
-    const double xj = x_[j];
+    const double xj = x[j];
     if (xj == 0.0) continue;
-    const double* h = &H_(0, j);
+    const double* h = H + j * n;  // column j
     for (int k = 0; k < nf; ++k) z[k] -= h[order[k]] * xj;
   }
-  for (int k = 0; k < nf; ++k) z[k] = (z[k] - short_dot(&L_(k, 0), z, k)) * inv_diag_[k];
-  for (int k = nf - 1; k >= 0; --k) {
-    const double zk = z[k] * inv_diag_[k];
+  for (int k = 0; k < nf; ++k) {  // L y = rhs
+    const double* lk = L + k * n;
+    double s = z[k];
+    for (int m = 0; m < k; ++m) s -= lk[m] * z[m];
+    z[k] = s * inv_diag[k];
+  }
+  for (int k = nf - 1; k >= 0; --k) {  // Lᵀ z = y, one column of Lᵀ (row of L) at a time
+    const double zk = z[k] * inv_diag[k];
     z[k] = zk;
-    const double* lk = &L_(k, 0);
+    const double* lk = L + k * n;
     for (int m = 0; m < k; ++m) z[m] -= lk[m] * zk;
   }
 }
