@@ -32,6 +32,16 @@ void check_gain(double gain) {
   }
 }
 
+// H += Aᵀ·(W·A) on the lower triangle, which is all the QP reads (A, WA: the first R rows of
+// 6×n matrices; one fixed-size dot of two columns per entry)
+template <int R>
+void add_lower_gram(Eigen::MatrixXd& H, const Matrix6Xd& A, const Matrix6Xd& WA, int n) {
+  for (int j = 0; j < n; ++j) {
+    const Eigen::Matrix<double, R, 1> wa_j = WA.col(j).template head<R>();
+    for (int i = j; i < n; ++i) H(i, j) += A.col(i).template head<R>().dot(wa_j);
+  }
+}
+
 void check_weight(double weight, bool allow_zero, const char* what) {
   if (!std::isfinite(weight) || weight < 0.0 || (!allow_zero && weight == 0.0)) {
     throw Error(std::string("DiffIk: ") + what + " must be finite and " +
@@ -67,7 +77,7 @@ void check(const DiffIkOptions& options, int n) {
 }
 
 DiffIk::DiffIk(const Chain& chain, const DiffIkOptions& options)
-    : chain_(chain), options_(options), qp_(chain.size(), 0, 0) {
+    : chain_(chain), options_(options), qp_(chain.size()) {
   const int n = chain_.size();
   check(options_, n);
   step_.v = Eigen::VectorXd::Zero(n);
@@ -196,7 +206,7 @@ const DiffIkStep& DiffIk::step(const Eigen::Ref<const Eigen::VectorXd>& q) {
   const int n = chain_.size();
   const double inv_dt = 1.0 / options_.dt;
 
-  // cost: ½vᵀHv + gᵀv with H = Σ AᵀWA + λI, g = −Σ AᵀW(α/dt)e
+  // cost: ½vᵀHv + gᵀv with H = Σ AᵀWA + λI (lower triangle only), g = −Σ AᵀW(α/dt)e
   H_.setZero();
   H_.diagonal().setConstant(options_.damping);
   g_.setZero();
@@ -213,23 +223,30 @@ const DiffIkStep& DiffIk::step(const Eigen::Ref<const Eigen::VectorXd>& q) {
     if (t.kind == DiffIkTaskKind::pose) {
       const Vector6d e = log_error(X_WE, t.X_WT);
       t.error = e;
-      // local Jacobian J_E = blockdiag(R_WEᵀ, R_WEᵀ)·J_{E[W]}, rotated here into our own buffer
-      t.kin->jacobian(A_, JacobianFrame::world_aligned);
+      // A = Jlog(e)·J_E with the local Jacobian J_E = blockdiag(R_WEᵀ, R_WEᵀ)·J_{E[W]}
+      // (ė = −Jlog(e)·V_E: the rows that make A·v track the error rate exactly), formed as the
+      // fixed-size 6×6 B = Jlog(e)·blockdiag(R_WEᵀ, R_WEᵀ) times each column of J_{E[W]}
+      t.kin->jacobian(J_, JacobianFrame::world_aligned);
       const Eigen::Matrix3d R_EW = X_WE.R.transpose();
-      J_.topRows<3>().noalias() = R_EW * A_.topRows<3>();
-      J_.bottomRows<3>().noalias() = R_EW * A_.bottomRows<3>();
-      // ė = −Jlog(e)·V_E: the rows that make A·v track the error rate exactly
-      A_.noalias() = log_error_jacobian(e).lazyProduct(J_);
-      J_.noalias() = t.row_weight.asDiagonal() * A_;   // J_ now holds W·A
-      H_.noalias() += A_.transpose().lazyProduct(J_);  // small: no GEMM blocking
-      g_.noalias() -= J_.transpose() * (rate * e);
+      const Matrix6d Jlog = log_error_jacobian(e);
+      Matrix6d B;
+      B.leftCols<3>().noalias() = Jlog.leftCols<3>() * R_EW;
+      B.rightCols<3>().noalias() = Jlog.rightCols<3>() * R_EW;
+      for (int c = 0; c < n; ++c) {
+        A_.col(c).noalias() = B * J_.col(c);
+        J_.col(c) = t.row_weight.cwiseProduct(A_.col(c));  // J_ now holds W·A
+      }
+      add_lower_gram<6>(H_, A_, J_, n);
+      const Vector6d We = rate * e;
+      for (int c = 0; c < n; ++c) g_[c] -= J_.col(c).dot(We);
     } else {
       const Eigen::Vector3d e = t.X_WT.p - X_WE.p;
       t.error = e;
       t.kin->jacobian(J_, JacobianFrame::world_aligned);
-      A_.topRows<3>() = t.row_weight.head<3>().asDiagonal() * J_.topRows<3>();
-      H_.noalias() += J_.topRows<3>().transpose().lazyProduct(A_.topRows<3>());
-      g_.noalias() -= A_.topRows<3>().transpose() * (rate * e);
+      A_.topRows<3>() = t.row_weight.head<3>().asDiagonal() * J_.topRows<3>();  // W·J
+      add_lower_gram<3>(H_, J_, A_, n);
+      const Eigen::Vector3d We = rate * e;
+      for (int c = 0; c < n; ++c) g_[c] -= A_.col(c).head<3>().dot(We);
     }
   }
 
@@ -253,7 +270,7 @@ const DiffIkStep& DiffIk::step(const Eigen::Ref<const Eigen::VectorXd>& q) {
   qp_.set_hessian(H_);
   qp_.set_gradient(g_);
   qp_.set_bounds(lo_, hi_);
-  const qp::QpResult& r = qp_.solve(qp::QpStart::warm);
+  const qp::BoxQpResult& r = qp_.solve(qp::QpStart::warm);
   step_.qp_status = r.status;
   step_.qp_iterations = r.iterations;
   if (r.x.allFinite()) {

@@ -7,6 +7,7 @@
 #include "mjarm/error.hpp"
 #include "mjarm/model/names.hpp"
 #include "mjarm/sim/recorder.hpp"
+#include "mjarm/sim/reset_data.hpp"
 
 namespace mjarm {
 namespace {
@@ -131,7 +132,7 @@ void Simulation::after_reset() {
 }
 
 void Simulation::reset() {
-  mj_resetData(&model(), data_.get());
+  reset_data(model(), *data_);  // mj_resetData's state without clearing the scratch stack
   after_reset();
 }
 

@@ -11,6 +11,7 @@
 #include "mjarm/sim/interrupt.hpp"
 #include "mjarm/sim/recorder.hpp"
 #include "mjarm/sim/simulation.hpp"
+#include "mjarm/tasks/run_outputs.hpp"
 
 namespace mjarm {
 
@@ -143,20 +144,11 @@ DockingReport run_docking(const DockingOptions& options) {
   if (report.run.status != RunStatus::finished && report.run.status != RunStatus::duration_reached)
     report.metrics.failures.push_back(to_string(report.outcome));
   if (options.keep_samples) report.samples = std::move(samples);
-  if (recorder) {
-    recorder->event(sim.time(), "result", docking_result_line(report));
-    try {
-      recorder->finalize(report.run);
-    } catch (const Error& e) {
-      report.recording_error = e.what();
-    }
-  }
+  if (recorder)
+    report.recording_error =
+        finish_recording(*recorder, sim.time(), docking_result_line(report), report.run);
   if (video) {
-    try {
-      video->finish(sim.data());
-    } catch (const Error& e) {
-      report.video_error = e.what();
-    }
+    report.video_error = finish_video(*video, sim.data());
     report.video_frames = video->frames();
     report.video_written = video->complete();
   }

@@ -16,6 +16,7 @@
 #include "mjarm/sim/simulation.hpp"
 #include "mjarm/tasks/arm_reach.hpp"
 #include "mjarm/tasks/pick_place_controllers.hpp"
+#include "mjarm/tasks/run_outputs.hpp"
 #include "mjarm/tasks/shelf_pick_plan.hpp"
 
 namespace mjarm {
@@ -359,20 +360,11 @@ PickPlaceReport run_pick_place(const PickPlaceOptions& options) {
   report.final_speed = Eigen::Map<const Eigen::Vector3d>(d.qvel + address).norm();
   judge(report, criteria, sim);
 
-  if (recorder) {
-    recorder->event(sim.time(), "result", result_line(report));
-    try {
-      recorder->finalize(report.run);
-    } catch (const Error& e) {
-      report.recording_error = e.what();
-    }
-  }
+  if (recorder)
+    report.recording_error =
+        finish_recording(*recorder, sim.time(), result_line(report), report.run);
   if (video) {
-    try {
-      video->finish(sim.data());
-    } catch (const Error& e) {
-      report.video_error = e.what();
-    }
+    report.video_error = finish_video(*video, sim.data());
     report.video_frames = video->frames();
   }
   return report;

@@ -9,6 +9,7 @@
 #include "mjarm/error.hpp"
 #include "mjarm/sim/recorder.hpp"
 #include "mjarm/sim/simulation.hpp"
+#include "mjarm/tasks/run_outputs.hpp"
 #include "mjarm/tasks/run_video.hpp"
 #include "mjarm/tasks/shelf_pick_controllers.hpp"
 #include "mjarm/tasks/shelf_pick_task.hpp"
@@ -119,20 +120,10 @@ ShelfPickReport run_shelf_pick(const ShelfPickOptions& options) {
   report.outcome = outcome_of(run, task.metrics().held);
   for (std::int64_t count : sim.saturation_counts())
     report.saturated_ticks = std::max(report.saturated_ticks, count);
-  if (recorder) {
-    recorder->event(sim.time(), "result", result_line(report));
-    try {
-      recorder->finalize(run);
-    } catch (const Error& e) {
-      report.recording_error = e.what();  // the figures stand; the message says where the rows are
-    }
-  }
+  if (recorder)
+    report.recording_error = finish_recording(*recorder, sim.time(), result_line(report), run);
   if (video) {
-    try {
-      video->finish(sim.data());  // the frames up to the end state, then the file is finalized
-    } catch (const Error& e) {
-      report.video_error = e.what();
-    }
+    report.video_error = finish_video(*video, sim.data());
     report.video_frames = video->frames();
     report.video_written = video->complete();
   }

@@ -1,4 +1,5 @@
-// DenseQp::solve() allocates nothing: every heap allocation of the process is counted while a
+// DenseQp::solve() and BoxQp::solve() allocate nothing (this is the qp room's one allocation-
+// counting unit): every heap allocation of the process is counted while a
 // solve runs. Eigen allocates through malloc, the standard library through operator new, so
 // both are replaced in this translation unit (forwarding to glibc's own entry points).
 // Under AddressSanitizer, which owns malloc and operator new, its allocation hook counts instead.
@@ -14,6 +15,7 @@
 #include <random>
 #include <vector>
 
+#include "mjarm/qp/box_qp.hpp"
 #include "mjarm/qp/dense_qp.hpp"
 #include "qp/qp_test_support.hpp"
 
@@ -162,6 +164,37 @@ TEST(DenseQpAllocation, SolveAllocatesNothing) {
     qp.settings().max_iterations = 0;
     EXPECT_EQ(allocations_in([&] { EXPECT_EQ(qp.solve(QpStart::cold).status, QpStatus::solved); }),
               0);
+  }
+}
+
+TEST(BoxQpAllocation, SolveAllocatesNothing) {
+  std::mt19937 rng(43);
+  for (const int n : {1, 7, 12}) {
+    SCOPED_TRACE(n);
+    const Eigen::MatrixXd M = test::gaussian(rng, n, n);
+    const Eigen::MatrixXd H = M.transpose() * M / n + Eigen::MatrixXd::Identity(n, n);
+    const Eigen::VectorXd g = test::gaussian(rng, n, 1, 3.0),
+                          g2 = g + test::gaussian(rng, n, 1, 0.1);
+    const Eigen::VectorXd lb = Eigen::VectorXd::Constant(n, -0.5), ub = Eigen::VectorXd::Ones(n);
+    BoxQp qp(n);
+    qp.set_hessian(H);
+    qp.set_gradient(g);
+    qp.set_bounds(lb, ub);
+    // cold, warm after a change of g, warm after a new H, the iteration limit, bad data
+    EXPECT_EQ(allocations_in([&] { EXPECT_EQ(qp.solve(QpStart::cold).status, QpStatus::solved); }),
+              0);
+    qp.set_gradient(g2);
+    EXPECT_EQ(allocations_in([&] { EXPECT_EQ(qp.solve().status, QpStatus::solved); }), 0);
+    qp.set_hessian(1.5 * H);
+    EXPECT_EQ(allocations_in([&] { EXPECT_EQ(qp.solve().status, QpStatus::solved); }), 0);
+    qp.settings().max_iterations = 1;
+    EXPECT_EQ(allocations_in([&] { qp.solve(QpStart::cold); }), 0);
+    qp.settings().max_iterations = 0;
+    qp.set_bounds(ub, lb);
+    EXPECT_EQ(allocations_in([&] { EXPECT_EQ(qp.solve().status, QpStatus::invalid_input); }), 0);
+    qp.set_bounds(lb, ub);
+    qp.set_hessian(-H);
+    EXPECT_EQ(allocations_in([&] { EXPECT_EQ(qp.solve().status, QpStatus::not_convex); }), 0);
   }
 }
 

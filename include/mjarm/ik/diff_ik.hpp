@@ -25,8 +25,8 @@
 /// (v_i = v_max_i, resp. −v_max_i) and is not clipped; `DiffIkStep::pulled_back` reports it.
 /// With no velocity limit and no step bound every joint is back inside after one step.
 ///
-/// The QP (n variables, box constraints only) is sized at construction; `step()` allocates
-/// nothing.
+/// The QP (n variables, box constraints only) is solved by qp::BoxQp, warm-started from the
+/// previous step's bound pattern; it is sized at construction and `step()` allocates nothing.
 
 #include <Eigen/Core>
 #include <limits>
@@ -37,7 +37,7 @@
 #include "mjarm/kinematics/chain_kinematics.hpp"
 #include "mjarm/lie/pose.hpp"
 #include "mjarm/lie/types.hpp"
-#include "mjarm/qp/dense_qp.hpp"
+#include "mjarm/qp/box_qp.hpp"
 
 namespace mjarm {
 
@@ -68,7 +68,9 @@ struct DiffIkStep {
   Eigen::VectorXd v;       ///< joint velocity (n) [rad/s or m/s], within the box
   Eigen::VectorXd q_next;  ///< q + v·dt clipped into the limits (n) [rad or m]
   qp::QpStatus qp_status = qp::QpStatus::solved;  ///< status of the QP (solved in practice)
-  int qp_iterations = 0;                          ///< active-set steps of the QP
+  /// Iterations of the box QP solver (qp::BoxQp: reduced solves, each adding a bound, releasing
+  /// one or confirming the answer; 1 when the warm-started bound pattern is the solution).
+  int qp_iterations = 0;
   bool pulled_back = false;  ///< a joint was outside its limits by more than one step can undo
 };
 
@@ -153,7 +155,7 @@ class DiffIk {
   Chain chain_;
   DiffIkOptions options_;
   std::vector<std::unique_ptr<Task>> tasks_;
-  qp::DenseQp qp_;
+  qp::BoxQp qp_;
   DiffIkStep step_;
   // workspace
   Eigen::MatrixXd H_;

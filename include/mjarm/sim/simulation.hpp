@@ -81,7 +81,8 @@ class Simulation {
   std::int64_t physics_steps() const noexcept { return steps_; }  ///< physics steps since reset
 
   // ---- state ----
-  /// mj_resetData (or the keyframe @p keyframe), mj_forward, controllers reset, fault cleared.
+  /// mj_resetData's state (`reset_data`; or the keyframe @p keyframe), mj_forward, controllers
+  /// reset, fault cleared.
   /// @throws Error for an unknown keyframe.
   void reset();
   void reset(std::string_view keyframe);
