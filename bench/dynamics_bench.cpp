@@ -18,7 +18,7 @@
 //   J̇·q̇ of the end effector.
 // - TaskSpaceUpdate/<robot>: TaskSpaceDynamics::update on the full 6-row Jacobian — Cholesky
 //   of M, Λ by the Cholesky fast path (the 6×6 eigendecomposition only for near-singular
-//   states), J̄; M⁻¹ and N are computed on demand and not timed.
+//   states); J̄, M⁻¹ and N are computed on demand and not timed (J̄ since 2026-11-27).
 // - ObserverUpdate/<method>: MomentumObserver::update on the iiwa14 (7 dofs) after its
 //   ChainDynamics::update (not timed: a controller has it already) — p = M·q̇, Cᵀ·q̇ (0: exact
 //   subtree momentum, 1: directional difference of M on a scratch mjData), both PI channels,

@@ -6,72 +6,11 @@
 #include <string>
 
 #include "mjarm/error.hpp"
+#include "task_space_kernels.hpp"
 
 namespace mjarm {
-namespace {
 
-// Dense kernels on column-major storage with leading dimension = rows. The sizes here are tiny
-// (n ≈ 7, m ≤ 6): plain loops beat Eigen's blocked dynamic-size kernels several times over.
-
-// In-place lower Cholesky a = L·Lᵀ of the n×n symmetric matrix a (reads the lower triangle);
-// false when a pivot is not > 0 (or NaN): not positive definite.
-bool cholesky(double* a, int n) noexcept {
-  for (int j = 0; j < n; ++j) {
-    double* col_j = a + j * n;
-    for (int k = 0; k < j; ++k) {
-      // subtract column k's contribution from column j (rows j..n-1)
-      const double* col_k = a + k * n;
-      const double l_jk = col_k[j];
-      for (int i = j; i < n; ++i) col_j[i] -= col_k[i] * l_jk;
-    }
-    if (!(col_j[j] > 0.0)) return false;
-    const double l = std::sqrt(col_j[j]);
-    col_j[j] = l;
-    const double inv = 1.0 / l;
-    for (int i = j + 1; i < n; ++i) col_j[i] *= inv;
-  }
-  return true;
-}
-
-// b ← L⁻¹·b for the n×cols matrix b (L lower, n×n).
-void forward_solve(const double* L, int n, double* b, int cols) noexcept {
-  for (int c = 0; c < cols; ++c) {
-    double* x = b + c * n;
-    for (int k = 0; k < n; ++k) {
-      const double* col_k = L + k * n;
-      x[k] /= col_k[k];
-      const double xk = x[k];
-      for (int i = k + 1; i < n; ++i) x[i] -= col_k[i] * xk;
-    }
-  }
-}
-
-// b ← L⁻ᵀ·b for the n×cols matrix b (L lower, n×n).
-void backward_solve(const double* L, int n, double* b, int cols) noexcept {
-  for (int c = 0; c < cols; ++c) {
-    double* x = b + c * n;
-    for (int i = n - 1; i >= 0; --i) {
-      const double* col_i = L + i * n;
-      double s = x[i];
-      for (int k = i + 1; k < n; ++k) s -= col_i[k] * x[k];
-      x[i] = s / col_i[i];
-    }
-  }
-}
-
-// g ← yᵀ·y (cols×cols, exactly symmetric) for the rows×cols matrix y.
-void gram(const double* y, int rows, int cols, double* g) noexcept {
-  for (int a = 0; a < cols; ++a) {
-    for (int b = a; b < cols; ++b) {
-      double s = 0.0;
-      for (int i = 0; i < rows; ++i) s += y[i + a * rows] * y[i + b * rows];
-      g[a + b * cols] = s;
-      g[b + a * cols] = s;
-    }
-  }
-}
-
-}  // namespace
+namespace tsk = task_space_kernels;
 
 const char* to_string(TaskSpaceStatus status) noexcept {
   switch (status) {
@@ -95,6 +34,11 @@ TaskSpaceDynamics::TaskSpaceDynamics(int dofs, int task_rows, TaskSpaceOptions o
     throw Error("TaskSpaceDynamics: options.min_eigenvalue must be > 0 and finite, got " +
                 std::to_string(options.min_eigenvalue));
   }
+  certificate_trace_ = 0.5 / options.min_eigenvalue;
+  if (!options.generic_kernels && (n_ == 6 || n_ == 7) && (m_ == 3 || m_ == 6)) {
+    kernels_ = n_ == 7 ? (m_ == 6 ? Kernels::n7_m6 : Kernels::n7_m3)
+                       : (m_ == 6 ? Kernels::n6_m6 : Kernels::n6_m3);
+  }
   chol_ = Eigen::MatrixXd::Identity(n_, n_);
   chol_work_ = Eigen::MatrixXd::Identity(n_, n_);
   J_ = Eigen::MatrixXd::Zero(m_, n_);
@@ -106,7 +50,6 @@ TaskSpaceDynamics::TaskSpaceDynamics(int dofs, int task_rows, TaskSpaceOptions o
   small_ = SmallMatrix::Zero(m_, m_);
   scaled_vectors_ = SmallMatrix::Zero(m_, m_);
   scaled_ = SmallVector::Ones(m_);
-  work_ = Eigen::VectorXd::Zero(n_);
   M_inv_ = Eigen::MatrixXd::Identity(n_, n_);
   N_ = Eigen::MatrixXd::Identity(n_, n_);
   eigenvalues_ = Eigen::VectorXd::Ones(m_);
@@ -115,55 +58,60 @@ TaskSpaceDynamics::TaskSpaceDynamics(int dofs, int task_rows, TaskSpaceOptions o
 TaskSpaceStatus TaskSpaceDynamics::update(const Eigen::Ref<const Eigen::MatrixXd>& M,
                                           const Eigen::Ref<const Eigen::MatrixXd>& J) noexcept {
   eigen_assert(M.rows() == n_ && M.cols() == n_ && J.rows() == m_ && J.cols() == n_);
-  chol_work_ = M;
-  if (!cholesky(chol_work_.data(), n_)) {
+  switch (kernels_) {
+    case Kernels::n7_m6:
+      return update_sized<7, 6>(M, J);
+    case Kernels::n7_m3:
+      return update_sized<7, 3>(M, J);
+    case Kernels::n6_m6:
+      return update_sized<6, 6>(M, J);
+    case Kernels::n6_m3:
+      return update_sized<6, 3>(M, J);
+    case Kernels::generic:
+      break;
+  }
+  return update_sized<0, 0>(M, J);
+}
+
+template <int kN, int kM>
+TaskSpaceStatus TaskSpaceDynamics::update_sized(
+    const Eigen::Ref<const Eigen::MatrixXd>& M,
+    const Eigen::Ref<const Eigen::MatrixXd>& J) noexcept {
+  // M = L·Lᵀ, read straight from M's lower triangle
+  if (!tsk::cholesky<kN>(M.data(), static_cast<int>(M.outerStride()), chol_work_.data(), n_)) {
     status_ = TaskSpaceStatus::not_positive_definite;
     return status_;  // the previous outputs (and their caches) stay as they were
   }
   chol_.swap(chol_work_);
-  J_ = J;
-  M_inv_ready_ = N_ready_ = eigenvalues_ready_ = false;
+  Jbar_ready_ = M_inv_ready_ = N_ready_ = eigenvalues_ready_ = false;
 
-  // Λ⁻¹ = J·M⁻¹·Jᵀ = Yᵀ·Y with Y = L⁻¹·Jᵀ (exactly symmetric); M⁻¹·Jᵀ = L⁻ᵀ·Y
-  Y_ = J_.transpose();
-  forward_solve(chol_.data(), n_, Y_.data(), m_);
-  gram(Y_.data(), n_, m_, Lambda_inv_.data());
-  MinvJt_ = Y_;
-  backward_solve(chol_.data(), n_, MinvJt_.data(), m_);
+  // Λ⁻¹ = J·M⁻¹·Jᵀ = Yᵀ·Y with Y = L⁻¹·Jᵀ (exactly symmetric); J is kept for N and Nᵀ·τ₀
+  tsk::solve_transposed<kN, kM>(chol_.data(), J.data(), static_cast<int>(J.outerStride()),
+                                Y_.data(), J_.data(), n_, m_);
+  tsk::gram<kN, kM>(Y_.data(), Lambda_inv_.data(), n_, m_);
 
-  // fast path: Λ⁻¹ − floor·I positive definite (its Cholesky succeeds) certifies that every
-  // eigenvalue of Λ⁻¹ is above the floor, so the eigen path would floor nothing; then
-  // Λ⁻¹ = R·Rᵀ and Λ = R⁻ᵀ·R⁻¹.
-  bool floored = false;
+  // fast path: Λ⁻¹ = R·Rᵀ, Λ = R⁻ᵀ·R⁻¹, kept when every eigenvalue of Λ⁻¹ is certified above
+  // the floor (then the eigen path would floor nothing). The certificate: λ_max(Λ) ≤ trace(Λ),
+  // so trace(Λ) ≤ 1/(2·floor) gives λ_min(Λ⁻¹) ≥ 2·floor up to the rounding of Λ (far less than
+  // the factor 2); otherwise the exact test, a Cholesky factorization of Λ⁻¹ − floor·I. (The
+  // smallest pivot of R is no certificate: every pivot R_jj² is at least λ_min(Λ⁻¹).)
   bool certified = false;
-  if (!options_.always_eigendecompose) {
-    small_ = Lambda_inv_;
-    small_.diagonal().array() -= options_.min_eigenvalue;
-    if (cholesky(small_.data(), m_)) {
-      small_ = Lambda_inv_;
-      certified = cholesky(small_.data(), m_);
-    }
-    if (certified) {
-      scaled_vectors_.setIdentity();
-      forward_solve(small_.data(), m_, scaled_vectors_.data(), m_);
-      gram(scaled_vectors_.data(), m_, m_, Lambda_.data());
-    }
+  if (!options_.always_eigendecompose &&
+      tsk::cholesky<kM>(Lambda_inv_.data(), m_, small_.data(), m_)) {
+    const double trace =
+        tsk::inverse_from_factor<kM>(small_.data(), scaled_vectors_.data(), Lambda_.data(), m_);
+    certified = trace <= certificate_trace_ || above_floor_exactly();  // NaN: the exact test
   }
   eigendecomposed_ = !certified;
-  if (!certified) floored = eigen_lambda();
-
-  // J̄ = M⁻¹·Jᵀ·Λ (n×m)
-  for (int c = 0; c < m_; ++c) {
-    double* out = Jbar_.data() + c * n_;
-    std::fill(out, out + n_, 0.0);
-    for (int k = 0; k < m_; ++k) {
-      const double l = Lambda_(k, c);
-      const double* in = MinvJt_.data() + k * n_;
-      for (int i = 0; i < n_; ++i) out[i] += in[i] * l;
-    }
-  }
+  const bool floored = !certified && eigen_lambda();
   status_ = floored ? TaskSpaceStatus::damped : TaskSpaceStatus::ok;
   return status_;
+}
+
+bool TaskSpaceDynamics::above_floor_exactly() noexcept {
+  small_ = Lambda_inv_;
+  small_.diagonal().array() -= options_.min_eigenvalue;
+  return tsk::cholesky<0>(small_.data(), m_, scaled_vectors_.data(), m_);
 }
 
 bool TaskSpaceDynamics::eigen_lambda() noexcept {
@@ -199,21 +147,36 @@ TaskSpaceStatus TaskSpaceDynamics::update(const ChainDynamics& dynamics) noexcep
 const Eigen::MatrixXd& TaskSpaceDynamics::mass_inverse() const noexcept {
   if (!M_inv_ready_) {
     M_inv_.setIdentity();
-    forward_solve(chol_.data(), n_, M_inv_.data(), n_);
-    backward_solve(chol_.data(), n_, M_inv_.data(), n_);
+    for (int c = 0; c < n_; ++c) {
+      double* x = M_inv_.data() + c * n_;
+      tsk::forward_solve<0>(chol_.data(), x, n_);
+      tsk::backward_solve<0>(chol_.data(), x, n_);
+    }
     M_inv_ready_ = true;
   }
   return M_inv_;
 }
 
+const Eigen::MatrixXd& TaskSpaceDynamics::jbar() const noexcept {
+  if (!Jbar_ready_) {
+    // M⁻¹·Jᵀ = L⁻ᵀ·Y, then J̄ = M⁻¹·Jᵀ·Λ
+    MinvJt_ = Y_;
+    for (int c = 0; c < m_; ++c) tsk::backward_solve<0>(chol_.data(), MinvJt_.data() + c * n_, n_);
+    tsk::multiply<0, 0>(MinvJt_.data(), Lambda_.data(), Jbar_.data(), n_, m_);
+    Jbar_ready_ = true;
+  }
+  return Jbar_;
+}
+
 const Eigen::MatrixXd& TaskSpaceDynamics::nullspace() const noexcept {
   if (!N_ready_) {
+    const Eigen::MatrixXd& Jbar = jbar();
     for (int c = 0; c < n_; ++c) {
       double* out = N_.data() + c * n_;
       for (int i = 0; i < n_; ++i) out[i] = i == c ? 1.0 : 0.0;
       for (int k = 0; k < m_; ++k) {
         const double j = J_(k, c);
-        const double* in = Jbar_.data() + k * n_;
+        const double* in = Jbar.data() + k * n_;
         for (int i = 0; i < n_; ++i) out[i] -= in[i] * j;
       }
     }
@@ -229,17 +192,45 @@ const Eigen::VectorXd& TaskSpaceDynamics::eigenvalues() const noexcept {
 
 void TaskSpaceDynamics::project_torque(const Eigen::Ref<const Eigen::VectorXd>& tau0,
                                        Eigen::Ref<Eigen::VectorXd> tau) const noexcept {
-  // Nᵀ·τ₀ = τ₀ − Jᵀ·(J̄ᵀ·τ₀): 4·n·m flops instead of n²·m for N
-  double s[6];
-  for (int c = 0; c < m_; ++c) {
-    const double* col = Jbar_.data() + c * n_;
+  switch (kernels_) {
+    case Kernels::n7_m6:
+      return project_sized<7, 6>(tau0.data(), tau.data());
+    case Kernels::n7_m3:
+      return project_sized<7, 3>(tau0.data(), tau.data());
+    case Kernels::n6_m6:
+      return project_sized<6, 6>(tau0.data(), tau.data());
+    case Kernels::n6_m3:
+      return project_sized<6, 3>(tau0.data(), tau.data());
+    case Kernels::generic:
+      break;
+  }
+  project_sized<0, 0>(tau0.data(), tau.data());
+}
+
+template <int kN, int kM>
+void TaskSpaceDynamics::project_sized(const double* tau0, double* tau) const noexcept {
+  // Nᵀ·τ₀ = τ₀ − Jᵀ·s with s = J̄ᵀ·τ₀ = Λ·Yᵀ·(L⁻¹·τ₀); tau holds L⁻¹·τ₀ meanwhile
+  const int n = tsk::size_or<kN>(n_);
+  const int m = tsk::size_or<kM>(m_);
+  for (int i = 0; i < n; ++i) tau[i] = tau0[i];
+  tsk::forward_solve<kN>(chol_.data(), tau, n);
+  double w[6];
+  for (int c = 0; c < m; ++c) {
+    const double* y = Y_.data() + c * n;
     double acc = 0.0;
-    for (int i = 0; i < n_; ++i) acc += col[i] * tau0[i];
+    for (int i = 0; i < n; ++i) acc += y[i] * tau[i];
+    w[c] = acc;
+  }
+  double s[6];
+  for (int c = 0; c < m; ++c) {
+    double acc = 0.0;
+    for (int k = 0; k < m; ++k) acc += Lambda_.data()[c + k * m] * w[k];
     s[c] = acc;
   }
-  for (int i = 0; i < n_; ++i) {
+  const double* J = J_.data();
+  for (int i = 0; i < n; ++i) {
     double acc = tau0[i];
-    for (int c = 0; c < m_; ++c) acc -= J_(c, i) * s[c];
+    for (int c = 0; c < m; ++c) acc -= J[c + i * m] * s[c];
     tau[i] = acc;
   }
 }

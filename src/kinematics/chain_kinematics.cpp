@@ -59,6 +59,14 @@ ChainKinematics::ChainKinematics(const Chain& chain) : chain_(chain) {
       joint.pos = Eigen::Map<const Eigen::Vector3d>(m.jnt_pos + 3 * j);
       joint.qpos_address = m.jnt_qposadr[j];
       joint.qpos0 = m.qpos0[joint.qpos_address];
+      joint.at_origin = joint.pos.isZero(0.0);
+      for (int k = 0; k < 3; ++k) {
+        const Eigen::Vector3d unit = Eigen::Vector3d::Unit(k);
+        if (joint.axis == unit || joint.axis == -unit) {
+          joint.unit_axis = k;
+          joint.unit_sign = joint.axis[k];
+        }
+      }
       for (int i = 0; i < n; ++i) {
         if (chain_.joint_id(i) == j) {
           joint.chain_index = i;
@@ -105,15 +113,32 @@ const Pose& ChainKinematics::update(const Eigen::Ref<const Eigen::VectorXd>& q) 
       const PathJoint& joint = joints_[k];
       const double value =
           joint.chain_index >= 0 ? q[joint.chain_index] : fixed_qpos_[joint.qpos_address];
-      const Eigen::Vector3d anchor = R * joint.pos + p;
-      const Eigen::Vector3d axis = R * joint.axis;
+      // a joint at the body origin about a coordinate axis (the usual case) skips the products
+      // with zeros and ones: the same values
+      const Eigen::Vector3d anchor = joint.at_origin ? p : Eigen::Vector3d(R * joint.pos + p);
+      const Eigen::Vector3d axis = joint.unit_axis >= 0
+                                       ? Eigen::Vector3d(joint.unit_sign * R.col(joint.unit_axis))
+                                       : Eigen::Vector3d(R * joint.axis);
       if (joint.chain_index >= 0) {
         axes_[joint.chain_index] = axis;
         anchors_[joint.chain_index] = anchor;
       }
       if (joint.type == mjJNT_HINGE) {
-        R = R * axis_angle(joint.axis, value - joint.qpos0);
-        p = anchor - R * joint.pos;
+        if (joint.unit_axis >= 0) {
+          // R·Rot(±e_k, θ) turns columns i, j = k+1, k+2 (cyclic) by ±θ and keeps column k
+          const double angle = joint.unit_sign * (value - joint.qpos0);
+          const double c = std::cos(angle);
+          const double s = std::sin(angle);
+          const int i = (joint.unit_axis + 1) % 3;
+          const int j = (joint.unit_axis + 2) % 3;
+          const Eigen::Vector3d col_i = R.col(i);
+          const Eigen::Vector3d col_j = R.col(j);
+          R.col(i) = c * col_i + s * col_j;
+          R.col(j) = c * col_j - s * col_i;
+        } else {
+          R = R * axis_angle(joint.axis, value - joint.qpos0);
+        }
+        if (!joint.at_origin) p = anchor - R * joint.pos;
       } else if (joint.type == mjJNT_SLIDE) {
         p += axis * (value - joint.qpos0);
       } else if (joint.type == mjJNT_BALL) {

@@ -195,6 +195,107 @@ TEST(TaskSpaceDynamics, EigenPathNearTheElbowSingularity) {
   EXPECT_EQ(fast.status(), TaskSpaceStatus::damped);
 }
 
+// Nᵀ·τ₀ of project_torque against the formed N (any status).
+void expect_projection_matches_nullspace(const TaskSpaceDynamics& ts) {
+  const Eigen::VectorXd tau0 = Eigen::VectorXd::LinSpaced(ts.dofs(), -2.0, 3.0);
+  Eigen::VectorXd tau(ts.dofs());
+  ts.project_torque(tau0, tau);
+  const Eigen::VectorXd expected = ts.nullspace().transpose() * tau0;
+  EXPECT_LE((tau - expected).norm(), 1e-9 * (1.0 + expected.norm()));
+}
+
+TEST(TaskSpaceDynamics, CompileTimeSizeKernelsMatchTheGeneralOnes) {
+  // panda (n = 7) and ur5e (n = 6), 6 and 3 rows: the compile-time-size kernels against the
+  // run-time-size ones, at random states, at a singular one (q = 0: the floor is active) and
+  // with a floor raised above the smallest eigenvalue
+  std::mt19937 rng(17);
+  TaskSpaceOptions general;
+  general.generic_kernels = true;
+  for (const char* robot : {"panda", "ur5e"}) {
+    SCOPED_TRACE(robot);
+    const Chain chain(Robot::bundled(robot), "attachment_site");
+    DataPtr d = chain.robot().make_data();
+    ChainDynamics dyn(chain);
+    for (const int rows : {6, 3}) {
+      SCOPED_TRACE(rows);
+      int damped = 0;
+      for (int trial = 0; trial < 12; ++trial) {
+        if (trial == 0) {
+          chain.scatter(Eigen::VectorXd::Zero(chain.size()), d->qpos);
+          mj_forward(&chain.robot().model(), d.get());
+        } else {
+          random_state(chain, d.get(), rng);
+        }
+        dyn.update(*d);
+        TaskSpaceOptions fast_options;
+        if (trial % 4 == 3) {
+          // a floor between the eigenvalues: flooring on a regular state
+          TaskSpaceDynamics probe(chain.size(), rows);
+          probe.update(dyn);
+          const Eigen::VectorXd& lambda = probe.eigenvalues();
+          fast_options.min_eigenvalue = 0.5 * (lambda[0] + lambda[1]);
+        }
+        TaskSpaceOptions general_options = general;
+        general_options.min_eigenvalue = fast_options.min_eigenvalue;
+        TaskSpaceDynamics fast(chain.size(), rows, fast_options);
+        TaskSpaceDynamics slow(chain.size(), rows, general_options);
+        fast.update(dyn);
+        slow.update(dyn);
+        EXPECT_EQ(fast.eigendecomposed(), slow.eigendecomposed());
+        expect_same_outputs(fast, slow);
+        expect_projection_matches_nullspace(fast);
+        Eigen::VectorXd tau_fast(chain.size()), tau_slow(chain.size());
+        const Eigen::VectorXd tau0 = Eigen::VectorXd::Ones(chain.size());
+        fast.project_torque(tau0, tau_fast);
+        slow.project_torque(tau0, tau_slow);
+        EXPECT_LE((tau_fast - tau_slow).norm(), 1e-9 * (1.0 + tau_slow.norm()));
+        damped += fast.status() == TaskSpaceStatus::damped ? 1 : 0;
+      }
+      EXPECT_GE(damped, 3);  // q = 0 and the raised floors
+    }
+  }
+}
+
+TEST(TaskSpaceDynamics, FloorTestIsExactWhereTheTraceCertificateFails) {
+  // a floor just under the smallest eigenvalue: trace(Λ) > 1/(2·floor), so the cheap certificate
+  // cannot hold and the exact test (Cholesky of Λ⁻¹ − floor·I) decides: fast path, nothing
+  // floored. Just over it: the eigen path floors. Both agree with the forced eigen path.
+  const Chain chain(Robot::bundled("panda"), "attachment_site");
+  DataPtr d = chain.robot().make_data();
+  ChainDynamics dyn(chain);
+  std::mt19937 rng(23);
+  int checked = 0;
+  for (int trial = 0; trial < 6; ++trial) {
+    random_state(chain, d.get(), rng);
+    dyn.update(*d);
+    for (const int rows : {6, 3}) {
+      TaskSpaceDynamics probe(chain.size(), rows);
+      if (probe.update(dyn) != TaskSpaceStatus::ok) continue;
+      const double lowest = probe.eigenvalues()[0];
+      ASSERT_GT(probe.lambda().trace(), 0.5 / (0.99 * lowest));
+      for (const double factor : {0.99, 1.01}) {
+        for (const bool generic : {false, true}) {
+          TaskSpaceOptions options;
+          options.min_eigenvalue = factor * lowest;
+          options.generic_kernels = generic;
+          TaskSpaceOptions forced = options;
+          forced.always_eigendecompose = true;
+          TaskSpaceDynamics fast(chain.size(), rows, options);
+          TaskSpaceDynamics robust(chain.size(), rows, forced);
+          fast.update(dyn);
+          robust.update(dyn);
+          EXPECT_EQ(fast.eigendecomposed(), factor > 1.0);
+          EXPECT_EQ(fast.status(), factor > 1.0 ? TaskSpaceStatus::damped : TaskSpaceStatus::ok);
+          expect_same_outputs(fast, robust);
+          expect_projection_matches_nullspace(fast);
+        }
+      }
+      ++checked;
+    }
+  }
+  EXPECT_GT(checked, 6);
+}
+
 TEST(TaskSpaceDynamics, RankDeficientTaskIsDampedNotInfinite) {
   // a 6-row task on a 2-dof arm: J·M⁻¹·Jᵀ has rank 2
   const Chain chain(Robot::bundled("planar2"), "tip");

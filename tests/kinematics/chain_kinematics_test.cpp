@@ -78,6 +78,55 @@ TEST_F(ChainKinematicsTest, MatchesMujocoOnTrickyArm) {
   }
 }
 
+TEST(ChainKinematicsAxes, CoordinateAxisJointsMatchMujoco) {
+  // the two-column rotation of a joint about ±e_k (at the body origin or not) and the general
+  // Rodrigues product, against MuJoCo: negative axes, every k, and the bundled arms
+  const Robot signed_axes = Robot::from_string(R"(
+<mujoco>
+  <default><geom size="0.02" mass="0.1"/></default>
+  <worldbody>
+    <body name="a" pos="0.1 0 0.2" euler="0.2 0.1 -0.3">
+      <geom/>
+      <joint name="n1" axis="0 0 -1" range="-3 3"/>
+      <body name="b" pos="0 0.1 0.3">
+          <geom/>
+        <joint name="n2" axis="0 -1 0" pos="0.02 0 0.01" range="-3 3"/>
+        <body name="c" pos="0.2 0 0" euler="0.4 0 0.2">
+          <geom/>
+          <joint name="n3" axis="-1 0 0" range="-3 3"/>
+          <body name="d" pos="0 0 0.1">
+          <geom/>
+            <joint name="n4" axis="1 0 0" pos="0 0.03 0" range="-3 3"/>
+            <joint name="n5" axis="0 0.6 0.8" range="-3 3"/>
+            <site name="tip" pos="0.01 0.02 0.1"/>
+          </body>
+        </body>
+      </body>
+    </body>
+  </worldbody>
+</mujoco>)");
+  std::vector<Chain> chains{Chain(signed_axes, "tip")};
+  for (const char* arm : {"panda", "ur5e", "iiwa14", "arm6"})
+    chains.emplace_back(Robot::bundled(arm),
+                        arm == std::string("arm6") ? "grip" : "attachment_site");
+  std::mt19937 rng(29);
+  for (const Chain& chain : chains) {
+    SCOPED_TRACE(chain.robot().name());
+    ChainKinematics kin(chain);
+    DataPtr d = chain.robot().make_data();
+    Matrix6Xd J(6, chain.size());
+    for (int trial = 0; trial < 30; ++trial) {
+      const Eigen::VectorXd q = random_q(chain, rng);
+      const MujocoReference ref = mujoco_reference(chain, d.get(), q);
+      kin.update(q);
+      kin.jacobian(J);
+      EXPECT_LT((kin.pose().p - ref.X_WE.p).norm(), 1e-12);
+      EXPECT_LT((kin.pose().R - ref.X_WE.R).norm(), 1e-12);
+      EXPECT_LT((J - ref.J).norm(), 1e-12);
+    }
+  }
+}
+
 TEST_F(ChainKinematicsTest, BodyFrameAndExplicitJointList) {
   // j2 and j4 only; the others stay at the fixed configuration we set
   const Chain chain(robot_, {"j4", "j2", "off_path"}, "l3");

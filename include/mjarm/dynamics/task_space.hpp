@@ -22,6 +22,9 @@ struct TaskSpaceOptions {
   /// Always take the eigendecomposition path, even when the Cholesky fast path certifies that
   /// no eigenvalue is below the floor (the results agree to rounding; for tests and comparisons).
   bool always_eigendecompose = false;
+  /// Use the run-time-size kernels even for the sizes that have compile-time ones (n = 6 or 7
+  /// with m = 3 or 6); the results agree to rounding (for tests and comparisons).
+  bool generic_kernels = false;
 };
 
 /// Outcome of one `TaskSpaceDynamics::update`.
@@ -42,17 +45,20 @@ const char* to_string(TaskSpaceStatus status) noexcept;
 ///     N = I − J̄·J               n×n   null-space projector of joint velocities; Nᵀ for torques
 ///
 /// Λ⁻¹ is eigendecomposed (V·diag(λ)·Vᵀ) and Λ = V·diag(1/max(λ, floor))·Vᵀ: exact away from
-/// singularities. Fast path: when Λ⁻¹ − floor·I has a Cholesky factorization (it is positive
-/// definite, so every eigenvalue of Λ⁻¹ is above the floor and nothing would be floored), Λ is
-/// the Cholesky inverse of Λ⁻¹ and the eigendecomposition is skipped; otherwise the eigen path
-/// runs. Always: M·N = Nᵀ·M and N·M⁻¹ = M⁻¹·Nᵀ (N is self-adjoint in the M inner
-/// product).
+/// singularities. Fast path: Λ⁻¹ = R·Rᵀ (Cholesky) and Λ = R⁻ᵀ·R⁻¹; it is kept when every
+/// eigenvalue of Λ⁻¹ is certified above the floor, so that the eigen path would floor nothing:
+/// cheaply by trace(Λ) ≤ 1/(2·floor) (trace(Λ) ≥ λ_max(Λ) = 1/λ_min(Λ⁻¹); the factor 2 is
+/// far more than the rounding of Λ), else exactly by a Cholesky factorization of Λ⁻¹ − floor·I
+/// (it exists iff Λ⁻¹ − floor·I ≻ 0). Otherwise the eigen path runs. Always: M·N = Nᵀ·M and
+/// N·M⁻¹ = M⁻¹·Nᵀ (N is self-adjoint in the M inner product).
 /// When no eigenvalue is floored (status ok) also: Λ·J·M⁻¹·Jᵀ = I, J·J̄ = I, N·J̄ = 0, J·N = 0,
 /// N² = N. When floored (status damped) they hold only along the unfloored eigen-directions.
 ///
 /// All buffers are allocated in the constructor; `update` allocates nothing and never throws.
-/// M⁻¹, N and the eigenvalues are computed on first access after an `update` (cached, no
-/// allocation): a control tick that needs only Λ, J̄ and `project_torque` does not pay for them.
+/// M⁻¹, J̄, N and the eigenvalues are computed on first access after an `update` (cached, no
+/// allocation): a control tick that needs only Λ and `project_torque` does not pay for them.
+/// n = 6 or 7 with m = 3 or 6 run compile-time-size kernels (`TaskSpaceOptions::generic_kernels`
+/// turns them off).
 /// Those accessors are const but fill a cache: do not call them concurrently on one object.
 class TaskSpaceDynamics {
  public:
@@ -87,14 +93,15 @@ class TaskSpaceDynamics {
   const Eigen::MatrixXd& lambda() const noexcept { return Lambda_; }
   /// Λ⁻¹ = J·M⁻¹·Jᵀ as computed (m×m), before flooring.
   const Eigen::MatrixXd& lambda_inverse() const noexcept { return Lambda_inv_; }
-  /// J̄ = M⁻¹·Jᵀ·Λ (n×m).
-  const Eigen::MatrixXd& jbar() const noexcept { return Jbar_; }
+  /// J̄ = M⁻¹·Jᵀ·Λ (n×m), computed on first access after an update.
+  const Eigen::MatrixXd& jbar() const noexcept;
   /// N = I − J̄·J (n×n), computed on first access after an update; a joint torque τ₀ acts in the
   /// null space as Nᵀ·τ₀.
   const Eigen::MatrixXd& nullspace() const noexcept;
 
   /// Writes Nᵀ·@p tau0 = τ₀ − Jᵀ·(J̄ᵀ·τ₀) into @p tau (both n, distinct): the part of τ₀ that
-  /// produces no task acceleration (without forming N).
+  /// produces no task acceleration (without forming N or J̄: J̄ᵀ·τ₀ = Λ·(L⁻¹·Jᵀ)ᵀ·(L⁻¹·τ₀) with
+  /// M = L·Lᵀ). Reads only, no cache.
   void project_torque(const Eigen::Ref<const Eigen::VectorXd>& tau0,
                       Eigen::Ref<Eigen::VectorXd> tau) const noexcept;
 
@@ -112,6 +119,17 @@ class TaskSpaceDynamics {
   using SmallMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, 6, 6>;
   using SmallVector = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 6, 1>;
 
+  /// Which kernels `update` and `project_torque` run (compile-time sizes or the general ones).
+  enum class Kernels { generic, n7_m6, n7_m3, n6_m6, n6_m3 };
+
+  template <int kN, int kM>
+  TaskSpaceStatus update_sized(const Eigen::Ref<const Eigen::MatrixXd>& M,
+                               const Eigen::Ref<const Eigen::MatrixXd>& J) noexcept;
+  template <int kN, int kM>
+  void project_sized(const double* tau0, double* tau) const noexcept;
+  /// The exact floor test: Λ⁻¹ − floor·I has a Cholesky factorization (uses small_ and
+  /// scaled_vectors_ as scratch).
+  bool above_floor_exactly() noexcept;
   /// Λ from Λ⁻¹ (in Lambda_inv_) by the eigendecomposition with the floor; true when floored.
   bool eigen_lambda() noexcept;
   /// Fills eigenvalues_ from Lambda_inv_.
@@ -120,25 +138,28 @@ class TaskSpaceDynamics {
   int n_ = 0;
   int m_ = 0;
   TaskSpaceOptions options_;
+  Kernels kernels_ = Kernels::generic;
+  double certificate_trace_ = 0.0;  // 1/(2·floor): trace(Λ) at or below it certifies Λ
   TaskSpaceStatus status_ = TaskSpaceStatus::ok;
   bool eigendecomposed_ = true;
+  // triangular factors hold the reciprocals of their diagonals (see task_space_kernels.hpp)
   Eigen::MatrixXd chol_;       // n×n, lower Cholesky factor L of M (M = L·Lᵀ)
   Eigen::MatrixXd chol_work_;  // n×n, factorization in progress (swapped in on success)
   Eigen::MatrixXd J_;          // m×n, the task Jacobian of the last update
   Eigen::MatrixXd Y_;          // n×m, L⁻¹·Jᵀ
-  Eigen::MatrixXd MinvJt_;     // n×m, M⁻¹·Jᵀ
   Eigen::MatrixXd Lambda_inv_;
   Eigen::MatrixXd Lambda_;
-  Eigen::MatrixXd Jbar_;
-  SmallMatrix small_;           // Λ⁻¹ handed to the eigen solver / its Cholesky factor
+  SmallMatrix small_;           // Λ⁻¹ handed to the eigen solver; on the fast path its factor R
   SmallMatrix scaled_vectors_;  // V·diag(1/λ); on the fast path R⁻¹
   SmallVector scaled_;          // 1 / floored eigenvalues
-  Eigen::VectorXd work_;        // n
   // caches filled on first access after an update
   mutable Eigen::SelfAdjointEigenSolver<SmallMatrix> eigen_;
+  mutable Eigen::MatrixXd MinvJt_;  // n×m, M⁻¹·Jᵀ
+  mutable Eigen::MatrixXd Jbar_;
   mutable Eigen::MatrixXd M_inv_;
   mutable Eigen::MatrixXd N_;
   mutable Eigen::VectorXd eigenvalues_;
+  mutable bool Jbar_ready_ = true;
   mutable bool M_inv_ready_ = true;
   mutable bool N_ready_ = true;
   mutable bool eigenvalues_ready_ = true;

@@ -70,6 +70,9 @@ class ChainKinematics {
     double qpos0 = 0.0;      // reference value (hinge/slide)
     int chain_index = -1;    // index in the chain, or -1 when held fixed
     int qpos_address = 0;
+    int unit_axis = -1;      // k when axis is exactly ±e_k (then a two-column rotation), else -1
+    double unit_sign = 1.0;  // the sign of that axis
+    bool at_origin = false;  // pos is exactly zero (the anchor is the body origin)
   };
   /// One body on the path, with its joints.
   struct PathBody {
