@@ -498,16 +498,19 @@ TEST(ViewerWindow, BimanualRecordingIsKeptOnAnErrorAndOnCtrlC) {
   EXPECT_GT(log.ticks, log.events[1].tick);  // and the ticks of the 2 frames after it
   EXPECT_TRUE(replay_session(robot, log).matches);
 
-  // an interactive session stopped by SIGINT (Ctrl-C) once its session file is being written
+  // an interactive session stopped by SIGINT (Ctrl-C) once its session file is being written:
+  // its temporary file (FileWriter's ".NAME.partial-…") is opened inside the viewer, after the
+  // Ctrl-C handler is installed; the command line's check of the path creates and removes the
+  // file itself earlier, before the handler, so that name alone is no sign of readiness
   const fs::path sub = dir / "interactive";
   fs::create_directories(sub);
   const fs::path stopped = sub / "ctrl_c.session";
   std::string display = prefix->substr(0, prefix->find(' '));
   const std::string command =
       display + " timeout -k 10 120 '" MJARM_CLI "' view dual_arm --size 320x240 --json " +
-      "--record-session '" + stopped.string() + "' & pid=$!; i=0; " + "while [ -z \"$(ls -A '" +
-      sub.string() + "')\" ] && [ $i -lt 600 ]; do sleep 0.1; " +
-      "i=$((i+1)); done; sleep 1; kill -INT $pid; wait $pid";
+      "--record-session '" + stopped.string() + "' & pid=$!; i=0; " + "while ! ls -A '" +
+      sub.string() + "' | grep -q '^\\.ctrl_c\\.session\\.partial-' && [ $i -lt 600 ]; do " +
+      "sleep 0.1; i=$((i+1)); done; sleep 1; kill -INT $pid; wait $pid";
   const Outcome c = run_command(command, dir);
   EXPECT_EQ(c.status, 0) << c.err;
   ASSERT_TRUE(nlohmann::json::accept(c.out)) << c.out << c.err;
