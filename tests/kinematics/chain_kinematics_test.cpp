@@ -55,19 +55,12 @@ MujocoReference mujoco_reference(const Chain& chain, mjData* d, const Eigen::Vec
   return ref;
 }
 
-class ChainKinematicsTest : public ::testing::Test {
- protected:
-  Robot robot_ = Robot::from_string(test::kTrickyArm);
-};
-
-TEST_F(ChainKinematicsTest, MatchesMujocoOnTrickyArm) {
-  const Chain chain(robot_, "tool");
-  ASSERT_EQ(chain.size(), 5);  // the off-path hinge and the free box are not on the path
+/// FK and the world-aligned Jacobian against MuJoCo's at @p trials random q, to 1e-12.
+void expect_matches_mujoco(const Chain& chain, std::mt19937& rng, int trials) {
   ChainKinematics kin(chain);
-  DataPtr d = robot_.make_data();
-  std::mt19937 rng(7);
+  DataPtr d = chain.robot().make_data();
   Matrix6Xd J(6, chain.size());
-  for (int trial = 0; trial < 200; ++trial) {
+  for (int trial = 0; trial < trials; ++trial) {
     const Eigen::VectorXd q = random_q(chain, rng);
     const MujocoReference ref = mujoco_reference(chain, d.get(), q);
     kin.update(q);
@@ -76,6 +69,18 @@ TEST_F(ChainKinematicsTest, MatchesMujocoOnTrickyArm) {
     EXPECT_LT((kin.pose().R - ref.X_WE.R).norm(), 1e-12);
     EXPECT_LT((J - ref.J).norm(), 1e-12);
   }
+}
+
+class ChainKinematicsTest : public ::testing::Test {
+ protected:
+  Robot robot_ = Robot::from_string(test::kTrickyArm);
+};
+
+TEST_F(ChainKinematicsTest, MatchesMujocoOnTrickyArm) {
+  const Chain chain(robot_, "tool");
+  ASSERT_EQ(chain.size(), 5);  // the off-path hinge and the free box are not on the path
+  std::mt19937 rng(7);
+  expect_matches_mujoco(chain, rng, 200);
 }
 
 TEST(ChainKinematicsAxes, CoordinateAxisJointsMatchMujoco) {
@@ -112,18 +117,7 @@ TEST(ChainKinematicsAxes, CoordinateAxisJointsMatchMujoco) {
   std::mt19937 rng(29);
   for (const Chain& chain : chains) {
     SCOPED_TRACE(chain.robot().name());
-    ChainKinematics kin(chain);
-    DataPtr d = chain.robot().make_data();
-    Matrix6Xd J(6, chain.size());
-    for (int trial = 0; trial < 30; ++trial) {
-      const Eigen::VectorXd q = random_q(chain, rng);
-      const MujocoReference ref = mujoco_reference(chain, d.get(), q);
-      kin.update(q);
-      kin.jacobian(J);
-      EXPECT_LT((kin.pose().p - ref.X_WE.p).norm(), 1e-12);
-      EXPECT_LT((kin.pose().R - ref.X_WE.R).norm(), 1e-12);
-      EXPECT_LT((J - ref.J).norm(), 1e-12);
-    }
+    expect_matches_mujoco(chain, rng, 30);
   }
 }
 
