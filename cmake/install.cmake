@@ -14,5 +14,6 @@ configure_package_config_file(cmake/mjarmConfig.cmake.in ${CMAKE_CURRENT_BINARY_
   INSTALL_DESTINATION ${CMAKE_INSTALL_LIBDIR}/cmake/mjarm)
 write_basic_package_version_file(${CMAKE_CURRENT_BINARY_DIR}/mjarmConfigVersion.cmake
   COMPATIBILITY SameMinorVersion)
-install(FILES cmake/mjarm_find_mujoco.cmake ${CMAKE_CURRENT_BINARY_DIR}/mjarmConfig.cmake
+install(FILES cmake/mjarm_find_mujoco.cmake cmake/mujoco_version_probe.cpp
+  ${CMAKE_CURRENT_BINARY_DIR}/mjarmConfig.cmake
   ${CMAKE_CURRENT_BINARY_DIR}/mjarmConfigVersion.cmake DESTINATION ${CMAKE_INSTALL_LIBDIR}/cmake/mjarm)

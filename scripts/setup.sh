@@ -1,10 +1,12 @@
 #!/usr/bin/env bash
-# Installs the Debian 12 packages mjarm needs, skipping those already present. Idempotent.
+# Installs the Debian 12 packages mjarm needs, skipping those already present, then makes the
+# project's virtual environment with the pinned MuJoCo and Python packages (setup_venv.sh).
+# Idempotent.
 set -euo pipefail
 
 packages=(
   build-essential cmake pkg-config
-  libmujoco-dev libeigen3-dev libtinyxml2-dev libcli11-dev nlohmann-json3-dev
+  libeigen3-dev libtinyxml2-dev libcli11-dev nlohmann-json3-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   # scene files (YAML, and JSON through the same parser)
   libyaml-cpp-dev
@@ -15,8 +17,9 @@ packages=(
   libglfw3-dev xvfb xauth
   # plots of a recording (`mjarm plot`, the demo)
   gnuplot-nox
-  # Python bindings (python/, `import mjarm`) for Debian's /usr/bin/python3, and their tests
-  pybind11-dev python3-dev python3-numpy python3-pytest
+  # the project's virtual environment (MuJoCo, NumPy, pybind11, pytest from PyPI, pinned) on
+  # Debian's /usr/bin/python3, whose headers the Python extension compiles against
+  python3-venv python3-dev
 )
 
 missing=()
@@ -25,16 +28,16 @@ for p in "${packages[@]}"; do
     missing+=("$p")
   fi
 done
-if [ ${#missing[@]} -eq 0 ]; then
-  exit 0
+if [ ${#missing[@]} -gt 0 ]; then
+  echo "mjarm setup: installing ${missing[*]}"
+  sudo=""
+  if [ "$(id -u)" -ne 0 ]; then
+    command -v sudo >/dev/null || { echo "mjarm setup: run as root or install sudo" >&2; exit 1; }
+    sudo="sudo"
+  fi
+  export DEBIAN_FRONTEND=noninteractive
+  $sudo apt-get update -qq
+  $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}"
 fi
 
-echo "mjarm setup: installing ${missing[*]}"
-sudo=""
-if [ "$(id -u)" -ne 0 ]; then
-  command -v sudo >/dev/null || { echo "mjarm setup: run as root or install sudo" >&2; exit 1; }
-  sudo="sudo"
-fi
-export DEBIAN_FRONTEND=noninteractive
-$sudo apt-get update -qq
-$sudo apt-get install -y -qq --no-install-recommends "${missing[@]}"
+bash scripts/setup_venv.sh

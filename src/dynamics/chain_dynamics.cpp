@@ -33,15 +33,15 @@ ChainDynamics::ChainDynamics(const Chain& chain) : chain_(chain) {
   frame_body_ = chain_.frame().kind == FrameKind::site ? m.site_bodyid[chain_.frame().id] : chain_.frame().id;
   root_body_ = m.body_rootid[frame_body_];
 
-  // the chain block of the sparse qM: walk each chain dof's row towards the root; an entry whose
-  // column is also a chain dof lands in the block (qM stores only ancestor pairs)
+  // the chain block of MuJoCo's sparse M (the lower triangle by rows, compressed: a dof's row
+  // holds its ancestors and itself); an entry whose column is also a chain dof lands in the block
   std::vector<int> chain_index(static_cast<std::size_t>(m.nv), -1);
   for (int i = 0; i < n; ++i) chain_index[static_cast<std::size_t>(chain_.dof_address(i))] = i;
   for (int r = 0; r < n; ++r) {
-    int address = m.dof_Madr[chain_.dof_address(r)];
-    for (int dof = chain_.dof_address(r); dof >= 0; dof = m.dof_parentid[dof], ++address) {
-      const int c = chain_index[static_cast<std::size_t>(dof)];
-      if (c >= 0) mass_entries_.push_back({r, c, address});
+    const int row = chain_.dof_address(r);
+    for (int k = m.M_rowadr[row]; k < m.M_rowadr[row] + m.M_rownnz[row]; ++k) {
+      const int c = chain_index[static_cast<std::size_t>(m.M_colind[k])];
+      if (c >= 0) mass_entries_.push_back({r, c, k});
     }
   }
 
@@ -79,8 +79,8 @@ void ChainDynamics::update(const mjData& d) noexcept {
     h_[i] = d.qfrc_bias[chain_.dof_address(i)];
   }
   for (const MassEntry& e : mass_entries_) {
-    M_(e.row, e.col) = d.qM[e.address];
-    M_(e.col, e.row) = d.qM[e.address];
+    M_(e.row, e.col) = d.M[e.address];
+    M_(e.col, e.row) = d.M[e.address];
   }
 
   // frame pose
@@ -134,7 +134,7 @@ void ChainDynamics::inverse_dynamics(const mjData& d, const Eigen::Ref<const Eig
   const int n = chain_.size();
   qacc_full_.setZero();
   for (int i = 0; i < n; ++i) qacc_full_[chain_.dof_address(i)] = qdd[i];
-  // sparse M·q̈ on the whole tree (reads qM only), then the chain's rows plus qfrc_bias
+  // sparse M·q̈ on the whole tree (reads M only), then the chain's rows plus qfrc_bias
   mj_mulM(&m, &d, force_full_.data(), qacc_full_.data());
   for (int i = 0; i < n; ++i) {
     const int dof = chain_.dof_address(i);

@@ -43,7 +43,9 @@ JointPdGains inertia_scaled_gains(const Chain& chain, double omega) {
   gains.kp.resize(chain.size());
   gains.kd.resize(chain.size());
   for (int i = 0; i < chain.size(); ++i) {
-    const double inertia = d->qM[m.dof_Madr[chain.dof_address(i)]];
+    // the diagonal closes the dof's row of MuJoCo's sparse M (its columns ascend)
+    const int row = chain.dof_address(i);
+    const double inertia = d->M[m.M_rowadr[row] + m.M_rownnz[row] - 1];
     gains.kp[i] = omega * omega * inertia;
     gains.kd[i] = 2.0 * omega * inertia;
   }

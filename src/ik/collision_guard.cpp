@@ -31,7 +31,6 @@ CollisionGuard::CollisionGuard(const Chain& chain, const CollisionSpec& spec)
   data_ = robot.make_data();
   const mjModel& m = robot.model();
   fixed_qpos_ = Eigen::Map<const Eigen::VectorXd>(m.qpos0, m.nq);
-  contacts_.resize(mjMAXCONPAIR);
 }
 
 void CollisionGuard::set_fixed_qpos(const Eigen::Ref<const Eigen::VectorXd>& qpos) {
@@ -57,14 +56,9 @@ double CollisionGuard::pair_distance(int g1, int g2) noexcept {
     const Eigen::Map<const Eigen::Vector3d> c2(d.geom_xpos + 3 * g2);
     if ((c1 - c2).norm() > r1 + r2 + spec_.margin) return std::numeric_limits<double>::infinity();
   }
-  // MuJoCo's table is filled for type1 <= type2 only
-  if (m.geom_type[g1] > m.geom_type[g2]) std::swap(g1, g2);
-  const mjfCollision collide = mjCOLLISIONFUNC[m.geom_type[g1]][m.geom_type[g2]];
-  if (collide == nullptr) return std::numeric_limits<double>::infinity();
-  const int count = collide(&m, &d, contacts_.data(), g1, g2, spec_.margin);
-  double closest = std::numeric_limits<double>::infinity();
-  for (int i = 0; i < count; ++i) closest = std::min(closest, contacts_[i].dist);
-  return closest;
+  // MuJoCo's narrow phase, capped at the margin (the cap means "no contact within it")
+  const double dist = mj_geomDistance(&m, data_.get(), g1, g2, spec_.margin, nullptr);
+  return dist < spec_.margin ? dist : std::numeric_limits<double>::infinity();
 }
 
 bool CollisionGuard::in_contact(const Eigen::Ref<const Eigen::VectorXd>& q) noexcept {

@@ -90,11 +90,10 @@ class FiniteCheck {
 
   void check_options() {
     const mjOption& opt = m_.opt;
-#define X(type, name) check_option(#name, &opt.name, 1);
-    MJOPTION_FLOATS
-#undef X
-#define X(name, n) check_option(#name, opt.name, n);
-    MJOPTION_VECTORS
+#define X(type, name, n) check_option(#name, &opt.name, n);
+#define XVEC(type, name, n) check_option(#name, opt.name, n);
+    MJOPTION_FIELDS
+#undef XVEC
 #undef X
   }
 
@@ -112,6 +111,7 @@ class FiniteCheck {
     }
   }
 
+  void check_option(std::string_view, const int*, int) {}  // flags and enums: always finite
   void check_option(std::string_view name, const mjtNum* values, int n) {
     for (int i = 0; i < n; ++i) {
       if (std::isfinite(values[i])) continue;

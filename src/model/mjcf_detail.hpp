@@ -1,6 +1,6 @@
 #pragma once
-// Internal pieces of the MJCF 3.x -> 2.2.2 translator (see mjcf_translate.cpp for the pipeline).
-// Not installed: only the translator's .cpp files include this header.
+// Internal pieces of the MJCF staging (mjcf_staging.cpp) and of the scene's MJCF parts: an
+// element tree with source lines, its reader and writer, <default> lookups, orientations.
 
 #include <array>
 #include <filesystem>
@@ -13,7 +13,7 @@
 #include <utility>
 #include <vector>
 
-#include "mjarm/model/mjcf_translate.hpp"
+#include "mjarm/model/mjcf_staging.hpp"
 
 namespace tinyxml2 {
 class XMLDocument;
@@ -42,7 +42,7 @@ struct XmlNode {
 /// "position 'shoulder' (line 12)" or "... (line 4 of '/abs/arm.xml')" when the element's file is
 /// known.
 std::string label(const XmlNode& n);
-/// Throws mjarm::Error "MJCF translation: <label>: <what>".
+/// Throws mjarm::Error "MJCF: <label>: <what>".
 [[noreturn]] void fail(const XmlNode& n, const std::string& what);
 
 /// Numbers of attribute `key` of `n` (empty when absent); throws naming the element if not numeric.
@@ -72,14 +72,10 @@ void for_each_element(XmlNode& root, Fn&& fn) {
   }
 }
 
-/// State shared by the passes.
+/// The compiler settings that give angles their meaning.
 struct Context {
-  std::filesystem::path base_dir;
   bool degrees = true;           ///< compiler angle="degree" (the MJCF default)
   std::string eulerseq = "xyz";  ///< compiler eulerseq
-  std::vector<std::string> warnings;
-  /// Records one rewrite of element `n`.
-  void warn(const XmlNode& n, const std::string& what);
 };
 
 /// Snapshot of the `<default>` classes (taken once the includes are inlined).
@@ -94,8 +90,7 @@ class Defaults {
   struct Class {
     std::string name;
     std::string parent;  ///< empty for "main"
-    XmlNode* node;       ///< the <default> element in the live tree; valid until
-                         ///< translate_actuators() returns (it erases actuator defaults last)
+    XmlNode* node;       ///< the <default> element in the live tree
   };
   const std::vector<Class>& classes() const { return classes_; }
   bool has(const std::string& cls) const { return index_.count(cls) > 0; }
@@ -107,7 +102,7 @@ class Defaults {
   std::map<std::string, std::map<std::string, std::map<std::string, std::string>>> values_;
 };
 
-/// Whether `tag` is one of the actuator elements MuJoCo 2.2.2 knows (general, motor, ...).
+/// Whether `tag` is one of the actuator elements (general, motor, position, ...).
 bool is_actuator_tag(std::string_view tag);
 /// The default kind an element tag reads from ("spatial" and "fixed" read "tendon"; every
 /// actuator shortcut reads the class's one "actuator" default).
@@ -124,35 +119,13 @@ std::optional<Quat> read_orientation(const XmlNode& n, const Context& ctx);
 /// Removes every orientation attribute of `n`.
 void erase_orientation(XmlNode& n);
 
-// ---- passes, in pipeline order ----
+// ---- the staging passes, in order ----
 
-/// Inlines every <include file> below `root` (recursively, cycle-checked).
-void inline_includes(XmlNode& root, Context& ctx);
-/// Reads compiler angle / eulerseq and makes every asset file path absolute.
-void resolve_compiler_and_paths(XmlNode& root, Context& ctx);
-/// Expands <replicate> elements whose content can be reproduced exactly.
-void expand_replicates(XmlNode& root, Context& ctx, const Defaults& defaults);
-/// Replaces every <frame> by its children with the frame pose composed into them.
-void expand_frames(XmlNode& root, Context& ctx, const Defaults& defaults);
-
-/// An actuator whose 3.x dampratio still has to be turned into a damping gain.
-struct PendingDampratio {
-  std::size_t actuator_index;  ///< position in the compiled model's actuator list
-  double dampratio;
-  std::size_t warning_index;  ///< the rewrite's warning, whose biasprm is updated too
-};
-/// Rewrites actuators (and actuator defaults) into 2.2.2 form, moves joint / tendon
-/// actuatorfrcrange into actuator forceranges, and returns the dampratios left to resolve.
-std::vector<PendingDampratio> translate_actuators(XmlNode& root, Context& ctx,
-                                                  const Defaults& defaults);
-/// Applies the table of (element, attribute) rules and the element rules (dropped sensors, ...).
-void apply_rules(XmlNode& root, Context& ctx);
-/// Adds compiler autolimits="true" (the 3.x default) when some range relies on it.
-void ensure_autolimits(XmlNode& root, Context& ctx, const Defaults& defaults);
-/// Throws when an element or attribute is still unknown to the installed MuJoCo's schema.
-void check_schema(const XmlNode& root);
-/// Compiles `root` with MuJoCo 2.2.2 and writes the damping implied by each pending dampratio.
-void resolve_dampratios(XmlNode& root, const std::vector<PendingDampratio>& pending,
-                        std::vector<std::string>& warnings);
+/// Inlines every <include file> below `root` (recursively, cycle-checked); relative paths
+/// resolve against `base`, then against the including file's folder.
+void inline_includes(XmlNode& root, const std::filesystem::path& base);
+/// Makes every asset file path absolute (compiler meshdir / texturedir / assetdir, strippath)
+/// and checks each existing file; removes those compiler settings.
+void resolve_asset_paths(XmlNode& root, const std::filesystem::path& base);
 
 }  // namespace mjarm::mjcf_detail

@@ -1,4 +1,4 @@
-// <include> inlining and asset path resolution of the MJCF translator.
+// <include> inlining and asset path resolution of the MJCF staging (mjcf_staging.hpp).
 
 #include <set>
 
@@ -19,8 +19,8 @@ bool entry_exists(const fs::path& p) {
   return fs::exists(fs::symlink_status(p, ec));
 }
 
-// MuJoCo resolves include and asset paths against the main file's directory; newer 3.x versions
-// also try the directory of the included file that names them
+// MuJoCo resolves include and asset paths against the main file's directory, then against the
+// directory of the included file that names them
 std::optional<fs::path> locate(const fs::path& file, const fs::path& base, const XmlNode& from) {
   if (file.is_absolute()) return entry_exists(file) ? std::optional(file) : std::nullopt;
   const fs::path main = (base / file).lexically_normal();
@@ -41,20 +41,20 @@ std::string read_include(const XmlNode& include, const fs::path& path) {
   }
 }
 
-void inline_in(XmlNode& parent, Context& ctx, std::vector<fs::path>& stack,
+void inline_in(XmlNode& parent, const fs::path& base, std::vector<fs::path>& stack,
                std::set<fs::path>& seen) {
   std::vector<XmlNode> out;
   for (auto& c : parent.children) {
     if (c.tag != "include") {
-      inline_in(c, ctx, stack, seen);
+      inline_in(c, base, stack, seen);
       out.push_back(std::move(c));
       continue;
     }
     const std::string* name = c.find("file");
     if (!name) fail(c, "<include> needs a file attribute");
-    const auto path = locate(*name, ctx.base_dir, c);
+    const auto path = locate(*name, base, c);
     if (!path) {
-      fail(c, "included file '" + *name + "' not found (looked in " + ctx.base_dir.string() +
+      fail(c, "included file '" + *name + "' not found (looked in " + base.string() +
                   (c.file ? " and " + c.file->parent_path().string() : std::string()) + ")");
     }
     std::error_code ec;
@@ -70,7 +70,7 @@ void inline_in(XmlNode& parent, Context& ctx, std::vector<fs::path>& stack,
     XmlNode included = parse_document(text, std::make_shared<const fs::path>(canonical));
     if (included.tag != "mujoco") fail(included, "an included file's root must be <mujoco>");
     stack.push_back(canonical);
-    inline_in(included, ctx, stack, seen);
+    inline_in(included, base, stack, seen);
     stack.pop_back();
     for (auto& ic : included.children) out.push_back(std::move(ic));
   }
@@ -91,31 +91,29 @@ bool is_file_attr(std::string_view tag, std::string_view key) {
     return key == "file" || key == "fileright" || key == "fileleft" || key == "fileup" ||
            key == "filedown" || key == "filefront" || key == "fileback";
   }
-  return (tag == "mesh" || tag == "hfield" || tag == "skin") && key == "file";
+  return (tag == "mesh" || tag == "hfield" || tag == "skin" || tag == "model") && key == "file";
 }
 
 }  // namespace
 
-void inline_includes(XmlNode& root, Context& ctx) {
+void inline_includes(XmlNode& root, const fs::path& base) {
   std::vector<fs::path> stack;
   std::set<fs::path> seen;
-  inline_in(root, ctx, stack, seen);
+  inline_in(root, base, stack, seen);
 }
 
-void resolve_compiler_and_paths(XmlNode& root, Context& ctx) {
+void resolve_asset_paths(XmlNode& root, const fs::path& base) {
   // compiler settings are global; later elements override earlier ones
   std::string meshdir, texturedir, assetdir;
   bool strip = false;
   for (auto& c : root.children) {
     if (c.tag != "compiler") continue;
-    if (const std::string* v = c.find("angle")) ctx.degrees = *v != "radian";
-    if (const std::string* v = c.find("eulerseq")) ctx.eulerseq = *v;
     if (const std::string* v = c.find("meshdir")) meshdir = *v;
     if (const std::string* v = c.find("texturedir")) texturedir = *v;
     if (const std::string* v = c.find("assetdir")) assetdir = *v;
     if (const std::string* v = c.find("strippath")) strip = *v == "true";
   }
-  // 3.x assetdir stands in for whichever of meshdir / texturedir is not given
+  // assetdir stands in for whichever of meshdir / texturedir is not given
   if (meshdir.empty()) meshdir = assetdir;
   if (texturedir.empty()) texturedir = assetdir;
 
@@ -129,27 +127,18 @@ void resolve_compiler_and_paths(XmlNode& root, Context& ctx) {
       }
       const fs::path dir = e.tag == "texture" ? fs::path(texturedir) : fs::path(meshdir);
       const fs::path rel = dir / file;
-      const auto found = locate(rel, ctx.base_dir, e);
+      const auto found = locate(rel, base, e);
       if (found) check_asset(e, key, *found);
       // a missing file is reported by MuJoCo when it loads the model
       value = found ? found->string()
-                    : (rel.is_absolute() ? rel : ctx.base_dir / rel).lexically_normal().string();
+                    : (rel.is_absolute() ? rel : base / rel).lexically_normal().string();
     }
   });
 
+  // every path is absolute now: the folders and the stripping have done their part
   for (auto& c : root.children) {
     if (c.tag != "compiler") continue;
-    for (const char* key : {"meshdir", "texturedir"}) {
-      if (const std::string* v = c.find(key); v && fs::path(*v).is_relative()) {
-        c.set(key, (ctx.base_dir / *v).lexically_normal().string());
-      }
-    }
-    // paths are already stripped; stripping again would drop the absolute directories
-    c.erase("strippath");
-    if (const std::string* v = c.find("assetdir")) {
-      ctx.warn(c, "assetdir=\"" + *v + "\" is MuJoCo 3.x; asset paths were resolved against it");
-      c.erase("assetdir");
-    }
+    for (const char* key : {"meshdir", "texturedir", "assetdir", "strippath"}) c.erase(key);
   }
 }
 

@@ -1,4 +1,4 @@
-// XML element tree used by the MJCF translator: parsing (tinyxml2), writing, attribute helpers.
+// XML element tree of the MJCF staging and the scene parts: parsing (tinyxml2), writing, attribute helpers.
 
 #include <tinyxml2.h>
 
@@ -49,12 +49,9 @@ std::string label(const XmlNode& n) {
 }
 
 void fail(const XmlNode& n, const std::string& what) {
-  throw Error("MJCF translation: " + label(n) + ": " + what);
+  throw Error("MJCF: " + label(n) + ": " + what);
 }
 
-void Context::warn(const XmlNode& n, const std::string& what) {
-  warnings.push_back(label(n) + ": " + what);
-}
 
 std::vector<double> parse_numbers(const XmlNode& n, std::string_view key, std::string_view text) {
   std::vector<double> out;
@@ -182,10 +179,10 @@ XmlNode parse_document(std::string_view text, std::shared_ptr<const std::filesys
   tinyxml2::XMLDocument doc;
   const std::string source = file ? "'" + file->string() + "'" : std::string("<input>");
   if (doc.Parse(text.data(), text.size()) != tinyxml2::XML_SUCCESS) {
-    throw Error("MJCF translation: " + xml_parse_error(doc, source));
+    throw Error("MJCF: " + xml_parse_error(doc, source));
   }
   const tinyxml2::XMLElement* root = doc.RootElement();
-  if (!root) throw Error("MJCF translation: " + source + " has no root element");
+  if (!root) throw Error("MJCF: " + source + " has no root element");
   return convert(*root, file);
 }
 

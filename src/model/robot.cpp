@@ -7,11 +7,12 @@
 #include <cstdlib>
 #include <cstring>
 #include <iostream>
+#include <limits>
 #include <mutex>
 
 #include "mjarm/error.hpp"
 #include "mjarm/model/finite_model.hpp"
-#include "mjarm/model/mjcf_translate.hpp"
+#include "mjarm/model/mjcf_staging.hpp"
 #include "mjarm/model/names.hpp"
 #include "mjarm/model/user_file.hpp"
 #include "mjcf_detail.hpp"
@@ -24,9 +25,27 @@ namespace {
   throw Error(std::string("MuJoCo error: ") + message);
 }
 
+// MuJoCo's warnings while a model loads on this thread, for the robot's load report
+thread_local std::vector<std::string>* load_warnings_sink = nullptr;
+
 void print_mujoco_warning(const char* message) {
+  if (load_warnings_sink != nullptr) load_warnings_sink->emplace_back(message);
   std::cerr << "mujoco warning: " << message << "\n";
 }
+
+/// Collects MuJoCo's warnings into @p sink while it lives.
+class LoadWarnings {
+ public:
+  explicit LoadWarnings(std::vector<std::string>& sink) : previous_(load_warnings_sink) {
+    load_warnings_sink = &sink;
+  }
+  ~LoadWarnings() { load_warnings_sink = previous_; }
+  LoadWarnings(const LoadWarnings&) = delete;
+  LoadWarnings& operator=(const LoadWarnings&) = delete;
+
+ private:
+  std::vector<std::string>* previous_;
+};
 
 /// The root element's name ("mujoco" or "robot").
 /// @throws Error with the parser's message and line when the XML is malformed.
@@ -47,46 +66,60 @@ struct MemoryFsDeleter {
   }
 };
 
-/// Loads XML text through MuJoCo's virtual file system; paths in it must be absolute. With
-/// @p translation, line numbers in MuJoCo's messages are mapped back to the user's files.
-// MuJoCo 2.2.2's XML loader keeps the last parsed model in a global (for mj_saveLastXML): loads
-// from several threads (parallel trial batches) take turns
+// MuJoCo's XML loader keeps the last parsed model in a global (for mj_saveLastXML): loads from
+// several threads (parallel trial batches) take turns
 std::mutex& xml_loader_mutex() {
   static std::mutex mutex;
   return mutex;
 }
 
-mjModel* load_from_memory(const std::string& xml, const std::string& source,
-                          const MjcfTranslation* translation = nullptr) {
+/// A loaded model and MuJoCo's warnings while loading it.
+struct Loaded {
+  mjModel* model = nullptr;
+  std::vector<std::string> warnings;
+};
+
+/// Loads XML text through MuJoCo's virtual file system; paths in it must be absolute. With
+/// @p staged, line numbers in MuJoCo's messages are mapped back to the user's files.
+Loaded load_from_memory(const std::string& xml, const std::string& source,
+                        const StagedMjcf* staged = nullptr) {
   const std::unique_ptr<mjVFS, MemoryFsDeleter> vfs(new mjVFS);
   mj_defaultVFS(vfs.get());
   const char* file_name = "mjarm_model.xml";
-  if (mj_makeEmptyFileVFS(vfs.get(), file_name, static_cast<int>(xml.size())) != 0)
+  if (xml.size() > static_cast<std::size_t>(std::numeric_limits<int>::max()) ||
+      mj_addBufferVFS(vfs.get(), file_name, xml.data(), static_cast<int>(xml.size())) != 0)
     throw Error("cannot stage " + source + " in MuJoCo's virtual file system");
-  const int index = mj_findFileVFS(vfs.get(), file_name);
-  std::memcpy(vfs->filedata[index], xml.data(), xml.size());
   char error[1024] = "";
-  mjModel* model = nullptr;
+  Loaded loaded;
   {
     const std::lock_guard<std::mutex> guard(xml_loader_mutex());
-    model = mj_loadXML(file_name, vfs.get(), error, sizeof(error));
+    const LoadWarnings capture(loaded.warnings);
+    loaded.model = mj_loadXML(file_name, vfs.get(), error, sizeof(error));
   }
-  const std::string message = translation ? translation->to_source_lines(error) : error;
-  if (model == nullptr) throw Error("cannot load " + source + ": " + message);
-  if (!message.empty()) print_mujoco_warning(message.c_str());
-  return model;
+  const std::string message = staged ? staged->to_source_lines(error) : error;
+  if (loaded.model == nullptr) throw Error("cannot load " + source + ": " + message);
+  // a message with a model is a warning of the parser or the compiler
+  if (!message.empty()) {
+    print_mujoco_warning(message.c_str());
+    loaded.warnings.push_back(message);
+  }
+  return loaded;
 }
 
-mjModel* load_from_disk(const std::filesystem::path& path) {
+Loaded load_from_disk(const std::filesystem::path& path) {
   char error[1024] = "";
-  mjModel* model = nullptr;
+  Loaded loaded;
   {
     const std::lock_guard<std::mutex> guard(xml_loader_mutex());
-    model = mj_loadXML(path.c_str(), nullptr, error, sizeof(error));
+    const LoadWarnings capture(loaded.warnings);
+    loaded.model = mj_loadXML(path.c_str(), nullptr, error, sizeof(error));
   }
-  if (model == nullptr) throw Error("cannot load '" + path.string() + "': " + error);
-  if (error[0] != '\0') print_mujoco_warning(error);
-  return model;
+  if (loaded.model == nullptr) throw Error("cannot load '" + path.string() + "': " + error);
+  if (error[0] != '\0') {
+    print_mujoco_warning(error);
+    loaded.warnings.emplace_back(error);
+  }
+  return loaded;
 }
 
 ActuatorKind classify(const mjModel& m, int id) {
@@ -179,15 +212,14 @@ Robot Robot::from_file(const std::filesystem::path& path) {
   if (root_element(xml, source) != "mujoco") {
     // URDF: MuJoCo opens the meshes itself, after the same checks as MJCF assets
     check_urdf_assets(xml, std::filesystem::absolute(path).parent_path(), source);
-    return Robot(load_from_disk(path), path.string(), {});
+    Loaded loaded = load_from_disk(path);
+    return Robot(loaded.model, path.string(), std::move(loaded.warnings));
   }
-  // every MJCF file loads as translated (includes inlined, asset paths checked and absolute),
-  // so MuJoCo's line numbers map back to the user's own files, included ones too
-  MjcfTranslation translated =
-      translate_mjcf(xml, std::filesystem::absolute(path).parent_path(), path);
-  for (const auto& warning : translated.warnings) std::cerr << "mjarm: " << warning << "\n";
-  mjModel* model = load_from_memory(translated.xml, source, &translated);
-  return Robot(model, path.string(), std::move(translated.warnings));
+  // every MJCF file loads staged (includes inlined and read through the checked reader, asset
+  // paths checked and absolute), so MuJoCo's line numbers map back to the user's own files
+  const StagedMjcf staged = stage_mjcf(xml, std::filesystem::absolute(path).parent_path(), path);
+  Loaded loaded = load_from_memory(staged.xml, source, &staged);
+  return Robot(loaded.model, path.string(), std::move(loaded.warnings));
 }
 
 Robot Robot::from_string(std::string_view xml, const std::filesystem::path& base_dir) {
@@ -196,13 +228,13 @@ Robot Robot::from_string(std::string_view xml, const std::filesystem::path& base
   const std::string root = root_element(xml, source);
   if (root != "mujoco") {
     // URDF and other formats MuJoCo reads go through unchanged
-    return Robot(load_from_memory(std::string(xml), source), "<string>", {});
+    Loaded loaded = load_from_memory(std::string(xml), source);
+    return Robot(loaded.model, "<string>", std::move(loaded.warnings));
   }
   const std::filesystem::path base = base_dir.empty() ? std::filesystem::current_path() : base_dir;
-  MjcfTranslation translated = translate_mjcf(xml, std::filesystem::absolute(base));
-  for (const auto& warning : translated.warnings) std::cerr << "mjarm: " << warning << "\n";
-  mjModel* model = load_from_memory(translated.xml, source, &translated);
-  return Robot(model, "<string>", std::move(translated.warnings));
+  const StagedMjcf staged = stage_mjcf(xml, std::filesystem::absolute(base));
+  Loaded loaded = load_from_memory(staged.xml, source, &staged);
+  return Robot(loaded.model, "<string>", std::move(loaded.warnings));
 }
 
 std::filesystem::path Robot::models_dir() {

@@ -160,7 +160,7 @@ struct OffscreenRenderer::Impl {
     if (!context) throw Error("OffscreenRenderer used after close()");
     const mjModel& m = robot.model();
     // an mjData's arena sizes come from its model: a mismatch means another model's data
-    if (data.nstack != scratch->nstack || data.nbuffer != scratch->nbuffer)
+    if (data.narena != scratch->narena || data.nbuffer != scratch->nbuffer)
       throw Error("OffscreenRenderer: the mjData was not made for model '" + robot.name() + "'");
     mj_copyData(scratch.get(), &m, &data);
 

@@ -7,7 +7,7 @@
 
 #include "mjarm/error.hpp"
 #include "mjarm/model/user_file.hpp"
-#include "mjarm/model/mjcf_translate.hpp"
+#include "mjarm/model/mjcf_staging.hpp"
 
 namespace mjarm::scene_detail {
 
@@ -197,11 +197,8 @@ void normalize_part(XmlNode& root) {
 
 Part load_part(const fs::path& file, std::string source) {
   const std::string text = read_user_file(file, "model file");
-  MjcfTranslation translated = translate_mjcf(text, fs::absolute(file).parent_path());
-  Part part{mjcf_detail::parse_document(translated.xml, nullptr),
-            {},
-            std::move(translated.warnings),
-            std::move(source)};
+  const StagedMjcf staged = stage_mjcf(text, fs::absolute(file).parent_path());
+  Part part{mjcf_detail::parse_document(staged.xml, nullptr), {}, {}, std::move(source)};
   if (part.root.tag != "mujoco")
     throw Error(part.source + ": '" + file.string() + "' is not MJCF (root <" + part.root.tag +
                 ">, expected <mujoco>)");

@@ -7,7 +7,6 @@
 #include "mjarm/error.hpp"
 #include "mjarm/model/names.hpp"
 #include "mjarm/sim/recorder.hpp"
-#include "mjarm/sim/reset_data.hpp"
 
 namespace mjarm {
 namespace {
@@ -48,10 +47,7 @@ void check_equality_id(const mjModel& m, int id) {
   }
 }
 
-// a private copy of the model when the simulation switches its equality constraints (MuJoCo 2.2.2
-// keeps eq_active in mjModel) or when its owner asks for one to edit (domain randomization)
-mjModel* copy_if_owned(const Robot& robot, const SimulationOptions& options) {
-  if (!options.own_model && robot.model().neq == 0) return nullptr;
+mjModel* copy_model(const Robot& robot) {
   mjModel* copy = mj_copyModel(nullptr, &robot.model());
   if (copy == nullptr) throw Error("simulation: could not copy model '" + robot.name() + "'");
   return copy;
@@ -76,7 +72,7 @@ int whole_multiple(double period, double step, std::string_view what, std::strin
 
 Simulation::Simulation(const Robot& robot, const SimulationOptions& options)
     : robot_(robot),
-      own_model_(copy_if_owned(robot, options)),
+      own_model_(options.own_model ? copy_model(robot) : nullptr),
       model_(own_model_ ? own_model_.get() : &robot_.model()),
       options_(options),
       steps_per_tick_(steps_per_tick_of(robot.model(), options.control_period)),
@@ -107,11 +103,8 @@ Simulation::Simulation(const Robot& robot, const SimulationOptions& options)
       if (!seen) gravity_dofs_.push_back(dof);
     }
   }
-  snapshot_.qpos.resize(m.nq);
-  snapshot_.qvel.resize(m.nv);
-  snapshot_.act.resize(m.na);
-  snapshot_.ctrl.resize(m.nu);
-  snapshot_.qfrc_applied.resize(m.nv);
+  snapshot_.state.resize(static_cast<std::size_t>(mj_stateSize(&m, mjSTATE_INTEGRATION)));
+  snapshot_.nq = m.nq;
   after_reset();
 }
 
@@ -132,7 +125,7 @@ void Simulation::after_reset() {
 }
 
 void Simulation::reset() {
-  reset_data(model(), *data_);  // mj_resetData's state without clearing the scratch stack
+  mj_resetData(&model(), data_.get());
   after_reset();
 }
 
@@ -232,13 +225,19 @@ int Simulation::equality(std::string_view name) const {
 
 bool Simulation::equality_active(int id) const {
   check_equality_id(model(), id);
-  return model_->eq_active[id] != 0;
+  return data_->eq_active[id] != 0;
 }
 
 bool Simulation::set_equality_active(int id, bool active) noexcept {
-  if (!own_model_ || id < 0 || id >= own_model_->neq) return false;
-  own_model_->eq_active[id] = active ? 1 : 0;
+  if (id < 0 || id >= model_->neq) return false;
+  data_->eq_active[id] = active ? 1 : 0;
   return true;
+}
+
+void Simulation::own_model() {
+  if (own_model_) return;
+  own_model_.reset(copy_model(robot_));
+  model_ = own_model_.get();
 }
 
 std::span<const double> Simulation::equality_data(int id) const noexcept {
@@ -258,6 +257,10 @@ bool Simulation::set_equality_data(int id, std::span<const double> values) noexc
 
 void Simulation::set_equality_solref(int id, double time_constant, double damping_ratio) {
   check_equality_id(model(), id);
+  if (!own_model_) {
+    throw Error("simulation: equality solref is model data; call own_model() first (the robot's "
+                "model is shared)");
+  }
   if (!(std::isfinite(time_constant) && time_constant > 0.0) ||
       !(std::isfinite(damping_ratio) && damping_ratio > 0.0)) {
     throw Error(

@@ -1,6 +1,7 @@
 // The stepping half of Simulation: control ticks, runs and kinematic moves.
 #include <cmath>
 #include <cstdio>
+#include <span>
 #include <string>
 
 #include "mjarm/error.hpp"
@@ -11,7 +12,7 @@
 namespace mjarm {
 namespace {
 
-bool all_finite(const std::vector<double>& v) noexcept {
+bool all_finite(std::span<const double> v) noexcept {
   for (double x : v) {
     if (!std::isfinite(x)) return false;
   }
@@ -28,7 +29,6 @@ const char* warning_name(int warning) noexcept {
   switch (warning) {
     case mjWARN_CONTACTFULL: return "MuJoCo warning: contact buffer full (contacts dropped)";
     case mjWARN_CNSTRFULL: return "MuJoCo warning: constraint buffer full (constraints dropped)";
-    case mjWARN_VGEOMFULL: return "MuJoCo warning: visual geom buffer full";
     default: return "MuJoCo warning";
   }
 }
@@ -104,7 +104,7 @@ TickResult Simulation::tick_impl(ReferenceSource* source, const Reference* refer
     }
     ++steps_;
     if (recorder != nullptr) {
-      recorder->on_physics_step(*this, t0, snapshot_.qpos.data(), snapshot_.qvel.data());
+      recorder->on_physics_step(*this, t0, snapshot_.qpos(), snapshot_.qvel());
       const int warning = detector_.new_benign_warning(*d);
       if (warning >= 0) recorder->event(t0, "warning", warning_name(warning));
     }
@@ -151,26 +151,17 @@ void Simulation::compensate_gravity() noexcept {
 }
 
 void Simulation::take_snapshot() noexcept {
-  const mjModel& m = model();
-  const mjData& d = *data_;
-  snapshot_.time = d.time;
-  std::copy(d.qpos, d.qpos + m.nq, snapshot_.qpos.begin());
-  std::copy(d.qvel, d.qvel + m.nv, snapshot_.qvel.begin());
-  std::copy(d.act, d.act + m.na, snapshot_.act.begin());
-  std::copy(d.ctrl, d.ctrl + m.nu, snapshot_.ctrl.begin());
-  std::copy(d.qfrc_applied, d.qfrc_applied + m.nv, snapshot_.qfrc_applied.begin());
+  mj_getState(&model(), data_.get(), snapshot_.state.data(), mjSTATE_INTEGRATION);
 }
 
 void Simulation::restore_snapshot() noexcept {
   // MuJoCo may have reset the data after a bad value: put back the state of the step's start
+  const mjModel& m = model();
   mjData* d = data_.get();
-  d->time = snapshot_.time;
-  std::copy(snapshot_.qpos.begin(), snapshot_.qpos.end(), d->qpos);
-  std::copy(snapshot_.qvel.begin(), snapshot_.qvel.end(), d->qvel);
-  std::copy(snapshot_.act.begin(), snapshot_.act.end(), d->act);
-  std::copy(snapshot_.ctrl.begin(), snapshot_.ctrl.end(), d->ctrl);
-  std::copy(snapshot_.qfrc_applied.begin(), snapshot_.qfrc_applied.end(), d->qfrc_applied);
-  if (all_finite(snapshot_.qpos) && all_finite(snapshot_.qvel)) mj_forward(&model(), d);
+  mj_setState(&m, d, snapshot_.state.data(), mjSTATE_INTEGRATION);
+  const std::span<const mjtNum> positions_and_velocities(snapshot_.qpos(),
+                                                         static_cast<std::size_t>(m.nq + m.nv));
+  if (all_finite(positions_and_velocities)) mj_forward(&m, d);
   detector_.rebase(*d);
 }
 
@@ -257,9 +248,9 @@ KinematicStep Simulation::move(std::span<const double> qpos, double dt, Recorder
     throw Error("simulation: move dt must be positive and finite, got " + std::to_string(dt) + " s");
   }
   take_snapshot();
-  mj_differentiatePos(&m, d->qvel, dt, snapshot_.qpos.data(), qpos.data());
+  mj_differentiatePos(&m, d->qvel, dt, snapshot_.qpos(), qpos.data());
   std::copy(qpos.begin(), qpos.end(), d->qpos);
-  d->time = snapshot_.time + dt;
+  d->time = snapshot_.time() + dt;
   mj_fwdPosition(&m, d);
   mj_sensorPos(&m, d);
 
@@ -271,15 +262,13 @@ KinematicStep Simulation::move(std::span<const double> qpos, double dt, Recorder
       step.rolled_back = true;
       step.geom_a = touch.first_geom_a;
       step.geom_b = touch.first_geom_b;
-      d->time = snapshot_.time;
-      std::copy(snapshot_.qpos.begin(), snapshot_.qpos.end(), d->qpos);
-      std::copy(snapshot_.qvel.begin(), snapshot_.qvel.end(), d->qvel);
+      mj_setState(&m, d, snapshot_.state.data(), mjSTATE_INTEGRATION);
       mj_fwdPosition(&m, d);
       mj_sensorPos(&m, d);
       if (recorder != nullptr) {
         const char* a = mj_id2name(&m, mjOBJ_GEOM, step.geom_a);
         const char* b = mj_id2name(&m, mjOBJ_GEOM, step.geom_b);
-        recorder->event(snapshot_.time + dt, "rollback",
+        recorder->event(snapshot_.time() + dt, "rollback",
                         "move would put geom '" + std::string(a ? a : "?") + "' in contact with geom '" +
                             std::string(b ? b : "?") + "'; rolled back");
       }

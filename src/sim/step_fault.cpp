@@ -18,7 +18,6 @@ const char* warning_text(int warning) noexcept {
     case mjWARN_INERTIA: return "singular inertia matrix";
     case mjWARN_CONTACTFULL: return "contact buffer full";
     case mjWARN_CNSTRFULL: return "constraint buffer full";
-    case mjWARN_VGEOMFULL: return "visual geom buffer full";
     case mjWARN_BADQPOS: return "bad qpos (MuJoCo)";
     case mjWARN_BADQVEL: return "bad qvel (MuJoCo)";
     case mjWARN_BADQACC: return "bad qacc (MuJoCo)";

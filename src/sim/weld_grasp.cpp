@@ -41,6 +41,8 @@ WeldGrasp::WeldGrasp(Simulation& simulation, int id, const WeldGraspOptions& opt
   body2_ = m.eq_obj2id[id_];
   const char* name = mj_id2name(&m, mjOBJ_EQUALITY, id_);
   name_ = name ? name : "";
+  // the relative pose and the solver reference are model data: this simulation's own
+  simulation.own_model();
   simulation.set_equality_solref(id_, options.time_constant, options.damping_ratio);
   simulation.set_equality_active(id_, false);
 }
@@ -85,7 +87,7 @@ bool WeldGrasp::activate() noexcept {
 
 void WeldGrasp::release() noexcept { simulation_->set_equality_active(id_, false); }
 
-bool WeldGrasp::active() const noexcept { return simulation_->model().eq_active[id_] != 0; }
+bool WeldGrasp::active() const noexcept { return simulation_->data().eq_active[id_] != 0; }
 
 double WeldGrasp::deviation() const noexcept {
   if (!activated_once_) return 0.0;

@@ -23,8 +23,7 @@ void add_target_marker(mjvScene& scene, const Pose& X_WT, const Eigen::Vector3d&
   for (int i = 0; i < 3; ++i) {
     const Eigen::Vector3d tip = X_WT.p + 0.08 * X_WT.R.col(i);
     if (mjvGeom* g = add(mjGEOM_CAPSULE, none, X_WT.p, axis_rgba[i])) {
-      mjv_makeConnector(g, mjGEOM_CAPSULE, 0.004, X_WT.p.x(), X_WT.p.y(), X_WT.p.z(), tip.x(),
-                        tip.y(), tip.z());
+      mjv_connector(g, mjGEOM_CAPSULE, 0.004, X_WT.p.data(), tip.data());
     }
   }
   // the reference the controller tracks: a small yellow ball

@@ -74,9 +74,9 @@ void format_overlay(const ViewerStats& stats, const OverlayInfo& info, const mjM
   if (stats.mode == SimulationMode::kinematic) {
     std::snprintf(text, sizeof(text), "n/a (kinematic)");
   } else if (clipped == 0) {
-    std::snprintf(text, sizeof(text), "none of %d", m.nu);
+    std::snprintf(text, sizeof(text), "none of %d", static_cast<int>(m.nu));
   } else {
-    std::snprintf(text, sizeof(text), "%d of %d:%s%s", clipped, m.nu, names.c_str(),
+    std::snprintf(text, sizeof(text), "%d of %d:%s%s", clipped, static_cast<int>(m.nu), names.c_str(),
                   clipped > 4 ? " ..." : "");
   }
   line(out, "Saturation", text);

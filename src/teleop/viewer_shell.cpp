@@ -289,7 +289,7 @@ void ViewerShell::on_event() {
   }
   const mjModel& m = driver_->robot().model();
   if (s.type == mjEVENT_SCROLL) {
-    mjv_moveCamera(&m, mjMOUSE_ZOOM, 0.0, -0.05 * s.sy, &scene_, &camera_);
+    mjv_moveCamera(&m, mjMOUSE_ZOOM, 0.0, -0.05 * s.sy, &camera_);
     driver_->camera_moved(camera_);
     refresh_panel_ = true;
   } else if (s.type == mjEVENT_MOVE && s.dragrect == rect_view) {
@@ -303,7 +303,7 @@ void ViewerShell::on_event() {
     }
     const double h = std::max(1, ui_.view().height);
     if (action != mjMOUSE_NONE) {
-      mjv_moveCamera(&m, action, s.dx / h, -s.dy / h, &scene_, &camera_);
+      mjv_moveCamera(&m, action, s.dx / h, -s.dy / h, &camera_);
       driver_->camera_moved(camera_);
       refresh_panel_ = true;
     }

@@ -49,7 +49,7 @@ TEST(ComputedTorqueController, MatchesTheDenseFormulaAndProducesTheCommandedAcce
     ct.compute(*d, ref, command);
     // plain formula from MuJoCo's dense mass matrix
     Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> M(m.nv, m.nv);
-    mj_fullM(&m, M.data(), d->qM);
+    mj_fullM(&m, d.get(), M.data());
     const Eigen::VectorXd q = chain.gather(d->qpos);
     const Eigen::VectorXd qd = Eigen::Map<const Eigen::VectorXd>(d->qvel, 7);
     const Eigen::VectorXd a = ref.joint.qdd + options.gains.kp.cwiseProduct(ref.joint.q - q) +

@@ -52,10 +52,10 @@ inline bool random_state(Rig& rig, std::mt19937_64& rng) {
   return d.ncon == 0;
 }
 
-/// Dense joint-space inertia from MuJoCo's sparse qM (nv×nv).
+/// Dense joint-space inertia from MuJoCo's sparse M (nv×nv).
 inline MatrixX dense_mass(const mjModel& m, const mjData& d) {
   Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> M(m.nv, m.nv);
-  mj_fullM(&m, M.data(), d.qM);
+  mj_fullM(&m, &d, M.data());
   return M;
 }
 

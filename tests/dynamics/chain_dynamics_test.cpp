@@ -20,7 +20,7 @@ using test::random_state;
 Eigen::MatrixXd mujoco_mass_block(const Chain& chain, const mjData* d) {
   const mjModel& m = chain.robot().model();
   std::vector<double> full(static_cast<std::size_t>(m.nv * m.nv));
-  mj_fullM(&m, full.data(), d->qM);
+  mj_fullM(&m, d, full.data());
   Eigen::MatrixXd M(chain.size(), chain.size());
   for (int r = 0; r < chain.size(); ++r) {
     for (int c = 0; c < chain.size(); ++c) {

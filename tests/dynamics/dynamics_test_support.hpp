@@ -50,12 +50,14 @@ inline void random_state(const Chain& chain, mjData* d, std::mt19937& rng, doubl
   mj_forward(&m, d);
 }
 
-/// The raw bytes of an mjData (main buffer and stack), to prove that nothing wrote to it.
+/// The raw bytes of an mjData (main buffer, then the arena's used part: what mj_forward left in
+/// it), to prove that nothing wrote to it.
 inline std::vector<unsigned char> data_bytes(const mjData* d) {
-  std::vector<unsigned char> bytes(static_cast<std::size_t>(d->nbuffer) +
-                                   static_cast<std::size_t>(d->nstack) * sizeof(mjtNum));
-  std::memcpy(bytes.data(), d->buffer, static_cast<std::size_t>(d->nbuffer));
-  std::memcpy(bytes.data() + d->nbuffer, d->stack, static_cast<std::size_t>(d->nstack) * sizeof(mjtNum));
+  const std::size_t buffer = static_cast<std::size_t>(d->nbuffer);
+  const std::size_t arena = d->parena;
+  std::vector<unsigned char> bytes(buffer + arena);
+  std::memcpy(bytes.data(), d->buffer, buffer);
+  std::memcpy(bytes.data() + buffer, d->arena, arena);
   return bytes;
 }
 

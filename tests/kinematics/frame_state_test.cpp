@@ -76,7 +76,7 @@ TEST_F(FrameStateTest, RejectsBadInput) {
   EXPECT_THROW(forward_kinematics(chain, q), Error);
   Matrix6Xd J(6, 4);
   EXPECT_THROW(mujoco_frame_jacobian(chain, *d_, J), Error);
-  FrameRef bad{FrameKind::site, robot_.model().nsite, "ghost"};
+  FrameRef bad{FrameKind::site, static_cast<int>(robot_.model().nsite), "ghost"};
   EXPECT_THROW(frame_pose(robot_.model(), *d_, bad), Error);
   bad = FrameRef{FrameKind::body, -1, "ghost"};
   EXPECT_THROW(frame_pose(robot_.model(), *d_, bad), Error);

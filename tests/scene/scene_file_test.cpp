@@ -43,7 +43,7 @@ TEST(SceneFile, TheExampleComposesThePandaWithItsHandObjectsAndSensors) {
   const mjModel& m = robot.model();
   const int weld = try_find_object(m, mjOBJ_EQUALITY, "grasp");
   ASSERT_GE(weld, 0);
-  EXPECT_EQ(m.eq_active[weld], 0);
+  EXPECT_EQ(m.eq_active0[weld], 0);
   const int finger = robot.actuator("panda/hand/finger_left");
   EXPECT_EQ(m.actuator_ctrlrange[2 * finger + 1], 0.012);
   EXPECT_EQ(m.actuator_gainprm[finger * mjNGAIN], 3200.0);

@@ -244,7 +244,7 @@ TEST(Scene, SensorsCamerasSitesAndAnInactiveWeld) {
   const int weld = try_find_object(m, mjOBJ_EQUALITY, "grasp");
   ASSERT_GE(weld, 0);
   EXPECT_EQ(m.eq_type[weld], mjEQ_WELD);
-  EXPECT_EQ(m.eq_active[weld], 0);
+  EXPECT_EQ(m.eq_active0[weld], 0);
   EXPECT_EQ(m.eq_obj1id[weld], robot.body("left/link6"));
   EXPECT_EQ(m.eq_obj2id[weld], robot.body("cube"));
   EXPECT_EQ(m.eq_solref[2 * weld], 0.002);

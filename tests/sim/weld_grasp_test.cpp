@@ -108,13 +108,14 @@ double hold(Simulation& sim, const Holder& holder, int body, double until) {
 
 TEST(WeldGrasp, EqDataLayoutIsTheOneTheEngineReads) {
   // a weld written by activate() is satisfied exactly in the state it was read from: every
-  // constraint row of the weld (3 position, 3 orientation) has a zero residual, so the 2.2.2
-  // layout is [anchor in body2 (3), anchor in body1 (3), q_12 (4), torque scale]
+  // constraint row of the weld (3 position, 3 orientation) has a zero residual, so the layout
+  // is [anchor in body2 (3), anchor in body1 (3), q_12 (4), torque scale]
   const WeldScene s = weld_scene();
   Simulation sim(s.robot, position_mode());
-  ASSERT_TRUE(sim.owns_model());
+  EXPECT_FALSE(sim.owns_model());  // switching equalities needs no copy: eq_active is state
   sim.set_state(s.qpos, std::vector<double>(s.robot.nv(), 0.0));
   WeldGrasp grasp(sim, "grasp");
+  ASSERT_TRUE(sim.owns_model());  // the grasp's relative pose is model data: a copy of its own
   ASSERT_TRUE(grasp.activate());
   sim.forward();
   int rows = 0;
@@ -250,7 +251,7 @@ TEST(WeldGrasp, TwoSimulationsOfOneRobotNeverSeeEachOthersGrasps) {
   ASSERT_TRUE(grasp.activate());
   EXPECT_TRUE(a.equality_active(grasp.equality()));
   EXPECT_FALSE(b.equality_active(grasp.equality()));
-  EXPECT_EQ(s.robot.model().eq_active[grasp.equality()], 0);
+  EXPECT_EQ(s.robot.model().eq_active0[grasp.equality()], 0);
   const double za = body_position(a, cube).z(), zb = body_position(b, cube).z();
   hold(a, ha, cube, 0.15);
   hold(b, hb, cube, 0.15);
@@ -264,9 +265,9 @@ TEST(WeldGrasp, TwoSimulationsOfOneRobotNeverSeeEachOthersGrasps) {
   EXPECT_TRUE(b.equality_active(other.equality()));
 }
 
-// One model-ownership mechanism: a model with equalities owns one copy whether or not its owner
-// also asks for one (own_model, for randomization); the equality switches and the owner's edits
-// land in that same copy, and the robot's model keeps the file's values.
+// One model-ownership mechanism: a simulation owns one copy, whether its owner asked for it
+// (own_model, for randomization) or a weld grasp did; the grasp's data and the owner's edits land
+// in that same copy, the switches in the data, and the robot's model keeps the file's values.
 TEST(WeldGrasp, OneModelCopyServesTheGraspsAndTheOwnersEdits) {
   const WeldScene s = weld_scene();
   SimulationOptions options = position_mode();
@@ -282,11 +283,24 @@ TEST(WeldGrasp, OneModelCopyServesTheGraspsAndTheOwnersEdits) {
   EXPECT_TRUE(sim.equality_active(grasp.equality()));
   EXPECT_EQ(sim.model().body_mass[cube], 2.0 * mass);
   EXPECT_EQ(s.robot.model().body_mass[cube], mass);
-  EXPECT_EQ(s.robot.model().eq_active[grasp.equality()], 0);
-  // without own_model the copy is there all the same (the model has an equality), editable too
+  EXPECT_EQ(s.robot.model().eq_active0[grasp.equality()], 0);
+  // without own_model and without a grasp the robot's model is shared, and its switches too
+  // are the simulation's own (state)
   Simulation plain(s.robot, position_mode());
+  EXPECT_FALSE(plain.owns_model());
+  EXPECT_EQ(plain.editable_model(), nullptr);
+  EXPECT_TRUE(plain.set_equality_active(grasp.equality(), true));
+  EXPECT_TRUE(plain.equality_active(grasp.equality()));
+  EXPECT_EQ(s.robot.model().eq_active0[grasp.equality()], 0);
+  // a reset restores the model's initial switch
+  plain.reset();
+  EXPECT_FALSE(plain.equality_active(grasp.equality()));
+  // the grasp's model data needs the copy, which the grasp asks for
+  EXPECT_NE(test::error_of([&] { plain.set_equality_solref(grasp.equality(), 0.01, 1.0); })
+                .find("own_model"),
+            std::string::npos);
+  WeldGrasp second(plain, "grasp");
   EXPECT_TRUE(plain.owns_model());
-  EXPECT_NE(plain.editable_model(), nullptr);
   EXPECT_EQ(plain.model().body_mass[cube], mass);
 }
 

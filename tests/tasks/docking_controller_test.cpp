@@ -166,7 +166,7 @@ TEST(DockingController, HqpAcGetsThePreloadAsItsOwnForceTermThroughTheTarget) {
   Eigen::MatrixXd M(m.nv, m.nv), Jp(3, m.nv), Jr(3, m.nv);
   Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> Mr(m.nv, m.nv),
       jp(3, m.nv), jr(3, m.nv);
-  mj_fullM(&m, Mr.data(), s.d->qM);
+  mj_fullM(&m, s.d.get(), Mr.data());
   mj_jacSite(&m, s.d.get(), jp.data(), jr.data(), mj_name2id(&m, mjOBJ_SITE, DockingNames::tip));
   Eigen::MatrixXd J(6, m.nv);
   J << jp, jr;

@@ -49,7 +49,7 @@ TEST(PickPlaceScene, BothRobotsInBothModesWithEveryName) {
       EXPECT_EQ(s.arm_joints.size(), robot.name == "arm6" ? 6u : 7u);
       // the free object adds 7 coordinates; the weld is there, switched off
       EXPECT_EQ(m.model().neq, 1);
-      EXPECT_EQ(m.model().eq_active[0], 0);
+      EXPECT_EQ(m.model().eq_active0[0], 0);
       EXPECT_EQ(m.model().eq_obj1id[0], m.body(s.hand));
       EXPECT_EQ(m.model().eq_obj2id[0], m.body(s.object));
       // motors in torque mode, servos in position mode

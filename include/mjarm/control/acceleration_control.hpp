@@ -55,7 +55,7 @@ struct AccelerationControlOptions {
 /// kp·(q_ref − q)) acts in the kinematic null space only.
 ///
 /// Unlike copying one error to every joint, the error is distributed by J⁺, and the dynamics are
-/// cancelled exactly (M from MuJoCo's qM, h its bias forces): with the model exact, the task
+/// cancelled exactly (M from MuJoCo's M, h its bias forces): with the model exact, the task
 /// error obeys ë + Kd·ė + Kp·e = 0 in every direction (to first order in the orientation error).
 ///
 /// Internals: position_error [m], orientation_error [rad], manipulability w, damping λ.

@@ -17,7 +17,7 @@ namespace mjarm {
 /// `JointCommand` for its chain.
 ///
 /// Contract: `data` has fresh kinematics and dynamics for its qpos/qvel (the state after
-/// `mj_forward`, or after `mj_step1` in a split step): xpos/xmat, site poses, qM, qfrc_bias are
+/// `mj_forward`, or after `mj_step1` in a split step): xpos/xmat, site poses, M, qfrc_bias are
 /// valid. `compute` never allocates, never throws and never writes to `data`; it may use only
 /// its own preallocated workspace.
 class Controller {

@@ -23,7 +23,7 @@ namespace mjarm {
 ///     M(q)·q̈ + h(q, q̇) = τ + τ_passive + τ_constraint,   h = C(q, q̇)·q̇ + g(q)
 ///
 /// `update()` reads a state whose kinematics and dynamics are already computed (after
-/// `mj_forward`, or `mj_step1` in a split step): qM, qfrc_bias, subtree_com, xaxis, xanchor,
+/// `mj_forward`, or `mj_step1` in a split step): M, qfrc_bias, subtree_com, xaxis, xanchor,
 /// cdof_dot, cvel, site/body poses. It never writes to that `mjData`, never runs a scratch
 /// pipeline, and allocates nothing after construction.
 ///
@@ -50,7 +50,7 @@ class ChainDynamics {
   const Eigen::VectorXd& qd() const noexcept { return qd_; }
 
   /// Joint-space inertia M (n×n, symmetric positive definite, armature included) — the
-  /// chain's rows and columns of MuJoCo's qM [kg·m² or kg].
+  /// chain's rows and columns of MuJoCo's M [kg·m² or kg].
   const Eigen::MatrixXd& mass_matrix() const noexcept { return M_; }
 
   /// Bias forces h = C(q, q̇)·q̇ + g(q) on the chain's dofs (MuJoCo's qfrc_bias) [N·m or N].
@@ -88,11 +88,11 @@ class ChainDynamics {
                         Eigen::Ref<Eigen::VectorXd> tau) noexcept;
 
  private:
-  /// One stored entry of MuJoCo's sparse qM that falls inside the chain block.
+  /// One stored entry of MuJoCo's sparse M that falls inside the chain block.
   struct MassEntry {
     int row = 0;      // chain index
     int col = 0;      // chain index
-    int address = 0;  // into qM
+    int address = 0;  // into mjData::M
   };
   Chain chain_;
   std::vector<MassEntry> mass_entries_;

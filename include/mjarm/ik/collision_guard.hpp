@@ -69,7 +69,6 @@ class CollisionGuard {
   bool any_watched_ = false;
   DataPtr data_;
   Eigen::VectorXd fixed_qpos_;
-  std::vector<mjContact> contacts_;  // narrow-phase output, mjMAXCONPAIR entries
 };
 
 }  // namespace mjarm

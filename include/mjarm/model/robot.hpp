@@ -83,8 +83,8 @@ struct SensorInfo {
 /// A loaded model. Copies share one immutable `mjModel`; algorithms never modify it.
 class Robot {
  public:
-  /// Loads MJCF or URDF from @p path. MJCF written for MuJoCo 3.x is translated for 2.2.2 (see
-  /// `load_warnings()`).
+  /// Loads MJCF or URDF from @p path as MuJoCo loads it; MJCF is staged first (includes and
+  /// asset files read and checked through `read_user_file`, mjcf_staging.hpp).
   /// @throws Error naming the file and MuJoCo's message when the file is missing or invalid.
   static Robot from_file(const std::filesystem::path& path);
 
@@ -114,7 +114,7 @@ class Robot {
   const std::string& name() const noexcept { return name_; }
   /// Where it was loaded from ("<string>" for strings).
   const std::string& source() const noexcept { return source_; }
-  /// One message per rewrite done to load MuJoCo 3.x XML on 2.2.2.
+  /// MuJoCo's warnings while loading the model (parser and compiler), one message each.
   const std::vector<std::string>& load_warnings() const noexcept { return warnings_; }
 
   int nq() const noexcept { return model_->nq; }  ///< position coordinates

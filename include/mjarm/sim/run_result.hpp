@@ -66,7 +66,7 @@ class ReferenceSource {
   virtual ~ReferenceSource() = default;
 
   /// Called once per control tick, before the controllers, with @p data holding fresh
-  /// positions, velocities, kinematics (xpos, site poses), qM, qfrc_bias and the contact list of
+  /// positions, velocities, kinematics (xpos, site poses), M, qfrc_bias and the contact list of
   /// the state at data.time. Constraint forces are not computed yet at this point: read contact
   /// forces through `Simulation::contacts` (last completed step).
   /// @param reference filled in place (keeps its previous contents)

@@ -53,15 +53,18 @@ class Simulation {
 
   // ---- model, data, timing ----
   const Robot& robot() const noexcept { return robot_; }
-  /// The model this simulation steps: the simulation's own copy when the robot's model has
-  /// equality constraints (MuJoCo 2.2.2 keeps `eq_active` in `mjModel`, so switching a constraint
-  /// — a weld grasp — changes the model: two simulations of one `Robot` never see each other's
-  /// constraints) or when `SimulationOptions::own_model` asks for one (domain randomization);
-  /// `robot().model()` keeps the values of the file either way. Otherwise the robot's shared
-  /// model.
+  /// The model this simulation steps: the robot's shared model, or the simulation's own copy
+  /// once it has one (`SimulationOptions::own_model` for domain randomization, `own_model()` for
+  /// a weld grasp, whose relative pose is model data); `robot().model()` keeps the values of the
+  /// file either way. Switching equality constraints on and off needs no copy (`eq_active` is
+  /// state, in `mjData`).
   const mjModel& model() const noexcept { return *model_; }
   /// True when `model()` is this simulation's own copy.
   bool owns_model() const noexcept { return own_model_ != nullptr; }
+  /// Gives this simulation its own copy of the model from now on (nothing happens when it has
+  /// one already). The data keeps its state: the copy has the same layout.
+  /// @throws Error when MuJoCo cannot copy the model.
+  void own_model();
   /// The simulation's own model copy, for its owner to edit between steps (masses, friction,
   /// damping, gains, sizes; call `mj_setConst` after changing masses or inertias), or null when
   /// the model is the robot's shared one. Controllers keep reading the robot's model for its
@@ -81,7 +84,7 @@ class Simulation {
   std::int64_t physics_steps() const noexcept { return steps_; }  ///< physics steps since reset
 
   // ---- state ----
-  /// mj_resetData's state (`reset_data`; or the keyframe @p keyframe), mj_forward, controllers
+  /// mj_resetData's state (or the keyframe @p keyframe), mj_forward, controllers
   /// reset, fault cleared.
   /// @throws Error for an unknown keyframe.
   void reset();
@@ -142,24 +145,28 @@ class Simulation {
   /// A sentence describing @p fault (time, cause, joint or controller).
   std::string describe(const StepFault& fault) const;
 
-  // ---- equality constraints (this simulation's own model copy) ----
+  // ---- equality constraints ----
   /// Id of the equality constraint called @p name.
   /// @throws Error naming the model's equality constraints closest to @p name.
   int equality(std::string_view name) const;
   /// Whether equality @p id is switched on. @throws Error for an id out of range.
   bool equality_active(int id) const;
-  /// Switches equality @p id on or off in this simulation's model copy; the next step sees it.
-  /// Allocation-free; returns false (nothing changed) for an id out of range.
+  /// Switches equality @p id on or off (`mjData::eq_active`); the next step sees it. A reset
+  /// restores the model's `eq_active0`. Allocation-free; returns false (nothing changed) for an
+  /// id out of range.
   bool set_equality_active(int id, bool active) noexcept;
-  /// The constraint data of equality @p id (mjNEQDATA values: for a weld in MuJoCo 2.2.2, the
-  /// anchor in body2's frame [0..2], the pose of body2 in body1's frame, position [3..5] and
-  /// quaternion w x y z [6..9], and the torque scale [10]). Empty for an id out of range.
+  /// The constraint data of equality @p id (mjNEQDATA values: for a weld, the anchor in body2's
+  /// frame [0..2], the pose of body2 in body1's frame, position [3..5] and quaternion w x y z
+  /// [6..9], and the torque scale [10]). Empty for an id out of range.
   std::span<const double> equality_data(int id) const noexcept;
-  /// Writes the data of equality @p id (mjNEQDATA values, see `equality_data`). Allocation-free;
-  /// false (nothing written) for an id out of range, a wrong size or a non-finite value.
+  /// Writes the data of equality @p id (mjNEQDATA values, see `equality_data`) into this
+  /// simulation's own model (`own_model()`). Allocation-free; false (nothing written) without an
+  /// own model, for an id out of range, a wrong size or a non-finite value.
   bool set_equality_data(int id, std::span<const double> values) noexcept;
-  /// Sets the solver reference of equality @p id: time constant [s] and damping ratio.
-  /// @throws Error for an id out of range or values that are not positive and finite.
+  /// Sets the solver reference of equality @p id in this simulation's own model: time constant
+  /// [s] and damping ratio.
+  /// @throws Error for an id out of range, values that are not positive and finite, or without
+  ///         an own model (`own_model()`).
   void set_equality_solref(int id, double time_constant, double damping_ratio);
 
   // ---- sensors and contacts ----
@@ -186,9 +193,15 @@ class Simulation {
     GeomSet a, b;
     ContactSummary summary;
   };
-  struct Snapshot {  // state at the start of a physics step, for rows and rollback
-    double time = 0.0;
-    std::vector<double> qpos, qvel, act, ctrl, qfrc_applied;
+  /// The whole integration state at the start of a physics step (mj_getState with
+  /// mjSTATE_INTEGRATION: time, qpos, qvel, act, warm start, controls, applied forces, mocap,
+  /// eq_active, ...), for the recorder's rows and the rollback.
+  struct Snapshot {
+    std::vector<mjtNum> state;
+    int nq = 0;
+    double time() const noexcept { return state[0]; }
+    const mjtNum* qpos() const noexcept { return state.data() + 1; }  // after time
+    const mjtNum* qvel() const noexcept { return state.data() + 1 + nq; }
   };
 
   TickResult tick_impl(ReferenceSource* source, const Reference* reference, Recorder* recorder);
@@ -205,7 +218,7 @@ class Simulation {
   };
 
   Robot robot_;
-  std::unique_ptr<mjModel, ModelDeleter> own_model_;  // with equalities or own_model
+  std::unique_ptr<mjModel, ModelDeleter> own_model_;  // own_model option or own_model()
   const mjModel* model_ = nullptr;                    // own_model_ or the robot's
   SimulationOptions options_;
   DataPtr data_;
