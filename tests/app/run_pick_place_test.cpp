@@ -94,7 +94,7 @@ TEST(RunPickPlaceCli, FailedTrialsAreListedWithTheirReplayAndRecordings) {
   const fs::path dir = scratch() / "pick_place_batch";
   const CliRun run =
       run_cli(brisk_pick_place({"run", "pick-place", "--seed", "3", "--trials", "2",
-                                "--max-acceleration", "100", "--record", dir.string()}));
+                                "--max-acceleration", "30", "--record", dir.string()}));
   EXPECT_EQ(run.exit_code, 1) << run.err;
   EXPECT_NE(run.err.find("2 of 2 trials failed"), std::string::npos) << run.err;
   EXPECT_NE(run.out.find("failures  diverged 2"), std::string::npos) << run.out;
