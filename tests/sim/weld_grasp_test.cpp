@@ -1,4 +1,4 @@
-// WeldGrasp: the 2.2.2 eq_data layout as the engine reads it, the jump when a weld is switched on
+// WeldGrasp: the eq_data layout as the engine reads it, the jump when a weld is switched on
 // (measured), release, solref, and the model copy that keeps simulations apart.
 
 #include "mjarm/sim/weld_grasp.hpp"

@@ -1,5 +1,5 @@
-// The pick-and-place scene: names, the table top as a plane (and the MuJoCo 2.2.2 box-box
-// contact it avoids), the object's friction, the classic edits, bad input.
+// The pick-and-place scene: names, the table top (a box, with exact contacts for the object
+// resting on it), the object's friction, the classic edits, bad input.
 
 #include "mjarm/tasks/pick_place_scene.hpp"
 
