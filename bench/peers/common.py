@@ -103,8 +103,10 @@ def header(title, report):
     v = ", ".join(f"{k} {x}" for k, x in report["versions"].items())
     m = report["machine"]
     load = " / ".join(f"{x:.2f}" for x in m["load_average"])
+    after = m.get("load_average_after")
+    after = "" if after is None else f" (after: {' / '.join(f'{x:.2f}' for x in after)})"
     lines = [f"# {title}", "", f"Versions: {v}.",
-             f"Measured {m['utc']} UTC, load average {load} (1 / 5 / 15 min) on {m['cpus']} CPUs.",
-             "", "Protocol:"]
+             f"Measured {m['utc']} UTC, load average {load} (1 / 5 / 15 min){after} on "
+             f"{m['cpus']} CPUs.", "", "Protocol:"]
     lines += [f"- {line}" for line in report["protocol"]]
     return "\n".join(lines)
