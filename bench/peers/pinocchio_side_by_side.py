@@ -148,7 +148,7 @@ def agreement(name, model, qs, vs, accs):
     armature = [float(x) for x in model.armature]
     return {"configurations": len(qs), **worst, "largest_tau": size["tau"], "largest_M": size["M"],
             "armature": armature,
-            "within_tolerance": max(worst.values()) <= TOLERANCE}
+            "within_tolerance": bool(max(worst.values()) <= TOLERANCE)}
 
 
 def run_timing(args, robots, directory):
@@ -243,8 +243,9 @@ def main():
 
 def timing_rows(timing, names, clock):
     key = "cpu_time" if clock == "cpu" else "real_time"
+    # the median of the repetitions (one repetition: Google Benchmark reports no aggregate)
     median = {b["run_name"]: b[key] for b in timing["benchmarks"]
-              if b.get("aggregate_name") == "median"}
+              if b.get("aggregate_name") == "median" or b.get("run_type") == "iteration"}
     rows = []
     for name in names:
         for call, what in CALLS:
