@@ -15,6 +15,7 @@ with its whole contract, so that code written against ``dm_env`` (and
   where none is.
 """
 import dm_env
+import numpy as np
 from dm_env import specs
 
 from . import _mjarm
@@ -24,7 +25,7 @@ __all__ = ["DmEnv"]
 
 def _spec(spec):
     shape = tuple(spec.shape)
-    if spec.bounded() or (spec.minimum > -float("inf")).any() or (spec.maximum < float("inf")).any():
+    if np.isfinite(spec.minimum).any() or np.isfinite(spec.maximum).any():
         return specs.BoundedArray(shape, spec.dtype, spec.minimum, spec.maximum, spec.name)
     return specs.Array(shape, spec.dtype, spec.name)
 
