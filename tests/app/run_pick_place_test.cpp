@@ -134,9 +134,9 @@ TEST(RunPickPlaceCli, VideoOfSeveralCamerasTiledOrOneFileEach) {
 }
 
 TEST(RunPickPlaceCli, CtrlCStopsTheBatchWithTheTrialsDone) {
-  const auto cli = mjarm::test::start_cli(
+  const auto cli = mjarm::test::start_cli_on_terminal(
       {"run", "pick-place", "--trials", "400", "--threads", "2"}, "pick_place_interrupt");
-  mjarm::test::interrupt_after_cpu(cli, 2.0);
+  mjarm::test::interrupt_after_progress(cli);
   const CliRun run = mjarm::test::finish_cli(cli);
   EXPECT_FALSE(run.signaled);
   EXPECT_EQ(run.exit_code, 130) << run.err;
