@@ -1,6 +1,7 @@
 #include "mjarm/tasks/docking_scene.hpp"
 
 #include <cmath>
+#include <cstdio>
 #include <numbers>
 #include <string>
 
@@ -40,6 +41,7 @@ void check_geometry(const DockingGeometry& g) {
   if (!(s[0] > 0.0 && s[0] < 1.0 && s[1] > 0.0 && s[1] < 1.0 && s[0] <= s[1]) || !(s[2] > 0.0) ||
       !std::isfinite(s[2]))
     throw Error("docking scene: solimp must be 0 < dmin ≤ dmax < 1 and width > 0");
+  docking_detail::require_positive(g.ccd_tolerance, "docking scene", "ccd_tolerance [m]");
 }
 
 std::array<double, 3> array_of(const Eigen::Vector3d& v) { return {v.x(), v.y(), v.z()}; }
@@ -150,6 +152,9 @@ Scene docking_scene(const DockingSceneOptions& options) {
                 std::to_string(X_WS.p.z()) + " m)");
 
   Scene scene("docking");
+  char tolerance[32];
+  std::snprintf(tolerance, sizeof tolerance, "%.17g", g.ccd_tolerance);
+  scene.set_option("ccd_tolerance", tolerance);
   scene.add_arena();
   scene.add_robot({DockingNames::robot, "iiwa14_torque", {0.0, 0.0, 0.0}, {1, 0, 0, 0}, false});
   scene.attach_gripper({DockingNames::robot, "docking_peg", "attachment_site", "peg"});

@@ -41,6 +41,7 @@ TEST(DockingScene, ComposesTheArmThePegTheSensorAndTheSocket) {
   EXPECT_DOUBLE_EQ(m.opt.gravity[2], -9.81);
   EXPECT_DOUBLE_EQ(m.actuator_ctrlrange[2 * 5 + 1], 40.0);
   for (int j = 0; j < 7; ++j) EXPECT_DOUBLE_EQ(m.dof_frictionloss[j], 0.0);
+  EXPECT_DOUBLE_EQ(m.opt.ccd_tolerance, g.ccd_tolerance);  // the scene's, not MuJoCo's 1e-6
 }
 
 TEST(DockingScene, TheBoreIsAPolygonTangentToItsCircleAndTheChamferOpensAt45Degrees) {
@@ -87,6 +88,59 @@ TEST(DockingScene, TheBoreIsAPolygonTangentToItsCircleAndTheChamferOpensAt45Degr
   }
 }
 
+// The peg's side against the bore wall's top edge, where the chamfer piece meets it, a fraction
+// of a micrometre deep: the spot where MuJoCo's GJK/EPA at its default tolerance (1 µm) returned
+// the wall's contact with its normal reversed (docs/docking.md). Every contact deeper than 1 nm
+// must push the peg towards the axis.
+TEST(DockingScene, ContactsAtTheChamfersFootPushThePegInwards) {
+  const auto reversed_normals = [](double ccd_tolerance, int& checked) {
+    DockingSceneOptions options;
+    options.geometry.ccd_tolerance = ccd_tolerance;
+    const DockingScene scene = build_docking_scene(options);
+    const mjModel& m = scene.robot.model();
+    DataPtr d = scene.robot.make_data();
+    PoseIkOptions ik_options;
+    ik_options.position_tolerance = 1e-11;
+    ik_options.orientation_tolerance = 1e-11;
+    PoseIk ik(scene.chain, ik_options);
+    Eigen::VectorXd q(7);
+    q << 0.0, 0.8, 0.0, -1.5, 0.0, 0.83, 0.0;
+    const Pose seated = scene.seated();
+    const double clearance = options.geometry.bore_radius - options.geometry.peg_radius;
+    int reversed = 0;
+    checked = 0;
+    for (const double depth : {0.012, 0.015, 0.021})  // of the tip below the top face [m]
+    for (const int face : {0, 8, 16, 24}) {
+      const double angle = 2.0 * std::numbers::pi * face / options.geometry.sides;
+      const Eigen::Vector3d out(std::cos(angle), std::sin(angle), 0.0);  // away from the axis
+      for (int k = 1; k <= 40; ++k) {
+        const double shift = clearance + k * 0.05e-6;  // 0.05 … 2 µm into the wall
+        const Eigen::Vector3d p =
+            scene.options.X_WS.p + shift * out - depth * Eigen::Vector3d::UnitZ();
+        const IkResult r = ik.solve(Pose{seated.R, p}, q);
+        EXPECT_EQ(r.status, IkStatus::converged) << face << " " << k;
+        q = r.q;
+        scene.chain.scatter(q, d->qpos);
+        mj_forward(&m, d.get());
+        for (int c = 0; c < d->ncon; ++c) {
+          const mjContact& con = d->contact[c];
+          if (con.dist > -1e-9) continue;
+          const bool peg_first = scene.peg.contains(con.geom1);
+          const Eigen::Vector3d n = (peg_first ? 1.0 : -1.0) * Eigen::Vector3d(con.frame[0], con.frame[1], con.frame[2]);
+          ++checked;
+          if (n.dot(out) < 0.5) ++reversed;  // peg → socket: outwards
+        }
+      }
+    }
+    return reversed;
+  };
+  int checked = 0;
+  EXPECT_EQ(reversed_normals(DockingGeometry{}.ccd_tolerance, checked), 0);
+  EXPECT_GT(checked, 480);  // the wall and the chamfer piece, at every step
+  // MuJoCo's default tolerance gets some of them backwards: what the setting is for
+  EXPECT_GT(reversed_normals(1e-6, checked), 0);
+}
+
 TEST(DockingScene, TheFrictionVariantCarriesTheFrankaValues) {
   DockingSceneOptions options;
   options.joint_friction = true;
@@ -122,6 +176,7 @@ TEST(DockingScene, BadGeometryIsNamed) {
                        "longer than the hole is deep"));
   EXPECT_TRUE(contains(message([](auto& o) { o.geometry.chamfer = std::nan(""); }), "chamfer"));
   EXPECT_TRUE(contains(message([](auto& o) { o.geometry.solimp = {0.99, 0.9, 0.001}; }), "solimp"));
+  EXPECT_TRUE(contains(message([](auto& o) { o.geometry.ccd_tolerance = 0.0; }), "ccd_tolerance"));
   EXPECT_TRUE(contains(message([](auto& o) { o.X_WS.p.z() = 0.03; }), "below the floor"));
   EXPECT_TRUE(contains(message([](auto& o) {
                          o.X_WS.R =

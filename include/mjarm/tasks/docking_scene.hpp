@@ -39,6 +39,13 @@ struct DockingGeometry {
   /// impedance (0.95, 0.99) leaves the seated peg a few micrometres deep, where it loses and
   /// regains contact ten times a second under the preload.
   std::array<double, 3> solimp{0.9, 0.95, 0.001};
+  /// Tolerance of MuJoCo's convex collision (GJK/EPA, option `ccd_tolerance`) [m]. A contact
+  /// shallower than it may come back with its normal reversed; at the chamfer's foot that
+  /// reversed contact faces the chamfer piece's at the same point and the pair brakes the
+  /// sliding peg like a clamp (up to 88 N at MuJoCo's default, 1 µm). Contacts here begin
+  /// anywhere from 0 to about 40 µm deep (a step's travel) and the seated preload holds the peg
+  /// 0.1 µm deep, so the tolerance sits far below both (docs/docking.md).
+  double ccd_tolerance = 1e-12;
 };
 
 /// The Franka Emika Panda's identified joint Coulomb friction [N·m] (the --friction variant puts
