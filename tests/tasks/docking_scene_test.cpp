@@ -97,25 +97,31 @@ TEST(DockingScene, TheBoreIsAPolygonTangentToItsCircleAndTheChamferOpensAt45Degr
   }
 }
 
-// The peg against the socket where the chamfer meets the bore wall, micrometres deep: its side
-// against the foot of the chamfer, and its rim just past the foot. Every contact deeper than
-// 1 nm must push the peg towards the axis (from the wall) or up and in (from the chamfer). Two
-// faults pushed it otherwise (docs/docking.md): MuJoCo's GJK/EPA at its default tolerance (1 µm)
-// returned a sub-micrometre contact with its normal reversed, and, when wall and chamfer were two
-// boxes, the rim caught on the wall box's top face inside the socket (normal straight up).
-TEST(DockingScene, ContactsAtTheChamfersFootPushThePegInwards) {
+// The peg micrometres into the socket where it touches two pieces at once: its side against the
+// foot of the chamfer, its rim just past the foot, and its side pressed into one wall until it
+// reaches the two walls beside it (their tangent points are 11.25° away: 9.8 µm further). Every contact deeper than 1 nm must push the peg towards the axis (from a
+// wall) or up and in (from the chamfer). Two faults pushed it otherwise (docs/docking.md):
+// MuJoCo's GJK/EPA at its default tolerance (1 µm) returned sub-micrometre contacts with their
+// normals reversed, and, when wall and chamfer were two boxes, the rim caught on the wall box's
+// top face inside the socket (normal straight up).
+TEST(DockingScene, ContactsWhereThePegTouchesTwoPiecesPushItInwards) {
   struct Placement {
     double depth;  // of the tip below the top face [m]
-    double into;   // of the peg's side into the wall [m]
+    double into;   // of the peg's side into the wall (the corner), beyond the clearance [m]
   };
-  std::vector<Placement> placements;
+  std::vector<Placement> foot, beside;
   for (const double depth : {0.012, 0.015, 0.021})  // the side against the foot
-    for (int k = 1; k <= 40; ++k) placements.push_back({depth, k * 0.05e-6});
+    for (int k = 1; k <= 40; ++k) foot.push_back({depth, k * 0.05e-6});
   for (const double past : {1e-6, 2e-6, 4e-6})  // the rim just below the foot
-    for (int k = 1; k <= 10; ++k) placements.push_back({0.010 + past, k * 1e-6});
-  const auto outward_normals = [&](double ccd_tolerance, int& checked) {
+    for (int k = 1; k <= 10; ++k) foot.push_back({0.010 + past, k * 1e-6});
+  for (const double depth : {0.015, 0.030})  // the side against three walls
+    for (int k = 0; k < 40; ++k) beside.push_back({depth, 9.3e-6 + k * 0.05e-6});
+  // the number of contacts pushing the peg the wrong way
+  const auto wrong_normals = [](double ccd_tolerance, const std::vector<Placement>& placements,
+                                int& checked) {
     DockingSceneOptions options;
     options.geometry.ccd_tolerance = ccd_tolerance;
+    const DockingGeometry& g = options.geometry;
     const DockingScene scene = build_docking_scene(options);
     const mjModel& m = scene.robot.model();
     DataPtr d = scene.robot.make_data();
@@ -126,11 +132,11 @@ TEST(DockingScene, ContactsAtTheChamfersFootPushThePegInwards) {
     Eigen::VectorXd q(7);
     q << 0.0, 0.8, 0.0, -1.5, 0.0, 0.83, 0.0;
     const Pose seated = scene.seated();
-    const double clearance = options.geometry.bore_radius - options.geometry.peg_radius;
+    const double clearance = g.bore_radius - g.peg_radius;
     int wrong = 0;
     checked = 0;
     for (const int face : {0, 8, 16, 24}) {
-      const double angle = 2.0 * std::numbers::pi * face / options.geometry.sides;
+      const double angle = 2.0 * std::numbers::pi * face / g.sides;
       const Eigen::Vector3d out(std::cos(angle), std::sin(angle), 0.0);  // away from the axis
       for (const Placement& at : placements) {
         const Eigen::Vector3d p = scene.options.X_WS.p + (clearance + at.into) * out -
@@ -144,19 +150,24 @@ TEST(DockingScene, ContactsAtTheChamfersFootPushThePegInwards) {
           const mjContact& con = d->contact[c];
           if (con.dist > -1e-9) continue;
           const double sign = scene.peg.contains(con.geom1) ? 1.0 : -1.0;  // peg → socket
-          const Eigen::Vector3d n = sign * Eigen::Vector3d(con.frame[0], con.frame[1], con.frame[2]);
+          const Eigen::Vector3d n =
+              sign * Eigen::Vector3d(con.frame[0], con.frame[1], con.frame[2]);
           ++checked;
-          if (n.dot(out) < 0.5) ++wrong;  // wall: 1, chamfer: 0.71
+          if (n.dot(out) < 0.5) ++wrong;  // wall: ≥ 0.99, chamfer: 0.71
         }
       }
     }
     return wrong;
   };
+  const double tolerance = DockingGeometry{}.ccd_tolerance;
   int checked = 0;
-  EXPECT_EQ(outward_normals(DockingGeometry{}.ccd_tolerance, checked), 0);
-  EXPECT_GT(checked, static_cast<int>(4 * placements.size()));  // some placements touch twice
+  EXPECT_EQ(wrong_normals(tolerance, foot, checked), 0);
+  EXPECT_GT(checked, static_cast<int>(4 * foot.size()));  // the wall and the chamfer
+  EXPECT_EQ(wrong_normals(tolerance, beside, checked), 0);
+  EXPECT_GT(checked, static_cast<int>(8 * beside.size()));  // three walls from half of them on
   // MuJoCo's default tolerance gets some of them backwards: what the setting is for
-  EXPECT_GT(outward_normals(1e-6, checked), 0);
+  EXPECT_GT(wrong_normals(1e-6, foot, checked), 0);
+  EXPECT_GT(wrong_normals(1e-6, beside, checked), 0);
 }
 
 TEST(DockingScene, TheFrictionVariantCarriesTheFrankaValues) {

@@ -41,11 +41,12 @@ struct DockingGeometry {
   /// regains contact ten times a second under the preload.
   std::array<double, 3> solimp{0.9, 0.95, 0.001};
   /// Tolerance of MuJoCo's convex collision (GJK/EPA, option `ccd_tolerance`) [m]. A contact
-  /// shallower than it may come back with its normal reversed; at the chamfer's foot that
-  /// reversed contact faces the chamfer piece's at the same point and the pair brakes the
-  /// sliding peg like a clamp (up to 88 N at MuJoCo's default, 1 µm). Contacts here begin
-  /// anywhere from 0 to about 40 µm deep (a step's travel) and the seated preload holds the peg
-  /// 0.1 µm deep, so the tolerance sits far below both (docs/docking.md).
+  /// shallower than it may come back with its normal reversed; where the peg touches two pieces
+  /// at once (the chamfer's foot, the walls beside a pressed wall) it then faces the other
+  /// piece's contact and the pair brakes the sliding peg like a clamp (up to 89 N at MuJoCo's
+  /// default, 1 µm). Contacts here begin anywhere from 0 to about 40 µm deep (a step's travel)
+  /// and the seated preload holds the peg 0.1 µm deep, so the tolerance sits far below both
+  /// (docs/docking.md).
   double ccd_tolerance = 1e-12;
 };
 
