@@ -99,15 +99,16 @@ TEST(DockingScene, TheBoreIsAPolygonTangentToItsCircleAndTheChamferOpensAt45Degr
 
 // The peg micrometres into the socket where it touches two pieces at once: its side against the
 // foot of the chamfer, its rim just past the foot, and its side pressed into one wall until it
-// reaches the two walls beside it (their tangent points are 11.25° away: 9.8 µm further). Every contact deeper than 1 nm must push the peg towards the axis (from a
-// wall) or up and in (from the chamfer). Two faults pushed it otherwise (docs/docking.md):
-// MuJoCo's GJK/EPA at its default tolerance (1 µm) returned sub-micrometre contacts with their
-// normals reversed, and, when wall and chamfer were two boxes, the rim caught on the wall box's
-// top face inside the socket (normal straight up).
+// reaches the two walls beside it (their tangent points are 11.25° away: 9.8 µm further). Every
+// contact deeper than 1 nm must push the peg towards the axis (from a wall) or up and in (from
+// the chamfer). Two faults pushed it otherwise (docs/docking.md): MuJoCo's GJK/EPA at its
+// default tolerance (1 µm) returned sub-micrometre contacts with their normals reversed, and,
+// when wall and chamfer were two boxes, the rim caught on the wall box's top face inside the
+// socket (normal straight up).
 TEST(DockingScene, ContactsWhereThePegTouchesTwoPiecesPushItInwards) {
   struct Placement {
     double depth;  // of the tip below the top face [m]
-    double into;   // of the peg's side into the wall (the corner), beyond the clearance [m]
+    double into;   // of the peg's side into the wall, beyond the clearance [m]
   };
   std::vector<Placement> foot, beside;
   for (const double depth : {0.012, 0.015, 0.021})  // the side against the foot
@@ -164,7 +165,8 @@ TEST(DockingScene, ContactsWhereThePegTouchesTwoPiecesPushItInwards) {
   EXPECT_EQ(wrong_normals(tolerance, foot, checked), 0);
   EXPECT_GT(checked, static_cast<int>(4 * foot.size()));  // the wall and the chamfer
   EXPECT_EQ(wrong_normals(tolerance, beside, checked), 0);
-  EXPECT_GT(checked, static_cast<int>(8 * beside.size()));  // three walls from half of them on
+  // four faces, and the walls beside reached in about half of the placements
+  EXPECT_GT(checked, static_cast<int>(6 * beside.size()));
   // MuJoCo's default tolerance gets some of them backwards: what the setting is for
   EXPECT_GT(wrong_normals(1e-6, foot, checked), 0);
   EXPECT_GT(wrong_normals(1e-6, beside, checked), 0);
