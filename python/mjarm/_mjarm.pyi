@@ -2831,7 +2831,7 @@ class JointReference:
 class JointSpline:
     """A timed joint trajectory: quintic segments."""
     def __init__(*args: Any, **kwargs: Any) -> Any: ...
-    def at(self: JointSpline, t: float) -> tuple:
+    def at(self: JointSpline, t: float) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]]:
         """(q, qd, qdd), each (n,)"""
         ...
     @property
@@ -2921,7 +2921,7 @@ class Manipulability:
         ...
     def evaluate(self: Manipulability, q: ArrayLike) -> ManipulabilityResult:
         ...
-    def gradient(self: Manipulability, q: ArrayLike) -> tuple:
+    def gradient(self: Manipulability, q: ArrayLike) -> tuple[ManipulabilityResult, NDArray[np.float64]]:
         """(result, dw/dq (n,))"""
         ...
     @property
@@ -3036,7 +3036,7 @@ class MultiTargetIk:
     @property
     def target_count(self) -> Any:
         ...
-    def target_errors(self: MultiTargetIk, i: int) -> tuple:
+    def target_errors(self: MultiTargetIk, i: int) -> tuple[float, float]:
         """(position [m], orientation [rad]) of target i after the last solve"""
         ...
 
@@ -4843,7 +4843,7 @@ class QuinticTrajectory:
     """n joints, one quintic each."""
     def __init__(self: QuinticTrajectory, q_start: ArrayLike, q_end: ArrayLike, duration: float, qd_start: ArrayLike = ..., qdd_start: ArrayLike = ..., qd_end: ArrayLike = ..., qdd_end: ArrayLike = ...) -> None:
         ...
-    def at(self: QuinticTrajectory, t: float) -> tuple:
+    def at(self: QuinticTrajectory, t: float) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]]:
         """(q, qd, qdd), each (n,)"""
         ...
     @property
@@ -6050,7 +6050,7 @@ class SyncedTrapezoid:
     """Trapezoids on n axes finishing together."""
     def __init__(self: SyncedTrapezoid, start: ArrayLike, goal: ArrayLike, max_velocity: float, max_acceleration: float) -> None:
         ...
-    def at(self: SyncedTrapezoid, t: float) -> tuple:
+    def at(self: SyncedTrapezoid, t: float) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]]:
         """(position, velocity, acceleration), each (n,)"""
         ...
     @property
@@ -6509,13 +6509,13 @@ class VectorTimeStep:
     def end(self) -> Any:
         """(N,) int8: EpisodeEnd values"""
         ...
-    def first(self: VectorTimeStep) -> numpy.ndarray:
+    def first(self: VectorTimeStep) -> NDArray[Any]:
         """(N,) bool: rows on FIRST"""
         ...
-    def last(self: VectorTimeStep) -> numpy.ndarray:
+    def last(self: VectorTimeStep) -> NDArray[Any]:
         """(N,) bool: rows on LAST"""
         ...
-    def mid(self: VectorTimeStep) -> numpy.ndarray:
+    def mid(self: VectorTimeStep) -> NDArray[Any]:
         """(N,) bool: rows on MID"""
         ...
     @property
@@ -6759,7 +6759,7 @@ def find_frame(robot: Robot, name: str) -> FrameRef:
 def forward_kinematics(chain: Chain, q: ArrayLike) -> Pose:
     """X_WE at q (n,), other joints at qpos0 (builds a ChainKinematics per call)."""
     ...
-def frame_errors(X_WE: ArrayLike, X_WT: ArrayLike) -> tuple:
+def frame_errors(X_WE: ArrayLike, X_WT: ArrayLike) -> tuple[float, float]:
     """(position error [m], rotation angle [rad])"""
     ...
 def frame_pose(robot: Robot, data: Data, frame: ArrayLike) -> Pose:
