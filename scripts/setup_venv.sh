@@ -133,7 +133,9 @@ problems="$(probe "${requirements[@]}")"
 pip_install() {
   # the project's pins constrain every install: a peer never moves mujoco or numpy
   "$venv/bin/python" -m pip install --disable-pip-version-check --no-input -q \
-    -c python/requirements.txt "$@"
+    -c python/requirements.txt "$@" ||
+    fail "pip failed (above). Without network, run this again once PyPI is reachable; otherwise" \
+         "make the environment from scratch: rm -rf $venv && bash scripts/setup_venv.sh ${requirements[*]}"
 }
 # reinstalls the packages a probe found damaged or unrecorded, at their installed versions
 repair() {
