@@ -16,6 +16,7 @@
 #include "mjarm/model/names.hpp"
 #include "mjarm/model/user_file.hpp"
 #include "mjcf_detail.hpp"
+#include "mujoco_loading.hpp"
 #include "urdf_assets.hpp"
 
 namespace mjarm {
@@ -25,6 +26,9 @@ namespace {
   throw Error(std::string("MuJoCo error: ") + message);
 }
 
+using model_detail::LoadWarnings;
+using model_detail::xml_loader_mutex;
+
 // MuJoCo's warnings while a model loads on this thread, for the robot's load report
 thread_local std::vector<std::string>* load_warnings_sink = nullptr;
 
@@ -32,20 +36,6 @@ void print_mujoco_warning(const char* message) {
   if (load_warnings_sink != nullptr) load_warnings_sink->emplace_back(message);
   std::cerr << "mujoco warning: " << message << "\n";
 }
-
-/// Collects MuJoCo's warnings into @p sink while it lives.
-class LoadWarnings {
- public:
-  explicit LoadWarnings(std::vector<std::string>& sink) : previous_(load_warnings_sink) {
-    load_warnings_sink = &sink;
-  }
-  ~LoadWarnings() { load_warnings_sink = previous_; }
-  LoadWarnings(const LoadWarnings&) = delete;
-  LoadWarnings& operator=(const LoadWarnings&) = delete;
-
- private:
-  std::vector<std::string>* previous_;
-};
 
 /// The root element's name ("mujoco" or "robot").
 /// @throws Error with the parser's message and line when the XML is malformed.
@@ -65,13 +55,6 @@ struct MemoryFsDeleter {
     delete vfs;
   }
 };
-
-// MuJoCo's XML loader keeps the last parsed model in a global (for mj_saveLastXML): loads from
-// several threads (parallel trial batches) take turns
-std::mutex& xml_loader_mutex() {
-  static std::mutex mutex;
-  return mutex;
-}
 
 /// A loaded model and MuJoCo's warnings while loading it.
 struct Loaded {
@@ -216,6 +199,21 @@ const char* sensor_type_name(int type) noexcept {
 
 }  // namespace
 
+namespace model_detail {
+
+std::mutex& xml_loader_mutex() {
+  static std::mutex mutex;
+  return mutex;
+}
+
+LoadWarnings::LoadWarnings(std::vector<std::string>& sink) : previous_(load_warnings_sink) {
+  load_warnings_sink = &sink;
+}
+
+LoadWarnings::~LoadWarnings() { load_warnings_sink = previous_; }
+
+}  // namespace model_detail
+
 const char* to_string(JointType type) noexcept {
   switch (type) {
     case JointType::free:
@@ -252,13 +250,16 @@ void install_mujoco_handlers() {
   });
 }
 
-Robot::Robot(mjModel* model, std::string source, std::vector<std::string> warnings)
+Robot::Robot(mjModel* model, std::string source, std::vector<std::string> warnings,
+             std::string_view label)
     : model_(model, [](const mjModel* m) { mj_deleteModel(const_cast<mjModel*>(m)); }),
       name_(model_name(*model)),
       source_(std::move(source)),
       warnings_(std::move(warnings)) {
   // a non-finite number would come out of every algorithm as inf / NaN without an error
-  check_model_finite(*model_, source_ == "<string>" ? "XML string" : "'" + source_ + "'");
+  check_model_finite(*model_, !label.empty()            ? std::string(label)
+                              : source_ == "<string>" ? std::string("XML string")
+                                                      : "'" + source_ + "'");
 }
 
 Robot Robot::from_file(const std::filesystem::path& path) {
@@ -291,6 +292,19 @@ Robot Robot::from_string(std::string_view xml, const std::filesystem::path& base
   const StagedMjcf staged = stage_mjcf(xml, std::filesystem::absolute(base));
   Loaded loaded = load_from_memory(staged.xml, source, &staged);
   return Robot(loaded.model, "<string>", std::move(loaded.warnings));
+}
+
+Robot Robot::from_spec(mjSpec& spec, std::string_view what) {
+  install_mujoco_handlers();
+  std::vector<std::string> warnings;
+  mjModel* model = nullptr;
+  {
+    const LoadWarnings capture(warnings);
+    model = mj_compile(&spec, nullptr);
+  }
+  if (model == nullptr)
+    throw Error(std::string(what) + " does not compile: " + mjs_getError(&spec));
+  return Robot(model, "<string>", std::move(warnings), what);
 }
 
 std::vector<std::string> Robot::bundled_names() {

@@ -190,7 +190,10 @@ TEST(Scene, EditsTakeEffectAfterCompile) {
   const std::vector<double> pos{0.3, -0.2, 0.5};
   scene.set_attribute("body", "ball", "pos", pos);
   EXPECT_EQ(scene.attribute("geom", "cube/geom", "size"), "0.01 0.02 0.03");
-  EXPECT_EQ(scene.attribute("geom", "cube/geom", "margin"), std::nullopt);
+  // the value the element holds, written or not; nullopt where it holds none
+  EXPECT_EQ(scene.attribute("geom", "cube/geom", "margin"), "0");
+  EXPECT_EQ(scene.attribute("geom", "cube/geom", "fromto"), std::nullopt);
+  EXPECT_EQ(scene.attribute("actuator", "left/finger_left", "gainprm"), "3200 0 0 0 0 0 0 0 0 0");
 
   const Robot robot = scene.compile();
   const mjModel& m = robot.model();
@@ -412,9 +415,23 @@ TEST(Scene, BadValuesAreNamed) {
                        "closest: cube/geom"));
   EXPECT_TRUE(contains(error_of([&] { scene.set_attribute("body", "cube", "name", "box"); }),
                        "renaming is not supported"));
-  // MuJoCo judges the values it reads when the scene compiles
-  scene.set_attribute("geom", "cube/geom", "size", "abc");
-  const std::string message = error_of([&] { scene.compile(); });
+  // values are read when they are set
+  std::string message = error_of([&] { scene.set_attribute("geom", "cube/geom", "size", "abc"); });
+  EXPECT_TRUE(contains(message, "geom 'cube/geom': size expects numbers, got 'abc'")) << message;
+  message = error_of([&] { scene.set_attribute("geom", "cube/geom", "frction", "1"); });
+  EXPECT_TRUE(contains(message, "geom 'cube/geom': no attribute 'frction'; closest: friction"))
+      << message;
+  const std::vector<double> four{1.0, 2.0, 3.0, 4.0};
+  message = error_of([&] { scene.set_attribute("geom", "cube/geom", "pos", four); });
+  EXPECT_TRUE(contains(message, "pos expects 3 numbers, got 4")) << message;
+  message = error_of([&] { scene.set_attribute("geom", "cube/geom", "type", "cube"); });
+  EXPECT_TRUE(contains(message, "type expects one of plane, hfield, sphere")) << message;
+  message = error_of([&] { scene.set_option("integrater", "RK4"); });
+  EXPECT_TRUE(contains(message, "option: no attribute 'integrater'; closest: integrator"))
+      << message;
+  // MuJoCo judges the values when the scene compiles
+  scene.set_attribute("geom", "cube/geom", "size", "-0.01 0.02 0.03");
+  message = error_of([&] { scene.compile(); });
   EXPECT_TRUE(contains(message, "scene 'two_arms' does not compile")) << message;
   EXPECT_TRUE(contains(message, "size")) << message;
   EXPECT_TRUE(contains(error_of([&] {
