@@ -299,9 +299,13 @@ struct Scene::Impl {
       mjs_setDouble(spec_key->qpos, qpos.data(), m.nq);
       if (m.nu > 0) mjs_setDouble(spec_key->ctrl, ctrl.data(), m.nu);
     }
-    for (const PartKeys& part : keyed)
-      for (const std::string& key : part.keys)
-        mjs_delete(copy.get(), mjs_findElement(copy.get(), mjOBJ_KEY, (part.prefix + key).c_str()));
+    for (const PartKeys& part : keyed) {
+      for (const std::string& key : part.keys) {
+        const std::string name = part.prefix + key;
+        if (mjsElement* e = mjs_findElement(copy.get(), mjOBJ_KEY, name.c_str()))
+          mjs_delete(copy.get(), e);
+      }
+    }
     Robot combined_robot = Robot::from_spec(*copy, what);
     return {std::move(copy), std::move(combined_robot)};
   }
@@ -599,6 +603,8 @@ void Scene::set_option(std::string_view attr, std::string_view value) {
 
 std::string Scene::xml() const {
   const SpecPtr compiled = impl_->compile_copy().first;
+  // the spec as written, every number exact (the compiled values are rounded to 6 digits)
+  compiled->compiler.savecompiled = 0;
   std::string text(1 << 16, '\0');
   char error[1024] = "";
   for (int attempt = 0; attempt < 2; ++attempt) {

@@ -103,6 +103,52 @@ TEST(AttachedPart, DegreePartMergedIntoARadianSceneKeepsItsKinematics) {
   }
 }
 
+TEST(AttachedPart, EditsOfADegreePartAreInDegrees) {
+  const auto file = write_part("deg/deg.xml", kDegreeArm);
+  Scene scene;
+  scene.add_robot({"deg", file.string(), {}, {1, 0, 0, 0}, false});
+  const std::vector<double> range{-30.0, 60.0};
+  scene.set_attribute("joint", "deg/j2", "range", range);
+  EXPECT_EQ(scene.attribute("joint", "deg/j2", "range"), "-30 60");
+  // the body's euler, as written in the part (degrees, zyx)
+  EXPECT_EQ(scene.attribute("body", "deg/link", "euler"), "0 45 20");
+  EXPECT_EQ(scene.attribute("body", "deg/link", "quat"), std::nullopt);
+  const Robot robot = scene.compile();
+  const int j = robot.joint("deg/j2");
+  EXPECT_NEAR(robot.model().jnt_range[2 * j], -std::numbers::pi / 6.0, 1e-15);
+  EXPECT_NEAR(robot.model().jnt_range[2 * j + 1], std::numbers::pi / 3.0, 1e-15);
+}
+
+TEST(AttachedPart, AGripperSitsAtASitePosedInDegreesAndByADefaultClass) {
+  // the site's position comes from the part's default class, its orientation from a zyx euler
+  // in degrees
+  const auto file = write_part("flange/flange.xml", R"(
+<mujoco model="flange">
+  <compiler angle="degree" eulerseq="zyx"/>
+  <default><site pos="0.02 0 0.1"/></default>
+  <worldbody>
+    <body name="link">
+      <joint name="j" axis="0 0 1"/>
+      <geom size="0.05"/>
+      <site name="tilted" euler="30 0 20"/>
+    </body>
+  </worldbody>
+</mujoco>)");
+  Scene scene;
+  scene.add_robot({"r", file.string(), {0.1, 0.2, 0.3}, {1, 0, 0, 0}, false});
+  scene.attach_gripper({"r", "franka_hand", "tilted", "hand"});
+  const Robot robot = scene.compile();
+  const mjModel& m = robot.model();
+  DataPtr d = robot.make_data();
+  d->qpos[m.jnt_qposadr[robot.joint("r/j")]] = 0.7;
+  mj_kinematics(&m, d.get());
+  const int mount = robot.body("r/hand");
+  const int site = robot.site("r/tilted");
+  for (int k = 0; k < 3; ++k) EXPECT_NEAR(d->xpos[3 * mount + k], d->site_xpos[3 * site + k], 1e-12);
+  for (int k = 0; k < 9; ++k) EXPECT_NEAR(d->xmat[9 * mount + k], d->site_xmat[9 * site + k], 1e-12);
+  EXPECT_NEAR(d->site_xpos[3 * site + 2], 0.4, 1e-12);
+}
+
 TEST(AttachedPart, TwoCopiesOfOnePartKeepTheirOwnClassesAndMeshes) {
   // a mesh named after its file, found through the part's own meshdir
   write_part("meshy/meshes/tetra.obj",

@@ -277,6 +277,38 @@ TEST(Scene, KeyframesOfThePartsAreCombinedByName) {
   EXPECT_EQ(m.key_ctrl[key * m.nu + robot.actuator("right/joint4")], right[3]);
 }
 
+TEST(Scene, XmlLoadsIntoTheSameModel) {
+  Scene scene = two_robots_two_objects();
+  scene.add_robot({"arm", "panda", {1.0, 0.0, 0.0}, {1, 0, 0, 0}, false});
+  scene.attach_gripper({"arm", "franka_hand", "attachment_site", "hand"});
+  scene.add_weld({"grasp", "arm/hand/hand", "cube", false, {0.002, 1.0}});
+  scene.add_camera({"follow", "", {1.0, 1.0, 1.0}, {}, {1, 0, 0, 0}, 45.0, "cube"});
+  const std::vector<double> gain{3200.0};
+  scene.set_attribute("actuator", "arm/hand/finger_left", "gainprm", gain);
+  const Robot direct = scene.compile();
+  const Robot reloaded = Robot::from_string(scene.xml());
+  const mjModel& a = direct.model();
+  const mjModel& b = reloaded.model();
+  ASSERT_EQ(a.nq, b.nq);
+  ASSERT_EQ(a.nbody, b.nbody);
+  ASSERT_EQ(a.ngeom, b.ngeom);
+  ASSERT_EQ(a.nu, b.nu);
+  ASSERT_EQ(a.njnt, b.njnt);
+  ASSERT_EQ(a.nkey, b.nkey);
+  const auto same = [](const double* x, const double* y, int n, const char* what) {
+    for (int i = 0; i < n; ++i) EXPECT_EQ(x[i], y[i]) << what << "[" << i << "]";
+  };
+  same(a.body_pos, b.body_pos, 3 * a.nbody, "body_pos");
+  same(a.body_quat, b.body_quat, 4 * a.nbody, "body_quat");
+  same(a.body_mass, b.body_mass, a.nbody, "body_mass");
+  same(a.geom_size, b.geom_size, 3 * a.ngeom, "geom_size");
+  same(a.geom_friction, b.geom_friction, 3 * a.ngeom, "geom_friction");
+  same(a.jnt_range, b.jnt_range, 2 * a.njnt, "jnt_range");
+  same(a.actuator_gainprm, b.actuator_gainprm, mjNGAIN * a.nu, "actuator_gainprm");
+  same(a.key_qpos, b.key_qpos, a.nq * a.nkey, "key_qpos");
+  same(a.eq_data, b.eq_data, mjNEQDATA * a.neq, "eq_data");
+}
+
 TEST(Scene, NameClashesAreNamed) {
   Scene scene = two_robots_two_objects();
   std::string message = error_of([&] { scene.add_object(cube_spec("cube", 0.3)); });
