@@ -4,7 +4,9 @@
 #include <cmath>
 #include <filesystem>
 #include <map>
+#include <optional>
 #include <set>
+#include <string_view>
 
 #include "mjarm/error.hpp"
 #include "mjarm/model/mjcf_spec.hpp"
@@ -21,20 +23,28 @@ namespace {
 
 // kinds of named elements a part brings (default classes are prefixed by mjs_attach too, but a
 // spec does not list them; MuJoCo refuses a clash among them when attaching)
-constexpr std::pair<const char*, mjtObj> kNamedKinds[] = {
-    {"body", mjOBJ_BODY},         {"frame", mjOBJ_FRAME},       {"joint", mjOBJ_JOINT},
-    {"geom", mjOBJ_GEOM},         {"site", mjOBJ_SITE},         {"camera", mjOBJ_CAMERA},
-    {"light", mjOBJ_LIGHT},       {"actuator", mjOBJ_ACTUATOR}, {"sensor", mjOBJ_SENSOR},
-    {"tendon", mjOBJ_TENDON},     {"equality", mjOBJ_EQUALITY}, {"pair", mjOBJ_PAIR},
-    {"exclude", mjOBJ_EXCLUDE},   {"mesh", mjOBJ_MESH},         {"hfield", mjOBJ_HFIELD},
-    {"skin", mjOBJ_SKIN},         {"texture", mjOBJ_TEXTURE},   {"material", mjOBJ_MATERIAL},
-    {"numeric", mjOBJ_NUMERIC},   {"text", mjOBJ_TEXT},         {"tuple", mjOBJ_TUPLE},
+constexpr std::pair<std::string_view, mjtObj> kNamedKinds[] = {
+    {"body", mjOBJ_BODY},       {"frame", mjOBJ_FRAME},       {"joint", mjOBJ_JOINT},
+    {"geom", mjOBJ_GEOM},       {"site", mjOBJ_SITE},         {"camera", mjOBJ_CAMERA},
+    {"light", mjOBJ_LIGHT},     {"actuator", mjOBJ_ACTUATOR}, {"sensor", mjOBJ_SENSOR},
+    {"tendon", mjOBJ_TENDON},   {"equality", mjOBJ_EQUALITY}, {"pair", mjOBJ_PAIR},
+    {"exclude", mjOBJ_EXCLUDE}, {"mesh", mjOBJ_MESH},         {"hfield", mjOBJ_HFIELD},
+    {"skin", mjOBJ_SKIN},       {"texture", mjOBJ_TEXTURE},   {"material", mjOBJ_MATERIAL},
+    {"numeric", mjOBJ_NUMERIC}, {"text", mjOBJ_TEXT},         {"tuple", mjOBJ_TUPLE},
     {"key", mjOBJ_KEY}};
 
 // element types that take a default class
-constexpr mjtObj kClassedTypes[] = {mjOBJ_JOINT,    mjOBJ_GEOM,     mjOBJ_SITE,   mjOBJ_CAMERA,
-                                    mjOBJ_LIGHT,    mjOBJ_MESH,     mjOBJ_MATERIAL, mjOBJ_PAIR,
-                                    mjOBJ_EQUALITY, mjOBJ_TENDON,   mjOBJ_ACTUATOR};
+constexpr mjtObj kClassedTypes[] = {mjOBJ_JOINT, mjOBJ_GEOM,     mjOBJ_SITE,     mjOBJ_CAMERA,
+                                    mjOBJ_LIGHT, mjOBJ_MESH,     mjOBJ_MATERIAL, mjOBJ_PAIR,
+                                    mjOBJ_EQUALITY, mjOBJ_TENDON, mjOBJ_ACTUATOR};
+
+/// The object type of a kind of named element ("body", ..., "key", "default"), or nullopt.
+std::optional<mjtObj> object_type(std::string_view kind) {
+  if (kind == "default") return mjOBJ_DEFAULT;
+  for (const auto& [name, type] : kNamedKinds)
+    if (name == kind) return type;
+  return std::nullopt;
+}
 
 std::string name_of(mjsElement* e) {
   const char* n = mjs_getString(mjs_getName(e));
@@ -150,7 +160,7 @@ struct Scene::Impl {
   mjsBody* world() const { return mjs_findBody(spec.get(), "world"); }
 
   std::vector<std::string> names_of(std::string_view kind) const {
-    const auto type = scene_detail::object_type(kind);
+    const auto type = object_type(kind);
     if (!type) return {};
     std::vector<std::string> out;
     if (*type == mjOBJ_DEFAULT) {
@@ -170,7 +180,7 @@ struct Scene::Impl {
   }
 
   bool exists(std::string_view kind, const std::string& element_name) const {
-    const auto type = scene_detail::object_type(kind);
+    const auto type = object_type(kind);
     if (!type) return false;
     if (*type == mjOBJ_DEFAULT) return mjs_findDefault(spec.get(), element_name.c_str()) != nullptr;
     return mjs_findElement(spec.get(), *type, element_name.c_str()) != nullptr;
@@ -179,7 +189,7 @@ struct Scene::Impl {
   /// The element, or an Error naming the closest existing names of that kind.
   mjsElement& require(std::string_view kind, std::string_view element_name,
                       const std::string& why) const {
-    const auto type = scene_detail::object_type(kind);
+    const auto type = object_type(kind);
     if (!type || *type == mjOBJ_DEFAULT) {
       std::string kinds;
       for (const auto& [k, t] : kNamedKinds) kinds += (kinds.empty() ? "" : ", ") + std::string(k);

@@ -36,11 +36,10 @@ struct Field {
 };
 
 // MJCF keywords of the enumerations an edit may want to change
-constexpr Keyword kGeomTypes[] = {{"plane", mjGEOM_PLANE},       {"hfield", mjGEOM_HFIELD},
-                                  {"sphere", mjGEOM_SPHERE},     {"capsule", mjGEOM_CAPSULE},
-                                  {"ellipsoid", mjGEOM_ELLIPSOID}, {"cylinder", mjGEOM_CYLINDER},
-                                  {"box", mjGEOM_BOX},           {"mesh", mjGEOM_MESH},
-                                  {"sdf", mjGEOM_SDF}};
+constexpr Keyword kGeomTypes[] = {
+    {"plane", mjGEOM_PLANE},         {"hfield", mjGEOM_HFIELD},     {"sphere", mjGEOM_SPHERE},
+    {"capsule", mjGEOM_CAPSULE},     {"ellipsoid", mjGEOM_ELLIPSOID}, {"cylinder", mjGEOM_CYLINDER},
+    {"box", mjGEOM_BOX},             {"mesh", mjGEOM_MESH},         {"sdf", mjGEOM_SDF}};
 constexpr Keyword kJointTypes[] = {
     {"free", mjJNT_FREE}, {"ball", mjJNT_BALL}, {"slide", mjJNT_SLIDE}, {"hinge", mjJNT_HINGE}};
 constexpr Keyword kLimited[] = {
@@ -73,8 +72,10 @@ constexpr Keyword kBuiltins[] = {{"none", mjBUILTIN_NONE},
                                  {"gradient", mjBUILTIN_GRADIENT},
                                  {"checker", mjBUILTIN_CHECKER},
                                  {"flat", mjBUILTIN_FLAT}};
-constexpr Keyword kMarks[] = {
-    {"none", mjMARK_NONE}, {"edge", mjMARK_EDGE}, {"cross", mjMARK_CROSS}, {"random", mjMARK_RANDOM}};
+constexpr Keyword kMarks[] = {{"none", mjMARK_NONE},
+                              {"edge", mjMARK_EDGE},
+                              {"cross", mjMARK_CROSS},
+                              {"random", mjMARK_RANDOM}};
 constexpr Keyword kIntegrators[] = {{"Euler", mjINT_EULER},
                                     {"RK4", mjINT_RK4},
                                     {"implicit", mjINT_IMPLICIT},
@@ -124,106 +125,24 @@ Field make_field(std::string_view name, std::size_t offset, int count) {
   return f;
 }
 
-/// The fields of one mjs struct and the MJCF names that differ from the field names.
-struct ElementTable {
-  std::vector<Field> fields;
-  std::vector<std::pair<std::string_view, std::string_view>> aliases;  // MJCF name -> field
-};
-
-// every field of the struct S, from MuJoCo's own list of them
-#define X(T, name, n) make_field<T>(#name, offsetof(S, name), n),
+// every field of an mjs struct (or mjOption), from MuJoCo's own list of them
+#define X(T, name, n) make_field<T>(#name, offsetof(Struct, name), n),
 #define XVEC X
-
-template <class S>
-std::vector<Field> fields_of();
-template <>
-std::vector<Field> fields_of<mjsBody>() {
-  using S = mjsBody;
-  return {MJSBODY_FIELDS};
-}
-template <>
-std::vector<Field> fields_of<mjsFrame>() {
-  using S = mjsFrame;
-  return {MJSFRAME_FIELDS};
-}
-template <>
-std::vector<Field> fields_of<mjsJoint>() {
-  using S = mjsJoint;
-  return {MJSJOINT_FIELDS};
-}
-template <>
-std::vector<Field> fields_of<mjsGeom>() {
-  using S = mjsGeom;
-  return {MJSGEOM_FIELDS};
-}
-template <>
-std::vector<Field> fields_of<mjsSite>() {
-  using S = mjsSite;
-  return {MJSSITE_FIELDS};
-}
-template <>
-std::vector<Field> fields_of<mjsCamera>() {
-  using S = mjsCamera;
-  return {MJSCAMERA_FIELDS};
-}
-template <>
-std::vector<Field> fields_of<mjsLight>() {
-  using S = mjsLight;
-  return {MJSLIGHT_FIELDS};
-}
-template <>
-std::vector<Field> fields_of<mjsActuator>() {
-  using S = mjsActuator;
-  return {MJSACTUATOR_FIELDS};
-}
-template <>
-std::vector<Field> fields_of<mjsSensor>() {
-  using S = mjsSensor;
-  return {MJSSENSOR_FIELDS};
-}
-template <>
-std::vector<Field> fields_of<mjsTendon>() {
-  using S = mjsTendon;
-  return {MJSTENDON_FIELDS};
-}
-template <>
-std::vector<Field> fields_of<mjsEquality>() {
-  using S = mjsEquality;
-  return {MJSEQUALITY_FIELDS};
-}
-template <>
-std::vector<Field> fields_of<mjsPair>() {
-  using S = mjsPair;
-  return {MJSPAIR_FIELDS};
-}
-template <>
-std::vector<Field> fields_of<mjsMesh>() {
-  using S = mjsMesh;
-  return {MJSMESH_FIELDS};
-}
-template <>
-std::vector<Field> fields_of<mjsHField>() {
-  using S = mjsHField;
-  return {MJSHFIELD_FIELDS};
-}
-template <>
-std::vector<Field> fields_of<mjsMaterial>() {
-  using S = mjsMaterial;
-  return {MJSMATERIAL_FIELDS};
-}
-template <>
-std::vector<Field> fields_of<mjsTexture>() {
-  using S = mjsTexture;
-  return {MJSTEXTURE_FIELDS};
-}
+#define MJARM_FIELDS_OF(S, LIST)     \
+  [] {                               \
+    using Struct = S;                \
+    return std::vector<Field>{LIST}; \
+  }()
 
 std::vector<Field> option_fields() {
-  using S = mjOption;
-  std::vector<Field> fields{MJOPTION_FIELDS};
-  // integers in mjOption, keywords in MJCF
+  std::vector<Field> fields = MJARM_FIELDS_OF(mjOption, MJOPTION_FIELDS);
   for (Field& f : fields) {
+    // integers in mjOption, keywords in MJCF
     const std::pair<std::string_view, std::span<const Keyword>> named[] = {
-        {"integrator", kIntegrators}, {"cone", kCones}, {"jacobian", kJacobians}, {"solver", kSolvers}};
+        {"integrator", kIntegrators},
+        {"cone", kCones},
+        {"jacobian", kJacobians},
+        {"solver", kSolvers}};
     for (const auto& [name, keywords] : named) {
       if (f.name != name) continue;
       f.kind = FieldKind::keyword;
@@ -236,121 +155,76 @@ std::vector<Field> option_fields() {
   return fields;
 }
 
-#undef XVEC
-#undef X
+using Aliases = std::vector<std::pair<std::string_view, std::string_view>>;  // MJCF -> field
 
 // MJCF names of the limit and friction solver parameters and of actuator force limits
-const std::vector<std::pair<std::string_view, std::string_view>> kLimitAliases = {
-    {"solreflimit", "solref_limit"},         {"solimplimit", "solimp_limit"},
-    {"solreffriction", "solref_friction"},   {"solimpfriction", "solimp_friction"},
-    {"actuatorfrcrange", "actfrcrange"},     {"actuatorfrclimited", "actfrclimited"},
+const Aliases kLimitAliases = {
+    {"solreflimit", "solref_limit"},       {"solimplimit", "solimp_limit"},
+    {"solreffriction", "solref_friction"}, {"solimpfriction", "solimp_friction"},
+    {"actuatorfrcrange", "actfrcrange"},   {"actuatorfrclimited", "actfrclimited"},
     {"actuatorgravcomp", "actgravcomp"}};
 
-/// The table of an element type, or null when a scene does not edit that type.
-const ElementTable* table_of(mjtObj type) {
-  static const ElementTable body{fields_of<mjsBody>(), {}};
-  static const ElementTable frame{fields_of<mjsFrame>(), {}};
-  static const ElementTable joint{fields_of<mjsJoint>(), kLimitAliases};
-  static const ElementTable geom{
-      fields_of<mjsGeom>(),
-      {{"mesh", "meshname"}, {"hfield", "hfieldname"}, {"fluidcoef", "fluid_coefs"}}};
-  static const ElementTable site{fields_of<mjsSite>(), {{"mesh", "meshname"}}};
-  static const ElementTable camera{fields_of<mjsCamera>(),
-                                   {{"target", "targetbody"},
-                                    {"projection", "proj"},
-                                    {"sensorsize", "sensor_size"},
-                                    {"focal", "focal_length"},
-                                    {"focalpixel", "focal_pixel"},
-                                    {"principal", "principal_length"},
-                                    {"principalpixel", "principal_pixel"}}};
-  static const ElementTable light{fields_of<mjsLight>(), {{"target", "targetbody"}}};
-  static const ElementTable actuator{fields_of<mjsActuator>(), {}};
-  static const ElementTable sensor{fields_of<mjsSensor>(), {}};
-  static const ElementTable tendon{fields_of<mjsTendon>(), kLimitAliases};
-  static const ElementTable equality{fields_of<mjsEquality>(), {}};
-  static const ElementTable pair{fields_of<mjsPair>(),
-                                 {{"geom1", "geomname1"}, {"geom2", "geomname2"}}};
-  static const ElementTable mesh{fields_of<mjsMesh>(), {}};
-  static const ElementTable hfield{fields_of<mjsHField>(), {}};
-  static const ElementTable material{fields_of<mjsMaterial>(), {}};
-  static const ElementTable texture{fields_of<mjsTexture>(), {}};
-  switch (type) {
-    case mjOBJ_BODY:
-      return &body;
-    case mjOBJ_FRAME:
-      return &frame;
-    case mjOBJ_JOINT:
-      return &joint;
-    case mjOBJ_GEOM:
-      return &geom;
-    case mjOBJ_SITE:
-      return &site;
-    case mjOBJ_CAMERA:
-      return &camera;
-    case mjOBJ_LIGHT:
-      return &light;
-    case mjOBJ_ACTUATOR:
-      return &actuator;
-    case mjOBJ_SENSOR:
-      return &sensor;
-    case mjOBJ_TENDON:
-      return &tendon;
-    case mjOBJ_EQUALITY:
-      return &equality;
-    case mjOBJ_PAIR:
-      return &pair;
-    case mjOBJ_MESH:
-      return &mesh;
-    case mjOBJ_HFIELD:
-      return &hfield;
-    case mjOBJ_MATERIAL:
-      return &material;
-    case mjOBJ_TEXTURE:
-      return &texture;
-    default:
-      return nullptr;
-  }
+/// An element type a scene edits: its struct's fields and the MJCF names that differ from them.
+struct ElementType {
+  mjtObj type;
+  std::vector<Field> fields;
+  Aliases aliases;
+  void* (*as_struct)(mjsElement*);
+};
+
+template <class S, S* (*As)(mjsElement*)>
+void* struct_of(mjsElement* e) {
+  return As(e);
 }
 
-/// The struct behind an element of a type `table_of` knows.
-void* struct_of(mjsElement& e) {
-  switch (e.elemtype) {
-    case mjOBJ_BODY:
-      return mjs_asBody(&e);
-    case mjOBJ_FRAME:
-      return mjs_asFrame(&e);
-    case mjOBJ_JOINT:
-      return mjs_asJoint(&e);
-    case mjOBJ_GEOM:
-      return mjs_asGeom(&e);
-    case mjOBJ_SITE:
-      return mjs_asSite(&e);
-    case mjOBJ_CAMERA:
-      return mjs_asCamera(&e);
-    case mjOBJ_LIGHT:
-      return mjs_asLight(&e);
-    case mjOBJ_ACTUATOR:
-      return mjs_asActuator(&e);
-    case mjOBJ_SENSOR:
-      return mjs_asSensor(&e);
-    case mjOBJ_TENDON:
-      return mjs_asTendon(&e);
-    case mjOBJ_EQUALITY:
-      return mjs_asEquality(&e);
-    case mjOBJ_PAIR:
-      return mjs_asPair(&e);
-    case mjOBJ_MESH:
-      return mjs_asMesh(&e);
-    case mjOBJ_HFIELD:
-      return mjs_asHField(&e);
-    case mjOBJ_MATERIAL:
-      return mjs_asMaterial(&e);
-    case mjOBJ_TEXTURE:
-      return mjs_asTexture(&e);
-    default:
-      return nullptr;
-  }
+const ElementType* element_type(mjtObj type) {
+  static const ElementType kTypes[] = {
+      {mjOBJ_BODY, MJARM_FIELDS_OF(mjsBody, MJSBODY_FIELDS), {}, struct_of<mjsBody, mjs_asBody>},
+      {mjOBJ_FRAME, MJARM_FIELDS_OF(mjsFrame, MJSFRAME_FIELDS), {},
+       struct_of<mjsFrame, mjs_asFrame>},
+      {mjOBJ_JOINT, MJARM_FIELDS_OF(mjsJoint, MJSJOINT_FIELDS), kLimitAliases,
+       struct_of<mjsJoint, mjs_asJoint>},
+      {mjOBJ_GEOM, MJARM_FIELDS_OF(mjsGeom, MJSGEOM_FIELDS),
+       {{"mesh", "meshname"}, {"hfield", "hfieldname"}, {"fluidcoef", "fluid_coefs"}},
+       struct_of<mjsGeom, mjs_asGeom>},
+      {mjOBJ_SITE, MJARM_FIELDS_OF(mjsSite, MJSSITE_FIELDS), {{"mesh", "meshname"}},
+       struct_of<mjsSite, mjs_asSite>},
+      {mjOBJ_CAMERA, MJARM_FIELDS_OF(mjsCamera, MJSCAMERA_FIELDS),
+       {{"target", "targetbody"},
+        {"projection", "proj"},
+        {"sensorsize", "sensor_size"},
+        {"focal", "focal_length"},
+        {"focalpixel", "focal_pixel"},
+        {"principal", "principal_length"},
+        {"principalpixel", "principal_pixel"}},
+       struct_of<mjsCamera, mjs_asCamera>},
+      {mjOBJ_LIGHT, MJARM_FIELDS_OF(mjsLight, MJSLIGHT_FIELDS), {{"target", "targetbody"}},
+       struct_of<mjsLight, mjs_asLight>},
+      {mjOBJ_ACTUATOR, MJARM_FIELDS_OF(mjsActuator, MJSACTUATOR_FIELDS), {},
+       struct_of<mjsActuator, mjs_asActuator>},
+      {mjOBJ_SENSOR, MJARM_FIELDS_OF(mjsSensor, MJSSENSOR_FIELDS), {},
+       struct_of<mjsSensor, mjs_asSensor>},
+      {mjOBJ_TENDON, MJARM_FIELDS_OF(mjsTendon, MJSTENDON_FIELDS), kLimitAliases,
+       struct_of<mjsTendon, mjs_asTendon>},
+      {mjOBJ_EQUALITY, MJARM_FIELDS_OF(mjsEquality, MJSEQUALITY_FIELDS), {},
+       struct_of<mjsEquality, mjs_asEquality>},
+      {mjOBJ_PAIR, MJARM_FIELDS_OF(mjsPair, MJSPAIR_FIELDS),
+       {{"geom1", "geomname1"}, {"geom2", "geomname2"}}, struct_of<mjsPair, mjs_asPair>},
+      {mjOBJ_MESH, MJARM_FIELDS_OF(mjsMesh, MJSMESH_FIELDS), {}, struct_of<mjsMesh, mjs_asMesh>},
+      {mjOBJ_HFIELD, MJARM_FIELDS_OF(mjsHField, MJSHFIELD_FIELDS), {},
+       struct_of<mjsHField, mjs_asHField>},
+      {mjOBJ_MATERIAL, MJARM_FIELDS_OF(mjsMaterial, MJSMATERIAL_FIELDS), {},
+       struct_of<mjsMaterial, mjs_asMaterial>},
+      {mjOBJ_TEXTURE, MJARM_FIELDS_OF(mjsTexture, MJSTEXTURE_FIELDS), {},
+       struct_of<mjsTexture, mjs_asTexture>}};
+  for (const ElementType& t : kTypes)
+    if (t.type == type) return &t;
+  return nullptr;
 }
+
+#undef MJARM_FIELDS_OF
+#undef XVEC
+#undef X
 
 // orientation attributes: the quat field, or one of the alternatives in the `alt` struct
 struct Orientation {
@@ -369,10 +243,9 @@ constexpr Orientation kOrientations[] = {
 // fields MJCF lets a value list shorter than the field: the rest keep their values
 bool takes_leading_values(std::string_view field) {
   static constexpr std::string_view kLeading[] = {
-      "size",         "friction",        "gainprm",    "biasprm",     "dynprm",
-      "solimp",       "solimp_limit",    "solimp_friction", "gear",    "data",
-      "stiffness",    "damping",         "fluid_coefs", "intprm",     "o_solimp",
-      "o_friction"};
+      "size",   "friction",        "gainprm", "biasprm",   "dynprm",      "solimp",
+      "solimp_limit", "solimp_friction", "gear", "data", "stiffness", "damping",
+      "fluid_coefs",  "intprm",    "o_solimp", "o_friction"};
   return std::find(std::begin(kLeading), std::end(kLeading), field) != std::end(kLeading);
 }
 
@@ -383,7 +256,7 @@ const Field* find_field(std::span<const Field> fields, std::string_view name) {
 }
 
 /// The MJCF names of the attributes a table can read and write.
-std::vector<std::string> attribute_names(const ElementTable& table) {
+std::vector<std::string> attribute_names(const ElementType& table) {
   std::vector<std::string> names;
   const bool oriented = find_field(table.fields, "alt") != nullptr;
   for (const Field& f : table.fields) {
@@ -400,7 +273,7 @@ std::vector<std::string> attribute_names(const ElementTable& table) {
   return names;
 }
 
-std::string joined(const std::vector<std::string>& names) {
+std::string comma_list(const std::vector<std::string>& names) {
   std::string out;
   for (std::size_t i = 0; i < names.size(); ++i) out += (i ? ", " : "") + names[i];
   return out;
@@ -410,8 +283,8 @@ std::string joined(const std::vector<std::string>& names) {
                                     const std::vector<std::string>& known) {
   std::string message = what + ": no attribute '" + std::string(attribute) + "'";
   const auto close = closest_names(attribute, known, 3);
-  if (!close.empty()) message += "; closest: " + joined(close);
-  throw Error(message + " (attributes that can be read and set: " + joined(known) + ")");
+  if (!close.empty()) message += "; closest: " + comma_list(close);
+  throw Error(message + " (attributes that can be read and set: " + comma_list(known) + ")");
 }
 
 template <class T>
@@ -570,8 +443,9 @@ void write_field(const Field& f, std::byte* base, const Input& in, const std::st
       const std::span<const Keyword> keywords = f.kind == FieldKind::boolean
                                                     ? std::span<const Keyword>(kLimited).first(2)
                                                     : f.keywords;
-      const auto k = std::find_if(keywords.begin(), keywords.end(),
-                                  [&](const Keyword& w) { return in.is_text && w.name == in.text; });
+      const auto k = std::find_if(keywords.begin(), keywords.end(), [&](const Keyword& w) {
+        return in.is_text && w.name == in.text;
+      });
       if (k == keywords.end()) {
         throw Error(what + ": " + std::string(attribute) + " expects one of " +
                     keyword_list(keywords) + ", got " +
@@ -600,7 +474,7 @@ void write_field(const Field& f, std::byte* base, const Input& in, const std::st
 }
 
 /// The field attribute @p attribute names in @p table (aliases resolved), or null.
-const Field* field_for(const ElementTable& table, std::string_view attribute) {
+const Field* field_for(const ElementType& table, std::string_view attribute) {
   std::string_view name = attribute;
   for (const auto& [mjcf, field] : table.aliases)
     if (mjcf == attribute) name = field;
@@ -608,10 +482,10 @@ const Field* field_for(const ElementTable& table, std::string_view attribute) {
   return f != nullptr && f->kind != FieldKind::none ? f : nullptr;
 }
 
-const ElementTable& require_table(const mjsElement& element, const std::string& what) {
-  const ElementTable* table = table_of(element.elemtype);
-  if (table == nullptr) throw Error(what + ": its attributes cannot be read or set by name");
-  return *table;
+const ElementType& require_type(const mjsElement& element, const std::string& what) {
+  const ElementType* type = element_type(element.elemtype);
+  if (type == nullptr) throw Error(what + ": its attributes cannot be read or set by name");
+  return *type;
 }
 
 void write(mjsElement& element, std::string_view attribute, const Input& in,
@@ -619,8 +493,8 @@ void write(mjsElement& element, std::string_view attribute, const Input& in,
   if (attribute == "class" || attribute == "childclass")
     throw Error(what + ": a default class applies when an element is made; set the attributes "
                        "themselves instead of '" + std::string(attribute) + "'");
-  const ElementTable& table = require_table(element, what);
-  auto* base = static_cast<std::byte*>(struct_of(element));
+  const ElementType& table = require_type(element, what);
+  auto* base = static_cast<std::byte*>(table.as_struct(&element));
   if (const Field* alt = find_field(table.fields, "alt")) {
     for (const Orientation& o : kOrientations) {
       if (o.name != attribute) continue;
@@ -658,25 +532,10 @@ const Field& option_field(std::string_view attribute) {
 
 }  // namespace
 
-std::optional<mjtObj> object_type(std::string_view kind) {
-  static constexpr std::pair<std::string_view, mjtObj> kKinds[] = {
-      {"body", mjOBJ_BODY},         {"joint", mjOBJ_JOINT},       {"geom", mjOBJ_GEOM},
-      {"site", mjOBJ_SITE},         {"camera", mjOBJ_CAMERA},     {"light", mjOBJ_LIGHT},
-      {"frame", mjOBJ_FRAME},       {"actuator", mjOBJ_ACTUATOR}, {"sensor", mjOBJ_SENSOR},
-      {"tendon", mjOBJ_TENDON},     {"equality", mjOBJ_EQUALITY}, {"pair", mjOBJ_PAIR},
-      {"exclude", mjOBJ_EXCLUDE},   {"mesh", mjOBJ_MESH},         {"hfield", mjOBJ_HFIELD},
-      {"skin", mjOBJ_SKIN},         {"texture", mjOBJ_TEXTURE},   {"material", mjOBJ_MATERIAL},
-      {"numeric", mjOBJ_NUMERIC},   {"text", mjOBJ_TEXT},         {"tuple", mjOBJ_TUPLE},
-      {"key", mjOBJ_KEY},           {"default", mjOBJ_DEFAULT}};
-  for (const auto& [name, type] : kKinds)
-    if (name == kind) return type;
-  return std::nullopt;
-}
-
 std::optional<std::string> read_attribute(mjsElement& element, std::string_view attribute,
                                           const std::string& what) {
-  const ElementTable& table = require_table(element, what);
-  const auto* base = static_cast<const std::byte*>(struct_of(element));
+  const ElementType& table = require_type(element, what);
+  const auto* base = static_cast<const std::byte*>(table.as_struct(&element));
   if (const Field* alt = find_field(table.fields, "alt")) {
     const auto& orientation = *reinterpret_cast<const mjsOrientation*>(base + alt->offset);
     for (const Orientation& o : kOrientations) {

@@ -14,10 +14,6 @@
 
 namespace mjarm::scene_detail {
 
-/// The object type of a kind of named element ("body", "joint", ..., "key"; "default" is
-/// mjOBJ_DEFAULT), or nullopt for a kind a scene does not know.
-std::optional<mjtObj> object_type(std::string_view kind);
-
 /// The value of attribute @p attribute of @p element as MJCF text (numbers in their shortest
 /// round-trip form), or nullopt when the element holds none: an empty name reference, an
 /// orientation written another way (the quat of a body given by euler), an unset number (a geom's

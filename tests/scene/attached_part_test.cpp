@@ -144,8 +144,10 @@ TEST(AttachedPart, AGripperSitsAtASitePosedInDegreesAndByADefaultClass) {
   mj_kinematics(&m, d.get());
   const int mount = robot.body("r/hand");
   const int site = robot.site("r/tilted");
-  for (int k = 0; k < 3; ++k) EXPECT_NEAR(d->xpos[3 * mount + k], d->site_xpos[3 * site + k], 1e-12);
-  for (int k = 0; k < 9; ++k) EXPECT_NEAR(d->xmat[9 * mount + k], d->site_xmat[9 * site + k], 1e-12);
+  for (int k = 0; k < 3; ++k)
+    EXPECT_NEAR(d->xpos[3 * mount + k], d->site_xpos[3 * site + k], 1e-12);
+  for (int k = 0; k < 9; ++k)
+    EXPECT_NEAR(d->xmat[9 * mount + k], d->site_xmat[9 * site + k], 1e-12);
   EXPECT_NEAR(d->site_xpos[3 * site + 2], 0.4, 1e-12);
 }
 
