@@ -6,8 +6,8 @@
 //                              arena with table, 2 objects, a fixture, site, camera, 4 sensors,
 //                              a weld, an edit; no compile
 //     PickTableFile/compile    Scene::compile() of that scene (keyframes combined)
-//     DockingScene/compose     docking_scene(): iiwa14_torque + docking_peg, arena, a compound
-//                              socket of 66 boxes, sensors, about 140 edits by name; no compile
+//     DockingScene/compose     docking_scene(): iiwa14_torque + docking_peg, arena, the compound
+//                              socket (34 pieces), 2 sensors, 75 edits by name; no compile
 //     DockingScene/compile     Scene::compile() of that scene
 //     PickPlaceScene/build     build_pick_place_scene() with default options (arm6): compose,
 //                              edits, compile and the name look-ups of a trial
@@ -43,7 +43,7 @@ BENCHMARK(BM_PickTableFileCompile)->Unit(benchmark::kMillisecond);
 
 void BM_DockingSceneCompose(benchmark::State& state) {
   for (auto _ : state) benchmark::DoNotOptimize(mjarm::docking_scene());
-  state.SetLabel("docking_scene(): iiwa14 + peg + 66-box socket, edits; no compile");
+  state.SetLabel("docking_scene(): iiwa14 + peg + compound socket, edits; no compile");
 }
 BENCHMARK(BM_DockingSceneCompose)->Unit(benchmark::kMillisecond);
 
