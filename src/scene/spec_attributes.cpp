@@ -295,6 +295,12 @@ void append_number(std::string& out, T value) {
   out.append(buffer, result.ptr);
 }
 
+std::string number_text(double x) {
+  std::string out;
+  append_number(out, x);
+  return out;
+}
+
 std::string keyword_list(std::span<const Keyword> keywords) {
   std::string out;
   for (const Keyword& k : keywords) out += (out.empty() ? "" : ", ") + std::string(k.name);
@@ -390,38 +396,38 @@ void check_count(std::size_t given, const Field& f, bool leading, const std::str
               (count > 1 ? "s" : "") + ", got " + std::to_string(given));
 }
 
+/// Checks every value first: a refused value leaves the field as it was.
 void write_numbers(const Field& f, std::byte* base, std::span<const double> v,
                    const std::string& what, std::string_view attribute) {
-  for (double x : v)
+  const bool whole = f.kind == FieldKind::integer || f.kind == FieldKind::byte;
+  const double top = f.kind == FieldKind::byte     ? 255.0
+                     : f.kind == FieldKind::integer ? double(std::numeric_limits<int>::max())
+                     : f.kind == FieldKind::real32  ? double(std::numeric_limits<float>::max())
+                                                    : std::numeric_limits<double>::max();
+  const double bottom = f.kind == FieldKind::byte ? 0.0 : -top;
+  for (double x : v) {
     if (!std::isfinite(x))
       throw Error(what + ": " + std::string(attribute) + " must be finite numbers");
+    if ((whole && x != std::floor(x)) || x < bottom || x > top)
+      throw Error(what + ": " + std::string(attribute) + " expects " +
+                  (whole ? "whole numbers" : "numbers") + " in [" + number_text(bottom) + ", " +
+                  number_text(top) + "], got " + number_text(x));
+  }
   std::byte* at = base + f.offset;
   for (std::size_t i = 0; i < v.size(); ++i) {
-    const double x = v[i];
     switch (f.kind) {
       case FieldKind::real:
-        reinterpret_cast<double*>(at)[i] = x;
+        reinterpret_cast<double*>(at)[i] = v[i];
         break;
       case FieldKind::real32:
-        reinterpret_cast<float*>(at)[i] = static_cast<float>(x);
+        reinterpret_cast<float*>(at)[i] = static_cast<float>(v[i]);
         break;
       case FieldKind::integer:
-      case FieldKind::byte: {
-        const double top =
-            f.kind == FieldKind::byte ? 255.0 : double(std::numeric_limits<int>::max());
-        const double bottom = f.kind == FieldKind::byte ? 0.0 : -top;
-        if (x != std::floor(x) || x < bottom || x > top)
-          throw Error(what + ": " + std::string(attribute) + " expects whole numbers in [" +
-                      std::to_string(static_cast<long long>(bottom)) + ", " +
-                      std::to_string(static_cast<long long>(top)) + "], got " +
-                      std::to_string(x));
-        if (f.kind == FieldKind::byte) {
-          reinterpret_cast<mjtByte*>(at)[i] = static_cast<mjtByte>(x);
-        } else {
-          reinterpret_cast<int*>(at)[i] = static_cast<int>(x);
-        }
+        reinterpret_cast<int*>(at)[i] = static_cast<int>(v[i]);
         break;
-      }
+      case FieldKind::byte:
+        reinterpret_cast<mjtByte*>(at)[i] = static_cast<mjtByte>(v[i]);
+        break;
       default:
         break;
     }

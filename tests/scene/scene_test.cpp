@@ -456,6 +456,10 @@ TEST(Scene, BadValuesAreNamed) {
   const std::vector<double> four{1.0, 2.0, 3.0, 4.0};
   message = error_of([&] { scene.set_attribute("geom", "cube/geom", "pos", four); });
   EXPECT_TRUE(contains(message, "pos expects 3 numbers, got 4")) << message;
+  const std::vector<double> half{0.5};
+  message = error_of([&] { scene.set_attribute("geom", "cube/geom", "contype", half); });
+  EXPECT_TRUE(contains(message, "contype expects whole numbers")) << message;
+  EXPECT_EQ(scene.attribute("geom", "cube/geom", "contype"), "1");  // unchanged
   message = error_of([&] { scene.set_attribute("geom", "cube/geom", "type", "cube"); });
   EXPECT_TRUE(contains(message, "type expects one of plane, hfield, sphere")) << message;
   message = error_of([&] { scene.set_option("integrater", "RK4"); });
