@@ -20,6 +20,7 @@ from __future__ import annotations
 import os
 from typing import Any, Callable, ClassVar, Iterator, overload
 
+import mujoco
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
@@ -31,6 +32,14 @@ def clean_type(t, module_prefix):
     t = re.sub(r"numpy\.ndarray\[numpy\.float64(\[[^\]]*\])?(, flags\.[a-z_]+)*\]", "NDArray[np.float64]", t)
     t = re.sub(r"numpy\.ndarray\[numpy\.uint8(\[[^\]]*\])?\]", "NDArray[np.uint8]", t)
     t = re.sub(r"numpy\.ndarray\[[^\]]*\]", "NDArray[Any]", t)
+    # pybind11 3's spellings of the same types
+    t = re.sub(r'typing\.Annotated\[numpy\.typing\.NDArray\[numpy\.(\w+)\](, "[^"]*")*\]',
+               r"NDArray[np.\1]", t)
+    t = re.sub(r"numpy\.typing\.NDArray\[numpy\.(\w+)\]", r"NDArray[np.\1]", t)
+    t = t.replace("typing.SupportsFloat | typing.SupportsIndex", "float")
+    t = t.replace("typing.SupportsInt | typing.SupportsIndex", "int")
+    t = t.replace("collections.abc.Sequence[", "list[")
+    t = t.replace("collections.abc.Callable", "function")
     t = t.replace("mjarm._mjarm.so3.", "").replace("mjarm._mjarm.se3.", "")
     t = t.replace(module_prefix, "")
     t = t.replace("mjarm._mjarm.", "")
@@ -97,7 +106,10 @@ def render_params(params, prefix):
         if "=" in rest:
             rest, _ = rest.split("=", 1)
             default = " = ..."
-        out.append(f"{name.strip()}: {clean_type(rest, prefix)}{default}")
+        kind = clean_type(rest, prefix)
+        if name.strip() == "self":
+            kind = kind.split(" | ")[0]  # a method is called on its class, not on a mujoco object
+        out.append(f"{name.strip()}: {kind}{default}")
     return ", ".join(out)
 
 
