@@ -3,7 +3,7 @@ BUILD   ?= build
 JOBS    ?= $(shell nproc)
 CMAKE_FLAGS ?=
 
-.PHONY: all setup build demo test release-test bench format tidy clean
+.PHONY: all setup build demo test release-test bench bench-peers format tidy clean
 
 all: build
 
@@ -50,8 +50,22 @@ bench: setup
 	cmake --build build-bench -j $(JOBS)
 	@for b in build-bench/bench_*; do echo "== $$b"; $$b --benchmark_min_time=0.2; done
 
+# peers side by side (docs/benchmarks.md, "Peers side by side"): installs the pinned peers from
+# PyPI into the venv (python/requirements-peers.txt), builds the extension and the C++ timing of
+# Pinocchio in Release, runs one program per peer
+PEERS_BUILD ?= build-peers
+PEERS_PYTHON = PYTHONPATH=$(PEERS_BUILD)/python .venv/bin/python
+bench-peers: setup
+	@bash scripts/setup_venv.sh python/requirements.txt python/requirements-peers.txt
+	cmake -S . -B $(PEERS_BUILD) -DCMAKE_BUILD_TYPE=Release -DMJARM_BUILD_PEERS_BENCH=ON \
+	  -DMJARM_BUILD_TESTS=OFF -DMJARM_BUILD_EXAMPLES=OFF $(CMAKE_FLAGS)
+	cmake --build $(PEERS_BUILD) -j $(JOBS) --target mjarm_python bench_peers_pinocchio
+	$(PEERS_PYTHON) bench/peers/pinocchio_side_by_side.py --bench $(PEERS_BUILD)/bench_peers_pinocchio
+	$(PEERS_PYTHON) bench/peers/ruckig_side_by_side.py
+	$(PEERS_PYTHON) bench/peers/mink_side_by_side.py
+
 format:
 	clang-format -i $$(git ls-files '*.cpp' '*.hpp')
 
 clean:
-	rm -rf $(BUILD) $(TEST_BUILD) build-bench
+	rm -rf $(BUILD) $(TEST_BUILD) build-bench $(PEERS_BUILD)

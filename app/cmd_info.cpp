@@ -12,6 +12,18 @@ namespace {
 
 std::string unit_of(JointType type) { return type == JointType::slide ? "m" : "rad"; }
 
+// MJCF's names of MuJoCo's integrators (mjtIntegrator)
+std::string integrator_name(int integrator) {
+  switch (integrator) {
+    case mjINT_EULER: return "Euler";
+    case mjINT_RK4: return "RK4";
+    case mjINT_IMPLICIT: return "implicit";
+    case mjINT_IMPLICITFAST: return "implicitfast";
+    case mjINT_DISCRETE: return "discrete";
+    default: return "integrator " + std::to_string(integrator);
+  }
+}
+
 std::string joint_name(const Robot& robot, const std::optional<int>& joint) {
   return joint ? robot.joint_info(*joint).name : "—";
 }
@@ -80,6 +92,7 @@ Json model_json(const Robot& robot) {
   doc["cameras"] = robot.camera_names();
   doc["keyframes"] = robot.keyframe_names();
   doc["timestep"] = m.opt.timestep;
+  doc["integrator"] = integrator_name(m.opt.integrator);
   doc["warnings"] = robot.load_warnings();
   return doc;
 }
@@ -91,7 +104,8 @@ void print_model_summary(std::ostream& os, const Robot& robot) {
                     {"sizes", "nq " + std::to_string(m.nq) + ", nv " + std::to_string(m.nv) +
                                   ", nu " + std::to_string(m.nu) + ", bodies " +
                                   std::to_string(m.nbody) + ", geoms " + std::to_string(m.ngeom)},
-                    {"timestep", compact(m.opt.timestep) + " s"}});
+                    {"timestep", compact(m.opt.timestep) + " s"},
+                    {"integrator", integrator_name(m.opt.integrator)}});
 
   const auto joints = robot.joints();
   os << "\njoints (" << joints.size() << ")\n";

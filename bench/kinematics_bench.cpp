@@ -8,7 +8,7 @@
 //   addresses shift by 350); keyframes are dropped (their qpos no longer fits).
 // - Inputs: 1024 configurations drawn once per scene with JointSampler (uniform within the joint
 //   limits, std::mt19937_64 seed 2024), cycled in order; one iteration = one configuration.
-// - Cases, each timed for ours and for MuJoCo 2.2.2 in the same process:
+// - Cases, each timed for ours and for MuJoCo in the same process:
 //     FK      ours: ChainKinematics::update(q)
 //             MuJoCo: Chain::scatter(q → qpos) + mj_kinematics
 //     Jac     at one configuration already propagated (the cost does not depend on q's values)

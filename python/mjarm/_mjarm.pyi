@@ -6514,13 +6514,13 @@ class VectorTimeStep:
     def end(self) -> Any:
         """(N,) int8: EpisodeEnd values"""
         ...
-    def first(self: VectorTimeStep) -> numpy.ndarray:
+    def first(self: VectorTimeStep) -> NDArray[Any]:
         """(N,) bool: rows on FIRST"""
         ...
-    def last(self: VectorTimeStep) -> numpy.ndarray:
+    def last(self: VectorTimeStep) -> NDArray[Any]:
         """(N,) bool: rows on LAST"""
         ...
-    def mid(self: VectorTimeStep) -> numpy.ndarray:
+    def mid(self: VectorTimeStep) -> NDArray[Any]:
         """(N,) bool: rows on MID"""
         ...
     @property

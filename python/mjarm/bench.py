@@ -7,7 +7,9 @@ operational-space controller step (``compute(data, ref)``, a new array per call,
 command), a loop of Simulation.tick (real-time factor), and an environment step
 (Environment.step: the cheapest configuration, one physics step a call, where the binding's share
 shows, and the default reach environment); also the tick loop with the same joint PD written as a
-Python Controller. With --cpp it runs the C++
+Python Controller, and what the GIL's release in VectorEnvironment.step buys: two Python threads
+stepping an environment each against the same work one after the other (beside the same work on
+mjarm's own 2-thread pool, which the GIL does not touch; both need a free core to exceed 1x). With --cpp it runs the C++
 benchmark program and prints the per-call overhead (Python − C++) and the ratio of real-time
 factors; with --repeat N it measures both sides N times, one after the other, and each overhead
 is the median of the N differences. Python figures are medians of --rounds rounds.
@@ -19,6 +21,7 @@ import os
 import statistics
 import subprocess
 import sys
+import threading
 import time
 
 import numpy as np
@@ -179,6 +182,43 @@ def env_figures(rounds, calls, cpp_path):
     return out
 
 
+def threads_figures(rounds, seconds=0.2):
+    """Speed-ups of stepping 2 x 4 reach environments: from two Python threads at once, and on
+    mjarm's own 2-thread pool, each against the same steps one after the other (wall time, best
+    of the rounds: a shared machine's other work only ever slows a round)."""
+    envs = [mjarm.VectorEnvironment("reach", 4, 1, time_limit=100.0, seed=s) for s in (1, 2)]
+    pool = mjarm.VectorEnvironment("reach", 8, 2, time_limit=100.0, seed=3)
+    actions, actions8 = np.zeros((4, 6)), np.zeros((8, 6))
+    for e in envs + [pool]:
+        e.reset()
+
+    def run(e, a, steps):
+        for _ in range(steps):
+            e.step(a)
+
+    start = time.perf_counter()
+    run(envs[0], actions, 10)
+    steps = max(10, int(seconds / ((time.perf_counter() - start) / 10)))
+    python_threads, pool_threads = [], []
+    for _ in range(rounds):
+        start = time.perf_counter()
+        run(envs[0], actions, steps)
+        run(envs[1], actions, steps)
+        serial = time.perf_counter() - start
+        threads = [threading.Thread(target=run, args=(e, actions, steps)) for e in envs]
+        start = time.perf_counter()
+        for t in threads:
+            t.start()
+        for t in threads:
+            t.join()
+        python_threads.append(serial / (time.perf_counter() - start))
+        start = time.perf_counter()
+        run(pool, actions8, steps)
+        pool_threads.append(serial / (time.perf_counter() - start))
+    return {"two_python_threads_speedup": max(python_threads),
+            "pool_two_threads_speedup": max(pool_threads), "steps_per_thread": steps}
+
+
 def cpp_figures(path, min_time, field="real_time", benchmark_filter=None):
     command = [path, "--benchmark_format=json", f"--benchmark_min_time={min_time}"]
     if benchmark_filter:
@@ -235,6 +275,7 @@ def main(argv=None):
         field = "cpu_time" if args.clock == "cpu" else "real_time"
         pairs.append((py, cpp_figures(args.cpp, 0.5, field, "-BM_EnvStep") if args.cpp else {}))
     env = env_figures(args.rounds, args.calls, args.cpp)
+    threads = threads_figures(args.rounds)
     load = [load_start, os.getloadavg()[0]]  # 1-minute load average before and after
     keys = [("fk_us", "fk_us"), ("ik_us", "ik_us"), ("controller_us", "controller_us"),
             ("controller_out_us", "controller_us")]  # (Python figure, the C++ figure it matches)
@@ -249,7 +290,7 @@ def main(argv=None):
     if args.json:
         print(json.dumps({"python": py, "cpp": cpp, "overhead": overhead, "repeat": len(pairs),
                           "clock": args.clock, "load_average": load,
-                          "env_rounds": env["rounds"]}))
+                          "env_rounds": env["rounds"], "threads": threads}))
         return 0
     print(f"{args.clock} clock; load average (1 min): {load[0]:.2f} at the start, {load[1]:.2f} at the end"
           + (f"; medians of {len(pairs)} Python/C++ pairs" if len(pairs) > 1 else ""))
@@ -269,6 +310,9 @@ def main(argv=None):
         c, d = cpp.get(key), overhead.get(key)
         print(f"{label:34} {py[key]:10.3f}us " + (f"{c:10.3f}us {d:10.3f}us (CPU time, "
                                                     "median of paired rounds)" if c else ""))
+    print(f"{'two Python threads stepping':34} {threads['two_python_threads_speedup']:11.2f}x of "
+          f"one (mjarm's 2-thread pool: {threads['pool_two_threads_speedup']:.2f}x; best of "
+          f"{args.rounds}, {threads['steps_per_thread']} batch steps of 4 reach environments)")
     return 0
 
 

@@ -29,17 +29,22 @@ from numpy.typing import ArrayLike, NDArray
 
 def clean_type(t, module_prefix):
     t = t.strip()
+    # pybind11 3 spells arrays, numbers and containers with their typing modules
+    t = re.sub(r"numpy\.typing\.NDArray\[numpy\.float64\]", "NDArray[np.float64]", t)
+    t = re.sub(r"numpy\.typing\.NDArray\[numpy\.uint8\]", "NDArray[np.uint8]", t)
+    t = re.sub(r"numpy\.typing\.NDArray\[[^\]]*\]", "NDArray[Any]", t)
+    t = t.replace("typing.SupportsInt | typing.SupportsIndex", "int")
+    t = t.replace("typing.SupportsFloat | typing.SupportsIndex", "float")
+    t = t.replace("typing.SupportsFloat", "float").replace("typing.SupportsInt", "int")
+    t = re.sub(r"\bcollections\.abc\.(Sequence|Iterable)\[", "list[", t)
+    t = re.sub(r"\bcollections\.abc\.Mapping\[", "dict[", t)
+    t = t.replace("collections.abc.Callable", "Callable").replace("collections.abc.Iterator", "Iterator")
+    t = t.replace("typing.Any", "Any")
+    t = re.sub(r'typing\.Annotated\[(NDArray\[[^\]]*\]), "[^"]*"\]', r"\1", t)
+    t = re.sub(r"\bnumpy\.ndarray\b(?!\[)", "NDArray[Any]", t)
     t = re.sub(r"numpy\.ndarray\[numpy\.float64(\[[^\]]*\])?(, flags\.[a-z_]+)*\]", "NDArray[np.float64]", t)
     t = re.sub(r"numpy\.ndarray\[numpy\.uint8(\[[^\]]*\])?\]", "NDArray[np.uint8]", t)
     t = re.sub(r"numpy\.ndarray\[[^\]]*\]", "NDArray[Any]", t)
-    # pybind11 3's spellings of the same types
-    t = re.sub(r'typing\.Annotated\[numpy\.typing\.NDArray\[numpy\.(\w+)\](, "[^"]*")*\]',
-               r"NDArray[np.\1]", t)
-    t = re.sub(r"numpy\.typing\.NDArray\[numpy\.(\w+)\]", r"NDArray[np.\1]", t)
-    t = t.replace("typing.SupportsFloat | typing.SupportsIndex", "float")
-    t = t.replace("typing.SupportsInt | typing.SupportsIndex", "int")
-    t = t.replace("collections.abc.Sequence[", "list[")
-    t = t.replace("collections.abc.Callable", "function")
     t = t.replace("mjarm._mjarm.so3.", "").replace("mjarm._mjarm.se3.", "")
     t = t.replace(module_prefix, "")
     t = t.replace("mjarm._mjarm.", "")
@@ -48,12 +53,15 @@ def clean_type(t, module_prefix):
     t = t.replace("mjarm::python::(anonymous namespace)::PyFunctionSource", "FunctionReferenceSource")
     t = re.sub(r"mjarm::(\w+::)*(\w+)", r"\2", t)
     t = re.sub(r"\b(object|handle)\b", "ArrayLike", t)
+    t = t.replace("os.PathLike | str | bytes", "os.PathLike")  # pybind11 3's path arguments
+    t = t.replace("pathlib.Path", "os.PathLike")
     t = t.replace("os.PathLike", "str | os.PathLike[str]")
     t = re.sub(r"\bList\[", "list[", t)
     t = re.sub(r"\bTuple\[", "tuple[", t)
     t = re.sub(r"\bOptional\[([^\[\]]*)\]", r"\1 | None", t)
     t = t.replace("Callable[[", "Callable[[")
     t = t.replace("function", "Callable[..., Any]")
+    t = re.sub(r"\bCallable\b(?!\[)", "Callable[..., Any]", t)
     t = t.replace("std::array<bool, 6>", "list[bool]")
     return t
 

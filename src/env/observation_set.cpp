@@ -86,7 +86,9 @@ ObservationSet::ObservationSet(const EnvTask& task, Simulation& sim,
     Entry entry;
     if (name == "joint_positions") {
       entry.source = Source::joint_positions;
-      specs.push_back(ArraySpec::bounded(name, chain.lower(), chain.upper()));
+      // unbounded: MuJoCo's joint limits are soft, the arm can pass them (a spec promises
+      // every value the environment can return)
+      specs.push_back(ArraySpec::vector(name, n));
     } else if (name == "joint_velocities") {
       entry.source = Source::joint_velocities;
       specs.push_back(ArraySpec::vector(name, n));

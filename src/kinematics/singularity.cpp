@@ -92,7 +92,8 @@ SingularityScan scan_singularities(const Chain& chain, std::size_t samples, std:
   std::vector<Candidate> heap;
   heap.reserve(keep_worst + 1);
   Eigen::VectorXd q(chain.size());
-  const std::size_t report_every = std::max<std::size_t>(1, (samples + 99) / 100);
+  // every 1 % of the work, and at least every 1000 samples: a long run still shows it moving
+  const std::size_t report_every = std::clamp<std::size_t>((samples + 99) / 100, 1, 1000);
   for (std::size_t s = 0; s < samples; ++s) {
     if (stop && s % 1000 == 0 && stop()) {
       scan.status = SamplingStatus::interrupted;

@@ -79,7 +79,8 @@ WorkspaceResult sample_workspace(const Chain& chain, const WorkspaceOptions& opt
   double w_sum = 0.0;
   Eigen::VectorXd q(n);
   const std::size_t total = options.samples;
-  const std::size_t report_every = std::max<std::size_t>(1, (total + 99) / 100);
+  // every 1 % of the work, and at least every 1000 samples: a long run still shows it moving
+  const std::size_t report_every = std::clamp<std::size_t>((total + 99) / 100, 1, 1000);
   constexpr std::size_t kStopEvery = 1000;
 
   const auto start = std::chrono::steady_clock::now();

@@ -66,12 +66,15 @@ constexpr Attribute kAttributes[] = {
     {"tendon_solimp_fri", "solimpfriction"},
 };
 
-// arrays the compiler derives from the others; checked last
+// arrays the compiler derives from the others (bounding volumes among them); checked last
 bool derived(std::string_view name) {
-  for (std::string_view suffix : {"qpos0", "subtreemass", "invweight0", "M0", "rbound", "poscom0",
-                                  "pos0", "mat0", "dir0", "length0", "acc0", "lengthrange"}) {
-    if (name.size() >= suffix.size() && name.substr(name.size() - suffix.size()) == suffix)
-      return true;
+  if (name.starts_with("bvh_") || name.starts_with("oct_") || name == "dof_length" ||
+      name == "efm0_L")
+    return true;
+  for (std::string_view suffix : {"qpos0", "subtreemass", "invweight0", "M0", "rbound", "aabb",
+                                  "poscom0", "pos0", "mat0", "dir0", "vert0", "node0", "length0",
+                                  "acc0", "lengthrange"}) {
+    if (name.ends_with(suffix)) return true;
   }
   return false;
 }

@@ -120,18 +120,22 @@ void resolve_asset_paths(XmlNode& root, const fs::path& base) {
   for_each_element(root, [&](XmlNode& e, XmlNode&) {
     for (auto& [key, value] : e.attrs) {
       if (!is_file_attr(e.tag, key) || value.empty()) continue;
-      fs::path file = strip ? fs::path(value).filename() : fs::path(value);
-      if (file.is_absolute()) {
-        if (entry_exists(file)) check_asset(e, key, file);
-        continue;
-      }
+      const fs::path file = strip ? fs::path(value).filename() : fs::path(value);
       const fs::path dir = e.tag == "texture" ? fs::path(texturedir) : fs::path(meshdir);
-      const fs::path rel = dir / file;
+      const fs::path rel = file.is_absolute() ? file : dir / file;
       const auto found = locate(rel, base, e);
-      if (found) check_asset(e, key, *found);
-      // a missing file is reported by MuJoCo when it loads the model
-      value = found ? found->string()
-                    : (rel.is_absolute() ? rel : base / rel).lexically_normal().string();
+      // MuJoCo's own message for a missing file names neither the element nor the line
+      if (!found) {
+        const fs::path main = (rel.is_absolute() ? rel : base / rel).lexically_normal();
+        const fs::path local =
+            e.file ? (e.file->parent_path() / rel).lexically_normal() : fs::path();
+        fail(e, key + " '" + value + "' not found (looked for " + main.string() +
+                    (e.file && !rel.is_absolute() && local != main ? " and " + local.string()
+                                                                   : std::string()) +
+                    ")");
+      }
+      check_asset(e, key, *found);
+      value = found->string();
     }
   });
 

@@ -194,8 +194,8 @@ std::string write_document(const XmlNode& root, std::vector<MjcfSourceLine>* lin
 }
 
 std::string to_source_lines(std::string_view message, const std::vector<MjcfSourceLine>& lines) {
-  // MuJoCo 2.2.2 writes "Element 'geom', line 5" (XML errors) and
-  // "Object name = m, id = 0, line = 5, column = -1" (compiler errors)
+  // MuJoCo writes "Element 'geom', line 5" (XML errors), "Element name 'g', id 0, line 5"
+  // (compiler errors), and older versions "Object name = m, id = 0, line = 5, column = -1"
   std::string out;
   std::size_t i = 0;
   while (i < message.size()) {

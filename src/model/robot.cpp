@@ -176,6 +176,62 @@ void check_values(std::span<const double> values, std::size_t expected, const st
     if (!std::isfinite(v)) throw Error(what + " got a non-finite value");
 }
 
+// the MJCF element of each sensor type (a new type in MuJoCo breaks the build here: -Wswitch)
+const char* sensor_type_name(int type) noexcept {
+  switch (static_cast<mjtSensor>(type)) {
+    case mjSENS_TOUCH: return "touch";
+    case mjSENS_ACCELEROMETER: return "accelerometer";
+    case mjSENS_VELOCIMETER: return "velocimeter";
+    case mjSENS_GYRO: return "gyro";
+    case mjSENS_FORCE: return "force";
+    case mjSENS_TORQUE: return "torque";
+    case mjSENS_MAGNETOMETER: return "magnetometer";
+    case mjSENS_RANGEFINDER: return "rangefinder";
+    case mjSENS_CAMPROJECTION: return "camprojection";
+    case mjSENS_JOINTPOS: return "jointpos";
+    case mjSENS_JOINTVEL: return "jointvel";
+    case mjSENS_TENDONPOS: return "tendonpos";
+    case mjSENS_TENDONVEL: return "tendonvel";
+    case mjSENS_ACTUATORPOS: return "actuatorpos";
+    case mjSENS_ACTUATORVEL: return "actuatorvel";
+    case mjSENS_ACTUATORFRC: return "actuatorfrc";
+    case mjSENS_JOINTACTFRC: return "jointactuatorfrc";
+    case mjSENS_TENDONACTFRC: return "tendonactuatorfrc";
+    case mjSENS_BALLQUAT: return "ballquat";
+    case mjSENS_BALLANGVEL: return "ballangvel";
+    case mjSENS_JOINTLIMITPOS: return "jointlimitpos";
+    case mjSENS_JOINTLIMITVEL: return "jointlimitvel";
+    case mjSENS_JOINTLIMITFRC: return "jointlimitfrc";
+    case mjSENS_TENDONLIMITPOS: return "tendonlimitpos";
+    case mjSENS_TENDONLIMITVEL: return "tendonlimitvel";
+    case mjSENS_TENDONLIMITFRC: return "tendonlimitfrc";
+    case mjSENS_FRAMEPOS: return "framepos";
+    case mjSENS_FRAMEQUAT: return "framequat";
+    case mjSENS_FRAMEXAXIS: return "framexaxis";
+    case mjSENS_FRAMEYAXIS: return "frameyaxis";
+    case mjSENS_FRAMEZAXIS: return "framezaxis";
+    case mjSENS_FRAMELINVEL: return "framelinvel";
+    case mjSENS_FRAMEANGVEL: return "frameangvel";
+    case mjSENS_FRAMELINACC: return "framelinacc";
+    case mjSENS_FRAMEANGACC: return "frameangacc";
+    case mjSENS_SUBTREECOM: return "subtreecom";
+    case mjSENS_SUBTREELINVEL: return "subtreelinvel";
+    case mjSENS_SUBTREEANGMOM: return "subtreeangmom";
+    case mjSENS_INSIDESITE: return "insidesite";
+    case mjSENS_GEOMDIST: return "distance";
+    case mjSENS_GEOMNORMAL: return "normal";
+    case mjSENS_GEOMFROMTO: return "fromto";
+    case mjSENS_CONTACT: return "contact";
+    case mjSENS_E_POTENTIAL: return "e_potential";
+    case mjSENS_E_KINETIC: return "e_kinetic";
+    case mjSENS_CLOCK: return "clock";
+    case mjSENS_TACTILE: return "tactile";
+    case mjSENS_PLUGIN: return "plugin";
+    case mjSENS_USER: return "user";
+  }
+  return "unknown";
+}
+
 }  // namespace
 
 const char* to_string(JointType type) noexcept {
@@ -379,43 +435,6 @@ std::vector<ActuatorInfo> Robot::actuators() const {
 }
 
 std::vector<SensorInfo> Robot::sensors() const {
-  static const char* const kTypeNames[] = {"touch",
-                                           "accelerometer",
-                                           "velocimeter",
-                                           "gyro",
-                                           "force",
-                                           "torque",
-                                           "magnetometer",
-                                           "rangefinder",
-                                           "jointpos",
-                                           "jointvel",
-                                           "tendonpos",
-                                           "tendonvel",
-                                           "actuatorpos",
-                                           "actuatorvel",
-                                           "actuatorfrc",
-                                           "ballquat",
-                                           "ballangvel",
-                                           "jointlimitpos",
-                                           "jointlimitvel",
-                                           "jointlimitfrc",
-                                           "tendonlimitpos",
-                                           "tendonlimitvel",
-                                           "tendonlimitfrc",
-                                           "framepos",
-                                           "framequat",
-                                           "framexaxis",
-                                           "frameyaxis",
-                                           "framezaxis",
-                                           "framelinvel",
-                                           "frameangvel",
-                                           "framelinacc",
-                                           "frameangacc",
-                                           "subtreecom",
-                                           "subtreelinvel",
-                                           "subtreeangmom",
-                                           "clock",
-                                           "user"};
   const mjModel& m = *model_;
   std::vector<SensorInfo> result;
   for (int id = 0; id < m.nsensor; ++id) {
@@ -424,7 +443,7 @@ std::vector<SensorInfo> Robot::sensors() const {
     info.name = n ? n : "";
     info.id = id;
     const int type = m.sensor_type[id];
-    info.type = type >= 0 && type <= mjSENS_USER ? kTypeNames[type] : "unknown";
+    info.type = sensor_type_name(type);
     info.address = m.sensor_adr[id];
     info.dimension = m.sensor_dim[id];
     result.push_back(std::move(info));

@@ -7,7 +7,7 @@
 namespace mjarm {
 
 /// Checks, with `check_user_file()`, every `<mesh filename>` of the URDF @p xml that exists where
-/// MuJoCo 2.2.2 looks for it: the file name alone (MuJoCo strips URDF paths, `package://` ones
+/// MuJoCo looks for it: the file name alone (MuJoCo strips URDF paths, `package://` ones
 /// included, unless `<mujoco><compiler strippath="false"/>` says otherwise) under the compiler's
 /// `meshdir`, relative to @p base_dir. Missing files are left for MuJoCo to report.
 /// @throws Error naming the URDF element, its line and what is wrong with the file.

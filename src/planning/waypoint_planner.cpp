@@ -138,7 +138,8 @@ int WaypointPlanner::sample_intervals(double duration) const {
   const double count = std::ceil(duration / sample_spacing());
   if (!(count < static_cast<double>(options_.max_segment_samples)))  // also NaN
     throw_too_many_samples(duration, sample_spacing(), count + 1, options_.max_segment_samples,
-                           "a segment may have (max_segment_samples)");
+                           "a segment may have (max_segment_samples; the plan had checked " +
+                               std::to_string(checked_) + " before it)");
   return std::max(1, static_cast<int>(count));
 }
 

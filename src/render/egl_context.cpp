@@ -101,7 +101,7 @@ void release_display() noexcept {
 
 EglContext::EglContext() : display_(acquire_display()) {
   try {
-    // MuJoCo 2.2.2 draws with the compatibility profile of desktop OpenGL into its own FBO
+    // MuJoCo's classic renderer draws with the compatibility profile of desktop OpenGL into its own FBO
     const EGLint attributes[] = {EGL_SURFACE_TYPE, EGL_PBUFFER_BIT, EGL_RENDERABLE_TYPE,
                                  EGL_OPENGL_BIT,   EGL_RED_SIZE,    8,
                                  EGL_GREEN_SIZE,   8,               EGL_BLUE_SIZE,

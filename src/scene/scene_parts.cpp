@@ -107,10 +107,26 @@ Part arena_part(const ArenaSpec& spec) {
 
 namespace {
 
+/// The `asset` element of @p part, added when it has none.
+XmlNode& asset_of(Part& part) {
+  auto asset = std::find_if(part.root.children.begin(), part.root.children.end(),
+                            [](const XmlNode& n) { return n.tag == "asset"; });
+  if (asset != part.root.children.end()) return *asset;
+  part.root.children.push_back(element("asset"));
+  return part.root.children.back();
+}
+
 /// The geom of @p spec called @p name (with its mesh asset in @p part when it is a mesh).
 XmlNode object_geom(const ObjectSpec& spec, const std::string& name, Part& part) {
   XmlNode geom = element("geom", {{"name", name}, {"type", to_string(spec.shape)}});
-  if (spec.shape == ObjectShape::mesh) {
+  if (spec.shape == ObjectShape::mesh && !spec.mesh_vertices.empty()) {
+    const std::string mesh_name = name == "geom" ? "mesh" : name + "_mesh";
+    XmlNode mesh =
+        element("mesh", {{"name", mesh_name}, {"vertex", numbers_text(spec.mesh_vertices)}});
+    if (!spec.size.empty()) mesh.set("scale", numbers_text(spec.size));
+    asset_of(part).children.push_back(std::move(mesh));
+    geom.set("mesh", mesh_name);
+  } else if (spec.shape == ObjectShape::mesh) {
     namespace fs = std::filesystem;
     std::error_code ec;
     const fs::path file = fs::absolute(spec.mesh_file, ec);
@@ -126,13 +142,7 @@ XmlNode object_geom(const ObjectSpec& spec, const std::string& name, Part& part)
     XmlNode mesh =
         element("mesh", {{"name", mesh_name}, {"file", file.lexically_normal().string()}});
     if (!spec.size.empty()) mesh.set("scale", numbers_text(spec.size));
-    auto asset = std::find_if(part.root.children.begin(), part.root.children.end(),
-                              [](const XmlNode& n) { return n.tag == "asset"; });
-    if (asset == part.root.children.end()) {
-      part.root.children.push_back(element("asset"));
-      asset = std::prev(part.root.children.end());
-    }
-    asset->children.push_back(std::move(mesh));
+    asset_of(part).children.push_back(std::move(mesh));
     geom.set("mesh", mesh_name);
   } else {
     geom.set("size", numbers_text(spec.size));

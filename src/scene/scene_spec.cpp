@@ -139,10 +139,16 @@ void validate(const ObjectSpec& spec) {
     throw Error(what + " mass must be positive [kg], got " + std::to_string(spec.mass));
   for (double f : spec.friction)
     if (f < 0.0) throw Error(what + " friction must be >= 0, got " + std::to_string(f));
-  if (spec.shape == ObjectShape::mesh && spec.mesh_file.empty())
-    throw Error(what + " needs a mesh file");
-  if (spec.shape != ObjectShape::mesh && !spec.mesh_file.empty())
-    throw Error(what + " has a mesh file but its shape is not mesh");
+  if (spec.shape == ObjectShape::mesh && spec.mesh_file.empty() == spec.mesh_vertices.empty())
+    throw Error(what + " needs a mesh file or its vertices (one of the two)");
+  if (spec.shape != ObjectShape::mesh && (!spec.mesh_file.empty() || !spec.mesh_vertices.empty()))
+    throw Error(what + " has a mesh but its shape is not mesh");
+  if (!spec.mesh_vertices.empty()) {
+    check_finite(spec.mesh_vertices, what + " mesh_vertices");
+    if (spec.mesh_vertices.size() % 3 != 0 || spec.mesh_vertices.size() < 12)
+      throw Error(what + " mesh_vertices must be x y z triples of at least 4 points, got " +
+                  std::to_string(spec.mesh_vertices.size()) + " values");
+  }
 }
 
 void validate(const CompoundFixtureSpec& spec) {

@@ -1,6 +1,7 @@
 #include "mjarm/tasks/docking_scene.hpp"
 
 #include <cmath>
+#include <cstdio>
 #include <numbers>
 #include <string>
 
@@ -40,6 +41,7 @@ void check_geometry(const DockingGeometry& g) {
   if (!(s[0] > 0.0 && s[0] < 1.0 && s[1] > 0.0 && s[1] < 1.0 && s[0] <= s[1]) || !(s[2] > 0.0) ||
       !std::isfinite(s[2]))
     throw Error("docking scene: solimp must be 0 < dmin ≤ dmax < 1 and width > 0");
+  docking_detail::require_positive(g.ccd_tolerance, "docking scene", "ccd_tolerance [m]");
 }
 
 std::array<double, 3> array_of(const Eigen::Vector3d& v) { return {v.x(), v.y(), v.z()}; }
@@ -49,14 +51,11 @@ std::array<double, 4> quat_of(const Eigen::Matrix3d& R) {
   return {q.w(), q.x(), q.y(), q.z()};
 }
 
-/// A box piece at (R_SB, p_SB) in the socket's frame with half sizes @p half.
-ObjectSpec box_piece(const std::string& name, const Eigen::Matrix3d& R_SB,
-                     const Eigen::Vector3d& p_SB, const Eigen::Vector3d& half,
-                     const DockingGeometry& g) {
+/// A piece of the socket at (R_SB, p_SB) in the socket's frame, its shape not set yet.
+ObjectSpec socket_piece(const std::string& name, const Eigen::Matrix3d& R_SB,
+                        const Eigen::Vector3d& p_SB, const DockingGeometry& g) {
   ObjectSpec piece;
   piece.name = name;
-  piece.shape = ObjectShape::box;
-  piece.size = {half.x(), half.y(), half.z()};
   piece.friction = {g.friction, 0.005, 0.0001};
   piece.pos = array_of(p_SB);
   piece.quat = quat_of(R_SB);
@@ -64,48 +63,57 @@ ObjectSpec box_piece(const std::string& name, const Eigen::Matrix3d& R_SB,
   return piece;
 }
 
+/// A box piece with half sizes @p half.
+ObjectSpec box_piece(const std::string& name, const Eigen::Vector3d& p_SB,
+                     const Eigen::Vector3d& half, const DockingGeometry& g) {
+  ObjectSpec piece = socket_piece(name, Eigen::Matrix3d::Identity(), p_SB, g);
+  piece.shape = ObjectShape::box;
+  piece.size = {half.x(), half.y(), half.z()};
+  return piece;
+}
+
 std::string two_digits(int k) { return (k < 10 ? "0" : "") + std::to_string(k); }
 
-/// The socket's pieces in its own frame S: bore walls, chamfer, bottom plate, pedestal.
+/// The socket's pieces in its own frame S: one convex piece per side of the polygon, the bottom
+/// plate, the pedestal. A side's piece is the prism of its profile — bore wall from the plate up
+/// to the chamfer's foot, the 45° chamfer up to the top face — so the edge where wall and chamfer
+/// meet is an edge of one convex piece. As two boxes, the wall's top face met the chamfer box
+/// there: a face inside the socket, on which the rim of a peg passing the foot caught (normal
+/// straight up, docs/docking.md). The piece reaches down into the bottom plate, which buries its
+/// lower face, and tangentially past the polygon's corners into its neighbours, which buries its
+/// flanks.
 std::vector<ObjectSpec> socket_pieces(const Pose& X_WS, const DockingGeometry& g) {
   std::vector<ObjectSpec> pieces;
   const double a = g.bore_radius;
   const double c = g.chamfer;
+  const double outer = a + c + g.wall;
+  const double bottom = -(c + g.bore_depth);  // the bottom plate's top face
   const double half_angle = std::numbers::pi / g.sides;
-  const Eigen::Vector3d z = Eigen::Vector3d::UnitZ();
-  const double s = std::sqrt(0.5);
+  const double half_width = outer * std::tan(half_angle);
+  // the profile in (x outwards, z up): wall foot, chamfer foot, chamfer top, outer top, outer foot
+  const double profile[5][2] = {
+      {a, bottom - kPlate}, {a, -c}, {a + c, 0.0}, {outer, 0.0}, {outer, bottom - kPlate}};
+  std::vector<double> vertices;
+  for (const double y : {-half_width, half_width})
+    for (const auto& [x, z] : profile) vertices.insert(vertices.end(), {x, y, z});
   for (int k = 0; k < g.sides; ++k) {
     const double theta = 2.0 * half_angle * k;
-    const Eigen::Vector3d n(std::cos(theta), std::sin(theta), 0.0);  // outwards, S axes
-    const Eigen::Vector3d t = z.cross(n);                            // tangential
-    // bore wall: inner face tangent to the bore's circle, from the chamfer's foot down
-    Eigen::Matrix3d R_wall;
-    R_wall << n, t, z;
-    const Eigen::Vector3d wall_half(0.5 * g.wall, (a + g.wall) * std::tan(half_angle),
-                                    0.5 * g.bore_depth);
-    pieces.push_back(box_piece("bore_" + two_digits(k), R_wall,
-                               (a + 0.5 * g.wall) * n - (c + 0.5 * g.bore_depth) * z, wall_half,
-                               g));
-    // chamfer: inner face through (r = a, z = −c) and (r = a + c, z = 0), 45°
-    const Eigen::Vector3d m = s * (n - z);  // into the material
-    const Eigen::Vector3d u = s * (n + z);  // up the slope
-    Eigen::Matrix3d R_chamfer;
-    R_chamfer << m, t, u;
-    const Eigen::Vector3d chamfer_half(0.5 * g.wall, (a + c + g.wall) * std::tan(half_angle),
-                                       0.5 * std::sqrt(2.0) * c);
-    const Eigen::Vector3d mid = (a + 0.5 * c) * n - 0.5 * c * z;
-    pieces.push_back(
-        box_piece("chamfer_" + two_digits(k), R_chamfer, mid + 0.5 * g.wall * m, chamfer_half, g));
+    ObjectSpec side = socket_piece(
+        "side_" + two_digits(k),
+        Eigen::AngleAxisd(theta, Eigen::Vector3d::UnitZ()).toRotationMatrix(),
+        Eigen::Vector3d::Zero(), g);
+    side.shape = ObjectShape::mesh;
+    side.size.clear();
+    side.mesh_vertices = vertices;
+    pieces.push_back(std::move(side));
   }
   // bottom plate and the pedestal that carries it down to the floor
-  const double outer = a + c + g.wall;
-  const double bottom = -(c + g.bore_depth);
-  pieces.push_back(box_piece("bottom", Eigen::Matrix3d::Identity(), (bottom - 0.5 * kPlate) * z,
+  const Eigen::Vector3d z = Eigen::Vector3d::UnitZ();
+  pieces.push_back(box_piece("bottom", (bottom - 0.5 * kPlate) * z,
                              Eigen::Vector3d(outer, outer, 0.5 * kPlate), g));
   const double pedestal = X_WS.p.z() + bottom - kPlate;  // its height
   if (pedestal > 1e-3)
-    pieces.push_back(box_piece("pedestal", Eigen::Matrix3d::Identity(),
-                               (bottom - kPlate - 0.5 * pedestal) * z,
+    pieces.push_back(box_piece("pedestal", (bottom - kPlate - 0.5 * pedestal) * z,
                                Eigen::Vector3d(0.5 * outer, 0.5 * outer, 0.5 * pedestal), g));
   return pieces;
 }
@@ -150,6 +158,9 @@ Scene docking_scene(const DockingSceneOptions& options) {
                 std::to_string(X_WS.p.z()) + " m)");
 
   Scene scene("docking");
+  char tolerance[32];
+  std::snprintf(tolerance, sizeof tolerance, "%.17g", g.ccd_tolerance);
+  scene.set_option("ccd_tolerance", tolerance);
   scene.add_arena();
   scene.add_robot({DockingNames::robot, "iiwa14_torque", {0.0, 0.0, 0.0}, {1, 0, 0, 0}, false});
   scene.attach_gripper({DockingNames::robot, "docking_peg", "attachment_site", "peg"});

@@ -118,24 +118,6 @@ PickPlaceScene build_pick_place_scene(const PickPlaceSceneOptions& options) {
   scene.add_robot({prefix, file, robot.mount, {1, 0, 0, 0}, false});
   out.robot_root = prefix + "/" + (robot.own_table ? "base" : "link0");
 
-  // MuJoCo 2.2.2's box-box collider gives spurious contacts half a metre deep for some poses of a
-  // small box resting face on face on a large one (174 of 3600 upright poses swept over both
-  // tables; the object is shot away at the first step — tests/tasks/pick_place_scene_test.cpp):
-  // the table top collides as a plane at its top surface instead (plane-box is exact), drawn
-  // with the same extent
-  const std::string top_geom = robot.own_table ? prefix + "/table_top" : "arena/table_top";
-  const std::optional<std::string> top_size = scene.attribute("geom", top_geom, "size");
-  double hx = 0.0, hy = 0.0, hz = 0.0;
-  std::sscanf(top_size ? top_size->c_str() : "", "%lf %lf %lf", &hx, &hy, &hz);
-  const std::optional<std::string> top_pos = scene.attribute("geom", top_geom, "pos");
-  double px = 0.0, py = 0.0, pz = 0.0;
-  std::sscanf(top_pos ? top_pos->c_str() : "", "%lf %lf %lf", &px, &py, &pz);
-  scene.set_attribute("geom", top_geom, "type", "plane");
-  const double plane_size[3] = {hx, hy, 0.05};
-  const double plane_pos[3] = {px, py, pz + hz};
-  scene.set_attribute("geom", top_geom, "size", plane_size);
-  scene.set_attribute("geom", top_geom, "pos", plane_pos);
-
   ObjectSpec object;
   object.name = out.object;
   object.shape = object_shape(options.object.shape);

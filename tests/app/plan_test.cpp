@@ -3,7 +3,6 @@
 
 #include <gtest/gtest.h>
 
-#include <chrono>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -125,12 +124,12 @@ TEST(PlanCli, BadInputFailsClearly) {
 // and --out --rate 100000 on a 5-minute plan built gigabytes in memory; both are bounded
 TEST(PlanCli, AbsurdWorkIsRefusedNamingTheBound) {
   const std::string waypoints = plan_file("five.json", kFive);
-  const auto start = std::chrono::steady_clock::now();
   const CliRun slow =
       run_cli({"plan", "panda_torque", "--waypoints", waypoints, "--velocity-limit", "0.0001"});
-  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 10.0);
   EXPECT_EQ(slow.exit_code, 1) << slow.err;
   EXPECT_NE(slow.err.find("samples a segment may have"), std::string::npos) << slow.err;
+  // refused before any sample was checked, not after minutes of checks
+  EXPECT_NE(slow.err.find("the plan had checked 0 before it"), std::string::npos) << slow.err;
   // 0.05 rad/s: a plan of about a minute, sampled at 100 kHz would be millions of CSV rows
   const fs::path csv = scratch() / "huge_plan.csv";
   const CliRun rows = run_cli({"plan", "panda_torque", "--waypoints", waypoints, "--velocity-limit",

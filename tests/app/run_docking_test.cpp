@@ -110,8 +110,8 @@ TEST(RunDockingCli, BadCommandLinesAreRefusedBeforeTheWork) {
 }
 
 TEST(RunDockingCli, CtrlCStopsTheGridAndSaysHowFarItGot) {
-  const auto cli = mjarm::test::start_cli({"run", "docking", "--grid", "--jobs", "1"}, "dock_int");
-  mjarm::test::interrupt_after_cpu(cli, 0.5);
+  const auto cli = mjarm::test::start_cli_on_terminal({"run", "docking", "--grid", "--jobs", "1"}, "dock_int");
+  mjarm::test::interrupt_after_progress(cli);
   const CliRun run = mjarm::test::finish_cli(cli);
   EXPECT_FALSE(run.signaled);
   EXPECT_EQ(run.exit_code, 130) << run.err;

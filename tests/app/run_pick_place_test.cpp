@@ -94,7 +94,7 @@ TEST(RunPickPlaceCli, FailedTrialsAreListedWithTheirReplayAndRecordings) {
   const fs::path dir = scratch() / "pick_place_batch";
   const CliRun run =
       run_cli(brisk_pick_place({"run", "pick-place", "--seed", "3", "--trials", "2",
-                                "--max-acceleration", "100", "--record", dir.string()}));
+                                "--max-acceleration", "30", "--record", dir.string()}));
   EXPECT_EQ(run.exit_code, 1) << run.err;
   EXPECT_NE(run.err.find("2 of 2 trials failed"), std::string::npos) << run.err;
   EXPECT_NE(run.out.find("failures  diverged 2"), std::string::npos) << run.out;
@@ -134,9 +134,9 @@ TEST(RunPickPlaceCli, VideoOfSeveralCamerasTiledOrOneFileEach) {
 }
 
 TEST(RunPickPlaceCli, CtrlCStopsTheBatchWithTheTrialsDone) {
-  const auto cli = mjarm::test::start_cli(
+  const auto cli = mjarm::test::start_cli_on_terminal(
       {"run", "pick-place", "--trials", "400", "--threads", "2"}, "pick_place_interrupt");
-  mjarm::test::interrupt_after_cpu(cli, 2.0);
+  mjarm::test::interrupt_after_progress(cli);
   const CliRun run = mjarm::test::finish_cli(cli);
   EXPECT_FALSE(run.signaled);
   EXPECT_EQ(run.exit_code, 130) << run.err;

@@ -329,6 +329,9 @@ TEST(OperationalSpace, AntiWindupClampsTheIntegral) {
 
 TEST(OperationalSpace, InternalsAreNamedAndSized) {
   Rig rig("panda_torque", "attachment_site");
+  // a regular configuration (at qpos0 the panda's wrist is singular: λ_min is 0)
+  mj_resetDataKeyframe(&rig.m(), &rig.d(), rig.robot.keyframe("home"));
+  mj_forward(&rig.m(), &rig.d());
   OperationalSpaceController osc(rig.chain);
   ASSERT_EQ(osc.internal_names().size(), osc.internal_values().size());
   EXPECT_EQ(osc.internal_names()[2], "lambda_condition");

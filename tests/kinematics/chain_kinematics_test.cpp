@@ -195,6 +195,33 @@ TEST_F(ChainKinematicsTest, BiasAccelerationMatchesFiniteDifferenceOfJacobian) {
   }
 }
 
+// the same J̇·q̇ from MuJoCo's own mj_jacDot at the frame point (two methods cross-checked)
+TEST_F(ChainKinematicsTest, BiasAccelerationMatchesMujocosJacobianDerivative) {
+  const Chain chain(robot_, "tool");
+  ChainKinematics kin(chain);
+  const mjModel& m = robot_.model();
+  DataPtr d = robot_.make_data();
+  const int site = robot_.site("tool");
+  const int n = chain.size();
+  Eigen::Matrix<double, 3, Eigen::Dynamic, Eigen::RowMajor> jacp(3, m.nv), jacr(3, m.nv);
+  std::mt19937 rng(11);
+  for (int trial = 0; trial < 20; ++trial) {
+    const Eigen::VectorXd q = random_q(chain, rng);
+    const Eigen::VectorXd qd = Eigen::VectorXd::Random(n);
+    mj_resetData(&m, d.get());
+    chain.scatter(q, d->qpos);
+    for (int i = 0; i < n; ++i) d->qvel[chain.dof_address(i)] = qd[i];  // other dofs at rest
+    mj_forward(&m, d.get());
+    mj_jacDot(&m, d.get(), jacp.data(), jacr.data(), d->site_xpos + 3 * site,
+              m.site_bodyid[site]);
+    const Eigen::Map<const Eigen::VectorXd> qvel(d->qvel, m.nv);
+    Vector6d expected;
+    expected << jacp * qvel, jacr * qvel;
+    kin.update(q);
+    EXPECT_LT((kin.bias_acceleration(qd) - expected).norm(), 1e-10) << trial;
+  }
+}
+
 TEST_F(ChainKinematicsTest, CostDoesNotDependOnOtherBodies) {
   // the chain walks only its own path: the free box and the branch are never visited
   const Chain chain(robot_, "tool");

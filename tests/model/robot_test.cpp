@@ -196,8 +196,8 @@ TEST(Robot, FilesThatAreNotRegularOrTooDeepGiveClearErrors) {
 TEST(Robot, LoadErrorsNameTheUsersFileAndLine) {
   const auto dir = test::scratch() / "robot_lines";
   std::filesystem::create_directories(dir);
-  // MuJoCo 3.x constructs (rewritten) and a comment shift the translated lines; the missing mesh
-  // is on line 10 of the user's file
+  // an include and a comment shift the staged lines; the missing mesh is on line 10 of the
+  // user's file
   const auto main = dir / "arm3x.xml";
   std::ofstream(main) << R"(<mujoco model="arm3x">
   <!-- a comment
@@ -222,6 +222,10 @@ TEST(Robot, LoadErrorsNameTheUsersFileAndLine) {
   EXPECT_NE(mesh.find("line 10 of '" + main.string() + "'"), std::string::npos) << mesh;
 
   // an error inside an included file names that file and its line (MuJoCo itself says line 0)
+  std::ofstream(main) << R"(<mujoco model="arm">
+  <!-- a comment -->
+  <include file="parts.xml"/>
+</mujoco>)";
   std::ofstream(dir / "parts.xml") << R"(<mujoco>
   <worldbody>
 
@@ -233,7 +237,7 @@ TEST(Robot, LoadErrorsNameTheUsersFileAndLine) {
   EXPECT_NE(part.find("'pos'"), std::string::npos) << part;
   EXPECT_NE(part.find("line 4 of '" + parts.string() + "'"), std::string::npos) << part;
 
-  // a plain 2.2.2 file too
+  // a file without includes too
   std::ofstream(dir / "plain.xml") << R"(<mujoco>
 
   <worldbody><geom size="0.1" type="blob"/></worldbody>

@@ -1,15 +1,15 @@
 """The environments from Python: dm_env's TimeStep semantics and specs, determinism with seeds,
 time steps that own their observations, the vectorized form, bad input, and the GIL released
-while stepping (two Python threads faster than one)."""
+while stepping (the speed-up that buys two Python threads is a figure of `python3 -m
+mjarm.bench`)."""
 import gc
-import os
 import threading
-import time
 
 import numpy as np
 import pytest
 
 import mjarm
+from conftest import runs_beside
 
 
 def reach(**overrides):
@@ -303,81 +303,21 @@ def test_gil_released_while_a_batch_steps():
     (with the GIL held it could not run at all). Needs no free core: the OS time-slices."""
     vec = mjarm.VectorEnvironment("reach", 32, 1, time_limit=100.0)
     vec.reset()
-    inside, done = threading.Event(), threading.Event()
-
-    def worker():
-        inside.set()
-        for _ in range(3):
-            vec.step(np.zeros((32, 6)))
-        done.set()
-
-    t = threading.Thread(target=worker)
-    t.start()
-    inside.wait()
-    count = 0
-    while not done.is_set():
-        count += 1
-    t.join()
-    assert count > 1000, count
-
-
-def test_gil_released_two_threads_faster_than_one():
-    """Two VectorEnvironments of 4 (one pool thread each) stepped from two Python threads at once,
-    against the same work one after the other: with the GIL released during step the threads
-    run on both cores. The machine is shared (and ctest may run other tests beside this one), so
-    each trial also times a control: the same 8 environments on mjarm's own 2-thread pool, which
-    the GIL does not touch. The best of up to six trials must be 1.3x faster on two Python
-    threads; if in no trial the pool itself got 1.5x (no free core), the Python threads must
-    have kept up with the pool instead (within 20 %)."""
-    envs = [mjarm.VectorEnvironment("reach", 4, 1, time_limit=100.0, seed=s) for s in (1, 2)]
-    pool = mjarm.VectorEnvironment("reach", 8, 2, time_limit=100.0, seed=3)
-    actions, actions8 = np.zeros((4, 6)), np.zeros((8, 6))
-    for e in envs + [pool]:
-        e.reset()
-
-    def run(e, a, steps):
-        for _ in range(steps):
-            e.step(a)
-
-    start = time.perf_counter()
-    run(envs[0], actions, 10)
-    steps = max(10, int(0.2 / ((time.perf_counter() - start) / 10)))  # ~0.2 s per thread
-    trials = []
-    for _ in range(6):
-        start = time.perf_counter()
-        run(envs[0], actions, steps)
-        run(envs[1], actions, steps)
-        serial = time.perf_counter() - start
-        threads = [threading.Thread(target=run, args=(e, actions, steps)) for e in envs]
-        start = time.perf_counter()
-        for t in threads:
-            t.start()
-        for t in threads:
-            t.join()
-        python_threads = serial / (time.perf_counter() - start)
-        start = time.perf_counter()
-        run(pool, actions8, steps)
-        trials.append((python_threads, serial / (time.perf_counter() - start)))
-        if python_threads > 1.6:
-            break
-    best = max(trials)
-    print(f"two Python threads against one: {best[0]:.2f}x (mjarm's 2-thread pool in the same "
-          f"trial: {best[1]:.2f}x; trials: {', '.join(f'{p:.2f}/{c:.2f}' for p, c in trials)}; "
-          f"{steps} batch steps of 4 reach environments per thread; load average "
-          f"{os.getloadavg()[0]:.1f})")
-    if max(c for _, c in trials) > 1.5:
-        assert best[0] > 1.3
-    else:  # no free core in any trial: as parallel as the pool was
-        assert max(p / c for p, c in trials) > 0.8
+    actions = np.zeros((32, 6))
+    ran, steps = runs_beside(lambda: [vec.step(actions) for _ in range(100)])
+    assert ran and len(steps) == 100 and len(steps[-1].reward) == 32
 
 
 # --- the Gymnasium-style adapter -------------------------------------------------------------
 
 def test_gym_reset_step_conventions():
-    from mjarm.gym import Box, Dict, GymEnv
+    from gymnasium.spaces import Box, Dict
+    from mjarm.gym import GymEnv
 
     env = GymEnv("reach", time_limit=0.1)
     assert isinstance(env.action_space, Box) and isinstance(env.observation_space, Dict)
+    # the spec's order, not gymnasium's default sorting by name
+    assert list(env.observation_space.keys()) == list(env.env.observation_spec())
     obs, info = env.reset(seed=5)
     assert isinstance(obs, dict) and isinstance(info, dict) and env.observation_space.contains(obs)
     assert info["episode_seed"] == 5
@@ -414,7 +354,8 @@ def test_gym_reset_step_conventions():
 
 
 def test_gym_seeding_and_flattened_observations():
-    from mjarm.gym import Box, GymEnv
+    from gymnasium.spaces import Box
+    from mjarm.gym import GymEnv
 
     a, b = GymEnv("reach", flatten=True), GymEnv("reach", flatten=True)
     assert isinstance(a.observation_space, Box) and a.observation_space.shape == (27,)
@@ -425,10 +366,7 @@ def test_gym_seeding_and_flattened_observations():
     oa, ia = a.reset()
     ob, ib = b.reset()
     assert np.array_equal(oa, ob) and ia["episode_seed"] == ib["episode_seed"] != 3
-    box = Box(-np.inf, np.inf, (3,), seed=0)
-    assert np.all(np.isfinite(box.sample())) and not box.is_bounded()
-    half = Box(np.zeros(2), np.array([np.inf, np.inf]), seed=0)
-    assert np.all(half.sample() >= 0.0) and half.is_bounded("below")
+    assert a.observation_space.dtype == np.float64 and a.action_space.dtype == np.float64
     with pytest.raises(ValueError):
         a.reset(options={"x": 1})
 

@@ -354,14 +354,15 @@ TEST(OffscreenRenderer, LargerThanTheModelOffscreenBufferAndOddSizes) {
 TEST(OffscreenRenderer, CallerDataIsOnlyRead) {
   const Robot panda = Robot::bundled("panda");
   DataPtr d = test::panda_home(panda);
-  const mjModel& m = panda.model();
+  // the data's own buffer (mjModel::nbuffer is the model's)
+  const std::size_t bytes = static_cast<std::size_t>(d->nbuffer);
   const std::vector<std::uint8_t> before(static_cast<std::uint8_t*>(d->buffer),
-                                         static_cast<std::uint8_t*>(d->buffer) + m.nbuffer);
+                                         static_cast<std::uint8_t*>(d->buffer) + bytes);
   const int pstack = static_cast<int>(d->pstack);
   OffscreenRenderer renderer(panda, kW, kH);
   renderer.render(*d, kFront);
   renderer.render(*d, CameraSpec::follow("link4", 1.0, 30, -20));
-  EXPECT_EQ(std::memcmp(before.data(), d->buffer, static_cast<std::size_t>(m.nbuffer)), 0);
+  EXPECT_EQ(std::memcmp(before.data(), d->buffer, bytes), 0);
   EXPECT_EQ(static_cast<int>(d->pstack), pstack);
 }
 

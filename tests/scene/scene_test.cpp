@@ -365,6 +365,38 @@ TEST(Scene, MeshObjectsLoadFromAnAbsolutePath) {
   EXPECT_NEAR(robot.model().body_mass[robot.body("tetra")], 0.2, 1e-9);
 }
 
+TEST(Scene, MeshObjectsFromTheirVertices) {
+  Scene scene;
+  ObjectSpec tetra;
+  tetra.name = "tetra";
+  tetra.shape = ObjectShape::mesh;
+  tetra.size = {};
+  tetra.mesh_vertices = {0, 0, 0, 0.04, 0, 0, 0, 0.04, 0, 0, 0, 0.04};
+  tetra.mass = 0.2;
+  scene.add_object(tetra);
+  const Robot robot = scene.compile();
+  const mjModel& m = robot.model();
+  ASSERT_EQ(m.nmesh, 1);
+  EXPECT_EQ(m.mesh_vertnum[0], 4);
+  EXPECT_EQ(m.geom_type[robot.geom("tetra/geom")], mjGEOM_MESH);
+  EXPECT_NEAR(m.body_mass[robot.body("tetra")], 0.2, 1e-9);
+  // its centre of mass: the tetrahedron's, a quarter of the way along each edge from the origin
+  for (int i = 0; i < 3; ++i) EXPECT_NEAR(m.body_ipos[3 * robot.body("tetra") + i], 0.01, 1e-6);
+  // exactly one of file and vertices, whole points, at least four
+  ObjectSpec bad = tetra;
+  bad.name = "bad";
+  bad.mesh_file = "tetra.obj";
+  EXPECT_TRUE(contains(error_of([&] { scene.add_object(bad); }), "one of the two"));
+  bad.mesh_file.clear();
+  bad.mesh_vertices.pop_back();
+  EXPECT_TRUE(contains(error_of([&] { scene.add_object(bad); }), "x y z triples of at least 4"));
+  bad.mesh_vertices = {0, 0, 0, 1, 0, 0, 0, 1, 0};
+  EXPECT_TRUE(contains(error_of([&] { scene.add_object(bad); }), "got 9 values"));
+  ObjectSpec box = cube_spec("box", 0.2);
+  box.mesh_vertices = tetra.mesh_vertices;
+  EXPECT_TRUE(contains(error_of([&] { scene.add_object(box); }), "its shape is not mesh"));
+}
+
 TEST(Scene, BadValuesAreNamed) {
   Scene scene = two_robots_two_objects();
   ObjectSpec heavy = cube_spec("heavy", 0.2);

@@ -183,11 +183,11 @@ TEST(PickPlace, SameSeedSameTrialBitForBit) {
 }
 
 TEST(PickPlace, ARunThatDivergesMidTrialIsAFailedTrialWithItsRecording) {
-  // a bound the welded object's own jerk at the start of LIFT trips (about 101 rad/s² on its free
-  // joint): mid-trial, the grasp made
+  // a bound the welded object's own jerk early in LIFT trips (35–60 rad/s² on its free joint for
+  // seeds 3 and 4; nothing before LIFT comes near 20): mid-trial, the grasp made
   PickPlaceOptions o = brisk("arm6", GraspKind::weld, SimulationMode::position);
   o.seed = 3;
-  o.max_acceleration = 100.0;
+  o.max_acceleration = 30.0;
   o.record = scratch() / "pick_place_diverged";
   const PickPlaceReport r = run_pick_place(o);
   EXPECT_FALSE(r.success);

@@ -58,7 +58,8 @@ class ChainKinematics {
   bool moves_frame(int i) const noexcept { return on_path_[i]; }
 
   /// The bias acceleration J̇·q̇ of the frame (world-aligned, linear first) at the last
-  /// `update()`, for joint velocities @p qd (size n). MuJoCo 2.2.2 has no mj_jacDot.
+  /// `update()`, for joint velocities @p qd (size n): on the chain's path only, where
+  /// MuJoCo's `mj_jacDot` needs the whole tree's velocities (mj_comVel) first.
   Vector6d bias_acceleration(const Eigen::Ref<const Eigen::VectorXd>& qd) const noexcept;
 
  private:

@@ -37,8 +37,7 @@ struct StagedMjcf {
 /// (MuJoCo's own semantics: a file is included once, cycles are errors); each included file is
 /// read through `read_user_file`. Asset files (mesh, hfield, skin and model `file`, texture
 /// `file*`) are made absolute against the compiler's meshdir / texturedir / assetdir and the
-/// main file's folder (or the including file's), and checked through `check_user_file`; a
-/// missing one is left for MuJoCo to report.
+/// main file's folder (or the including file's), and checked through `check_user_file`.
 ///
 /// @param xml       MJCF text; the root element must be `<mujoco>`.
 /// @param base_dir  folder of the main file: relative include and asset paths resolve against it.
@@ -46,8 +45,9 @@ struct StagedMjcf {
 ///                     labelled with it in errors and `source_lines`; empty for text without a
 ///                     file.
 /// @throws mjarm::Error for malformed XML (with tinyxml2's message and line), an unreadable,
-///         missing or cyclic include, or an asset that is not a regular, readable file of a
-///         sensible size; the message names the element (tag, name attribute, line and file).
+///         missing or cyclic include, or an asset that is missing or not a regular, readable
+///         file of a sensible size; the message names the element (tag, name attribute, line
+///         and file).
 StagedMjcf stage_mjcf(std::string_view xml, const std::filesystem::path& base_dir,
                       const std::filesystem::path& source_file = {});
 

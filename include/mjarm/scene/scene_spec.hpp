@@ -64,6 +64,9 @@ struct ObjectSpec {
   /// mesh: 3 scale factors (or empty for 1 1 1).
   std::vector<double> size{0.02, 0.02, 0.02};
   std::string mesh_file;                               ///< STL/OBJ/MSH file, for shape mesh
+  /// For shape mesh instead of a file: the vertices, x y z in the object's frame [m] (at least
+  /// 4 points, not all in one plane); MuJoCo collides and weighs their convex hull.
+  std::vector<double> mesh_vertices;
   double mass = 0.1;                                   ///< [kg], > 0
   std::array<double, 3> friction{1.0, 0.005, 0.0001};  ///< sliding, torsional, rolling, >= 0
   std::array<double, 3> pos{0.0, 0.0, 0.0};            ///< position in world [m]

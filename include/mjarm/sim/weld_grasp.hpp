@@ -23,7 +23,7 @@ struct WeldGraspOptions {
 
 /// A weld grasp on one `Simulation`: body1 (the gripper) holds body2 (the object).
 ///
-/// MuJoCo 2.2.2 layout of a weld's `eq_data` (mjNEQDATA = 11 values; engine behaviour pinned by
+/// The layout of a weld's `eq_data` (mjNEQDATA = 11 values; engine behaviour pinned by
 /// tests/sim/weld_grasp_test.cpp): [0..2] the anchor point in body2's frame, [3..5] the same
 /// point in body1's frame, [6..9] the orientation of body2 relative to body1 (quaternion
 /// w x y z), [10] the torque scale. The constraint drives p₁ + R₁·d[3..5] onto p₂ + R₂·d[0..2]

@@ -26,12 +26,13 @@ struct DockingGeometry {
   /// 45° chamfer at the entry: radial width = height. The hole opens to
   /// bore_radius + chamfer at the top face.
   double chamfer = 0.010;
-  /// The bore and the chamfer are regular polygons of this many faces (≥ 8), each face a box
-  /// (MuJoCo collides a mesh through its convex hull, so a hole must be made of convex pieces).
-  /// The faces are tangent to the bore's circle: the clearance is 0.5 mm at the middle of a face
-  /// and bore_radius/cos(π/sides) − peg_radius at a corner (0.58 mm for 32 faces).
+  /// The bore and the chamfer are regular polygons of this many faces (≥ 8), each side of the
+  /// hole — wall and chamfer — one convex piece (MuJoCo collides a mesh through its convex hull,
+  /// so a hole must be made of convex pieces). The faces are tangent to the bore's circle: the
+  /// clearance is 0.5 mm at the middle of a face and bore_radius/cos(π/sides) − peg_radius at a
+  /// corner (0.58 mm for 32 faces).
   int sides = 32;
-  double wall = 0.010;    ///< radial thickness of the bore's wall pieces
+  double wall = 0.010;    ///< radial thickness of the socket beyond the chamfer's top edge
   double friction = 0.3;  ///< sliding friction of peg and socket (steel on aluminium, dry)
   /// Contact softness (MuJoCo solref: time constant [s], damping ratio) of peg and socket.
   std::array<double, 2> solref{0.01, 1.0};
@@ -39,6 +40,14 @@ struct DockingGeometry {
   /// impedance (0.95, 0.99) leaves the seated peg a few micrometres deep, where it loses and
   /// regains contact ten times a second under the preload.
   std::array<double, 3> solimp{0.9, 0.95, 0.001};
+  /// Tolerance of MuJoCo's convex collision (GJK/EPA, option `ccd_tolerance`) [m]. A contact
+  /// shallower than it may come back with its normal reversed; where the peg touches two pieces
+  /// at once (the chamfer's foot, the walls beside a pressed wall) it then faces the other
+  /// piece's contact and the pair brakes the sliding peg like a clamp (up to 89 N at MuJoCo's
+  /// default, 1 µm). Contacts here begin anywhere from 0 to about 40 µm deep (a step's travel)
+  /// and the seated preload holds the peg 0.1 µm deep, so the tolerance sits far below both
+  /// (docs/docking.md).
+  double ccd_tolerance = 1e-12;
 };
 
 /// The Franka Emika Panda's identified joint Coulomb friction [N·m] (the --friction variant puts
@@ -72,8 +81,8 @@ struct DockingNames {
   static constexpr const char* force = "iiwa/peg/ft_force";    ///< force sensor
   static constexpr const char* torque = "iiwa/peg/ft_torque";  ///< torque sensor
   static constexpr const char* peg_body = "iiwa/peg/peg";      ///< the peg's body
-  /// The socket: one static body; its geoms `socket/bore_NN`, `socket/chamfer_NN`,
-  /// `socket/bottom`, `socket/pedestal`.
+  /// The socket: one static body; its geoms `socket/side_NN` (wall and chamfer of a side, a
+  /// convex mesh), `socket/bottom`, `socket/pedestal`.
   static constexpr const char* socket = "socket";
 };
 
