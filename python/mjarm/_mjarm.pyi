@@ -4915,7 +4915,7 @@ class Recorder:
         ...
     def __exit__(self: Recorder, arg0: ArrayLike, arg1: ArrayLike, arg2: ArrayLike) -> bool:
         ...
-    def __init__(self: Recorder, simulation: ArrayLike, directory: str | os.PathLike[str] | str | bytes, options: RecorderOptions = ...) -> None:
+    def __init__(self: Recorder, simulation: ArrayLike, directory: str | os.PathLike[str], options: RecorderOptions = ...) -> None:
         ...
     def close(self: Recorder) -> None:
         """finalizes (with the last run's status) if not finalized, and closes"""
@@ -5050,11 +5050,11 @@ class Robot:
     def camera_names(self: Robot) -> list[str]:
         ...
     @staticmethod
-    def from_file(path: str | os.PathLike[str] | str | bytes) -> Robot:
+    def from_file(path: str | os.PathLike[str]) -> Robot:
         """Loads MJCF or URDF; MJCF written for MuJoCo 3.x is translated (see load_warnings)."""
         ...
     @staticmethod
-    def from_string(xml: str, base_dir: str | os.PathLike[str] | str | bytes = ...) -> Robot:
+    def from_string(xml: str, base_dir: str | os.PathLike[str] = ...) -> Robot:
         """Loads MJCF or URDF text; relative assets resolve against base_dir."""
         ...
     def geom(self: Robot, name: str) -> int:
@@ -5088,7 +5088,7 @@ class Robot:
         """A fresh owned Data at the reference configuration, kinematics computed."""
         ...
     @staticmethod
-    def models_dir() -> pathlib.Path:
+    def models_dir() -> str | os.PathLike[str]:
         """Directory of the bundled models."""
         ...
     @property
@@ -6542,7 +6542,7 @@ class VectorTimeStep:
 
 class VideoWriter:
     """MP4 through ffmpeg: a complete video or none."""
-    def __init__(self: VideoWriter, path: str | os.PathLike[str] | str | bytes, width: int, height: int, fps: float) -> None:
+    def __init__(self: VideoWriter, path: str | os.PathLike[str], width: int, height: int, fps: float) -> None:
         ...
     def close(self: VideoWriter) -> None:
         ...
@@ -6704,7 +6704,7 @@ class WorkspaceResult:
     def upper(self) -> Any:
         """bounding-box maximum (3,) [m]"""
         ...
-    def write_csv(self: WorkspaceResult, path: str | os.PathLike[str] | str | bytes) -> None:
+    def write_csv(self: WorkspaceResult, path: str | os.PathLike[str]) -> None:
         ...
 
 class WrenchReading:
@@ -6779,10 +6779,10 @@ def free_pose(robot: Robot | mujoco.MjModel, data: Data | mujoco.MjData, body: s
 def free_qpos_address(robot: Robot | mujoco.MjModel, body: str) -> int:
     """The qpos address of the free joint of a body (or of the free joint by name)."""
     ...
-def is_scene_file(path: str | os.PathLike[str] | str | bytes) -> bool:
+def is_scene_file(path: str | os.PathLike[str]) -> bool:
     """Whether path names a scene file (.yaml, .yml, .json)."""
     ...
-def load_scene_file(path: str | os.PathLike[str] | str | bytes) -> Scene:
+def load_scene_file(path: str | os.PathLike[str]) -> Scene:
     """A Scene from a YAML or JSON file (docs/scene.md); errors name the line and the key."""
     ...
 def log_error(X_WE: ArrayLike, X_WT: ArrayLike) -> NDArray[np.float64]:
@@ -6798,7 +6798,7 @@ def log_error_world_aligned_jacobian(e_W: ArrayLike) -> NDArray[np.float64]:
     ...
 def manipulability(chain: Chain, q: ArrayLike, options: ManipulabilityOptions = ...) -> ManipulabilityResult:
     ...
-def parse_scene(text: str, base_dir: str | os.PathLike[str] | str | bytes = ..., source: str = ...) -> Scene:
+def parse_scene(text: str, base_dir: str | os.PathLike[str] = ..., source: str = ...) -> Scene:
     """A Scene from YAML/JSON text; base_dir resolves relative paths, source names it in errors."""
     ...
 def pick_place_robot(name: str) -> PickPlaceRobot:
