@@ -6,6 +6,8 @@ set -euo pipefail
 
 packages=(
   build-essential cmake pkg-config
+  # `pip install .` builds with Ninja (scikit-build-core takes it from PyPI when it is missing)
+  ninja-build
   libeigen3-dev libtinyxml2-dev libcli11-dev nlohmann-json3-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   # scene files (YAML, and JSON through the same parser)

@@ -331,13 +331,6 @@ Robot Robot::from_string(std::string_view xml, const std::filesystem::path& base
   return Robot(loaded.model, "<string>", std::move(loaded.warnings));
 }
 
-std::filesystem::path Robot::models_dir() {
-  if (const char* env = std::getenv("MJARM_MODELS"); env != nullptr && *env != '\0') return env;
-  std::error_code ec;
-  if (std::filesystem::is_directory(MJARM_MODELS_SOURCE_DIR, ec)) return MJARM_MODELS_SOURCE_DIR;
-  return MJARM_MODELS_INSTALL_DIR;
-}
-
 std::vector<std::string> Robot::bundled_names() {
   const std::filesystem::path dir = models_dir();
   const char* env = std::getenv("MJARM_MODELS");

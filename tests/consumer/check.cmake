@@ -1,5 +1,6 @@
 # Installs the build tree into a scratch prefix, then configures, builds and runs the consumer
-# project against it. Any failing step fails the test.
+# project against it, and checks that the installed CLI finds the installed models. Any failing
+# step fails the test.
 file(REMOVE_RECURSE ${WORK_DIR})
 function(run)
   execute_process(COMMAND ${ARGV} RESULT_VARIABLE rc)
@@ -12,3 +13,16 @@ run(${CMAKE_COMMAND} -S ${SOURCE_DIR} -B ${WORK_DIR}/build -DCMAKE_PREFIX_PATH=$
     -DCMAKE_BUILD_TYPE=Release)
 run(${CMAKE_COMMAND} --build ${WORK_DIR}/build)
 run(${CMAKE_COMMAND} -E env MJARM_MODELS=${WORK_DIR}/prefix/share/mjarm/models ${WORK_DIR}/build/consumer)
+# the installed CLI finds the installed models relative to itself: the scratch prefix is not the
+# configured one, and the source tree's models would be found otherwise
+execute_process(COMMAND ${CMAKE_COMMAND} -E env --unset=MJARM_MODELS ${WORK_DIR}/prefix/bin/mjarm
+                        info --list --json
+                RESULT_VARIABLE rc OUTPUT_VARIABLE listing)
+if(NOT rc EQUAL 0)
+  message(FATAL_ERROR "failed (${rc}): the installed mjarm info --list --json")
+endif()
+string(JSON models_dir GET "${listing}" models_dir)
+if(NOT models_dir STREQUAL "${WORK_DIR}/prefix/share/mjarm/models")
+  message(FATAL_ERROR "the installed CLI's models are '${models_dir}', not the install's "
+                      "'${WORK_DIR}/prefix/share/mjarm/models'")
+endif()

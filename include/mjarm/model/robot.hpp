@@ -108,7 +108,9 @@ class Robot {
   /// A bundled name when @p name_or_path has no '/' and no extension, a file path otherwise.
   static Robot load(std::string_view name_or_path);
 
-  /// Directory of the bundled models: $MJARM_MODELS, else the source tree, else the install.
+  /// Directory of the bundled models: $MJARM_MODELS, else the installed models relative to the
+  /// installed CLI or Python extension holding the library (a wheel's `mjarm/models`), else the
+  /// source tree, else the install prefix's share dir (src/model/models_dir.cpp).
   static std::filesystem::path models_dir();
 
   /// Names of the bundled models (top-level .xml files in `models_dir()`), sorted.

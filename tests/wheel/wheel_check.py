@@ -1,0 +1,157 @@
+"""`pip install .` checked end to end: the PEP 517 backend (pyproject.toml) builds a wheel from
+the source tree, pip installs it into a fresh virtual environment, and everything is used from
+there with the source tree out of reach (no PYTHONPATH, no MJARM_* variables, another working
+folder): the package imports, loads a bundled model and solves an IK; `python -m mjarm` and the
+console script `mjarm` run the CLI inside the package; the models are the package's; the
+binaries' run paths lead to the environment's mujoco, and one libmujoco is loaded.
+
+Usage: wheel_check.py SOURCE_DIR WORK_DIR [--isolated]
+
+By default the build runs without pip's build isolation, in WORK_DIR/build-env: a virtual
+environment holding exactly the build requirements of pyproject.toml (what isolation would
+install), with a build folder kept between runs (scikit-build-core's build-dir), so a second run
+recompiles only what changed; isolation's temporary paths would make every run a full build.
+--isolated builds exactly as `pip install .` does: isolated, in a temporary build folder.
+"""
+import json
+import os
+import re
+import shutil
+import subprocess
+import sys
+import time
+import tomllib
+import zipfile
+from pathlib import Path
+
+failures = []
+
+
+def check(condition, what):
+    if not condition:
+        failures.append(what)
+        print(f"FAILED: {what}", flush=True)
+
+
+def run(command, **kwargs):
+    """Runs a command, printing it and its wall time; its failure ends the check."""
+    started = time.monotonic()
+    print("$", " ".join(str(c) for c in command), flush=True)
+    result = subprocess.run([str(c) for c in command], text=True, capture_output=True, **kwargs)
+    print(f"  ({time.monotonic() - started:.1f} s)", flush=True)
+    if result.returncode != 0:
+        sys.exit(f"failed ({result.returncode}): {' '.join(map(str, command))}\n"
+                 f"{result.stdout}\n{result.stderr}")
+    return result.stdout
+
+
+def make_venv(path):
+    shutil.rmtree(path, ignore_errors=True)
+    # a venv made from inside a venv stands on the base interpreter, as scripts/setup_venv.sh's
+    run([sys.executable, "-m", "venv", path])
+    return path / "bin" / "python"
+
+
+PIP = ["-m", "pip", "--disable-pip-version-check", "--no-input"]
+
+
+def main():
+    source, work = Path(sys.argv[1]).resolve(), Path(sys.argv[2]).resolve()
+    isolated = "--isolated" in sys.argv[3:]
+    work.mkdir(parents=True, exist_ok=True)
+    pyproject = tomllib.loads((source / "pyproject.toml").read_text())
+    version = re.search(r"project\(mjarm VERSION ([0-9.]+)",
+                        (source / "CMakeLists.txt").read_text()).group(1)
+    mujoco_pin = next(d for d in pyproject["project"]["dependencies"] if d.startswith("mujoco=="))
+    mujoco_version = mujoco_pin.split("==")[1]
+
+    dist = work / "dist"
+    shutil.rmtree(dist, ignore_errors=True)
+    if isolated:
+        builder = make_venv(work / "isolated-env")
+        run([builder, *PIP, "wheel", "--no-deps", "-q", "-w", dist, source])
+    else:
+        builder = work / "build-env" / "bin" / "python"
+        requires = pyproject["build-system"]["requires"]
+        stamp = work / "build-env" / ".requires"
+        if not (builder.exists() and stamp.exists() and stamp.read_text() == repr(requires)):
+            make_venv(work / "build-env")
+            run([builder, *PIP, "install", "-q", *requires])
+            stamp.write_text(repr(requires))
+        run([builder, *PIP, "wheel", "--no-build-isolation", "--no-deps", "-q", "-w", dist,
+             "--config-settings=build-dir=" + str(work / "cmake-build"), source])
+    wheels = list(dist.glob("mjarm-*.whl"))
+    check(len(wheels) == 1, f"one wheel in {dist}: {wheels}")
+    wheel = wheels[0]
+    check(wheel.name.startswith(f"mjarm-{version}-"), f"{wheel.name} has version {version}")
+
+    # what the wheel holds: the package and its metadata, nothing of tests or examples
+    with zipfile.ZipFile(wheel) as archive:
+        names = set(archive.namelist())
+        info = f"mjarm-{version}.dist-info"
+        metadata = archive.read(f"{info}/METADATA").decode()
+        entry_points = archive.read(f"{info}/entry_points.txt").decode()
+    strays = sorted(n for n in names if not n.startswith(("mjarm/", info + "/")))
+    check(not strays, f"the wheel holds only mjarm/ and {info}/, also: {strays[:5]}")
+    for member in ["mjarm/__init__.py", "mjarm/__main__.py", "mjarm/_paths.py", "mjarm/py.typed",
+                   "mjarm/_mjarm.pyi", "mjarm/gym.py", "mjarm/bin/mjarm", "mjarm/models/panda.xml"]:
+        check(member in names, f"the wheel holds {member}")
+    check(any(re.fullmatch(r"mjarm/_mjarm\.cpython-.*\.so", n) for n in names),
+          "the wheel holds the extension")
+    check(any(n.startswith("mjarm/models/grippers/") for n in names),
+          "the wheel holds the bundled grippers")
+    check(f"Requires-Dist: {mujoco_pin}" in metadata, f"the wheel requires {mujoco_pin}")
+    check("Requires-Dist: numpy" in metadata, "the wheel requires numpy")
+    check(re.search(r"^mjarm = mjarm\.__main__:main$", entry_points, re.M) is not None,
+          "console script mjarm = mjarm.__main__:main")
+
+    # a fresh environment, the wheel and its dependencies from the index
+    python = make_venv(work / "venv")
+    run([python, *PIP, "install", "-q", wheel])
+    site = Path(run([python, "-c", "import sysconfig; print(sysconfig.get_paths()['platlib'])"])
+                .strip())
+    package, libmujoco = site / "mjarm", site / "mujoco" / f"libmujoco.so.{mujoco_version}"
+
+    # the binaries: run paths relative to themselves, into the environment's mujoco
+    extension = next(package.glob("_mjarm.cpython-*.so"))
+    for binary, runpath in [(package / "bin" / "mjarm", "$ORIGIN/../../mujoco"),
+                            (extension, "$ORIGIN/../mujoco")]:
+        dynamic = run(["readelf", "-d", binary])
+        check(f"[{runpath}]" in dynamic and dynamic.count("RUNPATH") == 1,
+              f"{binary.name}'s run path is {runpath} only")
+        check(f"[libmujoco.so.{mujoco_version}]" in dynamic, f"{binary.name} needs libmujoco")
+        linked = run(["ldd", binary])
+        check("not found" not in linked, f"ldd {binary.name} finds every library:\n{linked}")
+        resolved = [Path(line.split("=>")[1].split("(")[0].strip()).resolve()
+                    for line in linked.splitlines() if "libmujoco" in line and "=>" in line]
+        check(resolved == [libmujoco.resolve()], f"ldd {binary.name} resolves {libmujoco}:\n{linked}")
+        check(str(source / "models").encode() not in binary.read_bytes(),
+              f"{binary.name} does not know the source tree's models")
+
+    # used from elsewhere, with nothing pointing into the source or build tree
+    env = {k: v for k, v in os.environ.items()
+           if k != "PYTHONPATH" and not k.startswith("MJARM_")}
+    outside = work / "elsewhere"
+    outside.mkdir(exist_ok=True)
+
+    def use(*command):
+        return run(command, cwd=outside, env=env)
+
+    use(python, source / "tests" / "wheel" / "installed_check.py", version, mujoco_version)
+    printed = use(python, "-m", "mjarm", "--version").strip()
+    check(printed == f"mjarm {version} (MuJoCo {mujoco_version})", f"--version: {printed!r}")
+    console = python.parent / "mjarm"
+    fk = json.loads(use(console, "fk", "panda", "--json"))
+    check(fk.get("model") == "panda", f"mjarm fk panda --json: {fk}")
+    listing = json.loads(use(console, "info", "--list", "--json"))
+    check(listing.get("models_dir") == str(package / "models"),
+          f"mjarm info finds the package's models: {listing.get('models_dir')}")
+    check("panda" in listing.get("models", []), f"mjarm info lists panda: {listing}")
+
+    if failures:
+        sys.exit(f"{len(failures)} checks failed")
+    print(f"wheel {wheel.name}: every check passed")
+
+
+if __name__ == "__main__":
+    main()
