@@ -5051,7 +5051,7 @@ class Robot:
         ...
     @staticmethod
     def from_file(path: str | os.PathLike[str]) -> Robot:
-        """Loads MJCF or URDF; MJCF written for MuJoCo 3.x is translated (see load_warnings)."""
+        """Loads MJCF or URDF as MuJoCo loads it; includes and assets are read through the checked reader, errors name the file and line."""
         ...
     @staticmethod
     def from_string(xml: str, base_dir: str | os.PathLike[str] = ...) -> Robot:
@@ -5082,7 +5082,7 @@ class Robot:
         ...
     @property
     def load_warnings(self) -> Any:
-        """one message per rewrite done to load MuJoCo 3.x XML"""
+        """MuJoCo's warnings while loading the model (parser and compiler)"""
         ...
     def make_data(self: Robot) -> Data:
         """A fresh owned Data at the reference configuration, kinematics computed."""

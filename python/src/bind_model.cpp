@@ -167,8 +167,8 @@ void bind_model(py::module_& m) {
       .def_static(
           "from_file", [](const std::filesystem::path& p) { return Robot::from_file(p); },
           py::arg("path"),
-          "Loads MJCF or URDF; MJCF written for MuJoCo 3.x is translated "
-          "(see load_warnings).")
+          "Loads MJCF or URDF as MuJoCo loads it; includes and assets are read through the "
+          "checked reader, errors name the file and line.")
       .def_static(
           "from_string",
           [](std::string_view xml, const std::filesystem::path& base) {
@@ -185,7 +185,7 @@ void bind_model(py::module_& m) {
       .def_property_readonly("name", &Robot::name)
       .def_property_readonly("source", &Robot::source, "where it was loaded from")
       .def_property_readonly("load_warnings", &Robot::load_warnings,
-                             "one message per rewrite done to load MuJoCo 3.x XML")
+                             "MuJoCo's warnings while loading the model (parser and compiler)")
       .def_property_readonly("nq", &Robot::nq, "position coordinates")
       .def_property_readonly("nv", &Robot::nv, "degrees of freedom")
       .def_property_readonly("nu", &Robot::nu, "actuators")
