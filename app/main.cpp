@@ -10,6 +10,7 @@
 
 #include "commands.hpp"
 #include "mjarm/error.hpp"
+#include "mjarm/model/mujoco_library.hpp"
 #include "output.hpp"
 
 namespace {
@@ -24,6 +25,12 @@ int fail(const std::string& message, int code, bool hint) {
 
 int main(int argc, char** argv) {
   using namespace mjarm::cli;
+  // a MuJoCo library other than the one mjarm was compiled for is refused before anything runs
+  try {
+    mjarm::check_mujoco_library();
+  } catch (const mjarm::Error& e) {
+    return fail(e.what(), 1, false);
+  }
   CLI::App app(
       "mjarm: robot arms on MuJoCo — inspect models, forward kinematics, workspace and "
       "singularity analysis.",

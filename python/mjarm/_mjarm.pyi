@@ -4,6 +4,7 @@ from __future__ import annotations
 import os
 from typing import Any, Callable, ClassVar, Iterator, overload
 
+import mujoco
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
@@ -66,7 +67,7 @@ class Controller:
     @property
     def compensates_bias(self) -> Any:
         ...
-    def compute(self: Controller, data: Data, reference: Reference, out: ArrayLike = ...) -> NDArray[np.float64]:
+    def compute(self: Controller, data: Data | mujoco.MjData, reference: Reference, out: ArrayLike = ...) -> NDArray[np.float64]:
         """One tick's command (n,) for the state in data (fresh after forward): torques or position targets in chain order. With out (a writable float64 array (n,)) the command is written there and out is returned, so a loop allocates nothing."""
         ...
     @property
@@ -86,7 +87,7 @@ class AccelerationController(Controller):
     """Resolved task acceleration through damped J^+, then M qdd + h."""
     def __init__(self: AccelerationController, chain: Chain, options: AccelerationControlOptions = ...) -> None:
         ...
-    def compute(self: AccelerationController, data: Data, reference: Reference, out: ArrayLike = ...) -> NDArray[np.float64]:
+    def compute(self: AccelerationController, data: Data | mujoco.MjData, reference: Reference, out: ArrayLike = ...) -> NDArray[np.float64]:
         """One tick's command (n,) for the state in data (fresh after forward): torques or position targets in chain order. With out (a writable float64 array (n,)) the command is written there and out is returned, so a loop allocates nothing."""
         ...
     @property
@@ -409,7 +410,7 @@ class CartesianImpedanceController(Controller):
     """Cartesian impedance with a measured wrench (CIC)."""
     def __init__(self: CartesianImpedanceController, chain: Chain, options: CartesianImpedanceOptions = ...) -> None:
         ...
-    def compute(self: CartesianImpedanceController, data: Data, reference: Reference, out: ArrayLike = ...) -> NDArray[np.float64]:
+    def compute(self: CartesianImpedanceController, data: Data | mujoco.MjData, reference: Reference, out: ArrayLike = ...) -> NDArray[np.float64]:
         """One tick's command (n,) for the state in data (fresh after forward): torques or position targets in chain order. With out (a writable float64 array (n,)) the command is written there and out is returned, so a loop allocates nothing."""
         ...
 
@@ -518,13 +519,13 @@ class CartesianLimits:
 class Chain:
     """The joints an algorithm moves, in order (index i = column i of a Jacobian), and the end-effector frame (a site or a body)."""
     @overload
-    def __init__(self: Chain, robot: Robot, frame: str) -> None:
+    def __init__(self: Chain, robot: Robot | mujoco.MjModel, frame: str) -> None:
         """Every hinge and slide joint on the path from the world to the frame.
 
 An explicit list of joints."""
         ...
     @overload
-    def __init__(self: Chain, robot: Robot, joints: list[str], frame: str) -> None:
+    def __init__(self: Chain, robot: Robot | mujoco.MjModel, joints: list[str], frame: str) -> None:
         ...
     def __len__(self: Chain) -> int:
         ...
@@ -596,7 +597,7 @@ class ChainDynamics:
     def gravity(self) -> Any:
         """g (n,)"""
         ...
-    def inverse_dynamics(self: ChainDynamics, data: Data, qdd: ArrayLike) -> NDArray[np.float64]:
+    def inverse_dynamics(self: ChainDynamics, data: Data | mujoco.MjData, qdd: ArrayLike) -> NDArray[np.float64]:
         """tau = M qdd + h (n,)"""
         ...
     @property
@@ -619,7 +620,7 @@ class ChainDynamics:
     @property
     def size(self) -> Any:
         ...
-    def update(self: ChainDynamics, data: Data) -> None:
+    def update(self: ChainDynamics, data: Data | mujoco.MjData) -> None:
         """Reads everything from data (never writes it)."""
         ...
     @property
@@ -778,7 +779,7 @@ class ComputedTorqueController(Controller):
     """tau = M (qdd_d + PD) + h."""
     def __init__(self: ComputedTorqueController, chain: Chain, options: ComputedTorqueOptions = ...) -> None:
         ...
-    def compute(self: ComputedTorqueController, data: Data, reference: Reference, out: ArrayLike = ...) -> NDArray[np.float64]:
+    def compute(self: ComputedTorqueController, data: Data | mujoco.MjData, reference: Reference, out: ArrayLike = ...) -> NDArray[np.float64]:
         """One tick's command (n,) for the state in data (fresh after forward): torques or position targets in chain order. With out (a writable float64 array (n,)) the command is written there and out is returned, so a loop allocates nothing."""
         ...
 
@@ -833,8 +834,10 @@ class ContactSummary:
         ...
 
 class Data:
-    """An mjData lent to Python. From Robot.make_data(): owned, arrays are writable views. From Simulation.data: read-only views that keep the simulation alive. Given to a Python controller: copies, valid during that call only."""
-    def __init__(*args: Any, **kwargs: Any) -> Any: ...
+    """An mjData lent to Python. From Robot.make_data(): owned, arrays are writable views. From Simulation.data: read-only views that keep the simulation alive. Given to a Python controller: copies, valid during that call only. Data(d) of a mujoco.MjData d: d itself, not a copy (writable views, d kept alive). Every call taking a Data also takes a mujoco.MjData."""
+    def __init__(self: Data, data: mujoco.MjData) -> None:
+        """Borrows a mujoco.MjData (no copy): what every call does with one, done once."""
+        ...
     @property
     def actuator_force(self) -> Any:
         """actuator forces (nu,)"""
@@ -844,7 +847,7 @@ class Data:
         """actuator inputs (nu,)"""
         ...
     def forward(self: Data) -> None:
-        """mj_forward on owned data: recomputes kinematics and dynamics after writing qpos/qvel."""
+        """mj_forward on owned data or a mujoco.MjData: recomputes kinematics and dynamics after writing qpos/qvel."""
         ...
     @property
     def qacc(self) -> Any:
@@ -981,7 +984,7 @@ class DockingController(Controller):
     @property
     def bad_wrench_ticks(self) -> Any:
         ...
-    def compute(self: DockingController, data: Data, reference: Reference, out: ArrayLike = ...) -> NDArray[np.float64]:
+    def compute(self: DockingController, data: Data | mujoco.MjData, reference: Reference, out: ArrayLike = ...) -> NDArray[np.float64]:
         """One tick's command (n,) for the state in data (fresh after forward): torques or position targets in chain order. With out (a writable float64 array (n,)) the command is written there and out is returned, so a loop allocates nothing."""
         ...
     @property
@@ -2060,14 +2063,14 @@ Members:
 
 class ForceTorqueSensor:
     """F/T sensor pair on a site."""
-    def __init__(self: ForceTorqueSensor, robot: Robot, site: str, timing: SensorTiming = ...) -> None:
+    def __init__(self: ForceTorqueSensor, robot: Robot | mujoco.MjModel, site: str, timing: SensorTiming = ...) -> None:
         ...
-    def read_body(self: ForceTorqueSensor, data: Data, X_WE: ArrayLike) -> WrenchReading:
+    def read_body(self: ForceTorqueSensor, data: Data | mujoco.MjData, X_WE: ArrayLike) -> WrenchReading:
         ...
-    def read_site(self: ForceTorqueSensor, data: Data) -> WrenchReading:
+    def read_site(self: ForceTorqueSensor, data: Data | mujoco.MjData) -> WrenchReading:
         """wrench in the site's frame"""
         ...
-    def read_world(self: ForceTorqueSensor, data: Data, p_WP: ArrayLike) -> WrenchReading:
+    def read_world(self: ForceTorqueSensor, data: Data | mujoco.MjData, p_WP: ArrayLike) -> WrenchReading:
         """wrench in world axes about p_WP"""
         ...
     @property
@@ -2209,7 +2212,7 @@ class FrictionMode:
 
 class FunctionReferenceSource(ReferenceSource):
     """A Python callable f(data) -> Reference (None or False: the task is complete). data is valid during the call only."""
-    def __init__(self: FunctionReferenceSource, robot: Robot, function: Callable[..., Any]) -> None:
+    def __init__(self: FunctionReferenceSource, robot: Robot | mujoco.MjModel, function: Callable[..., Any]) -> None:
         ...
 
 class GeomSet:
@@ -2220,15 +2223,15 @@ class GeomSet:
         ...
     def add(self: GeomSet, other: GeomSet) -> GeomSet:
         ...
-    def complement(self: GeomSet, robot: Robot) -> GeomSet:
+    def complement(self: GeomSet, robot: Robot | mujoco.MjModel) -> GeomSet:
         ...
     def contains(self: GeomSet, geom: int) -> bool:
         ...
     @staticmethod
-    def of_bodies(robot: Robot, bodies: list[str], subtree: bool = ...) -> GeomSet:
+    def of_bodies(robot: Robot | mujoco.MjModel, bodies: list[str], subtree: bool = ...) -> GeomSet:
         ...
     @staticmethod
-    def of_geoms(robot: Robot, geoms: list[str]) -> GeomSet:
+    def of_geoms(robot: Robot | mujoco.MjModel, geoms: list[str]) -> GeomSet:
         ...
     @property
     def size(self) -> Any:
@@ -2416,7 +2419,7 @@ class GravityCompensationController(Controller):
     """Servo targets offset to cancel gravity (position mode)."""
     def __init__(self: GravityCompensationController, chain: Chain, term: BiasTerm = ...) -> None:
         ...
-    def compute(self: GravityCompensationController, data: Data, reference: Reference, out: ArrayLike = ...) -> NDArray[np.float64]:
+    def compute(self: GravityCompensationController, data: Data | mujoco.MjData, reference: Reference, out: ArrayLike = ...) -> NDArray[np.float64]:
         """One tick's command (n,) for the state in data (fresh after forward): torques or position targets in chain order. With out (a writable float64 array (n,)) the command is written there and out is returned, so a loop allocates nothing."""
         ...
 
@@ -2424,7 +2427,7 @@ class GravityHoldController(Controller):
     """Torques that cancel gravity (torque mode)."""
     def __init__(self: GravityHoldController, chain: Chain, term: BiasTerm = ...) -> None:
         ...
-    def compute(self: GravityHoldController, data: Data, reference: Reference, out: ArrayLike = ...) -> NDArray[np.float64]:
+    def compute(self: GravityHoldController, data: Data | mujoco.MjData, reference: Reference, out: ArrayLike = ...) -> NDArray[np.float64]:
         """One tick's command (n,) for the state in data (fresh after forward): torques or position targets in chain order. With out (a writable float64 array (n,)) the command is written there and out is returned, so a loop allocates nothing."""
         ...
 
@@ -2435,7 +2438,7 @@ class GripperPdController(Controller):
     @property
     def closed(self) -> Any:
         ...
-    def compute(self: GripperPdController, data: Data, reference: Reference, out: ArrayLike = ...) -> NDArray[np.float64]:
+    def compute(self: GripperPdController, data: Data | mujoco.MjData, reference: Reference, out: ArrayLike = ...) -> NDArray[np.float64]:
         """One tick's command (n,) for the state in data (fresh after forward): torques or position targets in chain order. With out (a writable float64 array (n,)) the command is written there and out is returned, so a loop allocates nothing."""
         ...
     @property
@@ -2510,7 +2513,7 @@ class HqpAcController(Controller):
     @property
     def acceleration(self) -> Any:
         ...
-    def compute(self: HqpAcController, data: Data, reference: Reference, out: ArrayLike = ...) -> NDArray[np.float64]:
+    def compute(self: HqpAcController, data: Data | mujoco.MjData, reference: Reference, out: ArrayLike = ...) -> NDArray[np.float64]:
         """One tick's command (n,) for the state in data (fresh after forward): torques or position targets in chain order. With out (a writable float64 array (n,)) the command is written there and out is returned, so a loop allocates nothing."""
         ...
     @property
@@ -2761,7 +2764,7 @@ class JointPdController(Controller):
     """Joint PD + gravity (torque)."""
     def __init__(self: JointPdController, chain: Chain, options: JointPdOptions = ...) -> None:
         ...
-    def compute(self: JointPdController, data: Data, reference: Reference, out: ArrayLike = ...) -> NDArray[np.float64]:
+    def compute(self: JointPdController, data: Data | mujoco.MjData, reference: Reference, out: ArrayLike = ...) -> NDArray[np.float64]:
         """One tick's command (n,) for the state in data (fresh after forward): torques or position targets in chain order. With out (a writable float64 array (n,)) the command is written there and out is returned, so a loop allocates nothing."""
         ...
     @property
@@ -2988,7 +2991,7 @@ class MomentumObserver:
     @property
     def residual(self) -> Any:
         ...
-    def update(self: MomentumObserver, data: Data, dynamics: ChainDynamics, tau: ArrayLike, dt: float) -> ObserverStatus:
+    def update(self: MomentumObserver, data: Data | mujoco.MjData, dynamics: ChainDynamics, tau: ArrayLike, dt: float) -> ObserverStatus:
         ...
     @property
     def wrench(self) -> Any:
@@ -3020,7 +3023,7 @@ class MomentumObserverOptions:
 
 class MultiTargetIk:
     """Several frames at once, with strict priorities."""
-    def __init__(self: MultiTargetIk, robot: Robot, joints: list[str], targets: list[FrameTarget], options: MultiTargetIkOptions = ...) -> None:
+    def __init__(self: MultiTargetIk, robot: Robot | mujoco.MjModel, joints: list[str], targets: list[FrameTarget], options: MultiTargetIkOptions = ...) -> None:
         ...
     @property
     def chain(self) -> Any:
@@ -3250,7 +3253,7 @@ class ObserverStatus:
 
 class OffscreenRenderer:
     """Headless rendering (EGL, no display). render() returns an (height, width, 3) uint8 array, top row first."""
-    def __init__(self: OffscreenRenderer, robot: Robot, width: int, height: int, options: RenderOptions = ...) -> None:
+    def __init__(self: OffscreenRenderer, robot: Robot | mujoco.MjModel, width: int, height: int, options: RenderOptions = ...) -> None:
         ...
     def close(self: OffscreenRenderer) -> None:
         ...
@@ -3260,7 +3263,7 @@ class OffscreenRenderer:
     @property
     def is_open(self) -> Any:
         ...
-    def render(self: OffscreenRenderer, data: Data, camera: CameraSpec) -> NDArray[np.uint8]:
+    def render(self: OffscreenRenderer, data: Data | mujoco.MjData, camera: CameraSpec) -> NDArray[np.uint8]:
         ...
     @property
     def width(self) -> Any:
@@ -3270,7 +3273,7 @@ class OperationalSpaceController(Controller):
     """Operational-space impedance (osc)."""
     def __init__(self: OperationalSpaceController, chain: Chain, options: OperationalSpaceOptions = ...) -> None:
         ...
-    def compute(self: OperationalSpaceController, data: Data, reference: Reference, out: ArrayLike = ...) -> NDArray[np.float64]:
+    def compute(self: OperationalSpaceController, data: Data | mujoco.MjData, reference: Reference, out: ArrayLike = ...) -> NDArray[np.float64]:
         """One tick's command (n,) for the state in data (fresh after forward): torques or position targets in chain order. With out (a writable float64 array (n,)) the command is written there and out is returned, so a loop allocates nothing."""
         ...
     @property
@@ -5016,8 +5019,10 @@ class RenderOptions:
     def skybox(self, value: Any) -> None: ...
 
 class Robot:
-    """A loaded MuJoCo model, shared and immutable. Names never fail silently: an unknown name raises mjarm.Error listing the closest ones."""
-    def __init__(*args: Any, **kwargs: Any) -> Any: ...
+    """A loaded MuJoCo model, shared and immutable. Names never fail silently: an unknown name raises mjarm.Error listing the closest ones. Robot(model) of a mujoco.MjModel shares it (no copy); every call taking a Robot also takes a mujoco.MjModel."""
+    def __init__(self: Robot, model: mujoco.MjModel) -> None:
+        """Shares a mujoco.MjModel (no copy, kept alive): what every call does with one, done once."""
+        ...
     def __repr__(self: Robot) -> str:
         ...
     def actuator(self: Robot, name: str) -> int:
@@ -5046,7 +5051,7 @@ class Robot:
         ...
     @staticmethod
     def from_file(path: str | os.PathLike[str]) -> Robot:
-        """Loads MJCF or URDF; MJCF written for MuJoCo 3.x is translated (see load_warnings)."""
+        """Loads MJCF or URDF as MuJoCo loads it; includes and assets are read through the checked reader, errors name the file and line."""
         ...
     @staticmethod
     def from_string(xml: str, base_dir: str | os.PathLike[str] = ...) -> Robot:
@@ -5077,7 +5082,7 @@ class Robot:
         ...
     @property
     def load_warnings(self) -> Any:
-        """one message per rewrite done to load MuJoCo 3.x XML"""
+        """MuJoCo's warnings while loading the model (parser and compiler)"""
         ...
     def make_data(self: Robot) -> Data:
         """A fresh owned Data at the reference configuration, kinematics computed."""
@@ -5363,7 +5368,7 @@ class Se3ImpedanceController(Controller):
     """SE(3) Lie-group impedance (full 6x6 A, D, K)."""
     def __init__(self: Se3ImpedanceController, chain: Chain, options: Se3ImpedanceOptions = ...) -> None:
         ...
-    def compute(self: Se3ImpedanceController, data: Data, reference: Reference, out: ArrayLike = ...) -> NDArray[np.float64]:
+    def compute(self: Se3ImpedanceController, data: Data | mujoco.MjData, reference: Reference, out: ArrayLike = ...) -> NDArray[np.float64]:
         """One tick's command (n,) for the state in data (fresh after forward): torques or position targets in chain order. With out (a writable float64 array (n,)) the command is written there and out is returned, so a loop allocates nothing."""
         ...
     @property
@@ -5696,7 +5701,7 @@ class ShelfPickRequest:
 
 class Simulation:
     """One simulated robot: owns its mjData, runs controllers at the control period, checks every physics step for divergence. tick() and run() release the GIL (a Python controller takes it back for its call)."""
-    def __init__(self: Simulation, robot: Robot, options: SimulationOptions = ...) -> None:
+    def __init__(self: Simulation, robot: Robot | mujoco.MjModel, options: SimulationOptions = ...) -> None:
         ...
     def add_controller(self: Simulation, controller: Controller) -> None:
         """Adds a controller (kept alive by the simulation)."""
@@ -6094,7 +6099,7 @@ class TaskPdController(Controller):
     """tau = J^T (K e + D ė) + g."""
     def __init__(self: TaskPdController, chain: Chain, options: TaskPdOptions = ...) -> None:
         ...
-    def compute(self: TaskPdController, data: Data, reference: Reference, out: ArrayLike = ...) -> NDArray[np.float64]:
+    def compute(self: TaskPdController, data: Data | mujoco.MjData, reference: Reference, out: ArrayLike = ...) -> NDArray[np.float64]:
         """One tick's command (n,) for the state in data (fresh after forward): torques or position targets in chain order. With out (a writable float64 array (n,)) the command is written there and out is returned, so a loop allocates nothing."""
         ...
     @property
@@ -6753,7 +6758,7 @@ def env_observations(task: str) -> list[str]:
 def env_task_names() -> list[str]:
     """The environment tasks' names ('reach', ...)."""
     ...
-def find_frame(robot: Robot, name: str) -> FrameRef:
+def find_frame(robot: Robot | mujoco.MjModel, name: str) -> FrameRef:
     """The frame called name: a site first, then a body."""
     ...
 def forward_kinematics(chain: Chain, q: ArrayLike) -> Pose:
@@ -6762,16 +6767,16 @@ def forward_kinematics(chain: Chain, q: ArrayLike) -> Pose:
 def frame_errors(X_WE: ArrayLike, X_WT: ArrayLike) -> tuple[float, float]:
     """(position error [m], rotation angle [rad])"""
     ...
-def frame_pose(robot: Robot, data: Data, frame: ArrayLike) -> Pose:
+def frame_pose(robot: Robot | mujoco.MjModel, data: Data | mujoco.MjData, frame: ArrayLike) -> Pose:
     """The pose of a site or body read from MuJoCo's data (after forward)."""
     ...
-def frame_robot(robot: Robot, data: Data, azimuth: float = ..., elevation: float = ...) -> CameraSpec:
+def frame_robot(robot: Robot | mujoco.MjModel, data: Data | mujoco.MjData, azimuth: float = ..., elevation: float = ...) -> CameraSpec:
     """A free camera that frames the whole robot."""
     ...
-def free_pose(robot: Robot, data: Data, body: str) -> FreePose:
+def free_pose(robot: Robot | mujoco.MjModel, data: Data | mujoco.MjData, body: str) -> FreePose:
     """The pose of a free body read from data.qpos (FreePose)."""
     ...
-def free_qpos_address(robot: Robot, body: str) -> int:
+def free_qpos_address(robot: Robot | mujoco.MjModel, body: str) -> int:
     """The qpos address of the free joint of a body (or of the free joint by name)."""
     ...
 def is_scene_file(path: str | os.PathLike[str]) -> bool:
@@ -6837,7 +6842,7 @@ def sample_workspace(chain: Chain, samples: int = ..., seed: int = ..., compute_
 def scan_singularities(chain: Chain, samples: int, seed: int, keep_worst: int = ...) -> SingularityScan:
     """Seeded random scan keeping the lowest-sigma_min samples (GIL released)."""
     ...
-def set_free_pose(robot: Robot, data: Data, body: str, p_WB: ArrayLike, quat_WB: ArrayLike = ...) -> None:
+def set_free_pose(robot: Robot | mujoco.MjModel, data: Data | mujoco.MjData, body: str, p_WB: ArrayLike, quat_WB: ArrayLike = ...) -> None:
     """Writes a free body's pose p_WB (3,) [m], quat_WB (4,) w x y z (normalized) into owned data's qpos; call data.forward() after."""
     ...
 def shelf_pick_controllers() -> list[str]:

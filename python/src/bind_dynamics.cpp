@@ -5,15 +5,13 @@
 #include "mjarm/dynamics/friction_feed_forward.hpp"
 #include "mjarm/dynamics/momentum_observer.hpp"
 #include "mjarm/dynamics/task_space.hpp"
+#include "mjarm/model/names.hpp"
 
 namespace mjarm::python {
 namespace {
 
-void same_model(const Chain& chain, const DataHandle& d, const char* who) {
-  if (&chain.robot().model() != &d.model()) {
-    throw Error(std::string(who) + ": the data belongs to model '" + d.robot.name() +
-                "', not to the chain's model '" + chain.robot().name() + "'");
-  }
+const mjData& sensor_data(const ForceTorqueSensor& s, const DataHandle& d, const char* call) {
+  return data_of(s.model(), "the sensor's model '" + model_name(s.model()) + "'", d, call);
 }
 
 }  // namespace
@@ -28,8 +26,8 @@ void bind_dynamics(py::module_& m) {
       .def(
           "update",
           [](ChainDynamics& dyn, const DataHandle& d) {
-            same_model(dyn.chain(), d, "ChainDynamics.update");
-            dyn.update(d.get());
+            dyn.update(
+                data_of(dyn.chain().robot(), d, "ChainDynamics.update", "the chain's model"));
           },
           py::arg("data"), "Reads everything from data (never writes it).")
       .def_property_readonly("q", [](const ChainDynamics& d) { return Eigen::VectorXd(d.q()); })
@@ -53,9 +51,10 @@ void bind_dynamics(py::module_& m) {
       .def(
           "inverse_dynamics",
           [](ChainDynamics& dyn, const DataHandle& d, py::handle qdd) {
-            same_model(dyn.chain(), d, "ChainDynamics.inverse_dynamics");
+            const mjData& data = data_of(dyn.chain().robot(), d,
+                                         "ChainDynamics.inverse_dynamics", "the chain's model");
             Eigen::VectorXd tau(dyn.size());
-            dyn.inverse_dynamics(d.get(), to_vector(qdd, "qdd", dyn.size()), tau);
+            dyn.inverse_dynamics(data, to_vector(qdd, "qdd", dyn.size()), tau);
             return tau;
           },
           py::arg("data"), py::arg("qdd"), "tau = M qdd + h (n,)");
@@ -126,18 +125,22 @@ void bind_dynamics(py::module_& m) {
       .def_property_readonly("site", &ForceTorqueSensor::site)
       .def(
           "read_site",
-          [](const ForceTorqueSensor& s, const DataHandle& d) { return s.read_site(d.get()); },
+          [](const ForceTorqueSensor& s, const DataHandle& d) {
+            return s.read_site(sensor_data(s, d, "ForceTorqueSensor.read_site"));
+          },
           py::arg("data"), "wrench in the site's frame")
       .def(
           "read_world",
           [](const ForceTorqueSensor& s, const DataHandle& d, py::handle p) {
-            return s.read_world(d.get(), to_fixed<3>(p, "p_WP"));
+            return s.read_world(sensor_data(s, d, "ForceTorqueSensor.read_world"),
+                                to_fixed<3>(p, "p_WP"));
           },
           py::arg("data"), py::arg("p_WP"), "wrench in world axes about p_WP")
       .def(
           "read_body",
           [](const ForceTorqueSensor& s, const DataHandle& d, py::handle X) {
-            return s.read_body(d.get(), to_pose(X, "X_WE"));
+            return s.read_body(sensor_data(s, d, "ForceTorqueSensor.read_body"),
+                               to_pose(X, "X_WE"));
           },
           py::arg("data"), py::arg("X_WE"));
   m.def(
@@ -197,7 +200,13 @@ void bind_dynamics(py::module_& m) {
       .def(
           "update",
           [](MomentumObserver& o, const DataHandle& d, const ChainDynamics& dyn, py::handle tau,
-             double dt) { return o.update(d.get(), dyn, to_vector(tau, "tau", o.size()), dt); },
+             double dt) {
+            const mjData& data =
+                data_of(o.chain().robot(), d, "MomentumObserver.update", "the chain's model");
+            if (&dyn.chain().robot().model() != &o.chain().robot().model())
+              throw Error("MomentumObserver.update: dynamics is of another chain's model");
+            return o.update(data, dyn, to_vector(tau, "tau", o.size()), dt);
+          },
           py::arg("data"), py::arg("dynamics"), py::arg("tau"), py::arg("dt"))
       .def_property_readonly(
           "residual", [](const MomentumObserver& o) { return Eigen::VectorXd(o.residual()); })

@@ -89,7 +89,8 @@ void bind_kinematics(py::module_& m) {
   m.def(
       "frame_pose",
       [](const Robot& robot, const DataHandle& d, py::handle frame) {
-        return frame_pose(robot.model(), d.get(), find_frame(robot, frame.cast<std::string>()));
+        const mjData& data = data_of(robot, d, "frame_pose");
+        return frame_pose(robot.model(), data, find_frame(robot, frame.cast<std::string>()));
       },
       py::arg("robot"), py::arg("data"), py::arg("frame"),
       "The pose of a site or body read from MuJoCo's data (after forward).");

@@ -7,13 +7,13 @@
 namespace mjarm::python {
 namespace {
 
-/// A NumPy array over @p size doubles of a Data handle: writable view (owned), read-only view
-/// (a simulation's) or copy (a call's).
+/// A NumPy array over @p size doubles of a Data handle: writable view (owned, the user's),
+/// read-only view (a simulation's) or copy (a call's).
 py::array_t<double> data_array(py::object self, double* values, int size) {
   auto& h = self.cast<DataHandle&>();
   h.get();
   if (h.borrowed()) return to_array(values, size);
-  if (h.owned) return writable_view(values, size, self);
+  if (h.writable()) return writable_view(values, size, self);
   return readonly_view(values, size, self);
 }
 
@@ -84,7 +84,11 @@ void bind_model(py::module_& m) {
       m, "Data",
       "An mjData lent to Python. From Robot.make_data(): owned, arrays are writable views. From "
       "Simulation.data: read-only views that keep the simulation alive. Given to a Python "
-      "controller: copies, valid during that call only.");
+      "controller: copies, valid during that call only. Data(d) of a mujoco.MjData d: d itself, "
+      "not a copy (writable views, d kept alive). Every call taking a Data also takes a "
+      "mujoco.MjData.");
+  data.def(py::init([](const DataArgument& d) { return data_from_mujoco(d); }), py::arg("data"),
+           "Borrows a mujoco.MjData (no copy): what every call does with one, done once.");
   data.def_property_readonly(
       "time", [](const DataHandle& h) { return h.get().time; }, "simulated time [s]");
   data_field(
@@ -138,26 +142,33 @@ void bind_model(py::module_& m) {
   data.def(
       "forward",
       [](DataHandle& h) {
-        if (!h.owned) {
+        if (!h.writable()) {
           throw Error(
-              "Data.forward: only data from Robot.make_data() can be recomputed here; "
-              "use Simulation.forward() for a simulation's data");
+              "Data.forward: only data from Robot.make_data() or a mujoco.MjData can be "
+              "recomputed here; use Simulation.forward() for a simulation's data");
         }
-        mj_forward(&h.model(), h.owned.get());
+        mj_forward(&h.model(), &h.get());
       },
-      "mj_forward on owned data: recomputes kinematics and dynamics after writing qpos/qvel.");
+      "mj_forward on owned data or a mujoco.MjData: recomputes kinematics and dynamics after "
+      "writing qpos/qvel.");
   data.def_property_readonly(
       "valid", [](const DataHandle& h) { return h.valid && h.data; },
       "False once a call's data outlived its call.");
 
   py::class_<Robot>(m, "Robot",
                     "A loaded MuJoCo model, shared and immutable. Names never fail silently: an "
-                    "unknown name raises mjarm.Error listing the closest ones.")
+                    "unknown name raises mjarm.Error listing the closest ones. Robot(model) of a "
+                    "mujoco.MjModel shares it (no copy); every call taking a Robot also takes a "
+                    "mujoco.MjModel.")
+      .def(py::init([](const ModelArgument& model) { return robot_from_mujoco(model); }),
+           py::arg("model"),
+           "Shares a mujoco.MjModel (no copy, kept alive): what every call does with one, done "
+           "once.")
       .def_static(
           "from_file", [](const std::filesystem::path& p) { return Robot::from_file(p); },
           py::arg("path"),
-          "Loads MJCF or URDF; MJCF written for MuJoCo 3.x is translated "
-          "(see load_warnings).")
+          "Loads MJCF or URDF as MuJoCo loads it; includes and assets are read through the "
+          "checked reader, errors name the file and line.")
       .def_static(
           "from_string",
           [](std::string_view xml, const std::filesystem::path& base) {
@@ -174,7 +185,7 @@ void bind_model(py::module_& m) {
       .def_property_readonly("name", &Robot::name)
       .def_property_readonly("source", &Robot::source, "where it was loaded from")
       .def_property_readonly("load_warnings", &Robot::load_warnings,
-                             "one message per rewrite done to load MuJoCo 3.x XML")
+                             "MuJoCo's warnings while loading the model (parser and compiler)")
       .def_property_readonly("nq", &Robot::nq, "position coordinates")
       .def_property_readonly("nv", &Robot::nv, "degrees of freedom")
       .def_property_readonly("nu", &Robot::nu, "actuators")

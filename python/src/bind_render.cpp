@@ -46,7 +46,7 @@ void bind_render(py::module_& m) {
   m.def(
       "frame_robot",
       [](const Robot& r, const DataHandle& d, double az, double el) {
-        return frame_robot(r, d.get(), az, el);
+        return frame_robot(r, data_of(r, d, "frame_robot"), az, el);
       },
       py::arg("robot"), py::arg("data"), py::arg("azimuth") = 135.0, py::arg("elevation") = -25.0,
       "A free camera that frames the whole robot.");
@@ -64,10 +64,12 @@ void bind_render(py::module_& m) {
       .def(
           "render",
           [](OffscreenRenderer& r, const DataHandle& d, const CameraSpec& camera) {
+            const mjData& data =
+                data_of(r.robot(), d, "OffscreenRenderer.render", "the renderer's model");
             Image image;
             {
               py::gil_scoped_release release;
-              image = r.render(d.get(), camera);
+              image = r.render(data, camera);
             }
             return to_numpy(image);
           },

@@ -17,16 +17,15 @@ auto adder(void (Scene::*add)(const T&), const char* call, const char* type) {
   };
 }
 
-/// The owned Data of @p robot that a free pose is written into.
+/// The Data of @p robot that a free pose is written into: owned, or the user's mujoco.MjData.
 mjData& writable_data(const Robot& robot, DataHandle& h, const char* call) {
-  if (&h.model() != &robot.model())
-    throw Error(std::string(call) + ": the data belongs to another model than the robot");
-  if (!h.owned) {
+  mjData& data = data_of(robot, h, call);
+  if (!h.writable()) {
     throw Error(std::string(call) +
-                ": only data from Robot.make_data() can be written here; a simulation's state is "
-                "written with Simulation.set_state");
+                ": only data from Robot.make_data() or a mujoco.MjData can be written here; a "
+                "simulation's state is written with Simulation.set_state");
   }
-  return h.get();
+  return data;
 }
 
 void bind_scene_specs(py::module_& m) {
@@ -304,9 +303,7 @@ void bind_scene(py::module_& m) {
   m.def(
       "free_pose",
       [](const Robot& robot, const DataHandle& data, std::string_view body) {
-        if (&data.model() != &robot.model())
-          throw Error("free_pose: the data belongs to another model than the robot");
-        return free_pose(robot, data.get(), body);
+        return free_pose(robot, data_of(robot, data, "free_pose"), body);
       },
       py::arg("robot"), py::arg("data"), py::arg("body"),
       "The pose of a free body read from data.qpos (FreePose).");

@@ -1,7 +1,8 @@
 #pragma once
 /// @file
 /// What the binding files share: the module's pieces (one `bind_<room>` per room of the
-/// library), the `Data` handle that lends an `mjData` to Python safely, and the conversions.
+/// library), the `Data` handle that lends an `mjData` to Python safely (data_handle.hpp), the
+/// user's mujoco objects (mujoco_interop.hpp), and the conversions.
 #include <pybind11/eigen.h>
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
@@ -15,39 +16,9 @@
 #include "mjarm/error.hpp"
 #include "mjarm/lie/pose.hpp"
 #include "mjarm/model/robot.hpp"
+#include "mujoco_interop.hpp"
 
 namespace mjarm::python {
-
-/// An `mjData` lent to Python. Three kinds, by who owns the memory:
-/// - owned (`Robot.make_data()`): the handle owns it; arrays are writable views into it;
-/// - a simulation's (`Simulation.data`): `owner` is the Python `Simulation`, kept alive by the
-///   handle; arrays are read-only views (write state through `Simulation.set_state`);
-/// - a call's (the `data` a Python controller or reference source receives): valid only during
-///   the call (`valid` is cleared after it); arrays are copies, and any use after the call is an
-///   `mjarm.Error` instead of a read of freed memory.
-struct DataHandle {
-  Robot robot;    ///< keeps the model alive
-  DataPtr owned;  ///< set for an owned handle
-  mjData* data = nullptr;
-  py::object owner;   ///< the simulation, for a simulation's handle
-  bool valid = true;  ///< false once a call's handle has outlived the call
-
-  DataHandle(const Robot& r, DataPtr d) : robot(r), owned(std::move(d)), data(owned.get()) {}
-  DataHandle(const Robot& r, mjData* d, py::object o) : robot(r), data(d), owner(std::move(o)) {}
-
-  /// The data; throws when a call's handle is used after its call.
-  mjData& get() const {
-    if (!valid || data == nullptr) {
-      throw Error(
-          "mjarm.Data: this state was lent for one call (a controller's compute or a reference "
-          "source) and that call has ended; copy the arrays you need during the call");
-    }
-    return *data;
-  }
-  const mjModel& model() const noexcept { return robot.model(); }
-  /// True for a call's handle: arrays are copies.
-  bool borrowed() const noexcept { return !owned && owner.is_none(); }
-};
 
 /// Python exceptions raised inside a callback the library calls from a noexcept loop (an IK
 /// iteration observer, a Python controller, a reference source) are kept here, per thread, and

@@ -70,9 +70,7 @@ template <typename C>
 py::array_t<double> controller_step(C& c, const DataHandle& d, const Reference& reference,
                                     py::handle out) {
   const Chain& chain = c.chain();
-  if (&chain.robot().model() != &d.model())
-    throw Error("compute: the data belongs to another model than the controller's chain");
-  const mjData& data = d.get();
+  const mjData& data = data_of(chain.robot(), d, "compute", "the controller's chain's model");
   JointCommand& command = step_command(c.command_kind(), chain.size());
   c.compute(data, reference, command);
   if (out.is_none()) return new_vector(command.value.data(), command.value.size());

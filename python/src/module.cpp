@@ -5,9 +5,12 @@ namespace py = pybind11;
 
 PYBIND11_MODULE(_mjarm, m) {
   m.doc() =
-      "mjarm: robot arms in MuJoCo 2.2.2 (C++20 library) from Python. Vectors and matrices are "
+      "mjarm: robot arms in MuJoCo (C++20 library) from Python. Vectors and matrices are "
       "float64 NumPy arrays; twists and wrenches are linear first [v; w]; bad input raises "
-      "mjarm.Error (a ValueError) with the library's message.";
+      "mjarm.Error (a ValueError) with the library's message. Calls take the user's "
+      "mujoco.MjModel and mujoco.MjData too, without a copy.";
+  // one MuJoCo library, shared with the mujoco package, of the version mjarm was compiled with
+  mjarm::python::check_shared_mujoco();
   mjarm::install_mujoco_handlers();
   // mjarm::Error keeps its message and is a ValueError: bad input at an API boundary
   py::register_exception<mjarm::Error>(m, "Error", PyExc_ValueError).attr("__doc__") =

@@ -20,6 +20,7 @@ from __future__ import annotations
 import os
 from typing import Any, Callable, ClassVar, Iterator, overload
 
+import mujoco
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
@@ -113,7 +114,10 @@ def render_params(params, prefix):
         if "=" in rest:
             rest, _ = rest.split("=", 1)
             default = " = ..."
-        out.append(f"{name.strip()}: {clean_type(rest, prefix)}{default}")
+        kind = clean_type(rest, prefix)
+        if name.strip() == "self":
+            kind = kind.split(" | ")[0]  # a method is called on its class, not on a mujoco object
+        out.append(f"{name.strip()}: {kind}{default}")
     return ", ".join(out)
 
 

@@ -3,6 +3,7 @@
 #include <tinyxml2.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
@@ -16,15 +17,12 @@
 #include "mjarm/model/names.hpp"
 #include "mjarm/model/user_file.hpp"
 #include "mjcf_detail.hpp"
+#include "mujoco_caller.hpp"
 #include "mujoco_loading.hpp"
 #include "urdf_assets.hpp"
 
 namespace mjarm {
 namespace {
-
-[[noreturn]] void throw_mujoco_error(const char* message) {
-  throw Error(std::string("MuJoCo error: ") + message);
-}
 
 using model_detail::LoadWarnings;
 using model_detail::xml_loader_mutex;
@@ -35,6 +33,26 @@ thread_local std::vector<std::string>* load_warnings_sink = nullptr;
 void print_mujoco_warning(const char* message) {
   if (load_warnings_sink != nullptr) load_warnings_sink->emplace_back(message);
   std::cerr << "mujoco warning: " << message << "\n";
+}
+
+// the log handler in place before mjarm's (MuJoCo's default: print, and exit on an error)
+std::atomic<mjfLogHandler> previous_log_handler{nullptr};
+
+/// MuJoCo's messages: an error raised under mjarm's frames becomes an `Error`, a warning there
+/// goes to stderr and the load report; messages raised under anyone else's frames (MuJoCo's
+/// Python bindings, a viewer thread) go to the handler that was there before, as if mjarm were
+/// not loaded (mujoco_caller.hpp).
+void mujoco_log_handler(const mjLogMessage* message) {
+  const bool mjarm_message = message->level >= mjLOG_WARNING && detail::mujoco_called_by_mjarm();
+  if (!mjarm_message) {
+    previous_log_handler.load()(message);
+    return;
+  }
+  std::string text = message->subject;
+  if (message->body != nullptr && message->body[0] != '\0')
+    text += std::string("\n") + message->body;
+  if (message->level == mjLOG_ERROR) throw Error("MuJoCo error: " + text);
+  print_mujoco_warning(text.c_str());
 }
 
 /// The root element's name ("mujoco" or "robot").
@@ -243,23 +261,43 @@ const char* to_string(ActuatorKind kind) noexcept {
 }
 
 void install_mujoco_handlers() {
+  // the caller's code counts as mjarm's (the Python extension, when the library is shared)
+  detail::note_mjarm_code(__builtin_return_address(0));
   static std::once_flag once;
   std::call_once(once, [] {
-    mju_user_error = throw_mujoco_error;
-    mju_user_warning = print_mujoco_warning;
+    // mju_setLogHandler returns the handler it replaces: one installed before mjarm, or
+    // MuJoCo's default (which calls the legacy mju_user_error / mju_user_warning when set)
+    mjfLogHandler previous = mju_setLogHandler(mujoco_log_handler);
+    if (previous == nullptr) {  // NULL stands for the default: ask for the default itself
+      mju_setLogHandler(nullptr);
+      previous = mju_setLogHandler(mujoco_log_handler);
+    }
+    previous_log_handler = previous;
   });
 }
 
 Robot::Robot(mjModel* model, std::string source, std::vector<std::string> warnings,
              std::string_view label)
-    : model_(model, [](const mjModel* m) { mj_deleteModel(const_cast<mjModel*>(m)); }),
-      name_(model_name(*model)),
+    : Robot(std::shared_ptr<const mjModel>(
+                model, [](const mjModel* m) { mj_deleteModel(const_cast<mjModel*>(m)); }),
+            std::move(source), std::move(warnings), label) {}
+
+Robot::Robot(std::shared_ptr<const mjModel> model, std::string source,
+             std::vector<std::string> warnings, std::string_view label)
+    : model_(std::move(model)),
+      name_(model_name(*model_)),
       source_(std::move(source)),
       warnings_(std::move(warnings)) {
   // a non-finite number would come out of every algorithm as inf / NaN without an error
   check_model_finite(*model_, !label.empty()            ? std::string(label)
                               : source_ == "<string>" ? std::string("XML string")
                                                       : "'" + source_ + "'");
+}
+
+Robot Robot::from_model(std::shared_ptr<const mjModel> model, std::string source) {
+  install_mujoco_handlers();
+  if (!model) throw Error("Robot::from_model: no model (" + source + ")");
+  return Robot(std::move(model), std::move(source), {});
 }
 
 Robot Robot::from_file(const std::filesystem::path& path) {

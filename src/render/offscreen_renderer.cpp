@@ -324,6 +324,11 @@ const RenderOptions& OffscreenRenderer::options() const {
   return impl_->options;
 }
 
+const Robot& OffscreenRenderer::robot() const {
+  if (!impl_) throw Error("OffscreenRenderer used after close()");
+  return impl_->robot;
+}
+
 void OffscreenRenderer::close() noexcept { impl_.reset(); }
 
 bool OffscreenRenderer::is_open() const noexcept { return impl_ != nullptr; }

@@ -244,5 +244,5 @@ def test_compute_into_a_preallocated_array(panda_torque, panda):
             c.compute(data, ref, frozen)
         with pytest.raises(TypeError):
             c.compute(None, ref)
-        with pytest.raises(mjarm.Error, match="another model"):
+        with pytest.raises(mjarm.Error, match=r"belongs to model 'panda' .*model 'panda_torque'"):
             c.compute(panda.make_data(), ref)

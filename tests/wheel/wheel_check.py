@@ -93,7 +93,8 @@ def main():
         entry_points = archive.read(f"{info}/entry_points.txt").decode()
     strays = sorted(n for n in names if not n.startswith(("mjarm/", info + "/")))
     check(not strays, f"the wheel holds only mjarm/ and {info}/, also: {strays[:5]}")
-    for member in ["mjarm/__init__.py", "mjarm/__main__.py", "mjarm/_paths.py", "mjarm/py.typed",
+    for member in ["mjarm/__init__.py", "mjarm/__main__.py", "mjarm/_paths.py",
+                   "mjarm/_mujoco_version.py", "mjarm/py.typed",
                    "mjarm/_mjarm.pyi", "mjarm/gym.py", "mjarm/bin/mjarm", "mjarm/models/panda.xml"]:
         check(member in names, f"the wheel holds {member}")
     check(any(re.fullmatch(r"mjarm/_mjarm\.cpython-.*\.so", n) for n in names),

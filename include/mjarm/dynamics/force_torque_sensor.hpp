@@ -71,6 +71,7 @@ class ForceTorqueSensor {
   const std::string& site() const noexcept { return site_; }  ///< the site's name
   int site_id() const noexcept { return site_id_; }           ///< its id
   SensorTiming timing() const noexcept { return timing_; }    ///< as constructed
+  const mjModel& model() const noexcept { return *model_; }    ///< the robot's model
 
   /// Wrench in S's axes about S's origin (the raw sensordata).
   WrenchReading read_site(const mjData& d) const noexcept;

@@ -87,6 +87,7 @@ class MomentumObserver {
 
   int size() const noexcept { return n_; }                                      ///< n
   const MomentumObserverOptions& options() const noexcept { return options_; }  ///< as built
+  const Chain& chain() const noexcept { return chain_; }                        ///< observed
 
   /// Forgets the estimate: p̂ is set from the next `update`'s p, ∫e = 0, r = 0.
   void reset() noexcept;

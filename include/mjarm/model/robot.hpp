@@ -105,6 +105,14 @@ class Robot {
   ///         `bundled_names()` when the models folder is missing or empty.
   static Robot bundled(std::string_view name);
 
+  /// A robot over a model compiled elsewhere (e.g. the `mujoco.MjModel` of a Python user),
+  /// shared, not copied: @p model's deleter decides when it is freed, and mjarm never writes it.
+  /// Its owner may still edit parameters between calls; objects built from the robot (chains,
+  /// controllers) read the limits and ids they cache at construction.
+  /// @param source  how messages name the model ("mujoco.MjModel at 0x...").
+  /// @throws Error when @p model is null or holds a non-finite number (as a loaded model).
+  static Robot from_model(std::shared_ptr<const mjModel> model, std::string source);
+
   /// A bundled name when @p name_or_path has no '/' and no extension, a file path otherwise.
   static Robot load(std::string_view name_or_path);
 
@@ -171,6 +179,8 @@ class Robot {
   /// @p label names the model in errors (default: from @p source).
   Robot(mjModel* model, std::string source, std::vector<std::string> warnings,
         std::string_view label = {});
+  Robot(std::shared_ptr<const mjModel> model, std::string source,
+        std::vector<std::string> warnings, std::string_view label = {});
 
   std::shared_ptr<const mjModel> model_;
   std::string name_;
@@ -178,8 +188,12 @@ class Robot {
   std::vector<std::string> warnings_;
 };
 
-/// Installs MuJoCo error/warning handlers (once per process) that turn `mju_error` into
-/// `mjarm::Error` instead of exiting the process.
-void install_mujoco_handlers();
+/// Installs mjarm's MuJoCo log handler (once per process; `mju_setLogHandler`): an error MuJoCo
+/// raises under mjarm's code (the nearest caller of MuJoCo on the stack is mjarm's) becomes an
+/// `mjarm::Error` instead of exiting the process, and a warning there is printed to stderr (and
+/// kept in `Robot::load_warnings` while a model loads). Messages raised under any other caller
+/// sharing the library (MuJoCo's Python bindings, their viewer) go to the handler that was there
+/// before, as if mjarm were not loaded. The caller's own code counts as mjarm's from then on.
+[[gnu::noinline]] void install_mujoco_handlers();
 
 }  // namespace mjarm

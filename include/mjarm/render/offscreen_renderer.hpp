@@ -96,6 +96,8 @@ class OffscreenRenderer {
   void set_options(const RenderOptions& options);
   /// The options in force.
   const RenderOptions& options() const;
+  /// The robot whose states it renders.
+  const Robot& robot() const;
 
   /// Frees the OpenGL context and every resource; later calls throw. Idempotent.
   void close() noexcept;
