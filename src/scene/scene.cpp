@@ -113,14 +113,6 @@ void strip_arena(mjSpec& part) {
   for (mjsElement* e : doomed) mjs_delete(&part, e);
 }
 
-/// A keyed part: its keyframes are combined with the other parts' by name at compile time.
-struct PartKeys {
-  std::string prefix;                  ///< "left/"
-  std::vector<std::string> keys;       ///< the part's own key names ("home")
-  std::vector<std::string> joints;     ///< its joints, prefixed
-  std::vector<std::string> actuators;  ///< its actuators, prefixed
-};
-
 int joint_coordinates(const mjModel& m, int joint) {
   switch (m.jnt_type[joint]) {
     case mjJNT_FREE:
@@ -133,6 +125,21 @@ int joint_coordinates(const mjModel& m, int joint) {
 }
 
 }  // namespace
+
+// named, not anonymous: Scene::Impl (declared in a header) holds it
+namespace scene_detail {
+
+/// A keyed part: its keyframes are combined with the other parts' by name at compile time.
+struct PartKeys {
+  std::string prefix;                  ///< "left/"
+  std::vector<std::string> keys;       ///< the part's own key names ("home")
+  std::vector<std::string> joints;     ///< its joints, prefixed
+  std::vector<std::string> actuators;  ///< its actuators, prefixed
+};
+
+}  // namespace scene_detail
+
+using scene_detail::PartKeys;
 
 struct Scene::Impl {
   std::string name;
