@@ -5281,7 +5281,7 @@ class Scene:
         """attach_gripper(spec: GripperSpec | None = None, **fields): a gripper at a robot's site or body"""
         ...
     def attribute(self: Scene, kind: str, name: str, attribute: str) -> str | None:
-        """The attribute's text, or None when it is not set on the element; an unknown element raises mjarm.Error with the closest names."""
+        """The MJCF attribute's value the element holds, as text (None where it holds none); an unknown element or attribute raises mjarm.Error with the closest names."""
         ...
     @staticmethod
     def bundled_grippers() -> list[str]:
@@ -5304,17 +5304,17 @@ class Scene:
         """Names of the elements of kind, sorted."""
         ...
     def set_attribute(self: Scene, kind: str, name: str, attribute: str, value: ArrayLike) -> None:
-        """Sets an attribute (text, a number or numbers (n,)); takes effect at the next compile(), where MuJoCo judges the value. Renaming is refused."""
+        """Sets an MJCF attribute (text, a number or numbers (n,)); takes effect at the next compile(). The value is read now (kind, count, keywords); MuJoCo judges the rest at compile(). Renaming is refused."""
         ...
     def set_option(self: Scene, attribute: str, value: str) -> None:
-        """Sets <option attribute=value> (timestep, impratio, noslip_iterations, ...)."""
+        """Sets <option attribute=value> (timestep, impratio, noslip_iterations, integrator, ...); it wins over the parts' own."""
         ...
     @property
     def warnings(self) -> Any:
-        """3.x translation rewrites and part settings the scene did not take"""
+        """MuJoCo's parser warnings and its word on the parts' global settings (taken or merged)"""
         ...
     def xml(self: Scene) -> str:
-        """The composed MJCF document (MuJoCo 2.2.2, radians)."""
+        """The scene as one MJCF document (MuJoCo's mj_saveXMLString: every number exact, radians, the combined keyframes); it loads into the model compile() gives."""
         ...
 
 class SceneCameraSpec:

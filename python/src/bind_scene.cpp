@@ -223,8 +223,8 @@ void bind_scene(py::module_& m) {
            "'default') is called name.")
       .def("names", &Scene::names, py::arg("kind"), "Names of the elements of kind, sorted.")
       .def("attribute", &Scene::attribute, py::arg("kind"), py::arg("name"), py::arg("attribute"),
-           "The attribute's text, or None when it is not set on the element; an unknown element "
-           "raises mjarm.Error with the closest names.")
+           "The MJCF attribute's value the element holds, as text (None where it holds none); "
+           "an unknown element or attribute raises mjarm.Error with the closest names.")
       .def(
           "set_attribute",
           [](Scene& s, std::string_view kind, std::string_view name, std::string_view attribute,
@@ -241,11 +241,15 @@ void bind_scene(py::module_& m) {
             }
           },
           py::arg("kind"), py::arg("name"), py::arg("attribute"), py::arg("value"),
-          "Sets an attribute (text, a number or numbers (n,)); takes effect at the next "
-          "compile(), where MuJoCo judges the value. Renaming is refused.")
+          "Sets an MJCF attribute (text, a number or numbers (n,)); takes effect at the next "
+          "compile(). The value is read now (kind, count, keywords); MuJoCo judges the rest at "
+          "compile(). Renaming is refused.")
       .def("set_option", &Scene::set_option, py::arg("attribute"), py::arg("value"),
-           "Sets <option attribute=value> (timestep, impratio, noslip_iterations, ...).")
-      .def("xml", &Scene::xml, "The composed MJCF document (MuJoCo 2.2.2, radians).")
+           "Sets <option attribute=value> (timestep, impratio, noslip_iterations, integrator, "
+           "...); it wins over the parts' own.")
+      .def("xml", &Scene::xml,
+           "The scene as one MJCF document (MuJoCo's mj_saveXMLString: every number exact, "
+           "radians, the combined keyframes); it loads into the model compile() gives.")
       .def(
           "compile",
           [](const Scene& s) {
@@ -256,7 +260,8 @@ void bind_scene(py::module_& m) {
           "holds every part's home). MuJoCo's message on failure.")
       .def_property_readonly("name", &Scene::name, "the scene's (and the model's) name")
       .def_property_readonly("warnings", &Scene::warnings,
-                             "3.x translation rewrites and part settings the scene did not take")
+                             "MuJoCo's parser warnings and its word on the parts' global "
+                             "settings (taken or merged)")
       .def(
           "copy", [](const Scene& s) { return Scene(s); }, "An independent copy.")
       .def("__copy__", [](const Scene& s) { return Scene(s); })

@@ -1,13 +1,10 @@
 #pragma once
-// Internal pieces of the MJCF staging (mjcf_staging.cpp) and of the scene's MJCF parts: an
-// element tree with source lines, its reader and writer, <default> lookups, orientations.
+// Internal pieces of the MJCF staging (mjcf_staging.cpp): an element tree with source lines, its
+// reader and writer.
 
-#include <array>
 #include <filesystem>
-#include <map>
 #include <memory>
 #include <optional>
-#include <span>
 #include <string>
 #include <string_view>
 #include <utility>
@@ -45,13 +42,6 @@ std::string label(const XmlNode& n);
 /// Throws mjarm::Error "MJCF: <label>: <what>".
 [[noreturn]] void fail(const XmlNode& n, const std::string& what);
 
-/// Numbers of attribute `key` of `n` (empty when absent); throws naming the element if not numeric.
-std::vector<double> numbers(const XmlNode& n, std::string_view key);
-/// Numbers of a raw attribute value; `n` and `key` only name the source in errors.
-std::vector<double> parse_numbers(const XmlNode& n, std::string_view key, std::string_view text);
-/// Space-separated shortest round-trip decimal form of `v`.
-std::string format_numbers(std::span<const double> v);
-
 /// "malformed XML in <source> (line N): <tinyxml2's error>", or for a tree deeper than tinyxml2
 /// reads, what its depth limit (TINYXML2_MAX_ELEMENT_DEPTH) is.
 std::string xml_parse_error(const tinyxml2::XMLDocument& doc, const std::string& source);
@@ -71,53 +61,6 @@ void for_each_element(XmlNode& root, Fn&& fn) {
     for_each_element(child, fn);
   }
 }
-
-/// The compiler settings that give angles their meaning.
-struct Context {
-  bool degrees = true;           ///< compiler angle="degree" (the MJCF default)
-  std::string eulerseq = "xyz";  ///< compiler eulerseq
-};
-
-/// Snapshot of the `<default>` classes (taken once the includes are inlined).
-class Defaults {
- public:
-  explicit Defaults(XmlNode& root);
-  /// The value `attr` takes for an element of default kind `kind` (joint, geom, tendon, ...) in
-  /// class `cls`, searching `cls` then its ancestors; nullopt when no class sets it.
-  std::optional<std::string> lookup(const std::string& cls, std::string_view kind,
-                                    std::string_view attr) const;
-  /// Classes in definition order (every parent before its children).
-  struct Class {
-    std::string name;
-    std::string parent;  ///< empty for "main"
-    XmlNode* node;       ///< the <default> element in the live tree
-  };
-  const std::vector<Class>& classes() const { return classes_; }
-  bool has(const std::string& cls) const { return index_.count(cls) > 0; }
-
- private:
-  std::vector<Class> classes_;
-  std::map<std::string, std::size_t> index_;
-  // class -> kind -> attribute -> value, copied so later passes cannot disturb the lookups
-  std::map<std::string, std::map<std::string, std::map<std::string, std::string>>> values_;
-};
-
-/// Whether `tag` is one of the actuator elements (general, motor, position, ...).
-bool is_actuator_tag(std::string_view tag);
-/// The default kind an element tag reads from ("spatial" and "fixed" read "tendon"; every
-/// actuator shortcut reads the class's one "actuator" default).
-std::string_view default_kind(std::string_view tag);
-
-/// Unit quaternion (w, x, y, z) and small helpers for composing frames.
-using Quat = std::array<double, 4>;
-using Vec3 = std::array<double, 3>;
-Quat quat_mul(const Quat& a, const Quat& b);
-Vec3 quat_rotate(const Quat& q, const Vec3& v);
-/// Orientation of an element from its quat / axisangle / xyaxes / zaxis / euler attributes
-/// (nullopt when it has none); throws when several are present.
-std::optional<Quat> read_orientation(const XmlNode& n, const Context& ctx);
-/// Removes every orientation attribute of `n`.
-void erase_orientation(XmlNode& n);
 
 // ---- the staging passes, in order ----
 

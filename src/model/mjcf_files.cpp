@@ -1,5 +1,6 @@
 // <include> inlining and asset path resolution of the MJCF staging (mjcf_staging.hpp).
 
+#include <optional>
 #include <set>
 
 #include "mjarm/error.hpp"

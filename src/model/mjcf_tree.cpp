@@ -1,10 +1,8 @@
-// XML element tree of the MJCF staging and the scene parts: parsing (tinyxml2), writing, attribute helpers.
+// XML element tree of the MJCF staging: parsing (tinyxml2), writing, attribute helpers.
 
 #include <tinyxml2.h>
 
 #include <cctype>
-#include <cerrno>
-#include <charconv>
 #include <cstdlib>
 #include <sstream>
 
@@ -50,44 +48,6 @@ std::string label(const XmlNode& n) {
 
 void fail(const XmlNode& n, const std::string& what) {
   throw Error("MJCF: " + label(n) + ": " + what);
-}
-
-
-std::vector<double> parse_numbers(const XmlNode& n, std::string_view key, std::string_view text) {
-  std::vector<double> out;
-  std::string buf(text);
-  const char* p = buf.c_str();
-  while (true) {
-    while (*p == ' ' || *p == '\t' || *p == '\n' || *p == '\r') ++p;
-    if (*p == '\0') break;
-    char* end = nullptr;
-    errno = 0;
-    const double v = std::strtod(p, &end);
-    if (end == p || errno == ERANGE) {
-      fail(n, "attribute " + std::string(key) + "=\"" + buf + "\" is not a list of numbers");
-    }
-    out.push_back(v);
-    p = end;
-  }
-  return out;
-}
-
-std::vector<double> numbers(const XmlNode& n, std::string_view key) {
-  const std::string* v = n.find(key);
-  return v ? parse_numbers(n, key, *v) : std::vector<double>{};
-}
-
-std::string format_numbers(std::span<const double> v) {
-  std::string out;
-  char buf[64];
-  for (std::size_t i = 0; i < v.size(); ++i) {
-    // shortest form that reads back to the same double
-    const double x = v[i] == 0.0 ? 0.0 : v[i];  // no "-0"
-    const auto res = std::to_chars(buf, buf + sizeof(buf), x);
-    if (i) out += ' ';
-    out.append(buf, res.ptr);
-  }
-  return out;
 }
 
 namespace {

@@ -18,10 +18,14 @@
 #include "mjarm/model/user_file.hpp"
 #include "mjcf_detail.hpp"
 #include "mujoco_caller.hpp"
+#include "mujoco_loading.hpp"
 #include "urdf_assets.hpp"
 
 namespace mjarm {
 namespace {
+
+using model_detail::LoadWarnings;
+using model_detail::xml_loader_mutex;
 
 // MuJoCo's warnings while a model loads on this thread, for the robot's load report
 thread_local std::vector<std::string>* load_warnings_sink = nullptr;
@@ -51,20 +55,6 @@ void mujoco_log_handler(const mjLogMessage* message) {
   print_mujoco_warning(text.c_str());
 }
 
-/// Collects MuJoCo's warnings into @p sink while it lives.
-class LoadWarnings {
- public:
-  explicit LoadWarnings(std::vector<std::string>& sink) : previous_(load_warnings_sink) {
-    load_warnings_sink = &sink;
-  }
-  ~LoadWarnings() { load_warnings_sink = previous_; }
-  LoadWarnings(const LoadWarnings&) = delete;
-  LoadWarnings& operator=(const LoadWarnings&) = delete;
-
- private:
-  std::vector<std::string>* previous_;
-};
-
 /// The root element's name ("mujoco" or "robot").
 /// @throws Error with the parser's message and line when the XML is malformed.
 std::string root_element(std::string_view xml, const std::string& source) {
@@ -83,13 +73,6 @@ struct MemoryFsDeleter {
     delete vfs;
   }
 };
-
-// MuJoCo's XML loader keeps the last parsed model in a global (for mj_saveLastXML): loads from
-// several threads (parallel trial batches) take turns
-std::mutex& xml_loader_mutex() {
-  static std::mutex mutex;
-  return mutex;
-}
 
 /// A loaded model and MuJoCo's warnings while loading it.
 struct Loaded {
@@ -234,6 +217,21 @@ const char* sensor_type_name(int type) noexcept {
 
 }  // namespace
 
+namespace model_detail {
+
+std::mutex& xml_loader_mutex() {
+  static std::mutex mutex;
+  return mutex;
+}
+
+LoadWarnings::LoadWarnings(std::vector<std::string>& sink) : previous_(load_warnings_sink) {
+  load_warnings_sink = &sink;
+}
+
+LoadWarnings::~LoadWarnings() { load_warnings_sink = previous_; }
+
+}  // namespace model_detail
+
 const char* to_string(JointType type) noexcept {
   switch (type) {
     case JointType::free:
@@ -278,19 +276,22 @@ void install_mujoco_handlers() {
   });
 }
 
-Robot::Robot(mjModel* model, std::string source, std::vector<std::string> warnings)
+Robot::Robot(mjModel* model, std::string source, std::vector<std::string> warnings,
+             std::string_view label)
     : Robot(std::shared_ptr<const mjModel>(
                 model, [](const mjModel* m) { mj_deleteModel(const_cast<mjModel*>(m)); }),
-            std::move(source), std::move(warnings)) {}
+            std::move(source), std::move(warnings), label) {}
 
 Robot::Robot(std::shared_ptr<const mjModel> model, std::string source,
-             std::vector<std::string> warnings)
+             std::vector<std::string> warnings, std::string_view label)
     : model_(std::move(model)),
       name_(model_name(*model_)),
       source_(std::move(source)),
       warnings_(std::move(warnings)) {
   // a non-finite number would come out of every algorithm as inf / NaN without an error
-  check_model_finite(*model_, source_ == "<string>" ? "XML string" : "'" + source_ + "'");
+  check_model_finite(*model_, !label.empty()            ? std::string(label)
+                              : source_ == "<string>" ? std::string("XML string")
+                                                      : "'" + source_ + "'");
 }
 
 Robot Robot::from_model(std::shared_ptr<const mjModel> model, std::string source) {
@@ -329,6 +330,19 @@ Robot Robot::from_string(std::string_view xml, const std::filesystem::path& base
   const StagedMjcf staged = stage_mjcf(xml, std::filesystem::absolute(base));
   Loaded loaded = load_from_memory(staged.xml, source, &staged);
   return Robot(loaded.model, "<string>", std::move(loaded.warnings));
+}
+
+Robot Robot::from_spec(mjSpec& spec, std::string_view what) {
+  install_mujoco_handlers();
+  std::vector<std::string> warnings;
+  mjModel* model = nullptr;
+  {
+    const LoadWarnings capture(warnings);
+    model = mj_compile(&spec, nullptr);
+  }
+  if (model == nullptr)
+    throw Error(std::string(what) + " does not compile: " + mjs_getError(&spec));
+  return Robot(model, "<string>", std::move(warnings), what);
 }
 
 std::vector<std::string> Robot::bundled_names() {

@@ -4,84 +4,62 @@
 #include <cmath>
 #include <filesystem>
 #include <map>
+#include <optional>
 #include <set>
+#include <string_view>
 
 #include "mjarm/error.hpp"
+#include "mjarm/model/mjcf_spec.hpp"
 #include "mjarm/model/names.hpp"
-#include "mjcf_entity.hpp"
 #include "scene_parts.hpp"
+#include "spec_attributes.hpp"
 
 namespace mjarm {
 
 namespace fs = std::filesystem;
-using scene_detail::element;
-using scene_detail::numbers_text;
-using scene_detail::Part;
-using scene_detail::PartKey;
-using scene_detail::XmlNode;
+using scene_detail::NameKey;
 
 namespace {
 
-// root sections in MJCF order; all exist from the start, so pointers into the worldbody stay valid
-constexpr const char* kSections[] = {"compiler", "option", "size",     "visual",    "statistic",
-                                     "default",  "custom", "asset",    "worldbody", "contact",
-                                     "equality", "tendon", "actuator", "sensor"};
+// kinds of named elements a part brings (default classes are prefixed by mjs_attach too, but a
+// spec does not list them; MuJoCo refuses a clash among them when attaching)
+constexpr std::pair<std::string_view, mjtObj> kNamedKinds[] = {
+    {"body", mjOBJ_BODY},       {"frame", mjOBJ_FRAME},       {"joint", mjOBJ_JOINT},
+    {"geom", mjOBJ_GEOM},       {"site", mjOBJ_SITE},         {"camera", mjOBJ_CAMERA},
+    {"light", mjOBJ_LIGHT},     {"actuator", mjOBJ_ACTUATOR}, {"sensor", mjOBJ_SENSOR},
+    {"tendon", mjOBJ_TENDON},   {"equality", mjOBJ_EQUALITY}, {"pair", mjOBJ_PAIR},
+    {"exclude", mjOBJ_EXCLUDE}, {"mesh", mjOBJ_MESH},         {"hfield", mjOBJ_HFIELD},
+    {"skin", mjOBJ_SKIN},       {"texture", mjOBJ_TEXTURE},   {"material", mjOBJ_MATERIAL},
+    {"numeric", mjOBJ_NUMERIC}, {"text", mjOBJ_TEXT},         {"tuple", mjOBJ_TUPLE},
+    {"key", mjOBJ_KEY}};
 
-// global settings merged attribute by attribute: the first part that sets one keeps it
-bool is_global_section(std::string_view tag) {
-  return tag == "option" || tag == "size" || tag == "visual" || tag == "statistic";
+// element types that take a default class
+constexpr mjtObj kClassedTypes[] = {mjOBJ_JOINT, mjOBJ_GEOM,     mjOBJ_SITE,     mjOBJ_CAMERA,
+                                    mjOBJ_LIGHT, mjOBJ_MESH,     mjOBJ_MATERIAL, mjOBJ_PAIR,
+                                    mjOBJ_EQUALITY, mjOBJ_TENDON, mjOBJ_ACTUATOR};
+
+/// The object type of a kind of named element ("body", ..., "key", "default"), or nullopt.
+std::optional<mjtObj> object_type(std::string_view kind) {
+  if (kind == "default") return mjOBJ_DEFAULT;
+  for (const auto& [name, type] : kNamedKinds)
+    if (name == kind) return type;
+  return std::nullopt;
 }
 
-using NameKey = std::pair<std::string, std::string>;  // (kind, name)
-
-void collect_names(const XmlNode& node, std::vector<NameKey>& out) {
-  for (const auto& c : node.children) {
-    const std::string kind = scene_detail::name_kind(c.tag, node.tag);
-    const std::string* n = c.find(c.tag == "default" ? "class" : "name");
-    if (!kind.empty() && n && !n->empty()) out.emplace_back(kind, *n);
-    collect_names(c, out);
-  }
+std::string name_of(mjsElement* e) {
+  const char* n = mjs_getString(mjs_getName(e));
+  return n == nullptr ? std::string() : std::string(n);
 }
 
-void merge_first_wins(XmlNode& into, const XmlNode& from, const std::string& path,
-                      const std::string& source, std::vector<std::string>& warnings) {
-  for (const auto& [key, value] : from.attrs) {
-    const std::string* have = into.find(key);
-    if (!have) {
-      into.set(key, value);
-    } else if (*have != value) {
-      warnings.push_back(source + ": " + path + " " + key + "=\"" + value +
-                         "\" not taken; the scene keeps \"" + *have + "\"");
-    }
+/// Names of the elements of @p type in @p spec, in the spec's order.
+std::vector<std::string> element_names(const mjSpec& spec, mjtObj type) {
+  std::vector<std::string> names;
+  for (mjsElement* e = mjs_firstElement(&spec, type); e != nullptr;
+       e = mjs_nextElement(&spec, e)) {
+    std::string n = name_of(e);
+    if (!n.empty()) names.push_back(std::move(n));
   }
-  for (const auto& c : from.children) {
-    auto it = std::find_if(into.children.begin(), into.children.end(),
-                           [&](const XmlNode& e) { return e.tag == c.tag; });
-    if (it == into.children.end()) {
-      into.children.push_back(c);
-    } else {
-      merge_first_wins(*it, c, path + "/" + c.tag, source, warnings);
-    }
-  }
-}
-
-XmlNode* find_in(XmlNode& node, std::string_view kind, std::string_view name) {
-  for (auto& c : node.children) {
-    if (scene_detail::name_kind(c.tag, node.tag) == kind) {
-      const std::string* n = c.find(c.tag == "default" ? "class" : "name");
-      if (n && *n == name) return &c;
-    }
-    if (XmlNode* found = find_in(c, kind, name)) return found;
-  }
-  return nullptr;
-}
-
-XmlNode* parent_of(XmlNode& node, const XmlNode* child) {
-  for (auto& c : node.children) {
-    if (&c == child) return &node;
-    if (XmlNode* found = parent_of(c, child)) return found;
-  }
-  return nullptr;
+  return names;
 }
 
 std::string list(const std::vector<std::string>& names) {
@@ -119,40 +97,135 @@ fs::path resolve_model(const std::string& model, const fs::path& dir, const char
   throw Error(message + "; bundled " + what + "s in " + dir.string() + ": " + list(names));
 }
 
+/// Removes the floor planes and lights placed directly in a part's world, and its skybox.
+void strip_arena(mjSpec& part) {
+  std::vector<mjsElement*> doomed;
+  mjsBody* world = mjs_findBody(&part, "world");
+  for (mjsElement* e = mjs_firstChild(world, mjOBJ_GEOM, 0); e != nullptr;
+       e = mjs_nextChild(world, e, 0))
+    if (mjs_asGeom(e)->type == mjGEOM_PLANE) doomed.push_back(e);
+  for (mjsElement* e = mjs_firstChild(world, mjOBJ_LIGHT, 0); e != nullptr;
+       e = mjs_nextChild(world, e, 0))
+    doomed.push_back(e);
+  for (mjsElement* e = mjs_firstElement(&part, mjOBJ_TEXTURE); e != nullptr;
+       e = mjs_nextElement(&part, e))
+    if (mjs_asTexture(e)->type == mjTEXTURE_SKYBOX) doomed.push_back(e);
+  for (mjsElement* e : doomed) mjs_delete(&part, e);
+}
+
+int joint_coordinates(const mjModel& m, int joint) {
+  switch (m.jnt_type[joint]) {
+    case mjJNT_FREE:
+      return 7;
+    case mjJNT_BALL:
+      return 4;
+    default:
+      return 1;
+  }
+}
+
 }  // namespace
+
+// named, not anonymous: Scene::Impl (declared in a header) holds it
+namespace scene_detail {
+
+/// A keyed part: its keyframes are combined with the other parts' by name at compile time.
+struct PartKeys {
+  std::string prefix;                  ///< "left/"
+  std::vector<std::string> keys;       ///< the part's own key names ("home")
+  std::vector<std::string> joints;     ///< its joints, prefixed
+  std::vector<std::string> actuators;  ///< its actuators, prefixed
+};
+
+}  // namespace scene_detail
+
+using scene_detail::PartKeys;
 
 struct Scene::Impl {
   std::string name;
-  XmlNode root;
-  std::map<NameKey, std::string> owners;  // every name in the scene -> the part that brought it
+  SpecPtr spec;
+  std::map<NameKey, std::string> owners;  // every name a part brought -> that part
   std::set<std::string> robots;
   bool arena = false;
-  std::vector<PartKey> keys;
-  std::vector<std::string> local_key_names;  // keys[i]'s name inside its part
+  std::vector<PartKeys> keyed;           // parts with keyframes, in the order they came
+  std::vector<std::string> options;      // <option> attributes the scene set itself
   std::vector<std::string> warnings;
 
-  XmlNode& sec(std::string_view tag) { return scene_detail::section(root, tag); }
+  Impl() = default;
+  Impl(const Impl& other)
+      : name(other.name),
+        spec(mj_copySpec(other.spec.get())),
+        owners(other.owners),
+        robots(other.robots),
+        arena(other.arena),
+        keyed(other.keyed),
+        options(other.options),
+        warnings(other.warnings) {
+    if (!spec) throw Error("scene '" + name + "': MuJoCo could not copy the scene's spec");
+  }
+
+  mjsBody* world() const { return mjs_findBody(spec.get(), "world"); }
+
+  std::vector<std::string> names_of(std::string_view kind) const {
+    const auto type = object_type(kind);
+    if (!type) return {};
+    std::vector<std::string> out;
+    if (*type == mjOBJ_DEFAULT) {
+      // the classes the elements were made with
+      std::set<std::string> classes;
+      for (mjtObj t : kClassedTypes) {
+        for (mjsElement* e = mjs_firstElement(spec.get(), t); e != nullptr;
+             e = mjs_nextElement(spec.get(), e))
+          if (mjsDefault* d = mjs_getDefault(e)) classes.insert(name_of(d->element));
+      }
+      out.assign(classes.begin(), classes.end());
+    } else {
+      out = element_names(*spec, *type);
+    }
+    std::sort(out.begin(), out.end());
+    return out;
+  }
+
+  bool exists(std::string_view kind, const std::string& element_name) const {
+    const auto type = object_type(kind);
+    if (!type) return false;
+    if (*type == mjOBJ_DEFAULT) return mjs_findDefault(spec.get(), element_name.c_str()) != nullptr;
+    return mjs_findElement(spec.get(), *type, element_name.c_str()) != nullptr;
+  }
 
   /// The element, or an Error naming the closest existing names of that kind.
-  XmlNode& require(std::string_view kind, std::string_view element_name, const std::string& why) {
-    if (XmlNode* e = find_in(root, kind, element_name)) return *e;
-    std::vector<std::string> all;
-    for (const auto& [key, owner] : owners)
-      if (key.first == kind) all.push_back(key.second);
-    std::string message = why + ": no " + std::string(kind) + " named '" +
-                          std::string(element_name) + "' in scene '" + name + "'";
-    const auto close = closest_names(element_name, all, 3);
+  mjsElement& require(std::string_view kind, std::string_view element_name,
+                      const std::string& why) const {
+    const auto type = object_type(kind);
+    if (!type || *type == mjOBJ_DEFAULT) {
+      std::string kinds;
+      for (const auto& [k, t] : kNamedKinds) kinds += (kinds.empty() ? "" : ", ") + std::string(k);
+      throw Error(why + ": elements of kind '" + std::string(kind) +
+                  "' cannot be found by name; kinds: " + kinds);
+    }
+    const std::string n(element_name);
+    if (mjsElement* e = mjs_findElement(spec.get(), *type, n.c_str())) return *e;
+    std::string message = why + ": no " + std::string(kind) + " named '" + n + "' in scene '" +
+                          name + "'";
+    const auto close = closest_names(element_name, names_of(kind), 3);
     if (!close.empty()) message += "; closest: " + list(close);
     throw Error(message);
   }
 
+  mjsBody* body_or_world(const std::string& body, const std::string& why) const {
+    if (body.empty()) return world();
+    return mjs_asBody(&require("body", body, why));
+  }
+
+  /// Refuses names the scene has already or @p names repeats.
   void check_free(const std::vector<NameKey>& names, const std::string& source) const {
     std::set<NameKey> seen;
     for (const auto& key : names) {
-      const auto it = owners.find(key);
-      if (it != owners.end()) {
+      if (exists(key.first, key.second)) {
+        const auto it = owners.find(key);
         throw Error("name clash in scene '" + name + "': " + key.first + " '" + key.second +
-                    "' of " + source + " is already defined by " + it->second);
+                    "' of " + source + " is already defined by " +
+                    (it == owners.end() ? std::string("the scene") : it->second));
       }
       if (!seen.insert(key).second) {
         throw Error("name clash in scene '" + name + "': " + source + " defines " + key.first +
@@ -165,87 +238,110 @@ struct Scene::Impl {
     for (const auto& key : names) owners.emplace(key, source);
   }
 
-  /// Merges a prefixed part: its world content goes into @p mount (added to @p parent) or,
-  /// without a mount, straight into @p parent. Checks everything before changing anything.
-  void merge(Part part, XmlNode& parent, std::optional<XmlNode> mount,
-             const std::vector<std::string>& local_keys) {
-    std::vector<NameKey> names;
-    if (mount) names.emplace_back("body", *mount->find("name"));
-    collect_names(part.root, names);
-    check_free(names, part.source);
-    XmlNode& compiler = root.children.front();
-    for (const auto& c : part.root.children) {
-      if (c.tag != "compiler") continue;
-      for (const auto& [key, value] : c.attrs) {
-        if (key == "angle" || key == "autolimits") continue;
-        const std::string* have = compiler.find(key);
-        if (have && *have != value) {
-          throw Error(part.source + ": compiler " + key + "=\"" + value +
-                      "\" conflicts with the scene's " + key + "=\"" + *have +
-                      "\" (MuJoCo 2.2.2 has one compiler setting per model)");
+  /// Attaches the MJCF part @p part (names prefixed with @p prefix) in a new fixed body
+  /// @p mount_name in @p parent at (pos, quat) — in @p frame of the parent when given. Checks
+  /// every name first; leaves the scene as it was when MuJoCo refuses the part.
+  void attach(SpecPtr part, const std::string& prefix, mjsBody* parent,
+              const std::string& mount_name, const double pos[3], const double quat[4],
+              const std::string& source, mjsFrame* frame = nullptr) {
+    std::vector<NameKey> names{{"body", mount_name}};
+    PartKeys keys{prefix, {}, {}, {}};
+    for (const auto& [kind, type] : kNamedKinds) {
+      for (std::string& n : element_names(*part, type)) {
+        if (type == mjOBJ_BODY && n == "world") continue;
+        if (type == mjOBJ_KEY) keys.keys.push_back(n);
+        if (type == mjOBJ_JOINT) keys.joints.push_back(prefix + n);
+        if (type == mjOBJ_ACTUATOR) keys.actuators.push_back(prefix + n);
+        names.emplace_back(kind, prefix + n);
+      }
+    }
+    check_free(names, source);
+    // the scene's own <option> settings win over the part's
+    for (const std::string& attribute : options)
+      scene_detail::copy_option(spec->option, part->option, attribute);
+    mjsBody* mount = mjs_addBody(parent, nullptr);
+    mjs_setName(mount->element, mount_name.c_str());
+    std::copy(pos, pos + 3, mount->pos);
+    std::copy(quat, quat + 4, mount->quat);
+    if (frame != nullptr) mjs_setFrame(mount->element, frame);
+    const int known_warnings = mjs_numWarnings(spec.get());
+    if (mjs_attach(mount->element, part->element, prefix.c_str(), "") == nullptr) {
+      const std::string error = mjs_getError(spec.get());
+      mjs_delete(spec.get(), mount->element);
+      throw Error(source + ": MuJoCo refuses the part: " + error);
+    }
+    // MuJoCo's word on global settings (option, size, visual) the part disagrees on
+    for (int i = known_warnings; i < mjs_numWarnings(spec.get()); ++i)
+      warnings.push_back(source + ": " + mjs_getWarning(spec.get(), i));
+    claim(names, source);
+    if (!keys.keys.empty()) keyed.push_back(std::move(keys));
+  }
+
+  /// A copy of the spec compiled into a Robot, the parts' keyframes combined by name.
+  std::pair<SpecPtr, Robot> compile_copy() const {
+    SpecPtr copy(mj_copySpec(spec.get()));
+    if (!copy) throw Error("scene '" + name + "': MuJoCo could not copy the scene's spec");
+    const std::string what = "scene '" + name + "'";
+    Robot robot = Robot::from_spec(*copy, what);
+    if (keyed.empty()) return {std::move(copy), std::move(robot)};
+    // the parts' keys, assembled in the scene's layout by the first compilation, become one
+    // key per name: each part's values at its own joints and actuators, qpos0 and 0 elsewhere
+    const mjModel& m = robot.model();
+    std::vector<std::string> combined;
+    for (const PartKeys& part : keyed)
+      for (const std::string& key : part.keys)
+        if (std::find(combined.begin(), combined.end(), key) == combined.end())
+          combined.push_back(key);
+    for (const std::string& key : combined) {
+      std::vector<double> qpos(m.qpos0, m.qpos0 + m.nq);
+      std::vector<double> ctrl(static_cast<std::size_t>(m.nu), 0.0);
+      for (const PartKeys& part : keyed) {
+        if (std::find(part.keys.begin(), part.keys.end(), key) == part.keys.end()) continue;
+        const int k = mj_name2id(&m, mjOBJ_KEY, (part.prefix + key).c_str());
+        if (k < 0) continue;
+        for (const std::string& joint : part.joints) {
+          const int j = mj_name2id(&m, mjOBJ_JOINT, joint.c_str());
+          if (j < 0) continue;
+          const int adr = m.jnt_qposadr[j];
+          const double* from = m.key_qpos + static_cast<std::ptrdiff_t>(k) * m.nq + adr;
+          std::copy(from, from + joint_coordinates(m, j), qpos.begin() + adr);
+        }
+        for (const std::string& actuator : part.actuators) {
+          const int a = mj_name2id(&m, mjOBJ_ACTUATOR, actuator.c_str());
+          if (a >= 0) ctrl[static_cast<std::size_t>(a)] = m.key_ctrl[k * m.nu + a];
         }
       }
+      mjsKey* spec_key = mjs_addKey(copy.get());
+      mjs_setName(spec_key->element, key.c_str());
+      mjs_setDouble(spec_key->qpos, qpos.data(), m.nq);
+      if (m.nu > 0) mjs_setDouble(spec_key->ctrl, ctrl.data(), m.nu);
     }
-    // world content first: `parent` points into the worldbody
-    for (auto& c : part.root.children) {
-      if (c.tag != "worldbody") continue;
-      if (mount) {
-        for (auto& e : c.children) mount->children.push_back(std::move(e));
-      } else {
-        for (auto& e : c.children) parent.children.push_back(std::move(e));
+    for (const PartKeys& part : keyed) {
+      for (const std::string& key : part.keys) {
+        const std::string name = part.prefix + key;
+        if (mjsElement* e = mjs_findElement(copy.get(), mjOBJ_KEY, name.c_str()))
+          mjs_delete(copy.get(), e);
       }
     }
-    if (mount) parent.children.push_back(std::move(*mount));
-    for (auto& c : part.root.children) {
-      if (c.tag == "worldbody") continue;
-      if (c.tag == "compiler") {
-        for (const auto& [key, value] : c.attrs)
-          if (key != "angle" && key != "autolimits") compiler.set(key, value);
-      } else if (is_global_section(c.tag)) {
-        merge_first_wins(sec(c.tag), c, c.tag, part.source, warnings);
-      } else if (c.tag == "default") {
-        sec("default").children.push_back(std::move(c));
-      } else {
-        XmlNode& into = sec(c.tag);
-        for (auto& e : c.children) into.children.push_back(std::move(e));
-      }
-    }
-    for (std::size_t i = 0; i < part.keys.size(); ++i) {
-      keys.push_back(std::move(part.keys[i]));
-      local_key_names.push_back(i < local_keys.size() ? local_keys[i] : keys.back().name);
-    }
-    for (const auto& w : part.warnings) warnings.push_back(part.source + ": " + w);
-    claim(names, part.source);
-  }
-
-  /// Prefixes and merges a part, remembering its keys' own names for combining.
-  void add_part(Part part, const std::string& prefix, XmlNode& parent,
-                std::optional<XmlNode> mount) {
-    std::vector<std::string> local;
-    for (const auto& k : part.keys) local.push_back(k.name);
-    scene_detail::prefix_part(part, prefix);
-    merge(std::move(part), parent, std::move(mount), local);
-  }
-
-  XmlNode& body_or_world(const std::string& body, const std::string& why) {
-    if (body.empty()) return sec("worldbody");
-    return require("body", body, why);
-  }
-
-  /// Checks a name an element added by hand would take.
-  void check_single(const std::string& kind, const std::string& element_name,
-                    const std::string& source) const {
-    check_free({{kind, element_name}}, source);
+    Robot combined_robot = Robot::from_spec(*copy, what);
+    return {std::move(copy), std::move(combined_robot)};
   }
 };
 
 Scene::Scene(std::string name) : impl_(std::make_unique<Impl>()) {
   impl_->name = std::move(name);
-  impl_->root = element("mujoco", {{"model", impl_->name}});
-  for (const char* tag : kSections) impl_->root.children.push_back(element(tag));
-  XmlNode& compiler = impl_->root.children.front();
-  compiler.set("angle", "radian");
-  compiler.set("autolimits", "true");
+  impl_->spec.reset(mj_makeSpec());
+  mjSpec& spec = *impl_->spec;
+  mjs_setString(spec.modelname, impl_->name.c_str());
+  // what the scene adds itself is in radians with inferred limits; attached parts keep their
+  // own compiler settings
+  spec.compiler.degree = 0;
+  spec.compiler.autolimits = 1;
+  // a part's global setting is taken when the scene has none; disagreements follow MuJoCo's
+  // merge rules (min timestep, max iterations, an error for integrator, cone, gravity, ...)
+  spec.compiler.conflict = mjCONFLICT_MERGE;
+  // parts are copied in, so each part's spec is freed once it is attached
+  mjs_setDeepCopy(&spec, 1);
 }
 
 Scene::~Scene() = default;
@@ -266,8 +362,11 @@ std::vector<std::string> Scene::bundled_grippers() {
 
 void Scene::add_arena(const ArenaSpec& arena) {
   if (impl_->arena) throw Error("scene '" + impl_->name + "' already has an arena");
-  Part part = scene_detail::arena_part(arena);
-  impl_->add_part(std::move(part), "arena", impl_->sec("worldbody"), std::nullopt);
+  validate(arena);
+  const auto names = scene_detail::arena_names(arena);
+  impl_->check_free(names, "arena");
+  scene_detail::add_arena(*impl_->spec, arena);
+  impl_->claim(names, "arena");
   impl_->arena = true;
 }
 
@@ -276,12 +375,13 @@ void Scene::add_robot(const RobotSpec& spec) {
   if (impl_->robots.count(spec.name))
     throw Error("robot name '" + spec.name + "' is used twice in scene '" + impl_->name + "'");
   const fs::path file = resolve_model(spec.model, Robot::models_dir(), "robot");
-  Part part = scene_detail::load_part(file, "robot '" + spec.name + "' (" + file.string() + ")");
-  if (!spec.keep_arena) scene_detail::strip_arena(part.root);
-  XmlNode mount = element(
-      "body",
-      {{"name", spec.name}, {"pos", numbers_text(spec.pos)}, {"quat", numbers_text(spec.quat)}});
-  impl_->add_part(std::move(part), spec.name, impl_->sec("worldbody"), std::move(mount));
+  const std::string source = "robot '" + spec.name + "' (" + file.string() + ")";
+  std::vector<std::string> parse_warnings;
+  SpecPtr part = parse_mjcf_file(file, &parse_warnings);
+  if (!spec.keep_arena) strip_arena(*part);
+  impl_->attach(std::move(part), spec.name + "/", impl_->world(), spec.name, spec.pos.data(),
+                spec.quat.data(), source);
+  for (const auto& w : parse_warnings) impl_->warnings.push_back(source + ": " + w);
   impl_->robots.insert(spec.name);
 }
 
@@ -292,16 +392,16 @@ void Scene::attach_gripper(const GripperSpec& spec) {
     throw Error("gripper '" + spec.name + "': no robot named '" + spec.robot + "' in scene '" +
                 impl_->name + "'" + (robots.empty() ? "" : "; robots: " + list(robots)));
   }
+  mjSpec* scene = impl_->spec.get();
   const std::string frame = spec.robot + "/" + spec.frame;
-  XmlNode* body = find_in(impl_->root, "body", frame);
-  XmlNode* site = body ? nullptr : find_in(impl_->root, "site", frame);
+  mjsBody* body = mjs_findBody(scene, frame.c_str());
+  mjsSite* site = body ? nullptr : mjs_asSite(mjs_findElement(scene, mjOBJ_SITE, frame.c_str()));
   if (!body && !site) {
     // frames of this robot only, unprefixed
     std::vector<std::string> frames;
-    for (const auto& [key, owner] : impl_->owners) {
-      if ((key.first == "site" || key.first == "body") &&
-          key.second.rfind(spec.robot + "/", 0) == 0)
-        frames.push_back(key.second.substr(spec.robot.size() + 1));
+    for (const char* kind : {"site", "body"}) {
+      for (const std::string& n : impl_->names_of(kind))
+        if (n.rfind(spec.robot + "/", 0) == 0) frames.push_back(n.substr(spec.robot.size() + 1));
     }
     std::string message = "gripper '" + spec.name + "': unknown attachment frame '" + spec.frame +
                           "' on robot '" + spec.robot + "' (expected one of its sites or bodies)";
@@ -309,81 +409,101 @@ void Scene::attach_gripper(const GripperSpec& spec) {
     if (!close.empty()) message += "; closest: " + list(close);
     throw Error(message);
   }
-  const fs::path dir = Robot::models_dir() / "grippers";
-  const fs::path file = resolve_model(spec.model, dir, "gripper");
+  const fs::path file = resolve_model(spec.model, Robot::models_dir() / "grippers", "gripper");
   const std::string prefix = spec.robot + "/" + spec.name;
-  Part part = scene_detail::load_part(file, "gripper '" + prefix + "' (" + file.string() + ")");
-  scene_detail::strip_arena(part.root);
-  XmlNode mount = element("body", {{"name", prefix}});
-  XmlNode* parent = body;
+  const std::string source = "gripper '" + prefix + "' (" + file.string() + ")";
+  std::vector<std::string> parse_warnings;
+  SpecPtr part = parse_mjcf_file(file, &parse_warnings);
+  strip_arena(*part);
+  double pos[3] = {0.0, 0.0, 0.0};
+  double quat[4] = {1.0, 0.0, 0.0, 0.0};
+  mjsBody* parent = body;
   if (site) {
-    // the mount takes the site's place in the site's body
-    parent = parent_of(impl_->root, site);
-    for (const char* key : {"pos", "quat", "xyaxes", "zaxis"})
-      if (const std::string* v = site->find(key)) mount.set(key, *v);
+    // the mount takes the site's place in the site's body: its pose as the robot's own
+    // compiler reads it (angle unit, euler sequence)
+    parent = mjs_getParent(site->element);
+    std::copy(site->pos, site->pos + 3, pos);
+    std::copy(site->quat, site->quat + 4, quat);
+    if (site->alt.type != mjORIENTATION_QUAT) {
+      const mjsCompiler* compiler = mjs_getCompiler(site->element);
+      if (const char* error = mjs_resolveOrientation(quat, compiler->degree, compiler->eulerseq,
+                                                     &site->alt))
+        throw Error(source + ": the orientation of site '" + frame + "': " + error);
+    }
   }
-  impl_->add_part(std::move(part), prefix, *parent, std::move(mount));
+  impl_->attach(std::move(part), prefix + "/", parent, prefix, pos, quat, source,
+                site ? mjs_getFrame(site->element) : nullptr);
+  for (const auto& w : parse_warnings) impl_->warnings.push_back(source + ": " + w);
 }
 
 void Scene::add_object(const ObjectSpec& spec) {
-  Part part = scene_detail::object_part(spec, true);
-  XmlNode mount = element(
-      "body",
-      {{"name", spec.name}, {"pos", numbers_text(spec.pos)}, {"quat", numbers_text(spec.quat)}});
-  impl_->add_part(std::move(part), spec.name, impl_->sec("worldbody"), std::move(mount));
+  validate(spec);
+  const std::string mesh_file = scene_detail::object_mesh_file(spec);
+  const auto names = scene_detail::object_names(spec, true);
+  const std::string source = "object '" + spec.name + "'";
+  impl_->check_free(names, source);
+  scene_detail::add_object(*impl_->spec, spec, true, mesh_file);
+  impl_->claim(names, source);
 }
 
 void Scene::add_fixture(const ObjectSpec& spec) {
-  Part part = scene_detail::object_part(spec, false);
-  part.source = "fixture '" + spec.name + "'";
-  XmlNode mount = element(
-      "body",
-      {{"name", spec.name}, {"pos", numbers_text(spec.pos)}, {"quat", numbers_text(spec.quat)}});
-  impl_->add_part(std::move(part), spec.name, impl_->sec("worldbody"), std::move(mount));
+  validate(spec);
+  const std::string mesh_file = scene_detail::object_mesh_file(spec);
+  const auto names = scene_detail::object_names(spec, false);
+  const std::string source = "fixture '" + spec.name + "'";
+  impl_->check_free(names, source);
+  scene_detail::add_object(*impl_->spec, spec, false, mesh_file);
+  impl_->claim(names, source);
 }
 
 void Scene::add_fixture(const CompoundFixtureSpec& spec) {
-  Part part = scene_detail::compound_part(spec);
-  XmlNode mount = element(
-      "body",
-      {{"name", spec.name}, {"pos", numbers_text(spec.pos)}, {"quat", numbers_text(spec.quat)}});
-  impl_->add_part(std::move(part), spec.name, impl_->sec("worldbody"), std::move(mount));
+  validate(spec);
+  std::vector<std::string> mesh_files;
+  for (const ObjectSpec& piece : spec.pieces)
+    mesh_files.push_back(scene_detail::object_mesh_file(piece));
+  const auto names = scene_detail::compound_names(spec);
+  const std::string source = "fixture '" + spec.name + "'";
+  impl_->check_free(names, source);
+  scene_detail::add_compound(*impl_->spec, spec, mesh_files);
+  impl_->claim(names, source);
 }
 
 void Scene::add_camera(const SceneCameraSpec& spec) {
   validate(spec);
   const std::string source = "camera '" + spec.name + "'";
-  impl_->check_single("camera", spec.name, source);
-  XmlNode camera = element("camera", {{"name", spec.name}, {"pos", numbers_text(spec.pos)}});
+  impl_->check_free({{"camera", spec.name}}, source);
+  mjsBody* parent = impl_->body_or_world(spec.body, source + " parent");
+  if (!spec.target.empty()) impl_->require("body", spec.target, source + " target");
+  mjsCamera* camera = mjs_addCamera(parent, nullptr);
+  mjs_setName(camera->element, spec.name.c_str());
+  std::copy(spec.pos.begin(), spec.pos.end(), camera->pos);
   const bool axes =
       std::any_of(spec.xyaxes.begin(), spec.xyaxes.end(), [](double v) { return v != 0.0; });
   if (axes) {
-    camera.set("xyaxes", numbers_text(spec.xyaxes));
+    camera->alt.type = mjORIENTATION_XYAXES;
+    std::copy(spec.xyaxes.begin(), spec.xyaxes.end(), camera->alt.xyaxes);
   } else {
-    camera.set("quat", numbers_text(spec.quat));
+    std::copy(spec.quat.begin(), spec.quat.end(), camera->quat);
   }
-  camera.set("fovy", numbers_text(std::span<const double>(&spec.fovy, 1)));
+  camera->fovy = spec.fovy;
   if (!spec.target.empty()) {
-    impl_->require("body", spec.target, source + " target");
-    camera.set("mode", "targetbody");
-    camera.set("target", spec.target);
+    camera->mode = mjCAMLIGHT_TARGETBODY;
+    mjs_setString(camera->targetbody, spec.target.c_str());
   }
-  XmlNode& parent = impl_->body_or_world(spec.body, source + " parent");
-  parent.children.push_back(std::move(camera));
   impl_->claim({{"camera", spec.name}}, source);
 }
 
 void Scene::add_site(const SiteSpec& spec) {
   validate(spec);
   const std::string source = "site '" + spec.name + "'";
-  impl_->check_single("site", spec.name, source);
-  XmlNode& parent = impl_->body_or_world(spec.body, source + " parent");
-  parent.children.push_back(
-      element("site", {{"name", spec.name},
-                       {"pos", numbers_text(spec.pos)},
-                       {"quat", numbers_text(spec.quat)},
-                       {"size", numbers_text(std::span<const double>(&spec.size, 1))},
-                       {"rgba", numbers_text(spec.rgba)}}));
+  impl_->check_free({{"site", spec.name}}, source);
+  mjsBody* parent = impl_->body_or_world(spec.body, source + " parent");
+  mjsSite* site = mjs_addSite(parent, nullptr);
+  mjs_setName(site->element, spec.name.c_str());
+  std::copy(spec.pos.begin(), spec.pos.end(), site->pos);
+  std::copy(spec.quat.begin(), spec.quat.end(), site->quat);
+  site->size[0] = spec.size;
+  std::copy(spec.rgba.begin(), spec.rgba.end(), site->rgba);
   impl_->claim({{"site", spec.name}}, source);
 }
 
@@ -391,147 +511,132 @@ void Scene::add_sensor(const SensorSpec& spec) {
   const std::string source = std::string(to_string(spec.type)) + " sensor '" + spec.name + "'";
   if (spec.name.empty()) throw Error("a sensor needs a non-empty name");
   if (spec.target.empty()) throw Error(source + " needs a target");
-  impl_->check_single("sensor", spec.name, source);
-  XmlNode sensor = element(to_string(spec.type), {{"name", spec.name}});
+  impl_->check_free({{"sensor", spec.name}}, source);
+  mjtSensor type = mjSENS_FRAMEPOS;
+  mjtObj objtype = mjOBJ_SITE;
   switch (spec.type) {
     case SensorType::jointpos:
       impl_->require("joint", spec.target, source);
-      sensor.set("joint", spec.target);
+      type = mjSENS_JOINTPOS;
+      objtype = mjOBJ_JOINT;
       break;
     case SensorType::touch:
     case SensorType::force:
     case SensorType::torque:
       impl_->require("site", spec.target, source);
-      sensor.set("site", spec.target);
+      type = spec.type == SensorType::touch   ? mjSENS_TOUCH
+             : spec.type == SensorType::force ? mjSENS_FORCE
+                                              : mjSENS_TORQUE;
       break;
     case SensorType::framepos:
     case SensorType::framequat: {
       // a site, a body's own frame (xbody), a geom or a camera
-      const std::pair<const char*, const char*> kinds[] = {
-          {"site", "site"}, {"body", "xbody"}, {"geom", "geom"}, {"camera", "camera"}};
-      const char* objtype = nullptr;
-      for (const auto& [kind, type] : kinds) {
-        if (find_in(impl_->root, kind, spec.target)) {
-          objtype = type;
-          break;
-        }
-      }
-      if (!objtype) impl_->require("site", spec.target, source + " (a site, body, geom or camera)");
-      sensor.set("objtype", objtype);
-      sensor.set("objname", spec.target);
+      type = spec.type == SensorType::framepos ? mjSENS_FRAMEPOS : mjSENS_FRAMEQUAT;
+      const std::pair<const char*, mjtObj> kinds[] = {{"site", mjOBJ_SITE},
+                                                      {"body", mjOBJ_XBODY},
+                                                      {"geom", mjOBJ_GEOM},
+                                                      {"camera", mjOBJ_CAMERA}};
+      const auto found = std::find_if(std::begin(kinds), std::end(kinds), [&](const auto& k) {
+        return impl_->exists(k.first, spec.target);
+      });
+      if (found == std::end(kinds))
+        impl_->require("site", spec.target, source + " (a site, body, geom or camera)");
+      objtype = found->second;
       break;
     }
   }
-  impl_->sec("sensor").children.push_back(std::move(sensor));
+  mjsSensor* sensor = mjs_addSensor(impl_->spec.get());
+  mjs_setName(sensor->element, spec.name.c_str());
+  sensor->type = type;
+  sensor->objtype = objtype;
+  mjs_setString(sensor->objname, spec.target.c_str());
   impl_->claim({{"sensor", spec.name}}, source);
 }
 
 void Scene::add_weld(const WeldSpec& spec) {
   validate(spec);
   const std::string source = "weld '" + spec.name + "'";
-  impl_->check_single("equality", spec.name, source);
+  impl_->check_free({{"equality", spec.name}}, source);
   impl_->require("body", spec.body1, source + " body1");
   impl_->require("body", spec.body2, source + " body2");
-  impl_->sec("equality")
-      .children.push_back(element("weld", {{"name", spec.name},
-                                           {"body1", spec.body1},
-                                           {"body2", spec.body2},
-                                           {"active", spec.active ? "true" : "false"},
-                                           {"solref", numbers_text(spec.solref)}}));
+  mjsEquality* weld = mjs_addEquality(impl_->spec.get(), nullptr);
+  mjs_setName(weld->element, spec.name.c_str());
+  weld->type = mjEQ_WELD;
+  weld->objtype = mjOBJ_BODY;
+  mjs_setString(weld->name1, spec.body1.c_str());
+  mjs_setString(weld->name2, spec.body2.c_str());
+  // as MJCF's <weld> without anchor or relpose: the relative pose at qpos0 (relpose "0 1 0 0 0
+  // 0 0", a zero quaternion, asks the compiler for it)
+  std::fill_n(weld->data, 10, 0.0);
+  weld->data[4] = 1.0;
+  weld->active = spec.active;
+  std::copy(spec.solref.begin(), spec.solref.end(), weld->solref);
   impl_->claim({{"equality", spec.name}}, source);
 }
 
 bool Scene::has(std::string_view kind, std::string_view element_name) const {
-  return find_in(impl_->root, kind, element_name) != nullptr;
+  return impl_->exists(kind, std::string(element_name));
 }
 
 std::vector<std::string> Scene::names(std::string_view kind) const {
-  std::vector<std::string> out;
-  for (const auto& [key, owner] : impl_->owners)
-    if (key.first == kind) out.push_back(key.second);
-  return out;
+  return impl_->names_of(kind);
 }
 
 std::optional<std::string> Scene::attribute(std::string_view kind, std::string_view element_name,
                                             std::string_view attr) const {
-  const XmlNode& e = impl_->require(kind, element_name, "attribute '" + std::string(attr) + "'");
-  const std::string* v = e.find(attr);
-  return v ? std::optional(*v) : std::nullopt;
+  mjsElement& e = impl_->require(kind, element_name, "attribute '" + std::string(attr) + "'");
+  return scene_detail::read_attribute(e, attr,
+                                      std::string(kind) + " '" + std::string(element_name) + "'");
 }
 
 void Scene::set_attribute(std::string_view kind, std::string_view element_name,
                           std::string_view attr, std::string_view value) {
   const std::string what = std::string(kind) + " '" + std::string(element_name) + "'";
-  if (attr == "name" || (kind == "default" && attr == "class"))
+  if (attr == "name")
     throw Error(what + ": renaming is not supported (names are checked when parts are added)");
   if (attr.empty()) throw Error(what + ": an attribute name is needed");
-  XmlNode& e = impl_->require(kind, element_name, "set " + std::string(attr));
-  e.set(attr, std::string(value));
+  mjsElement& e = impl_->require(kind, element_name, "set " + std::string(attr));
+  scene_detail::write_attribute(e, attr, value, what);
 }
 
 void Scene::set_attribute(std::string_view kind, std::string_view element_name,
                           std::string_view attr, std::span<const double> values) {
-  for (double v : values) {
-    if (!std::isfinite(v)) {
-      throw Error(std::string(kind) + " '" + std::string(element_name) + "': " + std::string(attr) +
-                  " must be finite numbers");
-    }
-  }
-  if (values.empty())
-    throw Error(std::string(kind) + " '" + std::string(element_name) + "': " + std::string(attr) +
-                " needs at least one value");
-  set_attribute(kind, element_name, attr, std::string_view(numbers_text(values)));
+  const std::string what = std::string(kind) + " '" + std::string(element_name) + "'";
+  for (double v : values)
+    if (!std::isfinite(v)) throw Error(what + ": " + std::string(attr) + " must be finite numbers");
+  if (values.empty()) throw Error(what + ": " + std::string(attr) + " needs at least one value");
+  if (attr == "name")
+    throw Error(what + ": renaming is not supported (names are checked when parts are added)");
+  mjsElement& e = impl_->require(kind, element_name, "set " + std::string(attr));
+  scene_detail::write_attribute(e, attr, values, what);
 }
 
 void Scene::set_option(std::string_view attr, std::string_view value) {
   if (attr.empty()) throw Error("scene '" + impl_->name + "': set_option needs an attribute name");
-  impl_->sec("option").set(std::string(attr), std::string(value));
+  scene_detail::write_option(impl_->spec->option, attr, value);
+  if (std::find(impl_->options.begin(), impl_->options.end(), attr) == impl_->options.end())
+    impl_->options.emplace_back(attr);
 }
 
-std::string Scene::xml() const { return mjcf_detail::write_document(impl_->root); }
-
-Robot Scene::compile() const {
-  const auto load = [&](const XmlNode& root) {
-    try {
-      return Robot::from_string(mjcf_detail::write_document(root));
-    } catch (const Error& e) {
-      throw Error("scene '" + impl_->name + "' does not compile: " + e.what());
+std::string Scene::xml() const {
+  const SpecPtr compiled = impl_->compile_copy().first;
+  // the spec as written, every number exact (the compiled values are rounded to 6 digits)
+  compiled->compiler.savecompiled = 0;
+  std::string text(1 << 16, '\0');
+  char error[1024] = "";
+  for (int attempt = 0; attempt < 2; ++attempt) {
+    const int result = mj_saveXMLString(compiled.get(), text.data(), static_cast<int>(text.size()),
+                                        error, sizeof(error));
+    if (result == 0) {
+      text.resize(text.find('\0'));
+      return text;
     }
-  };
-  if (impl_->keys.empty()) return load(impl_->root);
-  // keys need the scene's qpos layout: compile once without them
-  const Robot plain = load(impl_->root);
-  const mjModel& m = plain.model();
-  XmlNode root = impl_->root;
-  XmlNode keyframe = element("keyframe");
-  std::vector<std::string> done;
-  for (std::size_t i = 0; i < impl_->keys.size(); ++i) {
-    const std::string& local = impl_->local_key_names[i];
-    if (std::find(done.begin(), done.end(), local) != done.end()) continue;
-    done.push_back(local);
-    std::vector<double> qpos(m.qpos0, m.qpos0 + m.nq);
-    std::vector<double> ctrl(static_cast<std::size_t>(m.nu), 0.0);
-    for (std::size_t j = i; j < impl_->keys.size(); ++j) {
-      if (impl_->local_key_names[j] != local) continue;
-      for (const auto& [joint, values] : impl_->keys[j].qpos) {
-        const int id = try_find_object(m, mjOBJ_JOINT, joint);
-        if (id < 0) continue;
-        const int adr = m.jnt_qposadr[id];
-        const int size = id + 1 < m.njnt ? m.jnt_qposadr[id + 1] - adr : m.nq - adr;
-        if (static_cast<int>(values.size()) == size)
-          std::copy(values.begin(), values.end(), qpos.begin() + adr);
-      }
-      for (const auto& [actuator, value] : impl_->keys[j].ctrl) {
-        const int id = try_find_object(m, mjOBJ_ACTUATOR, actuator);
-        if (id >= 0) ctrl[static_cast<std::size_t>(id)] = value;
-      }
-    }
-    XmlNode key = element("key", {{"name", local}, {"qpos", numbers_text(qpos)}});
-    if (m.nu > 0) key.set("ctrl", numbers_text(ctrl));
-    keyframe.children.push_back(std::move(key));
+    if (result < 0) break;
+    text.assign(static_cast<std::size_t>(result) + 1, '\0');  // the size MuJoCo asked for
   }
-  root.children.push_back(std::move(keyframe));
-  return load(root);
+  throw Error("scene '" + impl_->name + "': MuJoCo cannot write it as MJCF: " + error);
 }
+
+Robot Scene::compile() const { return impl_->compile_copy().second; }
 
 }  // namespace mjarm

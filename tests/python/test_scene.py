@@ -131,8 +131,12 @@ def test_refused_parts_name_the_problem_and_leave_the_scene_unchanged():
     with pytest.raises(mjarm.Error, match="closest"):
         scene.attribute("geom", "cube/gem", "size")
     assert scene.names("body") == before
-    # a value only MuJoCo judges fails at compile with its message
-    scene.set_attribute("geom", "cube/geom", "size", "not a number")
+    # values are read when they are set; what only MuJoCo judges fails at compile
+    with pytest.raises(mjarm.Error, match="geom 'cube/geom': size expects numbers, got 'not a"):
+        scene.set_attribute("geom", "cube/geom", "size", "not a number")
+    with pytest.raises(mjarm.Error, match="no attribute 'frction'; closest: friction"):
+        scene.set_attribute("geom", "cube/geom", "frction", 1.0)
+    scene.set_attribute("geom", "cube/geom", "size", [-0.01, 0.01, 0.01])
     with pytest.raises(mjarm.Error, match="scene 'pick' does not compile"):
         scene.compile()
 

@@ -190,7 +190,10 @@ TEST(Scene, EditsTakeEffectAfterCompile) {
   const std::vector<double> pos{0.3, -0.2, 0.5};
   scene.set_attribute("body", "ball", "pos", pos);
   EXPECT_EQ(scene.attribute("geom", "cube/geom", "size"), "0.01 0.02 0.03");
-  EXPECT_EQ(scene.attribute("geom", "cube/geom", "margin"), std::nullopt);
+  // the value the element holds, written or not; nullopt where it holds none
+  EXPECT_EQ(scene.attribute("geom", "cube/geom", "margin"), "0");
+  EXPECT_EQ(scene.attribute("geom", "cube/geom", "fromto"), std::nullopt);
+  EXPECT_EQ(scene.attribute("actuator", "left/finger_left", "gainprm"), "3200 0 0 0 0 0 0 0 0 0");
 
   const Robot robot = scene.compile();
   const mjModel& m = robot.model();
@@ -272,6 +275,38 @@ TEST(Scene, KeyframesOfThePartsAreCombinedByName) {
   EXPECT_EQ(home[m.jnt_qposadr[robot.joint("cube/joint")]], 0.5);
   const int key = robot.keyframe("home");
   EXPECT_EQ(m.key_ctrl[key * m.nu + robot.actuator("right/joint4")], right[3]);
+}
+
+TEST(Scene, XmlLoadsIntoTheSameModel) {
+  Scene scene = two_robots_two_objects();
+  scene.add_robot({"arm", "panda", {1.0, 0.0, 0.0}, {1, 0, 0, 0}, false});
+  scene.attach_gripper({"arm", "franka_hand", "attachment_site", "hand"});
+  scene.add_weld({"grasp", "arm/hand/hand", "cube", false, {0.002, 1.0}});
+  scene.add_camera({"follow", "", {1.0, 1.0, 1.0}, {}, {1, 0, 0, 0}, 45.0, "cube"});
+  const std::vector<double> gain{3200.0};
+  scene.set_attribute("actuator", "arm/hand/finger_left", "gainprm", gain);
+  const Robot direct = scene.compile();
+  const Robot reloaded = Robot::from_string(scene.xml());
+  const mjModel& a = direct.model();
+  const mjModel& b = reloaded.model();
+  ASSERT_EQ(a.nq, b.nq);
+  ASSERT_EQ(a.nbody, b.nbody);
+  ASSERT_EQ(a.ngeom, b.ngeom);
+  ASSERT_EQ(a.nu, b.nu);
+  ASSERT_EQ(a.njnt, b.njnt);
+  ASSERT_EQ(a.nkey, b.nkey);
+  const auto same = [](const double* x, const double* y, int n, const char* what) {
+    for (int i = 0; i < n; ++i) EXPECT_EQ(x[i], y[i]) << what << "[" << i << "]";
+  };
+  same(a.body_pos, b.body_pos, 3 * a.nbody, "body_pos");
+  same(a.body_quat, b.body_quat, 4 * a.nbody, "body_quat");
+  same(a.body_mass, b.body_mass, a.nbody, "body_mass");
+  same(a.geom_size, b.geom_size, 3 * a.ngeom, "geom_size");
+  same(a.geom_friction, b.geom_friction, 3 * a.ngeom, "geom_friction");
+  same(a.jnt_range, b.jnt_range, 2 * a.njnt, "jnt_range");
+  same(a.actuator_gainprm, b.actuator_gainprm, mjNGAIN * a.nu, "actuator_gainprm");
+  same(a.key_qpos, b.key_qpos, a.nq * a.nkey, "key_qpos");
+  same(a.eq_data, b.eq_data, mjNEQDATA * a.neq, "eq_data");
 }
 
 TEST(Scene, NameClashesAreNamed) {
@@ -412,9 +447,27 @@ TEST(Scene, BadValuesAreNamed) {
                        "closest: cube/geom"));
   EXPECT_TRUE(contains(error_of([&] { scene.set_attribute("body", "cube", "name", "box"); }),
                        "renaming is not supported"));
-  // MuJoCo judges the values it reads when the scene compiles
-  scene.set_attribute("geom", "cube/geom", "size", "abc");
-  const std::string message = error_of([&] { scene.compile(); });
+  // values are read when they are set
+  std::string message = error_of([&] { scene.set_attribute("geom", "cube/geom", "size", "abc"); });
+  EXPECT_TRUE(contains(message, "geom 'cube/geom': size expects numbers, got 'abc'")) << message;
+  message = error_of([&] { scene.set_attribute("geom", "cube/geom", "frction", "1"); });
+  EXPECT_TRUE(contains(message, "geom 'cube/geom': no attribute 'frction'; closest: friction"))
+      << message;
+  const std::vector<double> four{1.0, 2.0, 3.0, 4.0};
+  message = error_of([&] { scene.set_attribute("geom", "cube/geom", "pos", four); });
+  EXPECT_TRUE(contains(message, "pos expects 3 numbers, got 4")) << message;
+  const std::vector<double> half{0.5};
+  message = error_of([&] { scene.set_attribute("geom", "cube/geom", "contype", half); });
+  EXPECT_TRUE(contains(message, "contype expects whole numbers")) << message;
+  EXPECT_EQ(scene.attribute("geom", "cube/geom", "contype"), "1");  // unchanged
+  message = error_of([&] { scene.set_attribute("geom", "cube/geom", "type", "cube"); });
+  EXPECT_TRUE(contains(message, "type expects one of plane, hfield, sphere")) << message;
+  message = error_of([&] { scene.set_option("integrater", "RK4"); });
+  EXPECT_TRUE(contains(message, "option: no attribute 'integrater'; closest: integrator"))
+      << message;
+  // MuJoCo judges the values when the scene compiles
+  scene.set_attribute("geom", "cube/geom", "size", "-0.01 0.02 0.03");
+  message = error_of([&] { scene.compile(); });
   EXPECT_TRUE(contains(message, "scene 'two_arms' does not compile")) << message;
   EXPECT_TRUE(contains(message, "size")) << message;
   EXPECT_TRUE(contains(error_of([&] {

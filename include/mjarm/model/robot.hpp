@@ -92,6 +92,14 @@ class Robot {
   /// @throws Error with MuJoCo's message (and line) when the XML is invalid.
   static Robot from_string(std::string_view xml, const std::filesystem::path& base_dir = {});
 
+  /// Compiles an mjSpec (MuJoCo's model-editing API, `mj_compile`): MuJoCo's warnings become
+  /// the load warnings, `source()` is "<string>". Compiling records its result in @p spec (as
+  /// `mj_compile` does); the spec stays the caller's.
+  /// @param what  names the model in errors, e.g. "scene 'pick'".
+  /// @throws Error with MuJoCo's message when the spec does not compile, or naming the element
+  ///         of a non-finite number.
+  static Robot from_spec(mjSpec& spec, std::string_view what);
+
   /// Loads a bundled model by name ("panda", "ur5e_torque", ...).
   /// @throws Error listing the bundled names when @p name is not one of them, and as
   ///         `bundled_names()` when the models folder is missing or empty.
@@ -168,9 +176,11 @@ class Robot {
   std::vector<double> keyframe_qpos(std::string_view name) const;
 
  private:
-  Robot(mjModel* model, std::string source, std::vector<std::string> warnings);
+  /// @p label names the model in errors (default: from @p source).
+  Robot(mjModel* model, std::string source, std::vector<std::string> warnings,
+        std::string_view label = {});
   Robot(std::shared_ptr<const mjModel> model, std::string source,
-        std::vector<std::string> warnings);
+        std::vector<std::string> warnings, std::string_view label = {});
 
   std::shared_ptr<const mjModel> model_;
   std::string name_;

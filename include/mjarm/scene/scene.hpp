@@ -4,11 +4,11 @@
 /// attached to their flanges, free objects, fixtures, cameras, sites, sensors and welds — with
 /// every part's names prefixed, found and edited by name, then compiled into a `Robot`.
 ///
-/// MuJoCo 2.2.2 has neither `<attach>` nor a model-editing API: the scene works on the MJCF
-/// itself. Each part is loaded as the model room loads it (MuJoCo 3.x translated, asset paths
-/// absolute), normalized (angles in radians, euler and axis-angle orientations as quaternions,
-/// following the part's own compiler settings) and prefixed before it is merged, so parts keep
-/// their own units, default classes and asset folders.
+/// The scene is an `mjSpec` (MuJoCo's model-editing API): each MJCF part is parsed from its staged
+/// file (`parse_mjcf_file`) and attached with `mjs_attach` under its prefix, so MuJoCo itself
+/// prefixes names and references and keeps each part's compiler settings (angle unit, euler
+/// sequence), default classes and assets; what the scene makes itself (arena, objects, cameras,
+/// sites, sensors, welds) is added element by element.
 
 #include <memory>
 #include <optional>
@@ -38,10 +38,11 @@ class Scene {
   /// @throws Error for a bad value or when an arena is already there.
   void add_arena(const ArenaSpec& arena = {});
 
-  /// Adds a robot; its names get the prefix `spec.name + "/"`.
+  /// Adds a robot; its names get the prefix `spec.name + "/"`. Global settings (option, size,
+  /// visual) it sets are taken where the scene has none; see `warnings()`.
   /// @throws Error for an unknown bundled name (with the closest ones), a missing, invalid or
-  ///         non-MJCF file, a robot name used twice, or a compiler setting that clashes with
-  ///         another part.
+  ///         non-MJCF file, a robot name used twice, a name clash, or a global setting MuJoCo
+  ///         refuses to merge (an integrator, cone, gravity, ... other than the scene's).
   void add_robot(const RobotSpec& spec);
 
   /// Attaches a gripper rigidly at a site or body of a robot already in the scene.
@@ -74,14 +75,23 @@ class Scene {
   /// Names of the elements of @p kind, sorted.
   std::vector<std::string> names(std::string_view kind) const;
 
-  /// Value of attribute @p attribute of element @p name, or nullopt when it is not set there.
-  /// @throws Error when the element does not exist (with the closest names).
+  /// Value of MJCF attribute @p attribute of element @p name as text (numbers in their shortest
+  /// round-trip form): what the element holds, written in its file, inherited from its default
+  /// class or MuJoCo's default; nullopt where it holds none (an empty reference, an orientation
+  /// written another way, an unset fromto).
+  /// @throws Error when the element does not exist (with the closest names) or has no such
+  ///         attribute (with the closest attribute names).
   std::optional<std::string> attribute(std::string_view kind, std::string_view name,
                                        std::string_view attribute) const;
-  /// Sets an attribute of an element ("size", "pos", "gainprm", "range", "ctrlrange", ...);
-  /// takes effect at the next `compile()`. Renaming is refused (names are checked on add).
-  /// @throws Error when the element does not exist or @p attribute is "name"; MuJoCo checks the
-  ///         value when the scene is compiled.
+  /// Sets an MJCF attribute of an element ("size", "pos", "euler", "gainprm", "range",
+  /// "ctrlrange", "solreflimit", "type", "material", ...); takes effect at the next `compile()`.
+  /// Fewer numbers than the attribute holds set the leading ones where MJCF allows it (size,
+  /// friction, gainprm, solimp, gear, ...). Angles are in the unit of the part the element came
+  /// from (its compiler's angle). Renaming is refused (names are checked on add), and so is a
+  /// default class (it applies when an element is made).
+  /// @throws Error when the element or the attribute does not exist (closest names), or for a
+  ///         value of the wrong kind or count or an unknown keyword; MuJoCo judges the rest
+  ///         (a negative size, ...) when the scene is compiled.
   void set_attribute(std::string_view kind, std::string_view name, std::string_view attribute,
                      std::string_view value);
   /// Sets a numeric attribute. @throws Error as above, or when a value is not finite.
@@ -89,23 +99,27 @@ class Scene {
                      std::span<const double> values);
 
   /// Sets a global simulation option, `<option ATTRIBUTE="VALUE">` (timestep, impratio,
-  /// noslip_iterations, cone, ...), over whatever a part set. MuJoCo checks the value at the next
-  /// `compile()`.
-  /// @throws Error for an empty attribute name.
+  /// noslip_iterations, cone, integrator, ...); it wins over what parts set, before or after.
+  /// @throws Error for an unknown attribute (closest names) or a value of the wrong kind.
   void set_option(std::string_view attribute, std::string_view value);
 
-  /// The composed MJCF document (MuJoCo 2.2.2, radians, absolute asset paths).
+  /// The scene as one MJCF document, as MuJoCo writes its spec (`mj_saveXMLString`, values as
+  /// written: every number exact, angles in radians, absolute asset paths), with the combined
+  /// keyframes; it loads into the same model as `compile()` gives.
+  /// @throws Error as `compile()`, or with MuJoCo's message when it cannot write the spec.
   std::string xml() const;
 
-  /// Compiles the scene. Keyframes of the parts are combined by name: the scene's key `home`
-  /// holds every part's `home` values; joints of parts without it keep qpos0, actuators 0.
-  /// @throws Error with MuJoCo's message when the model does not compile.
+  /// Compiles a copy of the scene's spec (the scene itself is unchanged).
+  /// Keyframes of the parts are combined by name: the scene's key `home` holds every part's
+  /// `home` values; joints of parts without it keep qpos0, actuators 0.
+  /// @throws Error "scene 'NAME' does not compile: " with MuJoCo's message.
   Robot compile() const;
 
   /// The scene's name (its model name once compiled).
   const std::string& name() const noexcept;
-  /// Messages about the parts: 3.x translation rewrites and global settings of a part that the
-  /// scene did not take because an earlier part set them otherwise.
+  /// Messages about the parts: MuJoCo's parser warnings, and its word on global settings a part
+  /// brought (taken because the scene had none, or merged with the scene's: the smaller
+  /// timestep, the larger iteration counts, ...).
   const std::vector<std::string>& warnings() const noexcept;
 
   /// Names of the bundled grippers (files in `Robot::models_dir() / "grippers"`), sorted.

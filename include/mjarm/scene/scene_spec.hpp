@@ -21,10 +21,10 @@ struct ArenaSpec {
   std::array<double, 3> table_friction{1.0, 0.005, 0.0001};  ///< sliding, torsional, rolling
 };
 
-/// A robot from any MJCF: a bundled name ("arm6", "panda_hand", ...) or a file path (MuJoCo 3.x
-/// files are translated; URDF is not merged: convert it to MJCF first). Every name in it gets the
-/// prefix `name + "/"` ("left/joint1"); the robot's root bodies go inside a fixed body called
-/// `name` placed at `pos`, `quat` in world.
+/// A robot from any MJCF: a bundled name ("arm6", "panda_hand", ...) or a file path (URDF is not
+/// attached: convert it to MJCF first). Every name in it gets the prefix `name + "/"`
+/// ("left/joint1"); the robot's root bodies go inside a fixed body called `name` placed at `pos`,
+/// `quat` in world.
 struct RobotSpec {
   std::string name;                                ///< prefix, unique in the scene
   std::string model;                               ///< bundled name or MJCF file path

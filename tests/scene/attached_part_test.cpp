@@ -1,5 +1,5 @@
-// Parts keep their own units, euler sequence, default classes and asset folders when merged
-// (src/scene/mjcf_entity.cpp), checked through the public Scene.
+// MJCF parts attached with mjs_attach keep their own units, euler sequence, default classes,
+// asset folders and global options (src/scene/scene.cpp), checked through the public Scene.
 
 #include <gtest/gtest.h>
 
@@ -9,6 +9,7 @@
 
 #include "mjarm/model/names.hpp"
 #include "mjarm/scene/scene.hpp"
+#include "support/error_message.hpp"
 #include "support/files.hpp"
 
 namespace mjarm {
@@ -53,7 +54,7 @@ std::filesystem::path write_part(const std::string& name, const std::string& tex
   return file;
 }
 
-TEST(MjcfEntity, DegreePartMergedIntoARadianSceneKeepsItsKinematics) {
+TEST(AttachedPart, DegreePartMergedIntoARadianSceneKeepsItsKinematics) {
   const auto file = write_part("deg/deg.xml", kDegreeArm);
   const Robot alone = Robot::from_file(file);
   Scene scene;
@@ -102,7 +103,55 @@ TEST(MjcfEntity, DegreePartMergedIntoARadianSceneKeepsItsKinematics) {
   }
 }
 
-TEST(MjcfEntity, TwoCopiesOfOnePartKeepTheirOwnClassesAndMeshes) {
+TEST(AttachedPart, EditsOfADegreePartAreInDegrees) {
+  const auto file = write_part("deg/deg.xml", kDegreeArm);
+  Scene scene;
+  scene.add_robot({"deg", file.string(), {}, {1, 0, 0, 0}, false});
+  const std::vector<double> range{-30.0, 60.0};
+  scene.set_attribute("joint", "deg/j2", "range", range);
+  EXPECT_EQ(scene.attribute("joint", "deg/j2", "range"), "-30 60");
+  // the body's euler, as written in the part (degrees, zyx)
+  EXPECT_EQ(scene.attribute("body", "deg/link", "euler"), "0 45 20");
+  EXPECT_EQ(scene.attribute("body", "deg/link", "quat"), std::nullopt);
+  const Robot robot = scene.compile();
+  const int j = robot.joint("deg/j2");
+  EXPECT_NEAR(robot.model().jnt_range[2 * j], -std::numbers::pi / 6.0, 1e-15);
+  EXPECT_NEAR(robot.model().jnt_range[2 * j + 1], std::numbers::pi / 3.0, 1e-15);
+}
+
+TEST(AttachedPart, AGripperSitsAtASitePosedInDegreesAndByADefaultClass) {
+  // the site's position comes from the part's default class, its orientation from a zyx euler
+  // in degrees
+  const auto file = write_part("flange/flange.xml", R"(
+<mujoco model="flange">
+  <compiler angle="degree" eulerseq="zyx"/>
+  <default><site pos="0.02 0 0.1"/></default>
+  <worldbody>
+    <body name="link">
+      <joint name="j" axis="0 0 1"/>
+      <geom size="0.05"/>
+      <site name="tilted" euler="30 0 20"/>
+    </body>
+  </worldbody>
+</mujoco>)");
+  Scene scene;
+  scene.add_robot({"r", file.string(), {0.1, 0.2, 0.3}, {1, 0, 0, 0}, false});
+  scene.attach_gripper({"r", "franka_hand", "tilted", "hand"});
+  const Robot robot = scene.compile();
+  const mjModel& m = robot.model();
+  DataPtr d = robot.make_data();
+  d->qpos[m.jnt_qposadr[robot.joint("r/j")]] = 0.7;
+  mj_kinematics(&m, d.get());
+  const int mount = robot.body("r/hand");
+  const int site = robot.site("r/tilted");
+  for (int k = 0; k < 3; ++k)
+    EXPECT_NEAR(d->xpos[3 * mount + k], d->site_xpos[3 * site + k], 1e-12);
+  for (int k = 0; k < 9; ++k)
+    EXPECT_NEAR(d->xmat[9 * mount + k], d->site_xmat[9 * site + k], 1e-12);
+  EXPECT_NEAR(d->site_xpos[3 * site + 2], 0.4, 1e-12);
+}
+
+TEST(AttachedPart, TwoCopiesOfOnePartKeepTheirOwnClassesAndMeshes) {
   // a mesh named after its file, found through the part's own meshdir
   write_part("meshy/meshes/tetra.obj",
              "v 0 0 0\nv 0.04 0 0\nv 0 0.04 0\nv 0 0 0.04\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n");
@@ -139,10 +188,10 @@ TEST(MjcfEntity, TwoCopiesOfOnePartKeepTheirOwnClassesAndMeshes) {
   EXPECT_TRUE(scene.has("default", "d/arm6_finger"));
 }
 
-TEST(MjcfEntity, MuJoCo3PartsAreTranslatedAndTheirRewritesReported) {
-  // 3.x: implicitfast, a range relying on autolimits, a position actuator with kv
-  const auto file = write_part("v3/v3.xml", R"(
-<mujoco model="v3">
+TEST(AttachedPart, ItsOptionsAreTakenAndConflictsRefusedWithMuJoCosWord) {
+  // no compiler element (degrees, autolimits), implicitfast, a position actuator with kv
+  const auto file = write_part("v4/v4.xml", R"(
+<mujoco model="v4">
   <option integrator="implicitfast"/>
   <worldbody>
     <body name="b"><joint name="j" axis="0 0 1" range="-1 1"/><geom size="0.05"/></body>
@@ -150,23 +199,44 @@ TEST(MjcfEntity, MuJoCo3PartsAreTranslatedAndTheirRewritesReported) {
   <actuator><position name="p" joint="j" kp="50" kv="2"/></actuator>
 </mujoco>)");
   Scene scene;
-  scene.add_robot({"v3", file.string(), {}, {1, 0, 0, 0}, false});
+  scene.add_robot({"v4", file.string(), {}, {1, 0, 0, 0}, false});
+  // the scene had no integrator of its own: it takes the part's, and says so
   ASSERT_FALSE(scene.warnings().empty());
-  EXPECT_NE(scene.warnings().front().find("robot 'v3'"), std::string::npos);
-  bool integrator = false;
-  for (const auto& w : scene.warnings())
-    integrator = integrator || w.find("implicitfast") != std::string::npos;
-  EXPECT_TRUE(integrator);
+  EXPECT_NE(scene.warnings().front().find("robot 'v4'"), std::string::npos);
+  EXPECT_NE(scene.warnings().front().find("integrator"), std::string::npos)
+      << scene.warnings().front();
   const Robot robot = scene.compile();
   const mjModel& m = robot.model();
-  const int j = robot.joint("v3/j");
+  EXPECT_EQ(m.opt.integrator, mjINT_IMPLICITFAST);
+  const int j = robot.joint("v4/j");
   EXPECT_TRUE(m.jnt_limited[j]);
-  // no compiler angle: degrees, as MuJoCo reads the file alone
+  // degrees, as MuJoCo reads the file alone
   const Robot alone = Robot::from_file(file);
   EXPECT_NEAR(m.jnt_range[2 * j + 1], alone.model().jnt_range[1], 1e-15);
   EXPECT_NEAR(m.jnt_range[2 * j + 1], std::numbers::pi / 180.0, 1e-15);
-  // the kv of 3.x becomes the bias of the 2.2.2 servo
-  EXPECT_EQ(m.actuator_biasprm[robot.actuator("v3/p") * mjNBIAS + 2], -2.0);
+  EXPECT_EQ(m.actuator_biasprm[robot.actuator("v4/p") * mjNBIAS + 2], -2.0);
+
+  // a second part that wants another integrator is refused, naming it; the scene is unchanged
+  const auto other = write_part("v4/rk4.xml", R"(
+<mujoco model="rk4">
+  <option integrator="RK4"/>
+  <worldbody><body name="b"><joint name="j"/><geom size="0.05"/></body></worldbody>
+</mujoco>)");
+  const std::string message = test::error_of([&] {
+    scene.add_robot({"rk4", other.string(), {1, 0, 0}, {1, 0, 0, 0}, false});
+  });
+  EXPECT_NE(message.find("robot 'rk4'"), std::string::npos) << message;
+  EXPECT_NE(message.find("integrator"), std::string::npos) << message;
+  EXPECT_FALSE(scene.has("body", "rk4"));
+  EXPECT_FALSE(scene.has("joint", "rk4/j"));
+  EXPECT_EQ(scene.compile().nq(), 1);
+
+  // what the scene sets itself wins over its parts, before or after they come
+  Scene own;
+  own.set_option("integrator", "RK4");
+  own.add_robot({"v4", file.string(), {}, {1, 0, 0, 0}, false});
+  own.add_robot({"rk4", other.string(), {1, 0, 0}, {1, 0, 0, 0}, false});
+  EXPECT_EQ(own.compile().model().opt.integrator, mjINT_RK4);
 }
 
 }  // namespace

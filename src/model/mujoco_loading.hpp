@@ -1,0 +1,28 @@
+#pragma once
+// How the model room lets MuJoCo parse and compile (robot.cpp, mjcf_spec.cpp): one XML parser at
+// a time, and MuJoCo's warnings collected per thread for the robot's load report.
+
+#include <mutex>
+#include <string>
+#include <vector>
+
+namespace mjarm::model_detail {
+
+/// MuJoCo's XML parser keeps the last parsed model in a global (for mj_saveLastXML): parses from
+/// several threads (parallel trial batches) take turns on this mutex.
+std::mutex& xml_loader_mutex();
+
+/// Collects MuJoCo's warnings (mju_warning) on this thread into a sink while it lives; they are
+/// printed to stderr as well.
+class LoadWarnings {
+ public:
+  explicit LoadWarnings(std::vector<std::string>& sink);
+  ~LoadWarnings();
+  LoadWarnings(const LoadWarnings&) = delete;
+  LoadWarnings& operator=(const LoadWarnings&) = delete;
+
+ private:
+  std::vector<std::string>* previous_;
+};
+
+}  // namespace mjarm::model_detail
