@@ -506,8 +506,12 @@ TEST(ViewerWindow, BimanualRecordingIsKeptOnAnErrorAndOnCtrlC) {
   fs::create_directories(sub);
   const fs::path stopped = sub / "ctrl_c.session";
   std::string display = prefix->substr(0, prefix->find(' '));
+  // --foreground: timeout passes the SIGINT to mjarm alone; by default it sends it to mjarm and
+  // again to its whole process group, and the second one ends mjarm at once (the guard is
+  // one-shot: a second Ctrl-C ends the process)
   const std::string command =
-      display + " timeout -k 10 120 '" MJARM_CLI "' view dual_arm --size 320x240 --json " +
+      display + " timeout --foreground -k 10 120 '" MJARM_CLI
+                "' view dual_arm --size 320x240 --json " +
       "--record-session '" + stopped.string() + "' & pid=$!; i=0; " + "while ! ls -A '" +
       sub.string() + "' | grep -q '^\\.ctrl_c\\.session\\.partial-' && [ $i -lt 600 ]; do " +
       "sleep 0.1; i=$((i+1)); done; sleep 1; kill -INT $pid; wait $pid";
