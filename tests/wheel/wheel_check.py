@@ -10,8 +10,10 @@ Usage: wheel_check.py SOURCE_DIR WORK_DIR [--isolated]
 By default the build runs without pip's build isolation, in WORK_DIR/build-env: a virtual
 environment holding exactly the build requirements of pyproject.toml (what isolation would
 install), with a build folder kept between runs (scikit-build-core's build-dir), so a second run
-recompiles only what changed; isolation's temporary paths would make every run a full build.
---isolated builds exactly as `pip install .` does: isolated, in a temporary build folder.
+recompiles only what changed; isolation's temporary paths would make every run a full build. It
+compiles unoptimized (-O0, a quarter of the CPU time of the Release build): what is checked is
+the package, not the speed of its code.
+--isolated builds exactly as `pip install .` does: isolated, Release, in a temporary build folder.
 """
 import json
 import os
@@ -79,7 +81,9 @@ def main():
             run([builder, *PIP, "install", "-q", *requires])
             stamp.write_text(repr(requires))
         run([builder, *PIP, "wheel", "--no-build-isolation", "--no-deps", "-q", "-w", dist,
-             "--config-settings=build-dir=" + str(work / "cmake-build"), source])
+             "--config-settings=build-dir=" + str(work / "cmake-build"),
+             "--config-settings=cmake.build-type=Debug",
+             "--config-settings=cmake.define.CMAKE_CXX_FLAGS_DEBUG=-O0", source])
     wheels = list(dist.glob("mjarm-*.whl"))
     check(len(wheels) == 1, f"one wheel in {dist}: {wheels}")
     wheel = wheels[0]
