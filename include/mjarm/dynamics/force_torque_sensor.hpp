@@ -38,9 +38,10 @@ const char* to_string(WrenchStatus status) noexcept;
 /// One wrench measurement.
 struct WrenchReading {
   /// [f; τ] (N; N·m), linear first, in the axes and about the point the read asked for. Sign
-  /// (MuJoCo's force/torque sensors): the wrench the parent side of the sensor exerts on the sensor body and
-  /// everything below it (the tool). A tool at rest with nothing touching it reads its own
-  /// weight held up, f = −m_tool·gravity; a contact pushing the tool with F_env shows as −F_env.
+  /// (MuJoCo's force/torque sensors): the wrench the parent side of the sensor exerts on the
+  /// sensor body and everything below it (the tool). A tool at rest with nothing touching it
+  /// reads its own weight held up, f = −m_tool·gravity; a contact pushing the tool with F_env
+  /// shows as −F_env.
   Vector6d wrench = Vector6d::Zero();
   /// Simulation time at which the value was measured [s] (d.time − age).
   double time = 0.0;

@@ -27,10 +27,10 @@ struct WeldGraspOptions {
 /// by tests/sim/weld_grasp_test.cpp): [0..2] the anchor point in body2's frame, [3..5] the same
 /// point in body1's frame, [6..9] the orientation of body2 relative to body1 (quaternion
 /// w x y z), [10] the torque scale, [11] nonzero when the compiler computed [3..9] at qpos0
-/// (`mj_setConst` then recomputes them). The constraint drives p₁ + R₁·d[3..5] onto p₂ + R₂·d[0..2]
-/// and q₁⁻¹·q₂ onto d[6..9] (p, R, q of the body frames, world). The compiler fills d[3..9] with
-/// the relative pose at qpos0 — wherever the robot and the object happened to be in the file —
-/// so a weld switched on later with those values yanks the object there.
+/// (`mj_setConst` then recomputes them). The constraint drives p₁ + R₁·d[3..5] onto
+/// p₂ + R₂·d[0..2] and q₁⁻¹·q₂ onto d[6..9] (p, R, q of the body frames, world). The compiler
+/// fills d[3..9] with the relative pose at qpos0 — wherever the robot and the object happened to
+/// be in the file — so a weld switched on later with those values yanks the object there.
 ///
 /// `activate` instead reads X_12 = X_W1⁻¹·X_W2 from the current state (the body frames in
 /// data.xpos / data.xquat, which must be current: inside a control tick they are) and writes the
