@@ -10,7 +10,7 @@
 //   qpos, qvel, qacc into a scratch mjData and run mj_inverse (position stage, velocity stage,
 //   inverse constraint, RNE + armature).
 // - ChainInverseDynamics/<robot>: mjarm's path on the up-to-date state: τ = M·q̈ + h with
-//   MuJoCo's sparse mj_mulM on qM plus qfrc_bias (ChainDynamics::inverse_dynamics). Never
+//   MuJoCo's sparse mj_mulM on M plus qfrc_bias (ChainDynamics::inverse_dynamics). Never
 //   writes the state.
 // - MjRne/<robot>: mj_rne with accelerations on an up-to-date state (the Newton-Euler pass
 //   inside mj_inverse, without armature), for reference.

@@ -177,7 +177,7 @@ std::string to_source_lines(std::string_view message, const std::vector<MjcfSour
       const MjcfSourceLine& source = lines[static_cast<std::size_t>(n - 1)];
       out += "line " + std::to_string(source.line);
       if (!source.file.empty()) out += " of '" + source.file.string() + "'";
-      // the column counts in the translated text: meaningless to the user
+      // the column counts in the staged text (includes inlined): meaningless to the user
       const std::string_view column = ", column = ";
       if (message.compare(end, column.size(), column) == 0) {
         end += column.size();

@@ -1,4 +1,4 @@
-"""Models: bundled, file and string; names and id maps; Data handles; 3.x translation warnings."""
+"""Models: bundled, file, string; names and id maps; Data handles; newer MJCF as MuJoCo loads it."""
 import os
 
 import numpy as np

@@ -38,9 +38,10 @@ const char* to_string(WrenchStatus status) noexcept;
 /// One wrench measurement.
 struct WrenchReading {
   /// [f; τ] (N; N·m), linear first, in the axes and about the point the read asked for. Sign
-  /// (MuJoCo 2.2.2): the wrench the parent side of the sensor exerts on the sensor body and
-  /// everything below it (the tool). A tool at rest with nothing touching it reads its own
-  /// weight held up, f = −m_tool·gravity; a contact pushing the tool with F_env shows as −F_env.
+  /// (MuJoCo's force/torque sensors): the wrench the parent side of the sensor exerts on the
+  /// sensor body and everything below it (the tool). A tool at rest with nothing touching it
+  /// reads its own weight held up, f = −m_tool·gravity; a contact pushing the tool with F_env
+  /// shows as −F_env.
   Vector6d wrench = Vector6d::Zero();
   /// Simulation time at which the value was measured [s] (d.time − age).
   double time = 0.0;
@@ -55,9 +56,9 @@ struct WrenchReading {
 Vector6d shift_wrench(const Vector6d& F, const Eigen::Vector3d& p_A,
                       const Eigen::Vector3d& p_B) noexcept;
 
-/// A `force` + `torque` sensor pair on one site S. MuJoCo 2.2.2 (mjSENS_FORCE, mjSENS_TORQUE):
-/// the interaction force and torque between the site's body and its parent body, expressed in
-/// S's axes, the torque about S's origin; sensor noise and cutoff as the model sets them.
+/// A `force` + `torque` sensor pair on one site S. MuJoCo's mjSENS_FORCE and mjSENS_TORQUE: the
+/// interaction force and torque between the site's body and its parent body, expressed in S's
+/// axes, the torque about S's origin; sensor noise and cutoff as the model sets them.
 /// Reads allocate nothing and never throw.
 class ForceTorqueSensor {
  public:

@@ -1,8 +1,8 @@
 #pragma once
 /// @file
 /// The collision hook of the local IK solvers: geoms that must not touch, checked on an owned
-/// scratch `mjData` (never the caller's) with `mj_kinematics` followed by MuJoCo's narrow phase
-/// for explicit pairs and `mj_collision` for "geom against anything".
+/// scratch `mjData` (never the caller's) with `mj_kinematics` followed by MuJoCo's
+/// `mj_geomDistance` for explicit pairs and `mj_collision` for "geom against anything".
 
 #include <Eigen/Core>
 #include <string>

@@ -21,7 +21,7 @@ struct JointLimits {
 /// How `joint_limits_from_model` fills what the model does not say.
 struct ModelLimitOptions {
   /// MJCF has no joint velocity limit: this one is used for every joint [rad/s or m/s]
-  /// (> 0). Override per joint with the user's limits (`mjarm plan --max-velocity`).
+  /// (> 0). Override per joint with the user's limits (`mjarm plan --velocity-limit`).
   double velocity = 1.0;
   /// a_max,i = torque_fraction · τ_max,i / M_ii(q) at the configuration given, in (0, 1]: the
   /// rest of the torque is left for gravity, coupling and feedback.

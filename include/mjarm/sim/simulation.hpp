@@ -157,7 +157,8 @@ class Simulation {
   bool set_equality_active(int id, bool active) noexcept;
   /// The constraint data of equality @p id (mjNEQDATA values: for a weld, the anchor in body2's
   /// frame [0..2], the pose of body2 in body1's frame, position [3..5] and quaternion w x y z
-  /// [6..9], and the torque scale [10]). Empty for an id out of range.
+  /// [6..9], the torque scale [10], and [11] nonzero when the compiler computed the pose at
+  /// qpos0). Empty for an id out of range.
   std::span<const double> equality_data(int id) const noexcept;
   /// Writes the data of equality @p id (mjNEQDATA values, see `equality_data`) into this
   /// simulation's own model (`own_model()`). Allocation-free; false (nothing written) without an

@@ -53,8 +53,8 @@ struct SimulationOptions {
 
   /// Step a private copy of the model (`Simulation::editable_model`) instead of the robot's
   /// shared one, so that its owner can change parameters between steps without touching other
-  /// users of the `Robot` (domain randomization). A model with equality constraints gets its
-  /// own copy anyway (its constraints are switched in the model); this asks for one otherwise.
+  /// users of the `Robot` (domain randomization). A `WeldGrasp` gives the simulation a copy too
+  /// (`Simulation::own_model()`); switching equality constraints needs none (`mjData::eq_active`).
   bool own_model = false;
 
   /// Kinematic mode only: a `move` that puts a geom of `contact_check_a` in contact with a geom of

@@ -23,27 +23,29 @@ struct WeldGraspOptions {
 
 /// A weld grasp on one `Simulation`: body1 (the gripper) holds body2 (the object).
 ///
-/// The layout of a weld's `eq_data` (mjNEQDATA = 11 values; engine behaviour pinned by
-/// tests/sim/weld_grasp_test.cpp): [0..2] the anchor point in body2's frame, [3..5] the same
+/// The layout of a weld's `eq_data` (mjNEQDATA = 12 values in MuJoCo 4; engine behaviour pinned
+/// by tests/sim/weld_grasp_test.cpp): [0..2] the anchor point in body2's frame, [3..5] the same
 /// point in body1's frame, [6..9] the orientation of body2 relative to body1 (quaternion
-/// w x y z), [10] the torque scale. The constraint drives p₁ + R₁·d[3..5] onto p₂ + R₂·d[0..2]
-/// and q₁⁻¹·q₂ onto d[6..9] (p, R, q of the body frames, world). The compiler fills d[3..9] with
-/// the relative pose at qpos0 — wherever the robot and the object happened to be in the file —
-/// so a weld switched on later with those values yanks the object there.
+/// w x y z), [10] the torque scale, [11] nonzero when the compiler computed [3..9] at qpos0
+/// (`mj_setConst` then recomputes them). The constraint drives p₁ + R₁·d[3..5] onto
+/// p₂ + R₂·d[0..2] and q₁⁻¹·q₂ onto d[6..9] (p, R, q of the body frames, world). The compiler
+/// fills d[3..9] with the relative pose at qpos0 — wherever the robot and the object happened to
+/// be in the file — so a weld switched on later with those values yanks the object there.
 ///
 /// `activate` instead reads X_12 = X_W1⁻¹·X_W2 from the current state (the body frames in
 /// data.xpos / data.xquat, which must be current: inside a control tick they are) and writes the
 /// anchor 0 (body2's origin), p_12 and q_12, then switches the weld on: the constraint is
 /// satisfied exactly at that instant and the object does not jump. `release` switches it off:
-/// the object moves freely again. Both change only the simulation's own model copy (a
-/// `Simulation` whose model has equality constraints owns one), allocate nothing and never
-/// throw: a task calls them inside a control tick.
+/// the object moves freely again. The weld's data goes into the simulation's own model copy
+/// (the constructor asks for one: `Simulation::own_model()`), the switch into its data
+/// (`mjData::eq_active`). Both allocate nothing and never throw: a task calls them inside a
+/// control tick.
 class WeldGrasp {
  public:
   /// The weld equality called @p weld (body1 = gripper, body2 = object).
   /// @throws Error when the model has no equality of that name (the closest names listed), it is
-  ///         not a weld, or the solref values are not positive and finite. Sets the weld's solref
-  ///         on the simulation's model and switches it off.
+  ///         not a weld, or the solref values are not positive and finite. Gives the simulation
+  ///         its own model copy, sets the weld's solref there and switches the weld off.
   WeldGrasp(Simulation& simulation, std::string_view weld, const WeldGraspOptions& options = {});
 
   /// The weld equality between bodies @p gripper and @p object (either order in the model).
