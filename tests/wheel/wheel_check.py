@@ -83,7 +83,8 @@ def main():
         run([builder, *PIP, "wheel", "--no-build-isolation", "--no-deps", "-q", "-w", dist,
              "--config-settings=build-dir=" + str(work / "cmake-build"),
              "--config-settings=cmake.build-type=Debug",
-             "--config-settings=cmake.define.CMAKE_CXX_FLAGS_DEBUG=-O0", source])
+             "--config-settings=cmake.define.CMAKE_CXX_FLAGS_DEBUG=-O0",
+             "--config-settings=cmake.define.MJARM_GCC_COLLECT_RARELY=ON", source])
     wheels = list(dist.glob("mjarm-*.whl"))
     check(len(wheels) == 1, f"one wheel in {dist}: {wheels}")
     wheel = wheels[0]
