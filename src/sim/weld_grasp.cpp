@@ -78,6 +78,7 @@ bool WeldGrasp::activate() noexcept {
   data[0] = data[1] = data[2] = 0.0;  // anchor: body2's origin
   for (int i = 0; i < 3; ++i) data[3 + i] = p_12[i];
   for (int i = 0; i < 4; ++i) data[6 + i] = q12[i];
+  data[11] = 0.0;  // the pose is ours now: mj_setConst (domain randomization) must keep it
   if (!simulation_->set_equality_data(id_, data)) return false;
   X_12_.p = p_12;
   X_12_.R = X_W1.R.transpose() * X_W2.R;

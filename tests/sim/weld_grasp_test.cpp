@@ -176,6 +176,24 @@ TEST(WeldGrasp, SwitchingOnMovesTheObjectLessThanFiftyMicrometres) {
   EXPECT_GT(hold(naive, naive_holder, cube, naive.time() + 0.5), 0.01);
 }
 
+// MuJoCo 4's mj_setConst recomputes the pose of a weld compiled without relpose (eq_data[11]
+// set) at qpos0; a pose activate wrote must survive it (domain randomization calls it)
+TEST(WeldGrasp, TheActivatedPoseSurvivesSetConst) {
+  const WeldScene s = weld_scene();
+  Simulation sim(s.robot, position_mode());
+  sim.set_state(s.qpos, std::vector<double>(s.robot.nv(), 0.0));
+  WeldGrasp grasp(sim, "grasp");
+  const int weld = sim.equality("grasp");
+  ASSERT_NE(sim.model().eq_data[weld * mjNEQDATA + 11], 0.0);  // as compiled: MuJoCo's mark
+  ASSERT_TRUE(grasp.activate());
+  const std::vector<double> written(sim.model().eq_data + weld * mjNEQDATA,
+                                    sim.model().eq_data + (weld + 1) * mjNEQDATA);
+  DataPtr scratch = s.robot.make_data();
+  mj_setConst(sim.editable_model(), scratch.get());
+  for (int i = 0; i < mjNEQDATA; ++i)
+    EXPECT_EQ(sim.model().eq_data[weld * mjNEQDATA + i], written[i]) << "eq_data[" << i << "]";
+}
+
 TEST(WeldGrasp, HoldsWhileTheArmMovesAndReleaseRestoresFreeMotion) {
   const WeldScene s = weld_scene();
   const int cube = s.robot.body("cube");
