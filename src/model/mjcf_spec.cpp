@@ -24,8 +24,7 @@ SpecPtr parse_mjcf_file(const std::filesystem::path& path, std::vector<std::stri
   }
   if (spec == nullptr)
     throw Error("cannot load '" + path.string() + "': " + staged.to_source_lines(error));
-  // a message with a spec is a warning of the parser
-  if (error[0] != '\0') messages.push_back(staged.to_source_lines(error));
+  model_detail::add_load_message(messages, error, staged.to_source_lines(error));
   if (warnings != nullptr) warnings->insert(warnings->end(), messages.begin(), messages.end());
   return SpecPtr(spec);
 }

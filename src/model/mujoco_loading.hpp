@@ -25,4 +25,10 @@ class LoadWarnings {
   std::vector<std::string>* previous_;
 };
 
+/// The message MuJoCo left in a load's error buffer although the load succeeded (a warning of
+/// the parser or the compiler), as @p mapped (its lines mapped back to the user's files). MuJoCo
+/// 4 also sends it to the log handler, so it is usually in @p warnings already: it is kept once,
+/// in its mapped form; one that is new is printed and added.
+void add_load_message(std::vector<std::string>& warnings, const char* raw, std::string mapped);
+
 }  // namespace mjarm::model_detail

@@ -97,13 +97,9 @@ Loaded load_from_memory(const std::string& xml, const std::string& source,
     const LoadWarnings capture(loaded.warnings);
     loaded.model = mj_loadXML(file_name, vfs.get(), error, sizeof(error));
   }
-  const std::string message = staged ? staged->to_source_lines(error) : error;
+  std::string message = staged ? staged->to_source_lines(error) : error;
   if (loaded.model == nullptr) throw Error("cannot load " + source + ": " + message);
-  // a message with a model is a warning of the parser or the compiler
-  if (!message.empty()) {
-    print_mujoco_warning(message.c_str());
-    loaded.warnings.push_back(message);
-  }
+  model_detail::add_load_message(loaded.warnings, error, std::move(message));
   return loaded;
 }
 
@@ -116,10 +112,7 @@ Loaded load_from_disk(const std::filesystem::path& path) {
     loaded.model = mj_loadXML(path.c_str(), nullptr, error, sizeof(error));
   }
   if (loaded.model == nullptr) throw Error("cannot load '" + path.string() + "': " + error);
-  if (error[0] != '\0') {
-    print_mujoco_warning(error);
-    loaded.warnings.emplace_back(error);
-  }
+  model_detail::add_load_message(loaded.warnings, error, error);
   return loaded;
 }
 
@@ -229,6 +222,17 @@ LoadWarnings::LoadWarnings(std::vector<std::string>& sink) : previous_(load_warn
 }
 
 LoadWarnings::~LoadWarnings() { load_warnings_sink = previous_; }
+
+void add_load_message(std::vector<std::string>& warnings, const char* raw, std::string mapped) {
+  if (raw[0] == '\0') return;
+  const auto seen = std::find(warnings.begin(), warnings.end(), raw);
+  if (seen != warnings.end()) {
+    *seen = std::move(mapped);
+    return;
+  }
+  print_mujoco_warning(mapped.c_str());  // as the handler prints those it sees
+  warnings.push_back(std::move(mapped));
+}
 
 }  // namespace model_detail
 

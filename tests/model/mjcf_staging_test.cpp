@@ -84,6 +84,17 @@ TEST_F(MjcfInclude, RelativeIncludesAndAssetsBecomeAbsolute) {
   EXPECT_EQ(m->jnt_limited[0], 1);  // the range alone limits the joint (autolimits)
 }
 
+// MuJoCo 4 reports a load warning to the log handler and again in the error buffer: once here
+TEST_F(MjcfInclude, ALoadWarningIsReportedOnce) {
+  const std::string xml = R"(<mujoco><statistic meaninertia="2"/>
+  <worldbody><body><joint/><geom size=".1"/></body></worldbody></mujoco>)";
+  write("warn.xml", xml);
+  for (const Robot& robot : {Robot::from_string(xml), Robot::from_file(dir_ / "warn.xml")}) {
+    ASSERT_EQ(robot.load_warnings().size(), 1u);
+    EXPECT_NE(robot.load_warnings()[0].find("meaninertia"), std::string::npos);
+  }
+}
+
 TEST_F(MjcfInclude, MissingAndCyclicIncludesThrow) {
   try {
     stage_mjcf("<mujoco>\n  <include file=\"nope.xml\"/>\n</mujoco>", dir_);
