@@ -11,8 +11,8 @@ By default the build runs without pip's build isolation, in WORK_DIR/build-env: 
 environment holding exactly the build requirements of pyproject.toml (what isolation would
 install), with a build folder kept between runs (scikit-build-core's build-dir), so a second run
 recompiles only what changed; isolation's temporary paths would make every run a full build. It
-compiles unoptimized (-O0, a quarter of the CPU time of the Release build): what is checked is
-the package, not the speed of its code.
+compiles unoptimized (-O0, and GCC collects its garbage rarely): what is checked is the
+package, not the speed of its code.
 --isolated builds exactly as `pip install .` does: isolated, Release, in a temporary build folder.
 """
 import json
