@@ -103,7 +103,14 @@ Simulation::Simulation(const Robot& robot, const SimulationOptions& options)
       if (!seen) gravity_dofs_.push_back(dof);
     }
   }
-  snapshot_.state.resize(static_cast<std::size_t>(mj_stateSize(&m, mjSTATE_INTEGRATION)));
+  // time, qpos and qvel always lead (Snapshot::qpos, qvel); the other components only if present
+  snapshot_.spec = mjSTATE_TIME | mjSTATE_QPOS | mjSTATE_QVEL;
+  for (int i = 0; i < mjNSTATE; ++i) {
+    const int component = 1 << i;
+    if ((mjSTATE_INTEGRATION & component) != 0 && mj_stateSize(&m, component) > 0)
+      snapshot_.spec |= component;
+  }
+  snapshot_.state.resize(static_cast<std::size_t>(mj_stateSize(&m, snapshot_.spec)));
   snapshot_.nq = m.nq;
   after_reset();
 }

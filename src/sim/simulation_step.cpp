@@ -151,14 +151,14 @@ void Simulation::compensate_gravity() noexcept {
 }
 
 void Simulation::take_snapshot() noexcept {
-  mj_getState(&model(), data_.get(), snapshot_.state.data(), mjSTATE_INTEGRATION);
+  mj_getState(&model(), data_.get(), snapshot_.state.data(), snapshot_.spec);
 }
 
 void Simulation::restore_snapshot() noexcept {
   // MuJoCo may have reset the data after a bad value: put back the state of the step's start
   const mjModel& m = model();
   mjData* d = data_.get();
-  mj_setState(&m, d, snapshot_.state.data(), mjSTATE_INTEGRATION);
+  mj_setState(&m, d, snapshot_.state.data(), snapshot_.spec);
   const std::span<const mjtNum> positions_and_velocities(snapshot_.qpos(),
                                                          static_cast<std::size_t>(m.nq + m.nv));
   if (all_finite(positions_and_velocities)) mj_forward(&m, d);
@@ -262,7 +262,7 @@ KinematicStep Simulation::move(std::span<const double> qpos, double dt, Recorder
       step.rolled_back = true;
       step.geom_a = touch.first_geom_a;
       step.geom_b = touch.first_geom_b;
-      mj_setState(&m, d, snapshot_.state.data(), mjSTATE_INTEGRATION);
+      mj_setState(&m, d, snapshot_.state.data(), snapshot_.spec);
       mj_fwdPosition(&m, d);
       mj_sensorPos(&m, d);
       if (recorder != nullptr) {

@@ -196,9 +196,12 @@ class Simulation {
   };
   /// The whole integration state at the start of a physics step (mj_getState with
   /// mjSTATE_INTEGRATION: time, qpos, qvel, act, warm start, controls, applied forces, mocap,
-  /// eq_active, ...), for the recorder's rows and the rollback.
+  /// eq_active, ...), for the recorder's rows and the rollback. `spec` leaves out the
+  /// components the model has none of (no mocap body, no plugin, ...): the same values, at half
+  /// the cost of a snapshot per physics step.
   struct Snapshot {
     std::vector<mjtNum> state;
+    int spec = mjSTATE_INTEGRATION;
     int nq = 0;
     double time() const noexcept { return state[0]; }
     const mjtNum* qpos() const noexcept { return state.data() + 1; }  // after time
