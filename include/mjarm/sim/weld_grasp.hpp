@@ -35,9 +35,8 @@ struct WeldGraspOptions {
 /// `activate` instead reads X_12 = X_W1⁻¹·X_W2 from the current state (the body frames in
 /// data.xpos / data.xquat, which must be current: inside a control tick they are) and writes the
 /// anchor 0 (body2's origin), p_12 and q_12 (and clears [11], so `mj_setConst` keeps them),
-/// then switches the weld on: the constraint is
-/// satisfied exactly at that instant and the object does not jump. `release` switches it off:
-/// the object moves freely again. The weld's data goes into the simulation's own model copy
+/// then switches the weld on: the constraint is satisfied exactly at that instant and the object
+/// does not jump. `release` switches it off: the object moves freely again. The weld's data goes into the simulation's own model copy
 /// (the constructor asks for one: `Simulation::own_model()`), the switch into its data
 /// (`mjData::eq_active`). Both allocate nothing and never throw: a task calls them inside a
 /// control tick.
