@@ -111,6 +111,37 @@ TEST(Divergence, MujocoBadValueWarningIsCaught) {
   EXPECT_GT(std::abs(sim.data().qpos[0]), 1e-3);  // the last good state, not qpos0
 }
 
+// The same servo beside a free ball welded to the world, the weld active as compiled: MuJoCo's
+// reset on a bad value switches the weld back on and clears the applied forces; the rollback
+// puts back the state the step started from, inputs included (the snapshot holds every state
+// component the model has).
+TEST(Divergence, TheRollbackRestoresTheSwitchesAndTheAppliedForces) {
+  std::string xml = kStiffServo;
+  xml.replace(xml.find("  </worldbody>"), 0,
+              "    <body name=\"ball\" pos=\"1 0 0\"><freejoint/>"
+              "<geom size=\"0.05\" contype=\"0\" conaffinity=\"0\"/></body>\n");
+  xml.replace(xml.find("  <actuator>"), 0,
+              "  <equality><weld name=\"hold\" body1=\"ball\"/></equality>\n");
+  const Robot robot = Robot::from_string(xml);
+  const Chain chain(robot, "tip");
+  SimulationOptions options;
+  options.mode = SimulationMode::position;
+  options.max_acceleration = std::numeric_limits<double>::infinity();
+  Simulation sim(robot, options);
+  test::PositionTarget servo(chain);
+  sim.add_controller(servo);
+  const int hold = sim.equality("hold");
+  ASSERT_TRUE(sim.set_equality_active(hold, false));
+  const int ball = robot.body("ball");
+  sim.data().xfrc_applied[6 * ball + 2] = 0.25;  // a small push up, kept by the user
+  ConstantReferenceSource source(target(1e-6));
+  const RunResult run = sim.run(source, 5.0);
+  ASSERT_EQ(run.status, RunStatus::diverged) << run.message;
+  EXPECT_EQ(sim.data().eq_active[hold], 0);                 // not the compiled 1
+  EXPECT_EQ(sim.data().xfrc_applied[6 * ball + 2], 0.25);   // not cleared
+  EXPECT_EQ(sim.time(), run.fault.time);
+}
+
 TEST(Divergence, NanCommandStopsNamingControllerJointAndTime) {
   const Robot robot = Robot::bundled("planar2_torque");
   const Chain chain(robot, "tip");
