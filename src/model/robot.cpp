@@ -361,12 +361,13 @@ std::vector<std::string> Robot::bundled_names() {
   std::vector<std::string> names;
   for (std::filesystem::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec)) {
     std::error_code type_ec;
-    if (it->is_regular_file(type_ec) && it->path().extension() == ".xml")
+    if (it->is_regular_file(type_ec) && has_extension(it->path(), ".xml"))
       names.push_back(it->path().stem().string());
   }
   if (ec) throw Error(folder + " cannot be listed: " + ec.message());
   if (names.empty()) throw Error(folder + " holds no models (no .xml files)");
   std::sort(names.begin(), names.end());
+  names.erase(std::unique(names.begin(), names.end()), names.end());
   return names;
 }
 
@@ -380,7 +381,17 @@ Robot Robot::bundled(std::string_view name) {
     for (std::size_t i = 0; i < names.size(); ++i) message += (i ? ", " : "") + names[i];
     throw Error(message);
   }
-  return from_file(models_dir() / (std::string(name) + ".xml"));
+  // the file as the folder spells it: "NAME.xml", else the extension in another case
+  std::filesystem::path file = models_dir() / (std::string(name) + ".xml");
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(file, ec)) {
+    for (const auto& entry : std::filesystem::directory_iterator(models_dir(), ec))
+      if (std::error_code type_ec; entry.path().stem() == name &&
+                                   has_extension(entry.path(), ".xml") &&
+                                   entry.is_regular_file(type_ec))
+        file = entry.path();
+  }
+  return from_file(file);
 }
 
 Robot Robot::load(std::string_view name_or_path) {

@@ -14,6 +14,7 @@
 
 #include "mjarm/error.hpp"
 #include "mjarm/model/names.hpp"
+#include "mjarm/scene/scene.hpp"
 #include "support/error_message.hpp"
 #include "support/files.hpp"
 #include "support/test_models.hpp"
@@ -151,6 +152,23 @@ TEST_F(ModelsFolder, MissingOrEmptyFolderIsAnErrorNamingItAndTheVariable) {
       << none;
   ::setenv("MJARM_MODELS", (empty / "readme.txt").c_str(), 1);
   EXPECT_NE(error_of([] { Robot::bundled_names(); }).find("is not a folder"), std::string::npos);
+}
+
+// issue 29, smaller: a file's kind by its extension in any case ("ARM.XML" was no model)
+TEST_F(ModelsFolder, AModelFileIsFoundWhateverTheCaseOfItsExtension) {
+  const auto folder = test::scratch() / "upper_models";
+  std::filesystem::create_directories(folder);
+  std::ofstream(folder / "Arm.XML") << "<mujoco model=\"upper\"><worldbody><body><joint/>"
+                                       "<geom size=\"0.1\"/></body></worldbody></mujoco>";
+  std::ofstream(folder / "notes.xmlx") << "not a model";
+  ::setenv("MJARM_MODELS", folder.c_str(), 1);
+  EXPECT_EQ(Robot::bundled_names(), std::vector<std::string>{"Arm"});
+  EXPECT_EQ(Robot::bundled("Arm").name(), "upper");
+  EXPECT_EQ(Robot::load("Arm").nq(), 1);
+  // a scene takes it by its name too
+  Scene scene;
+  scene.add_robot(RobotSpec{"a", "Arm", {0, 0, 0}, {1, 0, 0, 0}, false});
+  EXPECT_EQ(scene.compile().nq(), 1);
 }
 
 TEST(Robot, FilesThatAreNotRegularOrTooDeepGiveClearErrors) {
