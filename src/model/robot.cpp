@@ -62,9 +62,7 @@ std::string root_element(std::string_view xml, const std::string& source) {
   if (doc.Parse(xml.data(), xml.size()) != tinyxml2::XML_SUCCESS) {
     throw Error(mjcf_detail::xml_parse_error(doc, source));
   }
-  const tinyxml2::XMLElement* root = doc.RootElement();
-  if (root == nullptr) throw Error("no root element in " + source);
-  return root->Name();
+  return mjcf_detail::single_root(doc, source).Name();
 }
 
 struct MemoryFsDeleter {

@@ -171,6 +171,29 @@ TEST_F(ModelsFolder, AModelFileIsFoundWhateverTheCaseOfItsExtension) {
   EXPECT_EQ(scene.compile().nq(), 1);
 }
 
+// issue 29, item 6 in XML: tinyxml2 reads a second root element and MuJoCo dropped it
+TEST(Robot, ASecondRootElementIsRefused) {
+  const std::string one = "<mujoco model=\"a\"><worldbody><geom size=\"0.1\"/></worldbody></mujoco>";
+  std::string message = error_of([&] { Robot::from_string(one + "\n<mujoco model=\"b\"/>"); });
+  EXPECT_NE(message.find("XML string line 2: a second root element <mujoco> (the first, <mujoco>, "
+                         "is at line 1); an XML file holds one"),
+            std::string::npos)
+      << message;
+  const auto dir = test::scratch() / "two_roots";
+  std::filesystem::create_directories(dir);
+  std::ofstream(dir / "parts.xml") << one << "\n\n<robot name=\"r\"/>\n";
+  std::ofstream(dir / "main.xml") << "<mujoco>\n  <include file=\"parts.xml\"/>\n</mujoco>\n";
+  message = error_of([&] { Robot::from_file(dir / "main.xml"); });
+  EXPECT_NE(message.find("'" + (dir / "parts.xml").string() +
+                         "' line 3: a second root element <robot>"),
+            std::string::npos)
+      << message;
+  std::ofstream(dir / "two.urdf") << "<robot name=\"r\"><link name=\"l\"/></robot>\n<robot name=\"s\"/>";
+  message = error_of([&] { Robot::from_file(dir / "two.urdf"); });
+  EXPECT_NE(message.find("two.urdf' line 2: a second root element <robot>"), std::string::npos)
+      << message;
+}
+
 TEST(Robot, FilesThatAreNotRegularOrTooDeepGiveClearErrors) {
   const std::string device = error_of([] { Robot::from_file("/dev/zero"); });
   EXPECT_NE(device.find("model file '/dev/zero' is a character device"), std::string::npos)
