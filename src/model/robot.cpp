@@ -20,6 +20,7 @@
 #include "mujoco_caller.hpp"
 #include "mujoco_loading.hpp"
 #include "urdf_assets.hpp"
+#include "urdf_names.hpp"
 
 namespace mjarm {
 namespace {
@@ -307,10 +308,13 @@ Robot Robot::from_file(const std::filesystem::path& path) {
   const std::string xml = read_user_file(path, "model file");
   const std::string source = "'" + path.string() + "'";
   if (root_element(xml, source) != "mujoco") {
-    // URDF: MuJoCo opens the meshes itself, after the same checks as MJCF assets
+    // URDF: MuJoCo skips names it does not know; it opens the meshes itself, after the same
+    // checks as MJCF assets
+    std::vector<std::string> warnings = check_urdf_names(xml, source);
     check_urdf_assets(xml, std::filesystem::absolute(path).parent_path(), source);
     Loaded loaded = load_from_disk(path);
-    return Robot(loaded.model, path.string(), std::move(loaded.warnings));
+    warnings.insert(warnings.end(), loaded.warnings.begin(), loaded.warnings.end());
+    return Robot(loaded.model, path.string(), std::move(warnings));
   }
   // every MJCF file loads staged (includes inlined and read through the checked reader, asset
   // paths checked and absolute), so MuJoCo's line numbers map back to the user's own files
@@ -325,8 +329,10 @@ Robot Robot::from_string(std::string_view xml, const std::filesystem::path& base
   const std::string root = root_element(xml, source);
   if (root != "mujoco") {
     // URDF and other formats MuJoCo reads go through unchanged
+    std::vector<std::string> warnings = check_urdf_names(xml, source);
     Loaded loaded = load_from_memory(std::string(xml), source);
-    return Robot(loaded.model, "<string>", std::move(loaded.warnings));
+    warnings.insert(warnings.end(), loaded.warnings.begin(), loaded.warnings.end());
+    return Robot(loaded.model, "<string>", std::move(warnings));
   }
   const std::filesystem::path base = base_dir.empty() ? std::filesystem::current_path() : base_dir;
   const StagedMjcf staged = stage_mjcf(xml, std::filesystem::absolute(base));
