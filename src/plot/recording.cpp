@@ -28,6 +28,12 @@ nlohmann::json read_summary(const fs::path& path) {
   return JsonDocument(read_user_file(path, "recording summary"), quoted(path)).root();
 }
 
+// a value as JSON text for a message, cut after 60 characters
+std::string shown(const nlohmann::json& value) {
+  const std::string text = value.dump();
+  return text.size() <= 60 ? text : text.substr(0, 60) + "…";
+}
+
 /// The value of @p key, @p fallback when it is absent or null.
 /// @throws Error naming @p summary and the key when it holds a value of another type (a gear
 ///         of "2" would otherwise scale the torques by 1 without a word).
@@ -39,7 +45,7 @@ T field_or(const nlohmann::json& j, const char* key, T fallback, const fs::path&
     return it->get<T>();
   } catch (const nlohmann::json::exception&) {
     throw Error(quoted(summary) + ": key '" + key + "' holds " + it->type_name() + " " +
-                it->dump() + ", expected " +
+                shown(*it) + ", expected " +
                 (std::is_same_v<T, std::string> ? "a string" : "a number"));
   }
 }
@@ -108,7 +114,7 @@ Recording Recording::load(const fs::path& directory) {
       if (range != a.end() && !range->is_null()) {
         if (!range->is_array() || range->size() != 2 || !(*range)[0].is_number() ||
             !(*range)[1].is_number())
-          throw Error(quoted(summary_path) + ": key 'force_range' holds " + range->dump() +
+          throw Error(quoted(summary_path) + ": key 'force_range' holds " + shown(*range) +
                       ", expected [lower, upper] in N or N·m");
         actuator.force_range = std::make_pair((*range)[0].get<double>(), (*range)[1].get<double>());
       }
