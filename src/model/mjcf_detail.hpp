@@ -14,6 +14,7 @@
 
 namespace tinyxml2 {
 class XMLDocument;
+class XMLElement;
 }
 
 namespace mjarm::mjcf_detail {
@@ -45,6 +46,11 @@ std::string label(const XmlNode& n);
 /// "malformed XML in <source> (line N): <tinyxml2's error>", or for a tree deeper than tinyxml2
 /// reads, what its depth limit (TINYXML2_MAX_ELEMENT_DEPTH) is.
 std::string xml_parse_error(const tinyxml2::XMLDocument& doc, const std::string& source);
+/// The root element of a parsed document.
+/// @throws Error naming @p source when there is none, or a second one (tinyxml2 reads it; MuJoCo
+///         and mjarm would drop it without a word).
+const tinyxml2::XMLElement& single_root(const tinyxml2::XMLDocument& doc,
+                                        const std::string& source);
 /// Parses an XML document into XmlNode form; throws mjarm::Error with tinyxml2's message and line.
 XmlNode parse_document(std::string_view text, std::shared_ptr<const std::filesystem::path> file);
 /// Serializes `root` as an indented XML document, one element per line; when `lines` is given,

@@ -135,15 +135,30 @@ std::string xml_parse_error(const tinyxml2::XMLDocument& doc, const std::string&
   return msg.str();
 }
 
+const tinyxml2::XMLElement& single_root(const tinyxml2::XMLDocument& doc,
+                                        const std::string& source) {
+  const tinyxml2::XMLElement* root = doc.RootElement();
+  if (root == nullptr) throw Error(source + " has no root element");
+  if (const tinyxml2::XMLElement* second = root->NextSiblingElement()) {
+    throw Error(source + " line " + std::to_string(second->GetLineNum()) +
+                ": a second root element <" + second->Name() + "> (the first, <" + root->Name() +
+                ">, is at line " + std::to_string(root->GetLineNum()) +
+                "); an XML file holds one: remove the second or put it in a file of its own");
+  }
+  return *root;
+}
+
 XmlNode parse_document(std::string_view text, std::shared_ptr<const std::filesystem::path> file) {
   tinyxml2::XMLDocument doc;
   const std::string source = file ? "'" + file->string() + "'" : std::string("<input>");
   if (doc.Parse(text.data(), text.size()) != tinyxml2::XML_SUCCESS) {
     throw Error("MJCF: " + xml_parse_error(doc, source));
   }
-  const tinyxml2::XMLElement* root = doc.RootElement();
-  if (!root) throw Error("MJCF: " + source + " has no root element");
-  return convert(*root, file);
+  try {
+    return convert(single_root(doc, source), file);
+  } catch (const Error& e) {
+    throw Error(std::string("MJCF: ") + e.what());
+  }
 }
 
 std::string write_document(const XmlNode& root, std::vector<MjcfSourceLine>* lines) {

@@ -135,6 +135,17 @@ std::vector<std::string> closest_names(std::string_view name,
   return result;
 }
 
+std::string unknown_name_message(std::string_view kind, std::string_view word,
+                                 const std::vector<std::string>& known, std::string_view where) {
+  std::string message = "unknown " + std::string(kind) + " '" + std::string(word) + "'";
+  if (!where.empty()) message += " in " + std::string(where);
+  const auto close = closest_names(word, known, 1);
+  if (!close.empty()) message += "; closest: " + close.front();
+  message += "; " + std::string(kind) + "s: ";
+  for (std::size_t i = 0; i < known.size(); ++i) message += (i ? ", " : "") + known[i];
+  return message;
+}
+
 std::string model_name(const mjModel& m) {
   // the model name is stored at the start of the names buffer
   return m.nnames > 0 && m.names[0] != '\0' ? std::string(m.names) : std::string("unnamed");

@@ -20,6 +20,7 @@
 #include "mujoco_caller.hpp"
 #include "mujoco_loading.hpp"
 #include "urdf_assets.hpp"
+#include "urdf_names.hpp"
 
 namespace mjarm {
 namespace {
@@ -62,9 +63,7 @@ std::string root_element(std::string_view xml, const std::string& source) {
   if (doc.Parse(xml.data(), xml.size()) != tinyxml2::XML_SUCCESS) {
     throw Error(mjcf_detail::xml_parse_error(doc, source));
   }
-  const tinyxml2::XMLElement* root = doc.RootElement();
-  if (root == nullptr) throw Error("no root element in " + source);
-  return root->Name();
+  return mjcf_detail::single_root(doc, source).Name();
 }
 
 struct MemoryFsDeleter {
@@ -309,10 +308,13 @@ Robot Robot::from_file(const std::filesystem::path& path) {
   const std::string xml = read_user_file(path, "model file");
   const std::string source = "'" + path.string() + "'";
   if (root_element(xml, source) != "mujoco") {
-    // URDF: MuJoCo opens the meshes itself, after the same checks as MJCF assets
+    // URDF: MuJoCo skips names it does not know; it opens the meshes itself, after the same
+    // checks as MJCF assets
+    std::vector<std::string> warnings = check_urdf_names(xml, source);
     check_urdf_assets(xml, std::filesystem::absolute(path).parent_path(), source);
     Loaded loaded = load_from_disk(path);
-    return Robot(loaded.model, path.string(), std::move(loaded.warnings));
+    warnings.insert(warnings.end(), loaded.warnings.begin(), loaded.warnings.end());
+    return Robot(loaded.model, path.string(), std::move(warnings));
   }
   // every MJCF file loads staged (includes inlined and read through the checked reader, asset
   // paths checked and absolute), so MuJoCo's line numbers map back to the user's own files
@@ -327,8 +329,10 @@ Robot Robot::from_string(std::string_view xml, const std::filesystem::path& base
   const std::string root = root_element(xml, source);
   if (root != "mujoco") {
     // URDF and other formats MuJoCo reads go through unchanged
+    std::vector<std::string> warnings = check_urdf_names(xml, source);
     Loaded loaded = load_from_memory(std::string(xml), source);
-    return Robot(loaded.model, "<string>", std::move(loaded.warnings));
+    warnings.insert(warnings.end(), loaded.warnings.begin(), loaded.warnings.end());
+    return Robot(loaded.model, "<string>", std::move(warnings));
   }
   const std::filesystem::path base = base_dir.empty() ? std::filesystem::current_path() : base_dir;
   const StagedMjcf staged = stage_mjcf(xml, std::filesystem::absolute(base));
@@ -361,12 +365,13 @@ std::vector<std::string> Robot::bundled_names() {
   std::vector<std::string> names;
   for (std::filesystem::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec)) {
     std::error_code type_ec;
-    if (it->is_regular_file(type_ec) && it->path().extension() == ".xml")
+    if (it->is_regular_file(type_ec) && has_extension(it->path(), ".xml"))
       names.push_back(it->path().stem().string());
   }
   if (ec) throw Error(folder + " cannot be listed: " + ec.message());
   if (names.empty()) throw Error(folder + " holds no models (no .xml files)");
   std::sort(names.begin(), names.end());
+  names.erase(std::unique(names.begin(), names.end()), names.end());
   return names;
 }
 
@@ -380,7 +385,17 @@ Robot Robot::bundled(std::string_view name) {
     for (std::size_t i = 0; i < names.size(); ++i) message += (i ? ", " : "") + names[i];
     throw Error(message);
   }
-  return from_file(models_dir() / (std::string(name) + ".xml"));
+  // the file as the folder spells it: "NAME.xml", else the extension in another case
+  std::filesystem::path file = models_dir() / (std::string(name) + ".xml");
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(file, ec)) {
+    for (const auto& entry : std::filesystem::directory_iterator(models_dir(), ec))
+      if (std::error_code type_ec; entry.path().stem() == name &&
+                                   has_extension(entry.path(), ".xml") &&
+                                   entry.is_regular_file(type_ec))
+        file = entry.path();
+  }
+  return from_file(file);
 }
 
 Robot Robot::load(std::string_view name_or_path) {

@@ -4,6 +4,8 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <algorithm>
+#include <cctype>
 #include <cerrno>
 #include <cstring>
 
@@ -67,6 +69,15 @@ struct Fd {
 };
 
 }  // namespace
+
+bool has_extension(const std::filesystem::path& path, std::string_view extension) noexcept {
+  const std::string ext = path.extension().string();
+  return ext.size() == extension.size() &&
+         std::equal(ext.begin(), ext.end(), extension.begin(), [](char a, char b) {
+           return std::tolower(static_cast<unsigned char>(a)) ==
+                  std::tolower(static_cast<unsigned char>(b));
+         });
+}
 
 void check_user_file(const std::filesystem::path& path, std::string_view what,
                      std::uintmax_t max_bytes) {

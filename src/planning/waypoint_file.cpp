@@ -1,12 +1,15 @@
 #include "mjarm/planning/waypoint_file.hpp"
 
+#include <algorithm>
 #include <cctype>
 #include <cmath>
 #include <cstdlib>
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "json_document.hpp"
 #include "mjarm/error.hpp"
+#include "mjarm/model/names.hpp"
 #include "mjarm/model/user_file.hpp"
 #include "quoted_path.hpp"
 
@@ -35,6 +38,30 @@ Eigen::Matrix<double, N, 1> json_numbers(const nlohmann::json& value, const std:
   return out;
 }
 
+/// The number of columns a CSV header names: x, y, z and optionally qw, qx, qy, qz, in that
+/// order (any case). A header in another order would mean other numbers than the rows give.
+std::size_t checked_header(const std::string& line, const std::string& where) {
+  static const std::vector<std::string> kColumns{"x", "y", "z", "qw", "qx", "qy", "qz"};
+  std::vector<std::string> names;
+  std::istringstream cells(line);
+  for (std::string cell; std::getline(cells, cell, ',');) {
+    const std::size_t begin = cell.find_first_not_of(" \t");
+    const std::size_t end = cell.find_last_not_of(" \t");
+    std::string column = begin == std::string::npos ? "" : cell.substr(begin, end - begin + 1);
+    for (char& c : column) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    if (std::find(kColumns.begin(), kColumns.end(), column) == kColumns.end())
+      throw Error(where + ": " + unknown_name_message("column", column, kColumns, "the header"));
+    names.push_back(column);
+  }
+  std::string given;
+  for (std::size_t i = 0; i < names.size(); ++i) given += (i ? ", " : "") + names[i];
+  if ((names.size() != 3 && names.size() != 7) ||
+      !std::equal(names.begin(), names.end(), kColumns.begin()))
+    throw Error(where + ": the header names the columns " + given +
+                "; expected x, y, z or x, y, z, qw, qx, qy, qz, in that order");
+  return names.size();
+}
+
 void require_waypoints(const WaypointPath& path, std::string_view source) {
   if (path.waypoints.empty())
     throw Error("waypoints " + std::string(source) + ": the file holds no waypoint");
@@ -61,35 +88,41 @@ std::vector<Pose> WaypointPath::poses(const Eigen::Matrix3d& R_default) const {
 
 WaypointPath parse_waypoints_json(std::string_view text, std::string_view source) {
   const std::string name = "waypoints " + std::string(source);
-  nlohmann::json doc;
-  try {
-    doc = nlohmann::json::parse(text);
-  } catch (const nlohmann::json::exception& e) {
-    throw Error(name + ": not valid JSON (" + e.what() + ")");
-  }
+  const JsonDocument json(text, name);
+  const nlohmann::json& doc = json.root();
   if (!doc.is_object() || !doc.contains("waypoints"))
     throw Error(name + ": expected an object with \"waypoints\": [{\"position\": [x, y, z]}, …]");
+  // a misspelt key would leave its value unused without a word ("quaternoin": the waypoint
+  // then takes the path's orientation)
+  json.check_keys("", {"frame", "orientation", "waypoints"}, "the file");
   WaypointPath path;
   if (doc.contains("frame")) {
-    if (!doc["frame"].is_string()) throw Error(name + ": \"frame\" must be a string");
+    if (!doc["frame"].is_string())
+      throw Error(json.where("", "frame") + ": \"frame\" must be a string");
     path.frame = doc["frame"].get<std::string>();
   }
-  if (doc.contains("orientation"))
-    path.orientation =
-        checked_quaternion(json_numbers<4>(doc["orientation"], name + ": \"orientation\""),
-                           name + ": \"orientation\"");
+  if (doc.contains("orientation")) {
+    const std::string where = json.where("", "orientation") + ": \"orientation\"";
+    path.orientation = checked_quaternion(json_numbers<4>(doc["orientation"], where), where);
+  }
   const nlohmann::json& list = doc["waypoints"];
-  if (!list.is_array()) throw Error(name + ": \"waypoints\" must be an array");
+  if (!list.is_array())
+    throw Error(json.where("", "waypoints") + ": \"waypoints\" must be an array");
   for (std::size_t k = 0; k < list.size(); ++k) {
-    const std::string where = name + ": waypoint " + std::to_string(k);
+    const std::string pointer = "/waypoints/" + std::to_string(k);
+    const std::string waypoint = "waypoint " + std::to_string(k);
     const nlohmann::json& w = list[k];
     if (!w.is_object() || !w.contains("position"))
-      throw Error(where + " must be an object with \"position\": [x, y, z]");
+      throw Error(name + ": " + waypoint + " must be an object with \"position\": [x, y, z]");
+    json.check_keys(pointer, {"position", "quaternion"}, waypoint);
     WaypointSpec spec;
-    spec.position = json_numbers<3>(w["position"], where + " \"position\"");
-    if (w.contains("quaternion"))
+    spec.position = json_numbers<3>(
+        w["position"], json.where(pointer, "position") + ": " + waypoint + " \"position\"");
+    if (w.contains("quaternion")) {
+      const std::string where = json.where(pointer, "quaternion") + ": " + waypoint;
       spec.quaternion =
           checked_quaternion(json_numbers<4>(w["quaternion"], where + " \"quaternion\""), where);
+    }
     path.waypoints.push_back(spec);
   }
   require_waypoints(path, source);
@@ -103,18 +136,22 @@ WaypointPath parse_waypoints_csv(std::string_view text, std::string_view source)
   std::string line;
   int number = 0;
   bool first_row = true;
+  int header_line = 0;
+  std::size_t header_columns = 0;  // 0: no header
   while (std::getline(in, line)) {
     ++number;
     if (!line.empty() && line.back() == '\r') line.pop_back();
     const std::size_t start = line.find_first_not_of(" \t");
     if (start == std::string::npos || line[start] == '#') continue;
+    const std::string where = name + " line " + std::to_string(number);
     if (first_row && std::isalpha(static_cast<unsigned char>(line[start])) &&
         line.compare(start, 3, "nan") != 0 && line.compare(start, 3, "inf") != 0) {
-      first_row = false;  // a header
+      first_row = false;
+      header_line = number;
+      header_columns = checked_header(line, where);
       continue;
     }
     first_row = false;
-    const std::string where = name + " line " + std::to_string(number);
     std::vector<double> values;
     std::istringstream cells(line);
     std::string cell;
@@ -127,6 +164,10 @@ WaypointPath parse_waypoints_csv(std::string_view text, std::string_view source)
       if (!std::isfinite(v)) throw Error(where + ": '" + cell + "' is not a finite number");
       values.push_back(v);
     }
+    if (header_columns != 0 && values.size() != header_columns)
+      throw Error(where + ": " + std::to_string(values.size()) + " values, but the header (line " +
+                  std::to_string(header_line) + ") names " + std::to_string(header_columns) +
+                  " columns");
     if (values.size() != 3 && values.size() != 7)
       throw Error(where + ": expected 3 columns (x, y, z) or 7 (x, y, z, qw, qx, qy, qz), got " +
                   std::to_string(values.size()));
@@ -145,7 +186,7 @@ WaypointPath load_waypoints(const std::filesystem::path& path) {
   // the one checked reader of user files: regular files only, bounded, never blocking
   const std::string text = read_user_file(path, "waypoint file");
   const std::string source = quoted(path);
-  if (path.extension() == ".json") return parse_waypoints_json(text, source);
+  if (has_extension(path, ".json")) return parse_waypoints_json(text, source);
   return parse_waypoints_csv(text, source);
 }
 

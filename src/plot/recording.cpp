@@ -3,7 +3,9 @@
 #include <algorithm>
 #include <cerrno>
 #include <nlohmann/json.hpp>
+#include <type_traits>
 
+#include "json_document.hpp"
 #include "mjarm/error.hpp"
 #include "mjarm/model/user_file.hpp"
 #include "quoted_path.hpp"
@@ -21,22 +23,30 @@ bool has_partial_folder(const fs::path& directory) {
 }
 
 nlohmann::json read_summary(const fs::path& path) {
-  const std::string text = read_user_file(path, "recording summary");
-  try {
-    return nlohmann::json::parse(text);
-  } catch (const nlohmann::json::exception& e) {
-    throw Error(quoted(path) + " is not valid JSON: " + e.what());
-  }
+  // strict JSON, no key twice (the summary is mjarm's own; the keys plot does not use are left
+  // alone: a newer run may write more)
+  return JsonDocument(read_user_file(path, "recording summary"), quoted(path)).root();
 }
 
+// a value as JSON text for a message, cut after 60 characters
+std::string shown(const nlohmann::json& value) {
+  const std::string text = value.dump();
+  return text.size() <= 60 ? text : text.substr(0, 60) + "…";
+}
+
+/// The value of @p key, @p fallback when it is absent or null.
+/// @throws Error naming @p summary and the key when it holds a value of another type (a gear
+///         of "2" would otherwise scale the torques by 1 without a word).
 template <typename T>
-T field_or(const nlohmann::json& j, const char* key, T fallback) {
+T field_or(const nlohmann::json& j, const char* key, T fallback, const fs::path& summary) {
   const auto it = j.find(key);
   if (it == j.end() || it->is_null()) return fallback;
   try {
     return it->get<T>();
   } catch (const nlohmann::json::exception&) {
-    return fallback;
+    throw Error(quoted(summary) + ": key '" + key + "' holds " + it->type_name() + " " +
+                shown(*it) + ", expected " +
+                (std::is_same_v<T, std::string> ? "a string" : "a number"));
   }
 }
 
@@ -80,30 +90,34 @@ Recording Recording::load(const fs::path& directory) {
   std::stable_sort(r.events_.begin(), r.events_.end(),
                    [](const RecordedEvent& a, const RecordedEvent& b) { return a.t < b.t; });
 
-  const nlohmann::json summary = read_summary(directory / "summary.json");
-  if (!summary.is_object())
-    throw Error(quoted(directory / "summary.json") + " is not a JSON object");
-  r.model_ = field_or<std::string>(summary, "model", "");
-  r.status_ = field_or<std::string>(summary, "status", "");
-  r.frame_ = field_or<std::string>(summary, "frame", "");
+  const fs::path summary_path = directory / "summary.json";
+  const nlohmann::json summary = read_summary(summary_path);
+  if (!summary.is_object()) throw Error(quoted(summary_path) + " is not a JSON object");
+  r.model_ = field_or<std::string>(summary, "model", "", summary_path);
+  r.status_ = field_or<std::string>(summary, "status", "", summary_path);
+  r.frame_ = field_or<std::string>(summary, "frame", "", summary_path);
   const std::vector<double> task_t = r.task_.numbers("t");
-  r.start_time_ = field_or<double>(summary, "start_time", task_t.front());
-  r.end_time_ = field_or<double>(summary, "end_time", task_t.back());
+  r.start_time_ = field_or<double>(summary, "start_time", task_t.front(), summary_path);
+  r.end_time_ = field_or<double>(summary, "end_time", task_t.back(), summary_path);
   const auto controllers = summary.find("controllers");
   if (controllers != summary.end() && controllers->is_array())
     for (const nlohmann::json& c : *controllers)
-      r.controllers_.push_back(field_or<std::string>(c, "name", "?"));
+      r.controllers_.push_back(field_or<std::string>(c, "name", "?", summary_path));
   const auto actuators = summary.find("actuators");
   if (actuators != summary.end() && actuators->is_array()) {
     for (const nlohmann::json& a : *actuators) {
       RecordedActuator actuator;
-      actuator.name = field_or<std::string>(a, "name", "");
-      actuator.joint = field_or<std::string>(a, "joint", "");
-      actuator.gear = field_or<double>(a, "gear", 1.0);
+      actuator.name = field_or<std::string>(a, "name", "", summary_path);
+      actuator.joint = field_or<std::string>(a, "joint", "", summary_path);
+      actuator.gear = field_or<double>(a, "gear", 1.0, summary_path);
       const auto range = a.find("force_range");
-      if (range != a.end() && range->is_array() && range->size() == 2 && (*range)[0].is_number() &&
-          (*range)[1].is_number())
+      if (range != a.end() && !range->is_null()) {
+        if (!range->is_array() || range->size() != 2 || !(*range)[0].is_number() ||
+            !(*range)[1].is_number())
+          throw Error(quoted(summary_path) + ": key 'force_range' holds " + shown(*range) +
+                      ", expected [lower, upper] in N or N·m");
         actuator.force_range = std::make_pair((*range)[0].get<double>(), (*range)[1].get<double>());
+      }
       r.actuators_.push_back(std::move(actuator));
     }
   }

@@ -11,6 +11,7 @@
 #include "mjarm/error.hpp"
 #include "mjarm/model/mjcf_spec.hpp"
 #include "mjarm/model/names.hpp"
+#include "mjarm/model/user_file.hpp"
 #include "scene_parts.hpp"
 #include "spec_attributes.hpp"
 
@@ -77,10 +78,11 @@ std::vector<std::string> xml_stems(const fs::path& dir) {
   std::vector<std::string> names;
   std::error_code ec;
   for (const auto& entry : fs::directory_iterator(dir, ec)) {
-    if (entry.is_regular_file() && entry.path().extension() == ".xml")
+    if (entry.is_regular_file() && has_extension(entry.path(), ".xml"))
       names.push_back(entry.path().stem().string());
   }
   std::sort(names.begin(), names.end());
+  names.erase(std::unique(names.begin(), names.end()), names.end());
   return names;
 }
 
@@ -90,6 +92,12 @@ fs::path resolve_model(const std::string& model, const fs::path& dir, const char
   const fs::path file = dir / (model + ".xml");
   std::error_code ec;
   if (fs::is_regular_file(file, ec)) return file;
+  // the extension in another case
+  for (const auto& entry : fs::directory_iterator(dir, ec))
+    if (std::error_code type_ec; entry.path().stem() == model &&
+                                 has_extension(entry.path(), ".xml") &&
+                                 entry.is_regular_file(type_ec))
+      return entry.path();
   const auto names = xml_stems(dir);
   std::string message = "unknown " + std::string(what) + " '" + model + "'";
   const auto close = closest_names(model, names, 3);

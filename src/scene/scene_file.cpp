@@ -5,6 +5,7 @@
 
 #include <map>
 
+#include "frame_check.hpp"
 #include "mjarm/error.hpp"
 #include "mjarm/model/names.hpp"
 #include "mjarm/model/user_file.hpp"
@@ -24,14 +25,8 @@ class Fields {
     if (!node.IsMap()) fail(node, what_ + " must be a mapping of keys to values");
     for (const auto& entry : node) {
       const std::string key = entry.first.Scalar();
-      if (std::find(known.begin(), known.end(), key) == known.end()) {
-        std::string message = "unknown key '" + key + "' in " + what_;
-        const auto close = closest_names(key, known, 1);
-        if (!close.empty()) message += "; closest: " + close.front();
-        std::string all;
-        for (std::size_t i = 0; i < known.size(); ++i) all += (i ? ", " : "") + known[i];
-        fail(entry.first, message + "; keys: " + all);
-      }
+      if (std::find(known.begin(), known.end(), key) == known.end())
+        fail(entry.first, unknown_name_message("key", key, known, what_));
       if (!values_.emplace(key, entry.second).second)
         fail(entry.first, "key '" + key + "' appears twice in " + what_);
     }
@@ -193,14 +188,16 @@ void read_arena(Scene& scene, const Fields& top, const std::string& source) {
 }  // namespace
 
 bool is_scene_file(const fs::path& path) {
-  const std::string ext = path.extension().string();
-  return ext == ".yaml" || ext == ".yml" || ext == ".json";
+  return has_extension(path, ".yaml") || has_extension(path, ".yml") ||
+         has_extension(path, ".json");
 }
 
 Scene parse_scene(std::string_view text, const fs::path& base_dir, const std::string& source) {
-  YAML::Node doc;
+  std::vector<YAML::Node> documents;
   try {
-    doc = YAML::Load(std::string(text));
+    // every document: a second one would otherwise be dropped without a word
+    for (YAML::Node& d : YAML::LoadAll(std::string(text)))
+      if (!d.IsNull()) documents.push_back(std::move(d));
   } catch (const YAML::DeepRecursion& e) {
     // yaml-cpp's own message for this is "bad file"
     throw Error(source + ":" + std::to_string(e.mark.line + 1) + ": nested more than " +
@@ -210,6 +207,15 @@ Scene parse_scene(std::string_view text, const fs::path& base_dir, const std::st
     throw Error(source + ":" + std::to_string(e.mark.line + 1) +
                 ": not valid YAML or JSON: " + e.msg);
   }
+  const auto line_of = [](const YAML::Node& n) {
+    return n.Mark().is_null() ? std::string("?") : std::to_string(n.Mark().line + 1);
+  };
+  if (documents.size() > 1)
+    throw Error(
+        source + ":" + line_of(documents[1]) +
+        ": a second document starts here (the first at line " + line_of(documents[0]) +
+        "); a scene file holds one scene: remove the second or put it in a file of its own");
+  const YAML::Node doc = documents.empty() ? YAML::Node() : documents.front();
   if (!doc.IsMap())
     throw Error(source + ": a scene file must be a mapping (name, arena, robots, ...)");
   const Fields top(doc, "the scene",
@@ -276,7 +282,17 @@ Scene parse_scene(std::string_view text, const fs::path& base_dir, const std::st
     spec.name = f.text("name");
     f.read("body", spec.body);
     f.read("pos", spec.pos);
-    f.read("xyaxes", spec.xyaxes);
+    if (f.has("xyaxes")) {
+      if (f.has("quat"))
+        f.fail(f.at("quat"), "camera '" + spec.name + "' has both 'xyaxes' and 'quat': give one");
+      f.read("xyaxes", spec.xyaxes);
+      // given, all zero is degenerate (the API reads all zero as "use quat")
+      try {
+        scene_detail::check_orientation("xyaxes", spec.xyaxes, "camera '" + spec.name + "'");
+      } catch (const Error& e) {
+        f.fail(f.at("xyaxes"), e.what());
+      }
+    }
     f.read("quat", spec.quat);
     f.read("fovy", spec.fovy);
     f.read("target", spec.target);
@@ -315,8 +331,22 @@ Scene parse_scene(std::string_view text, const fs::path& base_dir, const std::st
     const std::string element_name = f.text("name");
     const YAML::Node& set = f.at("set");
     if (!set.IsMap()) f.fail(set, "key 'set' expects a mapping of attributes to values");
+    std::vector<std::string> seen;
+    std::string orientation;  // MJCF gives an element one orientation
     for (const auto& entry : set) {
       const std::string attr = entry.first.Scalar();
+      if (std::find(seen.begin(), seen.end(), attr) != seen.end())
+        f.fail(entry.first,
+               "attribute '" + attr + "' appears twice in edit #" + std::to_string(i + 1));
+      seen.push_back(attr);
+      if (attr == "quat" || attr == "axisangle" || attr == "xyaxes" || attr == "zaxis" ||
+          attr == "euler") {
+        if (!orientation.empty())
+          f.fail(entry.first, "edit #" + std::to_string(i + 1) + " gives " + kind + " '" +
+                                  element_name + "' two orientations, '" + orientation + "' and '" +
+                                  attr + "': give one");
+        orientation = attr;
+      }
       if (entry.second.IsSequence()) {
         std::vector<double> values;
         for (const auto& v : entry.second) {

@@ -1,8 +1,10 @@
 #include "mjarm/scene/scene_spec.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <span>
 
+#include "frame_check.hpp"
 #include "mjarm/error.hpp"
 #include "mjarm/model/names.hpp"
 
@@ -43,9 +45,7 @@ void check_finite(std::span<const double> v, const std::string& what) {
 }
 
 void check_quat(const std::array<double, 4>& q, const std::string& what) {
-  check_finite(q, what);
-  const double norm = std::sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3]);
-  if (norm < 1e-9) throw Error(what + " is a zero quaternion; expected (w, x, y, z) of norm 1");
+  scene_detail::check_orientation("quat", q, what);
 }
 
 void check_rgba(const std::array<double, 4>& rgba, const std::string& what) {
@@ -89,7 +89,7 @@ void validate(const RobotSpec& spec) {
     throw Error("robot '" + spec.name + "': a robot name may not contain '/'");
   if (spec.model.empty()) throw Error("robot '" + spec.name + "' needs a model (name or file)");
   check_finite(spec.pos, "robot '" + spec.name + "' pos");
-  check_quat(spec.quat, "robot '" + spec.name + "' quat");
+  check_quat(spec.quat, "robot '" + spec.name + "'");
 }
 
 void validate(const GripperSpec& spec) {
@@ -107,7 +107,7 @@ void validate(const ObjectSpec& spec) {
   check_finite(spec.size, what + " size");
   check_finite(spec.pos, what + " pos");
   check_finite(spec.friction, what + " friction");
-  check_quat(spec.quat, what + " quat");
+  check_quat(spec.quat, what);
   check_rgba(spec.rgba, what);
   std::size_t expected = 0;
   switch (spec.shape) {
@@ -155,7 +155,7 @@ void validate(const CompoundFixtureSpec& spec) {
   check_name(spec.name, "fixture");
   const std::string what = "fixture '" + spec.name + "'";
   check_finite(spec.pos, what + " pos");
-  check_quat(spec.quat, what + " quat");
+  check_quat(spec.quat, what);
   if (spec.pieces.empty()) throw Error(what + " has no pieces");
   for (std::size_t i = 0; i < spec.pieces.size(); ++i) {
     const ObjectSpec& piece = spec.pieces[i];
@@ -174,8 +174,13 @@ void validate(const SceneCameraSpec& spec) {
   check_name(spec.name, "camera");
   const std::string what = "camera '" + spec.name + "'";
   check_finite(spec.pos, what + " pos");
-  check_finite(spec.xyaxes, what + " xyaxes");
-  check_quat(spec.quat, what + " quat");
+  check_quat(spec.quat, what);
+  // all zero: not given (the quaternion holds the orientation)
+  if (std::any_of(spec.xyaxes.begin(), spec.xyaxes.end(), [](double v) { return v != 0.0; })) {
+    scene_detail::check_orientation("xyaxes", spec.xyaxes, what);
+    if (spec.quat != std::array<double, 4>{1.0, 0.0, 0.0, 0.0})
+      throw Error(what + " has both xyaxes and a quat other than (1, 0, 0, 0): give one");
+  }
   if (!std::isfinite(spec.fovy) || spec.fovy <= 0.0 || spec.fovy >= 180.0)
     throw Error(what + " fovy must lie in (0, 180) degrees, got " + std::to_string(spec.fovy));
 }
@@ -184,7 +189,7 @@ void validate(const SiteSpec& spec) {
   check_name(spec.name, "site");
   const std::string what = "site '" + spec.name + "'";
   check_finite(spec.pos, what + " pos");
-  check_quat(spec.quat, what + " quat");
+  check_quat(spec.quat, what);
   check_rgba(spec.rgba, what);
   if (!std::isfinite(spec.size) || spec.size <= 0.0)
     throw Error(what + " size must be positive, got " + std::to_string(spec.size));

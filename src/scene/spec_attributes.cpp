@@ -12,6 +12,7 @@
 #include <type_traits>
 #include <vector>
 
+#include "frame_check.hpp"
 #include "mjarm/error.hpp"
 #include "mjarm/model/names.hpp"
 
@@ -508,6 +509,8 @@ void write(mjsElement& element, std::string_view attribute, const Input& in,
       if (v.size() != static_cast<std::size_t>(o.count))
         throw Error(what + ": " + std::string(attribute) + " expects " + std::to_string(o.count) +
                     " numbers, got " + std::to_string(v.size()));
+      // MuJoCo would keep a zero quat as it is and refuse a zero axis naming no attribute
+      check_orientation(o.name, v, what);
       const Field values{o.name, FieldKind::real, o.count,
                          o.type == mjORIENTATION_QUAT ? find_field(table.fields, "quat")->offset
                                                       : alt->offset + o.offset,

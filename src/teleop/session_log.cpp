@@ -8,6 +8,7 @@
 
 #include "mjarm/error.hpp"
 #include "mjarm/file_writer.hpp"
+#include "mjarm/model/names.hpp"
 #include "mjarm/model/user_file.hpp"
 #include "teleop_model.hpp"
 
@@ -44,7 +45,8 @@ SimulationMode parse_mode(const std::string& text, const std::string& where) {
   for (int k = 0; k < 3; ++k) {
     if (text == to_string(static_cast<SimulationMode>(k))) return static_cast<SimulationMode>(k);
   }
-  throw Error(where + ": unknown mode '" + text + "' (expected kinematic, position or torque)");
+  throw Error(where + ": " +
+              unknown_name_message("mode", text, {"kinematic", "position", "torque"}));
 }
 
 std::string task_text(const HandTask& t) {
@@ -294,8 +296,8 @@ SessionLog read_session_log(const std::filesystem::path& path) {
     } else if (kind == "reset") {
       e.kind = SessionEvent::Kind::reset;
     } else {
-      throw Error(r.where() + ": unknown event '" + kind +
-                  "' (expected targets, mode, task or reset)");
+      throw Error(r.where() + ": " +
+                  unknown_name_message("event", kind, {"targets", "mode", "task", "reset"}));
     }
     r.done();
     log.events.push_back(std::move(e));
@@ -308,6 +310,13 @@ SessionLog read_session_log(const std::filesystem::path& path) {
   r.done();
   if (!log.events.empty() && log.events.back().tick > log.ticks)
     throw Error(r.where() + ": an event comes after the last tick");
+  // the end line ends the file: records after it would be dropped without a word
+  while (std::getline(lines, line)) {
+    ++r.line;
+    if (line.find_first_not_of(" \t\r") != std::string::npos)
+      throw Error(r.where() + ": '" + line.substr(0, 40) + (line.size() > 40 ? "…" : "") +
+                  "' after the end line; the end line is the file's last record");
+  }
   return log;
 }
 

@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "mjarm/error.hpp"
+#include "mjarm/model/names.hpp"
 #include "mjarm/model/user_file.hpp"
 #include "mjarm/teleop/viewer_panel.hpp"
 
@@ -169,7 +170,7 @@ ViewerScript ViewerScript::parse(std::string_view text, std::string_view source)
     } else if (verb == "drag") {
       p.arguments(words, 3, "a button and a displacement: drag left|right|middle DX DY");
       if (words[1] != "left" && words[1] != "right" && words[1] != "middle") {
-        p.fail("unknown mouse button '" + words[1] + "'; buttons: left, right, middle");
+        p.fail(unknown_name_message("mouse button", words[1], {"left", "right", "middle"}));
       }
       c.action = ScriptAction::drag;
       c.name = words[1];
@@ -187,8 +188,9 @@ ViewerScript ViewerScript::parse(std::string_view text, std::string_view source)
       p.arguments(words, 0, "no argument");
       c.action = ScriptAction::quit;
     } else {
-      p.fail("unknown command '" + verb +
-             "'; commands: wait, set, slider, key, drag, scroll, screenshot, quit");
+      p.fail(unknown_name_message(
+          "command", verb,
+          {"wait", "set", "slider", "key", "drag", "scroll", "screenshot", "quit"}));
     }
     script.commands.push_back(std::move(c));
   }

@@ -14,6 +14,7 @@
 
 #include "mjarm/error.hpp"
 #include "mjarm/model/names.hpp"
+#include "mjarm/scene/scene.hpp"
 #include "support/error_message.hpp"
 #include "support/files.hpp"
 #include "support/test_models.hpp"
@@ -151,6 +152,46 @@ TEST_F(ModelsFolder, MissingOrEmptyFolderIsAnErrorNamingItAndTheVariable) {
       << none;
   ::setenv("MJARM_MODELS", (empty / "readme.txt").c_str(), 1);
   EXPECT_NE(error_of([] { Robot::bundled_names(); }).find("is not a folder"), std::string::npos);
+}
+
+// issue 29, smaller: a file's kind by its extension in any case ("ARM.XML" was no model)
+TEST_F(ModelsFolder, AModelFileIsFoundWhateverTheCaseOfItsExtension) {
+  const auto folder = test::scratch() / "upper_models";
+  std::filesystem::create_directories(folder);
+  std::ofstream(folder / "Arm.XML") << "<mujoco model=\"upper\"><worldbody><body><joint/>"
+                                       "<geom size=\"0.1\"/></body></worldbody></mujoco>";
+  std::ofstream(folder / "notes.xmlx") << "not a model";
+  ::setenv("MJARM_MODELS", folder.c_str(), 1);
+  EXPECT_EQ(Robot::bundled_names(), std::vector<std::string>{"Arm"});
+  EXPECT_EQ(Robot::bundled("Arm").name(), "upper");
+  EXPECT_EQ(Robot::load("Arm").nq(), 1);
+  // a scene takes it by its name too
+  Scene scene;
+  scene.add_robot(RobotSpec{"a", "Arm", {0, 0, 0}, {1, 0, 0, 0}, false});
+  EXPECT_EQ(scene.compile().nq(), 1);
+}
+
+// issue 29, item 6 in XML: tinyxml2 reads a second root element and MuJoCo dropped it
+TEST(Robot, ASecondRootElementIsRefused) {
+  const std::string one = "<mujoco model=\"a\"><worldbody><geom size=\"0.1\"/></worldbody></mujoco>";
+  std::string message = error_of([&] { Robot::from_string(one + "\n<mujoco model=\"b\"/>"); });
+  EXPECT_NE(message.find("XML string line 2: a second root element <mujoco> (the first, <mujoco>, "
+                         "is at line 1); an XML file holds one"),
+            std::string::npos)
+      << message;
+  const auto dir = test::scratch() / "two_roots";
+  std::filesystem::create_directories(dir);
+  std::ofstream(dir / "parts.xml") << one << "\n\n<robot name=\"r\"/>\n";
+  std::ofstream(dir / "main.xml") << "<mujoco>\n  <include file=\"parts.xml\"/>\n</mujoco>\n";
+  message = error_of([&] { Robot::from_file(dir / "main.xml"); });
+  EXPECT_NE(message.find("'" + (dir / "parts.xml").string() +
+                         "' line 3: a second root element <robot>"),
+            std::string::npos)
+      << message;
+  std::ofstream(dir / "two.urdf") << "<robot name=\"r\"><link name=\"l\"/></robot>\n<robot name=\"s\"/>";
+  message = error_of([&] { Robot::from_file(dir / "two.urdf"); });
+  EXPECT_NE(message.find("two.urdf' line 2: a second root element <robot>"), std::string::npos)
+      << message;
 }
 
 TEST(Robot, FilesThatAreNotRegularOrTooDeepGiveClearErrors) {

@@ -30,15 +30,22 @@ TEST(WaypointFile, JsonPositionsAndOrientations) {
 }
 
 TEST(WaypointFile, CsvWithAndWithoutHeaderUsesTheDefaultOrientation) {
-  const WaypointPath path =
-      parse_waypoints_csv("x,y,z\n# comment\n0.4,0,0.5\n\n0.3, 0.1, 0.4, 1, 0, 0, 0\n");
-  ASSERT_EQ(path.waypoints.size(), 2u);
   Eigen::Matrix3d R = Eigen::Matrix3d::Zero();
   R(0, 1) = R(1, 0) = 1.0;
   R(2, 2) = -1.0;
-  const std::vector<Pose> poses = path.poses(R);
+  // without a header, rows of 3 and 7 columns mix
+  WaypointPath path = parse_waypoints_csv("# comment\n0.4,0,0.5\n\n0.3, 0.1, 0.4, 1, 0, 0, 0\n");
+  ASSERT_EQ(path.waypoints.size(), 2u);
+  std::vector<Pose> poses = path.poses(R);
   EXPECT_EQ(poses[0].R, R);
   EXPECT_TRUE(poses[1].R.isApprox(Eigen::Matrix3d::Identity()));
+  // a header's names in any case
+  path = parse_waypoints_csv("x,y,z\n# comment\n0.4,0,0.5\n");
+  ASSERT_EQ(path.waypoints.size(), 1u);
+  EXPECT_EQ(path.poses(R)[0].R, R);
+  path = parse_waypoints_csv("X, Y, Z, QW, QX, QY, QZ\n0.3, 0.1, 0.4, 1, 0, 0, 0\n");
+  ASSERT_EQ(path.waypoints.size(), 1u);
+  EXPECT_TRUE(path.poses(R)[0].R.isApprox(Eigen::Matrix3d::Identity()));
 }
 
 TEST(WaypointFile, BadFilesAreClearErrors) {
@@ -47,8 +54,8 @@ TEST(WaypointFile, BadFilesAreClearErrors) {
             }).find("f.csv line 1: 'nan' is not a finite number"),
             std::string::npos);
   EXPECT_NE(error_of([] {
-              parse_waypoints_csv("x,y,z\n0.1,0.2\n", "f.csv");
-            }).find("line 2: expected 3 columns"),
+              parse_waypoints_csv("0.1,0.2\n", "f.csv");
+            }).find("line 1: expected 3 columns"),
             std::string::npos);
   EXPECT_NE(error_of([] { parse_waypoints_csv("x,y,z\n", "f.csv"); }).find("holds no waypoint"),
             std::string::npos);
@@ -75,6 +82,69 @@ TEST(WaypointFile, BadFilesAreClearErrors) {
             std::string::npos);
 }
 
+// issue 29, item 1: "quaternoin" was skipped, and the waypoint took the path's orientation
+// (plan exited 0 with the tool 45° away from the one asked for)
+TEST(WaypointFile, UnknownOrRepeatedJsonKeysNameTheLineAndTheClosestKey) {
+  const auto error_in = [](const std::string& text) {
+    return error_of([&] { parse_waypoints_json(text, "'wp.json'"); });
+  };
+  std::string message = error_in(R"({"orientation": [0, 1, 0, 0],
+    "waypoints": [{"position": [0.45, 0.0, 0.50]},
+                  {"position": [0.45, 0.2, 0.40], "quaternoin": [0, 0.92, 0.38, 0]}]})");
+  EXPECT_NE(message.find("waypoints 'wp.json' line 3: unknown key 'quaternoin' in waypoint 1; "
+                         "closest: quaternion; keys: position, quaternion"),
+            std::string::npos)
+      << message;
+  message = error_in(R"({"frame": "tool",
+    "orientaton": [0, 1, 0, 0], "waypoints": [{"position": [0.45, 0.0, 0.50]}]})");
+  EXPECT_NE(message.find("line 2: unknown key 'orientaton' in the file; closest: orientation"),
+            std::string::npos)
+      << message;
+  // any extra key, the first one in the text
+  message = error_in(R"({"waypoints": [{"position": [1, 0, 0],
+      "speed": 2, "a": 1}]})");
+  EXPECT_NE(message.find("line 2: unknown key 'speed' in waypoint 0"), std::string::npos)
+      << message;
+  // a key twice: JSON keeps the last one without a word
+  message = error_in(R"({"waypoints": [{"position": [1, 0, 0],
+                                         "position": [2, 0, 0]}]})");
+  EXPECT_NE(message.find("line 2: key 'position' appears twice in one object"), std::string::npos)
+      << message;
+  // a key with '/' or '~' is found at its line too
+  message = error_in("{\"waypoints\": [{\"position\": [1, 0, 0]}],\n\"a/~b\": 1}");
+  EXPECT_NE(message.find("line 2: unknown key 'a/~b' in the file"), std::string::npos) << message;
+  // nesting is bounded before the keys' places are kept
+  message = error_in("{\"waypoints\": " + std::string(200, '[') + std::string(200, ']') + "}");
+  EXPECT_NE(message.find("line 1: nested more than 100 levels deep"), std::string::npos)
+      << message;
+}
+
+// issue 29, item 1 in CSV: a header in another order ("qx,qy,qz,qw") was skipped and its rows
+// read as w, x, y, z; an unknown column name or a row wider than the header was not noticed
+TEST(WaypointFile, ACsvHeaderNamesKnownColumnsInTheirOrder) {
+  const auto error_in = [](const std::string& text) {
+    return error_of([&] { parse_waypoints_csv(text, "'wp.csv'"); });
+  };
+  std::string message = error_in("x,y,zz\n0.45,0,0.5\n");
+  EXPECT_NE(message.find("waypoints 'wp.csv' line 1: unknown column 'zz' in the header; closest: "
+                         "z; columns: x, y, z, qw, qx, qy, qz"),
+            std::string::npos)
+      << message;
+  message = error_in("x,y,z,qx,qy,qz,qw\n0.45,0,0.5,0,0,0,1\n");
+  EXPECT_NE(message.find("line 1: the header names the columns x, y, z, qx, qy, qz, qw; expected "
+                         "x, y, z or x, y, z, qw, qx, qy, qz, in that order"),
+            std::string::npos)
+      << message;
+  message = error_in("x,y,z\n0.45,0,0.5\n0.45,0,0.5,0,1,0,0\n");
+  EXPECT_NE(message.find("line 3: 7 values, but the header (line 1) names 3 columns"),
+            std::string::npos)
+      << message;
+  message = error_in("x,y,z,qw,qx,qy,qz\n0.45,0,0.5\n");
+  EXPECT_NE(message.find("line 2: 3 values, but the header (line 1) names 7 columns"),
+            std::string::npos)
+      << message;
+}
+
 TEST(WaypointFile, LoadPicksTheFormatByExtension) {
   const std::string json = ::testing::TempDir() + "planning_waypoints.json";
   const std::string csv = ::testing::TempDir() + "planning_waypoints.csv";
@@ -84,6 +154,10 @@ TEST(WaypointFile, LoadPicksTheFormatByExtension) {
   EXPECT_EQ(load_waypoints(csv).waypoints.size(), 2u);
   std::remove(json.c_str());
   std::remove(csv.c_str());
+  // the extension in any case (".JSON" was read as CSV: "'{\"waypoints\"…' is not a number")
+  const auto upper = test::scratch() / "waypoints.JSON";
+  std::ofstream(upper) << R"({"waypoints": [{"position": [0.1, 0.2, 0.3]}]})";
+  EXPECT_EQ(load_waypoints(upper).waypoints.size(), 1u);
 }
 
 // issue 16, item 7: the waypoint file is a user file like a model: a FIFO blocked for ever,

@@ -125,7 +125,29 @@ TEST(Recording, ADamagedFileIsNamed) {
   EXPECT_NE(ragged.find("task.csv' line 3"), std::string::npos) << ragged;
   test::TempDir dir2("plot-badjson");
   const std::string json = load_error(damaged_copy(dir2, "summary.json", "{\"model\": "));
-  EXPECT_NE(json.find("summary.json' is not valid JSON"), std::string::npos) << json;
+  EXPECT_NE(json.find("summary.json': not valid JSON"), std::string::npos) << json;
+}
+
+// issue 29, item 1 for the summary plot reads: a key twice was read as its last value, a gear
+// or force range of the wrong type as 1 or none (the torque figure then scaled by 1)
+TEST(Recording, ASummaryValueOfTheWrongTypeOrAKeyTwiceIsNamed) {
+  const auto with = [](const char* name, const std::string& summary) {
+    test::TempDir dir(name);
+    return load_error(damaged_copy(dir, "summary.json", summary));
+  };
+  std::string message = with("plot-gear", R"({"actuators": [{"name": "a", "gear": "2"}]})");
+  EXPECT_NE(message.find("summary.json': key 'gear' holds string \"2\", expected a number"),
+            std::string::npos)
+      << message;
+  message = with("plot-range", R"({"actuators": [{"name": "a", "force_range": [87]}]})");
+  EXPECT_NE(message.find("key 'force_range' holds [87], expected [lower, upper]"),
+            std::string::npos)
+      << message;
+  message = with("plot-twice", "{\"model\": \"a\",\n \"model\": \"b\"}");
+  EXPECT_NE(message.find("summary.json' line 2: key 'model' appears twice"), std::string::npos)
+      << message;
+  // keys plot does not read are a newer run's, not an error
+  EXPECT_EQ(with("plot-newer", R"({"model": "a", "invocation": ["mjarm", "run"]})"), "no error");
 }
 
 }  // namespace

@@ -162,6 +162,15 @@ def test_scene_files(source_dir, tmp_path):
         mjarm.parse_scene(text, str(tmp_path), "s.yaml")
     with pytest.raises(mjarm.Error, match="unknown key 'frction'.*closest: friction"):
         mjarm.parse_scene("objects:\n  - {name: c, frction: 1}\n", str(tmp_path), "f.yaml")
+    # issue 29: a second document, a degenerate frame, the extension's case
+    with pytest.raises(mjarm.Error, match="s.yaml:3: a second document starts here"):
+        mjarm.parse_scene("name: a\n---\nname: b\n", str(tmp_path), "s.yaml")
+    with pytest.raises(mjarm.Error, match="camera 'c': xyaxes has a zero x axis"):
+        mjarm.parse_scene("cameras:\n  - {name: c, xyaxes: [0, 0, 0, 0, 0, 0]}\n", str(tmp_path),
+                          "s.yaml")
+    with pytest.raises(mjarm.Error, match="camera 'c': xyaxes has its y axis parallel"):
+        mjarm.Scene("x").add_camera(name="c", xyaxes=[0, 1, 0, 0, 2, 0])
+    assert mjarm.is_scene_file("a.YAML") and mjarm.is_scene_file("a.Json")
 
 
 def test_free_pose_round_trip_and_refusals(panda_torque):

@@ -130,6 +130,75 @@ TEST(SceneFile, BadPartsNameTheEntryAndTheReason) {
                        "scene file '/nonexistent/scene.yaml' does not exist"));
 }
 
+// issue 29, item 6: the second document of a YAML file was dropped without a word
+TEST(SceneFile, ASecondDocumentIsRefused) {
+  const std::string first = "name: one\narena:\n";
+  std::string message =
+      error_of([&] { parse_scene(first + "---\nname: two\nrobots: []\n", ".", "s.yaml"); });
+  EXPECT_TRUE(mentions(message,
+                       "s.yaml:4: a second document starts here (the first at line 1); "
+                       "a scene file holds one scene"))
+      << message;
+  // JSON read as YAML: a second value is a second document too
+  message = error_of([] { parse_scene("{\"name\": \"a\"}\n{\"name\": \"b\"}\n", ".", "s.json"); });
+  EXPECT_TRUE(mentions(message, "s.json:2: a second document starts here")) << message;
+  // empty documents hold nothing that could be lost: a leading or trailing '---' is fine
+  EXPECT_EQ(parse_scene("---\n" + first + "---\n", ".", "s.yaml").name(), "one");
+}
+
+// issue 29, item 5: `xyaxes: [0, 0, 0, 0, 0, 0]` was read as "no xyaxes" and the camera looked
+// along the parent's −z; an edit's zero quaternion compiled into a zero rotation matrix
+TEST(SceneFile, DegenerateFramesAreRefusedNamingTheLineElementAndAttribute) {
+  const auto error_in = [](const std::string& text) {
+    return error_of([&] { parse_scene(text, ".", "s.yaml"); });
+  };
+  std::string message =
+      error_in("cameras:\n  - {name: c, pos: [1, 0, 1], xyaxes: [0, 0, 0, 0, 0, 0]}\n");
+  EXPECT_TRUE(mentions(message, "s.yaml:2: camera 'c': xyaxes has a zero x axis")) << message;
+  message = error_in("cameras:\n  - {name: c, xyaxes: [0, 1, 0, 0, -1, 0]}\n");
+  EXPECT_TRUE(mentions(message, "s.yaml:2: camera 'c': xyaxes has its y axis parallel")) << message;
+  message =
+      error_in("cameras:\n  - name: c\n    xyaxes: [0, 1, 0, 0, 0, 1]\n    quat: [1, 0, 0, 0]\n");
+  EXPECT_TRUE(mentions(message, "s.yaml:4: camera 'c' has both 'xyaxes' and 'quat': give one"))
+      << message;
+  message = error_in("objects:\n  - {name: b, quat: [0, 0, 0, 0]}\n");
+  EXPECT_TRUE(mentions(message, "s.yaml:2: object 'b': box object 'b': quat is a zero quaternion"))
+      << message;
+  message = error_in("sites:\n  - {name: t, quat: [.nan, 0, 0, 1]}\n");
+  EXPECT_TRUE(mentions(message, "site 't': quat holds a value that is not finite")) << message;
+  const std::string ball = "objects:\n  - {name: b, shape: sphere, size: [0.02]}\nedits:\n";
+  message = error_in(ball + "  - {element: body, name: b, set: {quat: [0, 0, 0, 0]}}\n");
+  EXPECT_TRUE(mentions(message, "s.yaml:4: edit #1: body 'b': quat is a zero quaternion"))
+      << message;
+  message = error_in(ball + "  - {element: body, name: b, set: {zaxis: [0, 0, 0]}}\n");
+  EXPECT_TRUE(mentions(message, "body 'b': zaxis is a zero vector")) << message;
+  message = error_in(ball + "  - {element: body, name: b, set: {axisangle: [0, 0, 0, 1]}}\n");
+  EXPECT_TRUE(mentions(message, "body 'b': axisangle has a zero axis")) << message;
+  message = error_in(ball + "  - {element: body, name: b, set: {euler: [.inf, 0, 0]}}\n");
+  EXPECT_TRUE(mentions(message, "body 'b': euler must be finite numbers")) << message;
+  // one edit, two orientations: the last one won without a word
+  message = error_in(ball +
+                     "  - {element: body, name: b, set: {quat: [1, 0, 0, 0], euler: [0, 0, 1]}}\n");
+  EXPECT_TRUE(mentions(message,
+                       "s.yaml:4: edit #1 gives body 'b' two orientations, 'quat' and "
+                       "'euler': give one"))
+      << message;
+  message =
+      error_in(ball + "  - {element: body, name: b, set: {pos: [0, 0, 1], pos: [0, 0, 2]}}\n");
+  EXPECT_TRUE(mentions(message, "s.yaml:4: attribute 'pos' appears twice in edit #1")) << message;
+}
+
+// issue 29, smaller: "scene.YAML" was read as MJCF ("malformed XML … line 1")
+TEST(SceneFile, TheExtensionIsReadInAnyCase) {
+  for (const char* name : {"s.yaml", "s.YAML", "s.Yml", "s.yml", "s.JSON", "s.json"})
+    EXPECT_TRUE(is_scene_file(name)) << name;
+  for (const char* name : {"s.xml", "s.yaml.xml", "yaml", "s.yam"})
+    EXPECT_FALSE(is_scene_file(name)) << name;
+  const auto file = test::scratch() / "upper.YAML";
+  std::ofstream(file) << "name: upper\narena:\n";
+  EXPECT_EQ(load_scene_file(file).name(), "upper");
+}
+
 // issue 16, items 6 and 7: a scene file is a user file like a model: read only when it is a
 // regular file within the size limit, and a FIFO, a device, a folder or a symbolic link loop is
 // named for what it is (all were "does not exist"; a huge file was read whole)

@@ -480,6 +480,59 @@ TEST(Scene, BadValuesAreNamed) {
                        "closest: left/grip"));
 }
 
+// issue 29, item 5: compiled from a spec, MuJoCo 4.0.1 keeps a zero quaternion (the body's
+// rotation matrix all zero, `fk` exit 0) and refuses a zero or parallel axis naming the element's
+// index only; the scene refuses each one, naming the element and the attribute
+TEST(Scene, DegenerateFramesAreRefusedNamingTheElementAndTheAttribute) {
+  Scene scene = two_robots_two_objects();
+  const auto refused = [&](const char* kind, const char* name, const char* attribute,
+                           const std::string& value) {
+    return error_of([&] { scene.set_attribute(kind, name, attribute, value); });
+  };
+  std::string message = refused("body", "left/link3", "quat", "0 0 0 0");
+  EXPECT_TRUE(contains(message, "body 'left/link3': quat is a zero quaternion")) << message;
+  message = refused("geom", "cube/geom", "zaxis", "0 0 0");
+  EXPECT_TRUE(contains(message, "geom 'cube/geom': zaxis is a zero vector")) << message;
+  message = refused("site", "left/grip", "axisangle", "0 0 0 1.5");
+  EXPECT_TRUE(contains(message, "site 'left/grip': axisangle has a zero axis")) << message;
+  message = refused("body", "ball", "xyaxes", "0 0 0 0 1 0");
+  EXPECT_TRUE(contains(message, "body 'ball': xyaxes has a zero x axis")) << message;
+  message = refused("body", "ball", "xyaxes", "1 0 0 -2 0 0");
+  EXPECT_TRUE(contains(message, "xyaxes has its y axis parallel to its x axis")) << message;
+  message = refused("body", "ball", "xyaxes", "1 0 0 0 0 0");
+  EXPECT_TRUE(contains(message, "xyaxes has a zero y axis")) << message;
+  const std::vector<double> nan_euler{std::nan(""), 0.0, 0.0};
+  message = error_of([&] { scene.set_attribute("body", "ball", "euler", nan_euler); });
+  EXPECT_TRUE(contains(message, "body 'ball': euler must be finite numbers")) << message;
+  // nothing was written: the scene compiles with the frames it had
+  const Robot robot = scene.compile();
+  const mjModel& m = robot.model();
+  EXPECT_EQ(m.body_quat[4 * robot.body("left/link3")], 1.0);
+  // a frame at an angle is taken
+  scene.set_attribute("body", "ball", "xyaxes", "0 1 0 -1 0 0");
+  EXPECT_NEAR(scene.compile().model().body_quat[4 * robot.body("ball") + 3], std::sqrt(0.5),
+              1e-12);
+
+  SceneCameraSpec camera;
+  camera.name = "c";
+  camera.xyaxes = {0, 1, 0, 0, 3, 0};
+  message = error_of([&] { scene.add_camera(camera); });
+  EXPECT_TRUE(contains(message, "camera 'c': xyaxes has its y axis parallel")) << message;
+  camera.xyaxes = {0, 1, 0, -0.5, 0, 0.8};
+  camera.quat = {0, 1, 0, 0};
+  message = error_of([&] { scene.add_camera(camera); });
+  EXPECT_TRUE(contains(message, "camera 'c' has both xyaxes and a quat")) << message;
+  EXPECT_FALSE(scene.has("camera", "c"));
+  SiteSpec site;
+  site.name = "s";
+  site.quat = {0, 0, 0, 0};
+  EXPECT_TRUE(contains(error_of([&] { scene.add_site(site); }), "site 's': quat is a zero"));
+  ObjectSpec tilted = cube_spec("tilted", 0.3);
+  tilted.quat = {std::nan(""), 0, 0, 1};
+  EXPECT_TRUE(contains(error_of([&] { scene.add_object(tilted); }),
+                       "object 'tilted': quat holds a value that is not finite"));
+}
+
 TEST(Scene, CompoundFixtureIsOneStaticBodyWithItsPiecesInPlace) {
   Scene scene("compound");
   scene.add_arena();

@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <fstream>
 
 #include "mjarm/error.hpp"
@@ -127,6 +128,10 @@ TEST(SessionLog, MalformedFilesAreClearErrors) {
             std::string::npos);
   EXPECT_NE(error_with("0 targets 0.20", "0 targets nan").find("finite number"), std::string::npos);
   EXPECT_NE(error_with(" reset", " jump").find("unknown event 'jump'"), std::string::npos);
+  EXPECT_NE(error_with(" reset", " rest")
+                .find("unknown event 'rest'; closest: reset; events: "
+                      "targets, mode, task, reset"),
+            std::string::npos);
   EXPECT_NE(error_with("tasks pose:0", "tasks grip:0").find("pose:<priority>"), std::string::npos);
   EXPECT_NE(error_with("events 6", "events 7").find("announces 7 events but ends after 6"),
             std::string::npos);
@@ -137,6 +142,31 @@ TEST(SessionLog, MalformedFilesAreClearErrors) {
   EXPECT_NE(test::error_of([&] { read_session_log(bad); }).find("ends before the fingerprint"),
             std::string::npos);
   EXPECT_NE(test::error_of([&] { read_session_log(test::scratch() / "absent.session"); }), "");
+}
+
+// issue 29, item 1 for sessions: records after the end line were dropped without a word (a
+// session appended to another one replayed only the first)
+TEST(SessionLog, RecordsAfterTheEndLineAreRefused) {
+  const Robot robot = Robot::bundled("dual_arm");
+  const fs::path path = test::scratch() / "ended.session";
+  write_session_log(record_short_session(robot), path);
+  const std::string text = test::slurp(path);
+  const auto lines = std::count(text.begin(), text.end(), '\n');
+  // blank lines after it hold nothing
+  write_text(path, text + "\n  \n");
+  EXPECT_EQ(read_session_log(path).ticks, 150);
+  write_text(path, text + "\n150 reset\n");
+  const std::string message = test::error_of([&] { read_session_log(path); });
+  EXPECT_NE(
+      message.find("session file '" + path.string() + "' line " + std::to_string(lines + 2) +
+                   ": '150 reset' after the end line; the end line is the file's last record"),
+      std::string::npos)
+      << message;
+  write_text(path, text + text);
+  EXPECT_NE(test::error_of([&] {
+              read_session_log(path);
+            }).find("'mjarm-teleop-session 1' after the end line"),
+            std::string::npos);
 }
 
 }  // namespace

@@ -17,6 +17,10 @@ inline constexpr std::uintmax_t kMaxTextFileBytes = std::uintmax_t{64} << 20;
 /// skin) or a recorded CSV: 512 MiB.
 inline constexpr std::uintmax_t kMaxDataFileBytes = std::uintmax_t{512} << 20;
 
+/// Whether @p path ends in @p extension (".yaml"), in any case: a file's kind never depends on
+/// the case of its extension ("scene.YAML" is a scene file, "wp.JSON" a JSON waypoint file).
+bool has_extension(const std::filesystem::path& path, std::string_view extension) noexcept;
+
 /// Checks that @p path names a regular file (symbolic links followed) of at most @p max_bytes,
 /// without opening it.
 /// @param what  how errors name the file, e.g. "model file", "mesh file".

@@ -92,8 +92,8 @@ struct SceneCameraSpec {
   std::string name;
   std::string body;                          ///< parent body, empty for the world
   std::array<double, 3> pos{0.0, 0.0, 0.0};  ///< in the parent body [m]
-  /// x and y axes of the image in the parent body (the camera looks along −z); all zero to
-  /// use `quat` instead.
+  /// x and y axes of the image in the parent body (the camera looks along −z), not parallel;
+  /// all zero to use `quat` instead (giving both is an error).
   std::array<double, 6> xyaxes{0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
   std::array<double, 4> quat{1.0, 0.0, 0.0, 0.0};
   double fovy = 45.0;  ///< vertical field of view [deg]
@@ -137,7 +137,8 @@ struct WeldSpec {
   std::array<double, 2> solref{0.002, 1.0};  ///< time constant [s], damping ratio
 };
 
-/// Checks sizes, masses, frictions, quaternions and names of a spec.
+/// Checks sizes, masses, frictions, frames (a zero or non-finite quaternion, a camera's zero or
+/// parallel axes) and names of a spec.
 /// @throws Error naming the spec and the bad value with what was expected.
 void validate(const RobotSpec& spec);
 void validate(const GripperSpec& spec);
