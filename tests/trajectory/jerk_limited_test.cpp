@@ -199,8 +199,8 @@ TEST(JerkLimitedGenerator, WideRangesOfLimitsSucceed) {
   }
 }
 
-/// The largest end miss of a DoF at @p t after stepping there (what a caller sees), relative to
-/// max(1, |start|, |target|) as OtgResult::kEndTolerance.
+/// The largest miss of a DoF's state @p end (stepped to the duration: what a caller sees) from
+/// @p target, relative to max(1, |start|, |target|) as OtgResult::kEndTolerance.
 double stepped_miss(const KinematicState& end, const KinematicState& start,
                     const KinematicState& target) {
   const auto miss = [](double value, double goal, double from) {
@@ -211,7 +211,7 @@ double stepped_miss(const KinematicState& end, const KinematicState& start,
 }
 
 // issue 29, item 8: per-DoF limits mixed 1e-3 / 1e3 and a start that must brake. The brake of
-// this case lasts 2·10⁶ s at up to 5·10⁸ u/s, the trajectory 5.5·10¹¹ s; it said `working`, and
+// this case lasts 2·10⁶ s at up to 4·10⁸ u/s, the trajectory 5.5·10¹¹ s; it said `working`, and
 // step() to its end said `finished` with the state 6.2e-2 from the target. Double precision
 // cannot land a motion that large on a target of size 1: the result is now error_precision
 // (the final check), and every result that still says working is on target.
@@ -245,7 +245,8 @@ TEST(JerkLimitedGenerator, ExtremeLimitsEndOnTargetOrReportAPrecisionError) {
       l[i] = {extreme(), extreme(), extreme()};
       do c[i] = {u(rng), 1.6 * l[i].velocity * u(rng), 1.6 * l[i].acceleration * u(rng)};
       while (is_startable(c[i], l[i]));
-      // the reachable accelerations: |a| ≤ √(2·j_max·(v_max + |v|)) at most
+      // targets with |a| ≤ √(v_max·j_max): most accelerations beyond cannot be reached within
+      // v_max (|v − a·|a|/(2 j_max)| ≤ v_max), and drawing them over ±a_max is rarely reachable
       const double a_reach = std::min(l[i].acceleration, std::sqrt(l[i].velocity * l[i].jerk));
       do t[i] = {u(rng), l[i].velocity * u(rng), a_reach * u(rng)};
       while (!is_reachable(t[i], l[i]));

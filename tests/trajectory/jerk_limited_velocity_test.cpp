@@ -18,7 +18,7 @@ TEST(JerkLimitedVelocity, RestToCruiseMatchesTheClassicFormula) {
 
 // A duration far above the minimum (another DoF's, 455 s here against 2.9 s): the level's
 // quadratic took its small root as (b − √disc)/2 with b = j·T ≈ 3.5·10⁶, which cancelled to a
-// level 4e-10 off; times the 454 s hold, the velocity missed by 2e-7 and the profile was refused
+// level 1.1e-10 off; times the 454 s hold, the velocity missed by 5e-8 and the profile was refused
 // (the generator's error_synchronization in a quarter of the 7-DoF cases with limits over four
 // decades). The small root now comes from the product of the roots.
 TEST(JerkLimitedVelocity, ALongFixedDurationKeepsTheLevelsPrecise) {
