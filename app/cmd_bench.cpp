@@ -248,6 +248,7 @@ Command add_bench_command(CLI::App& root) {
     std::string site;
     int samples = 10000;
     double timeout_ms = 5.0;
+    int max_restarts = -1;  // unbounded (the protocol)
     std::uint64_t seed = 0;
     std::string clock = "wall";
     bool json = false;
@@ -272,6 +273,11 @@ Command add_bench_command(CLI::App& root) {
       ->check(timeout_ms());
   app->add_option("--seed", options->seed, "seed of the targets (and of the random starts)")
       ->check(non_negative_integer());
+  app->add_option("--max-restarts", options->max_restarts,
+                  "restarts the global solver may make per solve; default unbounded (the "
+                  "protocol: the budget decides). With a cap and a roomy --timeout-ms every "
+                  "sample's outcome is the same on any machine")
+      ->check(count_in(0, 1000000));
   app->add_option("--clock", options->clock,
                   "wall: the published protocol (steady clock); cpu: the solving thread's CPU "
                   "time, for a shared machine (a solve over budget counts as failed)")
@@ -303,6 +309,7 @@ Command add_bench_command(CLI::App& root) {
               protocol.seed = options->seed;
               protocol.seed_mode = mode;
               protocol.timeout = std::chrono::duration<double, std::milli>(options->timeout_ms);
+              if (options->max_restarts >= 0) protocol.max_restarts = options->max_restarts;
               protocol.clock =
                   options->clock == "cpu" ? IkBenchmarkClock::thread_cpu : IkBenchmarkClock::wall;
               Progress progress(std::string("solving (") + to_string(mode) + " seeds)",
@@ -328,6 +335,9 @@ Command add_bench_command(CLI::App& root) {
                           {"joints", chain.size()},
                           {"samples", options->samples},
                           {"timeout_ms", options->timeout_ms},
+                          {"max_restarts", options->max_restarts >= 0
+                                               ? Json(options->max_restarts)
+                                               : Json(nullptr)},
                           {"seed", options->seed},
                           {"clock", to_string(results.front().clock)},
                           {"interrupted", results.back().interrupted},
@@ -339,6 +349,10 @@ Command add_bench_command(CLI::App& root) {
                                      {"solver", results.front().solver},
                                      {"samples", std::to_string(options->samples)},
                                      {"timeout [ms]", compact(options->timeout_ms)},
+                                     {"restarts", options->max_restarts >= 0
+                                                      ? "at most " +
+                                                            std::to_string(options->max_restarts)
+                                                      : "unbounded"},
                                      {"seed", std::to_string(options->seed)},
                                      {"clock", to_string(results.front().clock)}});
             std::cout << '\n';

@@ -192,6 +192,23 @@ TrajProfile build_jerk_limited(const TrajRequest& r) {
   }
   auto otg = std::make_shared<JerkLimitedGenerator>(limits);
   const OtgResult result = otg->calculate(start, target);  // an unreachable target throws
+  if (result.status == OtgStatus::error_precision) {
+    std::string check;
+    if (result.end_error > OtgResult::kEndTolerance)
+      check = "its end misses the target by " + compact(result.end_error) +
+              " relative to the start and target (tolerance " +
+              compact(OtgResult::kEndTolerance) + ")";
+    else if (result.limit_excess > OtgResult::kLimitTolerance)
+      check = "it exceeds a limit by " + compact(result.limit_excess) + " relative (tolerance " +
+              compact(OtgResult::kLimitTolerance) + ")";
+    else
+      check = "an axis's profile lasts " + compact(result.sync_error) + " s more or less than " +
+              compact(result.duration) + " s";
+    throw Error("jerk-limited: no trajectory on axis " + std::to_string(result.failed_dof) +
+                " (error_precision): " + check +
+                "; limits this far apart make the motion too large for double precision (see "
+                "\"Supported limits\" in docs/trajectory_otg.md)");
+  }
   if (result.status != OtgStatus::working && result.status != OtgStatus::finished)
     throw Error(std::string("jerk-limited: no trajectory (") + to_string(result.status) +
                 (result.failed_dof >= 0 ? ", axis " + std::to_string(result.failed_dof) : "") +

@@ -3373,13 +3373,25 @@ class OtgResult:
     def duration(self) -> Any:
         ...
     @property
+    def end_error(self) -> Any:
+        """largest end miss over the DoFs, relative to max(1, |start|, |target|)"""
+        ...
+    @property
     def failed_dof(self) -> Any:
+        ...
+    @property
+    def limit_excess(self) -> Any:
+        """largest relative limit excess after the brakes (<= 0 within the limits)"""
         ...
     @property
     def limiting_dof(self) -> Any:
         ...
     @property
     def status(self) -> Any:
+        ...
+    @property
+    def sync_error(self) -> Any:
+        """largest |profile duration - duration| over the DoFs [s]"""
         ...
 
 class OtgStatus:
@@ -3393,12 +3405,15 @@ class OtgStatus:
 
   error_no_profile
 
-  error_synchronization"""
+  error_synchronization
+
+  error_precision"""
     working: ClassVar[OtgStatus]
     finished: ClassVar[OtgStatus]
     error_brake: ClassVar[OtgStatus]
     error_no_profile: ClassVar[OtgStatus]
     error_synchronization: ClassVar[OtgStatus]
+    error_precision: ClassVar[OtgStatus]
     def __init__(self, value: int) -> None: ...
     @property
     def name(self) -> str: ...

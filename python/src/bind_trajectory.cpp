@@ -159,12 +159,19 @@ void bind_trajectory(py::module_& m) {
       .value("finished", OtgStatus::finished)
       .value("error_brake", OtgStatus::error_brake)
       .value("error_no_profile", OtgStatus::error_no_profile)
-      .value("error_synchronization", OtgStatus::error_synchronization);
+      .value("error_synchronization", OtgStatus::error_synchronization)
+      .value("error_precision", OtgStatus::error_precision);
   py::class_<OtgResult>(m, "OtgResult")
       .def_readonly("status", &OtgResult::status)
       .def_readonly("duration", &OtgResult::duration)
       .def_readonly("limiting_dof", &OtgResult::limiting_dof)
-      .def_readonly("failed_dof", &OtgResult::failed_dof);
+      .def_readonly("failed_dof", &OtgResult::failed_dof)
+      .def_readonly("end_error", &OtgResult::end_error,
+                    "largest end miss over the DoFs, relative to max(1, |start|, |target|)")
+      .def_readonly("limit_excess", &OtgResult::limit_excess,
+                    "largest relative limit excess after the brakes (<= 0 within the limits)")
+      .def_readonly("sync_error", &OtgResult::sync_error,
+                    "largest |profile duration - duration| over the DoFs [s]");
   py::class_<JerkLimitedGenerator>(
       m, "JerkLimitedGenerator",
       "Synchronized jerk-limited trajectories for n DoF. States are (n, 3) arrays of (p, v, a).")

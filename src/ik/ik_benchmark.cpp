@@ -175,6 +175,7 @@ IkBenchmarkResult run_ik_benchmark(const Chain& chain, const IkBenchmarkOptions&
                               std::chrono::duration<double>(std::numeric_limits<double>::max()));
   }
   global.tolerance = options.tolerance;
+  global.max_restarts = options.max_restarts;
   global.seed = options.seed;
   return run_ik_benchmark(chain, global_ik_solver(chain, global), options);
 }

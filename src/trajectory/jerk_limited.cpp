@@ -27,6 +27,8 @@ const char* to_string(OtgStatus status) noexcept {
       return "error_no_profile";
     case OtgStatus::error_synchronization:
       return "error_synchronization";
+    case OtgStatus::error_precision:
+      return "error_precision";
   }
   return "unknown";
 }
@@ -52,6 +54,15 @@ double duration_estimate(const jerk_detail::UpPair& up, const JerkLimits& limits
   if (D >= V * t_acc) return D / V + t_acc;
   if (D <= 2.0 * A * A * A / (J * J)) return 4.0 * std::cbrt(D / (2.0 * J));
   return A / J + std::sqrt(A * A / (J * J) + 4.0 * D / A);
+}
+
+/// The limits with the acceleration limit lowered to 3·√(v_max·j_max) when it is above: between
+/// a startable start and a reachable target no motion within the velocity and jerk limits has
+/// |a| > √6·√(v_max·j_max) (the velocity gained while the acceleration rises and falls at full
+/// jerk would pass v_max), so that limit never binds; the solvers' structures with holds at ±a_max
+/// would otherwise work with powers of an a_max orders of magnitude beyond the motion's.
+JerkLimits binding_limits(const JerkLimits& l) noexcept {
+  return {l.velocity, std::min(l.acceleration, 3.0 * std::sqrt(l.velocity * l.jerk)), l.jerk};
 }
 
 std::string otg_number(double x) {
@@ -153,9 +164,10 @@ OtgResult JerkLimitedGenerator::calculate(std::span<const KinematicState> curren
     brake_durations_[i] = p.duration();
     brake_phases_[i] = p.size();
     after_brake_[i] = p.end();
+    const JerkLimits solve = binding_limits(limits_[i]);
     problems_[i].set(after_brake_[i], target[i].p - after_brake_[i].p, target[i].v, target[i].a,
-                     limits_[i]);
-    estimates_[i] = p.duration() + duration_estimate(problems_[i], limits_[i]);
+                     solve);
+    estimates_[i] = p.duration() + duration_estimate(problems_[i], solve);
     if (estimates_[i] > estimates_[first]) first = i;
   }
   // step 1 for the DoFs that decide the duration only: the one guessed slowest, then every DoF
@@ -215,8 +227,50 @@ OtgResult JerkLimitedGenerator::calculate(std::span<const KinematicState> curren
       return result_;
     }
   }
-  result_.status = sync.duration > 0.0 ? OtgStatus::working : OtgStatus::finished;
+  check_result(current, target);
   return result_;
+}
+
+void JerkLimitedGenerator::check_result(std::span<const KinematicState> current,
+                                        std::span<const KinematicState> target) noexcept {
+  // a profile's end is the blend or the integration of phases computed at the scale of the
+  // whole motion (brakes far beyond the limits, reachable ranges of hours): its round-off, about
+  // 1e-16 of the largest position involved, is checked here against the scale the caller gave
+  const double T = result_.duration;
+  const double sync_tolerance = OtgResult::kSyncTolerance * std::max(1.0, T);
+  result_.end_error = 0.0;
+  result_.limit_excess = -1.0;
+  result_.sync_error = 0.0;
+  int failed = -1;
+  for (int i = 0; i < dofs(); ++i) {
+    const JerkProfile& p = profiles_[i];
+    const KinematicState& c = current[i];
+    const KinematicState& t = target[i];
+    const KinematicState e = p.end();
+    const auto miss = [](double value, double goal, double start) {
+      return std::abs(value - goal) / std::max({1.0, std::abs(goal), std::abs(start)});
+    };
+    double end = std::max(miss(e.v, t.v, c.v), miss(e.a, t.a, c.a));
+    if (!velocity_interface_) end = std::max(end, miss(e.p, t.p, c.p));
+    const JerkLimits& l = limits_[i];
+    const JerkExtrema x = p.extrema(brake_phases_[i]);
+    double ratio = std::max(-x.a_min, x.a_max) / l.acceleration;
+    if (!velocity_interface_) ratio = std::max(ratio, std::max(-x.v_min, x.v_max) / l.velocity);
+    for (int k = 0; k < p.size(); ++k) ratio = std::max(ratio, std::abs(p.jerk(k)) / l.jerk);
+    const double sync = std::abs(p.duration() - T);
+    result_.end_error = std::max(result_.end_error, end);
+    result_.limit_excess = std::max(result_.limit_excess, ratio - 1.0);
+    result_.sync_error = std::max(result_.sync_error, sync);
+    const bool ok = end <= OtgResult::kEndTolerance &&
+                    ratio - 1.0 <= OtgResult::kLimitTolerance && sync <= sync_tolerance;
+    if (failed < 0 && !ok) failed = i;  // NaN fails too
+  }
+  if (failed >= 0) {
+    result_.status = OtgStatus::error_precision;
+    result_.failed_dof = failed;
+    return;
+  }
+  result_.status = T > 0.0 ? OtgStatus::working : OtgStatus::finished;
 }
 
 const JerkBlock& JerkLimitedGenerator::block(int i) const {
@@ -267,7 +321,7 @@ OtgResult JerkLimitedGenerator::calculate_velocity(std::span<const KinematicStat
       return result_;
     }
   }
-  result_.status = sync.duration > 0.0 ? OtgStatus::working : OtgStatus::finished;
+  check_result(current, target);
   return result_;
 }
 

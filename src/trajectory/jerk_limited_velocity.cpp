@@ -97,8 +97,14 @@ bool append_fixed_time_velocity_profile(const KinematicState& start, double v_ta
     const double b = J * T + a0 + af;
     const double disc = b * b - 2.0 * (a0 * a0 + af * af + 2.0 * J * dv);
     if (disc >= -1e-12 * b * b) {
+      // the root of larger magnitude from the sum, the other from the product c: b ± r would
+      // cancel (J·T far above the levels: a long duration), and that root's round-off, times the
+      // hold, would miss the target velocity
       const double r = std::sqrt(std::max(disc, 0.0));
-      for (const double u : {0.5 * (b - r), 0.5 * (b + r)})
+      const double c = 0.5 * (a0 * a0 + af * af + 2.0 * J * dv);
+      const double q = 0.5 * (b + std::copysign(r, b));
+      const double other = q != 0.0 ? c / q : 0.0;
+      for (const double u : {std::min(q, other), std::max(q, other)})
         if (level_phases(sign, u, T - (2.0 * u - a0 - af) / J, a0, af, J, phases) && keep(phases))
           return true;
     }

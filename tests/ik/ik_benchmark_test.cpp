@@ -13,13 +13,13 @@ namespace {
 
 using std::chrono::milliseconds;
 
-/// The protocol's CPU budgets hold for optimized builds; Debug + sanitizer builds run about
-/// 100× slower, so their budget scales with them (the success criterion does not).
-#if !defined(NDEBUG) || defined(__SANITIZE_ADDRESS__)
-constexpr int kBuildSlowdown = 100;
-#else
-constexpr int kBuildSlowdown = 1;
-#endif
+/// The protocol's 5 ms budget makes its success rate a figure of the machine (a slower CPU, a
+/// loaded one, a sanitized build solve fewer in time): `mjarm bench ik` measures it. The tests
+/// judge the protocol on outcomes that are the same on any machine: a restart cap decides every
+/// solve (the solver's iterates do not depend on time; the most restarts any sample here needs
+/// is 84), and the budget lies far beyond what the cap's restarts take.
+constexpr int kBenchmarkRestartCap = 200;
+constexpr std::chrono::seconds kBenchmarkBudget{60};
 
 using test::chain_of;
 
@@ -38,8 +38,8 @@ TEST(IkBenchmark, TracIkProtocolOnPandaMidRangeSeeds) {
   const Chain chain = chain_of("panda");
   IkBenchmarkOptions options;
   options.samples = 200;
-  options.timeout = milliseconds(5 * kBuildSlowdown);
-  // a 5 ms budget of CPU time: deterministic on a busy machine (see IkBenchmarkClock)
+  options.timeout = kBenchmarkBudget;
+  options.max_restarts = kBenchmarkRestartCap;
   options.clock = IkBenchmarkClock::thread_cpu;
   int calls = 0, last = 0;
   options.progress = [&](int done, int total) {
@@ -55,7 +55,7 @@ TEST(IkBenchmark, TracIkProtocolOnPandaMidRangeSeeds) {
   EXPECT_EQ(r.solver, "global_ik(alternate, speed)");
   EXPECT_EQ(r.robot, "panda");
   EXPECT_EQ(r.frame, "attachment_site");
-  EXPECT_DOUBLE_EQ(r.timeout_ms, 5.0 * kBuildSlowdown);
+  EXPECT_DOUBLE_EQ(r.timeout_ms, 60000.0);
   EXPECT_EQ(r.seed_mode, IkSeedMode::mid_range);
   // the solver's own status agrees with the independent check on every sample it solved
   EXPECT_GE(r.solver_converged, r.successes);
@@ -67,7 +67,8 @@ TEST(IkBenchmark, TracIkProtocolRandomSeedsOnEveryArm) {
     options.samples = 100;
     options.seed = 17;
     options.seed_mode = IkSeedMode::random;
-    options.timeout = milliseconds(5 * kBuildSlowdown);
+    options.timeout = kBenchmarkBudget;
+    options.max_restarts = kBenchmarkRestartCap;
     options.clock = IkBenchmarkClock::thread_cpu;
     const IkBenchmarkResult r = run_ik_benchmark(chain_of(robot), options);
     expect_consistent(r, 100);
@@ -105,11 +106,12 @@ TEST(IkBenchmark, WallClockRunAndCpuBudgetCharging) {
   const Chain chain = chain_of("iiwa14");
   IkBenchmarkOptions options;
   options.samples = 30;
-  options.timeout = milliseconds(5 * kBuildSlowdown);
+  options.timeout = kBenchmarkBudget;
+  options.max_restarts = kBenchmarkRestartCap;
   const IkBenchmarkResult wall = run_ik_benchmark(chain, options);
   expect_consistent(wall, 30);
   EXPECT_EQ(wall.clock, IkBenchmarkClock::wall);
-  EXPECT_GE(wall.successes, 28);  // wall clock: a descheduled solve may time out
+  EXPECT_EQ(wall.successes, 30);  // the cap decides, not the clock: none lost to descheduling
 
   // a solver burning 3 ms of CPU against a 1 ms CPU budget: every sample fails, charged 1 ms
   GlobalIkOptions roomy;
@@ -178,12 +180,14 @@ TEST(IkBenchmark, AStopRequestEndsTheRunWithTheSamplesDone) {
   const Chain chain(Robot::bundled("panda"), "attachment_site");
   IkBenchmarkOptions options;
   options.samples = 1000;
+  options.timeout = kBenchmarkBudget;
+  options.max_restarts = kBenchmarkRestartCap;
   int asked = 0;
   options.stop = [&] { return ++asked > 20; };
   const IkBenchmarkResult r = run_ik_benchmark(chain, options);
   EXPECT_TRUE(r.interrupted);
   EXPECT_EQ(r.samples, 20);
-  EXPECT_GT(r.successes, 0);
+  EXPECT_EQ(r.successes, 20);
   EXPECT_DOUBLE_EQ(r.success_rate, static_cast<double>(r.successes) / 20.0);
   EXPECT_GT(r.mean_time_ms, 0.0);
   options.stop = [] { return true; };
@@ -203,6 +207,9 @@ TEST(IkBenchmark, BadInputsThrow) {
   options.timeout = milliseconds(0);
   EXPECT_THROW(run_ik_benchmark(chain, options), Error);
   options.timeout = milliseconds(5);
+  options.max_restarts = -1;
+  EXPECT_THROW(run_ik_benchmark(chain, options), Error);
+  options.max_restarts = kBenchmarkRestartCap;
   options.tolerance.bound[0] = -1.0;
   EXPECT_THROW(run_ik_benchmark(chain, options), Error);
 }

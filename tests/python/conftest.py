@@ -44,27 +44,33 @@ def rng(seed):
     return np.random.default_rng(seed)
 
 
-def runs_beside(call):
-    """Calls call() on another thread; returns (whether this thread ran Python code while the
-    other was inside call(), its result). The interpreter's switch interval is set far beyond the
-    call, so the other thread keeps the GIL while it runs Python code: this thread can run during
-    the call only if the call released the GIL. One turn is enough (not a count of loop turns,
-    which depends on the machine's speed); the call should last long enough for the OS to give
-    this thread a core once (a tenth of a second: a scheduler slice is a few milliseconds)."""
+def runs_beside(call, most=20):
+    """Calls call() on another thread, again until this thread has run Python code while the
+    other was inside a call (at most `most` calls); returns (whether it did, the last call's
+    result). The interpreter's switch interval is set far beyond the calls, so the other thread
+    keeps the GIL while it runs Python code: this thread can run during a call only if the call
+    released the GIL. Then it runs as soon as the OS gives it a core, and every further call is
+    another chance, however fast the machine or busy its cores; with the GIL held it cannot run
+    at all, whatever the number of calls. So the verdict does not depend on how long a call
+    takes (the earlier form called once and needed the OS to schedule this thread within it)."""
     old = sys.getswitchinterval()
     sys.setswitchinterval(1000.0)
     try:
-        inside, done, result = threading.Event(), threading.Event(), []
+        inside, seen, done, result = threading.Event(), threading.Event(), threading.Event(), []
 
         def worker():
             inside.set()
-            result.append(call())
+            for _ in range(most):
+                result[:] = [call()]
+                if seen.is_set():  # this thread ran during that call: no need for another
+                    break
             done.set()
 
         thread = threading.Thread(target=worker)
-        thread.start()  # returns once the worker released the GIL: in the call, or at its end
+        thread.start()  # returns once the worker released the GIL: in a call, or at its end
         inside.wait()
         ran_during_call = not done.is_set()
+        seen.set()
         thread.join()
     finally:
         sys.setswitchinterval(old)

@@ -4,6 +4,7 @@ while stepping (the speed-up that buys two Python threads is a figure of `python
 mjarm.bench`)."""
 import gc
 import threading
+import time
 
 import numpy as np
 import pytest
@@ -273,13 +274,18 @@ def test_vector_bad_input():
 
 
 def test_one_environment_from_two_threads_is_refused():
+    """Both threads step until one is refused (the other stepping at that moment); with the GIL
+    released in a step that comes as soon as the OS runs both at once, however fast or busy the
+    machine — a count of steps only caps a failing run (no refusal at all)."""
     env = reach(time_limit=100.0)
     env.reset(0)
     errors, done = [], threading.Event()
 
     def worker():
         try:
-            for _ in range(300):
+            for _ in range(20000):
+                if errors:
+                    break
                 try:
                     env.step(np.zeros(6))
                 except mjarm.Error as e:
@@ -304,8 +310,17 @@ def test_gil_released_while_a_batch_steps():
     vec = mjarm.VectorEnvironment("reach", 32, 1, time_limit=100.0)
     vec.reset()
     actions = np.zeros((32, 6))
-    ran, steps = runs_beside(lambda: [vec.step(actions) for _ in range(100)])
-    assert ran and len(steps) == 100 and len(steps[-1].reward) == 32
+    ran, steps = runs_beside(lambda: [vec.step(actions) for _ in range(10)], most=200)
+    assert ran and len(steps) == 10 and len(steps[-1].reward) == 32
+
+
+def test_the_gil_check_tells_a_call_that_keeps_it():
+    """runs_beside (conftest.py) can fail: pure Python keeps the GIL (every call of the cap, the
+    other thread never runs); a call that sleeps releases it."""
+    ran, total = runs_beside(lambda: sum(range(100000)), most=5)
+    assert not ran and total == 4999950000
+    ran, _ = runs_beside(lambda: time.sleep(0.001))
+    assert ran
 
 
 # --- the Gymnasium-style adapter -------------------------------------------------------------

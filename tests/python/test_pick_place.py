@@ -117,7 +117,7 @@ def test_a_progress_callback_that_raises_is_raised_after_the_batch():
 
 def test_trials_release_the_gil():
     options = quick(grasp="weld")
-    ran, report = runs_beside(lambda: mjarm.run_pick_place(options))
+    ran, report = runs_beside(lambda: mjarm.run_pick_place(options), most=3)
     assert ran and report.success  # the main thread ran while the trial simulated
 
 

@@ -44,6 +44,20 @@ def test_jerk_limited_generator():
     assert result.status == mjarm.OtgStatus.working and result.duration > 0
     end = gen.at(result.duration)
     np.testing.assert_allclose(end[:, 0], [0.5, -0.2], atol=1e-9)
+    assert result.end_error <= 1e-8 and result.limit_excess <= 1e-9 and result.sync_error <= 1e-9
+
+
+def test_jerk_limited_generator_reports_a_precision_error():
+    """issue 29, item 8: limits 1e3 / 1e3 / 1e-3 and a start that must brake — a 5.5e11 s
+    trajectory 6e-2 off its target was `working`; it is error_precision, with the miss."""
+    gen = mjarm.JerkLimitedGenerator(np.array([[1e3, 1e3, 1e-3], [1e3, 1e3, 1e-3]]))
+    current = np.array([[-0.5804920774730058, -15.018608104249864, -928.79517807056993],
+                        [0.21848223906579656, -1213.7651608608162, -892.79328025390714]])
+    target = np.array([[-0.43892084332795922, 206.49690288185306, 0.45104738979429015],
+                       [-0.47101030084529438, 46.760882636415424, 0.37542555610659001]])
+    result = gen.calculate(current, target)
+    assert result.status == mjarm.OtgStatus.error_precision
+    assert result.failed_dof == 0 and result.end_error > 1e-8
 
 
 def test_waypoint_planner(panda, panda_chain):

@@ -324,6 +324,15 @@ pid_t read_pid(const fs::path& file) {
   return text.empty() ? -1 : static_cast<pid_t>(std::atol(text.c_str()));
 }
 
+// Waits until the stuck ffmpeg started for @p video has written its pid (an event it emits),
+// before the writer's 0.5 s deadline can run: a shell that takes longer than that to start (a
+// loaded or slow machine) was killed before it wrote the file, and the test failed without a
+// pid to check. The 60 s only guard against a hang.
+bool stuck_ffmpeg_started(const fs::path& video) {
+  const fs::path file = video.parent_path() / "ffmpeg.pid";
+  return test::eventually([&] { return read_pid(file) > 0; }, 60.0);
+}
+
 TEST(VideoWriter, AnFfmpegThatStopsReadingIsKilledAtTheDeadline) {
   const Watchdog watchdog(60);
   VideoOptions options;
@@ -331,6 +340,7 @@ TEST(VideoWriter, AnFfmpegThatStopsReadingIsKilledAtTheDeadline) {
   options.timeout_s = 0.5;
   const fs::path path = video_dir("stuck") / "stuck.mp4";
   VideoWriter video(path, 64, 48, 30.0, options);
+  ASSERT_TRUE(stuck_ffmpeg_started(path));
   std::string message;
   for (int k = 0; k < 10000 && message.empty(); ++k) {
     try {
@@ -356,6 +366,7 @@ TEST(VideoWriter, AnFfmpegThatNeverExitsIsKilledAtTheDeadline) {
   options.timeout_s = 0.5;
   const fs::path path = video_dir("never_exits") / "never_exits.mp4";
   VideoWriter video(path, 64, 48, 30.0, options);
+  ASSERT_TRUE(stuck_ffmpeg_started(path));
   video.write(moving_square(64, 48, 0));  // fits in the pipe
   const std::string message = error_of([&] { video.close(); });
   EXPECT_NE(message.find("did not finalize video"), std::string::npos) << message;
@@ -453,6 +464,9 @@ TEST(VideoWriter, AFailedVideoLeavesTheOldFileAndNothingElse) {
       if (existed) std::ofstream(path) << "old video\n";
       const std::string message = error_of([&] {
         VideoWriter video(path, 64, 48, 30.0, c.options);
+        if (c.name == "stuck") {
+          ASSERT_TRUE(stuck_ffmpeg_started(path));
+        }
         for (int k = 0; k < 2000; ++k) video.write(moving_square(64, 48, k % 20));
         video.close();
       });

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 #include <vector>
@@ -9,6 +10,7 @@
 #include "ik/malloc_counter.hpp"
 #include "mjarm/error.hpp"
 #include "mjarm/trajectory/jerk_limited_brake.hpp"
+#include "mjarm/trajectory/jerk_limited_reference.hpp"
 #include "mjarm/trajectory/jerk_limited_sync.hpp"
 #include "trajectory/jerk_limited_cases.hpp"
 
@@ -195,6 +197,109 @@ TEST(JerkLimitedGenerator, WideRangesOfLimitsSucceed) {
       EXPECT_LE(std::abs(end.a - target[i].a), 1e-9 * std::max(1.0, std::abs(target[i].a))) << k;
     }
   }
+}
+
+/// The largest miss of a DoF's state @p end (stepped to the duration: what a caller sees) from
+/// @p target, relative to max(1, |start|, |target|) as OtgResult::kEndTolerance.
+double stepped_miss(const KinematicState& end, const KinematicState& start,
+                    const KinematicState& target) {
+  const auto miss = [](double value, double goal, double from) {
+    return std::abs(value - goal) / std::max({1.0, std::abs(goal), std::abs(from)});
+  };
+  return std::max({miss(end.p, target.p, start.p), miss(end.v, target.v, start.v),
+                   miss(end.a, target.a, start.a)});
+}
+
+// issue 29, item 8: per-DoF limits mixed 1e-3 / 1e3 and a start that must brake. The brake of
+// this case lasts 2·10⁶ s at up to 4·10⁸ u/s, the trajectory 5.5·10¹¹ s; it said `working`, and
+// step() to its end said `finished` with the state 6.2e-2 from the target. Double precision
+// cannot land a motion that large on a target of size 1: the result is now error_precision
+// (the final check), and every result that still says working is on target.
+TEST(JerkLimitedGenerator, ExtremeLimitsEndOnTargetOrReportAPrecisionError) {
+  const std::vector<JerkLimits> limits(2, JerkLimits{1e3, 1e3, 1e-3});
+  const std::vector<KinematicState> current = {
+      {-0.5804920774730058, -15.018608104249864, -928.79517807056993},
+      {0.21848223906579656, -1213.7651608608162, -892.79328025390714}};
+  const std::vector<KinematicState> target = {
+      {-0.43892084332795922, 206.49690288185306, 0.45104738979429015},
+      {-0.47101030084529438, 46.760882636415424, 0.37542555610659001}};
+  JerkLimitedGenerator otg(limits);
+  const OtgResult r = otg.calculate(current, target);
+  EXPECT_EQ(r.status, OtgStatus::error_precision) << to_string(r.status);
+  EXPECT_STREQ(to_string(r.status), "error_precision");
+  EXPECT_EQ(r.failed_dof, 0);
+  EXPECT_GT(r.end_error, OtgResult::kEndTolerance);
+  std::vector<KinematicState> state(2);
+  EXPECT_EQ(otg.step(r.duration, state), OtgStatus::error_precision);  // never `finished`
+
+  // a seeded search of the same kind: every result that says working or finished ends, stepped
+  // to its duration, on its target and within its limits after the brake
+  std::mt19937_64 rng(1);
+  std::uniform_real_distribution<double> u(-1.0, 1.0), share(0.0, 1.0);
+  const auto extreme = [&] { return share(rng) < 0.5 ? 1e-3 : 1e3; };
+  int succeeded = 0, refused = 0;
+  for (int k = 0; k < 40; ++k) {
+    std::vector<JerkLimits> l(2);
+    std::vector<KinematicState> c(2), t(2);
+    for (int i = 0; i < 2; ++i) {
+      l[i] = {extreme(), extreme(), extreme()};
+      do c[i] = {u(rng), 1.6 * l[i].velocity * u(rng), 1.6 * l[i].acceleration * u(rng)};
+      while (is_startable(c[i], l[i]));
+      // targets with |a| ≤ √(v_max·j_max): most accelerations beyond cannot be reached within
+      // v_max (|v − a·|a|/(2 j_max)| ≤ v_max), and drawing them over ±a_max is rarely reachable
+      const double a_reach = std::min(l[i].acceleration, std::sqrt(l[i].velocity * l[i].jerk));
+      do t[i] = {u(rng), l[i].velocity * u(rng), a_reach * u(rng)};
+      while (!is_reachable(t[i], l[i]));
+    }
+    JerkLimitedGenerator g(l);
+    const OtgResult res = g.calculate(c, t);
+    if (res.status == OtgStatus::error_precision) ++refused;
+    if (res.status != OtgStatus::working && res.status != OtgStatus::finished) continue;
+    ++succeeded;
+    std::vector<KinematicState> end(2);
+    EXPECT_EQ(g.step(res.duration, end), OtgStatus::finished) << k;
+    for (int i = 0; i < 2; ++i) {
+      EXPECT_LE(stepped_miss(end[i], c[i], t[i]), OtgResult::kEndTolerance) << k << " DoF " << i;
+      const JerkExtrema e = g.profile(i).extrema(g.brake_phases(i));
+      EXPECT_LE(std::max(-e.v_min, e.v_max), l[i].velocity * (1.0 + 1e-9)) << k;
+      EXPECT_LE(std::max(-e.a_min, e.a_max), l[i].acceleration * (1.0 + 1e-9)) << k;
+    }
+  }
+  EXPECT_GT(succeeded, 0);
+  EXPECT_GT(refused, 0);  // the search does reach the limits of double precision
+}
+
+// An acceleration limit far above what the velocity and jerk limits let any motion reach
+// (|a| ≤ √6·√(v_max·j_max) between startable and reachable states) never binds, but the solvers'
+// structures with holds at ±a_max computed with its powers: this case had no profile at all
+// (error_no_profile), and the second a profile of 2423 s where one of 442 s exists. Both are
+// now solved; the grid reference confirms the durations (none just below, one just above).
+TEST(JerkLimitedGenerator, AnAccelerationLimitThatCannotBindDoesNotSpoilStepOne) {
+  struct Case {
+    JerkLimits limits;
+    KinematicState start, target;
+  };
+  const Case cases[] = {
+      {{0.48540090067598579, 755.33716561155654, 0.0050818664639927132},
+       {-0.26380584023711617, -0.14695036660397795, 0.018828850559063613},
+       {-1.6994618751427164, 0.44233783050169911, 0.023659921303235226}},
+      {{6662.1933424550152, 324.64692488505227, 0.027080173642154901},
+       {-0.55298689114228572, -4872.5111326417446, 20.051220576649012},
+       {-2.5397420191231479, 5091.548291240304, 20.697207886880669}}};
+  for (const Case& c : cases) {
+    JerkLimitedGenerator otg(std::vector<JerkLimits>{c.limits});
+    const std::vector<KinematicState> current{c.start}, target{c.target};
+    const OtgResult r = otg.calculate(current, target);
+    ASSERT_EQ(r.status, OtgStatus::working) << to_string(r.status);
+    EXPECT_LE(r.end_error, OtgResult::kEndTolerance);
+    EXPECT_LE(r.limit_excess, OtgResult::kLimitTolerance);
+    EXPECT_FALSE(grid_motion_exists(c.start, c.target, c.limits, 0.99 * r.duration, 100));
+    EXPECT_TRUE(grid_motion_exists(c.start, c.target, c.limits, 1.03 * r.duration, 100));
+  }
+  // the second one's duration, for the record: 442 s, not 2423 s
+  JerkLimitedGenerator otg(std::vector<JerkLimits>{cases[1].limits});
+  const std::vector<KinematicState> current{cases[1].start}, target{cases[1].target};
+  EXPECT_LT(otg.calculate(current, target).duration, 450.0);
 }
 
 TEST(JerkLimitedGenerator, VelocityInterfaceReachesVelocitiesTogether) {

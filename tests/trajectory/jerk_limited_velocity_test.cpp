@@ -16,6 +16,23 @@ TEST(JerkLimitedVelocity, RestToCruiseMatchesTheClassicFormula) {
   EXPECT_NEAR(b.t_min, 2.0 * std::sqrt(0.1 / 10.0), 1e-12);
 }
 
+// A duration far above the minimum (another DoF's, 455 s here against 2.9 s): the level's
+// quadratic took its small root as (b − √disc)/2 with b = j·T ≈ 3.5·10⁶, which cancelled to a
+// level 1.1e-10 off; times the 454 s hold, the velocity missed by 5e-8 and the profile was refused
+// (the generator's error_synchronization in a quarter of the 7-DoF cases with limits over four
+// decades). The small root now comes from the product of the roots.
+TEST(JerkLimitedVelocity, ALongFixedDurationKeepsTheLevelsPrecise) {
+  const JerkLimits l{12.606083999516031, 2.6944270897927205, 7768.4506968280448};
+  const KinematicState start{0.0, 2.3944651724074513, 1.2471080390746228};
+  const double v = -5.4899149458221324, a = 2.1722344282767683;
+  JerkProfile p;
+  ASSERT_TRUE(fixed_time_velocity_profile(start, v, a, l, 454.542092106052, p));
+  EXPECT_NEAR(p.duration(), 454.542092106052, 1e-9 * 454.5);
+  EXPECT_NEAR(p.end().v, v, 1e-9 * std::abs(v));
+  EXPECT_NEAR(p.end().a, a, 1e-9 * std::abs(a));
+  EXPECT_TRUE(p.within({1e9, l.acceleration, l.jerk}, 1e-12));  // v is free in this interface
+}
+
 TEST(JerkLimitedVelocity, RandomTargetsAreReachedInEveryFreeDuration) {
   test::JerkCaseGenerator cases(4);
   int blocked = 0;

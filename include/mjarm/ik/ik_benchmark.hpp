@@ -17,6 +17,7 @@
 #include <chrono>
 #include <cstdint>
 #include <functional>
+#include <limits>
 #include <string>
 
 #include "mjarm/ik/global_ik.hpp"
@@ -67,6 +68,11 @@ struct IkBenchmarkOptions {
   /// result). A custom solver enforces its own timeout.
   std::chrono::duration<double> timeout = std::chrono::milliseconds(5);
   IkBenchmarkClock clock = IkBenchmarkClock::wall;  ///< how solves are timed
+  /// Restarts the built-in global solver may make per solve (≥ 0; GlobalIkOptions::max_restarts).
+  /// The protocol's default is unbounded: the budget decides. With a cap and a budget far beyond
+  /// it, the outcome of every sample is the same on any machine (the iterates do not depend on
+  /// time): what the tests use.
+  int max_restarts = std::numeric_limits<int>::max();
   PoseTolerance tolerance;  ///< success test (TRAC-IK: 1e-5 on each component)
   /// Called after every sample with (samples done, N); may be empty.
   std::function<void(int done, int total)> progress;
@@ -108,8 +114,8 @@ IkBenchmarkResult run_ik_benchmark(const Chain& chain, const IkBenchmarkSolver& 
                                    const IkBenchmarkOptions& options);
 
 /// Runs the protocol for `GlobalIk` in speed mode with options.timeout (× 20 for the
-/// thread_cpu clock, see IkBenchmarkClock), options.tolerance, and options.seed as the
-/// solver's restart seed too.
+/// thread_cpu clock, see IkBenchmarkClock), options.max_restarts, options.tolerance, and
+/// options.seed as the solver's restart seed too.
 IkBenchmarkResult run_ik_benchmark(const Chain& chain, const IkBenchmarkOptions& options);
 
 }  // namespace mjarm

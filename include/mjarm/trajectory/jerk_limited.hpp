@@ -36,17 +36,44 @@ enum class OtgStatus {
   error_brake,            ///< a DoF's brake did not fit its profile (not expected: ≤ 3 phases)
   error_no_profile,       ///< step 1 found no time-optimal profile for a DoF
   error_synchronization,  ///< a DoF has no profile of the synchronized duration
+  /// the trajectory failed its final check (OtgResult's tolerances): a DoF's profile ends off
+  /// its target, exceeds a limit after its brake, or does not last the synchronized duration.
+  /// Double precision: the motion (or the range it is blended from) is too large for the scale
+  /// of its start and target — limits outside the supported range (docs/trajectory_otg.md,
+  /// "Supported limits")
+  error_precision,
 };
 
 /// Short lowercase name of a status ("working", "error_synchronization", ...).
 const char* to_string(OtgStatus status) noexcept;
 
-/// Result of a calculation.
+/// Result of a calculation. A result that says working or finished has been checked: every
+/// DoF's profile ends on its target, lasts the synchronized duration and keeps its limits after
+/// its brake, to the tolerances below (else the status is error_precision).
 struct OtgResult {
+  /// Every DoF's profile ends with |Δp| ≤ this·max(1, |p₀|, |p_f|), |Δv| ≤ this·max(1, |v₀|,
+  /// |v_f|) and |Δa| ≤ this·max(1, |a₀|, |a_f|) (start and target values; the velocity interface
+  /// checks v and a only).
+  static constexpr double kEndTolerance = 1e-8;
+  /// After its brake no DoF exceeds (1 + this)·limit: |a| and |j| (and |v| for the position
+  /// interface), at the analytic extrema of every phase.
+  static constexpr double kLimitTolerance = 1e-9;
+  /// Every DoF's profile lasts the synchronized duration T to this·max(1 s, T).
+  static constexpr double kSyncTolerance = 1e-9;
+
   OtgStatus status = OtgStatus::error_no_profile;  ///< outcome
   double duration = 0.0;                           ///< synchronized duration [s] (brake included)
   int limiting_dof = -1;                           ///< the DoF that sets the duration
   int failed_dof = -1;                             ///< the DoF that failed (error statuses only)
+  /// The largest end miss over the DoFs, relative as for kEndTolerance (0 when the calculation
+  /// failed before its check).
+  double end_error = 0.0;
+  /// The largest limit excess over the DoFs after their brakes, relative (|x|/limit − 1; ≤ 0
+  /// within the limits; 0 when the calculation failed before its check).
+  double limit_excess = 0.0;
+  /// The largest |profile duration − duration| over the DoFs [s] (0 when the calculation failed
+  /// before its check).
+  double sync_error = 0.0;
 };
 
 /// The generator. All storage is sized by the constructor; calculate(), at() and step()
@@ -115,6 +142,9 @@ class JerkLimitedGenerator {
   void check_states(std::span<const KinematicState> current, std::span<const KinematicState> target,
                     bool velocity_interface) const;
   bool solve_step1(int i) const noexcept;
+  // the final check of a calculated trajectory (OtgResult's tolerances); sets result_.status
+  void check_result(std::span<const KinematicState> current,
+                    std::span<const KinematicState> target) noexcept;
 
   std::vector<JerkLimits> limits_;
   std::vector<JerkProfile> profiles_;
