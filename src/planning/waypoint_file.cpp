@@ -80,6 +80,9 @@ WaypointPath parse_waypoints_json(std::string_view text, std::string_view source
                            name + ": \"orientation\"");
   const nlohmann::json& list = doc["waypoints"];
   if (!list.is_array()) throw Error(name + ": \"waypoints\" must be an array");
+  if (list.size() > kMaxWaypoints)
+    throw Error(name + ": " + std::to_string(list.size()) + " waypoints, more than the " +
+                std::to_string(kMaxWaypoints) + " a file may hold");
   for (std::size_t k = 0; k < list.size(); ++k) {
     const std::string where = name + ": waypoint " + std::to_string(k);
     const nlohmann::json& w = list[k];
@@ -115,6 +118,9 @@ WaypointPath parse_waypoints_csv(std::string_view text, std::string_view source)
     }
     first_row = false;
     const std::string where = name + " line " + std::to_string(number);
+    if (path.waypoints.size() == kMaxWaypoints)
+      throw Error(where + ": a waypoint beyond the " + std::to_string(kMaxWaypoints) +
+                  " a file may hold");
     std::vector<double> values;
     std::istringstream cells(line);
     std::string cell;

@@ -86,6 +86,50 @@ TEST(FiniteModel, KeyframesAndUnnamedElementsAreNamed) {
                {"geom 0 (unnamed)", "pos = 0 inf 0"});
 }
 
+TEST(FiniteModel, NanIsRefusedNamingElementAndAttribute) {
+  // issue 29's probe: MuJoCo 4 keeps the NaN (2.2.2 zeroed it) and only warns
+  expect_names(error_of([] { Robot::from_string(one_joint_arm(R"(pos="nan 0 0.3")")); }),
+               {"non-finite", "body 'link'", "attribute pos = nan 0 0.3", "mjModel::body_pos"});
+  // <visual> and <statistic> reach the renderer's camera and clipping planes
+  expect_names(error_of([] {
+                 Robot::from_string(one_joint_arm("", "", "", R"(<visual><global fovy="nan"/></visual>)"));
+               }),
+               {"<visual> <global> fovy = nan", "mjModel::vis.global.fovy"});
+  expect_names(error_of([] {
+                 Robot::from_string(
+                     one_joint_arm("", "", "", R"(<visual><headlight ambient="0.1 nan 0.1"/></visual>)"));
+               }),
+               {"<visual> <headlight> ambient = 0.1 nan 0.1"});
+  expect_names(error_of([] {
+                 Robot::from_string(one_joint_arm("", "", "", R"(<statistic center="inf 0 0"/>)"));
+               }),
+               {"<statistic> center = inf 0 0", "mjModel::stat.center"});
+}
+
+TEST(FiniteModel, LengthsAndMassesBeyondMuJoCosBoundAreRefused) {
+  expect_names(error_of([] { Robot::from_string(one_joint_arm(R"(pos="1e300 0 0.3")")); }),
+               {"a value beyond 1e+10", "body 'link'", "attribute pos = 1e+300 0 0.3"});
+  expect_names(error_of([] { Robot::from_string(one_joint_arm("", "", R"(mass="1e308")")); }),
+               {"a value beyond 1e+10", "body 'link'", "<inertial> mass", "1e+308",
+                "mjModel::body_mass"});
+  expect_names(error_of([] { Robot::from_string(one_joint_arm("", "", R"(size="1e11 0.2")")); }),
+               {"geom 'rod'", "attribute size = 1e+11"});
+  // up to the bound a model loads
+  EXPECT_NO_THROW(Robot::from_string(one_joint_arm(R"(pos="1e9 0 0")")));
+}
+
+TEST(FiniteModel, MuJoCosFirstStepWarningsAreLoadWarnings) {
+  // a stiff spring pulled away from qpos0 on a light link: qacc beyond 1e10 at the first step,
+  // though every model number is within bounds
+  const Robot robot = Robot::from_string(
+      one_joint_arm("", R"(stiffness="1e9" springref="1")", R"(mass="0.001")"));
+  ASSERT_EQ(robot.load_warnings().size(), 1u);
+  EXPECT_NE(robot.load_warnings()[0].find("Nan, Inf or huge value in QACC"), std::string::npos)
+      << robot.load_warnings()[0];
+  // a model that steps well warns of nothing
+  EXPECT_TRUE(Robot::from_string(one_joint_arm("")).load_warnings().empty());
+}
+
 TEST(FiniteModel, EveryBundledModelIsFinite) {
   for (const auto& name : Robot::bundled_names()) {
     const Robot robot = Robot::bundled(name);  // the constructor checks; check again explicitly
