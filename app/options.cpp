@@ -11,6 +11,7 @@
 #include <cstring>
 #include <filesystem>
 #include <limits>
+#include <numbers>
 #include <iostream>
 
 #include "mjarm/error.hpp"
@@ -217,7 +218,7 @@ std::vector<std::string> check_joint_ranges(const Robot& robot, const std::vecto
                                             const Eigen::Ref<const Eigen::VectorXd>& qpos,
                                             const std::string& option, bool allowed,
                                             const std::string& refusal) {
-  constexpr double kPi = 3.14159265358979323846;
+  constexpr double kPi = std::numbers::pi;
   std::vector<std::string> outside;
   for (const int id : joints) {
     const JointInfo joint = robot.joint_info(id);

@@ -2,6 +2,7 @@
 
 #include <mujoco/mjxmacro.h>
 
+#include <charconv>
 #include <cmath>
 #include <string>
 
@@ -79,8 +80,9 @@ bool derived(std::string_view name) {
   return false;
 }
 
-// arrays of lengths, masses and inertias given by the model: a value beyond mjMAXVAL there is one MuJoCo's own state checks call diverged
-// ("Nan, Inf or huge value in QACC") at the first step, or turns into inf in the mass matrix
+// arrays of lengths, masses and inertias given by the model: a value beyond mjMAXVAL there is
+// one MuJoCo's own state checks call diverged ("Nan, Inf or huge value in QACC") at the first
+// step, or turns into inf in the mass matrix
 constexpr std::string_view kBoundedArrays[] = {
     "body_pos",  "body_ipos", "body_mass", "body_inertia", "jnt_pos",  "geom_pos",
     "geom_size", "site_pos",  "site_size", "cam_pos",      "light_pos", "key_qpos",
@@ -123,13 +125,15 @@ class FiniteCheck {
 #undef X
     const mjVisual& vis = m_.vis;
     std::string group;  // the <visual> child element being checked
-#define X(type, name, n) check_option("<visual> <" + group + ">", #name, "vis." + group + "." #name, &section.name, n);
-#define XVEC(type, name, n) check_option("<visual> <" + group + ">", #name, "vis." + group + "." #name, section.name, n);
-#define VISUAL(child, fields)   \
-  {                             \
-    group = #child;             \
-    const auto& section = vis.child; \
-    fields                      \
+#define X(type, name, n) \
+  check_option("<visual> <" + group + ">", #name, "vis." + group + "." #name, &section.name, n);
+#define XVEC(type, name, n) \
+  check_option("<visual> <" + group + ">", #name, "vis." + group + "." #name, section.name, n);
+#define VISUAL(child, fields)          \
+  {                                    \
+    group = #child;                    \
+    const auto& section = vis.child;   \
+    fields                             \
   }
     VISUAL(global, MJVISUAL_GLOBAL_FIELDS)
     VISUAL(quality, MJVISUAL_QUALITY_FIELDS)
@@ -197,10 +201,18 @@ class FiniteCheck {
   template <class T>
   static std::string format(const T* values, int n) {
     std::string text;
-    for (int i = 0; i < n && i < 12; ++i)
-      text += (i ? " " : "") + number_text(static_cast<double>(values[i]));
+    for (int i = 0; i < n && i < 12; ++i) text += (i ? " " : "") + value_text(values[i]);
     if (n > 12) text += " ...";
     return text;
+  }
+
+  // a float in its own shortest form (0.1f is "0.1", not the double 0.10000000149011612)
+  static std::string value_text(float value) {
+    if (!std::isfinite(value)) return number_text(value);
+    char text[32];
+    return std::string(text, std::to_chars(text, text + sizeof text, value).ptr);
+  }
+  static std::string value_text(double value) { return number_text(value); }
   }
 
   // "body 'link3'" (or "body 4" when unnamed) for row `row` of the array `name`

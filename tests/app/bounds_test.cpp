@@ -58,7 +58,9 @@ TEST(CliBounds, JointValuesOutsideTheirRangeAreRefusedByEveryCommand) {
   const fs::path waypoints =
       write_bounds_file("range_wp.json", R"({"waypoints": [{"position": [0.45, 0.0, 0.5]}]})");
   expect_error(with({"plan", "panda", "--waypoints", waypoints.string(), "--q"}, kOutsideQ), 2,
-               named + "; a plan starts inside the joint ranges");
+               named);
+  expect_error(with({"plan", "panda", "--waypoints", waypoints.string(), "--q"}, kOutsideQ), 2,
+               "(--q takes radians: 10° would be 0.1745 rad); a plan starts inside the joint ranges");
   expect_error(
       with({"run", "plan", "panda", "--waypoints", waypoints.string(), "--q"}, kOutsideQ), 2,
       named);
@@ -182,6 +184,31 @@ TEST(CliBounds, RunPlanWithoutARobotSaysSo) {
                "run plan needs a ROBOT (planar2 | panda): mjarm run plan ROBOT --waypoints FILE");
   expect_error({"run", "plan", "pandaa", "--waypoints", waypoints.string()}, 2,
                "run plan: unknown ROBOT 'pandaa'; robots: planar2, panda");
+}
+
+TEST(CliBounds, NanInAModelIsAnErrorNamingElementAndAttribute) {
+  // issue 29, item 2: MuJoCo 2.2.2 zeroed pos="nan 0 0.3" and fk was silently wrong; MuJoCo
+  // 4.0.1 keeps the NaN, warns, and the load check refuses it
+  const fs::path nan = write_bounds_file("nan.xml", R"(<mujoco model="nanarm">
+  <worldbody>
+    <body name="b1" pos="0 0 0.1">
+      <joint name="j1" axis="0 0 1"/>
+      <geom type="capsule" size="0.02" fromto="0 0 0 0 0 0.3"/>
+      <body name="b2" pos="nan 0 0.3">
+        <joint name="j2" axis="0 1 0"/>
+        <geom type="sphere" size="0.02"/>
+        <site name="tip"/>
+      </body>
+    </body>
+  </worldbody>
+</mujoco>)");
+  const CliRun run = run_cli({"fk", nan.string(), "--q", "0", "0"});
+  EXPECT_EQ(run.exit_code, 1);
+  EXPECT_NE(run.err.find("mjarm: error: model '" + nan.string() +
+                         "' has a non-finite number: body 'b2', attribute pos = nan 0 0.3"),
+            std::string::npos)
+      << run.err;
+  EXPECT_TRUE(run.out.empty());
 }
 
 TEST(CliBounds, HugeNumbersInMessagesAreShort) {
