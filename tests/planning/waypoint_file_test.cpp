@@ -4,6 +4,7 @@
 
 #include <cstdio>
 #include <fstream>
+#include <string>
 
 #include "mjarm/error.hpp"
 #include "mjarm/model/user_file.hpp"
@@ -39,6 +40,25 @@ TEST(WaypointFile, CsvWithAndWithoutHeaderUsesTheDefaultOrientation) {
   const std::vector<Pose> poses = path.poses(R);
   EXPECT_EQ(poses[0].R, R);
   EXPECT_TRUE(poses[1].R.isApprox(Eigen::Matrix3d::Identity()));
+}
+
+// issue 29: a 2 000 000-row CSV ran for 97 s and failed blaming "very slow velocities"
+TEST(WaypointFile, AFileOfMoreWaypointsThanTheBoundIsRefused) {
+  std::string csv = "x,y,z\n", json = R"({"waypoints": [)";
+  for (std::size_t k = 0; k <= kMaxWaypoints; ++k) {
+    csv += "0.4,0.0,0.5\n";
+    json += std::string(k ? "," : "") + R"({"position": [0.4, 0.0, 0.5]})";
+  }
+  json += "]}";
+  EXPECT_NE(error_of([&] { parse_waypoints_csv(csv, "big.csv"); })
+                .find("waypoints big.csv line 10002: a waypoint beyond the 10000 a file may hold"),
+            std::string::npos);
+  EXPECT_NE(error_of([&] { parse_waypoints_json(json, "big.json"); })
+                .find("waypoints big.json: 10001 waypoints, more than the 10000 a file may hold"),
+            std::string::npos);
+  // at the bound a file reads
+  csv.erase(csv.rfind("0.4,0.0,0.5\n"));
+  EXPECT_EQ(parse_waypoints_csv(csv, "big.csv").waypoints.size(), kMaxWaypoints);
 }
 
 TEST(WaypointFile, BadFilesAreClearErrors) {
