@@ -213,7 +213,6 @@ class FiniteCheck {
     return std::string(text, std::to_chars(text, text + sizeof text, value).ptr);
   }
   static std::string value_text(double value) { return number_text(value); }
-  }
 
   // "body 'link3'" (or "body 4" when unnamed) for row `row` of the array `name`
   std::string owner_of(std::string_view name, int row) const {
