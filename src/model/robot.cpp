@@ -227,14 +227,21 @@ const char* sensor_type_name(int type) noexcept {
 /// MuJoCo's checks of a first step (mj_step's mj_checkPos, mj_checkVel and mj_checkAcc) on the
 /// model's reference state: their warnings ("Nan, Inf or huge value in QACC ...") join the load
 /// warnings, so a model that diverges at once says so when it loads, not at its first step.
+/// A model whose first step fails outright (an arena too small for its contacts: "mj_stackAlloc:
+/// out of memory") still loads, as it did before the check: the failure is a load warning, and
+/// the commands that only need kinematics keep working.
 void add_first_state_warnings(const mjModel& m, std::vector<std::string>& warnings) {
   const LoadWarnings capture(warnings);
   const DataPtr data(mj_makeData(&m));
   if (!data) return;  // no memory for it: the first mj_makeData of a user reports that
-  mj_checkPos(&m, data.get());
-  mj_checkVel(&m, data.get());
-  mj_forward(&m, data.get());
-  mj_checkAcc(&m, data.get());
+  try {
+    mj_checkPos(&m, data.get());
+    mj_checkVel(&m, data.get());
+    mj_forward(&m, data.get());
+    mj_checkAcc(&m, data.get());
+  } catch (const Error& e) {
+    warnings.push_back(std::string("the first step at qpos0 fails: ") + e.what());
+  }
 }
 
 }  // namespace

@@ -128,6 +128,17 @@ TEST(FiniteModel, MuJoCosFirstStepWarningsAreLoadWarnings) {
       << robot.load_warnings()[0];
   // a model that steps well warns of nothing
   EXPECT_TRUE(Robot::from_string(one_joint_arm("")).load_warnings().empty());
+  // a first step that fails outright (contacts beyond a tiny arena) is a warning, not a refusal:
+  // the model loaded before the check, and kinematics need no step
+  std::string crowd = R"(<mujoco><size memory="20K"/><worldbody>)";
+  for (int i = 0; i < 200; ++i)
+    crowd += R"(<body pos="0 0 )" + std::to_string(0.001 * i) +
+             R"("><freejoint/><geom size="0.1"/></body>)";
+  const Robot crowded = Robot::from_string(crowd + "</worldbody></mujoco>");
+  ASSERT_FALSE(crowded.load_warnings().empty());
+  EXPECT_NE(crowded.load_warnings().back().find("the first step at qpos0 fails: MuJoCo error: "),
+            std::string::npos)
+      << crowded.load_warnings().back();
 }
 
 TEST(FiniteModel, EveryBundledModelIsFinite) {
