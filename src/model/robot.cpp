@@ -232,9 +232,9 @@ const char* sensor_type_name(int type) noexcept {
 /// the commands that only need kinematics keep working.
 void add_first_state_warnings(const mjModel& m, std::vector<std::string>& warnings) {
   const LoadWarnings capture(warnings);
-  const DataPtr data(mj_makeData(&m));
-  if (!data) return;  // no memory for it: the first mj_makeData of a user reports that
   try {
+    const DataPtr data(mj_makeData(&m));
+    if (!data) return;  // no memory for it: the first mj_makeData of a user reports that
     mj_checkPos(&m, data.get());
     mj_checkVel(&m, data.get());
     mj_forward(&m, data.get());

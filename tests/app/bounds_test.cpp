@@ -113,8 +113,8 @@ TEST(CliBounds, AProfileBeyondItsLimitsFailsUnlessAllowed) {
   EXPECT_NE(run.err.find("no CSV or plot was written; pass --allow-violation"), std::string::npos);
   EXPECT_FALSE(fs::exists(csv));
   for (const char* kind : {"smoothstep", "smootherstep"})
-    expect_error({"traj", kind, "--start", "0", "--target", "1", "--duration", "0.1", "--json"}, 1,
-                 "the profile breaks its limits");
+    EXPECT_EQ(
+        run_cli({"traj", kind, "--start", "0", "--target", "1", "--duration", "0.1"}).exit_code, 1);
   // the same with JSON: the document is printed, then the error
   const CliRun js = run_cli(
       {"traj", "quintic", "--start", "0", "--target", "1", "--duration", "0.1", "--json"});

@@ -107,15 +107,27 @@ TEST(FiniteModel, NanIsRefusedNamingElementAndAttribute) {
 }
 
 TEST(FiniteModel, LengthsAndMassesBeyondMuJoCosBoundAreRefused) {
-  expect_names(error_of([] { Robot::from_string(one_joint_arm(R"(pos="1e300 0 0.3")")); }),
-               {"a value beyond 1e+10", "body 'link'", "attribute pos = 1e+300 0 0.3"});
-  expect_names(error_of([] { Robot::from_string(one_joint_arm("", "", R"(mass="1e308")")); }),
-               {"a value beyond 1e+10", "body 'link'", "<inertial> mass", "1e+308",
+  // issue 29, item 4: these loaded, and the first step diverged ("Nan, Inf or huge value")
+  const auto in_world = [](const std::string& body) {
+    return "<mujoco><worldbody>" + body + "</worldbody></mujoco>";
+  };
+  expect_names(error_of([&] {
+                 Robot::from_string(in_world(R"(<body name="far" pos="1e300 0 0.3">
+                   <geom size="0.1"/></body>)"));
+               }),
+               {"a value beyond 1e+10", "body 'far'", "attribute pos = 1e+300 0 0.3"});
+  expect_names(error_of([&] {
+                 Robot::from_string(in_world(R"(<body name="heavy"><joint axis="0 0 1"/>
+                   <inertial pos="0 0 0" mass="1e308" diaginertia="1 1 1"/></body>)"));
+               }),
+               {"a value beyond 1e+10", "body 'heavy'", "<inertial> mass", "= 1e+308",
                 "mjModel::body_mass"});
-  expect_names(error_of([] { Robot::from_string(one_joint_arm("", "", R"(size="1e11 0.2")")); }),
-               {"geom 'rod'", "attribute size = 1e+11"});
+  expect_names(error_of([&] {
+                 Robot::from_string(in_world(R"(<geom name="huge" size="1e11"/>)"));
+               }),
+               {"geom 'huge'", "attribute size = 1e+11"});
   // up to the bound a model loads
-  EXPECT_NO_THROW(Robot::from_string(one_joint_arm(R"(pos="1e9 0 0")")));
+  EXPECT_NO_THROW(Robot::from_string(in_world(R"(<body pos="1e9 0 0"><geom size="0.1"/></body>)")));
 }
 
 TEST(FiniteModel, MuJoCosFirstStepWarningsAreLoadWarnings) {
@@ -130,10 +142,9 @@ TEST(FiniteModel, MuJoCosFirstStepWarningsAreLoadWarnings) {
   EXPECT_TRUE(Robot::from_string(one_joint_arm("")).load_warnings().empty());
   // a first step that fails outright (contacts beyond a tiny arena) is a warning, not a refusal:
   // the model loaded before the check, and kinematics need no step
-  std::string crowd = R"(<mujoco><size memory="20K"/><worldbody>)";
+  std::string crowd = R"(<mujoco><size memory="100K"/><worldbody>)";
   for (int i = 0; i < 200; ++i)
-    crowd += R"(<body pos="0 0 )" + std::to_string(0.001 * i) +
-             R"("><freejoint/><geom size="0.1"/></body>)";
+    crowd += R"(<body pos=")" + std::to_string(0.01 * i) + R"( 0 0"><geom size="0.004"/></body>)";
   const Robot crowded = Robot::from_string(crowd + "</worldbody></mujoco>");
   ASSERT_FALSE(crowded.load_warnings().empty());
   EXPECT_NE(crowded.load_warnings().back().find("the first step at qpos0 fails: MuJoCo error: "),
