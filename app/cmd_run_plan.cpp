@@ -25,7 +25,7 @@ void run_plan_scenario(const PlanCliOptions& given, const std::string& controlle
   try {
     robot = &shelf_pick_robot(given.model);
   } catch (const Error&) {
-    throw UsageError("run plan: unknown ROBOT '" + given.model + "'; robots: " + join(robots));
+    throw UsageError("run plan: unknown robot '" + given.model + "'; robots: " + join(robots));
   }
   try {
     check_shelf_pick_controller(controller_name);

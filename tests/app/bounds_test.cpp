@@ -183,7 +183,7 @@ TEST(CliBounds, RunPlanWithoutARobotSaysSo) {
   expect_error({"run", "plan", "--waypoints", waypoints.string()}, 2,
                "run plan needs a ROBOT (planar2 | panda): mjarm run plan ROBOT --waypoints FILE");
   expect_error({"run", "plan", "pandaa", "--waypoints", waypoints.string()}, 2,
-               "run plan: unknown ROBOT 'pandaa'; robots: planar2, panda");
+               "run plan: unknown robot 'pandaa'; robots: planar2, panda");
 }
 
 TEST(CliBounds, NanInAModelIsAnErrorNamingElementAndAttribute) {

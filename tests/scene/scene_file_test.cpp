@@ -142,15 +142,11 @@ TEST(SceneFile, HugeMassesPositionsAndSizesAreRefusedWithTheirLine) {
   message = error_of([] { parse_scene(small_scene("    size: [1e300, 0.1, 0.1]"), ".", "s.yaml"); });
   EXPECT_TRUE(mentions(message, "size holds 1e+300, beyond 1e+10")) << message;
   message = error_of(
-      [] { parse_scene("objects:
-  - {name: c, pos: [0, -1e300, 0]}
-", ".", "s.yaml"); });
+      [] { parse_scene("objects:\n  - {name: c, pos: [0, -1e300, 0]}\n", ".", "s.yaml"); });
   EXPECT_TRUE(mentions(message, "s.yaml:2: object 'c': box object 'c' pos holds -1e+300"))
       << message;
   message = error_of([] {
-    parse_scene("sites:
-  - {name: s, pos: [0, 0, 1e11]}
-", ".", "s.yaml");
+    parse_scene("sites:\n  - {name: s, pos: [0, 0, 1e11]}\n", ".", "s.yaml");
   });
   EXPECT_TRUE(mentions(message, "site 's' pos holds 1e+11")) << message;
   // the positive-mass rule prints its number short too (it was -1000000000.000000)
