@@ -121,6 +121,7 @@ Command add_fk_command(CLI::App& root) {
     std::string site;
     std::vector<double> q;
     std::string key;
+    bool allow_outside_range = false;
     bool jacobian = false;
     bool json = false;
   };
@@ -136,6 +137,7 @@ Command add_fk_command(CLI::App& root) {
                 ->expected(1, -1);
   app->add_option("--key", options->key, "take the configuration from this keyframe (e.g. home)")
       ->excludes(q);
+  add_allow_outside_range_flag(*app, options->allow_outside_range);
   app->add_flag("--jacobian", options->jacobian,
                 "also print the 6×n world-aligned Jacobian [v; ω]");
   add_json_flag(*app, options->json);
@@ -143,7 +145,8 @@ Command add_fk_command(CLI::App& root) {
   return {app, [options] {
             const Robot robot = load_model(options->model);
             const Chain chain(robot, resolve_site(robot, options->site));
-            const Configuration config = resolve_configuration(chain, options->q, options->key);
+            const Configuration config = resolve_configuration(
+                chain, options->q, options->key, "--q", options->allow_outside_range);
             ChainKinematics kin(chain);
             kin.set_fixed_qpos(config.qpos);
             kin.update(config.q);

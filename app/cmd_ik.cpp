@@ -24,6 +24,7 @@ struct IkOptions {
   std::vector<double> rpy;
   std::vector<double> from;
   std::string key;
+  bool allow_outside_range = false;
   std::string solver;
   bool solver_is_default = false;  // no --solver: a position target may fall back to restarts
   double timeout_ms = 100.0;
@@ -51,8 +52,12 @@ struct IkRun {
 /// The start of a solve: --from or --key when given, else the model's `home` keyframe, else the
 /// middle of the joint ranges (qpos0 may lie outside the limits: the panda's does).
 Configuration ik_start(const Chain& chain, const std::vector<double>& from,
-                       const std::string& key) {
-  if (!from.empty() || !key.empty()) return resolve_configuration(chain, from, key, "--from");
+                       const std::string& key, bool allow_outside_range) {
+  if (!from.empty() || !key.empty()) {
+    Configuration start = resolve_configuration(chain, from, key, "--from", allow_outside_range);
+    if (!start.outside_range.empty()) start.source += " (outside the joint ranges)";
+    return start;
+  }
   const std::vector<std::string> keys = chain.robot().keyframe_names();
   if (std::find(keys.begin(), keys.end(), "home") != keys.end()) {
     Configuration start = resolve_configuration(chain, {}, "home");
@@ -167,6 +172,7 @@ Command add_ik_command(CLI::App& root) {
           ->expected(1, -1)
           ->check(finite_number());
   app->add_option("--key", options->key, "start from this keyframe (e.g. home)")->excludes(from);
+  add_allow_outside_range_flag(*app, options->allow_outside_range);
   auto* solver =
       app->add_option("--solver", options->solver,
                       "dls (position only), pose (local, SE(3) log error) or global (restarts); "
@@ -186,7 +192,8 @@ Command add_ik_command(CLI::App& root) {
   return {app, [options, solver] {
             const Robot robot = load_model(options->model);
             const Chain chain(robot, resolve_site(robot, options->site));
-            const Configuration start = ik_start(chain, options->from, options->key);
+            const Configuration start = ik_start(chain, options->from, options->key,
+                                                   options->allow_outside_range);
             const bool has_orientation = !options->quat.empty() || !options->rpy.empty();
             options->solver_is_default = solver->count() == 0;
             if (options->solver.empty()) options->solver = has_orientation ? "global" : "dls";
@@ -215,6 +222,7 @@ Command add_ik_command(CLI::App& root) {
                        {"frame", chain.frame().name},
                        {"solver", options->solver},
                        {"start", start.source},
+                       {"start_outside_range", start.outside_range},
                        {"restarts_needed", run.restarts_needed},
                        {"global_attempts", run.global_attempts},
                        {"joints", chain.joint_names()},

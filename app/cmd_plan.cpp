@@ -111,7 +111,8 @@ PlannedPath plan_path(const PlanCliOptions& o) {
     const std::vector<std::string> keys = out.robot.keyframe_names();
     if (std::find(keys.begin(), keys.end(), "home") != keys.end()) key = "home";
   }
-  out.start = resolve_configuration(chain, o.q, key);
+  out.start = resolve_configuration(chain, o.q, key, "--q", false,
+                                    "a plan starts inside the joint ranges");
   const int n = chain.size();
   PlanOptions options;
   options.limits.max_velocity = per_joint(o.max_velocity, n, "--velocity-limit");

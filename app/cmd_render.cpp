@@ -13,8 +13,10 @@ namespace mjarm::cli {
 namespace {
 
 // --q values fill qpos from the start and must end on a joint boundary (the 7 arm joints of
-// panda_hand, or all nq coordinates); the rest keep qpos0
-std::string apply_q(const Robot& robot, const std::vector<double>& q, mjData& d) {
+// panda_hand, or all nq coordinates); the rest keep qpos0. Values outside a joint's range are
+// refused unless @p allow_outside_range (check_joint_ranges).
+std::string apply_q(const Robot& robot, const std::vector<double>& q, mjData& d,
+                    bool allow_outside_range) {
   const mjModel& m = robot.model();
   const int n = static_cast<int>(q.size());
   bool boundary = n == m.nq;
@@ -28,7 +30,14 @@ std::string apply_q(const Robot& robot, const std::vector<double>& q, mjData& d)
                      ")");
   }
   for (int i = 0; i < n; ++i) d.qpos[i] = q[static_cast<std::size_t>(i)];
-  return "--q";
+  std::vector<int> given;  // the joints whose coordinates --q sets
+  for (int j = 0; j < m.njnt; ++j)
+    if (m.jnt_qposadr[j] < n) given.push_back(j);
+  const auto outside =
+      check_joint_ranges(robot, given, Eigen::Map<const Eigen::VectorXd>(d.qpos, m.nq), "--q",
+                         allow_outside_range,
+                         std::string("pass ") + kAllowOutsideRangeFlag + " to draw it anyway");
+  return outside.empty() ? "--q" : "--q (outside the joint ranges)";
 }
 
 }  // namespace
@@ -47,6 +56,7 @@ Command add_render_command(CLI::App& root) {
     std::string size = "640x480";
     std::string out;
     bool no_shadows = false;
+    bool allow_outside_range = false;
     bool json = false;
   };
   auto options = std::make_shared<Options>();
@@ -65,6 +75,7 @@ Command add_render_command(CLI::App& root) {
                 ->expected(1, -1);
   app->add_option("--keyframe,--key", options->keyframe, "take the configuration from a keyframe")
       ->excludes(q);
+  add_allow_outside_range_flag(*app, options->allow_outside_range);
   auto* camera = app->add_option("--camera", options->camera, "a named camera of the model");
   auto* follow = app->add_option("--follow", options->follow,
                                  "look at this site (or body), e.g. the end effector");
@@ -103,7 +114,7 @@ Command add_render_command(CLI::App& root) {
                 data->qpos[i] = qpos[static_cast<std::size_t>(i)];
               configuration = "keyframe '" + options->keyframe + "'";
             } else if (!options->q.empty()) {
-              configuration = apply_q(robot, options->q, *data);
+              configuration = apply_q(robot, options->q, *data, options->allow_outside_range);
             }
             mj_forward(&robot.model(), data.get());
 

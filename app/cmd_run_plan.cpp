@@ -16,9 +16,18 @@ namespace mjarm::cli {
 void run_plan_scenario(const PlanCliOptions& given, const std::string& controller_name,
                        double settle_time, double control_period, double max_acceleration,
                        bool json) {
+  std::vector<std::string> robots;
+  for (const ShelfPickRobot& r : shelf_pick_robots()) robots.push_back(r.name);
+  if (given.model.empty())
+    throw UsageError("run plan needs a ROBOT (" + join(robots, " | ") +
+                     "): mjarm run plan ROBOT --waypoints FILE");
   const ShelfPickRobot* robot = nullptr;
   try {
     robot = &shelf_pick_robot(given.model);
+  } catch (const Error&) {
+    throw UsageError("run plan: unknown robot '" + given.model + "'; robots: " + join(robots));
+  }
+  try {
     check_shelf_pick_controller(controller_name);
   } catch (const Error& e) {
     throw UsageError(e.what());

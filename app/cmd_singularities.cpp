@@ -28,9 +28,10 @@ std::vector<std::string> kind_names(const SingularityEntry& e) {
   return names;
 }
 
-Json entry_json(const SingularityEntry& e) {
+Json entry_json(const SingularityEntry& e, const Chain& chain) {
   return {{"name", e.name},
           {"q", vector_json(e.q)},
+          {"within_limits", chain.within_limits(e.q)},
           {"singular_values", vector_json(e.singular_values)},
           {"sigma_min", e.sigma_min},
           {"condition_number", bound_json(e.condition_number)},
@@ -89,6 +90,7 @@ Command add_singularities_command(CLI::App& root) {
     std::size_t worst = 5;
     std::string block = "full";
     std::vector<double> q;
+    bool allow_outside_range = false;
     bool json = false;
   };
   auto options = std::make_shared<Options>();
@@ -113,6 +115,7 @@ Command add_singularities_command(CLI::App& root) {
   app->add_option("--q", options->q, "also measure this configuration (chain order) [rad or m]")
       ->check(finite_number())
       ->expected(1, -1);
+  add_allow_outside_range_flag(*app, options->allow_outside_range);
   add_json_flag(*app, options->json);
 
   return {app, [options] {
@@ -122,10 +125,12 @@ Command add_singularities_command(CLI::App& root) {
             measure.block = kBlocks.at(options->block);
             std::vector<NamedConfiguration> extra;
             if (!options->q.empty()) {
-              resolve_configuration(chain, options->q, "");  // a wrong count is a usage error
-              extra.push_back(
-                  {"--q", Eigen::Map<const Eigen::VectorXd>(
-                              options->q.data(), static_cast<Eigen::Index>(options->q.size()))});
+              // a wrong count or a value outside its range is a usage error
+              const Configuration config = resolve_configuration(
+                  chain, options->q, "", "--q", options->allow_outside_range);
+              extra.push_back({config.outside_range.empty() ? "--q"
+                                                            : "--q (outside the joint ranges)",
+                               config.q});
             }
             const SingularityReport report = singularity_report(chain, extra, measure);
             std::optional<SingularityScan> scan;
@@ -156,7 +161,7 @@ Command add_singularities_command(CLI::App& root) {
                        {"sigma_min_threshold", report.thresholds.sigma_min},
                        {"condition_number_threshold", report.thresholds.condition_number},
                        {"configurations", Json::array()}};
-              for (const auto& e : report.entries) doc["configurations"].push_back(entry_json(e));
+              for (const auto& e : report.entries) doc["configurations"].push_back(entry_json(e, chain));
               if (scan) {
                 Json s{{"status", to_string(scan->status)},
                        {"samples", scan->samples},
@@ -165,7 +170,7 @@ Command add_singularities_command(CLI::App& root) {
                        {"near_singular", scan->near_singular_count},
                        {"flagged", scan->flagged_count},
                        {"worst", Json::array()}};
-                for (const auto& e : scan->worst) s["worst"].push_back(entry_json(e));
+                for (const auto& e : scan->worst) s["worst"].push_back(entry_json(e, chain));
                 doc["scan"] = std::move(s);
               } else {
                 doc["scan"] = nullptr;

@@ -15,6 +15,7 @@
 #include "commands.hpp"
 #include "mjarm/error.hpp"
 #include "mjarm/file_writer.hpp"
+#include "mjarm/number_text.hpp"
 #include "mjarm/plot/gnuplot.hpp"
 #include "mjarm/plot/trajectory_plot.hpp"
 #include "mjarm/trajectory/jerk_limited.hpp"
@@ -286,6 +287,13 @@ VectorXd traj_per_axis(const std::vector<double>& values, Eigen::Index n, const 
   return v;
 }
 
+// a profile beyond its limits fails the command (after its report) unless --allow-violation
+void fail_on_violation(const std::vector<std::string>& violations, bool allowed) {
+  if (violations.empty() || allowed) return;
+  throw Error("the profile breaks its limits (" + join(violations, "; ") +
+              "); no CSV or plot was written; pass --allow-violation to accept it");
+}
+
 void write_traj_csv(const std::string& path, const std::vector<double>& t,
                     const std::array<std::vector<VectorXd>, 4>& x) {
   FileWriter out(path, FileWriter::Mode::replace, "trajectory CSV");
@@ -323,6 +331,7 @@ Command add_traj_command(CLI::App& root) {
     std::string out;
     std::string plot;
     std::string size = "1280x1200";
+    bool allow_violation = false;
     bool json = false;
   };
   auto options = std::make_shared<Options>();
@@ -379,6 +388,9 @@ Command add_traj_command(CLI::App& root) {
   app->add_option("--size", options->size, "plot size WIDTHxHEIGHT [pixels]")
       ->capture_default_str()
       ->check(pixel_size({200, 300}));
+  app->add_flag("--allow-violation", options->allow_violation,
+                "accept a profile whose peaks break its limits (exit 0, outputs written); "
+                "without it such a profile is reported and the command fails (exit 1)");
   add_json_flag(*app, options->json);
 
   return {
@@ -432,15 +444,26 @@ Command add_traj_command(CLI::App& root) {
         for (auto& series : x) series.assign(t.size(), VectorXd::Zero(n));
         for (std::size_t s = 0; s < t.size(); ++s)
           profile.at(t[s], x[0][s], x[1][s], x[2][s], x[3][s]);
-        bool within = true;
-        for (Eigen::Index i = 0; i < n; ++i)
-          within = within && profile.peak_velocity[i] <= r.v_max[i] * (1 + 1e-9) &&
-                   profile.peak_acceleration[i] <= r.a_max[i] * (1 + 1e-9) &&
-                   !(profile.peak_jerk[i] > r.j_max[i] * (1 + 1e-9));  // NaN: no limit
+        // each peak beyond its limit, e.g. "axis 0: peak |v| 3.75 > v max 0.18"
+        std::vector<std::string> violations;
+        for (Eigen::Index i = 0; i < n; ++i) {
+          const auto check = [&](double peak, double limit, const char* what) {
+            if (peak > limit * (1 + 1e-9))  // a NaN limit (no jerk limit) is never broken
+              violations.push_back("axis " + std::to_string(i) + ": peak |" + what + "| " +
+                                   number_text(peak) + " > " + what + " max " +
+                                   number_text(limit));
+          };
+          check(profile.peak_velocity[i], r.v_max[i], "v");
+          check(profile.peak_acceleration[i], r.a_max[i], "a");
+          check(profile.peak_jerk[i], r.j_max[i], "j");
+        }
+        const bool within = violations.empty();
+        // a profile that breaks its limits writes nothing unless accepted
+        const bool write = within || o.allow_violation;
 
-        if (!o.out.empty()) write_traj_csv(o.out, t, x);
+        if (write && !o.out.empty()) write_traj_csv(o.out, t, x);
         std::string plot_path;
-        if (!o.plot.empty()) {
+        if (write && !o.plot.empty()) {
           plot::TrajectorySeries series;
           series.title = std::string(kind.name) + ", " + std::to_string(n) +
                          (n == 1 ? " axis" : " axes") + ", T = " + compact(profile.duration) + " s";
@@ -482,7 +505,8 @@ Command add_traj_command(CLI::App& root) {
             document["peaks"]["jerk"].push_back(bound_json(profile.peak_jerk[i]));
           document["notes"] = Json::object();
           for (const auto& [key, value] : profile.notes) document["notes"][key] = value;
-          if (!o.out.empty()) document["csv"] = o.out;
+          document["violations"] = violations;
+          if (write && !o.out.empty()) document["csv"] = o.out;
           if (!plot_path.empty()) document["plot"] = plot_path;
           document["rate"] = o.rate;
           document["samples"] = Json::array();
@@ -493,7 +517,7 @@ Command add_traj_command(CLI::App& root) {
                                            {"qdd", vector_json(x[2][s])},
                                            {"qddd", vector_json(x[3][s])}});
           print_json(document);
-          return;
+          return fail_on_violation(violations, o.allow_violation);
         }
         std::vector<std::pair<std::string, std::string>> fields{
             {"kind", kind.name},
@@ -502,7 +526,7 @@ Command add_traj_command(CLI::App& root) {
             {"within limits", within ? "yes" : "NO"}};
         for (const auto& note : profile.notes) fields.push_back(note);
         fields.push_back({"samples", std::to_string(t.size()) + " at " + compact(o.rate) + " Hz"});
-        if (!o.out.empty()) fields.push_back({"csv", o.out});
+        if (write && !o.out.empty()) fields.push_back({"csv", o.out});
         if (!plot_path.empty()) fields.push_back({"plot", plot_path});
         print_fields(std::cout, fields);
         Table table({{"axis"},
@@ -522,6 +546,7 @@ Command add_traj_command(CLI::App& root) {
                          std::isnan(r.j_max[i]) ? std::string("-") : fixed(r.j_max[i])});
         std::cout << '\n';
         table.print(std::cout);
+        fail_on_violation(violations, o.allow_violation);
       }};
 }
 

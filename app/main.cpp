@@ -60,6 +60,7 @@ int main(int argc, char** argv) {
   commands.push_back(add_plan_command(app));
   commands.push_back(add_env_command(app));
   commands.push_back(add_demo_command(app));
+  add_model_size_option(app);
 
   // name an unknown command instead of CLI11's generic "a subcommand is required"
   if (argc > 1 && argv[1][0] != '-') {

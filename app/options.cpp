@@ -3,6 +3,7 @@
 #include <fcntl.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cmath>
 #include <cstdio>
@@ -10,9 +11,12 @@
 #include <cstring>
 #include <filesystem>
 #include <limits>
+#include <numbers>
 #include <iostream>
 
 #include "mjarm/error.hpp"
+#include "mjarm/model/model_size.hpp"
+#include "mjarm/number_text.hpp"
 #include "mjarm/scene/scene_file.hpp"
 #include "output.hpp"
 
@@ -144,6 +148,28 @@ PixelSize parse_pixel_size(const std::string& text) {
   return {std::stoi(text.substr(0, x)), std::stoi(text.substr(x + 1))};
 }
 
+void add_model_size_option(CLI::App& root) {
+  // the commands that never load a model
+  static const std::vector<std::string> kModelFree{"models", "plot", "traj", "bench otg",
+                                                   "bench traj"};
+  const auto add = [](auto& self, CLI::App& app, const std::string& path) -> void {
+    const auto children = app.get_subcommands({});
+    if (!children.empty()) {
+      for (CLI::App* child : children)
+        self(self, *child, (path.empty() ? "" : path + " ") + child->get_name());
+      return;
+    }
+    if (std::find(kModelFree.begin(), kModelFree.end(), path) != kModelFree.end()) return;
+    app.add_option_function<std::uint64_t>(
+           "--max-model-elements", [](std::uint64_t n) { set_max_model_elements(n); },
+           "load models of up to N elements (XML elements, <replicate> copies counted; default " +
+               std::to_string(kDefaultMaxModelElements) +
+               "): MuJoCo's compile time grows with the square of the count")
+        ->check(count_in(1, kLargestMaxModelElements));
+  };
+  add(add, root, "");
+}
+
 CLI::Option* add_model_argument(CLI::App& command, std::string& model) {
   return command.add_option(
       "MODEL", model,
@@ -182,8 +208,45 @@ std::string resolve_site(const Robot& robot, const std::string& site) {
                    " sites, choose one with --site: " + join(named));
 }
 
+CLI::Option* add_allow_outside_range_flag(CLI::App& command, bool& allow) {
+  return command.add_flag(kAllowOutsideRangeFlag, allow,
+                          "accept joint values outside the joint ranges (each is warned about "
+                          "and flagged in the output); without it they are refused");
+}
+
+std::vector<std::string> check_joint_ranges(const Robot& robot, const std::vector<int>& joints,
+                                            const Eigen::Ref<const Eigen::VectorXd>& qpos,
+                                            const std::string& option, bool allowed,
+                                            const std::string& refusal) {
+  constexpr double kPi = std::numbers::pi;
+  std::vector<std::string> outside;
+  for (const int id : joints) {
+    const JointInfo joint = robot.joint_info(id);
+    const bool hinge = joint.type == JointType::hinge;
+    if (!joint.limited || !(hinge || joint.type == JointType::slide)) continue;
+    const double value = qpos[joint.qpos_address];
+    if (value >= joint.lower && value <= joint.upper) continue;
+    const std::string unit = hinge ? " rad" : " m";
+    std::string line = "joint '" + joint.name + "' = " + number_text(value) + unit +
+                       ", outside its range [" + number_text(joint.lower) + ", " +
+                       number_text(joint.upper) + "]" + unit;
+    // a value in degrees is the usual slip: radians past a full turn rarely are meant
+    if (hinge && std::abs(value) > 2.0 * kPi && std::abs(value) * kPi / 180.0 <= 2.0 * kPi)
+      line += " (" + option + " takes radians: " + number_text(value) + "° would be " +
+              fixed(value * kPi / 180.0, 4) + " rad)";
+    outside.push_back(std::move(line));
+  }
+  if (outside.empty()) return outside;
+  if (!allowed)
+    throw UsageError(option + ": " + join(outside, "; ") + "; " + refusal);
+  for (const std::string& line : outside)
+    std::cerr << "mjarm: warning: " << option << ": " << line << '\n';
+  return outside;
+}
+
 Configuration resolve_configuration(const Chain& chain, const std::vector<double>& q,
-                                    const std::string& key, const std::string& option) {
+                                    const std::string& key, const std::string& option,
+                                    bool allow_outside_range, const std::string& refusal) {
   const mjModel& m = chain.robot().model();
   Configuration config;
   if (!key.empty()) {
@@ -215,6 +278,12 @@ Configuration resolve_configuration(const Chain& chain, const std::vector<double
   chain.scatter(values, config.qpos.data());
   config.q = values;
   config.source = option;
+  config.outside_range =
+      check_joint_ranges(chain.robot(), chain.joint_ids(), config.qpos, option,
+                         allow_outside_range,
+                         !refusal.empty() ? refusal
+                                          : std::string("pass ") + kAllowOutsideRangeFlag +
+                                                " to use it anyway");
   return config;
 }
 

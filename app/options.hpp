@@ -63,6 +63,10 @@ CLI::Validator pixel_size(PixelSize min = {1, 1}, bool even = false,
 /// The size a pixel_size()-checked text names.
 PixelSize parse_pixel_size(const std::string& text);
 
+/// Adds `--max-model-elements N` (the bound on a model's elements, `set_max_model_elements`)
+/// to every command under @p root that loads a model: one option name everywhere.
+void add_model_size_option(CLI::App& root);
+
 /// Adds the positional MODEL argument (bundled name or file path) to @p command.
 CLI::Option* add_model_argument(CLI::App& command, std::string& model);
 
@@ -85,15 +89,40 @@ struct Configuration {
   Eigen::VectorXd q;     ///< chain joint values (chain order) [rad or m]
   Eigen::VectorXd qpos;  ///< full qpos (nq) holding q; joints off the chain as the source says
   std::string source;    ///< "--q", "keyframe 'home'" or "qpos0"
+  /// The typed values outside their joint's range, one line each (accepted only with
+  /// --allow-outside-range): "joint 'joint1' = 10 rad, outside its range [-2.8973, 2.8973]".
+  std::vector<std::string> outside_range;
 };
+
+/// The flag that lets a command use typed joint values outside the joint ranges.
+inline constexpr const char* kAllowOutsideRangeFlag = "--allow-outside-range";
+/// Adds `--allow-outside-range` to @p command (fk, singularities, render, ik).
+CLI::Option* add_allow_outside_range_flag(CLI::App& command, bool& allow);
+
+/// The one check of joint values typed on a command line (every `--q`, `--from`) against the
+/// joint ranges: the hinge and slide joints among @p joints that are limited and whose value in
+/// @p qpos lies outside their range. Without @p allowed they are a usage error naming the
+/// option, the joint, the value, the range (and the value in degrees when it looks like one);
+/// with it each is a warning on stderr. @p refusal ends the message (what to do instead).
+/// @return the values outside, one line each (empty when all are inside)
+/// @throws UsageError when a value is outside and not @p allowed.
+std::vector<std::string> check_joint_ranges(const Robot& robot, const std::vector<int>& joints,
+                                            const Eigen::Ref<const Eigen::VectorXd>& qpos,
+                                            const std::string& option, bool allowed,
+                                            const std::string& refusal);
 
 /// The configuration given by @p q values (other joints at qpos0), by keyframe @p key, or qpos0
 /// when both are empty. @p option is the name the user typed for the values ("--q", "--from"):
-/// errors and `Configuration::source` name it.
-/// @throws UsageError when q has the wrong length or the keyframe does not exist (both are
-///         mistakes on the command line: exit 2).
+/// errors and `Configuration::source` name it. Typed values go through `check_joint_ranges`:
+/// outside a joint's range they are refused unless @p allow_outside_range; @p refusal ends that
+/// error (default: the hint to pass --allow-outside-range).
+/// @throws UsageError when q has the wrong length, a value lies outside its joint's range (and
+///         not @p allow_outside_range) or the keyframe does not exist (all mistakes on the
+///         command line: exit 2).
 Configuration resolve_configuration(const Chain& chain, const std::vector<double>& q,
-                                    const std::string& key, const std::string& option = "--q");
+                                    const std::string& key, const std::string& option = "--q",
+                                    bool allow_outside_range = false,
+                                    const std::string& refusal = "");
 
 /// Checks, before any work, that a file can be created at @p path: its folder exists (or can be
 /// made, when @p make_parents), is a folder and is writable, and @p path is not a folder. The

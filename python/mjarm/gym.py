@@ -106,7 +106,7 @@ class GymEnv(gymnasium.Env):
         return None
 
     def close(self):
-        """Closes the environment (nothing to release)."""
+        """Closes the environment: reset() and step() then raise mjarm.Error."""
         self.env.close()
 
     def __repr__(self):
@@ -148,7 +148,7 @@ class GymVectorEnv(VectorEnv):
         """Resets every row: ``(obs, infos)``."""
         if options:
             raise ValueError(f"GymVectorEnv.reset: no reset options are supported, got {options!r}")
-        if seed is not None:
+        if seed is not None and not self.env.closed:  # a closed batch stays closed
             task, n, threads, opts, overrides = self._args
             overrides = dict(overrides, seed=seed)
             self.env = _mjarm.VectorEnvironment(task, n, threads, opts, **overrides)
@@ -169,7 +169,8 @@ class GymVectorEnv(VectorEnv):
         return None
 
     def close_extras(self, **kwargs):
-        """Nothing to release."""
+        """Closes the batch: reset() and step() then raise mjarm.Error."""
+        self.env.close()
 
     def __repr__(self):
         return f"GymVectorEnv({self.env.task!r}, num_envs={self.num_envs})"

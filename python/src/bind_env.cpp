@@ -222,12 +222,20 @@ void bind_environment(py::module_& m) {
           "discount_spec", [](const PyEnvironment&) { return scalar_spec("discount", 0.0, 1.0); },
           "ArraySpec 'discount': a float64 scalar in [0, 1] (dm_env's default).")
       .def(
-          "close", [](PyEnvironment&) {},
-          "Does nothing (dm_env's interface): memory goes with the object.")
+          "close", [](PyEnvironment& e) { e.env->close(); },
+          "Closes the environment (dm_env's interface): reset() and step() then raise "
+          "mjarm.Error; a closed environment stays closed. Closing twice is allowed; the memory "
+          "goes with the object.")
+      .def_property_readonly(
+          "closed", [](const PyEnvironment& e) { return e.env->closed(); }, "True after close()")
       .def("__enter__", [](py::object self) { return self; })
       .def(
-          "__exit__", [](PyEnvironment&, py::args) { return false; },
-          "Leaves a `with` block (close()).")
+          "__exit__",
+          [](PyEnvironment& e, py::args) {
+            e.env->close();
+            return false;
+          },
+          "Leaves a `with` block: close().")
       .def_readonly("task", &PyEnvironment::task, "the task's name")
       .def_property_readonly(
           "options", [](const PyEnvironment& e) { return e.env->options(); },
@@ -311,6 +319,21 @@ void bind_environment(py::module_& m) {
           "was LAST are reset instead. Returns a VectorTimeStep. Raises ValueError naming the "
           "expected shape, mjarm.Error for NaN/inf (naming the row) or before reset(); nothing "
           "is stepped then.")
+      .def(
+          "close", [](PyVectorEnvironment& v) { v.env->close(); },
+          "Closes every environment: reset() and step() then raise mjarm.Error; a closed "
+          "environment stays closed. Closing twice is allowed.")
+      .def_property_readonly(
+          "closed", [](const PyVectorEnvironment& v) { return v.env->closed(); },
+          "True after close()")
+      .def("__enter__", [](py::object self) { return self; })
+      .def(
+          "__exit__",
+          [](PyVectorEnvironment& v, py::args) {
+            v.env->close();
+            return false;
+          },
+          "Leaves a `with` block: close().")
       .def_property_readonly(
           "size", [](const PyVectorEnvironment& v) { return v.env->size(); },
           "number of environments N")

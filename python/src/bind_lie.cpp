@@ -1,4 +1,6 @@
 // lie room: Pose, SO(3)/SE(3) exp/log, Adjoint, ad, wrench transforms, dexp family, pose errors.
+#include <cmath>
+
 #include "bindings.hpp"
 #include "mjarm/ik/targets.hpp"
 #include "mjarm/lie/pose_error.hpp"
@@ -7,27 +9,46 @@
 #include "mjarm/lie/se3_jacobian.hpp"
 #include "mjarm/lie/so3.hpp"
 #include "mjarm/lie/so3_jacobian.hpp"
+#include "mjarm/number_text.hpp"
 
 namespace mjarm::python {
+
+namespace {
+
+/// Every number a Lie or pose function takes from Python is finite: exp(NaN) would return a NaN
+/// pose without a word (the C++ kernels are plain arithmetic, NaN in, NaN out).
+template <class M>
+M finite(M value, const char* name) {
+  for (Eigen::Index i = 0; i < value.size(); ++i) {
+    if (std::isfinite(value.data()[i])) continue;
+    // column-major storage: report the entry as (row, column) for a matrix
+    const Eigen::Index row = i % value.rows(), col = i / value.rows();
+    throw Error(std::string(name) + " holds " + number_text(value.data()[i]) + " at " +
+                (value.cols() == 1 ? "entry " + std::to_string(row)
+                                   : "(" + std::to_string(row) + ", " + std::to_string(col) + ")") +
+                "; expected finite numbers");
+  }
+  return value;
+}
+
+using V3 = Eigen::Vector3d;
+using V6 = Vector6d;
+
+V3 v3(py::handle o, const char* n) { return finite(to_fixed<3>(o, n), n); }
+V6 v6(py::handle o, const char* n) { return finite(to_fixed<6>(o, n), n); }
+Eigen::Matrix3d m3(py::handle o, const char* n) { return finite(to_fixed_matrix<3, 3>(o, n), n); }
+Eigen::Matrix4d m4(py::handle o, const char* n) { return finite(to_fixed_matrix<4, 4>(o, n), n); }
+Eigen::Vector4d v4(py::handle o, const char* n) { return finite(to_fixed<4>(o, n), n); }
+
+}  // namespace
 
 Pose to_pose(py::handle object, const char* name) {
   if (py::isinstance<Pose>(object)) return object.cast<Pose>();
   if (object.is_none()) {
     throw py::type_error(std::string(name) + ": expected a Pose or a 4x4 matrix, got None");
   }
-  return Pose::from_matrix(to_fixed_matrix<4, 4>(object, name));
+  return Pose::from_matrix(m4(object, name));
 }
-
-namespace {
-
-using V3 = Eigen::Vector3d;
-using V6 = Vector6d;
-
-V3 v3(py::handle o, const char* n) { return to_fixed<3>(o, n); }
-V6 v6(py::handle o, const char* n) { return to_fixed<6>(o, n); }
-Eigen::Matrix3d m3(py::handle o, const char* n) { return to_fixed_matrix<3, 3>(o, n); }
-
-}  // namespace
 
 void bind_lie(py::module_& m) {
   py::class_<Pose>(m, "Pose",
@@ -50,12 +71,12 @@ void bind_lie(py::module_& m) {
       .def_static("identity", &Pose::identity)
       .def_static(
           "from_matrix",
-          [](py::handle M) { return Pose::from_matrix(to_fixed_matrix<4, 4>(M, "M")); },
+          [](py::handle M) { return Pose::from_matrix(m4(M, "M")); },
           py::arg("M"), "From a 4x4 homogeneous matrix [R p; 0 1].")
       .def_static(
           "from_quaternion",
           [](py::handle p, py::handle q) {
-            return Pose::from_quaternion(v3(p, "p"), to_fixed<4>(q, "q_wxyz"));
+            return Pose::from_quaternion(v3(p, "p"), v4(q, "q_wxyz"));
           },
           py::arg("p"), py::arg("q_wxyz"), "From a position [m] and a quaternion (w, x, y, z).")
       .def_static(
@@ -89,7 +110,7 @@ void bind_lie(py::module_& m) {
 
   m.def(
       "rotation_from_quaternion",
-      [](py::handle q) { return rotation_from_quaternion(to_fixed<4>(q, "q_wxyz")); },
+      [](py::handle q) { return rotation_from_quaternion(v4(q, "q_wxyz")); },
       py::arg("q_wxyz"));
   m.def(
       "quaternion_from_rotation", [](py::handle R) { return quaternion_from_rotation(m3(R, "R")); },
@@ -176,7 +197,7 @@ void bind_lie(py::module_& m) {
   se3.def(
       "hat", [](py::handle x) { return se3::hat(v6(x, "xi")); }, py::arg("xi"));
   se3.def(
-      "vee", [](py::handle X) { return se3::vee(to_fixed_matrix<4, 4>(X, "xi_hat")); },
+      "vee", [](py::handle X) { return se3::vee(m4(X, "xi_hat")); },
       py::arg("xi_hat"));
   se3.def(
       "exp", [](py::handle x) { return se3::exp(v6(x, "xi")); }, py::arg("xi"), "-> Pose");

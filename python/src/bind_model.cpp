@@ -3,6 +3,7 @@
 
 #include "bindings.hpp"
 #include "mjarm/model/chain.hpp"
+#include "mjarm/model/model_size.hpp"
 
 namespace mjarm::python {
 namespace {
@@ -287,6 +288,16 @@ void bind_model(py::module_& m) {
         return "<Chain " + std::to_string(c.size()) + " joints -> " + c.frame().name + ">";
       });
 
+  static const std::string max_elements_doc =
+      "Sets the bound on a model's elements (XML elements, <replicate> copies counted) for "
+      "every later load in this process: Robot.from_file/from_string/bundled, scenes, "
+      "environments (the CLI's --max-model-elements; default " +
+      std::to_string(kDefaultMaxModelElements) + "). Raises mjarm.Error for 0 or more than " +
+      std::to_string(kLargestMaxModelElements) + ".";
+  m.def("set_max_model_elements", &set_max_model_elements, py::arg("count"),
+        max_elements_doc.c_str());
+  m.def("max_model_elements", &max_model_elements,
+        "The bound on a model's elements that every load applies (set_max_model_elements).");
   m.def("find_frame", &find_frame, py::arg("robot"), py::arg("name"),
         "The frame called name: a site first, then a body.");
 }

@@ -50,6 +50,7 @@ struct Environment::Impl {
   double episode_start = 0.0;
   bool started = false;
   bool ended = false;
+  bool closed = false;
   ClipCounts episode_clips, total_clips;
 
   Impl(std::unique_ptr<EnvTask> t, const EnvironmentOptions& o);
@@ -150,8 +151,22 @@ Environment::~Environment() = default;
 
 TimeStep Environment::reset() { return reset(impl_->seeds()); }
 
+void Environment::close() noexcept { impl_->closed = true; }
+
+bool Environment::closed() const noexcept { return impl_->closed; }
+
+namespace {
+
+[[noreturn]] void refuse_closed(const EnvTask& task, const char* call) {
+  throw Error("environment '" + std::string(task.name()) + "': " + call +
+              " after close(); a closed environment stays closed: make a new one");
+}
+
+}  // namespace
+
 TimeStep Environment::reset(std::uint64_t seed) {
   Impl& e = *impl_;
+  if (e.closed) refuse_closed(*e.task, "reset()");
   e.started = false;
   e.random.reseed(seed);
   if (e.randomizer)
@@ -169,6 +184,7 @@ TimeStep Environment::reset(std::uint64_t seed) {
 
 TimeStep Environment::step(std::span<const double> action) {
   Impl& e = *impl_;
+  if (e.closed) refuse_closed(*e.task, "step()");
   if (!e.started) throw Error("environment: step() before reset(); call reset() first");
   if (e.ended)
     throw Error("environment: step() after the last step of the episode (" +

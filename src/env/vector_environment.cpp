@@ -73,7 +73,22 @@ void VectorEnvironment::record(int i, const TimeStep& ts) noexcept {
             observations_.begin() + static_cast<std::ptrdiff_t>(row * values.size()));
 }
 
+void VectorEnvironment::close() noexcept {
+  for (auto& environment : environments_) environment->close();
+  closed_ = true;
+}
+
+namespace {
+
+[[noreturn]] void refuse_closed_batch(const Environment& first, const char* call) {
+  throw Error("vector environment '" + std::string(first.task().name()) + "': " + call +
+              " after close(); a closed environment stays closed: make a new one");
+}
+
+}  // namespace
+
 void VectorEnvironment::reset() {
+  if (closed_) refuse_closed_batch(*environments_.front(), "reset()");
   auto job = [this](int i) {
     const double start = thread_cpu_seconds();
     record(i, environments_[static_cast<std::size_t>(i)]->reset());
@@ -84,6 +99,7 @@ void VectorEnvironment::reset() {
 }
 
 void VectorEnvironment::step(std::span<const double> actions) {
+  if (closed_) refuse_closed_batch(*environments_.front(), "step()");
   if (!started_) throw Error("vector environment: step() before reset(); call reset() first");
   const ArraySpec& spec = action_spec();
   const std::size_t width = static_cast<std::size_t>(spec.size());

@@ -1,29 +1,57 @@
 #include "mjarm/lie/pose.hpp"
 
+#include <string>
+
+#include "mjarm/error.hpp"
 #include "mjarm/lie/rotation.hpp"
 #include "mjarm/lie/so3.hpp"
+#include "mjarm/number_text.hpp"
 
 namespace mjarm {
 
+namespace {
+
+// the factories' inputs: a NaN or inf there would come out of every later product unnoticed
+template <class Derived>
+void check_pose_input(const Eigen::MatrixBase<Derived>& values, const char* factory,
+                      const char* what) {
+  for (Eigen::Index c = 0; c < values.cols(); ++c)
+    for (Eigen::Index r = 0; r < values.rows(); ++r)
+      if (!std::isfinite(values(r, c)))
+        throw Error(std::string("Pose::") + factory + ": " + what + " holds " +
+                    number_text(values(r, c)) + "; expected finite numbers");
+}
+
+}  // namespace
+
 Pose Pose::identity() noexcept { return Pose{}; }
 
-Pose Pose::from_isometry(const Eigen::Isometry3d& X) noexcept {
+Pose Pose::from_isometry(const Eigen::Isometry3d& X) {
+  check_pose_input(X.linear(), "from_isometry", "the rotation");
+  check_pose_input(X.translation(), "from_isometry", "the translation");
   return Pose{X.linear(), X.translation()};
 }
 
-Pose Pose::from_matrix(const Eigen::Matrix4d& M) noexcept {
+Pose Pose::from_matrix(const Eigen::Matrix4d& M) {
+  check_pose_input(M.topLeftCorner<3, 3>(), "from_matrix", "R");
+  check_pose_input(M.topRightCorner<3, 1>(), "from_matrix", "p");
   return Pose{M.topLeftCorner<3, 3>(), M.topRightCorner<3, 1>()};
 }
 
 Pose Pose::from_quaternion(const Eigen::Vector3d& p, const Eigen::Vector4d& q_wxyz) {
+  check_pose_input(p, "from_quaternion", "p");
   return Pose{rotation_from_quaternion(q_wxyz), p};
 }
 
-Pose Pose::from_rotation_vector(const Eigen::Vector3d& p, const Eigen::Vector3d& phi) noexcept {
+Pose Pose::from_rotation_vector(const Eigen::Vector3d& p, const Eigen::Vector3d& phi) {
+  check_pose_input(p, "from_rotation_vector", "p");
+  check_pose_input(phi, "from_rotation_vector", "phi");
   return Pose{so3::exp(phi), p};
 }
 
-Pose Pose::from_rpy(const Eigen::Vector3d& p, const Eigen::Vector3d& rpy) noexcept {
+Pose Pose::from_rpy(const Eigen::Vector3d& p, const Eigen::Vector3d& rpy) {
+  check_pose_input(p, "from_rpy", "p");
+  check_pose_input(rpy, "from_rpy", "rpy");
   return Pose{rotation_from_rpy(rpy), p};
 }
 

@@ -14,6 +14,7 @@
 #include "mjarm/error.hpp"
 #include "mjarm/model/finite_model.hpp"
 #include "mjarm/model/mjcf_staging.hpp"
+#include "mjarm/model/model_size.hpp"
 #include "mjarm/model/names.hpp"
 #include "mjarm/model/user_file.hpp"
 #include "mjcf_detail.hpp"
@@ -56,14 +57,30 @@ void mujoco_log_handler(const mjLogMessage* message) {
   print_mujoco_warning(text.c_str());
 }
 
-/// The root element's name ("mujoco" or "robot").
-/// @throws Error with the parser's message and line when the XML is malformed.
+void count_xml_elements(const tinyxml2::XMLElement& parent, ModelSizeCount& count) {
+  for (const auto* child = parent.FirstChildElement(); child != nullptr;
+       child = child->NextSiblingElement()) {
+    count.add(child->Name());
+    count_xml_elements(*child, count);
+  }
+}
+
+/// The root element's name ("mujoco" or "robot"). A document that is not MJCF (URDF) is
+/// checked against the model size bound here: it goes to MuJoCo as it is.
+/// @throws Error with the parser's message and line when the XML is malformed, or for a URDF
+///         beyond `max_model_elements()`.
 std::string root_element(std::string_view xml, const std::string& source) {
   tinyxml2::XMLDocument doc;
   if (doc.Parse(xml.data(), xml.size()) != tinyxml2::XML_SUCCESS) {
     throw Error(mjcf_detail::xml_parse_error(doc, source));
   }
-  return mjcf_detail::single_root(doc, source).Name();
+  const tinyxml2::XMLElement& root = mjcf_detail::single_root(doc, source);
+  if (std::string_view(root.Name()) != "mujoco") {
+    ModelSizeCount count;
+    count_xml_elements(root, count);
+    count.check("model " + source);
+  }
+  return root.Name();
 }
 
 struct MemoryFsDeleter {
@@ -207,6 +224,26 @@ const char* sensor_type_name(int type) noexcept {
   return "unknown";
 }
 
+/// MuJoCo's checks of a first step (mj_step's mj_checkPos, mj_checkVel and mj_checkAcc) on the
+/// model's reference state: their warnings ("Nan, Inf or huge value in QACC ...") join the load
+/// warnings, so a model that diverges at once says so when it loads, not at its first step.
+/// A model whose first step fails outright (an arena too small for its contacts: "mj_stackAlloc:
+/// out of memory") still loads, as it did before the check: the failure is a load warning, and
+/// the commands that only need kinematics keep working.
+void add_first_state_warnings(const mjModel& m, std::vector<std::string>& warnings) {
+  const LoadWarnings capture(warnings);
+  try {
+    const DataPtr data(mj_makeData(&m));
+    if (!data) return;  // no memory for it: the first mj_makeData of a user reports that
+    mj_checkPos(&m, data.get());
+    mj_checkVel(&m, data.get());
+    mj_forward(&m, data.get());
+    mj_checkAcc(&m, data.get());
+  } catch (const Error& e) {
+    warnings.push_back(std::string("the first step at qpos0 fails: ") + e.what());
+  }
+}
+
 }  // namespace
 
 namespace model_detail {
@@ -295,6 +332,7 @@ Robot::Robot(std::shared_ptr<const mjModel> model, std::string source,
   check_model_finite(*model_, !label.empty()            ? std::string(label)
                               : source_ == "<string>" ? std::string("XML string")
                                                       : "'" + source_ + "'");
+  add_first_state_warnings(*model_, warnings_);
 }
 
 Robot Robot::from_model(std::shared_ptr<const mjModel> model, std::string source) {
@@ -340,9 +378,8 @@ Robot Robot::from_string(std::string_view xml, const std::filesystem::path& base
   return Robot(loaded.model, "<string>", std::move(loaded.warnings));
 }
 
-Robot Robot::from_spec(mjSpec& spec, std::string_view what) {
+Robot Robot::from_spec(mjSpec& spec, std::string_view what, std::vector<std::string> warnings) {
   install_mujoco_handlers();
-  std::vector<std::string> warnings;
   mjModel* model = nullptr;
   {
     const LoadWarnings capture(warnings);

@@ -7,6 +7,7 @@
 
 #include "mjarm/dynamics/chain_dynamics.hpp"
 #include "mjarm/error.hpp"
+#include "mjarm/number_text.hpp"
 
 namespace mjarm {
 
@@ -53,10 +54,10 @@ JointLimits joint_limits_from_model(const Chain& chain, const Eigen::VectorXd& q
                 std::to_string(options.velocity));
   if (!(options.torque_fraction > 0.0) || !(options.torque_fraction <= 1.0))
     throw Error("model limits: torque_fraction must be in (0, 1], got " +
-                std::to_string(options.torque_fraction));
+                number_text(options.torque_fraction));
   if (!(options.acceleration > 0.0) || !std::isfinite(options.acceleration))
     throw Error("model limits: acceleration must be positive and finite, got " +
-                std::to_string(options.acceleration));
+                number_text(options.acceleration));
   const int n = chain.size();
   const Robot& robot = chain.robot();
   const mjModel& m = robot.model();

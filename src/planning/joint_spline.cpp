@@ -5,6 +5,7 @@
 
 #include "mjarm/error.hpp"
 #include "mjarm/trajectory/quintic_duration.hpp"
+#include "mjarm/number_text.hpp"
 
 namespace mjarm {
 
@@ -45,7 +46,7 @@ JointSpline::JointSpline(const std::vector<Eigen::VectorXd>& q,
   for (std::size_t k = 0; k < durations.size(); ++k) {
     if (!(durations[k] > 0.0) || !std::isfinite(durations[k]))
       throw Error("joint spline: duration of segment " + std::to_string(k) +
-                  " must be positive and finite, got " + std::to_string(durations[k]));
+                  " must be positive and finite, got " + number_text(durations[k]));
     segments_.emplace_back(knot_state(q[k], qd[k]), knot_state(q[k + 1], qd[k + 1]), durations[k]);
     starts_.push_back(starts_.back() + durations[k]);
   }

@@ -5,6 +5,7 @@
 
 #include "mjarm/error.hpp"
 #include "mjarm/lie/so3.hpp"
+#include "mjarm/number_text.hpp"
 
 namespace mjarm {
 
@@ -22,10 +23,10 @@ PlannedReference::PlannedReference(const Chain& chain, JointSpline trajectory, d
                 " joints, the chain " + std::to_string(chain.size()));
   if (!(hold_time >= 0.0) || !std::isfinite(hold_time))
     throw Error("planned reference: hold_time must be finite and >= 0 [s], got " +
-                std::to_string(hold_time));
+                number_text(hold_time));
   if (!(velocity_lag >= 0.0) || !std::isfinite(velocity_lag))
     throw Error("planned reference: velocity_lag must be finite and >= 0 [s], got " +
-                std::to_string(velocity_lag));
+                number_text(velocity_lag));
   const int n = chain.size();
   J_ = Matrix6Xd::Zero(6, n);
   q_ = qd_ = qdd_ = lagged_q_ = lagged_qdd_ = state_q_ = Eigen::VectorXd::Zero(n);

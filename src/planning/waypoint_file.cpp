@@ -108,6 +108,9 @@ WaypointPath parse_waypoints_json(std::string_view text, std::string_view source
   const nlohmann::json& list = doc["waypoints"];
   if (!list.is_array())
     throw Error(json.where("", "waypoints") + ": \"waypoints\" must be an array");
+  if (list.size() > kMaxWaypoints)
+    throw Error(name + ": " + std::to_string(list.size()) + " waypoints, more than the " +
+                std::to_string(kMaxWaypoints) + " a file may hold");
   for (std::size_t k = 0; k < list.size(); ++k) {
     const std::string pointer = "/waypoints/" + std::to_string(k);
     const std::string waypoint = "waypoint " + std::to_string(k);
@@ -152,6 +155,9 @@ WaypointPath parse_waypoints_csv(std::string_view text, std::string_view source)
       continue;
     }
     first_row = false;
+    if (path.waypoints.size() == kMaxWaypoints)
+      throw Error(where + ": a waypoint beyond the " + std::to_string(kMaxWaypoints) +
+                  " a file may hold");
     std::vector<double> values;
     std::istringstream cells(line);
     std::string cell;

@@ -7,6 +7,7 @@
 
 #include "mjarm/error.hpp"
 #include "mjarm/trajectory/quintic_duration.hpp"
+#include "mjarm/number_text.hpp"
 
 namespace mjarm {
 
@@ -55,7 +56,7 @@ void check(const PlanOptions& o) {
                 std::to_string(o.max_segment_samples) + " and " + std::to_string(o.max_samples));
   if (!(o.stretch_factor > 1.0) || !std::isfinite(o.stretch_factor))
     throw Error("plan options: stretch_factor must be > 1 and finite, got " +
-                std::to_string(o.stretch_factor));
+                number_text(o.stretch_factor));
   check(o.checks);
   check(o.ik);
 }
@@ -124,8 +125,8 @@ namespace {
 // samples a segment may have (max_segment_samples); …"
 [[noreturn]] void throw_too_many_samples(double duration, double spacing, double needed,
                                          std::int64_t bound, const std::string& what) {
-  throw Error("waypoint planner: checking a segment of " + std::to_string(duration) + " s every " +
-              std::to_string(spacing) + " s would need " +
+  throw Error("waypoint planner: checking a segment of " + number_text(duration) + " s every " +
+              number_text(spacing) + " s would need " +
               std::to_string(static_cast<long long>(std::min(needed, 9e18))) +
               " samples, beyond the " + std::to_string(bound) + " samples " + what +
               "; the limits are out of proportion (very slow velocities or accelerations make "

@@ -12,6 +12,7 @@
 #include "child_process.hpp"
 #include "executable_on_path.hpp"
 #include "mjarm/error.hpp"
+#include "mjarm/number_text.hpp"
 
 namespace mjarm::plot {
 namespace {
@@ -75,7 +76,7 @@ fs::path find_gnuplot() {
 void run_gnuplot(const fs::path& script, double timeout_s) {
   if (!(timeout_s > 0.0) || !std::isfinite(timeout_s))
     throw Error("gnuplot timeout must be a finite number of seconds > 0, got " +
-                std::to_string(timeout_s));
+                number_text(timeout_s));
   const fs::path gnuplot = find_gnuplot();
   // gnuplot's messages go to an unlinked temporary file: no pipe to drain while we wait
   char log_name[] = "/tmp/mjarm-gnuplot-XXXXXX";
@@ -103,7 +104,7 @@ void run_gnuplot(const fs::path& script, double timeout_s) {
     kill_child(pid, false);
     ::close(log);
     throw Error("gnuplot did not finish '" + script.string() + "' within " +
-                std::to_string(timeout_s) + " s and was stopped");
+                number_text(timeout_s) + " s and was stopped");
   }
   const std::string messages = read_log(log);
   ::close(log);

@@ -5,15 +5,16 @@
 #include <string>
 
 #include "mjarm/error.hpp"
+#include "mjarm/number_text.hpp"
 
 namespace mjarm {
 
 FrameSchedule::FrameSchedule(double fps, double start_time) : fps_(fps), start_(start_time) {
   if (!std::isfinite(fps) || !(fps > 0.0))
     throw Error("video frame rate must be a finite number > 0 frames/s, got " +
-                std::to_string(fps));
+                number_text(fps));
   if (!std::isfinite(start_time))
-    throw Error("frame schedule start time must be finite, got " + std::to_string(start_time));
+    throw Error("frame schedule start time must be finite, got " + number_text(start_time));
 }
 
 int FrameSchedule::frames_due(double time) noexcept {

@@ -23,6 +23,7 @@
 #include "mjarm/error.hpp"
 #include "mjarm/file_writer.hpp"
 #include "mjarm/sim/interrupt.hpp"
+#include "mjarm/number_text.hpp"
 #include "quoted_path.hpp"
 
 namespace mjarm {
@@ -256,7 +257,7 @@ VideoWriter::VideoWriter(const std::filesystem::path& path, int width, int heigh
                 std::to_string(height + height % 2));
   if (!std::isfinite(fps) || !(fps > 0.0))
     throw Error("video frame rate must be a finite number > 0 frames/s, got " +
-                std::to_string(fps) + " for " + quoted(path));
+                number_text(fps) + " for " + quoted(path));
   if (!std::isfinite(options.timeout_s) || !(options.timeout_s > 0.0))
     throw Error("video timeout must be a finite number > 0 s, got " +
                 seconds_text(options.timeout_s) + " for " + quoted(path));

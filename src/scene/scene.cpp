@@ -290,7 +290,7 @@ struct Scene::Impl {
     SpecPtr copy(mj_copySpec(spec.get()));
     if (!copy) throw Error("scene '" + name + "': MuJoCo could not copy the scene's spec");
     const std::string what = "scene '" + name + "'";
-    Robot robot = Robot::from_spec(*copy, what);
+    Robot robot = Robot::from_spec(*copy, what, warnings);
     if (keyed.empty()) return {std::move(copy), std::move(robot)};
     // the parts' keys, assembled in the scene's layout by the first compilation, become one
     // key per name: each part's values at its own joints and actuators, qpos0 and 0 elsewhere
@@ -331,7 +331,7 @@ struct Scene::Impl {
           mjs_delete(copy.get(), e);
       }
     }
-    Robot combined_robot = Robot::from_spec(*copy, what);
+    Robot combined_robot = Robot::from_spec(*copy, what, warnings);
     return {std::move(copy), std::move(combined_robot)};
   }
 };

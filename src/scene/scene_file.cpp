@@ -7,6 +7,7 @@
 
 #include "frame_check.hpp"
 #include "mjarm/error.hpp"
+#include "mjarm/model/model_size.hpp"
 #include "mjarm/model/names.hpp"
 #include "mjarm/model/user_file.hpp"
 
@@ -225,6 +226,12 @@ Scene parse_scene(std::string_view text, const fs::path& base_dir, const std::st
   std::string name = source.empty() || source.front() == '<' ? std::string("scene")
                                                              : fs::path(source).stem().string();
   top.read("name", name);
+  // the size bound before any part is added (each robot's own file is counted when it loads)
+  ModelSizeCount count;
+  for (const char* key : {"robots", "objects", "fixtures", "cameras", "sites", "sensors", "welds",
+                          "edits"})
+    if (top.has(key) && top.at(key).IsSequence()) count.add(key, top.at(key).size());
+  count.check("scene file '" + source + "'");
   Scene scene(name);
   read_arena(scene, top, source);
 

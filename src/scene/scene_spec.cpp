@@ -6,7 +6,9 @@
 
 #include "frame_check.hpp"
 #include "mjarm/error.hpp"
+#include "mjarm/model/finite_model.hpp"
 #include "mjarm/model/names.hpp"
+#include "mjarm/number_text.hpp"
 
 namespace mjarm {
 namespace {
@@ -39,9 +41,16 @@ void check_name(const std::string& name, const std::string& what) {
     throw Error(what + " '" + name + "': a name may not contain '\"', '<' or '&'");
 }
 
+// finite, and within the magnitude a compiled model may hold (kMaxModelMagnitude): a position,
+// size or mass beyond it makes MuJoCo's first step diverge
 void check_finite(std::span<const double> v, const std::string& what) {
-  for (double x : v)
+  for (double x : v) {
     if (!std::isfinite(x)) throw Error(what + " holds a non-finite value");
+    if (std::abs(x) > kMaxModelMagnitude)
+      throw Error(what + " holds " + number_text(x) + ", beyond " +
+                  number_text(kMaxModelMagnitude) +
+                  " (MuJoCo's mjMAXVAL: its state checks call a larger value diverged)");
+  }
 }
 
 void check_quat(const std::array<double, 4>& q, const std::string& what) {
@@ -77,8 +86,9 @@ void validate(const ArenaSpec& spec) {
   if (!spec.table) return;
   for (double s : spec.table_half_size)
     if (s <= 0.0) throw Error("arena table_half_size must be positive");
-  if (!std::isfinite(spec.table_height) || spec.table_height <= 0.05)
-    throw Error("arena table_height must be > 0.05 m, got " + std::to_string(spec.table_height));
+  check_finite({&spec.table_height, 1}, "arena table_height");
+  if (spec.table_height <= 0.05)
+    throw Error("arena table_height must be > 0.05 m, got " + number_text(spec.table_height));
   for (double f : spec.table_friction)
     if (f < 0.0) throw Error("arena table_friction must be >= 0");
 }
@@ -134,11 +144,11 @@ void validate(const ObjectSpec& spec) {
                 "), got " + std::to_string(spec.size.size()));
   }
   for (double s : spec.size)
-    if (s <= 0.0) throw Error(what + " size must be positive, got " + std::to_string(s));
-  if (!std::isfinite(spec.mass) || spec.mass <= 0.0)
-    throw Error(what + " mass must be positive [kg], got " + std::to_string(spec.mass));
+    if (s <= 0.0) throw Error(what + " size must be positive, got " + number_text(s));
+  check_finite({&spec.mass, 1}, what + " mass");
+  if (spec.mass <= 0.0) throw Error(what + " mass must be positive [kg], got " + number_text(spec.mass));
   for (double f : spec.friction)
-    if (f < 0.0) throw Error(what + " friction must be >= 0, got " + std::to_string(f));
+    if (f < 0.0) throw Error(what + " friction must be >= 0, got " + number_text(f));
   if (spec.shape == ObjectShape::mesh && spec.mesh_file.empty() == spec.mesh_vertices.empty())
     throw Error(what + " needs a mesh file or its vertices (one of the two)");
   if (spec.shape != ObjectShape::mesh && (!spec.mesh_file.empty() || !spec.mesh_vertices.empty()))
@@ -182,7 +192,7 @@ void validate(const SceneCameraSpec& spec) {
       throw Error(what + " has both xyaxes and a quat other than (1, 0, 0, 0): give one");
   }
   if (!std::isfinite(spec.fovy) || spec.fovy <= 0.0 || spec.fovy >= 180.0)
-    throw Error(what + " fovy must lie in (0, 180) degrees, got " + std::to_string(spec.fovy));
+    throw Error(what + " fovy must lie in (0, 180) degrees, got " + number_text(spec.fovy));
 }
 
 void validate(const SiteSpec& spec) {
@@ -191,8 +201,8 @@ void validate(const SiteSpec& spec) {
   check_finite(spec.pos, what + " pos");
   check_quat(spec.quat, what);
   check_rgba(spec.rgba, what);
-  if (!std::isfinite(spec.size) || spec.size <= 0.0)
-    throw Error(what + " size must be positive, got " + std::to_string(spec.size));
+  check_finite({&spec.size, 1}, what + " size");
+  if (spec.size <= 0.0) throw Error(what + " size must be positive, got " + number_text(spec.size));
 }
 
 void validate(const WeldSpec& spec) {

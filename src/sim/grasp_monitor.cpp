@@ -8,6 +8,7 @@
 #include "mjarm/error.hpp"
 #include "mjarm/model/names.hpp"
 #include "mjarm/sim/simulation.hpp"
+#include "mjarm/number_text.hpp"
 
 namespace mjarm {
 
@@ -39,8 +40,8 @@ GraspMonitor::GraspMonitor(Simulation& simulation, std::string_view gripper,
   if (!(std::isfinite(options.slip_distance) && options.slip_distance > 0.0) ||
       !(std::isfinite(options.drop_distance) && options.drop_distance > options.slip_distance)) {
     throw Error("grasp monitor: slip_distance must be positive and drop_distance larger [m], got " +
-                std::to_string(options.slip_distance) + " and " +
-                std::to_string(options.drop_distance));
+                number_text(options.slip_distance) + " and " +
+                number_text(options.drop_distance));
   }
   const mjModel& m = simulation.model();
   gripper_ = find_object(m, mjOBJ_BODY, gripper);

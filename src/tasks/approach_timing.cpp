@@ -10,6 +10,7 @@
 
 #include "mjarm/error.hpp"
 #include "mjarm/trajectory/smoothstep.hpp"
+#include "mjarm/number_text.hpp"
 
 namespace mjarm {
 
@@ -69,7 +70,7 @@ double torque_feasible_duration(const Chain& chain, std::span<const double> qpos
     throw Error("torque_feasible_duration: duration must be positive and finite [s]");
   if (!(torque_fraction > 0.0 && torque_fraction <= 1.0))
     throw Error("torque_feasible_duration: torque_fraction must be in (0, 1], got " +
-                std::to_string(torque_fraction));
+                number_text(torque_fraction));
 
   const int n = chain.size();
   std::vector<double> allowed(n);

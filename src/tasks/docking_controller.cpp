@@ -8,6 +8,7 @@
 #include "mjarm/error.hpp"
 #include "mjarm/lie/se3.hpp"
 #include "mjarm/trajectory/smoothstep.hpp"
+#include "mjarm/number_text.hpp"
 
 namespace mjarm {
 
@@ -51,7 +52,7 @@ const char* to_string(ForceSource source) noexcept {
 void check(const DockingControllerOptions& o) {
   if (!(o.sensor_cutoff > 0.0) || std::isnan(o.sensor_cutoff))
     throw Error("docking controller: sensor_cutoff must be positive [Hz] (+inf: no filter), got " +
-                std::to_string(o.sensor_cutoff));
+                number_text(o.sensor_cutoff));
   require_gains(o.se3_inertia, "se3_inertia");
   require_gains(o.se3_stiffness, "se3_stiffness");
   docking_detail::require_positive(o.se3_damping_ratio, "docking controller", "se3_damping_ratio");

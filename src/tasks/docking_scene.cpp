@@ -8,6 +8,7 @@
 #include "docking_checks.hpp"
 #include "mjarm/error.hpp"
 #include "mjarm/lie/rotation.hpp"
+#include "mjarm/number_text.hpp"
 
 namespace mjarm {
 
@@ -24,17 +25,17 @@ void check_geometry(const DockingGeometry& g) {
   docking_detail::require_positive(g.chamfer, "docking scene", "chamfer [m]");
   docking_detail::require_positive(g.wall, "docking scene", "wall [m]");
   if (!(g.bore_radius > g.peg_radius))
-    throw Error("docking scene: the bore (radius " + std::to_string(g.bore_radius) +
-                " m) must be wider than the peg (radius " + std::to_string(g.peg_radius) + " m)");
+    throw Error("docking scene: the bore (radius " + number_text(g.bore_radius) +
+                " m) must be wider than the peg (radius " + number_text(g.peg_radius) + " m)");
   if (!(g.peg_length > g.bore_depth + g.chamfer))
-    throw Error("docking scene: the peg (" + std::to_string(g.peg_length) +
+    throw Error("docking scene: the peg (" + number_text(g.peg_length) +
                 " m) must be longer than the hole is deep (" +
-                std::to_string(g.bore_depth + g.chamfer) + " m), or the flange hits the socket");
+                number_text(g.bore_depth + g.chamfer) + " m), or the flange hits the socket");
   if (g.sides < 8 || g.sides > 256)
     throw Error("docking scene: sides must be 8 … 256, got " + std::to_string(g.sides));
   if (!(g.friction >= 0.0) || !std::isfinite(g.friction))
     throw Error("docking scene: friction must be ≥ 0 and finite, got " +
-                std::to_string(g.friction));
+                number_text(g.friction));
   docking_detail::require_positive(g.solref[0], "docking scene", "solref time constant [s]");
   docking_detail::require_positive(g.solref[1], "docking scene", "solref damping ratio");
   const auto& s = g.solimp;
@@ -151,11 +152,11 @@ Scene docking_scene(const DockingSceneOptions& options) {
     throw Error(
         "docking scene: the socket's axis z_S must point straight up (the pedestal stands "
         "on the floor); got z_S = (" +
-        std::to_string(X_WS.R(0, 2)) + ", " + std::to_string(X_WS.R(1, 2)) + ", " +
-        std::to_string(X_WS.R(2, 2)) + ")");
+        number_text(X_WS.R(0, 2)) + ", " + number_text(X_WS.R(1, 2)) + ", " +
+        number_text(X_WS.R(2, 2)) + ")");
   if (X_WS.p.z() - (g.chamfer + g.bore_depth) - kPlate < 0.0)
     throw Error("docking scene: the socket's bottom would be below the floor (top at z = " +
-                std::to_string(X_WS.p.z()) + " m)");
+                number_text(X_WS.p.z()) + " m)");
 
   Scene scene("docking");
   char tolerance[32];

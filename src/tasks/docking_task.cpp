@@ -9,6 +9,7 @@
 #include "mjarm/error.hpp"
 #include "mjarm/ik/pose_ik.hpp"
 #include "mjarm/sim/recorder.hpp"
+#include "mjarm/number_text.hpp"
 
 namespace mjarm {
 
@@ -45,10 +46,10 @@ void check(const DockingOffset& o) {
   if (!std::isfinite(o.dx) || !std::isfinite(o.dy) || std::abs(o.dx) > 0.05 ||
       std::abs(o.dy) > 0.05)
     throw Error("docking offset: dx and dy must be finite and within ±0.05 m (±50 mm), got (" +
-                std::to_string(o.dx) + ", " + std::to_string(o.dy) + ") m");
+                number_text(o.dx) + ", " + number_text(o.dy) + ") m");
   if (!std::isfinite(o.dyaw) || std::abs(o.dyaw) > std::numbers::pi)
     throw Error("docking offset: dyaw must be finite and within ±π rad (±180°), got " +
-                std::to_string(o.dyaw) + " rad");
+                number_text(o.dyaw) + " rad");
 }
 
 const char* to_string(DockingReference kind) noexcept {
@@ -73,10 +74,10 @@ void check(const DockingMotion& m) {
   docking_detail::require_positive(m.hold_time, "docking motion", "hold_time [s]");
   if (!(m.standoff >= 0.0) || !(m.standoff < m.start_height))
     throw Error("docking motion: standoff must be ≥ 0 and below start_height (" +
-                std::to_string(m.start_height) + " m), got " + std::to_string(m.standoff) + " m");
+                number_text(m.start_height) + " m), got " + number_text(m.standoff) + " m");
   if (!(m.preload >= 0.0) || !std::isfinite(m.preload))
     throw Error("docking motion: preload must be ≥ 0 and finite [N], got " +
-                std::to_string(m.preload));
+                number_text(m.preload));
 }
 
 const char* to_string(DockingPhase phase) noexcept {
@@ -132,8 +133,8 @@ Eigen::VectorXd docking_start_configuration(const DockingScene& scene, const Pos
   PoseIk ik(scene.chain, ik_options);
   const IkResult result = ik.solve(X_WE, q_home);
   if (result.status != IkStatus::converged)
-    throw Error("docking: the start pose (tip at (" + std::to_string(X_WE.p.x()) + ", " +
-                std::to_string(X_WE.p.y()) + ", " + std::to_string(X_WE.p.z()) +
+    throw Error("docking: the start pose (tip at (" + number_text(X_WE.p.x()) + ", " +
+                number_text(X_WE.p.y()) + ", " + number_text(X_WE.p.z()) +
                 ") m) is out of reach of the iiwa14 (IK " + std::string(to_string(result.status)) +
                 "); move the socket closer");
   return result.q;

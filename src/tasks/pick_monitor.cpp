@@ -5,6 +5,7 @@
 #include <string>
 
 #include "mjarm/error.hpp"
+#include "mjarm/number_text.hpp"
 
 namespace mjarm {
 
@@ -28,10 +29,10 @@ PickMonitor::PickMonitor(const Eigen::Vector3d& p_start, const Eigen::Vector3d& 
                 std::to_string(criteria.tolerance));
   if (!(criteria.hold_time > 0.0) || !std::isfinite(criteria.hold_time))
     throw Error("PickMonitor: hold_time must be positive and finite [s], got " +
-                std::to_string(criteria.hold_time));
+                number_text(criteria.hold_time));
   if (!(criteria.steady_window > 0.0) || !(criteria.steady_window <= criteria.hold_time))
     throw Error("PickMonitor: steady_window must be in (0, hold_time] [s], got " +
-                std::to_string(criteria.steady_window));
+                number_text(criteria.steady_window));
   const Eigen::Vector3d d = p_target - p_start;
   if (d.norm() > 1e-12) direction_ = d.normalized();
 }

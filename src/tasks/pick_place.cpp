@@ -18,6 +18,7 @@
 #include "mjarm/tasks/pick_place_controllers.hpp"
 #include "mjarm/tasks/run_outputs.hpp"
 #include "mjarm/tasks/shelf_pick_plan.hpp"
+#include "mjarm/number_text.hpp"
 
 namespace mjarm {
 
@@ -60,8 +61,8 @@ constexpr double kClassicServoGain = 3200.0;
 void check_range(const std::array<double, 2>& r, const char* what, double lowest) {
   if (!(std::isfinite(r[0]) && std::isfinite(r[1]) && r[0] <= r[1] && r[0] >= lowest))
     throw Error(std::string("pick and place: the ") + what + " range must be finite, increasing " +
-                "and ≥ " + std::to_string(lowest) + ", got [" + std::to_string(r[0]) + ", " +
-                std::to_string(r[1]) + "]");
+                "and ≥ " + number_text(lowest) + ", got [" + number_text(r[0]) + ", " +
+                number_text(r[1]) + "]");
 }
 
 std::string point_text(double x, double y, double z) {
@@ -263,7 +264,7 @@ PickPlaceReport run_pick_place(const PickPlaceOptions& options) {
         "the saturation time ≥ 0");
   if (!(std::isfinite(options.grasp_force) && options.grasp_force > 0.0))
     throw Error("pick and place: grasp_force must be positive [N], got " +
-                std::to_string(options.grasp_force));
+                number_text(options.grasp_force));
   PickPlaceReport report;
   report.trial = draw_pick_place_trial(options);
   report.robot = options.robot;

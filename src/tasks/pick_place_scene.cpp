@@ -6,6 +6,7 @@
 #include <string>
 
 #include "mjarm/error.hpp"
+#include "mjarm/number_text.hpp"
 
 namespace mjarm {
 
@@ -180,7 +181,7 @@ PickPlaceScene build_pick_place_scene(const PickPlaceSceneOptions& options) {
     const double kp = options.finger_servo_gain;
     if (!(std::isfinite(kp) && kp > 0.0))
       throw Error("pick and place: finger_servo_gain must be positive [N/m], got " +
-                  std::to_string(kp));
+                  number_text(kp));
     for (const std::string& finger : out.fingers) {
       const std::optional<std::string> bias = scene.attribute("actuator", finger, "biasprm");
       double kv = 0.0;
@@ -199,9 +200,9 @@ PickPlaceScene build_pick_place_scene(const PickPlaceSceneOptions& options) {
     throw Error("pick and place: noslip_iterations must be in [0, 1000], got " +
                 std::to_string(options.noslip_iterations));
   if (!(std::isfinite(options.impratio) && options.impratio >= 1.0))
-    throw Error("pick and place: impratio must be ≥ 1, got " + std::to_string(options.impratio));
+    throw Error("pick and place: impratio must be ≥ 1, got " + number_text(options.impratio));
   scene.set_option("noslip_iterations", std::to_string(options.noslip_iterations));
-  scene.set_option("impratio", std::to_string(options.impratio));
+  scene.set_option("impratio", number_text(options.impratio));
 
   Robot model = scene.compile();
   std::vector<std::string> arm_joints;

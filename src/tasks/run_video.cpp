@@ -6,6 +6,7 @@
 #include <utility>
 
 #include "mjarm/error.hpp"
+#include "mjarm/number_text.hpp"
 
 namespace mjarm {
 namespace {
@@ -19,7 +20,7 @@ const RunVideoOptions& checked(const RunVideoOptions& options) {
     throw Error("video size must be even in both directions (yuv420p MP4), got " + size);
   if (!std::isfinite(options.fps) || !(options.fps > 0.0))
     throw Error("video frame rate must be a finite number > 0 frames/s, got " +
-                std::to_string(options.fps));
+                number_text(options.fps));
   return options;
 }
 

@@ -13,6 +13,7 @@
 #include "mjarm/tasks/run_video.hpp"
 #include "mjarm/tasks/shelf_pick_controllers.hpp"
 #include "mjarm/tasks/shelf_pick_task.hpp"
+#include "mjarm/number_text.hpp"
 
 namespace mjarm {
 
@@ -67,7 +68,7 @@ std::string result_line(const ShelfPickReport& r) {
 ShelfPickReport run_shelf_pick(const ShelfPickOptions& options) {
   if (!(options.settle_time > 0.0) || !std::isfinite(options.settle_time))
     throw Error("shelf pick: settle_time must be positive and finite [s], got " +
-                std::to_string(options.settle_time));
+                number_text(options.settle_time));
   // designated: every other member keeps its default
   ShelfPickReport report{.plan = plan_shelf_pick(options.request)};
   const ShelfPickPlan& plan = report.plan;

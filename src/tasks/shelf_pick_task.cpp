@@ -9,6 +9,7 @@
 #include "mjarm/error.hpp"
 #include "mjarm/lie/so3.hpp"
 #include "mjarm/sim/recorder.hpp"
+#include "mjarm/number_text.hpp"
 
 namespace mjarm {
 
@@ -36,10 +37,10 @@ const ShelfPickGoal& checked(const Chain& chain, const ShelfPickGoal& goal) {
   chain.check(goal.q_target, "ShelfPickGoal::q_target");
   if (!(goal.approach_time > 0.0) || !std::isfinite(goal.approach_time))
     throw Error("ShelfPickTask: approach_time must be positive and finite [s], got " +
-                std::to_string(goal.approach_time));
+                number_text(goal.approach_time));
   if (!(goal.velocity_lag >= 0.0) || !std::isfinite(goal.velocity_lag))
     throw Error("ShelfPickTask: velocity_lag must be ≥ 0 and finite [s], got " +
-                std::to_string(goal.velocity_lag));
+                number_text(goal.velocity_lag));
   return goal;
 }
 

@@ -8,6 +8,7 @@
 
 #include "mjarm/error.hpp"
 #include "mjarm/model/names.hpp"
+#include "mjarm/number_text.hpp"
 
 namespace mjarm {
 namespace {
@@ -37,7 +38,7 @@ std::string camera_list(const mjModel& m) {
 CameraSpec shelf_pick_camera(const ShelfPickPlan& plan, const mjData& start,
                              std::string_view camera, double aspect) {
   if (!std::isfinite(aspect) || !(aspect > 0.0))
-    throw Error("video camera: the aspect ratio must be > 0, got " + std::to_string(aspect));
+    throw Error("video camera: the aspect ratio must be > 0, got " + number_text(aspect));
   const mjModel& m = plan.model.model();
   const Viewpoint view = viewpoint(*plan.robot);
   if (camera == "follow")

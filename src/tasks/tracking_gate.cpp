@@ -10,6 +10,7 @@
 #include "mjarm/sim/simulation.hpp"
 #include "mjarm/tasks/docking_task.hpp"
 #include "mjarm/trajectory/smoothstep.hpp"
+#include "mjarm/number_text.hpp"
 
 namespace mjarm {
 
@@ -108,7 +109,7 @@ void check(const TrackingGateOptions& o) {
   if (!(o.settle_time >= 0.0) || !std::isfinite(o.settle_time))
     throw Error("tracking gate: settle_time must be ≥ 0 and finite [s]");
   if (!(o.ramp_time < 1.0 / o.frequency))
-    throw Error("tracking gate: ramp_time (" + std::to_string(o.ramp_time) +
+    throw Error("tracking gate: ramp_time (" + number_text(o.ramp_time) +
                 " s) must be shorter than a loop at cruise, 1/frequency = " +
                 std::to_string(1.0 / o.frequency) + " s");
   if (!(o.radius < o.height + 0.02))

@@ -6,6 +6,7 @@
 
 #include "mjarm/error.hpp"
 #include "mjarm/lie/rotation.hpp"
+#include "mjarm/number_text.hpp"
 
 namespace mjarm {
 
@@ -86,10 +87,10 @@ BimanualLiftResult run_bimanual_lift(SessionRecorder& recorder, const BimanualLi
   if (!ok) {
     result.failure = "the simulation stopped: " + session.stats().fault;
   } else if (result.lifted < o.lift_height - o.tolerance) {
-    result.failure = "the bar rose " + std::to_string(result.lifted) + " m, not " +
-                     std::to_string(o.lift_height) + " m";
+    result.failure = "the bar rose " + number_text(result.lifted) + " m, not " +
+                     number_text(o.lift_height) + " m";
   } else if (result.sag > o.tolerance) {
-    result.failure = "the bar sank " + std::to_string(result.sag) + " m while held";
+    result.failure = "the bar sank " + number_text(result.sag) + " m while held";
   }
   result.success = result.failure.empty();
   return result;

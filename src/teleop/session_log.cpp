@@ -306,6 +306,13 @@ SessionLog read_session_log(const std::filesystem::path& path) {
   if (r.word("the end line") != "end")
     throw Error(r.where() + ": expected the end line after " + std::to_string(count) + " events");
   log.ticks = r.integer("the tick count");
+  if (log.ticks > kMaxSessionTicks)
+    throw Error(r.where() + ": the session ends at tick " + std::to_string(log.ticks) +
+                ", beyond the " + std::to_string(kMaxSessionTicks) +
+                " ticks a session may have (a replay simulates about 20000 a second)" +
+                (log.events.empty() ? std::string()
+                                    : "; its last event is at tick " +
+                                          std::to_string(log.events.back().tick)));
   log.digest = r.word("the final digest");
   r.done();
   if (!log.events.empty() && log.events.back().tick > log.ticks)

@@ -7,6 +7,7 @@
 
 #include "mjarm/error.hpp"
 #include "mjarm/lie/rotation.hpp"
+#include "mjarm/number_text.hpp"
 
 namespace mjarm {
 
@@ -29,8 +30,8 @@ double parse_number(std::string_view name, std::string_view value) {
 
 void check_range(std::string_view name, double v, double lo, double hi) {
   if (v < lo || v > hi)
-    throw Error("panel value '" + std::string(name) + "' must be within [" + std::to_string(lo) +
-                ", " + std::to_string(hi) + "], got " + std::to_string(v));
+    throw Error("panel value '" + std::string(name) + "' must be within [" + number_text(lo) +
+                ", " + number_text(hi) + "], got " + number_text(v));
 }
 
 int index_of(const char* const* names, int count, std::string_view name, std::string_view value) {

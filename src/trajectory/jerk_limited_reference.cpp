@@ -5,6 +5,7 @@
 
 #include "mjarm/error.hpp"
 #include "mjarm/qp/dense_qp.hpp"
+#include "mjarm/number_text.hpp"
 
 namespace mjarm {
 
@@ -12,7 +13,7 @@ bool grid_motion_exists(const KinematicState& start, const KinematicState& targe
                         const JerkLimits& limits, double duration, int steps) {
   if (steps < 1 || !(duration > 0.0) || !std::isfinite(duration))
     throw Error("grid_motion_exists: expected steps ≥ 1 and a positive finite duration, got " +
-                std::to_string(steps) + " and " + std::to_string(duration));
+                std::to_string(steps) + " and " + number_text(duration));
   const int n = steps;
   const double h = duration / n;
   const double J = limits.jerk;

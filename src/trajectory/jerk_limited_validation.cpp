@@ -14,6 +14,7 @@
 #include "mjarm/trajectory/jerk_limited_min_time.hpp"
 #include "mjarm/trajectory/jerk_limited_reference.hpp"
 #include "mjarm/trajectory/jerk_limited_structure_search.hpp"
+#include "mjarm/number_text.hpp"
 
 namespace mjarm {
 
@@ -250,7 +251,7 @@ OtgValidationResult run_otg_validation(const OtgValidationOptions& options) {
                 std::to_string(options.cases) + " and " + std::to_string(options.dofs));
   if (!(options.brake_share >= 0.0 && options.brake_share <= 1.0))
     throw Error("run_otg_validation: brake_share must be in [0, 1], got " +
-                std::to_string(options.brake_share));
+                number_text(options.brake_share));
   if (options.structure_seeds < 0)
     throw Error("run_otg_validation: structure_seeds must be ≥ 0, got " +
                 std::to_string(options.structure_seeds));
@@ -296,7 +297,7 @@ OtgValidationResult run_otg_validation(const OtgValidationOptions& options) {
         const int d = std::max(res.failed_dof, 0);
         r.first_failure =
             describe_otg_case(to_string(res.status), d, start[d], target[d], limits[d]) +
-            ", synchronized duration " + std::to_string(res.duration) + " s";
+            ", synchronized duration " + number_text(res.duration) + " s";
       }
     } else {
       for (std::size_t i = 0; i < n; ++i) {
@@ -352,7 +353,7 @@ OtgValidationResult run_otg_validation(const OtgValidationOptions& options) {
         const int d = std::max(vres.failed_dof, 0);
         r.first_velocity_failure =
             describe_otg_case(to_string(vres.status), d, start[d], target[d], limits[d]) +
-            ", synchronized duration " + std::to_string(vres.duration) + " s, brake " +
+            ", synchronized duration " + number_text(vres.duration) + " s, brake " +
             std::to_string(otg.brake_phases(d)) + " phases";
       }
     } else {

@@ -5,6 +5,7 @@
 #include <string>
 
 #include "mjarm/error.hpp"
+#include "mjarm/number_text.hpp"
 #include "polynomial.hpp"
 
 namespace mjarm {
@@ -70,7 +71,7 @@ Quintic::Quintic(const State& start, const State& end, double duration) : durati
   require_finite_state(start, "start");
   require_finite_state(end, "end");
   if (!(duration >= 0.0) || !std::isfinite(duration))
-    throw Error("quintic: duration must be ≥ 0 and finite, got " + std::to_string(duration) + " s");
+    throw Error("quintic: duration must be ≥ 0 and finite, got " + number_text(duration) + " s");
   if (duration == 0.0) {
     if (start.p != end.p || start.v != end.v)
       throw Error(
@@ -94,7 +95,7 @@ Quintic::Quintic(const State& start, const State& end, double duration) : durati
       std::isfinite(scale) && std::isfinite(e.p) && std::isfinite(e.v) && std::isfinite(e.a) &&
       std::isfinite(e.j);
   if (!finite || std::abs(e.p - end.p) > 1e-9 * scale + 1e-300)
-    throw Error("quintic: the duration " + std::to_string(T) +
+    throw Error("quintic: the duration " + number_text(T) +
                 " s is out of scale with the boundary values (p " + std::to_string(start.p) +
                 " → " + std::to_string(end.p) +
                 "): its polynomial cannot be evaluated in double precision");

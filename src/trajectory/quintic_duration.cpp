@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "mjarm/error.hpp"
+#include "mjarm/number_text.hpp"
 #include "polynomial.hpp"
 
 namespace mjarm {
@@ -212,7 +213,7 @@ QuinticDuration shortest_quintic_duration(const QuinticTrajectory::State& start,
   require_duration_input(max_acceleration, n, "max acceleration", true);
   if (!(min_duration >= 0.0) || !std::isfinite(min_duration))
     throw Error("shortest quintic duration: min duration must be ≥ 0 and finite, got " +
-                std::to_string(min_duration) + " s");
+                number_text(min_duration) + " s");
 
   QuinticDuration result;
   for (Eigen::Index i = 0; i < n; ++i) {

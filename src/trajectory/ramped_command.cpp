@@ -5,6 +5,7 @@
 #include <string>
 
 #include "mjarm/error.hpp"
+#include "mjarm/number_text.hpp"
 
 namespace mjarm {
 
@@ -13,10 +14,10 @@ RampedCommand::RampedCommand(double full_travel_time, double lower, double upper
     : full_travel_time_(full_travel_time), lower_(lower), upper_(upper), kind_(kind) {
   if (!(full_travel_time > 0.0) || !std::isfinite(full_travel_time))
     throw Error("ramped command: the full travel time must be positive and finite, got " +
-                std::to_string(full_travel_time) + " s");
+                number_text(full_travel_time) + " s");
   if (!std::isfinite(lower) || !std::isfinite(upper) || !(lower < upper))
     throw Error("ramped command: the range must be finite with lower < upper, got [" +
-                std::to_string(lower) + ", " + std::to_string(upper) + "]");
+                number_text(lower) + ", " + std::to_string(upper) + "]");
   reset(lower);
 }
 

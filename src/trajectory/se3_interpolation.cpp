@@ -6,6 +6,7 @@
 #include "mjarm/error.hpp"
 #include "mjarm/lie/so3.hpp"
 #include "mjarm/lie/so3_jacobian.hpp"
+#include "mjarm/number_text.hpp"
 
 namespace mjarm {
 
@@ -24,7 +25,7 @@ void require_interpolated_pose(const Pose& X, const char* which) {
 void require_interpolation_duration(double duration) {
   if (!(duration > 0.0) || !std::isfinite(duration))
     throw Error("SE(3) interpolation: duration must be positive and finite, got " +
-                std::to_string(duration) + " s");
+                number_text(duration) + " s");
 }
 
 // the three quintics of a 3-vector from (x0, v0, a0) to (x1, 0, 0)

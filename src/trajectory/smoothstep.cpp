@@ -5,6 +5,7 @@
 #include <string>
 
 #include "mjarm/error.hpp"
+#include "mjarm/number_text.hpp"
 
 namespace mjarm {
 
@@ -71,9 +72,9 @@ double SmoothRamp::duration_for(Kind kind, double distance, double max_velocity,
   const double T = std::max(peak_slope(kind) * distance / max_velocity,
                             std::sqrt(peak_curvature(kind) * distance / max_acceleration));
   if (!std::isfinite(T))
-    throw Error("smooth ramp: " + std::to_string(distance) + " at max velocity " +
-                std::to_string(max_velocity) + " and max acceleration " +
-                std::to_string(max_acceleration) + " takes longer than a double can hold");
+    throw Error("smooth ramp: " + number_text(distance) + " at max velocity " +
+                number_text(max_velocity) + " and max acceleration " +
+                number_text(max_acceleration) + " takes longer than a double can hold");
   return T;
 }
 

@@ -4,6 +4,7 @@
 #include <string>
 
 #include "mjarm/error.hpp"
+#include "mjarm/number_text.hpp"
 
 namespace mjarm {
 
@@ -23,7 +24,7 @@ TrapezoidProfile::TrapezoidProfile(double distance, double max_velocity, double 
     : distance_(distance), acceleration_(max_acceleration) {
   if (!(distance >= 0.0) || !std::isfinite(distance))
     throw Error("trapezoid profile: distance must be ≥ 0 and finite, got " +
-                std::to_string(distance) + " (SyncedTrapezoid takes signed moves)");
+                number_text(distance) + " (SyncedTrapezoid takes signed moves)");
   require_trapezoid_limit(max_velocity, "max velocity");
   require_trapezoid_limit(max_acceleration, "max acceleration");
   if (distance == 0.0) return;
@@ -39,9 +40,9 @@ TrapezoidProfile::TrapezoidProfile(double distance, double max_velocity, double 
   }
   duration_ = 2.0 * accel_time_ + cruise_time_;
   if (!std::isfinite(duration_) || !std::isfinite(peak_velocity_))
-    throw Error("trapezoid profile: " + std::to_string(distance) + " at max velocity " +
-                std::to_string(max_velocity) + " and max acceleration " +
-                std::to_string(max_acceleration) + " takes longer than a double can hold");
+    throw Error("trapezoid profile: " + number_text(distance) + " at max velocity " +
+                number_text(max_velocity) + " and max acceleration " +
+                number_text(max_acceleration) + " takes longer than a double can hold");
 }
 
 TrapezoidProfile::Sample TrapezoidProfile::at(double t) const noexcept {
@@ -99,7 +100,7 @@ SyncedTrapezoid::SyncedTrapezoid(const Eigen::VectorXd& start, const Eigen::Vect
     if (!std::isfinite(start[i]) || !std::isfinite(goal[i]))
       throw Error("synced trapezoid: axis " + std::to_string(i) +
                   " start and goal must be finite, got " + std::to_string(start[i]) + " and " +
-                  std::to_string(goal[i]));
+                  number_text(goal[i]));
     require_trapezoid_limit(max_velocity[i], "max velocity", i);
     require_trapezoid_limit(max_acceleration[i], "max acceleration", i);
     const double move = goal[i] - start[i];

@@ -172,8 +172,11 @@ TEST(Cli, FkOfPlanar2MatchesClosedForm) {
   EXPECT_EQ(zero["configuration"], "--q");
   EXPECT_EQ(zero["frame"]["name"], "tip");
   EXPECT_TRUE(zero["within_limits"].get<bool>());
-  // values outside the joint range are computed, and flagged
-  const json outside = run_json({"fk", "planar2", "--q", "2.0", "0", "--json"});
+  // values outside the joint range are refused (exit 2), or with --allow-outside-range computed
+  // and flagged (issue 29: one rule for every command that takes joint values)
+  expect_error({"fk", "planar2", "--q", "2.0", "0"}, 2, "outside its range");
+  const json outside =
+      run_json({"fk", "planar2", "--q", "2.0", "0", "--allow-outside-range", "--json"});
   EXPECT_FALSE(outside["within_limits"].get<bool>());
   EXPECT_LT((to_vector(outside["position"]) - planar2_tip(2.0, 0.0)).norm(), 1e-12);
 

@@ -77,8 +77,10 @@ TEST(CliTraj, QuinticFromAMovingStartTakesTheShortestDuration) {
 }
 
 TEST(CliTraj, SmoothRampsAndAGivenDuration) {
+  // 0.94 m/s at its peak, beyond the default 0.18: accepted explicitly (issue 29)
   const nlohmann::json j = run_json({"traj", "smootherstep", "--start", "1", "--target", "0",
-                                     "--duration", "2", "--rate", "10", "--json"});
+                                     "--duration", "2", "--rate", "10", "--allow-violation",
+                                     "--json"});
   EXPECT_EQ(j["duration"].get<double>(), 2.0);
   EXPECT_EQ(j["samples"].size(), 21u);
   EXPECT_NEAR(j["samples"][10]["q"][0].get<double>(), 0.5, 1e-15);

@@ -12,6 +12,7 @@
 
 #include "env/env_test_support.hpp"
 #include "ik/malloc_counter.hpp"
+#include "mjarm/env/task_registry.hpp"
 #include "mjarm/error.hpp"
 
 namespace mjarm {
@@ -99,6 +100,24 @@ TEST(Environment, StepAfterLastWithoutResetIsAnError) {
                                 {"after the last step", "truncated", "call reset()"});
   env.reset(2);  // and reset makes it usable again
   EXPECT_TRUE(env.step(action).last());
+}
+
+// issue 29, item 9: close() then reset() worked as if the environment had never been closed
+TEST(Environment, AClosedEnvironmentStaysClosed) {
+  for (const std::string& task : env_task_names()) {
+    Environment env(task);
+    const std::vector<double> action = zeros(env);
+    env.reset(1);
+    EXPECT_FALSE(env.closed());
+    env.close();
+    env.close();  // closing twice is allowed
+    EXPECT_TRUE(env.closed());
+    test::expect_error_containing([&] { env.reset(1); },
+                                  {"environment '", "reset() after close()", "make a new one"});
+    test::expect_error_containing([&] { env.reset(); }, {"reset() after close()"});
+    test::expect_error_containing([&] { env.step(action); }, {"step() after close()"});
+    EXPECT_EQ(env.steps(), 0) << task;  // nothing ran
+  }
 }
 
 TEST(Environment, WrongActionSizesAreErrors) {

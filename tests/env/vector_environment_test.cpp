@@ -84,6 +84,20 @@ TEST(VectorEnvironment, AutoResetsAfterLast) {
   EXPECT_EQ(batch.step_types()[1], StepType::mid);
 }
 
+// issue 29, item 9: closed stays closed, for the batch and each of its environments
+TEST(VectorEnvironment, AClosedBatchStaysClosed) {
+  VectorEnvironment batch(test::reach_task(), short_episodes(), 2, 1);
+  batch.reset();
+  batch.close();
+  batch.close();
+  EXPECT_TRUE(batch.closed());
+  EXPECT_TRUE(batch.environment(1).closed());
+  const std::vector<double> zero(static_cast<std::size_t>(2 * batch.action_spec().size()), 0.0);
+  test::expect_error_containing([&] { batch.reset(); },
+                                {"vector environment 'reach'", "reset() after close()"});
+  test::expect_error_containing([&] { batch.step(zero); }, {"step() after close()"});
+}
+
 TEST(VectorEnvironment, SameResultsWhateverTheThreadCount) {
   const int count = 5;
   std::vector<std::vector<double>> observations, rewards;

@@ -2,7 +2,9 @@
 
 #include <gtest/gtest.h>
 
+#include <limits>
 #include <numbers>
+#include <string>
 #include <random>
 
 #include "lie/lie_test_support.hpp"
@@ -74,6 +76,35 @@ TEST(Pose, FromQuaternionAndRpy) {
                           std::sin(angle / 2) * axis.y(), std::sin(angle / 2) * axis.z());
   EXPECT_TRUE(
       Pose::from_rotation_vector(p, angle * axis).is_approx(Pose::from_quaternion(p, q), 1e-15));
+}
+
+// issue 29, item 9: a NaN given to a pose factory came out as a NaN pose without a word
+TEST(Pose, FactoriesRefuseNumbersThatAreNotFinite) {
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const double inf = std::numeric_limits<double>::infinity();
+  const Eigen::Vector3d bad(0.1, nan, 0.3), good(0.1, 0.2, 0.3);
+  const auto expect_refused = [](auto&& make, const char* needle) {
+    try {
+      make();
+      ADD_FAILURE() << "no error for " << needle;
+    } catch (const Error& e) {
+      EXPECT_NE(std::string(e.what()).find(needle), std::string::npos) << e.what();
+    }
+  };
+  expect_refused([&] { Pose::from_rpy(good, bad); }, "Pose::from_rpy: rpy holds nan");
+  expect_refused([&] { Pose::from_rpy(bad, good); }, "Pose::from_rpy: p holds nan");
+  expect_refused([&] { Pose::from_rotation_vector(good, bad); }, "from_rotation_vector: phi");
+  expect_refused([&] { Pose::from_quaternion(bad, Eigen::Vector4d(1, 0, 0, 0)); },
+                 "from_quaternion: p holds nan");
+  Eigen::Matrix4d M = Eigen::Matrix4d::Identity();
+  M(0, 3) = inf;
+  expect_refused([&] { Pose::from_matrix(M); }, "Pose::from_matrix: p holds inf");
+  M(0, 3) = 0.0;
+  M(1, 1) = nan;
+  expect_refused([&] { Pose::from_matrix(M); }, "Pose::from_matrix: R holds nan");
+  Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
+  X.translation() = bad;
+  expect_refused([&] { Pose::from_isometry(X); }, "from_isometry: the translation holds nan");
 }
 
 TEST(Pose, IsApproxDetectsDifferences) {

@@ -4,6 +4,7 @@
 
 #include <cstdio>
 #include <fstream>
+#include <string>
 
 #include "mjarm/error.hpp"
 #include "mjarm/model/user_file.hpp"
@@ -46,6 +47,25 @@ TEST(WaypointFile, CsvWithAndWithoutHeaderUsesTheDefaultOrientation) {
   path = parse_waypoints_csv("X, Y, Z, QW, QX, QY, QZ\n0.3, 0.1, 0.4, 1, 0, 0, 0\n");
   ASSERT_EQ(path.waypoints.size(), 1u);
   EXPECT_TRUE(path.poses(R)[0].R.isApprox(Eigen::Matrix3d::Identity()));
+}
+
+// issue 29: a 2 000 000-row CSV ran for 97 s and failed blaming "very slow velocities"
+TEST(WaypointFile, AFileOfMoreWaypointsThanTheBoundIsRefused) {
+  std::string csv = "x,y,z\n", json = R"({"waypoints": [)";
+  for (std::size_t k = 0; k <= kMaxWaypoints; ++k) {
+    csv += "0.4,0.0,0.5\n";
+    json += std::string(k ? "," : "") + R"({"position": [0.4, 0.0, 0.5]})";
+  }
+  json += "]}";
+  EXPECT_NE(error_of([&] { parse_waypoints_csv(csv, "big.csv"); })
+                .find("waypoints big.csv line 10002: a waypoint beyond the 10000 a file may hold"),
+            std::string::npos);
+  EXPECT_NE(error_of([&] { parse_waypoints_json(json, "big.json"); })
+                .find("waypoints big.json: 10001 waypoints, more than the 10000 a file may hold"),
+            std::string::npos);
+  // at the bound a file reads
+  csv.erase(csv.rfind("0.4,0.0,0.5\n"));
+  EXPECT_EQ(parse_waypoints_csv(csv, "big.csv").waypoints.size(), kMaxWaypoints);
 }
 
 TEST(WaypointFile, BadFilesAreClearErrors) {

@@ -405,3 +405,50 @@ def test_gym_vector_adapter():
     again = GymVectorEnv("reach", 3, threads=1, time_limit=0.06)
     o2, _ = again.reset(seed=4)
     assert np.array_equal(o2["ee_pose"], env.reset(seed=4)[0]["ee_pose"])
+
+
+def test_closed_environments_stay_closed():
+    """issue 29: close() then reset() worked as if the environment had never been closed."""
+    from mjarm.dm_env import DmEnv
+    from mjarm.gym import GymEnv, GymVectorEnv
+
+    for task in mjarm.env_task_names():
+        env = mjarm.Environment(task)
+        env.reset(1)
+        env.close()
+        env.close()
+        assert env.closed
+        with pytest.raises(mjarm.Error, match=f"environment '{task}': reset\\(\\) after close\\(\\)"):
+            env.reset(1)
+        with pytest.raises(mjarm.Error, match="step\\(\\) after close\\(\\)"):
+            env.step(np.zeros(env.action_spec().shape))
+    with mjarm.Environment("reach") as env:
+        env.reset()
+    with pytest.raises(mjarm.Error, match="after close"):
+        env.reset()
+
+    batch = mjarm.VectorEnvironment("reach", 2)
+    batch.reset()
+    batch.close()
+    assert batch.closed
+    with pytest.raises(mjarm.Error, match="vector environment 'reach': reset\\(\\) after close"):
+        batch.reset()
+    with pytest.raises(mjarm.Error, match="step\\(\\) after close"):
+        batch.step(np.zeros((2,) + batch.action_spec().shape))
+
+    dm = DmEnv("reach")
+    dm.reset()
+    dm.close()
+    with pytest.raises(mjarm.Error, match="after close"):
+        dm.reset()
+    gym = GymEnv("reach")
+    gym.reset(seed=1)
+    gym.close()
+    with pytest.raises(mjarm.Error, match="after close"):
+        gym.reset(seed=2)
+    vector = GymVectorEnv("reach", 2)
+    vector.reset(seed=1)
+    vector.close()
+    for seed in (None, 3):  # a seed rebuilt the batch: it must not reopen it
+        with pytest.raises(mjarm.Error, match="after close"):
+            vector.reset(seed=seed)

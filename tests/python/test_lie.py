@@ -81,3 +81,31 @@ def test_pose_api_and_errors():
     assert pos == pytest.approx(np.linalg.norm(X.p))
     with pytest.raises(mjarm.Error, match="quaternion"):
         mjarm.Pose.from_quaternion([0, 0, 0], [0, 0, 0, 0])
+
+
+def test_non_finite_arguments_are_refused():
+    """issue 29: se3.exp(NaN) returned a NaN pose without an error."""
+    nan6 = [0.1, 0.2, float("nan"), 0.0, 0.0, 0.0]
+    with pytest.raises(mjarm.Error, match="xi holds nan at entry 2; expected finite numbers"):
+        se3.exp(nan6)
+    with pytest.raises(mjarm.Error, match="w holds inf at entry 0"):
+        so3.exp([float("inf"), 0.0, 0.0])
+    with pytest.raises(mjarm.Error, match="xi holds nan"):
+        se3.left_jacobian(nan6)
+    bad = np.eye(4)
+    bad[1, 3] = float("nan")
+    with pytest.raises(mjarm.Error, match=r"X holds nan at \(1, 3\)"):
+        se3.log(bad)
+    with pytest.raises(mjarm.Error, match="M holds nan"):
+        mjarm.Pose.from_matrix(bad)
+    with pytest.raises(mjarm.Error, match="rpy holds nan"):
+        mjarm.Pose.from_rpy([0, 0, 0], [0, float("nan"), 0])
+    with pytest.raises(mjarm.Error, match="p holds nan"):
+        mjarm.Pose(np.eye(3), [float("nan"), 0, 0])
+    pose = mjarm.Pose()
+    with pytest.raises(mjarm.Error, match="R holds nan"):
+        pose.R = np.full((3, 3), float("nan"))
+    with pytest.raises(mjarm.Error, match="q_wxyz holds nan"):
+        mjarm.rotation_from_quaternion([float("nan"), 0, 0, 1])
+    with pytest.raises(mjarm.Error, match="X_WT holds nan"):
+        mjarm.log_error(mjarm.Pose(), bad)

@@ -91,3 +91,17 @@ def test_chain(panda, panda_chain):
         mjarm.Chain(panda, "no_such_frame")
     with pytest.raises(mjarm.Error):
         mjarm.Chain(panda, ["joint1", "joint1"], "attachment_site")
+
+
+def test_the_model_size_bound_can_be_raised_and_lowered():
+    """issue 29: a 400 000-geom model compiled for minutes; the bound is one setting."""
+    assert mjarm.max_model_elements() == 20000
+    try:
+        mjarm.set_max_model_elements(3)
+        with pytest.raises(mjarm.Error, match="more than the 3 a model may have"):
+            mjarm.Robot.bundled("planar2")
+    finally:
+        mjarm.set_max_model_elements(20000)
+    assert mjarm.Robot.bundled("planar2").nq == 2
+    with pytest.raises(mjarm.Error, match="from 1 to 100000000, got 0"):
+        mjarm.set_max_model_elements(0)

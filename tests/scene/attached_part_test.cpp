@@ -206,6 +206,9 @@ TEST(AttachedPart, ItsOptionsAreTakenAndConflictsRefusedWithMuJoCosWord) {
   EXPECT_NE(scene.warnings().front().find("integrator"), std::string::npos)
       << scene.warnings().front();
   const Robot robot = scene.compile();
+  // and the compiled robot's load report holds it (issue 29: it was only printed)
+  ASSERT_FALSE(robot.load_warnings().empty());
+  EXPECT_EQ(robot.load_warnings().front(), scene.warnings().front());
   const mjModel& m = robot.model();
   EXPECT_EQ(m.opt.integrator, mjINT_IMPLICITFAST);
   const int j = robot.joint("v4/j");

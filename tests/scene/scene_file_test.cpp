@@ -199,6 +199,30 @@ TEST(SceneFile, TheExtensionIsReadInAnyCase) {
   EXPECT_EQ(load_scene_file(file).name(), "upper");
 }
 
+// issue 29, item 4: a mass of 1e308 or a position of 1e300 loaded ("load warnings (0)") and
+// failed at the first step; the positions, sizes and masses a scene gives are bounded by
+// MuJoCo's mjMAXVAL, named with their line, the number in its shortest form
+TEST(SceneFile, HugeMassesPositionsAndSizesAreRefusedWithTheirLine) {
+  std::string message =
+      error_of([] { parse_scene(small_scene("    mass: 1e308"), ".", "s.yaml"); });
+  EXPECT_TRUE(mentions(message, "s.yaml:4: object 'cube': box object 'cube' mass holds 1e+308, "
+                                "beyond 1e+10 (MuJoCo's mjMAXVAL"))
+      << message;
+  message = error_of([] { parse_scene(small_scene("    size: [1e300, 0.1, 0.1]"), ".", "s.yaml"); });
+  EXPECT_TRUE(mentions(message, "size holds 1e+300, beyond 1e+10")) << message;
+  message = error_of(
+      [] { parse_scene("objects:\n  - {name: c, pos: [0, -1e300, 0]}\n", ".", "s.yaml"); });
+  EXPECT_TRUE(mentions(message, "s.yaml:2: object 'c': box object 'c' pos holds -1e+300"))
+      << message;
+  message = error_of([] {
+    parse_scene("sites:\n  - {name: s, pos: [0, 0, 1e11]}\n", ".", "s.yaml");
+  });
+  EXPECT_TRUE(mentions(message, "site 's' pos holds 1e+11")) << message;
+  // the positive-mass rule prints its number short too (it was -1000000000.000000)
+  message = error_of([] { parse_scene(small_scene("    mass: -1e9"), ".", "s.yaml"); });
+  EXPECT_TRUE(mentions(message, "mass must be positive [kg], got -1e+09")) << message;
+}
+
 // issue 16, items 6 and 7: a scene file is a user file like a model: read only when it is a
 // regular file within the size limit, and a FIFO, a device, a folder or a symbolic link loop is
 // named for what it is (all were "does not exist"; a huge file was read whole)

@@ -98,6 +98,30 @@ TEST(SessionLog, TruncatedFilesAreRefused) {
   EXPECT_NE(test::error_of([&] { read_session_log(cut); }).find("truncated"), std::string::npos);
 }
 
+// issue 29, item 11: `end 99999999999` made `replay` tick toward 10¹¹; such a count is refused
+// when the file is read, before a model loads or a tick runs
+TEST(SessionLog, ATickCountBeyondTheBoundIsRefusedWhenRead) {
+  const Robot robot = Robot::bundled("dual_arm");
+  const fs::path path = test::scratch() / "long.session";
+  write_session_log(record_short_session(robot), path);
+  std::string text = test::slurp(path);
+  const std::size_t end = text.rfind("end ");
+  const std::size_t digest = text.find(' ', end + 4);
+  const std::string last_event = text.substr(0, end);
+  text = text.substr(0, end) + "end 99999999999" + text.substr(digest);
+  write_text(path, text);
+  const std::string message = test::error_of([&] { read_session_log(path); });
+  EXPECT_NE(message.find("the session ends at tick 99999999999, beyond the 10000000 ticks a "
+                         "session may have"),
+            std::string::npos)
+      << message;
+  EXPECT_NE(message.find("its last event is at tick"), std::string::npos) << message;
+  // at the bound it reads
+  text = last_event + "end " + std::to_string(kMaxSessionTicks) + text.substr(text.find(' ', end + 4));
+  write_text(path, text);
+  EXPECT_EQ(read_session_log(path).ticks, kMaxSessionTicks);
+}
+
 TEST(SessionLog, AnotherModelIsRefused) {
   const Robot robot = Robot::bundled("dual_arm");
   const SessionLog log = record_short_session(robot);

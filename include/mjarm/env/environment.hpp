@@ -64,7 +64,9 @@ struct ClipCounts {
 /// - `step(action)` → MID; or LAST when the task terminates (discount 0), when the time limit
 ///   is reached (discount 1: a truncation), or when the physics diverges (discount 0,
 ///   `EpisodeEnd::diverged`; the state of the last good physics step is kept);
-/// - `step` before the first `reset` or after LAST is an error: call `reset`.
+/// - `step` before the first `reset` or after LAST is an error: call `reset`;
+/// - `close()` ends the environment for good (dm_env's `close`): a `reset` or `step` after it is
+///   an error naming the task, never a new episode.
 ///
 /// One step: the action is checked (size, NaN/inf: errors) and clipped into its bounds (or
 /// refused), the task's `before_step` sees it, the `ActionDriver` turns it into a reference,
@@ -91,14 +93,21 @@ class Environment {
 
   /// Starts an episode with seed @p seed: randomizes the model (when asked), lets the task set
   /// the start state and goal, and returns FIRST.
+  /// @throws Error after `close()`.
   TimeStep reset(std::uint64_t seed);
   /// Starts an episode with the next seed of the environment's own seed sequence
   /// (`EnvironmentOptions::seed`).
   TimeStep reset();
   /// One control step with @p action (action_spec().size() values). Allocation-free.
-  /// @throws Error before the first reset, after LAST, for a wrong size, a NaN/inf value, or a
-  ///         value out of bounds when `refuse_out_of_bounds` is set.
+  /// @throws Error before the first reset, after LAST, after `close()`, for a wrong size, a
+  ///         NaN/inf value, or a value out of bounds when `refuse_out_of_bounds` is set.
   TimeStep step(std::span<const double> action);
+  /// Closes the environment: every later `reset` and `step` throws `Error` (a closed environment
+  /// stays closed; make a new one). Closing twice is allowed. The memory goes with the object;
+  /// the accessors below keep answering.
+  void close() noexcept;
+  /// True after `close()`.
+  bool closed() const noexcept;
 
   const ArraySpec& action_spec() const noexcept;
   const ObservationSpec& observation_spec() const noexcept;

@@ -43,13 +43,19 @@ class VectorEnvironment {
   VectorEnvironment& operator=(const VectorEnvironment&) = delete;
 
   /// Resets every environment (the next seed of each one's sequence): every row FIRST.
+  /// @throws Error after `close()`.
   void reset();
   /// One step of every environment with @p actions (N × action size, row i for environment
   /// i); environments whose last step was LAST are reset instead.
   /// @throws Error before the first reset, for a wrong size, a NaN/inf value, or (with
   ///         `refuse_out_of_bounds`) a value out of bounds — naming the row and entry; nothing
-  ///         is stepped then.
+  ///         is stepped then; after `close()`.
   void step(std::span<const double> actions);
+  /// Closes every environment of the batch (`Environment::close`): every later `reset` and
+  /// `step` throws `Error`. Closing twice is allowed.
+  void close() noexcept;
+  /// True after `close()`.
+  bool closed() const noexcept { return closed_; }
 
   int size() const noexcept { return static_cast<int>(environments_.size()); }
   int threads() const noexcept { return pool_.threads(); }
@@ -88,6 +94,7 @@ class VectorEnvironment {
   std::vector<double> env_cpu_;      // per environment, of the last reset or step
   std::span<const double> actions_;  // the batch being stepped
   bool started_ = false;
+  bool closed_ = false;
 };
 
 }  // namespace mjarm

@@ -20,20 +20,25 @@ struct Pose {
   static Pose identity() noexcept;
 
   /// From an Eigen isometry (its linear part is taken as the rotation as is).
-  static Pose from_isometry(const Eigen::Isometry3d& X) noexcept;
+  /// @throws mjarm::Error if a number is not finite (as every factory below: a NaN pose would
+  ///         flow through every later computation without a word)
+  static Pose from_isometry(const Eigen::Isometry3d& X);
 
   /// From a 4×4 homogeneous matrix [R p; 0 1] (the bottom row is ignored).
-  static Pose from_matrix(const Eigen::Matrix4d& M) noexcept;
+  /// @throws mjarm::Error if a number of R or p is not finite
+  static Pose from_matrix(const Eigen::Matrix4d& M);
 
   /// From a position (m) and a quaternion (w, x, y, z), normalised first.
-  /// @throws mjarm::Error if the quaternion is zero or not finite
+  /// @throws mjarm::Error if the quaternion is zero or not finite, or p is not finite
   static Pose from_quaternion(const Eigen::Vector3d& p, const Eigen::Vector4d& q_wxyz);
 
   /// From a position (m) and roll-pitch-yaw (rad), R = Rz(yaw)·Ry(pitch)·Rx(roll).
-  static Pose from_rpy(const Eigen::Vector3d& p, const Eigen::Vector3d& rpy) noexcept;
+  /// @throws mjarm::Error if a number is not finite
+  static Pose from_rpy(const Eigen::Vector3d& p, const Eigen::Vector3d& rpy);
 
   /// From a position (m) and a rotation vector φ (rad; axis·angle), R = exp([φ]×).
-  static Pose from_rotation_vector(const Eigen::Vector3d& p, const Eigen::Vector3d& phi) noexcept;
+  /// @throws mjarm::Error if a number is not finite
+  static Pose from_rotation_vector(const Eigen::Vector3d& p, const Eigen::Vector3d& phi);
 
   /// As an Eigen isometry.
   Eigen::Isometry3d to_isometry() const noexcept;

@@ -13,6 +13,10 @@
 /// - ad_ξ = [ω̂, v̂; 0, ω̂], the matrix of the Lie bracket: ad_ξ η = [ξ^, η^]∨;
 /// - wrenches F = [f; τ] (N; N·m, torque about the frame's origin) transform with the
 ///   co-adjoint Ad_X^{−T} = [R, 0; p̂R, R], so that the power Fᵀ·V is frame independent.
+///
+/// The functions here are the arithmetic of the hot loops: they check nothing (NaN in, NaN
+/// out). Numbers from users are checked where they enter: the `Pose` factories, the IK targets
+/// and controller references, the Python bindings (a non-finite argument is an `mjarm.Error`).
 
 #include <Eigen/Core>
 

@@ -6,6 +6,10 @@
 /// rotation by θ about ω/θ. log is its inverse on ‖ω‖ ≤ π (principal branch). Both are accurate
 /// to machine precision near θ = 0 (Taylor series) and near θ = π (log goes through a unit
 /// quaternion extracted with the largest-pivot method, never through acos of the trace).
+///
+/// The functions here are the arithmetic of the hot loops: they check nothing (NaN in, NaN
+/// out). Numbers from users are checked where they enter (the `Pose` factories, the IK targets
+/// and controller references, the Python bindings).
 
 #include <Eigen/Core>
 

@@ -96,9 +96,12 @@ class Robot {
   /// the load warnings, `source()` is "<string>". Compiling records its result in @p spec (as
   /// `mj_compile` does); the spec stays the caller's.
   /// @param what  names the model in errors, e.g. "scene 'pick'".
+  /// @param warnings  warnings raised while the spec was assembled (a scene's), listed first in
+  ///        `load_warnings()`
   /// @throws Error with MuJoCo's message when the spec does not compile, or naming the element
   ///         of a non-finite number.
-  static Robot from_spec(mjSpec& spec, std::string_view what);
+  static Robot from_spec(mjSpec& spec, std::string_view what,
+                         std::vector<std::string> warnings = {});
 
   /// Loads a bundled model by name ("panda", "ur5e_torque", ...).
   /// @throws Error listing the bundled names when @p name is not one of them, and as
@@ -132,7 +135,9 @@ class Robot {
   const std::string& name() const noexcept { return name_; }
   /// Where it was loaded from ("<string>" for strings).
   const std::string& source() const noexcept { return source_; }
-  /// MuJoCo's warnings while loading the model (parser and compiler), one message each.
+  /// MuJoCo's warnings while loading the model (parser and compiler), one message each, then
+  /// those of MuJoCo's first-step checks on the reference state (qpos0: "Nan, Inf or huge
+  /// value in QACC ..."), which the load runs so that a model diverging at once says so here.
   const std::vector<std::string>& load_warnings() const noexcept { return warnings_; }
 
   int nq() const noexcept { return model_->nq; }  ///< position coordinates

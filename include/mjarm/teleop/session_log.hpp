@@ -72,10 +72,15 @@ void write_session_log(const SessionLog& log, const std::filesystem::path& path)
 /// @throws Error when the file cannot be written (naming it and why).
 void write_session_log(const SessionLog& log, FileWriter& out);
 
+/// The most control ticks a session may have: 10⁷ (27.8 h at the default 10 ms tick, 5.6 h at a
+/// 2 ms one; a replay simulates about 20 000 ticks a second, so 10⁷ take some 8 minutes). A
+/// larger tick count in a file is refused when it is read, before any work.
+inline constexpr std::int64_t kMaxSessionTicks = 10'000'000;
+
 /// Reads a session file (through `read_user_file`).
 /// @throws Error naming the file and line: not a session file, a malformed or unknown record,
-///         a number that is not finite, a tick out of order, or a truncated file (no `end` line,
-///         fewer events than announced).
+///         a number that is not finite, a tick out of order or beyond `kMaxSessionTicks`, or a
+///         truncated file (no `end` line, fewer events than announced).
 SessionLog read_session_log(const std::filesystem::path& path);
 
 /// A `TeleopSession` whose inputs are recorded: use it in place of the session's own setters.

@@ -1,0 +1,15 @@
+#pragma once
+/// @file
+/// How every message of mjarm writes a number: the shortest text that reads back as the same
+/// double ("0.1", "1e+308", "-2.5e-07"), so an error never prints 1e308 with 300 digits nor
+/// rounds a value the user typed into another one.
+
+#include <string>
+
+namespace mjarm {
+
+/// @p value in its shortest round-trip form (std::to_chars): "0.1", "250", "1e+308",
+/// "2.5e-07"; "nan", "inf" and "-inf" spelled out.
+std::string number_text(double value);
+
+}  // namespace mjarm

@@ -1,0 +1,16 @@
+#include "mjarm/number_text.hpp"
+
+#include <charconv>
+#include <cmath>
+
+namespace mjarm {
+
+std::string number_text(double value) {
+  if (std::isnan(value)) return "nan";
+  if (std::isinf(value)) return value > 0 ? "inf" : "-inf";
+  char text[32];  // the shortest form of a double needs at most 24 characters
+  const auto end = std::to_chars(text, text + sizeof text, value).ptr;
+  return std::string(text, end);
+}
+
+}  // namespace mjarm
