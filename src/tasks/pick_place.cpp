@@ -366,6 +366,7 @@ PickPlaceReport run_pick_place(const PickPlaceOptions& options) {
   if (video) {
     report.video_error = finish_video(*video, sim.data());
     report.video_frames = video->frames();
+    report.videos_written = video->written();
   }
   return report;
 }
