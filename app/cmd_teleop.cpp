@@ -71,7 +71,7 @@ class TeleopVideo {
   std::unique_ptr<RunVideo> video_;
 };
 
-// "video F (N frames)" or "video F (not written: see the error)"
+// "video: F (N frames)" or "video: F (not written: see the error)"
 std::string video_line(const std::string& path, const TeleopVideo& video) {
   return "video: " + path + " (" +
          (video.complete() ? std::to_string(video.frames()) + " frames"
@@ -221,8 +221,6 @@ Command add_bimanual_command(CLI::App& root) {
         if (!o->video.path.empty()) video.emplace(session, o->video);
         BimanualLiftOptions lift;
         lift.lift_height = o->lift_height;
-        // Ctrl-C: the lift stops at its next tick; the video cut short and the session are not
-        // written (an old file at either path is kept), and the message says so
         // the script's ticks, phase by phase as run_bimanual_lift counts them
         std::int64_t planned = 0;
         for (const double t : {lift.approach_time, lift.descend_time, lift.close_time,
@@ -230,6 +228,8 @@ Command add_bimanual_command(CLI::App& root) {
           planned += std::lround(t / session.control_period());
         Progress progress("bimanual lift (ticks)", planned, !o->json && stderr_is_terminal());
         std::int64_t ticks = 0;
+        // Ctrl-C: the lift stops at its next tick; the video cut short and the session are not
+        // written (an old file at either path is kept), and the message says so
         std::optional<BimanualLiftResult> lifted;
         try {
           lifted = run_bimanual_lift(recorder, lift, [&](const TeleopSession& s) {
