@@ -171,21 +171,30 @@ Command add_control_subcommand(CLI::App& bench) {
         };
         Progress progress("benchmarking controllers", 12);
         protocol.progress = [&progress](int done, int) { progress.update(done); };
-        const InterruptGuard interrupts;  // Ctrl-C ends the benchmark
+        const InterruptGuard interrupts;  // Ctrl-C: the figures of the controllers done
         protocol.stop = [] { return interrupt_requested(); };
         const ControlBenchmarkResult r = run_control_benchmark(chain, protocol);
         progress.finish();
         // a faulted run's numbers mean nothing: no figures, a failed command
         const std::string failed = "bench control on model '" + r.robot + "': " + r.message;
-        if (r.status == ControlBenchmarkStatus::interrupted)
-          throw InterruptedError(failed, interrupt_signal());
-        if (r.status != ControlBenchmarkStatus::ok) throw Error(failed);
+        const bool interrupted = r.status == ControlBenchmarkStatus::interrupted;
+        if (r.status != ControlBenchmarkStatus::ok && !interrupted) throw Error(failed);
+        // printed first, the controllers measured before the interrupt; then the interrupt
+        const bool timed_loop = r.osc_real_time_factor > 0.0 && r.passive_real_time_factor > 0.0;
+        const auto stopped = [&] {
+          if (!interrupted) return;
+          throw InterruptedError("bench control on model '" + r.robot + "': interrupted after " +
+                                     std::to_string(r.controllers.size()) +
+                                     " controller runs; the real-time factor was not measured",
+                                 interrupt_signal());
+        };
 
         if (options->json) {
           Json controllers = Json::array();
           for (const auto& c : r.controllers) controllers.push_back(controller_json(c));
-          return print_json(
-              {{"model", r.robot},
+          print_json(
+              {{"interrupted", interrupted},
+               {"model", r.robot},
                {"frame", r.frame},
                {"joints", r.joints},
                {"timestep", r.timestep},
@@ -194,11 +203,14 @@ Command add_control_subcommand(CLI::App& bench) {
                {"reference_frequency_hz", r.frequency},
                {"reference_amplitude", protocol.amplitude},
                {"controllers", controllers},
-               {"real_time_factor",
-                {{"osc_mj_step", r.osc_real_time_factor},
-                 {"mj_step_only", r.passive_real_time_factor}}},
-               {"step_us", {{"osc_mj_step", r.osc_step_us}, {"mj_step_only", r.passive_step_us}}},
-               {"loop_allocations", r.loop_allocations}});
+               {"real_time_factor", timed_loop ? Json{{"osc_mj_step", r.osc_real_time_factor},
+                                                      {"mj_step_only", r.passive_real_time_factor}}
+                                               : Json(nullptr)},
+               {"step_us", timed_loop ? Json{{"osc_mj_step", r.osc_step_us},
+                                             {"mj_step_only", r.passive_step_us}}
+                                      : Json(nullptr)},
+               {"loop_allocations", timed_loop ? Json(r.loop_allocations) : Json(nullptr)}});
+          return stopped();
         }
         print_fields(
             std::cout,
@@ -230,6 +242,10 @@ Command add_control_subcommand(CLI::App& bench) {
         }
         table.print(std::cout);
         std::cout << '\n';
+        if (!timed_loop) {
+          std::cout << "real-time factor: not measured (interrupted)\n";
+          return stopped();
+        }
         Table rtf({{"one thread", Table::Align::left}, {"real-time factor"}, {"per step [µs]"}});
         rtf.add_row({"osc + mj_step", fixed(r.osc_real_time_factor, 1), fixed(r.osc_step_us, 3)});
         rtf.add_row(

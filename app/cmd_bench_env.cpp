@@ -67,10 +67,12 @@ Command add_bench_env_subcommand(CLI::App& bench) {
         o.batch_steps = options->batch_steps;
         o.max_threads = options->threads;
         o.seed = options->seed;
-        const int runs = o.rounds * (o.max_threads > 1 ? 3 : 2);
-        Progress progress("benchmarking", runs);
-        o.progress = [&progress](int done, int) { progress.update(done); };
-        const InterruptGuard interrupts;  // Ctrl-C: the figures of the runs done
+        // counted in environment steps: a run of a million steps moves the line too
+        Progress progress("benchmarking (environment steps)", 1);
+        o.progress = [&progress](std::int64_t done, std::int64_t total) {
+          progress.update(done, total);
+        };
+        const InterruptGuard interrupts;  // Ctrl-C: the figures of the steps done
         o.stop = [] { return interrupt_requested(); };
         const EnvBenchmarkResult r = run_env_benchmark(o);
         progress.finish();
@@ -78,7 +80,8 @@ Command add_bench_env_subcommand(CLI::App& bench) {
         if (options->json) {
           Json rounds = Json::array(), runs_json = Json::array();
           for (const EnvOverheadRound& x : r.rounds)
-            rounds.push_back({{"env_cpu_s", x.env_cpu_s},
+            rounds.push_back({{"steps", x.steps},
+                              {"env_cpu_s", x.env_cpu_s},
                               {"bare_cpu_s", x.bare_cpu_s},
                               {"env_wall_s", x.env_wall_s},
                               {"overhead", x.overhead},
@@ -86,6 +89,7 @@ Command add_bench_env_subcommand(CLI::App& bench) {
                               {"replay_identical", x.replay_identical}});
           for (const VectorRun& v : r.vector_runs)
             runs_json.push_back({{"threads", v.threads},
+                                 {"batch_steps", v.batch_steps},
                                  {"wall_s", v.wall_s},
                                  {"cpu_s", v.cpu_s},
                                  {"steps_per_second", v.steps_per_second},
@@ -114,22 +118,40 @@ Command add_bench_env_subcommand(CLI::App& bench) {
                       {"load_after", r.load_after},
                       {"hardware_threads", r.hardware_threads}});
         } else {
+          // rounds cut short by an interrupt say how many steps they took
+          std::int64_t steps_done = 0;
+          bool whole = true;
+          for (const EnvOverheadRound& x : r.rounds) {
+            steps_done += x.steps;
+            whole = whole && x.steps == r.steps;
+          }
+          const std::string rounds_text =
+              whole ? std::to_string(r.rounds.size()) + " × " + std::to_string(r.steps) + " steps"
+                    : std::to_string(r.rounds.size()) +
+                          (r.rounds.size() == 1 ? " round, " : " rounds, ") +
+                          std::to_string(steps_done) + " steps, the last cut short";
+          const bool timed = !r.rounds.empty();
           print_fields(
               std::cout,
               {{"task", r.task + " on " + r.model + ", " + to_string(r.action_space) + ", " +
                             std::to_string(r.physics_steps_per_step) + " physics steps of " +
                             compact(r.control_period / r.physics_steps_per_step) + " s per step"},
-               {"environment step", fixed(r.env_us_per_step, 1) + " µs (thread CPU, median of " +
-                                        std::to_string(r.rounds.size()) + " × " +
-                                        std::to_string(r.steps) + " steps)"},
+               {"environment step", timed ? fixed(r.env_us_per_step, 1) +
+                                                " µs (thread CPU, median of " + rounds_text + ")"
+                                          : "— (interrupted before the first timed step)"},
                {"bare mj_step ×" + std::to_string(r.physics_steps_per_step),
-                fixed(r.bare_us_per_step, 1) + " µs (same physics replayed)"},
-               {"overhead", fixed(100.0 * r.overhead, 1) + " % (target ≤ 10 %)"},
-               {"replay identical", r.replay_identical ? "yes" : "no"}});
+                timed ? fixed(r.bare_us_per_step, 1) + " µs (same physics replayed)" : "—"},
+               {"overhead", timed ? fixed(100.0 * r.overhead, 1) + " % (target ≤ 10 %)" : "—"},
+               {"replay identical", timed ? (r.replay_identical ? "yes" : "no") : "—"}});
           if (!r.vector_runs.empty()) {
+            // a ratio needs a run of each thread count: an interrupt may leave it unmeasured
+            const auto measured = [](double v, int decimals, const std::string& unit) {
+              return v > 0.0 ? fixed(v, decimals) + unit : std::string("— (not measured)");
+            };
             std::cout << '\n';
             Table table({{"run", Table::Align::left},
                          {"threads"},
+                         {"batch steps"},
                          {"steps/s (wall)"},
                          {"process CPU [s]"},
                          {"work CPU [s]"},
@@ -137,8 +159,9 @@ Command add_bench_env_subcommand(CLI::App& bench) {
             for (std::size_t k = 0; k < r.vector_runs.size(); ++k) {
               const VectorRun& v = r.vector_runs[k];
               table.add_row({std::to_string(k + 1), std::to_string(v.threads),
-                             fixed(v.steps_per_second, 0), fixed(v.cpu_s, 3),
-                             fixed(v.work_cpu_s, 3), fixed(v.critical_cpu_s, 3)});
+                             std::to_string(v.batch_steps), fixed(v.steps_per_second, 0),
+                             fixed(v.cpu_s, 3), fixed(v.work_cpu_s, 3),
+                             fixed(v.critical_cpu_s, 3)});
             }
             table.print(std::cout);
             std::cout << '\n';
@@ -146,20 +169,29 @@ Command add_bench_env_subcommand(CLI::App& bench) {
                 std::cout,
                 {{"batch", std::to_string(r.envs) + " environments × " +
                                std::to_string(r.batch_steps) + " steps per run"},
-                 {"speedup (CPU clocks)", fixed(r.cpu_speedup, 2) + "× (target ≥ 1.8×)"},
-                 {"CPU per step, threaded / single", fixed(r.cpu_cost_ratio, 3)},
-                 {"speedup (wall, best runs)", fixed(r.speedup, 2) + "×"},
+                 {"speedup (CPU clocks)", measured(r.cpu_speedup, 2, "× (target ≥ 1.8×)")},
+                 {"CPU per step, threaded / single", measured(r.cpu_cost_ratio, 3, "")},
+                 {"speedup (wall, best runs)", measured(r.speedup, 2, "×")},
                  {"load average", fixed(r.load_before[0], 2) + " before, " +
                                       fixed(r.load_after[0], 2) + " after, " +
                                       std::to_string(r.hardware_threads) + " hardware threads"},
-                 {"same arrays on every thread count", r.threads_identical ? "yes" : "no"}});
+                 {"same arrays on every thread count", r.threads_identical ? "yes"
+                                                       : stopped ? "not compared (interrupted)"
+                                                                 : "no"}});
           }
         }
-        if (stopped)
-          throw InterruptedError("bench env: interrupted after " + std::to_string(r.rounds.size()) +
-                                     " overhead rounds and " +
+        if (stopped) {
+          std::int64_t steps = 0, batch_steps = 0;
+          for (const EnvOverheadRound& x : r.rounds) steps += x.steps;
+          for (const VectorRun& v : r.vector_runs) batch_steps += v.batch_steps;
+          throw InterruptedError("bench env: interrupted after " + std::to_string(steps) +
+                                     " timed steps in " + std::to_string(r.rounds.size()) + " of " +
+                                     std::to_string(options->rounds) + " overhead rounds (" +
+                                     std::to_string(r.steps) + " steps each) and " +
+                                     std::to_string(batch_steps) + " batch steps in " +
                                      std::to_string(r.vector_runs.size()) + " vectorized runs",
                                  interrupt_signal());
+        }
       }};
 }
 

@@ -54,16 +54,25 @@ Command add_bench_traj_subcommand(CLI::App& bench, std::function<std::uint64_t()
         protocol.recalculations = options->recalculations;
         protocol.thread_cpu_clock = options->clock == "cpu";
         protocol.allocation_count = allocations;
-        Progress progress("timing profiles", 7);
-        protocol.progress = [&progress](int done, int) { progress.update(done); };
-        const InterruptGuard interrupts;  // Ctrl-C ends the benchmark
+        Progress progress("timing profiles (calls)", 1);
+        protocol.progress = [&progress](std::int64_t done, std::int64_t total) {
+          progress.update(done, total);
+        };
+        const InterruptGuard interrupts;  // Ctrl-C: the figures of the calls timed so far
         protocol.stop = [] { return interrupt_requested(); };
         const ProfileBenchmarkResult r = run_profile_benchmark(protocol);
         progress.finish();
-        if (r.interrupted)
-          throw InterruptedError(
-              "bench traj interrupted after " + std::to_string(r.cases.size()) + " cases",
-              interrupt_signal());
+        // printed first, the figures measured so far; then the interrupt
+        const auto stopped = [&] {
+          if (!r.interrupted) return;
+          const ProfileBenchmarkCase& last = r.cases.back();
+          const std::int64_t asked = r.cases.size() == 7 ? options->recalculations : options->calls;
+          throw InterruptedError("bench traj: interrupted in case " +
+                                     std::to_string(r.cases.size()) + " of 7 ('" + last.name +
+                                     "') after " + std::to_string(last.calls) + " of " +
+                                     std::to_string(asked) + " calls",
+                                 interrupt_signal());
+        };
         if (options->json) {
           Json cases = Json::array();
           for (const auto& c : r.cases)
@@ -76,8 +85,11 @@ Command add_bench_traj_subcommand(CLI::App& bench, std::function<std::uint64_t()
                              {"target_ns", c.target_ns},
                              {"within_target", c.median_ns <= c.target_ns},
                              {"allocations_per_call", c.allocations_per_call}});
-          return print_json(
-              {{"clock", options->clock}, {"block", options->block}, {"cases", cases}});
+          print_json({{"interrupted", r.interrupted},
+                      {"clock", options->clock},
+                      {"block", options->block},
+                      {"cases", cases}});
+          return stopped();
         }
         print_fields(std::cout,
                      {{"protocol",
@@ -100,6 +112,10 @@ Command add_bench_traj_subcommand(CLI::App& bench, std::function<std::uint64_t()
                          motion_verdict(c.median_ns, c.target_ns),
                          c.allocations_per_call < 0 ? "-" : compact(c.allocations_per_call)});
         table.print(std::cout);
+        if (r.interrupted)
+          std::cout << "\ninterrupted: the last case timed " << r.cases.back().calls
+                    << " calls; the cases after it did not run\n";
+        stopped();
       }};
 }
 
@@ -130,24 +146,29 @@ Command add_bench_plan_subcommand(CLI::App& bench) {
         protocol.stop = [] { return interrupt_requested(); };
         const PlanBenchmarkResult r = run_plan_benchmark(protocol);
         progress.finish();
-        if (r.interrupted)
-          throw InterruptedError(
-              "bench plan interrupted after " + std::to_string(r.plans) + " plans",
-              interrupt_signal());
         if (!r.ok) throw Error("bench plan: the 5-waypoint plan failed: " + r.message);
+        // printed first, the figures of the plans timed so far; then the interrupt
+        const auto stopped = [&] {
+          if (!r.interrupted) return;
+          throw InterruptedError("bench plan: interrupted after " + std::to_string(r.plans) +
+                                     " of " + std::to_string(options->plans) + " plans",
+                                 interrupt_signal());
+        };
         if (options->json) {
-          return print_json({{"model", r.model},
-                             {"waypoints", r.waypoints},
-                             {"plans", r.plans},
-                             {"clock", options->clock},
-                             {"median_ms", r.median_ms},
-                             {"p99_ms", r.p99_ms},
-                             {"mean_ms", r.mean_ms},
-                             {"max_ms", r.max_ms},
-                             {"target_ms", r.target_ms},
-                             {"within_target", r.median_ms <= r.target_ms},
-                             {"plan_duration", r.duration},
-                             {"samples", r.samples}});
+          print_json({{"interrupted", r.interrupted},
+                      {"model", r.model},
+                      {"waypoints", r.waypoints},
+                      {"plans", r.plans},
+                      {"clock", options->clock},
+                      {"median_ms", r.median_ms},
+                      {"p99_ms", r.p99_ms},
+                      {"mean_ms", r.mean_ms},
+                      {"max_ms", r.max_ms},
+                      {"target_ms", r.target_ms},
+                      {"within_target", r.median_ms <= r.target_ms},
+                      {"plan_duration", r.duration},
+                      {"samples", r.samples}});
+          return stopped();
         }
         print_fields(
             std::cout,
@@ -155,7 +176,10 @@ Command add_bench_plan_subcommand(CLI::App& bench) {
              {"path", std::to_string(r.waypoints) + " waypoints, the tool pointing down"},
              {"plan", compact(r.duration) + " s of motion, " + std::to_string(r.samples) +
                           " states checked"},
-             {"plans timed", std::to_string(r.plans) + " (" + options->clock + " clock)"}});
+             {"plans timed",
+              std::to_string(r.plans) +
+                  (r.interrupted ? " of " + std::to_string(options->plans) + ", interrupted" : "") +
+                  " (" + options->clock + " clock)"}});
         std::cout << '\n';
         Table table(
             {{"median [ms]"}, {"p99 [ms]"}, {"mean [ms]"}, {"max [ms]"}, {"target [ms]"}, {"met"}});
@@ -163,6 +187,7 @@ Command add_bench_plan_subcommand(CLI::App& bench) {
                        fixed(r.max_ms, 2), "≤ " + compact(r.target_ms),
                        motion_verdict(r.median_ms, r.target_ms)});
         table.print(std::cout);
+        stopped();
       }};
 }
 

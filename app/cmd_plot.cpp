@@ -5,7 +5,9 @@
 #include <memory>
 
 #include "commands.hpp"
+#include "mjarm/error.hpp"
 #include "mjarm/plot/plots.hpp"
+#include "mjarm/sim/interrupt.hpp"
 
 namespace mjarm::cli {
 Command add_plot_command(CLI::App& root) {
@@ -42,8 +44,15 @@ Command add_plot_command(CLI::App& root) {
                                                   ? recording.directory() / "plots"
                                                   : std::filesystem::path(options->out);
             check_output_folder(out.string(), "--out");
-            const std::vector<plot::PlotInfo> plots =
-                plot::make_plots(recording, out, plot_options);
+            // Ctrl-C stops gnuplot; what it drew and its data are removed (exit 130)
+            const InterruptGuard interrupts;
+            std::vector<plot::PlotInfo> plots;
+            try {
+              plots = plot::make_plots(recording, out, plot_options);
+            } catch (const Error& e) {
+              if (interrupt_requested()) throw InterruptedError(e.what(), interrupt_signal());
+              throw;
+            }
             if (options->json) {
               Json document;
               document["recording"] = options->recording;

@@ -139,12 +139,10 @@ void print_shelf_pick(std::ostream& os, const ShelfPickReport& r) {
                                             ? " (state.csv, task.csv, events.csv, summary.json)"
                                             : " (not written: see the error)")});
   if (!r.video.empty())
-    fields.push_back(
-        {"video", r.video.string() + " (" +
-                      (r.video_written ? std::to_string(r.video_frames) + " frames" +
-                                             (r.video_error.empty() ? "" : ", stopped early")
-                                       : std::string("not written: see the error")) +
-                      "; " + r.video_camera + ")"});
+    fields.push_back({"video", r.video.string() + " (" +
+                                   (r.video_written ? std::to_string(r.video_frames) + " frames"
+                                                    : std::string("not written: see the error")) +
+                                   "; " + r.video_camera + ")"});
   print_fields(os, fields, 2);
 }
 

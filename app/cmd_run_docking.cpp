@@ -217,10 +217,20 @@ void run_single(const DockingCliOptions& cli, DockingLaw law, const DockingVideo
     if (!figure.path.empty())
       std::cout << "  plot                      " << figure.path.string() << '\n';
   }
-  if (r.outcome == DockingOutcome::interrupted)
+  if (r.outcome == DockingOutcome::interrupted) {
+    // where each output stands: the recording is kept (its status says interrupted), a video
+    // cut short is not written, nor is a plot
+    std::string outputs;
+    if (!r.recording_error.empty())
+      outputs += "; " + r.recording_error;
+    else if (!r.recording.empty())
+      outputs += "; the recording is in " + r.recording.string();
+    if (!r.video_error.empty()) outputs += "; " + r.video_error;
+    if (!plot_error.empty()) outputs += "; " + plot_error;
     throw InterruptedError(
-        "the docking run was interrupted at t = " + fixed(r.run.end_time, 3) + " s",
+        "the docking run was interrupted at t = " + fixed(r.run.end_time, 3) + " s" + outputs,
         interrupt_signal());
+  }
   if (!plot_error.empty()) throw Error(plot_error);
   if (!r.recording_error.empty()) throw Error(r.recording_error);
   if (!r.video_error.empty()) throw Error(r.video_error);

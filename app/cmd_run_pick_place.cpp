@@ -2,6 +2,7 @@
 // its details, or a batch in parallel with the table of success rate, failure reasons and
 // figures; a failing trial replays alone by its seed, with video.
 
+#include <algorithm>
 #include <cmath>
 #include <iostream>
 #include <mutex>
@@ -115,9 +116,14 @@ void print_pick_place_trial(std::ostream& os, const PickPlaceOptions& options,
     fields.push_back(
         {"recording", r.recording.string() +
                           (r.recording_error.empty() ? "" : " (not written: see the error)")});
-  for (const auto& path : r.videos)
-    fields.push_back({"video", path.string() + " (" + std::to_string(r.video_frames) + " frames" +
-                                   (r.video_error.empty() ? "" : ", stopped early") + ")"});
+  for (const auto& path : r.videos) {
+    const bool written =
+        std::find(r.videos_written.begin(), r.videos_written.end(), path) != r.videos_written.end();
+    fields.push_back({"video", path.string() + " (" +
+                                   (written ? std::to_string(r.video_frames) + " frames"
+                                            : std::string("not written: see the error")) +
+                                   ")"});
+  }
   print_fields(os, fields, 2);
 }
 
@@ -308,22 +314,32 @@ void run_pick_place_scenario(PickPlaceCliOptions cli, const RunCommonOptions& co
                  {"mode", to_string(o.mode)}, {"classic", o.classic}, {"trial", doc}};
       doc["recording"] = r.recording.empty() ? Json(nullptr) : Json(r.recording.string());
       doc["recording_error"] = r.recording_error.empty() ? Json(nullptr) : Json(r.recording_error);
-      Json videos = Json::array();
+      Json videos = Json::array(), written = Json::array();
       for (const auto& path : r.videos) videos.push_back(path.string());
+      for (const auto& path : r.videos_written) written.push_back(path.string());
       doc["video"] =
           r.videos.empty()
               ? Json(nullptr)
               : Json{{"paths", videos},
+                     {"written", written},
                      {"frames", r.video_frames},
                      {"error", r.video_error.empty() ? Json(nullptr) : Json(r.video_error)}};
       print_json(doc);
     } else {
       print_pick_place_trial(std::cout, o, r);
     }
-    if (r.failure == PickPlaceFailure::interrupted)
+    if (r.failure == PickPlaceFailure::interrupted) {
+      // the recording is kept (its status says interrupted); a video cut short is not written
+      std::string outputs;
+      if (!r.recording_error.empty())
+        outputs += "; " + r.recording_error;
+      else if (!r.recording.empty())
+        outputs += "; the recording is in " + r.recording.string();
+      if (!r.video_error.empty()) outputs += "; " + r.video_error;
       throw InterruptedError(
-          "the pick and place was interrupted at t = " + fixed(r.run.end_time, 3) + " s",
+          "the pick and place was interrupted at t = " + fixed(r.run.end_time, 3) + " s" + outputs,
           interrupt_signal());
+    }
     std::string problem = r.success ? "" : "the pick and place failed: " + r.reason;
     if (!r.recording_error.empty()) problem += (problem.empty() ? "" : "; ") + r.recording_error;
     if (!r.video_error.empty()) problem += (problem.empty() ? "" : "; ") + r.video_error;

@@ -1,6 +1,7 @@
 // `mjarm replay FILE`: replays a recorded teleoperation session headless (optionally to a video);
 // `mjarm bimanual`: the scripted bimanual lift through the same session code (docs/teleop.md).
 
+#include <cmath>
 #include <iostream>
 #include <memory>
 #include <optional>
@@ -53,12 +54,37 @@ class TeleopVideo {
     video_ = std::make_unique<RunVideo>(session.robot(), d, o.path, camera, options);
   }
   void on_tick(const TeleopSession& session) { video_->on_tick(session.simulation().data()); }
-  void finish(const TeleopSession& session) { video_->finish(session.simulation().data()); }
+  /// Finalizes the video: "" when written, else why not (after an interrupt: not written, an
+  /// old file kept; see VideoWriter).
+  std::string finish(const TeleopSession& session) {
+    try {
+      video_->finish(session.simulation().data());
+    } catch (const Error& e) {
+      return e.what();
+    }
+    return {};
+  }
   std::int64_t frames() const { return video_->frames(); }
+  bool complete() const { return video_->complete(); }
 
  private:
   std::unique_ptr<RunVideo> video_;
 };
+
+// "video: F (N frames)" or "video: F (not written: see the error)"
+std::string video_line(const std::string& path, const TeleopVideo& video) {
+  return "video: " + path + " (" +
+         (video.complete() ? std::to_string(video.frames()) + " frames"
+                           : std::string("not written: see the error")) +
+         ")";
+}
+
+Json video_json(const std::string& path, const TeleopVideo& video, const std::string& error) {
+  return {{"path", path},
+          {"frames", video.frames()},
+          {"written", video.complete()},
+          {"error", error.empty() ? Json(nullptr) : Json(error)}};
+}
 
 Json hand_stats_json(const TeleopSession& session, const TeleopStats& s) {
   Json hands = Json::array();
@@ -111,11 +137,13 @@ Command add_replay_command(CLI::App& root) {
               if (interrupt_requested()) break;
             }
             progress.finish();
-            if (video) video->finish(replay.session());
+            // a video cut by Ctrl-C is not written (VideoWriter): the message says so
+            const std::string video_error = video ? video->finish(replay.session()) : "";
             const ReplayResult r = replay.result();
             if (interrupt_requested())
               throw InterruptedError("replay stopped after " + std::to_string(r.ticks) + " of " +
-                                         std::to_string(log.ticks) + " ticks",
+                                         std::to_string(log.ticks) + " ticks" +
+                                         (video_error.empty() ? "" : "; " + video_error),
                                      interrupt_signal());
             const TeleopSession& session = replay.session();
             if (o->json) {
@@ -129,8 +157,8 @@ Command add_replay_command(CLI::App& root) {
                        {"recorded_digest", log.digest},
                        {"deterministic", r.matches},
                        {"hands", hand_stats_json(session, r.stats)},
-                       {"video", video ? Json{{"path", o->video.path}, {"frames", video->frames()}}
-                                       : Json(nullptr)}};
+                       {"video",
+                        video ? video_json(o->video.path, *video, video_error) : Json(nullptr)}};
               print_json(doc);
             } else {
               print_fields(
@@ -142,12 +170,13 @@ Command add_replay_command(CLI::App& root) {
                                  to_string(r.stats.mode) + " mode at the end)"},
                    {"final state", r.digest + (r.matches ? " (the recorded one)"
                                                          : " (recorded: " + log.digest + ")")}});
-              if (video)
-                std::cout << "video: " << o->video.path << " (" << video->frames() << " frames)\n";
+              if (video) std::cout << video_line(o->video.path, *video) << '\n';
             }
             if (!r.matches)
               throw Error("the replay did not reach the recorded state" +
-                          std::string(r.stats.faulted ? ": " + r.stats.fault : ""));
+                          std::string(r.stats.faulted ? ": " + r.stats.fault : "") +
+                          (video_error.empty() ? "" : "; " + video_error));
+            if (!video_error.empty()) throw Error(video_error);
           }};
 }
 
@@ -192,29 +221,52 @@ Command add_bimanual_command(CLI::App& root) {
         if (!o->video.path.empty()) video.emplace(session, o->video);
         BimanualLiftOptions lift;
         lift.lift_height = o->lift_height;
-        const BimanualLiftResult r = run_bimanual_lift(recorder, lift, [&](const TeleopSession& s) {
-          if (video) video->on_tick(s);
-          if (interrupt_requested())
-            throw InterruptedError("bimanual lift stopped at " + fixed(s.stats().time, 3) + " s",
-                                   interrupt_signal());
-        });
-        if (video) video->finish(session);
+        // the script's ticks, phase by phase as run_bimanual_lift counts them
+        std::int64_t planned = 0;
+        for (const double t : {lift.approach_time, lift.descend_time, lift.close_time,
+                               lift.lift_time, lift.hold_time})
+          planned += std::lround(t / session.control_period());
+        Progress progress("bimanual lift (ticks)", planned, !o->json && stderr_is_terminal());
+        std::int64_t ticks = 0;
+        // Ctrl-C: the lift stops at its next tick; the video cut short and the session are not
+        // written (an old file at either path is kept), and the message says so
+        std::optional<BimanualLiftResult> lifted;
+        try {
+          lifted = run_bimanual_lift(recorder, lift, [&](const TeleopSession& s) {
+            if (video) video->on_tick(s);
+            progress.update(++ticks);
+            if (interrupt_requested())
+              throw InterruptedError("bimanual lift stopped at " + fixed(s.stats().time, 3) + " s",
+                                     interrupt_signal());
+          });
+        } catch (const InterruptedError& e) {
+          progress.finish();
+          const std::string video_error = video ? video->finish(session) : "";
+          throw InterruptedError(
+              e.what() + (video_error.empty() ? "" : "; " + video_error) +
+                  (o->record.empty() ? "" : "; the session was not written to " + o->record),
+              interrupt_signal());
+        }
+        progress.finish();
+        const BimanualLiftResult& r = *lifted;
+        const std::string video_error = video ? video->finish(session) : "";
         if (!o->record.empty()) write_session_log(recorder.log(), o->record);
         if (o->json) {
-          print_json({{"model", robot.name()},
-                      {"mode", o->mode},
-                      {"success", r.success},
-                      {"failure", r.failure.empty() ? Json(nullptr) : Json(r.failure)},
-                      {"start_z", r.start_z},
-                      {"end_z", r.end_z},
-                      {"lifted", r.lifted},
-                      {"sag", r.sag},
-                      {"grasp_force", {r.grasp_force[0], r.grasp_force[1]}},
-                      {"ticks", r.ticks},
-                      {"sim_time", session.stats().time},
-                      {"hands", hand_stats_json(session, session.stats())},
-                      {"session", o->record.empty() ? Json(nullptr) : Json(o->record)},
-                      {"video", video ? Json(o->video.path) : Json(nullptr)}});
+          print_json(
+              {{"model", robot.name()},
+               {"mode", o->mode},
+               {"success", r.success},
+               {"failure", r.failure.empty() ? Json(nullptr) : Json(r.failure)},
+               {"start_z", r.start_z},
+               {"end_z", r.end_z},
+               {"lifted", r.lifted},
+               {"sag", r.sag},
+               {"grasp_force", {r.grasp_force[0], r.grasp_force[1]}},
+               {"ticks", r.ticks},
+               {"sim_time", session.stats().time},
+               {"hands", hand_stats_json(session, session.stats())},
+               {"session", o->record.empty() ? Json(nullptr) : Json(o->record)},
+               {"video", video ? video_json(o->video.path, *video, video_error) : Json(nullptr)}});
         } else {
           print_fields(std::cout,
                        {{"scene", robot.name() + " (" + o->mode + " mode)"},
@@ -227,9 +279,12 @@ Command add_bimanual_command(CLI::App& root) {
                         {"simulated", fixed(session.stats().time, 3) + " s, " +
                                           std::to_string(r.ticks) + " ticks"}});
           if (!o->record.empty()) std::cout << "session: " << o->record << '\n';
-          if (video) std::cout << "video: " << o->video.path << '\n';
+          if (video) std::cout << video_line(o->video.path, *video) << '\n';
         }
-        if (!r.success) throw Error("bimanual lift failed: " + r.failure);
+        if (!r.success)
+          throw Error("bimanual lift failed: " + r.failure +
+                      (video_error.empty() ? "" : "; " + video_error));
+        if (!video_error.empty()) throw Error(video_error);
       }};
 }
 

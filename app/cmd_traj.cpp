@@ -18,6 +18,7 @@
 #include "mjarm/number_text.hpp"
 #include "mjarm/plot/gnuplot.hpp"
 #include "mjarm/plot/trajectory_plot.hpp"
+#include "mjarm/sim/interrupt.hpp"
 #include "mjarm/trajectory/jerk_limited.hpp"
 #include "mjarm/trajectory/quintic.hpp"
 #include "mjarm/trajectory/quintic_duration.hpp"
@@ -483,7 +484,14 @@ Command add_traj_command(CLI::App& root) {
           plot::PlotOptions plot_options;
           plot_options.width = size.width;
           plot_options.height = size.height;
-          plot_path = plot::plot_trajectory(series, o.plot, plot_options).path.string();
+          // Ctrl-C stops gnuplot; what it drew and its data are removed (exit 130)
+          const InterruptGuard interrupts;
+          try {
+            plot_path = plot::plot_trajectory(series, o.plot, plot_options).path.string();
+          } catch (const Error& e) {
+            if (interrupt_requested()) throw InterruptedError(e.what(), interrupt_signal());
+            throw;
+          }
         }
 
         if (o.json) {

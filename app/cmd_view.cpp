@@ -221,19 +221,29 @@ void run_view(const ViewOptions& o) {
   }
 
   const ViewerReport report = run_viewer(robot, options);
+  // Ctrl-C quits with the report printed (and the session written), then exits 130 (SIGTERM:
+  // 143) as every command stopped by a signal does
+  const auto stopped = [&] {
+    if (report.signal != 0)
+      throw InterruptedError(
+          "view: interrupted after " + std::to_string(report.frames) + " frames" +
+              (o.record_session.empty() ? std::string()
+                                        : "; the session is in " + o.record_session),
+          report.signal);
+  };
   if (report.teleop) {
     if (o.json) {
       print_json(hands_report_json(robot, report));
     } else {
       print_hands_report(robot, report);
     }
-    return;
+    return stopped();
   }
   const std::string site =
       options.session.site.empty() ? default_viewer_site(robot) : options.session.site;
   if (o.json) {
     print_json(report_json(robot, report, site));
-    return;
+    return stopped();
   }
   const ViewerStats& s = report.stats;
   print_fields(std::cout,
@@ -248,6 +258,7 @@ void run_view(const ViewOptions& o) {
   for (const ViewerScreenshot& shot : report.screenshots) {
     std::cout << "screenshot " << shot.path << " (" << shot.width << "x" << shot.height << ")\n";
   }
+  stopped();
 }
 
 }  // namespace

@@ -11,6 +11,7 @@
 #include "commands.hpp"
 #include "mjarm/error.hpp"
 #include "mjarm/model/mujoco_library.hpp"
+#include "mjarm/version.hpp"
 #include "output.hpp"
 
 namespace {
@@ -39,8 +40,8 @@ int main(int argc, char** argv) {
       "Exit codes: 0 success, 1 the command failed, 2 the command line is wrong.\n"
       "Run `mjarm COMMAND --help` for the options of one command.");
   app.require_subcommand(1);
-  app.set_version_flag(
-      "--version", std::string("mjarm ") + MJARM_VERSION + " (MuJoCo " + mj_versionString() + ")");
+  app.set_version_flag("--version", std::string("mjarm ") + mjarm::version() + " (MuJoCo " +
+                                        mj_versionString() + ")");
 
   std::vector<Command> commands;
   commands.push_back(add_models_command(app));

@@ -172,6 +172,11 @@ void Progress::update(std::int64_t done) {
   std::fflush(stderr);
 }
 
+void Progress::update(std::int64_t done, std::int64_t total) {
+  total_ = std::max<std::int64_t>(total, 1);
+  update(done);
+}
+
 void Progress::finish() {
   if (!enabled_ || !drawn_) return;
   // erase the line so that the result prints on a clean terminal

@@ -120,6 +120,8 @@ class Progress {
 
   /// Reports that @p done of the total are complete.
   void update(std::int64_t done);
+  /// Reports that @p done of @p total are complete (a total known only once the work started).
+  void update(std::int64_t done, std::int64_t total);
   /// Erases the line (idempotent).
   void finish();
 

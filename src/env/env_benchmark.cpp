@@ -87,14 +87,30 @@ struct PhysicsState {
 };
 
 /// Steps per chunk: the environment and its bare replay alternate every chunk, so both see the
-/// same conditions on a shared machine.
+/// same conditions on a shared machine. A stop request is asked once per chunk.
 constexpr int kChunkSteps = 50;
+
+/// Progress and the stop request, asked as the work goes (see `EnvBenchmarkOptions`).
+struct BenchmarkPace {
+  const EnvBenchmarkOptions& options;
+  std::int64_t total = 0;
+  std::int64_t done = 0;
+  bool stopped = false;
+
+  /// Counts @p steps environment steps done; true when the benchmark is to stop now.
+  bool advance(std::int64_t steps) {
+    done += steps;
+    if (options.progress) options.progress(done, total);
+    stopped = stopped || (options.stop && options.stop());
+    return stopped;
+  }
+};
 
 /// One round of the overhead measurement: chunks of up to kChunkSteps environment steps (within
 /// one episode; the reset that starts an episode is timed with its first chunk), each followed
-/// by its bare replay from the chunk's start state.
+/// by its bare replay from the chunk's start state. A stop ends it after the chunk under way.
 EnvOverheadRound overhead_round(Environment& env, const std::vector<double>& actions, int steps,
-                                int warmup, std::uint64_t seed) {
+                                int warmup, std::uint64_t seed, BenchmarkPace& pace) {
   const mjModel& m = env.simulation().model();
   const std::size_t width = static_cast<std::size_t>(env.action_spec().size());
   const std::size_t rows = actions.size() / width;
@@ -109,10 +125,14 @@ EnvOverheadRound overhead_round(Environment& env, const std::vector<double>& act
   const int physics = env.physics_steps_per_step();
 
   // warm up, then the timed steps (resets included)
-  TimeStep ts = env.reset(seed);
-  for (int k = 0; k < warmup; ++k) ts = ts.last() ? env.reset() : env.step(action(k));
-  ts = env.reset(seed + 1);
   EnvOverheadRound round;
+  TimeStep ts = env.reset(seed);
+  for (int k = 0; k < warmup; ++k) {
+    ts = ts.last() ? env.reset() : env.step(action(k));
+    if ((k + 1) % kChunkSteps == 0 && pace.advance(kChunkSteps)) return round;
+  }
+  if (pace.advance(warmup % kChunkSteps)) return round;
+  ts = env.reset(seed + 1);
   round.episodes = 1;
   round.replay_identical = true;
   for (int k = 0; k < steps;) {
@@ -148,24 +168,30 @@ EnvOverheadRound overhead_round(Environment& env, const std::vector<double>& act
     }
     round.bare_cpu_s += clock_seconds(CLOCK_THREAD_CPUTIME_ID) - cpu1;
     round.replay_identical = round.replay_identical && end.same_position(*d);
+    round.steps = k;
+    if (pace.advance(chunk)) break;
   }
-  round.overhead = round.env_cpu_s / round.bare_cpu_s - 1.0;
+  if (round.steps > 0) round.overhead = round.env_cpu_s / round.bare_cpu_s - 1.0;
   return round;
 }
 
-/// One timed vectorized run; the warmup continues from where the last run of @p batch ended.
+/// One timed vectorized run; the warmup continues from where the last run of @p batch ended. A
+/// stop ends it after the batch step under way.
 VectorRun vector_run(VectorEnvironment& batch, const std::vector<double>& actions, int steps,
-                     int warmup) {
+                     int warmup, BenchmarkPace& pace) {
   const std::size_t width = static_cast<std::size_t>(batch.action_spec().size() * batch.size());
   const std::size_t rows = actions.size() / width;
   auto row = [&](int k) {
     return std::span<const double>(actions).subspan((static_cast<std::size_t>(k) % rows) * width,
                                                     width);
   };
-  batch.reset();
-  for (int k = 0; k < warmup; ++k) batch.step(row(k));
   VectorRun run;
   run.threads = batch.threads();
+  batch.reset();
+  for (int k = 0; k < warmup; ++k) {
+    batch.step(row(k));
+    if (pace.advance(batch.size())) return run;
+  }
   std::vector<double> free_at(static_cast<std::size_t>(batch.threads()), 0.0);
   const double cpu0 = clock_seconds(CLOCK_PROCESS_CPUTIME_ID);
   const double wall0 = wall_seconds();
@@ -178,10 +204,12 @@ VectorRun vector_run(VectorEnvironment& batch, const std::vector<double>& action
       *std::min_element(free_at.begin(), free_at.end()) += c;
     }
     run.critical_cpu_s += *std::max_element(free_at.begin(), free_at.end());
+    run.batch_steps = k + 1;
+    if (pace.advance(batch.size())) break;
   }
   run.wall_s = wall_seconds() - wall0;
   run.cpu_s = clock_seconds(CLOCK_PROCESS_CPUTIME_ID) - cpu0;
-  run.steps_per_second = static_cast<double>(steps) * batch.size() / run.wall_s;
+  run.steps_per_second = static_cast<double>(run.batch_steps) * batch.size() / run.wall_s;
   return run;
 }
 
@@ -228,30 +256,29 @@ EnvBenchmarkResult run_env_benchmark(const EnvBenchmarkOptions& options) {
   r.envs = options.envs;
   r.batch_steps = options.batch_steps;
   r.hardware_threads = static_cast<int>(std::thread::hardware_concurrency());
-  const int total = options.rounds * (options.max_threads > 1 ? 3 : 2);
-  int done = 0;
-  auto advance = [&] {
-    ++done;
-    if (options.progress) options.progress(done, total);
-    return options.stop && options.stop();
-  };
+  const int thread_counts = options.max_threads > 1 ? 2 : 1;
+  const int batch_warmup = std::max(1, options.warmup / 10);
+  BenchmarkPace pace{options};
+  pace.total = static_cast<std::int64_t>(options.rounds) *
+               (static_cast<std::int64_t>(options.steps) + options.warmup +
+                static_cast<std::int64_t>(thread_counts) * options.envs *
+                    (options.batch_steps + batch_warmup));
 
   // 1. overhead on one thread
   const std::vector<double> actions = random_actions(
       env.action_spec(), static_cast<std::size_t>(options.steps + options.warmup), options.seed);
-  for (int k = 0; k < options.rounds; ++k) {
-    r.rounds.push_back(overhead_round(env, actions, options.steps, options.warmup,
-                                      options.seed + 2 * static_cast<std::uint64_t>(k)));
-    if (advance()) {
-      r.status = EnvBenchmarkStatus::interrupted;
-      break;
-    }
+  for (int k = 0; k < options.rounds && !pace.stopped; ++k) {
+    const EnvOverheadRound round =
+        overhead_round(env, actions, options.steps, options.warmup,
+                       options.seed + 2 * static_cast<std::uint64_t>(k), pace);
+    if (round.steps > 0) r.rounds.push_back(round);
   }
+  if (pace.stopped) r.status = EnvBenchmarkStatus::interrupted;
   std::vector<double> env_us, bare_us, overheads;
   r.replay_identical = !r.rounds.empty();
   for (const EnvOverheadRound& round : r.rounds) {
-    env_us.push_back(1e6 * round.env_cpu_s / options.steps);
-    bare_us.push_back(1e6 * round.bare_cpu_s / options.steps);
+    env_us.push_back(1e6 * round.env_cpu_s / round.steps);
+    bare_us.push_back(1e6 * round.bare_cpu_s / round.steps);
     overheads.push_back(round.overhead);
     r.replay_identical = r.replay_identical && round.replay_identical;
   }
@@ -269,25 +296,27 @@ EnvBenchmarkResult run_env_benchmark(const EnvBenchmarkOptions& options) {
   for (int t : counts)
     batches.push_back(
         std::make_unique<VectorEnvironment>(task->clone(), env_options, options.envs, t));
-  const int warmup = std::max(1, options.warmup / 10);
   const std::vector<double> batch_actions =
       random_actions(env.action_spec(),
-                     static_cast<std::size_t>(options.batch_steps + warmup) *
+                     static_cast<std::size_t>(options.batch_steps + batch_warmup) *
                          static_cast<std::size_t>(options.envs),
                      options.seed + 1000);
   r.load_before = load_average();
-  r.threads_identical = true;
-  for (int k = 0; k < options.rounds && r.status == EnvBenchmarkStatus::ok; ++k) {
-    for (std::size_t b = 0; b < batches.size(); ++b) {
-      r.vector_runs.push_back(vector_run(*batches[b], batch_actions, options.batch_steps, warmup));
-      if (advance()) {
-        r.status = EnvBenchmarkStatus::interrupted;
-        break;
-      }
+  bool compared = false, identical = true;
+  for (int k = 0; k < options.rounds && !pace.stopped; ++k) {
+    for (std::size_t b = 0; b < batches.size() && !pace.stopped; ++b) {
+      const VectorRun run =
+          vector_run(*batches[b], batch_actions, options.batch_steps, batch_warmup, pace);
+      if (run.batch_steps > 0) r.vector_runs.push_back(run);
     }
-    for (std::size_t b = 1; b < batches.size() && r.status == EnvBenchmarkStatus::ok; ++b)
-      r.threads_identical = r.threads_identical && same_arrays(*batches[0], *batches[b]);
+    // a round cut short leaves the batches at different steps: nothing to compare
+    for (std::size_t b = 1; b < batches.size() && !pace.stopped; ++b) {
+      identical = identical && same_arrays(*batches[0], *batches[b]);
+      compared = true;
+    }
   }
+  r.threads_identical = compared && identical;
+  if (pace.stopped) r.status = EnvBenchmarkStatus::interrupted;
   r.load_after = load_average();
   for (int t : counts) {
     const VectorRun* best = nullptr;

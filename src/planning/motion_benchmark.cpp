@@ -38,11 +38,19 @@ Vector6d bench_twist(double v0, double v1, double v2, double w0, double w1, doub
   return V;
 }
 
+/// Calls of every case so far, for the progress callback.
+struct ProfileProgress {
+  const ProfileBenchmarkOptions& options;
+  std::int64_t done = 0;
+  std::int64_t total = 0;
+};
+
 /// Times @p call(k) for k = 0, 1, … in blocks (see the file comment) and fills @p out's
-/// figures. @p between(k) runs untimed after each block. Returns false when stopped.
+/// figures. @p between(k) runs untimed after each block, then the progress report and the stop
+/// request. Returns false when stopped (the figures cover the blocks done).
 template <class Call, class Between>
 bool time_case(const ProfileBenchmarkOptions& o, ProfileBenchmarkCase& out, Call&& call,
-               Between&& between) {
+               Between&& between, ProfileProgress& progress) {
   const std::int64_t blocks = o.calls / o.block;
   std::vector<double> per_call;
   per_call.reserve(static_cast<std::size_t>(blocks));
@@ -57,6 +65,8 @@ bool time_case(const ProfileBenchmarkOptions& o, ProfileBenchmarkCase& out, Call
     total += t1 - t0;
     per_call.push_back((t1 - t0) / o.block);
     between(k);
+    progress.done += o.block;
+    if (progress.options.progress) progress.options.progress(progress.done, progress.total);
     if (o.stop && o.stop()) {
       stopped = true;
       break;
@@ -105,15 +115,15 @@ ProfileBenchmarkResult run_profile_benchmark(const ProfileBenchmarkOptions& o) {
     throw Error("profile benchmark: recalculations must be ≥ 16, got " +
                 std::to_string(o.recalculations));
   ProfileBenchmarkResult result;
-  constexpr int kCases = 7;
-  int done = 0;
+  constexpr int kEvaluationCases = 6;  // and the recalculating one
+  ProfileProgress progress{o};
+  progress.total = kEvaluationCases * (o.calls / o.block * o.block) + o.recalculations / 16 * 16;
   double sink = 0.0;  // every result feeds it, so that nothing is optimized away
   const auto none = [](std::int64_t) {};
   const auto add = [&](ProfileBenchmarkCase c, auto&& call, auto&& between,
                        const ProfileBenchmarkOptions* protocol = nullptr) {
-    const bool finished = time_case(protocol ? *protocol : o, c, call, between);
+    const bool finished = time_case(protocol ? *protocol : o, c, call, between, progress);
     result.cases.push_back(c);
-    if (o.progress) o.progress(++done, kCases);
     if (!finished) result.interrupted = true;
     return finished;
   };

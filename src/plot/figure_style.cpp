@@ -92,17 +92,6 @@ void check_single_figure(const PlotOptions& options, int min_height) {
   if (!(options.timeout_s > 0.0)) throw Error("plot timeout must be positive");
 }
 
-std::filesystem::path single_figure_folder(const std::filesystem::path& out_dir) {
-  namespace fs = std::filesystem;
-  std::error_code ec;
-  const fs::path out = fs::absolute(out_dir, ec);
-  fs::create_directories(out / "gnuplot", ec);
-  if (ec || !fs::is_directory(out, ec))
-    throw Error("cannot create the plot folder " + quoted(out_dir) +
-                (ec ? ": " + ec.message() : std::string(" (not a directory)")));
-  return out;
-}
-
 std::string single_figure_preamble(const std::filesystem::path& png, const PlotOptions& options,
                                    const std::string& comment) {
   const int font = std::max(9, options.height / 70);
@@ -113,19 +102,18 @@ std::string single_figure_preamble(const std::filesystem::path& png, const PlotO
          common_style();
 }
 
-void draw_single_figure(const std::filesystem::path& data_file, const std::string& data,
-                        const std::filesystem::path& script_file, const std::string& script,
-                        const std::filesystem::path& png, double timeout_s) {
-  write_file(data_file, data);
-  write_file(script_file, script);
-  std::error_code ec;
-  std::filesystem::remove(png, ec);  // no stale figure survives a failure
+void draw_single_figure(PlotFiles& files, const std::filesystem::path& data_file,
+                        const std::string& data, const std::filesystem::path& script_file,
+                        const std::string& script, const std::filesystem::path& png,
+                        double timeout_s) {
+  files.write(data_file, data);
+  files.write(script_file, script);
+  files.output(png);  // no stale figure survives a failure
   run_gnuplot(script_file, timeout_s);
-  if (!png_complete(png)) {
-    std::filesystem::remove(png, ec);  // a whole figure or none
-    throw Error("gnuplot did not write " + quoted(png) + " completely (script " +
-                quoted(script_file) + "; is the disk full?)");
-  }
+  if (!png_complete(png))  // a whole figure or none (PlotFiles removes it with its data)
+    throw Error("gnuplot did not write " + quoted(png) +
+                " completely (is the disk full?); no figure was kept, nor its data and script");
+  files.keep();
 }
 
 }  // namespace mjarm::plot::detail

@@ -9,6 +9,7 @@
 #include "mjarm/plot/gnuplot.hpp"  // gnuplot_string: every text that reaches a script
 #include "mjarm/plot/plots.hpp"
 #include "mjarm/plot/recording.hpp"
+#include "plot_files.hpp"
 
 namespace mjarm::plot::detail {
 
@@ -44,18 +45,17 @@ std::string time_figure_preamble(const Recording& recording, const std::string& 
 /// drawing they share.
 /// @throws Error when the size (at least 200 × @p min_height) or the timeout is out of range.
 void check_single_figure(const PlotOptions& options, int min_height = 300);
-/// The absolute @p out_dir with its `gnuplot/` folder created.
-/// @throws Error naming the folder when it cannot be created.
-std::filesystem::path single_figure_folder(const std::filesystem::path& out_dir);
 /// `set terminal pngcairo …` at the options' size and `set output` the PNG, with the common
 /// style; @p comment is the script's first line (without '#').
 std::string single_figure_preamble(const std::filesystem::path& png, const PlotOptions& options,
                                    const std::string& comment);
-/// Writes the data and the script, runs gnuplot and checks the PNG (a whole figure or none).
+/// Writes the data and the script through @p files, runs gnuplot and checks the PNG: a whole
+/// figure with its data and script, or nothing (@p files kept only then).
 /// @throws Error as `run_gnuplot`, or naming the PNG when it is incomplete.
-void draw_single_figure(const std::filesystem::path& data_file, const std::string& data,
-                        const std::filesystem::path& script_file, const std::string& script,
-                        const std::filesystem::path& png, double timeout_s);
+void draw_single_figure(PlotFiles& files, const std::filesystem::path& data_file,
+                        const std::string& data, const std::filesystem::path& script_file,
+                        const std::string& script, const std::filesystem::path& png,
+                        double timeout_s);
 
 /// True when @p path is a whole PNG file (its signature first, the IEND chunk last): gnuplot
 /// exits 0 on a full disk, leaving an empty or cut PNG.

@@ -13,6 +13,7 @@
 #include "executable_on_path.hpp"
 #include "mjarm/error.hpp"
 #include "mjarm/number_text.hpp"
+#include "mjarm/sim/interrupt.hpp"
 
 namespace mjarm::plot {
 namespace {
@@ -78,6 +79,8 @@ void run_gnuplot(const fs::path& script, double timeout_s) {
     throw Error("gnuplot timeout must be a finite number of seconds > 0, got " +
                 number_text(timeout_s));
   const fs::path gnuplot = find_gnuplot();
+  if (interrupt_requested())
+    throw Error("gnuplot was not started on '" + script.string() + "': interrupted");
   // gnuplot's messages go to an unlinked temporary file: no pipe to drain while we wait
   char log_name[] = "/tmp/mjarm-gnuplot-XXXXXX";
   const int log = ::mkostemp(log_name, O_CLOEXEC);
@@ -99,12 +102,24 @@ void run_gnuplot(const fs::path& script, double timeout_s) {
       std::chrono::steady_clock::now() +
       std::chrono::duration_cast<std::chrono::steady_clock::duration>(
           std::chrono::duration<double>(std::min(timeout_s, 1e7)));  // no overflow
+  // waited for in slices: Ctrl-C or SIGTERM (under an InterruptGuard) stops it at once, and the
+  // caller removes what it drew (plot_files.hpp)
   int status = 0;
-  if (!wait_child_until(pid, deadline, status)) {
-    kill_child(pid, false);
-    ::close(log);
-    throw Error("gnuplot did not finish '" + script.string() + "' within " +
-                number_text(timeout_s) + " s and was stopped");
+  for (;;) {
+    const auto slice =
+        std::min(deadline, std::chrono::steady_clock::now() + std::chrono::milliseconds(100));
+    if (wait_child_until(pid, slice, status)) break;
+    if (interrupt_requested()) {
+      kill_child(pid, false);
+      ::close(log);
+      throw Error("gnuplot was stopped on '" + script.string() + "': interrupted");
+    }
+    if (std::chrono::steady_clock::now() >= deadline) {
+      kill_child(pid, false);
+      ::close(log);
+      throw Error("gnuplot did not finish '" + script.string() + "' within " +
+                  number_text(timeout_s) + " s and was stopped");
+    }
   }
   const std::string messages = read_log(log);
   ::close(log);

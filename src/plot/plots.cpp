@@ -9,6 +9,7 @@
 #include "mjarm/error.hpp"
 #include "mjarm/file_writer.hpp"
 #include "mjarm/plot/gnuplot.hpp"
+#include "plot_files.hpp"
 #include "quoted_path.hpp"
 
 namespace mjarm::plot {
@@ -24,17 +25,6 @@ std::string free_space(const fs::path& path) {
   char text[48];
   std::snprintf(text, sizeof(text), "%.1f MB free there", bytes / 1e6);
   return text;
-}
-
-// Creates @p out_dir and its subfolder @p data_dir.
-void prepare_directories(const fs::path& out_dir, const fs::path& data_dir) {
-  std::error_code ec;
-  fs::create_directories(out_dir, ec);
-  if (ec) throw Error("cannot create the plot folder " + quoted(out_dir) + ": " + ec.message());
-  if (!fs::is_directory(out_dir, ec))
-    throw Error("the plot folder " + quoted(out_dir) + " is not a directory");
-  fs::create_directories(data_dir, ec);
-  if (ec) throw Error("cannot write into the plot folder " + quoted(out_dir) + ": " + ec.message());
 }
 
 }  // namespace
@@ -81,7 +71,8 @@ std::vector<PlotInfo> make_plots(const Recording& recording, const fs::path& out
   figures.push_back(detail::phases_figure(recording, data_dir));
   find_gnuplot();  // fail early, before files are written, when gnuplot is not installed
 
-  prepare_directories(out, data_dir);
+  // every file written from here on is removed again if the drawing fails (plot_files.hpp)
+  detail::PlotFiles files(out);
   // a font size that stays readable from 640x360 to 4K: proportional to the height
   const int font = std::max(9, options.height / 52);
   // the recording's folder is quoted like every other text: a newline in its name must not
@@ -97,34 +88,28 @@ std::vector<PlotInfo> make_plots(const Recording& recording, const fs::path& out
   std::vector<PlotInfo> infos;
   for (detail::Figure& figure : figures) {
     figure.info.path = absolute_out / (figure.info.name + ".png");
-    for (const auto& [path, text] : figure.data) write_file(path, text);
+    for (const auto& [path, text] : figure.data) files.write(path, text);
     script += "\n# ---- " + figure.info.name + "\nreset\nset output " +
               gnuplot_string(figure.info.path.string()) + "\n" + figure.script + "unset output\n";
     infos.push_back(figure.info);
   }
   const fs::path script_path = data_dir / "plots.gp";
-  write_file(script_path, script);
-  for (const PlotInfo& info : infos)
-    fs::remove(info.path, ec);  // no stale figure survives a failure
-  try {
-    run_gnuplot(script_path, options.timeout_s);
-  } catch (const Error&) {
-    for (const PlotInfo& info : infos) fs::remove(info.path, ec);  // no half-drawn set is left
-    throw;
-  }
+  files.write(script_path, script);
+  for (const PlotInfo& info : infos) files.output(info.path);  // no stale figure survives
+  run_gnuplot(script_path, options.timeout_s);
   for (const PlotInfo& info : infos) {
     if (detail::png_complete(info.path)) continue;
-    // a whole set of figures or none: no empty or cut PNG is left behind
+    // a whole set of figures or none: no empty or cut PNG is left behind, nor its data
     const bool exists = fs::exists(info.path, ec);
     const std::uintmax_t size = exists ? fs::file_size(info.path, ec) : 0;
-    for (const PlotInfo& written : infos) fs::remove(written.path, ec);
     throw Error("gnuplot did not write " + quoted(info.path) +
                 (exists ? " completely (" + std::to_string(size) +
                               " bytes, no PNG end chunk; is the disk full? " +
                               free_space(absolute_out) + ")"
                         : "") +
-                "; no figure was kept (script " + quoted(script_path) + ")");
+                "; no figure was kept, nor its data and script");
   }
+  files.keep();
   return infos;
 }
 

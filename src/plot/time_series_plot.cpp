@@ -45,8 +45,9 @@ PlotInfo plot_time_series(const TimeSeriesFigure& figure, const fs::path& out_di
   detail::check_single_figure(options);
   check_time_series(figure);
   find_gnuplot();  // fail before anything is written
-  const fs::path out = detail::single_figure_folder(out_dir);
-  const fs::path data_dir = out / "gnuplot";
+  detail::PlotFiles files(out_dir);  // removed again unless the figure is drawn
+  const fs::path& out = files.out();
+  const fs::path& data_dir = files.data_dir();
 
   // one row per instant: t, then every curve of every panel in order
   std::string data = "# t [s]";
@@ -110,8 +111,8 @@ PlotInfo plot_time_series(const TimeSeriesFigure& figure, const fs::path& out_di
   }
   script += "unset multiplot\nunset output\n";
 
-  detail::draw_single_figure(data_file, data, data_dir / (figure.name + ".gp"), script, info.path,
-                             options.timeout_s);
+  detail::draw_single_figure(files, data_file, data, data_dir / (figure.name + ".gp"), script,
+                             info.path, options.timeout_s);
   return info;
 }
 

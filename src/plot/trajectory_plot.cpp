@@ -42,8 +42,9 @@ PlotInfo plot_trajectory(const TrajectorySeries& series, const fs::path& out_dir
   detail::check_single_figure(options);
   check_trajectory_series(series);
   find_gnuplot();  // fail before anything is written
-  const fs::path out = detail::single_figure_folder(out_dir);
-  const fs::path data_dir = out / "gnuplot";
+  detail::PlotFiles files(out_dir);  // removed again unless the figure is drawn
+  const fs::path& out = files.out();
+  const fs::path& data_dir = files.data_dir();
 
   const std::size_t n = series.axes.size();
   // one row per sample: t, then positions, velocities, accelerations, jerks of every axis
@@ -108,7 +109,7 @@ PlotInfo plot_trajectory(const TrajectorySeries& series, const fs::path& out_dir
     info.notes.push_back("no jerk limit given");
 
   const fs::path script_file = data_dir / "trajectory.gp";
-  detail::draw_single_figure(data_file, data, data_dir / "trajectory.gp", script, info.path,
+  detail::draw_single_figure(files, data_file, data, script_file, script, info.path,
                              options.timeout_s);
   return info;
 }

@@ -13,7 +13,6 @@
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
-#include <iostream>
 #include <optional>
 #include <sstream>
 #include <vector>
@@ -168,13 +167,9 @@ struct VideoWriter::Impl {
   std::int64_t frames = 0;
 
   ~Impl() {
-    if (pid >= 0) {
-      try {
-        finish();
-      } catch (const std::exception& e) {
-        std::cerr << "mjarm: warning: " << e.what() << '\n';
-      }
-    }
+    // never closed: the video may lack its end (an exception, an early return), so it is not
+    // written; an old file at the path keeps its content
+    if (pid >= 0) stop(0.0);
     if (pipe_fd >= 0) ::close(pipe_fd);
     if (stderr_fd >= 0) ::close(stderr_fd);
   }
@@ -204,9 +199,23 @@ struct VideoWriter::Impl {
   // The file ffmpeg writes (the temporary one beside the video).
   const std::filesystem::path& output() const { return file->written_path(); }
 
+  // " (the file already at 'PATH' is kept)" or " (no file was made)": what an unwritten video
+  // leaves at its path
+  std::string what_is_left() const {
+    std::error_code ec;
+    return std::filesystem::exists(path, ec) ? " (the file already at " + quoted(path) + " is kept)"
+                                             : std::string(" (no file was made)");
+  }
+
   // Closes ffmpeg's input, waits for it to finalize the file (up to the timeout, less after an
-  // interrupt), then checks the file itself: ffmpeg's exit status alone misses a full disk.
+  // interrupt), then checks the file itself: ffmpeg's exit status alone misses a full disk. A
+  // video closed while an interrupt is pending is cut short: ffmpeg is stopped, nothing written.
   void finish() {
+    if (interrupt_requested()) {
+      stop(0.0);
+      throw Error("video " + quoted(path) + " was not written: interrupted after " +
+                  std::to_string(frames) + " frames" + what_is_left());
+    }
     if (pipe_fd >= 0) ::close(pipe_fd);
     pipe_fd = -1;
     Clock::time_point deadline = after(timeout_s);
@@ -403,6 +412,11 @@ void VideoWriter::write(const Image& frame) {
 void VideoWriter::close() {
   if (!impl_ || impl_->pid < 0) return;
   impl_->finish();
+}
+
+void VideoWriter::abandon() noexcept {
+  if (!impl_ || impl_->pid < 0) return;
+  impl_->stop(0.0);
 }
 
 bool VideoWriter::is_open() const noexcept { return impl_ && impl_->pid >= 0; }

@@ -204,6 +204,7 @@ Recorder::Recorder(const Simulation& simulation, const std::filesystem::path& di
 
   // what the summary says, captured now: the simulation may be gone when the recorder finalizes
   sim_detail::SummaryInfo& info = im.info;
+  info.invocation = sim_detail::current_invocation(options.seed ? &*options.seed : nullptr);
   info.model = robot.name();
   info.source = robot.source();
   info.mode = to_string(simulation.mode());
@@ -396,6 +397,7 @@ void Recorder::finalize(std::string_view status, std::string_view message) {
     std::filesystem::remove(im.staging.staged(kSummary), ec);  // a cut summary misleads a reader
   }
   if (!failure.empty()) {
+    im.staging.unlock();
     throw Error("recorder: " + failure + "; nothing was moved into '" + directory().string() +
                 "': the incomplete recording stays in '" + im.staging.staging().string() + "'");
   }

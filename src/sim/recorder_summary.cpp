@@ -1,11 +1,17 @@
 #include "recorder_summary.hpp"
 
+#include <mujoco/mujoco.h>
+#include <unistd.h>
+
 #include <charconv>
 #include <cmath>
 #include <cstdio>
+#include <ctime>
+#include <fstream>
 
-#include "mjarm/file_writer.hpp"
 #include "mjarm/error.hpp"
+#include "mjarm/file_writer.hpp"
+#include "mjarm/version.hpp"
 
 namespace mjarm::sim_detail {
 namespace {
@@ -49,13 +55,48 @@ std::string number(double v) {
   return ec == std::errc() ? std::string(text, end) : "null";
 }
 
+std::string invocation_json(const SummaryInfo::Invocation& in) {
+  std::string command_line = "[";
+  for (std::size_t k = 0; k < in.command_line.size(); ++k)
+    command_line += (k ? ", " : "") + json_string(in.command_line[k]);
+  return "{\"command_line\": " + command_line +
+         "], \"working_directory\": " + json_string(in.working_directory) +
+         ", \"pid\": " + std::to_string(in.pid) + ", \"started\": " + json_string(in.started) +
+         ", \"seed\": " + (in.has_seed ? std::to_string(in.seed) : std::string("null")) +
+         ", \"mjarm_version\": " + json_string(in.mjarm_version) +
+         ", \"mujoco_version\": " + json_string(in.mujoco_version) + "}";
+}
+
 }  // namespace
+
+SummaryInfo::Invocation current_invocation(const std::uint64_t* seed) {
+  SummaryInfo::Invocation in;
+  // the arguments as the program got them, NUL-separated (Linux)
+  std::ifstream cmdline("/proc/self/cmdline", std::ios::binary);
+  std::string argument;
+  while (std::getline(cmdline, argument, '\0')) in.command_line.push_back(argument);
+  std::error_code ec;
+  in.working_directory = std::filesystem::current_path(ec).string();
+  in.pid = static_cast<long>(::getpid());
+  const std::time_t now = std::time(nullptr);
+  std::tm utc{};
+  gmtime_r(&now, &utc);
+  char started[32];
+  std::strftime(started, sizeof(started), "%Y-%m-%dT%H:%M:%SZ", &utc);
+  in.started = started;
+  in.has_seed = seed != nullptr;
+  in.seed = seed != nullptr ? *seed : 0;
+  in.mjarm_version = version();
+  in.mujoco_version = mj_versionString();
+  return in;
+}
 
 std::string summary_json(const SummaryInfo& info) {
   std::string j = "{\n";
   auto field = [&](const char* key, const std::string& value, bool last = false) {
     j += "  " + json_string(key) + ": " + value + (last ? "\n" : ",\n");
   };
+  field("invocation", invocation_json(info.invocation));
   field("model", json_string(info.model));
   field("source", json_string(info.source));
   field("mode", json_string(info.mode));

@@ -30,6 +30,18 @@ struct SummaryInfo {
     std::string name;
     int columns = 0;
   };
+  /// Who wrote the recording: the program's command line (/proc/self/cmdline), where and when,
+  /// the run's seed, and the versions of mjarm and MuJoCo.
+  struct Invocation {
+    std::vector<std::string> command_line;
+    std::string working_directory;
+    long pid = 0;
+    std::string started;  // UTC, ISO 8601
+    bool has_seed = false;
+    std::uint64_t seed = 0;
+    std::string mjarm_version, mujoco_version;
+  };
+  Invocation invocation;
   std::string model, source, mode, integrator, frame;
   double timestep = 0.0, control_period = 0.0;
   int steps_per_tick = 1, state_decimation = 1;
@@ -44,6 +56,10 @@ struct SummaryInfo {
 
 /// The summary as a JSON document.
 std::string summary_json(const SummaryInfo& info);
+
+/// This process's invocation (command line, working directory, PID, the time now, the library
+/// versions); @p seed when the run has one.
+SummaryInfo::Invocation current_invocation(const std::uint64_t* seed);
 
 /// Writes summary_json(info) to @p path and syncs it (every write checked).
 /// @throws Error "cannot write '<path>': <reason>" when it cannot be created or written.

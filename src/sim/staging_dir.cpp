@@ -33,6 +33,7 @@ StagingDir::StagingDir(const std::filesystem::path& directory) : directory_(dire
     throw Error("recorder: cannot create recording directory '" + directory.string() +
                 "': " + (ec ? ec.message() : std::string("exists and is not a directory")));
   }
+  lock_ = std::make_unique<FolderLock>(directory, "recording folder");
   std::string pattern = (directory / ".partial-XXXXXX").string();
   if (::mkdtemp(pattern.data()) == nullptr) {
     throw Error("recorder: recording directory '" + directory.string() +
@@ -42,6 +43,10 @@ StagingDir::StagingDir(const std::filesystem::path& directory) : directory_(dire
 }
 
 void StagingDir::commit(const std::vector<std::string>& files, const std::string& marker) {
+  struct Unlock {  // whatever happens below, the directory is no longer written after it
+    StagingDir& dir;
+    ~Unlock() { dir.unlock(); }
+  } unlock{*this};
   // a reader must never pair an old summary with new rows: drop the stale marker first
   std::error_code ec;
   std::filesystem::remove(directory_ / marker, ec);

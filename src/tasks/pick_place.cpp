@@ -339,6 +339,7 @@ PickPlaceReport run_pick_place(const PickPlaceOptions& options) {
     recorder_options.state_decimation = options.state_decimation;
     recorder_options.channels = {{"grasp.force", monitor.force_value()},
                                  {"grasp.slip", monitor.slip_value()}};
+    recorder_options.seed = options.seed;
     recorder.emplace(sim, options.record, recorder_options);
     report.recording = recorder->directory();
   }
@@ -367,6 +368,7 @@ PickPlaceReport run_pick_place(const PickPlaceOptions& options) {
   if (video) {
     report.video_error = finish_video(*video, sim.data());
     report.video_frames = video->frames();
+    report.videos_written = video->written();
   }
   return report;
 }

@@ -63,6 +63,13 @@ void PickPlaceVideoRun::finish(const mjData& last) {
   if (!first.empty()) throw Error(first);
 }
 
+std::vector<std::filesystem::path> PickPlaceVideoRun::written() const {
+  std::vector<std::filesystem::path> complete;
+  for (const auto& video : videos_)
+    if (video->complete()) complete.push_back(video->path());
+  return complete;
+}
+
 std::int64_t PickPlaceVideoRun::frames() const noexcept {
   return videos_.empty() ? 0 : videos_.front()->frames();
 }

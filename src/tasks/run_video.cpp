@@ -55,11 +55,7 @@ void RunVideo::on_tick(const mjData& data) noexcept {
     write_due(data);
   } catch (const std::exception& e) {
     error_ = e.what();
-    try {
-      writer_.close();  // the frames so far stay a playable file
-    } catch (const std::exception&) {
-      // ffmpeg's own failure is already in error_
-    }
+    writer_.abandon();  // a video with frames missing is no video
   }
 }
 
@@ -74,10 +70,7 @@ void RunVideo::finish(const mjData& last) {
     }
   }
   if (!error_.empty()) {
-    try {
-      writer_.close();
-    } catch (const std::exception&) {
-    }
+    writer_.abandon();
     throw Error("video " + path_.string() + ": " + error_);
   }
   writer_.close();

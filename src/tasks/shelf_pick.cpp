@@ -104,6 +104,7 @@ ShelfPickReport run_shelf_pick(const ShelfPickOptions& options) {
   if (!options.record.empty()) {
     RecorderOptions recorder_options;
     recorder_options.state_decimation = options.state_decimation;
+    recorder_options.seed = options.request.seed;
     recorder.emplace(sim, options.record, recorder_options);
     report.recording = recorder->directory();
   }

@@ -72,6 +72,7 @@ ViewerReport ViewerShell::run() {
       } else if (interrupt_requested()) {
         quit_ = true;
         ended_by_ = "interrupted";
+        report_.signal = interrupt_signal();
       }
       if (scripted && !quit_) run_script();
       driver_->read_panel();  // the panel is read at the input rate

@@ -94,14 +94,15 @@ inline long long progress_done(const std::string& seen) {
   return done;
 }
 
-/// Sends SIGINT once the progress line on the terminal shows at least @p done units of work
-/// finished (so the work has started, and got that far). Nothing is sent if the process ends
-/// first.
-inline void interrupt_after_progress(const StartedCli& cli, long long done = 1) {
+/// Sends @p signal (SIGINT: Ctrl-C) once the progress line on the terminal shows at least
+/// @p done units of work finished (so the work has started, and got that far). Nothing is sent
+/// if the process ends first.
+inline void interrupt_after_progress(const StartedCli& cli, long long done = 1,
+                                     int signal = SIGINT) {
   if (cli.pid < 0 || cli.terminal < 0) return;
   while (read_terminal(cli, 100)) {
     if (progress_done(*cli.seen) >= done) {
-      kill(cli.pid, SIGINT);
+      kill(cli.pid, signal);
       return;
     }
   }

@@ -42,6 +42,8 @@ std::vector<std::string> unchecked_writers() {
         // the CLI's output checks only prove, before the work, that a file can be created: they
         // create it empty (or open it) and remove it again, writing no data
         if (relative == "app/options.cpp") continue;
+        // an output folder's lock file holds no data, only its holder's PID for messages
+        if (relative == "src/folder_lock.cpp") continue;
         // a child's standard streams on /dev/null hold no data to lose
         if (line.find("\"/dev/null\"") != std::string::npos) continue;
         found.push_back(relative + ":" + std::to_string(number) + ": " + line);

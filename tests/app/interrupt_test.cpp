@@ -1,11 +1,15 @@
-// Ctrl-C in the long loops of the CLI: workspace sampling, the singularity scan, the control
-// and otg benchmarks and the demo's parts each stop, print what they did so far, and exit 130 (128
-// + SIGINT, as `run` does) with a message that says so. SIGINT is sent once the progress line on
+// Ctrl-C in the long loops of the CLI: workspace sampling, the singularity scan, the control,
+// otg, env, plan and traj benchmarks and the demo's parts each stop, print what they did so
+// far, and exit 130 (128 + SIGINT, as `run` does; 143 for SIGTERM) with a message that says so;
+// a video cut short is not written and an old one is kept. SIGINT is sent once the progress line on
 // the (pseudo-)terminal shows work done (see cli_interrupt.hpp).
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <csignal>
 #include <filesystem>
+#include <fstream>
 #include <nlohmann/json.hpp>
 #include <string>
 
@@ -17,7 +21,9 @@ namespace fs = std::filesystem;
 using mjarm::test::CliRun;
 using mjarm::test::finish_cli;
 using mjarm::test::interrupt_after_progress;
+using mjarm::test::run_cli;
 using mjarm::test::scratch;
+using mjarm::test::slurp;
 using mjarm::test::start_cli_on_terminal;
 using nlohmann::json;
 
@@ -55,13 +61,75 @@ TEST(CliInterrupt, SingularityScanStopsAndPrintsItsCounts) {
   EXPECT_NE(run.out.find("lowest σmin among the samples"), std::string::npos) << run.out;
 }
 
-TEST(CliInterrupt, ControlBenchmarkStops) {
+// issue 29, item 13's class: the controllers measured before Ctrl-C were lost (nothing on
+// stdout); their rows are printed, the real-time factor is marked as not measured
+TEST(CliInterrupt, ControlBenchmarkPrintsTheControllersDone) {
   const auto cli =
       start_cli_on_terminal({"bench", "control", "panda", "--steps", "200000", "--warmup", "0"}, "bench_int");
   interrupt_after_progress(cli);
   const CliRun run = finish_cli(cli);
-  expect_interrupted(run, "bench control on model 'panda_torque': interrupted");
-  EXPECT_TRUE(run.out.empty()) << run.out;
+  expect_interrupted(run, "bench control on model 'panda_torque': interrupted after ");
+  EXPECT_NE(run.err.find(" controller runs; the real-time factor was not measured"),
+            std::string::npos)
+      << run.err;
+  EXPECT_NE(run.out.find("joint-pd"), std::string::npos) << run.out;  // the first one done
+  EXPECT_NE(run.out.find("real-time factor: not measured (interrupted)"), std::string::npos)
+      << run.out;
+}
+
+// issue 29, item 12: `bench env --steps 1000000` went on for minutes after SIGINT or SIGTERM
+// (the stop was asked only between runs of a million steps); it stops within a chunk of
+// steps and prints the figures of the steps done. The progress counts environment steps, so
+// the signal comes while the first round is under way.
+TEST(CliInterrupt, EnvBenchmarkStopsWithinARunAndPrintsTheStepsDone) {
+  for (const int signal : {SIGINT, SIGTERM}) {
+    const auto cli = start_cli_on_terminal(
+        {"bench", "env", "--steps", "1000000", "--rounds", "1", "--warmup", "0", "--json"},
+        "env_int");
+    interrupt_after_progress(cli, 1, signal);
+    const CliRun run = finish_cli(cli);
+    EXPECT_FALSE(run.signaled);
+    EXPECT_EQ(run.exit_code, 128 + signal) << run.err;
+    EXPECT_NE(run.err.find("bench env: interrupted after "), std::string::npos) << run.err;
+    EXPECT_NE(run.err.find(" of 1 overhead rounds (1000000 steps each)"), std::string::npos)
+        << run.err;
+    ASSERT_TRUE(json::accept(run.out)) << run.out;
+    const json doc = json::parse(run.out);
+    EXPECT_EQ(doc["status"], "interrupted");
+    ASSERT_EQ(doc["rounds"].size(), 1u) << run.out;
+    EXPECT_GT(doc["rounds"][0]["steps"].get<int>(), 0);
+    EXPECT_LT(doc["rounds"][0]["steps"].get<int>(), 1000000);
+    EXPECT_GT(doc["env_us_per_step"].get<double>(), 0.0);
+    EXPECT_TRUE(doc["vector_runs"].empty());
+  }
+}
+
+// issue 29, item 13: Ctrl-C during `bench plan` or `bench traj` exited 130 with nothing on
+// stdout; the figures measured so far are printed first, marked interrupted
+TEST(CliInterrupt, PlanAndTrajBenchmarksPrintTheFiguresMeasuredSoFar) {
+  {
+    const auto cli =
+        start_cli_on_terminal({"bench", "plan", "--plans", "100000", "--json"}, "plan_int");
+    interrupt_after_progress(cli);
+    const CliRun run = finish_cli(cli);
+    expect_interrupted(run, "bench plan: interrupted after ");
+    EXPECT_NE(run.err.find(" of 100000 plans"), std::string::npos) << run.err;
+    ASSERT_TRUE(json::accept(run.out)) << run.out;
+    const json doc = json::parse(run.out);
+    EXPECT_EQ(doc["interrupted"], true);
+    EXPECT_GT(doc["plans"].get<int>(), 0);
+    EXPECT_LT(doc["plans"].get<int>(), 100000);
+    EXPECT_GT(doc["median_ms"].get<double>(), 0.0);
+  }
+  {
+    const auto cli = start_cli_on_terminal({"bench", "traj", "--calls", "1000000000"}, "traj_int");
+    interrupt_after_progress(cli);
+    const CliRun run = finish_cli(cli);
+    expect_interrupted(run, "bench traj: interrupted in case ");
+    EXPECT_NE(run.err.find(" of 1000000000 calls"), std::string::npos) << run.err;
+    EXPECT_NE(run.out.find("TrapezoidProfile::at"), std::string::npos) << run.out;
+    EXPECT_NE(run.out.find("interrupted: the last case timed "), std::string::npos) << run.out;
+  }
 }
 
 // issue 16, item 4's rule in `mjarm bench otg` (added after the fixes): Ctrl-C killed it with
@@ -105,6 +173,40 @@ TEST(CliInterrupt, DemoKeepsTheReportsOfTheFinishedParts) {
                            "== forward kinematics ==", "== workspace ==", "interrupted)"})
     EXPECT_NE(run.out.find(part), std::string::npos) << part << " not in:\n" << run.out;
   EXPECT_EQ(run.out.find("== inverse kinematics"), std::string::npos) << run.out;
+}
+
+// issue 29, items 7 and 14: Ctrl-C during `replay … --video F` or `bimanual --video F` left F
+// with the few frames done (an existing F replaced by them), and the message did not mention
+// the video. No video is written, the old F is kept, and the message says so.
+TEST(CliInterrupt, AVideoCutByCtrlCIsNotWrittenAndTheOldFileIsKept) {
+  const fs::path dir = scratch() / "video_interrupt";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  const fs::path session = dir / "lift.session";
+  const CliRun recorded = run_cli({"bimanual", "--record-session", session.string()});
+  ASSERT_EQ(recorded.exit_code, 0) << recorded.err;
+  const fs::path video = dir / "old.mp4";
+  std::ofstream(video) << "the old video\n";
+  const std::vector<std::vector<std::string>> commands{
+      {"replay", session.string(), "--video", video.string(), "--size", "64x48"},
+      {"bimanual", "--video", video.string(), "--size", "64x48", "--record-session",
+       (dir / "new.session").string()}};
+  for (const auto& command : commands) {
+    const auto cli = start_cli_on_terminal(command, command[0] + "_video_int");
+    interrupt_after_progress(cli);
+    const CliRun run = finish_cli(cli);
+    expect_interrupted(run, "video '" + video.string() + "' was not written: interrupted after ");
+    EXPECT_NE(run.err.find("(the file already at '" + video.string() + "' is kept)"),
+              std::string::npos)
+        << run.err;
+    EXPECT_EQ(slurp(video), "the old video\n") << command[0];
+    // nothing else beside it: no partial video, no session of the cut lift
+    std::vector<std::string> names;
+    for (const auto& entry : fs::directory_iterator(dir))
+      names.push_back(entry.path().filename().string());
+    std::sort(names.begin(), names.end());
+    EXPECT_EQ(names, (std::vector<std::string>{"lift.session", "old.mp4"})) << command[0];
+  }
 }
 
 }  // namespace

@@ -1,13 +1,21 @@
 #include "mjarm/plot/gnuplot.hpp"
 
+#include <fcntl.h>
 #include <gtest/gtest.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
 #include <cmath>
+#include <csignal>
+#include <fstream>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "mjarm/error.hpp"
+#include "mjarm/sim/interrupt.hpp"
 #include "plot/plot_test_support.hpp"
+#include "support/error_message.hpp"
 
 namespace mjarm::plot {
 namespace {
@@ -111,6 +119,33 @@ TEST(Gnuplot, ARunawayScriptIsStoppedAtTheTimeout) {
   } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find("did not finish"), std::string::npos) << e.what();
   }
+}
+
+// issue 29: Ctrl-C (or SIGTERM) while gnuplot draws stops it at once, so the caller can remove
+// what it drew. The signal is sent once gnuplot has started the script: its first command
+// opens a FIFO this test reads, and says so through it (an event, not a delay).
+TEST(Gnuplot, AnInterruptStopsItWhileItDraws) {
+  test::TempDir dir("plot-interrupt");
+  const fs::path fifo = dir.path() / "started";
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  test::write_file(dir.path() / "long.gp", "set print " + gnuplot_string(fifo.string()) +
+                                               "\nprint 'drawing'\nunset print\npause 60\n");
+  const InterruptGuard interrupts;
+  std::thread signaller([&] {
+    std::ifstream started(fifo);  // opens once gnuplot opened the FIFO to write
+    std::string line;
+    if (std::getline(started, line) && line == "drawing") ::kill(::getpid(), SIGINT);
+  });
+  const std::string message = test::error_of([&] { run_gnuplot(dir.path() / "long.gp", 120.0); });
+  // gnuplot never reached the FIFO (it failed first): the reader is let go all the same
+  const int unblock = ::open(fifo.c_str(), O_WRONLY | O_NONBLOCK);
+  if (unblock >= 0) ::close(unblock);
+  signaller.join();
+  EXPECT_NE(message.find("gnuplot was stopped on '"), std::string::npos) << message;
+  EXPECT_NE(message.find("': interrupted"), std::string::npos) << message;
+  // still pending: a later drawing does not start
+  const std::string again = test::error_of([&] { run_gnuplot(dir.path() / "long.gp", 120.0); });
+  EXPECT_NE(again.find("gnuplot was not started on '"), std::string::npos) << again;
 }
 
 }  // namespace

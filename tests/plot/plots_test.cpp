@@ -3,12 +3,14 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <csignal>
 #include <cstdint>
 #include <cstdlib>
 #include <nlohmann/json.hpp>
 
 #include "mjarm/error.hpp"
 #include "mjarm/plot/gnuplot.hpp"
+#include "mjarm/sim/interrupt.hpp"
 #include "plot/plot_test_support.hpp"
 #include "support/file_size_limit.hpp"
 
@@ -132,8 +134,44 @@ TEST(Plots, AFullDiskLeavesNoCutFigure) {
   ASSERT_EQ(child.exit_code, 1) << child.out;
   EXPECT_NE(child.err.find("gnuplot did not write"), std::string::npos) << child.err;
   EXPECT_NE(child.err.find("no PNG end chunk"), std::string::npos) << child.err;
-  // a whole set of figures or none
+  // a whole set of figures or none; and (issue 29) none of their data files and script either:
+  // the folder the drawing made is gone
   for (const PlotInfo& info : drawn) EXPECT_FALSE(fs::exists(full / info.path.filename()));
+  EXPECT_FALSE(fs::exists(full / "gnuplot" / "plots.gp"));
+  EXPECT_FALSE(fs::exists(full));
+}
+
+// issue 29: gnuplot's data files and script stayed after a failure. Every failure path leaves
+// nothing of the drawing: a disk full while the data is written, an interrupt (SIGINT/SIGTERM)
+// before or while gnuplot draws; a folder that existed stays, emptied of what was written.
+TEST(Plots, EveryFailureLeavesNothingOfTheDrawing) {
+  PressRun run;
+  const Recording recording = Recording::load(run.recording);
+  const fs::path cut = run.dir.path() / "cut_data";
+  const test::LimitedRun child = test::with_file_size_limit(256, [&] {
+    make_plots(recording, cut);
+    return std::string("drawn");
+  });
+  ASSERT_EQ(child.exit_code, 1) << child.out;
+  EXPECT_NE(child.err.find("cannot write"), std::string::npos) << child.err;
+  EXPECT_NE(child.err.find(".dat"), std::string::npos) << child.err;
+  EXPECT_FALSE(fs::exists(cut));
+
+  const fs::path existing = run.dir.path() / "existing";
+  fs::create_directories(existing);
+  test::write_file(existing / "notes.txt", "mine\n");
+  const InterruptGuard interrupts;
+  std::raise(SIGINT);  // pending: gnuplot is not started
+  try {
+    make_plots(recording, existing);
+    FAIL() << "drawn despite the interrupt";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("interrupted"), std::string::npos) << e.what();
+  }
+  std::vector<std::string> left;
+  for (const auto& entry : fs::recursive_directory_iterator(existing))
+    left.push_back(entry.path().filename().string());
+  EXPECT_EQ(left, std::vector<std::string>{"notes.txt"});
 }
 
 TEST(Plots, BadSizesAreRefused) {

@@ -7,6 +7,7 @@
 #include "mjarm/error.hpp"
 #include "plot/plot_test_support.hpp"
 #include "support/error_message.hpp"
+#include "support/file_size_limit.hpp"
 
 namespace mjarm::plot {
 namespace {
@@ -50,6 +51,23 @@ TEST(TrajectoryPlot, DrawsFourPanelsAgainstTheLimits) {
   ASSERT_EQ(info.notes.size(), 1u);
   EXPECT_EQ(info.notes[0], "no jerk limit given");
   EXPECT_TRUE(fs::exists(dir.path() / "out" / "gnuplot" / "trajectory.gp"));
+}
+
+// issue 29: a figure gnuplot could not finish left its data file and script behind. A whole
+// figure with its data, or nothing: here a disk with room for the data but not the picture
+TEST(TrajectoryPlot, AFailedFigureLeavesNothing) {
+  test::TempDir dir("trajectory-plot-full");
+  const PlotInfo drawn = plot_trajectory(sine_series(), dir.path() / "roomy", {800, 900, 60.0});
+  const std::uintmax_t data = fs::file_size(dir.path() / "roomy" / "gnuplot" / "trajectory.dat");
+  ASSERT_LT(data + 4096, fs::file_size(drawn.path));
+  const fs::path full = dir.path() / "full";
+  const test::LimitedRun child = test::with_file_size_limit(data + 4096, [&] {
+    plot_trajectory(sine_series(), full, {800, 900, 60.0});
+    return std::string("drawn");
+  });
+  ASSERT_EQ(child.exit_code, 1) << child.out;
+  EXPECT_NE(child.err.find("did not write"), std::string::npos) << child.err;
+  EXPECT_FALSE(fs::exists(full));  // nor its gnuplot/ folder with the data and the script
 }
 
 TEST(TrajectoryPlot, InconsistentSeriesAreNamed) {

@@ -1,6 +1,7 @@
-// VideoWriter: valid MP4 files (ffprobe counts the frames) after close, after an early end and
-// while an exception unwinds; clear errors for a missing ffmpeg, bad sizes, unwritable paths and
-// an ffmpeg that dies mid-run (no SIGPIPE death).
+// VideoWriter: valid MP4 files (ffprobe counts the frames) after close, and no video (the old
+// file kept) after an early end, an exception unwinding, an interrupt or abandon(); clear errors
+// for a missing ffmpeg, bad sizes, unwritable paths and an ffmpeg that dies mid-run (no SIGPIPE
+// death).
 
 #include "mjarm/render/video_writer.hpp"
 
@@ -9,6 +10,7 @@
 #include <sys/resource.h>
 
 #include <algorithm>
+#include <csignal>
 #include <cstdlib>
 #include <fstream>
 #include <stdexcept>
@@ -17,6 +19,7 @@
 #include "mjarm/model/robot.hpp"
 #include "mjarm/render/frame_schedule.hpp"
 #include "mjarm/render/offscreen_renderer.hpp"
+#include "mjarm/sim/interrupt.hpp"
 #include "render_test_support.hpp"
 #include "support/running_process.hpp"
 
@@ -139,18 +142,33 @@ TEST(VideoWriter, AnyFileNameIsWrittenAsGiven) {
     EXPECT_NE(entry.path().filename().string().rfind("PWNED", 0), 0u) << entry.path();
 }
 
-TEST(VideoWriter, DestroyedWithoutCloseStillFinalizes) {
-  const fs::path path = test::scratch() / "dropped.mp4";
+// issue 29, items 7 and 14: a video that was not closed after its last frame (a run that
+// stopped early, an exception, Ctrl-C) was finalized with the frames so far and renamed over
+// the old file: a 3-frame video replaced a whole one. A complete video or none: the old file
+// stays as it was, and nothing is left beside it.
+TEST(VideoWriter, DestroyedWithoutCloseWritesNoVideo) {
+  const fs::path dir = test::scratch() / "dropped_video";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  const fs::path path = dir / "dropped.mp4";
+  std::ofstream(path) << "old video\n";
   {
     VideoWriter video(path, 64, 48, 30.0);
     for (int k = 0; k < 7; ++k) video.write(moving_square(64, 48, k));
   }  // a run that ended early: no close()
-  EXPECT_TRUE(has_moov_atom(path));
-  EXPECT_EQ(probe(path).frames, 7);
+  EXPECT_EQ(test::slurp(path), "old video\n");
+  EXPECT_EQ(std::distance(fs::directory_iterator(dir), fs::directory_iterator()), 1);
+  fs::remove(path);
+  {
+    VideoWriter video(path, 64, 48, 30.0);
+    video.write(moving_square(64, 48, 0));
+  }
+  EXPECT_FALSE(fs::exists(path));  // no file was there: none is made
 }
 
-TEST(VideoWriter, ExceptionUnwindingPastTheWriterKeepsTheFramesSoFar) {
+TEST(VideoWriter, ExceptionUnwindingPastTheWriterLeavesTheOldFile) {
   const fs::path path = test::scratch() / "thrown.mp4";
+  std::ofstream(path) << "old video\n";
   EXPECT_THROW(
       {
         VideoWriter video(path, 64, 48, 30.0);
@@ -160,7 +178,43 @@ TEST(VideoWriter, ExceptionUnwindingPastTheWriterKeepsTheFramesSoFar) {
         }
       },
       std::runtime_error);
-  EXPECT_EQ(probe(path).frames, 5);
+  EXPECT_EQ(test::slurp(path), "old video\n");
+}
+
+// Ctrl-C (or SIGTERM) pending when the run closes its video: the frames end where the run was
+// cut, so close() writes nothing and says so; abandon() (a run that failed) likewise
+TEST(VideoWriter, AVideoCutByAnInterruptOrAbandonedIsNotWritten) {
+  const fs::path dir = test::scratch() / "interrupted_video";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  const fs::path path = dir / "run.mp4";
+  std::ofstream(path) << "old video\n";
+  {
+    const InterruptGuard interrupts;
+    VideoWriter video(path, 64, 48, 30.0);
+    for (int k = 0; k < 5; ++k) video.write(moving_square(64, 48, k));
+    std::raise(SIGINT);  // the handler only sets the flag
+    const std::string message = error_of([&] { video.close(); });
+    EXPECT_NE(message.find("video '" + path.string() +
+                           "' was not written: interrupted after 5 frames (the file already at '" +
+                           path.string() + "' is kept)"),
+              std::string::npos)
+        << message;
+    EXPECT_FALSE(video.complete());
+    EXPECT_FALSE(video.is_open());
+  }
+  EXPECT_EQ(test::slurp(path), "old video\n");
+  EXPECT_EQ(std::distance(fs::directory_iterator(dir), fs::directory_iterator()), 1);
+
+  VideoWriter video(path, 64, 48, 30.0);
+  video.write(moving_square(64, 48, 0));
+  video.abandon();
+  video.abandon();  // idempotent
+  EXPECT_FALSE(video.is_open());
+  EXPECT_FALSE(video.complete());
+  video.close();  // nothing left to close
+  EXPECT_EQ(test::slurp(path), "old video\n");
+  EXPECT_EQ(std::distance(fs::directory_iterator(dir), fs::directory_iterator()), 1);
 }
 
 TEST(VideoWriter, Mpeg4EncoderAndTwoWritersAtOnce) {

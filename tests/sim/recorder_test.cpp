@@ -1,17 +1,20 @@
 #include "mjarm/sim/recorder.hpp"
 
 #include <gtest/gtest.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include <csignal>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <stdexcept>
 #include <string>
 
 #include "mjarm/error.hpp"
 #include "mjarm/sim/interrupt.hpp"
 #include "mjarm/sim/simulation.hpp"
+#include "mjarm/version.hpp"
 #include "sim/sim_test_support.hpp"
 #include "support/file_size_limit.hpp"
 
@@ -376,6 +379,86 @@ TEST(Recorder, ASecondRecordingReplacesTheFirst) {
   EXPECT_EQ(read_summary(dir.path())["counts"]["task_rows"], 3);
 }
 
+// issue 29, item 15: two runs recording into one folder both reported success, the last one's
+// files winning (or a mix of both). The folder is locked while a recorder lives: the second is
+// refused before anything runs, naming the folder and the first one's PID.
+TEST(Recorder, OneRecorderPerFolderAtATime) {
+  test::TempDir dir("locked_folder");
+  Planar2Run p;
+  std::optional<Recorder> first(std::in_place, p.sim, dir.path());
+  const std::filesystem::path lock = dir.path() / ".mjarm-lock";
+  EXPECT_TRUE(std::filesystem::exists(lock));
+  Planar2Run q;
+  try {
+    Recorder second(q.sim, dir.path());
+    FAIL() << "a second recorder of the folder was accepted";
+  } catch (const Error& e) {
+    const std::string message = e.what();
+    EXPECT_NE(message.find("recording folder '" + dir.path().string() +
+                           "' is being written by another mjarm (PID " +
+                           std::to_string(::getpid()) + ", since "),
+              std::string::npos)
+        << message;
+    EXPECT_NE(message.find("wait for it to end or choose another folder"), std::string::npos)
+        << message;
+  }
+  EXPECT_EQ(q.sim.ticks(), 0);
+  EXPECT_EQ(test::partial_folders(dir.path()), 1);  // the first one's staging folder only
+  p.sim.tick(p.reference, &*first);
+  first->finalize("finished");
+  EXPECT_FALSE(std::filesystem::exists(lock));  // released once finalized, no file left behind
+  Recorder third(q.sim, dir.path());            // the folder is free again
+  third.finalize("finished");
+  expect_complete(dir.path());
+  first.reset();
+
+  // a writer killed while it held the folder: the kernel dropped its lock, its file stays and
+  // is taken over
+  const pid_t child = ::fork();
+  if (child == 0) {
+    try {
+      Planar2Run c;
+      Recorder killed(c.sim, dir.path());
+      ::_exit(0);  // no destructor, as after SIGKILL
+    } catch (...) {
+      ::_exit(1);
+    }
+  }
+  int status = 0;
+  ASSERT_EQ(::waitpid(child, &status, 0), child);
+  ASSERT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0);
+  EXPECT_TRUE(std::filesystem::exists(lock));
+  Recorder after(q.sim, dir.path());
+  after.finalize("finished");
+}
+
+// issue 29, item 15: summary.json did not say whose recording it is. It records the
+// invocation: command line, working directory, PID, start time, seed, mjarm and MuJoCo versions.
+TEST(Recorder, TheSummaryRecordsTheInvocation) {
+  test::TempDir dir("invocation");
+  for (const bool seeded : {true, false}) {
+    Planar2Run p;
+    RecorderOptions options;
+    if (seeded) options.seed = 18446744073709551615ull;  // the largest seed, kept exactly
+    Recorder recorder(p.sim, dir.path(), options);
+    recorder.finalize("finished");
+    const nlohmann::json in = read_summary(dir.path())["invocation"];
+    ASSERT_TRUE(in.is_object()) << in;
+    ASSERT_FALSE(in["command_line"].empty());
+    EXPECT_NE(in["command_line"][0].get<std::string>().find("test_sim"), std::string::npos) << in;
+    EXPECT_EQ(in["working_directory"], std::filesystem::current_path().string());
+    EXPECT_EQ(in["pid"], static_cast<long>(::getpid()));
+    EXPECT_EQ(in["started"].get<std::string>().size(), 20u) << in;  // 2025-01-31T12:00:00Z
+    if (seeded) {
+      EXPECT_EQ(in["seed"].get<std::uint64_t>(), 18446744073709551615ull) << in;
+    } else {
+      EXPECT_TRUE(in["seed"].is_null()) << in;
+    }
+    EXPECT_EQ(in["mjarm_version"], version());
+    EXPECT_EQ(in["mujoco_version"], mj_versionString());
+  }
+}
+
 TEST(Recorder, KinematicMovesAreStateRows) {
   const Robot robot = Robot::bundled("planar2");
   SimulationOptions options;
@@ -383,7 +466,7 @@ TEST(Recorder, KinematicMovesAreStateRows) {
   Simulation sim(robot, options);
   test::TempDir dir("kinematic");
   {
-    Recorder recorder(sim, dir.path(), RecorderOptions{1, 256, "tip", {}});
+    Recorder recorder(sim, dir.path(), RecorderOptions{1, 256, "tip", {}, {}});
     for (int k = 1; k <= 10; ++k) {
       const double q[2] = {0.01 * k, -0.02 * k};
       sim.move(q, 0.01, &recorder);

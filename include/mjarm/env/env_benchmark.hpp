@@ -58,9 +58,13 @@ struct EnvBenchmarkOptions {
   int batch_steps = 250;         ///< timed batch steps per run (≥ 1)
   int max_threads = 2;           ///< thread count compared with one (≥ 1)
   std::uint64_t seed = 1;        ///< seed of the actions and of the environments
-  /// Called after each run with (runs done, runs total); may be empty.
-  std::function<void(int done, int total)> progress;
-  /// Asked between runs whether to stop (e.g. `interrupt_requested`); may be empty.
+  /// Called as the work goes with (environment steps done, environment steps in all): the
+  /// overhead rounds' steps (warmups included), then each vectorized run's batch steps × envs;
+  /// may be empty.
+  std::function<void(std::int64_t done, std::int64_t total)> progress;
+  /// Asked every chunk of 50 environment steps of an overhead round (and of its warmup) and
+  /// every batch step of a vectorized run whether to stop (e.g. `interrupt_requested`); may be
+  /// empty. A stop ends the benchmark at once: the run under way is kept with the steps it took.
   std::function<bool()> stop;
 
   /// @throws Error naming the first setting out of range.
@@ -70,7 +74,7 @@ struct EnvBenchmarkOptions {
 /// How a benchmark ended.
 enum class EnvBenchmarkStatus {
   ok,          ///< every run completed
-  interrupted  ///< the stop request said so; the figures cover the runs done
+  interrupted  ///< the stop request said so; the figures cover the steps done
 };
 
 /// "ok", "interrupted".
@@ -78,6 +82,7 @@ const char* to_string(EnvBenchmarkStatus status) noexcept;
 
 /// One round of the overhead measurement.
 struct EnvOverheadRound {
+  int steps = 0;                  ///< timed steps taken (fewer than asked when interrupted)
   double env_cpu_s = 0.0;         ///< thread CPU time of the environment steps [s]
   double bare_cpu_s = 0.0;        ///< thread CPU time of the same physics as bare mj_step calls [s]
   double env_wall_s = 0.0;        ///< wall time of the environment steps [s]
@@ -89,6 +94,7 @@ struct EnvOverheadRound {
 /// One vectorized run.
 struct VectorRun {
   int threads = 1;
+  int batch_steps = 0;            ///< timed batch steps taken (fewer than asked when interrupted)
   double wall_s = 0.0;            ///< wall time of the timed batch steps [s]
   double cpu_s = 0.0;             ///< process CPU time over the same stretch [s]
   double steps_per_second = 0.0;  ///< environment steps (batch steps × envs) per wall second
@@ -104,22 +110,24 @@ struct EnvBenchmarkResult {
   ActionSpace action_space = ActionSpace::ee_pose_deltas;
   double control_period = 0.0;  ///< [s]
   int physics_steps_per_step = 0;
-  int steps = 0;  ///< timed steps per round
-  std::vector<EnvOverheadRound> rounds;
+  int steps = 0;  ///< timed steps asked per round (each round says how many it took)
+  std::vector<EnvOverheadRound> rounds;  ///< every round with at least one timed step
   double env_us_per_step = 0.0;   ///< median over rounds, thread CPU [µs]
   double bare_us_per_step = 0.0;  ///< median over rounds, thread CPU [µs]
   double overhead = 0.0;          ///< median over rounds
   bool replay_identical = false;  ///< in every round
   int envs = 0;
-  int batch_steps = 0;
-  std::vector<VectorRun> vector_runs;   ///< every run, in order
+  int batch_steps = 0;                  ///< timed batch steps asked per run
+  std::vector<VectorRun> vector_runs;   ///< every run with at least one timed step, in order
   std::vector<VectorRun> best;          ///< the best run of each thread count (1, then max)
   double speedup = 0.0;                 ///< best rate at max threads / best rate at 1 thread
   /// median over the max-thread runs of work_cpu_s / critical_cpu_s (see the protocol)
   double cpu_speedup = 0.0;
   /// median work_cpu_s at max threads / median work_cpu_s at 1 thread
   double cpu_cost_ratio = 0.0;
-  bool threads_identical = false;       ///< batch arrays equal bit for bit across thread counts
+  /// batch arrays equal bit for bit across thread counts (after every round finished; false when
+  /// none finished)
+  bool threads_identical = false;
   std::array<double, 3> load_before{};  ///< 1, 5, 15-minute load averages before the scaling runs
   std::array<double, 3> load_after{};
   int hardware_threads = 0;  ///< std::thread::hardware_concurrency()

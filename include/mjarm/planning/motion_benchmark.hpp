@@ -69,9 +69,11 @@ struct ProfileBenchmarkOptions {
   bool thread_cpu_clock = false;  ///< the thread's CPU clock instead of the steady wall clock
   /// Allocation counter of the process (e.g. a replaced malloc's call count). Empty: not counted.
   std::function<std::uint64_t()> allocation_count;
-  /// Called after each case with (cases done, cases total); may be empty.
-  std::function<void(int done, int total)> progress;
-  /// Asked after each block whether to stop (e.g. after Ctrl-C); may be empty.
+  /// Called after each block with (timed calls done, timed calls of every case), untimed; may
+  /// be empty.
+  std::function<void(std::int64_t done, std::int64_t total)> progress;
+  /// Asked after each block whether to stop (e.g. after Ctrl-C); may be empty. The case under
+  /// way is then kept with the blocks it timed, and no later case runs.
   std::function<bool()> stop;
 };
 
@@ -89,7 +91,8 @@ struct ProfileBenchmarkCase {
 
 /// Figures of the profile benchmark.
 struct ProfileBenchmarkResult {
-  bool interrupted = false;                 ///< the stop request ended it (cases are partial)
+  /// the stop request ended it: the cases are those begun, the last with the calls it timed
+  bool interrupted = false;
   std::vector<ProfileBenchmarkCase> cases;  ///< in the order of the file comment
 };
 

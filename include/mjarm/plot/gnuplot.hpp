@@ -32,7 +32,9 @@ std::filesystem::path find_gnuplot();
 /// @param script a gnuplot script
 /// @param timeout_s how long gnuplot may run [s] before it is killed
 /// @throws Error when gnuplot is missing (see `find_gnuplot`), cannot start, exits with an
-///         error (its messages are quoted) or runs past the timeout.
+///         error (its messages are quoted), runs past the timeout, or an interrupt arrives
+///         while it runs (SIGINT/SIGTERM under an `InterruptGuard`, sim/interrupt.hpp): gnuplot
+///         is killed then.
 void run_gnuplot(const std::filesystem::path& script, double timeout_s = 60.0);
 
 }  // namespace mjarm::plot

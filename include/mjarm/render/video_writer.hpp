@@ -31,17 +31,19 @@ struct VideoOptions {
 /// Writes frames of one size to an MP4 file (H.264 or MPEG-4, yuv420p, so width and height must
 /// be even). Frames are timed by their index: frame k is shown at k / fps seconds.
 ///
-/// The file is always finalized: `close()` does it and reports failure; the destructor does it
-/// too (when a run stops early or an exception unwinds past the writer), so the frames written
-/// so far form a valid, playable MP4. Finalized means checked: after ffmpeg exits 0, the file
-/// must exist, be non-empty and be a complete MP4 (its top-level boxes tile the file and include
-/// `moov`), else `close()` throws naming the path (a full disk is caught this way).
-///
-/// A complete video or none: ffmpeg writes a hidden temporary file beside @p path (through
-/// `FileWriter`, which makes it and proves the folder writable), and only a file that passed the
-/// check is synced and renamed over @p path. When ffmpeg fails, is stopped or leaves an
-/// incomplete file, the temporary file is removed and a file already at @p path keeps its old
-/// content; `complete()` says which happened.
+/// A complete video or none. ffmpeg writes a hidden temporary file beside @p path (through
+/// `FileWriter`, which makes it and proves the folder writable), and only `close()` after the
+/// last frame finalizes it: after ffmpeg exits 0, the file must exist, be non-empty and be a
+/// complete MP4 (its top-level boxes tile the file and include `moov`), else `close()` throws
+/// naming the path (a full disk is caught this way); a file that passed the check is synced and
+/// renamed over @p path. Everything else writes no video, removes the temporary file and leaves
+/// a file already at @p path as it was: ffmpeg failing or being stopped, an incomplete file,
+/// `abandon()`, a writer destroyed without `close()` (a run that stopped early, an exception
+/// unwinding past it), and `close()` while an interrupt is pending (SIGINT/SIGTERM under an
+/// `InterruptGuard`, sim/interrupt.hpp: the frames stop where the run was cut, so `close()`
+/// throws "video 'PATH' was not written: interrupted after N frames (the file already at
+/// 'PATH' is kept)"). `complete()` says which happened. This is the one way every command's
+/// video is written (`RunVideo`: run, docking, pick-place, replay, bimanual, demo).
 ///
 /// ffmpeg is started with an argv array (never through a shell) and runs in its own process
 /// group, so a Ctrl-C aimed at the program does not cut it short; it gets SIGKILL if mjarm dies
@@ -66,8 +68,7 @@ class VideoWriter {
   ///         package `ffmpeg`) or started.
   VideoWriter(const std::filesystem::path& path, int width, int height, double fps,
               VideoOptions options = {});
-  /// Finalizes the file if `close()` was not called; never throws (a failure is printed to
-  /// stderr).
+  /// Abandons the video if `close()` was not called (see `abandon`); never throws.
   ~VideoWriter();
   VideoWriter(VideoWriter&&) noexcept;
   VideoWriter& operator=(VideoWriter&&) noexcept;
@@ -83,10 +84,15 @@ class VideoWriter {
 
   /// Ends the input, waits for ffmpeg to finalize the file, and checks the file. Idempotent.
   /// @throws Error with ffmpeg's message when it exits with a failure, does not exit within the
-  ///         timeout (it is then killed), or leaves a file that is not a complete MP4.
+  ///         timeout (it is then killed), or leaves a file that is not a complete MP4; and when
+  ///         an interrupt is pending (no video is written then).
   void close();
 
-  /// False after `close()`, after a failed `write`, and for a moved-from writer.
+  /// Stops ffmpeg and removes what it wrote: no video is written, a file already at `path()`
+  /// keeps its content. For a video that cannot be complete (its run failed). Idempotent.
+  void abandon() noexcept;
+
+  /// False after `close()` or `abandon()`, after a failed `write`, and for a moved-from writer.
   bool is_open() const noexcept;
   /// True once the finalized, checked video is at `path()` (after a successful `close()`).
   bool complete() const noexcept;

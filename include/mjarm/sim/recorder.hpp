@@ -20,7 +20,15 @@
 /// - events.csv: `t,kind,message` for phase changes, grasps, warnings, divergence, interrupts.
 /// - summary.json also lists the actuators: name, kind, joint, gear and `force_range`, the range
 ///   of the `force.<actuator>` column (forcerange, and gain·ctrlrange for motors; null when
-///   unbounded).
+///   unbounded); and first, `invocation`: whose recording it is — the program's command line
+///   (its arguments as given, /proc/self/cmdline), working directory, PID, the UTC time the
+///   recorder started, the run's seed (`RecorderOptions::seed`, null when none), and the
+///   versions of mjarm and MuJoCo.
+///
+/// One writer per directory: the directory is locked from construction until `finalize` (a
+/// hidden `.mjarm-lock` file, flock); a second recorder of it, in this process or another, is
+/// refused at construction with an error naming the directory and the first one's PID. The
+/// kernel drops the lock of a process that dies, so a killed run never blocks the next.
 ///
 /// Atomicity: every file is written into DIR/.partial-XXXXXX and moved into DIR by `finalize`,
 /// summary.json last: a DIR with summary.json holds a complete recording. Every write, flush,
@@ -38,6 +46,7 @@
 #include <exception>
 #include <filesystem>
 #include <memory>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -66,6 +75,8 @@ struct RecorderOptions {
   std::string frame;
   /// Extra task.csv columns, after the `sat.*` columns, in this order.
   std::vector<RecorderChannel> channels;
+  /// The seed the run was drawn from, for summary.json's `invocation` (none: null).
+  std::optional<std::uint64_t> seed;
 };
 
 /// Records the run of one `Simulation` into a directory. Build it after the controllers were
@@ -73,10 +84,11 @@ struct RecorderOptions {
 /// `Simulation::tick`/`run`, then call `finalize`.
 class Recorder {
  public:
-  /// Creates @p directory if needed and a staging folder inside it, opens the CSV files and
-  /// writes their headers.
+  /// Creates @p directory if needed, locks it and makes a staging folder inside it, opens the
+  /// CSV files and writes their headers.
   /// @throws Error when the directory cannot be created or written (before anything runs), when
-  ///         the options are out of range or the frame is unknown.
+  ///         another recorder is writing it (naming its PID), when the options are out of range
+  ///         or the frame is unknown.
   Recorder(const Simulation& simulation, const std::filesystem::path& directory,
            const RecorderOptions& options = {});
   /// Finalizes when not finalized yet: "error" when an exception is unwinding, else the last

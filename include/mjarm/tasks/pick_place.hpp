@@ -110,7 +110,8 @@ struct PickPlaceReport {
   double control_period = 0.0;                    ///< [s]
   std::filesystem::path recording{};
   std::string recording_error{};
-  std::vector<std::filesystem::path> videos{};  ///< the MP4s written
+  std::vector<std::filesystem::path> videos{};          ///< the MP4s asked for
+  std::vector<std::filesystem::path> videos_written{};  ///< those written complete
   std::int64_t video_frames = 0;
   std::string video_error{};
   bool ok() const noexcept { return success; }

@@ -40,10 +40,13 @@ class PickPlaceVideoRun final : public TickObserver {
   ~PickPlaceVideoRun() override;
 
   void on_tick(const mjData& data) noexcept override;
-  /// Finishes every file. @throws Error naming the first failure (the files are finalized).
+  /// Finishes every file. @throws Error naming the first failure (each file is complete or not
+  /// written, see `RunVideo::finish`).
   void finish(const mjData& last);
   /// The files being written.
   const std::vector<std::filesystem::path>& paths() const noexcept { return paths_; }
+  /// The files written complete (after `finish`), in the order of `paths()`.
+  std::vector<std::filesystem::path> written() const;
   /// Frames in each file.
   std::int64_t frames() const noexcept;
 

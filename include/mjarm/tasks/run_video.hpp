@@ -38,8 +38,9 @@ struct RunVideoOptions {
 /// frame period) is written that many times.
 ///
 /// Rendering only reads the state (the renderer copies it), so a run with a video produces the
-/// same figures bit for bit as one without. The file is always finalized (see `VideoWriter`):
-/// by `finish`, or by the destructor when the run ends by an exception.
+/// same figures bit for bit as one without. A complete video or none (see `VideoWriter`): only
+/// `finish` after the run writes it; a failed frame, a run ended by an exception (the destructor)
+/// or by an interrupt writes no video and leaves a file already at the path as it was.
 class RunVideo final : public TickObserver {
  public:
   /// Creates the renderer, renders frame 0 from @p start (which checks the camera) and starts
@@ -61,16 +62,16 @@ class RunVideo final : public TickObserver {
   RunVideo(const Robot& robot, const mjData& start, const std::filesystem::path& path,
            std::vector<CameraSpec> cameras, const RunVideoOptions& options = {}, int columns = 0);
 
-  /// Writes the frames due at data.time. Never throws: the first failure is kept in `error()`
-  /// and no more frames are rendered; the run goes on. When the renderer failed, the file is
-  /// finalized with the frames so far; when ffmpeg failed (it died, a full disk), no video is
-  /// written (`complete()` is false; an old file at the path is left as it was).
+  /// Writes the frames due at data.time. Never throws: the first failure is kept in `error()`,
+  /// no more frames are rendered and no video is written (`complete()` is false; an old file at
+  /// the path is left as it was); the run goes on.
   void on_tick(const mjData& data) noexcept override;
 
   /// Writes the frames due at @p last (the state the run ended in) and finalizes the file.
   /// Idempotent.
-  /// @throws Error when a frame could not be written during the run or ffmpeg failed to finish
-  ///         the file (its message).
+  /// @throws Error when a frame could not be written during the run, ffmpeg failed to finish
+  ///         the file (its message), or an interrupt is pending (`VideoWriter::close`): no video
+  ///         is written then.
   void finish(const mjData& last);
 
   /// Frames written so far.

@@ -61,11 +61,12 @@ struct ShelfPickReport {
   std::filesystem::path video{};      ///< the MP4 written (empty when no video)
   std::int64_t video_frames = 0;      ///< frames in it: ⌊(end − start)·fps⌋ + 1
   std::string video_camera{};         ///< the camera, described (`CameraSpec::describe`)
-  /// Why the video stopped early (ffmpeg died, disk full; empty when it did not). The run and
-  /// its figures are unaffected.
+  /// Why no video was written (ffmpeg died, disk full, the run was interrupted; empty when it
+  /// was). The run and its figures are unaffected.
   std::string video_error{};
-  /// Whether a complete, playable MP4 of the run is at `video` (false when ffmpeg failed: no
-  /// video is written then, and an old file at the path keeps its content).
+  /// Whether a complete, playable MP4 of the run is at `video` (false when ffmpeg failed or the
+  /// run was interrupted: no video is written then, and an old file at the path keeps its
+  /// content).
   bool video_written = false;
   bool ok() const noexcept { return outcome == PickOutcome::held; }
 };

@@ -90,6 +90,9 @@ struct TeleopViewerReport {
 struct ViewerReport {
   /// "window closed", "escape", "interrupted" (SIGINT/SIGTERM), "quit", "end of script"
   std::string ended_by;
+  /// The signal that ended it (SIGINT or SIGTERM) when `ended_by` is "interrupted", else 0: the
+  /// command line exits with 128 + it after printing the report.
+  int signal = 0;
   std::int64_t frames = 0;    ///< frames drawn
   std::int64_t polls = 0;     ///< input polls
   std::int64_t ticks = 0;     ///< control ticks simulated
