@@ -1860,7 +1860,7 @@ class Environment:
     def __enter__(self: ArrayLike) -> ArrayLike:
         ...
     def __exit__(self: Environment, *args) -> bool:
-        """Leaves a `with` block (close())."""
+        """Leaves a `with` block: close()."""
         ...
     def __init__(self: Environment, task: str, options: ArrayLike = ..., **kwargs) -> None:
         """Environment(task, options=None, **overrides): the task by name (env_task_names()), with EnvironmentOptions (None: the defaults) whose fields keyword arguments override (e.g. time_limit=0.5, action_space='joint_torques'). Raises mjarm.Error for an unknown task, observation or option, and options out of range."""
@@ -1869,7 +1869,11 @@ class Environment:
         """ArraySpec 'action': shape (n,), float64, its bounds."""
         ...
     def close(self: Environment) -> None:
-        """Does nothing (dm_env's interface): memory goes with the object."""
+        """Closes the environment (dm_env's interface): reset() and step() then raise mjarm.Error; a closed environment stays closed. Closing twice is allowed; the memory goes with the object."""
+        ...
+    @property
+    def closed(self) -> Any:
+        """True after close()"""
         ...
     def discount_spec(self: Environment) -> ArraySpec:
         """ArraySpec 'discount': a float64 scalar in [0, 1] (dm_env's default)."""
@@ -6477,6 +6481,11 @@ class TrapezoidSample:
 
 class VectorEnvironment:
     """N environments of one task stepped together on a thread pool (the GIL released), with automatic resets: a row whose last step was LAST is reset by the next step (its action row checked but unused) and returns FIRST. Environment i is seeded splitmix64(seed + i): the results are the same bit for bit whatever the thread count."""
+    def __enter__(self: ArrayLike) -> ArrayLike:
+        ...
+    def __exit__(self: VectorEnvironment, *args) -> bool:
+        """Leaves a `with` block: close()."""
+        ...
     def __init__(self: VectorEnvironment, task: str, count: int, threads: int = ..., options: ArrayLike = ..., **kwargs) -> None:
         """VectorEnvironment(task, count, threads=1, options=None, **overrides): count environments (1..4096) on threads threads (1..256). Raises mjarm.Error as Environment, and for counts out of range."""
         ...
@@ -6484,6 +6493,13 @@ class VectorEnvironment:
         ...
     def action_spec(self: VectorEnvironment) -> ArraySpec:
         """ArraySpec of one environment's action (a batch is (N, *shape))."""
+        ...
+    def close(self: VectorEnvironment) -> None:
+        """Closes every environment: reset() and step() then raise mjarm.Error; a closed environment stays closed. Closing twice is allowed."""
+        ...
+    @property
+    def closed(self) -> Any:
+        """True after close()"""
         ...
     def episode_clips(self: VectorEnvironment, i: int) -> ClipCounts:
         """ClipCounts of environment i's current episode."""
@@ -6813,6 +6829,9 @@ def log_error_world_aligned_jacobian(e_W: ArrayLike) -> NDArray[np.float64]:
     ...
 def manipulability(chain: Chain, q: ArrayLike, options: ManipulabilityOptions = ...) -> ManipulabilityResult:
     ...
+def max_model_elements() -> int:
+    """The bound on a model's elements that every load applies (set_max_model_elements)."""
+    ...
 def parse_scene(text: str, base_dir: str | os.PathLike[str] = ..., source: str = ...) -> Scene:
     """A Scene from YAML/JSON text; base_dir resolves relative paths, source names it in errors."""
     ...
@@ -6859,6 +6878,9 @@ def scan_singularities(chain: Chain, samples: int, seed: int, keep_worst: int = 
     ...
 def set_free_pose(robot: Robot | mujoco.MjModel, data: Data | mujoco.MjData, body: str, p_WB: ArrayLike, quat_WB: ArrayLike = ...) -> None:
     """Writes a free body's pose p_WB (3,) [m], quat_WB (4,) w x y z (normalized) into owned data's qpos; call data.forward() after."""
+    ...
+def set_max_model_elements(count: int) -> None:
+    """Sets the bound on a model's elements (XML elements, <replicate> copies counted) for every later load in this process: Robot.from_file/from_string/bundled, scenes, environments (the CLI's --max-model-elements; default 20000). Raises mjarm.Error for 0 or more than 100000000."""
     ...
 def shelf_pick_controllers() -> list[str]:
     ...
