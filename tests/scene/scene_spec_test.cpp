@@ -37,6 +37,8 @@ TEST(SceneSpec, ObjectsNeedSizesMassesAndFrictionsThatMakeSense) {
   EXPECT_TRUE(says(error_of([&] { validate(bad); }), "friction must be >= 0"));
   bad = cube;
   bad.mass = NAN;
+  EXPECT_TRUE(says(error_of([&] { validate(bad); }), "mass holds a non-finite value"));
+  bad.mass = -1.0;
   EXPECT_TRUE(says(error_of([&] { validate(bad); }), "mass must be positive"));
   bad = cube;
   bad.quat = {0, 0, 0, 0};
