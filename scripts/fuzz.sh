@@ -3,7 +3,7 @@
 # ASan, UBSan), stages each target's seeds and dictionary from the tree (fuzz/corpora.txt), then
 # runs the targets:
 #   scripts/fuzz.sh check [TARGET...]  a bounded, deterministic run of each (`make test`): seed 1,
-#                                      the `runs` of corpora.txt, at most FUZZ_CHECK_SECONDS (8) s
+#                                      the `runs` of corpora.txt, at most FUZZ_CHECK_SECONDS (7) s
 #   scripts/fuzz.sh long [TARGET...]   FUZZ_SECONDS (600) s each, FUZZ_PARALLEL (1) at a time, the
 #                                      grown corpora kept in build-fuzz/corpus/TARGET (`make fuzz`)
 # A finding fails the run: a crash, a sanitizer report, an exception other than mjarm::Error, an
@@ -86,7 +86,7 @@ run() {
   if [ "$mode" = check ]; then
     corpus=$build/check/$t
     rm -rf "$corpus"
-    args+=(-seed=1 -runs="$(field runs "$t" 3)" -max_total_time="${FUZZ_CHECK_SECONDS:-8}")
+    args+=(-seed=1 -runs="$(field runs "$t" 3)" -max_total_time="${FUZZ_CHECK_SECONDS:-7}")
   else
     corpus=$build/corpus/$t
     args+=(-max_total_time="${FUZZ_SECONDS:-600}")

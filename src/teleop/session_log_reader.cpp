@@ -111,8 +111,8 @@ SessionLog parse_session_log(std::string_view text, const std::string& file) {
   SessionLog log;
   next("its header");
   if (r.word("the header") != kSessionFileMagic)
-    throw Error("'" + r.file + "' is not a teleop session file (it should start with '" + kSessionFileMagic +
-                " 1')");
+    throw Error("'" + r.file + "' is not a teleop session file (it should start with '" +
+                kSessionFileMagic + " 1')");
   if (r.word("the version") != "1") throw Error(r.where() + ": unsupported version");
   next("the model");
   r.expect("model");
@@ -215,9 +215,9 @@ SessionLog parse_session_log(std::string_view text, const std::string& file) {
     throw Error(r.where() + ": the session ends at tick " + std::to_string(log.ticks) +
                 ", beyond the " + std::to_string(kMaxSessionTicks) +
                 " ticks a session may have (a replay simulates about 20000 a second)" +
-                (log.events.empty() ? std::string()
-                                    : "; its last event is at tick " +
-                                          std::to_string(log.events.back().tick)));
+                (log.events.empty()
+                     ? std::string()
+                     : "; its last event is at tick " + std::to_string(log.events.back().tick)));
   log.digest = r.word("the final digest");
   r.done();
   if (!log.events.empty() && log.events.back().tick > log.ticks)

@@ -132,8 +132,8 @@ void set_panel_value(PanelState& state, const PanelRanges& ranges, std::string_v
   const double upper = index < 6 ? ranges.upper[index] : 1.0;
   if (number < lower || number > upper) {
     throw Error("viewer panel: " + std::string(name) + " = " + std::string(value) +
-                " is outside its slider range [" + slider_bound_text(lower) + ", " + slider_bound_text(upper) +
-                "]" + (index >= 3 && index < 6 ? " rad" : ""));
+                " is outside its slider range [" + slider_bound_text(lower) + ", " +
+                slider_bound_text(upper) + "]" + (index >= 3 && index < 6 ? " rad" : ""));
   }
   if (index < 6) {
     state.target[index] = number;

@@ -47,8 +47,7 @@ std::vector<fs::path> inputs_of(const std::string& target) {
     std::vector<fs::path> found;
     if (fs::is_directory(folder))
       for (const auto& entry : fs::recursive_directory_iterator(folder))
-        if (entry.is_regular_file() &&
-            (extension.empty() || entry.path().extension() == extension))
+        if (entry.is_regular_file() && (extension.empty() || entry.path().extension() == extension))
           found.push_back(entry.path());
     std::sort(found.begin(), found.end());
     inputs.insert(inputs.end(), found.begin(), found.end());
