@@ -4,12 +4,9 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
-#include <sstream>
 
 #include "mjarm/error.hpp"
 #include "mjarm/file_writer.hpp"
-#include "mjarm/model/names.hpp"
-#include "mjarm/model/user_file.hpp"
 #include "session_format.hpp"
 #include "teleop_model.hpp"
 
