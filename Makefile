@@ -3,7 +3,7 @@ BUILD   ?= build
 JOBS    ?= $(shell nproc)
 CMAKE_FLAGS ?=
 
-.PHONY: all setup build demo test release-test bench bench-peers format tidy clean
+.PHONY: all setup build demo test fuzz release-test bench bench-peers format tidy clean
 
 all: build
 
@@ -40,6 +40,16 @@ $(TEST_BUILD)/CMakeCache.txt:
 test: setup $(TEST_BUILD)/CMakeCache.txt
 	cmake --build $(TEST_BUILD) -j $(JOBS)
 	cd $(TEST_BUILD) && $(SANITIZER_ENV) ctest --output-on-failure -j $(JOBS) --timeout 900
+	JOBS=$(JOBS) bash scripts/fuzz.sh check
+
+# The fuzz targets (fuzz/, docs/hardening.md "Fuzzing"): libFuzzer on each file reader, built by
+# clang in build-fuzz. `make test` runs each for a bounded, deterministic number of inputs; this
+# runs each for FUZZ_SECONDS, growing the corpora in build-fuzz/corpus. FUZZ=name runs one target,
+# FUZZ_PARALLEL=2 two at a time.
+FUZZ_SECONDS ?= 600
+FUZZ ?=
+fuzz: setup
+	JOBS=$(JOBS) FUZZ_SECONDS=$(FUZZ_SECONDS) bash scripts/fuzz.sh long $(FUZZ)
 
 # everything in Release (the library, the CLI, the tests and the examples)
 release-test: build
@@ -68,4 +78,4 @@ format:
 	clang-format -i $$(git ls-files '*.cpp' '*.hpp')
 
 clean:
-	rm -rf $(BUILD) $(TEST_BUILD) build-bench $(PEERS_BUILD)
+	rm -rf $(BUILD) $(TEST_BUILD) build-bench $(PEERS_BUILD) build-fuzz

@@ -19,6 +19,8 @@ packages=(
   libglfw3-dev xvfb xauth
   # plots of a recording (`mjarm plot`, the demo)
   gnuplot-nox
+  # the fuzz targets (scripts/fuzz.sh, part of `make test`): clang and its libFuzzer runtime
+  clang libclang-rt-14-dev
   # the project's virtual environment (MuJoCo, NumPy, pybind11, pytest from PyPI, pinned) on
   # Debian's /usr/bin/python3, whose headers the Python extension compiles against
   python3-venv python3-dev

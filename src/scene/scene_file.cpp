@@ -10,6 +10,7 @@
 #include "mjarm/model/model_size.hpp"
 #include "mjarm/model/names.hpp"
 #include "mjarm/model/user_file.hpp"
+#include "yaml_documents.hpp"
 
 namespace mjarm {
 
@@ -197,7 +198,7 @@ Scene parse_scene(std::string_view text, const fs::path& base_dir, const std::st
   std::vector<YAML::Node> documents;
   try {
     // every document: a second one would otherwise be dropped without a word
-    for (YAML::Node& d : YAML::LoadAll(std::string(text)))
+    for (YAML::Node& d : load_yaml_documents(std::string(text), source))
       if (!d.IsNull()) documents.push_back(std::move(d));
   } catch (const YAML::DeepRecursion& e) {
     // yaml-cpp's own message for this is "bad file"

@@ -23,7 +23,7 @@ double unwrap_near(double angle, double centre) noexcept {
   return angle + 2.0 * kPi * std::round((centre - angle) / (2.0 * kPi));
 }
 
-std::string number_text(double v) {
+std::string slider_bound_text(double v) {
   char text[32];
   std::snprintf(text, sizeof(text), "%.6g", v);
   return text;
@@ -132,8 +132,8 @@ void set_panel_value(PanelState& state, const PanelRanges& ranges, std::string_v
   const double upper = index < 6 ? ranges.upper[index] : 1.0;
   if (number < lower || number > upper) {
     throw Error("viewer panel: " + std::string(name) + " = " + std::string(value) +
-                " is outside its slider range [" + number_text(lower) + ", " + number_text(upper) +
-                "]" + (index >= 3 && index < 6 ? " rad" : ""));
+                " is outside its slider range [" + slider_bound_text(lower) + ", " +
+                slider_bound_text(upper) + "]" + (index >= 3 && index < 6 ? " rad" : ""));
   }
   if (index < 6) {
     state.target[index] = number;

@@ -146,6 +146,19 @@ TEST(SceneFile, ASecondDocumentIsRefused) {
   EXPECT_EQ(parse_scene("---\n" + first + "---\n", ".", "s.yaml").name(), "one");
 }
 
+// found by the fuzzer (fuzz/regressions/scene): a lone ',' made yaml-cpp 0.7's LoadAll collect
+// empty documents until memory ran out (`mjarm info` hung); it is refused where the parser stops
+TEST(SceneFile, AStreamTheYamlParserCannotGetPastIsRefused) {
+  for (const std::string text : {",", "name: one\n,\n", "]\n", "{\"name\": \"a\"}\n}\n"}) {
+    SCOPED_TRACE(text);
+    const std::string message = error_of([&] { parse_scene(text, ".", "s.yaml"); });
+    EXPECT_TRUE(mentions(message, "s.yaml:")) << message;
+    EXPECT_TRUE(mentions(message, "not valid YAML or JSON")) << message;
+  }
+  // a document per '---' still counts as progress
+  EXPECT_EQ(parse_scene("---\n---\n---\nname: one\n", ".", "s.yaml").name(), "one");
+}
+
 // issue 29, item 5: `xyaxes: [0, 0, 0, 0, 0, 0]` was read as "no xyaxes" and the camera looked
 // along the parent's −z; an edit's zero quaternion compiled into a zero rotation matrix
 TEST(SceneFile, DegenerateFramesAreRefusedNamingTheLineElementAndAttribute) {

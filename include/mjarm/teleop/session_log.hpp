@@ -29,6 +29,7 @@
 #include <filesystem>
 #include <memory>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "mjarm/file_writer.hpp"
@@ -82,6 +83,10 @@ inline constexpr std::int64_t kMaxSessionTicks = 10'000'000;
 ///         a number that is not finite, a tick out of order or beyond `kMaxSessionTicks`, or a
 ///         truncated file (no `end` line, fewer events than announced).
 SessionLog read_session_log(const std::filesystem::path& path);
+
+/// Reads session text; @p file names it in errors ("session file 'FILE' line 7: ...").
+/// @throws Error as `read_session_log`.
+SessionLog parse_session_log(std::string_view text, const std::string& file);
 
 /// A `TeleopSession` whose inputs are recorded: use it in place of the session's own setters.
 class SessionRecorder {
