@@ -2,6 +2,7 @@
 // that only reads them (the fuzz targets, fuzz/) links no simulation.
 
 #include <algorithm>
+#include <cerrno>
 #include <cmath>
 #include <cstdlib>
 #include <sstream>
@@ -70,8 +71,9 @@ struct LineReader {
   std::int64_t integer(const char* what) {
     const std::string w = word(what);
     char* end = nullptr;
+    errno = 0;
     const long long v = std::strtoll(w.c_str(), &end, 10);
-    if (end == w.c_str() || *end != '\0' || v < 0)
+    if (end == w.c_str() || *end != '\0' || v < 0 || errno == ERANGE)
       throw Error(where() + ": " + what + " must be a whole number ≥ 0, got '" + w + "'");
     return v;
   }
@@ -194,9 +196,12 @@ SessionLog parse_session_log(std::string_view text, const std::string& file) {
       e.mode = parse_mode(r.word("the mode"), r.where());
     } else if (kind == "task") {
       e.kind = SessionEvent::Kind::task;
-      e.hand = static_cast<int>(r.integer("the hand"));
-      if (e.hand >= static_cast<int>(log.options.hands.size()))
-        throw Error(r.where() + ": no hand " + std::to_string(e.hand));
+      // compared before the cast: 4294967297 became hand 1
+      const std::int64_t hand = r.integer("the hand");
+      if (hand >= static_cast<std::int64_t>(log.options.hands.size()))
+        throw Error(r.where() + ": no hand " + std::to_string(hand) + " (the session has " +
+                    std::to_string(log.options.hands.size()) + ")");
+      e.hand = static_cast<int>(hand);
       e.task = parse_task(r.word("the task"), r.where());
     } else if (kind == "reset") {
       e.kind = SessionEvent::Kind::reset;

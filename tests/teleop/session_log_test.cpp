@@ -117,7 +117,8 @@ TEST(SessionLog, ATickCountBeyondTheBoundIsRefusedWhenRead) {
       << message;
   EXPECT_NE(message.find("its last event is at tick"), std::string::npos) << message;
   // at the bound it reads
-  text = last_event + "end " + std::to_string(kMaxSessionTicks) + text.substr(text.find(' ', end + 4));
+  text =
+      last_event + "end " + std::to_string(kMaxSessionTicks) + text.substr(text.find(' ', end + 4));
   write_text(path, text);
   EXPECT_EQ(read_session_log(path).ticks, kMaxSessionTicks);
 }
@@ -160,6 +161,12 @@ TEST(SessionLog, MalformedFilesAreClearErrors) {
   EXPECT_NE(error_with("events 6", "events 7").find("announces 7 events but ends after 6"),
             std::string::npos);
   EXPECT_NE(error_with("events 6", "events 5").find("expected the end line after 5 events"),
+            std::string::npos);
+  // fuzz finding: a hand number beyond int was cast first (4294967297 became hand 1)
+  EXPECT_NE(
+      error_with(" task 1 ", " task 4294967297 ").find("no hand 4294967297 (the session has 2)"),
+      std::string::npos);
+  EXPECT_NE(error_with(" task 1 ", " task 99999999999999999999 ").find("must be a whole number"),
             std::string::npos);
   EXPECT_NE(error_with("fingerprint ", "fingerprint 1 ").find("line 3"), std::string::npos);
   write_text(bad, "mjarm-teleop-session 1\nmodel x\n");
