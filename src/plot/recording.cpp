@@ -3,7 +3,10 @@
 #include <algorithm>
 #include <cerrno>
 #include <nlohmann/json.hpp>
+#include <string>
 #include <type_traits>
+#include <utility>
+#include <vector>
 
 #include "json_document.hpp"
 #include "mjarm/error.hpp"
@@ -22,10 +25,35 @@ bool has_partial_folder(const fs::path& directory) {
   return false;
 }
 
+// The keys the recorder writes (sim/recorder_summary.cpp); the plot tests read real recordings,
+// so a key the recorder gains and this list lacks fails them.
+// clang-format off
+const std::vector<std::string> kSummaryKeys = {
+    "invocation", "model", "source", "mode", "integrator", "timestep", "control_period",
+    "steps_per_tick", "state_decimation", "frame", "status", "message", "write_error",
+    "start_time", "end_time", "duration", "counts", "controllers", "saturated_ticks",
+    "actuators", "files"};
+// clang-format on
+const std::vector<std::string> kControllerKeys = {"name", "command", "joints"};
+const std::vector<std::string> kActuatorKeys = {"name", "kind", "joint", "gear", "force_range"};
+
+// Strict JSON, no key twice, and no key the recorder does not write: a misspelt key of a summary
+// edited by hand ("gera") would leave its value unused without a word.
 nlohmann::json read_summary(const fs::path& path) {
-  // strict JSON, no key twice (the summary is mjarm's own; the keys plot does not use are left
-  // alone: a newer run may write more)
-  return JsonDocument(read_user_file(path, "recording summary"), quoted(path)).root();
+  const JsonDocument json(read_user_file(path, "recording summary"), quoted(path));
+  const nlohmann::json& root = json.root();
+  if (!root.is_object()) throw Error(quoted(path) + " is not a JSON object");
+  json.check_keys("", kSummaryKeys, "the summary");
+  for (const auto& [list, keys] :
+       {std::pair{"controllers", &kControllerKeys}, std::pair{"actuators", &kActuatorKeys}}) {
+    const auto it = root.find(list);
+    if (it == root.end() || !it->is_array()) continue;
+    for (std::size_t k = 0; k < it->size(); ++k)
+      if ((*it)[k].is_object())
+        json.check_keys(std::string("/") + list + "/" + std::to_string(k), *keys,
+                        std::string(list) + " entry " + std::to_string(k));
+  }
+  return root;
 }
 
 // a value as JSON text for a message, cut after 60 characters
@@ -92,7 +120,6 @@ Recording Recording::load(const fs::path& directory) {
 
   const fs::path summary_path = directory / "summary.json";
   const nlohmann::json summary = read_summary(summary_path);
-  if (!summary.is_object()) throw Error(quoted(summary_path) + " is not a JSON object");
   r.model_ = field_or<std::string>(summary, "model", "", summary_path);
   r.status_ = field_or<std::string>(summary, "status", "", summary_path);
   r.frame_ = field_or<std::string>(summary, "frame", "", summary_path);

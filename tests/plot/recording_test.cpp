@@ -146,8 +146,29 @@ TEST(Recording, ASummaryValueOfTheWrongTypeOrAKeyTwiceIsNamed) {
   message = with("plot-twice", "{\"model\": \"a\",\n \"model\": \"b\"}");
   EXPECT_NE(message.find("summary.json' line 2: key 'model' appears twice"), std::string::npos)
       << message;
-  // keys plot does not read are a newer run's, not an error
-  EXPECT_EQ(with("plot-newer", R"({"model": "a", "invocation": ["mjarm", "run"]})"), "no error");
+  // keys the recorder writes that plot does not read are fine
+  EXPECT_EQ(with("plot-unread", R"({"model": "a", "invocation": ["mjarm", "run"]})"), "no error");
+}
+
+// issue 29, item 1 ("unknown keys are an error with the closest name, in every file mjarm
+// reads"): a misspelt key of a summary edited by hand was ignored (a "gera" left the gear at 1)
+TEST(Recording, AnUnknownSummaryKeyIsNamedWithTheClosest) {
+  const auto with = [](const char* name, const std::string& summary) {
+    test::TempDir dir(name);
+    return load_error(damaged_copy(dir, "summary.json", summary));
+  };
+  std::string message = with("plot-gera", "{\"actuators\": [{\"name\": \"a\",\n \"gera\": 2}]}");
+  EXPECT_NE(message.find("summary.json' line 2: unknown key 'gera' in actuators entry 0; "
+                         "closest: gear"),
+            std::string::npos)
+      << message;
+  message = with("plot-modle", R"({"modle": "panda"})");
+  EXPECT_NE(message.find("unknown key 'modle' in the summary; closest: model"), std::string::npos)
+      << message;
+  message = with("plot-ctrl", R"({"controllers": [{"nmae": "pd"}]})");
+  EXPECT_NE(message.find("unknown key 'nmae' in controllers entry 0; closest: name"),
+            std::string::npos)
+      << message;
 }
 
 }  // namespace
