@@ -19,9 +19,9 @@ InterruptedError::InterruptedError(const std::string& what, int signal)
 void stop_writing_if_interrupted(const std::string& command, const std::string& path) {
   if (!interrupt_requested()) return;
   std::error_code ec;
+  const bool kept = std::filesystem::exists(path, ec);
   throw InterruptedError(command + ": interrupted; '" + path + "' was not written" +
-                             (std::filesystem::exists(path, ec) ? " (the file already there is kept)"
-                                                                : ""),
+                             (kept ? " (the file already there is kept)" : ""),
                          interrupt_signal());
 }
 

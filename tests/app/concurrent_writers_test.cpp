@@ -140,14 +140,15 @@ TEST(ConcurrentWriters, TwoRunsWritingOneOutFileLeaveOneWholeFile) {
 // test that renders (tests/CMakeLists.txt); 2 frames per second keep the runs short
 TEST(ConcurrentWriters, TwoRunsWritingOneVideoLeaveOneWholeVideo) {
   expect_the_last_whole_file_stays(
-      "bimanual_video", {"bimanual", "--lift", "0.1", "--size", "64x48", "--fps", "2", "--video", "@"},
+      "bimanual_video",
+      {"bimanual", "--lift", "0.1", "--size", "64x48", "--fps", "2", "--video", "@"},
       {"bimanual", "--lift", "0.2", "--size", "64x48", "--fps", "2", "--video", "@"}, ".mp4");
   // replay: two sessions of different lifts, each replayed into one video
   const fs::path low = scratch() / "concurrent_low.session";
   const fs::path high = scratch() / "concurrent_high.session";
   for (const auto& [lift, session] : {std::pair{"0.1", low}, std::pair{"0.2", high}}) {
-    RunningProcess record(writing_to({"bimanual", "--lift", lift, "--record-session", "@"}, session),
-                          scratch());
+    RunningProcess record(
+        writing_to({"bimanual", "--lift", lift, "--record-session", "@"}, session), scratch());
     ASSERT_TRUE(record.wait(900));
     ASSERT_EQ(record.exit_code(), 0) << record.err();
   }
@@ -157,10 +158,9 @@ TEST(ConcurrentWriters, TwoRunsWritingOneVideoLeaveOneWholeVideo) {
 }
 
 TEST(ConcurrentWriters, TwoRunsRecordingOneSessionLeaveOneWholeSession) {
-  expect_the_last_whole_file_stays("session",
-                                   {"bimanual", "--lift", "0.1", "--record-session", "@"},
-                                   {"bimanual", "--lift", "0.2", "--record-session", "@"},
-                                   ".session");
+  expect_the_last_whole_file_stays(
+      "session", {"bimanual", "--lift", "0.1", "--record-session", "@"},
+      {"bimanual", "--lift", "0.2", "--record-session", "@"}, ".session");
 }
 
 }  // namespace

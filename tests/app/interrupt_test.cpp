@@ -2,8 +2,9 @@
 // otg, env, plan and traj benchmarks, `env run` and the demo's parts each stop, print what they
 // did so far, and exit 130 (128 + SIGINT, as `run` does; 143 for SIGTERM) with a message that
 // says so; a video cut short is not written and an old one is kept, and so is an old `--out` file
-// of `render`, `plan` and `traj` when a signal comes while the new one is written. SIGINT is sent once the progress line on
-// the (pseudo-)terminal shows work done (see cli_interrupt.hpp).
+// of `render`, `plan` and `traj` when a signal comes while the new one is written. SIGINT is
+// sent on an event: the progress line on the (pseudo-)terminal showing work done (see
+// cli_interrupt.hpp), or the output's temporary file appearing.
 
 #include <gtest/gtest.h>
 

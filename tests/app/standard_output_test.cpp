@@ -124,8 +124,7 @@ TEST(StandardOutput, APipeClosedByItsReaderIsNotASuccess) {
       close(fds[1]);
       if (ignored) {
         EXPECT_EQ(run.exit_code, 1) << args[0] << ": " << run.err;
-        EXPECT_NE(run.err.find("mjarm: error: cannot write to standard output"),
-                  std::string::npos)
+        EXPECT_NE(run.err.find("mjarm: error: cannot write to standard output"), std::string::npos)
             << run.err;
       } else {
         EXPECT_EQ(run.signal, SIGPIPE) << args[0] << ": exit " << run.exit_code << " " << run.err;
