@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <iostream>
 #include <memory>
+#include <optional>
 
 #include "commands.hpp"
 #include "mjarm/error.hpp"
@@ -12,6 +13,7 @@
 #include "mjarm/planning/waypoint_file.hpp"
 #include "mjarm/plot/gnuplot.hpp"
 #include "mjarm/plot/trajectory_plot.hpp"
+#include "mjarm/sim/interrupt.hpp"
 
 namespace mjarm::cli {
 
@@ -51,6 +53,8 @@ void write_csv(const std::string& path, const Chain& chain, const JointSpline& s
               static_cast<std::size_t>(std::snprintf(number, sizeof number, format, value)));
   };
   for (std::int64_t k = 0; k <= steps; ++k) {
+    // Ctrl-C: stop at once, the partial CSV removed and the old file kept
+    if (k % 1024 == 0) stop_writing_if_interrupted("plan", path);
     const double t = std::min(s.duration(), static_cast<double>(k) * period);
     s.at(t, q, qd, qdd);
     put("%.10g", t);
@@ -60,6 +64,7 @@ void write_csv(const std::string& path, const Chain& chain, const JointSpline& s
     for (int i = 0; i < 3; ++i) put(",%.10g", p[i]);
     out.write("\n");
   }
+  stop_writing_if_interrupted("plan", path);
   out.commit();  // the whole CSV or the old file: a write error names the file and the reason
 }
 
@@ -259,9 +264,20 @@ Command add_plan_command(CLI::App& root) {
               plot::find_gnuplot();
             }
             const PlannedPath p = plan_path(*o);
-            std::string plot_path;
-            if (p.result.ok() && !plot_dir->empty())
-              plot_path = plot_plan(*plot_dir, p, 1.0 / *rate, *size);
+            // Ctrl-C or SIGTERM while gnuplot draws or the CSV is written: nothing half-written
+            // is left, an old CSV is kept (exit 130/143); a signal during the planning ends the
+            // process with nothing written yet
+            std::optional<InterruptGuard> interrupts;
+            if (p.result.ok() && (!plot_dir->empty() || !out->empty())) interrupts.emplace();
+            std::string plot_path, plot_stopped;
+            if (p.result.ok() && !plot_dir->empty()) {
+              try {
+                plot_path = plot_plan(*plot_dir, p, 1.0 / *rate, *size);
+              } catch (const Error& e) {
+                if (!interrupt_requested()) throw;
+                plot_stopped = e.what();  // the plan is printed first, then the interrupt
+              }
+            }
             if (*json) {
               Json document = plan_json(p);
               if (!plot_path.empty()) document["plot"] = plot_path;
@@ -270,6 +286,11 @@ Command add_plan_command(CLI::App& root) {
               print_plan(std::cout, p);
             }
             if (!p.result.ok()) throw Error("no plan: " + p.result.message);
+            if (!plot_stopped.empty())
+              throw InterruptedError(
+                  "plan: interrupted; " + plot_stopped +
+                      (out->empty() ? "" : "; '" + *out + "' was not written"),
+                  interrupt_signal());
             const double duration = p.result.trajectory.duration();
             if (!out->empty() && std::ceil(duration * *rate) + 1 > kMaxCsvRows)
               throw UsageError("the trajectory lasts " + compact(duration) + " s: at --rate " +
@@ -281,6 +302,7 @@ Command add_plan_command(CLI::App& root) {
               if (!*json) std::cout << "  trajectory written to " << *out << '\n';
             }
             if (!plot_path.empty() && !*json) std::cout << "  plot: " << plot_path << '\n';
+            if (interrupts) report_interrupt_after_writing("plan", out->empty() ? plot_path : *out);
           }};
 }
 

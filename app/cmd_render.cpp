@@ -6,8 +6,10 @@
 
 #include "commands.hpp"
 #include "mjarm/error.hpp"
+#include "mjarm/file_writer.hpp"
 #include "mjarm/render/offscreen_renderer.hpp"
 #include "mjarm/render/png.hpp"
+#include "mjarm/sim/interrupt.hpp"
 
 namespace mjarm::cli {
 namespace {
@@ -144,7 +146,15 @@ Command add_render_command(CLI::App& root) {
             render_options.shadows = !options->no_shadows;
             OffscreenRenderer renderer(robot, size.width, size.height, render_options);
             const Image image = renderer.render(*data, spec);
-            write_png(image, options->out);
+            // Ctrl-C or SIGTERM while the PNG is written: the old file is kept and nothing is
+            // left beside it (a signal before this point ends the process: nothing written yet)
+            const InterruptGuard interrupts;
+            {
+              FileWriter file(options->out, FileWriter::Mode::replace, "PNG");
+              write_png(image, file);
+              stop_writing_if_interrupted("render", options->out);
+              file.commit();
+            }
 
             if (options->json) {
               Json doc;
@@ -156,7 +166,8 @@ Command add_render_command(CLI::App& root) {
               doc["height"] = image.height;
               doc["out"] = options->out;
               doc["opengl"] = renderer.gl_description();
-              return print_json(doc);
+              print_json(doc);
+              return report_interrupt_after_writing("render", options->out);
             }
             print_fields(std::cout, {{"model", robot.name()},
                                      {"configuration", configuration},
@@ -165,6 +176,7 @@ Command add_render_command(CLI::App& root) {
                                                   std::to_string(image.height) + " pixels"},
                                      {"OpenGL", renderer.gl_description()},
                                      {"wrote", options->out}});
+            report_interrupt_after_writing("render", options->out);
           }};
 }
 

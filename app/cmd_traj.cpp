@@ -308,6 +308,8 @@ void write_traj_csv(const std::string& path, const std::vector<double>& t,
     }
   out.write("\n");
   for (std::size_t s = 0; s < t.size(); ++s) {
+    // Ctrl-C: stop at once, the partial CSV removed and the old file kept
+    if (s % 1024 == 0) stop_writing_if_interrupted("traj", path);
     out.write(number,
               static_cast<std::size_t>(std::snprintf(number, sizeof(number), "%.17g", t[s])));
     for (std::size_t k = 0; k < 4; ++k)
@@ -316,6 +318,7 @@ void write_traj_csv(const std::string& path, const std::vector<double>& t,
                               std::snprintf(number, sizeof(number), ",%.17g", x[k][s][i])));
     out.write("\n");
   }
+  stop_writing_if_interrupted("traj", path);
   out.commit();  // the whole CSV or the old file: a write error names the file and the reason
 }
 
@@ -462,6 +465,11 @@ Command add_traj_command(CLI::App& root) {
         // a profile that breaks its limits writes nothing unless accepted
         const bool write = within || o.allow_violation;
 
+        // Ctrl-C or SIGTERM while the CSV is written or gnuplot draws: nothing half-written is
+        // left, an old CSV is kept (exit 130/143); a signal before this point ends the process
+        // with nothing written yet
+        std::optional<InterruptGuard> interrupts;
+        if (write && (!o.out.empty() || !o.plot.empty())) interrupts.emplace();
         if (write && !o.out.empty()) write_traj_csv(o.out, t, x);
         std::string plot_path;
         if (write && !o.plot.empty()) {
@@ -485,7 +493,6 @@ Command add_traj_command(CLI::App& root) {
           plot_options.width = size.width;
           plot_options.height = size.height;
           // Ctrl-C stops gnuplot; what it drew and its data are removed (exit 130)
-          const InterruptGuard interrupts;
           try {
             plot_path = plot::plot_trajectory(series, o.plot, plot_options).path.string();
           } catch (const Error& e) {
@@ -525,6 +532,7 @@ Command add_traj_command(CLI::App& root) {
                                            {"qdd", vector_json(x[2][s])},
                                            {"qddd", vector_json(x[3][s])}});
           print_json(document);
+          if (interrupts) report_interrupt_after_writing("traj", o.out.empty() ? plot_path : o.out);
           return fail_on_violation(violations, o.allow_violation);
         }
         std::vector<std::pair<std::string, std::string>> fields{
@@ -554,6 +562,7 @@ Command add_traj_command(CLI::App& root) {
                          std::isnan(r.j_max[i]) ? std::string("-") : fixed(r.j_max[i])});
         std::cout << '\n';
         table.print(std::cout);
+        if (interrupts) report_interrupt_after_writing("traj", o.out.empty() ? plot_path : o.out);
         fail_on_violation(violations, o.allow_violation);
       }};
 }

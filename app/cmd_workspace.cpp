@@ -159,6 +159,12 @@ Command add_workspace_command(CLI::App& root) {
                           << '\n';
               }
             }
+            // a signal after the last sample (while the CSV was written, or the report printed)
+            if (complete && interrupt_requested())
+              throw InterruptedError(
+                  "workspace: interrupted after the sampling" +
+                      (options->out.empty() ? "" : "; '" + options->out + "' was written"),
+                  interrupt_signal());
             if (!complete) {
               throw InterruptedError(
                   "interrupted after " + std::to_string(result.samples) + " of " +

@@ -22,6 +22,13 @@ int fail(const std::string& message, int code, bool hint) {
   return code;
 }
 
+// a full disk or a closed pipe must not look like success: @p code, or 1 when stdout failed
+int flushed(int code) {
+  std::cout.flush();
+  if (!std::cout && code == 0) return fail("cannot write to standard output", 1, false);
+  return code;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -79,11 +86,11 @@ int main(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
-    return app.exit(e);
+    return flushed(app.exit(e));
   } catch (const CLI::CallForAllHelp& e) {
-    return app.exit(e);
+    return flushed(app.exit(e));
   } catch (const CLI::CallForVersion& e) {
-    return app.exit(e);
+    return flushed(app.exit(e));
   } catch (const CLI::ParseError& e) {
     if (argc == 1) {
       // bare `mjarm`: show what it can do
@@ -107,8 +114,5 @@ int main(int argc, char** argv) {
   } catch (const std::exception& e) {
     return fail(e.what(), 1, false);
   }
-  // a full disk or a closed pipe must not look like success
-  std::cout.flush();
-  if (!std::cout) return fail("cannot write to standard output", 1, false);
-  return 0;
+  return flushed(0);
 }

@@ -6,12 +6,30 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <iostream>
+
+#include "mjarm/sim/interrupt.hpp"
 
 namespace mjarm::cli {
 
 InterruptedError::InterruptedError(const std::string& what, int signal)
     : std::runtime_error(what), signal_(signal > 0 ? signal : SIGINT) {}
+
+void stop_writing_if_interrupted(const std::string& command, const std::string& path) {
+  if (!interrupt_requested()) return;
+  std::error_code ec;
+  const bool kept = std::filesystem::exists(path, ec);
+  throw InterruptedError(command + ": interrupted; '" + path + "' was not written" +
+                             (kept ? " (the file already there is kept)" : ""),
+                         interrupt_signal());
+}
+
+void report_interrupt_after_writing(const std::string& command, const std::string& path) {
+  if (interrupt_requested())
+    throw InterruptedError(command + ": interrupted after '" + path + "' was written",
+                           interrupt_signal());
+}
 
 namespace {
 

@@ -38,6 +38,17 @@ class InterruptedError : public std::runtime_error {
   int signal_;
 };
 
+/// Under the caller's `InterruptGuard`, between the parts of an output file and before its
+/// commit: when SIGINT or SIGTERM has arrived, throws InterruptedError "COMMAND: interrupted;
+/// 'PATH' was not written" (saying that a file already at PATH is kept). The unwinding destroys
+/// the uncommitted FileWriter, which removes its temporary file: the old file stays as it was.
+void stop_writing_if_interrupted(const std::string& command, const std::string& path);
+
+/// At the end of a command that holds an `InterruptGuard` while it writes @p path: a signal that
+/// came after the file was moved into place still ends the command with 128 + the signal, the
+/// message saying the file was written.
+void report_interrupt_after_writing(const std::string& command, const std::string& path);
+
 /// @p v with @p decimals digits after the point; "inf", "-inf" and "nan" spelled out.
 std::string fixed(double v, int decimals = 4);
 

@@ -50,6 +50,15 @@ void on_png_flush(png_structp png) {
 }  // namespace
 
 void write_png(const Image& image, const std::filesystem::path& path) {
+  // a new file beside the target, renamed over it once complete: never a truncated PNG
+  FileWriter file(path, FileWriter::Mode::replace, "PNG");
+  write_png(image, file);
+  // a full disk may show only when the last bytes are flushed, synced or closed
+  file.commit();
+}
+
+void write_png(const Image& image, FileWriter& file) {
+  const std::filesystem::path& path = file.path();
   if (image.width <= 0 || image.height <= 0)
     throw Error("cannot write PNG " + quoted(path) + ": the image is empty (" +
                 std::to_string(image.width) + "×" + std::to_string(image.height) + ")");
@@ -57,9 +66,6 @@ void write_png(const Image& image, const std::filesystem::path& path) {
     throw Error("cannot write PNG " + quoted(path) + ": the image holds " +
                 std::to_string(image.rgb.size()) +
                 " bytes, expected width·height·3 = " + std::to_string(image.pixels() * 3));
-  // a new file beside the target, renamed over it once complete: never a truncated PNG
-  FileWriter file(path, FileWriter::Mode::replace, "PNG");
-
   ErrorState state;
   png_structp png =
       png_create_write_struct(PNG_LIBPNG_VER_STRING, &state, on_png_error, on_png_warning);
@@ -73,7 +79,7 @@ void write_png(const Image& image, const std::filesystem::path& path) {
   for (int y = 0; y < image.height; ++y)
     rows[static_cast<std::size_t>(y)] = const_cast<png_bytep>(image.at(0, y));
   if (setjmp(png_jmpbuf(png)) != 0) {
-    // libpng jumped here from on_png_error; the writer's destructor removes the temporary file
+    // libpng jumped here from on_png_error; the uncommitted writer removes its temporary file
     png_destroy_write_struct(&png, &info);
     if (file.error() != 0) throw Error(file.failure());
     throw Error("cannot write PNG " + quoted(path) + ": " + state.message);
@@ -90,8 +96,6 @@ void write_png(const Image& image, const std::filesystem::path& path) {
     png_write_end(png, nullptr);
   }
   png_destroy_write_struct(&png, &info);
-  // a full disk may show only when the last bytes are flushed, synced or closed
-  file.commit();
 }
 
 Image read_png(const std::filesystem::path& path) {

@@ -10,6 +10,7 @@
 #include "mjarm/error.hpp"
 #include "mjarm/model/names.hpp"
 #include "mjarm/model/user_file.hpp"
+#include "mjarm/number_text.hpp"
 #include "mjarm/teleop/viewer_panel.hpp"
 
 namespace mjarm {
@@ -32,6 +33,9 @@ constexpr KeyName kKeys[] = {{"space", 32},
                              {"r", 'R'},
                              {"f", 'F'},
                              {"g", 'G'}};
+// the longest `wait`: 10⁷ frames (about 46 h at 60 Hz); a longer one is a mistake
+constexpr double kMaxWaitFrames = 1e7;
+
 constexpr const char* kKeyList =
     "space, right, backspace, escape, and for the bimanual panel's nudges w s a d r f g tab "
     "(shift+w … shift+f turn the hand)";
@@ -125,8 +129,10 @@ ViewerScript ViewerScript::parse(std::string_view text, std::string_view source)
     if (verb == "wait") {
       p.arguments(words, 1, "a frame count: wait N");
       const double n = p.number(words[1], "the frame count");
-      if (n < 0 || n != std::floor(n) || n > 1e7)
+      if (n < 0 || n != std::floor(n))
         p.fail("the frame count must be a whole number ≥ 0");
+      if (n > kMaxWaitFrames)
+        p.fail("the frame count " + number_text(n) + " is more than the bound of 10⁷ frames");
       c.action = ScriptAction::wait;
       c.frames = static_cast<int>(n);
     } else if (verb == "set") {

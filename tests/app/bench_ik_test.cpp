@@ -63,6 +63,8 @@ TEST(BenchIk, BadCommandLinesFailCleanly) {
                  "more than 0 and at most 60000");
   }
   expect_error({"bench", "ik", "panda", "--samples", "0"}, 2, "--samples");
+  expect_error({"bench", "ik", "panda", "--samples", "100000000"}, 2,
+               "--samples: '100000000' is not a whole number from 1 to 10000000");
   expect_error({"bench", "ik", "panda", "--max-restarts", "-1"}, 2, "--max-restarts");
   expect_error({"bench", "ik", "arm6"}, 2, "--site");
 }

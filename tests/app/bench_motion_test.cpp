@@ -65,6 +65,8 @@ TEST(BenchMotion, BadCommandLinesFailCleanly) {
   EXPECT_EQ(run_cli({"bench", "traj", "--clock", "sundial"}).exit_code, 2);
   EXPECT_EQ(run_cli({"bench", "plan", "--plans", "0"}).exit_code, 2);
   EXPECT_EQ(run_cli({"bench", "plan", "--plans", "1e9"}).exit_code, 2);
+  mjarm::test::expect_error({"bench", "plan", "--clock", "sundial"}, 2,
+                            "--clock: sundial not in {wall,cpu}");
 }
 
 }  // namespace

@@ -64,6 +64,10 @@ TEST(CliBounds, JointValuesOutsideTheirRangeAreRefusedByEveryCommand) {
   expect_error(
       with({"run", "plan", "panda", "--waypoints", waypoints.string(), "--q"}, kOutsideQ), 2,
       named);
+  // `render --q` takes the same check (before the renderer starts)
+  expect_error(with({"render", "panda", "--out", (scratch() / "range.png").string(), "--q"},
+                    kOutsideQ),
+               2, named);
   // a slide joint names its unit; a value in degrees is pointed out
   expect_error({"fk", "panda", "--q", "90", "0", "0", "-1", "0", "1", "0"}, 2,
                "(--q takes radians: 90° would be 1.5708 rad)");

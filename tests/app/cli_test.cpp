@@ -165,6 +165,36 @@ TEST(Cli, InfoDescribesASceneFile) {
       "bad_scene.yaml:2: key 'mass' in object 'c' expects a number, got 'heavy'");
 }
 
+// issue 29, item 1, for MJCF: a misspelt attribute or element is refused by MuJoCo's schema; the
+// message names it, the user's file and the line (pinned here: the bad-input matrix's MJCF names)
+TEST(Cli, MisspeltMjcfAttributesAndElementsAreRefusedWithTheFileAndLine) {
+  const std::string body = R"(<mujoco model="m">
+  <worldbody>
+    BODY
+      <joint type="hinge"/>
+      <geom type="sphere" size="0.1"/>
+    END
+  </worldbody>
+</mujoco>
+)";
+  const auto model = [&](const std::string& name, const std::string& open,
+                         const std::string& close) {
+    std::string text = body;
+    text.replace(text.find("BODY"), 4, open);
+    text.replace(text.find("END"), 3, close);
+    return write_file(name, text).string();
+  };
+  const std::string attribute =
+      model("nmae.xml", R"(<body nmae="b" pos="0 0 0.1">)", "</body>");
+  expect_error({"info", attribute}, 1,
+               "Schema violation: unrecognized attribute: 'nmae'\nElement 'body', line 3 of '" +
+                   attribute + "'");
+  const std::string element = model("bodyy.xml", R"(<bodyy name="b">)", "</bodyy>");
+  expect_error({"info", element}, 1,
+               "Schema violation: unrecognized element\nElement 'bodyy', line 3 of '" + element +
+                   "'");
+}
+
 TEST(Cli, FkOfPlanar2MatchesClosedForm) {
   const json zero = run_json({"fk", "planar2", "--site", "tip", "--q", "0", "0", "--json"});
   const Eigen::Vector3d p = to_vector(zero["position"]);

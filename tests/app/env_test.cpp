@@ -89,7 +89,19 @@ TEST(EnvCommand, BadCommandLinesAreUsageErrors) {
   expect_error({"env", "run", "reach", "--episodes", "0"}, 2, "--episodes");
   expect_error({"env", "run", "reach", "--action-space", "ee_pose_delta"}, 2, "ee_pose_delta");
   expect_error({"env", "run", "reach", "--time-limit", "nan"}, 2, "--time-limit");
+  expect_error({"env", "run", "reach", "--episodes", "1e12"}, 2,
+               "--episodes: '1e12' is not a whole number from 1 to 100000");
+  expect_error({"env", "run", "reach", "--envs", "100000"}, 2, "from 1 to 4096");
   expect_error({"bench", "env", "--threads", "0"}, 2, "--threads");
+  // names and counts of `bench env` itself, not only through the shared checker
+  expect_error({"bench", "env", "--task", "reachh"}, 2, "--task: reachh not in {reach,");
+  expect_error({"bench", "env", "--action-space", "ee_pose_delta"}, 2,
+               "--action-space: ee_pose_delta not in {");
+  expect_error({"bench", "env", "--steps", "1e12"}, 2,
+               "--steps: '1e12' is not a whole number from 1 to 1000000");
+  expect_error({"bench", "env", "--envs", "100000"}, 2, "--envs: '100000' is not a whole number");
+  expect_error({"bench", "env", "--batch-steps", "1e12"}, 2,
+               "--batch-steps: '1e12' is not a whole number from 1 to 100000");
   expect_error({"env"}, 2, "subcommand");
 }
 

@@ -61,32 +61,57 @@ TEST(FilesWritten, OnlyTheCheckedWriterOpensFilesForWriting) {
                              << listing;
 }
 
+// Runs @p args (its last argument the file written, in @p cwd) with files limited to @p limit
+// bytes over an old file: exit 1 naming the file and the reason, the old file as it was and
+// nothing else beside it; then with the file on /dev/full (a device that refuses every byte).
+void expect_full_disk_keeps_the_old_file(const fs::path& cwd, const std::vector<std::string>& args,
+                                         std::size_t limit = 4096) {
+  const std::string file = args.back();
+  const std::size_t before = static_cast<std::size_t>(
+      std::distance(fs::directory_iterator(cwd), fs::directory_iterator()));
+  std::ofstream(cwd / file) << "old content\n";
+  const mjarm::test::LimitedRun run =
+      mjarm::test::run_with_file_size_limit(limit, MJARM_CLI, args, cwd);
+  EXPECT_EQ(run.exit_code, 1) << file << "\n" << run.out << run.err;
+  EXPECT_NE(run.err.find("'" + file + "': File too large"), std::string::npos) << run.err;
+  EXPECT_EQ(slurp(cwd / file), "old content\n") << file;
+  EXPECT_EQ(static_cast<std::size_t>(
+                std::distance(fs::directory_iterator(cwd), fs::directory_iterator())),
+            before + 1)
+      << file;
+  fs::remove(cwd / file);
+
+  std::vector<std::string> full = args;
+  full.back() = "/dev/full";
+  const mjarm::test::CliRun refused = run_cli(full, cwd);
+  EXPECT_EQ(refused.exit_code, 1) << refused.err;
+  EXPECT_NE(refused.err.find("'/dev/full': No space left on device"), std::string::npos)
+      << refused.err;
+}
+
 TEST(FilesWritten, RenderAndWorkspaceOnAFullDiskKeepTheOldFile) {
   const fs::path cwd = scratch() / "files_written";
   fs::create_directories(cwd);
-  const std::vector<std::vector<std::string>> commands{
-      {"render", "panda", "--out", "still.png"},
-      {"workspace", "planar2", "--samples", "2000", "--out", "cloud.csv"}};
-  for (const std::vector<std::string>& args : commands) {
-    const std::string file = args.back();
-    std::ofstream(cwd / file) << "old content\n";
-    const mjarm::test::LimitedRun run =
-        mjarm::test::run_with_file_size_limit(4096, MJARM_CLI, args, cwd);
-    EXPECT_EQ(run.exit_code, 1) << file << "\n" << run.out << run.err;
-    EXPECT_NE(run.err.find("'" + file + "': File too large"), std::string::npos) << run.err;
-    // the old file as it was, and nothing else beside it
-    EXPECT_EQ(slurp(cwd / file), "old content\n") << file;
-    EXPECT_EQ(std::distance(fs::directory_iterator(cwd), fs::directory_iterator()), 1) << file;
-    fs::remove(cwd / file);
+  expect_full_disk_keeps_the_old_file(cwd, {"render", "panda", "--out", "still.png"});
+  expect_full_disk_keeps_the_old_file(
+      cwd, {"workspace", "planar2", "--samples", "2000", "--out", "cloud.csv"});
+}
 
-    // a device that refuses every byte
-    std::vector<std::string> full = args;
-    full.back() = "/dev/full";
-    const mjarm::test::CliRun refused = run_cli(full);
-    EXPECT_EQ(refused.exit_code, 1) << refused.err;
-    EXPECT_NE(refused.err.find("'/dev/full': No space left on device"), std::string::npos)
-        << refused.err;
-  }
+// issue 29's bad-input matrix, gaps: the CSVs of `plan` and `traj` (about 2 000 and 2 500 rows)
+// and a teleop session (about 2 KB: a limit of 1 KiB) on a full disk
+TEST(FilesWritten, PlanTrajAndSessionFilesOnAFullDiskKeepTheOldFile) {
+  const fs::path cwd = scratch() / "files_written_more";
+  fs::remove_all(cwd);
+  fs::create_directories(cwd);
+  std::ofstream(cwd / "five.json")
+      << R"({"waypoints": [{"position": [0.45, 0.0, 0.50]}, {"position": [0.45, 0.20, 0.40]},
+  {"position": [0.35, 0.25, 0.35]}, {"position": [0.30, 0.10, 0.45]},
+  {"position": [0.40, -0.15, 0.50]}]})";
+  expect_full_disk_keeps_the_old_file(
+      cwd, {"traj", "quintic", "--start", "0", "--target", "1", "--out", "traj.csv"});
+  expect_full_disk_keeps_the_old_file(
+      cwd, {"plan", "panda_torque", "--waypoints", "five.json", "--out", "plan.csv"});
+  expect_full_disk_keeps_the_old_file(cwd, {"bimanual", "--record-session", "lift.session"}, 1024);
 }
 
 TEST(FilesWritten, AFifoThatNothingReadsIsAnErrorNotAHang) {

@@ -1,8 +1,10 @@
 // Ctrl-C in the long loops of the CLI: workspace sampling, the singularity scan, the control,
-// otg, env, plan and traj benchmarks and the demo's parts each stop, print what they did so
-// far, and exit 130 (128 + SIGINT, as `run` does; 143 for SIGTERM) with a message that says so;
-// a video cut short is not written and an old one is kept. SIGINT is sent once the progress line on
-// the (pseudo-)terminal shows work done (see cli_interrupt.hpp).
+// otg, env, plan and traj benchmarks, `env run` and the demo's parts each stop, print what they
+// did so far, and exit 130 (128 + SIGINT, as `run` does; 143 for SIGTERM) with a message that
+// says so; a video cut short is not written and an old one is kept, and so is an old `--out` file
+// of `render`, `plan` and `traj` when a signal comes while the new one is written. SIGINT is
+// sent on an event: the progress line on the (pseudo-)terminal showing work done (see
+// cli_interrupt.hpp), or the output's temporary file appearing.
 
 #include <gtest/gtest.h>
 
@@ -14,6 +16,7 @@
 #include <string>
 
 #include "app/cli_interrupt.hpp"
+#include "support/running_process.hpp"
 
 namespace {
 
@@ -206,6 +209,94 @@ TEST(CliInterrupt, AVideoCutByCtrlCIsNotWrittenAndTheOldFileIsKept) {
       names.push_back(entry.path().filename().string());
     std::sort(names.begin(), names.end());
     EXPECT_EQ(names, (std::vector<std::string>{"lift.session", "old.mp4"})) << command[0];
+  }
+}
+
+// issue 29's bad-input matrix, a gap: `env run` installs the guard, no test signalled it
+TEST(CliInterrupt, EnvRunStopsAndReportsTheEpisodesDone) {
+  for (const int signal : {SIGINT, SIGTERM}) {
+    const auto cli = start_cli_on_terminal(
+        {"env", "run", "reach", "--episodes", "100000", "--time-limit", "0.1", "--json"},
+        "env_run_int");
+    interrupt_after_progress(cli, 1, signal);
+    const CliRun run = finish_cli(cli);
+    EXPECT_FALSE(run.signaled);
+    EXPECT_EQ(run.exit_code, 128 + signal) << run.err;
+    EXPECT_NE(run.err.find("env run: interrupted after "), std::string::npos) << run.err;
+    EXPECT_NE(run.err.find(" of 100000 episodes"), std::string::npos) << run.err;
+    ASSERT_TRUE(json::accept(run.out)) << run.out;
+    const json doc = json::parse(run.out);
+    EXPECT_EQ(doc["interrupted"], true);
+    EXPECT_GE(doc["episodes"].size(), 1u);
+    EXPECT_LT(doc["episodes"].size(), 100000u);
+  }
+}
+
+// issue 29's bad-input matrix, a gap: `render`, `plan` and `traj --out` had no handler, so a
+// signal while the file was written ended the process at once and left the hidden
+// `.NAME.partial-…` beside the old file, nothing said. They now stop, remove it, keep the old
+// file, and say which file was not written (130; 143 for SIGTERM). The signal is sent once the
+// temporary file appears (the event); a signal that comes after the file was moved into place
+// still ends the command with 130, its message saying the file was written.
+TEST(CliInterrupt, RenderPlanAndTrajStoppedWhileWritingKeepTheOldFile) {
+  const fs::path dir = scratch() / "write_interrupt";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  const fs::path waypoints = scratch() / "write_interrupt_five.json";
+  std::ofstream(waypoints)
+      << R"({"waypoints": [{"position": [0.45, 0.0, 0.50]}, {"position": [0.45, 0.20, 0.40]},
+  {"position": [0.35, 0.25, 0.35]}, {"position": [0.30, 0.10, 0.45]},
+  {"position": [0.40, -0.15, 0.50]}]})";
+  struct Case {
+    std::vector<std::string> args;  // the file is the last argument
+    int signal;
+  };
+  // outputs large enough that the write is under way when the signal comes: 10⁶ rows, 9 Mpixels
+  const std::vector<Case> cases{
+      {{"traj", "quintic", "--start", "0", "0", "0", "--target", "1", "1", "1", "--rate",
+        "100000", "--duration", "9.9", "--allow-violation", "--out", "traj.csv"},
+       SIGINT},
+      {{"plan", "panda_torque", "--waypoints", waypoints.string(), "--rate", "100000", "--out",
+        "plan.csv"},
+       SIGTERM},
+      {{"render", "panda", "--size", "3000x3000", "--out", "still.png"}, SIGINT}};
+  for (const Case& c : cases) {
+    const std::string command = c.args.front();
+    const std::string file = c.args.back();
+    std::ofstream(dir / file) << "the old file\n";
+    std::vector<std::string> argv{MJARM_CLI};
+    argv.insert(argv.end(), c.args.begin(), c.args.end());
+    // Mesa's JIT allocations are no leak of mjarm's (tests/CMakeLists.txt)
+    mjarm::test::RunningProcess cli(argv, dir, {"ASAN_OPTIONS=detect_leaks=0"});
+    ASSERT_TRUE(cli.started());
+    const auto writing = [&] {
+      for (const auto& entry : fs::directory_iterator(dir))
+        if (entry.path().filename().string().rfind("." + file + ".partial-", 0) == 0) return true;
+      return !mjarm::test::process_alive(cli.pid());
+    };
+    ASSERT_TRUE(mjarm::test::eventually(writing, 600)) << command;
+    cli.signal(c.signal);
+    ASSERT_TRUE(cli.wait(600)) << command << " did not end";
+    EXPECT_FALSE(cli.signaled()) << command << " was killed by the signal";
+    EXPECT_EQ(cli.exit_code(), 128 + c.signal) << command << ": " << cli.err();
+    // nothing beside the file: the temporary file was removed
+    std::vector<std::string> names;
+    for (const auto& entry : fs::directory_iterator(dir))
+      names.push_back(entry.path().filename().string());
+    EXPECT_EQ(names, std::vector<std::string>{file}) << command;
+    if (cli.err().find("was not written") != std::string::npos) {
+      EXPECT_NE(cli.err().find(command + ": interrupted; '" + file +
+                               "' was not written (the file already there is kept)"),
+                std::string::npos)
+          << cli.err();
+      EXPECT_EQ(slurp(dir / file), "the old file\n") << command;
+    } else {
+      EXPECT_NE(cli.err().find(command + ": interrupted after '" + file + "' was written"),
+                std::string::npos)
+          << cli.err();
+      EXPECT_NE(slurp(dir / file), "the old file\n") << command;
+    }
+    fs::remove(dir / file);
   }
 }
 

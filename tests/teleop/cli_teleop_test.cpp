@@ -11,6 +11,7 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <utility>
 
 #include "support/files.hpp"
 
@@ -71,6 +72,17 @@ TEST(CliTeleop, UsageErrorsExitTwo) {
   EXPECT_EQ(run_cli("replay").status, 2);
   EXPECT_EQ(run_cli("bimanual --mode fast").status, 2);
   EXPECT_EQ(run_cli("bimanual --lift 2").status, 2);
+  // the video's sizes and rates, on the commands themselves (the shared checker's bounds)
+  const std::pair<const char*, const char*> refused[] = {
+      {"bimanual --video v.mp4 --size 20000x20000", "--size: size '20000x20000' must be between"},
+      {"bimanual --video v.mp4 --fps 1e6", "--fps: '1e6' is not a number from 1 to 240"},
+      {"replay s --video v.mp4 --size 20000x20000",
+       "--size: size '20000x20000' must be between"}};
+  for (const auto& [args, message] : refused) {
+    const CliOutcome run = run_cli(args);
+    EXPECT_EQ(run.status, 2) << args;
+    EXPECT_NE(run.err.find(message), std::string::npos) << run.err;
+  }
   const CliOutcome missing = run_cli("replay '" + (test::scratch() / "absent").string() + "'");
   EXPECT_EQ(missing.status, 1);
   EXPECT_NE(missing.err.find("absent"), std::string::npos) << missing.err;

@@ -199,6 +199,10 @@ TEST(ViewerScript, ErrorsNameTheLine) {
   EXPECT_NE(message("wait -1").find("s.txt:1: the frame count must be a whole number"),
             std::string::npos);
   EXPECT_NE(message("wait 1.5").find("whole number"), std::string::npos);
+  // a wait beyond the bound names the bound, not only "a whole number"
+  EXPECT_EQ(message("wait 100000000"),
+            "s.txt:1: the frame count 1e+08 is more than the bound of 10⁷ frames");
+  EXPECT_EQ(message("wait 10000000"), "no error");
   EXPECT_NE(message("set x").find("takes a name and a value"), std::string::npos);
   EXPECT_NE(message("set height 2").find("unknown panel value 'height'"), std::string::npos);
   EXPECT_NE(message("slider mode 0.5").find("unknown slider 'mode'"), std::string::npos);

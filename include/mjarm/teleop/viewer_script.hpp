@@ -5,7 +5,7 @@
 ///
 /// One command per line; `#` starts a comment; blank lines are ignored:
 ///
-///     wait N                 let N rendered frames pass (physics advances with them)
+///     wait N                 let N rendered frames pass (physics advances with them); N ≤ 10⁷
 ///     set NAME VALUE         set a panel value: x y z [m], roll pitch yaw [rad], gripper 0…1,
 ///                            mode kinematic|position|torque; with several hands the
 ///                            `set_teleop_value` names (left.z, lift, camera.preset, priority, …)
