@@ -7,6 +7,7 @@
 
 #include "env_time_steps.hpp"
 #include "mjarm/env/environment.hpp"
+#include "mjarm/number_text.hpp"
 
 namespace mjarm::python {
 namespace {
@@ -48,9 +49,9 @@ py::object validate(const ArraySpec& s, py::handle value) {
   for (int i = 0; i < s.size(); ++i) {
     const double x = c.data()[i];
     if (std::isnan(x) || x < s.minimum[i] || x > s.maximum[i]) {
-      throw py::value_error(s.name + "[" + std::to_string(i) + "] = " + std::to_string(x) +
-                            " is outside [" + std::to_string(s.minimum[i]) + ", " +
-                            std::to_string(s.maximum[i]) + "]");
+      throw py::value_error(s.name + "[" + std::to_string(i) + "] = " + number_text(x) +
+                            " is outside [" + number_text(s.minimum[i]) + ", " +
+                            number_text(s.maximum[i]) + "]");
     }
   }
   return py::reinterpret_borrow<py::object>(value);
@@ -263,7 +264,7 @@ void bind_time_steps(py::module_& m) {
       .def("__len__", [](const PyTimeStep&) { return 4; })
       .def("__repr__", [](const PyTimeStep& t) {
         const auto num = [](const std::optional<double>& x) {
-          return x ? std::to_string(*x) : std::string("None");
+          return x ? number_text(*x) : std::string("None");
         };
         std::string type = t.step_type == StepType::first ? "FIRST"
                            : t.step_type == StepType::mid ? "MID"

@@ -7,6 +7,7 @@
 #include "mjarm/ik/multi_target_ik.hpp"
 #include "mjarm/ik/pose_ik.hpp"
 #include "mjarm/ik/position_ik.hpp"
+#include "mjarm/number_text.hpp"
 
 namespace mjarm::python {
 namespace {
@@ -115,8 +116,8 @@ void bind_ik(py::module_& m) {
       .def("ok", &IkResult::ok, "status is converged")
       .def("__repr__", [](const IkResult& r) {
         return std::string("<IkResult ") + to_string(r.status) + " after " +
-               std::to_string(r.iterations) + " iterations, " + std::to_string(r.position_error) +
-               " m, " + std::to_string(r.orientation_error) + " rad>";
+               std::to_string(r.iterations) + " iterations, " + number_text(r.position_error) +
+               " m, " + number_text(r.orientation_error) + " rad>";
       });
 
   py::class_<LimitBias>(m, "LimitBias", "Centre pull and limit repulsion (per-iteration steps).")

@@ -5,6 +5,7 @@
 #include <string>
 
 #include "control_checks.hpp"
+#include "mjarm/number_text.hpp"
 
 namespace mjarm {
 
@@ -33,7 +34,7 @@ AdaptiveCompliance::AdaptiveCompliance(const AdaptiveComplianceOptions& options)
   detail::require_positive(options.min_eigenvalue, owner, "minimum eigenvalue of Lambda^-1");
   if (!(options.min_stiffness_ratio > 0.0 && options.min_stiffness_ratio <= 1.0)) {
     throw Error("hqp-ac: minimum stiffness ratio must be in (0, 1], got " +
-                std::to_string(options.min_stiffness_ratio));
+                number_text(options.min_stiffness_ratio));
   }
   update(Vector6d::Zero(), Matrix6d::Identity());
 }

@@ -20,6 +20,7 @@
 #include "mjarm/error.hpp"
 #include "mjarm/kinematics/chain_kinematics.hpp"
 #include "mjarm/kinematics/frame_state.hpp"
+#include "mjarm/number_text.hpp"
 
 namespace mjarm {
 namespace {
@@ -134,11 +135,11 @@ void check_options(const ControlBenchmarkOptions& o) {
     throw Error("control benchmark: warmup must be >= 0, got " + std::to_string(o.warmup));
   if (!std::isfinite(o.amplitude) || o.amplitude < 0.0) {
     throw Error("control benchmark: amplitude must be finite and >= 0, got " +
-                std::to_string(o.amplitude));
+                number_text(o.amplitude));
   }
   if (!std::isfinite(o.frequency) || o.frequency <= 0.0) {
     throw Error("control benchmark: frequency must be finite and > 0, got " +
-                std::to_string(o.frequency));
+                number_text(o.frequency));
   }
 }
 

@@ -13,6 +13,7 @@
 #include "mjarm/dynamics/chain_dynamics.hpp"
 #include "mjarm/error.hpp"
 #include "mjarm/model/chain.hpp"
+#include "mjarm/number_text.hpp"
 
 namespace mjarm::detail {
 
@@ -76,7 +77,7 @@ inline void require_positive(const Eigen::Ref<const Eigen::VectorXd>& v, int row
 inline void require_non_negative(double value, const char* owner, const char* what) {
   if (!std::isfinite(value) || value < 0.0) {
     throw Error(std::string(owner) + ": " + what + " must be finite and ≥ 0, got " +
-                std::to_string(value));
+                number_text(value));
   }
 }
 
@@ -84,7 +85,7 @@ inline void require_non_negative(double value, const char* owner, const char* wh
 inline void require_positive(double value, const char* owner, const char* what) {
   if (!std::isfinite(value) || value <= 0.0) {
     throw Error(std::string(owner) + ": " + what + " must be finite and > 0, got " +
-                std::to_string(value));
+                number_text(value));
   }
 }
 

@@ -7,6 +7,7 @@
 
 #include "control_checks.hpp"
 #include "mjarm/error.hpp"
+#include "mjarm/number_text.hpp"
 
 namespace mjarm {
 namespace {
@@ -16,7 +17,7 @@ constexpr int kMaxFingers = 8;
 void check_gain(double value, const char* what, bool zero_allowed) {
   if (!std::isfinite(value) || value < 0.0 || (!zero_allowed && value == 0.0)) {
     throw Error(std::string("FingerForceController: options.") + what + " must be finite and " +
-                (zero_allowed ? "≥ 0" : "> 0") + ", got " + std::to_string(value));
+                (zero_allowed ? "≥ 0" : "> 0") + ", got " + number_text(value));
   }
 }
 
@@ -43,8 +44,8 @@ FingerForceController::FingerForceController(const Chain& fingers,
   check_gain(options.grasp_force, "grasp_force", false);
   check_gain(options.max_force, "max_force", false);
   if (options.max_force < options.grasp_force) {
-    throw Error("FingerForceController: options.max_force (" + std::to_string(options.max_force) +
-                " N) must be ≥ options.grasp_force (" + std::to_string(options.grasp_force) +
+    throw Error("FingerForceController: options.max_force (" + number_text(options.max_force) +
+                " N) must be ≥ options.grasp_force (" + number_text(options.grasp_force) +
                 " N)");
   }
   const mjModel& m = fingers.robot().model();

@@ -6,6 +6,7 @@
 
 #include "control_checks.hpp"
 #include "mjarm/error.hpp"
+#include "mjarm/number_text.hpp"
 
 namespace mjarm {
 
@@ -19,7 +20,7 @@ GripperPdController::GripperPdController(const Chain& fingers, const GripperPdOp
                                         "closed")) {
   if (!(max_force_ > 0.0) || !std::isfinite(max_force_)) {
     throw Error("GripperPdController: options.max_force must be finite and > 0, got " +
-                std::to_string(max_force_));
+                number_text(max_force_));
   }
 }
 

@@ -8,6 +8,7 @@
 #include "control_checks.hpp"
 #include "mjarm/control/task_error.hpp"
 #include "mjarm/model/actuator_limits.hpp"
+#include "mjarm/number_text.hpp"
 
 namespace mjarm {
 namespace {
@@ -122,9 +123,9 @@ HqpAcController::HqpAcController(const Chain& chain, const HqpAcOptions& options
   for (int i = 0; i < n; ++i) {
     if (!(tau_lo_[i] < tau_hi_[i])) {
       throw Error("hqp-ac: the torque range of joint '" + chain.joint_names()[i] + "' [" +
-                  std::to_string(tau_min_[i]) + ", " + std::to_string(tau_max_[i]) +
+                  number_text(tau_min_[i]) + ", " + number_text(tau_max_[i]) +
                   "] N·m leaves no room once its friction feed-forward (" +
-                  std::to_string(friction_room_[i]) + " N·m) is set aside");
+                  number_text(friction_room_[i]) + " N·m) is set aside");
     }
   }
   q_lo_ = chain.lower();

@@ -4,6 +4,7 @@
 #include <string>
 
 #include "mjarm/error.hpp"
+#include "mjarm/number_text.hpp"
 
 namespace mjarm {
 namespace {
@@ -16,7 +17,7 @@ Eigen::VectorXd expand(const Eigen::VectorXd& v, int n, std::string_view owner, 
   for (Eigen::Index i = 0; i < v.size(); ++i) {
     if (!std::isfinite(v[i]) || v[i] < 0.0) {
       throw Error(std::string(owner) + ": " + what + "[" + std::to_string(i) +
-                  "] must be finite and >= 0, got " + std::to_string(v[i]));
+                  "] must be finite and >= 0, got " + number_text(v[i]));
     }
   }
   return v.size() == n ? v : Eigen::VectorXd::Constant(n, v[0]);

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "control_checks.hpp"
+#include "mjarm/number_text.hpp"
 
 namespace mjarm {
 
@@ -27,7 +28,7 @@ OperationalSpaceController::OperationalSpaceController(const Chain& chain,
   detail::require_non_negative(options.nullspace_stiffness, owner, "null-space stiffness");
   if (!(options.integral_hold_force > 0.0)) {
     throw Error("osc: integral hold force must be > 0 (+inf = never hold), got " +
-                std::to_string(options.integral_hold_force));
+                number_text(options.integral_hold_force));
   }
   // automatic damping for a fixed desired inertia is a constant
   for (int i = 0; i < 6; ++i) {

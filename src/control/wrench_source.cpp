@@ -4,6 +4,7 @@
 #include <string>
 
 #include "mjarm/error.hpp"
+#include "mjarm/number_text.hpp"
 
 namespace mjarm {
 
@@ -23,7 +24,7 @@ WrenchSource::WrenchSource(const Chain& chain, const WrenchSourceOptions& option
     : options_(options), model_(&chain.robot().model()) {
   if (!std::isfinite(options.control_period) || options.control_period < 0.0) {
     throw Error("wrench source: control period must be finite and ≥ 0 (0 = measured), got " +
-                std::to_string(options.control_period));
+                number_text(options.control_period));
   }
   switch (options.kind) {
     case WrenchSourceKind::none:

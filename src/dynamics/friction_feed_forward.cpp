@@ -4,6 +4,7 @@
 #include <string>
 
 #include "mjarm/error.hpp"
+#include "mjarm/number_text.hpp"
 
 namespace mjarm {
 namespace {
@@ -11,7 +12,7 @@ namespace {
 void require_positive_scale(double value, const char* what) {
   if (!(value > 0.0) || !std::isfinite(value)) {
     throw Error(std::string("friction feed-forward: ") + what + " must be > 0 and finite, got " +
-                std::to_string(value));
+                number_text(value));
   }
 }
 

@@ -5,6 +5,7 @@
 #include <string>
 
 #include "mjarm/error.hpp"
+#include "mjarm/number_text.hpp"
 
 namespace mjarm {
 namespace {
@@ -15,7 +16,7 @@ void require_observer_gain(double value, bool allow_zero, const char* what) {
   const bool ok = std::isfinite(value) && (allow_zero ? value >= 0.0 : value > 0.0);
   if (!ok) {
     throw Error(std::string("momentum observer: ") + what + " must be " +
-                (allow_zero ? ">= 0" : "> 0") + " and finite, got " + std::to_string(value));
+                (allow_zero ? ">= 0" : "> 0") + " and finite, got " + number_text(value));
   }
 }
 

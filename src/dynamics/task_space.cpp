@@ -6,6 +6,7 @@
 #include <string>
 
 #include "mjarm/error.hpp"
+#include "mjarm/number_text.hpp"
 #include "task_space_kernels.hpp"
 
 namespace mjarm {
@@ -32,7 +33,7 @@ TaskSpaceDynamics::TaskSpaceDynamics(int dofs, int task_rows, TaskSpaceOptions o
   }
   if (!(options.min_eigenvalue > 0.0) || !std::isfinite(options.min_eigenvalue)) {
     throw Error("TaskSpaceDynamics: options.min_eigenvalue must be > 0 and finite, got " +
-                std::to_string(options.min_eigenvalue));
+                number_text(options.min_eigenvalue));
   }
   certificate_trace_ = 0.5 / options.min_eigenvalue;
   if (!options.generic_kernels && (n_ == 6 || n_ == 7) && (m_ == 3 || m_ == 6)) {

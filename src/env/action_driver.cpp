@@ -7,6 +7,7 @@
 #include "mjarm/control/joint_pd.hpp"
 #include "mjarm/error.hpp"
 #include "mjarm/lie/so3.hpp"
+#include "mjarm/number_text.hpp"
 #include "mjarm/tasks/approach_timing.hpp"
 
 namespace mjarm {
@@ -70,7 +71,7 @@ ActionDriver::ActionDriver(ActionSpace space, const Chain& chain, const ActionOp
   options.check();
   if (!(std::isfinite(control_period) && control_period > 0.0))
     throw Error("action driver: the control period must be positive and finite, got " +
-                std::to_string(control_period) + " s");
+                number_text(control_period) + " s");
   const int n = chain_.size();
   q_.setZero(n);
   torque_.setZero(n);

@@ -4,6 +4,7 @@
 #include <string>
 
 #include "mjarm/error.hpp"
+#include "mjarm/number_text.hpp"
 
 namespace mjarm {
 namespace {
@@ -11,7 +12,7 @@ namespace {
 void require_positive_option(double value, const char* name) {
   if (!(std::isfinite(value) && value > 0.0))
     throw Error(std::string("action options: ") + name + " must be positive and finite, got " +
-                std::to_string(value));
+                number_text(value));
 }
 
 }  // namespace

@@ -5,6 +5,7 @@
 
 #include "mjarm/error.hpp"
 #include "mjarm/lie/rotation.hpp"
+#include "mjarm/number_text.hpp"
 
 namespace mjarm {
 namespace {
@@ -22,7 +23,7 @@ void check_docking_env(const DockingEnvOptions& o) {
   auto non_negative = [](double v, const char* what) {
     if (!(std::isfinite(v) && v >= 0.0))
       throw Error(std::string("docking environment: ") + what + " must be ≥ 0 and finite, got " +
-                  std::to_string(v));
+                  number_text(v));
   };
   non_negative(o.start_perturbation, "start_perturbation");
   non_negative(o.seated_time, "seated_time");

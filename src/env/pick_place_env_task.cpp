@@ -5,6 +5,7 @@
 
 #include "mjarm/error.hpp"
 #include "mjarm/lie/rotation.hpp"
+#include "mjarm/number_text.hpp"
 #include "mjarm/sim/simulation.hpp"
 #include "mjarm/tasks/pick_place_controllers.hpp"
 
@@ -17,7 +18,7 @@ std::shared_ptr<const PickPlaceScene> pick_place_env_scene(const PickPlaceEnvOpt
   auto positive = [](double v, const char* what) {
     if (!(std::isfinite(v) && v > 0.0))
       throw Error(std::string("pick-place environment: ") + what + " must be positive, got " +
-                  std::to_string(v));
+                  number_text(v));
   };
   positive(o.object_half_size, "object_half_size [m]");
   positive(o.object_mass, "object_mass [kg]");
@@ -28,10 +29,10 @@ std::shared_ptr<const PickPlaceScene> pick_place_env_scene(const PickPlaceEnvOpt
   positive(o.criteria.max_tilt, "criteria.max_tilt [rad]");
   if (!(std::isfinite(o.start_perturbation) && o.start_perturbation >= 0.0))
     throw Error("pick-place environment: start_perturbation must be ≥ 0 and finite, got " +
-                std::to_string(o.start_perturbation));
+                number_text(o.start_perturbation));
   if (!(std::isfinite(o.failure_penalty) && o.failure_penalty >= 0.0))
     throw Error("pick-place environment: failure_penalty must be ≥ 0 and finite, got " +
-                std::to_string(o.failure_penalty));
+                number_text(o.failure_penalty));
   PickPlaceSceneOptions scene;
   scene.robot = o.robot;  // unknown: the scene says so, with the choices
   scene.mode = SimulationMode::torque;

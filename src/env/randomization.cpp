@@ -5,6 +5,7 @@
 
 #include "mjarm/env/env_task.hpp"
 #include "mjarm/error.hpp"
+#include "mjarm/number_text.hpp"
 
 namespace mjarm {
 namespace {
@@ -13,7 +14,7 @@ void check_range(double r, const char* name) {
   if (!(r >= 0.0 && r < 1.0))
     throw Error(std::string("randomization: the ") + name +
                 " range must be in [0, 1) (factors in " + "[1 − r, 1 + r]), got " +
-                std::to_string(r));
+                number_text(r));
 }
 
 // fills @p factors with draws from [1 − r, 1 + r], or empties it for r = 0

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "mjarm/error.hpp"
+#include "mjarm/number_text.hpp"
 #include "mjarm/scene/scene.hpp"
 
 namespace mjarm {
@@ -28,13 +29,13 @@ Robot reach_scene(const ReachOptions& options) {
 void check_reach_options(const ReachOptions& o) {
   if (!(std::isfinite(o.start_perturbation) && o.start_perturbation >= 0.0))
     throw Error("reach: start_perturbation must be ≥ 0 and finite, got " +
-                std::to_string(o.start_perturbation));
+                number_text(o.start_perturbation));
   if (!o.target_center.allFinite() || !o.target_half_width.allFinite() ||
       (o.target_half_width.array() < 0.0).any())
     throw Error("reach: the target box needs a finite centre and half-widths ≥ 0");
   if (!(std::isfinite(o.success_distance) && o.success_distance >= 0.0))
     throw Error("reach: success_distance must be ≥ 0 and finite, got " +
-                std::to_string(o.success_distance));
+                number_text(o.success_distance));
 }
 
 }  // namespace

@@ -7,6 +7,7 @@
 #include "mjarm/error.hpp"
 #include "mjarm/kinematics/chain_kinematics.hpp"
 #include "mjarm/lie/rotation.hpp"
+#include "mjarm/number_text.hpp"
 
 namespace mjarm {
 namespace {
@@ -26,7 +27,7 @@ const ShelfPickRobot& pose_robot(const ShelfPickEnvOptions& o) {
         "finite, and the steady window in (0, hold time]");
   if (!(std::isfinite(o.orientation_weight) && o.orientation_weight >= 0.0))
     throw Error("shelf-pick environment: orientation_weight must be ≥ 0 and finite, got " +
-                std::to_string(o.orientation_weight));
+                number_text(o.orientation_weight));
   return robot;
 }
 

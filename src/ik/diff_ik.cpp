@@ -6,6 +6,7 @@
 
 #include "mjarm/error.hpp"
 #include "mjarm/lie/pose_error.hpp"
+#include "mjarm/number_text.hpp"
 #include "validate_pose.hpp"
 
 namespace mjarm {
@@ -28,7 +29,7 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 
 void check_gain(double gain) {
   if (!std::isfinite(gain) || gain <= 0.0 || gain > 1.0) {
-    throw Error("DiffIk: task gain must be in (0, 1], got " + std::to_string(gain));
+    throw Error("DiffIk: task gain must be in (0, 1], got " + number_text(gain));
   }
 }
 
@@ -45,7 +46,7 @@ void add_lower_gram(Eigen::MatrixXd& H, const Matrix6Xd& A, const Matrix6Xd& WA,
 void check_weight(double weight, bool allow_zero, const char* what) {
   if (!std::isfinite(weight) || weight < 0.0 || (!allow_zero && weight == 0.0)) {
     throw Error(std::string("DiffIk: ") + what + " must be finite and " +
-                (allow_zero ? "non-negative" : "positive") + ", got " + std::to_string(weight));
+                (allow_zero ? "non-negative" : "positive") + ", got " + number_text(weight));
   }
 }
 
@@ -53,15 +54,15 @@ void check_weight(double weight, bool allow_zero, const char* what) {
 
 void check(const DiffIkOptions& options, int n) {
   if (!std::isfinite(options.dt) || options.dt <= 0.0) {
-    throw Error("DiffIk: dt must be finite and positive, got " + std::to_string(options.dt) + " s");
+    throw Error("DiffIk: dt must be finite and positive, got " + number_text(options.dt) + " s");
   }
   if (!std::isfinite(options.damping) || options.damping <= 0.0) {
     throw Error("DiffIk: damping must be finite and positive, got " +
-                std::to_string(options.damping));
+                number_text(options.damping));
   }
   if (std::isnan(options.max_step) || options.max_step <= 0.0) {
     throw Error("DiffIk: max_step must be positive (+inf for none), got " +
-                std::to_string(options.max_step));
+                number_text(options.max_step));
   }
   const Eigen::VectorXd& v = options.velocity_limit;
   if (v.size() != 0 && v.size() != n) {
@@ -71,7 +72,7 @@ void check(const DiffIkOptions& options, int n) {
   for (Eigen::Index i = 0; i < v.size(); ++i) {
     if (std::isnan(v[i]) || v[i] <= 0.0) {
       throw Error("DiffIk: velocity_limit[" + std::to_string(i) +
-                  "] must be positive (+inf for none), got " + std::to_string(v[i]));
+                  "] must be positive (+inf for none), got " + number_text(v[i]));
     }
   }
 }

@@ -10,6 +10,7 @@
 #include "mjarm/error.hpp"
 #include "mjarm/ik/targets.hpp"
 #include "mjarm/lie/so3.hpp"
+#include "mjarm/number_text.hpp"
 #include "validate_pose.hpp"
 
 namespace mjarm {
@@ -57,7 +58,7 @@ const char* to_string(GlobalIkMethods methods) noexcept {
 void check(const GlobalIkOptions& o) {
   const auto fail = [](const std::string& what) { throw Error("GlobalIk: " + what); };
   if (!(o.timeout.count() > 0.0) || !std::isfinite(o.timeout.count())) {
-    fail("timeout must be finite and positive, got " + std::to_string(o.timeout.count()) + " s");
+    fail("timeout must be finite and positive, got " + number_text(o.timeout.count()) + " s");
   }
   check_tolerance(o.tolerance);
   if (o.max_restarts < 0) fail("max_restarts must be >= 0, got " + std::to_string(o.max_restarts));
@@ -69,13 +70,13 @@ void check(const GlobalIkOptions& o) {
          std::to_string(o.stall_iterations));
   }
   if (!(o.stall_ratio > 0.0 && o.stall_ratio < 1.0)) {
-    fail("stall_ratio must be in (0, 1), got " + std::to_string(o.stall_ratio));
+    fail("stall_ratio must be in (0, 1), got " + number_text(o.stall_ratio));
   }
   if (!std::isfinite(o.damping) || o.damping <= 0.0) {
-    fail("damping must be finite and positive, got " + std::to_string(o.damping));
+    fail("damping must be finite and positive, got " + number_text(o.damping));
   }
   if (!std::isfinite(o.max_step) || o.max_step <= 0.0) {
-    fail("max_step must be finite and positive, got " + std::to_string(o.max_step));
+    fail("max_step must be finite and positive, got " + number_text(o.max_step));
   }
 }
 

@@ -12,6 +12,7 @@
 #include "mjarm/benchmark_timing.hpp"
 #include "mjarm/error.hpp"
 #include "mjarm/kinematics/chain_kinematics.hpp"
+#include "mjarm/number_text.hpp"
 
 namespace mjarm {
 namespace {
@@ -91,7 +92,7 @@ IkBenchmarkResult run_ik_benchmark(const Chain& chain, const IkBenchmarkSolver& 
   check_tolerance(options.tolerance);
   if (!(options.timeout.count() > 0.0) || !std::isfinite(options.timeout.count())) {
     throw Error("IK benchmark: timeout must be finite and positive, got " +
-                std::to_string(options.timeout.count()) + " s");
+                number_text(options.timeout.count()) + " s");
   }
 
   const int n = chain.size();

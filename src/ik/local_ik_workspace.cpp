@@ -3,6 +3,7 @@
 #include <string>
 
 #include "mjarm/error.hpp"
+#include "mjarm/number_text.hpp"
 
 namespace mjarm {
 
@@ -53,7 +54,7 @@ void LocalIkWorkspace::update_secondary() noexcept {
 void OptionCheck::operator()(bool ok, const char* name, double value, const char* expected) const {
   if (!ok) {
     throw Error(std::string(solver_) + " option " + name + " must be " + expected + ", got " +
-                std::to_string(value));
+                number_text(value));
   }
 }
 

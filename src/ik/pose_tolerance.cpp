@@ -5,6 +5,7 @@
 
 #include "mjarm/error.hpp"
 #include "mjarm/lie/so3.hpp"
+#include "mjarm/number_text.hpp"
 
 namespace mjarm {
 
@@ -29,7 +30,7 @@ void check_tolerance(const PoseTolerance& tolerance) {
     const double b = tolerance.bound[i];
     if (!std::isfinite(b) || b <= 0.0) {
       throw Error(std::string("pose tolerance on ") + kNames[i] +
-                  " must be finite and positive, got " + std::to_string(b));
+                  " must be finite and positive, got " + number_text(b));
     }
   }
 }

@@ -5,12 +5,13 @@
 #include <string>
 
 #include "mjarm/error.hpp"
+#include "mjarm/number_text.hpp"
 
 namespace mjarm {
 
 Eigen::VectorXd resolve_posture(const Chain& chain, const Posture& posture) {
   if (!(posture.gain >= 0.0 && posture.gain <= 1.0))
-    throw Error("posture gain must be in [0, 1], got " + std::to_string(posture.gain));
+    throw Error("posture gain must be in [0, 1], got " + number_text(posture.gain));
   if (posture.q_pref.size() == 0) return chain.center();
   chain.check(posture.q_pref, "posture q_pref");
   return posture.q_pref;

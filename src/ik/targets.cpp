@@ -6,6 +6,7 @@
 #include "mjarm/error.hpp"
 #include "mjarm/lie/pose_error.hpp"
 #include "mjarm/lie/so3.hpp"
+#include "mjarm/number_text.hpp"
 
 namespace mjarm {
 
@@ -25,8 +26,8 @@ Matrix6d log_jacobian_times_local(const Matrix6d& J_log, const Eigen::Matrix3d& 
 
 void check_position_target(const Eigen::Vector3d& p_WT, std::string_view what) {
   if (!p_WT.allFinite()) {
-    throw Error(std::string(what) + " must be finite, got [" + std::to_string(p_WT.x()) + ", " +
-                std::to_string(p_WT.y()) + ", " + std::to_string(p_WT.z()) + "] m");
+    throw Error(std::string(what) + " must be finite, got [" + number_text(p_WT.x()) + ", " +
+                number_text(p_WT.y()) + ", " + number_text(p_WT.z()) + "] m");
   }
 }
 
@@ -44,8 +45,8 @@ void check_pose_target(const Pose& X_WT, std::string_view what) {
   const double orthogonality = (X_WT.R.transpose() * X_WT.R - Eigen::Matrix3d::Identity()).norm();
   if (orthogonality > 1e-6 || X_WT.R.determinant() <= 0.0) {
     throw Error(std::string(what) +
-                " rotation is not a rotation matrix (‖RᵀR − I‖ = " + std::to_string(orthogonality) +
-                ", det = " + std::to_string(X_WT.R.determinant()) + ")");
+                " rotation is not a rotation matrix (‖RᵀR − I‖ = " + number_text(orthogonality) +
+                ", det = " + number_text(X_WT.R.determinant()) + ")");
   }
 }
 
@@ -53,8 +54,8 @@ void check_weights(const FrameTarget& target) {
   const auto positive = [](double w) { return std::isfinite(w) && w > 0.0; };
   if (!positive(target.position_weight) || !positive(target.orientation_weight)) {
     throw Error("target on '" + target.frame + "' needs finite positive weights, got position " +
-                std::to_string(target.position_weight) + " and orientation " +
-                std::to_string(target.orientation_weight));
+                number_text(target.position_weight) + " and orientation " +
+                number_text(target.orientation_weight));
   }
 }
 

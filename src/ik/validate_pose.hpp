@@ -7,6 +7,7 @@
 
 #include "mjarm/error.hpp"
 #include "mjarm/lie/pose.hpp"
+#include "mjarm/number_text.hpp"
 
 namespace mjarm::detail {
 
@@ -20,7 +21,7 @@ inline void validate_pose(const Pose& X, const char* what) {
   const double det = X.R.determinant();
   if (!(orthogonality <= 1e-6) || !(std::abs(det - 1.0) <= 1e-6)) {
     throw Error(std::string(what) + " rotation is not a rotation matrix (‖RᵀR − I‖ = " +
-                std::to_string(orthogonality) + ", det = " + std::to_string(det) + ")");
+                number_text(orthogonality) + ", det = " + number_text(det) + ")");
   }
 }
 

@@ -5,6 +5,7 @@
 #include <string>
 
 #include "mjarm/error.hpp"
+#include "mjarm/number_text.hpp"
 
 namespace mjarm {
 
@@ -38,8 +39,8 @@ Manipulability::Manipulability(const Chain& chain, const ManipulabilityOptions& 
         std::isfinite(options.near_singular_threshold) && options.singular_tolerance >= 0.0 &&
         options.singular_tolerance <= options.near_singular_threshold)) {
     throw Error("manipulability thresholds must satisfy 0 <= singular_tolerance (" +
-                std::to_string(options.singular_tolerance) + ") <= near_singular_threshold (" +
-                std::to_string(options.near_singular_threshold) + ")");
+                number_text(options.singular_tolerance) + ") <= near_singular_threshold (" +
+                number_text(options.near_singular_threshold) + ")");
   }
   rows_ = options.block == JacobianBlock::full ? 6 : 3;
   first_row_ = options.block == JacobianBlock::orientation ? 3 : 0;

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "mjarm/error.hpp"
+#include "mjarm/number_text.hpp"
 
 namespace mjarm {
 namespace {
@@ -97,9 +98,9 @@ SingularityClassifier::SingularityClassifier(const Chain& chain,
   if (!positive(thresholds.sigma_min) || !positive(thresholds.condition_number) ||
       !positive(thresholds.geometric_tolerance)) {
     throw Error("singularity thresholds must be finite and > 0: sigma_min " +
-                std::to_string(thresholds.sigma_min) + ", condition_number " +
-                std::to_string(thresholds.condition_number) + ", geometric_tolerance " +
-                std::to_string(thresholds.geometric_tolerance));
+                number_text(thresholds.sigma_min) + ", condition_number " +
+                number_text(thresholds.condition_number) + ", geometric_tolerance " +
+                number_text(thresholds.geometric_tolerance));
   }
   const int n = chain.size();
   svd_ = Eigen::JacobiSVD<Eigen::MatrixXd>(manipulability_.rows(), n, Eigen::ComputeFullV);

@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "mjarm/error.hpp"
+#include "mjarm/number_text.hpp"
 
 namespace mjarm {
 
@@ -30,7 +31,7 @@ void check(const CheckOptions& options) {
   const auto non_negative = [](double v, const char* what) {
     if (!(v >= 0.0) || !std::isfinite(v))
       throw Error(std::string("check options: ") + what + " must be finite and >= 0, got " +
-                  std::to_string(v));
+                  number_text(v));
   };
   non_negative(options.min_singular_value, "min_singular_value");
   non_negative(options.collision_margin, "collision_margin");

@@ -40,7 +40,7 @@ void check_vector(const Eigen::VectorXd& v, int n, const char* what, bool finite
     if (!(v[i] > 0.0) || (finite && !std::isfinite(v[i])))
       throw Error(std::string("joint limits: ") + what + " of joint " + std::to_string(i) +
                   " must be " + (finite ? "positive and finite" : "positive") + ", got " +
-                  std::to_string(v[i]));
+                  number_text(v[i]));
   }
 }
 
@@ -51,7 +51,7 @@ JointLimits joint_limits_from_model(const Chain& chain, const Eigen::VectorXd& q
   chain.check(q, "limit configuration q");
   if (!(options.velocity > 0.0) || !std::isfinite(options.velocity))
     throw Error("model limits: velocity must be positive and finite, got " +
-                std::to_string(options.velocity));
+                number_text(options.velocity));
   if (!(options.torque_fraction > 0.0) || !(options.torque_fraction <= 1.0))
     throw Error("model limits: torque_fraction must be in (0, 1], got " +
                 number_text(options.torque_fraction));

@@ -37,7 +37,7 @@ void check(const PlanOptions& o) {
   const auto positive = [](double v, const char* what) {
     if (!(v > 0.0) || !std::isfinite(v))
       throw Error(std::string("plan options: ") + what + " must be positive and finite, got " +
-                  std::to_string(v));
+                  number_text(v));
   };
   const auto non_negative = [](int v, const char* what) {
     if (v < 0)
@@ -424,7 +424,7 @@ PlanResult WaypointPlanner::plan(const Eigen::VectorXd& q_start,
   }
   result.status = PlanStatus::ok;
   result.message = std::to_string(waypoints.size()) + " waypoints in " +
-                   std::to_string(spline.duration()) + " s, " + std::to_string(result.samples) +
+                   number_text(spline.duration()) + " s, " + std::to_string(result.samples) +
                    " samples checked";
   result.trajectory = std::move(spline);
   checker_ = nullptr;

@@ -6,6 +6,7 @@
 
 #include "mjarm/error.hpp"
 #include "mjarm/model/names.hpp"
+#include "mjarm/number_text.hpp"
 #include "mjarm/sim/recorder.hpp"
 
 namespace mjarm {
@@ -16,14 +17,14 @@ int steps_per_tick_of(const mjModel& m, double period) {
   const double h = m.opt.timestep;
   if (!(std::isfinite(h) && h > 0.0)) {
     throw Error("simulation: the model's timestep must be positive and finite, got " +
-                std::to_string(h) + " s");
+                number_text(h) + " s");
   }
   if (period == 0.0) return 1;
   if (!(std::isfinite(period) && period > 0.0)) {
     throw Error(
         "simulation: control_period must be positive and finite (or 0 for one physics "
         "step), got " +
-        std::to_string(period) + " s");
+        number_text(period) + " s");
   }
   return whole_multiple(period, h, "simulation: control_period", "the timestep");
 }
@@ -57,14 +58,14 @@ mjModel* copy_model(const Robot& robot) {
 
 int whole_multiple(double period, double step, std::string_view what, std::string_view step_name) {
   if (!(std::isfinite(period) && period > 0.0)) {
-    throw Error(std::string(what) + " must be positive and finite, got " + std::to_string(period) +
+    throw Error(std::string(what) + " must be positive and finite, got " + number_text(period) +
                 " s");
   }
   const double n = std::round(period / step);
   if (n < 1.0 || std::abs(n * step - period) > 1e-9 * period) {
-    throw Error(std::string(what) + " " + std::to_string(period) +
+    throw Error(std::string(what) + " " + number_text(period) +
                 " s is not a whole multiple of " + std::string(step_name) + " " +
-                std::to_string(step) + " s (nearest: " + std::to_string(std::max(n, 1.0) * step) +
+                number_text(step) + " s (nearest: " + number_text(std::max(n, 1.0) * step) +
                 " s)");
   }
   return static_cast<int>(n);
@@ -79,7 +80,7 @@ Simulation::Simulation(const Robot& robot, const SimulationOptions& options)
       detector_(options.max_acceleration) {
   if (!(options.max_acceleration > 0.0)) {
     throw Error("simulation: max_acceleration must be positive (+inf disables the bound), got " +
-                std::to_string(options.max_acceleration));
+                number_text(options.max_acceleration));
   }
   if (options.mode == SimulationMode::kinematic && options.contact_check_a.empty() &&
       !options.contact_check_b.empty()) {
@@ -273,7 +274,7 @@ void Simulation::set_equality_solref(int id, double time_constant, double dampin
     throw Error(
         "simulation: equality solref needs a positive time constant [s] and damping "
         "ratio, got " +
-        std::to_string(time_constant) + ", " + std::to_string(damping_ratio));
+        number_text(time_constant) + ", " + number_text(damping_ratio));
   }
   own_model_->eq_solref[id * mjNREF] = time_constant;
   own_model_->eq_solref[id * mjNREF + 1] = damping_ratio;

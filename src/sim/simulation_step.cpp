@@ -5,6 +5,7 @@
 #include <string>
 
 #include "mjarm/error.hpp"
+#include "mjarm/number_text.hpp"
 #include "mjarm/sim/interrupt.hpp"
 #include "mjarm/sim/recorder.hpp"
 #include "mjarm/sim/simulation.hpp"
@@ -184,7 +185,7 @@ RunResult Simulation::run(ReferenceSource& source, double duration, Recorder* re
     throw Error("simulation: run() needs position or torque mode; kinematic mode moves with move()");
   }
   if (!(std::isfinite(duration) && duration > 0.0)) {
-    throw Error("simulation: run duration must be positive and finite, got " + std::to_string(duration) + " s");
+    throw Error("simulation: run duration must be positive and finite, got " + number_text(duration) + " s");
   }
   if (recorder != nullptr) recorder->check_layout(*this);
   RunResult run;
@@ -245,7 +246,7 @@ KinematicStep Simulation::move(std::span<const double> qpos, double dt, Recorder
     if (!std::isfinite(qpos[i])) throw Error("simulation: move qpos[" + std::to_string(i) + "] is not finite");
   }
   if (!(std::isfinite(dt) && dt > 0.0)) {
-    throw Error("simulation: move dt must be positive and finite, got " + std::to_string(dt) + " s");
+    throw Error("simulation: move dt must be positive and finite, got " + number_text(dt) + " s");
   }
   take_snapshot();
   mj_differentiatePos(&m, d->qvel, dt, snapshot_.qpos(), qpos.data());

@@ -45,9 +45,9 @@ double worst_ratio(const Chain& chain, mjData* d, std::span<const double> qpos_s
       const double room = allowed[i] - std::abs(rest[i]);
       if (room <= 0.0)
         throw Error("torque_feasible_duration: joint '" + chain.joint_names()[i] +
-                    "' needs " + std::to_string(std::abs(rest[i])) +
+                    "' needs " + number_text(std::abs(rest[i])) +
                     " N·m at rest on the way, more than the allowed " +
-                    std::to_string(allowed[i]));
+                    number_text(allowed[i]));
       worst = std::max(worst, std::abs(d->qfrc_inverse[chain.dof_address(i)] - rest[i]) / room);
     }
   }

@@ -26,7 +26,7 @@ PickMonitor::PickMonitor(const Eigen::Vector3d& p_start, const Eigen::Vector3d& 
   if (!p_target.allFinite()) throw Error("PickMonitor: the target point holds NaN/inf");
   if (!(criteria.tolerance > 0.0) || !std::isfinite(criteria.tolerance))
     throw Error("PickMonitor: tolerance must be positive and finite [m], got " +
-                std::to_string(criteria.tolerance));
+                number_text(criteria.tolerance));
   if (!(criteria.hold_time > 0.0) || !std::isfinite(criteria.hold_time))
     throw Error("PickMonitor: hold_time must be positive and finite [s], got " +
                 number_text(criteria.hold_time));

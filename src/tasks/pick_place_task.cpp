@@ -7,6 +7,7 @@
 #include <string>
 
 #include "mjarm/error.hpp"
+#include "mjarm/number_text.hpp"
 #include "mjarm/sim/recorder.hpp"
 #include "mjarm/sim/simulation.hpp"
 #include "mjarm/sim/weld_grasp.hpp"
@@ -64,7 +65,7 @@ void check(const PickPlaceMotion& m) {
   const auto require = [](double v, const char* what, bool zero_allowed) {
     if (!std::isfinite(v) || v < 0.0 || (!zero_allowed && v == 0.0))
       throw Error(std::string("pick and place: ") + what + " must be finite and " +
-                  (zero_allowed ? "≥ 0" : "> 0") + ", got " + std::to_string(v));
+                  (zero_allowed ? "≥ 0" : "> 0") + ", got " + number_text(v));
   };
   require(m.approach_height, "approach_height [m]", false);
   require(m.descend_height, "descend_height [m]", true);

@@ -111,7 +111,7 @@ void check(const TrackingGateOptions& o) {
   if (!(o.ramp_time < 1.0 / o.frequency))
     throw Error("tracking gate: ramp_time (" + number_text(o.ramp_time) +
                 " s) must be shorter than a loop at cruise, 1/frequency = " +
-                std::to_string(1.0 / o.frequency) + " s");
+                number_text(1.0 / o.frequency) + " s");
   if (!(o.radius < o.height + 0.02))
     throw Error(
         "tracking gate: the figure-eight would dip into the socket (radius/2 must stay "

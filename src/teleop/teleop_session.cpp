@@ -9,6 +9,7 @@
 #include "mjarm/ik/diff_ik.hpp"
 #include "mjarm/ik/multi_target_ik.hpp"
 #include "mjarm/kinematics/frame_state.hpp"
+#include "mjarm/number_text.hpp"
 #include "mjarm/teleop/hand_finger_force.hpp"
 #include "mjarm/teleop/viewer_controllers.hpp"
 #include "mjarm/trajectory/ramped_command.hpp"
@@ -248,7 +249,7 @@ TeleopSession::TeleopSession(const Robot& robot, const TeleopOptions& options)
   auto positive = [](double v, const char* what) {
     if (!(v > 0.0) || !std::isfinite(v))
       throw Error(std::string("teleop: ") + what + " must be positive and finite, got " +
-                  std::to_string(v));
+                  number_text(v));
   };
   positive(options.max_joint_speed, "max_joint_speed");
   positive(options.motor_gain, "motor_gain");

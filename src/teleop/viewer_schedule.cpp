@@ -5,6 +5,7 @@
 #include <string>
 
 #include "mjarm/error.hpp"
+#include "mjarm/number_text.hpp"
 
 namespace mjarm {
 
@@ -13,7 +14,7 @@ namespace {
 void check_positive(double value, const char* what) {
   if (!std::isfinite(value) || value <= 0.0) {
     throw Error(std::string("viewer schedule: ") + what + " must be positive and finite, got " +
-                std::to_string(value));
+                number_text(value));
   }
 }
 

@@ -5,6 +5,7 @@
 
 #include "mjarm/error.hpp"
 #include "mjarm/lie/so3.hpp"
+#include "mjarm/number_text.hpp"
 
 namespace mjarm {
 namespace {
@@ -15,7 +16,7 @@ const Pose& checked_pose(const Pose& X, const char* which) {
   const double error = (X.R.transpose() * X.R - Eigen::Matrix3d::Identity()).norm();
   if (!(error <= 1e-6) || !(X.R.determinant() > 0.0))
     throw Error(std::string("Cartesian trapezoid: the ") + which +
-                " rotation must be orthonormal with det +1 (‖RᵀR − I‖ = " + std::to_string(error) +
+                " rotation must be orthonormal with det +1 (‖RᵀR − I‖ = " + number_text(error) +
                 ")");
   return X;
 }

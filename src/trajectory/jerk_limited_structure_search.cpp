@@ -7,6 +7,7 @@
 #include <string>
 
 #include "mjarm/error.hpp"
+#include "mjarm/number_text.hpp"
 
 namespace mjarm {
 
@@ -311,8 +312,6 @@ void record_duration(std::vector<double>& list, double d) {
   list.insert(std::upper_bound(list.begin(), list.end(), d), d);
 }
 
-std::string number(double x) { return std::to_string(x); }
-
 }  // namespace
 
 KinematicState structure_end(const KinematicState& start, const JerkLimits& limits,
@@ -330,8 +329,8 @@ StructureSearchResult structure_search_min_time(const KinematicState& start,
   for (const double x : {limits.velocity, limits.acceleration, limits.jerk})
     if (!(x > 0.0) || !std::isfinite(x))
       throw Error("structure_search_min_time: limits must be positive and finite, got v " +
-                  number(limits.velocity) + ", a " + number(limits.acceleration) + ", j " +
-                  number(limits.jerk));
+                  number_text(limits.velocity) + ", a " + number_text(limits.acceleration) + ", j " +
+                  number_text(limits.jerk));
   for (const double x : {start.p, start.v, start.a, target.p, target.v, target.a})
     if (!std::isfinite(x))
       throw Error("structure_search_min_time: start and target must be finite");

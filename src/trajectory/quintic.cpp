@@ -15,8 +15,8 @@ namespace {
 void require_finite_state(const Quintic::State& s, const char* which) {
   if (!std::isfinite(s.p) || !std::isfinite(s.v) || !std::isfinite(s.a))
     throw Error(std::string("quintic: the ") + which +
-                " state must be finite, got p = " + std::to_string(s.p) +
-                ", v = " + std::to_string(s.v) + ", a = " + std::to_string(s.a));
+                " state must be finite, got p = " + number_text(s.p) +
+                ", v = " + number_text(s.v) + ", a = " + number_text(s.a));
 }
 
 // c₀ … c₅ of the quintic from s0 to s1 in T > 0 (formulas in quintic.hpp)
@@ -77,8 +77,8 @@ Quintic::Quintic(const State& start, const State& end, double duration) : durati
       throw Error(
           "quintic: a zero duration needs equal start and end positions and velocities "
           "(got p " +
-          std::to_string(start.p) + " → " + std::to_string(end.p) + ", v " +
-          std::to_string(start.v) + " → " + std::to_string(end.v) + ")");
+          number_text(start.p) + " → " + number_text(end.p) + ", v " +
+          number_text(start.v) + " → " + number_text(end.v) + ")");
     c_ = {end.p, end.v, 0.5 * end.a, 0.0, 0.0, 0.0};
     return;
   }
@@ -96,8 +96,8 @@ Quintic::Quintic(const State& start, const State& end, double duration) : durati
       std::isfinite(e.j);
   if (!finite || std::abs(e.p - end.p) > 1e-9 * scale + 1e-300)
     throw Error("quintic: the duration " + number_text(T) +
-                " s is out of scale with the boundary values (p " + std::to_string(start.p) +
-                " → " + std::to_string(end.p) +
+                " s is out of scale with the boundary values (p " + number_text(start.p) +
+                " → " + number_text(end.p) +
                 "): its polynomial cannot be evaluated in double precision");
 }
 

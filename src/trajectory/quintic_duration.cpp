@@ -174,7 +174,7 @@ void require_duration_input(const Eigen::VectorXd& v, Eigen::Index n, const std:
   for (Eigen::Index i = 0; i < n; ++i) {
     if (!std::isfinite(v[i]) || (positive && !(v[i] > 0.0)))
       throw Error("shortest quintic duration: " + what + "[" + std::to_string(i) + "] must be " +
-                  (positive ? "positive and finite" : "finite") + ", got " + std::to_string(v[i]));
+                  (positive ? "positive and finite" : "finite") + ", got " + number_text(v[i]));
   }
 }
 

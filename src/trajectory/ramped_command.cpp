@@ -17,7 +17,7 @@ RampedCommand::RampedCommand(double full_travel_time, double lower, double upper
                 number_text(full_travel_time) + " s");
   if (!std::isfinite(lower) || !std::isfinite(upper) || !(lower < upper))
     throw Error("ramped command: the range must be finite with lower < upper, got [" +
-                number_text(lower) + ", " + std::to_string(upper) + "]");
+                number_text(lower) + ", " + number_text(upper) + "]");
   reset(lower);
 }
 

@@ -18,7 +18,7 @@ void require_interpolated_pose(const Pose& X, const char* which) {
   const double error = (X.R.transpose() * X.R - Eigen::Matrix3d::Identity()).norm();
   if (!(error <= 1e-6) || !(X.R.determinant() > 0.0))
     throw Error(std::string("SE(3) interpolation: the ") + which +
-                " rotation must be orthonormal with det +1 (‖RᵀR − I‖ = " + std::to_string(error) +
+                " rotation must be orthonormal with det +1 (‖RᵀR − I‖ = " + number_text(error) +
                 ")");
 }
 

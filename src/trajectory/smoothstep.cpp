@@ -23,7 +23,7 @@ bool clipped_ramp(double x, RampSample& out) noexcept {
 void require_ramp_value(double value, const char* what, bool allow_zero) {
   if (!std::isfinite(value) || value < 0.0 || (!allow_zero && value == 0.0))
     throw Error(std::string("smooth ramp: ") + what + " must be " +
-                (allow_zero ? "≥ 0" : "positive") + " and finite, got " + std::to_string(value));
+                (allow_zero ? "≥ 0" : "positive") + " and finite, got " + number_text(value));
 }
 
 }  // namespace

@@ -9,6 +9,7 @@
 #include "mjarm/error.hpp"
 #include "mjarm/lie/so3.hpp"
 #include "mjarm/lie/so3_jacobian.hpp"
+#include "mjarm/number_text.hpp"
 
 namespace mjarm {
 
@@ -27,7 +28,7 @@ std::vector<JerkLimits> filter_limits(const TargetFilterLimits& l) {
   for (const auto& c : checks) {
     if (!(c.value > 0.0) || !std::isfinite(c.value))
       throw Error(std::string("target filter: the ") + c.name +
-                  " limit must be positive and finite, got " + std::to_string(c.value));
+                  " limit must be positive and finite, got " + number_text(c.value));
   }
   const JerkLimits linear{l.velocity, l.acceleration, l.jerk};
   const JerkLimits angular{l.angular_velocity, l.angular_acceleration, l.angular_jerk};

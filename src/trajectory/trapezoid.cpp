@@ -15,7 +15,7 @@ void require_trapezoid_limit(double value, const char* what, Eigen::Index axis =
   if (!(value > 0.0) || !std::isfinite(value))
     throw Error(std::string(axis < 0 ? "trapezoid profile: " : "synced trapezoid: axis ") +
                 (axis < 0 ? "" : std::to_string(axis) + " ") + what +
-                " must be positive and finite, got " + std::to_string(value));
+                " must be positive and finite, got " + number_text(value));
 }
 
 }  // namespace
@@ -99,7 +99,7 @@ SyncedTrapezoid::SyncedTrapezoid(const Eigen::VectorXd& start, const Eigen::Vect
   for (Eigen::Index i = 0; i < n; ++i) {
     if (!std::isfinite(start[i]) || !std::isfinite(goal[i]))
       throw Error("synced trapezoid: axis " + std::to_string(i) +
-                  " start and goal must be finite, got " + std::to_string(start[i]) + " and " +
+                  " start and goal must be finite, got " + number_text(start[i]) + " and " +
                   number_text(goal[i]));
     require_trapezoid_limit(max_velocity[i], "max velocity", i);
     require_trapezoid_limit(max_acceleration[i], "max acceleration", i);

@@ -159,5 +159,19 @@ TEST(FingerForceController, BadInput) {
   EXPECT_NE(error(rig.options(CommandKind::position)).find("position servo"), std::string::npos);
 }
 
+// a huge option is named in its shortest form, not with 309 digits and six decimals (issue 29)
+TEST(FingerForceController, HugeOptionsArePrintedShortInItsErrors) {
+  FingerRig rig(false);
+  FingerForceOptions o = rig.options(CommandKind::torque, 1e308);
+  o.max_force = 1e307;
+  EXPECT_EQ(test::error_of([&] { FingerForceController(rig.fingers, o); }),
+            "FingerForceController: options.max_force (1e+307 N) must be ≥ options.grasp_force "
+            "(1e+308 N)");
+  o = rig.options(CommandKind::torque);
+  o.free_damping = -1e308;
+  EXPECT_EQ(test::error_of([&] { FingerForceController(rig.fingers, o); }),
+            "FingerForceController: options.free_damping must be finite and ≥ 0, got -1e+308");
+}
+
 }  // namespace
 }  // namespace mjarm

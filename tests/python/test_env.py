@@ -67,6 +67,9 @@ def test_specs_follow_dm_env():
         a.validate(np.zeros(6, dtype=np.float32))
     with pytest.raises(ValueError, match=r"action\[3\] = 0\.5.* outside"):
         a.validate(np.array([0, 0, 0, 0.5, 0, 0.0]))
+    # a huge value in its shortest form, the bounds as typed (issue 29: 309 digits before)
+    with pytest.raises(ValueError, match=r"^action\[0\] = 1e\+308 is outside \[-0\.02, 0\.02\]$"):
+        a.validate(np.array([1e308, 0, 0, 0, 0, 0.0]))
     assert np.array_equal(a.generate_value(), a.minimum)  # BoundedArray: the minimum
     specs = env.observation_spec()
     ts = env.reset(1)

@@ -479,10 +479,10 @@ TEST(Simulation, WholeMultipleNamesThePeriodAndTheNearestMultiple) {
   } catch (const Error& e) {
     const std::string m = e.what();
     EXPECT_NE(
-        m.find("env: control_period 0.015000 s is not a whole multiple of the step 0.002000 s"),
+        m.find("env: control_period 0.015 s is not a whole multiple of the step 0.002 s"),
         std::string::npos)
         << m;
-    EXPECT_NE(m.find("nearest: 0.016000 s"), std::string::npos) << m;
+    EXPECT_NE(m.find("nearest: 0.016 s"), std::string::npos) << m;
   }
   EXPECT_THROW(whole_multiple(0.0, 0.002, "x", "y"), Error);
   EXPECT_THROW(whole_multiple(std::numeric_limits<double>::quiet_NaN(), 0.002, "x", "y"), Error);
