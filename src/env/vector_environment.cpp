@@ -1,13 +1,13 @@
 #include "mjarm/env/vector_environment.hpp"
 
 #include <cmath>
-#include <cstdio>
 #include <limits>
 #include <string>
 
 #include "mjarm/benchmark_timing.hpp"
 #include "mjarm/env/task_registry.hpp"
 #include "mjarm/error.hpp"
+#include "mjarm/number_text.hpp"
 
 namespace mjarm {
 namespace {
@@ -17,13 +17,6 @@ int checked_count(int count) {
     throw Error("vector environment: the number of environments must be from 1 to 4096, got " +
                 std::to_string(count));
   return count;
-}
-
-
-std::string number_text(double v) {
-  char text[40];
-  std::snprintf(text, sizeof text, "%.6g", v);
-  return text;
 }
 
 }  // namespace

@@ -14,6 +14,7 @@
 
 #include "frame_check.hpp"
 #include "mjarm/error.hpp"
+#include "mjarm/number_text.hpp"
 #include "mjarm/model/names.hpp"
 
 namespace mjarm::scene_detail {
@@ -294,12 +295,6 @@ void append_number(std::string& out, T value) {
   const auto result = std::to_chars(buffer, buffer + sizeof(buffer), value);
   if (!out.empty()) out += ' ';
   out.append(buffer, result.ptr);
-}
-
-std::string number_text(double x) {
-  std::string out;
-  append_number(out, x);
-  return out;
 }
 
 std::string keyword_list(std::span<const Keyword> keywords) {
