@@ -144,6 +144,8 @@ Command add_soak_command(CLI::App& root) {
   app->add_option("--seed", s.seed, "seed of the actions, episodes and trials")
       ->check(non_negative_integer())
       ->capture_default_str();
+  app->add_option("--tasks", s.tasks, "environment tasks to run (default: every task)")
+      ->check(CLI::IsMember(env_task_names()));
   app->add_option("--episodes", s.episodes, "episodes per task and action space per round")
       ->check(count_in(1, 1000))
       ->capture_default_str();
@@ -181,7 +183,7 @@ Command add_soak_command(CLI::App& root) {
                               by_rounds ? options.rounds
                                         : std::max<std::int64_t>(
                                               1, std::llround(60.0 * options.minutes)),
-                              !o->json && stderr_is_terminal());
+                              stderr_is_terminal());  // on stderr: --json too
             options.progress = [&progress, by_rounds](int round, double elapsed_s) {
               progress.update(by_rounds ? std::max(0, round - 1)
                                         : static_cast<std::int64_t>(elapsed_s));

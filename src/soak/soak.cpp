@@ -155,7 +155,7 @@ class SoakRunner {
   }
 
   bool environments(RoundPrints& prints, bool drift) {
-    for (const std::string& task : env_task_names()) {
+    for (const std::string& task : options_.tasks.empty() ? env_task_names() : options_.tasks) {
       for (const ActionSpace space : action_spaces()) {
         const std::string what = task + " (" + to_string(space) + ")";
         const std::uint64_t seed =
@@ -178,8 +178,8 @@ class SoakRunner {
               const double lo = std::isfinite(spec.minimum[i]) ? spec.minimum[i] : -1.0;
               const double hi = std::isfinite(spec.maximum[i]) ? spec.maximum[i] : 1.0;
               action[j] = EpisodeRandom::uniform(rng, lo, hi);
+              if (drift && first_action) action[j] = lo + hi - action[j];  // mirrored
             }
-            if (drift && first_action) action[0] += 1e-9;
             first_action = false;
             ts = env.step(action);
             ++result_.counts.env_steps;
@@ -230,8 +230,8 @@ class SoakRunner {
         const double lo = std::isfinite(spec.minimum[i]) ? spec.minimum[i] : -1.0;
         const double hi = std::isfinite(spec.maximum[i]) ? spec.maximum[i] : 1.0;
         actions[j] = EpisodeRandom::uniform(rng, lo, hi);
+        if (drift && k == 0 && j < width) actions[j] = lo + hi - actions[j];  // row 0 mirrored
       }
-      if (drift && k == 0) actions[0] += 1e-9;
       batch.step(actions);
       result_.counts.vector_steps += n;
       print.add(batch.rewards());
@@ -265,11 +265,9 @@ class SoakRunner {
     const Robot robot = Robot::bundled("dual_arm_box");
     SessionLog log = log_;
     if (drift) {
-      for (SessionEvent& e : log.events) {
-        if (e.kind != SessionEvent::Kind::targets || e.targets.hands.empty()) continue;
-        e.targets.hands.front().X_WT.p.x() += 1e-9;
-        break;
-      }
+      for (SessionEvent& e : log.events)
+        if (e.kind == SessionEvent::Kind::targets && !e.targets.hands.empty())
+          e.targets.hands.front().X_WT.p.x() += 1e-3;
     }
     SessionReplay replay(robot, log);
     while (replay.step()) {
@@ -313,7 +311,7 @@ class SoakRunner {
   bool trials(RoundPrints& prints, bool drift) {
     PickPlaceBatchOptions batch;
     batch.base.seed = options_.seed;
-    if (drift) batch.base.grasp_force += 1e-9;
+    if (drift) batch.base.ranges.mass[1] += 1e-6;
     batch.trials = options_.trials;
     batch.threads = options_.trial_threads;
     // from the worker that finished a trial, one call at a time
@@ -423,7 +421,9 @@ const char* to_string(SoakStatus status) noexcept {
 
 SoakResult run_soak(const SoakOptions& options) {
   options.check();
-  (void)make_env_task(options.vector_task);  // an unknown name is an error before any work
+  // an unknown name is an error before any work
+  (void)make_env_task(options.vector_task);
+  for (const std::string& task : options.tasks) (void)make_env_task(task);
   SoakResult result;
   result.start = sample_process();
   SoakPace pace{options};

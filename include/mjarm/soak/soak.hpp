@@ -7,7 +7,7 @@
 /// round's for the same seeds) and on any MuJoCo warning or divergence. docs/hardening.md.
 ///
 /// One round, in order:
-/// 1. Environments: every task of the registry (`env_task_names`) in every action space, a new
+/// 1. Environments: every task of the registry (`env_task_names`, or `tasks`) in every action space, a new
 ///    `Environment` each, `episodes` whole episodes of seeded uniform random actions; then a
 ///    `VectorEnvironment` of `vector_envs` environments of `vector_task` on `vector_threads`
 ///    threads for one episode length of batch steps (automatic resets). A fingerprint of each
@@ -42,9 +42,9 @@ struct SoakInjection {
   std::int64_t leak_kib_per_round = 0;
   /// /dev/null descriptors opened each round, closed when the soak ends (≥ 0).
   int fds_per_round = 0;
-  /// From this round on (1-based; 0: never) every part is perturbed by a hair: the first random
-  /// action of each environment run moves by 1e-9, the replayed session's first target by
-  /// 1e-9 m, the trials' grasp force by 1e-9 N.
+  /// From this round on (1-based; 0: never) every part is perturbed: the first random action of
+  /// each environment run (of the batch: row 0) is mirrored within its bounds, the replayed
+  /// session's targets of the first hand move by 1 mm, the trials' largest object mass by 1 mg.
   int drift_from_round = 0;
 };
 
@@ -53,6 +53,7 @@ struct SoakOptions {
   double minutes = 60.0;  ///< no round starts after this wall-clock length [min] (> 0)
   int rounds = 0;         ///< at most this many rounds (≥ 0; 0: `minutes` alone ends it)
   std::uint64_t seed = 1;
+  std::vector<std::string> tasks;       ///< environment tasks to run (empty: every task)
   int episodes = 2;                     ///< per task and action space per round (≥ 1)
   std::string vector_task = "reach";    ///< task of the vectorized batch
   int vector_envs = 4;                  ///< 1 … 64
