@@ -16,6 +16,18 @@ namespace mjarm::cli {
 
 namespace {
 
+Json memory_json(const GrowthReport& g, const MemoryGrowth& m, double bound, double margin) {
+  return {{"first_kib", m.first},
+          {"min_kib", m.min},
+          {"max_kib", m.max},
+          {"last_kib", m.last},
+          {"warmup_max_kib", m.warmup_max},
+          {"slope_kib_per_hour", g.judged ? Json(m.slope) : Json(nullptr)},
+          {"max_slope_kib_per_hour", bound},
+          {"margin_kib", margin},
+          {"growth", m.growth}};
+}
+
 Json soak_json(const SoakOptions& o, const SoakResult& r) {
   const GrowthReport& g = r.growth;
   Json rounds = Json::array();
@@ -23,6 +35,7 @@ Json soak_json(const SoakOptions& o, const SoakResult& r) {
     rounds.push_back({{"round", s.round},
                       {"elapsed_s", s.elapsed_s},
                       {"rss_kib", s.process.rss_kib},
+                      {"heap_kib", s.process.heap_kib},
                       {"fds", s.process.fds},
                       {"threads", s.process.threads}});
   const SoakCounts& c = r.counts;
@@ -40,18 +53,18 @@ Json soak_json(const SoakOptions& o, const SoakResult& r) {
             {"replay_ticks", c.replay_ticks},
             {"trials", c.trials},
             {"trial_successes", c.trial_successes}}},
-          {"start", {{"rss_kib", r.start.rss_kib}, {"fds", r.start.fds}, {"threads", r.start.threads}}},
+          {"start",
+           {{"rss_kib", r.start.rss_kib},
+            {"heap_kib", r.start.heap_kib},
+            {"fds", r.start.fds},
+            {"threads", r.start.threads}}},
           {"growth",
            {{"warmup_rounds", g.warmup_rounds},
-            {"rss_first_kib", g.rss_first},
-            {"rss_min_kib", g.rss_min},
-            {"rss_max_kib", g.rss_max},
-            {"rss_last_kib", g.rss_last},
-            {"rss_warmup_max_kib", g.rss_warmup_max},
-            {"rss_slope_kib_per_hour", g.rss_judged ? Json(g.rss_slope) : Json(nullptr)},
-            {"rss_growth", g.rss_growth},
-            {"max_rss_slope_kib_per_hour", o.limits.max_rss_slope_kib_per_hour},
-            {"rss_margin_kib", o.limits.rss_margin_kib},
+            {"judged", g.judged},
+            {"heap", memory_json(g, g.heap, o.limits.max_heap_slope_kib_per_hour,
+                                 o.limits.heap_margin_kib)},
+            {"rss", memory_json(g, g.rss, o.limits.max_rss_slope_kib_per_hour,
+                                o.limits.rss_margin_kib)},
             {"fds_first", g.fds_first},
             {"fds_warmup_max", g.fds_warmup_max},
             {"fds_max", g.fds_max},
@@ -77,15 +90,22 @@ Json soak_json(const SoakOptions& o, const SoakResult& r) {
 void print_soak(std::ostream& os, const SoakOptions& o, const SoakResult& r) {
   const GrowthReport& g = r.growth;
   const SoakCounts& c = r.counts;
-  const auto kib = [](double v) { return fixed(v / 1024.0, 1) + " MiB"; };
-  std::string slope = "not judged (" + std::to_string(g.samples - g.warmup_rounds) +
-                      " rounds after the warm-up, " + std::to_string(kMinJudgedRounds) +
-                      " needed)";
-  if (g.rss_judged)
-    slope = fixed(g.rss_slope, 0) + " KiB/h after the warm-up (bound " +
-            fixed(o.limits.max_rss_slope_kib_per_hour, 0) + "); last − warm-up max " +
-            fixed(g.rss_last - g.rss_warmup_max, 0) + " KiB (margin " +
-            fixed(o.limits.rss_margin_kib, 0) + ")";
+  const auto mib = [](double v) { return fixed(v / 1024.0, 1) + " MiB"; };
+  const auto slope = [&](const MemoryGrowth& m, double bound, double margin) {
+    if (!g.judged)
+      return "not judged (" + std::to_string(g.samples - g.warmup_rounds) +
+             " rounds after the warm-up, " + std::to_string(kMinJudgedRounds) + " needed)";
+    return fixed(m.slope, 0) + " KiB/h after the warm-up (bound " + fixed(bound, 0) +
+           "); last − warm-up max " + fixed(m.last - m.warmup_max, 0) + " KiB (margin " +
+           fixed(margin, 0) + ")";
+  };
+  const auto figures = [&](const MemoryGrowth& m, double start, int decimals) {
+    const auto f = [&](double v) {
+      return decimals == 0 ? fixed(v, 0) + " KiB" : mib(v);
+    };
+    return f(m.first) + " first, " + f(m.min) + " min, " + f(m.max) + " max, " + f(m.last) +
+           " last (" + f(start) + " at start)";
+  };
   print_fields(
       os,
       {{"soak", std::string(to_string(r.status)) + " (seed " + std::to_string(o.seed) + ")"},
@@ -100,10 +120,12 @@ void print_soak(std::ostream& os, const SoakOptions& o, const SoakResult& r) {
                        std::to_string(c.replay_ticks) + " ticks; final state " + r.replay_digest},
        {"trials", std::to_string(c.trials) + " pick-and-place, " +
                       std::to_string(c.trial_successes) + " successes"},
-       {"resident memory", kib(g.rss_first) + " first, " + kib(g.rss_min) + " min, " +
-                               kib(g.rss_max) + " max, " + kib(g.rss_last) + " last (" +
-                               kib(r.start.rss_kib) + " at start)"},
-       {"memory slope", slope},
+       {"heap in use", figures(g.heap, r.start.heap_kib, 0)},
+       {"heap slope", slope(g.heap, o.limits.max_heap_slope_kib_per_hour,
+                            o.limits.heap_margin_kib)},
+       {"resident memory", figures(g.rss, r.start.rss_kib, 1)},
+       {"RSS slope", slope(g.rss, o.limits.max_rss_slope_kib_per_hour,
+                              o.limits.rss_margin_kib)},
        {"file descriptors", std::to_string(g.fds_first) + " first, " +
                                 std::to_string(g.fds_warmup_max) + " warm-up max, " +
                                 std::to_string(g.fds_max) + " max, " +
@@ -157,6 +179,14 @@ Command add_soak_command(CLI::App& root) {
       ->capture_default_str();
   app->add_option("--warmup", s.limits.warmup_rounds, "rounds before growth is judged")
       ->check(count_in(1, 1000000))
+      ->capture_default_str();
+  app->add_option("--max-heap-slope", s.limits.max_heap_slope_kib_per_hour,
+                  "heap-in-use growth bound after the warm-up [KiB/h]")
+      ->check(number_in(0.0, 1e12))
+      ->capture_default_str();
+  app->add_option("--heap-margin", s.limits.heap_margin_kib,
+                  "heap in use the last round may hold above the warm-up's largest [KiB]")
+      ->check(number_in(0.0, 1e12))
       ->capture_default_str();
   app->add_option("--max-rss-slope", s.limits.max_rss_slope_kib_per_hour,
                   "memory growth bound after the warm-up [KiB/h]")

@@ -1,6 +1,7 @@
 #include "mjarm/soak/process_sample.hpp"
 
 #include <dirent.h>
+#include <malloc.h>
 #include <unistd.h>
 
 #include <fstream>
@@ -18,6 +19,10 @@ ProcessSample sample_process() {
     long size = 0, resident = 0;
     if (!(statm >> size >> resident)) throw Error("cannot read /proc/self/statm (resident memory)");
     s.rss_kib = static_cast<double>(resident) * static_cast<double>(sysconf(_SC_PAGESIZE)) / 1024.0;
+  }
+  {
+    const struct mallinfo2 heap = mallinfo2();
+    s.heap_kib = static_cast<double>(heap.uordblks + heap.hblkhd) / 1024.0;
   }
   {
     DIR* dir = opendir("/proc/self/fd");

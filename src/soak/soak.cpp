@@ -360,15 +360,19 @@ class SoakRunner {
 
 void judge(const SoakOptions& options, SoakResult& r) {
   const GrowthReport& g = r.growth;
-  if (g.rss_growth) {
-    char text[256];
+  const auto memory = [&](const MemoryGrowth& m, const char* what, double bound, double margin) {
+    if (!m.growth) return;
+    char text[320];
     std::snprintf(text, sizeof text,
-                  "resident memory grows: %.0f KiB/h after the %d-round warm-up (bound %.0f) and "
-                  "the last round's %.0f KiB is %.0f KiB above the warm-up's largest (margin %.0f)",
-                  g.rss_slope, g.warmup_rounds, options.limits.max_rss_slope_kib_per_hour,
-                  g.rss_last, g.rss_last - g.rss_warmup_max, options.limits.rss_margin_kib);
+                  "%s grows: %.0f KiB/h after the %d-round warm-up (bound %.0f) and the last "
+                  "round's %.0f KiB is %.0f KiB above the warm-up's largest (margin %.0f)",
+                  what, m.slope, g.warmup_rounds, bound, m.last, m.last - m.warmup_max, margin);
     r.failures.emplace_back(text);
-  }
+  };
+  memory(g.heap, "heap in use", options.limits.max_heap_slope_kib_per_hour,
+         options.limits.heap_margin_kib);
+  memory(g.rss, "resident memory", options.limits.max_rss_slope_kib_per_hour,
+         options.limits.rss_margin_kib);
   if (g.fd_growth)
     r.failures.push_back("open file descriptors grow: " + std::to_string(g.fds_max) +
                          " after the warm-up, at most " + std::to_string(g.fds_warmup_max) +

@@ -40,8 +40,9 @@ TEST(SoakCli, AShortSoakReportsEveryPartAndExitsZero) {
   EXPECT_TRUE(has_text(run.out, "environments      10 runs, 10 episodes, ")) << run.out;
   EXPECT_TRUE(has_text(run.out, "replays           2 of the bimanual lift (")) << run.out;
   EXPECT_TRUE(has_text(run.out, "trials            2 pick-and-place, ")) << run.out;
+  EXPECT_TRUE(has_text(run.out, "heap in use       ")) << run.out;
   EXPECT_TRUE(has_text(run.out, "resident memory   ")) << run.out;
-  EXPECT_TRUE(has_text(run.out, "memory slope      not judged (1 rounds after the warm-up, 3 needed)"))
+  EXPECT_TRUE(has_text(run.out, "RSS slope         not judged (1 rounds after the warm-up, 3 needed)"))
       << run.out;
   EXPECT_TRUE(has_text(run.out, "MuJoCo warnings   0 counted, 0 logged")) << run.out;
   EXPECT_TRUE(has_text(run.out, "divergences       0")) << run.out;
@@ -59,12 +60,15 @@ TEST(SoakCli, TheJsonFormHasEveryRoundsSample) {
   ASSERT_EQ(doc["samples"].size(), 2u);
   EXPECT_EQ(doc["samples"][1]["round"], 2);
   EXPECT_GT(doc["samples"][1]["rss_kib"].get<double>(), 0.0);
+  EXPECT_GT(doc["samples"][1]["heap_kib"].get<double>(), 0.0);
   EXPECT_GE(doc["samples"][1]["fds"].get<int>(), 3);
   EXPECT_EQ(doc["counts"]["replays"], 2);
   EXPECT_EQ(doc["counts"]["trials"], 2);
   EXPECT_EQ(doc["drifts"], 0);
   EXPECT_EQ(doc["mujoco_warnings"], 0);
-  EXPECT_TRUE(doc["growth"]["rss_slope_kib_per_hour"].is_null());  // not judged
+  EXPECT_EQ(doc["growth"]["judged"], false);  // 1 round after the warm-up
+  EXPECT_TRUE(doc["growth"]["heap"]["slope_kib_per_hour"].is_null());
+  EXPECT_TRUE(doc["growth"]["rss"]["slope_kib_per_hour"].is_null());
   EXPECT_EQ(doc["growth"]["fd_growth"], false);
   EXPECT_TRUE(doc["failures"].empty());
 }

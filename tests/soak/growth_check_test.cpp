@@ -24,6 +24,7 @@ std::vector<SoakSample> rounds_of(int n, F rss) {
     s.round = k + 1;
     s.elapsed_s = 30.0 * (k + 1);
     s.process.rss_kib = rss(k);
+    s.process.heap_kib = 1000.0;
     s.process.fds = 5;
     s.process.threads = 1;
     samples.push_back(s);
@@ -35,6 +36,8 @@ GrowthLimits growth_limits() {
   GrowthLimits limits;
   limits.warmup_rounds = 5;
   limits.warmup_fraction = 0.0;
+  limits.max_heap_slope_kib_per_hour = 256.0;
+  limits.heap_margin_kib = 256.0;
   limits.max_rss_slope_kib_per_hour = 2048.0;
   limits.rss_margin_kib = 8192.0;
   return limits;
@@ -52,38 +55,57 @@ TEST(GrowthCheck, LeastSquaresSlopeOfALineIsItsSlope) {
 TEST(GrowthCheck, FlatMemoryDoesNotGrow) {
   const auto samples = rounds_of(100, [](int k) { return 50000.0 + (k % 3) * 100.0; });
   const auto r = mjarm::check_growth(samples, growth_limits());
-  EXPECT_TRUE(r.rss_judged);
-  EXPECT_FALSE(r.rss_growth);
+  EXPECT_TRUE(r.judged);
+  EXPECT_FALSE(r.rss.growth);
   EXPECT_FALSE(r.grew());
   EXPECT_EQ(r.warmup_rounds, 5);
-  EXPECT_EQ(r.rss_first, 50000.0);
-  EXPECT_EQ(r.rss_min, 50000.0);
-  EXPECT_EQ(r.rss_max, 50200.0);
+  EXPECT_EQ(r.rss.first, 50000.0);
+  EXPECT_EQ(r.rss.min, 50000.0);
+  EXPECT_EQ(r.rss.max, 50200.0);
 }
 
 TEST(GrowthCheck, ASteadyLeakGrows) {
   // 100 KiB a round of 30 s: 12 MiB an hour, 9.5 MiB above the warm-up after 100 rounds
   const auto samples = rounds_of(100, [](int k) { return 50000.0 + 100.0 * k; });
   const auto r = mjarm::check_growth(samples, growth_limits());
-  EXPECT_TRUE(r.rss_growth);
-  EXPECT_NEAR(r.rss_slope, 100.0 * 120.0, 1e-6);  // KiB/h
+  EXPECT_TRUE(r.rss.growth);
+  EXPECT_NEAR(r.rss.slope, 100.0 * 120.0, 1e-6);  // KiB/h
   EXPECT_TRUE(r.grew());
 }
 
 TEST(GrowthCheck, GrowthNeedsBothTheSlopeAndTheRise) {
   // the same leak over 20 rounds: the slope is there, the rise (1.5 MiB) is within the margin
   const auto short_run = rounds_of(20, [](int k) { return 50000.0 + 100.0 * k; });
-  EXPECT_FALSE(mjarm::check_growth(short_run, growth_limits()).rss_growth);
+  EXPECT_FALSE(mjarm::check_growth(short_run, growth_limits()).rss.growth);
   // one step up at the end of the warm-up, kept: a rise, but no slope over the rest
   const auto step = rounds_of(100, [](int k) { return k < 4 ? 50000.0 : 70000.0; });
   const auto r = mjarm::check_growth(step, growth_limits());
-  EXPECT_EQ(r.rss_slope, 0.0);
-  EXPECT_EQ(r.rss_warmup_max, 70000.0);
-  EXPECT_FALSE(r.rss_growth);
+  EXPECT_EQ(r.rss.slope, 0.0);
+  EXPECT_EQ(r.rss.warmup_max, 70000.0);
+  EXPECT_FALSE(r.rss.growth);
   // the last round's transient peak: a rise, but the slope of the rest is flat
   auto peak = rounds_of(100, [](int) { return 50000.0; });
   peak.back().process.rss_kib = 70000.0;
-  EXPECT_FALSE(mjarm::check_growth(peak, growth_limits()).rss_growth);
+  EXPECT_FALSE(mjarm::check_growth(peak, growth_limits()).rss.growth);
+}
+
+TEST(GrowthCheck, AHeapLeakGrowsWhileTheResidentMemoryHidesIt) {
+  // 3 KiB of heap a round of 30 s (360 KiB/h); the RSS flat (the allocator had the pages)
+  auto samples = rounds_of(200, [](int) { return 50000.0; });
+  for (int k = 0; k < 200; ++k)
+    samples[static_cast<std::size_t>(k)].process.heap_kib = 1000.0 + 3.0 * k;
+  auto r = mjarm::check_growth(samples, growth_limits());
+  EXPECT_TRUE(r.heap.growth);
+  EXPECT_NEAR(r.heap.slope, 3.0 * 120.0, 1e-6);
+  EXPECT_FALSE(r.rss.growth);
+  EXPECT_TRUE(r.grew());
+  // one step up just after the warm-up (a cache filled once), then flat: a rise, no slope
+  for (int k = 0; k < 200; ++k)
+    samples[static_cast<std::size_t>(k)].process.heap_kib = k < 8 ? 1000.0 : 1300.0;
+  r = mjarm::check_growth(samples, growth_limits());
+  EXPECT_GT(r.heap.last - r.heap.warmup_max, 256.0);
+  EXPECT_LT(r.heap.slope, 256.0);
+  EXPECT_FALSE(r.heap.growth);
 }
 
 TEST(GrowthCheck, TheWarmUpIsAShareOfTheRoundsWhenThatIsLonger) {
@@ -93,7 +115,7 @@ TEST(GrowthCheck, TheWarmUpIsAShareOfTheRoundsWhenThatIsLonger) {
   const auto samples = rounds_of(100, [](int k) { return 50000.0 + 4000.0 * std::min(k, 8); });
   const auto r = mjarm::check_growth(samples, limits);
   EXPECT_EQ(r.warmup_rounds, 10);
-  EXPECT_FALSE(r.rss_growth);
+  EXPECT_FALSE(r.rss.growth);
   limits.warmup_fraction = 0.0;
   EXPECT_EQ(mjarm::check_growth(samples, limits).warmup_rounds, 5);
 }
@@ -101,9 +123,9 @@ TEST(GrowthCheck, TheWarmUpIsAShareOfTheRoundsWhenThatIsLonger) {
 TEST(GrowthCheck, TooFewRoundsAreNotJudged) {
   const auto samples = rounds_of(7, [](int k) { return 50000.0 + 1e6 * k; });
   const auto r = mjarm::check_growth(samples, growth_limits());
-  EXPECT_FALSE(r.rss_judged);
-  EXPECT_FALSE(r.rss_growth);
-  EXPECT_EQ(r.rss_slope, 0.0);
+  EXPECT_FALSE(r.judged);
+  EXPECT_FALSE(r.rss.growth);
+  EXPECT_EQ(r.rss.slope, 0.0);
   EXPECT_EQ(mjarm::check_growth({}, growth_limits()).samples, 0);
 }
 

@@ -40,6 +40,8 @@ bool notes_mention(const std::vector<std::string>& notes, const std::string& tex
 TEST(ProcessSample, ReadsThisProcess) {
   const mjarm::ProcessSample s = mjarm::sample_process();
   EXPECT_GT(s.rss_kib, 0.0);
+  EXPECT_GT(s.heap_kib, 0.0);
+  EXPECT_LT(s.heap_kib, s.rss_kib);
   EXPECT_GE(s.fds, 3);  // standard input, output, error
   EXPECT_GE(s.threads, 1);
 }
@@ -62,7 +64,7 @@ TEST(Soak, ACleanSoakHoldsEveryCheckAndRepeatsItsResults) {
   EXPECT_EQ(r.logged_warnings, 0);
   EXPECT_EQ(r.divergences, 0);
   EXPECT_FALSE(r.growth.fd_growth);
-  EXPECT_FALSE(r.growth.rss_judged);  // 1 round after the warm-up
+  EXPECT_FALSE(r.growth.judged);  // 1 round after the warm-up
   EXPECT_TRUE(r.failures.empty());
 }
 
@@ -70,15 +72,19 @@ TEST(Soak, AnInjectedLeakIsMemoryGrowth) {
   SoakOptions o = small_soak(5);
   o.inject.leak_kib_per_round = 32 * 1024;
   // any positive slope: the verdict does not depend on how long a round takes
+  o.limits.max_heap_slope_kib_per_hour = 0.0;
+  o.limits.heap_margin_kib = 48 * 1024;  // the leak adds 96 MiB after the warm-up
   o.limits.max_rss_slope_kib_per_hour = 0.0;
-  o.limits.rss_margin_kib = 48 * 1024;  // the leak adds 96 MiB after the warm-up
+  o.limits.rss_margin_kib = 48 * 1024;
   const SoakResult r = mjarm::run_soak(o);
   EXPECT_EQ(r.status, SoakStatus::failed);
-  EXPECT_TRUE(r.growth.rss_judged);
-  EXPECT_TRUE(r.growth.rss_growth);
-  EXPECT_GT(r.growth.rss_last - r.growth.rss_warmup_max, 48 * 1024.0);
-  ASSERT_FALSE(r.failures.empty());
-  EXPECT_NE(r.failures.front().find("resident memory grows"), std::string::npos);
+  EXPECT_TRUE(r.growth.judged);
+  EXPECT_TRUE(r.growth.heap.growth);
+  EXPECT_TRUE(r.growth.rss.growth);
+  EXPECT_GT(r.growth.heap.last - r.growth.heap.warmup_max, 48 * 1024.0);
+  EXPECT_GT(r.growth.rss.last - r.growth.rss.warmup_max, 48 * 1024.0);
+  EXPECT_TRUE(notes_mention(r.failures, "heap in use grows"));
+  EXPECT_TRUE(notes_mention(r.failures, "resident memory grows"));
 }
 
 TEST(Soak, ADescriptorLeftOpenEachRoundIsGrowthAndIsClosedAfterwards) {
