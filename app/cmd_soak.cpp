@@ -99,10 +99,9 @@ void print_soak(std::ostream& os, const SoakOptions& o, const SoakResult& r) {
            "); last − warm-up max " + fixed(m.last - m.warmup_max, 0) + " KiB (margin " +
            fixed(margin, 0) + ")";
   };
-  const auto figures = [&](const MemoryGrowth& m, double start, int decimals) {
-    const auto f = [&](double v) {
-      return decimals == 0 ? fixed(v, 0) + " KiB" : mib(v);
-    };
+  // the heap in KiB (under a MiB), the RSS in MiB
+  const auto figures = [&](const MemoryGrowth& m, double start, bool in_kib) {
+    const auto f = [&](double v) { return in_kib ? fixed(v, 0) + " KiB" : mib(v); };
     return f(m.first) + " first, " + f(m.min) + " min, " + f(m.max) + " max, " + f(m.last) +
            " last (" + f(start) + " at start)";
   };
@@ -120,12 +119,12 @@ void print_soak(std::ostream& os, const SoakOptions& o, const SoakResult& r) {
                        std::to_string(c.replay_ticks) + " ticks; final state " + r.replay_digest},
        {"trials", std::to_string(c.trials) + " pick-and-place, " +
                       std::to_string(c.trial_successes) + " successes"},
-       {"heap in use", figures(g.heap, r.start.heap_kib, 0)},
+       {"heap in use", figures(g.heap, r.start.heap_kib, true)},
        {"heap slope", slope(g.heap, o.limits.max_heap_slope_kib_per_hour,
                             o.limits.heap_margin_kib)},
-       {"resident memory", figures(g.rss, r.start.rss_kib, 1)},
-       {"RSS slope", slope(g.rss, o.limits.max_rss_slope_kib_per_hour,
-                              o.limits.rss_margin_kib)},
+       {"resident memory", figures(g.rss, r.start.rss_kib, false)},
+       {"RSS slope",
+        slope(g.rss, o.limits.max_rss_slope_kib_per_hour, o.limits.rss_margin_kib)},
        {"file descriptors", std::to_string(g.fds_first) + " first, " +
                                 std::to_string(g.fds_warmup_max) + " warm-up max, " +
                                 std::to_string(g.fds_max) + " max, " +
