@@ -6,6 +6,7 @@
 #include <atomic>
 #include <cmath>
 #include <cstdlib>
+#include <cstdint>
 #include <cstring>
 #include <iostream>
 #include <limits>
@@ -32,7 +33,11 @@ using model_detail::xml_loader_mutex;
 // MuJoCo's warnings while a model loads on this thread, for the robot's load report
 thread_local std::vector<std::string>* load_warnings_sink = nullptr;
 
+// every warning printed below, for `mujoco_warning_count` (a soak fails on any)
+std::atomic<std::uint64_t> mujoco_warnings_printed{0};
+
 void print_mujoco_warning(const char* message) {
+  mujoco_warnings_printed.fetch_add(1, std::memory_order_relaxed);
   if (load_warnings_sink != nullptr) load_warnings_sink->emplace_back(message);
   std::cerr << "mujoco warning: " << message << "\n";
 }
@@ -298,6 +303,10 @@ const char* to_string(ActuatorKind kind) noexcept {
       return "general";
   }
   return "unknown";
+}
+
+std::uint64_t mujoco_warning_count() noexcept {
+  return mujoco_warnings_printed.load(std::memory_order_relaxed);
 }
 
 void install_mujoco_handlers() {

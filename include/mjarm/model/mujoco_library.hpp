@@ -3,6 +3,7 @@
 /// The MuJoCo library mjarm runs on: its version and where it was loaded from, checked against
 /// the headers mjarm was compiled with.
 
+#include <cstdint>
 #include <filesystem>
 #include <string>
 
@@ -21,5 +22,11 @@ std::filesystem::path mujoco_library_path();
 /// The CLI calls it at start, the Python module at import.
 /// @throws Error naming both versions, the library's file and what to do.
 void check_mujoco_library();
+
+/// MuJoCo warnings raised under mjarm's code in this process so far (each one printed to stderr
+/// as "mujoco warning: …" by mjarm's log handler: load warnings, and a simulation's first
+/// warning of each kind after a reset, as MuJoCo logs only that one; mjData::warning counts
+/// them all). Thread-safe.
+std::uint64_t mujoco_warning_count() noexcept;
 
 }  // namespace mjarm
