@@ -9,6 +9,18 @@
 
 #include "mjarm/error.hpp"
 
+// Under AddressSanitizer malloc is ASan's, and glibc's mallinfo2 reports zero: ask ASan instead.
+#if defined(__SANITIZE_ADDRESS__)
+#define MJARM_HEAP_FROM_ASAN 1
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+#define MJARM_HEAP_FROM_ASAN 1
+#endif
+#endif
+#ifdef MJARM_HEAP_FROM_ASAN
+#include <sanitizer/allocator_interface.h>
+#endif
+
 namespace mjarm {
 
 ProcessSample sample_process() {
@@ -20,10 +32,14 @@ ProcessSample sample_process() {
     if (!(statm >> size >> resident)) throw Error("cannot read /proc/self/statm (resident memory)");
     s.rss_kib = static_cast<double>(resident) * static_cast<double>(sysconf(_SC_PAGESIZE)) / 1024.0;
   }
+#ifdef MJARM_HEAP_FROM_ASAN
+  s.heap_kib = static_cast<double>(__sanitizer_get_current_allocated_bytes()) / 1024.0;
+#else
   {
     const struct mallinfo2 heap = mallinfo2();
     s.heap_kib = static_cast<double>(heap.uordblks + heap.hblkhd) / 1024.0;
   }
+#endif
   {
     DIR* dir = opendir("/proc/self/fd");
     if (dir == nullptr) throw Error("cannot list /proc/self/fd (open file descriptors)");
