@@ -4,6 +4,7 @@
 #include <malloc.h>
 #include <unistd.h>
 
+#include <cstddef>
 #include <fstream>
 #include <string>
 
@@ -18,7 +19,9 @@
 #endif
 #endif
 #ifdef MJARM_HEAP_FROM_ASAN
-#include <sanitizer/allocator_interface.h>
+// the sanitizer runtime's own interface (sanitizer/allocator_interface.h, which GCC does not
+// install)
+extern "C" std::size_t __sanitizer_get_current_allocated_bytes();
 #endif
 
 namespace mjarm {
