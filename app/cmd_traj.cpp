@@ -19,7 +19,7 @@
 #include "mjarm/plot/gnuplot.hpp"
 #include "mjarm/plot/trajectory_plot.hpp"
 #include "mjarm/sim/interrupt.hpp"
-#include "mjarm/trajectory/jerk_limited.hpp"
+#include "mjarm/trajectory/otg/generator.hpp"
 #include "mjarm/trajectory/quintic.hpp"
 #include "mjarm/trajectory/quintic_duration.hpp"
 #include "mjarm/trajectory/smoothstep.hpp"

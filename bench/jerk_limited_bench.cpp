@@ -1,4 +1,4 @@
-// The jerk-limited online trajectory generator (trajectory/jerk_limited*.hpp).
+// The jerk-limited online trajectory generator (trajectory/otg/).
 //
 // Protocol (also in every benchmark's label):
 // - 256 cases drawn once (std::mt19937_64 seed 2024), 7 DoF each: limits log-uniform (v in
@@ -17,9 +17,9 @@
 #include <random>
 #include <vector>
 
-#include "mjarm/trajectory/jerk_limited.hpp"
-#include "mjarm/trajectory/jerk_limited_brake.hpp"
-#include "mjarm/trajectory/jerk_limited_min_time.hpp"
+#include "mjarm/trajectory/otg/brake.hpp"
+#include "mjarm/trajectory/otg/generator.hpp"
+#include "mjarm/trajectory/otg/min_time.hpp"
 
 namespace {
 

@@ -1,7 +1,7 @@
 // trajectory room: trapezoid, smoothstep family, quintics and their shortest duration, SE(3)
 // interpolation, the jerk-limited online generator.
 #include "bindings.hpp"
-#include "mjarm/trajectory/jerk_limited.hpp"
+#include "mjarm/trajectory/otg/generator.hpp"
 #include "mjarm/trajectory/quintic.hpp"
 #include "mjarm/trajectory/quintic_duration.hpp"
 #include "mjarm/trajectory/se3_interpolation.hpp"
