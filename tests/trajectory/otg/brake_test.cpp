@@ -3,7 +3,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <random>
+
+#include "mjarm/random.hpp"
 
 namespace mjarm {
 namespace {
@@ -24,8 +25,8 @@ TEST(JerkLimitedBrake, StatesInsideTheLimitsNeedNoBrake) {
 // −a_max until v = v_max would overshoot −v_max afterwards: at most 3 phases at full jerk or zero
 // jerk end in a startable state, on the limit v = v_max when the velocity had to come down.
 TEST(JerkLimitedBrake, BringsAnyStateBackForAnyLimits) {
-  std::mt19937_64 rng(3);
-  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  mjarm::Random rng(3);
+  const auto u = [](mjarm::Random& r) { return mjarm::uniform(r, -1.0, 1.0); };
   auto log_uniform = [&](double lo, double hi) {
     return lo * std::pow(hi / lo, 0.5 * (u(rng) + 1.0));
   };

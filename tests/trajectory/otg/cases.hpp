@@ -4,8 +4,8 @@
 
 #include <algorithm>
 #include <cmath>
-#include <random>
 
+#include "mjarm/random.hpp"
 #include "mjarm/trajectory/otg/brake.hpp"
 
 namespace mjarm::test {
@@ -31,18 +31,18 @@ class JerkCaseGenerator {
     return c;
   }
 
-  std::mt19937_64& rng() { return rng_; }
+  Random& rng() { return rng_; }
 
  private:
-  double scale(double lo, double hi) { return lo * std::pow(hi / lo, unit_(rng_)); }
+  double scale(double lo, double hi) { return lo * std::pow(hi / lo, unit()); }
   KinematicState state(const JerkLimits& l) {
-    KinematicState s{6.0 * unit_(rng_) - 3.0, l.velocity * (2.0 * unit_(rng_) - 1.0),
-                     l.acceleration * (2.0 * unit_(rng_) - 1.0)};
-    if (unit_(rng_) < 0.2) s.v = s.a = 0.0;
+    KinematicState s{6.0 * unit() - 3.0, l.velocity * (2.0 * unit() - 1.0),
+                     l.acceleration * (2.0 * unit() - 1.0)};
+    if (unit() < 0.2) s.v = s.a = 0.0;
     return s;
   }
-  std::mt19937_64 rng_;
-  std::uniform_real_distribution<double> unit_{0.0, 1.0};
+  double unit() { return uniform(rng_); }
+  Random rng_;
 };
 
 /// Largest of |Δp|, |Δv|, |Δa| between the end of @p p and @p target.

@@ -4,11 +4,11 @@
 
 #include <algorithm>
 #include <cmath>
-#include <random>
 #include <vector>
 
 #include "ik/malloc_counter.hpp"
 #include "mjarm/error.hpp"
+#include "mjarm/random.hpp"
 #include "mjarm/trajectory/otg/brake.hpp"
 #include "mjarm/trajectory/otg/sync.hpp"
 #include "mjarm/trajectory/otg/validation/grid_reference.hpp"
@@ -162,8 +162,9 @@ TEST(JerkLimitedGenerator, LazyStepOneGivesTheFullSynchronization) {
 // tenth of the DoFs starting beyond their limits: every calculation succeeds, within the limits,
 // on target to 1e-9 relative to the largest position involved (see JerkTolerance).
 TEST(JerkLimitedGenerator, WideRangesOfLimitsSucceed) {
-  std::mt19937_64 rng(23);
-  std::uniform_real_distribution<double> u(-1.0, 1.0), share(0.0, 1.0);
+  mjarm::Random rng(23);
+  const auto u = [](mjarm::Random& r) { return mjarm::uniform(r, -1.0, 1.0); };
+  const auto share = [](mjarm::Random& r) { return mjarm::uniform(r, 0.0, 1.0); };
   const auto log_uniform = [&](double lo, double hi) { return lo * std::pow(hi / lo, share(rng)); };
   for (int k = 0; k < 300; ++k) {
     std::vector<JerkLimits> limits(7);
@@ -234,8 +235,9 @@ TEST(JerkLimitedGenerator, ExtremeLimitsEndOnTargetOrReportAPrecisionError) {
 
   // a seeded search of the same kind: every result that says working or finished ends, stepped
   // to its duration, on its target and within its limits after the brake
-  std::mt19937_64 rng(1);
-  std::uniform_real_distribution<double> u(-1.0, 1.0), share(0.0, 1.0);
+  mjarm::Random rng(1);
+  const auto u = [](mjarm::Random& r) { return mjarm::uniform(r, -1.0, 1.0); };
+  const auto share = [](mjarm::Random& r) { return mjarm::uniform(r, 0.0, 1.0); };
   const auto extreme = [&] { return share(rng) < 0.5 ? 1e-3 : 1e3; };
   int succeeded = 0, refused = 0;
   for (int k = 0; k < 40; ++k) {

@@ -2,8 +2,8 @@
 
 #include <gtest/gtest.h>
 
-#include <random>
 
+#include "mjarm/random.hpp"
 #include "mjarm/trajectory/otg/min_time.hpp"
 #include "mjarm/trajectory/otg/validation/grid_reference.hpp"
 #include "trajectory/otg/cases.hpp"
@@ -43,7 +43,7 @@ TEST(JerkLimitedReach, RestToRestMatchesTheClassicFormula) {
 // a true motion, so one ending beyond p_max would prove p_max wrong.
 TEST(JerkLimitedReach, NoMotionEndsBeyondTheRange) {
   test::JerkCaseGenerator cases(31);
-  std::uniform_real_distribution<double> factor(0.5, 3.0);
+  const auto factor = [](mjarm::Random& r) { return mjarm::uniform(r, 0.5, 3.0); };
   int probed = 0;
   for (int k = 0; k < 40; ++k) {
     const test::JerkCase c = cases.next();

@@ -4,7 +4,8 @@
 
 #include <algorithm>
 #include <cmath>
-#include <random>
+
+#include "mjarm/random.hpp"
 
 namespace mjarm {
 namespace {
@@ -69,8 +70,8 @@ TEST(JerkLimitedRoots, NoRealRootsAndDegenerateInput) {
 }
 
 TEST(JerkLimitedRoots, RandomQuarticsMatchTheirConstruction) {
-  std::mt19937_64 rng(11);
-  std::uniform_real_distribution<double> u(-3.0, 3.0);
+  mjarm::Random rng(11);
+  const auto u = [](mjarm::Random& r) { return mjarm::uniform(r, -3.0, 3.0); };
   int checked = 0;
   for (int k = 0; k < 2000; ++k) {
     std::array<double, 4> r{};
@@ -99,8 +100,8 @@ TEST(JerkLimitedRoots, RandomQuarticsMatchTheirConstruction) {
 // Random coefficients, not roots: every sign change a dense scan sees is a root found, and each
 // root found is a zero to round-off.
 TEST(JerkLimitedRoots, RandomCoefficientsAgreeWithADenseScan) {
-  std::mt19937_64 rng(12);
-  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  mjarm::Random rng(12);
+  const auto u = [](mjarm::Random& r) { return mjarm::uniform(r, -1.0, 1.0); };
   for (int k = 0; k < 300; ++k) {
     Polynomial p;
     p.degree = 4;

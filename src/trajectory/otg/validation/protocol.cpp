@@ -3,12 +3,12 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <random>
 #include <vector>
 
 #include "mjarm/benchmark_timing.hpp"
 #include "mjarm/error.hpp"
 #include "mjarm/number_text.hpp"
+#include "mjarm/random.hpp"
 #include "mjarm/trajectory/otg/brake.hpp"
 #include "mjarm/trajectory/otg/fixed_time.hpp"
 #include "mjarm/trajectory/otg/generator.hpp"
@@ -22,15 +22,13 @@ namespace {
 
 /// Draws limits, a start and a target for one DoF.
 struct OtgCaseSampler {
-  std::mt19937_64 rng;
-  std::uniform_real_distribution<double> unit{-1.0, 1.0};
-  std::uniform_real_distribution<double> share{0.0, 1.0};
+  Random rng;
 
   explicit OtgCaseSampler(std::uint64_t seed) : rng(seed) {}
 
-  double log_uniform(double lo, double hi) {
-    return lo * std::pow(hi / lo, 0.5 * (unit(rng) + 1.0));
-  }
+  double unit() noexcept { return uniform(rng, -1.0, 1.0); }
+  double share() noexcept { return uniform(rng); }
+  double log_uniform(double lo, double hi) { return lo * std::pow(hi / lo, share()); }
 
   JerkLimits limits() {
     return {log_uniform(0.2, 4.0), log_uniform(0.3, 8.0), log_uniform(0.5, 40.0)};
@@ -38,8 +36,8 @@ struct OtgCaseSampler {
 
   KinematicState target(const JerkLimits& l) {
     for (;;) {
-      KinematicState s{3.0 * unit(rng), l.velocity * unit(rng), l.acceleration * unit(rng)};
-      const double kind = share(rng);
+      KinematicState s{3.0 * unit(), l.velocity * unit(), l.acceleration * unit()};
+      const double kind = share();
       if (kind < 0.2)
         s.v = s.a = 0.0;  // at rest
       else if (kind < 0.3)
@@ -51,9 +49,8 @@ struct OtgCaseSampler {
   KinematicState start(const JerkLimits& l, bool beyond) {
     for (;;) {
       const double scale = beyond ? 1.6 : 1.0;
-      KinematicState s{3.0 * unit(rng), scale * l.velocity * unit(rng),
-                       scale * l.acceleration * unit(rng)};
-      if (!beyond && share(rng) < 0.2) s.v = s.a = 0.0;
+      KinematicState s{3.0 * unit(), scale * l.velocity * unit(), scale * l.acceleration * unit()};
+      if (!beyond && share() < 0.2) s.v = s.a = 0.0;
       if (beyond != is_startable(s, l)) return s;
     }
   }
@@ -278,7 +275,7 @@ OtgValidationResult run_otg_validation(const OtgValidationOptions& options) {
     for (std::size_t i = 0; i < n; ++i) {
       limits[i] = sampler.limits();
       const JerkLimits& l = limits[i];
-      const bool beyond = sampler.share(sampler.rng) < options.brake_share;
+      const bool beyond = sampler.share() < options.brake_share;
       start[i] = sampler.start(l, beyond);
       target[i] = sampler.target(l);
       r.braking_dofs += beyond ? 1 : 0;

@@ -3,11 +3,11 @@
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
-#include <random>
 #include <string>
 
 #include "mjarm/error.hpp"
 #include "mjarm/number_text.hpp"
+#include "mjarm/random.hpp"
 
 namespace mjarm {
 
@@ -365,8 +365,7 @@ StructureSearchResult structure_search_min_time(const KinematicState& start,
     const StructureSolution none;
     if (accept(none.structure, none.durations, s0, tf, limits, position_scale)) keep(none);
   }
-  std::mt19937_64 rng(options.seed);
-  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  Random rng(options.seed);
   for (const SwitchingStructure& s : switching_structures()) {
     const StructureSystem system(s, s0, tf, limits, scales);
     if (!system.valid() || system.unknowns() < system.conditions()) continue;
@@ -377,7 +376,7 @@ StructureSearchResult structure_search_min_time(const KinematicState& start,
       // in units of each phase's scale: uniform on even seeds, log-uniform over two decades on
       // odd ones
       for (int i = 0; i < s.size; ++i)
-        u[i] = (k % 2 == 0) ? unit(rng) : std::pow(10.0, -2.0 * unit(rng));
+        u[i] = (k % 2 == 0) ? uniform(rng) : std::pow(10.0, -2.0 * uniform(rng));
       ++result.solves;
       const auto residuals = [&](const Vector& z, Vector& F, Matrix& G) {
         system.evaluate(z, F, &G);

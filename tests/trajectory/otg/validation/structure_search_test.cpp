@@ -9,6 +9,7 @@
 #include <string>
 
 #include "mjarm/error.hpp"
+#include "mjarm/random.hpp"
 #include "mjarm/trajectory/otg/brake.hpp"
 #include "mjarm/trajectory/otg/min_time.hpp"
 #include "trajectory/otg/cases.hpp"
@@ -138,7 +139,7 @@ TEST(JerkLimitedStructureSearch, AgreesWithTheGeneratorOnRandomCases) {
 // After a brake (a start beyond the limits), from the state the brake ends in.
 TEST(JerkLimitedStructureSearch, AgreesWithTheGeneratorAfterABrake) {
   test::JerkCaseGenerator cases(5);
-  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  const auto u = [](mjarm::Random& r) { return mjarm::uniform(r, -1.0, 1.0); };
   const test::JerkCase c = cases.next();
   KinematicState s;
   do
