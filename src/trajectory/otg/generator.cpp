@@ -11,6 +11,7 @@
 #include "mjarm/trajectory/otg/min_time.hpp"
 #include "mjarm/trajectory/otg/sync.hpp"
 #include "mjarm/trajectory/otg/velocity.hpp"
+#include "mjarm/trajectory/trajectory_sample.hpp"
 #include "trajectory/otg/up.hpp"
 
 namespace mjarm {
@@ -328,6 +329,17 @@ OtgResult JerkLimitedGenerator::calculate_velocity(std::span<const KinematicStat
 void JerkLimitedGenerator::at(double t, std::span<JerkSample> out) const noexcept {
   const std::size_t n = std::min(out.size(), profiles_.size());
   for (std::size_t i = 0; i < n; ++i) out[i] = profiles_[i].at(t);
+}
+
+void JerkLimitedGenerator::at(double t, TrajectorySample& sample) const {
+  sample.resize(dofs());
+  for (int i = 0; i < dofs(); ++i) {
+    const JerkSample s = profiles_[static_cast<std::size_t>(i)].at(t);
+    sample.position[i] = s.p;
+    sample.velocity[i] = s.v;
+    sample.acceleration[i] = s.a;
+    sample.jerk[i] = t <= result_.duration ? s.j : 0.0;
+  }
 }
 
 OtgStatus JerkLimitedGenerator::step(double dt, std::span<KinematicState> state) noexcept {

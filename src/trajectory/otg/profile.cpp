@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "mjarm/trajectory/trajectory_sample.hpp"
+
 namespace mjarm {
 
 void JerkProfile::reset(const KinematicState& start) noexcept {
@@ -115,6 +117,15 @@ bool JerkPhases::append_to(JerkProfile& profile) const noexcept {
     if (!ok) return false;
   }
   return true;
+}
+
+void JerkProfile::at(double t, TrajectorySample& sample) const {
+  sample.resize(1);
+  const JerkSample s = at(t);
+  sample.position[0] = s.p;
+  sample.velocity[0] = s.v;
+  sample.acceleration[0] = s.a;
+  sample.jerk[0] = s.j;
 }
 
 }  // namespace mjarm

@@ -25,6 +25,8 @@
 
 namespace mjarm {
 
+struct TrajectorySample;  // trajectory/trajectory_sample.hpp
+
 namespace jerk_detail {
 struct UpPair;  // a DoF's problem in both directions (src/trajectory/otg/up.hpp)
 }  // namespace jerk_detail
@@ -130,6 +132,9 @@ class JerkLimitedGenerator {
   /// The state of every DoF at time @p t [s] of the last trajectory into @p out (its first
   /// min(size, dofs()) entries).
   void at(double t, std::span<JerkSample> out) const noexcept;
+  /// The same into @p sample (resized to dofs() when it is not; trajectory/trajectory_sample.hpp),
+  /// the jerk 0 after the duration: the generator as a `TrajectoryProfile`.
+  void at(double t, TrajectorySample& sample) const;
 
   /// Online use: advances the clock by @p dt [s] and writes the state then into @p state (its
   /// first min(size, dofs()) entries). @return working, finished once the clock reached the

@@ -11,6 +11,8 @@
 
 namespace mjarm {
 
+struct TrajectorySample;  // trajectory/trajectory_sample.hpp
+
 /// Symmetric limits of one degree of freedom: |v| ≤ velocity, |a| ≤ acceleration, |j| ≤ jerk,
 /// in the DoF's unit u (m or rad): [u/s], [u/s²], [u/s³]. All must be positive and finite.
 struct JerkLimits {
@@ -89,6 +91,10 @@ class JerkProfile {
   /// the motion continues with the final acceleration and zero jerk (a constant-acceleration
   /// extrapolation, which is rest when the target acceleration and velocity are zero).
   JerkSample at(double t) const noexcept;
+  /// One coordinate (a `TrajectoryProfile` of dofs() = 1).
+  int dofs() const noexcept { return 1; }
+  /// `at(t)` as a `TrajectorySample` of one coordinate (trajectory/trajectory_sample.hpp).
+  void at(double t, TrajectorySample& sample) const;
 
   /// Extreme velocity and acceleration over phases @p first_phase … size−1 (analytic, see
   /// JerkExtrema); 0 covers [0, duration()].
