@@ -40,8 +40,8 @@ static_assert(PoseProfile<CartesianTrapezoid>);
 static_assert(!TrajectoryProfile<Se3Interpolation>);
 static_assert(!PoseProfile<SyncedTrapezoid>);
 
-const Eigen::VectorXd kStart = Eigen::VectorXd::LinSpaced(3, -0.4, 0.6);
-const Eigen::VectorXd kGoal = Eigen::VectorXd::LinSpaced(3, 0.5, -0.2);
+const Eigen::VectorXd kSampleStart = Eigen::VectorXd::LinSpaced(3, -0.4, 0.6);
+const Eigen::VectorXd kSampleGoal = Eigen::VectorXd::LinSpaced(3, 0.5, -0.2);
 
 // every sample of @p profile at a few instants, through the concept
 template <TrajectoryProfile P>
@@ -58,17 +58,17 @@ TEST(TrajectorySample, SizedSamplesStartAtZeroAndResize) {
               s.jerk.isZero());
   TrajectorySample empty;
   EXPECT_EQ(empty.size(), 0);
-  const SyncedTrapezoid trap(kStart, kGoal, 1.0, 2.0);
+  const SyncedTrapezoid trap(kSampleStart, kSampleGoal, 1.0, 2.0);
   trap.at(0.3, empty);  // an unsized sample is sized by the profile
   EXPECT_EQ(empty.size(), 3);
   EXPECT_EQ(empty.jerk.size(), 3);
 }
 
 TEST(TrajectorySample, NAxisProfilesWriteTheirOwnSamples) {
-  const SyncedTrapezoid trap(kStart, kGoal, 1.0, 2.0);
+  const SyncedTrapezoid trap(kSampleStart, kSampleGoal, 1.0, 2.0);
   const QuinticTrajectory quintic(
-      {kStart, Eigen::VectorXd::Constant(3, 0.2), Eigen::VectorXd::Zero(3)},
-      {kGoal, Eigen::VectorXd::Zero(3), Eigen::VectorXd::Zero(3)}, 1.1);
+      {kSampleStart, Eigen::VectorXd::Constant(3, 0.2), Eigen::VectorXd::Zero(3)},
+      {kSampleGoal, Eigen::VectorXd::Zero(3), Eigen::VectorXd::Zero(3)}, 1.1);
   Eigen::VectorXd q(3), qd(3), qdd(3), qddd(3);
   for (const TrajectorySample& s : samples_of(trap)) EXPECT_EQ(s.size(), 3);
   for (int k = 0; k <= 10; ++k) {
@@ -156,13 +156,14 @@ TEST(TrajectorySample, PoseProfilesShareOneSample) {
 }
 
 TEST(TrajectorySample, SamplingASizedSampleAllocatesNothing) {
-  const SyncedTrapezoid trap(kStart, kGoal, 1.0, 2.0);
-  const QuinticTrajectory quintic({kStart, Eigen::VectorXd::Zero(3), Eigen::VectorXd::Zero(3)},
-                                  {kGoal, Eigen::VectorXd::Zero(3), Eigen::VectorXd::Zero(3)}, 1.1);
-  const SmoothRampTrajectory ramp(SmoothRamp::Kind::smoothstep, kStart, kGoal, 0.7);
+  const SyncedTrapezoid trap(kSampleStart, kSampleGoal, 1.0, 2.0);
+  const QuinticTrajectory quintic(
+      {kSampleStart, Eigen::VectorXd::Zero(3), Eigen::VectorXd::Zero(3)},
+      {kSampleGoal, Eigen::VectorXd::Zero(3), Eigen::VectorXd::Zero(3)}, 1.1);
+  const SmoothRampTrajectory ramp(SmoothRamp::Kind::smoothstep, kSampleStart, kSampleGoal, 0.7);
   JointMoveRequest request;
-  request.start = kStart;
-  request.target = kGoal;
+  request.start = kSampleStart;
+  request.target = kSampleGoal;
   request.max_velocity = Eigen::VectorXd::Constant(3, 1.0);
   request.max_acceleration = Eigen::VectorXd::Constant(3, 2.0);
   request.max_jerk = Eigen::VectorXd::Constant(3, 20.0);
