@@ -29,8 +29,8 @@ constexpr double unit_draw(std::uint64_t bits) noexcept {
 /// Uniform in [0, 1): `unit_draw` of one draw of @p rng.
 inline double uniform(Random& rng) noexcept { return unit_draw(rng()); }
 
-/// Uniform in [@p lo, @p hi): lo + (hi − lo)·u with u = uniform(rng), one draw. (Rounding can
-/// give hi itself when lo and hi differ by many orders of magnitude; lo > hi draws in (hi, lo].)
+/// Uniform in [@p lo, @p hi): lo + (hi − lo)·u with u = uniform(rng), one draw (rounding can give
+/// hi itself for the largest u; lo > hi draws in (hi, lo]).
 inline double uniform(Random& rng, double lo, double hi) noexcept {
   return lo + (hi - lo) * uniform(rng);
 }

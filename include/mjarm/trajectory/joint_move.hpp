@@ -37,7 +37,7 @@ const char* to_string(ProfileKind kind) noexcept;
 struct ProfileKindInfo {
   ProfileKind kind;
   const char* name;     ///< to_string(kind)
-  const char* summary;  ///< one line saying what it is
+  const char* summary;  ///< one line saying what it is (`mjarm traj --help` prints it)
   /// It takes start and target velocities and accelerations (else it moves rest to rest).
   bool moving_ends;
   /// It takes a given duration (else its duration follows from the limits).
