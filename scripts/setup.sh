@@ -14,7 +14,7 @@ packages=(
   libyaml-cpp-dev
   # render room (part of the default build, tested headless): EGL + desktop GL headers, Mesa's
   # EGL vendor and software rasteriser (no GPU, no display), PNG frames, ffmpeg for MP4 video
-  libegl-dev libgl-dev libegl-mesa0 libgl1-mesa-dri libpng-dev ffmpeg
+  libegl-dev libgl-dev libopengl-dev libegl-mesa0 libgl1-mesa-dri libpng-dev ffmpeg
   # interactive viewer (part of the default build): GLFW windows; its test runs under Xvfb
   libglfw3-dev xvfb xauth
   # plots of a recording (`mjarm plot`, the demo)
