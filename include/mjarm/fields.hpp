@@ -145,6 +145,10 @@ struct EnumName {
   std::string_view doc = {};
 };
 
+// aggregate deduction as clang 14 lacks it: EnumName{E::a, "a"} is an EnumName<E>
+template <class E, class... Rest>
+EnumName(E, Rest...) -> EnumName<E>;
+
 /// An enum that declares its names.
 template <class E>
 concept DeclaredEnum =
