@@ -26,3 +26,18 @@ if(NOT models_dir STREQUAL "${WORK_DIR}/prefix/share/mjarm/models")
   message(FATAL_ERROR "the installed CLI's models are '${models_dir}', not the install's "
                       "'${WORK_DIR}/prefix/share/mjarm/models'")
 endif()
+# the installed headers are the public ones, include/mjarm, and no more: a room's private headers
+# (src/<room>/) are not installed
+get_filename_component(public_dir ${SOURCE_DIR}/../../include ABSOLUTE)
+file(GLOB_RECURSE public RELATIVE ${public_dir} ${public_dir}/mjarm/*)
+file(GLOB_RECURSE installed RELATIVE ${WORK_DIR}/prefix/include ${WORK_DIR}/prefix/include/*)
+list(SORT public)
+list(SORT installed)
+if(NOT installed STREQUAL public)
+  set(extra ${installed})
+  list(REMOVE_ITEM extra ${public})
+  set(missing ${public})
+  list(REMOVE_ITEM missing ${installed})
+  message(FATAL_ERROR "the installed headers are not include/mjarm's: installed but not public: "
+                      "${extra}; public but not installed: ${missing}")
+endif()
