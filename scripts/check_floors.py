@@ -13,7 +13,8 @@ fails, naming file, line and arrow, when
   other room's public headers), or a public header includes a private one (it would not compile
   once installed), or code outside the library includes the library's own headers under src/,
 - a top-level header (`mjarm/*.hpp`, `src/*.hpp`: floor 0, readable by every room) includes a
-  room.
+  room,
+- the drawing of the floors in the same section ("floor N   room/ room/") disagrees with the table.
 
 Arrows the table lists but the code does not use are printed as information only. Standard
 library only: run by CTest with any python3 (`architecture_floors`), or by hand:
