@@ -56,8 +56,9 @@ class Tree:
         """The include directories the build gives the file at `path` (CMakeLists.txt)."""
         for folder in self.consumers:
             if is_under(path, folder):
-                # the bindings add their own folder; the CLI and the examples only the public headers
-                return ([folder] if folder.endswith(os.path.join("python", "src")) else []) + [self.public]
+                # the bindings add their own folder; the CLI and the examples only include/
+                own = [folder] if self.consumers[folder] == "python" else []
+                return own + [self.public]
         return [self.public, self.private]
 
     def place(self, path):
@@ -163,7 +164,8 @@ def read_table(section, docs_name, errors):
 
 
 def check_drawing(section, table, docs_name, errors):
-    """The drawing (the section's lines "floor N   room/ room/ …") puts each room where the table does."""
+    """The drawing (the section's lines "floor N   room/ room/ …") puts each room where the
+    table does."""
     drawn = {}
     for number, line in section:
         match = re.match(r"^floor\s+(\d+)\s(.*)$", line)
@@ -178,18 +180,22 @@ def check_drawing(section, table, docs_name, errors):
         return
     for room, places in sorted(drawn.items()):
         if room not in table:
-            errors.append(f"{docs_name}:{places[0][1]}: the drawing has room {room}, the table does not")
+            errors.append(f"{docs_name}:{places[0][1]}: the drawing has room {room}, "
+                          f"the table does not")
         elif len(places) > 1:
             errors.append(f"{docs_name}:{places[1][1]}: the drawing has room {room} twice")
         elif places[0][0] != table[room][0]:
-            errors.append(f"{docs_name}:{places[0][1]}: the drawing puts {room} on floor {places[0][0]}, "
-                          f"the table (line {table[room][2]}) on floor {table[room][0]}")
+            errors.append(f"{docs_name}:{places[0][1]}: the drawing puts {room} on floor "
+                          f"{places[0][0]}, the table (line {table[room][2]}) on floor "
+                          f"{table[room][0]}")
     for room in sorted(set(table) - set(drawn)):
-        errors.append(f"{docs_name}:{table[room][2]}: room {room} is not in the drawing of the floors")
+        errors.append(f"{docs_name}:{table[room][2]}: room {room} is not in the drawing of "
+                      f"the floors")
 
 
 def check_table(table, docs_name, errors):
-    """Each listed arrow names a room of the table on a lower floor. Returns {room: set it may read}."""
+    """Each listed arrow names a room of the table on a lower floor.
+    Returns {room: the set of rooms it may read}."""
     allowed = {}
     for room, (floor, reads, number) in table.items():
         if reads == EVERY_ROOM_BELOW:
@@ -198,11 +204,12 @@ def check_table(table, docs_name, errors):
         allowed[room] = set()
         for other in reads:
             if other not in table:
-                errors.append(f"{docs_name}:{number}: room {room} reads from '{other}', which is not a "
-                              f"room of the table")
+                errors.append(f"{docs_name}:{number}: room {room} reads from '{other}', which "
+                              f"is not a room of the table")
             elif table[other][0] >= floor:
-                errors.append(f"{docs_name}:{number}: arrow {room} -> {other} goes from floor {floor} to "
-                              f"floor {table[other][0]}: a room reads only rooms on lower floors")
+                errors.append(f"{docs_name}:{number}: arrow {room} -> {other} goes from floor "
+                              f"{floor} to floor {table[other][0]}: a room reads only rooms on "
+                              f"lower floors")
             else:
                 allowed[room].add(other)
     return allowed
@@ -228,7 +235,8 @@ def includes(path):
 
 
 def resolve(tree, path, delimiter, name):
-    """The file an #include names, as the compiler finds it, or None (a system or third-party header)."""
+    """The file an #include names, as the compiler finds it; None for a system or third-party
+    header."""
     candidates = [os.path.dirname(path)] if delimiter == '"' else []
     for folder in candidates + tree.search_path(path):
         target = os.path.normpath(os.path.join(folder, name))
@@ -290,14 +298,16 @@ def run(root, show_graph):
         if os.path.isdir(base):
             found_rooms.update(e for e in os.listdir(base) if os.path.isdir(os.path.join(base, e)))
     for room in sorted(found_rooms - set(table)):
-        errors.append(f"room {room} (include/mjarm/{room} or src/{room}) is not in {docs_name}'s rooms table")
+        errors.append(f"room {room} (include/mjarm/{room} or src/{room}) is not in "
+                      f"{docs_name}'s rooms table")
     consumers = set(tree.consumers.values())
     for room in sorted(set(table) - found_rooms - consumers):
-        errors.append(f"{docs_name}:{table[room][2]}: room {room} has no folder include/mjarm/{room} or "
-                      f"src/{room}")
+        errors.append(f"{docs_name}:{table[room][2]}: room {room} has no folder "
+                      f"include/mjarm/{room} or src/{room}")
     for folder, room in tree.consumers.items():
         if room not in table and os.path.isdir(folder):
-            errors.append(f"{tree.rel(folder)}/ is room {room}, which is not in {docs_name}'s rooms table")
+            errors.append(f"{tree.rel(folder)}/ is room {room}, which is not in {docs_name}'s "
+                          f"rooms table")
 
     used = {}
     for path in source_files(tree):
@@ -308,7 +318,8 @@ def run(root, show_graph):
             target = resolve(tree, path, delimiter, name)
             if target is None:
                 if name.startswith("mjarm/"):
-                    errors.append(f"{tree.rel(path)}:{number}: includes {name}, which does not exist")
+                    errors.append(f"{tree.rel(path)}:{number}: includes {name}, which does not "
+                                  f"exist")
                 continue
             target_room, _ = tree.place(target)
             if room is not None and target_room is not None and target_room != room:
@@ -334,18 +345,22 @@ def run(root, show_graph):
     for error in errors:
         print(f"error: {error}")
     if errors:
-        print(f"architecture floors: {len(errors)} error(s); the table is {docs_name}, '{ROOMS_HEADING}'")
+        print(f"architecture floors: {len(errors)} error(s); the table is {docs_name}, "
+              f"'{ROOMS_HEADING}'")
         return 1
     arrows = sum(len(v) for v in used.values())
-    print(f"architecture floors: ok ({len(table)} rooms, {arrows} arrows between rooms, all down the floors)")
+    print(f"architecture floors: ok ({len(table)} rooms, {arrows} arrows between rooms, all down "
+          f"the floors)")
     return 0
 
 
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--root", default=os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."),
+    here = os.path.dirname(os.path.abspath(__file__))
+    parser.add_argument("--root", default=os.path.join(here, ".."),
                         help="the source tree (default: this script's repository)")
-    parser.add_argument("--graph", action="store_true", help="print the include graph between rooms")
+    parser.add_argument("--graph", action="store_true",
+                        help="print the include graph between rooms")
     args = parser.parse_args()
     if not os.path.isdir(args.root):
         print(f"error: --root '{args.root}' is not a folder", file=sys.stderr)
