@@ -26,18 +26,18 @@ if(NOT models_dir STREQUAL "${WORK_DIR}/prefix/share/mjarm/models")
   message(FATAL_ERROR "the installed CLI's models are '${models_dir}', not the install's "
                       "'${WORK_DIR}/prefix/share/mjarm/models'")
 endif()
-# the installed headers are the public ones, include/mjarm, and no more: a room's private headers
-# (src/<room>/) are not installed
+# every installed header is one of include/mjarm's: a room's private headers (src/<room>/) are not
+# installed (the install may leave a part of include/mjarm out)
 get_filename_component(public_dir ${SOURCE_DIR}/../../include ABSOLUTE)
 file(GLOB_RECURSE public RELATIVE ${public_dir} ${public_dir}/mjarm/*)
 file(GLOB_RECURSE installed RELATIVE ${WORK_DIR}/prefix/include ${WORK_DIR}/prefix/include/*)
-list(SORT public)
-list(SORT installed)
-if(NOT installed STREQUAL public)
-  set(extra ${installed})
+set(extra ${installed})
+if(public)
   list(REMOVE_ITEM extra ${public})
-  set(missing ${public})
-  list(REMOVE_ITEM missing ${installed})
-  message(FATAL_ERROR "the installed headers are not include/mjarm's: installed but not public: "
-                      "${extra}; public but not installed: ${missing}")
+endif()
+if(extra)
+  message(FATAL_ERROR "installed headers that are not in include/mjarm: ${extra}")
+endif()
+if(NOT installed)
+  message(FATAL_ERROR "no header was installed under ${WORK_DIR}/prefix/include")
 endif()
