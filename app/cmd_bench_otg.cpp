@@ -6,7 +6,7 @@
 #include <memory>
 
 #include "commands.hpp"
-#include "mjarm/sim/interrupt.hpp"
+#include "mjarm/interrupt.hpp"
 #include "mjarm/trajectory/jerk_limited_validation.hpp"
 #include "output.hpp"
 

@@ -15,7 +15,7 @@
 #include "mjarm/env/observation_set.hpp"
 #include "mjarm/env/task_registry.hpp"
 #include "mjarm/env/vector_environment.hpp"
-#include "mjarm/sim/interrupt.hpp"
+#include "mjarm/interrupt.hpp"
 #include "output.hpp"
 
 namespace mjarm::cli {

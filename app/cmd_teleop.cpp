@@ -9,7 +9,7 @@
 #include "commands.hpp"
 #include "field_options.hpp"
 #include "mjarm/error.hpp"
-#include "mjarm/sim/interrupt.hpp"
+#include "mjarm/interrupt.hpp"
 #include "mjarm/tasks/run_video.hpp"
 #include "mjarm/teleop/bimanual_lift.hpp"
 

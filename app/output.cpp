@@ -9,7 +9,7 @@
 #include <filesystem>
 #include <iostream>
 
-#include "mjarm/sim/interrupt.hpp"
+#include "mjarm/interrupt.hpp"
 
 namespace mjarm::cli {
 

@@ -3,7 +3,7 @@
 
 #include "bindings.hpp"
 #include "declared_fields.hpp"
-#include "mjarm/sim/interrupt.hpp"
+#include "mjarm/interrupt.hpp"
 #include "mjarm/sim/recorder.hpp"
 #include "mjarm/sim/simulation.hpp"
 
