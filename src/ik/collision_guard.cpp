@@ -1,22 +1,18 @@
 #include "mjarm/ik/collision_guard.hpp"
 
 #include <algorithm>
-#include <cmath>
 #include <limits>
 #include <sstream>
 
 #include "mjarm/error.hpp"
-#include "mjarm/number_text.hpp"
+#include "option_check.hpp"
 
 namespace mjarm {
 
 CollisionGuard::CollisionGuard(const Chain& chain, const CollisionSpec& spec)
     : chain_(chain), spec_(spec) {
   const Robot& robot = chain_.robot();
-  if (!std::isfinite(spec.margin) || spec.margin < 0.0)
-    throw Error("collision margin must be finite and >= 0, got " + number_text(spec.margin));
-  if (spec.max_halvings < 0)
-    throw Error("collision max_halvings must be >= 0, got " + std::to_string(spec.max_halvings));
+  detail::check_fields(detail::OptionCheck("collision "), spec);
   for (const auto& [a, b] : spec.pairs) {
     const int g1 = robot.geom(a);
     const int g2 = robot.geom(b);
@@ -33,6 +29,15 @@ CollisionGuard::CollisionGuard(const Chain& chain, const CollisionSpec& spec)
   const mjModel& m = robot.model();
   fixed_qpos_ = Eigen::Map<const Eigen::VectorXd>(m.qpos0, m.nq);
 }
+
+namespace detail {
+
+void check_fields(const OptionCheck& require, const CollisionSpec& spec) {
+  require.non_negative("margin", spec.margin);
+  require.at_least("max_halvings", spec.max_halvings, 0);
+}
+
+}  // namespace detail
 
 void CollisionGuard::set_fixed_qpos(const Eigen::Ref<const Eigen::VectorXd>& qpos) {
   chain_.check_qpos(qpos, "fixed qpos");

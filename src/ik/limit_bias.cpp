@@ -2,24 +2,23 @@
 
 #include <algorithm>
 #include <cmath>
-#include <string>
 
-#include "mjarm/error.hpp"
-#include "mjarm/number_text.hpp"
+#include "option_check.hpp"
 
 namespace mjarm {
 
-void check(const LimitBias& bias) {
-  if (!std::isfinite(bias.centre_gain) || bias.centre_gain < 0.0)
-    throw Error("limit bias centre_gain must be finite and >= 0, got " +
-                number_text(bias.centre_gain));
-  if (!std::isfinite(bias.repulsion_gain) || bias.repulsion_gain < 0.0)
-    throw Error("limit bias repulsion_gain must be finite and >= 0, got " +
-                number_text(bias.repulsion_gain));
-  if (!(bias.repulsion_zone >= 0.0 && bias.repulsion_zone <= 0.5))
-    throw Error("limit bias repulsion_zone must be in [0, 0.5], got " +
-                number_text(bias.repulsion_zone));
+void check(const LimitBias& bias) { detail::check_fields(detail::OptionCheck("limit bias "), bias); }
+
+namespace detail {
+
+void check_fields(const OptionCheck& require, const LimitBias& bias) {
+  require.non_negative("centre_gain", bias.centre_gain);
+  require.non_negative("repulsion_gain", bias.repulsion_gain);
+  require.require(bias.repulsion_zone >= 0.0 && bias.repulsion_zone <= 0.5, "repulsion_zone",
+                  bias.repulsion_zone, "in [0, 0.5]");
 }
+
+}  // namespace detail
 
 void add_limit_bias(const Chain& chain, const LimitBias& bias,
                     const Eigen::Ref<const Eigen::VectorXd>& q,
