@@ -4,6 +4,7 @@
 #include "bindings.hpp"
 #include "mjarm/ik/diff_ik.hpp"
 #include "mjarm/ik/global_ik.hpp"
+#include "mjarm/ik/local_ik_settings.hpp"
 #include "mjarm/ik/multi_target_ik.hpp"
 #include "mjarm/ik/pose_ik.hpp"
 #include "mjarm/ik/position_ik.hpp"
@@ -32,15 +33,6 @@ IkIterationCallback python_observer(py::object f) {
       keep_callback_error(std::current_exception());
     }
   };
-}
-
-template <typename Options, typename Class>
-void observer_property(Class& cls) {
-  cls.def_property(
-      "on_iteration", [](const Options& o) { return static_cast<bool>(o.on_iteration); },
-      [](Options& o, py::object f) { o.on_iteration = python_observer(std::move(f)); },
-      "callable(iteration, position_error, orientation_error, q) called for every iterate, or "
-      "None; reading gives whether one is set");
 }
 
 /// Runs @p solve without the GIL and raises an observer's exception afterwards.
@@ -75,23 +67,6 @@ std::vector<Pose> poses_of(const std::vector<py::object>& targets) {
   std::vector<Pose> poses;
   for (const auto& t : targets) poses.push_back(to_pose(t, "X_WT"));
   return poses;
-}
-
-template <typename Options, typename Class>
-void local_options(Class& cls) {
-  cls.def(py::init<>())
-      .def_readwrite("step", &Options::step)
-      .def_readwrite("max_backtracks", &Options::max_backtracks)
-      .def_readwrite("null_space_damping", &Options::null_space_damping)
-      .def_readwrite("max_step", &Options::max_step)
-      .def_readwrite("secondary_ratio", &Options::secondary_ratio)
-      .def_readwrite("limits", &Options::limits)
-      .def_readwrite("posture", &Options::posture)
-      .def_readwrite("max_iterations", &Options::max_iterations)
-      .def_readwrite("stall_iterations", &Options::stall_iterations)
-      .def_readwrite("stall_progress", &Options::stall_progress)
-      .def_readwrite("collision", &Options::collision);
-  observer_property<Options>(cls);
 }
 
 Eigen::VectorXd seed_of(const Chain& chain, py::handle q_seed) {
@@ -141,9 +116,40 @@ void bind_ik(py::module_& m) {
       .def_readwrite("margin", &CollisionSpec::margin)
       .def_readwrite("max_halvings", &CollisionSpec::max_halvings);
 
-  auto position_options = py::class_<PositionIkOptions>(m, "PositionIkOptions");
-  local_options<PositionIkOptions>(position_options);
-  position_options.def_readwrite("damping", &PositionIkOptions::damping)
+  // the fields every local solver's options share, bound once on their common base
+  py::class_<LocalIkSettings>(m, "LocalIkSettings",
+                              "The settings every local IK solver shares: PositionIkOptions, "
+                              "PoseIkOptions and MultiTargetIkOptions derive from it, each with "
+                              "its own defaults.")
+      .def_readwrite("damping", &LocalIkSettings::damping,
+                     "λ₀ > 0 of each damped least-squares step (position IK: λ [m])")
+      .def_readwrite("step", &LocalIkSettings::step,
+                     "fraction of the task step taken per iteration, (0, 1]")
+      .def_readwrite("max_backtracks", &LocalIkSettings::max_backtracks,
+                     "halvings of a step that does not improve (>= 0)")
+      .def_readwrite("null_space_damping", &LocalIkSettings::null_space_damping,
+                     "ε of the null-space projector (>= 0)")
+      .def_readwrite("max_step", &LocalIkSettings::max_step,
+                     "largest joint change per iteration [rad or m] (> 0)")
+      .def_readwrite("secondary_ratio", &LocalIkSettings::secondary_ratio,
+                     "secondary step <= this x the task step (>= 0)")
+      .def_readwrite("limits", &LocalIkSettings::limits, "centre pull and limit repulsion")
+      .def_readwrite("posture", &LocalIkSettings::posture, "pull towards a preferred configuration")
+      .def_readwrite("max_iterations", &LocalIkSettings::max_iterations, "iteration limit (>= 1)")
+      .def_readwrite("stall_iterations", &LocalIkSettings::stall_iterations,
+                     "stop after this many iterations without progress (>= 1)")
+      .def_readwrite("stall_progress", &LocalIkSettings::stall_progress,
+                     "progress = the error measure drops by this fraction, in [0, 1)")
+      .def_readwrite("collision", &LocalIkSettings::collision, "geoms that must not touch")
+      .def_property(
+          "on_iteration",
+          [](const LocalIkSettings& o) { return static_cast<bool>(o.on_iteration); },
+          [](LocalIkSettings& o, py::object f) { o.on_iteration = python_observer(std::move(f)); },
+          "callable(iteration, position_error, orientation_error, q) called for every iterate, "
+          "or None; reading gives whether one is set");
+
+  py::class_<PositionIkOptions, LocalIkSettings>(m, "PositionIkOptions")
+      .def(py::init<>())
       .def_readwrite("tolerance", &PositionIkOptions::tolerance, "[m]");
   py::class_<PositionIk>(m, "PositionIk",
                          "Position-only damped least squares with centre pull and limit "
@@ -177,9 +183,8 @@ void bind_ik(py::module_& m) {
           py::arg("p_WT"), py::arg("q_seed"),
           "One solve per row of p_WT (k, 3) from the same seed, without the GIL.");
 
-  auto pose_options = py::class_<PoseIkOptions>(m, "PoseIkOptions");
-  local_options<PoseIkOptions>(pose_options);
-  pose_options.def_readwrite("damping", &PoseIkOptions::damping)
+  py::class_<PoseIkOptions, LocalIkSettings>(m, "PoseIkOptions")
+      .def(py::init<>())
       .def_readwrite("error_damping", &PoseIkOptions::error_damping)
       .def_readwrite("position_weight", &PoseIkOptions::position_weight)
       .def_readwrite("orientation_weight", &PoseIkOptions::orientation_weight)
@@ -233,10 +238,9 @@ void bind_ik(py::module_& m) {
   py::enum_<MultiTargetMode>(m, "MultiTargetMode")
       .value("stacked", MultiTargetMode::stacked)
       .value("prioritized", MultiTargetMode::prioritized);
-  auto multi_options = py::class_<MultiTargetIkOptions>(m, "MultiTargetIkOptions");
-  local_options<MultiTargetIkOptions>(multi_options);
-  multi_options.def_readwrite("mode", &MultiTargetIkOptions::mode)
-      .def_readwrite("damping", &MultiTargetIkOptions::damping)
+  py::class_<MultiTargetIkOptions, LocalIkSettings>(m, "MultiTargetIkOptions")
+      .def(py::init<>())
+      .def_readwrite("mode", &MultiTargetIkOptions::mode)
       .def_readwrite("error_damping", &MultiTargetIkOptions::error_damping)
       .def_readwrite("position_tolerance", &MultiTargetIkOptions::position_tolerance)
       .def_readwrite("orientation_tolerance", &MultiTargetIkOptions::orientation_tolerance);

@@ -7,7 +7,9 @@
 
 namespace mjarm {
 
-void check(const LimitBias& bias) { detail::check_fields(detail::OptionCheck("limit bias "), bias); }
+void check(const LimitBias& bias) {
+  detail::check_fields(detail::OptionCheck("limit bias "), bias);
+}
 
 namespace detail {
 

@@ -45,9 +45,8 @@ TEST(LocalIkSettings, EachSolverKeepsItsTuning) {
   EXPECT_EQ(multi.mode, MultiTargetMode::prioritized);
 
   // the rest is shared
-  for (const LocalIkSettings* s : {static_cast<const LocalIkSettings*>(&position),
-                                   static_cast<const LocalIkSettings*>(&pose),
-                                   static_cast<const LocalIkSettings*>(&multi)}) {
+  const LocalIkSettings* shared[] = {&position, &pose, &multi};
+  for (const LocalIkSettings* s : shared) {
     EXPECT_EQ(s->max_backtracks, 4);
     EXPECT_EQ(s->null_space_damping, 1e-5);
     EXPECT_EQ(s->max_step, 0.5);
@@ -136,11 +135,17 @@ TEST(LocalIkSettings, SolverFieldsUseTheSameWording) {
 // The structs' own checks, outside a solver's options, keep their names.
 TEST(LocalIkSettings, NestedStructsAloneNameThemselves) {
   const Chain chain(Robot::bundled("panda"), "attachment_site");
-  EXPECT_EQ(test::error_of([] { check(LimitBias{-1.0, 0.0, 0.15}); }),
+  EXPECT_EQ(test::error_of([] {
+              check(LimitBias{-1.0, 0.0, 0.15});
+            }),
             "limit bias centre_gain must be finite and >= 0, got -1");
-  EXPECT_EQ(test::error_of([&] { resolve_posture(chain, Posture{{}, -0.5}); }),
+  EXPECT_EQ(test::error_of([&] {
+              resolve_posture(chain, Posture{{}, -0.5});
+            }),
             "posture gain must be in [0, 1], got -0.5");
-  EXPECT_EQ(test::error_of([&] { CollisionGuard(chain, CollisionSpec{{}, {}, 0.0, -1}); }),
+  EXPECT_EQ(test::error_of([&] {
+              CollisionGuard(chain, CollisionSpec{{}, {}, 0.0, -1});
+            }),
             "collision max_halvings must be >= 0, got -1");
 }
 

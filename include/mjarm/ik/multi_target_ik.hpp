@@ -43,8 +43,8 @@ enum class MultiTargetMode {
 /// the targets of max(position error / tolerance, angle / tolerance) at the current iterate.
 struct MultiTargetIkOptions : LocalIkSettings {
   MultiTargetMode mode = MultiTargetMode::prioritized;  ///< how targets are combined
-  double error_damping = 0.5;           ///< adds this × ½‖Wₖeₖ‖² to λₖ² (finite, ≥ 0)
-  double position_tolerance = 1e-5;     ///< per target: ‖p_WT − p_WE‖ ≤ this [m] (> 0)
+  double error_damping = 0.5;        ///< adds this × ½‖Wₖeₖ‖² to λₖ² (finite, ≥ 0)
+  double position_tolerance = 1e-5;  ///< per target: ‖p_WT − p_WE‖ ≤ this [m] (> 0)
   double orientation_tolerance = 1e-5;  ///< per pose target: rotation angle ≤ this [rad] (> 0)
 };
 

@@ -30,10 +30,10 @@ namespace mjarm {
 /// solver's tuning, its error-proportional damping, row weights and tolerances. Its stall
 /// measure is the best max(position error / tolerance, angle / tolerance) so far.
 struct PoseIkOptions : LocalIkSettings {
-  double error_damping = 0.5;       ///< adds this × ½‖W·e‖² to λ² (finite, ≥ 0; 0 = plain DLS)
-  double position_weight = 1.0;     ///< w_p, row weight of the position error [1/m] (> 0)
-  double orientation_weight = 0.5;  ///< w_o, row weight of the orientation error [1/rad] (> 0)
-  double position_tolerance = 1e-5;     ///< success when ‖p_WT − p_WE‖ ≤ this [m] (> 0)
+  double error_damping = 0.5;        ///< adds this × ½‖W·e‖² to λ² (≥ 0; 0 = plain DLS)
+  double position_weight = 1.0;      ///< w_p, row weight of the position error [1/m] (> 0)
+  double orientation_weight = 0.5;   ///< w_o, row weight of the orientation error [1/rad] (> 0)
+  double position_tolerance = 1e-5;  ///< success when ‖p_WT − p_WE‖ ≤ this [m] (> 0)
   double orientation_tolerance = 1e-5;  ///< ... and the rotation angle to the target ≤ this [rad]
 
   /// At most 200 iterations; the rest as in `LocalIkSettings` (λ₀ = 1e-3, first step 1, no

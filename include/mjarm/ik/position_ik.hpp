@@ -35,10 +35,8 @@ struct PositionIkOptions : LocalIkSettings {
   /// λ = 0.02 m, α = 0.6, centre gain 0.05 and repulsion 0.2 in the outer 15 % of the ranges,
   /// stall after 60 iterations without progress; the rest as in `LocalIkSettings`.
   PositionIkOptions()
-      : LocalIkSettings{.damping = 0.02,
-                        .step = 0.6,
-                        .limits = {0.05, 0.2, 0.15},
-                        .stall_iterations = 60} {}
+      : LocalIkSettings{
+            .damping = 0.02, .step = 0.6, .limits = {0.05, 0.2, 0.15}, .stall_iterations = 60} {}
 };
 
 /// @throws Error naming the offending option ("position IK option max_step must be ...").
