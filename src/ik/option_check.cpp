@@ -1,6 +1,7 @@
 #include "option_check.hpp"
 
 #include <cmath>
+#include <string>
 
 #include "mjarm/error.hpp"
 #include "mjarm/number_text.hpp"
