@@ -2,6 +2,7 @@
 #include <pybind11/functional.h>
 
 #include "bindings.hpp"
+#include "declared_fields.hpp"
 #include "mjarm/ik/diff_ik.hpp"
 #include "mjarm/ik/global_ik.hpp"
 #include "mjarm/ik/local_ik_settings.hpp"
@@ -95,62 +96,38 @@ void bind_ik(py::module_& m) {
                " m, " + number_text(r.orientation_error) + " rad>";
       });
 
-  py::class_<LimitBias>(m, "LimitBias", "Centre pull and limit repulsion (per-iteration steps).")
-      .def(py::init<>())
+  py::class_<LimitBias> limit_bias(m, "LimitBias",
+                                   "Centre pull and limit repulsion (per-iteration steps).");
+  limit_bias.def(py::init<>())
       .def(py::init([](double c, double r, double z) {
              return LimitBias{c, r, z};
            }),
            py::arg("centre_gain"), py::arg("repulsion_gain") = 0.0,
-           py::arg("repulsion_zone") = 0.15)
-      .def_readwrite("centre_gain", &LimitBias::centre_gain)
-      .def_readwrite("repulsion_gain", &LimitBias::repulsion_gain)
-      .def_readwrite("repulsion_zone", &LimitBias::repulsion_zone);
-  auto posture = py::class_<Posture>(m, "Posture", "A preferred configuration (null-space pull).");
-  posture.def(py::init<>()).def_readwrite("gain", &Posture::gain);
-  vector_property<Posture>(posture, "q_pref", &Posture::q_pref,
-                           "preferred joints (n,); empty = the middle of each range");
-  py::class_<CollisionSpec>(m, "CollisionSpec", "Geoms that must not touch during a solve.")
-      .def(py::init<>())
-      .def_readwrite("pairs", &CollisionSpec::pairs)
-      .def_readwrite("geoms", &CollisionSpec::geoms)
-      .def_readwrite("margin", &CollisionSpec::margin)
-      .def_readwrite("max_halvings", &CollisionSpec::max_halvings);
+           py::arg("repulsion_zone") = 0.15);
+  def_fields(limit_bias);
+  py::class_<Posture> posture(m, "Posture", "A preferred configuration (null-space pull).");
+  posture.def(py::init<>());
+  def_fields(posture);
+  py::class_<CollisionSpec> collision(m, "CollisionSpec",
+                                      "Geoms that must not touch during a solve.");
+  collision.def(py::init<>());
+  def_fields(collision);
 
   // the fields every local solver's options share, bound once on their common base
-  py::class_<LocalIkSettings>(m, "LocalIkSettings",
-                              "The settings every local IK solver shares: PositionIkOptions, "
-                              "PoseIkOptions and MultiTargetIkOptions derive from it, each with "
-                              "its own defaults.")
-      .def_readwrite("damping", &LocalIkSettings::damping,
-                     "λ₀ > 0 of each damped least-squares step (position IK: λ [m])")
-      .def_readwrite("step", &LocalIkSettings::step,
-                     "fraction of the task step taken per iteration, (0, 1]")
-      .def_readwrite("max_backtracks", &LocalIkSettings::max_backtracks,
-                     "halvings of a step that does not improve (>= 0)")
-      .def_readwrite("null_space_damping", &LocalIkSettings::null_space_damping,
-                     "ε of the null-space projector (>= 0)")
-      .def_readwrite("max_step", &LocalIkSettings::max_step,
-                     "largest joint change per iteration [rad or m] (> 0)")
-      .def_readwrite("secondary_ratio", &LocalIkSettings::secondary_ratio,
-                     "secondary step <= this x the task step (>= 0)")
-      .def_readwrite("limits", &LocalIkSettings::limits, "centre pull and limit repulsion")
-      .def_readwrite("posture", &LocalIkSettings::posture, "pull towards a preferred configuration")
-      .def_readwrite("max_iterations", &LocalIkSettings::max_iterations, "iteration limit (>= 1)")
-      .def_readwrite("stall_iterations", &LocalIkSettings::stall_iterations,
-                     "stop after this many iterations without progress (>= 1)")
-      .def_readwrite("stall_progress", &LocalIkSettings::stall_progress,
-                     "progress = the error measure drops by this fraction, in [0, 1)")
-      .def_readwrite("collision", &LocalIkSettings::collision, "geoms that must not touch")
-      .def_property(
-          "on_iteration",
-          [](const LocalIkSettings& o) { return static_cast<bool>(o.on_iteration); },
-          [](LocalIkSettings& o, py::object f) { o.on_iteration = python_observer(std::move(f)); },
-          "callable(iteration, position_error, orientation_error, q) called for every iterate, "
-          "or None; reading gives whether one is set");
+  py::class_<LocalIkSettings> settings(m, "LocalIkSettings",
+                                       "The settings every local IK solver shares: "
+                                       "PositionIkOptions, PoseIkOptions and MultiTargetIkOptions "
+                                       "derive from it, each with its own defaults.");
+  def_fields(settings);
+  settings.def_property(
+      "on_iteration", [](const LocalIkSettings& o) { return static_cast<bool>(o.on_iteration); },
+      [](LocalIkSettings& o, py::object f) { o.on_iteration = python_observer(std::move(f)); },
+      "callable(iteration, position_error, orientation_error, q) called for every iterate, or "
+      "None; reading gives whether one is set");
 
-  py::class_<PositionIkOptions, LocalIkSettings>(m, "PositionIkOptions")
-      .def(py::init<>())
-      .def_readwrite("tolerance", &PositionIkOptions::tolerance, "[m]");
+  py::class_<PositionIkOptions, LocalIkSettings> position_options(m, "PositionIkOptions");
+  position_options.def(py::init<>());
+  def_fields(position_options);
   py::class_<PositionIk>(m, "PositionIk",
                          "Position-only damped least squares with centre pull and limit "
                          "repulsion. solve() releases the GIL.")
@@ -183,13 +160,9 @@ void bind_ik(py::module_& m) {
           py::arg("p_WT"), py::arg("q_seed"),
           "One solve per row of p_WT (k, 3) from the same seed, without the GIL.");
 
-  py::class_<PoseIkOptions, LocalIkSettings>(m, "PoseIkOptions")
-      .def(py::init<>())
-      .def_readwrite("error_damping", &PoseIkOptions::error_damping)
-      .def_readwrite("position_weight", &PoseIkOptions::position_weight)
-      .def_readwrite("orientation_weight", &PoseIkOptions::orientation_weight)
-      .def_readwrite("position_tolerance", &PoseIkOptions::position_tolerance)
-      .def_readwrite("orientation_tolerance", &PoseIkOptions::orientation_tolerance);
+  py::class_<PoseIkOptions, LocalIkSettings> pose_options(m, "PoseIkOptions");
+  pose_options.def(py::init<>());
+  def_fields(pose_options);
   py::class_<PoseIk>(m, "PoseIk",
                      "Full-pose closed-loop IK on the SE(3) log error. solve() releases the GIL.")
       .def(py::init<const Chain&, const PoseIkOptions&>(), py::arg("chain"),
@@ -235,15 +208,10 @@ void bind_ik(py::module_& m) {
       .def_readwrite("position_weight", &FrameTarget::position_weight)
       .def_readwrite("orientation_weight", &FrameTarget::orientation_weight)
       .def_readwrite("priority", &FrameTarget::priority);
-  py::enum_<MultiTargetMode>(m, "MultiTargetMode")
-      .value("stacked", MultiTargetMode::stacked)
-      .value("prioritized", MultiTargetMode::prioritized);
-  py::class_<MultiTargetIkOptions, LocalIkSettings>(m, "MultiTargetIkOptions")
-      .def(py::init<>())
-      .def_readwrite("mode", &MultiTargetIkOptions::mode)
-      .def_readwrite("error_damping", &MultiTargetIkOptions::error_damping)
-      .def_readwrite("position_tolerance", &MultiTargetIkOptions::position_tolerance)
-      .def_readwrite("orientation_tolerance", &MultiTargetIkOptions::orientation_tolerance);
+  def_enum<MultiTargetMode>(m, "MultiTargetMode");
+  py::class_<MultiTargetIkOptions, LocalIkSettings> multi_options(m, "MultiTargetIkOptions");
+  multi_options.def(py::init<>());
+  def_fields(multi_options);
   py::class_<MultiTargetIk>(m, "MultiTargetIk", "Several frames at once, with strict priorities.")
       .def(py::init<const Robot&, const std::vector<std::string>&, const std::vector<FrameTarget>&,
                     const MultiTargetIkOptions&>(),

@@ -5,14 +5,13 @@
 #include <sstream>
 
 #include "mjarm/error.hpp"
-#include "option_check.hpp"
 
 namespace mjarm {
 
 CollisionGuard::CollisionGuard(const Chain& chain, const CollisionSpec& spec)
     : chain_(chain), spec_(spec) {
   const Robot& robot = chain_.robot();
-  detail::check_fields(detail::OptionCheck("collision "), spec);
+  check_fields(spec);
   for (const auto& [a, b] : spec.pairs) {
     const int g1 = robot.geom(a);
     const int g2 = robot.geom(b);
@@ -29,15 +28,6 @@ CollisionGuard::CollisionGuard(const Chain& chain, const CollisionSpec& spec)
   const mjModel& m = robot.model();
   fixed_qpos_ = Eigen::Map<const Eigen::VectorXd>(m.qpos0, m.nq);
 }
-
-namespace detail {
-
-void check_fields(const OptionCheck& require, const CollisionSpec& spec) {
-  require.non_negative("margin", spec.margin);
-  require.at_least("max_halvings", spec.max_halvings, 0);
-}
-
-}  // namespace detail
 
 void CollisionGuard::set_fixed_qpos(const Eigen::Ref<const Eigen::VectorXd>& qpos) {
   chain_.check_qpos(qpos, "fixed qpos");

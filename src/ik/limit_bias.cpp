@@ -3,24 +3,9 @@
 #include <algorithm>
 #include <cmath>
 
-#include "option_check.hpp"
-
 namespace mjarm {
 
-void check(const LimitBias& bias) {
-  detail::check_fields(detail::OptionCheck("limit bias "), bias);
-}
-
-namespace detail {
-
-void check_fields(const OptionCheck& require, const LimitBias& bias) {
-  require.non_negative("centre_gain", bias.centre_gain);
-  require.non_negative("repulsion_gain", bias.repulsion_gain);
-  require.require(bias.repulsion_zone >= 0.0 && bias.repulsion_zone <= 0.5, "repulsion_zone",
-                  bias.repulsion_zone, "in [0, 0.5]");
-}
-
-}  // namespace detail
+void check(const LimitBias& bias) { check_fields(bias); }
 
 void add_limit_bias(const Chain& chain, const LimitBias& bias,
                     const Eigen::Ref<const Eigen::VectorXd>& q,

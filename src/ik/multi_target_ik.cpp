@@ -5,7 +5,6 @@
 #include <string>
 
 #include "mjarm/error.hpp"
-#include "option_check.hpp"
 
 namespace mjarm {
 namespace {
@@ -24,11 +23,9 @@ ChainKinematics target_kinematics(const Robot& robot, const std::vector<std::str
 }  // namespace
 
 void check(const MultiTargetIkOptions& o) {
-  const detail::OptionCheck require("multi-target IK option ");
-  detail::check_fields(require, o);
-  require.non_negative("error_damping", o.error_damping);
-  require.positive("position_tolerance", o.position_tolerance);
-  require.positive("orientation_tolerance", o.orientation_tolerance);
+  // the shared settings, then the solver's own fields, under the name it declares
+  check_fields<LocalIkSettings>(o, fields_of<MultiTargetIkOptions>().owner);
+  check_fields(o);
 }
 
 MultiTargetIk::MultiTargetIk(const Robot& robot, const std::vector<std::string>& joints,

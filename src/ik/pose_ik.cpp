@@ -6,22 +6,17 @@
 
 #include "mjarm/ik/targets.hpp"
 #include "mjarm/lie/pose_error.hpp"
-#include "option_check.hpp"
 
 namespace mjarm {
 
 void check(const PoseIkOptions& o) {
-  const detail::OptionCheck require("pose IK option ");
-  detail::check_fields(require, o);
-  require.non_negative("error_damping", o.error_damping);
-  require.positive("position_weight", o.position_weight);
-  require.positive("orientation_weight", o.orientation_weight);
-  require.positive("position_tolerance", o.position_tolerance);
-  require.positive("orientation_tolerance", o.orientation_tolerance);
+  // the shared settings, then the solver's own fields, under the name it declares
+  check_fields<LocalIkSettings>(o, fields_of<PoseIkOptions>().owner);
+  check_fields(o);
 }
 
 PoseIk::PoseIk(const Chain& chain, const PoseIkOptions& options)
-    : options_(detail::checked(options)), kin_(chain), local_(chain, options_) {
+    : options_(checked(options)), kin_(chain), local_(chain, options_) {
   const int n = chain.size();
   J_world_.setZero(6, n);
   J_.setZero(6, n);

@@ -4,18 +4,17 @@
 #include <limits>
 
 #include "mjarm/ik/targets.hpp"
-#include "option_check.hpp"
 
 namespace mjarm {
 
 void check(const PositionIkOptions& o) {
-  const detail::OptionCheck require("position IK option ");
-  detail::check_fields(require, o);
-  require.positive("tolerance", o.tolerance);
+  // the shared settings, then the solver's own fields, under the name it declares
+  check_fields<LocalIkSettings>(o, fields_of<PositionIkOptions>().owner);
+  check_fields(o);
 }
 
 PositionIk::PositionIk(const Chain& chain, const PositionIkOptions& options)
-    : options_(detail::checked(options)), kin_(chain), local_(chain, options_) {
+    : options_(checked(options)), kin_(chain), local_(chain, options_) {
   const int n = chain.size();
   J6_.setZero(6, n);
   J_.setZero(3, n);

@@ -2,12 +2,10 @@
 
 #include <algorithm>
 
-#include "option_check.hpp"
-
 namespace mjarm {
 
 Eigen::VectorXd resolve_posture(const Chain& chain, const Posture& posture) {
-  detail::check_fields(detail::OptionCheck("posture "), posture);
+  check_fields(posture);
   if (posture.q_pref.size() == 0) return chain.center();
   chain.check(posture.q_pref, "posture q_pref");
   return posture.q_pref;
@@ -19,14 +17,6 @@ void add_posture_pull(const Eigen::Ref<const Eigen::VectorXd>& q_pref, double ga
   if (gain == 0.0) return;
   step += gain * (q_pref - q);
 }
-
-namespace detail {
-
-void check_fields(const OptionCheck& require, const Posture& posture) {
-  require.require(posture.gain >= 0.0 && posture.gain <= 1.0, "gain", posture.gain, "in [0, 1]");
-}
-
-}  // namespace detail
 
 double secondary_scale(double task_norm, double secondary_norm, double ratio) noexcept {
   if (!(secondary_norm > 0.0)) return 1.0;

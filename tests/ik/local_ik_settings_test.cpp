@@ -59,7 +59,7 @@ TEST(LocalIkSettings, EachSolverKeepsItsTuning) {
 }
 
 /// A bad value of one shared field and the message every solver gives for it, after
-/// "<solver> option ".
+/// "<solver>: ".
 struct BadSetting {
   std::function<void(LocalIkSettings&)> spoil;
   std::string message;
@@ -68,27 +68,30 @@ struct BadSetting {
 std::vector<BadSetting> bad_settings() {
   const double nan = std::numeric_limits<double>::quiet_NaN();
   return {
-      {[](LocalIkSettings& s) { s.damping = 0.0; }, "damping must be finite and > 0, got 0"},
+      {[](LocalIkSettings& s) { s.damping = 0.0; }, "damping must be positive and finite, got 0"},
       {[](LocalIkSettings& s) { s.step = 1.5; }, "step must be in (0, 1], got 1.5"},
-      {[](LocalIkSettings& s) { s.max_backtracks = -1; }, "max_backtracks must be >= 0, got -1"},
+      {[](LocalIkSettings& s) { s.max_backtracks = -1; }, "max_backtracks must be ≥ 0, got -1"},
       {[nan](LocalIkSettings& s) { s.null_space_damping = nan; },
-       "null_space_damping must be finite and >= 0, got nan"},
-      {[](LocalIkSettings& s) { s.max_step = -0.1; }, "max_step must be finite and > 0, got -0.1"},
+       "null_space_damping must be finite and ≥ 0, got nan"},
+      {[](LocalIkSettings& s) { s.max_step = -0.1; },
+       "max_step must be positive and finite [rad or m], got -0.1"},
       {[](LocalIkSettings& s) { s.secondary_ratio = -1.0; },
-       "secondary_ratio must be finite and >= 0, got -1"},
+       "secondary_ratio must be finite and ≥ 0, got -1"},
       {[](LocalIkSettings& s) { s.limits.centre_gain = -0.5; },
-       "limits.centre_gain must be finite and >= 0, got -0.5"},
+       "limits.centre_gain must be finite and ≥ 0, got -0.5"},
       {[](LocalIkSettings& s) { s.limits.repulsion_zone = 0.7; },
        "limits.repulsion_zone must be in [0, 0.5], got 0.7"},
+      {[nan](LocalIkSettings& s) { s.posture.q_pref = Eigen::Vector3d(0.1, nan, 0.2); },
+       "posture.q_pref[1] must be finite [rad or m], got nan"},
       {[](LocalIkSettings& s) { s.posture.gain = 2.0; }, "posture.gain must be in [0, 1], got 2"},
-      {[](LocalIkSettings& s) { s.max_iterations = 0; }, "max_iterations must be >= 1, got 0"},
-      {[](LocalIkSettings& s) { s.stall_iterations = 0; }, "stall_iterations must be >= 1, got 0"},
+      {[](LocalIkSettings& s) { s.max_iterations = 0; }, "max_iterations must be ≥ 1, got 0"},
+      {[](LocalIkSettings& s) { s.stall_iterations = 0; }, "stall_iterations must be ≥ 1, got 0"},
       {[](LocalIkSettings& s) { s.stall_progress = 1.0; },
        "stall_progress must be in [0, 1), got 1"},
       {[](LocalIkSettings& s) { s.collision.margin = -0.01; },
-       "collision.margin must be finite and >= 0, got -0.01"},
+       "collision.margin must be finite and ≥ 0 [m], got -0.01"},
       {[](LocalIkSettings& s) { s.collision.max_halvings = -2; },
-       "collision.max_halvings must be >= 0, got -2"},
+       "collision.max_halvings must be ≥ 0, got -2"},
   };
 }
 
@@ -103,17 +106,17 @@ TEST(LocalIkSettings, EverySolverRejectsABadSharedFieldInOneWording) {
     PositionIkOptions position;
     bad.spoil(position);
     EXPECT_EQ(test::error_of([&] { PositionIk ik(chain, position); }),
-              "position IK option " + bad.message);
+              "position IK: " + bad.message);
     PoseIkOptions pose;
     bad.spoil(pose);
-    EXPECT_EQ(test::error_of([&] { PoseIk ik(chain, pose); }), "pose IK option " + bad.message);
+    EXPECT_EQ(test::error_of([&] { PoseIk ik(chain, pose); }), "pose IK: " + bad.message);
     MultiTargetIkOptions multi;
     bad.spoil(multi);
     EXPECT_EQ(test::error_of([&] { MultiTargetIk ik(robot, joints, targets, multi); }),
-              "multi-target IK option " + bad.message);
+              "multi-target IK: " + bad.message);
     LocalIkSettings settings;
     bad.spoil(settings);
-    EXPECT_EQ(test::error_of([&] { check(settings, "my IK"); }), "my IK option " + bad.message);
+    EXPECT_EQ(test::error_of([&] { check_fields(settings, "my IK"); }), "my IK: " + bad.message);
   }
 }
 
@@ -121,15 +124,20 @@ TEST(LocalIkSettings, SolverFieldsUseTheSameWording) {
   PositionIkOptions position;
   position.tolerance = 0.0;
   EXPECT_EQ(test::error_of([&] { check(position); }),
-            "position IK option tolerance must be finite and > 0, got 0");
+            "position IK: tolerance must be positive and finite [m], got 0");
   PoseIkOptions pose;
   pose.orientation_weight = -1.0;
   EXPECT_EQ(test::error_of([&] { check(pose); }),
-            "pose IK option orientation_weight must be finite and > 0, got -1");
+            "pose IK: orientation_weight must be positive and finite [1/rad], got -1");
   MultiTargetIkOptions multi;
   multi.error_damping = std::numeric_limits<double>::infinity();
   EXPECT_EQ(test::error_of([&] { check(multi); }),
-            "multi-target IK option error_damping must be finite and >= 0, got inf");
+            "multi-target IK: error_damping must be finite and ≥ 0, got inf");
+  multi.error_damping = 0.5;
+  multi.mode = static_cast<MultiTargetMode>(7);
+  EXPECT_EQ(test::error_of([&] { check(multi); }),
+            "multi-target IK: mode holds 7, which names no value");
+  EXPECT_STREQ(to_string(MultiTargetMode::stacked), "stacked");
 }
 
 // The structs' own checks, outside a solver's options, keep their names.
@@ -138,15 +146,15 @@ TEST(LocalIkSettings, NestedStructsAloneNameThemselves) {
   EXPECT_EQ(test::error_of([] {
               check(LimitBias{-1.0, 0.0, 0.15});
             }),
-            "limit bias centre_gain must be finite and >= 0, got -1");
+            "limit bias: centre_gain must be finite and ≥ 0, got -1");
   EXPECT_EQ(test::error_of([&] {
               resolve_posture(chain, Posture{{}, -0.5});
             }),
-            "posture gain must be in [0, 1], got -0.5");
+            "posture: gain must be in [0, 1], got -0.5");
   EXPECT_EQ(test::error_of([&] {
               CollisionGuard(chain, CollisionSpec{{}, {}, 0.0, -1});
             }),
-            "collision max_halvings must be >= 0, got -1");
+            "collision: max_halvings must be ≥ 0, got -1");
 }
 
 }  // namespace

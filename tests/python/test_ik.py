@@ -134,7 +134,7 @@ def test_local_solvers_share_one_settings_struct(panda_chain):
     assert (pose.damping, pose.max_iterations) == (1e-3, 200)
     assert multi.max_iterations == 300 and multi.mode == mjarm.MultiTargetMode.prioritized
     pose.posture.gain = 2.0
-    with pytest.raises(mjarm.Error, match=r"pose IK option posture\.gain must be in \[0, 1\]"):
+    with pytest.raises(mjarm.Error, match=r"pose IK: posture\.gain must be in \[0, 1\], got 2"):
         mjarm.PoseIk(panda_chain, pose)
 
 

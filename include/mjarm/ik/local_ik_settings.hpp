@@ -16,8 +16,7 @@
 /// `LocalIkWorkspace` reads the step, trust-region, line-search and secondary-term fields; each
 /// solver reads the damping, step and stopping rules in its own loop.
 
-#include <string_view>
-
+#include "mjarm/fields.hpp"
 #include "mjarm/ik/collision_guard.hpp"
 #include "mjarm/ik/iteration_callback.hpp"
 #include "mjarm/ik/limit_bias.hpp"
@@ -63,11 +62,35 @@ struct LocalIkSettings {
   IkIterationCallback on_iteration{};
 };
 
-/// Checks every field, nested ones by path: "<solver> option limits.centre_gain must be finite
-/// and >= 0, got -1". The posture's q_pref and the collision geoms' names need the chain; the
-/// solver's constructor checks them.
-/// @param solver names the solver in messages, e.g. "pose IK"
-/// @throws Error naming the first offending field.
-void check(const LocalIkSettings& settings, std::string_view solver);
+/// The declared fields (mjarm/fields.hpp), checked by each solver's `check` under its name with
+/// nested ones by path ("pose IK: limits.centre_gain must be finite and ≥ 0, got -1"), or by
+/// `check_fields<LocalIkSettings>(settings, "my IK")`. The posture's q_pref size and the collision
+/// geoms' names need the chain: the solvers' constructors check them. `on_iteration` is not
+/// declared (a callback has no range; the Python binding wraps it for the GIL).
+constexpr auto declared_fields(const LocalIkSettings*) {
+  using S = LocalIkSettings;
+  return declare<S>(
+      "local IK",
+      field("damping", &S::damping, "", Range::positive(),
+            "λ₀ of each damped least-squares step (position IK: λ [m])"),
+      field("step", &S::step, "", Range::open_closed(0.0, 1.0),
+            "fraction of the task step taken per iteration"),
+      field("max_backtracks", &S::max_backtracks, "", Range::at_least(0),
+            "halvings of a step that does not improve; the last one is taken anyway"),
+      field("null_space_damping", &S::null_space_damping, "", Range::non_negative(),
+            "ε of the null-space projector(s), ≪ damping"),
+      field("max_step", &S::max_step, "rad or m", Range::positive(),
+            "largest joint change per iteration"),
+      field("secondary_ratio", &S::secondary_ratio, "", Range::non_negative(),
+            "the secondary step is at most this × the task step"),
+      field("limits", &S::limits, "centre pull and limit repulsion in the null space"),
+      field("posture", &S::posture, "pull towards a preferred configuration in the null space"),
+      field("max_iterations", &S::max_iterations, "", Range::at_least(1), "iteration limit"),
+      field("stall_iterations", &S::stall_iterations, "", Range::at_least(1),
+            "stop after this many iterations without progress"),
+      field("stall_progress", &S::stall_progress, "", Range{0.0, 1.0, false, true},
+            "progress = the solver's error measure drops by this fraction"),
+      field("collision", &S::collision, "geoms that must not touch (off when empty)"));
+}
 
 }  // namespace mjarm

@@ -43,7 +43,7 @@ class LocalIkWorkspace {
  public:
   /// @param chain the joints the solver moves
   /// @param settings reads limits, posture, collision, null_space_damping, max_step,
-  /// secondary_ratio and max_backtracks (checked by the solver: `check(LocalIkSettings)`)
+  /// secondary_ratio and max_backtracks (checked by the solver's `check`)
   /// @throws Error for an invalid posture or unknown collision geoms.
   LocalIkWorkspace(const Chain& chain, const LocalIkSettings& settings);
 
@@ -144,6 +144,15 @@ class StallCounter {
   double reference_ = std::numeric_limits<double>::infinity();
   int since_ = 0;
 };
+
+/// @p options once `check(options)` has passed, so that a constructor validates its options
+/// before it builds the members that read them.
+/// @throws Error from `check`.
+template <class Options>
+const Options& checked(const Options& options) {
+  check(options);
+  return options;
+}
 
 template <class SolveFree>
 bool LocalIkWorkspace::limited_step(SolveFree&& solve_free) noexcept {

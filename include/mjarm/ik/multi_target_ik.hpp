@@ -18,10 +18,12 @@
 /// prioritized mode) or touch a watched geom.
 
 #include <Eigen/Core>
+#include <array>
 #include <optional>
 #include <string>
 #include <vector>
 
+#include "mjarm/fields.hpp"
 #include "mjarm/ik/damped_least_squares.hpp"
 #include "mjarm/ik/local_ik_settings.hpp"
 #include "mjarm/ik/local_ik_workspace.hpp"
@@ -37,6 +39,13 @@ enum class MultiTargetMode {
   prioritized  ///< strict priorities by recursive null-space projection
 };
 
+constexpr auto declared_names(const MultiTargetMode*) {
+  using M = MultiTargetMode;
+  return std::array{
+      EnumName{M::stacked, "stacked", "one weighted damped least-squares problem"},
+      EnumName{M::prioritized, "prioritized", "strict priorities by null-space projection"}};
+}
+
 /// Every constant of `MultiTargetIk`: the shared local-IK settings (local_ik_settings.hpp, all
 /// at their defaults), the mode, the error-proportional damping and the per-target tolerances.
 /// Row weights and priorities belong to each `FrameTarget`. Its stall measure is the sum over
@@ -48,7 +57,20 @@ struct MultiTargetIkOptions : LocalIkSettings {
   double orientation_tolerance = 1e-5;  ///< per pose target: rotation angle ≤ this [rad] (> 0)
 };
 
-/// @throws Error naming the offending option ("multi-target IK option step must be ...").
+/// The fields of its own (the shared ones are `LocalIkSettings`'s).
+constexpr auto declared_fields(const MultiTargetIkOptions*) {
+  using S = MultiTargetIkOptions;
+  return declare<S>("multi-target IK", field("mode", &S::mode, "how targets are combined"),
+                    field("error_damping", &S::error_damping, "", Range::non_negative(),
+                          "adds this × ½‖Wₖeₖ‖² to λₖ²"),
+                    field("position_tolerance", &S::position_tolerance, "m", Range::positive(),
+                          "per target: ‖p_WT − p_WE‖ ≤ this"),
+                    field("orientation_tolerance", &S::orientation_tolerance, "rad",
+                          Range::positive(), "per pose target: rotation angle ≤ this"));
+}
+
+/// @throws Error naming the offending option ("multi-target IK: step must be in (0, 1], got
+/// 0").
 void check(const MultiTargetIkOptions& options);
 
 /// Multi-target IK solver: construct once, move targets with `set_target`, solve many times.

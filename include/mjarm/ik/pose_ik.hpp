@@ -18,6 +18,7 @@
 
 #include <Eigen/Core>
 
+#include "mjarm/fields.hpp"
 #include "mjarm/ik/local_ik_settings.hpp"
 #include "mjarm/ik/local_ik_workspace.hpp"
 #include "mjarm/ik/result.hpp"
@@ -41,7 +42,24 @@ struct PoseIkOptions : LocalIkSettings {
   PoseIkOptions() : LocalIkSettings{.max_iterations = 200} {}
 };
 
-/// @throws Error naming the offending option ("pose IK option posture.gain must be ...").
+/// The fields of its own (the shared ones are `LocalIkSettings`'s).
+constexpr auto declared_fields(const PoseIkOptions*) {
+  using S = PoseIkOptions;
+  return declare<S>("pose IK",
+                    field("error_damping", &S::error_damping, "", Range::non_negative(),
+                          "adds this × ½‖W·e‖² to λ²; 0 = plain DLS"),
+                    field("position_weight", &S::position_weight, "1/m", Range::positive(),
+                          "row weight of the position error"),
+                    field("orientation_weight", &S::orientation_weight, "1/rad", Range::positive(),
+                          "row weight of the orientation error"),
+                    field("position_tolerance", &S::position_tolerance, "m", Range::positive(),
+                          "success when ‖p_WT − p_WE‖ ≤ this"),
+                    field("orientation_tolerance", &S::orientation_tolerance, "rad",
+                          Range::positive(), "... and the rotation angle to the target ≤ this"));
+}
+
+/// @throws Error naming the offending option ("pose IK: posture.gain must be in [0, 1], got
+/// 2").
 void check(const PoseIkOptions& options);
 
 /// Pose IK solver for one chain's frame: construct once, solve many times. After construction,

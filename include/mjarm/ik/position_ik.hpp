@@ -20,6 +20,7 @@
 
 #include <Eigen/Core>
 
+#include "mjarm/fields.hpp"
 #include "mjarm/ik/local_ik_settings.hpp"
 #include "mjarm/ik/local_ik_workspace.hpp"
 #include "mjarm/ik/result.hpp"
@@ -39,7 +40,15 @@ struct PositionIkOptions : LocalIkSettings {
             .damping = 0.02, .step = 0.6, .limits = {0.05, 0.2, 0.15}, .stall_iterations = 60} {}
 };
 
-/// @throws Error naming the offending option ("position IK option max_step must be ...").
+/// The fields of its own (the shared ones are `LocalIkSettings`'s).
+constexpr auto declared_fields(const PositionIkOptions*) {
+  using S = PositionIkOptions;
+  return declare<S>("position IK", field("tolerance", &S::tolerance, "m", Range::positive(),
+                                         "success when ‖p_WT − p_WE‖ ≤ tolerance"));
+}
+
+/// @throws Error naming the offending option ("position IK: max_step must be positive and
+/// finite [rad or m], got 0").
 void check(const PositionIkOptions& options);
 
 /// Position IK solver for one chain's frame: construct once, solve many times. After
