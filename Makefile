@@ -16,10 +16,18 @@ $(BUILD)/CMakeCache.txt:
 build: setup $(BUILD)/CMakeCache.txt
 	cmake --build $(BUILD) -j $(JOBS)
 
-# the main job: an end-to-end run of what mjarm does (needs only the CLI, in Release)
-demo: setup $(BUILD)/CMakeCache.txt
-	cmake --build $(BUILD) -j $(JOBS) --target mjarm_cli
-	./$(BUILD)/mjarm demo
+# the main job: an end-to-end run of what mjarm does. It needs only the CLI: the packages for it
+# (setup.sh demo), and a Release build of the library and the CLI alone, one unit per room
+DEMO_BUILD ?= build-demo
+$(DEMO_BUILD)/CMakeCache.txt:
+	cmake -S . -B $(DEMO_BUILD) -G Ninja -DCMAKE_BUILD_TYPE=Release -DMJARM_UNITY_BUILD=ON \
+	  -DMJARM_BUILD_TESTS=OFF -DMJARM_BUILD_EXAMPLES=OFF -DMJARM_PYTHON=OFF $(CMAKE_FLAGS)
+
+demo:
+	@bash scripts/setup.sh demo
+	@$(MAKE) --no-print-directory $(DEMO_BUILD)/CMakeCache.txt
+	cmake --build $(DEMO_BUILD) -j $(JOBS) --target mjarm_cli
+	./$(DEMO_BUILD)/mjarm demo
 
 # Every test, once, in one build that is both strict (-Werror) and sanitized: ASan + UBSan, the
 # library at -O1, the code that drives it (CLI, tests, examples) at -O0, one translation unit per

@@ -16,7 +16,7 @@
 #include "mjarm/control/control_benchmark.hpp"
 #include "mjarm/error.hpp"
 #include "mjarm/ik/ik_benchmark.hpp"
-#include "mjarm/sim/interrupt.hpp"
+#include "mjarm/interrupt.hpp"
 #include "output.hpp"
 
 // ---- allocation counter for `bench control` ----

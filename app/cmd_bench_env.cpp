@@ -8,7 +8,7 @@
 #include "commands.hpp"
 #include "mjarm/env/env_benchmark.hpp"
 #include "mjarm/env/task_registry.hpp"
-#include "mjarm/sim/interrupt.hpp"
+#include "mjarm/interrupt.hpp"
 #include "output.hpp"
 
 namespace mjarm::cli {

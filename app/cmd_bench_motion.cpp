@@ -7,8 +7,8 @@
 #include <memory>
 
 #include "commands.hpp"
+#include "mjarm/interrupt.hpp"
 #include "mjarm/planning/motion_benchmark.hpp"
-#include "mjarm/sim/interrupt.hpp"
 #include "output.hpp"
 
 namespace mjarm::cli {

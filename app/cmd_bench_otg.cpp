@@ -6,7 +6,7 @@
 #include <memory>
 
 #include "commands.hpp"
-#include "mjarm/sim/interrupt.hpp"
+#include "mjarm/interrupt.hpp"
 #include "mjarm/trajectory/otg/validation/protocol.hpp"
 #include "output.hpp"
 

@@ -10,9 +10,9 @@
 #include "commands.hpp"
 #include "mjarm/error.hpp"
 #include "mjarm/ik/pose_ik.hpp"
+#include "mjarm/interrupt.hpp"
 #include "mjarm/plot/gnuplot.hpp"
 #include "mjarm/plot/plots.hpp"
-#include "mjarm/sim/interrupt.hpp"
 #include "mjarm/tasks/shelf_pick.hpp"
 #include "output.hpp"
 

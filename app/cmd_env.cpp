@@ -14,8 +14,8 @@
 #include "mjarm/env/observation_set.hpp"
 #include "mjarm/env/task_registry.hpp"
 #include "mjarm/env/vector_environment.hpp"
+#include "mjarm/interrupt.hpp"
 #include "mjarm/random.hpp"
-#include "mjarm/sim/interrupt.hpp"
 #include "output.hpp"
 
 namespace mjarm::cli {

@@ -10,10 +10,10 @@
 #include "commands.hpp"
 #include "mjarm/error.hpp"
 #include "mjarm/file_writer.hpp"
+#include "mjarm/interrupt.hpp"
 #include "mjarm/planning/waypoint_file.hpp"
 #include "mjarm/plot/gnuplot.hpp"
 #include "mjarm/plot/trajectory_plot.hpp"
-#include "mjarm/sim/interrupt.hpp"
 
 namespace mjarm::cli {
 

@@ -6,8 +6,8 @@
 
 #include "commands.hpp"
 #include "mjarm/error.hpp"
+#include "mjarm/interrupt.hpp"
 #include "mjarm/plot/plots.hpp"
-#include "mjarm/sim/interrupt.hpp"
 
 namespace mjarm::cli {
 Command add_plot_command(CLI::App& root) {

@@ -7,9 +7,9 @@
 #include "commands.hpp"
 #include "mjarm/error.hpp"
 #include "mjarm/file_writer.hpp"
+#include "mjarm/interrupt.hpp"
 #include "mjarm/render/offscreen_renderer.hpp"
 #include "mjarm/render/png.hpp"
-#include "mjarm/sim/interrupt.hpp"
 
 namespace mjarm::cli {
 namespace {

@@ -12,7 +12,7 @@
 
 #include "commands.hpp"
 #include "mjarm/error.hpp"
-#include "mjarm/sim/interrupt.hpp"
+#include "mjarm/interrupt.hpp"
 #include "mjarm/tasks/shelf_pick.hpp"
 #include "output.hpp"
 
@@ -176,7 +176,7 @@ void run_all(const ShelfPickOptions& base, int seeds, bool json) {
       static_cast<std::int64_t>(robots.size() * controllers.size()) * seeds;
   Progress progress("shelf picks", planned);
   std::int64_t done = 0;
-  // Ctrl-C or SIGTERM: stop at the next tick, report the rows done so far (interrupt.hpp)
+  // Ctrl-C or SIGTERM: stop at the next tick, report the rows done so far (mjarm/interrupt.hpp)
   bool interrupted = false;
   for (const auto& robot : robots) {
     for (const auto& controller : controllers) {

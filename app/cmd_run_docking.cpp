@@ -9,7 +9,7 @@
 
 #include "commands.hpp"
 #include "mjarm/error.hpp"
-#include "mjarm/sim/interrupt.hpp"
+#include "mjarm/interrupt.hpp"
 #include "mjarm/tasks/docking_grid.hpp"
 #include "mjarm/tasks/docking_plot.hpp"
 #include "mjarm/tasks/docking_task.hpp"

@@ -13,7 +13,7 @@
 
 #include "commands.hpp"
 #include "mjarm/error.hpp"
-#include "mjarm/sim/interrupt.hpp"
+#include "mjarm/interrupt.hpp"
 #include "mjarm/tasks/pick_place_trials.hpp"
 
 namespace mjarm::cli {

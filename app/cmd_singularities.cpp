@@ -8,8 +8,8 @@
 
 #include "commands.hpp"
 #include "mjarm/error.hpp"
+#include "mjarm/interrupt.hpp"
 #include "mjarm/kinematics/singularity.hpp"
-#include "mjarm/sim/interrupt.hpp"
 #include "output.hpp"
 
 namespace mjarm::cli {

@@ -8,7 +8,7 @@
 
 #include "commands.hpp"
 #include "mjarm/env/task_registry.hpp"
-#include "mjarm/sim/interrupt.hpp"
+#include "mjarm/interrupt.hpp"
 #include "mjarm/soak/soak.hpp"
 #include "output.hpp"
 

@@ -7,8 +7,9 @@
 #include <optional>
 
 #include "commands.hpp"
+#include "field_options.hpp"
 #include "mjarm/error.hpp"
-#include "mjarm/sim/interrupt.hpp"
+#include "mjarm/interrupt.hpp"
 #include "mjarm/tasks/run_video.hpp"
 #include "mjarm/teleop/bimanual_lift.hpp"
 
@@ -196,8 +197,8 @@ Command add_bimanual_command(CLI::App& root) {
   auto o = std::make_shared<Options>();
   app->add_option("--model", o->model, "scene with two hands and a free body 'bar'")
       ->capture_default_str();
-  app->add_option("--mode", o->mode, "kinematic | position | torque (motor)")
-      ->check(CLI::IsMember({"kinematic", "position", "torque"}))
+  app->add_option("--mode", o->mode, "simulation mode (torque: motors)")
+      ->check(name_of<SimulationMode>("mode"))
       ->capture_default_str();
   app->add_option("--lift", o->lift_height, "how high to lift the bar [m]")
       ->check(number_in(0.0, 0.5))
@@ -211,9 +212,7 @@ Command add_bimanual_command(CLI::App& root) {
         if (!o->video.path.empty()) check_output_file(o->video.path, "--video");
         const Robot robot = load_model(o->model);
         TeleopOptions options;
-        for (int k = 0; k < 3; ++k)
-          if (o->mode == to_string(static_cast<SimulationMode>(k)))
-            options.mode = static_cast<SimulationMode>(k);
+        options.mode = parse_enum<SimulationMode>(o->mode, "mode", "--mode");
         const InterruptGuard interrupts;
         TeleopSession session(robot, options);
         SessionRecorder recorder(session);

@@ -15,10 +15,10 @@
 #include "commands.hpp"
 #include "mjarm/error.hpp"
 #include "mjarm/file_writer.hpp"
+#include "mjarm/interrupt.hpp"
 #include "mjarm/number_text.hpp"
 #include "mjarm/plot/gnuplot.hpp"
 #include "mjarm/plot/trajectory_plot.hpp"
-#include "mjarm/sim/interrupt.hpp"
 #include "mjarm/trajectory/joint_move.hpp"
 
 namespace mjarm::cli {

@@ -5,6 +5,7 @@
 #include <numbers>
 
 #include "commands.hpp"
+#include "field_options.hpp"
 #include "mjarm/lie/rotation.hpp"
 #include "mjarm/teleop/viewer.hpp"
 #include "output.hpp"
@@ -29,13 +30,6 @@ struct ViewOptions {
   double speed = 1.0;
   bool json = false;
 };
-
-SimulationMode parse_mode(const std::string& text) {
-  for (int m = 0; m < 3; ++m) {
-    if (text == to_string(static_cast<SimulationMode>(m))) return static_cast<SimulationMode>(m);
-  }
-  throw UsageError("view: --mode must be kinematic, position or torque, got '" + text + "'");
-}
 
 Json pose_summary(const Pose& X) {
   return {{"position", vector_json(X.p)}, {"rpy", vector_json(rpy_from_rotation(X.R))}};
@@ -177,7 +171,7 @@ void run_view(const ViewOptions& o) {
   ViewerOptions options;
   options.session.site = o.site;
   options.session.keyframe = o.key;
-  options.session.mode = parse_mode(o.mode);
+  options.session.mode = parse_enum<SimulationMode>(o.mode, "mode", "--mode");
   options.several_hands = has_several_hands(robot);
   if (!o.record_session.empty() && !options.several_hands) {
     throw UsageError("view: --record-session records sessions of several hands (e.g. dual_arm); '" +
@@ -280,8 +274,8 @@ Command add_view_command(CLI::App& root) {
                   "end-effector site (or body); default: 'tcp' when the model has that site, "
                   "else its only named site");
   app->add_option("--key", options->key, "initial keyframe; default 'home' when the model has it");
-  app->add_option("--mode", options->mode, "initial mode: kinematic, position or torque")
-      ->check(CLI::IsMember({"kinematic", "position", "torque"}));
+  app->add_option("--mode", options->mode, "initial mode")
+      ->check(name_of<SimulationMode>("mode"));
   app->add_option("--script", options->script,
                   "run a script of synthetic input and screenshots (see docs/viewer.md), then exit")
       ->check(CLI::ExistingFile);

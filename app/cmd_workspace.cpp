@@ -6,7 +6,7 @@
 
 #include "commands.hpp"
 #include "mjarm/error.hpp"
-#include "mjarm/sim/interrupt.hpp"
+#include "mjarm/interrupt.hpp"
 #include "output.hpp"
 
 namespace mjarm::cli {

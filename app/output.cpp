@@ -9,8 +9,8 @@
 #include <filesystem>
 #include <iostream>
 
+#include "mjarm/interrupt.hpp"
 #include "mjarm/number_text.hpp"
-#include "mjarm/sim/interrupt.hpp"
 
 namespace mjarm::cli {
 

@@ -26,7 +26,7 @@ class UsageError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-/// A command stopped by SIGINT or SIGTERM (sim/interrupt.hpp) after printing what it had done:
+/// A command stopped by SIGINT or SIGTERM (mjarm/interrupt.hpp) after printing what it had done:
 /// `main` exits with 128 + the signal's number (130 for Ctrl-C, 143 for SIGTERM).
 class InterruptedError : public std::runtime_error {
  public:

@@ -7,7 +7,7 @@
 #include <filesystem>
 #include <string>
 
-#include "mjarm/sim/interrupt.hpp"
+#include "mjarm/interrupt.hpp"
 #include "mjarm/sim/recorder.hpp"
 #include "mjarm/sim/simulation.hpp"
 

@@ -14,7 +14,7 @@ set(MJARM_FUZZ_SANITIZERS -fsanitize=address,undefined -fno-sanitize-recover=all
 # the readers and what they call (the link closure of the entry points in fuzz/*_target.cpp):
 # a sixth of the library, so the fuzz build compiles in a fraction of the full one
 set(MJARM_FUZZ_LIBRARY_SOURCES
-  file_writer.cpp json_document.cpp number_text.cpp
+  closest_names.cpp file_writer.cpp json_document.cpp number_text.cpp
   ik/targets.cpp
   kinematics/chain_kinematics.cpp kinematics/manipulability.cpp kinematics/workspace.cpp
   lie/coefficients.cpp lie/pose.cpp lie/pose_error.cpp lie/rotation.cpp lie/se3.cpp

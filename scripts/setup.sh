@@ -1,30 +1,48 @@
 #!/usr/bin/env bash
 # Installs the Debian 12 packages mjarm needs, skipping those already present, then makes the
 # project's virtual environment with the pinned MuJoCo and Python packages (setup_venv.sh).
-# Idempotent.
+# Idempotent. `setup.sh demo` installs only what building and running the CLI needs (`make demo`);
+# without an argument, everything (`make test`: the tests, the Python extension, the fuzzers).
 set -euo pipefail
 
+profile="${1:-all}"
+case "$profile" in
+  demo|all) ;;
+  *) echo "usage: scripts/setup.sh [demo]" >&2; exit 2 ;;
+esac
+
+# the library and the CLI
 packages=(
   build-essential cmake pkg-config
-  # `pip install .` builds with Ninja (scikit-build-core takes it from PyPI when it is missing)
+  # `make demo` builds with Ninja, and `pip install .` too (scikit-build-core takes it from PyPI
+  # when it is missing)
   ninja-build
   libeigen3-dev libtinyxml2-dev libcli11-dev nlohmann-json3-dev
-  libgtest-dev libgmock-dev libbenchmark-dev
   # scene files (YAML, and JSON through the same parser)
   libyaml-cpp-dev
   # render room (part of the default build, tested headless): EGL + desktop GL headers, Mesa's
   # EGL vendor and software rasteriser (no GPU, no display), PNG frames, ffmpeg for MP4 video
-  libegl-dev libgl-dev libegl-mesa0 libgl1-mesa-dri libpng-dev ffmpeg
-  # interactive viewer (part of the default build): GLFW windows; its test runs under Xvfb
-  libglfw3-dev xvfb xauth
+  libegl-dev libgl-dev libopengl-dev libegl-mesa0 libgl1-mesa-dri libpng-dev ffmpeg
+  # interactive viewer (part of the default build): GLFW windows
+  libglfw3-dev
   # plots of a recording (`mjarm plot`, the demo)
   gnuplot-nox
-  # the fuzz targets (scripts/fuzz.sh, part of `make test`): clang and its libFuzzer runtime
-  clang libclang-rt-14-dev
   # the project's virtual environment (MuJoCo, NumPy, pybind11, pytest from PyPI, pinned) on
-  # Debian's /usr/bin/python3, whose headers the Python extension compiles against
-  python3-venv python3-dev
+  # Debian's /usr/bin/python3
+  python3-venv
 )
+if [ "$profile" = all ]; then
+  packages+=(
+    libgtest-dev libgmock-dev libbenchmark-dev
+    # the viewer's tests run under Xvfb
+    xvfb xauth
+    # the sanitized test build and the fuzz targets (scripts/fuzz.sh, part of `make test`): clang
+    # and its sanitizer and libFuzzer runtimes
+    clang libclang-rt-14-dev
+    # the Python extension compiles against Debian's python3 headers
+    python3-dev
+  )
+fi
 
 missing=()
 for p in "${packages[@]}"; do

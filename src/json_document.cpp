@@ -5,8 +5,8 @@
 #include <iterator>
 #include <set>
 
+#include "mjarm/closest_names.hpp"
 #include "mjarm/error.hpp"
-#include "mjarm/model/names.hpp"
 
 namespace mjarm {
 

@@ -1,7 +1,7 @@
 #pragma once
 // A JSON file as mjarm's readers take it: strict JSON (nlohmann), one value, no key twice in an
 // object (nlohmann would keep the last one without a word), and the line of every key, so that
-// an unknown key is named with its line and the closest known key (names.hpp,
+// an unknown key is named with its line and the closest known key (closest_names.hpp,
 // `unknown_name_message`), as the scene files' YAML reader does. Internal to the library.
 
 #include <map>

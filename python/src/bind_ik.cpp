@@ -2,8 +2,10 @@
 #include <pybind11/functional.h>
 
 #include "bindings.hpp"
+#include "declared_fields.hpp"
 #include "mjarm/ik/diff_ik.hpp"
 #include "mjarm/ik/global_ik.hpp"
+#include "mjarm/ik/local_ik_settings.hpp"
 #include "mjarm/ik/multi_target_ik.hpp"
 #include "mjarm/ik/pose_ik.hpp"
 #include "mjarm/ik/position_ik.hpp"
@@ -32,15 +34,6 @@ IkIterationCallback python_observer(py::object f) {
       keep_callback_error(std::current_exception());
     }
   };
-}
-
-template <typename Options, typename Class>
-void observer_property(Class& cls) {
-  cls.def_property(
-      "on_iteration", [](const Options& o) { return static_cast<bool>(o.on_iteration); },
-      [](Options& o, py::object f) { o.on_iteration = python_observer(std::move(f)); },
-      "callable(iteration, position_error, orientation_error, q) called for every iterate, or "
-      "None; reading gives whether one is set");
 }
 
 /// Runs @p solve without the GIL and raises an observer's exception afterwards.
@@ -77,23 +70,6 @@ std::vector<Pose> poses_of(const std::vector<py::object>& targets) {
   return poses;
 }
 
-template <typename Options, typename Class>
-void local_options(Class& cls) {
-  cls.def(py::init<>())
-      .def_readwrite("step", &Options::step)
-      .def_readwrite("max_backtracks", &Options::max_backtracks)
-      .def_readwrite("null_space_damping", &Options::null_space_damping)
-      .def_readwrite("max_step", &Options::max_step)
-      .def_readwrite("secondary_ratio", &Options::secondary_ratio)
-      .def_readwrite("limits", &Options::limits)
-      .def_readwrite("posture", &Options::posture)
-      .def_readwrite("max_iterations", &Options::max_iterations)
-      .def_readwrite("stall_iterations", &Options::stall_iterations)
-      .def_readwrite("stall_progress", &Options::stall_progress)
-      .def_readwrite("collision", &Options::collision);
-  observer_property<Options>(cls);
-}
-
 Eigen::VectorXd seed_of(const Chain& chain, py::handle q_seed) {
   return to_vector(q_seed, "q_seed", chain.size());
 }
@@ -120,31 +96,38 @@ void bind_ik(py::module_& m) {
                " m, " + number_text(r.orientation_error) + " rad>";
       });
 
-  py::class_<LimitBias>(m, "LimitBias", "Centre pull and limit repulsion (per-iteration steps).")
-      .def(py::init<>())
+  py::class_<LimitBias> limit_bias(m, "LimitBias",
+                                   "Centre pull and limit repulsion (per-iteration steps).");
+  limit_bias.def(py::init<>())
       .def(py::init([](double c, double r, double z) {
              return LimitBias{c, r, z};
            }),
            py::arg("centre_gain"), py::arg("repulsion_gain") = 0.0,
-           py::arg("repulsion_zone") = 0.15)
-      .def_readwrite("centre_gain", &LimitBias::centre_gain)
-      .def_readwrite("repulsion_gain", &LimitBias::repulsion_gain)
-      .def_readwrite("repulsion_zone", &LimitBias::repulsion_zone);
-  auto posture = py::class_<Posture>(m, "Posture", "A preferred configuration (null-space pull).");
-  posture.def(py::init<>()).def_readwrite("gain", &Posture::gain);
-  vector_property<Posture>(posture, "q_pref", &Posture::q_pref,
-                           "preferred joints (n,); empty = the middle of each range");
-  py::class_<CollisionSpec>(m, "CollisionSpec", "Geoms that must not touch during a solve.")
-      .def(py::init<>())
-      .def_readwrite("pairs", &CollisionSpec::pairs)
-      .def_readwrite("geoms", &CollisionSpec::geoms)
-      .def_readwrite("margin", &CollisionSpec::margin)
-      .def_readwrite("max_halvings", &CollisionSpec::max_halvings);
+           py::arg("repulsion_zone") = 0.15);
+  def_fields(limit_bias);
+  py::class_<Posture> posture(m, "Posture", "A preferred configuration (null-space pull).");
+  posture.def(py::init<>());
+  def_fields(posture);
+  py::class_<CollisionSpec> collision(m, "CollisionSpec",
+                                      "Geoms that must not touch during a solve.");
+  collision.def(py::init<>());
+  def_fields(collision);
 
-  auto position_options = py::class_<PositionIkOptions>(m, "PositionIkOptions");
-  local_options<PositionIkOptions>(position_options);
-  position_options.def_readwrite("damping", &PositionIkOptions::damping)
-      .def_readwrite("tolerance", &PositionIkOptions::tolerance, "[m]");
+  // the fields every local solver's options share, bound once on their common base
+  py::class_<LocalIkSettings> settings(m, "LocalIkSettings",
+                                       "The settings every local IK solver shares: "
+                                       "PositionIkOptions, PoseIkOptions and MultiTargetIkOptions "
+                                       "derive from it, each with its own defaults.");
+  def_fields(settings);
+  settings.def_property(
+      "on_iteration", [](const LocalIkSettings& o) { return static_cast<bool>(o.on_iteration); },
+      [](LocalIkSettings& o, py::object f) { o.on_iteration = python_observer(std::move(f)); },
+      "callable(iteration, position_error, orientation_error, q) called for every iterate, or "
+      "None; reading gives whether one is set");
+
+  py::class_<PositionIkOptions, LocalIkSettings> position_options(m, "PositionIkOptions");
+  position_options.def(py::init<>());
+  def_fields(position_options);
   py::class_<PositionIk>(m, "PositionIk",
                          "Position-only damped least squares with centre pull and limit "
                          "repulsion. solve() releases the GIL.")
@@ -177,14 +160,9 @@ void bind_ik(py::module_& m) {
           py::arg("p_WT"), py::arg("q_seed"),
           "One solve per row of p_WT (k, 3) from the same seed, without the GIL.");
 
-  auto pose_options = py::class_<PoseIkOptions>(m, "PoseIkOptions");
-  local_options<PoseIkOptions>(pose_options);
-  pose_options.def_readwrite("damping", &PoseIkOptions::damping)
-      .def_readwrite("error_damping", &PoseIkOptions::error_damping)
-      .def_readwrite("position_weight", &PoseIkOptions::position_weight)
-      .def_readwrite("orientation_weight", &PoseIkOptions::orientation_weight)
-      .def_readwrite("position_tolerance", &PoseIkOptions::position_tolerance)
-      .def_readwrite("orientation_tolerance", &PoseIkOptions::orientation_tolerance);
+  py::class_<PoseIkOptions, LocalIkSettings> pose_options(m, "PoseIkOptions");
+  pose_options.def(py::init<>());
+  def_fields(pose_options);
   py::class_<PoseIk>(m, "PoseIk",
                      "Full-pose closed-loop IK on the SE(3) log error. solve() releases the GIL.")
       .def(py::init<const Chain&, const PoseIkOptions&>(), py::arg("chain"),
@@ -230,16 +208,10 @@ void bind_ik(py::module_& m) {
       .def_readwrite("position_weight", &FrameTarget::position_weight)
       .def_readwrite("orientation_weight", &FrameTarget::orientation_weight)
       .def_readwrite("priority", &FrameTarget::priority);
-  py::enum_<MultiTargetMode>(m, "MultiTargetMode")
-      .value("stacked", MultiTargetMode::stacked)
-      .value("prioritized", MultiTargetMode::prioritized);
-  auto multi_options = py::class_<MultiTargetIkOptions>(m, "MultiTargetIkOptions");
-  local_options<MultiTargetIkOptions>(multi_options);
-  multi_options.def_readwrite("mode", &MultiTargetIkOptions::mode)
-      .def_readwrite("damping", &MultiTargetIkOptions::damping)
-      .def_readwrite("error_damping", &MultiTargetIkOptions::error_damping)
-      .def_readwrite("position_tolerance", &MultiTargetIkOptions::position_tolerance)
-      .def_readwrite("orientation_tolerance", &MultiTargetIkOptions::orientation_tolerance);
+  def_enum<MultiTargetMode>(m, "MultiTargetMode");
+  py::class_<MultiTargetIkOptions, LocalIkSettings> multi_options(m, "MultiTargetIkOptions");
+  multi_options.def(py::init<>());
+  def_fields(multi_options);
   py::class_<MultiTargetIk>(m, "MultiTargetIk", "Several frames at once, with strict priorities.")
       .def(py::init<const Robot&, const std::vector<std::string>&, const std::vector<FrameTarget>&,
                     const MultiTargetIkOptions&>(),

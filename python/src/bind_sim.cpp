@@ -2,7 +2,8 @@
 #include <optional>
 
 #include "bindings.hpp"
-#include "mjarm/sim/interrupt.hpp"
+#include "declared_fields.hpp"
+#include "mjarm/interrupt.hpp"
 #include "mjarm/sim/recorder.hpp"
 #include "mjarm/sim/simulation.hpp"
 
@@ -80,10 +81,7 @@ bool in_main_thread() {
 }  // namespace
 
 void bind_sim(py::module_& m) {
-  py::enum_<SimulationMode>(m, "SimulationMode")
-      .value("kinematic", SimulationMode::kinematic)
-      .value("position", SimulationMode::position)
-      .value("torque", SimulationMode::torque);
+  def_enum<SimulationMode>(m, "SimulationMode");
   py::enum_<TickStatus>(m, "TickStatus")
       .value("ok", TickStatus::ok)
       .value("finished", TickStatus::finished)
@@ -154,8 +152,8 @@ void bind_sim(py::module_& m) {
       .def_readonly("first_geom_a", &ContactSummary::first_geom_a)
       .def_readonly("first_geom_b", &ContactSummary::first_geom_b);
 
-  py::class_<SimulationOptions>(m, "SimulationOptions")
-      .def(py::init<>())
+  py::class_<SimulationOptions> simulation_options(m, "SimulationOptions");
+  simulation_options.def(py::init<>())
       .def(py::init([](SimulationMode mode, double period) {
              SimulationOptions o;
              o.mode = mode;
@@ -163,12 +161,9 @@ void bind_sim(py::module_& m) {
              return o;
            }),
            py::arg("mode"), py::arg("control_period") = 0.0)
-      .def_readwrite("mode", &SimulationOptions::mode)
-      .def_readwrite("control_period", &SimulationOptions::control_period, "[s]; 0 = one step")
-      .def_readwrite("gravity_compensation", &SimulationOptions::gravity_compensation)
-      .def_readwrite("max_acceleration", &SimulationOptions::max_acceleration)
       .def_readwrite("contact_check_a", &SimulationOptions::contact_check_a)
       .def_readwrite("contact_check_b", &SimulationOptions::contact_check_b);
+  def_fields(simulation_options);
 
   py::class_<ReferenceSource>(m, "ReferenceSource", "Produces each control tick's reference.");
   py::class_<ConstantReferenceSource, ReferenceSource>(m, "ConstantReferenceSource",

@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "bindings.hpp"
-#include "mjarm/sim/interrupt.hpp"
+#include "mjarm/interrupt.hpp"
 #include "mjarm/sim/simulation_options.hpp"
 
 namespace mjarm::python {

@@ -84,6 +84,8 @@ def split_params(text):
 
 
 SIG = re.compile(r"^(?:\d+\. )?(\w+)\((.*)\)(?: -> (.+))?$")
+# a property's getter and setter are unnamed functions: "(arg0: Options) -> float"
+UNNAMED_SIG = re.compile(r"^\((.*)\)(?: -> (.+))?$")
 
 
 def signatures(obj):
@@ -92,8 +94,11 @@ def signatures(obj):
     sigs, text = [], []
     for line in doc.splitlines():
         m = SIG.match(line.strip())
+        unnamed = UNNAMED_SIG.match(line.strip()) if not obj.__name__ else None
         if m and m.group(1) == obj.__name__:
             sigs.append((m.group(2), m.group(3) or "None"))
+        elif unnamed:
+            sigs.append((unnamed.group(1), unnamed.group(2) or "None"))
         elif line.strip() != "Overloaded function.":
             text.append(line)
     if len(sigs) > 1 and sigs[0][0] == "*args, **kwargs":

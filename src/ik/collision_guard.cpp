@@ -1,22 +1,17 @@
 #include "mjarm/ik/collision_guard.hpp"
 
 #include <algorithm>
-#include <cmath>
 #include <limits>
 #include <sstream>
 
 #include "mjarm/error.hpp"
-#include "mjarm/number_text.hpp"
 
 namespace mjarm {
 
 CollisionGuard::CollisionGuard(const Chain& chain, const CollisionSpec& spec)
     : chain_(chain), spec_(spec) {
   const Robot& robot = chain_.robot();
-  if (!std::isfinite(spec.margin) || spec.margin < 0.0)
-    throw Error("collision margin must be finite and >= 0, got " + number_text(spec.margin));
-  if (spec.max_halvings < 0)
-    throw Error("collision max_halvings must be >= 0, got " + std::to_string(spec.max_halvings));
+  check_fields(spec);
   for (const auto& [a, b] : spec.pairs) {
     const int g1 = robot.geom(a);
     const int g2 = robot.geom(b);

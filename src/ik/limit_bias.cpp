@@ -2,24 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
-#include <string>
-
-#include "mjarm/error.hpp"
-#include "mjarm/number_text.hpp"
 
 namespace mjarm {
 
-void check(const LimitBias& bias) {
-  if (!std::isfinite(bias.centre_gain) || bias.centre_gain < 0.0)
-    throw Error("limit bias centre_gain must be finite and >= 0, got " +
-                number_text(bias.centre_gain));
-  if (!std::isfinite(bias.repulsion_gain) || bias.repulsion_gain < 0.0)
-    throw Error("limit bias repulsion_gain must be finite and >= 0, got " +
-                number_text(bias.repulsion_gain));
-  if (!(bias.repulsion_zone >= 0.0 && bias.repulsion_zone <= 0.5))
-    throw Error("limit bias repulsion_zone must be in [0, 0.5], got " +
-                number_text(bias.repulsion_zone));
-}
+void check(const LimitBias& bias) { check_fields(bias); }
 
 void add_limit_bias(const Chain& chain, const LimitBias& bias,
                     const Eigen::Ref<const Eigen::VectorXd>& q,

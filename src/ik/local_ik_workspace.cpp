@@ -3,25 +3,23 @@
 #include <string>
 
 #include "mjarm/error.hpp"
-#include "mjarm/number_text.hpp"
 
 namespace mjarm {
 
-LocalIkWorkspace::LocalIkWorkspace(const Chain& chain, const LimitBias& limits,
-                                   const Posture& posture, const CollisionSpec& collision,
-                                   double null_space_damping, double max_step,
-                                   double secondary_ratio, int max_backtracks)
+LocalIkWorkspace::LocalIkWorkspace(const Chain& chain, const LocalIkSettings& settings)
     : chain_(chain),
-      limits_(limits),
-      posture_gain_(posture.gain),
-      eps_sq_(null_space_damping * null_space_damping),
-      max_step_(max_step),
-      secondary_ratio_(secondary_ratio),
-      max_backtracks_(max_backtracks),
-      has_secondary_(limits.centre_gain > 0.0 || limits.repulsion_gain > 0.0 ||
-                     posture.gain > 0.0) {
-  q_pref_ = resolve_posture(chain_, posture);
-  if (!collision.empty()) guard_ = std::make_unique<CollisionGuard>(chain_, collision);
+      limits_(settings.limits),
+      posture_gain_(settings.posture.gain),
+      eps_sq_(settings.null_space_damping * settings.null_space_damping),
+      max_step_(settings.max_step),
+      secondary_ratio_(settings.secondary_ratio),
+      max_backtracks_(settings.max_backtracks),
+      has_secondary_(settings.limits.centre_gain > 0.0 || settings.limits.repulsion_gain > 0.0 ||
+                     settings.posture.gain > 0.0) {
+  q_pref_ = resolve_posture(chain_, settings.posture);
+  if (!settings.collision.empty()) {
+    guard_ = std::make_unique<CollisionGuard>(chain_, settings.collision);
+  }
   const int n = chain_.size();
   for (Eigen::VectorXd* v :
        {&q_, &q_best_, &q_try_, &dq_, &bias_, &projected_, &locked_, &dq_locked_}) {
@@ -49,13 +47,6 @@ void LocalIkWorkspace::update_secondary() noexcept {
   bias_.setZero();
   add_limit_bias(chain_, limits_, q_, bias_);
   add_posture_pull(q_pref_, posture_gain_, q_, bias_);
-}
-
-void OptionCheck::operator()(bool ok, const char* name, double value, const char* expected) const {
-  if (!ok) {
-    throw Error(std::string(solver_) + " option " + name + " must be " + expected + ", got " +
-                number_text(value));
-  }
 }
 
 }  // namespace mjarm

@@ -10,26 +10,9 @@
 namespace mjarm {
 
 void check(const PoseIkOptions& o) {
-  const OptionCheck require("pose IK");
-  require(finite_positive(o.damping), "damping", o.damping, "finite and > 0");
-  require(std::isfinite(o.error_damping) && o.error_damping >= 0.0, "error_damping",
-          o.error_damping, "finite and >= 0");
-  require(o.step > 0.0 && o.step <= 1.0, "step", o.step, "in (0, 1]");
-  require(o.max_backtracks >= 0, "max_backtracks", o.max_backtracks, ">= 0");
-  require(finite_positive(o.position_weight), "position_weight", o.position_weight,
-          "finite and > 0");
-  require(finite_positive(o.orientation_weight), "orientation_weight", o.orientation_weight,
-          "finite and > 0");
-  require(std::isfinite(o.null_space_damping) && o.null_space_damping >= 0.0, "null_space_damping",
-          o.null_space_damping, "finite and >= 0");
-  require(finite_positive(o.position_tolerance), "position_tolerance", o.position_tolerance,
-          "finite and > 0");
-  require(finite_positive(o.orientation_tolerance), "orientation_tolerance",
-          o.orientation_tolerance, "finite and > 0");
-  require(finite_positive(o.max_step), "max_step", o.max_step, "finite and > 0");
-  require(std::isfinite(o.secondary_ratio) && o.secondary_ratio >= 0.0, "secondary_ratio",
-          o.secondary_ratio, "finite and >= 0");
-  check_stopping_and_limits(require, o);
+  // the shared settings, then the solver's own fields, under the name it declares
+  check_fields<LocalIkSettings>(o, fields_of<PoseIkOptions>().owner);
+  check_fields(o);
 }
 
 PoseIk::PoseIk(const Chain& chain, const PoseIkOptions& options)

@@ -8,18 +8,9 @@
 namespace mjarm {
 
 void check(const PositionIkOptions& o) {
-  const OptionCheck require("position IK");
-  require(std::isfinite(o.damping) && o.damping > 0.0, "damping", o.damping, "finite and > 0");
-  require(o.step > 0.0 && o.step <= 1.0, "step", o.step, "in (0, 1]");
-  require(std::isfinite(o.null_space_damping) && o.null_space_damping >= 0.0, "null_space_damping",
-          o.null_space_damping, "finite and >= 0");
-  require(std::isfinite(o.tolerance) && o.tolerance > 0.0, "tolerance", o.tolerance,
-          "finite and > 0");
-  require(std::isfinite(o.max_step) && o.max_step > 0.0, "max_step", o.max_step, "finite and > 0");
-  require(std::isfinite(o.secondary_ratio) && o.secondary_ratio >= 0.0, "secondary_ratio",
-          o.secondary_ratio, "finite and >= 0");
-  require(o.max_backtracks >= 0, "max_backtracks", o.max_backtracks, ">= 0");
-  check_stopping_and_limits(require, o);
+  // the shared settings, then the solver's own fields, under the name it declares
+  check_fields<LocalIkSettings>(o, fields_of<PositionIkOptions>().owner);
+  check_fields(o);
 }
 
 PositionIk::PositionIk(const Chain& chain, const PositionIkOptions& options)

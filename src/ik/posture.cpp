@@ -1,17 +1,11 @@
 #include "mjarm/ik/posture.hpp"
 
 #include <algorithm>
-#include <cmath>
-#include <string>
-
-#include "mjarm/error.hpp"
-#include "mjarm/number_text.hpp"
 
 namespace mjarm {
 
 Eigen::VectorXd resolve_posture(const Chain& chain, const Posture& posture) {
-  if (!(posture.gain >= 0.0 && posture.gain <= 1.0))
-    throw Error("posture gain must be in [0, 1], got " + number_text(posture.gain));
+  check_fields(posture);
   if (posture.q_pref.size() == 0) return chain.center();
   chain.check(posture.q_pref, "posture q_pref");
   return posture.q_pref;

@@ -10,7 +10,7 @@
 #include <utility>
 #include <vector>
 
-#include "mjarm/model/mjcf_staging.hpp"
+#include "mjcf_staging.hpp"
 
 namespace tinyxml2 {
 class XMLDocument;

@@ -3,9 +3,9 @@
 #include <mutex>
 
 #include "mjarm/error.hpp"
-#include "mjarm/model/mjcf_staging.hpp"
 #include "mjarm/model/robot.hpp"
 #include "mjarm/model/user_file.hpp"
+#include "mjcf_staging.hpp"
 #include "mujoco_loading.hpp"
 
 namespace mjarm {

@@ -1,6 +1,6 @@
 // MJCF staging: parse -> inline <include> -> absolute, checked asset paths -> write with a line map.
 
-#include "mjarm/model/mjcf_staging.hpp"
+#include "mjcf_staging.hpp"
 
 #include <cstdlib>
 #include <limits>

@@ -14,11 +14,11 @@
 
 #include "mjarm/error.hpp"
 #include "mjarm/model/finite_model.hpp"
-#include "mjarm/model/mjcf_staging.hpp"
 #include "mjarm/model/model_size.hpp"
 #include "mjarm/model/names.hpp"
 #include "mjarm/model/user_file.hpp"
 #include "mjcf_detail.hpp"
+#include "mjcf_staging.hpp"
 #include "mujoco_caller.hpp"
 #include "mujoco_loading.hpp"
 #include "urdf_assets.hpp"

@@ -12,8 +12,8 @@
 #include "child_process.hpp"
 #include "executable_on_path.hpp"
 #include "mjarm/error.hpp"
+#include "mjarm/interrupt.hpp"
 #include "mjarm/number_text.hpp"
-#include "mjarm/sim/interrupt.hpp"
 
 namespace mjarm::plot {
 namespace {

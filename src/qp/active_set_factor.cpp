@@ -4,8 +4,8 @@
 #include <cmath>
 #include <string>
 
+#include "dense_kernels.hpp"
 #include "mjarm/error.hpp"
-#include "mjarm/qp/dense_kernels.hpp"
 
 namespace mjarm::qp {
 

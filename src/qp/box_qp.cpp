@@ -5,8 +5,8 @@
 #include <limits>
 #include <string>
 
+#include "dense_kernels.hpp"
 #include "mjarm/error.hpp"
-#include "mjarm/qp/dense_kernels.hpp"
 
 namespace mjarm::qp {
 

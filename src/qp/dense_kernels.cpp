@@ -2,7 +2,7 @@
 /// The portable versions of the dense kernels and the choice, once at program start, between
 /// them and the AVX2/FMA versions (dense_kernels_avx2.cpp).
 
-#include "mjarm/qp/dense_kernels.hpp"
+#include "dense_kernels.hpp"
 
 #include <atomic>
 

@@ -6,7 +6,7 @@
 #include <cmath>
 #include <limits>
 
-#include "mjarm/qp/dense_kernels.hpp"
+#include "dense_kernels.hpp"
 #include "mjarm/qp/dense_qp.hpp"
 
 namespace mjarm::qp {

@@ -21,7 +21,7 @@
 #include "executable_on_path.hpp"
 #include "mjarm/error.hpp"
 #include "mjarm/file_writer.hpp"
-#include "mjarm/sim/interrupt.hpp"
+#include "mjarm/interrupt.hpp"
 #include "mjarm/number_text.hpp"
 #include "quoted_path.hpp"
 

@@ -4,15 +4,6 @@
 
 namespace mjarm {
 
-const char* to_string(SimulationMode mode) noexcept {
-  switch (mode) {
-    case SimulationMode::kinematic: return "kinematic";
-    case SimulationMode::position: return "position";
-    case SimulationMode::torque: return "torque";
-  }
-  return "?";
-}
-
 const char* to_string(TickStatus status) noexcept {
   switch (status) {
     case TickStatus::ok: return "ok";

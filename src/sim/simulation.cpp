@@ -12,6 +12,12 @@
 namespace mjarm {
 namespace {
 
+// the options, after checking each declared field against its range
+const SimulationOptions& checked(const SimulationOptions& options) {
+  check_fields(options);
+  return options;
+}
+
 // control period as a whole number of physics steps, or a clear error
 int steps_per_tick_of(const mjModel& m, double period) {
   const double h = m.opt.timestep;
@@ -20,12 +26,6 @@ int steps_per_tick_of(const mjModel& m, double period) {
                 number_text(h) + " s");
   }
   if (period == 0.0) return 1;
-  if (!(std::isfinite(period) && period > 0.0)) {
-    throw Error(
-        "simulation: control_period must be positive and finite (or 0 for one physics "
-        "step), got " +
-        number_text(period) + " s");
-  }
   return whole_multiple(period, h, "simulation: control_period", "the timestep");
 }
 
@@ -76,12 +76,8 @@ Simulation::Simulation(const Robot& robot, const SimulationOptions& options)
       own_model_(options.own_model ? copy_model(robot) : nullptr),
       model_(own_model_ ? own_model_.get() : &robot_.model()),
       options_(options),
-      steps_per_tick_(steps_per_tick_of(robot.model(), options.control_period)),
+      steps_per_tick_(steps_per_tick_of(robot.model(), checked(options).control_period)),
       detector_(options.max_acceleration) {
-  if (!(options.max_acceleration > 0.0)) {
-    throw Error("simulation: max_acceleration must be positive (+inf disables the bound), got " +
-                number_text(options.max_acceleration));
-  }
   if (options.mode == SimulationMode::kinematic && options.contact_check_a.empty() &&
       !options.contact_check_b.empty()) {
     throw Error("simulation: contact_check_b is set but contact_check_a is empty");

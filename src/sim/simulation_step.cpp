@@ -5,8 +5,8 @@
 #include <string>
 
 #include "mjarm/error.hpp"
+#include "mjarm/interrupt.hpp"
 #include "mjarm/number_text.hpp"
-#include "mjarm/sim/interrupt.hpp"
 #include "mjarm/sim/recorder.hpp"
 #include "mjarm/sim/simulation.hpp"
 

@@ -7,11 +7,11 @@
 
 #include "docking_run_loop.hpp"
 #include "mjarm/error.hpp"
+#include "mjarm/interrupt.hpp"
 #include "mjarm/model/names.hpp"
-#include "mjarm/sim/interrupt.hpp"
 #include "mjarm/sim/recorder.hpp"
 #include "mjarm/sim/simulation.hpp"
-#include "mjarm/tasks/run_outputs.hpp"
+#include "run_outputs.hpp"
 
 namespace mjarm {
 

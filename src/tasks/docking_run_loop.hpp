@@ -6,8 +6,8 @@
 #include <cstdint>
 #include <cstdio>
 
+#include "mjarm/interrupt.hpp"
 #include "mjarm/model/chain.hpp"
-#include "mjarm/sim/interrupt.hpp"
 #include "mjarm/sim/recorder.hpp"
 #include "mjarm/sim/simulation.hpp"
 

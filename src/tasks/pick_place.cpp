@@ -16,9 +16,9 @@
 #include "mjarm/sim/simulation.hpp"
 #include "mjarm/tasks/arm_reach.hpp"
 #include "mjarm/tasks/pick_place_controllers.hpp"
-#include "mjarm/tasks/run_outputs.hpp"
 #include "mjarm/tasks/shelf_pick_plan.hpp"
 #include "mjarm/number_text.hpp"
+#include "run_outputs.hpp"
 
 namespace mjarm {
 

@@ -10,7 +10,7 @@
 #include <thread>
 
 #include "mjarm/error.hpp"
-#include "mjarm/sim/interrupt.hpp"
+#include "mjarm/interrupt.hpp"
 
 namespace mjarm {
 

@@ -1,4 +1,4 @@
-#include "mjarm/tasks/run_outputs.hpp"
+#include "run_outputs.hpp"
 
 namespace mjarm {
 

@@ -9,11 +9,11 @@
 #include "mjarm/error.hpp"
 #include "mjarm/sim/recorder.hpp"
 #include "mjarm/sim/simulation.hpp"
-#include "mjarm/tasks/run_outputs.hpp"
 #include "mjarm/tasks/run_video.hpp"
 #include "mjarm/tasks/shelf_pick_controllers.hpp"
 #include "mjarm/tasks/shelf_pick_task.hpp"
 #include "mjarm/number_text.hpp"
+#include "run_outputs.hpp"
 
 namespace mjarm {
 

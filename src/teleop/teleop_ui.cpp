@@ -1,4 +1,4 @@
-#include "mjarm/teleop/teleop_ui.hpp"
+#include "teleop_ui.hpp"
 
 #include <cctype>
 #include <cstdio>

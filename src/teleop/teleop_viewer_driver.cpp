@@ -8,7 +8,7 @@
 #include "mjarm/error.hpp"
 #include "mjarm/file_writer.hpp"
 #include "mjarm/teleop/session_log.hpp"
-#include "mjarm/teleop/teleop_ui.hpp"
+#include "teleop_ui.hpp"
 #include "viewer_driver.hpp"
 
 namespace mjarm::detail {

@@ -10,8 +10,8 @@
 #include <utility>
 
 #include "mjarm/error.hpp"
+#include "mjarm/interrupt.hpp"
 #include "mjarm/render/png.hpp"
-#include "mjarm/sim/interrupt.hpp"
 #include "viewer_shell.hpp"
 
 namespace mjarm {

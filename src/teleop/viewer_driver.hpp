@@ -12,8 +12,8 @@
 
 #include "mjarm/model/robot.hpp"
 #include "mjarm/teleop/viewer.hpp"
-#include "mjarm/teleop/viewer_overlay.hpp"
-#include "mjarm/teleop/viewer_ui.hpp"
+#include "viewer_overlay.hpp"
+#include "viewer_ui.hpp"
 
 namespace mjarm::detail {
 

@@ -1,4 +1,4 @@
-#include "mjarm/teleop/viewer_overlay.hpp"
+#include "viewer_overlay.hpp"
 
 #include <cmath>
 #include <cstdio>

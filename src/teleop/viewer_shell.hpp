@@ -11,9 +11,9 @@
 
 #include "mjarm/render/image.hpp"
 #include "mjarm/teleop/viewer.hpp"
-#include "mjarm/teleop/viewer_overlay.hpp"
-#include "mjarm/teleop/viewer_ui.hpp"
 #include "viewer_driver.hpp"
+#include "viewer_overlay.hpp"
+#include "viewer_ui.hpp"
 
 struct GLFWwindow;
 

@@ -1,4 +1,4 @@
-#include "mjarm/teleop/viewer_ui.hpp"
+#include "viewer_ui.hpp"
 
 #include <algorithm>
 #include <cmath>

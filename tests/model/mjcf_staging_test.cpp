@@ -1,7 +1,7 @@
 // MJCF staging: includes inlined and assets made absolute through the checked reader, the line
 // map back to the user's files, and a Menagerie-style model that loads exactly as MuJoCo loads it.
 
-#include "mjarm/model/mjcf_staging.hpp"
+#include "model/mjcf_staging.hpp"
 
 #include <gtest/gtest.h>
 #include <unistd.h>

@@ -13,7 +13,7 @@
 #include <vector>
 
 #include "mjarm/error.hpp"
-#include "mjarm/sim/interrupt.hpp"
+#include "mjarm/interrupt.hpp"
 #include "plot/plot_test_support.hpp"
 #include "support/error_message.hpp"
 

@@ -9,8 +9,8 @@
 #include <nlohmann/json.hpp>
 
 #include "mjarm/error.hpp"
+#include "mjarm/interrupt.hpp"
 #include "mjarm/plot/gnuplot.hpp"
-#include "mjarm/sim/interrupt.hpp"
 #include "plot/plot_test_support.hpp"
 #include "support/file_size_limit.hpp"
 

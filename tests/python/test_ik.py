@@ -122,6 +122,22 @@ def test_bad_ik_input(panda_chain):
         mjarm.PositionIk(panda_chain, bad)
 
 
+def test_local_solvers_share_one_settings_struct(panda_chain):
+    # each solver's options keep their names and tuning on the one shared base
+    position = mjarm.PositionIkOptions()
+    pose = mjarm.PoseIkOptions()
+    multi = mjarm.MultiTargetIkOptions()
+    for options in (position, pose, multi):
+        assert isinstance(options, mjarm.LocalIkSettings)
+        assert options.max_backtracks == 4 and options.stall_progress == 1e-4
+    assert (position.damping, position.step, position.stall_iterations) == (0.02, 0.6, 60)
+    assert (pose.damping, pose.max_iterations) == (1e-3, 200)
+    assert multi.max_iterations == 300 and multi.mode == mjarm.MultiTargetMode.prioritized
+    pose.posture.gain = 2.0
+    with pytest.raises(mjarm.Error, match=r"pose IK: posture\.gain must be in \[0, 1\], got 2"):
+        mjarm.PoseIk(panda_chain, pose)
+
+
 def test_batched_ik_releases_the_gil(panda_chain):
     targets = np.array([reachable_pose(panda_chain, 100 + i)[0].p for i in range(40)])
     seed = panda_chain.center()

@@ -2,7 +2,7 @@
 // code, for both the portable and (where the CPU has it) the AVX2/FMA implementation; and one
 // QP solved with each, which must agree.
 
-#include "mjarm/qp/dense_kernels.hpp"
+#include "qp/dense_kernels.hpp"
 
 #include <gtest/gtest.h>
 

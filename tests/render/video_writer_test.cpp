@@ -16,10 +16,10 @@
 #include <stdexcept>
 
 #include "mjarm/error.hpp"
+#include "mjarm/interrupt.hpp"
 #include "mjarm/model/robot.hpp"
 #include "mjarm/render/frame_schedule.hpp"
 #include "mjarm/render/offscreen_renderer.hpp"
-#include "mjarm/sim/interrupt.hpp"
 #include "render_test_support.hpp"
 #include "support/running_process.hpp"
 

@@ -12,7 +12,7 @@
 #include <string>
 
 #include "mjarm/error.hpp"
-#include "mjarm/sim/interrupt.hpp"
+#include "mjarm/interrupt.hpp"
 #include "mjarm/sim/simulation.hpp"
 #include "mjarm/version.hpp"
 #include "sim/sim_test_support.hpp"

@@ -5,7 +5,7 @@
 #include <csignal>
 #include <numbers>
 
-#include "mjarm/sim/interrupt.hpp"
+#include "mjarm/interrupt.hpp"
 #include "support/error_message.hpp"
 #include "tasks/docking_test_support.hpp"
 

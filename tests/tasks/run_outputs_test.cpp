@@ -1,7 +1,7 @@
 // The end of a run's outputs: the result line reaches the recording, and a failing video or
 // recorder becomes a message instead of an exception.
 
-#include "mjarm/tasks/run_outputs.hpp"
+#include "tasks/run_outputs.hpp"
 
 #include <gtest/gtest.h>
 

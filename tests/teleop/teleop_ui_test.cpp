@@ -2,14 +2,14 @@
 // its name (no second copy of the state), item names map to the actions the viewer takes, the
 // slider ranges hold the initial targets, the overlay texts show each hand, and the script
 // accepts the bimanual names and keys.
-#include "mjarm/teleop/teleop_ui.hpp"
+#include "teleop/teleop_ui.hpp"
 
 #include <gtest/gtest.h>
 
 #include "mjarm/error.hpp"
-#include "mjarm/teleop/viewer_overlay.hpp"
 #include "mjarm/teleop/viewer_script.hpp"
 #include "support/error_message.hpp"
+#include "teleop/viewer_overlay.hpp"
 
 namespace mjarm {
 namespace {

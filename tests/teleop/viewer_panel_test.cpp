@@ -11,9 +11,9 @@
 #include "mjarm/error.hpp"
 #include "mjarm/lie/rotation.hpp"
 #include "mjarm/lie/so3.hpp"
-#include "mjarm/teleop/viewer_overlay.hpp"
 #include "mjarm/teleop/viewer_script.hpp"
-#include "mjarm/teleop/viewer_ui.hpp"
+#include "teleop/viewer_overlay.hpp"
+#include "teleop/viewer_ui.hpp"
 
 namespace mjarm {
 namespace {

@@ -24,9 +24,9 @@
 
 #include "mjarm/render/png.hpp"
 #include "mjarm/teleop/session_log.hpp"
-#include "mjarm/teleop/teleop_ui.hpp"
 #include "mjarm/teleop/viewer_session.hpp"
 #include "support/files.hpp"
+#include "teleop/teleop_ui.hpp"
 
 namespace mjarm {
 namespace {

@@ -84,7 +84,8 @@ def main():
              "--config-settings=build-dir=" + str(work / "cmake-build"),
              "--config-settings=cmake.build-type=Debug",
              "--config-settings=cmake.define.CMAKE_CXX_FLAGS_DEBUG=-O0",
-             "--config-settings=cmake.define.MJARM_GCC_COLLECT_RARELY=ON", source])
+             "--config-settings=cmake.define.MJARM_GCC_COLLECT_RARELY=ON",
+             "--config-settings=cmake.define.MJARM_UNITY_BUILD=ON", source])
     wheels = list(dist.glob("mjarm-*.whl"))
     check(len(wheels) == 1, f"one wheel in {dist}: {wheels}")
     wheel = wheels[0]

@@ -9,6 +9,7 @@
 #include <utility>
 #include <vector>
 
+#include "mjarm/fields.hpp"
 #include "mjarm/model/chain.hpp"
 #include "mjarm/model/robot.hpp"
 
@@ -32,6 +33,17 @@ struct CollisionSpec {
   /// True when nothing is watched (the hook is off).
   bool empty() const noexcept { return pairs.empty() && geoms.empty(); }
 };
+
+constexpr auto declared_fields(const CollisionSpec*) {
+  using S = CollisionSpec;
+  return declare<S>("collision",
+                    field("pairs", &S::pairs, "geom name pairs that must not touch each other"),
+                    field("geoms", &S::geoms, "geoms (names) that must not touch any other geom"),
+                    field("margin", &S::margin, "m", Range::non_negative(),
+                          "geoms closer than this are in contact"),
+                    field("max_halvings", &S::max_halvings, "", Range::at_least(0),
+                          "halvings of a step that touches before the solve stops"));
+}
 
 /// Contact checks of a chain's configurations against a `CollisionSpec`, on its own scratch
 /// `mjData`. Joints outside the chain hold the configuration given by `set_fixed_qpos` (the

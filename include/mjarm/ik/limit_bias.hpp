@@ -6,6 +6,7 @@
 
 #include <Eigen/Core>
 
+#include "mjarm/fields.hpp"
 #include "mjarm/model/chain.hpp"
 
 namespace mjarm {
@@ -22,8 +23,20 @@ struct LimitBias {
   double repulsion_zone = 0.15;
 };
 
+constexpr auto declared_fields(const LimitBias*) {
+  using S = LimitBias;
+  return declare<S>(
+      "limit bias",
+      field("centre_gain", &S::centre_gain, "", Range::non_negative(),
+            "per-iteration pull towards the middle of the range, a fraction of (centre - q)"),
+      field("repulsion_gain", &S::repulsion_gain, "", Range::non_negative(),
+            "per-iteration push away from a bound, reached at the bound, a fraction of the zone"),
+      field("repulsion_zone", &S::repulsion_zone, "", Range::closed(0.0, 0.5),
+            "width of the zone at each end where repulsion acts, a fraction of the range"));
+}
+
 /// @throws Error naming the field when a gain is negative or not finite or the zone is outside
-/// [0, 0.5].
+/// [0, 0.5] ("limit bias: centre_gain must be finite and ≥ 0, got -1").
 void check(const LimitBias& bias);
 
 /// Adds the limit-bias step at @p q to @p step (both n = chain size) [rad or m per iteration].

@@ -9,12 +9,12 @@
 ///   then a trust region caps the largest joint change at max_step;
 /// - the backtracking line search: halve the step while it does not improve (the solver says
 ///   what improving means) or touches a geom watched by the collision guard;
-/// - the stall counter and the checks of the options every local solver has.
+/// - the stall counter.
+/// Its settings are those every local solver has (`LocalIkSettings`).
 
 #include <Eigen/Cholesky>
 #include <Eigen/Core>
 #include <algorithm>
-#include <cmath>
 #include <limits>
 #include <memory>
 #include <string_view>
@@ -22,6 +22,7 @@
 
 #include "mjarm/ik/collision_guard.hpp"
 #include "mjarm/ik/limit_bias.hpp"
+#include "mjarm/ik/local_ik_settings.hpp"
 #include "mjarm/ik/posture.hpp"
 #include "mjarm/ik/result.hpp"
 #include "mjarm/model/chain.hpp"
@@ -41,20 +42,10 @@ enum class LineSearchOutcome {
 class LocalIkWorkspace {
  public:
   /// @param chain the joints the solver moves
-  /// @param options a solver's options: reads limits, posture, collision, null_space_damping,
-  /// max_step, secondary_ratio and max_backtracks (fields every local solver's options have)
+  /// @param settings reads limits, posture, collision, null_space_damping, max_step,
+  /// secondary_ratio and max_backtracks (checked by the solver's `check`)
   /// @throws Error for an invalid posture or unknown collision geoms.
-  template <class Options>
-  LocalIkWorkspace(const Chain& chain, const Options& options)
-      : LocalIkWorkspace(chain, options.limits, options.posture, options.collision,
-                         options.null_space_damping, options.max_step, options.secondary_ratio,
-                         options.max_backtracks) {}
-
-  /// The same with every setting named: null_space_damping ε ≥ 0, max_step > 0 [rad or m],
-  /// secondary_ratio ≥ 0, max_backtracks ≥ 0 (validated by the solver's options check).
-  LocalIkWorkspace(const Chain& chain, const LimitBias& limits, const Posture& posture,
-                   const CollisionSpec& collision, double null_space_damping, double max_step,
-                   double secondary_ratio, int max_backtracks);
+  LocalIkWorkspace(const Chain& chain, const LocalIkSettings& settings);
 
   /// Sets the joints outside the chain for the collision guard (full qpos, nq entries); the
   /// solver sets its own kinematics.
@@ -154,22 +145,6 @@ class StallCounter {
   int since_ = 0;
 };
 
-/// The check of one option of a local solver.
-class OptionCheck {
- public:
-  /// @param solver names the solver in messages, e.g. "pose IK"
-  explicit OptionCheck(const char* solver) noexcept : solver_(solver) {}
-
-  /// @throws Error "<solver> option <name> must be <expected>, got <value>" unless @p ok.
-  void operator()(bool ok, const char* name, double value, const char* expected) const;
-
- private:
-  const char* solver_;
-};
-
-/// True when @p x is finite and > 0.
-inline bool finite_positive(double x) noexcept { return std::isfinite(x) && x > 0.0; }
-
 /// @p options once `check(options)` has passed, so that a constructor validates its options
 /// before it builds the members that read them.
 /// @throws Error from `check`.
@@ -177,18 +152,6 @@ template <class Options>
 const Options& checked(const Options& options) {
   check(options);
   return options;
-}
-
-/// Checks the stopping options every local solver has, in this order: max_iterations ≥ 1,
-/// stall_iterations ≥ 1, stall_progress in [0, 1), then the limit bias.
-/// @throws Error naming the first offending option.
-template <class Options>
-void check_stopping_and_limits(const OptionCheck& require, const Options& o) {
-  require(o.max_iterations >= 1, "max_iterations", o.max_iterations, ">= 1");
-  require(o.stall_iterations >= 1, "stall_iterations", o.stall_iterations, ">= 1");
-  require(o.stall_progress >= 0.0 && o.stall_progress < 1.0, "stall_progress", o.stall_progress,
-          "in [0, 1)");
-  check(o.limits);
 }
 
 template <class SolveFree>

@@ -18,16 +18,15 @@
 /// prioritized mode) or touch a watched geom.
 
 #include <Eigen/Core>
+#include <array>
 #include <optional>
 #include <string>
 #include <vector>
 
-#include "mjarm/ik/collision_guard.hpp"
+#include "mjarm/fields.hpp"
 #include "mjarm/ik/damped_least_squares.hpp"
-#include "mjarm/ik/iteration_callback.hpp"
-#include "mjarm/ik/limit_bias.hpp"
+#include "mjarm/ik/local_ik_settings.hpp"
 #include "mjarm/ik/local_ik_workspace.hpp"
-#include "mjarm/ik/posture.hpp"
 #include "mjarm/ik/result.hpp"
 #include "mjarm/ik/targets.hpp"
 #include "mjarm/kinematics/chain_kinematics.hpp"
@@ -40,29 +39,38 @@ enum class MultiTargetMode {
   prioritized  ///< strict priorities by recursive null-space projection
 };
 
-/// Every constant of `MultiTargetIk`.
-struct MultiTargetIkOptions {
+constexpr auto declared_names(const MultiTargetMode*) {
+  using M = MultiTargetMode;
+  return std::array{
+      EnumName{M::stacked, "stacked", "one weighted damped least-squares problem"},
+      EnumName{M::prioritized, "prioritized", "strict priorities by null-space projection"}};
+}
+
+/// Every constant of `MultiTargetIk`: the shared local-IK settings (local_ik_settings.hpp, all
+/// at their defaults), the mode, the error-proportional damping and the per-target tolerances.
+/// Row weights and priorities belong to each `FrameTarget`. Its stall measure is the sum over
+/// the targets of max(position error / tolerance, angle / tolerance) at the current iterate.
+struct MultiTargetIkOptions : LocalIkSettings {
   MultiTargetMode mode = MultiTargetMode::prioritized;  ///< how targets are combined
-  double damping = 1e-3;                ///< constant part λ₀ of each level's damping (> 0)
-  double error_damping = 0.5;           ///< adds this × ½‖Wₖeₖ‖² to λₖ² (≥ 0)
-  double step = 1.0;                    ///< fraction of the step tried first (0, 1]
-  int max_backtracks = 4;               ///< halvings of a step that makes the result worse (≥ 0)
-  double null_space_damping = 1e-5;     ///< ε of the null-space projectors (≥ 0)
-  double max_step = 0.5;                ///< largest joint change per iteration [rad or m] (> 0)
-  double secondary_ratio = 1.0;         ///< secondary step ≤ this × the task step (≥ 0)
-  LimitBias limits{0.0, 0.0, 0.15};     ///< optional centre pull / repulsion (off by default)
-  Posture posture;                      ///< optional pull towards a preferred configuration
-  double position_tolerance = 1e-5;     ///< per target: ‖p_WT − p_WE‖ ≤ this [m]
-  double orientation_tolerance = 1e-5;  ///< per pose target: rotation angle ≤ this [rad]
-  int max_iterations = 300;             ///< iteration limit (≥ 1)
-  int stall_iterations = 30;     ///< stop after this many iterations without progress (≥ 1)
-  double stall_progress = 1e-4;  ///< progress = the summed errors drop by this fraction, [0, 1)
-  CollisionSpec collision;       ///< optional: geoms that must not touch (off when empty)
-  IkIterationCallback
-      on_iteration;  ///< optional observer of every iterate (iteration_callback.hpp)
+  double error_damping = 0.5;        ///< adds this × ½‖Wₖeₖ‖² to λₖ² (finite, ≥ 0)
+  double position_tolerance = 1e-5;  ///< per target: ‖p_WT − p_WE‖ ≤ this [m] (> 0)
+  double orientation_tolerance = 1e-5;  ///< per pose target: rotation angle ≤ this [rad] (> 0)
 };
 
-/// @throws Error naming the offending option.
+/// The fields of its own (the shared ones are `LocalIkSettings`'s).
+constexpr auto declared_fields(const MultiTargetIkOptions*) {
+  using S = MultiTargetIkOptions;
+  return declare<S>("multi-target IK", field("mode", &S::mode, "how targets are combined"),
+                    field("error_damping", &S::error_damping, "", Range::non_negative(),
+                          "adds this × ½‖Wₖeₖ‖² to λₖ²"),
+                    field("position_tolerance", &S::position_tolerance, "m", Range::positive(),
+                          "per target: ‖p_WT − p_WE‖ ≤ this"),
+                    field("orientation_tolerance", &S::orientation_tolerance, "rad",
+                          Range::positive(), "per pose target: rotation angle ≤ this"));
+}
+
+/// @throws Error naming the offending option ("multi-target IK: step must be in (0, 1], got
+/// 0").
 void check(const MultiTargetIkOptions& options);
 
 /// Multi-target IK solver: construct once, move targets with `set_target`, solve many times.
@@ -143,7 +151,7 @@ class MultiTargetIk {
   std::vector<TargetSlot> targets_;
   std::vector<Level> levels_;
   // iterate, step, secondary terms, collision guard: built once the targets are validated (the
-  // constructor reports a bad target before a bad posture or collision spec)
+  // constructor reports a bad target before a wrong-sized q_pref or an unknown collision geom)
   std::optional<LocalIkWorkspace> local_;
   // workspace
   Matrix6Xd J_scratch_;

@@ -18,41 +18,48 @@
 
 #include <Eigen/Core>
 
-#include "mjarm/ik/collision_guard.hpp"
-#include "mjarm/ik/iteration_callback.hpp"
-#include "mjarm/ik/limit_bias.hpp"
+#include "mjarm/fields.hpp"
+#include "mjarm/ik/local_ik_settings.hpp"
 #include "mjarm/ik/local_ik_workspace.hpp"
-#include "mjarm/ik/posture.hpp"
 #include "mjarm/ik/result.hpp"
 #include "mjarm/kinematics/chain_kinematics.hpp"
 #include "mjarm/lie/pose.hpp"
 
 namespace mjarm {
 
-/// Every constant of `PoseIk`.
-struct PoseIkOptions {
-  double damping = 1e-3;             ///< constant part λ₀ of the damping (weighted error units)
+/// Every constant of `PoseIk`: the shared local-IK settings (local_ik_settings.hpp) with this
+/// solver's tuning, its error-proportional damping, row weights and tolerances. Its stall
+/// measure is the best max(position error / tolerance, angle / tolerance) so far.
+struct PoseIkOptions : LocalIkSettings {
   double error_damping = 0.5;        ///< adds this × ½‖W·e‖² to λ² (≥ 0; 0 = plain DLS)
-  double step = 1.0;                 ///< fraction of the step tried first (0, 1]
-  int max_backtracks = 4;            ///< halvings of a step that raises the error (≥ 0)
   double position_weight = 1.0;      ///< w_p, row weight of the position error [1/m] (> 0)
   double orientation_weight = 0.5;   ///< w_o, row weight of the orientation error [1/rad] (> 0)
-  double null_space_damping = 1e-5;  ///< ε of the null-space projector (≥ 0)
-  double max_step = 0.5;             ///< largest joint change per iteration [rad or m] (> 0)
-  double secondary_ratio = 1.0;      ///< secondary step ≤ this × the task step (≥ 0)
-  LimitBias limits{0.0, 0.0, 0.15};  ///< optional centre pull / repulsion (off by default)
-  Posture posture;                   ///< optional pull towards a preferred configuration
-  double position_tolerance = 1e-5;  ///< success when ‖p_WT − p_WE‖ ≤ this [m]
+  double position_tolerance = 1e-5;  ///< success when ‖p_WT − p_WE‖ ≤ this [m] (> 0)
   double orientation_tolerance = 1e-5;  ///< ... and the rotation angle to the target ≤ this [rad]
-  int max_iterations = 200;             ///< iteration limit (≥ 1)
-  int stall_iterations = 30;     ///< stop after this many iterations without progress (≥ 1)
-  double stall_progress = 1e-4;  ///< progress = the best error drops by this fraction, in [0, 1)
-  CollisionSpec collision;       ///< optional: geoms that must not touch (off when empty)
-  IkIterationCallback
-      on_iteration;  ///< optional observer of every iterate (iteration_callback.hpp)
+
+  /// At most 200 iterations; the rest as in `LocalIkSettings` (λ₀ = 1e-3, first step 1, no
+  /// limit bias).
+  PoseIkOptions() : LocalIkSettings{.max_iterations = 200} {}
 };
 
-/// @throws Error naming the offending option.
+/// The fields of its own (the shared ones are `LocalIkSettings`'s).
+constexpr auto declared_fields(const PoseIkOptions*) {
+  using S = PoseIkOptions;
+  return declare<S>("pose IK",
+                    field("error_damping", &S::error_damping, "", Range::non_negative(),
+                          "adds this × ½‖W·e‖² to λ²; 0 = plain DLS"),
+                    field("position_weight", &S::position_weight, "1/m", Range::positive(),
+                          "row weight of the position error"),
+                    field("orientation_weight", &S::orientation_weight, "1/rad", Range::positive(),
+                          "row weight of the orientation error"),
+                    field("position_tolerance", &S::position_tolerance, "m", Range::positive(),
+                          "success when ‖p_WT − p_WE‖ ≤ this"),
+                    field("orientation_tolerance", &S::orientation_tolerance, "rad",
+                          Range::positive(), "... and the rotation angle to the target ≤ this"));
+}
+
+/// @throws Error naming the offending option ("pose IK: posture.gain must be in [0, 1], got
+/// 2").
 void check(const PoseIkOptions& options);
 
 /// Pose IK solver for one chain's frame: construct once, solve many times. After construction,

@@ -20,36 +20,35 @@
 
 #include <Eigen/Core>
 
-#include "mjarm/ik/collision_guard.hpp"
-#include "mjarm/ik/iteration_callback.hpp"
-#include "mjarm/ik/limit_bias.hpp"
+#include "mjarm/fields.hpp"
+#include "mjarm/ik/local_ik_settings.hpp"
 #include "mjarm/ik/local_ik_workspace.hpp"
-#include "mjarm/ik/posture.hpp"
 #include "mjarm/ik/result.hpp"
 #include "mjarm/kinematics/chain_kinematics.hpp"
 
 namespace mjarm {
 
-/// Every constant of `PositionIk`.
-struct PositionIkOptions {
-  double damping = 0.02;              ///< λ of the damped least-squares step [m]
-  double step = 0.6;                  ///< α, fraction of the DLS step taken per iteration (0, 1]
-  double null_space_damping = 1e-5;   ///< ε of the null-space projector [m], ≥ 0
-  int max_backtracks = 4;             ///< halvings of a step that raises the error (≥ 0)
-  double max_step = 0.5;              ///< largest joint change of the task step [rad or m] (> 0)
-  double secondary_ratio = 1.0;       ///< secondary step ≤ this × the task step (≥ 0)
-  LimitBias limits{0.05, 0.2, 0.15};  ///< centre gain 0.05, repulsion in the outer 15% of ranges
-  Posture posture;                    ///< optional pull towards a preferred configuration
-  double tolerance = 1e-4;            ///< success when ‖p_WT − p_WE‖ ≤ tolerance [m]
-  int max_iterations = 300;           ///< iteration limit (≥ 1)
-  int stall_iterations = 60;          ///< stop after this many iterations without progress (≥ 1)
-  double stall_progress = 1e-4;  ///< progress = the best error drops by this fraction, in [0, 1)
-  CollisionSpec collision;       ///< optional: geoms that must not touch (off when empty)
-  IkIterationCallback
-      on_iteration;  ///< optional observer of every iterate (iteration_callback.hpp)
+/// Every constant of `PositionIk`: the shared local-IK settings (local_ik_settings.hpp) with
+/// this solver's tuning, and its tolerance. Its stall measure is the best error so far.
+struct PositionIkOptions : LocalIkSettings {
+  double tolerance = 1e-4;  ///< success when ‖p_WT − p_WE‖ ≤ tolerance [m] (finite, > 0)
+
+  /// λ = 0.02 m, α = 0.6, centre gain 0.05 and repulsion 0.2 in the outer 15 % of the ranges,
+  /// stall after 60 iterations without progress; the rest as in `LocalIkSettings`.
+  PositionIkOptions()
+      : LocalIkSettings{
+            .damping = 0.02, .step = 0.6, .limits = {0.05, 0.2, 0.15}, .stall_iterations = 60} {}
 };
 
-/// @throws Error naming the offending option.
+/// The fields of its own (the shared ones are `LocalIkSettings`'s).
+constexpr auto declared_fields(const PositionIkOptions*) {
+  using S = PositionIkOptions;
+  return declare<S>("position IK", field("tolerance", &S::tolerance, "m", Range::positive(),
+                                         "success when ‖p_WT − p_WE‖ ≤ tolerance"));
+}
+
+/// @throws Error naming the offending option ("position IK: max_step must be positive and
+/// finite [rad or m], got 0").
 void check(const PositionIkOptions& options);
 
 /// Position IK solver for one chain's frame: construct once, solve many times. After

@@ -5,6 +5,7 @@
 
 #include <Eigen/Core>
 
+#include "mjarm/fields.hpp"
 #include "mjarm/model/chain.hpp"
 
 namespace mjarm {
@@ -17,6 +18,15 @@ struct Posture {
   /// Per-iteration pull as a fraction of (q_pref − q), in [0, 1].
   double gain = 0.0;
 };
+
+constexpr auto declared_fields(const Posture*) {
+  using S = Posture;
+  return declare<S>("posture",
+                    field("q_pref", &S::q_pref, "rad or m", Range::finite(),
+                          "preferred joints (n,); empty = the middle of each range"),
+                    field("gain", &S::gain, "", Range::closed(0.0, 1.0),
+                          "per-iteration pull, a fraction of (q_pref - q)"));
+}
 
 /// The preferred configuration to use with @p chain: `posture.q_pref`, or the chain's centre
 /// when it is empty.

@@ -9,6 +9,8 @@
 #include <string_view>
 #include <vector>
 
+#include "mjarm/closest_names.hpp"
+
 namespace mjarm {
 
 /// Human name of a MuJoCo object type ("joint", "site", ...).
@@ -23,19 +25,6 @@ int find_object(const mjModel& m, mjtObj type, std::string_view name);
 
 /// Id of the object called @p name, or -1: for callers that try several kinds in turn.
 int try_find_object(const mjModel& m, mjtObj type, std::string_view name) noexcept;
-
-/// Up to @p count names from @p candidates closest to @p name (edit distance, then prefix).
-std::vector<std::string> closest_names(std::string_view name,
-                                       const std::vector<std::string>& candidates,
-                                       std::size_t count = 3);
-
-/// The error text for a word of a file that is not one of @p known, as every reader of mjarm's
-/// files words it: "unknown key 'quaternoin' in waypoint 1; closest: quaternion; keys: position,
-/// quaternion" (@p kind "key", @p where "waypoint 1"; without @p where: "unknown event 'jump';
-/// closest: …"). The list is @p known in its order; the closest is by edit distance.
-std::string unknown_name_message(std::string_view kind, std::string_view word,
-                                 const std::vector<std::string>& known,
-                                 std::string_view where = {});
 
 /// The model's name (its <mujoco model="..."> attribute).
 std::string model_name(const mjModel& m);

@@ -33,7 +33,7 @@ std::filesystem::path find_gnuplot();
 /// @param timeout_s how long gnuplot may run [s] before it is killed
 /// @throws Error when gnuplot is missing (see `find_gnuplot`), cannot start, exits with an
 ///         error (its messages are quoted), runs past the timeout, or an interrupt arrives
-///         while it runs (SIGINT/SIGTERM under an `InterruptGuard`, sim/interrupt.hpp): gnuplot
+///         while it runs (SIGINT/SIGTERM under an `InterruptGuard`, mjarm/interrupt.hpp): gnuplot
 ///         is killed then.
 void run_gnuplot(const std::filesystem::path& script, double timeout_s = 60.0);
 

@@ -24,7 +24,7 @@ struct VideoOptions {
   int quality = 20;
   /// How long ffmpeg may take to accept one frame, and to finalize the file after the last one
   /// [s], finite and > 0. Past it, ffmpeg is killed and the writer reports an error. After
-  /// Ctrl-C or SIGTERM (see sim/interrupt.hpp) ffmpeg gets at most 3 s more instead.
+  /// Ctrl-C or SIGTERM (see mjarm/interrupt.hpp) ffmpeg gets at most 3 s more instead.
   double timeout_s = 60.0;
 };
 
@@ -40,7 +40,7 @@ struct VideoOptions {
 /// a file already at @p path as it was: ffmpeg failing or being stopped, an incomplete file,
 /// `abandon()`, a writer destroyed without `close()` (a run that stopped early, an exception
 /// unwinding past it), and `close()` while an interrupt is pending (SIGINT/SIGTERM under an
-/// `InterruptGuard`, sim/interrupt.hpp: the frames stop where the run was cut, so `close()`
+/// `InterruptGuard`, mjarm/interrupt.hpp: the frames stop where the run was cut, so `close()`
 /// throws "video 'PATH' was not written: interrupted after N frames (the file already at
 /// 'PATH' is kept)"). `complete()` says which happened. This is the one way every command's
 /// video is written (`RunVideo`: run, docking, pick-place, replay, bimanual, demo).

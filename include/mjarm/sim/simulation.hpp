@@ -125,8 +125,8 @@ class Simulation {
   TickResult tick(ReferenceSource& source, Recorder* recorder = nullptr);
 
   /// Ticks until @p duration [s] of simulated time passed, the source finishes, a step diverges,
-  /// a controller writes NaN, or an interrupt arrives (interrupt.hpp). Faults and interrupts are
-  /// also written to the recorder's events; the recorder is not finalized here.
+  /// a controller writes NaN, or an interrupt arrives (mjarm/interrupt.hpp). Faults and
+  /// interrupts are also written to the recorder's events; the recorder is not finalized here.
   /// @throws Error when @p duration is not positive and finite, in kinematic mode, or when
   ///         @p recorder was built for another simulation.
   RunResult run(ReferenceSource& source, double duration, Recorder* recorder = nullptr);

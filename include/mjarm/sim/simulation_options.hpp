@@ -5,6 +5,7 @@
 #include <limits>
 #include <string_view>
 
+#include "mjarm/fields.hpp"
 #include "mjarm/sim/contact_query.hpp"
 
 namespace mjarm {
@@ -21,8 +22,12 @@ enum class SimulationMode {
   torque
 };
 
-/// Human name ("kinematic", "position", "torque").
-const char* to_string(SimulationMode mode) noexcept;
+constexpr auto declared_names(const SimulationMode*) {
+  using M = SimulationMode;
+  return std::array{EnumName{M::kinematic, "kinematic", "positions written directly, no dynamics"},
+                    EnumName{M::position, "position", "position servos, gravity compensated"},
+                    EnumName{M::torque, "torque", "motors driven by torques"}};
+}
 
 /// The number of whole @p step periods [s] in @p period [s] (to 1e-9 relative), for a control
 /// period made of physics steps (or of controller periods).
@@ -32,7 +37,7 @@ const char* to_string(SimulationMode mode) noexcept;
 ///         0.016 s)", or when @p period is not positive and finite.
 int whole_multiple(double period, double step, std::string_view what, std::string_view step_name);
 
-/// Options of a `Simulation`; checked by its constructor.
+/// Options of a `Simulation`; checked by its constructor (declared below).
 struct SimulationOptions {
   SimulationMode mode = SimulationMode::torque;
 
@@ -64,5 +69,18 @@ struct SimulationOptions {
   GeomSet contact_check_a;
   GeomSet contact_check_b;
 };
+
+constexpr auto declared_fields(const SimulationOptions*) {
+  using S = SimulationOptions;
+  return declare<S>(
+      "simulation", field("mode", &S::mode, "how the robot moves"),
+      field("control_period", &S::control_period, "s", Range::non_negative(),
+            "the controllers' period, a whole multiple of the timestep; 0: one physics step"),
+      field("gravity_compensation", &S::gravity_compensation,
+            "position mode: add the bias forces of the servo-driven dofs"),
+      field("max_acceleration", &S::max_acceleration, "rad/s² or m/s²",
+            Range::positive().or_infinity(), "divergence bound on |qacc|; +inf: none"),
+      field("own_model", &S::own_model, "step a private copy of the model"));
+}
 
 }  // namespace mjarm

@@ -60,7 +60,7 @@ struct DockingGridResult {
 using DockingGridProgress = std::function<void(int done, int planned)>;
 
 /// Runs the matrix in `jobs` threads (the scene compiled once and shared: its model is
-/// immutable, each run owns its simulation data). An interrupt (interrupt.hpp) stops every
+/// immutable, each run owns its simulation data). An interrupt (mjarm/interrupt.hpp) stops every
 /// running simulation at its next tick; the runs it cut short are not counted.
 /// @throws Error for bad options (an empty or non-finite axis, jobs < 0, a record or video path
 ///         in the base options, or what `run_docking` refuses — raised before any run when the

@@ -60,7 +60,7 @@ PickPlaceSummary summarize(const std::vector<PickPlaceReport>& reports);
 struct PickPlaceBatch {
   std::vector<PickPlaceReport> reports;  ///< finished trials, in seed order
   PickPlaceSummary summary;
-  bool interrupted = false;  ///< Ctrl-C stopped the batch (see sim/interrupt.hpp)
+  bool interrupted = false;  ///< Ctrl-C stopped the batch (see mjarm/interrupt.hpp)
 };
 
 /// Runs `trials` trials on `threads` workers. A trial that fails — also by diverging — is a

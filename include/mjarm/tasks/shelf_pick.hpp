@@ -36,7 +36,7 @@ enum class PickOutcome {
   not_held,     ///< the time limit came first
   diverged,     ///< the simulation diverged (recording kept up to the fault)
   bad_command,  ///< the controller produced NaN/inf
-  interrupted   ///< SIGINT/SIGTERM (see sim/interrupt.hpp)
+  interrupted   ///< SIGINT/SIGTERM (see mjarm/interrupt.hpp)
 };
 
 /// Human name ("held", "not_held", ...).

@@ -1,4 +1,4 @@
-#include "mjarm/sim/interrupt.hpp"
+#include "mjarm/interrupt.hpp"
 
 #include <cerrno>
 #include <csignal>

@@ -21,7 +21,7 @@
 
 #include "mjarm/teleop/teleop_panel.hpp"
 #include "mjarm/teleop/viewer_panel.hpp"
-#include "mjarm/teleop/viewer_ui.hpp"
+#include "viewer_ui.hpp"
 
 namespace mjarm {
 
