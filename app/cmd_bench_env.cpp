@@ -6,6 +6,7 @@
 #include <memory>
 
 #include "commands.hpp"
+#include "field_options.hpp"
 #include "mjarm/env/env_benchmark.hpp"
 #include "mjarm/env/task_registry.hpp"
 #include "mjarm/interrupt.hpp"
@@ -33,12 +34,10 @@ Command add_bench_env_subcommand(CLI::App& bench) {
       "its physics (thread CPU time, same physics replayed), and the steps per second of a "
       "vectorized batch on 1 thread and on --threads (wall clock with the load average, and "
       "from the threads' CPU clocks)");
-  std::vector<std::string> spaces;
-  for (ActionSpace s : action_spaces()) spaces.emplace_back(to_string(s));
   app->add_option("--task", options->task, "environment task")
       ->check(CLI::IsMember(env_task_names()));
   app->add_option("--action-space", options->action_space, "action space")
-      ->check(CLI::IsMember(spaces));
+      ->check(name_of<ActionSpace>("action space"));
   app->add_option("--steps", options->steps, "timed environment steps per round")
       ->check(count_in(1, 1000000));
   app->add_option("--warmup", options->warmup, "untimed steps before each timed run")

@@ -4,6 +4,7 @@
 #include <memory>
 
 #include "controller_step.hpp"
+#include "declared_fields.hpp"
 #include "mjarm/tasks/docking.hpp"
 #include "mjarm/tasks/docking_grid.hpp"
 #include "mjarm/tasks/tracking_gate.hpp"
@@ -127,9 +128,7 @@ void bind_scene_and_controller(py::module_& m) {
       .value("cic", DockingLaw::cic)
       .value("hqp_ac", DockingLaw::hqp_ac)
       .value("se3", DockingLaw::se3);
-  py::enum_<ForceSource>(m, "ForceSource", "Where the measured wrench comes from.")
-      .value("sensor", ForceSource::sensor)
-      .value("observer", ForceSource::observer);
+  def_enum<ForceSource>(m, "ForceSource", "Where the measured wrench comes from.");
   auto co = py::class_<DockingControllerOptions>(
       m, "DockingControllerOptions",
       "Law, force source and gains ([x, y, z, rx, ry, rz]; E's axes for se3, world for cic and "
@@ -279,12 +278,7 @@ void bind_docking_results(py::module_& m) {
       .def_readonly("contact_fraction", &DockingMetrics::contact_fraction)
       .def_readonly("seated", &DockingMetrics::seated)
       .def_readonly("failures", &DockingMetrics::failures, "why not seated: list of names");
-  py::enum_<DockingOutcome>(m, "DockingOutcome", "How a docking run ended.")
-      .value("seated", DockingOutcome::seated)
-      .value("not_seated", DockingOutcome::not_seated)
-      .value("diverged", DockingOutcome::diverged)
-      .value("bad_command", DockingOutcome::bad_command)
-      .value("interrupted", DockingOutcome::interrupted);
+  def_enum<DockingOutcome>(m, "DockingOutcome", "How a docking run ended.");
   py::class_<DockingReport>(m, "DockingReport", "What a docking run did.")
       .def_readonly("plan", &DockingReport::plan)
       .def_readonly("controller", &DockingReport::controller, "'cic', 'hqp-ac', 'se3'")

@@ -5,6 +5,7 @@
 #include <limits>
 #include <string>
 
+#include "declared_fields.hpp"
 #include "env_time_steps.hpp"
 #include "mjarm/env/environment.hpp"
 #include "mjarm/number_text.hpp"
@@ -128,15 +129,8 @@ void bind_array_specs(py::module_& m) {
 }
 
 void bind_options(py::module_& m) {
-  py::enum_<ActionSpace>(m, "ActionSpace",
-                         "What one action commands (n = the chain's joints); see docs/env.md.")
-      .value("joint_torques", ActionSpace::joint_torques, "n torques [N m], held over the step")
-      .value("joint_positions", ActionSpace::joint_positions, "n joint targets [rad]")
-      .value("joint_deltas", ActionSpace::joint_deltas, "n increments of the joint target [rad]")
-      .value("ee_pose_deltas", ActionSpace::ee_pose_deltas,
-             "[dx dy dz rx ry rz] of the goal pose (world axes; m, rotation vector rad)")
-      .value("ee_velocities", ActionSpace::ee_velocities,
-             "[vx vy vz wx wy wz] (m/s, rad/s), integrated over the step");
+  def_enum<ActionSpace>(m, "ActionSpace",
+                        "What one action commands (n = the chain's joints); see docs/env.md.");
   py::class_<ActionOptions>(m, "ActionOptions", "Bounds and gains of the action spaces.")
       .def(py::init<>())
       .def_readwrite("max_joint_delta", &ActionOptions::max_joint_delta,
@@ -218,11 +212,7 @@ void bind_time_steps(py::module_& m) {
           "mid", [](StepType t) { return t == StepType::mid; }, "True for MID.")
       .def(
           "last", [](StepType t) { return t == StepType::last; }, "True for LAST.");
-  py::enum_<EpisodeEnd>(m, "EpisodeEnd", "Why an episode ended (set on LAST).")
-      .value("running", EpisodeEnd::running, "not ended")
-      .value("terminated", EpisodeEnd::terminated, "the task ended it: discount 0")
-      .value("truncated", EpisodeEnd::truncated, "the time limit: discount 1")
-      .value("diverged", EpisodeEnd::diverged, "the physics diverged: discount 0");
+  def_enum<EpisodeEnd>(m, "EpisodeEnd", "Why an episode ended (set on LAST).");
 
   py::class_<PyTimeStep>(m, "TimeStep", kTimeStepDoc)
       .def_readonly("step_type", &PyTimeStep::step_type, "StepType")

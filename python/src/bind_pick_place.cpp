@@ -4,6 +4,7 @@
 #include <memory>
 #include <mutex>
 
+#include "declared_fields.hpp"
 #include "mjarm/tasks/pick_place.hpp"
 #include "mjarm/tasks/pick_place_trials.hpp"
 #include "spec_support.hpp"
@@ -33,9 +34,7 @@ void optional_pair(Class& cls, const char* name, std::optional<std::array<double
 }
 
 void bind_pick_place_options(py::module_& m) {
-  py::enum_<GraspKind>(m, "GraspKind", "How the object is held.")
-      .value("weld", GraspKind::weld)
-      .value("friction", GraspKind::friction);
+  def_enum<GraspKind>(m, "GraspKind", "How the object is held.");
   py::enum_<PickPlaceState>(m, "PickPlaceState", "The 14 states of the machine, in order.")
       .value("approach", PickPlaceState::approach)
       .value("dwell_a", PickPlaceState::dwell_a)
@@ -51,20 +50,8 @@ void bind_pick_place_options(py::module_& m) {
       .value("dwell_f", PickPlaceState::dwell_f)
       .value("release", PickPlaceState::release)
       .value("done", PickPlaceState::done);
-  py::enum_<PickPlaceFailure>(m, "PickPlaceFailure",
-                              "Why a trial failed: the first that applies, in this order.")
-      .value("none", PickPlaceFailure::none)
-      .value("diverged", PickPlaceFailure::diverged)
-      .value("bad_command", PickPlaceFailure::bad_command)
-      .value("interrupted", PickPlaceFailure::interrupted)
-      .value("time_limit", PickPlaceFailure::time_limit)
-      .value("not_grasped", PickPlaceFailure::not_grasped)
-      .value("dropped", PickPlaceFailure::dropped)
-      .value("table_contact", PickPlaceFailure::table_contact)
-      .value("saturated", PickPlaceFailure::saturated)
-      .value("misplaced", PickPlaceFailure::misplaced)
-      .value("tilted", PickPlaceFailure::tilted)
-      .value("not_resting", PickPlaceFailure::not_resting);
+  def_enum<PickPlaceFailure>(m, "PickPlaceFailure",
+                             "Why a trial failed: the first that applies, in this order.");
 
   auto limits =
       py::class_<CartesianLimits>(m, "CartesianLimits", "Limits of a Cartesian trapezoid segment.");

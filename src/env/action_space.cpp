@@ -17,22 +17,6 @@ void require_positive_option(double value, const char* name) {
 
 }  // namespace
 
-const char* to_string(ActionSpace space) noexcept {
-  switch (space) {
-    case ActionSpace::joint_torques:
-      return "joint_torques";
-    case ActionSpace::joint_positions:
-      return "joint_positions";
-    case ActionSpace::joint_deltas:
-      return "joint_deltas";
-    case ActionSpace::ee_pose_deltas:
-      return "ee_pose_deltas";
-    case ActionSpace::ee_velocities:
-      return "ee_velocities";
-  }
-  return "?";
-}
-
 const std::vector<ActionSpace>& action_spaces() {
   static const std::vector<ActionSpace> all{
       ActionSpace::joint_torques, ActionSpace::joint_positions, ActionSpace::joint_deltas,
@@ -41,12 +25,7 @@ const std::vector<ActionSpace>& action_spaces() {
 }
 
 ActionSpace action_space(std::string_view name) {
-  std::string choices;
-  for (ActionSpace space : action_spaces()) {
-    if (name == to_string(space)) return space;
-    choices += (choices.empty() ? "" : ", ") + std::string(to_string(space));
-  }
-  throw Error("unknown action space '" + std::string(name) + "'; choices: " + choices);
+  return parse_enum<ActionSpace>(name, "action space");
 }
 
 OperationalSpaceOptions environment_osc_options() {

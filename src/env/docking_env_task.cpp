@@ -38,20 +38,6 @@ std::shared_ptr<const DockingScene> checked_scene(const DockingEnvOptions& o) {
 
 }  // namespace
 
-const char* to_string(DockingEnvOutcome outcome) noexcept {
-  switch (outcome) {
-    case DockingEnvOutcome::running:
-      return "running";
-    case DockingEnvOutcome::seated:
-      return "seated";
-    case DockingEnvOutcome::excess_force:
-      return "excess_force";
-    case DockingEnvOutcome::other_contact:
-      return "other_contact";
-  }
-  return "unknown";
-}
-
 DockingEnvTask::DockingEnvTask(const DockingEnvOptions& options)
     : options_(options), scene_(checked_scene(options)), probe_(*scene_, iiwa14_max_velocity()) {
   // the start and the true seat as the docking run plans them (the offset is drawn per episode)

@@ -233,10 +233,6 @@ void EnvBenchmarkOptions::check() const {
     throw Error("env benchmark: max_threads must be from 1 to 256");
 }
 
-const char* to_string(EnvBenchmarkStatus status) noexcept {
-  return status == EnvBenchmarkStatus::ok ? "ok" : "interrupted";
-}
-
 EnvBenchmarkResult run_env_benchmark(const EnvBenchmarkOptions& options) {
   options.check();
   EnvironmentOptions env_options;

@@ -49,20 +49,6 @@ std::shared_ptr<const PickPlaceScene> pick_place_env_scene(const PickPlaceEnvOpt
 
 }  // namespace
 
-const char* to_string(PickPlaceEnvOutcome outcome) noexcept {
-  switch (outcome) {
-    case PickPlaceEnvOutcome::running:
-      return "running";
-    case PickPlaceEnvOutcome::placed:
-      return "placed";
-    case PickPlaceEnvOutcome::fell:
-      return "fell";
-    case PickPlaceEnvOutcome::table_contact:
-      return "table_contact";
-  }
-  return "unknown";
-}
-
 PickPlaceEnvTask::PickPlaceEnvTask(const PickPlaceEnvOptions& options)
     : options_(options),
       scene_(pick_place_env_scene(options)),

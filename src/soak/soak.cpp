@@ -414,15 +414,6 @@ void SoakOptions::check() const {
   limits.check();
 }
 
-const char* to_string(SoakStatus status) noexcept {
-  switch (status) {
-    case SoakStatus::ok: return "ok";
-    case SoakStatus::failed: return "failed";
-    case SoakStatus::interrupted: return "interrupted";
-  }
-  return "?";
-}
-
 SoakResult run_soak(const SoakOptions& options) {
   options.check();
   // an unknown name is an error before any work

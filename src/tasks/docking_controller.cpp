@@ -24,30 +24,11 @@ void require_gains(const Vector6d& v, const std::string& what) {
 
 }  // namespace
 
-const char* to_string(DockingLaw law) noexcept {
-  switch (law) {
-    case DockingLaw::cic:
-      return "cic";
-    case DockingLaw::hqp_ac:
-      return "hqp-ac";
-    case DockingLaw::se3:
-      return "se3";
-  }
-  return "unknown";
-}
-
 DockingLaw docking_law(std::string_view name) {
-  for (DockingLaw law : kLaws)
-    if (name == to_string(law)) return law;
-  throw Error("unknown docking controller '" + std::string(name) +
-              "'; controllers: cic, hqp-ac, se3");
+  return parse_enum<DockingLaw>(name, "docking controller");
 }
 
 std::span<const DockingLaw> docking_laws() noexcept { return kLaws; }
-
-const char* to_string(ForceSource source) noexcept {
-  return source == ForceSource::sensor ? "sensor" : "observer";
-}
 
 void check(const DockingControllerOptions& o) {
   if (!(o.sensor_cutoff > 0.0) || std::isnan(o.sensor_cutoff))

@@ -52,15 +52,8 @@ void check(const DockingOffset& o) {
                 number_text(o.dyaw) + " rad");
 }
 
-const char* to_string(DockingReference kind) noexcept {
-  return kind == DockingReference::two_phase ? "two-phase" : "single";
-}
-
 DockingReference docking_reference(std::string_view name) {
-  if (name == "two-phase") return DockingReference::two_phase;
-  if (name == "single") return DockingReference::single_segment;
-  throw Error("unknown docking reference '" + std::string(name) +
-              "'; references: two-phase, single");
+  return parse_enum<DockingReference>(name, "docking reference");
 }
 
 void check(const DockingMotion& m) {
@@ -78,18 +71,6 @@ void check(const DockingMotion& m) {
   if (!(m.preload >= 0.0) || !std::isfinite(m.preload))
     throw Error("docking motion: preload must be ≥ 0 and finite [N], got " +
                 number_text(m.preload));
-}
-
-const char* to_string(DockingPhase phase) noexcept {
-  switch (phase) {
-    case DockingPhase::approach:
-      return "approach";
-    case DockingPhase::insert:
-      return "insert";
-    case DockingPhase::hold:
-      return "hold";
-  }
-  return "unknown";
 }
 
 DockingPlan plan_docking(const DockingScene& scene, const DockingOffset& offset,

@@ -9,16 +9,6 @@
 
 namespace mjarm {
 
-const char* to_string(PickEvent event) noexcept {
-  switch (event) {
-    case PickEvent::none: return "none";
-    case PickEvent::entered: return "entered";
-    case PickEvent::left: return "left";
-    case PickEvent::held: return "held";
-  }
-  return "unknown";
-}
-
 PickMonitor::PickMonitor(const Eigen::Vector3d& p_start, const Eigen::Vector3d& p_target,
                          const PickCriteria& criteria)
     : target_(p_target), direction_(Eigen::Vector3d::Zero()), criteria_(criteria) {

@@ -22,36 +22,6 @@
 
 namespace mjarm {
 
-const char* to_string(PickPlaceFailure failure) noexcept {
-  switch (failure) {
-    case PickPlaceFailure::none:
-      return "none";
-    case PickPlaceFailure::diverged:
-      return "diverged";
-    case PickPlaceFailure::bad_command:
-      return "bad_command";
-    case PickPlaceFailure::interrupted:
-      return "interrupted";
-    case PickPlaceFailure::time_limit:
-      return "time_limit";
-    case PickPlaceFailure::not_grasped:
-      return "not_grasped";
-    case PickPlaceFailure::dropped:
-      return "dropped";
-    case PickPlaceFailure::table_contact:
-      return "table_contact";
-    case PickPlaceFailure::saturated:
-      return "saturated";
-    case PickPlaceFailure::misplaced:
-      return "misplaced";
-    case PickPlaceFailure::tilted:
-      return "tilted";
-    case PickPlaceFailure::not_resting:
-      return "not_resting";
-  }
-  return "unknown";
-}
-
 namespace {
 
 constexpr double kClassicHalfSize = 0.0075;

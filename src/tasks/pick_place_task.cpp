@@ -15,44 +15,6 @@
 
 namespace mjarm {
 
-const char* to_string(PickPlaceState state) noexcept {
-  switch (state) {
-    case PickPlaceState::approach:
-      return "APPROACH";
-    case PickPlaceState::dwell_a:
-      return "DWELL_A";
-    case PickPlaceState::descend:
-      return "DESCEND";
-    case PickPlaceState::dwell_b:
-      return "DWELL_B";
-    case PickPlaceState::grasp:
-      return "GRASP";
-    case PickPlaceState::dwell_c:
-      return "DWELL_C";
-    case PickPlaceState::lift:
-      return "LIFT";
-    case PickPlaceState::dwell_d:
-      return "DWELL_D";
-    case PickPlaceState::move:
-      return "MOVE";
-    case PickPlaceState::dwell_e:
-      return "DWELL_E";
-    case PickPlaceState::place:
-      return "PLACE";
-    case PickPlaceState::dwell_f:
-      return "DWELL_F";
-    case PickPlaceState::release:
-      return "RELEASE";
-    case PickPlaceState::done:
-      return "DONE";
-  }
-  return "UNKNOWN";
-}
-
-const char* to_string(GraspKind kind) noexcept {
-  return kind == GraspKind::weld ? "weld" : "friction";
-}
-
 GraspKind grasp_kind(std::string_view name) {
   if (name == "weld") return GraspKind::weld;
   if (name == "friction") return GraspKind::friction;

@@ -13,20 +13,6 @@
 
 namespace mjarm {
 
-const char* to_string(PickPhase phase) noexcept {
-  switch (phase) {
-    case PickPhase::approach:
-      return "approach";
-    case PickPhase::settle:
-      return "settle";
-    case PickPhase::hold:
-      return "hold";
-    case PickPhase::release:
-      return "release";
-  }
-  return "unknown";
-}
-
 namespace {
 
 const ShelfPickGoal& checked(const Chain& chain, const ShelfPickGoal& goal) {

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "mjarm/control/operational_space.hpp"
+#include "mjarm/fields.hpp"
 
 namespace mjarm {
 
@@ -30,8 +31,18 @@ enum class ActionSpace {
   ee_velocities
 };
 
-/// "joint_torques", "joint_positions", "joint_deltas", "ee_pose_deltas", "ee_velocities".
-const char* to_string(ActionSpace space) noexcept;
+/// The names (`to_string`, JSON, CLI and Python spelling).
+constexpr auto declared_names(const ActionSpace*) {
+  using E = ActionSpace;
+  return std::array{
+      EnumName{E::joint_torques, "joint_torques", "n torques [N m], held over the step"},
+      EnumName{E::joint_positions, "joint_positions", "n joint targets [rad]"},
+      EnumName{E::joint_deltas, "joint_deltas", "n increments of the joint target [rad]"},
+      EnumName{E::ee_pose_deltas, "ee_pose_deltas",
+               "[dx dy dz rx ry rz] of the goal pose (world axes; m, rotation vector rad)"},
+      EnumName{E::ee_velocities, "ee_velocities",
+               "[vx vy vz wx wy wz] (m/s, rad/s), integrated over the step"}};
+}
 
 /// Every action space, in the enum's order.
 const std::vector<ActionSpace>& action_spaces();

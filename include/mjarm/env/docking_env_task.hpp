@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "mjarm/env/env_task.hpp"
+#include "mjarm/fields.hpp"
 #include "mjarm/tasks/docking_monitor.hpp"
 #include "mjarm/tasks/docking_scene.hpp"
 #include "mjarm/tasks/docking_task.hpp"
@@ -49,8 +50,13 @@ enum class DockingEnvOutcome {
   other_contact,  ///< a contact that is not peg–socket (arm on the socket, peg on the floor…)
 };
 
-/// "running", "seated", "excess_force", "other_contact".
-const char* to_string(DockingEnvOutcome outcome) noexcept;
+/// The names (`to_string`, JSON, CLI and Python spelling).
+constexpr auto declared_names(const DockingEnvOutcome*) {
+  using E = DockingEnvOutcome;
+  return std::array{EnumName{E::running, "running"}, EnumName{E::seated, "seated"},
+                    EnumName{E::excess_force, "excess_force"},
+                    EnumName{E::other_contact, "other_contact"}};
+}
 
 /// Docking: the iiwa14 starts with the peg above the socket (`plan_docking`'s start
 /// configuration, each joint perturbed) and must seat the peg in the bore. Each step the

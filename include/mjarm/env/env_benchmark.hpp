@@ -43,6 +43,7 @@
 #include <vector>
 
 #include "mjarm/env/action_space.hpp"
+#include "mjarm/fields.hpp"
 
 namespace mjarm {
 
@@ -77,8 +78,11 @@ enum class EnvBenchmarkStatus {
   interrupted  ///< the stop request said so; the figures cover the steps done
 };
 
-/// "ok", "interrupted".
-const char* to_string(EnvBenchmarkStatus status) noexcept;
+/// The names (`to_string`, JSON, CLI and Python spelling).
+constexpr auto declared_names(const EnvBenchmarkStatus*) {
+  using E = EnvBenchmarkStatus;
+  return std::array{EnumName{E::ok, "ok"}, EnumName{E::interrupted, "interrupted"}};
+}
 
 /// One round of the overhead measurement.
 struct EnvOverheadRound {

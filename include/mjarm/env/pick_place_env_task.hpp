@@ -14,6 +14,7 @@
 
 #include "mjarm/control/finger_force.hpp"
 #include "mjarm/env/env_task.hpp"
+#include "mjarm/fields.hpp"
 #include "mjarm/sim/grasp_monitor.hpp"
 #include "mjarm/tasks/pick_place.hpp"
 #include "mjarm/tasks/pick_place_scene.hpp"
@@ -49,8 +50,12 @@ enum class PickPlaceEnvOutcome {
   table_contact,  ///< a robot geom touched the table
 };
 
-/// "running", "placed", "fell", "table_contact".
-const char* to_string(PickPlaceEnvOutcome outcome) noexcept;
+/// The names (`to_string`, JSON, CLI and Python spelling).
+constexpr auto declared_names(const PickPlaceEnvOutcome*) {
+  using E = PickPlaceEnvOutcome;
+  return std::array{EnumName{E::running, "running"}, EnumName{E::placed, "placed"},
+                    EnumName{E::fell, "fell"}, EnumName{E::table_contact, "table_contact"}};
+}
 
 /// Pick and place: the arm starts at its `home` keyframe (each joint perturbed) with the
 /// fingers open; for episode seed K the cube's position and yaw and the target are those of

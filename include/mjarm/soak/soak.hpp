@@ -30,6 +30,7 @@
 #include <string>
 #include <vector>
 
+#include "mjarm/fields.hpp"
 #include "mjarm/soak/growth_check.hpp"
 #include "mjarm/soak/process_sample.hpp"
 
@@ -81,8 +82,12 @@ enum class SoakStatus {
   interrupted  ///< the stop request ended it; the checks cover the rounds done
 };
 
-/// "ok", "failed", "interrupted".
-const char* to_string(SoakStatus status) noexcept;
+/// The names (`to_string`, JSON, CLI and Python spelling).
+constexpr auto declared_names(const SoakStatus*) {
+  using E = SoakStatus;
+  return std::array{EnumName{E::ok, "ok"}, EnumName{E::failed, "failed"},
+                    EnumName{E::interrupted, "interrupted"}};
+}
 
 /// Work done, summed over the rounds (the round cut short included).
 struct SoakCounts {

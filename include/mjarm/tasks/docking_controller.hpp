@@ -20,6 +20,7 @@
 #include "mjarm/dynamics/chain_dynamics.hpp"
 #include "mjarm/dynamics/friction_feed_forward.hpp"
 #include "mjarm/dynamics/task_space.hpp"
+#include "mjarm/fields.hpp"
 #include "mjarm/lie/types.hpp"
 #include "mjarm/tasks/docking_scene.hpp"
 
@@ -33,9 +34,14 @@ enum class DockingLaw {
            ///< (`Se3ImpedanceController`)
 };
 
-/// Human name ("cic", "hqp-ac", "se3").
-const char* to_string(DockingLaw law) noexcept;
-/// The law called @p name. @throws Error listing the choices.
+/// The names (`to_string`, JSON, CLI and Python spelling).
+constexpr auto declared_names(const DockingLaw*) {
+  using E = DockingLaw;
+  return std::array{EnumName{E::cic, "cic"}, EnumName{E::hqp_ac, "hqp-ac"},
+                    EnumName{E::se3, "se3"}};
+}
+
+/// The law called @p name. @throws Error naming the closest and listing the choices.
 DockingLaw docking_law(std::string_view name);
 /// Every law, in the order of the docs' tables.
 std::span<const DockingLaw> docking_laws() noexcept;
@@ -46,8 +52,11 @@ enum class ForceSource {
   observer  ///< the momentum observer's contact-only estimate (sensorless)
 };
 
-/// Human name ("sensor", "observer").
-const char* to_string(ForceSource source) noexcept;
+/// The names (`to_string`, JSON, CLI and Python spelling).
+constexpr auto declared_names(const ForceSource*) {
+  using E = ForceSource;
+  return std::array{EnumName{E::sensor, "sensor"}, EnumName{E::observer, "observer"}};
+}
 
 /// Gains and settings, per law where they differ (docs/docking.md lists the tuned values and
 /// why). Matrices act on [x, y, z, rx, ry, rz]: E's axes for se3, world axes for cic and hqp-ac.

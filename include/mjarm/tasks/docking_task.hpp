@@ -12,6 +12,7 @@
 #include <string_view>
 
 #include "mjarm/control/reference.hpp"
+#include "mjarm/fields.hpp"
 #include "mjarm/lie/pose.hpp"
 #include "mjarm/sim/run_result.hpp"
 #include "mjarm/tasks/docking_scene.hpp"
@@ -44,9 +45,14 @@ enum class DockingReference {
   single_segment
 };
 
-/// Human name ("two-phase", "single"); the reverse with `docking_reference` (throws listing the
-/// choices).
-const char* to_string(DockingReference kind) noexcept;
+/// The names (`to_string`, JSON, CLI and Python spelling).
+constexpr auto declared_names(const DockingReference*) {
+  using E = DockingReference;
+  return std::array{EnumName{E::two_phase, "two-phase"}, EnumName{E::single_segment, "single"}};
+}
+
+/// The reference called @p name ("two-phase", "single").
+/// @throws Error naming the closest and listing the choices.
 DockingReference docking_reference(std::string_view name);
 
 /// Timing and sizes of the motion. Lengths in metres, times in seconds.
@@ -73,8 +79,12 @@ enum class DockingPhase {
   hold       ///< the reference rests on the believed seated pose; the preload ramps in
 };
 
-/// Human name ("approach", "insert", "hold").
-const char* to_string(DockingPhase phase) noexcept;
+/// The names (`to_string`, JSON, CLI and Python spelling).
+constexpr auto declared_names(const DockingPhase*) {
+  using E = DockingPhase;
+  return std::array{EnumName{E::approach, "approach"}, EnumName{E::insert, "insert"},
+                    EnumName{E::hold, "hold"}};
+}
 
 /// Everything fixed before the run.
 struct DockingPlan {

@@ -7,6 +7,8 @@
 #include <cstdint>
 #include <limits>
 
+#include "mjarm/fields.hpp"
+
 namespace mjarm {
 
 /// When a pick counts as done.
@@ -26,8 +28,12 @@ enum class PickEvent {
   held      ///< the tip stayed inside for the hold time: the pick is done
 };
 
-/// Human name ("none", "entered", "left", "held").
-const char* to_string(PickEvent event) noexcept;
+/// The names (`to_string`, JSON, CLI and Python spelling).
+constexpr auto declared_names(const PickEvent*) {
+  using E = PickEvent;
+  return std::array{EnumName{E::none, "none"}, EnumName{E::entered, "entered"},
+                    EnumName{E::left, "left"}, EnumName{E::held, "held"}};
+}
 
 /// The figures of one pick. Times are relative to the start of the motion [s]; NaN when the
 /// event did not happen.

@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "mjarm/fields.hpp"
 #include "mjarm/sim/grasp_monitor.hpp"
 #include "mjarm/sim/run_result.hpp"
 #include "mjarm/sim/weld_grasp.hpp"
@@ -89,8 +90,22 @@ enum class PickPlaceFailure {
   not_resting     ///< the object still moved at the end
 };
 
-/// "none", "diverged", ... (the failure table's row names).
-const char* to_string(PickPlaceFailure failure) noexcept;
+/// The names (`to_string`, JSON, CLI and Python spelling).
+constexpr auto declared_names(const PickPlaceFailure*) {
+  using E = PickPlaceFailure;
+  return std::array{EnumName{E::none, "none"},
+                    EnumName{E::diverged, "diverged"},
+                    EnumName{E::bad_command, "bad_command"},
+                    EnumName{E::interrupted, "interrupted"},
+                    EnumName{E::time_limit, "time_limit"},
+                    EnumName{E::not_grasped, "not_grasped"},
+                    EnumName{E::dropped, "dropped"},
+                    EnumName{E::table_contact, "table_contact"},
+                    EnumName{E::saturated, "saturated"},
+                    EnumName{E::misplaced, "misplaced"},
+                    EnumName{E::tilted, "tilted"},
+                    EnumName{E::not_resting, "not_resting"}};
+}
 
 /// What one trial did.
 struct PickPlaceReport {

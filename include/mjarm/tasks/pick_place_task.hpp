@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "mjarm/control/reference.hpp"
+#include "mjarm/fields.hpp"
 #include "mjarm/lie/pose.hpp"
 #include "mjarm/model/chain.hpp"
 #include "mjarm/sim/grasp_monitor.hpp"
@@ -45,8 +46,17 @@ enum class PickPlaceState {
   done      ///< hold still for settle_time; then the trial is judged
 };
 
-/// "APPROACH", "DWELL_A", ... as the classic code names them.
-const char* to_string(PickPlaceState state) noexcept;
+/// The names (`to_string`, JSON, CLI and Python spelling).
+constexpr auto declared_names(const PickPlaceState*) {
+  using E = PickPlaceState;
+  return std::array{EnumName{E::approach, "APPROACH"}, EnumName{E::dwell_a, "DWELL_A"},
+                    EnumName{E::descend, "DESCEND"},   EnumName{E::dwell_b, "DWELL_B"},
+                    EnumName{E::grasp, "GRASP"},       EnumName{E::dwell_c, "DWELL_C"},
+                    EnumName{E::lift, "LIFT"},         EnumName{E::dwell_d, "DWELL_D"},
+                    EnumName{E::move, "MOVE"},         EnumName{E::dwell_e, "DWELL_E"},
+                    EnumName{E::place, "PLACE"},       EnumName{E::dwell_f, "DWELL_F"},
+                    EnumName{E::release, "RELEASE"},   EnumName{E::done, "DONE"}};
+}
 
 /// How the object is held.
 enum class GraspKind {
@@ -54,8 +64,12 @@ enum class GraspKind {
   friction  ///< only the finger contact forces hold it
 };
 
-/// "weld", "friction".
-const char* to_string(GraspKind kind) noexcept;
+/// The names (`to_string`, JSON, CLI and Python spelling).
+constexpr auto declared_names(const GraspKind*) {
+  using E = GraspKind;
+  return std::array{EnumName{E::weld, "weld"}, EnumName{E::friction, "friction"}};
+}
+
 /// The kind called @p name. @throws Error "unknown grasp 'x'; choices: weld, friction".
 GraspKind grasp_kind(std::string_view name);
 

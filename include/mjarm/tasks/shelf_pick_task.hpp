@@ -9,6 +9,7 @@
 #include <array>
 
 #include "mjarm/control/reference.hpp"
+#include "mjarm/fields.hpp"
 #include "mjarm/lie/pose.hpp"
 #include "mjarm/model/chain.hpp"
 #include "mjarm/sim/run_result.hpp"
@@ -29,8 +30,12 @@ enum class PickPhase {
   release    ///< the hold lasted long enough; gripper reference open (0); the run ends
 };
 
-/// Human name ("approach", "settle", "hold", "release").
-const char* to_string(PickPhase phase) noexcept;
+/// The names (`to_string`, JSON, CLI and Python spelling).
+constexpr auto declared_names(const PickPhase*) {
+  using E = PickPhase;
+  return std::array{EnumName{E::approach, "approach"}, EnumName{E::settle, "settle"},
+                    EnumName{E::hold, "hold"}, EnumName{E::release, "release"}};
+}
 
 /// Everything a `ShelfPickTask` needs, fixed before the run.
 struct ShelfPickGoal {
