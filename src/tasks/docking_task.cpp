@@ -5,11 +5,10 @@
 #include <numbers>
 #include <string>
 
-#include "docking_checks.hpp"
 #include "mjarm/error.hpp"
 #include "mjarm/ik/pose_ik.hpp"
-#include "mjarm/sim/recorder.hpp"
 #include "mjarm/number_text.hpp"
+#include "mjarm/sim/recorder.hpp"
 
 namespace mjarm {
 
@@ -57,20 +56,10 @@ DockingReference docking_reference(std::string_view name) {
 }
 
 void check(const DockingMotion& m) {
-  docking_detail::require_positive(m.start_height, "docking motion", "start_height [m]");
-  docking_detail::require_positive(m.approach_time, "docking motion", "approach_time [s]");
-  docking_detail::require_positive(m.insertion_speed, "docking motion", "insertion_speed [m/s]");
-  docking_detail::require_positive(m.insertion_acceleration, "docking motion",
-                                   "insertion_acceleration [m/s²]");
-  docking_detail::require_positive(m.single_time, "docking motion", "single_time [s]");
-  docking_detail::require_positive(m.preload_ramp, "docking motion", "preload_ramp [s]");
-  docking_detail::require_positive(m.hold_time, "docking motion", "hold_time [s]");
-  if (!(m.standoff >= 0.0) || !(m.standoff < m.start_height))
+  check_fields(m);
+  if (!(m.standoff < m.start_height))
     throw Error("docking motion: standoff must be ≥ 0 and below start_height (" +
                 number_text(m.start_height) + " m), got " + number_text(m.standoff) + " m");
-  if (!(m.preload >= 0.0) || !std::isfinite(m.preload))
-    throw Error("docking motion: preload must be ≥ 0 and finite [N], got " +
-                number_text(m.preload));
 }
 
 DockingPlan plan_docking(const DockingScene& scene, const DockingOffset& offset,
