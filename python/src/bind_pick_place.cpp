@@ -67,16 +67,8 @@ void bind_pick_place_options(py::module_& m) {
       "Every constant of the machine (the classic defaults). Heights of the tool frame above "
       "the object's centre or above the target [m]; times [s].");
   fields_init<PickPlaceMotion>(motion, "PickPlaceMotion");
-  motion.def_readwrite("approach_height", &PickPlaceMotion::approach_height)
-      .def_readwrite("descend_height", &PickPlaceMotion::descend_height)
-      .def_readwrite("lift_height", &PickPlaceMotion::lift_height)
-      .def_readwrite("move_height", &PickPlaceMotion::move_height)
-      .def_readwrite("place_height", &PickPlaceMotion::place_height)
-      .def_readwrite("dwell_time", &PickPlaceMotion::dwell_time, "each DWELL_* [s]")
-      .def_readwrite("grip_time", &PickPlaceMotion::grip_time, "GRASP finger closing [s]")
-      .def_readwrite("release_time", &PickPlaceMotion::release_time, "RELEASE finger opening [s]")
-      .def_readwrite("limits", &PickPlaceMotion::limits, "CartesianLimits of the segments")
-      .def_readwrite("settle_time", &PickPlaceMotion::settle_time, "DONE lasts this long [s]");
+  def_fields(motion);
+  motion.def_readwrite("limits", &PickPlaceMotion::limits, "CartesianLimits of the segments");
 
   auto monitor = py::class_<GraspMonitorOptions>(m, "GraspMonitorOptions",
                                                  "When a held object has slipped or is lost.");
@@ -91,13 +83,8 @@ void bind_pick_place_options(py::module_& m) {
   auto criteria =
       py::class_<PickPlaceCriteria>(m, "PickPlaceCriteria", "What a trial is judged by.");
   fields_init<PickPlaceCriteria>(criteria, "PickPlaceCriteria");
-  criteria
-      .def_readwrite("placement_tolerance", &PickPlaceCriteria::placement_tolerance,
-                     "horizontal object-target distance at the end [m]")
-      .def_readwrite("rest_speed", &PickPlaceCriteria::rest_speed, "[m/s]")
-      .def_readwrite("max_tilt", &PickPlaceCriteria::max_tilt, "[rad]")
-      .def_readwrite("max_saturation_time", &PickPlaceCriteria::max_saturation_time, "[s]")
-      .def_readwrite("grasp", &PickPlaceCriteria::grasp, "GraspMonitorOptions");
+  def_fields(criteria);
+  criteria.def_readwrite("grasp", &PickPlaceCriteria::grasp, "GraspMonitorOptions");
 
   auto ranges = py::class_<PickPlaceRanges>(m, "PickPlaceRanges",
                                             "Where a seed draws a trial from (uniform, [lo, hi]).");

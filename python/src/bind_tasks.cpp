@@ -8,11 +8,9 @@
 namespace mjarm::python {
 
 void bind_tasks(py::module_& m) {
-  py::class_<PickCriteria>(m, "PickCriteria", "When a pick counts as held.")
-      .def(py::init<>())
-      .def_readwrite("tolerance", &PickCriteria::tolerance, "[m]")
-      .def_readwrite("hold_time", &PickCriteria::hold_time, "[s]")
-      .def_readwrite("steady_window", &PickCriteria::steady_window, "[s]");
+  py::class_<PickCriteria> criteria(m, "PickCriteria", "When a pick counts as held.");
+  criteria.def(py::init<>());
+  def_fields(criteria);
   py::class_<PickMetrics>(m, "PickMetrics")
       .def_readonly("held", &PickMetrics::held)
       .def_readonly("first_entry_time", &PickMetrics::first_entry_time)

@@ -225,11 +225,7 @@ PickPlaceTrial draw_pick_place_trial(const PickPlaceOptions& options) {
 PickPlaceReport run_pick_place(const PickPlaceOptions& options) {
   check(options.motion);
   const PickPlaceCriteria& criteria = options.criteria;
-  if (!(criteria.placement_tolerance > 0.0) || !(criteria.rest_speed > 0.0) ||
-      !(criteria.max_tilt > 0.0) || !(criteria.max_saturation_time >= 0.0))
-    throw Error(
-        "pick and place: the placement tolerance, rest speed and tilt must be positive, "
-        "the saturation time ≥ 0");
+  check_fields(criteria, "pick and place", "criteria.");
   if (!(std::isfinite(options.grasp_force) && options.grasp_force > 0.0))
     throw Error("pick and place: grasp_force must be positive [N], got " +
                 number_text(options.grasp_force));

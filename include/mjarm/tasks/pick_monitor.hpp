@@ -6,6 +6,7 @@
 #include <Eigen/Core>
 #include <cstdint>
 #include <limits>
+#include <string_view>
 
 #include "mjarm/fields.hpp"
 
@@ -19,6 +20,22 @@ struct PickCriteria {
   /// by then the approach transient that carried the tip into the tolerance has died out.
   double steady_window = 0.1;
 };
+
+constexpr auto declared_fields(const PickCriteria*) {
+  using S = PickCriteria;
+  return declare<S>(
+      "pick criteria",
+      field("tolerance", &S::tolerance, "m", Range::positive(),
+            "the tip is at the target within this"),
+      field("hold_time", &S::hold_time, "s", Range::positive(), "and must stay there this long"),
+      field("steady_window", &S::steady_window, "s", Range::positive(),
+            "the last stretch of the hold judged as the steady state (≤ hold_time)"));
+}
+
+/// Checks each criterion against its range and the steady window against the hold time.
+/// @param owner who uses the criteria, for the message ("shelf pick")
+/// @throws Error "shelf pick: criteria.hold_time must be positive and finite [s], got 0"
+void check(const PickCriteria& criteria, std::string_view owner);
 
 /// What one `PickMonitor::observe` saw.
 enum class PickEvent {

@@ -31,6 +31,20 @@ struct PickPlaceCriteria {
   GraspMonitorOptions grasp;  ///< slip 2 mm (event), drop 15 mm (lost during transport)
 };
 
+/// `grasp` is checked by its monitor.
+constexpr auto declared_fields(const PickPlaceCriteria*) {
+  using S = PickPlaceCriteria;
+  return declare<S>(
+      "pick and place",
+      field("placement_tolerance", &S::placement_tolerance, "m", Range::positive(),
+            "horizontal distance object ↔ target at the end"),
+      field("rest_speed", &S::rest_speed, "m/s", Range::positive(),
+            "the object's speed at the end below this"),
+      field("max_tilt", &S::max_tilt, "rad", Range::positive(), "object tilt at the end"),
+      field("max_saturation_time", &S::max_saturation_time, "s", Range::non_negative(),
+            "longest time one actuator may stay clipped without a break"));
+}
+
 /// Where a seed draws a trial from (uniform in each range).
 struct PickPlaceRanges {
   std::array<double, 2> half_size{0.012, 0.02};  ///< cube half extent [m]

@@ -91,6 +91,28 @@ struct PickPlaceMotion {
   double settle_time = 1.0;  ///< DONE lasts this long before the result is judged [s] (> 0)
 };
 
+/// `limits` and approach_height ≥ descend_height are checked by hand.
+constexpr auto declared_fields(const PickPlaceMotion*) {
+  using S = PickPlaceMotion;
+  return declare<S>(
+      "pick and place",
+      field("approach_height", &S::approach_height, "m", Range::positive(),
+            "APPROACH: the tool above the object's centre"),
+      field("descend_height", &S::descend_height, "m", Range::non_negative(),
+            "DESCEND: the tool above the object's centre"),
+      field("lift_height", &S::lift_height, "m", Range::positive(),
+            "LIFT: the tool above the object's start"),
+      field("move_height", &S::move_height, "m", Range::positive(),
+            "MOVE: the tool above the target"),
+      field("place_height", &S::place_height, "m", Range::non_negative(),
+            "PLACE: the tool above the target"),
+      field("dwell_time", &S::dwell_time, "s", Range::non_negative(), "each DWELL_*"),
+      field("grip_time", &S::grip_time, "s", Range::positive(), "GRASP: the fingers close"),
+      field("release_time", &S::release_time, "s", Range::positive(), "RELEASE: the fingers open"),
+      field("settle_time", &S::settle_time, "s", Range::positive(),
+            "DONE lasts this long before the result is judged"));
+}
+
 /// @throws Error naming the first constant out of range.
 void check(const PickPlaceMotion& motion);
 

@@ -54,6 +54,19 @@ struct ShelfPickGoal {
   PickCriteria criteria;  ///< tolerance and hold time
 };
 
+/// The poses and joint values are checked against the chain by hand.
+constexpr auto declared_fields(const ShelfPickGoal*) {
+  using S = ShelfPickGoal;
+  return declare<S>(
+      "shelf pick task",
+      field("approach_time", &S::approach_time, "s", Range::positive(),
+            "duration of the approach"),
+      field("position_only", &S::position_only, "only the position counts"),
+      field("velocity_lag", &S::velocity_lag, "s", Range::non_negative(),
+            "velocity references are evaluated this long before the positions'"),
+      field("criteria", &S::criteria, "tolerance and hold time"));
+}
+
 /// The shelf pick as a reference source. From the start time t₀ (data.time at the first
 /// `update`), with the approach of duration T built from the library's profiles (rest to rest,
 /// i.e. the minimum-jerk quintic):
