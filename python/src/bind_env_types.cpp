@@ -131,41 +131,26 @@ void bind_array_specs(py::module_& m) {
 void bind_options(py::module_& m) {
   def_enum<ActionSpace>(m, "ActionSpace",
                         "What one action commands (n = the chain's joints); see docs/env.md.");
-  py::class_<ActionOptions>(m, "ActionOptions", "Bounds and gains of the action spaces.")
-      .def(py::init<>())
-      .def_readwrite("max_joint_delta", &ActionOptions::max_joint_delta,
-                     "joint_deltas: |dq| per step [rad or m]")
-      .def_readwrite("max_translation", &ActionOptions::max_translation,
-                     "ee_pose_deltas: |dp| per axis per step [m]")
-      .def_readwrite("max_rotation", &ActionOptions::max_rotation,
-                     "ee_pose_deltas: |r| per axis per step [rad]")
-      .def_readwrite("max_linear_speed", &ActionOptions::max_linear_speed,
-                     "ee_velocities: |v| per axis [m/s]")
-      .def_readwrite("max_angular_speed", &ActionOptions::max_angular_speed,
-                     "ee_velocities: |w| per axis [rad/s]")
-      .def_readwrite("joint_bandwidth", &ActionOptions::joint_bandwidth,
-                     "joint PD bandwidth [rad/s]")
-      .def_readwrite("max_joint_speed", &ActionOptions::max_joint_speed,
-                     "joint speed limit of the differential-IK QP [rad/s or m/s]")
-      .def_readwrite("osc", &ActionOptions::osc, "the operational-space controller's options")
+  py::class_<ActionOptions> action(m, "ActionOptions", "Bounds and gains of the action spaces.");
+  action.def(py::init<>());
+  def_fields(action);
+  action.def_readwrite("osc", &ActionOptions::osc, "the operational-space controller's options")
       .def("check", &ActionOptions::check, "Raises mjarm.Error naming an option out of range.");
-  py::class_<RandomizationOptions>(
+  py::class_<RandomizationOptions> randomization(
       m, "RandomizationOptions",
       "Relative ranges r in [0, 1) of domain randomization: each parameter times a factor "
-      "uniform in [1 - r, 1 + r], drawn at every reset.")
-      .def(py::init<>())
-      .def_readwrite("mass", &RandomizationOptions::mass, "body masses and inertias")
-      .def_readwrite("friction", &RandomizationOptions::friction, "geom friction")
-      .def_readwrite("damping", &RandomizationOptions::damping, "joint damping")
-      .def_readwrite("gain", &RandomizationOptions::gain, "actuator gains")
-      .def_readwrite("object_size", &RandomizationOptions::object_size,
-                     "the task's object geoms (size, mass, inertia)")
-      .def("any", &RandomizationOptions::any, "True when any range is non-zero.");
-  py::class_<EnvironmentOptions>(
+      "uniform in [1 - r, 1 + r], drawn at every reset.");
+  randomization.def(py::init<>());
+  def_fields(randomization);
+  randomization.def("any", &RandomizationOptions::any, "True when any range is non-zero.");
+  py::class_<EnvironmentOptions> environment(
       m, "EnvironmentOptions",
       "Settings of an Environment (checked by its constructor); see docs/env.md. Environment(task, "
-      "**overrides) also takes these fields as keywords.")
-      .def(py::init<>())
+      "**overrides) also takes these fields as keywords.");
+  environment.def(py::init<>());
+  def_fields(environment);
+  // the action space also takes its name; the observations are a list of names
+  environment
       .def_property(
           "action_space", [](const EnvironmentOptions& o) { return o.action_space; },
           [](EnvironmentOptions& o, py::handle v) {
@@ -173,23 +158,8 @@ void bind_options(py::module_& m) {
                                                         : v.cast<ActionSpace>();
           },
           "an ActionSpace, or its name ('ee_pose_deltas', ...)")
-      .def_readwrite("action", &EnvironmentOptions::action, "ActionOptions")
-      .def_readwrite("control_period", &EnvironmentOptions::control_period,
-                     "control step T [s], a whole multiple of the physics timestep")
-      .def_readwrite("controller_period", &EnvironmentOptions::controller_period,
-                     "low-level controller period [s], a whole divisor of T (0: the action "
-                     "space's own)")
-      .def_readwrite("time_limit", &EnvironmentOptions::time_limit,
-                     "episode length [s]: LAST with discount 1 after ceil(time_limit / T) steps")
       .def_readwrite("observations", &EnvironmentOptions::observations,
-                     "observation names ([]: the task's defaults); see env_observations(task)")
-      .def_readwrite("refuse_out_of_bounds", &EnvironmentOptions::refuse_out_of_bounds,
-                     "refuse (mjarm.Error) instead of clipping an action outside its bounds")
-      .def_readwrite("randomization", &EnvironmentOptions::randomization, "RandomizationOptions")
-      .def_readwrite("seed", &EnvironmentOptions::seed,
-                     "seed of the episode seeds reset() without a seed draws")
-      .def_readwrite("max_acceleration", &EnvironmentOptions::max_acceleration,
-                     "divergence bound on |qdd| [rad/s^2 or m/s^2]");
+                     "observation names ([]: the task's defaults); see env_observations(task)");
   py::class_<ClipCounts>(m, "ClipCounts", "How often actions were clipped into their bounds.")
       .def_readonly("steps", &ClipCounts::steps, "steps with at least one value clipped")
       .def_readonly("values", &ClipCounts::values, "values clipped")

@@ -77,4 +77,24 @@ struct ActionOptions {
   void check() const;
 };
 
+/// `osc` is checked by its controller (its mode by `ActionOptions::check`).
+constexpr auto declared_fields(const ActionOptions*) {
+  using S = ActionOptions;
+  return declare<S>("action options",
+                    field("max_joint_delta", &S::max_joint_delta, "rad or m", Range::positive(),
+                          "joint_deltas: |dq| per step"),
+                    field("max_translation", &S::max_translation, "m", Range::positive(),
+                          "ee_pose_deltas: |dp| per axis per step"),
+                    field("max_rotation", &S::max_rotation, "rad", Range::positive(),
+                          "ee_pose_deltas: |r| per axis per step"),
+                    field("max_linear_speed", &S::max_linear_speed, "m/s", Range::positive(),
+                          "ee_velocities: |v| per axis"),
+                    field("max_angular_speed", &S::max_angular_speed, "rad/s", Range::positive(),
+                          "ee_velocities: |w| per axis"),
+                    field("joint_bandwidth", &S::joint_bandwidth, "rad/s", Range::positive(),
+                          "joint PD bandwidth"),
+                    field("max_joint_speed", &S::max_joint_speed, "rad/s or m/s", Range::positive(),
+                          "joint speed limit of the differential-IK QP"));
+}
+
 }  // namespace mjarm

@@ -72,6 +72,22 @@ struct EnvBenchmarkOptions {
   void check() const;
 };
 
+constexpr auto declared_fields(const EnvBenchmarkOptions*) {
+  using S = EnvBenchmarkOptions;
+  return declare<S>(
+      "env benchmark", field("task", &S::task, "environment task"),
+      field("action_space", &S::action_space, "action space"),
+      field("control_period", &S::control_period, "s", Range::positive(), "control step"),
+      field("steps", &S::steps, "", Range::at_least(1), "timed environment steps per round"),
+      field("warmup", &S::warmup, "", Range::at_least(0), "untimed steps before each timed run"),
+      field("rounds", &S::rounds, "", Range::at_least(1), "rounds of each measurement"),
+      field("envs", &S::envs, "", Range::at_least(1), "environments of the vectorized batch"),
+      field("batch_steps", &S::batch_steps, "", Range::at_least(1), "timed batch steps per run"),
+      field("max_threads", &S::max_threads, "", Range::closed(1, 256),
+            "thread count compared with one"),
+      field("seed", &S::seed, "seed of the actions and of the environments"));
+}
+
 /// How a benchmark ended.
 enum class EnvBenchmarkStatus {
   ok,          ///< every run completed

@@ -42,6 +42,29 @@ struct PickPlaceEnvOptions {
   int noslip_iterations = 10;    ///< MuJoCo's noslip iterations of the scene (as the trials)
 };
 
+/// `ranges` is checked where a trial is drawn.
+constexpr auto declared_fields(const PickPlaceEnvOptions*) {
+  using S = PickPlaceEnvOptions;
+  return declare<S>(
+      "pick-place environment", field("robot", &S::robot, "a robot of pick_place_robots()"),
+      field("object_half_size", &S::object_half_size, "m", Range::positive(),
+            "the cube's half extent"),
+      field("object_mass", &S::object_mass, "kg", Range::positive(), "the cube's mass"),
+      field("object_friction", &S::object_friction, "", Range::positive(),
+            "sliding friction of the cube"),
+      field("criteria", &S::criteria, "placement tolerance, rest speed and tilt of a placed cube"),
+      field("grasp_force", &S::grasp_force, "N", Range::positive(),
+            "the fingers' squeeze once touching"),
+      field("start_perturbation", &S::start_perturbation, "rad", Range::non_negative(),
+            "each arm joint of the home posture within ± this"),
+      field("table_contact_fails", &S::table_contact_fails,
+            "a robot geom touching the table fails the episode"),
+      field("failure_penalty", &S::failure_penalty, "", Range::non_negative(),
+            "subtracted from the reward of a failing step"),
+      field("noslip_iterations", &S::noslip_iterations, "", Range::closed(0, 1000),
+            "MuJoCo's noslip iterations of the scene"));
+}
+
 /// How a pick-and-place episode stands.
 enum class PickPlaceEnvOutcome {
   running,        ///< not placed, not failed
