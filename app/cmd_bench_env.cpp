@@ -9,6 +9,7 @@
 #include "field_options.hpp"
 #include "mjarm/env/env_benchmark.hpp"
 #include "mjarm/env/task_registry.hpp"
+#include "mjarm/fields_json.hpp"
 #include "mjarm/interrupt.hpp"
 #include "output.hpp"
 
@@ -78,22 +79,8 @@ Command add_bench_env_subcommand(CLI::App& bench) {
         const bool stopped = r.status == EnvBenchmarkStatus::interrupted;
         if (options->json) {
           Json rounds = Json::array(), runs_json = Json::array();
-          for (const EnvOverheadRound& x : r.rounds)
-            rounds.push_back({{"steps", x.steps},
-                              {"env_cpu_s", x.env_cpu_s},
-                              {"bare_cpu_s", x.bare_cpu_s},
-                              {"env_wall_s", x.env_wall_s},
-                              {"overhead", x.overhead},
-                              {"episodes", x.episodes},
-                              {"replay_identical", x.replay_identical}});
-          for (const VectorRun& v : r.vector_runs)
-            runs_json.push_back({{"threads", v.threads},
-                                 {"batch_steps", v.batch_steps},
-                                 {"wall_s", v.wall_s},
-                                 {"cpu_s", v.cpu_s},
-                                 {"steps_per_second", v.steps_per_second},
-                                 {"work_cpu_s", v.work_cpu_s},
-                                 {"critical_cpu_s", v.critical_cpu_s}});
+          for (const EnvOverheadRound& x : r.rounds) rounds.push_back(fields_to_json(x));
+          for (const VectorRun& v : r.vector_runs) runs_json.push_back(fields_to_json(v));
           print_json({{"status", to_string(r.status)},
                       {"task", r.task},
                       {"model", r.model},

@@ -111,6 +111,23 @@ struct EnvOverheadRound {
   bool replay_identical = false;  ///< the replay ended in the environment's state bit for bit
 };
 
+constexpr auto declared_fields(const EnvOverheadRound*) {
+  using S = EnvOverheadRound;
+  return declare<S>(
+      "overhead round", field("steps", &S::steps, "", Range::at_least(0), "timed steps taken"),
+      field("env_cpu_s", &S::env_cpu_s, "s", Range::non_negative(),
+            "thread CPU time of the environment steps"),
+      field("bare_cpu_s", &S::bare_cpu_s, "s", Range::non_negative(),
+            "thread CPU time of the same physics as bare mj_step calls"),
+      field("env_wall_s", &S::env_wall_s, "s", Range::non_negative(),
+            "wall time of the environment steps"),
+      field("overhead", &S::overhead, "", Range::finite(), "env_cpu_s / bare_cpu_s − 1"),
+      field("episodes", &S::episodes, "", Range::at_least(0),
+            "episodes started in the timed steps"),
+      field("replay_identical", &S::replay_identical,
+            "the replay ended in the environment's state bit for bit"));
+}
+
 /// One vectorized run.
 struct VectorRun {
   int threads = 1;
@@ -121,6 +138,22 @@ struct VectorRun {
   double work_cpu_s = 0.0;        ///< Σ over batch steps of every environment's CPU time [s]
   double critical_cpu_s = 0.0;    ///< Σ over batch steps of the scheduled critical path [s]
 };
+
+constexpr auto declared_fields(const VectorRun*) {
+  using S = VectorRun;
+  return declare<S>(
+      "vector run", field("threads", &S::threads, "", Range::at_least(1), "threads"),
+      field("batch_steps", &S::batch_steps, "", Range::at_least(0), "timed batch steps taken"),
+      field("wall_s", &S::wall_s, "s", Range::non_negative(), "wall time of the timed batch steps"),
+      field("cpu_s", &S::cpu_s, "s", Range::non_negative(),
+            "process CPU time over the same stretch"),
+      field("steps_per_second", &S::steps_per_second, "1/s", Range::non_negative(),
+            "environment steps per wall second"),
+      field("work_cpu_s", &S::work_cpu_s, "s", Range::non_negative(),
+            "Σ over batch steps of every environment's CPU time"),
+      field("critical_cpu_s", &S::critical_cpu_s, "s", Range::non_negative(),
+            "Σ over batch steps of the scheduled critical path"));
+}
 
 /// Figures of one benchmark.
 struct EnvBenchmarkResult {
