@@ -151,31 +151,18 @@ class ActionOptions:
     @osc.setter
     def osc(self, value: OperationalSpaceOptions) -> None: ...
 
-class ActionSpace:
-    """What one action commands (n = the chain's joints); see docs/env.md.
-
-Members:
-
-  joint_torques : n torques [N m], held over the step
-
-  joint_positions : n joint targets [rad]
-
-  joint_deltas : n increments of the joint target [rad]
-
-  ee_pose_deltas : [dx dy dz rx ry rz] of the goal pose (world axes; m, rotation vector rad)
-
-  ee_velocities : [vx vy vz wx wy wz] (m/s, rad/s), integrated over the step"""
-    joint_torques: ClassVar[ActionSpace]
-    joint_positions: ClassVar[ActionSpace]
-    joint_deltas: ClassVar[ActionSpace]
-    ee_pose_deltas: ClassVar[ActionSpace]
-    ee_velocities: ClassVar[ActionSpace]
-    def __init__(self, value: int) -> None: ...
-    @property
-    def name(self) -> str: ...
-    @property
-    def value(self) -> int: ...
-    def __int__(self) -> int: ...
+class ActionSpace(enum.Enum):
+    """What one action commands (n = the chain's joints); see docs/env.md."""
+    joint_torques = 0
+    """n torques [N m], held over the step"""
+    joint_positions = 1
+    """n joint targets [rad]"""
+    joint_deltas = 2
+    """n increments of the joint target [rad]"""
+    ee_pose_deltas = 3
+    """[dx dy dz rx ry rz] of the goal pose (world axes; m, rotation vector rad)"""
+    ee_velocities = 4
+    """[vx vy vz wx wy wz] (m/s, rad/s), integrated over the step"""
 
 class ActuatorInfo:
     """One actuator of the model."""
@@ -1635,31 +1622,13 @@ class DockingOptions:
     @video.setter
     def video(self, value: DockingVideo) -> None: ...
 
-class DockingOutcome:
-    """How a docking run ended.
-
-Members:
-
-  seated
-
-  not_seated
-
-  diverged
-
-  bad_command
-
-  interrupted"""
-    seated: ClassVar[DockingOutcome]
-    not_seated: ClassVar[DockingOutcome]
-    diverged: ClassVar[DockingOutcome]
-    bad_command: ClassVar[DockingOutcome]
-    interrupted: ClassVar[DockingOutcome]
-    def __init__(self, value: int) -> None: ...
-    @property
-    def name(self) -> str: ...
-    @property
-    def value(self) -> int: ...
-    def __int__(self) -> int: ...
+class DockingOutcome(enum.Enum):
+    """How a docking run ended."""
+    seated = 0
+    not_seated = 1
+    diverged = 2
+    bad_command = 3
+    interrupted = 4
 
 class DockingPlan:
     """Everything fixed before a run (poses in world)."""
@@ -2078,22 +2047,10 @@ class FaultCause:
     def value(self) -> int: ...
     def __int__(self) -> int: ...
 
-class ForceSource:
-    """Where the measured wrench comes from.
-
-Members:
-
-  sensor
-
-  observer"""
-    sensor: ClassVar[ForceSource]
-    observer: ClassVar[ForceSource]
-    def __init__(self, value: int) -> None: ...
-    @property
-    def name(self) -> str: ...
-    @property
-    def value(self) -> int: ...
-    def __int__(self) -> int: ...
+class ForceSource(enum.Enum):
+    """Where the measured wrench comes from."""
+    sensor = 0
+    observer = 1
 
 class ForceTorqueSensor:
     """F/T sensor pair on a site."""
@@ -2414,22 +2371,10 @@ class GlobalIkStats:
     def sqp_solutions(self) -> int:
         ...
 
-class GraspKind:
-    """How the object is held.
-
-Members:
-
-  weld
-
-  friction"""
-    weld: ClassVar[GraspKind]
-    friction: ClassVar[GraspKind]
-    def __init__(self, value: int) -> None: ...
-    @property
-    def name(self) -> str: ...
-    @property
-    def value(self) -> int: ...
-    def __int__(self) -> int: ...
+class GraspKind(enum.Enum):
+    """How the object is held."""
+    weld = 0
+    friction = 1
 
 class GraspMonitorOptions:
     """When a held object has slipped or is lost."""
@@ -3534,50 +3479,18 @@ class PickMetrics:
     def time_to_tolerance(self) -> float:
         ...
 
-class PickOutcome:
-    """Members:
+class PickOutcome(enum.Enum):
+    held = 0
+    not_held = 1
+    diverged = 2
+    bad_command = 3
+    interrupted = 4
 
-  held
-
-  not_held
-
-  diverged
-
-  bad_command
-
-  interrupted"""
-    held: ClassVar[PickOutcome]
-    not_held: ClassVar[PickOutcome]
-    diverged: ClassVar[PickOutcome]
-    bad_command: ClassVar[PickOutcome]
-    interrupted: ClassVar[PickOutcome]
-    def __init__(self, value: int) -> None: ...
-    @property
-    def name(self) -> str: ...
-    @property
-    def value(self) -> int: ...
-    def __int__(self) -> int: ...
-
-class PickPhase:
-    """Members:
-
-  approach
-
-  settle
-
-  hold
-
-  release"""
-    approach: ClassVar[PickPhase]
-    settle: ClassVar[PickPhase]
-    hold: ClassVar[PickPhase]
-    release: ClassVar[PickPhase]
-    def __init__(self, value: int) -> None: ...
-    @property
-    def name(self) -> str: ...
-    @property
-    def value(self) -> int: ...
-    def __int__(self) -> int: ...
+class PickPhase(enum.Enum):
+    approach = 0
+    settle = 1
+    hold = 2
+    release = 3
 
 class PickPlaceBatch:
     """What a batch did."""
@@ -3660,52 +3573,20 @@ class PickPlaceCriteria:
     @rest_speed.setter
     def rest_speed(self, value: float) -> None: ...
 
-class PickPlaceFailure:
-    """Why a trial failed: the first that applies, in this order.
-
-Members:
-
-  none
-
-  diverged
-
-  bad_command
-
-  interrupted
-
-  time_limit
-
-  not_grasped
-
-  dropped
-
-  table_contact
-
-  saturated
-
-  misplaced
-
-  tilted
-
-  not_resting"""
-    none: ClassVar[PickPlaceFailure]
-    diverged: ClassVar[PickPlaceFailure]
-    bad_command: ClassVar[PickPlaceFailure]
-    interrupted: ClassVar[PickPlaceFailure]
-    time_limit: ClassVar[PickPlaceFailure]
-    not_grasped: ClassVar[PickPlaceFailure]
-    dropped: ClassVar[PickPlaceFailure]
-    table_contact: ClassVar[PickPlaceFailure]
-    saturated: ClassVar[PickPlaceFailure]
-    misplaced: ClassVar[PickPlaceFailure]
-    tilted: ClassVar[PickPlaceFailure]
-    not_resting: ClassVar[PickPlaceFailure]
-    def __init__(self, value: int) -> None: ...
-    @property
-    def name(self) -> str: ...
-    @property
-    def value(self) -> int: ...
-    def __int__(self) -> int: ...
+class PickPlaceFailure(enum.Enum):
+    """Why a trial failed: the first that applies, in this order."""
+    none = 0
+    diverged = 1
+    bad_command = 2
+    interrupted = 3
+    time_limit = 4
+    not_grasped = 5
+    dropped = 6
+    table_contact = 7
+    saturated = 8
+    misplaced = 9
+    tilted = 10
+    not_resting = 11
 
 class PickPlaceMotion:
     """Every constant of the machine (the classic defaults). Heights of the tool frame above the object's centre or above the target [m]; times [s]."""

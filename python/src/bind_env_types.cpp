@@ -182,7 +182,10 @@ void bind_time_steps(py::module_& m) {
           "mid", [](StepType t) { return t == StepType::mid; }, "True for MID.")
       .def(
           "last", [](StepType t) { return t == StepType::last; }, "True for LAST.");
-  def_enum<EpisodeEnd>(m, "EpisodeEnd", "Why an episode ended (set on LAST).");
+  // a pybind11 enum, not def_enum's enum.Enum: the vectorized batches hold its values as
+  // integers, compared with int(mjarm.EpisodeEnd.truncated), which an enum.Enum refuses
+  py::enum_<EpisodeEnd> end(m, "EpisodeEnd", "Why an episode ended (set on LAST).");
+  for (const auto& n : names_of<EpisodeEnd>()) end.value(n.name.data(), n.value, n.doc.data());
 
   py::class_<PyTimeStep>(m, "TimeStep", kTimeStepDoc)
       .def_readonly("step_type", &PyTimeStep::step_type, "StepType")

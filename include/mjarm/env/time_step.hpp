@@ -19,12 +19,11 @@ enum class StepType {
   last    ///< the episode ended: by termination (discount 0) or by the time limit (discount 1)
 };
 
-/// The names (`to_string`, JSON, CLI and Python spelling).
+/// The names (`to_string`, JSON and CLI spelling; Python binds FIRST, MID, LAST as dm_env).
 constexpr auto declared_names(const StepType*) {
   using E = StepType;
-  return std::array{EnumName{E::first, "first", "returned by reset: no reward, no discount"},
-                    EnumName{E::mid, "mid", "an ordinary step"},
-                    EnumName{E::last, "last", "the episode ended (termination or time limit)"}};
+  return std::array{EnumName{E::first, "first"}, EnumName{E::mid, "mid"},
+                    EnumName{E::last, "last"}};
 }
 
 /// Why an episode ended (an addition to dm_env, which tells only by the discount).

@@ -34,7 +34,7 @@ enum class DockingLaw {
            ///< (`Se3ImpedanceController`)
 };
 
-/// The names (`to_string`, JSON, CLI and Python spelling).
+/// The names (`to_string`, JSON and CLI spelling; Python binds `hqp_ac`).
 constexpr auto declared_names(const DockingLaw*) {
   using E = DockingLaw;
   return std::array{EnumName{E::cic, "cic"}, EnumName{E::hqp_ac, "hqp-ac"},

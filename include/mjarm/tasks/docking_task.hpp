@@ -45,7 +45,7 @@ enum class DockingReference {
   single_segment
 };
 
-/// The names (`to_string`, JSON, CLI and Python spelling).
+/// The names (`to_string`, JSON and CLI spelling; Python binds `two_phase`, `single_segment`).
 constexpr auto declared_names(const DockingReference*) {
   using E = DockingReference;
   return std::array{EnumName{E::two_phase, "two-phase"}, EnumName{E::single_segment, "single"}};

@@ -46,7 +46,7 @@ enum class PickPlaceState {
   done      ///< hold still for settle_time; then the trial is judged
 };
 
-/// The names (`to_string`, JSON, CLI and Python spelling).
+/// The names (`to_string`, JSON and CLI spelling; Python binds them in lower case).
 constexpr auto declared_names(const PickPlaceState*) {
   using E = PickPlaceState;
   return std::array{EnumName{E::approach, "APPROACH"}, EnumName{E::dwell_a, "DWELL_A"},
