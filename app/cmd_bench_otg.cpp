@@ -7,7 +7,7 @@
 
 #include "commands.hpp"
 #include "mjarm/interrupt.hpp"
-#include "mjarm/trajectory/jerk_limited_validation.hpp"
+#include "mjarm/trajectory/otg/validation/protocol.hpp"
 #include "output.hpp"
 
 namespace mjarm::cli {

@@ -9,13 +9,13 @@
 #include <iostream>
 #include <limits>
 #include <memory>
-#include <random>
 
 #include "commands.hpp"
 #include "mjarm/env/observation_set.hpp"
 #include "mjarm/env/task_registry.hpp"
 #include "mjarm/env/vector_environment.hpp"
 #include "mjarm/interrupt.hpp"
+#include "mjarm/random.hpp"
 #include "output.hpp"
 
 namespace mjarm::cli {
@@ -126,7 +126,7 @@ void run_episodes(const RunOptions& options) {
   const std::size_t width = static_cast<std::size_t>(spec.size());
   const std::size_t n = static_cast<std::size_t>(batch.size());
   std::vector<double> actions(width * n, 0.0);
-  std::mt19937_64 rng(options.seed);
+  Random rng(options.seed);
   std::vector<double> returns(n, 0.0);
   std::vector<int> steps(n, 0);
   std::vector<Episode> episodes;
@@ -143,7 +143,7 @@ void run_episodes(const RunOptions& options) {
     if (options.policy == "random") {
       for (std::size_t k = 0; k < actions.size(); ++k) {
         const Eigen::Index j = static_cast<Eigen::Index>(k % width);
-        actions[k] = EpisodeRandom::uniform(rng, spec.minimum[j], spec.maximum[j]);
+        actions[k] = uniform(rng, spec.minimum[j], spec.maximum[j]);
       }
     }
     batch.step(actions);

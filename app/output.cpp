@@ -10,6 +10,7 @@
 #include <iostream>
 
 #include "mjarm/interrupt.hpp"
+#include "mjarm/number_text.hpp"
 
 namespace mjarm::cli {
 
@@ -65,12 +66,7 @@ std::string general(double v, int digits) {
   return buffer;
 }
 
-std::string compact(double v) {
-  if (!std::isfinite(v)) return non_finite(v);
-  char buffer[64];
-  std::snprintf(buffer, sizeof(buffer), "%.6g", v);
-  return buffer;
-}
+std::string compact(double v) { return number_text(v, 6); }
 
 std::string vector_text(const Eigen::Ref<const Eigen::VectorXd>& v, int decimals) {
   std::string text = "[";

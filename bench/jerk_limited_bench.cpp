@@ -1,7 +1,7 @@
-// The jerk-limited online trajectory generator (trajectory/jerk_limited*.hpp).
+// The jerk-limited online trajectory generator (trajectory/otg/).
 //
 // Protocol (also in every benchmark's label):
-// - 256 cases drawn once (std::mt19937_64 seed 2024), 7 DoF each: limits log-uniform (v in
+// - 256 cases drawn once (mjarm::Random seed 2024), 7 DoF each: limits log-uniform (v in
 //   [0.2, 4], a in [0.3, 8], j in [0.5, 40]), start and target states uniform inside them
 //   (positions in [−3, 3]), a fifth of the states at rest; cycled in order (one iteration =
 //   one calculation of all 7 DoF).
@@ -14,12 +14,12 @@
 #include <benchmark/benchmark.h>
 
 #include <cmath>
-#include <random>
 #include <vector>
 
-#include "mjarm/trajectory/jerk_limited.hpp"
-#include "mjarm/trajectory/jerk_limited_brake.hpp"
-#include "mjarm/trajectory/jerk_limited_min_time.hpp"
+#include "mjarm/random.hpp"
+#include "mjarm/trajectory/otg/brake.hpp"
+#include "mjarm/trajectory/otg/generator.hpp"
+#include "mjarm/trajectory/otg/min_time.hpp"
 
 namespace {
 
@@ -31,8 +31,8 @@ struct OtgCases {
   std::vector<std::vector<mjarm::KinematicState>> start, target;
 
   OtgCases() {
-    std::mt19937_64 rng(2024);
-    std::uniform_real_distribution<double> u(0.0, 1.0);
+    mjarm::Random rng(2024);
+    const auto u = [](mjarm::Random& r) { return mjarm::uniform(r); };
     auto scale = [&](double lo, double hi) { return lo * std::pow(hi / lo, u(rng)); };
     auto state = [&](const mjarm::JerkLimits& l) {
       mjarm::KinematicState s{6.0 * u(rng) - 3.0, l.velocity * (2.0 * u(rng) - 1.0),

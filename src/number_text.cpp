@@ -2,6 +2,7 @@
 
 #include <charconv>
 #include <cmath>
+#include <cstdio>
 
 namespace mjarm {
 
@@ -11,6 +12,13 @@ std::string number_text(double value) {
   char text[32];  // the shortest form of a double needs at most 24 characters
   const auto end = std::to_chars(text, text + sizeof text, value).ptr;
   return std::string(text, end);
+}
+
+std::string number_text(double value, int significant_digits) {
+  if (!std::isfinite(value)) return number_text(value);
+  char text[64];
+  std::snprintf(text, sizeof text, "%.*g", significant_digits, value);
+  return text;
 }
 
 }  // namespace mjarm

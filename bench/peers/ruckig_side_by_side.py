@@ -48,7 +48,7 @@ def reachable(v, a, lim):
 
 
 class Cases:
-    """The distribution of `mjarm bench otg`'s cases (jerk_limited_validation.cpp)."""
+    """The distribution of `mjarm bench otg`'s cases (trajectory/otg/validation/protocol.cpp)."""
 
     def __init__(self, rng, dofs, beyond_share):
         self.rng, self.dofs, self.beyond_share = rng, dofs, beyond_share

@@ -12,4 +12,9 @@ namespace mjarm {
 /// "2.5e-07"; "nan", "inf" and "-inf" spelled out.
 std::string number_text(double value);
 
+/// @p value with @p significant_digits significant digits (printf's %.*g: "0.0615712",
+/// "1e-08"), for figures read by people rather than read back; "nan", "inf" and "-inf" spelled
+/// out.
+std::string number_text(double value, int significant_digits);
+
 }  // namespace mjarm

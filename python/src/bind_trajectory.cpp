@@ -1,7 +1,7 @@
 // trajectory room: trapezoid, smoothstep family, quintics and their shortest duration, SE(3)
 // interpolation, the jerk-limited online generator.
 #include "bindings.hpp"
-#include "mjarm/trajectory/jerk_limited.hpp"
+#include "mjarm/trajectory/otg/generator.hpp"
 #include "mjarm/trajectory/quintic.hpp"
 #include "mjarm/trajectory/quintic_duration.hpp"
 #include "mjarm/trajectory/se3_interpolation.hpp"
@@ -46,7 +46,7 @@ void bind_trajectory(py::module_& m) {
       .def_property_readonly("duration", &TrapezoidProfile::duration)
       .def_property_readonly("peak_velocity", &TrapezoidProfile::peak_velocity)
       .def_property_readonly("triangular", &TrapezoidProfile::triangular)
-      .def("at", &TrapezoidProfile::at, py::arg("t"))
+      .def("at", py::overload_cast<double>(&TrapezoidProfile::at, py::const_), py::arg("t"))
       .def("fraction", &TrapezoidProfile::fraction, py::arg("t"));
   m.def("trap_profile", &trap_profile, py::arg("distance"),
         py::arg("max_velocity") = TrapezoidProfile::kDefaultMaxVelocity,
@@ -91,7 +91,7 @@ void bind_trajectory(py::module_& m) {
            py::arg("start"), py::arg("end"), py::arg("duration"), "start, end: (p, v, a)")
       .def_property_readonly("duration", &Quintic::duration)
       .def_property_readonly("coefficients", &Quintic::coefficients)
-      .def("at", &Quintic::at, py::arg("t"));
+      .def("at", py::overload_cast<double>(&Quintic::at, py::const_), py::arg("t"));
   py::class_<QuinticTrajectory>(m, "QuinticTrajectory", "n joints, one quintic each.")
       .def(py::init([](py::handle q0, py::handle q1, double T, py::handle qd0, py::handle qdd0,
                        py::handle qd1, py::handle qdd1) {

@@ -96,9 +96,9 @@ std::vector<std::string> DockingEnvTask::default_observations() const {
 
 void DockingEnvTask::initialize_episode(Simulation& sim, EpisodeRandom& random) {
   const DockingOffset& r = options_.offset_range;
-  offset_.dx = EpisodeRandom::uniform(random.task, -r.dx, r.dx);
-  offset_.dy = EpisodeRandom::uniform(random.task, -r.dy, r.dy);
-  offset_.dyaw = EpisodeRandom::uniform(random.task, -r.dyaw, r.dyaw);
+  offset_.dx = uniform(random.task, -r.dx, r.dx);
+  offset_.dy = uniform(random.task, -r.dy, r.dy);
+  offset_.dyaw = uniform(random.task, -r.dyaw, r.dyaw);
   // the believed socket X_WB = X_WS·(R_z(dyaw), (dx, dy, 0)), as plan_docking has it
   const Pose& X_WS = scene_->options.X_WS;
   const Pose X_SB = Pose::from_rotation_vector(Eigen::Vector3d(offset_.dx, offset_.dy, 0.0),
@@ -111,8 +111,7 @@ void DockingEnvTask::initialize_episode(Simulation& sim, EpisodeRandom& random) 
   const double p = options_.start_perturbation;
   for (int i = 0; i < chain.size(); ++i) {
     double& q = qpos_[static_cast<std::size_t>(chain.qpos_address(i))];
-    q = std::clamp(q + EpisodeRandom::uniform(random.task, -p, p), chain.lower()[i],
-                   chain.upper()[i]);
+    q = std::clamp(q + uniform(random.task, -p, p), chain.lower()[i], chain.upper()[i]);
   }
   sim.reset();
   sim.set_state(qpos_, qvel_);

@@ -7,7 +7,6 @@
 #include <cmath>
 #include <cstring>
 #include <fstream>
-#include <random>
 #include <span>
 #include <thread>
 
@@ -15,6 +14,7 @@
 #include "mjarm/env/task_registry.hpp"
 #include "mjarm/env/vector_environment.hpp"
 #include "mjarm/error.hpp"
+#include "mjarm/random.hpp"
 
 namespace mjarm {
 namespace {
@@ -44,14 +44,14 @@ double median(std::vector<double> v) {
 
 /// @p rows actions drawn uniformly within @p spec's bounds ([−1, 1] where a side is unbounded).
 std::vector<double> random_actions(const ArraySpec& spec, std::size_t rows, std::uint64_t seed) {
-  std::mt19937_64 rng(seed);
+  Random rng(seed);
   const std::size_t width = static_cast<std::size_t>(spec.size());
   std::vector<double> actions(rows * width);
   for (std::size_t k = 0; k < actions.size(); ++k) {
     const Eigen::Index j = static_cast<Eigen::Index>(k % width);
     const double lo = std::isfinite(spec.minimum[j]) ? spec.minimum[j] : -1.0;
     const double hi = std::isfinite(spec.maximum[j]) ? spec.maximum[j] : 1.0;
-    actions[k] = EpisodeRandom::uniform(rng, std::min(lo, hi), std::max(lo, hi));
+    actions[k] = uniform(rng, std::min(lo, hi), std::max(lo, hi));
   }
   return actions;
 }

@@ -10,6 +10,7 @@
 #include "mjarm/env/task_registry.hpp"
 #include "mjarm/error.hpp"
 #include "mjarm/kinematics/chain_kinematics.hpp"
+#include "mjarm/random.hpp"
 
 namespace mjarm {
 namespace {
@@ -40,7 +41,7 @@ struct Environment::Impl {
   std::vector<double> observation;
   std::vector<double> action;  // the clipped action of the current step
   EpisodeRandom random;
-  std::mt19937_64 seeds;  // episode seeds for reset() without one
+  Random seeds;  // episode seeds for reset() without one
   StepContext context;
   TimeStep time_step;
   ObservationSpec empty_spec;

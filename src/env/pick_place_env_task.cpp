@@ -167,8 +167,7 @@ void PickPlaceEnvTask::initialize_episode(Simulation& sim, EpisodeRandom& random
   const double r = options_.start_perturbation;
   for (int i = 0; i < arm_.size(); ++i) {
     double& q = qpos_[static_cast<std::size_t>(arm_.qpos_address(i))];
-    q = std::clamp(q + EpisodeRandom::uniform(random.task, -r, r), arm_.lower()[i],
-                   arm_.upper()[i]);
+    q = std::clamp(q + uniform(random.task, -r, r), arm_.lower()[i], arm_.upper()[i]);
   }
   double* o = qpos_.data() + object_qpos_;
   o[0] = trial_.object.position[0];

@@ -6,6 +6,7 @@
 #include "mjarm/env/env_task.hpp"
 #include "mjarm/error.hpp"
 #include "mjarm/number_text.hpp"
+#include "mjarm/random.hpp"
 
 namespace mjarm {
 namespace {
@@ -18,10 +19,9 @@ void check_range(double r, const char* name) {
 }
 
 // fills @p factors with draws from [1 − r, 1 + r], or empties it for r = 0
-void draw_factors(Eigen::VectorXd& factors, double r, std::mt19937_64& rng) noexcept {
+void draw_factors(Eigen::VectorXd& factors, double r, Random& rng) noexcept {
   if (r == 0.0) return;
-  for (Eigen::Index i = 0; i < factors.size(); ++i)
-    factors[i] = EpisodeRandom::uniform(rng, 1.0 - r, 1.0 + r);
+  for (Eigen::Index i = 0; i < factors.size(); ++i) factors[i] = uniform(rng, 1.0 - r, 1.0 + r);
 }
 
 }  // namespace
@@ -58,7 +58,7 @@ DomainRandomizer::DomainRandomizer(const mjModel& nominal, const RandomizationOp
     size_ = Eigen::VectorXd::Ones(static_cast<Eigen::Index>(objects_.size()));
 }
 
-void DomainRandomizer::apply(mjModel& model, mjData& scratch, std::mt19937_64& rng) noexcept {
+void DomainRandomizer::apply(mjModel& model, mjData& scratch, Random& rng) noexcept {
   const mjModel& m0 = nominal_;
   // the nominal values first, so that draws never compound
   std::copy(m0.body_mass, m0.body_mass + m0.nbody, model.body_mass);
@@ -74,7 +74,7 @@ void DomainRandomizer::apply(mjModel& model, mjData& scratch, std::mt19937_64& r
   if (options_.mass != 0.0) {
     mass_[0] = 1.0;
     for (int b = 1; b < m0.nbody; ++b)
-      mass_[b] = EpisodeRandom::uniform(rng, 1.0 - options_.mass, 1.0 + options_.mass);
+      mass_[b] = uniform(rng, 1.0 - options_.mass, 1.0 + options_.mass);
     for (int b = 1; b < m0.nbody; ++b) {
       model.body_mass[b] *= mass_[b];
       for (int k = 0; k < 3; ++k) model.body_inertia[3 * b + k] *= mass_[b];
@@ -109,9 +109,9 @@ void DomainRandomizer::apply(mjModel& model, mjData& scratch, std::mt19937_64& r
           break;
         }
       }
-      const double s = first == k ? EpisodeRandom::uniform(rng, 1.0 - options_.object_size,
-                                                           1.0 + options_.object_size)
-                                  : size_[static_cast<Eigen::Index>(first)];
+      const double s = first == k
+                           ? uniform(rng, 1.0 - options_.object_size, 1.0 + options_.object_size)
+                           : size_[static_cast<Eigen::Index>(first)];
       size_[static_cast<Eigen::Index>(k)] = s;
       const int g = objects_[k];
       for (int i = 0; i < 3; ++i) model.geom_size[3 * g + i] *= s;

@@ -77,12 +77,11 @@ void ReachTask::initialize_episode(Simulation& sim, EpisodeRandom& random) {
   const double r = options_.start_perturbation;
   for (int i = 0; i < chain.size(); ++i) {
     double& q = qpos_[static_cast<std::size_t>(chain.qpos_address(i))];
-    q = std::clamp(q + EpisodeRandom::uniform(random.task, -r, r), chain.lower()[i],
-                   chain.upper()[i]);
+    q = std::clamp(q + uniform(random.task, -r, r), chain.lower()[i], chain.upper()[i]);
   }
   for (int k = 0; k < 3; ++k)
-    target_[k] = options_.target_center[k] +
-                 EpisodeRandom::uniform(random.task, -1.0, 1.0) * options_.target_half_width[k];
+    target_[k] =
+        options_.target_center[k] + uniform(random.task, -1.0, 1.0) * options_.target_half_width[k];
   sim.reset();
   sim.set_state(qpos_, qvel_);
 }

@@ -11,6 +11,7 @@
 #include "mjarm/ik/targets.hpp"
 #include "mjarm/lie/so3.hpp"
 #include "mjarm/number_text.hpp"
+#include "mjarm/random.hpp"
 #include "validate_pose.hpp"
 
 namespace mjarm {
@@ -116,10 +117,7 @@ IkResult GlobalIk::solve(const Pose& X_WT, const Eigen::Ref<const Eigen::VectorX
   return result;
 }
 
-double GlobalIk::uniform() noexcept {
-  // 53 random bits → [0, 1): the same doubles on every platform for a given seed
-  return static_cast<double>(rng_() >> 11) * 0x1.0p-53;
-}
+double GlobalIk::uniform() noexcept { return mjarm::uniform(rng_); }
 
 void GlobalIk::random_configuration(Eigen::VectorXd& q) noexcept {
   for (Eigen::Index i = 0; i < q.size(); ++i) {

@@ -5,7 +5,6 @@
 #include <limits>
 #include <memory>
 #include <numbers>
-#include <random>
 #include <string>
 #include <vector>
 
@@ -13,6 +12,7 @@
 #include "mjarm/error.hpp"
 #include "mjarm/kinematics/chain_kinematics.hpp"
 #include "mjarm/number_text.hpp"
+#include "mjarm/random.hpp"
 
 namespace mjarm {
 namespace {
@@ -31,14 +31,11 @@ class ConfigurationSampler {
   }
 
   void draw(Eigen::VectorXd& q) {
-    for (Eigen::Index i = 0; i < q.size(); ++i) {
-      const double u = static_cast<double>(rng_() >> 11) * 0x1.0p-53;
-      q[i] = lower_[i] + u * (upper_[i] - lower_[i]);
-    }
+    for (Eigen::Index i = 0; i < q.size(); ++i) q[i] = uniform(rng_, lower_[i], upper_[i]);
   }
 
  private:
-  std::mt19937_64 rng_;
+  Random rng_;
   Eigen::VectorXd lower_, upper_;
 };
 

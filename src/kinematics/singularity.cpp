@@ -1,10 +1,10 @@
 #include "mjarm/kinematics/singularity.hpp"
 
 #include <algorithm>
-#include <random>
 
 #include "mjarm/error.hpp"
 #include "mjarm/kinematics/workspace.hpp"
+#include "mjarm/random.hpp"
 
 namespace mjarm {
 namespace {
@@ -72,7 +72,7 @@ SingularityScan scan_singularities(const Chain& chain, std::size_t samples, std:
   SingularityClassifier classifier(chain, options, thresholds);
   Manipulability& m = classifier.manipulability();
   const JointSampler sampler(chain);
-  std::mt19937_64 rng(seed);
+  Random rng(seed);
   SingularityScan scan;
   scan.options = options;
   scan.thresholds = thresholds;

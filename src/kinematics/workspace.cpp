@@ -9,6 +9,7 @@
 
 #include "mjarm/file_writer.hpp"
 #include "mjarm/error.hpp"
+#include "mjarm/random.hpp"
 
 namespace mjarm {
 
@@ -21,12 +22,8 @@ JointSampler::JointSampler(const Chain& chain) : lower_(chain.lower()), upper_(c
   }
 }
 
-void JointSampler::sample(std::mt19937_64& rng, Eigen::Ref<Eigen::VectorXd> q) const noexcept {
-  for (Eigen::Index i = 0; i < lower_.size(); ++i) {
-    // top 53 bits -> [0, 1): exact, portable, no std distribution involved
-    const double u = static_cast<double>(rng() >> 11) * 0x1.0p-53;
-    q[i] = lower_[i] + u * (upper_[i] - lower_[i]);
-  }
+void JointSampler::sample(Random& rng, Eigen::Ref<Eigen::VectorXd> q) const noexcept {
+  for (Eigen::Index i = 0; i < lower_.size(); ++i) q[i] = uniform(rng, lower_[i], upper_[i]);
 }
 
 namespace {
@@ -55,7 +52,7 @@ WorkspaceResult sample_workspace(const Chain& chain, const WorkspaceOptions& opt
   Manipulability measure(chain, options.manipulability);
   ChainKinematics& kin = measure.kinematics();
   const JointSampler sampler(chain);
-  std::mt19937_64 rng(options.seed);
+  Random rng(options.seed);
   const int n = chain.size();
 
   WorkspaceResult result;

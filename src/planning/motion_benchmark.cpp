@@ -3,12 +3,12 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <random>
 
 #include "mjarm/benchmark_timing.hpp"
 #include "mjarm/error.hpp"
 #include "mjarm/kinematics/chain_kinematics.hpp"
 #include "mjarm/planning/waypoint_planner.hpp"
+#include "mjarm/random.hpp"
 #include "mjarm/trajectory/quintic.hpp"
 #include "mjarm/trajectory/se3_interpolation.hpp"
 #include "mjarm/trajectory/smoothstep.hpp"
@@ -25,10 +25,9 @@ constexpr int kBenchJoints = 7;
 double motion_now_ns(bool cpu) noexcept { return 1e9 * benchmark_seconds(cpu); }
 
 Eigen::VectorXd bench_vector(unsigned seed, double scale) {
-  std::mt19937_64 rng(seed);
-  std::uniform_real_distribution<double> u(-scale, scale);
+  Random rng(seed);
   Eigen::VectorXd v(MotionBenchmarkProfiles::kJoints);
-  for (double& x : v) x = u(rng);
+  for (double& x : v) x = uniform(rng, -scale, scale);
   return v;
 }
 
@@ -100,10 +99,9 @@ MotionBenchmarkProfiles::MotionBenchmarkProfiles()
       ramp(SmoothRamp::Kind::smootherstep, 0.4) {}
 
 std::array<double, 256> motion_benchmark_instants(double T) {
-  std::mt19937_64 rng(3);
-  std::uniform_real_distribution<double> u(-0.05 * T, 1.05 * T);
+  Random rng(3);
   std::array<double, 256> t{};
-  for (double& x : t) x = u(rng);
+  for (double& x : t) x = uniform(rng, -0.05 * T, 1.05 * T);
   return t;
 }
 

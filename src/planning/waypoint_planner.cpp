@@ -256,10 +256,9 @@ PlanResult WaypointPlanner::plan(const Eigen::VectorXd& q_start,
   global_options.timeout = std::chrono::milliseconds(500);
   GlobalIk global(chain_, global_options);
   global.set_fixed_qpos(fixed_qpos_);
-  std::uniform_real_distribution<double> unit(-1.0, 1.0);
   const auto random_offset = [&](double radius) {
     Eigen::VectorXd u(n);
-    for (int i = 0; i < n; ++i) u[i] = radius * unit(rng_);
+    for (int i = 0; i < n; ++i) u[i] = radius * uniform(rng_, -1.0, 1.0);
     return u;
   };
 

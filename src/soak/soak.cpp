@@ -8,7 +8,6 @@
 #include <cstdio>
 #include <cstring>
 #include <memory>
-#include <random>
 #include <span>
 
 #include "mjarm/env/environment.hpp"
@@ -16,6 +15,7 @@
 #include "mjarm/env/vector_environment.hpp"
 #include "mjarm/error.hpp"
 #include "mjarm/model/mujoco_library.hpp"
+#include "mjarm/random.hpp"
 #include "mjarm/tasks/pick_place_trials.hpp"
 #include "mjarm/teleop/bimanual_lift.hpp"
 #include "mjarm/teleop/session_log.hpp"
@@ -167,7 +167,7 @@ class SoakRunner {
         ++result_.counts.env_runs;
         const ArraySpec& spec = env.action_spec();
         std::vector<double> action(static_cast<std::size_t>(spec.size()));
-        std::mt19937_64 rng(seed);
+        Random rng(seed);
         Fingerprint print;
         for (int episode = 0; episode < options_.episodes; ++episode) {
           TimeStep ts = env.reset(splitmix64(seed + static_cast<std::uint64_t>(episode) + 1));
@@ -177,7 +177,7 @@ class SoakRunner {
               const auto i = static_cast<Eigen::Index>(j);
               const double lo = std::isfinite(spec.minimum[i]) ? spec.minimum[i] : -1.0;
               const double hi = std::isfinite(spec.maximum[i]) ? spec.maximum[i] : 1.0;
-              action[j] = EpisodeRandom::uniform(rng, lo, hi);
+              action[j] = uniform(rng, lo, hi);
               if (drift && first_action) action[j] = lo + hi - action[j];  // mirrored
             }
             first_action = false;
@@ -216,7 +216,7 @@ class SoakRunner {
     const auto width = static_cast<std::size_t>(spec.size());
     std::vector<double> actions(width * static_cast<std::size_t>(n));
     std::vector<std::int64_t> seen(static_cast<std::size_t>(n), 0);
-    std::mt19937_64 rng(eo.seed);
+    Random rng(eo.seed);
     Fingerprint print;
     batch.reset();
     for (int i = 0; i < n; ++i) {
@@ -229,7 +229,7 @@ class SoakRunner {
         const auto i = static_cast<Eigen::Index>(j % width);
         const double lo = std::isfinite(spec.minimum[i]) ? spec.minimum[i] : -1.0;
         const double hi = std::isfinite(spec.maximum[i]) ? spec.maximum[i] : 1.0;
-        actions[j] = EpisodeRandom::uniform(rng, lo, hi);
+        actions[j] = uniform(rng, lo, hi);
         if (drift && k == 0 && j < width) actions[j] = lo + hi - actions[j];  // row 0 mirrored
       }
       batch.step(actions);

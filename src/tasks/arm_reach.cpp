@@ -2,12 +2,12 @@
 
 #include <algorithm>
 #include <limits>
-#include <random>
 #include <string>
 
 #include "mjarm/error.hpp"
 #include "mjarm/kinematics/chain_kinematics.hpp"
 #include "mjarm/kinematics/workspace.hpp"
+#include "mjarm/random.hpp"
 
 namespace mjarm {
 
@@ -25,7 +25,7 @@ ArmReach arm_reach(const Chain& chain, int samples, std::uint64_t seed) {
     }
   }
   JointSampler sampler(chain);
-  std::mt19937_64 rng(seed);
+  Random rng(seed);
   Eigen::VectorXd q(chain.size());
   reach.min_distance = std::numeric_limits<double>::infinity();
   for (int k = 0; k < samples; ++k) {

@@ -5,12 +5,12 @@
 #include <cstdio>
 #include <memory>
 #include <optional>
-#include <random>
 
 #include "mjarm/error.hpp"
 #include "mjarm/ik/pose_ik.hpp"
 #include "mjarm/kinematics/frame_state.hpp"
 #include "mjarm/lie/so3.hpp"
+#include "mjarm/random.hpp"
 #include "mjarm/scene/free_pose.hpp"
 #include "mjarm/sim/recorder.hpp"
 #include "mjarm/sim/simulation.hpp"
@@ -220,15 +220,13 @@ PickPlaceTrial draw_pick_place_trial(const PickPlaceOptions& options) {
   check_range(g.yaw, "yaw [rad]", -M_PI);
   if (!(std::isfinite(g.min_separation) && g.min_separation >= 0.0))
     throw Error("pick and place: min_separation must be finite and ≥ 0 [m]");
-  std::mt19937_64 rng(options.seed);
-  const auto uniform = [&](const std::array<double, 2>& r) {
-    return r[0] + (r[1] - r[0]) * unit_draw(rng());
-  };
+  Random rng(options.seed);
+  const auto in_range = [&](const std::array<double, 2>& r) { return uniform(rng, r[0], r[1]); };
   // uniform over the area of the table region
   const auto point = [&] {
     const double r0 = robot.min_radius, r1 = robot.max_radius;
-    const double r = std::sqrt(r0 * r0 + (r1 * r1 - r0 * r0) * unit_draw(rng()));
-    const double b = robot.max_bearing * (2.0 * unit_draw(rng()) - 1.0);
+    const double r = std::sqrt(r0 * r0 + (r1 * r1 - r0 * r0) * uniform(rng));
+    const double b = robot.max_bearing * (2.0 * uniform(rng) - 1.0);
     return std::array<double, 2>{robot.mount[0] + r * std::cos(b),
                                  robot.mount[1] + r * std::sin(b)};
   };
@@ -236,10 +234,10 @@ PickPlaceTrial draw_pick_place_trial(const PickPlaceOptions& options) {
   trial.seed = options.seed;
   PickPlaceObject& o = trial.object;
   o.position = point();
-  o.yaw = uniform(g.yaw);
-  const double half = uniform(g.half_size);
-  o.mass = uniform(g.mass);
-  o.friction = uniform(g.friction);
+  o.yaw = in_range(g.yaw);
+  const double half = in_range(g.half_size);
+  o.mass = in_range(g.mass);
+  o.friction = in_range(g.friction);
   std::array<double, 2> target = point();
   for (int k = 0; k < 1000; ++k) {
     if (std::hypot(target[0] - o.position[0], target[1] - o.position[1]) >= g.min_separation) break;

@@ -3,13 +3,13 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <random>
 #include <string>
 
 #include "mjarm/error.hpp"
 #include "mjarm/ik/pose_ik.hpp"
 #include "mjarm/ik/position_ik.hpp"
 #include "mjarm/kinematics/chain_kinematics.hpp"
+#include "mjarm/random.hpp"
 #include "mjarm/tasks/approach_timing.hpp"
 #include "mjarm/trajectory/smoothstep.hpp"
 
@@ -107,18 +107,14 @@ void check_shelf_pick_controller(std::string_view name) {
               " (computed torque, operational space, task-space PD, acceleration control)");
 }
 
-double unit_draw(std::uint64_t bits) noexcept {
-  return static_cast<double>(bits >> 11) * 0x1.0p-53;
-}
-
 Eigen::Vector3d draw_shelf_pick(const ShelfPickRobot& robot, const Chain& chain,
-                                std::mt19937_64& rng, std::span<double> qpos) noexcept {
+                                Random& rng, std::span<double> qpos) noexcept {
   Eigen::Vector3d pick;
   for (int i = 0; i < 3; ++i)
-    pick[i] = robot.pick_center[i] + (2.0 * unit_draw(rng()) - 1.0) * robot.pick_half_width[i];
+    pick[i] = robot.pick_center[i] + (2.0 * uniform(rng) - 1.0) * robot.pick_half_width[i];
   for (int i = 0; i < chain.size(); ++i) {
     double& q = qpos[static_cast<std::size_t>(chain.qpos_address(i))];
-    q += (2.0 * unit_draw(rng()) - 1.0) * robot.start_perturbation;
+    q += (2.0 * uniform(rng) - 1.0) * robot.start_perturbation;
     q = std::clamp(q, chain.lower()[i], chain.upper()[i]);
   }
   return pick;
@@ -140,7 +136,7 @@ ShelfPickPlan plan_shelf_pick(const ShelfPickRequest& request) {
   const int n = chain.size();
 
   // the seed: the pick point first (always drawn), then the start perturbation
-  std::mt19937_64 rng(request.seed);
+  Random rng(request.seed);
   plan.qpos_start = model.keyframe_qpos("home");
   const Eigen::Vector3d drawn = draw_shelf_pick(robot, chain, rng, plan.qpos_start);
   plan.pick_drawn = !request.pick.has_value();

@@ -188,4 +188,18 @@ void QuinticTrajectory::at(double t, Eigen::Ref<Eigen::VectorXd> q, Eigen::Ref<E
   qddd = 6.0 * c.col(3) + tc * (24.0 * c.col(4) + tc * 60.0 * c.col(5));
 }
 
+void Quintic::at(double t, TrajectorySample& sample) const {
+  sample.resize(1);
+  const Sample s = at(t);
+  sample.position[0] = s.p;
+  sample.velocity[0] = s.v;
+  sample.acceleration[0] = s.a;
+  sample.jerk[0] = s.j;
+}
+
+void QuinticTrajectory::at(double t, TrajectorySample& sample) const {
+  sample.resize(dofs());
+  at(t, sample.position, sample.velocity, sample.acceleration, sample.jerk);
+}
+
 }  // namespace mjarm

@@ -6,6 +6,7 @@
 
 #include "mjarm/error.hpp"
 #include "mjarm/number_text.hpp"
+#include "mjarm/trajectory/trajectory_sample.hpp"
 
 namespace mjarm {
 
@@ -83,6 +84,15 @@ RampSample SmoothRamp::at(double t) const noexcept {
       kind_ == Kind::smoothstep ? smoothstep(t / duration_) : smootherstep(t / duration_);
   const double T = duration_;
   return {x.s, x.ds / T, x.dds / (T * T), x.ddds / (T * T * T)};
+}
+
+void SmoothRamp::at(double t, TrajectorySample& sample) const {
+  sample.resize(1);
+  const RampSample s = at(t);
+  sample.position[0] = s.s;
+  sample.velocity[0] = s.ds;
+  sample.acceleration[0] = s.dds;
+  sample.jerk[0] = s.ddds;
 }
 
 }  // namespace mjarm

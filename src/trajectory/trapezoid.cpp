@@ -141,4 +141,19 @@ double SyncedTrapezoid::fraction(double t) const noexcept {
   return axes_[limiting_axis_].fraction(scale_[limiting_axis_] * t);
 }
 
+void TrapezoidProfile::at(double t, TrajectorySample& sample) const {
+  sample.resize(1);
+  const Sample s = at(t);
+  sample.position[0] = s.position;
+  sample.velocity[0] = s.velocity;
+  sample.acceleration[0] = s.acceleration;
+  sample.jerk[0] = 0.0;
+}
+
+void SyncedTrapezoid::at(double t, TrajectorySample& sample) const {
+  sample.resize(dofs());
+  at(t, sample.position, sample.velocity, sample.acceleration);
+  sample.jerk.setZero();
+}
+
 }  // namespace mjarm

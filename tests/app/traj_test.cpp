@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "app/cli_runner.hpp"
-#include "mjarm/trajectory/jerk_limited.hpp"
+#include "mjarm/trajectory/otg/generator.hpp"
 #include "mjarm/trajectory/quintic_duration.hpp"
 #include "mjarm/trajectory/smoothstep.hpp"
 #include "mjarm/trajectory/trapezoid.hpp"

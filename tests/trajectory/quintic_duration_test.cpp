@@ -6,11 +6,11 @@
 #include <cstdio>
 #include <cstdlib>
 #include <limits>
-#include <random>
 #include <utility>
 #include <vector>
 
 #include "mjarm/error.hpp"
+#include "mjarm/random.hpp"
 #include "mjarm/trajectory/smoothstep.hpp"
 
 namespace mjarm {
@@ -72,8 +72,9 @@ TEST(QuinticDuration, RestToRestMatchesTheClosedForm) {
 }
 
 TEST(QuinticDuration, MatchesABruteForceSearchFromMovingStarts) {
-  std::mt19937_64 rng(2024);
-  std::uniform_real_distribution<double> u(-1.0, 1.0), lim(0.5, 3.0);
+  mjarm::Random rng(2024);
+  const auto u = [](mjarm::Random& r) { return mjarm::uniform(r, -1.0, 1.0); };
+  const auto lim = [](mjarm::Random& r) { return mjarm::uniform(r, 0.5, 3.0); };
   // 12 cases in the suite; MJARM_QUINTIC_TRIALS=N runs N (docs/trajectory.md has the figures)
   const char* env = std::getenv("MJARM_QUINTIC_TRIALS");
   const int trials = env ? std::max(1, std::atoi(env)) : 12;

@@ -4,9 +4,9 @@
 
 #include <cmath>
 #include <limits>
-#include <random>
 
 #include "mjarm/error.hpp"
+#include "mjarm/random.hpp"
 #include "mjarm/trajectory/smoothstep.hpp"
 #include "support/error_message.hpp"
 
@@ -14,8 +14,9 @@ namespace mjarm {
 namespace {
 
 TEST(Quintic, MeetsArbitraryBoundaryConditions) {
-  std::mt19937_64 rng(5);
-  std::uniform_real_distribution<double> u(-3.0, 3.0), dur(0.05, 4.0);
+  mjarm::Random rng(5);
+  const auto u = [](mjarm::Random& r) { return mjarm::uniform(r, -3.0, 3.0); };
+  const auto dur = [](mjarm::Random& r) { return mjarm::uniform(r, 0.05, 4.0); };
   for (int trial = 0; trial < 200; ++trial) {
     const Quintic::State s0{u(rng), u(rng), u(rng)}, s1{u(rng), u(rng), u(rng)};
     const double T = dur(rng);

@@ -4,11 +4,11 @@
 
 #include <cmath>
 #include <limits>
-#include <random>
 
 #include "mjarm/error.hpp"
 #include "mjarm/kinematics/finite_difference.hpp"
 #include "mjarm/lie/so3.hpp"
+#include "mjarm/random.hpp"
 
 namespace mjarm {
 namespace {
@@ -52,8 +52,8 @@ TEST(Se3Interpolation, StartsWithTheGivenTwistAndRateAndEndsAtRest) {
 }
 
 TEST(Se3Interpolation, TwistAndRateAreTheTrueDerivativesOfThePose) {
-  std::mt19937_64 rng(7);
-  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  mjarm::Random rng(7);
+  const auto u = [](mjarm::Random& r) { return mjarm::uniform(r, -1.0, 1.0); };
   auto vec = [&](double scale) -> Eigen::Vector3d {
     return Eigen::Vector3d(u(rng), u(rng), u(rng)) * scale;
   };

@@ -4,9 +4,9 @@
 
 #include <cmath>
 #include <limits>
-#include <random>
 
 #include "mjarm/error.hpp"
+#include "mjarm/random.hpp"
 #include "support/error_message.hpp"
 
 namespace mjarm {
@@ -103,8 +103,9 @@ TEST(Trapezoid, RejectsBadInput) {
 }
 
 TEST(SyncedTrapezoid, EveryAxisFinishesTogetherWithinItsLimits) {
-  std::mt19937_64 rng(11);
-  std::uniform_real_distribution<double> pos(-2.0, 2.0), lim(0.2, 3.0);
+  mjarm::Random rng(11);
+  const auto pos = [](mjarm::Random& r) { return mjarm::uniform(r, -2.0, 2.0); };
+  const auto lim = [](mjarm::Random& r) { return mjarm::uniform(r, 0.2, 3.0); };
   for (int trial = 0; trial < 50; ++trial) {
     const int n = 1 + trial % 7;
     Eigen::VectorXd q0(n), q1(n), v(n), a(n);

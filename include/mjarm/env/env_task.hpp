@@ -6,7 +6,6 @@
 
 #include <cstdint>
 #include <memory>
-#include <random>
 #include <span>
 #include <string>
 #include <string_view>
@@ -18,29 +17,28 @@
 #include "mjarm/lie/types.hpp"
 #include "mjarm/model/chain.hpp"
 #include "mjarm/model/robot.hpp"
+#include "mjarm/random.hpp"
 #include "mjarm/sim/simulation.hpp"
 
 namespace mjarm {
 
-/// The random state of one episode: two `std::mt19937_64` generators seeded from the episode's
-/// seed — the task's with the seed itself, the domain randomization's with splitmix64(seed) —
-/// so that a task draws the same start and goal for a seed whether or not the model is
-/// randomized. Draw doubles with `unit_draw` (tasks/shelf_pick_plan.hpp): the same numbers on
-/// every platform.
+/// The random state of one episode: two `Random` generators seeded from the episode's seed —
+/// the task's with the seed itself, the domain randomization's with splitmix64(seed) — so that
+/// a task draws the same start and goal for a seed whether or not the model is randomized. Draw
+/// with random.hpp's functions: the same numbers on every platform.
 struct EpisodeRandom {
   std::uint64_t seed = 0;
-  std::mt19937_64 task;
-  std::mt19937_64 randomization;
+  Random task;
+  Random randomization;
 
   explicit EpisodeRandom(std::uint64_t seed = 0) { reseed(seed); }
   /// Seeds both generators from @p seed (allocation-free).
   void reseed(std::uint64_t seed) noexcept;
-  /// A uniform draw in [lo, hi) from @p rng (53 bits of one 64-bit draw).
-  static double uniform(std::mt19937_64& rng, double lo, double hi) noexcept;
+  /// `mjarm::uniform(rng, lo, hi)` (random.hpp), under its former name.
+  static double uniform(Random& rng, double lo, double hi) noexcept {
+    return mjarm::uniform(rng, lo, hi);
+  }
 };
-
-/// SplitMix64's finalizer: a well-mixed 64-bit function of @p x (for derived seeds).
-std::uint64_t splitmix64(std::uint64_t x) noexcept;
 
 /// What the task's hooks see of the environment after the physics of a step (or after the
 /// episode's start): the simulation and the end-effector state computed from the current qpos

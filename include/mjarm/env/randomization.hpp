@@ -6,8 +6,9 @@
 #include <mujoco/mujoco.h>
 
 #include <Eigen/Core>
-#include <random>
 #include <vector>
+
+#include "mjarm/random.hpp"
 
 namespace mjarm {
 
@@ -49,7 +50,7 @@ class DomainRandomizer {
   /// Restores @p model (a copy of the nominal model, same sizes) to the nominal values, draws
   /// new factors from @p rng and writes them; @p scratch is overwritten by `mj_setConst`.
   /// Allocation-free.
-  void apply(mjModel& model, mjData& scratch, std::mt19937_64& rng) noexcept;
+  void apply(mjModel& model, mjData& scratch, Random& rng) noexcept;
 
   /// Factors of the last `apply` (empty for a range of 0): per body (nbody, body 0 = 1), per
   /// geom, per dof, per actuator, per object geom.

@@ -30,13 +30,13 @@
 #include <chrono>
 #include <cstdint>
 #include <limits>
-#include <random>
 
 #include "mjarm/ik/pose_tolerance.hpp"
 #include "mjarm/ik/result.hpp"
 #include "mjarm/kinematics/chain_kinematics.hpp"
 #include "mjarm/lie/pose.hpp"
 #include "mjarm/qp/dense_qp.hpp"
+#include "mjarm/random.hpp"
 
 namespace mjarm {
 
@@ -159,7 +159,7 @@ class GlobalIk {
   GlobalIkOptions options_;
   ChainKinematics kin_;
   qp::DenseQp qp_;
-  std::mt19937_64 rng_;
+  Random rng_;
   GlobalIkStats stats_;
   Eigen::VectorXd sample_lower_, sample_upper_;  // random-restart box (finite)
   // per-solve state

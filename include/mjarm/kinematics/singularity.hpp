@@ -79,7 +79,7 @@ struct SingularityScan {
 };
 
 /// Samples @p samples configurations uniformly within the limits (see `JointSampler`, seeded
-/// std::mt19937_64: the same seed gives the same scan) and keeps the @p keep_worst samples with
+/// `Random`: the same seed gives the same scan) and keeps the @p keep_worst samples with
 /// the lowest σmin, classified. @p progress, when given, is called with (done, samples) at most
 /// ~100 times; @p stop, when given, is asked every thousand samples and ends the scan
 /// `SamplingStatus::interrupted` (the counts then cover the samples drawn).

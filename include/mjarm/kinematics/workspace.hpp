@@ -8,11 +8,11 @@
 #include <cstdint>
 #include <filesystem>
 #include <functional>
-#include <random>
 #include <vector>
 
 #include "mjarm/kinematics/manipulability.hpp"
 #include "mjarm/model/chain.hpp"
+#include "mjarm/random.hpp"
 
 namespace mjarm {
 
@@ -26,7 +26,7 @@ class JointSampler {
 
   /// Writes one configuration (chain.size() values) into @p q. Allocates nothing; @p q must
   /// already have chain.size() entries.
-  void sample(std::mt19937_64& rng, Eigen::Ref<Eigen::VectorXd> q) const noexcept;
+  void sample(Random& rng, Eigen::Ref<Eigen::VectorXd> q) const noexcept;
 
   /// Lower and upper sampling bounds actually used (finite) [rad or m].
   const Eigen::VectorXd& lower() const noexcept { return lower_; }
@@ -61,7 +61,7 @@ inline constexpr std::size_t kMaxKeptWorkspacePoints = std::size_t{1} << 25;
 /// Settings of `sample_workspace`.
 struct WorkspaceOptions {
   std::size_t samples = 10000;  ///< number of joint samples (> 0)
-  std::uint64_t seed = 1;       ///< seed of the std::mt19937_64 generator
+  std::uint64_t seed = 1;       ///< seed of the `Random` generator
   /// Manipulability block and thresholds; set `compute_manipulability = false` to skip the SVD.
   ManipulabilityOptions manipulability{.block = JacobianBlock::position};
   bool compute_manipulability = true;

@@ -7,7 +7,6 @@
 
 #include <Eigen/Core>
 #include <cstdint>
-#include <random>
 #include <string>
 #include <vector>
 
@@ -19,6 +18,7 @@
 #include "mjarm/planning/configuration_check.hpp"
 #include "mjarm/planning/joint_limits.hpp"
 #include "mjarm/planning/joint_spline.hpp"
+#include "mjarm/random.hpp"
 
 namespace mjarm {
 
@@ -151,7 +151,7 @@ class WaypointPlanner {
   Chain chain_;
   PlanOptions options_;
   JointLimits limits_;  // resolved per plan
-  std::mt19937_64 rng_;
+  Random rng_;
   Eigen::VectorXd fixed_qpos_;
   Eigen::VectorXd q_, qd_, qdd_;             // sample buffers
   ConfigurationChecker* checker_ = nullptr;  // valid during plan()

@@ -7,7 +7,6 @@
 #include <Eigen/Core>
 #include <cstdint>
 #include <optional>
-#include <random>
 #include <span>
 #include <string>
 #include <string_view>
@@ -16,6 +15,7 @@
 #include "mjarm/ik/result.hpp"
 #include "mjarm/model/chain.hpp"
 #include "mjarm/model/robot.hpp"
+#include "mjarm/random.hpp"
 #include "mjarm/tasks/arm_reach.hpp"
 #include "mjarm/tasks/shelf_pick_task.hpp"
 
@@ -76,19 +76,15 @@ struct ShelfPickPlan {
   IkResult ik;                 ///< the IK solve that gave goal.q_target
 };
 
-/// Draws one number uniformly in [0, 1) from the top 53 bits of one 64-bit draw (the same on
-/// every platform, unlike std::uniform_real_distribution).
-double unit_draw(std::uint64_t bits) noexcept;
-
 /// What a seed's generator draws for a shelf pick, in this order: three numbers for the pick
 /// point (uniform in the robot's box), then one per chain joint for the start (the joint moved
 /// by a uniform offset in ±start_perturbation, clipped into its limits). Allocation-free.
 /// @param qpos in: a full configuration (nq), the `home` keyframe; out: the start
 /// @return the pick point drawn (world, m)
 Eigen::Vector3d draw_shelf_pick(const ShelfPickRobot& robot, const Chain& chain,
-                                std::mt19937_64& rng, std::span<double> qpos) noexcept;
+                                Random& rng, std::span<double> qpos) noexcept;
 
-/// Checks @p request and builds the plan. The seed's generator (std::mt19937_64) draws as
+/// Checks @p request and builds the plan. The seed's generator (`Random`) draws as
 /// `draw_shelf_pick` (the pick point is drawn even when one is given, so that a seed perturbs
 /// the start the same way with or without --pick).
 /// @throws Error for an unknown robot or controller (listing the choices), a pick point that

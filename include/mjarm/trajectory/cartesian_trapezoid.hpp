@@ -7,6 +7,7 @@
 
 #include "mjarm/lie/pose.hpp"
 #include "mjarm/lie/types.hpp"
+#include "mjarm/trajectory/pose_sample.hpp"
 #include "mjarm/trajectory/trapezoid.hpp"
 
 namespace mjarm {
@@ -32,12 +33,8 @@ struct CartesianLimits {
 /// `TaskReference` wants them.
 class CartesianTrapezoid {
  public:
-  /// Pose, twist and twist rate at one instant.
-  struct Sample {
-    Pose X_WE;
-    Vector6d V_WE = Vector6d::Zero();  ///< [ṗ; ω] [m/s; rad/s]
-    Vector6d A_WE = Vector6d::Zero();  ///< [p̈; ω̇] [m/s²; rad/s²]
-  };
+  /// Pose, twist and twist rate at one instant (a `PoseProfile`'s sample).
+  using Sample = PoseSample;
 
   /// @throws Error when a pose is not finite or its rotation not orthonormal (to 1e-6), or a
   ///         limit is not positive and finite.

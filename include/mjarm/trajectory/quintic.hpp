@@ -6,6 +6,8 @@
 #include <Eigen/Core>
 #include <array>
 
+#include "mjarm/trajectory/trajectory_sample.hpp"
+
 namespace mjarm {
 
 /// The quintic p(t) = Σ c_k t^k, t ∈ [0, T], that meets position, velocity and acceleration at
@@ -56,6 +58,10 @@ class Quintic {
   /// The sample at @p t [s]; t is clamped to [0, T] (NaN gives the start), and the jerk is 0
   /// outside [0, T].
   Sample at(double t) const noexcept;
+  /// One coordinate (a `TrajectoryProfile` of dofs() = 1).
+  int dofs() const noexcept { return 1; }
+  /// `at(t)` as a `TrajectorySample` of one coordinate.
+  void at(double t, TrajectorySample& sample) const;
 
   /// Exact peaks of |v|, |a|, |j| over [0, T].
   Peaks peaks() const;
@@ -88,6 +94,8 @@ class QuinticTrajectory {
 
   /// The number of joints n.
   Eigen::Index size() const noexcept { return coefficients_.rows(); }
+  /// The number of joints n (as a `TrajectoryProfile`).
+  Eigen::Index dofs() const noexcept { return coefficients_.rows(); }
   /// The duration T [s].
   double duration() const noexcept { return duration_; }
   /// Joint @p i's quintic.
@@ -103,6 +111,9 @@ class QuinticTrajectory {
   /// @throws Error when an output does not have n entries.
   void at(double t, Eigen::Ref<Eigen::VectorXd> q, Eigen::Ref<Eigen::VectorXd> qd,
           Eigen::Ref<Eigen::VectorXd> qdd, Eigen::Ref<Eigen::VectorXd> qddd) const;
+  /// q, q̇, q̈, q⃛ at @p t [s] into @p sample (resized to n when it is not); allocates nothing
+  /// once it is.
+  void at(double t, TrajectorySample& sample) const;
 
  private:
   Eigen::Matrix<double, Eigen::Dynamic, 6> coefficients_;  // row i: joint i's c₀ … c₅

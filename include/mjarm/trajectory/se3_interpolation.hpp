@@ -10,6 +10,7 @@
 
 #include "mjarm/lie/pose.hpp"
 #include "mjarm/lie/types.hpp"
+#include "mjarm/trajectory/pose_sample.hpp"
 #include "mjarm/trajectory/quintic.hpp"
 
 namespace mjarm {
@@ -28,12 +29,9 @@ namespace mjarm {
 /// way, which the exponential map handles (no inverse Jacobian is used).
 class Se3Interpolation {
  public:
-  /// Pose, twist and twist rate at one instant (world axes, linear first).
-  struct Sample {
-    Pose X_WE;                         ///< pose
-    Vector6d V_WE = Vector6d::Zero();  ///< [ṗ; ω] [m/s; rad/s]
-    Vector6d A_WE = Vector6d::Zero();  ///< [p̈; ω̇] [m/s²; rad/s²]
-  };
+  /// Pose, twist and twist rate at one instant (world axes, linear first: a `PoseProfile`'s
+  /// sample).
+  using Sample = PoseSample;
 
   /// The interpolation from @p X_start (moving with @p V_start, @p A_start) to @p X_goal at rest
   /// in @p duration [s].

@@ -5,6 +5,8 @@
 
 namespace mjarm {
 
+struct TrajectorySample;  // trajectory_sample.hpp
+
 /// A ramp value and its first three derivatives with respect to its argument x.
 struct RampSample {
   double s = 0.0;     ///< value ∈ [0, 1]
@@ -58,6 +60,10 @@ class SmoothRamp {
   double duration() const noexcept { return duration_; }
   /// s(t) with its time derivatives ṡ [1/s], s̈ [1/s²], s⃛ [1/s³]; clamped outside [0, T].
   RampSample at(double t) const noexcept;
+  /// One coordinate (a `TrajectoryProfile` of dofs() = 1).
+  int dofs() const noexcept { return 1; }
+  /// `at(t)` as a `TrajectorySample` of one coordinate, s (trajectory_sample.hpp).
+  void at(double t, TrajectorySample& sample) const;
 
  private:
   Kind kind_;

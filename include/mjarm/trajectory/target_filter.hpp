@@ -10,7 +10,7 @@
 
 #include "mjarm/lie/pose.hpp"
 #include "mjarm/lie/types.hpp"
-#include "mjarm/trajectory/jerk_limited.hpp"
+#include "mjarm/trajectory/otg/generator.hpp"
 
 namespace mjarm {
 

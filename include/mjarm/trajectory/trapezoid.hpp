@@ -8,6 +8,8 @@
 #include <cstddef>
 #include <vector>
 
+#include "mjarm/trajectory/trajectory_sample.hpp"
+
 namespace mjarm {
 
 /// A rest-to-rest move over a distance d ≥ 0 with constant acceleration a up to a cruise speed,
@@ -59,6 +61,10 @@ class TrapezoidProfile {
   /// The state at time @p t [s]; t is clamped to [0, T] (NaN gives the start; at t ≥ T the
   /// end, so a zero-duration profile is done at t = 0).
   Sample at(double t) const noexcept;
+  /// One coordinate (a `TrajectoryProfile` of dofs() = 1).
+  int dofs() const noexcept { return 1; }
+  /// `at(t)` as a `TrajectorySample` of one coordinate (jerk 0: the acceleration steps).
+  void at(double t, TrajectorySample& sample) const;
 
   /// The fraction of the distance covered at time @p t [s], in [0, 1] (clamped as `at`).
   double fraction(double t) const noexcept { return at(t).fraction; }
@@ -104,6 +110,8 @@ class SyncedTrapezoid {
 
   /// The number of axes n.
   std::size_t size() const noexcept { return axes_.size(); }
+  /// The number of axes n (as a `TrajectoryProfile`).
+  Eigen::Index dofs() const noexcept { return static_cast<Eigen::Index>(axes_.size()); }
   /// The common duration T [s] (0 when start equals goal).
   double duration() const noexcept { return duration_; }
   /// The index of the axis that needs the longest time (it moves at its own limits).
@@ -119,6 +127,8 @@ class SyncedTrapezoid {
   /// @throws Error when an output does not have n entries.
   void at(double t, Eigen::Ref<Eigen::VectorXd> position, Eigen::Ref<Eigen::VectorXd> velocity,
           Eigen::Ref<Eigen::VectorXd> acceleration) const;
+  /// The same into @p sample (resized to n when it is not), jerk 0 (the acceleration steps).
+  void at(double t, TrajectorySample& sample) const;
 
   /// The fraction of the limiting axis's move done at @p t [s], in [0, 1] (other axes may be
   /// a little ahead or behind when their profiles have a different shape: triangle/trapezoid).
