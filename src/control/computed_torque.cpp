@@ -4,7 +4,8 @@
 
 namespace mjarm {
 
-ComputedTorqueController::ComputedTorqueController(const Chain& chain, const ComputedTorqueOptions& options)
+ComputedTorqueController::ComputedTorqueController(const Chain& chain,
+                                                   const ComputedTorqueOptions& options)
     : gains_(options.gains.expanded(chain.size(), "ct")),
       compensate_passive_(options.compensate_passive),
       dynamics_(chain),

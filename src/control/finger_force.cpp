@@ -33,8 +33,8 @@ FingerForceController::FingerForceController(const Chain& fingers,
       closed_(detail::finger_stroke_end(fingers, options.closed, false, "fingers", "closed")) {
   const int n = fingers.size();
   if (n > kMaxFingers) {
-    throw Error("fingers: at most " + std::to_string(kMaxFingers) +
-                " finger joints, got " + std::to_string(n));
+    throw Error("fingers: at most " + std::to_string(kMaxFingers) + " finger joints, got " +
+                std::to_string(n));
   }
   const mjModel& m = fingers.robot().model();
   finger_of_geom_.assign(static_cast<std::size_t>(m.ngeom), 0);
@@ -46,8 +46,8 @@ FingerForceController::FingerForceController(const Chain& fingers,
     }
   };
   if (!options.object_geoms.empty() && static_cast<int>(options.finger_geoms.size()) != n) {
-    throw Error("fingers: finger_geoms needs one list per finger joint (" +
-                std::to_string(n) + "), got " + std::to_string(options.finger_geoms.size()));
+    throw Error("fingers: finger_geoms needs one list per finger joint (" + std::to_string(n) +
+                "), got " + std::to_string(options.finger_geoms.size()));
   }
   for (std::size_t i = 0; i < options.finger_geoms.size(); ++i) {
     for (int g : options.finger_geoms[i]) {

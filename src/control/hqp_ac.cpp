@@ -33,7 +33,8 @@ const HqpAcOptions& hqp_checked(const HqpAcOptions& o, const Chain& chain) {
   hqp_per_joint(o.max_velocity, n, "max_velocity");
   if (o.max_torque.size() > 0) hqp_per_joint(o.max_torque, n, "max_torque");
   if (!(o.preload.axis.norm() > 0.0)) {
-    throw Error("hqp-ac: preload axis must be non-zero, got " + detail::values_text(o.preload.axis));
+    throw Error("hqp-ac: preload axis must be non-zero, got " +
+                detail::values_text(o.preload.axis));
   }
   return o;
 }

@@ -14,8 +14,8 @@ OperationalSpaceController::OperationalSpaceController(const Chain& chain,
       dynamics_(chain),
       task_space_(chain.size(), task_rows(options.mode), options.task_space) {
   using O = OperationalSpaceOptions;
-  check_fields(detail::ignored_rows_cleared(options, rows_, &O::stiffness, &O::damping,
-                                            &O::inertia, &O::integral_gain, &O::integral_limit),
+  check_fields(detail::ignored_rows_cleared(options, rows_, &O::stiffness, &O::damping, &O::inertia,
+                                            &O::integral_gain, &O::integral_limit),
                "osc");
   // automatic damping for a fixed desired inertia is a constant
   for (int i = 0; i < 6; ++i) {

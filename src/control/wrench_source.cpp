@@ -2,7 +2,6 @@
 
 #include <cmath>
 
-
 namespace mjarm {
 
 WrenchSource::WrenchSource(const Chain& chain, const WrenchSourceOptions& options)

@@ -413,7 +413,7 @@ TEST(CartesianImpedance, BadOptionsThrowNamingThem) {
     edit(o);
     return test::error_of([&] { CartesianImpedanceController c(chain, o); });
   };
-  EXPECT_NE(error([](auto& o) { o.stiffness[4] = 0.0; }).find("cic: stiffness[4] must be positive and finite"),
+  EXPECT_NE(error([](auto& o) { o.stiffness[4] = 0.0; }).find("cic: stiffness[4] must be positive"),
             std::string::npos);
   EXPECT_NE(error([](auto& o) { o.stiffness[0] = -5.0; }).find("stiffness"), std::string::npos);
   EXPECT_NE(error([](auto& o) { o.desired_inertia[1] = 0.0; }).find("desired_inertia[1]"),

@@ -141,7 +141,9 @@ TEST(FrictionFeedForward, BadScalesThrowAndApplyAllocatesNothing) {
   bad = {};
   bad.velocity_scale = std::numeric_limits<double>::infinity();
   const std::string scale = test::error_of([&] { FrictionFeedForward(chain, bad); });
-  EXPECT_NE(scale.find("velocity_scale must be positive and finite [rad/s or m/s], got inf"), std::string::npos) << scale;
+  EXPECT_NE(scale.find("velocity_scale must be positive and finite [rad/s or m/s], got inf"),
+            std::string::npos)
+      << scale;
 
   const FrictionFeedForward ff(chain);
   Eigen::VectorXd tau = Eigen::VectorXd::Constant(7, 1.0);

@@ -27,9 +27,8 @@ struct ComputedTorqueOptions {
 
 constexpr auto declared_fields(const ComputedTorqueOptions*) {
   using S = ComputedTorqueOptions;
-  return declare<S>(
-      "ct", field("gains", &S::gains, "Kp [1/s²] and Kd [1/s] per joint"),
-      field("compensate_passive", &S::compensate_passive, "cancel qfrc_passive"));
+  return declare<S>("ct", field("gains", &S::gains, "Kp [1/s²] and Kd [1/s] per joint"),
+                    field("compensate_passive", &S::compensate_passive, "cancel qfrc_passive"));
 }
 
 /// Computed torque (inverse-dynamics control) on torque-driven joints:

@@ -38,10 +38,11 @@ struct JointPdGains {
 // units per controller: N·m/rad and N·m·s/rad for joint PD, 1/s² and 1/s for computed torque
 constexpr auto declared_fields(const JointPdGains*) {
   using S = JointPdGains;
-  return declare<S>(
-      "joint PD gains",
-      field("kp", &S::kp, "", Range::non_negative(), "stiffness, one per chain joint or one for all"),
-      field("kd", &S::kd, "", Range::non_negative(), "damping, one per chain joint or one for all"));
+  return declare<S>("joint PD gains",
+                    field("kp", &S::kp, "", Range::non_negative(),
+                          "stiffness, one per chain joint or one for all"),
+                    field("kd", &S::kd, "", Range::non_negative(),
+                          "damping, one per chain joint or one for all"));
 }
 
 /// Settings of a `JointPdController`.

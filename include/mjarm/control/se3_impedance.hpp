@@ -35,8 +35,9 @@ struct StiffnessRelease {
 constexpr auto declared_fields(const StiffnessRelease*) {
   using S = StiffnessRelease;
   return declare<S>(
-      "se3", field("contact_force", &S::contact_force, "N", Range::positive(),
-                   "the measured force that starts the release"),
+      "se3",
+      field("contact_force", &S::contact_force, "N", Range::positive(),
+            "the measured force that starts the release"),
       field("duration", &S::duration, "s", Range::positive(), "of the smoothstep ramp"));
 }
 
@@ -67,14 +68,14 @@ struct Se3ImpedanceOptions {
 // the 6×6 matrices stay undeclared: they are checked (symmetric, definite) and bound by hand
 constexpr auto declared_fields(const Se3ImpedanceOptions*) {
   using S = Se3ImpedanceOptions;
-  return declare<S>(
-      "se3", field("release", &S::release, "contact-triggered release of stiffness axes"),
-      field("nullspace_damping", &S::nullspace_damping, "N·m·s/rad or N·s/m",
-            Range::non_negative(), "D_n, null-space joint damping"),
-      field("nullspace_stiffness", &S::nullspace_stiffness, "N·m/rad or N/m",
-            Range::non_negative(), "K_n, null-space posture stiffness"),
-      field("compensate_passive", &S::compensate_passive, "cancel qfrc_passive"),
-      field("task_space", &S::task_space, "the floor of Λ near singularities"));
+  return declare<S>("se3",
+                    field("release", &S::release, "contact-triggered release of stiffness axes"),
+                    field("nullspace_damping", &S::nullspace_damping, "N·m·s/rad or N·s/m",
+                          Range::non_negative(), "D_n, null-space joint damping"),
+                    field("nullspace_stiffness", &S::nullspace_stiffness, "N·m/rad or N/m",
+                          Range::non_negative(), "K_n, null-space posture stiffness"),
+                    field("compensate_passive", &S::compensate_passive, "cancel qfrc_passive"),
+                    field("task_space", &S::task_space, "the floor of Λ near singularities"));
 }
 
 /// Outcome of the last `Se3ImpedanceController::compute`.

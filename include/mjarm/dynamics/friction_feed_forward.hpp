@@ -53,8 +53,7 @@ constexpr auto declared_fields(const FrictionFeedForwardOptions*) {
   using S = FrictionFeedForwardOptions;
   return declare<S>(
       "friction feed-forward", field("mode", &S::mode, "which signal sets the sign"),
-      field("torque_sharpness", &S::torque_sharpness, "", Range::positive(),
-            "s in tanh(s·τ/f)"),
+      field("torque_sharpness", &S::torque_sharpness, "", Range::positive(), "s in tanh(s·τ/f)"),
       field("velocity_scale", &S::velocity_scale, "rad/s or m/s", Range::positive(),
             "v₀ in tanh(q̇/v₀)"),
       field("damping", &S::damping, "who cancels the viscous damping d⊙q̇"));

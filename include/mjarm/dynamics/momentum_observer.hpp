@@ -48,14 +48,13 @@ struct MomentumObserverOptions {
 
 constexpr auto declared_fields(const MomentumObserverOptions*) {
   using S = MomentumObserverOptions;
-  return declare<S>(
-      "momentum observer", field("kp", &S::kp, "1/s", Range::positive(), "K_p"),
-      field("ki", &S::ki, "1/s²", Range::non_negative(), "K_i"),
-      field("integral_limit", &S::integral_limit, "N·m·s or N·s", Range::positive(),
-            "bound on each entry of ∫e"),
-      field("wrench_damping", &S::wrench_damping, "", Range::positive(),
-            "ε in F̂ = (J·Jᵀ + ε·I)⁻¹·J·r"),
-      field("coriolis", &S::coriolis, "how Cᵀ·q̇ is computed"));
+  return declare<S>("momentum observer", field("kp", &S::kp, "1/s", Range::positive(), "K_p"),
+                    field("ki", &S::ki, "1/s²", Range::non_negative(), "K_i"),
+                    field("integral_limit", &S::integral_limit, "N·m·s or N·s", Range::positive(),
+                          "bound on each entry of ∫e"),
+                    field("wrench_damping", &S::wrench_damping, "", Range::positive(),
+                          "ε in F̂ = (J·Jᵀ + ε·I)⁻¹·J·r"),
+                    field("coriolis", &S::coriolis, "how Cᵀ·q̇ is computed"));
 }
 
 /// Outcome of one `update`.
