@@ -2,11 +2,11 @@
 // losing a direction of motion.
 
 #include <iostream>
-#include <map>
 #include <memory>
 #include <optional>
 
 #include "commands.hpp"
+#include "field_options.hpp"
 #include "mjarm/error.hpp"
 #include "mjarm/interrupt.hpp"
 #include "mjarm/kinematics/singularity.hpp"
@@ -15,10 +15,6 @@
 namespace mjarm::cli {
 
 namespace {
-
-const std::map<std::string, JacobianBlock> kBlocks = {{"full", JacobianBlock::full},
-                                                      {"position", JacobianBlock::position},
-                                                      {"orientation", JacobianBlock::orientation}};
 
 /// The kinds of a singular entry ("wrist", "elbow, shoulder", "unclassified"), empty when the
 /// entry crosses neither threshold.
@@ -110,7 +106,7 @@ Command add_singularities_command(CLI::App& root) {
       ->capture_default_str();
   app->add_option("--block", options->block,
                   "Jacobian rows measured: full [v; ω], position or orientation")
-      ->check(CLI::IsMember({"full", "position", "orientation"}))
+      ->check(name_of<JacobianBlock>("block"))
       ->capture_default_str();
   app->add_option("--q", options->q, "also measure this configuration (chain order) [rad or m]")
       ->check(finite_number())
@@ -122,7 +118,7 @@ Command add_singularities_command(CLI::App& root) {
             const Robot robot = load_model(options->model);
             const Chain chain(robot, resolve_site(robot, options->site));
             ManipulabilityOptions measure;
-            measure.block = kBlocks.at(options->block);
+            measure.block = parse_enum<JacobianBlock>(options->block, "block", "--block");
             std::vector<NamedConfiguration> extra;
             if (!options->q.empty()) {
               // a wrong count or a value outside its range is a usage error

@@ -14,43 +14,49 @@ class AccelerationControlOptions:
         ...
     @property
     def compensate_passive(self) -> bool:
+        """cancel qfrc_passive"""
         ...
     @compensate_passive.setter
     def compensate_passive(self, value: bool) -> None: ...
     @property
     def damping(self) -> NDArray[np.float64]:
-        """(6,) linear first"""
+        """Kd [1/s]; finite and ≥ 0"""
         ...
     @damping.setter
     def damping(self, value: ArrayLike) -> None: ...
     @property
     def manipulability_threshold(self) -> float:
+        """w₀: below it the pseudo-inverse is damped; positive and finite"""
         ...
     @manipulability_threshold.setter
     def manipulability_threshold(self, value: float) -> None: ...
     @property
     def max_damping(self) -> float:
+        """λ_max of the damped least-squares inverse; finite and ≥ 0"""
         ...
     @max_damping.setter
     def max_damping(self, value: float) -> None: ...
     @property
     def mode(self) -> TaskMode:
+        """6-D pose or 3-D position task"""
         ...
     @mode.setter
     def mode(self, value: TaskMode) -> None: ...
     @property
     def nullspace_damping(self) -> float:
+        """null-space joint damping [1/s]; finite and ≥ 0"""
         ...
     @nullspace_damping.setter
     def nullspace_damping(self, value: float) -> None: ...
     @property
     def nullspace_stiffness(self) -> float:
+        """null-space posture stiffness [1/s²]; finite and ≥ 0"""
         ...
     @nullspace_stiffness.setter
     def nullspace_stiffness(self, value: float) -> None: ...
     @property
     def stiffness(self) -> NDArray[np.float64]:
-        """(6,) linear first"""
+        """Kp, task acceleration per unit error [1/s²]; finite and ≥ 0"""
         ...
     @stiffness.setter
     def stiffness(self, value: ArrayLike) -> None: ...
@@ -228,6 +234,40 @@ Members:
     def value(self) -> int: ...
     def __int__(self) -> int: ...
 
+class AdaptiveComplianceOptions:
+    def __init__(self: AdaptiveComplianceOptions) -> None:
+        ...
+    @property
+    def deadband(self) -> float:
+        """forces below it do not soften [N]; finite and ≥ 0"""
+        ...
+    @deadband.setter
+    def deadband(self, value: float) -> None: ...
+    @property
+    def force_gain(self) -> float:
+        """k_α of the sigmoid [1/N]; positive and finite"""
+        ...
+    @force_gain.setter
+    def force_gain(self, value: float) -> None: ...
+    @property
+    def min_eigenvalue(self) -> float:
+        """floor on the eigenvalues of Λ⁻¹ when taking Λ^½ [1/kg or 1/(kg·m²)]; positive and finite"""
+        ...
+    @min_eigenvalue.setter
+    def min_eigenvalue(self, value: float) -> None: ...
+    @property
+    def min_stiffness_ratio(self) -> float:
+        """r_min: K_r ≥ r_min·K0; in (0, 1]"""
+        ...
+    @min_stiffness_ratio.setter
+    def min_stiffness_ratio(self, value: float) -> None: ...
+    @property
+    def stiffness(self) -> NDArray[np.float64]:
+        """K0 (6, 6)"""
+        ...
+    @stiffness.setter
+    def stiffness(self, value: ArrayLike) -> None: ...
+
 class ArenaSpec:
     """Floor, two lights and an optional table. Names: arena/floor, arena/table (body), arena/table_top (geom), arena/table_surface (site on the top's centre)."""
     def __init__(self: ArenaSpec, **kwargs) -> None:
@@ -314,20 +354,11 @@ class ArraySpec:
         """Returns value when it is a float64 array of the spec's shape within its bounds (NaN is refused); raises ValueError naming the shape, dtype or the element out of bounds otherwise (dm_env's validate)."""
         ...
 
-class BiasTerm:
-    """Members:
-
-  gravity
-
-  full"""
-    gravity: ClassVar[BiasTerm]
-    full: ClassVar[BiasTerm]
-    def __init__(self, value: int) -> None: ...
-    @property
-    def name(self) -> str: ...
-    @property
-    def value(self) -> int: ...
-    def __int__(self) -> int: ...
+class BiasTerm(enum.Enum):
+    gravity = 0
+    """g(q) only"""
+    full = 1
+    """h = C(q, q̇)·q̇ + g(q)"""
 
 class CameraKind:
     """Members:
@@ -407,69 +438,91 @@ class CartesianImpedanceOptions:
         ...
     @property
     def damping(self) -> NDArray[np.float64]:
-        """(6,)"""
+        """D; a negative entry: critical, 2ζ·√(m_i·K_i) [N·s/m; N·m·s/rad]; finite"""
         ...
     @damping.setter
     def damping(self, value: ArrayLike) -> None: ...
     @property
     def damping_ratio(self) -> float:
+        """ζ of the automatic damping entries; positive and finite"""
         ...
     @damping_ratio.setter
     def damping_ratio(self, value: float) -> None: ...
     @property
     def desired_inertia(self) -> NDArray[np.float64]:
-        """(6,)"""
+        """M_d, used with exact inertia [kg; kg·m²]; positive and finite"""
         ...
     @desired_inertia.setter
     def desired_inertia(self, value: ArrayLike) -> None: ...
     @property
+    def force(self) -> WrenchSourceOptions:
+        """where the measured wrench comes from"""
+        ...
+    @force.setter
+    def force(self, value: WrenchSourceOptions) -> None: ...
+    @property
+    def friction(self) -> FrictionFeedForwardOptions:
+        """mode and scales of the feed-forward"""
+        ...
+    @friction.setter
+    def friction(self, value: FrictionFeedForwardOptions) -> None: ...
+    @property
     def friction_feed_forward(self) -> bool:
+        """add the friction feed-forward of dof_frictionloss"""
         ...
     @friction_feed_forward.setter
     def friction_feed_forward(self, value: bool) -> None: ...
     @property
     def inertia(self) -> CicInertia:
+        """natural Λ or exact M_d"""
         ...
     @inertia.setter
     def inertia(self, value: CicInertia) -> None: ...
     @property
     def integral(self) -> CicIntegral:
+        """when the integral term runs"""
         ...
     @integral.setter
     def integral(self, value: CicIntegral) -> None: ...
     @property
     def integral_bound(self) -> float:
+        """|k_i·∫e| ≤ this per axis [N]; positive and finite"""
         ...
     @integral_bound.setter
     def integral_bound(self, value: float) -> None: ...
     @property
     def integral_gain(self) -> float:
+        """k_i on x, y, z [N/(m·s)]; positive and finite"""
         ...
     @integral_gain.setter
     def integral_gain(self, value: float) -> None: ...
     @property
     def integral_hold_force(self) -> float:
+        """∫e held while ‖f_m‖ ≥ this [N]; positive and finite"""
         ...
     @integral_hold_force.setter
     def integral_hold_force(self, value: float) -> None: ...
     @property
     def nullspace_damping(self) -> float:
+        """D_n, null-space joint damping [N·m·s/rad]; finite and ≥ 0"""
         ...
     @nullspace_damping.setter
     def nullspace_damping(self, value: float) -> None: ...
     @property
     def nullspace_stiffness(self) -> float:
+        """K_n, null-space posture stiffness [N·m/rad]; finite and ≥ 0"""
         ...
     @nullspace_stiffness.setter
     def nullspace_stiffness(self, value: float) -> None: ...
     @property
     def stiffness(self) -> NDArray[np.float64]:
-        """(6,)"""
+        """K, the stiffness contact meets [N/m; N·m/rad]; positive and finite"""
         ...
     @stiffness.setter
     def stiffness(self, value: ArrayLike) -> None: ...
     @property
     def task_space(self) -> TaskSpaceOptions:
+        """the floor of Λ near singularities"""
         ...
     @task_space.setter
     def task_space(self, value: TaskSpaceOptions) -> None: ...
@@ -645,38 +698,19 @@ class ChainKinematics:
         """Pose X_WE of the chain's frame at joint values q (n,)."""
         ...
 
-class CicInertia:
-    """Members:
+class CicInertia(enum.Enum):
+    natural = 0
+    """the arm's own task inertia Λ(q)"""
+    exact = 1
+    """M_d through the measured wrench"""
 
-  natural
-
-  exact"""
-    natural: ClassVar[CicInertia]
-    exact: ClassVar[CicInertia]
-    def __init__(self, value: int) -> None: ...
-    @property
-    def name(self) -> str: ...
-    @property
-    def value(self) -> int: ...
-    def __int__(self) -> int: ...
-
-class CicIntegral:
-    """Members:
-
-  automatic
-
-  on
-
-  off"""
-    automatic: ClassVar[CicIntegral]
-    on: ClassVar[CicIntegral]
-    off: ClassVar[CicIntegral]
-    def __init__(self, value: int) -> None: ...
-    @property
-    def name(self) -> str: ...
-    @property
-    def value(self) -> int: ...
-    def __int__(self) -> int: ...
+class CicIntegral(enum.Enum):
+    automatic = 0
+    """on when a chain joint has friction"""
+    on = 1
+    """always"""
+    off = 2
+    """never"""
 
 class ClipCounts:
     """How often actions were clipped into their bounds."""
@@ -721,22 +755,12 @@ class CollisionSpec:
     @pairs.setter
     def pairs(self, value: list[tuple[str, str]]) -> None: ...
 
-class CommandKind:
-    """What a controller's output means.
-
-Members:
-
-  torque
-
-  position"""
-    torque: ClassVar[CommandKind]
-    position: ClassVar[CommandKind]
-    def __init__(self, value: int) -> None: ...
-    @property
-    def name(self) -> str: ...
-    @property
-    def value(self) -> int: ...
-    def __int__(self) -> int: ...
+class CommandKind(enum.Enum):
+    """What a controller's output means."""
+    torque = 0
+    """generalized forces on the dofs"""
+    position = 1
+    """position targets of the joints"""
 
 class CompoundFixtureSpec:
     """A fixture of several pieces (ObjectSpec, each at its pose in the fixture's frame) in one static body. Names: body 'name', geoms 'name/<piece>', site 'name/center'."""
@@ -780,11 +804,13 @@ class ComputedTorqueOptions:
         ...
     @property
     def compensate_passive(self) -> bool:
+        """cancel qfrc_passive"""
         ...
     @compensate_passive.setter
     def compensate_passive(self, value: bool) -> None: ...
     @property
     def gains(self) -> JointPdGains:
+        """Kp [1/s²] and Kd [1/s] per joint"""
         ...
     @gains.setter
     def gains(self, value: JointPdGains) -> None: ...
@@ -824,6 +850,18 @@ class ContactSummary:
     @property
     def normal_force(self) -> float:
         ...
+
+class CoriolisMethod(enum.Enum):
+    subtree_momentum = 0
+    """exact, from MuJoCo's com quantities"""
+    directional_difference = 1
+    """central difference of M along q̇ (cross-check)"""
+
+class DampingCompensation(enum.Enum):
+    feed_forward = 0
+    """the feed-forward adds d⊙q̇"""
+    by_controller = 1
+    """the controller cancels it"""
 
 class Data:
     """An mjData lent to Python. From Robot.make_data(): owned, arrays are writable views. From Simulation.data: read-only views that keep the simulation alive. Given to a Python controller: copies, valid during that call only. Data(d) of a mujoco.MjData d: d itself, not a copy (writable views, d kept alive). Every call taking a Data also takes a mujoco.MjData."""
@@ -2171,35 +2209,35 @@ class FrictionFeedForwardOptions:
     def __init__(self: FrictionFeedForwardOptions) -> None:
         ...
     @property
+    def damping(self) -> DampingCompensation:
+        """who cancels the viscous damping d⊙q̇"""
+        ...
+    @damping.setter
+    def damping(self, value: DampingCompensation) -> None: ...
+    @property
     def mode(self) -> FrictionMode:
+        """which signal sets the sign"""
         ...
     @mode.setter
     def mode(self, value: FrictionMode) -> None: ...
     @property
     def torque_sharpness(self) -> float:
+        """s in tanh(s·τ/f); positive and finite"""
         ...
     @torque_sharpness.setter
     def torque_sharpness(self, value: float) -> None: ...
     @property
     def velocity_scale(self) -> float:
+        """v₀ in tanh(q̇/v₀) [rad/s or m/s]; positive and finite"""
         ...
     @velocity_scale.setter
     def velocity_scale(self, value: float) -> None: ...
 
-class FrictionMode:
-    """Members:
-
-  torque
-
-  velocity"""
-    torque: ClassVar[FrictionMode]
-    velocity: ClassVar[FrictionMode]
-    def __init__(self, value: int) -> None: ...
-    @property
-    def name(self) -> str: ...
-    @property
-    def value(self) -> int: ...
-    def __int__(self) -> int: ...
+class FrictionMode(enum.Enum):
+    torque = 0
+    """the sign follows the torque"""
+    velocity = 1
+    """the sign follows q̇"""
 
 class FunctionReferenceSource(ReferenceSource):
     """A Python callable f(data) -> Reference (None or False: the task is complete). data is valid during the call only."""
@@ -2429,28 +2467,31 @@ class GripperPdOptions:
         ...
     @property
     def closed(self) -> NDArray[np.float64]:
-        """finger joints closed (n,)"""
+        """finger positions when closed, one per finger; empty: the lower limits [m or rad]; finite"""
         ...
     @closed.setter
     def closed(self, value: ArrayLike) -> None: ...
     @property
     def gains(self) -> JointPdGains:
+        """Kp and Kd per finger (or one for all)"""
         ...
     @gains.setter
     def gains(self, value: JointPdGains) -> None: ...
     @property
     def gravity_compensation(self) -> bool:
+        """add the gravity forces on the fingers"""
         ...
     @gravity_compensation.setter
     def gravity_compensation(self, value: bool) -> None: ...
     @property
     def max_force(self) -> float:
+        """largest |τ| per finger [N or N·m]; positive and finite"""
         ...
     @max_force.setter
     def max_force(self, value: float) -> None: ...
     @property
     def open(self) -> NDArray[np.float64]:
-        """finger joints open (n,)"""
+        """finger positions when open, one per finger; empty: the upper limits [m or rad]; finite"""
         ...
     @open.setter
     def open(self, value: ArrayLike) -> None: ...
@@ -2504,91 +2545,138 @@ class HqpAcOptions:
         ...
     @property
     def compensate_passive(self) -> bool:
+        """ĥ = h − τ_passive"""
         ...
     @compensate_passive.setter
     def compensate_passive(self, value: bool) -> None: ...
     @property
+    def compliance(self) -> AdaptiveComplianceOptions:
+        """K0, the force adaptation, the floor of Λ^½"""
+        ...
+    @compliance.setter
+    def compliance(self, value: AdaptiveComplianceOptions) -> None: ...
+    @property
+    def force(self) -> WrenchSourceOptions:
+        """where the measured wrench comes from"""
+        ...
+    @force.setter
+    def force(self, value: WrenchSourceOptions) -> None: ...
+    @property
+    def friction(self) -> FrictionFeedForwardOptions:
+        """mode and scales of the feed-forward"""
+        ...
+    @friction.setter
+    def friction(self, value: FrictionFeedForwardOptions) -> None: ...
+    @property
     def friction_feed_forward(self) -> bool:
+        """add the friction feed-forward of dof_frictionloss"""
         ...
     @friction_feed_forward.setter
     def friction_feed_forward(self, value: bool) -> None: ...
     @property
     def horizon(self) -> float:
+        """look-ahead dt_p of the bounds [s]; positive and finite"""
         ...
     @horizon.setter
     def horizon(self, value: float) -> None: ...
     @property
     def manipulability_threshold(self) -> float:
+        """ω_th: singularity avoidance below it; positive and finite"""
         ...
     @manipulability_threshold.setter
     def manipulability_threshold(self, value: float) -> None: ...
     @property
     def max_torque(self) -> NDArray[np.float64]:
-        """(n,); empty = the model's"""
+        """|τ_i| ≤ τ_max,i: empty (the actuators'), one entry for every joint, or n [N·m or N]; positive (+inf allowed)"""
         ...
     @max_torque.setter
     def max_torque(self, value: ArrayLike) -> None: ...
     @property
     def max_velocity(self) -> NDArray[np.float64]:
-        """(n,) or (1,) [rad/s]"""
+        """|q̇_i| ≤ v_max,i: one entry for every joint, or n [rad/s or m/s]; positive and finite"""
         ...
     @max_velocity.setter
     def max_velocity(self, value: ArrayLike) -> None: ...
     @property
     def posture_damping(self) -> float:
+        """D_p [1/s]; finite and ≥ 0"""
         ...
     @posture_damping.setter
     def posture_damping(self, value: float) -> None: ...
     @property
     def posture_stiffness(self) -> float:
+        """K_p towards the start configuration [1/s²]; finite and ≥ 0"""
         ...
     @posture_stiffness.setter
     def posture_stiffness(self, value: float) -> None: ...
     @property
+    def preload(self) -> HqpAcPreload:
+        """optional preload along the insertion axis"""
+        ...
+    @preload.setter
+    def preload(self, value: HqpAcPreload) -> None: ...
+    @property
     def regularization(self) -> float:
+        """ε of the main QP's Hessian; positive and finite"""
         ...
     @regularization.setter
     def regularization(self, value: float) -> None: ...
     @property
     def singularity_gain(self) -> float:
+        """k_sa [1/s² per unit ω²]; finite and ≥ 0"""
         ...
     @singularity_gain.setter
     def singularity_gain(self, value: float) -> None: ...
     @property
     def task_space(self) -> TaskSpaceOptions:
+        """the floor of Λ near singularities"""
         ...
     @task_space.setter
     def task_space(self, value: TaskSpaceOptions) -> None: ...
 
-class HqpAcStatus:
-    """Members:
-
-  ok
-
-  damped
-
-  invalid_wrench
-
-  null_space_dropped
-
-  least_squares
-
-  invalid_target
-
-  invalid_state"""
-    ok: ClassVar[HqpAcStatus]
-    damped: ClassVar[HqpAcStatus]
-    invalid_wrench: ClassVar[HqpAcStatus]
-    null_space_dropped: ClassVar[HqpAcStatus]
-    least_squares: ClassVar[HqpAcStatus]
-    invalid_target: ClassVar[HqpAcStatus]
-    invalid_state: ClassVar[HqpAcStatus]
-    def __init__(self, value: int) -> None: ...
+class HqpAcPreload:
+    def __init__(self: HqpAcPreload) -> None:
+        ...
     @property
-    def name(self) -> str: ...
+    def axis(self) -> NDArray[np.float64]:
+        """insertion axis in E's axes (non-zero); finite"""
+        ...
+    @axis.setter
+    def axis(self, value: ArrayLike) -> None: ...
     @property
-    def value(self) -> int: ...
-    def __int__(self) -> int: ...
+    def contact_force(self) -> float:
+        """contact starts when the measured ‖f‖ reaches this [N]; positive and finite"""
+        ...
+    @contact_force.setter
+    def contact_force(self, value: float) -> None: ...
+    @property
+    def force(self) -> float:
+        """P; 0: no preload [N]; finite and ≥ 0"""
+        ...
+    @force.setter
+    def force(self, value: float) -> None: ...
+    @property
+    def ramp_time(self) -> float:
+        """from 0 to P over this [s]; positive and finite"""
+        ...
+    @ramp_time.setter
+    def ramp_time(self, value: float) -> None: ...
+
+class HqpAcStatus(enum.Enum):
+    ok = 0
+    """both QPs solved, every bound holds"""
+    damped = 1
+    """both solved, Λ floored"""
+    invalid_wrench = 2
+    """bad measurement: taken as zero"""
+    null_space_dropped = 3
+    """the null-space QP failed"""
+    least_squares = 4
+    """the main QP failed: clamped least squares"""
+    invalid_target = 5
+    """bad target: hold command"""
+    invalid_state = 6
+    """bad state: hold command"""
 
 class IkResult:
     """The best configuration found, with its errors."""
@@ -2641,43 +2729,22 @@ Members:
     def value(self) -> int: ...
     def __int__(self) -> int: ...
 
-class JacobianBlock:
-    """Members:
+class JacobianBlock(enum.Enum):
+    full = 0
+    """all 6 rows [v; ω]"""
+    position = 1
+    """rows 0–2: velocity of the frame origin"""
+    orientation = 2
+    """rows 3–5: angular velocity"""
 
-  full
-
-  position
-
-  orientation"""
-    full: ClassVar[JacobianBlock]
-    position: ClassVar[JacobianBlock]
-    orientation: ClassVar[JacobianBlock]
-    def __init__(self, value: int) -> None: ...
-    @property
-    def name(self) -> str: ...
-    @property
-    def value(self) -> int: ...
-    def __int__(self) -> int: ...
-
-class JacobianFrame:
-    """How the rows of a frame Jacobian are expressed.
-
-Members:
-
-  world_aligned : velocity of the frame origin and angular velocity, world axes (mj_jacSite)
-
-  local : the same twist in the frame's axes (body twist)
-
-  world : spatial twist (point at the world origin)"""
-    world_aligned: ClassVar[JacobianFrame]
-    local: ClassVar[JacobianFrame]
-    world: ClassVar[JacobianFrame]
-    def __init__(self, value: int) -> None: ...
-    @property
-    def name(self) -> str: ...
-    @property
-    def value(self) -> int: ...
-    def __int__(self) -> int: ...
+class JacobianFrame(enum.Enum):
+    """How the rows of a frame Jacobian are expressed."""
+    world_aligned = 0
+    """velocity of the frame origin and angular velocity, world axes (mj_jacSite)"""
+    local = 1
+    """the same twist in the frame's axes (body twist)"""
+    world = 2
+    """spatial twist (point at the world origin)"""
 
 class JerkLimitedGenerator:
     """Synchronized jerk-limited trajectories for n DoF. States are (n, 3) arrays of (p, v, a)."""
@@ -2759,13 +2826,13 @@ class JointPdGains:
         ...
     @property
     def kd(self) -> NDArray[np.float64]:
-        """damping (n,) or (1,)"""
+        """damping, one per chain joint or one for all; finite and ≥ 0"""
         ...
     @kd.setter
     def kd(self, value: ArrayLike) -> None: ...
     @property
     def kp(self) -> NDArray[np.float64]:
-        """stiffness (n,) or (1,)"""
+        """stiffness, one per chain joint or one for all; finite and ≥ 0"""
         ...
     @kp.setter
     def kp(self, value: ArrayLike) -> None: ...
@@ -2778,11 +2845,13 @@ class JointPdOptions:
         ...
     @property
     def gains(self) -> JointPdGains:
+        """Kp and Kd per joint"""
         ...
     @gains.setter
     def gains(self, value: JointPdGains) -> None: ...
     @property
     def gravity_compensation(self) -> bool:
+        """add g(q)"""
         ...
     @gravity_compensation.setter
     def gravity_compensation(self, value: bool) -> None: ...
@@ -3012,11 +3081,13 @@ class ManipulabilityOptions:
     def block(self, value: JacobianBlock) -> None: ...
     @property
     def near_singular_threshold(self) -> float:
+        """σmin/σmax below this: near-singular (≥ singular_tolerance); finite and ≥ 0"""
         ...
     @near_singular_threshold.setter
     def near_singular_threshold(self, value: float) -> None: ...
     @property
     def singular_tolerance(self) -> float:
+        """σmin/σmax at or below this: singular; finite and ≥ 0"""
         ...
     @singular_tolerance.setter
     def singular_tolerance(self, value: float) -> None: ...
@@ -3065,22 +3136,32 @@ class MomentumObserverOptions:
     def __init__(self: MomentumObserverOptions) -> None:
         ...
     @property
+    def coriolis(self) -> CoriolisMethod:
+        """how Cᵀ·q̇ is computed"""
+        ...
+    @coriolis.setter
+    def coriolis(self, value: CoriolisMethod) -> None: ...
+    @property
     def integral_limit(self) -> float:
+        """bound on each entry of ∫e [N·m·s or N·s]; positive and finite"""
         ...
     @integral_limit.setter
     def integral_limit(self, value: float) -> None: ...
     @property
     def ki(self) -> float:
+        """K_i [1/s²]; finite and ≥ 0"""
         ...
     @ki.setter
     def ki(self, value: float) -> None: ...
     @property
     def kp(self) -> float:
+        """K_p [1/s]; positive and finite"""
         ...
     @kp.setter
     def kp(self, value: float) -> None: ...
     @property
     def wrench_damping(self) -> float:
+        """ε in F̂ = (J·Jᵀ + ε·I)⁻¹·J·r; positive and finite"""
         ...
     @wrench_damping.setter
     def wrench_damping(self, value: float) -> None: ...
@@ -3226,23 +3307,13 @@ class ObjectSpec:
     @size.setter
     def size(self, value: ArrayLike) -> None: ...
 
-class ObserverStatus:
-    """Members:
-
-  ok
-
-  bad_input
-
-  non_finite"""
-    ok: ClassVar[ObserverStatus]
-    bad_input: ClassVar[ObserverStatus]
-    non_finite: ClassVar[ObserverStatus]
-    def __init__(self, value: int) -> None: ...
-    @property
-    def name(self) -> str: ...
-    @property
-    def value(self) -> int: ...
-    def __int__(self) -> int: ...
+class ObserverStatus(enum.Enum):
+    ok = 0
+    """estimates updated"""
+    bad_input = 1
+    """bad dt or torque: nothing changed"""
+    non_finite = 2
+    """non-finite state: nothing changed"""
 
 class OffscreenRenderer:
     """Headless rendering (EGL, no display). render() returns an (height, width, 3) uint8 array, top row first."""
@@ -3286,76 +3357,85 @@ class OperationalSpaceOptions:
         ...
     @property
     def compensate_passive(self) -> bool:
+        """cancel qfrc_passive"""
         ...
     @compensate_passive.setter
     def compensate_passive(self, value: bool) -> None: ...
     @property
     def damping(self) -> NDArray[np.float64]:
-        """(6,) linear first"""
+        """D; a negative entry: critical, 2ζ·√(m_i·K_i) [N·s/m; N·m·s/rad]; finite"""
         ...
     @damping.setter
     def damping(self, value: ArrayLike) -> None: ...
     @property
     def damping_ratio(self) -> float:
+        """ζ of the automatic damping entries; positive and finite"""
         ...
     @damping_ratio.setter
     def damping_ratio(self, value: float) -> None: ...
     @property
     def inertia(self) -> NDArray[np.float64]:
-        """(6,)"""
+        """M_d, desired inertia [kg; kg·m²]; positive and finite"""
         ...
     @inertia.setter
     def inertia(self, value: ArrayLike) -> None: ...
     @property
     def integral_gain(self) -> NDArray[np.float64]:
-        """(6,)"""
+        """K_i; 0: no integral term [N/(m·s); N·m/(rad·s)]; finite and ≥ 0"""
         ...
     @integral_gain.setter
     def integral_gain(self, value: ArrayLike) -> None: ...
     @property
     def integral_hold_force(self) -> float:
+        """∫e held while ‖f_m‖ ≥ this; +inf: never [N]; positive (+inf allowed)"""
         ...
     @integral_hold_force.setter
     def integral_hold_force(self, value: float) -> None: ...
     @property
     def integral_limit(self) -> NDArray[np.float64]:
-        """(6,)"""
+        """anti-windup bound on each entry of ∫e [m·s; rad·s]; finite and ≥ 0"""
         ...
     @integral_limit.setter
     def integral_limit(self, value: ArrayLike) -> None: ...
     @property
     def mode(self) -> TaskMode:
+        """6-D pose or 3-D position task"""
         ...
     @mode.setter
     def mode(self, value: TaskMode) -> None: ...
     @property
     def nullspace_damping(self) -> float:
+        """D_n, null-space joint damping [N·m·s/rad or N·s/m]; finite and ≥ 0"""
         ...
     @nullspace_damping.setter
     def nullspace_damping(self, value: float) -> None: ...
     @property
     def nullspace_stiffness(self) -> float:
+        """K_n, null-space posture stiffness [N·m/rad or N/m]; finite and ≥ 0"""
         ...
     @nullspace_stiffness.setter
     def nullspace_stiffness(self, value: float) -> None: ...
     @property
     def stiffness(self) -> NDArray[np.float64]:
-        """(6,) linear first"""
+        """K [N/m; N·m/rad]; finite and ≥ 0"""
         ...
     @stiffness.setter
     def stiffness(self, value: ArrayLike) -> None: ...
     @property
     def task_inertia(self) -> bool:
+        """keep the arm's own Λ instead of M_d"""
         ...
     @task_inertia.setter
     def task_inertia(self, value: bool) -> None: ...
     @property
     def task_space(self) -> TaskSpaceOptions:
+        """the floor of Λ near singularities"""
         ...
     @task_space.setter
     def task_space(self, value: TaskSpaceOptions) -> None: ...
     @property
     def wrench_feedback(self) -> bool:
+        """render M_d with the measured wrench"""
         ...
     @wrench_feedback.setter
     def wrench_feedback(self, value: bool) -> None: ...
@@ -5213,6 +5293,7 @@ class Se3ImpedanceOptions:
         ...
     @property
     def compensate_passive(self) -> bool:
+        """cancel qfrc_passive"""
         ...
     @compensate_passive.setter
     def compensate_passive(self, value: bool) -> None: ...
@@ -5230,16 +5311,19 @@ class Se3ImpedanceOptions:
     def inertia(self, value: ArrayLike) -> None: ...
     @property
     def nullspace_damping(self) -> float:
+        """D_n, null-space joint damping [N·m·s/rad or N·s/m]; finite and ≥ 0"""
         ...
     @nullspace_damping.setter
     def nullspace_damping(self, value: float) -> None: ...
     @property
     def nullspace_stiffness(self) -> float:
+        """K_n, null-space posture stiffness [N·m/rad or N/m]; finite and ≥ 0"""
         ...
     @nullspace_stiffness.setter
     def nullspace_stiffness(self, value: float) -> None: ...
     @property
     def release(self) -> StiffnessRelease:
+        """contact-triggered release of stiffness axes"""
         ...
     @release.setter
     def release(self, value: StiffnessRelease) -> None: ...
@@ -5251,33 +5335,22 @@ class Se3ImpedanceOptions:
     def stiffness(self, value: ArrayLike) -> None: ...
     @property
     def task_space(self) -> TaskSpaceOptions:
+        """the floor of Λ near singularities"""
         ...
     @task_space.setter
     def task_space(self, value: TaskSpaceOptions) -> None: ...
 
-class Se3ImpedanceStatus:
-    """Members:
-
-  ok
-
-  damped
-
-  invalid_target
-
-  invalid_wrench
-
-  invalid_state"""
-    ok: ClassVar[Se3ImpedanceStatus]
-    damped: ClassVar[Se3ImpedanceStatus]
-    invalid_target: ClassVar[Se3ImpedanceStatus]
-    invalid_wrench: ClassVar[Se3ImpedanceStatus]
-    invalid_state: ClassVar[Se3ImpedanceStatus]
-    def __init__(self, value: int) -> None: ...
-    @property
-    def name(self) -> str: ...
-    @property
-    def value(self) -> int: ...
-    def __int__(self) -> int: ...
+class Se3ImpedanceStatus(enum.Enum):
+    ok = 0
+    """the law ran with the exact Λ"""
+    damped = 1
+    """the law ran with Λ floored"""
+    invalid_target = 2
+    """bad target: hold command"""
+    invalid_wrench = 3
+    """bad measurement: ignored"""
+    invalid_state = 4
+    """bad state: hold command"""
 
 class Se3Interpolation:
     """Pose interpolation that may start in motion (world axes)."""
@@ -5343,20 +5416,11 @@ class SensorSpec:
     @type.setter
     def type(self, value: ArrayLike) -> None: ...
 
-class SensorTiming:
-    """Members:
-
-  after_step
-
-  after_forward"""
-    after_step: ClassVar[SensorTiming]
-    after_forward: ClassVar[SensorTiming]
-    def __init__(self, value: int) -> None: ...
-    @property
-    def name(self) -> str: ...
-    @property
-    def value(self) -> int: ...
-    def __int__(self) -> int: ...
+class SensorTiming(enum.Enum):
+    after_step = 0
+    """sensordata one physics step old"""
+    after_forward = 1
+    """measured at d.time"""
 
 class SensorType:
     """Sensor types a scene can add.
@@ -5730,39 +5794,32 @@ class SingularityScan:
     def worst(self) -> list[SingularityEntry]:
         ...
 
-class SingularityStatus:
-    """Members:
-
-  regular
-
-  near_singular
-
-  singular"""
-    regular: ClassVar[SingularityStatus]
-    near_singular: ClassVar[SingularityStatus]
-    singular: ClassVar[SingularityStatus]
-    def __init__(self, value: int) -> None: ...
-    @property
-    def name(self) -> str: ...
-    @property
-    def value(self) -> int: ...
-    def __int__(self) -> int: ...
+class SingularityStatus(enum.Enum):
+    regular = 0
+    """σmin/σmax ≥ near_singular_threshold"""
+    near_singular = 1
+    """between the two thresholds"""
+    singular = 2
+    """σmin/σmax ≤ singular_tolerance"""
 
 class SingularityThresholds:
     def __init__(self: SingularityThresholds) -> None:
         ...
     @property
     def condition_number(self) -> float:
+        """flagged when σmax/σmin > this; positive and finite"""
         ...
     @condition_number.setter
     def condition_number(self, value: float) -> None: ...
     @property
     def geometric_tolerance(self) -> float:
+        """a kind is named when its measure is below this; positive and finite"""
         ...
     @geometric_tolerance.setter
     def geometric_tolerance(self, value: float) -> None: ...
     @property
     def sigma_min(self) -> float:
+        """flagged when σmin < this; positive and finite"""
         ...
     @sigma_min.setter
     def sigma_min(self, value: float) -> None: ...
@@ -5864,11 +5921,13 @@ class StiffnessRelease:
     def axes(self, value: typing.Annotated[list[bool], "FixedSize(6)"]) -> None: ...
     @property
     def contact_force(self) -> float:
+        """the measured force that starts the release [N]; positive and finite"""
         ...
     @contact_force.setter
     def contact_force(self, value: float) -> None: ...
     @property
     def duration(self) -> float:
+        """of the smoothstep ramp [s]; positive and finite"""
         ...
     @duration.setter
     def duration(self, value: float) -> None: ...
@@ -5902,20 +5961,11 @@ class TargetKind:
     def value(self) -> int: ...
     def __int__(self) -> int: ...
 
-class TaskMode:
-    """Members:
-
-  pose
-
-  position"""
-    pose: ClassVar[TaskMode]
-    position: ClassVar[TaskMode]
-    def __init__(self, value: int) -> None: ...
-    @property
-    def name(self) -> str: ...
-    @property
-    def value(self) -> int: ...
-    def __int__(self) -> int: ...
+class TaskMode(enum.Enum):
+    pose = 0
+    """6 rows: position and orientation"""
+    position = 1
+    """3 rows: position of E's origin"""
 
 class TaskPdController(Controller):
     """tau = J^T (K e + D ė) + g."""
@@ -5933,28 +5983,31 @@ class TaskPdOptions:
         ...
     @property
     def damping(self) -> NDArray[np.float64]:
-        """(6,) linear first"""
+        """Kd, [x, y, z, rx, ry, rz] world axes [N·s/m; N·m·s/rad]; finite and ≥ 0"""
         ...
     @damping.setter
     def damping(self, value: ArrayLike) -> None: ...
     @property
     def gravity_compensation(self) -> bool:
+        """add g(q)"""
         ...
     @gravity_compensation.setter
     def gravity_compensation(self, value: bool) -> None: ...
     @property
     def joint_damping(self) -> float:
+        """joint-space damping −d·q̇ [N·m·s/rad or N·s/m]; finite and ≥ 0"""
         ...
     @joint_damping.setter
     def joint_damping(self, value: float) -> None: ...
     @property
     def mode(self) -> TaskMode:
+        """6-D pose or 3-D position task"""
         ...
     @mode.setter
     def mode(self, value: TaskMode) -> None: ...
     @property
     def stiffness(self) -> NDArray[np.float64]:
-        """(6,) linear first"""
+        """Kp, [x, y, z, rx, ry, rz] world axes [N/m; N·m/rad]; finite and ≥ 0"""
         ...
     @stiffness.setter
     def stiffness(self, value: ArrayLike) -> None: ...
@@ -6029,32 +6082,30 @@ class TaskSpaceOptions:
         ...
     @property
     def always_eigendecompose(self) -> bool:
+        """always take the eigendecomposition path"""
         ...
     @always_eigendecompose.setter
     def always_eigendecompose(self, value: bool) -> None: ...
     @property
+    def generic_kernels(self) -> bool:
+        """run-time-size kernels for every size"""
+        ...
+    @generic_kernels.setter
+    def generic_kernels(self, value: bool) -> None: ...
+    @property
     def min_eigenvalue(self) -> float:
+        """floor on the eigenvalues of Λ⁻¹ [1/kg or 1/(kg·m²)]; positive and finite"""
         ...
     @min_eigenvalue.setter
     def min_eigenvalue(self, value: float) -> None: ...
 
-class TaskSpaceStatus:
-    """Members:
-
-  ok
-
-  damped
-
-  not_positive_definite"""
-    ok: ClassVar[TaskSpaceStatus]
-    damped: ClassVar[TaskSpaceStatus]
-    not_positive_definite: ClassVar[TaskSpaceStatus]
-    def __init__(self, value: int) -> None: ...
-    @property
-    def name(self) -> str: ...
-    @property
-    def value(self) -> int: ...
-    def __int__(self) -> int: ...
+class TaskSpaceStatus(enum.Enum):
+    ok = 0
+    """Λ is the exact inverse"""
+    damped = 1
+    """an eigenvalue was floored"""
+    not_positive_definite = 2
+    """M failed its Cholesky factorization"""
 
 class TickResult:
     def __init__(*args: Any, **kwargs: Any) -> Any: ...
@@ -6562,20 +6613,65 @@ class WrenchReading:
         """[f; tau] (6,) [N; N m]"""
         ...
 
-class WrenchStatus:
-    """Members:
+class WrenchSourceKind(enum.Enum):
+    none = 0
+    """no measurement: zero wrench"""
+    sensor = 1
+    """a force/torque sensor pair on a site"""
+    observer = 2
+    """the generalized-momentum observer"""
 
-  ok
+class WrenchSourceOptions:
+    def __init__(self: WrenchSourceOptions) -> None:
+        ...
+    @property
+    def compensate_tool_weight(self) -> bool:
+        """sensor: subtract the weight the sensor carries"""
+        ...
+    @compensate_tool_weight.setter
+    def compensate_tool_weight(self, value: bool) -> None: ...
+    @property
+    def contact_only(self) -> bool:
+        """observer: the contact-only estimate"""
+        ...
+    @contact_only.setter
+    def contact_only(self, value: bool) -> None: ...
+    @property
+    def control_period(self) -> float:
+        """observer: time between two ticks; 0: measured [s]; finite and ≥ 0"""
+        ...
+    @control_period.setter
+    def control_period(self, value: float) -> None: ...
+    @property
+    def kind(self) -> WrenchSourceKind:
+        """none, sensor or observer"""
+        ...
+    @kind.setter
+    def kind(self, value: WrenchSourceKind) -> None: ...
+    @property
+    def observer(self) -> MomentumObserverOptions:
+        """observer: its gains and Coriolis method"""
+        ...
+    @observer.setter
+    def observer(self, value: MomentumObserverOptions) -> None: ...
+    @property
+    def site(self) -> str:
+        """sensor: the site carrying the force and torque sensors"""
+        ...
+    @site.setter
+    def site(self, value: str) -> None: ...
+    @property
+    def timing(self) -> SensorTiming:
+        """sensor: when sensordata was computed"""
+        ...
+    @timing.setter
+    def timing(self, value: SensorTiming) -> None: ...
 
-  non_finite"""
-    ok: ClassVar[WrenchStatus]
-    non_finite: ClassVar[WrenchStatus]
-    def __init__(self, value: int) -> None: ...
-    @property
-    def name(self) -> str: ...
-    @property
-    def value(self) -> int: ...
-    def __int__(self) -> int: ...
+class WrenchStatus(enum.Enum):
+    ok = 0
+    """all six values finite"""
+    non_finite = 1
+    """the wrench was zeroed"""
 
 def build_docking_scene(options: DockingSceneOptions = ...) -> DockingScene:
     """Composes and compiles the docking scene (GIL released)."""

@@ -1,6 +1,7 @@
 // control room: Reference, the Controller interface (subclassable in Python), every controller.
 #include "bindings.hpp"
 #include "controller_step.hpp"
+#include "declared_fields.hpp"
 #include "mjarm/control/acceleration_control.hpp"
 #include "mjarm/control/cartesian_impedance.hpp"
 #include "mjarm/control/computed_torque.hpp"
@@ -11,6 +12,7 @@
 #include "mjarm/control/operational_space.hpp"
 #include "mjarm/control/se3_impedance.hpp"
 #include "mjarm/control/task_pd.hpp"
+#include "mjarm/control/wrench_source.hpp"
 #include "python_controller.hpp"
 
 namespace mjarm::python {
@@ -24,25 +26,21 @@ void controller_class(py::module_& m, const char* name, const char* doc) {
   bind_compute<C>(cls);
 }
 
-template <typename O, typename Class>
-void task_options(Class& cls) {
-  cls.def(py::init<>()).def_readwrite("mode", &O::mode);
-  fixed_property<O>(cls, "stiffness", &O::stiffness, "(6,) linear first");
-  fixed_property<O>(cls, "damping", &O::damping, "(6,) linear first");
+/// A Python class of declared options @p O: a default constructor and every declared field.
+template <typename O>
+py::class_<O> options_class(py::module_& m, const char* name) {
+  auto cls = py::class_<O>(m, name);
+  cls.def(py::init<>());
+  def_fields(cls);
+  return cls;
 }
 
 }  // namespace
 
 void bind_control(py::module_& m) {
-  py::enum_<CommandKind>(m, "CommandKind", "What a controller's output means.")
-      .value("torque", CommandKind::torque)
-      .value("position", CommandKind::position);
-  py::enum_<TaskMode>(m, "TaskMode")
-      .value("pose", TaskMode::pose)
-      .value("position", TaskMode::position);
-  py::enum_<BiasTerm>(m, "BiasTerm")
-      .value("gravity", BiasTerm::gravity)
-      .value("full", BiasTerm::full);
+  def_enum<CommandKind>(m, "CommandKind", "What a controller's output means.");
+  def_enum<TaskMode>(m, "TaskMode");
+  def_enum<BiasTerm>(m, "BiasTerm");
 
   auto joint =
       py::class_<JointReference>(m, "JointReference", "Desired joint motion (chain order).");
@@ -100,13 +98,9 @@ void bind_control(py::module_& m) {
   gains.def(py::init<>())
       .def_static("uniform", &JointPdGains::uniform, py::arg("kp"), py::arg("kd"))
       .def_static("critically_damped", &JointPdGains::critically_damped, py::arg("omega"));
-  vector_property<JointPdGains>(gains, "kp", &JointPdGains::kp, "stiffness (n,) or (1,)");
-  vector_property<JointPdGains>(gains, "kd", &JointPdGains::kd, "damping (n,) or (1,)");
+  def_fields(gains);
 
-  py::class_<JointPdOptions>(m, "JointPdOptions")
-      .def(py::init<>())
-      .def_readwrite("gains", &JointPdOptions::gains)
-      .def_readwrite("gravity_compensation", &JointPdOptions::gravity_compensation);
+  options_class<JointPdOptions>(m, "JointPdOptions");
   auto joint_pd = py::class_<JointPdController, Controller>(m, "JointPdController",
                                                             "Joint PD + gravity (torque).");
   joint_pd
@@ -126,52 +120,23 @@ void bind_control(py::module_& m) {
                    py::arg("term") = BiasTerm::gravity);
   bind_compute<GravityHoldController>(gravity_hold);
 
-  py::class_<ComputedTorqueOptions>(m, "ComputedTorqueOptions")
-      .def(py::init<>())
-      .def_readwrite("gains", &ComputedTorqueOptions::gains)
-      .def_readwrite("compensate_passive", &ComputedTorqueOptions::compensate_passive);
+  options_class<ComputedTorqueOptions>(m, "ComputedTorqueOptions");
   auto computed_torque = py::class_<ComputedTorqueController, Controller>(
       m, "ComputedTorqueController", "tau = M (qdd_d + PD) + h.");
   computed_torque.def(py::init<const Chain&, const ComputedTorqueOptions&>(), py::arg("chain"),
                       py::arg("options") = ComputedTorqueOptions{});
   bind_compute<ComputedTorqueController>(computed_torque);
 
-  auto task_pd = py::class_<TaskPdOptions>(m, "TaskPdOptions");
-  task_options<TaskPdOptions>(task_pd);
-  task_pd.def_readwrite("gravity_compensation", &TaskPdOptions::gravity_compensation)
-      .def_readwrite("joint_damping", &TaskPdOptions::joint_damping);
+  options_class<TaskPdOptions>(m, "TaskPdOptions");
   controller_class<TaskPdController, TaskPdOptions>(m, "TaskPdController",
                                                     "tau = J^T (K e + D ė) + g.");
 
-  auto accel = py::class_<AccelerationControlOptions>(m, "AccelerationControlOptions");
-  task_options<AccelerationControlOptions>(accel);
-  accel
-      .def_readwrite("manipulability_threshold",
-                     &AccelerationControlOptions::manipulability_threshold)
-      .def_readwrite("max_damping", &AccelerationControlOptions::max_damping)
-      .def_readwrite("nullspace_damping", &AccelerationControlOptions::nullspace_damping)
-      .def_readwrite("nullspace_stiffness", &AccelerationControlOptions::nullspace_stiffness)
-      .def_readwrite("compensate_passive", &AccelerationControlOptions::compensate_passive);
+  options_class<AccelerationControlOptions>(m, "AccelerationControlOptions");
   controller_class<AccelerationController, AccelerationControlOptions>(
       m, "AccelerationController",
       "Resolved task acceleration through damped J^+, then M qdd + h.");
 
-  auto osc = py::class_<OperationalSpaceOptions>(m, "OperationalSpaceOptions");
-  task_options<OperationalSpaceOptions>(osc);
-  osc.def_readwrite("damping_ratio", &OperationalSpaceOptions::damping_ratio)
-      .def_readwrite("task_inertia", &OperationalSpaceOptions::task_inertia)
-      .def_readwrite("nullspace_damping", &OperationalSpaceOptions::nullspace_damping)
-      .def_readwrite("nullspace_stiffness", &OperationalSpaceOptions::nullspace_stiffness)
-      .def_readwrite("compensate_passive", &OperationalSpaceOptions::compensate_passive)
-      .def_readwrite("wrench_feedback", &OperationalSpaceOptions::wrench_feedback)
-      .def_readwrite("integral_hold_force", &OperationalSpaceOptions::integral_hold_force)
-      .def_readwrite("task_space", &OperationalSpaceOptions::task_space);
-  fixed_property<OperationalSpaceOptions>(osc, "inertia", &OperationalSpaceOptions::inertia,
-                                          "(6,)");
-  fixed_property<OperationalSpaceOptions>(osc, "integral_gain",
-                                          &OperationalSpaceOptions::integral_gain, "(6,)");
-  fixed_property<OperationalSpaceOptions>(osc, "integral_limit",
-                                          &OperationalSpaceOptions::integral_limit, "(6,)");
+  options_class<OperationalSpaceOptions>(m, "OperationalSpaceOptions");
   auto osc_controller = py::class_<OperationalSpaceController, Controller>(
       m, "OperationalSpaceController", "Operational-space impedance (osc).");
   osc_controller
@@ -191,28 +156,14 @@ void bind_control(py::module_& m) {
       });
   bind_compute<OperationalSpaceController>(osc_controller);
 
-  py::class_<StiffnessRelease>(m, "StiffnessRelease")
-      .def(py::init<>())
-      .def_readwrite("axes", &StiffnessRelease::axes)
-      .def_readwrite("contact_force", &StiffnessRelease::contact_force)
-      .def_readwrite("duration", &StiffnessRelease::duration);
-  auto se3o = py::class_<Se3ImpedanceOptions>(m, "Se3ImpedanceOptions");
-  se3o.def(py::init<>())
-      .def_readwrite("release", &Se3ImpedanceOptions::release)
-      .def_readwrite("nullspace_damping", &Se3ImpedanceOptions::nullspace_damping)
-      .def_readwrite("nullspace_stiffness", &Se3ImpedanceOptions::nullspace_stiffness)
-      .def_readwrite("compensate_passive", &Se3ImpedanceOptions::compensate_passive)
-      .def_readwrite("task_space", &Se3ImpedanceOptions::task_space);
+  options_class<StiffnessRelease>(m, "StiffnessRelease")
+      .def_readwrite("axes", &StiffnessRelease::axes);
+  auto se3o = options_class<Se3ImpedanceOptions>(m, "Se3ImpedanceOptions");
   fixed_property<Se3ImpedanceOptions>(se3o, "inertia", &Se3ImpedanceOptions::inertia, "A (6, 6)");
   fixed_property<Se3ImpedanceOptions>(se3o, "damping", &Se3ImpedanceOptions::damping, "D (6, 6)");
   fixed_property<Se3ImpedanceOptions>(se3o, "stiffness", &Se3ImpedanceOptions::stiffness,
                                       "K (6, 6)");
-  py::enum_<Se3ImpedanceStatus>(m, "Se3ImpedanceStatus")
-      .value("ok", Se3ImpedanceStatus::ok)
-      .value("damped", Se3ImpedanceStatus::damped)
-      .value("invalid_target", Se3ImpedanceStatus::invalid_target)
-      .value("invalid_wrench", Se3ImpedanceStatus::invalid_wrench)
-      .value("invalid_state", Se3ImpedanceStatus::invalid_state);
+  def_enum<Se3ImpedanceStatus>(m, "Se3ImpedanceStatus");
   auto se3_controller = py::class_<Se3ImpedanceController, Controller>(
       m, "Se3ImpedanceController", "SE(3) Lie-group impedance (full 6x6 A, D, K).");
   se3_controller
@@ -231,60 +182,25 @@ void bind_control(py::module_& m) {
       .def("start_release", &Se3ImpedanceController::start_release, py::arg("time"));
   bind_compute<Se3ImpedanceController>(se3_controller);
 
-  py::enum_<CicInertia>(m, "CicInertia")
-      .value("natural", CicInertia::natural)
-      .value("exact", CicInertia::exact);
-  py::enum_<CicIntegral>(m, "CicIntegral")
-      .value("automatic", CicIntegral::automatic)
-      .value("on", CicIntegral::on)
-      .value("off", CicIntegral::off);
-  auto cic = py::class_<CartesianImpedanceOptions>(m, "CartesianImpedanceOptions");
-  cic.def(py::init<>())
-      .def_readwrite("damping_ratio", &CartesianImpedanceOptions::damping_ratio)
-      .def_readwrite("inertia", &CartesianImpedanceOptions::inertia)
-      .def_readwrite("integral", &CartesianImpedanceOptions::integral)
-      .def_readwrite("integral_gain", &CartesianImpedanceOptions::integral_gain)
-      .def_readwrite("integral_bound", &CartesianImpedanceOptions::integral_bound)
-      .def_readwrite("integral_hold_force", &CartesianImpedanceOptions::integral_hold_force)
-      .def_readwrite("nullspace_damping", &CartesianImpedanceOptions::nullspace_damping)
-      .def_readwrite("nullspace_stiffness", &CartesianImpedanceOptions::nullspace_stiffness)
-      .def_readwrite("friction_feed_forward", &CartesianImpedanceOptions::friction_feed_forward)
-      .def_readwrite("task_space", &CartesianImpedanceOptions::task_space);
-  fixed_property<CartesianImpedanceOptions>(cic, "stiffness", &CartesianImpedanceOptions::stiffness,
-                                            "(6,)");
-  fixed_property<CartesianImpedanceOptions>(cic, "damping", &CartesianImpedanceOptions::damping,
-                                            "(6,)");
-  fixed_property<CartesianImpedanceOptions>(cic, "desired_inertia",
-                                            &CartesianImpedanceOptions::desired_inertia, "(6,)");
+  def_enum<WrenchSourceKind>(m, "WrenchSourceKind");
+  options_class<WrenchSourceOptions>(m, "WrenchSourceOptions")
+      .def_readwrite("observer", &WrenchSourceOptions::observer,
+                     "observer: its gains and Coriolis method");
+  def_enum<CicInertia>(m, "CicInertia");
+  def_enum<CicIntegral>(m, "CicIntegral");
+  options_class<CartesianImpedanceOptions>(m, "CartesianImpedanceOptions");
   auto cic_controller = py::class_<CartesianImpedanceController, Controller>(
       m, "CartesianImpedanceController", "Cartesian impedance with a measured wrench (CIC).");
   cic_controller.def(py::init<const Chain&, const CartesianImpedanceOptions&>(), py::arg("chain"),
                      py::arg("options") = CartesianImpedanceOptions{});
   bind_compute<CartesianImpedanceController>(cic_controller);
 
-  auto hqp = py::class_<HqpAcOptions>(m, "HqpAcOptions");
-  hqp.def(py::init<>())
-      .def_readwrite("horizon", &HqpAcOptions::horizon)
-      .def_readwrite("regularization", &HqpAcOptions::regularization)
-      .def_readwrite("manipulability_threshold", &HqpAcOptions::manipulability_threshold)
-      .def_readwrite("singularity_gain", &HqpAcOptions::singularity_gain)
-      .def_readwrite("posture_stiffness", &HqpAcOptions::posture_stiffness)
-      .def_readwrite("posture_damping", &HqpAcOptions::posture_damping)
-      .def_readwrite("compensate_passive", &HqpAcOptions::compensate_passive)
-      .def_readwrite("friction_feed_forward", &HqpAcOptions::friction_feed_forward)
-      .def_readwrite("task_space", &HqpAcOptions::task_space);
-  vector_property<HqpAcOptions>(hqp, "max_velocity", &HqpAcOptions::max_velocity,
-                                "(n,) or (1,) [rad/s]");
-  vector_property<HqpAcOptions>(hqp, "max_torque", &HqpAcOptions::max_torque,
-                                "(n,); empty = the model's");
-  py::enum_<HqpAcStatus>(m, "HqpAcStatus")
-      .value("ok", HqpAcStatus::ok)
-      .value("damped", HqpAcStatus::damped)
-      .value("invalid_wrench", HqpAcStatus::invalid_wrench)
-      .value("null_space_dropped", HqpAcStatus::null_space_dropped)
-      .value("least_squares", HqpAcStatus::least_squares)
-      .value("invalid_target", HqpAcStatus::invalid_target)
-      .value("invalid_state", HqpAcStatus::invalid_state);
+  auto compliance = options_class<AdaptiveComplianceOptions>(m, "AdaptiveComplianceOptions");
+  fixed_property<AdaptiveComplianceOptions>(compliance, "stiffness",
+                                            &AdaptiveComplianceOptions::stiffness, "K0 (6, 6)");
+  options_class<HqpAcPreload>(m, "HqpAcPreload");
+  options_class<HqpAcOptions>(m, "HqpAcOptions");
+  def_enum<HqpAcStatus>(m, "HqpAcStatus");
   auto hqp_controller = py::class_<HqpAcController, Controller>(
       m, "HqpAcController", "HQP-AC: adaptive compliance, two QPs under hard bounds.");
   hqp_controller
@@ -296,15 +212,7 @@ void bind_control(py::module_& m) {
       });
   bind_compute<HqpAcController>(hqp_controller);
 
-  auto grip = py::class_<GripperPdOptions>(m, "GripperPdOptions");
-  grip.def(py::init<>())
-      .def_readwrite("gains", &GripperPdOptions::gains)
-      .def_readwrite("max_force", &GripperPdOptions::max_force)
-      .def_readwrite("gravity_compensation", &GripperPdOptions::gravity_compensation);
-  vector_property<GripperPdOptions>(grip, "open", &GripperPdOptions::open,
-                                    "finger joints open (n,)");
-  vector_property<GripperPdOptions>(grip, "closed", &GripperPdOptions::closed,
-                                    "finger joints closed (n,)");
+  options_class<GripperPdOptions>(m, "GripperPdOptions");
   auto gripper_controller = py::class_<GripperPdController, Controller>(
       m, "GripperPdController", "Fingers follow reference.gripper (0 open, 1 closed).");
   gripper_controller

@@ -1,5 +1,6 @@
 // dynamics room: ChainDynamics, TaskSpaceDynamics, F/T sensor, momentum observer, friction.
 #include "bindings.hpp"
+#include "declared_fields.hpp"
 #include "mjarm/dynamics/chain_dynamics.hpp"
 #include "mjarm/dynamics/force_torque_sensor.hpp"
 #include "mjarm/dynamics/friction_feed_forward.hpp"
@@ -59,14 +60,10 @@ void bind_dynamics(py::module_& m) {
           },
           py::arg("data"), py::arg("qdd"), "tau = M qdd + h (n,)");
 
-  py::enum_<TaskSpaceStatus>(m, "TaskSpaceStatus")
-      .value("ok", TaskSpaceStatus::ok)
-      .value("damped", TaskSpaceStatus::damped)
-      .value("not_positive_definite", TaskSpaceStatus::not_positive_definite);
-  py::class_<TaskSpaceOptions>(m, "TaskSpaceOptions")
-      .def(py::init<>())
-      .def_readwrite("min_eigenvalue", &TaskSpaceOptions::min_eigenvalue)
-      .def_readwrite("always_eigendecompose", &TaskSpaceOptions::always_eigendecompose);
+  def_enum<TaskSpaceStatus>(m, "TaskSpaceStatus");
+  auto task_space_options = py::class_<TaskSpaceOptions>(m, "TaskSpaceOptions");
+  task_space_options.def(py::init<>());
+  def_fields(task_space_options);
   py::class_<TaskSpaceDynamics>(m, "TaskSpaceDynamics",
                                 "Lambda = (J M^-1 J^T)^-1, Jbar and the null-space projector, "
                                 "bounded near singularities.")
@@ -105,12 +102,8 @@ void bind_dynamics(py::module_& m) {
       .def_property_readonly("min_singular_value", &TaskSpaceDynamics::min_singular_value)
       .def_property_readonly("condition", &TaskSpaceDynamics::condition);
 
-  py::enum_<SensorTiming>(m, "SensorTiming")
-      .value("after_step", SensorTiming::after_step)
-      .value("after_forward", SensorTiming::after_forward);
-  py::enum_<WrenchStatus>(m, "WrenchStatus")
-      .value("ok", WrenchStatus::ok)
-      .value("non_finite", WrenchStatus::non_finite);
+  def_enum<SensorTiming>(m, "SensorTiming");
+  def_enum<WrenchStatus>(m, "WrenchStatus");
   py::class_<WrenchReading>(m, "WrenchReading")
       .def_property_readonly(
           "wrench", [](const WrenchReading& r) { return Vector6d(r.wrench); },
@@ -150,14 +143,11 @@ void bind_dynamics(py::module_& m) {
       },
       py::arg("F"), py::arg("p_A"), py::arg("p_B"), "moves the torque's reference point");
 
-  py::enum_<FrictionMode>(m, "FrictionMode")
-      .value("torque", FrictionMode::torque)
-      .value("velocity", FrictionMode::velocity);
-  py::class_<FrictionFeedForwardOptions>(m, "FrictionFeedForwardOptions")
-      .def(py::init<>())
-      .def_readwrite("mode", &FrictionFeedForwardOptions::mode)
-      .def_readwrite("torque_sharpness", &FrictionFeedForwardOptions::torque_sharpness)
-      .def_readwrite("velocity_scale", &FrictionFeedForwardOptions::velocity_scale);
+  def_enum<FrictionMode>(m, "FrictionMode");
+  def_enum<DampingCompensation>(m, "DampingCompensation");
+  auto friction_options = py::class_<FrictionFeedForwardOptions>(m, "FrictionFeedForwardOptions");
+  friction_options.def(py::init<>());
+  def_fields(friction_options);
   py::class_<FrictionFeedForward>(m, "FrictionFeedForward", "Friction and damping feed-forward.")
       .def(py::init<const Chain&, FrictionFeedForwardOptions>(), py::arg("chain"),
            py::arg("options") = FrictionFeedForwardOptions{})
@@ -183,16 +173,11 @@ void bind_dynamics(py::module_& m) {
           },
           py::arg("qd"));
 
-  py::enum_<ObserverStatus>(m, "ObserverStatus")
-      .value("ok", ObserverStatus::ok)
-      .value("bad_input", ObserverStatus::bad_input)
-      .value("non_finite", ObserverStatus::non_finite);
-  py::class_<MomentumObserverOptions>(m, "MomentumObserverOptions")
-      .def(py::init<>())
-      .def_readwrite("kp", &MomentumObserverOptions::kp)
-      .def_readwrite("ki", &MomentumObserverOptions::ki)
-      .def_readwrite("integral_limit", &MomentumObserverOptions::integral_limit)
-      .def_readwrite("wrench_damping", &MomentumObserverOptions::wrench_damping);
+  def_enum<ObserverStatus>(m, "ObserverStatus");
+  def_enum<CoriolisMethod>(m, "CoriolisMethod");
+  auto observer_options = py::class_<MomentumObserverOptions>(m, "MomentumObserverOptions");
+  observer_options.def(py::init<>());
+  def_fields(observer_options);
   py::class_<MomentumObserver>(m, "MomentumObserver", "Sensorless external wrench estimate.")
       .def(py::init<const Chain&, MomentumObserverOptions>(), py::arg("chain"),
            py::arg("options") = MomentumObserverOptions{})

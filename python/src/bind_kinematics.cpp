@@ -1,5 +1,6 @@
 // kinematics room: FK, Jacobians, J̇q̇, manipulability, singularity reports, workspace sampling.
 #include "bindings.hpp"
+#include "declared_fields.hpp"
 #include "mjarm/kinematics/chain_kinematics.hpp"
 #include "mjarm/kinematics/frame_state.hpp"
 #include "mjarm/kinematics/manipulability.hpp"
@@ -20,11 +21,7 @@ std::vector<std::string> kind_names(const std::vector<SingularityKind>& kinds) {
 }  // namespace
 
 void bind_kinematics(py::module_& m) {
-  py::enum_<JacobianFrame>(m, "JacobianFrame", "How the rows of a frame Jacobian are expressed.")
-      .value("world_aligned", JacobianFrame::world_aligned,
-             "velocity of the frame origin and angular velocity, world axes (mj_jacSite)")
-      .value("local", JacobianFrame::local, "the same twist in the frame's axes (body twist)")
-      .value("world", JacobianFrame::world, "spatial twist (point at the world origin)");
+  def_enum<JacobianFrame>(m, "JacobianFrame", "How the rows of a frame Jacobian are expressed.");
 
   py::class_<ChainKinematics>(m, "ChainKinematics",
                               "Forward kinematics and Jacobians of a Chain on the chain's own "
@@ -95,19 +92,11 @@ void bind_kinematics(py::module_& m) {
       py::arg("robot"), py::arg("data"), py::arg("frame"),
       "The pose of a site or body read from MuJoCo's data (after forward).");
 
-  py::enum_<JacobianBlock>(m, "JacobianBlock")
-      .value("full", JacobianBlock::full)
-      .value("position", JacobianBlock::position)
-      .value("orientation", JacobianBlock::orientation);
-  py::enum_<SingularityStatus>(m, "SingularityStatus")
-      .value("regular", SingularityStatus::regular)
-      .value("near_singular", SingularityStatus::near_singular)
-      .value("singular", SingularityStatus::singular);
-  py::class_<ManipulabilityOptions>(m, "ManipulabilityOptions")
-      .def(py::init<>())
-      .def_readwrite("block", &ManipulabilityOptions::block, "rows of J measured")
-      .def_readwrite("singular_tolerance", &ManipulabilityOptions::singular_tolerance)
-      .def_readwrite("near_singular_threshold", &ManipulabilityOptions::near_singular_threshold);
+  def_enum<JacobianBlock>(m, "JacobianBlock");
+  def_enum<SingularityStatus>(m, "SingularityStatus");
+  auto manipulability_options = py::class_<ManipulabilityOptions>(m, "ManipulabilityOptions");
+  manipulability_options.def(py::init<>());
+  def_fields(manipulability_options);
   py::class_<ManipulabilityResult>(m, "ManipulabilityResult")
       .def_readonly("manipulability", &ManipulabilityResult::manipulability, "Yoshikawa w")
       .def_readonly("sigma_max", &ManipulabilityResult::sigma_max)
@@ -146,11 +135,9 @@ void bind_kinematics(py::module_& m) {
       },
       py::arg("chain"), py::arg("q"), py::arg("options") = ManipulabilityOptions{});
 
-  py::class_<SingularityThresholds>(m, "SingularityThresholds")
-      .def(py::init<>())
-      .def_readwrite("sigma_min", &SingularityThresholds::sigma_min)
-      .def_readwrite("condition_number", &SingularityThresholds::condition_number)
-      .def_readwrite("geometric_tolerance", &SingularityThresholds::geometric_tolerance);
+  auto thresholds = py::class_<SingularityThresholds>(m, "SingularityThresholds");
+  thresholds.def(py::init<>());
+  def_fields(thresholds);
   py::class_<SingularityEntry>(m, "SingularityEntry")
       .def_readonly("name", &SingularityEntry::name)
       .def_readonly("q", &SingularityEntry::q)

@@ -7,13 +7,8 @@ namespace mjarm {
 AccelerationController::AccelerationController(const Chain& chain,
                                                const AccelerationControlOptions& options)
     : options_(options), rows_(task_rows(options.mode)), dynamics_(chain) {
-  const char* owner = "accel";
-  detail::require_non_negative(options.stiffness, rows_, owner, "stiffness Kp");
-  detail::require_non_negative(options.damping, rows_, owner, "damping Kd");
-  detail::require_positive(options.manipulability_threshold, owner, "manipulability threshold");
-  detail::require_non_negative(options.max_damping, owner, "max damping");
-  detail::require_non_negative(options.nullspace_damping, owner, "null-space damping");
-  detail::require_non_negative(options.nullspace_stiffness, owner, "null-space stiffness");
+  using O = AccelerationControlOptions;
+  check_fields(detail::ignored_rows_cleared(options, rows_, &O::stiffness, &O::damping), "accel");
   const int n = dynamics_.size();
   const int k = std::min(rows_, n);  // size of the Gram matrix
   J_.setZero(rows_, n);

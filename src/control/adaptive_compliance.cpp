@@ -5,13 +5,11 @@
 #include <string>
 
 #include "control_checks.hpp"
-#include "mjarm/number_text.hpp"
 
 namespace mjarm {
 
 AdaptiveCompliance::AdaptiveCompliance(const AdaptiveComplianceOptions& options)
     : options_(options) {
-  const char* owner = "hqp-ac";
   const Matrix6d& K0 = options.stiffness;
   if (!K0.allFinite()) {
     throw Error("hqp-ac: stiffness K0 must be finite, got diagonal " +
@@ -29,13 +27,7 @@ AdaptiveCompliance::AdaptiveCompliance(const AdaptiveComplianceOptions& options)
   }
   K0_sqrt_ =
       solver.eigenvectors() * eig.cwiseSqrt().asDiagonal() * solver.eigenvectors().transpose();
-  detail::require_non_negative(options.deadband, owner, "deadband");
-  detail::require_positive(options.force_gain, owner, "force gain k_alpha");
-  detail::require_positive(options.min_eigenvalue, owner, "minimum eigenvalue of Lambda^-1");
-  if (!(options.min_stiffness_ratio > 0.0 && options.min_stiffness_ratio <= 1.0)) {
-    throw Error("hqp-ac: minimum stiffness ratio must be in (0, 1], got " +
-                number_text(options.min_stiffness_ratio));
-  }
+  check_fields(options, "hqp-ac");
   update(Vector6d::Zero(), Matrix6d::Identity());
 }
 

@@ -32,12 +32,7 @@ bool cic_integral_on(const Chain& chain, CicIntegral integral) {
 
 /// The law's options for the operational-space controller, after checking ours.
 OperationalSpaceOptions cic_law_options(const CartesianImpedanceOptions& o, bool integral_on) {
-  const char* owner = "cic";
-  detail::require_positive(o.stiffness, 6, owner, "stiffness K (positive definite)");
-  detail::require_positive(o.desired_inertia, 6, owner, "desired inertia M_d");
-  detail::require_positive(o.integral_gain, owner, "integral gain k_i");
-  detail::require_positive(o.integral_bound, owner, "integral bound");
-  detail::require_positive(o.integral_hold_force, owner, "integral hold force");
+  check_fields(o, "cic");
   OperationalSpaceOptions law;
   law.mode = TaskMode::pose;
   law.stiffness = o.stiffness;
@@ -67,38 +62,6 @@ FrictionFeedForwardOptions cic_friction_options(const CartesianImpedanceOptions&
 }
 
 }  // namespace
-
-const char* to_string(CicInertia inertia) noexcept {
-  return inertia == CicInertia::natural ? "natural" : "exact";
-}
-
-const char* to_string(CicIntegral integral) noexcept {
-  switch (integral) {
-    case CicIntegral::automatic:
-      return "automatic";
-    case CicIntegral::on:
-      return "on";
-    case CicIntegral::off:
-      return "off";
-  }
-  return "?";
-}
-
-const char* to_string(CicStatus status) noexcept {
-  switch (status) {
-    case CicStatus::ok:
-      return "ok";
-    case CicStatus::damped:
-      return "damped";
-    case CicStatus::invalid_target:
-      return "invalid_target";
-    case CicStatus::invalid_wrench:
-      return "invalid_wrench";
-    case CicStatus::invalid_state:
-      return "invalid_state";
-  }
-  return "?";
-}
 
 CartesianImpedanceController::CartesianImpedanceController(const Chain& chain,
                                                            const CartesianImpedanceOptions& options)

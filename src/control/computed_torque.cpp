@@ -4,8 +4,9 @@
 
 namespace mjarm {
 
-ComputedTorqueController::ComputedTorqueController(const Chain& chain, const ComputedTorqueOptions& options)
-    : gains_(options.gains.expanded(chain.size(), "ComputedTorqueController")),
+ComputedTorqueController::ComputedTorqueController(const Chain& chain,
+                                                   const ComputedTorqueOptions& options)
+    : gains_(options.gains.expanded(chain.size(), "ct")),
       compensate_passive_(options.compensate_passive),
       dynamics_(chain),
       qdd_(Eigen::VectorXd::Zero(chain.size())) {}

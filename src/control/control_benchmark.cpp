@@ -20,7 +20,6 @@
 #include "mjarm/error.hpp"
 #include "mjarm/kinematics/chain_kinematics.hpp"
 #include "mjarm/kinematics/frame_state.hpp"
-#include "mjarm/number_text.hpp"
 
 namespace mjarm {
 namespace {
@@ -128,21 +127,6 @@ void check_fixed_base(const Chain& chain) {
               "world and the frame in the chain)");
 }
 
-void check_options(const ControlBenchmarkOptions& o) {
-  if (o.steps < 1)
-    throw Error("control benchmark: steps must be >= 1, got " + std::to_string(o.steps));
-  if (o.warmup < 0)
-    throw Error("control benchmark: warmup must be >= 0, got " + std::to_string(o.warmup));
-  if (!std::isfinite(o.amplitude) || o.amplitude < 0.0) {
-    throw Error("control benchmark: amplitude must be finite and >= 0, got " +
-                number_text(o.amplitude));
-  }
-  if (!std::isfinite(o.frequency) || o.frequency <= 0.0) {
-    throw Error("control benchmark: frequency must be finite and > 0, got " +
-                number_text(o.frequency));
-  }
-}
-
 // MuJoCo's warnings after which it has reset the data: the run's figures mean nothing
 constexpr int kFatalWarnings[] = {mjWARN_INERTIA, mjWARN_BADQPOS, mjWARN_BADQVEL, mjWARN_BADQACC,
                                   mjWARN_BADCTRL};
@@ -217,18 +201,6 @@ std::vector<std::unique_ptr<Controller>> default_benchmark_controllers(const Cha
   return controllers;
 }
 
-const char* to_string(ControlBenchmarkStatus status) noexcept {
-  switch (status) {
-    case ControlBenchmarkStatus::ok:
-      return "ok";
-    case ControlBenchmarkStatus::faulted:
-      return "faulted";
-    case ControlBenchmarkStatus::interrupted:
-      return "interrupted";
-  }
-  return "?";
-}
-
 ControlBenchmarkResult run_control_benchmark(const Chain& chain,
                                              const ControlBenchmarkOptions& options) {
   auto controllers = default_benchmark_controllers(chain);
@@ -238,7 +210,7 @@ ControlBenchmarkResult run_control_benchmark(const Chain& chain,
 ControlBenchmarkResult run_control_benchmark(const Chain& chain,
                                              std::vector<std::unique_ptr<Controller>>& controllers,
                                              const ControlBenchmarkOptions& options) {
-  check_options(options);
+  check_fields(options);
   const Robot& robot = chain.robot();
   const mjModel& m = robot.model();
   const int n = chain.size();

@@ -13,31 +13,27 @@
 #include "mjarm/dynamics/chain_dynamics.hpp"
 #include "mjarm/error.hpp"
 #include "mjarm/model/chain.hpp"
-#include "mjarm/number_text.hpp"
 
 namespace mjarm::detail {
 
 /// The finger positions of one end of a gripper's stroke: @p given (one per finger joint), or
 /// the joints' upper (@p upper) or lower limits when @p given is empty.
-/// @throws Error "<owner>: options.<what> …" for a wrong count, a non-finite value, or an
-/// infinite joint range with nothing given.
+/// The values of @p given are checked by the caller (`check_fields`).
+/// @throws Error "<owner>: <what> …" for a wrong count, or an infinite joint range with nothing
+/// given.
 inline Eigen::VectorXd finger_stroke_end(const Chain& chain, const Eigen::VectorXd& given,
                                          bool upper, const char* owner, const char* what) {
   const int n = chain.size();
-  if (given.size() == n) {
-    if (!given.allFinite())
-      throw Error(std::string(owner) + ": options." + what + " must be finite");
-    return given;
-  }
+  if (given.size() == n) return given;
   if (given.size() != 0) {
-    throw Error(std::string(owner) + ": options." + what + " needs " + std::to_string(n) +
+    throw Error(std::string(owner) + ": " + what + " needs " + std::to_string(n) +
                 " entries (one per finger joint) or none, got " + std::to_string(given.size()));
   }
   const Eigen::VectorXd& limit = upper ? chain.upper() : chain.lower();
   for (int i = 0; i < n; ++i) {
     if (!std::isfinite(limit[i])) {
       throw Error(std::string(owner) + ": finger joint '" + chain.joint_names()[i] +
-                  "' has no finite range; give options.open and options.closed");
+                  "' has no finite range; give open and closed");
     }
   }
   return limit;
@@ -52,41 +48,13 @@ inline std::string values_text(const Eigen::Ref<const Eigen::VectorXd>& v) {
   return os.str();
 }
 
-/// @throws Error "<owner>: <what> must be finite and ≥ 0, got [...]" unless the first @p rows
-/// entries of @p v are finite and non-negative.
-inline void require_non_negative(const Eigen::Ref<const Eigen::VectorXd>& v, int rows,
-                                 const char* owner, const char* what) {
-  const auto head = v.head(rows);
-  if (!head.allFinite() || (head.array() < 0.0).any()) {
-    throw Error(std::string(owner) + ": " + what + " must be finite and ≥ 0, got " +
-                values_text(head));
-  }
-}
-
-/// @throws Error unless the first @p rows entries of @p v are finite and > 0.
-inline void require_positive(const Eigen::Ref<const Eigen::VectorXd>& v, int rows,
-                             const char* owner, const char* what) {
-  const auto head = v.head(rows);
-  if (!head.allFinite() || (head.array() <= 0.0).any()) {
-    throw Error(std::string(owner) + ": " + what + " must be finite and > 0, got " +
-                values_text(head));
-  }
-}
-
-/// @throws Error unless @p value is finite and ≥ 0.
-inline void require_non_negative(double value, const char* owner, const char* what) {
-  if (!std::isfinite(value) || value < 0.0) {
-    throw Error(std::string(owner) + ": " + what + " must be finite and ≥ 0, got " +
-                number_text(value));
-  }
-}
-
-/// @throws Error unless @p value is finite and > 0.
-inline void require_positive(double value, const char* owner, const char* what) {
-  if (!std::isfinite(value) || value <= 0.0) {
-    throw Error(std::string(owner) + ": " + what + " must be finite and > 0, got " +
-                number_text(value));
-  }
+/// A copy of @p options whose entries past the first @p rows of each of @p members (6-vectors)
+/// are set to 1: a position task ignores rows 3–5, so `check_fields` on the copy leaves them
+/// unchecked (1 lies in every range those gains accept).
+template <class Options, class... Members>
+Options ignored_rows_cleared(Options options, int rows, Members... members) {
+  ((options.*members).tail(6 - rows).setOnes(), ...);
+  return options;
 }
 
 /// True when @p R is finite, orthonormal to 1e-6 and a proper rotation (det > 0).

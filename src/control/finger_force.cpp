@@ -14,52 +14,40 @@ namespace {
 
 constexpr int kMaxFingers = 8;
 
-void check_gain(double value, const char* what, bool zero_allowed) {
-  if (!std::isfinite(value) || value < 0.0 || (!zero_allowed && value == 0.0)) {
-    throw Error(std::string("FingerForceController: options.") + what + " must be finite and " +
-                (zero_allowed ? "≥ 0" : "> 0") + ", got " + number_text(value));
+const FingerForceOptions& fingers_checked(const FingerForceOptions& options) {
+  check_fields(options, "fingers");
+  if (options.max_force < options.grasp_force) {
+    throw Error("fingers: max_force (" + number_text(options.max_force) +
+                " N) must be ≥ grasp_force (" + number_text(options.grasp_force) + " N)");
   }
+  return options;
 }
-
 
 }  // namespace
 
 FingerForceController::FingerForceController(const Chain& fingers,
                                              const FingerForceOptions& options)
-    : options_(options),
+    : options_(fingers_checked(options)),
       dynamics_(fingers),
-      open_(
-          detail::finger_stroke_end(fingers, options.open, true, "FingerForceController", "open")),
-      closed_(detail::finger_stroke_end(fingers, options.closed, false, "FingerForceController",
-                                        "closed")) {
+      open_(detail::finger_stroke_end(fingers, options.open, true, "fingers", "open")),
+      closed_(detail::finger_stroke_end(fingers, options.closed, false, "fingers", "closed")) {
   const int n = fingers.size();
   if (n > kMaxFingers) {
-    throw Error("FingerForceController: at most " + std::to_string(kMaxFingers) +
-                " finger joints, got " + std::to_string(n));
-  }
-  check_gain(options.free_stiffness, "free_stiffness", false);
-  check_gain(options.free_damping, "free_damping", true);
-  check_gain(options.contact_damping, "contact_damping", true);
-  check_gain(options.centering_stiffness, "centering_stiffness", true);
-  check_gain(options.grasp_force, "grasp_force", false);
-  check_gain(options.max_force, "max_force", false);
-  if (options.max_force < options.grasp_force) {
-    throw Error("FingerForceController: options.max_force (" + number_text(options.max_force) +
-                " N) must be ≥ options.grasp_force (" + number_text(options.grasp_force) +
-                " N)");
+    throw Error("fingers: at most " + std::to_string(kMaxFingers) + " finger joints, got " +
+                std::to_string(n));
   }
   const mjModel& m = fingers.robot().model();
   finger_of_geom_.assign(static_cast<std::size_t>(m.ngeom), 0);
   object_geom_.assign(static_cast<std::size_t>(m.ngeom), 0);
   const auto check_geom = [&](int g, const char* what) {
     if (g < 0 || g >= m.ngeom) {
-      throw Error(std::string("FingerForceController: ") + what + " geom id " + std::to_string(g) +
+      throw Error(std::string("fingers: ") + what + " geom id " + std::to_string(g) +
                   " out of range [0, " + std::to_string(m.ngeom) + ")");
     }
   };
   if (!options.object_geoms.empty() && static_cast<int>(options.finger_geoms.size()) != n) {
-    throw Error("FingerForceController: options.finger_geoms needs one list per finger joint (" +
-                std::to_string(n) + "), got " + std::to_string(options.finger_geoms.size()));
+    throw Error("fingers: finger_geoms needs one list per finger joint (" + std::to_string(n) +
+                "), got " + std::to_string(options.finger_geoms.size()));
   }
   for (std::size_t i = 0; i < options.finger_geoms.size(); ++i) {
     for (int g : options.finger_geoms[i]) {
@@ -85,7 +73,7 @@ FingerForceController::FingerForceController(const Chain& fingers,
           m.actuator_trntype[*a] == mjTRN_JOINT && m.actuator_gear[6 * *a] == 1.0;
       if (!servo) {
         throw Error(
-            "FingerForceController: position mode needs a position servo (gain kp, bias "
+            "fingers: position mode needs a position servo (gain kp, bias "
             "−kp·q − kv·q̇, gear 1) on finger joint '" +
             fingers.joint_names()[i] + "'");
       }

@@ -2,27 +2,26 @@
 
 #include <algorithm>
 #include <cmath>
-#include <string>
 
 #include "control_checks.hpp"
-#include "mjarm/error.hpp"
-#include "mjarm/number_text.hpp"
 
 namespace mjarm {
+namespace {
+
+const GripperPdOptions& gripper_checked(const GripperPdOptions& options) {
+  check_fields(options, "gripper-pd");
+  return options;
+}
+
+}  // namespace
 
 GripperPdController::GripperPdController(const Chain& fingers, const GripperPdOptions& options)
-    : gains_(options.gains.expanded(fingers.size(), "GripperPdController")),
+    : gains_(gripper_checked(options).gains.expanded(fingers.size(), "gripper-pd")),
       max_force_(options.max_force),
       gravity_(options.gravity_compensation),
       dynamics_(fingers),
-      open_(detail::finger_stroke_end(fingers, options.open, true, "GripperPdController", "open")),
-      closed_(detail::finger_stroke_end(fingers, options.closed, false, "GripperPdController",
-                                        "closed")) {
-  if (!(max_force_ > 0.0) || !std::isfinite(max_force_)) {
-    throw Error("GripperPdController: options.max_force must be finite and > 0, got " +
-                number_text(max_force_));
-  }
-}
+      open_(detail::finger_stroke_end(fingers, options.open, true, "gripper-pd", "open")),
+      closed_(detail::finger_stroke_end(fingers, options.closed, false, "gripper-pd", "closed")) {}
 
 void GripperPdController::compute(const mjData& data, const Reference& reference,
                                   JointCommand& command) noexcept {

@@ -26,29 +26,14 @@ Eigen::VectorXd hqp_per_joint(const Eigen::VectorXd& v, int n, const char* what)
               " entries (one per chain joint), got " + std::to_string(v.size()));
 }
 
-/// The checked options (the compliance options are checked by `AdaptiveCompliance`).
+/// The checked options: each declared field in its range, the per-joint sizes, a non-zero axis.
 const HqpAcOptions& hqp_checked(const HqpAcOptions& o, const Chain& chain) {
-  const char* owner = "hqp-ac";
+  check_fields(o, "hqp-ac");
   const int n = chain.size();
-  detail::require_positive(o.horizon, owner, "horizon dt_p");
-  const Eigen::VectorXd v = hqp_per_joint(o.max_velocity, n, "max_velocity");
-  detail::require_positive(v, n, owner, "max_velocity");
-  if (o.max_torque.size() > 0) {
-    const Eigen::VectorXd t = hqp_per_joint(o.max_torque, n, "max_torque");
-    if ((t.array().isNaN()).any() || (t.array() <= 0.0).any()) {
-      throw Error("hqp-ac: max_torque must be > 0 (+inf allowed), got " + detail::values_text(t));
-    }
-  }
-  detail::require_positive(o.regularization, owner, "regularization epsilon");
-  detail::require_positive(o.manipulability_threshold, owner, "manipulability threshold");
-  detail::require_non_negative(o.singularity_gain, owner, "singularity gain k_sa");
-  detail::require_non_negative(o.posture_stiffness, owner, "posture stiffness");
-  detail::require_non_negative(o.posture_damping, owner, "posture damping");
-  detail::require_non_negative(o.preload.force, owner, "preload force");
-  detail::require_positive(o.preload.ramp_time, owner, "preload ramp time");
-  detail::require_positive(o.preload.contact_force, owner, "preload contact force");
-  if (!o.preload.axis.allFinite() || !(o.preload.axis.norm() > 0.0)) {
-    throw Error("hqp-ac: preload axis must be finite and non-zero, got " +
+  hqp_per_joint(o.max_velocity, n, "max_velocity");
+  if (o.max_torque.size() > 0) hqp_per_joint(o.max_torque, n, "max_torque");
+  if (!(o.preload.axis.norm() > 0.0)) {
+    throw Error("hqp-ac: preload axis must be non-zero, got " +
                 detail::values_text(o.preload.axis));
   }
   return o;
@@ -68,26 +53,6 @@ ManipulabilityOptions hqp_manipulability_options() {
 }
 
 }  // namespace
-
-const char* to_string(HqpAcStatus status) noexcept {
-  switch (status) {
-    case HqpAcStatus::ok:
-      return "ok";
-    case HqpAcStatus::damped:
-      return "damped";
-    case HqpAcStatus::invalid_wrench:
-      return "invalid_wrench";
-    case HqpAcStatus::null_space_dropped:
-      return "null_space_dropped";
-    case HqpAcStatus::least_squares:
-      return "least_squares";
-    case HqpAcStatus::invalid_target:
-      return "invalid_target";
-    case HqpAcStatus::invalid_state:
-      return "invalid_state";
-  }
-  return "?";
-}
 
 HqpAcController::HqpAcController(const Chain& chain, const HqpAcOptions& options)
     : options_(hqp_checked(options, chain)),

@@ -4,22 +4,18 @@
 #include <string>
 
 #include "mjarm/error.hpp"
-#include "mjarm/number_text.hpp"
 
 namespace mjarm {
 namespace {
 
-Eigen::VectorXd expand(const Eigen::VectorXd& v, int n, std::string_view owner, const char* what) {
+void require_one_or_n(const Eigen::VectorXd& v, int n, std::string_view owner, const char* what) {
   if (v.size() != 1 && v.size() != n) {
     throw Error(std::string(owner) + ": " + what + " needs 1 or " + std::to_string(n) +
                 " entries (one per chain joint), got " + std::to_string(v.size()));
   }
-  for (Eigen::Index i = 0; i < v.size(); ++i) {
-    if (!std::isfinite(v[i]) || v[i] < 0.0) {
-      throw Error(std::string(owner) + ": " + what + "[" + std::to_string(i) +
-                  "] must be finite and >= 0, got " + number_text(v[i]));
-    }
-  }
+}
+
+Eigen::VectorXd expand(const Eigen::VectorXd& v, int n) {
   return v.size() == n ? v : Eigen::VectorXd::Constant(n, v[0]);
 }
 
@@ -32,11 +28,14 @@ JointPdGains JointPdGains::uniform(double kp, double kd) {
 JointPdGains JointPdGains::critically_damped(double omega) { return uniform(omega * omega, 2.0 * omega); }
 
 JointPdGains JointPdGains::expanded(int n, std::string_view owner) const {
-  return JointPdGains{expand(kp, n, owner, "kp"), expand(kd, n, owner, "kd")};
+  require_one_or_n(kp, n, owner, "kp");
+  require_one_or_n(kd, n, owner, "kd");
+  check_fields(*this, owner);
+  return JointPdGains{expand(kp, n), expand(kd, n)};
 }
 
 JointPdController::JointPdController(const Chain& chain, const JointPdOptions& options)
-    : gains_(options.gains.expanded(chain.size(), "JointPdController")),
+    : gains_(options.gains.expanded(chain.size(), "joint-pd")),
       gravity_(options.gravity_compensation),
       dynamics_(chain) {}
 

@@ -4,7 +4,6 @@
 #include <cmath>
 
 #include "control_checks.hpp"
-#include "mjarm/number_text.hpp"
 
 namespace mjarm {
 
@@ -14,22 +13,10 @@ OperationalSpaceController::OperationalSpaceController(const Chain& chain,
       rows_(task_rows(options.mode)),
       dynamics_(chain),
       task_space_(chain.size(), task_rows(options.mode), options.task_space) {
-  const char* owner = "osc";
-  detail::require_non_negative(options.stiffness, rows_, owner, "stiffness K");
-  if (!options.damping.head(rows_).allFinite()) {
-    throw Error(std::string("osc: damping D must be finite (negative = critical), got ") +
-                detail::values_text(options.damping.head(rows_)));
-  }
-  detail::require_positive(options.damping_ratio, owner, "damping ratio");
-  detail::require_positive(options.inertia, rows_, owner, "inertia M_d");
-  detail::require_non_negative(options.integral_gain, rows_, owner, "integral gain K_i");
-  detail::require_non_negative(options.integral_limit, rows_, owner, "integral limit");
-  detail::require_non_negative(options.nullspace_damping, owner, "null-space damping");
-  detail::require_non_negative(options.nullspace_stiffness, owner, "null-space stiffness");
-  if (!(options.integral_hold_force > 0.0)) {
-    throw Error("osc: integral hold force must be > 0 (+inf = never hold), got " +
-                number_text(options.integral_hold_force));
-  }
+  using O = OperationalSpaceOptions;
+  check_fields(detail::ignored_rows_cleared(options, rows_, &O::stiffness, &O::damping, &O::inertia,
+                                            &O::integral_gain, &O::integral_limit),
+               "osc");
   // automatic damping for a fixed desired inertia is a constant
   for (int i = 0; i < 6; ++i) {
     const double d = options.damping[i];

@@ -95,32 +95,13 @@ Vector6d se3_rotate6(const Eigen::Matrix3d& R, const Vector6d& x) noexcept {
 
 }  // namespace
 
-const char* to_string(Se3ImpedanceStatus status) noexcept {
-  switch (status) {
-    case Se3ImpedanceStatus::ok:
-      return "ok";
-    case Se3ImpedanceStatus::damped:
-      return "damped";
-    case Se3ImpedanceStatus::invalid_target:
-      return "invalid_target";
-    case Se3ImpedanceStatus::invalid_wrench:
-      return "invalid_wrench";
-    case Se3ImpedanceStatus::invalid_state:
-      return "invalid_state";
-  }
-  return "?";
-}
-
 Se3ImpedanceController::Se3ImpedanceController(const Chain& chain,
                                                const Se3ImpedanceOptions& options)
     : options_(options), dynamics_(chain), task_space_(chain.size(), 6, options.task_space) {
   se3_require_positive_definite(options.inertia, "inertia A");
   se3_require_positive_definite(options.damping, "damping D");
   se3_require_stiffness(options.stiffness, options.release.axes);
-  detail::require_positive(options.release.contact_force, "se3", "release contact force");
-  detail::require_positive(options.release.duration, "se3", "release duration");
-  detail::require_non_negative(options.nullspace_damping, "se3", "null-space damping");
-  detail::require_non_negative(options.nullspace_stiffness, "se3", "null-space stiffness");
+  check_fields(options, "se3");
   inertia_inverse_ = options.inertia.llt().solve(Matrix6d::Identity());
   for (int i = 0; i < 6; ++i) release_mask_[i] = options.release.axes[static_cast<std::size_t>(i)];
   stiffness_now_ = options.stiffness;

@@ -4,10 +4,6 @@
 
 namespace mjarm {
 
-const char* to_string(TaskMode mode) noexcept {
-  return mode == TaskMode::pose ? "pose" : "position";
-}
-
 Vector6d task_error(const Pose& X_WE, const Pose& X_WD) noexcept {
   Vector6d e;
   e.head<3>() = X_WD.p - X_WE.p;

@@ -6,9 +6,8 @@ namespace mjarm {
 
 TaskPdController::TaskPdController(const Chain& chain, const TaskPdOptions& options)
     : options_(options), rows_(task_rows(options.mode)), dynamics_(chain) {
-  detail::require_non_negative(options.stiffness, rows_, "task-pd", "stiffness Kp");
-  detail::require_non_negative(options.damping, rows_, "task-pd", "damping Kd");
-  detail::require_non_negative(options.joint_damping, "task-pd", "joint damping");
+  using O = TaskPdOptions;
+  check_fields(detail::ignored_rows_cleared(options, rows_, &O::stiffness, &O::damping), "task-pd");
 }
 
 void TaskPdController::compute(const mjData& data, const Reference& reference,

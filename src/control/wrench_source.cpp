@@ -1,31 +1,12 @@
 #include "mjarm/control/wrench_source.hpp"
 
 #include <cmath>
-#include <string>
-
-#include "mjarm/error.hpp"
-#include "mjarm/number_text.hpp"
 
 namespace mjarm {
 
-const char* to_string(WrenchSourceKind kind) noexcept {
-  switch (kind) {
-    case WrenchSourceKind::none:
-      return "none";
-    case WrenchSourceKind::sensor:
-      return "sensor";
-    case WrenchSourceKind::observer:
-      return "observer";
-  }
-  return "?";
-}
-
 WrenchSource::WrenchSource(const Chain& chain, const WrenchSourceOptions& options)
     : options_(options), model_(&chain.robot().model()) {
-  if (!std::isfinite(options.control_period) || options.control_period < 0.0) {
-    throw Error("wrench source: control period must be finite and ≥ 0 (0 = measured), got " +
-                number_text(options.control_period));
-  }
+  check_fields(options);
   switch (options.kind) {
     case WrenchSourceKind::none:
       break;

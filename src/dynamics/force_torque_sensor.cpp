@@ -21,16 +21,6 @@ int sensor_address(const mjModel& m, int type, int site) {
 
 }  // namespace
 
-const char* to_string(WrenchStatus status) noexcept {
-  switch (status) {
-    case WrenchStatus::ok:
-      return "ok";
-    case WrenchStatus::non_finite:
-      return "non_finite";
-  }
-  return "unknown";
-}
-
 Vector6d shift_wrench(const Vector6d& F, const Eigen::Vector3d& p_A,
                       const Eigen::Vector3d& p_B) noexcept {
   Vector6d out = F;

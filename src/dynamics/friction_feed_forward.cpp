@@ -1,23 +1,8 @@
 #include "mjarm/dynamics/friction_feed_forward.hpp"
 
 #include <cmath>
-#include <string>
-
-#include "mjarm/error.hpp"
-#include "mjarm/number_text.hpp"
 
 namespace mjarm {
-namespace {
-
-void require_positive_scale(double value, const char* what) {
-  if (!(value > 0.0) || !std::isfinite(value)) {
-    throw Error(std::string("friction feed-forward: ") + what + " must be > 0 and finite, got " +
-                number_text(value));
-  }
-}
-
-}  // namespace
-
 FrictionFeedForwardOptions friction_options_for(bool controller_cancels_passive,
                                                 FrictionMode mode) noexcept {
   FrictionFeedForwardOptions options;
@@ -29,8 +14,7 @@ FrictionFeedForwardOptions friction_options_for(bool controller_cancels_passive,
 
 FrictionFeedForward::FrictionFeedForward(const Chain& chain, FrictionFeedForwardOptions options)
     : options_(options) {
-  require_positive_scale(options_.torque_sharpness, "torque_sharpness s");
-  require_positive_scale(options_.velocity_scale, "velocity_scale v0");
+  check_fields(options_);
   const mjModel& m = chain.robot().model();
   const int n = chain.size();
   friction_.resize(n);

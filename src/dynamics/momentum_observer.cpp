@@ -5,20 +5,11 @@
 #include <string>
 
 #include "mjarm/error.hpp"
-#include "mjarm/number_text.hpp"
 
 namespace mjarm {
 namespace {
 
 using Vec3Map = Eigen::Map<const Eigen::Vector3d>;
-
-void require_observer_gain(double value, bool allow_zero, const char* what) {
-  const bool ok = std::isfinite(value) && (allow_zero ? value >= 0.0 : value > 0.0);
-  if (!ok) {
-    throw Error(std::string("momentum observer: ") + what + " must be " +
-                (allow_zero ? ">= 0" : "> 0") + " and finite, got " + number_text(value));
-  }
-}
 
 // spatial momentum [angular; linear] of one body about the com-frame origin, from MuJoCo's
 // cinert (I_xx I_yy I_zz I_xy I_xz I_yz, m·c, m) and cvel [ω; v]:
@@ -36,18 +27,6 @@ void body_momentum(const double* inert, const double* vel, double* out) {
 }
 
 }  // namespace
-
-const char* to_string(ObserverStatus status) noexcept {
-  switch (status) {
-    case ObserverStatus::ok:
-      return "ok";
-    case ObserverStatus::bad_input:
-      return "bad_input";
-    case ObserverStatus::non_finite:
-      return "non_finite";
-  }
-  return "unknown";
-}
 
 void coriolis_transpose_velocity(const Chain& chain, const mjData& d, double* body_momentum_work,
                                  Eigen::Ref<Eigen::VectorXd> out) noexcept {
@@ -101,10 +80,7 @@ void mass_derivative_velocity(const Chain& chain, const mjData& d, mjData& scrat
 MomentumObserver::MomentumObserver(const Chain& chain, const FrictionFeedForward& friction,
                                    MomentumObserverOptions options)
     : chain_(chain), friction_(friction), options_(options), n_(chain.size()) {
-  require_observer_gain(options_.kp, false, "kp");
-  require_observer_gain(options_.ki, true, "ki");
-  require_observer_gain(options_.integral_limit, false, "integral_limit");
-  require_observer_gain(options_.wrench_damping, false, "wrench_damping epsilon");
+  check_fields(options_);
   if (friction_.size() != n_) {
     throw Error("momentum observer: the friction model has " + std::to_string(friction_.size()) +
                 " dofs, the chain " + std::to_string(n_));

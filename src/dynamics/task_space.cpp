@@ -6,24 +6,11 @@
 #include <string>
 
 #include "mjarm/error.hpp"
-#include "mjarm/number_text.hpp"
 #include "task_space_kernels.hpp"
 
 namespace mjarm {
 
 namespace tsk = task_space_kernels;
-
-const char* to_string(TaskSpaceStatus status) noexcept {
-  switch (status) {
-    case TaskSpaceStatus::ok:
-      return "ok";
-    case TaskSpaceStatus::damped:
-      return "damped";
-    case TaskSpaceStatus::not_positive_definite:
-      return "not_positive_definite";
-  }
-  return "unknown";
-}
 
 TaskSpaceDynamics::TaskSpaceDynamics(int dofs, int task_rows, TaskSpaceOptions options)
     : n_(dofs), m_(task_rows), options_(options), eigen_(std::clamp(task_rows, 1, 6)) {
@@ -31,10 +18,7 @@ TaskSpaceDynamics::TaskSpaceDynamics(int dofs, int task_rows, TaskSpaceOptions o
   if (task_rows < 1 || task_rows > 6) {
     throw Error("TaskSpaceDynamics: task_rows must be in 1..6, got " + std::to_string(task_rows));
   }
-  if (!(options.min_eigenvalue > 0.0) || !std::isfinite(options.min_eigenvalue)) {
-    throw Error("TaskSpaceDynamics: options.min_eigenvalue must be > 0 and finite, got " +
-                number_text(options.min_eigenvalue));
-  }
+  check_fields(options);
   certificate_trace_ = 0.5 / options.min_eigenvalue;
   if (!options.generic_kernels && (n_ == 6 || n_ == 7) && (m_ == 3 || m_ == 6)) {
     kernels_ = n_ == 7 ? (m_ == 6 ? Kernels::n7_m6 : Kernels::n7_m3)

@@ -9,35 +9,10 @@
 
 namespace mjarm {
 
-const char* to_string(JacobianBlock block) noexcept {
-  switch (block) {
-    case JacobianBlock::full:
-      return "full";
-    case JacobianBlock::position:
-      return "position";
-    case JacobianBlock::orientation:
-      return "orientation";
-  }
-  return "unknown";
-}
-
-const char* to_string(SingularityStatus status) noexcept {
-  switch (status) {
-    case SingularityStatus::regular:
-      return "regular";
-    case SingularityStatus::near_singular:
-      return "near_singular";
-    case SingularityStatus::singular:
-      return "singular";
-  }
-  return "unknown";
-}
-
 Manipulability::Manipulability(const Chain& chain, const ManipulabilityOptions& options)
     : options_(options), kin_(chain) {
-  if (!(std::isfinite(options.singular_tolerance) &&
-        std::isfinite(options.near_singular_threshold) && options.singular_tolerance >= 0.0 &&
-        options.singular_tolerance <= options.near_singular_threshold)) {
+  check_fields(options);
+  if (options.singular_tolerance > options.near_singular_threshold) {
     throw Error("manipulability thresholds must satisfy 0 <= singular_tolerance (" +
                 number_text(options.singular_tolerance) + ") <= near_singular_threshold (" +
                 number_text(options.near_singular_threshold) + ")");

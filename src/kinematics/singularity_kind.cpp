@@ -6,9 +6,6 @@
 #include <optional>
 #include <string>
 
-#include "mjarm/error.hpp"
-#include "mjarm/number_text.hpp"
-
 namespace mjarm {
 namespace {
 
@@ -76,32 +73,11 @@ Eigen::VectorXd second_probe(const Chain& chain) {
 
 }  // namespace
 
-const char* to_string(SingularityKind kind) noexcept {
-  switch (kind) {
-    case SingularityKind::wrist:
-      return "wrist";
-    case SingularityKind::elbow:
-      return "elbow";
-    case SingularityKind::shoulder:
-      return "shoulder";
-    case SingularityKind::unclassified:
-      return "unclassified";
-  }
-  return "unknown";
-}
-
 SingularityClassifier::SingularityClassifier(const Chain& chain,
                                              const ManipulabilityOptions& measure,
                                              const SingularityThresholds& thresholds)
     : thresholds_(thresholds), manipulability_(chain, measure) {
-  const auto positive = [](double v) { return std::isfinite(v) && v > 0.0; };
-  if (!positive(thresholds.sigma_min) || !positive(thresholds.condition_number) ||
-      !positive(thresholds.geometric_tolerance)) {
-    throw Error("singularity thresholds must be finite and > 0: sigma_min " +
-                number_text(thresholds.sigma_min) + ", condition_number " +
-                number_text(thresholds.condition_number) + ", geometric_tolerance " +
-                number_text(thresholds.geometric_tolerance));
-  }
+  check_fields(thresholds);
   const int n = chain.size();
   svd_ = Eigen::JacobiSVD<Eigen::MatrixXd>(manipulability_.rows(), n, Eigen::ComputeFullV);
 

@@ -40,12 +40,8 @@ int base_joint(const ChainKinematics& kin) {
 
 }  // namespace
 
-const char* to_string(SamplingStatus status) noexcept {
-  return status == SamplingStatus::complete ? "complete" : "interrupted";
-}
-
 WorkspaceResult sample_workspace(const Chain& chain, const WorkspaceOptions& options) {
-  if (options.samples == 0) throw Error("workspace sampling needs at least one sample, got 0");
+  check_fields(options);
   if (options.keep_points && options.samples > kMaxKeptWorkspacePoints) {
     throw Error(
         "workspace sampling: keeping " + std::to_string(options.samples) + " points would take " +

@@ -43,22 +43,6 @@ bool limits_valid(const Eigen::VectorXd& lo, const Eigen::VectorXd& hi) {
 
 }  // namespace
 
-const char* to_string(QpStatus status) noexcept {
-  switch (status) {
-    case QpStatus::solved:
-      return "solved";
-    case QpStatus::infeasible:
-      return "infeasible";
-    case QpStatus::iteration_limit:
-      return "iteration_limit";
-    case QpStatus::not_convex:
-      return "not_convex";
-    case QpStatus::invalid_input:
-      return "invalid_input";
-  }
-  return "unknown";
-}
-
 DenseQp::DenseQp(int n, int m_eq, int m_in)
     : n_(checked_variables(n, m_eq, m_in)), me_(m_eq), mi_(m_in), factor_(n) {
   result_.x = Eigen::VectorXd::Zero(n);

@@ -112,7 +112,7 @@ TEST(AdaptiveCompliance, GainsThatAreNotPositiveDefiniteThrow) {
   EXPECT_NE(error([](auto& o) { o.stiffness(0, 1) = 5.0; }).find("symmetric"), std::string::npos);
   EXPECT_NE(error([](auto& o) { o.stiffness(2, 2) = NAN; }).find("finite"), std::string::npos);
   EXPECT_NE(error([](auto& o) { o.deadband = -1.0; }).find("deadband"), std::string::npos);
-  EXPECT_NE(error([](auto& o) { o.force_gain = 0.0; }).find("force gain"), std::string::npos);
+  EXPECT_NE(error([](auto& o) { o.force_gain = 0.0; }).find("force_gain"), std::string::npos);
   EXPECT_NE(error([](auto& o) { o.min_stiffness_ratio = 0.0; }).find("ratio"), std::string::npos);
   EXPECT_NE(error([](auto& o) { o.min_stiffness_ratio = 1.5; }).find("ratio"), std::string::npos);
   EXPECT_NE(error([](auto& o) { o.min_eigenvalue = 0.0; }).find("eigenvalue"), std::string::npos);

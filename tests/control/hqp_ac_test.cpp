@@ -491,9 +491,9 @@ TEST(HqpAc, BadOptionsThrowNamingThem) {
             std::string::npos);
   EXPECT_NE(error([](auto& o) { o.preload.axis.setZero(); }).find("preload axis"),
             std::string::npos);
-  EXPECT_NE(error([](auto& o) { o.preload.force = -1.0; }).find("preload force"),
+  EXPECT_NE(error([](auto& o) { o.preload.force = -1.0; }).find("preload.force"),
             std::string::npos);
-  EXPECT_NE(error([](auto& o) { o.posture_damping = NAN; }).find("posture damping"),
+  EXPECT_NE(error([](auto& o) { o.posture_damping = NAN; }).find("posture_damping"),
             std::string::npos);
   // friction feed-forward larger than a joint's torque range leaves the QP no room
   Rig rough(test::iiwa_torque_with_friction(test::franka_frictionloss()), "attachment_site");

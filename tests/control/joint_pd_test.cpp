@@ -38,7 +38,7 @@ TEST(JointPdGains, ExpandsScalarsAndRejectsBadValues) {
     FAIL() << "expected an Error";
   } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find("kp"), std::string::npos) << e.what();
-    EXPECT_NE(std::string(e.what()).find("JointPdController"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("joint-pd"), std::string::npos) << e.what();
   }
   JointPdOptions negative;
   negative.gains.kd = Eigen::VectorXd::Constant(7, 1.0);

@@ -408,15 +408,15 @@ TEST(OperationalSpace, BadOptionsThrow) {
   expect_throw([](auto& o) { o.stiffness[0] = -1.0; }, "stiffness");
   expect_throw([](auto& o) { o.stiffness[4] = NAN; }, "stiffness");
   expect_throw([](auto& o) { o.damping[1] = INFINITY; }, "damping");
-  expect_throw([](auto& o) { o.damping_ratio = 0.0; }, "damping ratio");
+  expect_throw([](auto& o) { o.damping_ratio = 0.0; }, "damping_ratio");
   expect_throw([](auto& o) { o.inertia[3] = 0.0; }, "inertia");
-  expect_throw([](auto& o) { o.integral_gain[2] = -3.0; }, "integral gain");
-  expect_throw([](auto& o) { o.integral_limit[0] = -1.0; }, "integral limit");
-  expect_throw([](auto& o) { o.nullspace_damping = -1.0; }, "null-space damping");
-  expect_throw([](auto& o) { o.nullspace_stiffness = NAN; }, "null-space stiffness");
+  expect_throw([](auto& o) { o.integral_gain[2] = -3.0; }, "integral_gain");
+  expect_throw([](auto& o) { o.integral_limit[0] = -1.0; }, "integral_limit");
+  expect_throw([](auto& o) { o.nullspace_damping = -1.0; }, "nullspace_damping");
+  expect_throw([](auto& o) { o.nullspace_stiffness = NAN; }, "nullspace_stiffness");
   expect_throw([](auto& o) { o.task_space.min_eigenvalue = 0.0; }, "min_eigenvalue");
-  expect_throw([](auto& o) { o.integral_hold_force = 0.0; }, "integral hold force");
-  expect_throw([](auto& o) { o.integral_hold_force = NAN; }, "integral hold force");
+  expect_throw([](auto& o) { o.integral_hold_force = 0.0; }, "integral_hold_force");
+  expect_throw([](auto& o) { o.integral_hold_force = NAN; }, "integral_hold_force");
   // in position mode the rotational entries are not used, so they are not checked
   OperationalSpaceOptions o;
   o.mode = TaskMode::position;

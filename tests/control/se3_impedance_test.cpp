@@ -383,9 +383,9 @@ TEST(Se3Impedance, BadGainsThrowNamingTheMatrix) {
   expect_throw([](auto& o) { o.stiffness(1, 1) = -5.0; }, "positive semi-definite");
   expect_throw([](auto& o) { o.stiffness(4, 4) = 0.0; }, "not released [x, y, z, rx, ry, rz]");
   expect_throw([](auto& o) { o.stiffness(0, 1) = o.stiffness(1, 0) = 400.0; }, "not released");
-  expect_throw([](auto& o) { o.release.duration = 0.0; }, "release duration");
-  expect_throw([](auto& o) { o.release.contact_force = NAN; }, "release contact force");
-  expect_throw([](auto& o) { o.nullspace_damping = -1.0; }, "null-space damping");
+  expect_throw([](auto& o) { o.release.duration = 0.0; }, "release.duration");
+  expect_throw([](auto& o) { o.release.contact_force = NAN; }, "release.contact_force");
+  expect_throw([](auto& o) { o.nullspace_damping = -1.0; }, "nullspace_damping");
   // zero stiffness on a released axis is allowed; so is a fully released K
   Se3ImpedanceOptions o;
   o.stiffness(4, 4) = 0.0;

@@ -122,7 +122,7 @@ TEST(TaskPd, BadGainsThrow) {
     TaskPdController pd(rig.chain, o);
     ADD_FAILURE() << "no exception";
   } catch (const Error& e) {
-    EXPECT_NE(std::string(e.what()).find("joint damping"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("joint_damping"), std::string::npos) << e.what();
   }
 }
 

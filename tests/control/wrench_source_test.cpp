@@ -160,7 +160,7 @@ TEST(WrenchSource, MissingSensorNamesTheSite) {
   WrenchSourceOptions p;
   p.kind = WrenchSourceKind::observer;
   p.control_period = -1.0;
-  EXPECT_NE(test::error_of([&] { WrenchSource s(chain, p); }).find("control period"),
+  EXPECT_NE(test::error_of([&] { WrenchSource s(chain, p); }).find("control_period"),
             std::string::npos);
   p.control_period = 0.0;
   p.observer.kp = 0.0;

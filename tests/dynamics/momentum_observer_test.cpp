@@ -258,9 +258,9 @@ TEST(MomentumObserver, BadInputGivesAStatusAndChangesNothing) {
   EXPECT_STREQ(to_string(ObserverStatus::bad_input), "bad_input");
 
   const std::string kp = test::error_of([&] { MomentumObserver(chain, {.kp = 0.0}); });
-  EXPECT_NE(kp.find("kp must be > 0"), std::string::npos) << kp;
+  EXPECT_NE(kp.find("kp must be positive and finite [1/s], got 0"), std::string::npos) << kp;
   const std::string ki = test::error_of([&] { MomentumObserver(chain, {.ki = -1.0}); });
-  EXPECT_NE(ki.find("ki must be >= 0"), std::string::npos) << ki;
+  EXPECT_NE(ki.find("ki must be finite and ≥ 0 [1/s²], got -1"), std::string::npos) << ki;
   const std::string limit =
       test::error_of([&] { MomentumObserver(chain, {.integral_limit = nan}); });
   EXPECT_NE(limit.find("integral_limit"), std::string::npos) << limit;

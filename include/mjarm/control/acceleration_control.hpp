@@ -13,6 +13,7 @@
 #include "mjarm/control/controller.hpp"
 #include "mjarm/control/task_error.hpp"
 #include "mjarm/dynamics/chain_dynamics.hpp"
+#include "mjarm/fields.hpp"
 #include "mjarm/lie/types.hpp"
 
 namespace mjarm {
@@ -40,6 +41,23 @@ struct AccelerationControlOptions {
   /// commanded acceleration is what MuJoCo's forward dynamics produces.
   bool compensate_passive = true;
 };
+
+constexpr auto declared_fields(const AccelerationControlOptions*) {
+  using S = AccelerationControlOptions;
+  return declare<S>("accel", field("mode", &S::mode, "6-D pose or 3-D position task"),
+                    field("stiffness", &S::stiffness, "1/s²", Range::non_negative(),
+                          "Kp, task acceleration per unit error"),
+                    field("damping", &S::damping, "1/s", Range::non_negative(), "Kd"),
+                    field("manipulability_threshold", &S::manipulability_threshold, "",
+                          Range::positive(), "w₀: below it the pseudo-inverse is damped"),
+                    field("max_damping", &S::max_damping, "", Range::non_negative(),
+                          "λ_max of the damped least-squares inverse"),
+                    field("nullspace_damping", &S::nullspace_damping, "1/s", Range::non_negative(),
+                          "null-space joint damping"),
+                    field("nullspace_stiffness", &S::nullspace_stiffness, "1/s²",
+                          Range::non_negative(), "null-space posture stiffness"),
+                    field("compensate_passive", &S::compensate_passive, "cancel qfrc_passive"));
+}
 
 /// Acceleration-level control through inverse dynamics. Each tick:
 ///

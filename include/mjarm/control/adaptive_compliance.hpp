@@ -6,6 +6,7 @@
 #include <Eigen/Core>
 #include <Eigen/Eigenvalues>
 
+#include "mjarm/fields.hpp"
 #include "mjarm/lie/types.hpp"
 
 namespace mjarm {
@@ -22,6 +23,19 @@ struct AdaptiveComplianceOptions {
   /// `TaskSpaceOptions::min_eigenvalue`, so that Λ^½ stays bounded near singularities.
   double min_eigenvalue = 1e-3;
 };
+
+// the stiffness matrix K0 is checked by hand (symmetric positive definite)
+constexpr auto declared_fields(const AdaptiveComplianceOptions*) {
+  using S = AdaptiveComplianceOptions;
+  return declare<S>(
+      "hqp-ac",
+      field("deadband", &S::deadband, "N", Range::non_negative(), "forces below it do not soften"),
+      field("force_gain", &S::force_gain, "1/N", Range::positive(), "k_α of the sigmoid"),
+      field("min_stiffness_ratio", &S::min_stiffness_ratio, "", Range::open_closed(0.0, 1.0),
+            "r_min: K_r ≥ r_min·K0"),
+      field("min_eigenvalue", &S::min_eigenvalue, "1/kg or 1/(kg·m²)", Range::positive(),
+            "floor on the eigenvalues of Λ⁻¹ when taking Λ^½"));
+}
 
 /// Force-adaptive compliance of one end effector. Each `update` with the measured wrench
 /// F = [f; n] (N; N·m) and the task-space inverse inertia Λ⁻¹ = J·M⁻¹·Jᵀ:

@@ -14,6 +14,7 @@
 #include "mjarm/control/operational_space.hpp"
 #include "mjarm/control/wrench_source.hpp"
 #include "mjarm/dynamics/friction_feed_forward.hpp"
+#include "mjarm/fields.hpp"
 #include "mjarm/lie/types.hpp"
 
 namespace mjarm {
@@ -37,9 +38,16 @@ enum class CicIntegral {
   off         ///< never
 };
 
-/// Human names ("natural", "exact"; "automatic", "on", "off").
-const char* to_string(CicInertia inertia) noexcept;
-const char* to_string(CicIntegral integral) noexcept;
+constexpr auto declared_names(const CicInertia*) {
+  return std::array{EnumName{CicInertia::natural, "natural", "the arm's own task inertia Λ(q)"},
+                    EnumName{CicInertia::exact, "exact", "M_d through the measured wrench"}};
+}
+
+constexpr auto declared_names(const CicIntegral*) {
+  using I = CicIntegral;
+  return std::array{EnumName{I::automatic, "automatic", "on when a chain joint has friction"},
+                    EnumName{I::on, "on", "always"}, EnumName{I::off, "off", "never"}};
+}
 
 /// Settings of a `CartesianImpedanceController`. Task entries are [x, y, z, rx, ry, rz] in world
 /// axes (a 6-D pose task).
@@ -74,6 +82,36 @@ struct CartesianImpedanceOptions {
   TaskSpaceOptions task_space;
 };
 
+constexpr auto declared_fields(const CartesianImpedanceOptions*) {
+  using S = CartesianImpedanceOptions;
+  return declare<S>(
+      "cic",
+      field("stiffness", &S::stiffness, "N/m; N·m/rad", Range::positive(),
+            "K, the stiffness contact meets"),
+      field("damping", &S::damping, "N·s/m; N·m·s/rad", Range::finite(),
+            "D; a negative entry: critical, 2ζ·√(m_i·K_i)"),
+      field("damping_ratio", &S::damping_ratio, "", Range::positive(),
+            "ζ of the automatic damping entries"),
+      field("inertia", &S::inertia, "natural Λ or exact M_d"),
+      field("desired_inertia", &S::desired_inertia, "kg; kg·m²", Range::positive(),
+            "M_d, used with exact inertia"),
+      field("integral", &S::integral, "when the integral term runs"),
+      field("integral_gain", &S::integral_gain, "N/(m·s)", Range::positive(), "k_i on x, y, z"),
+      field("integral_bound", &S::integral_bound, "N", Range::positive(),
+            "|k_i·∫e| ≤ this per axis"),
+      field("integral_hold_force", &S::integral_hold_force, "N", Range::positive(),
+            "∫e held while ‖f_m‖ ≥ this"),
+      field("nullspace_damping", &S::nullspace_damping, "N·m·s/rad", Range::non_negative(),
+            "D_n, null-space joint damping"),
+      field("nullspace_stiffness", &S::nullspace_stiffness, "N·m/rad", Range::non_negative(),
+            "K_n, null-space posture stiffness"),
+      field("friction_feed_forward", &S::friction_feed_forward,
+            "add the friction feed-forward of dof_frictionloss"),
+      field("friction", &S::friction, "mode and scales of the feed-forward"),
+      field("force", &S::force, "where the measured wrench comes from"),
+      field("task_space", &S::task_space, "the floor of Λ near singularities"));
+}
+
 /// Outcome of the last `CartesianImpedanceController::compute`.
 enum class CicStatus {
   ok,              ///< the law ran with the exact Λ
@@ -84,8 +122,14 @@ enum class CicStatus {
   invalid_state    ///< the state (q, q̇, h, E's pose) or the law's torque was not finite: hold
 };
 
-/// Human name ("ok", "damped", "invalid_target", "invalid_wrench", "invalid_state").
-const char* to_string(CicStatus status) noexcept;
+constexpr auto declared_names(const CicStatus*) {
+  using S = CicStatus;
+  return std::array{EnumName{S::ok, "ok", "the law ran with the exact Λ"},
+                    EnumName{S::damped, "damped", "the law ran with Λ floored"},
+                    EnumName{S::invalid_target, "invalid_target", "bad target: hold command"},
+                    EnumName{S::invalid_wrench, "invalid_wrench", "bad measurement: taken as 0"},
+                    EnumName{S::invalid_state, "invalid_state", "bad state: hold command"}};
+}
 
 /// Cartesian impedance control (CIC). Each tick, with F_m the measured wrench of the environment
 /// on E (world axes, about E's origin; `WrenchSource`, taken before the law runs), e and ė the

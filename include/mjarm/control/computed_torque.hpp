@@ -11,6 +11,7 @@
 #include "mjarm/control/controller.hpp"
 #include "mjarm/control/joint_pd.hpp"
 #include "mjarm/dynamics/chain_dynamics.hpp"
+#include "mjarm/fields.hpp"
 
 namespace mjarm {
 
@@ -23,6 +24,12 @@ struct ComputedTorqueOptions {
   /// not part of h.
   bool compensate_passive = true;
 };
+
+constexpr auto declared_fields(const ComputedTorqueOptions*) {
+  using S = ComputedTorqueOptions;
+  return declare<S>("ct", field("gains", &S::gains, "Kp [1/s²] and Kd [1/s] per joint"),
+                    field("compensate_passive", &S::compensate_passive, "cancel qfrc_passive"));
+}
 
 /// Computed torque (inverse-dynamics control) on torque-driven joints:
 ///

@@ -32,6 +32,7 @@
 #include <vector>
 
 #include "mjarm/control/controller.hpp"
+#include "mjarm/fields.hpp"
 #include "mjarm/model/chain.hpp"
 #include "mjarm/model/robot.hpp"
 
@@ -53,6 +54,17 @@ struct ControlBenchmarkOptions {
   std::function<bool()> stop;
 };
 
+constexpr auto declared_fields(const ControlBenchmarkOptions*) {
+  using S = ControlBenchmarkOptions;
+  return declare<S>(
+      "control benchmark",
+      field("steps", &S::steps, "", Range::positive(), "timed ticks per controller"),
+      field("warmup", &S::warmup, "", Range::non_negative(), "untimed ticks before each run"),
+      field("amplitude", &S::amplitude, "rad or m", Range::non_negative(),
+            "joint amplitude of the reference"),
+      field("frequency", &S::frequency, "Hz", Range::positive(), "of the reference"));
+}
+
 /// How a benchmark run ended.
 enum class ControlBenchmarkStatus {
   ok,           ///< every phase ran; the figures stand
@@ -61,8 +73,12 @@ enum class ControlBenchmarkStatus {
   interrupted,  ///< the stop request said so; the figures are incomplete
 };
 
-/// "ok", "faulted" or "interrupted".
-const char* to_string(ControlBenchmarkStatus status) noexcept;
+constexpr auto declared_names(const ControlBenchmarkStatus*) {
+  using S = ControlBenchmarkStatus;
+  return std::array{EnumName{S::ok, "ok", "every phase ran"},
+                    EnumName{S::faulted, "faulted", "MuJoCo flagged a bad state"},
+                    EnumName{S::interrupted, "interrupted", "stopped on request"}};
+}
 
 /// Figures of one controller.
 struct ControllerBenchmark {

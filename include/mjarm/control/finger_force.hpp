@@ -14,6 +14,7 @@
 
 #include "mjarm/control/controller.hpp"
 #include "mjarm/dynamics/chain_dynamics.hpp"
+#include "mjarm/fields.hpp"
 
 namespace mjarm {
 
@@ -47,6 +48,30 @@ struct FingerForceOptions {
   /// mode the `Simulation` compensates the servo-driven dofs itself.
   bool gravity_compensation = true;
 };
+
+// the geom lists stay undeclared: checked against the model and bound by hand
+constexpr auto declared_fields(const FingerForceOptions*) {
+  using S = FingerForceOptions;
+  return declare<S>(
+      "fingers", field("command", &S::command, "torques or position targets"),
+      field("free_stiffness", &S::free_stiffness, "N/m", Range::positive(),
+            "K_free, positioning while not touching"),
+      field("free_damping", &S::free_damping, "N·s/m", Range::non_negative(), "D_free"),
+      field("contact_damping", &S::contact_damping, "N·s/m", Range::non_negative(),
+            "D_contact, once touching"),
+      field("centering_stiffness", &S::centering_stiffness, "N/m", Range::non_negative(),
+            "K_centre, keeps the object centred"),
+      field("grasp_force", &S::grasp_force, "N", Range::positive(),
+            "F_grasp, each finger's squeeze"),
+      field("max_force", &S::max_force, "N", Range::positive(),
+            "|force| bound in free motion (≥ grasp_force)"),
+      field("open", &S::open, "m or rad", Range::finite(),
+            "finger positions when open, one per finger; empty: the upper limits"),
+      field("closed", &S::closed, "m or rad", Range::finite(),
+            "finger positions when closed, one per finger; empty: the lower limits"),
+      field("gravity_compensation", &S::gravity_compensation,
+            "torque mode: add the gravity force on the fingers"));
+}
 
 /// Per finger i, with s = clamp(reference.gripper, 0, 1) (NaN keeps the previous s),
 /// q_d = open + s·(closed − open), e = q_d − q, c = ±1 the closing direction of the joint, and

@@ -11,6 +11,7 @@
 
 #include "mjarm/control/controller.hpp"
 #include "mjarm/dynamics/chain_dynamics.hpp"
+#include "mjarm/fields.hpp"
 
 namespace mjarm {
 
@@ -19,6 +20,11 @@ enum class BiasTerm {
   gravity,  ///< g(q) only (`ChainDynamics::gravity`)
   full      ///< h = C(q, q̇)·q̇ + g(q), MuJoCo's qfrc_bias (`ChainDynamics::bias`)
 };
+
+constexpr auto declared_names(const BiasTerm*) {
+  return std::array{EnumName{BiasTerm::gravity, "gravity", "g(q) only"},
+                    EnumName{BiasTerm::full, "full", "h = C(q, q̇)·q̇ + g(q)"}};
+}
 
 /// The bias forces that make position-servoed joints sag, and the servo-target offset that
 /// cancels them.

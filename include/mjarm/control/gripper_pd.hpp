@@ -12,6 +12,7 @@
 #include "mjarm/control/controller.hpp"
 #include "mjarm/control/joint_pd.hpp"
 #include "mjarm/dynamics/chain_dynamics.hpp"
+#include "mjarm/fields.hpp"
 
 namespace mjarm {
 
@@ -30,6 +31,19 @@ struct GripperPdOptions {
   /// Adds the gravity forces on the fingers (`ChainDynamics::gravity`) before the clamp.
   bool gravity_compensation = true;
 };
+
+constexpr auto declared_fields(const GripperPdOptions*) {
+  using S = GripperPdOptions;
+  return declare<S>(
+      "gripper-pd", field("gains", &S::gains, "Kp and Kd per finger (or one for all)"),
+      field("max_force", &S::max_force, "N or N·m", Range::positive(), "largest |τ| per finger"),
+      field("open", &S::open, "m or rad", Range::finite(),
+            "finger positions when open, one per finger; empty: the upper limits"),
+      field("closed", &S::closed, "m or rad", Range::finite(),
+            "finger positions when closed, one per finger; empty: the lower limits"),
+      field("gravity_compensation", &S::gravity_compensation,
+            "add the gravity forces on the fingers"));
+}
 
 /// PD on prismatic or hinge finger joints (the controller's chain, e.g.
 /// `Chain(robot, {"finger_left", "finger_right"}, "tcp")`):

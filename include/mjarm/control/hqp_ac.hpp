@@ -18,6 +18,7 @@
 #include "mjarm/dynamics/chain_dynamics.hpp"
 #include "mjarm/dynamics/friction_feed_forward.hpp"
 #include "mjarm/dynamics/task_space.hpp"
+#include "mjarm/fields.hpp"
 #include "mjarm/kinematics/manipulability.hpp"
 #include "mjarm/lie/types.hpp"
 #include "mjarm/qp/dense_qp.hpp"
@@ -32,6 +33,16 @@ struct HqpAcPreload {
   double ramp_time = 0.5;      ///< from 0 to P over this [s] (> 0)
   double contact_force = 2.0;  ///< contact starts when the measured ‖f‖ reaches this [N] (> 0)
 };
+
+constexpr auto declared_fields(const HqpAcPreload*) {
+  using S = HqpAcPreload;
+  return declare<S>(
+      "hqp-ac", field("force", &S::force, "N", Range::non_negative(), "P; 0: no preload"),
+      field("axis", &S::axis, "", Range::finite(), "insertion axis in E's axes (non-zero)"),
+      field("ramp_time", &S::ramp_time, "s", Range::positive(), "from 0 to P over this"),
+      field("contact_force", &S::contact_force, "N", Range::positive(),
+            "contact starts when the measured ‖f‖ reaches this"));
+}
 
 /// Settings of an `HqpAcController`. Defaults are the where it gives them (dt_p, ω_th,
 /// k_sa, posture gains, r_min) and ours otherwise (documented in docs/control.md).
@@ -66,6 +77,34 @@ struct HqpAcOptions {
   qp::QpSettings qp;            ///< both QPs' solver settings
 };
 
+// `qp` stays undeclared: its settings were never checked here (≤ 0 iterations is the default)
+constexpr auto declared_fields(const HqpAcOptions*) {
+  using S = HqpAcOptions;
+  return declare<S>(
+      "hqp-ac", field("compliance", &S::compliance, "K0, the force adaptation, the floor of Λ^½"),
+      field("preload", &S::preload, "optional preload along the insertion axis"),
+      field("horizon", &S::horizon, "s", Range::positive(), "look-ahead dt_p of the bounds"),
+      field("max_velocity", &S::max_velocity, "rad/s or m/s", Range::positive(),
+            "|q̇_i| ≤ v_max,i: one entry for every joint, or n"),
+      field("max_torque", &S::max_torque, "N·m or N", Range::positive().or_infinity(),
+            "|τ_i| ≤ τ_max,i: empty (the actuators'), one entry for every joint, or n"),
+      field("regularization", &S::regularization, "", Range::positive(),
+            "ε of the main QP's Hessian"),
+      field("manipulability_threshold", &S::manipulability_threshold, "", Range::positive(),
+            "ω_th: singularity avoidance below it"),
+      field("singularity_gain", &S::singularity_gain, "1/s² per unit ω²", Range::non_negative(),
+            "k_sa"),
+      field("posture_stiffness", &S::posture_stiffness, "1/s²", Range::non_negative(),
+            "K_p towards the start configuration"),
+      field("posture_damping", &S::posture_damping, "1/s", Range::non_negative(), "D_p"),
+      field("compensate_passive", &S::compensate_passive, "ĥ = h − τ_passive"),
+      field("friction_feed_forward", &S::friction_feed_forward,
+            "add the friction feed-forward of dof_frictionloss"),
+      field("friction", &S::friction, "mode and scales of the feed-forward"),
+      field("force", &S::force, "where the measured wrench comes from"),
+      field("task_space", &S::task_space, "the floor of Λ near singularities"));
+}
+
 /// Outcome of the last `HqpAcController::compute`, most severe first in this order:
 /// invalid_state, invalid_target, least_squares, null_space_dropped, invalid_wrench, damped, ok.
 enum class HqpAcStatus {
@@ -80,8 +119,17 @@ enum class HqpAcStatus {
   invalid_state        ///< state not finite or M not positive definite: the hold command
 };
 
-/// Human name of a status ("ok", "damped", …).
-const char* to_string(HqpAcStatus status) noexcept;
+constexpr auto declared_names(const HqpAcStatus*) {
+  using S = HqpAcStatus;
+  return std::array{
+      EnumName{S::ok, "ok", "both QPs solved, every bound holds"},
+      EnumName{S::damped, "damped", "both solved, Λ floored"},
+      EnumName{S::invalid_wrench, "invalid_wrench", "bad measurement: taken as zero"},
+      EnumName{S::null_space_dropped, "null_space_dropped", "the null-space QP failed"},
+      EnumName{S::least_squares, "least_squares", "the main QP failed: clamped least squares"},
+      EnumName{S::invalid_target, "invalid_target", "bad target: hold command"},
+      EnumName{S::invalid_state, "invalid_state", "bad state: hold command"}};
+}
 
 /// What happened in one tick.
 struct HqpAcTick {

@@ -11,6 +11,7 @@
 
 #include "mjarm/control/controller.hpp"
 #include "mjarm/dynamics/chain_dynamics.hpp"
+#include "mjarm/fields.hpp"
 
 namespace mjarm {
 
@@ -34,6 +35,16 @@ struct JointPdGains {
   JointPdGains expanded(int n, std::string_view owner) const;
 };
 
+// units per controller: N·m/rad and N·m·s/rad for joint PD, 1/s² and 1/s for computed torque
+constexpr auto declared_fields(const JointPdGains*) {
+  using S = JointPdGains;
+  return declare<S>("joint PD gains",
+                    field("kp", &S::kp, "", Range::non_negative(),
+                          "stiffness, one per chain joint or one for all"),
+                    field("kd", &S::kd, "", Range::non_negative(),
+                          "damping, one per chain joint or one for all"));
+}
+
 /// Settings of a `JointPdController`.
 struct JointPdOptions {
   JointPdGains gains;
@@ -41,6 +52,12 @@ struct JointPdOptions {
   /// error instead of also holding the arm up.
   bool gravity_compensation = true;
 };
+
+constexpr auto declared_fields(const JointPdOptions*) {
+  using S = JointPdOptions;
+  return declare<S>("joint-pd", field("gains", &S::gains, "Kp and Kd per joint"),
+                    field("gravity_compensation", &S::gravity_compensation, "add g(q)"));
+}
 
 /// Joint-space PD on torque-driven joints:
 ///

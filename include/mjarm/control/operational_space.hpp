@@ -14,6 +14,7 @@
 #include "mjarm/control/task_error.hpp"
 #include "mjarm/dynamics/chain_dynamics.hpp"
 #include "mjarm/dynamics/task_space.hpp"
+#include "mjarm/fields.hpp"
 #include "mjarm/lie/types.hpp"
 
 namespace mjarm {
@@ -58,6 +59,32 @@ struct OperationalSpaceOptions {
   /// The floor that bounds Λ near singularities.
   TaskSpaceOptions task_space;
 };
+
+constexpr auto declared_fields(const OperationalSpaceOptions*) {
+  using S = OperationalSpaceOptions;
+  return declare<S>(
+      "osc", field("mode", &S::mode, "6-D pose or 3-D position task"),
+      field("stiffness", &S::stiffness, "N/m; N·m/rad", Range::non_negative(), "K"),
+      field("damping", &S::damping, "N·s/m; N·m·s/rad", Range::finite(),
+            "D; a negative entry: critical, 2ζ·√(m_i·K_i)"),
+      field("damping_ratio", &S::damping_ratio, "", Range::positive(),
+            "ζ of the automatic damping entries"),
+      field("inertia", &S::inertia, "kg; kg·m²", Range::positive(), "M_d, desired inertia"),
+      field("task_inertia", &S::task_inertia, "keep the arm's own Λ instead of M_d"),
+      field("integral_gain", &S::integral_gain, "N/(m·s); N·m/(rad·s)", Range::non_negative(),
+            "K_i; 0: no integral term"),
+      field("integral_limit", &S::integral_limit, "m·s; rad·s", Range::non_negative(),
+            "anti-windup bound on each entry of ∫e"),
+      field("nullspace_damping", &S::nullspace_damping, "N·m·s/rad or N·s/m", Range::non_negative(),
+            "D_n, null-space joint damping"),
+      field("nullspace_stiffness", &S::nullspace_stiffness, "N·m/rad or N/m", Range::non_negative(),
+            "K_n, null-space posture stiffness"),
+      field("compensate_passive", &S::compensate_passive, "cancel qfrc_passive"),
+      field("wrench_feedback", &S::wrench_feedback, "render M_d with the measured wrench"),
+      field("integral_hold_force", &S::integral_hold_force, "N", Range::positive().or_infinity(),
+            "∫e held while ‖f_m‖ ≥ this; +inf: never"),
+      field("task_space", &S::task_space, "the floor of Λ near singularities"));
+}
 
 /// Operational-space impedance control. Each tick, with J the world-aligned Jacobian (its first
 /// 3 rows in position mode), Λ = (J·M⁻¹·Jᵀ)⁻¹ (bounded near singularities, `TaskSpaceDynamics`)

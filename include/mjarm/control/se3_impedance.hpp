@@ -13,6 +13,7 @@
 #include "mjarm/control/controller.hpp"
 #include "mjarm/dynamics/chain_dynamics.hpp"
 #include "mjarm/dynamics/task_space.hpp"
+#include "mjarm/fields.hpp"
 #include "mjarm/lie/pose.hpp"
 #include "mjarm/lie/types.hpp"
 
@@ -29,6 +30,16 @@ struct StiffnessRelease {
   /// Duration of the smoothstep ramp s(x) = x²(3 − 2x), x = (t − t₀)/duration [s] (> 0).
   double duration = 0.25;
 };
+
+// `axes` (six flags) stays undeclared: it is bound by hand
+constexpr auto declared_fields(const StiffnessRelease*) {
+  using S = StiffnessRelease;
+  return declare<S>(
+      "se3",
+      field("contact_force", &S::contact_force, "N", Range::positive(),
+            "the measured force that starts the release"),
+      field("duration", &S::duration, "s", Range::positive(), "of the smoothstep ramp"));
+}
 
 /// Settings of an `Se3ImpedanceController`. Matrices act on λ = [v; ω] in E's axes (linear
 /// first): rows and columns [x, y, z, rx, ry, rz].
@@ -54,6 +65,19 @@ struct Se3ImpedanceOptions {
   TaskSpaceOptions task_space;
 };
 
+// the 6×6 matrices stay undeclared: they are checked (symmetric, definite) and bound by hand
+constexpr auto declared_fields(const Se3ImpedanceOptions*) {
+  using S = Se3ImpedanceOptions;
+  return declare<S>("se3",
+                    field("release", &S::release, "contact-triggered release of stiffness axes"),
+                    field("nullspace_damping", &S::nullspace_damping, "N·m·s/rad or N·s/m",
+                          Range::non_negative(), "D_n, null-space joint damping"),
+                    field("nullspace_stiffness", &S::nullspace_stiffness, "N·m/rad or N/m",
+                          Range::non_negative(), "K_n, null-space posture stiffness"),
+                    field("compensate_passive", &S::compensate_passive, "cancel qfrc_passive"),
+                    field("task_space", &S::task_space, "the floor of Λ near singularities"));
+}
+
 /// Outcome of the last `Se3ImpedanceController::compute`.
 enum class Se3ImpedanceStatus {
   ok,              ///< the impedance law ran with the exact Λ
@@ -67,8 +91,14 @@ enum class Se3ImpedanceStatus {
                    ///< the hold command (or zero torque when h is not finite) was sent
 };
 
-/// Human name of a status ("ok", "damped", "invalid_target", "invalid_wrench", "invalid_state").
-const char* to_string(Se3ImpedanceStatus status) noexcept;
+constexpr auto declared_names(const Se3ImpedanceStatus*) {
+  using S = Se3ImpedanceStatus;
+  return std::array{EnumName{S::ok, "ok", "the law ran with the exact Λ"},
+                    EnumName{S::damped, "damped", "the law ran with Λ floored"},
+                    EnumName{S::invalid_target, "invalid_target", "bad target: hold command"},
+                    EnumName{S::invalid_wrench, "invalid_wrench", "bad measurement: ignored"},
+                    EnumName{S::invalid_state, "invalid_state", "bad state: hold command"}};
+}
 
 /// Impedance control on SE(3). Symbols (the paper's → ours; twists linear first [v; ω], every
 /// twist and wrench below in E's axes):

@@ -5,6 +5,7 @@
 
 #include <string_view>
 
+#include "mjarm/fields.hpp"
 #include "mjarm/lie/pose.hpp"
 #include "mjarm/lie/types.hpp"
 
@@ -19,8 +20,10 @@ enum class TaskMode {
 /// Number of task rows m of @p mode: 6 for pose, 3 for position.
 constexpr int task_rows(TaskMode mode) noexcept { return mode == TaskMode::pose ? 6 : 3; }
 
-/// Human name ("pose", "position").
-const char* to_string(TaskMode mode) noexcept;
+constexpr auto declared_names(const TaskMode*) {
+  return std::array{EnumName{TaskMode::pose, "pose", "6 rows: position and orientation"},
+                    EnumName{TaskMode::position, "position", "3 rows: position of E's origin"}};
+}
 
 /// The pose error of E relative to the desired frame D, in world axes, linear first:
 ///

@@ -10,6 +10,7 @@
 #include "mjarm/control/controller.hpp"
 #include "mjarm/control/task_error.hpp"
 #include "mjarm/dynamics/chain_dynamics.hpp"
+#include "mjarm/fields.hpp"
 #include "mjarm/lie/types.hpp"
 
 namespace mjarm {
@@ -28,6 +29,18 @@ struct TaskPdOptions {
   /// of a redundant arm, which Jᵀ never sees. 0 by default (the plain law).
   double joint_damping = 0.0;
 };
+
+constexpr auto declared_fields(const TaskPdOptions*) {
+  using S = TaskPdOptions;
+  return declare<S>("task-pd", field("mode", &S::mode, "6-D pose or 3-D position task"),
+                    field("stiffness", &S::stiffness, "N/m; N·m/rad", Range::non_negative(),
+                          "Kp, [x, y, z, rx, ry, rz] world axes"),
+                    field("damping", &S::damping, "N·s/m; N·m·s/rad", Range::non_negative(),
+                          "Kd, [x, y, z, rx, ry, rz] world axes"),
+                    field("gravity_compensation", &S::gravity_compensation, "add g(q)"),
+                    field("joint_damping", &S::joint_damping, "N·m·s/rad or N·s/m",
+                          Range::non_negative(), "joint-space damping −d·q̇"));
+}
 
 /// Task-space PD (Jacobian-transpose) control of the chain's frame E:
 ///

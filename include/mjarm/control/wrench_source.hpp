@@ -13,6 +13,7 @@
 #include "mjarm/dynamics/chain_dynamics.hpp"
 #include "mjarm/dynamics/force_torque_sensor.hpp"
 #include "mjarm/dynamics/momentum_observer.hpp"
+#include "mjarm/fields.hpp"
 #include "mjarm/lie/pose.hpp"
 #include "mjarm/lie/types.hpp"
 #include "mjarm/model/chain.hpp"
@@ -26,8 +27,12 @@ enum class WrenchSourceKind {
   observer,  ///< the generalized-momentum observer of the chain (`MomentumObserver`)
 };
 
-/// Human name ("none", "sensor", "observer").
-const char* to_string(WrenchSourceKind kind) noexcept;
+constexpr auto declared_names(const WrenchSourceKind*) {
+  using K = WrenchSourceKind;
+  return std::array{EnumName{K::none, "none", "no measurement: zero wrench"},
+                    EnumName{K::sensor, "sensor", "a force/torque sensor pair on a site"},
+                    EnumName{K::observer, "observer", "the generalized-momentum observer"}};
+}
 
 /// Settings of a `WrenchSource`.
 struct WrenchSourceOptions {
@@ -51,6 +56,20 @@ struct WrenchSourceOptions {
   /// timestep before the second tick).
   double control_period = 0.0;
 };
+
+// `observer` stays undeclared: the observer checks its gains, only when it is the source
+constexpr auto declared_fields(const WrenchSourceOptions*) {
+  using S = WrenchSourceOptions;
+  return declare<S>(
+      "wrench source", field("kind", &S::kind, "none, sensor or observer"),
+      field("site", &S::site, "sensor: the site carrying the force and torque sensors"),
+      field("timing", &S::timing, "sensor: when sensordata was computed"),
+      field("compensate_tool_weight", &S::compensate_tool_weight,
+            "sensor: subtract the weight the sensor carries"),
+      field("contact_only", &S::contact_only, "observer: the contact-only estimate"),
+      field("control_period", &S::control_period, "s", Range::non_negative(),
+            "observer: time between two ticks; 0: measured"));
+}
 
 /// The external wrench on the chain's frame E for a controller: F_E = [f; τ] (N; N·m), the
 /// wrench the environment exerts on E, in world axes, torque about E's origin.

@@ -9,6 +9,7 @@
 #include <string>
 #include <string_view>
 
+#include "mjarm/fields.hpp"
 #include "mjarm/lie/pose.hpp"
 #include "mjarm/lie/types.hpp"
 #include "mjarm/model/robot.hpp"
@@ -26,14 +27,22 @@ enum class SensorTiming {
   after_forward
 };
 
+constexpr auto declared_names(const SensorTiming*) {
+  return std::array{
+      EnumName{SensorTiming::after_step, "after_step", "sensordata one physics step old"},
+      EnumName{SensorTiming::after_forward, "after_forward", "measured at d.time"}};
+}
+
 /// Outcome of one read.
 enum class WrenchStatus {
   ok,         ///< all six values finite
   non_finite  ///< a NaN or an infinity in sensordata: the wrench is set to zero, never used
 };
 
-/// Human name of a status ("ok", "non_finite").
-const char* to_string(WrenchStatus status) noexcept;
+constexpr auto declared_names(const WrenchStatus*) {
+  return std::array{EnumName{WrenchStatus::ok, "ok", "all six values finite"},
+                    EnumName{WrenchStatus::non_finite, "non_finite", "the wrench was zeroed"}};
+}
 
 /// One wrench measurement.
 struct WrenchReading {

@@ -6,6 +6,7 @@
 
 #include <Eigen/Core>
 
+#include "mjarm/fields.hpp"
 #include "mjarm/model/chain.hpp"
 
 namespace mjarm {
@@ -19,6 +20,11 @@ enum class FrictionMode {
   velocity
 };
 
+constexpr auto declared_names(const FrictionMode*) {
+  return std::array{EnumName{FrictionMode::torque, "torque", "the sign follows the torque"},
+                    EnumName{FrictionMode::velocity, "velocity", "the sign follows q̇"}};
+}
+
 /// Who cancels the viscous damping d⊙q̇.
 enum class DampingCompensation {
   /// The feed-forward adds d⊙q̇ (for a controller that does not touch qfrc_passive).
@@ -29,6 +35,12 @@ enum class DampingCompensation {
   by_controller
 };
 
+constexpr auto declared_names(const DampingCompensation*) {
+  using D = DampingCompensation;
+  return std::array{EnumName{D::feed_forward, "feed_forward", "the feed-forward adds d⊙q̇"},
+                    EnumName{D::by_controller, "by_controller", "the controller cancels it"}};
+}
+
 /// Tuning of the feed-forward.
 struct FrictionFeedForwardOptions {
   FrictionMode mode = FrictionMode::torque;  ///< torque or velocity
@@ -36,6 +48,16 @@ struct FrictionFeedForwardOptions {
   double velocity_scale = 0.01;              ///< v₀ in tanh(q̇/v₀) [rad/s or m/s] (> 0)
   DampingCompensation damping = DampingCompensation::feed_forward;  ///< who cancels d⊙q̇
 };
+
+constexpr auto declared_fields(const FrictionFeedForwardOptions*) {
+  using S = FrictionFeedForwardOptions;
+  return declare<S>(
+      "friction feed-forward", field("mode", &S::mode, "which signal sets the sign"),
+      field("torque_sharpness", &S::torque_sharpness, "", Range::positive(), "s in tanh(s·τ/f)"),
+      field("velocity_scale", &S::velocity_scale, "rad/s or m/s", Range::positive(),
+            "v₀ in tanh(q̇/v₀)"),
+      field("damping", &S::damping, "who cancels the viscous damping d⊙q̇"));
+}
 
 /// The options that fit a controller: `by_controller` damping when @p controller_cancels_passive
 /// (an `OperationalSpaceController` with compensate_passive = true), `feed_forward` otherwise.

@@ -12,6 +12,7 @@
 
 #include "mjarm/dynamics/chain_dynamics.hpp"
 #include "mjarm/dynamics/friction_feed_forward.hpp"
+#include "mjarm/fields.hpp"
 #include "mjarm/lie/types.hpp"
 #include "mjarm/model/robot.hpp"
 
@@ -28,6 +29,14 @@ enum class CoriolisMethod {
   directional_difference
 };
 
+constexpr auto declared_names(const CoriolisMethod*) {
+  using C = CoriolisMethod;
+  return std::array{
+      EnumName{C::subtree_momentum, "subtree_momentum", "exact, from MuJoCo's com quantities"},
+      EnumName{C::directional_difference, "directional_difference",
+               "central difference of M along q̇ (cross-check)"}};
+}
+
 /// Tuning of the observer.
 struct MomentumObserverOptions {
   double kp = 20.0;              ///< K_p [1/s] (> 0)
@@ -37,6 +46,17 @@ struct MomentumObserverOptions {
   CoriolisMethod coriolis = CoriolisMethod::subtree_momentum;  ///< how Cᵀ·q̇ is computed
 };
 
+constexpr auto declared_fields(const MomentumObserverOptions*) {
+  using S = MomentumObserverOptions;
+  return declare<S>("momentum observer", field("kp", &S::kp, "1/s", Range::positive(), "K_p"),
+                    field("ki", &S::ki, "1/s²", Range::non_negative(), "K_i"),
+                    field("integral_limit", &S::integral_limit, "N·m·s or N·s", Range::positive(),
+                          "bound on each entry of ∫e"),
+                    field("wrench_damping", &S::wrench_damping, "", Range::positive(),
+                          "ε in F̂ = (J·Jᵀ + ε·I)⁻¹·J·r"),
+                    field("coriolis", &S::coriolis, "how Cᵀ·q̇ is computed"));
+}
+
 /// Outcome of one `update`.
 enum class ObserverStatus {
   ok,         ///< estimates updated
@@ -44,8 +64,12 @@ enum class ObserverStatus {
   non_finite  ///< the state gave a non-finite momentum or β: nothing changed
 };
 
-/// Human name of a status ("ok", "bad_input", "non_finite").
-const char* to_string(ObserverStatus status) noexcept;
+constexpr auto declared_names(const ObserverStatus*) {
+  using S = ObserverStatus;
+  return std::array{EnumName{S::ok, "ok", "estimates updated"},
+                    EnumName{S::bad_input, "bad_input", "bad dt or torque: nothing changed"},
+                    EnumName{S::non_finite, "non_finite", "non-finite state: nothing changed"}};
+}
 
 /// Cᵀ(q, q̇)·q̇ on the chain's dofs [N·m or N] by the exact subtree-momentum method (see
 /// `CoriolisMethod::subtree_momentum`), from an up-to-date @p d (after mj_forward or

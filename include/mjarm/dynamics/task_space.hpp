@@ -9,6 +9,7 @@
 #include <Eigen/Eigenvalues>
 
 #include "mjarm/dynamics/chain_dynamics.hpp"
+#include "mjarm/fields.hpp"
 
 namespace mjarm {
 
@@ -27,6 +28,17 @@ struct TaskSpaceOptions {
   bool generic_kernels = false;
 };
 
+constexpr auto declared_fields(const TaskSpaceOptions*) {
+  using S = TaskSpaceOptions;
+  return declare<S>(
+      "task-space dynamics",
+      field("min_eigenvalue", &S::min_eigenvalue, "1/kg or 1/(kg·m²)", Range::positive(),
+            "floor on the eigenvalues of Λ⁻¹"),
+      field("always_eigendecompose", &S::always_eigendecompose,
+            "always take the eigendecomposition path"),
+      field("generic_kernels", &S::generic_kernels, "run-time-size kernels for every size"));
+}
+
 /// Outcome of one `TaskSpaceDynamics::update`.
 enum class TaskSpaceStatus {
   ok,                    ///< Λ is the exact inverse of J·M⁻¹·Jᵀ
@@ -34,8 +46,13 @@ enum class TaskSpaceStatus {
   not_positive_definite  ///< M failed its Cholesky factorization; outputs are left unchanged
 };
 
-/// Human name of a status ("ok", "damped", "not_positive_definite").
-const char* to_string(TaskSpaceStatus status) noexcept;
+constexpr auto declared_names(const TaskSpaceStatus*) {
+  using S = TaskSpaceStatus;
+  return std::array{EnumName{S::ok, "ok", "Λ is the exact inverse"},
+                    EnumName{S::damped, "damped", "an eigenvalue was floored"},
+                    EnumName{S::not_positive_definite, "not_positive_definite",
+                             "M failed its Cholesky factorization"}};
+}
 
 /// Task-space (operational-space) dynamics for an m×n task Jacobian J (1 ≤ m ≤ 6) and an n×n
 /// joint-space inertia M:

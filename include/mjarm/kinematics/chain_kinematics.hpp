@@ -6,6 +6,7 @@
 #include <Eigen/Core>
 #include <vector>
 
+#include "mjarm/fields.hpp"
 #include "mjarm/lie/pose.hpp"
 #include "mjarm/lie/types.hpp"
 #include "mjarm/model/chain.hpp"
@@ -21,6 +22,15 @@ enum class JacobianFrame {
   local,          ///< the same twist in the frame's own axes (body twist V_E)
   world           ///< spatial twist: velocity of the point at the world origin moving with E
 };
+
+constexpr auto declared_names(const JacobianFrame*) {
+  using F = JacobianFrame;
+  return std::array{
+      EnumName{F::world_aligned, "world_aligned",
+               "velocity of the frame origin and angular velocity, world axes (mj_jacSite)"},
+      EnumName{F::local, "local", "the same twist in the frame's axes (body twist)"},
+      EnumName{F::world, "world", "spatial twist (point at the world origin)"}};
+}
 
 /// Forward kinematics of a `Chain`, with preallocated workspace: `update()` and `jacobian()`
 /// allocate nothing. Joints of the model outside the chain but on the frame's path hold the

@@ -7,6 +7,7 @@
 #include <Eigen/SVD>
 #include <vector>
 
+#include "mjarm/fields.hpp"
 #include "mjarm/kinematics/chain_kinematics.hpp"
 #include "mjarm/lie/types.hpp"
 #include "mjarm/model/chain.hpp"
@@ -20,8 +21,12 @@ enum class JacobianBlock {
   orientation  ///< rows 3–5: angular velocity [rad per rad]
 };
 
-/// Human name of a block ("full", "position", "orientation").
-const char* to_string(JacobianBlock block) noexcept;
+constexpr auto declared_names(const JacobianBlock*) {
+  using B = JacobianBlock;
+  return std::array{EnumName{B::full, "full", "all 6 rows [v; ω]"},
+                    EnumName{B::position, "position", "rows 0–2: velocity of the frame origin"},
+                    EnumName{B::orientation, "orientation", "rows 3–5: angular velocity"}};
+}
 
 /// How close a configuration is to a singularity, judged on the inverse condition number
 /// σmin/σmax of the measured Jacobian block.
@@ -31,8 +36,12 @@ enum class SingularityStatus {
   singular        ///< σmin/σmax ≤ singular_tolerance (or σmax = 0): a direction is lost
 };
 
-/// Human name of a status ("regular", "near_singular", "singular").
-const char* to_string(SingularityStatus status) noexcept;
+constexpr auto declared_names(const SingularityStatus*) {
+  using S = SingularityStatus;
+  return std::array{EnumName{S::regular, "regular", "σmin/σmax ≥ near_singular_threshold"},
+                    EnumName{S::near_singular, "near_singular", "between the two thresholds"},
+                    EnumName{S::singular, "singular", "σmin/σmax ≤ singular_tolerance"}};
+}
 
 /// Settings of `Manipulability`.
 struct ManipulabilityOptions {
@@ -40,6 +49,16 @@ struct ManipulabilityOptions {
   double singular_tolerance = 1e-9;           ///< σmin/σmax at or below this: singular
   double near_singular_threshold = 1e-2;      ///< σmin/σmax below this: near-singular
 };
+
+constexpr auto declared_fields(const ManipulabilityOptions*) {
+  using S = ManipulabilityOptions;
+  return declare<S>(
+      "manipulability", field("block", &S::block, "rows of J measured"),
+      field("singular_tolerance", &S::singular_tolerance, "", Range::non_negative(),
+            "σmin/σmax at or below this: singular"),
+      field("near_singular_threshold", &S::near_singular_threshold, "", Range::non_negative(),
+            "σmin/σmax below this: near-singular (≥ singular_tolerance)"));
+}
 
 /// One evaluation. With m rows measured and n joints, p = min(m, n) singular values are used.
 struct ManipulabilityResult {
@@ -63,7 +82,8 @@ using SingularValues = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 6, 1>;
 /// exact singularity (status `singular`) w is not differentiable and the gradient is set to 0.
 class Manipulability {
  public:
-  /// @throws Error when the thresholds are not 0 ≤ singular_tolerance ≤ near_singular_threshold.
+  /// @throws Error when a threshold is negative or not finite, or singular_tolerance exceeds
+  /// near_singular_threshold.
   explicit Manipulability(const Chain& chain, const ManipulabilityOptions& options = {});
 
   const Chain& chain() const noexcept { return kin_.chain(); }

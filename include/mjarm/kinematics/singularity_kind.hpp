@@ -23,8 +23,13 @@ enum class SingularityKind {
   unclassified  ///< singular, but none of the above applies or can be judged on this chain
 };
 
-/// Human name of a kind ("wrist", "elbow", "shoulder", "unclassified").
-const char* to_string(SingularityKind kind) noexcept;
+constexpr auto declared_names(const SingularityKind*) {
+  using K = SingularityKind;
+  return std::array{EnumName{K::wrist, "wrist", "two wrist axes aligned"},
+                    EnumName{K::elbow, "elbow", "arm stretched or folded"},
+                    EnumName{K::shoulder, "shoulder", "the wrist centre on the first joint axis"},
+                    EnumName{K::unclassified, "unclassified", "singular, no kind applies"}};
+}
 
 /// The parts of an arm, found from its joint axes at two configurations (chain indices).
 /// Judged only on chains of at least 6 hinge joints that all move the frame.
@@ -76,6 +81,17 @@ struct SingularityThresholds {
   double condition_number = 100.0;    ///< relative: flagged when σmax/σmin > this
   double geometric_tolerance = 0.05;  ///< a kind is named when its measure is below this
 };
+
+constexpr auto declared_fields(const SingularityThresholds*) {
+  using S = SingularityThresholds;
+  return declare<S>(
+      "singularity thresholds",
+      field("sigma_min", &S::sigma_min, "", Range::positive(), "flagged when σmin < this"),
+      field("condition_number", &S::condition_number, "", Range::positive(),
+            "flagged when σmax/σmin > this"),
+      field("geometric_tolerance", &S::geometric_tolerance, "", Range::positive(),
+            "a kind is named when its measure is below this"));
+}
 
 /// The classification of one configuration.
 struct SingularityClassification {

@@ -49,8 +49,11 @@ enum class SamplingStatus {
   interrupted,  ///< the stop request said so; the statistics cover the samples drawn
 };
 
-/// "complete" or "interrupted".
-const char* to_string(SamplingStatus status) noexcept;
+constexpr auto declared_names(const SamplingStatus*) {
+  return std::array{
+      EnumName{SamplingStatus::complete, "complete", "every requested sample was drawn"},
+      EnumName{SamplingStatus::interrupted, "interrupted", "stopped early on request"}};
+}
 
 /// Most samples `sample_workspace` keeps in memory (`keep_points`): 2^25 points, 1 GiB.
 inline constexpr std::size_t kMaxKeptWorkspacePoints = std::size_t{1} << 25;
@@ -69,6 +72,17 @@ struct WorkspaceOptions {
   /// when it answers true the run ends `SamplingStatus::interrupted`.
   StopRequest stop = nullptr;
 };
+
+constexpr auto declared_fields(const WorkspaceOptions*) {
+  using S = WorkspaceOptions;
+  return declare<S>(
+      "workspace sampling",
+      field("samples", &S::samples, "", Range::positive(), "number of joint samples"),
+      field("seed", &S::seed, "", Range::non_negative(), "seed of the random generator"),
+      field("manipulability", &S::manipulability, "manipulability block and thresholds"),
+      field("compute_manipulability", &S::compute_manipulability, "measure manipulability"),
+      field("keep_points", &S::keep_points, "store every sample"));
+}
 
 /// One sample: where the frame was and how manipulable it was there.
 struct WorkspacePoint {

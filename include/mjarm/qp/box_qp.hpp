@@ -41,6 +41,16 @@ struct BoxQpSettings {
   double dual_tolerance = 1e-12;
 };
 
+constexpr auto declared_fields(const BoxQpSettings*) {
+  using S = BoxQpSettings;
+  return declare<S>(
+      "box QP",
+      field("max_iterations", &S::max_iterations, "", Range{},
+            "most reduced solves per solve; ≤ 0: 10·n + 100"),
+      field("dual_tolerance", &S::dual_tolerance, "", Range::non_negative(),
+            "wrong-sign multiplier, as a fraction of the gradient's scale, that releases a bound"));
+}
+
 /// Result of BoxQp::solve(); owned by the solver (vectors preallocated at construction).
 struct BoxQpResult {
   QpStatus status =

@@ -28,6 +28,7 @@
 
 #include <Eigen/Core>
 
+#include "mjarm/fields.hpp"
 #include "mjarm/qp/active_set_factor.hpp"
 
 namespace mjarm::qp {
@@ -42,8 +43,14 @@ enum class QpStatus {
   invalid_input,  ///< non-finite data, l > u, lb > ub, a lower limit +∞ or an upper limit −∞
 };
 
-/// Short lowercase name of a status ("solved", "infeasible", ...).
-const char* to_string(QpStatus status) noexcept;
+constexpr auto declared_names(const QpStatus*) {
+  using S = QpStatus;
+  return std::array{EnumName{S::solved, "solved", "KKT point found"},
+                    EnumName{S::infeasible, "infeasible", "the constraints have no common point"},
+                    EnumName{S::iteration_limit, "iteration_limit", "no convergence in the steps"},
+                    EnumName{S::not_convex, "not_convex", "H not positive definite"},
+                    EnumName{S::invalid_input, "invalid_input", "non-finite or crossed data"}};
+}
 
 /// Tuning knobs of DenseQp; the defaults suit well-scaled problems.
 struct QpSettings {
@@ -56,6 +63,18 @@ struct QpSettings {
   /// the working set is below this fraction of the whole (both in the H⁻¹ metric).
   double dependence_tolerance = 1e-10;
 };
+
+constexpr auto declared_fields(const QpSettings*) {
+  using S = QpSettings;
+  return declare<S>(
+      "dense QP",
+      field("max_iterations", &S::max_iterations, "", Range{},
+            "most steps per solve; ≤ 0: 10·(n + m) + 100"),
+      field("primal_tolerance", &S::primal_tolerance, "", Range::non_negative(),
+            "scaled violation that counts as violated, in units of x"),
+      field("dependence_tolerance", &S::dependence_tolerance, "", Range::non_negative(),
+            "fraction below which a new normal is dependent on the working set"));
+}
 
 /// Result of a solve; owned by the solver (all vectors preallocated at construction).
 struct QpResult {
@@ -75,6 +94,11 @@ enum class QpStart {
   cold,  ///< empty working set: start at the unconstrained minimizer
   warm,  ///< the previous solution's working set if there is one, else cold
 };
+
+constexpr auto declared_names(const QpStart*) {
+  return std::array{EnumName{QpStart::cold, "cold", "start at the unconstrained minimizer"},
+                    EnumName{QpStart::warm, "warm", "the previous working set if any"}};
+}
 
 /// Dense QP solver with preallocated workspace (see the file comment for the problem).
 ///
