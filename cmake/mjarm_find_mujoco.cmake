@@ -56,6 +56,7 @@ get_filename_component(MJARM_MUJOCO_LIBRARY_DIR "${MJARM_MUJOCO_LIBRARY}" DIRECT
 # the header and the library must be the same release
 try_run(mjarm_version_run mjarm_version_compiled
   SOURCES "${CMAKE_CURRENT_LIST_DIR}/mujoco_version_probe.cpp"
+  CXX_STANDARD 20  # MuJoCo's headers need C++17; clang 14 defaults to C++14
   CMAKE_FLAGS "-DINCLUDE_DIRECTORIES=${MJARM_MUJOCO_INCLUDE_DIR}"
   LINK_LIBRARIES "${MJARM_MUJOCO_LIBRARY}"
   LINK_OPTIONS "-Wl,-rpath,${MJARM_MUJOCO_LIBRARY_DIR}"

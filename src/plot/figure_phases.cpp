@@ -24,8 +24,8 @@ Figure phases_figure(const Recording& recording, const std::filesystem::path& da
       "set yrange [0:2]\nset ytics ('events' 0.5, 'phases' 1.5) font ',14'\nunset y2tics\n"
       "set key outside below center horizontal width -2\nset bmargin 5.5\n";
   std::string plot = "plot ";
-  auto label_side = [&](double x) {
-    return (t1 - x) < 0.12 * span ? std::string("right offset -0.5,0")
+  auto label_side = [&, end = t1](double x) {  // clang 14 captures no structured binding
+    return (end - x) < 0.12 * span ? std::string("right offset -0.5,0")
                                   : std::string("left offset 0.5,0");
   };
   for (std::size_t k = 0; k < phases.size(); ++k) {

@@ -85,9 +85,10 @@ void BoxQp::set_bounds(const Eigen::Ref<const Eigen::VectorXd>& lb,
   lb_ = lb;
   ub_ = ub;
   // valid when neither is nan, lb <= ub, lb < +inf and ub > -inf (comparisons with nan fail)
-  bool ok = true;
-  for (int j = 0; j < n_; ++j) ok &= (lb_[j] <= ub_[j]) & (lb_[j] < kBoxInf) & (ub_[j] > -kBoxInf);
-  bounds_ok_ = ok;
+  int ok = 1;  // ints: a branch-free bitwise and
+  for (int j = 0; j < n_; ++j)
+    ok &= int(lb_[j] <= ub_[j]) & int(lb_[j] < kBoxInf) & int(ub_[j] > -kBoxInf);
+  bounds_ok_ = ok != 0;
 }
 
 const BoxQpResult& BoxQp::solve(QpStart start) noexcept {

@@ -34,11 +34,11 @@ void check_size(const char* what, Eigen::Index rows, Eigen::Index cols, Eigen::I
 // limits are valid when neither is nan, l <= u, l < +inf and u > -inf (every comparison with
 // nan is false); branch-free so that the loop vectorizes
 bool limits_valid(const Eigen::VectorXd& lo, const Eigen::VectorXd& hi) {
-  bool ok = true;
+  int ok = 1;  // ints: a branch-free bitwise and
   for (Eigen::Index i = 0; i < lo.size(); ++i) {
-    ok &= (lo[i] <= hi[i]) & (lo[i] < kInf) & (hi[i] > -kInf);
+    ok &= int(lo[i] <= hi[i]) & int(lo[i] < kInf) & int(hi[i] > -kInf);
   }
-  return ok;
+  return ok != 0;
 }
 
 }  // namespace

@@ -9,8 +9,10 @@ function(run)
   endif()
 endfunction()
 run(${CMAKE_COMMAND} --install ${BUILD_DIR} --prefix ${WORK_DIR}/prefix)
+# the consumer compiles with the compiler mjarm was built with (a sanitized mjarm's objects need
+# that compiler's sanitizer runtimes)
 run(${CMAKE_COMMAND} -S ${SOURCE_DIR} -B ${WORK_DIR}/build -DCMAKE_PREFIX_PATH=${WORK_DIR}/prefix
-    -DCMAKE_BUILD_TYPE=Release)
+    -DCMAKE_BUILD_TYPE=Release -DCMAKE_CXX_COMPILER=${CXX_COMPILER})
 run(${CMAKE_COMMAND} --build ${WORK_DIR}/build)
 run(${CMAKE_COMMAND} -E env MJARM_MODELS=${WORK_DIR}/prefix/share/mjarm/models ${WORK_DIR}/build/consumer)
 # the installed CLI finds the installed models relative to itself: the scratch prefix is not the

@@ -27,6 +27,7 @@
 #include "mjarm/teleop/viewer_session.hpp"
 #include "support/files.hpp"
 #include "teleop/teleop_ui.hpp"
+#include "support/address_sanitizer.hpp"
 
 namespace mjarm {
 namespace {
@@ -200,7 +201,7 @@ std::optional<std::string> display_prefix() {
     return std::nullopt;
   }
   std::string prefix = "DISPLAY=" + server.display() + " ";
-#if defined(__SANITIZE_ADDRESS__)
+#if defined(MJARM_TEST_ASAN)
   prefix += "ASAN_OPTIONS=detect_leaks=0 ";  // Mesa and X11 keep allocations until exit
 #endif
   // a viewer that hangs fails the test instead of hanging it

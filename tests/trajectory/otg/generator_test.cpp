@@ -336,7 +336,7 @@ TEST(JerkLimitedGenerator, InvalidInputIsAnError) {
   }
   JerkLimitedGenerator otg(std::vector<JerkLimits>(1, JerkLimits{1.0, 2.0, 10.0}));
   const std::vector<KinematicState> ok = {{0.0, 0.0, 0.0}};
-  const auto calc = [&otg, &ok](KinematicState c, KinematicState t) {
+  const auto calc = [&otg](KinematicState c, KinematicState t) {
     const std::vector<KinematicState> cs = {c}, ts = {t};
     return otg.calculate(cs, ts);
   };
