@@ -344,11 +344,11 @@ class BiasTerm:
 class CameraKind:
     """Members:
 
-  model
+  model : a camera of the model, by name
 
-  free
+  free : look-at point, distance, azimuth and elevation
 
-  follow"""
+  follow : like free, looking at a site or body"""
     model: ClassVar[CameraKind]
     free: ClassVar[CameraKind]
     follow: ClassVar[CameraKind]
@@ -365,6 +365,7 @@ class CameraSpec:
         ...
     @property
     def azimuth(self) -> float:
+        """direction about the vertical [deg]; finite"""
         ...
     @azimuth.setter
     def azimuth(self, value: float) -> None: ...
@@ -372,11 +373,13 @@ class CameraSpec:
         ...
     @property
     def distance(self) -> float:
+        """camera to look-at point [m]; positive and finite"""
         ...
     @distance.setter
     def distance(self, value: float) -> None: ...
     @property
     def elevation(self) -> float:
+        """negative looks down [deg]; in (-90, 90)"""
         ...
     @elevation.setter
     def elevation(self, value: float) -> None: ...
@@ -388,12 +391,13 @@ class CameraSpec:
         ...
     @property
     def kind(self) -> CameraKind:
+        """how the camera is placed"""
         ...
     @kind.setter
     def kind(self, value: CameraKind) -> None: ...
     @property
     def lookat(self) -> NDArray[np.float64]:
-        """(3,) [m]"""
+        """free: point looked at, in W [m]; finite"""
         ...
     @lookat.setter
     def lookat(self, value: ArrayLike) -> None: ...
@@ -402,6 +406,7 @@ class CameraSpec:
         ...
     @property
     def name(self) -> str:
+        """model: camera name; follow: site or body name"""
         ...
     @name.setter
     def name(self, value: str) -> None: ...
@@ -922,23 +927,25 @@ class DiffIkOptions:
         ...
     @property
     def damping(self) -> float:
+        """λ of the regularisation λ‖v‖²; positive and finite"""
         ...
     @damping.setter
     def damping(self, value: float) -> None: ...
     @property
     def dt(self) -> float:
-        """control period [s]"""
+        """control period [s]; positive and finite"""
         ...
     @dt.setter
     def dt(self, value: float) -> None: ...
     @property
     def max_step(self) -> float:
+        """largest |Δq_i| per step; +inf: none [rad or m]; positive (+inf allowed)"""
         ...
     @max_step.setter
     def max_step(self, value: float) -> None: ...
     @property
     def velocity_limit(self) -> NDArray[np.float64]:
-        """joint velocity limits (n,) [rad/s]; empty = none"""
+        """joint velocity limits (n entries; empty: none) [rad/s or m/s]; positive (+inf allowed)"""
         ...
     @velocity_limit.setter
     def velocity_limit(self, value: ArrayLike) -> None: ...
@@ -966,11 +973,11 @@ class DiffIkStep:
 class DiffIkTaskKind:
     """Members:
 
-  pose
+  pose : a frame's full pose (6 rows)
 
-  position
+  position : a frame's origin (3 rows)
 
-  posture"""
+  posture : a joint configuration (n rows)"""
     pose: ClassVar[DiffIkTaskKind]
     position: ClassVar[DiffIkTaskKind]
     posture: ClassVar[DiffIkTaskKind]
@@ -2025,19 +2032,19 @@ class Error:
 class FaultCause:
     """Members:
 
-  none
+  none : no fault
 
-  mujoco_warning
+  mujoco_warning : MuJoCo flagged a fatal warning
 
-  nonfinite_qpos
+  nonfinite_qpos : NaN/inf in qpos after a step
 
-  nonfinite_qvel
+  nonfinite_qvel : NaN/inf in qvel after a step
 
-  nonfinite_qacc
+  nonfinite_qacc : NaN/inf in qacc
 
-  acceleration_bound
+  acceleration_bound : |qacc| above the bound
 
-  bad_command"""
+  bad_command : a controller wrote NaN/inf"""
     none: ClassVar[FaultCause]
     mujoco_warning: ClassVar[FaultCause]
     nonfinite_qpos: ClassVar[FaultCause]
@@ -2273,11 +2280,11 @@ class GlobalIk:
 class GlobalIkMethods:
     """Members:
 
-  alternate
+  alternate : Levenberg–Marquardt and SQP in turn
 
-  levenberg_marquardt
+  levenberg_marquardt : Levenberg–Marquardt only
 
-  sqp"""
+  sqp : iterated differential-IK QP only"""
     alternate: ClassVar[GlobalIkMethods]
     levenberg_marquardt: ClassVar[GlobalIkMethods]
     sqp: ClassVar[GlobalIkMethods]
@@ -2291,11 +2298,11 @@ class GlobalIkMethods:
 class GlobalIkMode:
     """Members:
 
-  speed
+  speed : the first solution found
 
-  distance
+  distance : the solution closest to the seed
 
-  manipulability"""
+  manipulability : the solution with the largest √det(J Jᵀ)"""
     speed: ClassVar[GlobalIkMode]
     distance: ClassVar[GlobalIkMode]
     manipulability: ClassVar[GlobalIkMode]
@@ -2311,46 +2318,55 @@ class GlobalIkOptions:
         ...
     @property
     def damping(self) -> float:
+        """λ₀, the floor of the adaptive damping [m², rad²]; positive and finite"""
         ...
     @damping.setter
     def damping(self, value: float) -> None: ...
     @property
     def max_attempt_iterations(self) -> int:
+        """iterations per attempt before a restart; ≥ 1"""
         ...
     @max_attempt_iterations.setter
     def max_attempt_iterations(self, value: int) -> None: ...
     @property
     def max_restarts(self) -> int:
+        """restarts after the first attempt; ≥ 0"""
         ...
     @max_restarts.setter
     def max_restarts(self, value: int) -> None: ...
     @property
     def max_step(self) -> float:
+        """largest joint change per iteration [rad or m]; positive and finite"""
         ...
     @max_step.setter
     def max_step(self, value: float) -> None: ...
     @property
     def methods(self) -> GlobalIkMethods:
+        """local methods the restarts use"""
         ...
     @methods.setter
     def methods(self, value: GlobalIkMethods) -> None: ...
     @property
     def mode(self) -> GlobalIkMode:
+        """which solution to return"""
         ...
     @mode.setter
     def mode(self, value: GlobalIkMode) -> None: ...
     @property
     def seed(self) -> int:
+        """seed of the restart generator; ≥ 0"""
         ...
     @seed.setter
     def seed(self, value: int) -> None: ...
     @property
     def stall_iterations(self) -> int:
+        """window of the stall test; in [1, 64]"""
         ...
     @stall_iterations.setter
     def stall_iterations(self, value: int) -> None: ...
     @property
     def stall_ratio(self) -> float:
+        """restart when ½‖e‖² has not dropped below this × its value a window ago; in (0, 1)"""
         ...
     @stall_ratio.setter
     def stall_ratio(self, value: float) -> None: ...
@@ -2652,13 +2668,13 @@ class IkStatus:
 
 Members:
 
-  converged
+  converged : every target within tolerance
 
-  not_converged
+  not_converged : iteration limit or stall
 
-  timeout
+  timeout : the time budget ran out
 
-  invalid_input"""
+  invalid_input : a NaN appeared mid-solve"""
     converged: ClassVar[IkStatus]
     not_converged: ClassVar[IkStatus]
     timeout: ClassVar[IkStatus]
@@ -3428,17 +3444,17 @@ class OtgResult:
 class OtgStatus:
     """Members:
 
-  working
+  working : a trajectory exists and the target is not reached yet
 
-  finished
+  finished : the target is reached
 
-  error_brake
+  error_brake : a DoF's brake did not fit its profile
 
-  error_no_profile
+  error_no_profile : no time-optimal profile for a DoF
 
-  error_synchronization
+  error_synchronization : a DoF has no profile of the synchronized duration
 
-  error_precision"""
+  error_precision : the trajectory failed its final check"""
     working: ClassVar[OtgStatus]
     finished: ClassVar[OtgStatus]
     error_brake: ClassVar[OtgStatus]
@@ -4403,16 +4419,19 @@ class PlanOptions:
         ...
     @property
     def branch_spread(self) -> float:
+        """spread of the branch seeds around the previous configuration [rad]; positive and finite"""
         ...
     @branch_spread.setter
     def branch_spread(self, value: float) -> None: ...
     @property
     def detour_radius(self) -> float:
+        """largest offset of a detour from the straight path [rad]; positive and finite"""
         ...
     @detour_radius.setter
     def detour_radius(self, value: float) -> None: ...
     @property
     def detour_samples(self) -> int:
+        """intermediate configurations tried for a detour; ≥ 0"""
         ...
     @detour_samples.setter
     def detour_samples(self, value: int) -> None: ...
@@ -4423,46 +4442,55 @@ class PlanOptions:
     def ik(self, value: PoseIkOptions) -> None: ...
     @property
     def ik_branches(self) -> int:
+        """global-IK solves for other branches; ≥ 0"""
         ...
     @ik_branches.setter
     def ik_branches(self, value: int) -> None: ...
     @property
     def max_samples(self) -> int:
+        """states one plan may check in all; ≥ 1"""
         ...
     @max_samples.setter
     def max_samples(self, value: int) -> None: ...
     @property
     def max_segment_samples(self) -> int:
+        """samples one segment may have; ≥ 1"""
         ...
     @max_segment_samples.setter
     def max_segment_samples(self, value: int) -> None: ...
     @property
     def min_segment_duration(self) -> float:
+        """shortest segment [s]; positive and finite"""
         ...
     @min_segment_duration.setter
     def min_segment_duration(self, value: float) -> None: ...
     @property
     def sample_period(self) -> float:
+        """largest time between checked samples [s]; positive and finite"""
         ...
     @sample_period.setter
     def sample_period(self, value: float) -> None: ...
     @property
     def sample_step(self) -> float:
+        """largest joint motion between checked samples [rad or m]; positive and finite"""
         ...
     @sample_step.setter
     def sample_step(self, value: float) -> None: ...
     @property
     def seed(self) -> int:
+        """seed of branch seeds and detours; ≥ 0"""
         ...
     @seed.setter
     def seed(self, value: int) -> None: ...
     @property
     def stretch_attempts(self) -> int:
+        """how often a torque failure stretches a segment; ≥ 0"""
         ...
     @stretch_attempts.setter
     def stretch_attempts(self, value: int) -> None: ...
     @property
     def stretch_factor(self) -> float:
+        """how much each stretch lengthens the segment; finite and > 1"""
         ...
     @stretch_factor.setter
     def stretch_factor(self, value: float) -> None: ...
@@ -4493,21 +4521,21 @@ class PlanResult:
 class PlanStatus:
     """Members:
 
-  ok
+  ok : every waypoint and every sample passed
 
-  start_failed
+  start_failed : the start configuration fails a check
 
-  unreachable
+  unreachable : no IK branch reaches the waypoint's pose
 
-  joint_limits
+  joint_limits : every IK solution is outside the joint ranges
 
-  collision
+  collision : every IK solution is in collision
 
-  singular
+  singular : every IK solution is too close to a singularity
 
-  torque
+  torque : every IK solution needs more than the torque limits
 
-  blocked"""
+  blocked : no branch or detour gets there with every check passing"""
     ok: ClassVar[PlanStatus]
     start_failed: ClassVar[PlanStatus]
     unreachable: ClassVar[PlanStatus]
@@ -4882,16 +4910,19 @@ class RecorderOptions:
         ...
     @property
     def flush_rows(self) -> int:
+        """flush each CSV file every N rows; ≥ 1"""
         ...
     @flush_rows.setter
     def flush_rows(self, value: int) -> None: ...
     @property
     def frame(self) -> str:
+        """frame logged as the end effector; empty: the first controller's"""
         ...
     @frame.setter
     def frame(self, value: str) -> None: ...
     @property
     def state_decimation(self) -> int:
+        """one state row every N physics steps; ≥ 1"""
         ...
     @state_decimation.setter
     def state_decimation(self, value: int) -> None: ...
@@ -4924,16 +4955,19 @@ class RenderOptions:
         ...
     @property
     def reflections(self) -> bool:
+        """reflective materials"""
         ...
     @reflections.setter
     def reflections(self, value: bool) -> None: ...
     @property
     def shadows(self) -> bool:
+        """shadows cast by the model's lights"""
         ...
     @shadows.setter
     def shadows(self, value: bool) -> None: ...
     @property
     def skybox(self) -> bool:
+        """the model's skybox texture, if any"""
         ...
     @skybox.setter
     def skybox(self, value: bool) -> None: ...
@@ -5111,15 +5145,15 @@ class RunResult:
 class RunStatus:
     """Members:
 
-  duration_reached
+  duration_reached : simulated the requested duration
 
-  finished
+  finished : the reference source reported the task complete
 
-  diverged
+  diverged : stopped on a diverging step
 
-  bad_command
+  bad_command : stopped because a controller wrote NaN/inf
 
-  interrupted"""
+  interrupted : stopped because SIGINT/SIGTERM arrived"""
     duration_reached: ClassVar[RunStatus]
     finished: ClassVar[RunStatus]
     diverged: ClassVar[RunStatus]
@@ -5997,9 +6031,9 @@ class SyncedTrapezoid:
 class TargetKind:
     """Members:
 
-  position
+  position : the frame origin only (3 rows)
 
-  pose"""
+  pose : origin and orientation (6 rows)"""
     position: ClassVar[TargetKind]
     pose: ClassVar[TargetKind]
     def __init__(self, value: int) -> None: ...
@@ -6183,13 +6217,13 @@ class TickResult:
 class TickStatus:
     """Members:
 
-  ok
+  ok : the period was simulated
 
-  finished
+  finished : the reference source reported the task complete
 
-  diverged
+  diverged : a physics step diverged
 
-  bad_command"""
+  bad_command : a controller wrote NaN/inf"""
     ok: ClassVar[TickStatus]
     finished: ClassVar[TickStatus]
     diverged: ClassVar[TickStatus]
