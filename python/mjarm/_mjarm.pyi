@@ -342,23 +342,13 @@ class BiasTerm:
     def value(self) -> int: ...
     def __int__(self) -> int: ...
 
-class CameraKind:
-    """Members:
-
-  model : a camera of the model, by name
-
-  free : look-at point, distance, azimuth and elevation
-
-  follow : like free, looking at a site or body"""
-    model: ClassVar[CameraKind]
-    free: ClassVar[CameraKind]
-    follow: ClassVar[CameraKind]
-    def __init__(self, value: int) -> None: ...
-    @property
-    def name(self) -> str: ...
-    @property
-    def value(self) -> int: ...
-    def __int__(self) -> int: ...
+class CameraKind(enum.Enum):
+    model = 0
+    """a camera of the model, by name"""
+    free = 1
+    """look-at point, distance, azimuth and elevation"""
+    follow = 2
+    """like free, looking at a site or body"""
 
 class CameraSpec:
     """A model camera, a free camera or one following a frame."""
@@ -971,23 +961,13 @@ class DiffIkStep:
         """joint velocity (n,)"""
         ...
 
-class DiffIkTaskKind:
-    """Members:
-
-  pose : a frame's full pose (6 rows)
-
-  position : a frame's origin (3 rows)
-
-  posture : a joint configuration (n rows)"""
-    pose: ClassVar[DiffIkTaskKind]
-    position: ClassVar[DiffIkTaskKind]
-    posture: ClassVar[DiffIkTaskKind]
-    def __init__(self, value: int) -> None: ...
-    @property
-    def name(self) -> str: ...
-    @property
-    def value(self) -> int: ...
-    def __int__(self) -> int: ...
+class DiffIkTaskKind(enum.Enum):
+    pose = 0
+    """a frame's full pose (6 rows)"""
+    position = 1
+    """a frame's origin (3 rows)"""
+    posture = 2
+    """a joint configuration (n rows)"""
 
 class DockingController(Controller):
     """A docking law with its force source (torque mode); usable in a Simulation like any controller."""
@@ -2030,35 +2010,21 @@ Members:
 class Error:
     """Bad input at an API boundary (unknown name, wrong size, non-finite value, unloadable model); the message is the library's, naming the thing and what was expected."""
 
-class FaultCause:
-    """Members:
-
-  none : no fault
-
-  mujoco_warning : MuJoCo flagged a fatal warning
-
-  nonfinite_qpos : NaN/inf in qpos after a step
-
-  nonfinite_qvel : NaN/inf in qvel after a step
-
-  nonfinite_qacc : NaN/inf in qacc
-
-  acceleration_bound : |qacc| above the bound
-
-  bad_command : a controller wrote NaN/inf"""
-    none: ClassVar[FaultCause]
-    mujoco_warning: ClassVar[FaultCause]
-    nonfinite_qpos: ClassVar[FaultCause]
-    nonfinite_qvel: ClassVar[FaultCause]
-    nonfinite_qacc: ClassVar[FaultCause]
-    acceleration_bound: ClassVar[FaultCause]
-    bad_command: ClassVar[FaultCause]
-    def __init__(self, value: int) -> None: ...
-    @property
-    def name(self) -> str: ...
-    @property
-    def value(self) -> int: ...
-    def __int__(self) -> int: ...
+class FaultCause(enum.Enum):
+    none = 0
+    """no fault"""
+    mujoco_warning = 1
+    """MuJoCo flagged a fatal warning"""
+    nonfinite_qpos = 2
+    """NaN/inf in qpos after a step"""
+    nonfinite_qvel = 3
+    """NaN/inf in qvel after a step"""
+    nonfinite_qacc = 4
+    """NaN/inf in qacc"""
+    acceleration_bound = 5
+    """|qacc| above the bound"""
+    bad_command = 6
+    """a controller wrote NaN/inf"""
 
 class ForceSource:
     """Where the measured wrench comes from.
@@ -2278,41 +2244,21 @@ class GlobalIk:
     def stats(self) -> GlobalIkStats:
         ...
 
-class GlobalIkMethods:
-    """Members:
+class GlobalIkMethods(enum.Enum):
+    alternate = 0
+    """Levenberg–Marquardt and SQP in turn"""
+    levenberg_marquardt = 1
+    """Levenberg–Marquardt only"""
+    sqp = 2
+    """iterated differential-IK QP only"""
 
-  alternate : Levenberg–Marquardt and SQP in turn
-
-  levenberg_marquardt : Levenberg–Marquardt only
-
-  sqp : iterated differential-IK QP only"""
-    alternate: ClassVar[GlobalIkMethods]
-    levenberg_marquardt: ClassVar[GlobalIkMethods]
-    sqp: ClassVar[GlobalIkMethods]
-    def __init__(self, value: int) -> None: ...
-    @property
-    def name(self) -> str: ...
-    @property
-    def value(self) -> int: ...
-    def __int__(self) -> int: ...
-
-class GlobalIkMode:
-    """Members:
-
-  speed : the first solution found
-
-  distance : the solution closest to the seed
-
-  manipulability : the solution with the largest √det(J Jᵀ)"""
-    speed: ClassVar[GlobalIkMode]
-    distance: ClassVar[GlobalIkMode]
-    manipulability: ClassVar[GlobalIkMode]
-    def __init__(self, value: int) -> None: ...
-    @property
-    def name(self) -> str: ...
-    @property
-    def value(self) -> int: ...
-    def __int__(self) -> int: ...
+class GlobalIkMode(enum.Enum):
+    speed = 0
+    """the first solution found"""
+    distance = 1
+    """the solution closest to the seed"""
+    manipulability = 2
+    """the solution with the largest √det(J Jᵀ)"""
 
 class GlobalIkOptions:
     def __init__(self: GlobalIkOptions) -> None:
@@ -2664,28 +2610,16 @@ class IkResult:
     def status(self) -> IkStatus:
         ...
 
-class IkStatus:
-    """How an IK solve ended.
-
-Members:
-
-  converged : every target within tolerance
-
-  not_converged : iteration limit or stall
-
-  timeout : the time budget ran out
-
-  invalid_input : a NaN appeared mid-solve"""
-    converged: ClassVar[IkStatus]
-    not_converged: ClassVar[IkStatus]
-    timeout: ClassVar[IkStatus]
-    invalid_input: ClassVar[IkStatus]
-    def __init__(self, value: int) -> None: ...
-    @property
-    def name(self) -> str: ...
-    @property
-    def value(self) -> int: ...
-    def __int__(self) -> int: ...
+class IkStatus(enum.Enum):
+    """How an IK solve ended."""
+    converged = 0
+    """every target within tolerance"""
+    not_converged = 1
+    """iteration limit or stall"""
+    timeout = 2
+    """the time budget ran out"""
+    invalid_input = 3
+    """a NaN appeared mid-solve"""
 
 class JacobianBlock:
     """Members:
@@ -3433,32 +3367,19 @@ class OtgResult:
         """largest |profile duration - duration| over the DoFs [s]"""
         ...
 
-class OtgStatus:
-    """Members:
-
-  working : a trajectory exists and the target is not reached yet
-
-  finished : the target is reached
-
-  error_brake : a DoF's brake did not fit its profile
-
-  error_no_profile : no time-optimal profile for a DoF
-
-  error_synchronization : a DoF has no profile of the synchronized duration
-
-  error_precision : the trajectory failed its final check"""
-    working: ClassVar[OtgStatus]
-    finished: ClassVar[OtgStatus]
-    error_brake: ClassVar[OtgStatus]
-    error_no_profile: ClassVar[OtgStatus]
-    error_synchronization: ClassVar[OtgStatus]
-    error_precision: ClassVar[OtgStatus]
-    def __init__(self, value: int) -> None: ...
-    @property
-    def name(self) -> str: ...
-    @property
-    def value(self) -> int: ...
-    def __int__(self) -> int: ...
+class OtgStatus(enum.Enum):
+    working = 0
+    """a trajectory exists and the target is not reached yet"""
+    finished = 1
+    """the target is reached"""
+    error_brake = 2
+    """a DoF's brake did not fit its profile"""
+    error_no_profile = 3
+    """no time-optimal profile for a DoF"""
+    error_synchronization = 4
+    """a DoF has no profile of the synchronized duration"""
+    error_precision = 5
+    """the trajectory failed its final check"""
 
 class PickCriteria:
     """When a pick counts as held."""
@@ -4510,38 +4431,23 @@ class PlanResult:
     def waypoints(self) -> list[WaypointReport]:
         ...
 
-class PlanStatus:
-    """Members:
-
-  ok : every waypoint and every sample passed
-
-  start_failed : the start configuration fails a check
-
-  unreachable : no IK branch reaches the waypoint's pose
-
-  joint_limits : every IK solution is outside the joint ranges
-
-  collision : every IK solution is in collision
-
-  singular : every IK solution is too close to a singularity
-
-  torque : every IK solution needs more than the torque limits
-
-  blocked : no branch or detour gets there with every check passing"""
-    ok: ClassVar[PlanStatus]
-    start_failed: ClassVar[PlanStatus]
-    unreachable: ClassVar[PlanStatus]
-    joint_limits: ClassVar[PlanStatus]
-    collision: ClassVar[PlanStatus]
-    singular: ClassVar[PlanStatus]
-    torque: ClassVar[PlanStatus]
-    blocked: ClassVar[PlanStatus]
-    def __init__(self, value: int) -> None: ...
-    @property
-    def name(self) -> str: ...
-    @property
-    def value(self) -> int: ...
-    def __int__(self) -> int: ...
+class PlanStatus(enum.Enum):
+    ok = 0
+    """every waypoint and every sample passed"""
+    start_failed = 1
+    """the start configuration fails a check"""
+    unreachable = 2
+    """no IK branch reaches the waypoint's pose"""
+    joint_limits = 3
+    """every IK solution is outside the joint ranges"""
+    collision = 4
+    """every IK solution is in collision"""
+    singular = 5
+    """every IK solution is too close to a singularity"""
+    torque = 6
+    """every IK solution needs more than the torque limits"""
+    blocked = 7
+    """no branch or detour gets there with every check passing"""
 
 class Pose:
     """Pose X_AB of a frame B in a frame A: x_A = R x_B + p. R is 3x3 (orthonormal), p is (3,) [m]. Compose with *, invert with inverse()."""
@@ -5134,29 +5040,17 @@ class RunResult:
     def ticks(self) -> int:
         ...
 
-class RunStatus:
-    """Members:
-
-  duration_reached : simulated the requested duration
-
-  finished : the reference source reported the task complete
-
-  diverged : stopped on a diverging step
-
-  bad_command : stopped because a controller wrote NaN/inf
-
-  interrupted : stopped because SIGINT/SIGTERM arrived"""
-    duration_reached: ClassVar[RunStatus]
-    finished: ClassVar[RunStatus]
-    diverged: ClassVar[RunStatus]
-    bad_command: ClassVar[RunStatus]
-    interrupted: ClassVar[RunStatus]
-    def __init__(self, value: int) -> None: ...
-    @property
-    def name(self) -> str: ...
-    @property
-    def value(self) -> int: ...
-    def __int__(self) -> int: ...
+class RunStatus(enum.Enum):
+    duration_reached = 0
+    """simulated the requested duration"""
+    finished = 1
+    """the reference source reported the task complete"""
+    diverged = 2
+    """stopped on a diverging step"""
+    bad_command = 3
+    """stopped because a controller wrote NaN/inf"""
+    interrupted = 4
+    """stopped because SIGINT/SIGTERM arrived"""
 
 class RunVideoOptions:
     """Size and rate of a run's video."""
@@ -6010,20 +5904,11 @@ class SyncedTrapezoid:
     def limiting_axis(self) -> int:
         ...
 
-class TargetKind:
-    """Members:
-
-  position : the frame origin only (3 rows)
-
-  pose : origin and orientation (6 rows)"""
-    position: ClassVar[TargetKind]
-    pose: ClassVar[TargetKind]
-    def __init__(self, value: int) -> None: ...
-    @property
-    def name(self) -> str: ...
-    @property
-    def value(self) -> int: ...
-    def __int__(self) -> int: ...
+class TargetKind(enum.Enum):
+    position = 0
+    """the frame origin only (3 rows)"""
+    pose = 1
+    """origin and orientation (6 rows)"""
 
 class TaskMode:
     """Members:
@@ -6196,26 +6081,15 @@ class TickResult:
     def time(self) -> float:
         ...
 
-class TickStatus:
-    """Members:
-
-  ok : the period was simulated
-
-  finished : the reference source reported the task complete
-
-  diverged : a physics step diverged
-
-  bad_command : a controller wrote NaN/inf"""
-    ok: ClassVar[TickStatus]
-    finished: ClassVar[TickStatus]
-    diverged: ClassVar[TickStatus]
-    bad_command: ClassVar[TickStatus]
-    def __init__(self, value: int) -> None: ...
-    @property
-    def name(self) -> str: ...
-    @property
-    def value(self) -> int: ...
-    def __int__(self) -> int: ...
+class TickStatus(enum.Enum):
+    ok = 0
+    """the period was simulated"""
+    finished = 1
+    """the reference source reported the task complete"""
+    diverged = 2
+    """a physics step diverged"""
+    bad_command = 3
+    """a controller wrote NaN/inf"""
 
 class TimeStep:
     """One step of an episode (dm_env's TimeStep): step_type, reward and discount (None on FIRST), observation (dict name -> float64 array), and end (why the episode ended, on LAST). The observation is the time step's own copy: it never changes when the environment steps again, and can be kept as long as wanted. Iterates as (step_type, reward, discount, observation), like dm_env's namedtuple."""
