@@ -36,7 +36,6 @@ WeldGrasp::WeldGrasp(Simulation& simulation, std::string_view weld, const WeldGr
 
 WeldGrasp::WeldGrasp(Simulation& simulation, int id, const WeldGraspOptions& options)
     : simulation_(&simulation), id_(checked_weld(simulation, id)), options_(options) {
-  check_fields(options);
   const mjModel& m = simulation.model();
   body1_ = m.eq_obj1id[id_];
   body2_ = m.eq_obj2id[id_];
