@@ -6,8 +6,10 @@
 #include <memory>
 
 #include "commands.hpp"
+#include "field_options.hpp"
 #include "mjarm/env/env_benchmark.hpp"
 #include "mjarm/env/task_registry.hpp"
+#include "mjarm/fields_json.hpp"
 #include "mjarm/interrupt.hpp"
 #include "output.hpp"
 
@@ -33,12 +35,10 @@ Command add_bench_env_subcommand(CLI::App& bench) {
       "its physics (thread CPU time, same physics replayed), and the steps per second of a "
       "vectorized batch on 1 thread and on --threads (wall clock with the load average, and "
       "from the threads' CPU clocks)");
-  std::vector<std::string> spaces;
-  for (ActionSpace s : action_spaces()) spaces.emplace_back(to_string(s));
   app->add_option("--task", options->task, "environment task")
       ->check(CLI::IsMember(env_task_names()));
   app->add_option("--action-space", options->action_space, "action space")
-      ->check(CLI::IsMember(spaces));
+      ->check(name_of<ActionSpace>("action space"));
   app->add_option("--steps", options->steps, "timed environment steps per round")
       ->check(count_in(1, 1000000));
   app->add_option("--warmup", options->warmup, "untimed steps before each timed run")
@@ -79,22 +79,8 @@ Command add_bench_env_subcommand(CLI::App& bench) {
         const bool stopped = r.status == EnvBenchmarkStatus::interrupted;
         if (options->json) {
           Json rounds = Json::array(), runs_json = Json::array();
-          for (const EnvOverheadRound& x : r.rounds)
-            rounds.push_back({{"steps", x.steps},
-                              {"env_cpu_s", x.env_cpu_s},
-                              {"bare_cpu_s", x.bare_cpu_s},
-                              {"env_wall_s", x.env_wall_s},
-                              {"overhead", x.overhead},
-                              {"episodes", x.episodes},
-                              {"replay_identical", x.replay_identical}});
-          for (const VectorRun& v : r.vector_runs)
-            runs_json.push_back({{"threads", v.threads},
-                                 {"batch_steps", v.batch_steps},
-                                 {"wall_s", v.wall_s},
-                                 {"cpu_s", v.cpu_s},
-                                 {"steps_per_second", v.steps_per_second},
-                                 {"work_cpu_s", v.work_cpu_s},
-                                 {"critical_cpu_s", v.critical_cpu_s}});
+          for (const EnvOverheadRound& x : r.rounds) rounds.push_back(fields_to_json(x));
+          for (const VectorRun& v : r.vector_runs) runs_json.push_back(fields_to_json(v));
           print_json({{"status", to_string(r.status)},
                       {"task", r.task},
                       {"model", r.model},

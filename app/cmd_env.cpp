@@ -11,6 +11,7 @@
 #include <memory>
 
 #include "commands.hpp"
+#include "field_options.hpp"
 #include "mjarm/env/observation_set.hpp"
 #include "mjarm/env/task_registry.hpp"
 #include "mjarm/env/vector_environment.hpp"
@@ -20,12 +21,6 @@
 
 namespace mjarm::cli {
 namespace {
-
-std::vector<std::string> space_names() {
-  std::vector<std::string> names;
-  for (ActionSpace s : action_spaces()) names.emplace_back(to_string(s));
-  return names;
-}
 
 Json spec_json(const ArraySpec& spec) {
   Json minimum = Json::array(), maximum = Json::array();
@@ -250,7 +245,7 @@ Command add_env_command(CLI::App& root) {
   run->add_option("--episodes", options->episodes, "episodes to complete")
       ->check(count_in(1, 100000));
   run->add_option("--action-space", options->action_space, "action space")
-      ->check(CLI::IsMember(space_names()));
+      ->check(name_of<ActionSpace>("action space"));
   run->add_option("--envs", options->envs, "environments stepped together")
       ->check(count_in(1, 4096));
   run->add_option("--threads", options->threads, "threads stepping them")->check(count_in(1, 256));

@@ -8,6 +8,7 @@
 
 #include "commands.hpp"
 #include "mjarm/env/task_registry.hpp"
+#include "mjarm/fields_json.hpp"
 #include "mjarm/interrupt.hpp"
 #include "mjarm/soak/soak.hpp"
 #include "output.hpp"
@@ -31,33 +32,18 @@ Json memory_json(const GrowthReport& g, const MemoryGrowth& m, double bound, dou
 Json soak_json(const SoakOptions& o, const SoakResult& r) {
   const GrowthReport& g = r.growth;
   Json rounds = Json::array();
-  for (const SoakSample& s : r.samples)
-    rounds.push_back({{"round", s.round},
-                      {"elapsed_s", s.elapsed_s},
-                      {"rss_kib", s.process.rss_kib},
-                      {"heap_kib", s.process.heap_kib},
-                      {"fds", s.process.fds},
-                      {"threads", s.process.threads}});
-  const SoakCounts& c = r.counts;
+  for (const SoakSample& s : r.samples) {
+    Json row = {{"round", s.round}, {"elapsed_s", s.elapsed_s}};
+    row.update(fields_to_json(s.process));
+    rounds.push_back(std::move(row));
+  }
   return {{"status", to_string(r.status)},
           {"seed", o.seed},
           {"rounds", r.rounds},
           {"elapsed_s", r.elapsed_s},
           {"setup_s", r.setup_s},
-          {"counts",
-           {{"env_runs", c.env_runs},
-            {"env_episodes", c.env_episodes},
-            {"env_steps", c.env_steps},
-            {"vector_steps", c.vector_steps},
-            {"replays", c.replays},
-            {"replay_ticks", c.replay_ticks},
-            {"trials", c.trials},
-            {"trial_successes", c.trial_successes}}},
-          {"start",
-           {{"rss_kib", r.start.rss_kib},
-            {"heap_kib", r.start.heap_kib},
-            {"fds", r.start.fds},
-            {"threads", r.start.threads}}},
+          {"counts", fields_to_json(r.counts)},
+          {"start", fields_to_json(r.start)},
           {"growth",
            {{"warmup_rounds", g.warmup_rounds},
             {"judged", g.judged},

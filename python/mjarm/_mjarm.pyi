@@ -104,43 +104,43 @@ class ActionOptions:
         ...
     @property
     def joint_bandwidth(self) -> float:
-        """joint PD bandwidth [rad/s]"""
+        """joint PD bandwidth [rad/s]; positive and finite"""
         ...
     @joint_bandwidth.setter
     def joint_bandwidth(self, value: float) -> None: ...
     @property
     def max_angular_speed(self) -> float:
-        """ee_velocities: |w| per axis [rad/s]"""
+        """ee_velocities: |w| per axis [rad/s]; positive and finite"""
         ...
     @max_angular_speed.setter
     def max_angular_speed(self, value: float) -> None: ...
     @property
     def max_joint_delta(self) -> float:
-        """joint_deltas: |dq| per step [rad or m]"""
+        """joint_deltas: |dq| per step [rad or m]; positive and finite"""
         ...
     @max_joint_delta.setter
     def max_joint_delta(self, value: float) -> None: ...
     @property
     def max_joint_speed(self) -> float:
-        """joint speed limit of the differential-IK QP [rad/s or m/s]"""
+        """joint speed limit of the differential-IK QP [rad/s or m/s]; positive and finite"""
         ...
     @max_joint_speed.setter
     def max_joint_speed(self, value: float) -> None: ...
     @property
     def max_linear_speed(self) -> float:
-        """ee_velocities: |v| per axis [m/s]"""
+        """ee_velocities: |v| per axis [m/s]; positive and finite"""
         ...
     @max_linear_speed.setter
     def max_linear_speed(self, value: float) -> None: ...
     @property
     def max_rotation(self) -> float:
-        """ee_pose_deltas: |r| per axis per step [rad]"""
+        """ee_pose_deltas: |r| per axis per step [rad]; positive and finite"""
         ...
     @max_rotation.setter
     def max_rotation(self, value: float) -> None: ...
     @property
     def max_translation(self) -> float:
-        """ee_pose_deltas: |dp| per axis per step [m]"""
+        """ee_pose_deltas: |dp| per axis per step [m]; positive and finite"""
         ...
     @max_translation.setter
     def max_translation(self, value: float) -> None: ...
@@ -151,31 +151,18 @@ class ActionOptions:
     @osc.setter
     def osc(self, value: OperationalSpaceOptions) -> None: ...
 
-class ActionSpace:
-    """What one action commands (n = the chain's joints); see docs/env.md.
-
-Members:
-
-  joint_torques : n torques [N m], held over the step
-
-  joint_positions : n joint targets [rad]
-
-  joint_deltas : n increments of the joint target [rad]
-
-  ee_pose_deltas : [dx dy dz rx ry rz] of the goal pose (world axes; m, rotation vector rad)
-
-  ee_velocities : [vx vy vz wx wy wz] (m/s, rad/s), integrated over the step"""
-    joint_torques: ClassVar[ActionSpace]
-    joint_positions: ClassVar[ActionSpace]
-    joint_deltas: ClassVar[ActionSpace]
-    ee_pose_deltas: ClassVar[ActionSpace]
-    ee_velocities: ClassVar[ActionSpace]
-    def __init__(self, value: int) -> None: ...
-    @property
-    def name(self) -> str: ...
-    @property
-    def value(self) -> int: ...
-    def __int__(self) -> int: ...
+class ActionSpace(enum.Enum):
+    """What one action commands (n = the chain's joints); see docs/env.md."""
+    joint_torques = 0
+    """n torques [N m], held over the step"""
+    joint_positions = 1
+    """n joint targets [rad]"""
+    joint_deltas = 2
+    """n increments of the joint target [rad]"""
+    ee_pose_deltas = 3
+    """[dx dy dz rx ry rz] of the goal pose (world axes; m, rotation vector rad)"""
+    ee_velocities = 4
+    """[vx vy vz wx wy wz] (m/s, rad/s), integrated over the step"""
 
 class ActuatorInfo:
     """One actuator of the model."""
@@ -998,23 +985,25 @@ class DockingControllerOptions:
         ...
     @property
     def cic_damping_ratio(self) -> float:
+        """cic: D = 2ζ·√(Λ_ii·K_i); positive and finite"""
         ...
     @cic_damping_ratio.setter
     def cic_damping_ratio(self, value: float) -> None: ...
     @property
     def cic_stiffness(self) -> NDArray[np.float64]:
-        """K (6,)"""
+        """cic: K (6,) [N/m; N·m/rad]; positive and finite"""
         ...
     @cic_stiffness.setter
     def cic_stiffness(self, value: ArrayLike) -> None: ...
     @property
     def control_period(self) -> float:
-        """[s]"""
+        """the observer's step [s]; positive and finite"""
         ...
     @control_period.setter
     def control_period(self, value: float) -> None: ...
     @property
     def friction_feed_forward(self) -> bool:
+        """friction feed-forward from the model's dof_frictionloss"""
         ...
     @friction_feed_forward.setter
     def friction_feed_forward(self, value: bool) -> None: ...
@@ -1025,7 +1014,7 @@ class DockingControllerOptions:
     def friction_mode(self, value: FrictionMode) -> None: ...
     @property
     def hqp_stiffness(self) -> NDArray[np.float64]:
-        """K0 (6,)"""
+        """hqp-ac: K0 (6,), world axes [N/m; N·m/rad]; positive and finite"""
         ...
     @hqp_stiffness.setter
     def hqp_stiffness(self, value: ArrayLike) -> None: ...
@@ -1037,11 +1026,13 @@ class DockingControllerOptions:
     def law(self, value: ArrayLike) -> None: ...
     @property
     def nullspace_damping(self) -> float:
+        """posture damping [N·m·s/rad]; finite and ≥ 0"""
         ...
     @nullspace_damping.setter
     def nullspace_damping(self, value: float) -> None: ...
     @property
     def nullspace_stiffness(self) -> float:
+        """posture toward reference.joint.q [N·m/rad]; finite and ≥ 0"""
         ...
     @nullspace_stiffness.setter
     def nullspace_stiffness(self, value: float) -> None: ...
@@ -1053,36 +1044,37 @@ class DockingControllerOptions:
     def release_axes(self, value: typing.Annotated[list[bool], "FixedSize(6)"]) -> None: ...
     @property
     def release_duration(self) -> float:
-        """[s]"""
+        """smoothstep of the release [s]; positive and finite"""
         ...
     @release_duration.setter
     def release_duration(self, value: float) -> None: ...
     @property
     def release_force(self) -> float:
-        """[N]"""
+        """measured ‖f‖ that starts the release [N]; positive and finite"""
         ...
     @release_force.setter
     def release_force(self, value: float) -> None: ...
     @property
     def se3_damping_ratio(self) -> float:
+        """se3: D = 2ζ·√(A·K) per axis; positive and finite"""
         ...
     @se3_damping_ratio.setter
     def se3_damping_ratio(self, value: float) -> None: ...
     @property
     def se3_inertia(self) -> NDArray[np.float64]:
-        """A (6,)"""
+        """se3: A (6,) [kg; kg·m²]; positive and finite"""
         ...
     @se3_inertia.setter
     def se3_inertia(self, value: ArrayLike) -> None: ...
     @property
     def se3_stiffness(self) -> NDArray[np.float64]:
-        """K (6,)"""
+        """se3: K (6,) [N/m; N·m/rad]; positive and finite"""
         ...
     @se3_stiffness.setter
     def se3_stiffness(self, value: ArrayLike) -> None: ...
     @property
     def sensor_cutoff(self) -> float:
-        """[Hz]; inf: none"""
+        """low-pass cut-off on the sensor's wrench; inf: none [Hz]; positive (+inf allowed)"""
         ...
     @sensor_cutoff.setter
     def sensor_cutoff(self, value: float) -> None: ...
@@ -1100,60 +1092,61 @@ class DockingCriteria:
         ...
     @property
     def depth_tolerance(self) -> float:
-        """[m]"""
+        """depth ≥ full depth − this [m]; positive and finite"""
         ...
     @depth_tolerance.setter
     def depth_tolerance(self, value: float) -> None: ...
     @property
     def max_angular_speed(self) -> float:
-        """[rad/s]"""
+        """peg angular speed [rad/s]; positive and finite"""
         ...
     @max_angular_speed.setter
     def max_angular_speed(self, value: float) -> None: ...
     @property
     def max_axial_moment(self) -> float:
-        """[N m]"""
+        """peak |τ·z_S| about the tip [N·m]; positive and finite"""
         ...
     @max_axial_moment.setter
     def max_axial_moment(self, value: float) -> None: ...
     @property
     def max_force(self) -> float:
-        """[N]"""
+        """peak ‖f‖ of the contact force [N]; positive and finite"""
         ...
     @max_force.setter
     def max_force(self, value: float) -> None: ...
     @property
     def max_lateral(self) -> float:
-        """[m]"""
+        """tip to bore axis [m]; positive and finite"""
         ...
     @max_lateral.setter
     def max_lateral(self, value: float) -> None: ...
     @property
     def max_saturation(self) -> float:
-        """fraction of ticks"""
+        """fraction of ticks with a clipped motor; in (0, 1]"""
         ...
     @max_saturation.setter
     def max_saturation(self, value: float) -> None: ...
     @property
     def max_speed(self) -> float:
-        """[m/s]"""
+        """tip speed [m/s]; positive and finite"""
         ...
     @max_speed.setter
     def max_speed(self, value: float) -> None: ...
     @property
     def max_tilt(self) -> float:
-        """[rad]"""
+        """peg axis to bore axis [rad]; positive and finite"""
         ...
     @max_tilt.setter
     def max_tilt(self, value: float) -> None: ...
     @property
     def min_contact_fraction(self) -> float:
+        """of the window's samples in peg–socket contact; in (0, 1]"""
         ...
     @min_contact_fraction.setter
     def min_contact_fraction(self, value: float) -> None: ...
     @property
     def window(self) -> float:
-        """[s]"""
+        """the final window judged [s]; positive and finite"""
         ...
     @window.setter
     def window(self, value: float) -> None: ...
@@ -1165,37 +1158,49 @@ class DockingGeometry:
         ...
     @property
     def bore_depth(self) -> float:
+        """straight part of the hole, below the chamfer [m]; positive and finite"""
         ...
     @bore_depth.setter
     def bore_depth(self, value: float) -> None: ...
     @property
     def bore_radius(self) -> float:
+        """radius of the bore's inscribed circle [m]; positive and finite"""
         ...
     @bore_radius.setter
     def bore_radius(self, value: float) -> None: ...
     @property
+    def ccd_tolerance(self) -> float:
+        """tolerance of MuJoCo's convex collision [m]; positive and finite"""
+        ...
+    @ccd_tolerance.setter
+    def ccd_tolerance(self, value: float) -> None: ...
+    @property
     def chamfer(self) -> float:
+        """45° chamfer at the entry [m]; positive and finite"""
         ...
     @chamfer.setter
     def chamfer(self, value: float) -> None: ...
     @property
     def friction(self) -> float:
+        """sliding friction of peg and socket; finite and ≥ 0"""
         ...
     @friction.setter
     def friction(self, value: float) -> None: ...
     @property
     def peg_length(self) -> float:
+        """from the flange to the end face [m]; positive and finite"""
         ...
     @peg_length.setter
     def peg_length(self, value: float) -> None: ...
     @property
     def peg_radius(self) -> float:
+        """radius of the peg [m]; positive and finite"""
         ...
     @peg_radius.setter
     def peg_radius(self, value: float) -> None: ...
     @property
     def sides(self) -> int:
-        """faces of the polygonal bore (>= 8)"""
+        """faces of the polygonal bore; in [8, 256]"""
         ...
     @sides.setter
     def sides(self, value: int) -> None: ...
@@ -1213,6 +1218,7 @@ class DockingGeometry:
     def solref(self, value: ArrayLike) -> None: ...
     @property
     def wall(self) -> float:
+        """radial thickness of the socket beyond the chamfer [m]; positive and finite"""
         ...
     @wall.setter
     def wall(self, value: float) -> None: ...
@@ -1456,34 +1462,37 @@ class DockingMotion:
         ...
     @property
     def approach_time(self) -> float:
+        """two-phase: start → standoff [s]; positive and finite"""
         ...
     @approach_time.setter
     def approach_time(self, value: float) -> None: ...
     @property
     def hold_time(self) -> float:
+        """from the reference's arrival at the bottom to the end [s]; positive and finite"""
         ...
     @hold_time.setter
     def hold_time(self, value: float) -> None: ...
     @property
     def insertion_acceleration(self) -> float:
-        """[m/s^2]"""
+        """two-phase: acceleration of the insertion [m/s²]; positive and finite"""
         ...
     @insertion_acceleration.setter
     def insertion_acceleration(self, value: float) -> None: ...
     @property
     def insertion_speed(self) -> float:
-        """[m/s]"""
+        """two-phase: cruise speed of the insertion [m/s]; positive and finite"""
         ...
     @insertion_speed.setter
     def insertion_speed(self, value: float) -> None: ...
     @property
     def preload(self) -> float:
-        """[N]"""
+        """force pushed along the insertion axis in the hold [N]; finite and ≥ 0"""
         ...
     @preload.setter
     def preload(self, value: float) -> None: ...
     @property
     def preload_ramp(self) -> float:
+        """linear ramp of the preload from the start of the hold [s]; positive and finite"""
         ...
     @preload_ramp.setter
     def preload_ramp(self, value: float) -> None: ...
@@ -1495,16 +1504,19 @@ class DockingMotion:
     def reference(self, value: ArrayLike) -> None: ...
     @property
     def single_time(self) -> float:
+        """single-segment: start → seated [s]; positive and finite"""
         ...
     @single_time.setter
     def single_time(self, value: float) -> None: ...
     @property
     def standoff(self) -> float:
+        """two-phase: the tip above the top face where insertion starts (< start_height) [m]; finite and ≥ 0"""
         ...
     @standoff.setter
     def standoff(self, value: float) -> None: ...
     @property
     def start_height(self) -> float:
+        """the tip above the true socket's top face at the start [m]; positive and finite"""
         ...
     @start_height.setter
     def start_height(self, value: float) -> None: ...
@@ -1597,31 +1609,13 @@ class DockingOptions:
     @video.setter
     def video(self, value: DockingVideo) -> None: ...
 
-class DockingOutcome:
-    """How a docking run ended.
-
-Members:
-
-  seated
-
-  not_seated
-
-  diverged
-
-  bad_command
-
-  interrupted"""
-    seated: ClassVar[DockingOutcome]
-    not_seated: ClassVar[DockingOutcome]
-    diverged: ClassVar[DockingOutcome]
-    bad_command: ClassVar[DockingOutcome]
-    interrupted: ClassVar[DockingOutcome]
-    def __init__(self, value: int) -> None: ...
-    @property
-    def name(self) -> str: ...
-    @property
-    def value(self) -> int: ...
-    def __int__(self) -> int: ...
+class DockingOutcome(enum.Enum):
+    """How a docking run ended."""
+    seated = 0
+    not_seated = 1
+    diverged = 2
+    bad_command = 3
+    interrupted = 4
 
 class DockingPlan:
     """Everything fixed before a run (poses in world)."""
@@ -1925,7 +1919,7 @@ class EnvironmentOptions:
         ...
     @property
     def action(self) -> ActionOptions:
-        """ActionOptions"""
+        """bounds and gains of the action spaces"""
         ...
     @action.setter
     def action(self, value: ActionOptions) -> None: ...
@@ -1937,19 +1931,19 @@ class EnvironmentOptions:
     def action_space(self, value: ArrayLike) -> None: ...
     @property
     def control_period(self) -> float:
-        """control step T [s], a whole multiple of the physics timestep"""
+        """control step T, a whole multiple of the physics timestep [s]; positive and finite"""
         ...
     @control_period.setter
     def control_period(self, value: float) -> None: ...
     @property
     def controller_period(self) -> float:
-        """low-level controller period [s], a whole divisor of T (0: the action space's own)"""
+        """low-level controller period, a whole divisor of T; 0: the action space's own [s]; finite and ≥ 0"""
         ...
     @controller_period.setter
     def controller_period(self, value: float) -> None: ...
     @property
     def max_acceleration(self) -> float:
-        """divergence bound on |qdd| [rad/s^2 or m/s^2]"""
+        """divergence bound on |q̈| [rad/s² or m/s²]; positive (+inf allowed)"""
         ...
     @max_acceleration.setter
     def max_acceleration(self, value: float) -> None: ...
@@ -1961,25 +1955,25 @@ class EnvironmentOptions:
     def observations(self, value: list[str]) -> None: ...
     @property
     def randomization(self) -> RandomizationOptions:
-        """RandomizationOptions"""
+        """domain randomization"""
         ...
     @randomization.setter
     def randomization(self, value: RandomizationOptions) -> None: ...
     @property
     def refuse_out_of_bounds(self) -> bool:
-        """refuse (mjarm.Error) instead of clipping an action outside its bounds"""
+        """refuse instead of clipping an action outside its bounds"""
         ...
     @refuse_out_of_bounds.setter
     def refuse_out_of_bounds(self, value: bool) -> None: ...
     @property
     def seed(self) -> int:
-        """seed of the episode seeds reset() without a seed draws"""
+        """seed of the episode seeds reset() without a seed draws; a whole number"""
         ...
     @seed.setter
     def seed(self, value: int) -> None: ...
     @property
     def time_limit(self) -> float:
-        """episode length [s]: LAST with discount 1 after ceil(time_limit / T) steps"""
+        """episode length: LAST with discount 1 after ceil(time_limit / T) steps [s]; positive and finite"""
         ...
     @time_limit.setter
     def time_limit(self, value: float) -> None: ...
@@ -2026,22 +2020,10 @@ class FaultCause(enum.Enum):
     bad_command = 6
     """a controller wrote NaN/inf"""
 
-class ForceSource:
-    """Where the measured wrench comes from.
-
-Members:
-
-  sensor
-
-  observer"""
-    sensor: ClassVar[ForceSource]
-    observer: ClassVar[ForceSource]
-    def __init__(self, value: int) -> None: ...
-    @property
-    def name(self) -> str: ...
-    @property
-    def value(self) -> int: ...
-    def __int__(self) -> int: ...
+class ForceSource(enum.Enum):
+    """Where the measured wrench comes from."""
+    sensor = 0
+    observer = 1
 
 class ForceTorqueSensor:
     """F/T sensor pair on a site."""
@@ -2351,22 +2333,10 @@ class GlobalIkStats:
     def sqp_solutions(self) -> int:
         ...
 
-class GraspKind:
-    """How the object is held.
-
-Members:
-
-  weld
-
-  friction"""
-    weld: ClassVar[GraspKind]
-    friction: ClassVar[GraspKind]
-    def __init__(self, value: int) -> None: ...
-    @property
-    def name(self) -> str: ...
-    @property
-    def value(self) -> int: ...
-    def __int__(self) -> int: ...
+class GraspKind(enum.Enum):
+    """How the object is held."""
+    weld = 0
+    friction = 1
 
 class GraspMonitorOptions:
     """When a held object has slipped or is lost."""
@@ -3387,19 +3357,19 @@ class PickCriteria:
         ...
     @property
     def hold_time(self) -> float:
-        """[s]"""
+        """and must stay there this long [s]; positive and finite"""
         ...
     @hold_time.setter
     def hold_time(self, value: float) -> None: ...
     @property
     def steady_window(self) -> float:
-        """[s]"""
+        """the last stretch of the hold judged as the steady state (≤ hold_time) [s]; positive and finite"""
         ...
     @steady_window.setter
     def steady_window(self, value: float) -> None: ...
     @property
     def tolerance(self) -> float:
-        """[m]"""
+        """the tip is at the target within this [m]; positive and finite"""
         ...
     @tolerance.setter
     def tolerance(self, value: float) -> None: ...
@@ -3446,50 +3416,18 @@ class PickMetrics:
     def time_to_tolerance(self) -> float:
         ...
 
-class PickOutcome:
-    """Members:
+class PickOutcome(enum.Enum):
+    held = 0
+    not_held = 1
+    diverged = 2
+    bad_command = 3
+    interrupted = 4
 
-  held
-
-  not_held
-
-  diverged
-
-  bad_command
-
-  interrupted"""
-    held: ClassVar[PickOutcome]
-    not_held: ClassVar[PickOutcome]
-    diverged: ClassVar[PickOutcome]
-    bad_command: ClassVar[PickOutcome]
-    interrupted: ClassVar[PickOutcome]
-    def __init__(self, value: int) -> None: ...
-    @property
-    def name(self) -> str: ...
-    @property
-    def value(self) -> int: ...
-    def __int__(self) -> int: ...
-
-class PickPhase:
-    """Members:
-
-  approach
-
-  settle
-
-  hold
-
-  release"""
-    approach: ClassVar[PickPhase]
-    settle: ClassVar[PickPhase]
-    hold: ClassVar[PickPhase]
-    release: ClassVar[PickPhase]
-    def __init__(self, value: int) -> None: ...
-    @property
-    def name(self) -> str: ...
-    @property
-    def value(self) -> int: ...
-    def __int__(self) -> int: ...
+class PickPhase(enum.Enum):
+    approach = 0
+    settle = 1
+    hold = 2
+    release = 3
 
 class PickPlaceBatch:
     """What a batch did."""
@@ -3549,75 +3487,43 @@ class PickPlaceCriteria:
     def grasp(self, value: GraspMonitorOptions) -> None: ...
     @property
     def max_saturation_time(self) -> float:
-        """[s]"""
+        """longest time one actuator may stay clipped without a break [s]; finite and ≥ 0"""
         ...
     @max_saturation_time.setter
     def max_saturation_time(self, value: float) -> None: ...
     @property
     def max_tilt(self) -> float:
-        """[rad]"""
+        """object tilt at the end [rad]; positive and finite"""
         ...
     @max_tilt.setter
     def max_tilt(self, value: float) -> None: ...
     @property
     def placement_tolerance(self) -> float:
-        """horizontal object-target distance at the end [m]"""
+        """horizontal distance object ↔ target at the end [m]; positive and finite"""
         ...
     @placement_tolerance.setter
     def placement_tolerance(self, value: float) -> None: ...
     @property
     def rest_speed(self) -> float:
-        """[m/s]"""
+        """the object's speed at the end below this [m/s]; positive and finite"""
         ...
     @rest_speed.setter
     def rest_speed(self, value: float) -> None: ...
 
-class PickPlaceFailure:
-    """Why a trial failed: the first that applies, in this order.
-
-Members:
-
-  none
-
-  diverged
-
-  bad_command
-
-  interrupted
-
-  time_limit
-
-  not_grasped
-
-  dropped
-
-  table_contact
-
-  saturated
-
-  misplaced
-
-  tilted
-
-  not_resting"""
-    none: ClassVar[PickPlaceFailure]
-    diverged: ClassVar[PickPlaceFailure]
-    bad_command: ClassVar[PickPlaceFailure]
-    interrupted: ClassVar[PickPlaceFailure]
-    time_limit: ClassVar[PickPlaceFailure]
-    not_grasped: ClassVar[PickPlaceFailure]
-    dropped: ClassVar[PickPlaceFailure]
-    table_contact: ClassVar[PickPlaceFailure]
-    saturated: ClassVar[PickPlaceFailure]
-    misplaced: ClassVar[PickPlaceFailure]
-    tilted: ClassVar[PickPlaceFailure]
-    not_resting: ClassVar[PickPlaceFailure]
-    def __init__(self, value: int) -> None: ...
-    @property
-    def name(self) -> str: ...
-    @property
-    def value(self) -> int: ...
-    def __int__(self) -> int: ...
+class PickPlaceFailure(enum.Enum):
+    """Why a trial failed: the first that applies, in this order."""
+    none = 0
+    diverged = 1
+    bad_command = 2
+    interrupted = 3
+    time_limit = 4
+    not_grasped = 5
+    dropped = 6
+    table_contact = 7
+    saturated = 8
+    misplaced = 9
+    tilted = 10
+    not_resting = 11
 
 class PickPlaceMotion:
     """Every constant of the machine (the classic defaults). Heights of the tool frame above the object's centre or above the target [m]; times [s]."""
@@ -3626,28 +3532,31 @@ class PickPlaceMotion:
         ...
     @property
     def approach_height(self) -> float:
+        """APPROACH: the tool above the object's centre [m]; positive and finite"""
         ...
     @approach_height.setter
     def approach_height(self, value: float) -> None: ...
     @property
     def descend_height(self) -> float:
+        """DESCEND: the tool above the object's centre [m]; finite and ≥ 0"""
         ...
     @descend_height.setter
     def descend_height(self, value: float) -> None: ...
     @property
     def dwell_time(self) -> float:
-        """each DWELL_* [s]"""
+        """each DWELL_* [s]; finite and ≥ 0"""
         ...
     @dwell_time.setter
     def dwell_time(self, value: float) -> None: ...
     @property
     def grip_time(self) -> float:
-        """GRASP finger closing [s]"""
+        """GRASP: the fingers close [s]; positive and finite"""
         ...
     @grip_time.setter
     def grip_time(self, value: float) -> None: ...
     @property
     def lift_height(self) -> float:
+        """LIFT: the tool above the object's start [m]; positive and finite"""
         ...
     @lift_height.setter
     def lift_height(self, value: float) -> None: ...
@@ -3659,23 +3568,25 @@ class PickPlaceMotion:
     def limits(self, value: CartesianLimits) -> None: ...
     @property
     def move_height(self) -> float:
+        """MOVE: the tool above the target [m]; positive and finite"""
         ...
     @move_height.setter
     def move_height(self, value: float) -> None: ...
     @property
     def place_height(self) -> float:
+        """PLACE: the tool above the target [m]; finite and ≥ 0"""
         ...
     @place_height.setter
     def place_height(self, value: float) -> None: ...
     @property
     def release_time(self) -> float:
-        """RELEASE finger opening [s]"""
+        """RELEASE: the fingers open [s]; positive and finite"""
         ...
     @release_time.setter
     def release_time(self, value: float) -> None: ...
     @property
     def settle_time(self) -> float:
-        """DONE lasts this long [s]"""
+        """DONE lasts this long before the result is judged [s]; positive and finite"""
         ...
     @settle_time.setter
     def settle_time(self, value: float) -> None: ...
@@ -4726,31 +4637,31 @@ class RandomizationOptions:
         ...
     @property
     def damping(self) -> float:
-        """joint damping"""
+        """joint damping (one factor per dof); in [0, 1)"""
         ...
     @damping.setter
     def damping(self, value: float) -> None: ...
     @property
     def friction(self) -> float:
-        """geom friction"""
+        """geom friction (one factor per geom); in [0, 1)"""
         ...
     @friction.setter
     def friction(self, value: float) -> None: ...
     @property
     def gain(self) -> float:
-        """actuator gains"""
+        """actuator gains (one factor per actuator); in [0, 1)"""
         ...
     @gain.setter
     def gain(self, value: float) -> None: ...
     @property
     def mass(self) -> float:
-        """body masses and inertias"""
+        """body masses and inertias (one factor per body); in [0, 1)"""
         ...
     @mass.setter
     def mass(self, value: float) -> None: ...
     @property
     def object_size(self) -> float:
-        """the task's object geoms (size, mass, inertia)"""
+        """the task's object geoms (size, mass, inertia); in [0, 1)"""
         ...
     @object_size.setter
     def object_size(self, value: float) -> None: ...
@@ -6162,40 +6073,43 @@ class TrackingGateOptions:
         ...
     @property
     def controller(self) -> DockingControllerOptions:
+        """law, force source, gains (the docking ones)"""
         ...
     @controller.setter
     def controller(self, value: DockingControllerOptions) -> None: ...
     @property
     def frequency(self) -> float:
-        """[Hz]"""
+        """loops per second at cruise [Hz]; positive and finite"""
         ...
     @frequency.setter
     def frequency(self, value: float) -> None: ...
     @property
     def height(self) -> float:
-        """[m]"""
+        """the start point: the tip this far above the socket's top [m]; positive and finite"""
         ...
     @height.setter
     def height(self, value: float) -> None: ...
     @property
     def joint_friction(self) -> bool:
+        """the friction variant of the scene"""
         ...
     @joint_friction.setter
     def joint_friction(self, value: bool) -> None: ...
     @property
     def max_acceleration(self) -> float:
+        """divergence bound on |q̈| [rad/s²]; positive and finite"""
         ...
     @max_acceleration.setter
     def max_acceleration(self, value: float) -> None: ...
     @property
     def radius(self) -> float:
-        """[m]"""
+        """r of the circle [m]; positive and finite"""
         ...
     @radius.setter
     def radius(self, value: float) -> None: ...
     @property
     def ramp_time(self) -> float:
-        """[s]"""
+        """the phase speed ramps in and out over this (< 1/frequency) [s]; positive and finite"""
         ...
     @ramp_time.setter
     def ramp_time(self, value: float) -> None: ...
@@ -6207,7 +6121,7 @@ class TrackingGateOptions:
     def scene(self, value: DockingScene) -> None: ...
     @property
     def settle_time(self) -> float:
-        """[s]"""
+        """at rest after the eight, still measured [s]; finite and ≥ 0"""
         ...
     @settle_time.setter
     def settle_time(self, value: float) -> None: ...

@@ -4,6 +4,7 @@
 #include <memory>
 
 #include "controller_step.hpp"
+#include "declared_fields.hpp"
 #include "mjarm/tasks/docking.hpp"
 #include "mjarm/tasks/docking_grid.hpp"
 #include "mjarm/tasks/tracking_gate.hpp"
@@ -13,9 +14,7 @@ namespace mjarm::python {
 namespace {
 
 ForceSource force_source(const std::string& name) {
-  if (name == "sensor") return ForceSource::sensor;
-  if (name == "observer") return ForceSource::observer;
-  throw Error("unknown force source '" + name + "'; choices: sensor, observer");
+  return parse_enum<ForceSource>(name, "force source");
 }
 
 /// A (N, k) float64 array, row i filled by @p row(i, pointer to k values).
@@ -74,14 +73,7 @@ void bind_scene_and_controller(py::module_& m) {
   auto geometry = py::class_<DockingGeometry>(m, "DockingGeometry",
                                               "Sizes [m] and contact settings of peg and socket.");
   fields_init<DockingGeometry>(geometry, "DockingGeometry");
-  geometry.def_readwrite("peg_radius", &DockingGeometry::peg_radius)
-      .def_readwrite("peg_length", &DockingGeometry::peg_length)
-      .def_readwrite("bore_radius", &DockingGeometry::bore_radius)
-      .def_readwrite("bore_depth", &DockingGeometry::bore_depth)
-      .def_readwrite("chamfer", &DockingGeometry::chamfer)
-      .def_readwrite("sides", &DockingGeometry::sides, "faces of the polygonal bore (>= 8)")
-      .def_readwrite("wall", &DockingGeometry::wall)
-      .def_readwrite("friction", &DockingGeometry::friction);
+  def_fields(geometry);
   array_property<DockingGeometry>(geometry, "solref", &DockingGeometry::solref,
                                   "time constant [s], damping ratio (2,)");
   array_property<DockingGeometry>(geometry, "solimp", &DockingGeometry::solimp,
@@ -127,39 +119,22 @@ void bind_scene_and_controller(py::module_& m) {
       .value("cic", DockingLaw::cic)
       .value("hqp_ac", DockingLaw::hqp_ac)
       .value("se3", DockingLaw::se3);
-  py::enum_<ForceSource>(m, "ForceSource", "Where the measured wrench comes from.")
-      .value("sensor", ForceSource::sensor)
-      .value("observer", ForceSource::observer);
+  def_enum<ForceSource>(m, "ForceSource", "Where the measured wrench comes from.");
   auto co = py::class_<DockingControllerOptions>(
       m, "DockingControllerOptions",
       "Law, force source and gains ([x, y, z, rx, ry, rz]; E's axes for se3, world for cic and "
       "hqp-ac). docs/docking.md has the tuned values.");
   fields_init<DockingControllerOptions>(co, "DockingControllerOptions");
+  def_fields(co);
+  // the enum fields also take their names
   enum_property<DockingControllerOptions>(
       co, "law", &DockingControllerOptions::law,
       [](const std::string& s) { return docking_law(s); }, "DockingLaw or 'cic', 'hqp-ac', 'se3'");
   enum_property<DockingControllerOptions>(co, "source", &DockingControllerOptions::source,
                                           &force_source, "ForceSource or 'sensor', 'observer'");
-  co.def_readwrite("sensor_cutoff", &DockingControllerOptions::sensor_cutoff, "[Hz]; inf: none");
-  fixed_property<DockingControllerOptions>(co, "se3_inertia",
-                                           &DockingControllerOptions::se3_inertia, "A (6,)");
-  fixed_property<DockingControllerOptions>(co, "se3_stiffness",
-                                           &DockingControllerOptions::se3_stiffness, "K (6,)");
-  co.def_readwrite("se3_damping_ratio", &DockingControllerOptions::se3_damping_ratio)
-      .def_readwrite("release_axes", &DockingControllerOptions::release_axes,
-                     "released on contact, E's [x, y, z, rx, ry, rz] (6 bools)")
-      .def_readwrite("release_force", &DockingControllerOptions::release_force, "[N]")
-      .def_readwrite("release_duration", &DockingControllerOptions::release_duration, "[s]");
-  fixed_property<DockingControllerOptions>(co, "cic_stiffness",
-                                           &DockingControllerOptions::cic_stiffness, "K (6,)");
-  co.def_readwrite("cic_damping_ratio", &DockingControllerOptions::cic_damping_ratio);
-  fixed_property<DockingControllerOptions>(co, "hqp_stiffness",
-                                           &DockingControllerOptions::hqp_stiffness, "K0 (6,)");
-  co.def_readwrite("nullspace_stiffness", &DockingControllerOptions::nullspace_stiffness)
-      .def_readwrite("nullspace_damping", &DockingControllerOptions::nullspace_damping)
-      .def_readwrite("friction_feed_forward", &DockingControllerOptions::friction_feed_forward)
-      .def_readwrite("friction_mode", &DockingControllerOptions::friction_mode)
-      .def_readwrite("control_period", &DockingControllerOptions::control_period, "[s]");
+  co.def_readwrite("release_axes", &DockingControllerOptions::release_axes,
+                   "released on contact, E's [x, y, z, rx, ry, rz] (6 bools)")
+      .def_readwrite("friction_mode", &DockingControllerOptions::friction_mode);
 
   auto docking =
       py::class_<DockingController, Controller>(
@@ -198,32 +173,16 @@ void bind_motion(py::module_& m) {
   auto motion = py::class_<DockingMotion>(m, "DockingMotion",
                                           "Timing [s] and sizes [m] of the motion, the preload.");
   fields_init<DockingMotion>(motion, "DockingMotion");
+  def_fields(motion);
+  // the enum field also takes its names
   enum_property<DockingMotion>(
       motion, "reference", &DockingMotion::reference,
       [](const std::string& s) { return docking_reference(s); },
       "DockingReference or 'two-phase', 'single'");
-  motion.def_readwrite("start_height", &DockingMotion::start_height)
-      .def_readwrite("standoff", &DockingMotion::standoff)
-      .def_readwrite("approach_time", &DockingMotion::approach_time)
-      .def_readwrite("insertion_speed", &DockingMotion::insertion_speed, "[m/s]")
-      .def_readwrite("insertion_acceleration", &DockingMotion::insertion_acceleration, "[m/s^2]")
-      .def_readwrite("single_time", &DockingMotion::single_time)
-      .def_readwrite("preload", &DockingMotion::preload, "[N]")
-      .def_readwrite("preload_ramp", &DockingMotion::preload_ramp)
-      .def_readwrite("hold_time", &DockingMotion::hold_time);
   auto criteria = py::class_<DockingCriteria>(m, "DockingCriteria",
                                               "Seating criteria (final window and whole run).");
   fields_init<DockingCriteria>(criteria, "DockingCriteria");
-  criteria.def_readwrite("window", &DockingCriteria::window, "[s]")
-      .def_readwrite("depth_tolerance", &DockingCriteria::depth_tolerance, "[m]")
-      .def_readwrite("max_lateral", &DockingCriteria::max_lateral, "[m]")
-      .def_readwrite("max_tilt", &DockingCriteria::max_tilt, "[rad]")
-      .def_readwrite("max_speed", &DockingCriteria::max_speed, "[m/s]")
-      .def_readwrite("max_angular_speed", &DockingCriteria::max_angular_speed, "[rad/s]")
-      .def_readwrite("min_contact_fraction", &DockingCriteria::min_contact_fraction)
-      .def_readwrite("max_force", &DockingCriteria::max_force, "[N]")
-      .def_readwrite("max_axial_moment", &DockingCriteria::max_axial_moment, "[N m]")
-      .def_readwrite("max_saturation", &DockingCriteria::max_saturation, "fraction of ticks");
+  def_fields(criteria);
   py::class_<DockingPlan>(m, "DockingPlan", "Everything fixed before a run (poses in world).")
       .def_readonly("offset", &DockingPlan::offset)
       .def_readonly("X_WS", &DockingPlan::X_WS, "the true socket")
@@ -279,12 +238,7 @@ void bind_docking_results(py::module_& m) {
       .def_readonly("contact_fraction", &DockingMetrics::contact_fraction)
       .def_readonly("seated", &DockingMetrics::seated)
       .def_readonly("failures", &DockingMetrics::failures, "why not seated: list of names");
-  py::enum_<DockingOutcome>(m, "DockingOutcome", "How a docking run ended.")
-      .value("seated", DockingOutcome::seated)
-      .value("not_seated", DockingOutcome::not_seated)
-      .value("diverged", DockingOutcome::diverged)
-      .value("bad_command", DockingOutcome::bad_command)
-      .value("interrupted", DockingOutcome::interrupted);
+  def_enum<DockingOutcome>(m, "DockingOutcome", "How a docking run ended.");
   py::class_<DockingReport>(m, "DockingReport", "What a docking run did.")
       .def_readonly("plan", &DockingReport::plan)
       .def_readonly("controller", &DockingReport::controller, "'cic', 'hqp-ac', 'se3'")
@@ -416,21 +370,12 @@ void bind_gate(py::module_& m) {
       m, "TrackingGateOptions",
       "The free-space tracking gate: a circle then a figure-eight in the y-z plane.");
   fields_init<TrackingGateOptions>(gate, "TrackingGateOptions");
-  gate.def_readwrite("controller", &TrackingGateOptions::controller)
-      .def_readwrite("joint_friction", &TrackingGateOptions::joint_friction)
-      .def_property(
-          "scene",
-          [](const TrackingGateOptions& o) {
-            return std::const_pointer_cast<DockingScene>(o.scene);
-          },
-          [](TrackingGateOptions& o, std::shared_ptr<DockingScene> s) { o.scene = std::move(s); },
-          "a compiled DockingScene, or None: built")
-      .def_readwrite("radius", &TrackingGateOptions::radius, "[m]")
-      .def_readwrite("frequency", &TrackingGateOptions::frequency, "[Hz]")
-      .def_readwrite("ramp_time", &TrackingGateOptions::ramp_time, "[s]")
-      .def_readwrite("height", &TrackingGateOptions::height, "[m]")
-      .def_readwrite("settle_time", &TrackingGateOptions::settle_time, "[s]")
-      .def_readwrite("max_acceleration", &TrackingGateOptions::max_acceleration);
+  def_fields(gate);
+  gate.def_property(
+      "scene",
+      [](const TrackingGateOptions& o) { return std::const_pointer_cast<DockingScene>(o.scene); },
+      [](TrackingGateOptions& o, std::shared_ptr<DockingScene> s) { o.scene = std::move(s); },
+      "a compiled DockingScene, or None: built");
   py::class_<TrackingErrors>(m, "TrackingErrors", "Errors over a stretch of the gate.")
       .def_readonly("samples", &TrackingErrors::samples)
       .def_readonly("position_rms", &TrackingErrors::position_rms, "[m]")

@@ -5,6 +5,7 @@
 #include <limits>
 #include <string>
 
+#include "declared_fields.hpp"
 #include "env_time_steps.hpp"
 #include "mjarm/env/environment.hpp"
 #include "mjarm/number_text.hpp"
@@ -128,50 +129,28 @@ void bind_array_specs(py::module_& m) {
 }
 
 void bind_options(py::module_& m) {
-  py::enum_<ActionSpace>(m, "ActionSpace",
-                         "What one action commands (n = the chain's joints); see docs/env.md.")
-      .value("joint_torques", ActionSpace::joint_torques, "n torques [N m], held over the step")
-      .value("joint_positions", ActionSpace::joint_positions, "n joint targets [rad]")
-      .value("joint_deltas", ActionSpace::joint_deltas, "n increments of the joint target [rad]")
-      .value("ee_pose_deltas", ActionSpace::ee_pose_deltas,
-             "[dx dy dz rx ry rz] of the goal pose (world axes; m, rotation vector rad)")
-      .value("ee_velocities", ActionSpace::ee_velocities,
-             "[vx vy vz wx wy wz] (m/s, rad/s), integrated over the step");
-  py::class_<ActionOptions>(m, "ActionOptions", "Bounds and gains of the action spaces.")
-      .def(py::init<>())
-      .def_readwrite("max_joint_delta", &ActionOptions::max_joint_delta,
-                     "joint_deltas: |dq| per step [rad or m]")
-      .def_readwrite("max_translation", &ActionOptions::max_translation,
-                     "ee_pose_deltas: |dp| per axis per step [m]")
-      .def_readwrite("max_rotation", &ActionOptions::max_rotation,
-                     "ee_pose_deltas: |r| per axis per step [rad]")
-      .def_readwrite("max_linear_speed", &ActionOptions::max_linear_speed,
-                     "ee_velocities: |v| per axis [m/s]")
-      .def_readwrite("max_angular_speed", &ActionOptions::max_angular_speed,
-                     "ee_velocities: |w| per axis [rad/s]")
-      .def_readwrite("joint_bandwidth", &ActionOptions::joint_bandwidth,
-                     "joint PD bandwidth [rad/s]")
-      .def_readwrite("max_joint_speed", &ActionOptions::max_joint_speed,
-                     "joint speed limit of the differential-IK QP [rad/s or m/s]")
-      .def_readwrite("osc", &ActionOptions::osc, "the operational-space controller's options")
+  def_enum<ActionSpace>(m, "ActionSpace",
+                        "What one action commands (n = the chain's joints); see docs/env.md.");
+  py::class_<ActionOptions> action(m, "ActionOptions", "Bounds and gains of the action spaces.");
+  action.def(py::init<>());
+  def_fields(action);
+  action.def_readwrite("osc", &ActionOptions::osc, "the operational-space controller's options")
       .def("check", &ActionOptions::check, "Raises mjarm.Error naming an option out of range.");
-  py::class_<RandomizationOptions>(
+  py::class_<RandomizationOptions> randomization(
       m, "RandomizationOptions",
       "Relative ranges r in [0, 1) of domain randomization: each parameter times a factor "
-      "uniform in [1 - r, 1 + r], drawn at every reset.")
-      .def(py::init<>())
-      .def_readwrite("mass", &RandomizationOptions::mass, "body masses and inertias")
-      .def_readwrite("friction", &RandomizationOptions::friction, "geom friction")
-      .def_readwrite("damping", &RandomizationOptions::damping, "joint damping")
-      .def_readwrite("gain", &RandomizationOptions::gain, "actuator gains")
-      .def_readwrite("object_size", &RandomizationOptions::object_size,
-                     "the task's object geoms (size, mass, inertia)")
-      .def("any", &RandomizationOptions::any, "True when any range is non-zero.");
-  py::class_<EnvironmentOptions>(
+      "uniform in [1 - r, 1 + r], drawn at every reset.");
+  randomization.def(py::init<>());
+  def_fields(randomization);
+  randomization.def("any", &RandomizationOptions::any, "True when any range is non-zero.");
+  py::class_<EnvironmentOptions> environment(
       m, "EnvironmentOptions",
       "Settings of an Environment (checked by its constructor); see docs/env.md. Environment(task, "
-      "**overrides) also takes these fields as keywords.")
-      .def(py::init<>())
+      "**overrides) also takes these fields as keywords.");
+  environment.def(py::init<>());
+  def_fields(environment);
+  // the action space also takes its name; the observations are a list of names
+  environment
       .def_property(
           "action_space", [](const EnvironmentOptions& o) { return o.action_space; },
           [](EnvironmentOptions& o, py::handle v) {
@@ -179,23 +158,8 @@ void bind_options(py::module_& m) {
                                                         : v.cast<ActionSpace>();
           },
           "an ActionSpace, or its name ('ee_pose_deltas', ...)")
-      .def_readwrite("action", &EnvironmentOptions::action, "ActionOptions")
-      .def_readwrite("control_period", &EnvironmentOptions::control_period,
-                     "control step T [s], a whole multiple of the physics timestep")
-      .def_readwrite("controller_period", &EnvironmentOptions::controller_period,
-                     "low-level controller period [s], a whole divisor of T (0: the action "
-                     "space's own)")
-      .def_readwrite("time_limit", &EnvironmentOptions::time_limit,
-                     "episode length [s]: LAST with discount 1 after ceil(time_limit / T) steps")
       .def_readwrite("observations", &EnvironmentOptions::observations,
-                     "observation names ([]: the task's defaults); see env_observations(task)")
-      .def_readwrite("refuse_out_of_bounds", &EnvironmentOptions::refuse_out_of_bounds,
-                     "refuse (mjarm.Error) instead of clipping an action outside its bounds")
-      .def_readwrite("randomization", &EnvironmentOptions::randomization, "RandomizationOptions")
-      .def_readwrite("seed", &EnvironmentOptions::seed,
-                     "seed of the episode seeds reset() without a seed draws")
-      .def_readwrite("max_acceleration", &EnvironmentOptions::max_acceleration,
-                     "divergence bound on |qdd| [rad/s^2 or m/s^2]");
+                     "observation names ([]: the task's defaults); see env_observations(task)");
   py::class_<ClipCounts>(m, "ClipCounts", "How often actions were clipped into their bounds.")
       .def_readonly("steps", &ClipCounts::steps, "steps with at least one value clipped")
       .def_readonly("values", &ClipCounts::values, "values clipped")
@@ -218,11 +182,10 @@ void bind_time_steps(py::module_& m) {
           "mid", [](StepType t) { return t == StepType::mid; }, "True for MID.")
       .def(
           "last", [](StepType t) { return t == StepType::last; }, "True for LAST.");
-  py::enum_<EpisodeEnd>(m, "EpisodeEnd", "Why an episode ended (set on LAST).")
-      .value("running", EpisodeEnd::running, "not ended")
-      .value("terminated", EpisodeEnd::terminated, "the task ended it: discount 0")
-      .value("truncated", EpisodeEnd::truncated, "the time limit: discount 1")
-      .value("diverged", EpisodeEnd::diverged, "the physics diverged: discount 0");
+  // a pybind11 enum, not def_enum's enum.Enum: the vectorized batches hold its values as
+  // integers, compared with int(mjarm.EpisodeEnd.truncated), which an enum.Enum refuses
+  py::enum_<EpisodeEnd> end(m, "EpisodeEnd", "Why an episode ended (set on LAST).");
+  for (const auto& n : names_of<EpisodeEnd>()) end.value(n.name.data(), n.value, n.doc.data());
 
   py::class_<PyTimeStep>(m, "TimeStep", kTimeStepDoc)
       .def_readonly("step_type", &PyTimeStep::step_type, "StepType")

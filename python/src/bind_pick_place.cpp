@@ -4,6 +4,7 @@
 #include <memory>
 #include <mutex>
 
+#include "declared_fields.hpp"
 #include "mjarm/tasks/pick_place.hpp"
 #include "mjarm/tasks/pick_place_trials.hpp"
 #include "spec_support.hpp"
@@ -33,9 +34,7 @@ void optional_pair(Class& cls, const char* name, std::optional<std::array<double
 }
 
 void bind_pick_place_options(py::module_& m) {
-  py::enum_<GraspKind>(m, "GraspKind", "How the object is held.")
-      .value("weld", GraspKind::weld)
-      .value("friction", GraspKind::friction);
+  def_enum<GraspKind>(m, "GraspKind", "How the object is held.");
   py::enum_<PickPlaceState>(m, "PickPlaceState", "The 14 states of the machine, in order.")
       .value("approach", PickPlaceState::approach)
       .value("dwell_a", PickPlaceState::dwell_a)
@@ -51,20 +50,8 @@ void bind_pick_place_options(py::module_& m) {
       .value("dwell_f", PickPlaceState::dwell_f)
       .value("release", PickPlaceState::release)
       .value("done", PickPlaceState::done);
-  py::enum_<PickPlaceFailure>(m, "PickPlaceFailure",
-                              "Why a trial failed: the first that applies, in this order.")
-      .value("none", PickPlaceFailure::none)
-      .value("diverged", PickPlaceFailure::diverged)
-      .value("bad_command", PickPlaceFailure::bad_command)
-      .value("interrupted", PickPlaceFailure::interrupted)
-      .value("time_limit", PickPlaceFailure::time_limit)
-      .value("not_grasped", PickPlaceFailure::not_grasped)
-      .value("dropped", PickPlaceFailure::dropped)
-      .value("table_contact", PickPlaceFailure::table_contact)
-      .value("saturated", PickPlaceFailure::saturated)
-      .value("misplaced", PickPlaceFailure::misplaced)
-      .value("tilted", PickPlaceFailure::tilted)
-      .value("not_resting", PickPlaceFailure::not_resting);
+  def_enum<PickPlaceFailure>(m, "PickPlaceFailure",
+                             "Why a trial failed: the first that applies, in this order.");
 
   auto limits =
       py::class_<CartesianLimits>(m, "CartesianLimits", "Limits of a Cartesian trapezoid segment.");
@@ -80,16 +67,8 @@ void bind_pick_place_options(py::module_& m) {
       "Every constant of the machine (the classic defaults). Heights of the tool frame above "
       "the object's centre or above the target [m]; times [s].");
   fields_init<PickPlaceMotion>(motion, "PickPlaceMotion");
-  motion.def_readwrite("approach_height", &PickPlaceMotion::approach_height)
-      .def_readwrite("descend_height", &PickPlaceMotion::descend_height)
-      .def_readwrite("lift_height", &PickPlaceMotion::lift_height)
-      .def_readwrite("move_height", &PickPlaceMotion::move_height)
-      .def_readwrite("place_height", &PickPlaceMotion::place_height)
-      .def_readwrite("dwell_time", &PickPlaceMotion::dwell_time, "each DWELL_* [s]")
-      .def_readwrite("grip_time", &PickPlaceMotion::grip_time, "GRASP finger closing [s]")
-      .def_readwrite("release_time", &PickPlaceMotion::release_time, "RELEASE finger opening [s]")
-      .def_readwrite("limits", &PickPlaceMotion::limits, "CartesianLimits of the segments")
-      .def_readwrite("settle_time", &PickPlaceMotion::settle_time, "DONE lasts this long [s]");
+  def_fields(motion);
+  motion.def_readwrite("limits", &PickPlaceMotion::limits, "CartesianLimits of the segments");
 
   auto monitor = py::class_<GraspMonitorOptions>(m, "GraspMonitorOptions",
                                                  "When a held object has slipped or is lost.");
@@ -104,13 +83,8 @@ void bind_pick_place_options(py::module_& m) {
   auto criteria =
       py::class_<PickPlaceCriteria>(m, "PickPlaceCriteria", "What a trial is judged by.");
   fields_init<PickPlaceCriteria>(criteria, "PickPlaceCriteria");
-  criteria
-      .def_readwrite("placement_tolerance", &PickPlaceCriteria::placement_tolerance,
-                     "horizontal object-target distance at the end [m]")
-      .def_readwrite("rest_speed", &PickPlaceCriteria::rest_speed, "[m/s]")
-      .def_readwrite("max_tilt", &PickPlaceCriteria::max_tilt, "[rad]")
-      .def_readwrite("max_saturation_time", &PickPlaceCriteria::max_saturation_time, "[s]")
-      .def_readwrite("grasp", &PickPlaceCriteria::grasp, "GraspMonitorOptions");
+  def_fields(criteria);
+  criteria.def_readwrite("grasp", &PickPlaceCriteria::grasp, "GraspMonitorOptions");
 
   auto ranges = py::class_<PickPlaceRanges>(m, "PickPlaceRanges",
                                             "Where a seed draws a trial from (uniform, [lo, hi]).");

@@ -1,17 +1,16 @@
 // tasks room: the shelf pick (plan, run, report, metrics); pick and place (bind_pick_place.cpp)
 // and docking (bind_docking.cpp).
 #include "bindings.hpp"
+#include "declared_fields.hpp"
 #include "mjarm/tasks/shelf_pick.hpp"
 #include "spec_support.hpp"
 
 namespace mjarm::python {
 
 void bind_tasks(py::module_& m) {
-  py::class_<PickCriteria>(m, "PickCriteria", "When a pick counts as held.")
-      .def(py::init<>())
-      .def_readwrite("tolerance", &PickCriteria::tolerance, "[m]")
-      .def_readwrite("hold_time", &PickCriteria::hold_time, "[s]")
-      .def_readwrite("steady_window", &PickCriteria::steady_window, "[s]");
+  py::class_<PickCriteria> criteria(m, "PickCriteria", "When a pick counts as held.");
+  criteria.def(py::init<>());
+  def_fields(criteria);
   py::class_<PickMetrics>(m, "PickMetrics")
       .def_readonly("held", &PickMetrics::held)
       .def_readonly("first_entry_time", &PickMetrics::first_entry_time)
@@ -26,17 +25,8 @@ void bind_tasks(py::module_& m) {
       .def_readonly("exits", &PickMetrics::exits)
       .def_readonly("final_error", &PickMetrics::final_error)
       .def_readonly("samples", &PickMetrics::samples);
-  py::enum_<PickOutcome>(m, "PickOutcome")
-      .value("held", PickOutcome::held)
-      .value("not_held", PickOutcome::not_held)
-      .value("diverged", PickOutcome::diverged)
-      .value("bad_command", PickOutcome::bad_command)
-      .value("interrupted", PickOutcome::interrupted);
-  py::enum_<PickPhase>(m, "PickPhase")
-      .value("approach", PickPhase::approach)
-      .value("settle", PickPhase::settle)
-      .value("hold", PickPhase::hold)
-      .value("release", PickPhase::release);
+  def_enum<PickOutcome>(m, "PickOutcome");
+  def_enum<PickPhase>(m, "PickPhase");
   py::class_<ShelfPickRequest>(m, "ShelfPickRequest")
       .def(py::init<>())
       .def_readwrite("robot", &ShelfPickRequest::robot)

@@ -1,38 +1,8 @@
 #include "mjarm/env/action_space.hpp"
 
-#include <cmath>
-#include <string>
-
 #include "mjarm/error.hpp"
-#include "mjarm/number_text.hpp"
 
 namespace mjarm {
-namespace {
-
-void require_positive_option(double value, const char* name) {
-  if (!(std::isfinite(value) && value > 0.0))
-    throw Error(std::string("action options: ") + name + " must be positive and finite, got " +
-                number_text(value));
-}
-
-}  // namespace
-
-const char* to_string(ActionSpace space) noexcept {
-  switch (space) {
-    case ActionSpace::joint_torques:
-      return "joint_torques";
-    case ActionSpace::joint_positions:
-      return "joint_positions";
-    case ActionSpace::joint_deltas:
-      return "joint_deltas";
-    case ActionSpace::ee_pose_deltas:
-      return "ee_pose_deltas";
-    case ActionSpace::ee_velocities:
-      return "ee_velocities";
-  }
-  return "?";
-}
-
 const std::vector<ActionSpace>& action_spaces() {
   static const std::vector<ActionSpace> all{
       ActionSpace::joint_torques, ActionSpace::joint_positions, ActionSpace::joint_deltas,
@@ -41,12 +11,7 @@ const std::vector<ActionSpace>& action_spaces() {
 }
 
 ActionSpace action_space(std::string_view name) {
-  std::string choices;
-  for (ActionSpace space : action_spaces()) {
-    if (name == to_string(space)) return space;
-    choices += (choices.empty() ? "" : ", ") + std::string(to_string(space));
-  }
-  throw Error("unknown action space '" + std::string(name) + "'; choices: " + choices);
+  return parse_enum<ActionSpace>(name, "action space");
 }
 
 OperationalSpaceOptions environment_osc_options() {
@@ -60,13 +25,7 @@ OperationalSpaceOptions environment_osc_options() {
 }
 
 void ActionOptions::check() const {
-  require_positive_option(max_joint_delta, "max_joint_delta");
-  require_positive_option(max_translation, "max_translation");
-  require_positive_option(max_rotation, "max_rotation");
-  require_positive_option(max_linear_speed, "max_linear_speed");
-  require_positive_option(max_angular_speed, "max_angular_speed");
-  require_positive_option(joint_bandwidth, "joint_bandwidth");
-  require_positive_option(max_joint_speed, "max_joint_speed");
+  check_fields(*this);
   if (osc.mode != TaskMode::pose)
     throw Error(
         "action options: the end-effector action spaces command a pose; osc.mode must be "

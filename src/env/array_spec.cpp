@@ -24,14 +24,6 @@ std::string list(const std::vector<std::string>& names) {
 
 }  // namespace
 
-const char* to_string(DType dtype) noexcept {
-  switch (dtype) {
-    case DType::float64:
-      return "float64";
-  }
-  return "?";
-}
-
 ArraySpec ArraySpec::vector(std::string name, int size) {
   const double inf = INFINITY;
   return ArraySpec{std::move(name),

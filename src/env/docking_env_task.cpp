@@ -11,8 +11,8 @@ namespace mjarm {
 namespace {
 
 void check_docking_env(const DockingEnvOptions& o) {
-  check(o.motion);
-  check(o.criteria);
+  check_fields(o);
+  check(o.motion);  // the standoff against the start height
   if (!o.scene.ft_sensor)
     throw Error("docking environment: the scene needs its force/torque sensor (scene.ft_sensor)");
   const DockingOffset& r = o.offset_range;
@@ -20,15 +20,6 @@ void check_docking_env(const DockingEnvOptions& o) {
       !(r.dyaw >= 0.0 && r.dyaw <= 3.14159265358979323846))
     throw Error(
         "docking environment: offset_range needs dx, dy in [0, 0.05] m and dyaw in [0, π] rad");
-  auto non_negative = [](double v, const char* what) {
-    if (!(std::isfinite(v) && v >= 0.0))
-      throw Error(std::string("docking environment: ") + what + " must be ≥ 0 and finite, got " +
-                  number_text(v));
-  };
-  non_negative(o.start_perturbation, "start_perturbation");
-  non_negative(o.seated_time, "seated_time");
-  non_negative(o.tilt_weight, "tilt_weight");
-  non_negative(o.failure_penalty, "failure_penalty");
 }
 
 std::shared_ptr<const DockingScene> checked_scene(const DockingEnvOptions& o) {
@@ -37,20 +28,6 @@ std::shared_ptr<const DockingScene> checked_scene(const DockingEnvOptions& o) {
 }
 
 }  // namespace
-
-const char* to_string(DockingEnvOutcome outcome) noexcept {
-  switch (outcome) {
-    case DockingEnvOutcome::running:
-      return "running";
-    case DockingEnvOutcome::seated:
-      return "seated";
-    case DockingEnvOutcome::excess_force:
-      return "excess_force";
-    case DockingEnvOutcome::other_contact:
-      return "other_contact";
-  }
-  return "unknown";
-}
 
 DockingEnvTask::DockingEnvTask(const DockingEnvOptions& options)
     : options_(options), scene_(checked_scene(options)), probe_(*scene_, iiwa14_max_velocity()) {

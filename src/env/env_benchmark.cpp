@@ -223,19 +223,7 @@ bool same_arrays(const VectorEnvironment& a, const VectorEnvironment& b) {
 
 }  // namespace
 
-void EnvBenchmarkOptions::check() const {
-  if (steps < 1) throw Error("env benchmark: steps must be ≥ 1");
-  if (warmup < 0) throw Error("env benchmark: warmup must be ≥ 0");
-  if (rounds < 1) throw Error("env benchmark: rounds must be ≥ 1");
-  if (envs < 1) throw Error("env benchmark: envs must be ≥ 1");
-  if (batch_steps < 1) throw Error("env benchmark: batch_steps must be ≥ 1");
-  if (max_threads < 1 || max_threads > 256)
-    throw Error("env benchmark: max_threads must be from 1 to 256");
-}
-
-const char* to_string(EnvBenchmarkStatus status) noexcept {
-  return status == EnvBenchmarkStatus::ok ? "ok" : "interrupted";
-}
+void EnvBenchmarkOptions::check() const { check_fields(*this); }
 
 EnvBenchmarkResult run_env_benchmark(const EnvBenchmarkOptions& options) {
   options.check();

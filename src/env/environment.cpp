@@ -61,6 +61,7 @@ struct Environment::Impl {
 
 Environment::Impl::Impl(std::unique_ptr<EnvTask> t, const EnvironmentOptions& o)
     : options(o), task(checked_task(std::move(t))), seeds(o.seed) {
+  check_fields(o);
   const Robot& robot = task->robot();
   const Chain& chain = task->chain();
   const double h = robot.model().opt.timestep;
@@ -88,7 +89,6 @@ Environment::Impl::Impl(std::unique_ptr<EnvTask> t, const EnvironmentOptions& o)
   sim_options.control_period = controller_period;
   sim_options.max_acceleration = o.max_acceleration;
   sim_options.own_model = o.randomization.any();
-  o.randomization.check();
   driver = std::make_unique<ActionDriver>(o.action_space, chain, o.action, o.control_period,
                                           task->gripper_action());
   sim = std::make_unique<Simulation>(robot, sim_options);

@@ -15,24 +15,7 @@ namespace {
 constexpr double kRestHeightTolerance = 0.005;  // a placed cube's centre within this of its rest
 
 std::shared_ptr<const PickPlaceScene> pick_place_env_scene(const PickPlaceEnvOptions& o) {
-  auto positive = [](double v, const char* what) {
-    if (!(std::isfinite(v) && v > 0.0))
-      throw Error(std::string("pick-place environment: ") + what + " must be positive, got " +
-                  number_text(v));
-  };
-  positive(o.object_half_size, "object_half_size [m]");
-  positive(o.object_mass, "object_mass [kg]");
-  positive(o.object_friction, "object_friction");
-  positive(o.grasp_force, "grasp_force [N]");
-  positive(o.criteria.placement_tolerance, "criteria.placement_tolerance [m]");
-  positive(o.criteria.rest_speed, "criteria.rest_speed [m/s]");
-  positive(o.criteria.max_tilt, "criteria.max_tilt [rad]");
-  if (!(std::isfinite(o.start_perturbation) && o.start_perturbation >= 0.0))
-    throw Error("pick-place environment: start_perturbation must be ≥ 0 and finite, got " +
-                number_text(o.start_perturbation));
-  if (!(std::isfinite(o.failure_penalty) && o.failure_penalty >= 0.0))
-    throw Error("pick-place environment: failure_penalty must be ≥ 0 and finite, got " +
-                number_text(o.failure_penalty));
+  check_fields(o);
   PickPlaceSceneOptions scene;
   scene.robot = o.robot;  // unknown: the scene says so, with the choices
   scene.mode = SimulationMode::torque;
@@ -48,20 +31,6 @@ std::shared_ptr<const PickPlaceScene> pick_place_env_scene(const PickPlaceEnvOpt
 }
 
 }  // namespace
-
-const char* to_string(PickPlaceEnvOutcome outcome) noexcept {
-  switch (outcome) {
-    case PickPlaceEnvOutcome::running:
-      return "running";
-    case PickPlaceEnvOutcome::placed:
-      return "placed";
-    case PickPlaceEnvOutcome::fell:
-      return "fell";
-    case PickPlaceEnvOutcome::table_contact:
-      return "table_contact";
-  }
-  return "unknown";
-}
 
 PickPlaceEnvTask::PickPlaceEnvTask(const PickPlaceEnvOptions& options)
     : options_(options),

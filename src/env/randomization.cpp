@@ -11,13 +11,6 @@
 namespace mjarm {
 namespace {
 
-void check_range(double r, const char* name) {
-  if (!(r >= 0.0 && r < 1.0))
-    throw Error(std::string("randomization: the ") + name +
-                " range must be in [0, 1) (factors in " + "[1 − r, 1 + r]), got " +
-                number_text(r));
-}
-
 // fills @p factors with draws from [1 − r, 1 + r], or empties it for r = 0
 void draw_factors(Eigen::VectorXd& factors, double r, Random& rng) noexcept {
   if (r == 0.0) return;
@@ -30,13 +23,7 @@ bool RandomizationOptions::any() const noexcept {
   return mass != 0.0 || friction != 0.0 || damping != 0.0 || gain != 0.0 || object_size != 0.0;
 }
 
-void RandomizationOptions::check() const {
-  check_range(mass, "mass");
-  check_range(friction, "friction");
-  check_range(damping, "damping");
-  check_range(gain, "gain");
-  check_range(object_size, "object_size");
-}
+void RandomizationOptions::check() const { check_fields(*this); }
 
 DomainRandomizer::DomainRandomizer(const mjModel& nominal, const RandomizationOptions& options,
                                    std::vector<int> object_geoms)

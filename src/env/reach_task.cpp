@@ -26,17 +26,7 @@ Robot reach_scene(const ReachOptions& options) {
   return scene.compile();
 }
 
-void check_reach_options(const ReachOptions& o) {
-  if (!(std::isfinite(o.start_perturbation) && o.start_perturbation >= 0.0))
-    throw Error("reach: start_perturbation must be ≥ 0 and finite, got " +
-                number_text(o.start_perturbation));
-  if (!o.target_center.allFinite() || !o.target_half_width.allFinite() ||
-      (o.target_half_width.array() < 0.0).any())
-    throw Error("reach: the target box needs a finite centre and half-widths ≥ 0");
-  if (!(std::isfinite(o.success_distance) && o.success_distance >= 0.0))
-    throw Error("reach: success_distance must be ≥ 0 and finite, got " +
-                number_text(o.success_distance));
-}
+void check_reach_options(const ReachOptions& o) { check_fields(o); }
 
 }  // namespace
 

@@ -18,16 +18,8 @@ const ShelfPickRobot& pose_robot(const ShelfPickEnvOptions& o) {
     throw Error("shelf-pick environment: robot '" + robot.name +
                 "' has a position-only shelf pick; the environment's end-effector actions "
                 "command a pose (use panda)");
-  const PickCriteria& c = o.criteria;
-  if (!(std::isfinite(c.tolerance) && c.tolerance > 0.0) ||
-      !(std::isfinite(c.hold_time) && c.hold_time > 0.0) || !(c.steady_window > 0.0) ||
-      !(c.steady_window <= c.hold_time))
-    throw Error(
-        "shelf-pick environment: the tolerance and the hold time must be positive and "
-        "finite, and the steady window in (0, hold time]");
-  if (!(std::isfinite(o.orientation_weight) && o.orientation_weight >= 0.0))
-    throw Error("shelf-pick environment: orientation_weight must be ≥ 0 and finite, got " +
-                number_text(o.orientation_weight));
+  check(o.criteria, "shelf-pick environment");
+  check_fields(o);
   return robot;
 }
 

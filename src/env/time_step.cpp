@@ -6,32 +6,6 @@
 
 namespace mjarm {
 
-const char* to_string(StepType type) noexcept {
-  switch (type) {
-    case StepType::first:
-      return "first";
-    case StepType::mid:
-      return "mid";
-    case StepType::last:
-      return "last";
-  }
-  return "?";
-}
-
-const char* to_string(EpisodeEnd end) noexcept {
-  switch (end) {
-    case EpisodeEnd::running:
-      return "running";
-    case EpisodeEnd::terminated:
-      return "terminated";
-    case EpisodeEnd::truncated:
-      return "truncated";
-    case EpisodeEnd::diverged:
-      return "diverged";
-  }
-  return "?";
-}
-
 std::span<const double> Observation::operator[](std::string_view name) const {
   if (spec_ == nullptr) throw Error("observation: empty (no reset yet)");
   return at(spec_->index(name));

@@ -8,20 +8,7 @@
 
 namespace mjarm {
 
-void GrowthLimits::check() const {
-  if (warmup_rounds < 1)
-    throw Error("soak warm-up: " + std::to_string(warmup_rounds) + " rounds; expected ≥ 1");
-  if (!(warmup_fraction >= 0.0 && warmup_fraction < 1.0))
-    throw Error("soak warm-up share: expected a number in [0, 1)");
-  const auto check_bound = [](double v, const char* what) {
-    if (!(v >= 0.0) || !std::isfinite(v))
-      throw Error(std::string("soak ") + what + ": expected a finite number ≥ 0");
-  };
-  check_bound(max_heap_slope_kib_per_hour, "heap slope bound [KiB/h]");
-  check_bound(heap_margin_kib, "heap margin [KiB]");
-  check_bound(max_rss_slope_kib_per_hour, "RSS slope bound [KiB/h]");
-  check_bound(rss_margin_kib, "RSS margin [KiB]");
-}
+void GrowthLimits::check() const { check_fields(*this); }
 
 double least_squares_slope(std::span<const double> x, std::span<const double> y) noexcept {
   const std::size_t n = std::min(x.size(), y.size());

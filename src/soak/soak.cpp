@@ -396,32 +396,7 @@ void judge(const SoakOptions& options, SoakResult& r) {
 
 }  // namespace
 
-void SoakOptions::check() const {
-  if (!(minutes > 0.0) || !std::isfinite(minutes))
-    throw Error("soak length: expected a finite number of minutes > 0");
-  if (rounds < 0) throw Error("soak rounds: " + std::to_string(rounds) + "; expected ≥ 0");
-  if (episodes < 1) throw Error("soak episodes: " + std::to_string(episodes) + "; expected ≥ 1");
-  if (vector_envs < 1 || vector_envs > 64)
-    throw Error("soak vectorized environments: " + std::to_string(vector_envs) +
-                "; expected 1 … 64");
-  if (vector_threads < 1 || vector_threads > 64)
-    throw Error("soak vector threads: " + std::to_string(vector_threads) + "; expected 1 … 64");
-  if (trials < 1) throw Error("soak trials: " + std::to_string(trials) + "; expected ≥ 1");
-  if (trial_threads < 1 || trial_threads > 64)
-    throw Error("soak trial threads: " + std::to_string(trial_threads) + "; expected 1 … 64");
-  if (inject.leak_kib_per_round < 0 || inject.fds_per_round < 0 || inject.drift_from_round < 0)
-    throw Error("soak injection: expected counts ≥ 0");
-  limits.check();
-}
-
-const char* to_string(SoakStatus status) noexcept {
-  switch (status) {
-    case SoakStatus::ok: return "ok";
-    case SoakStatus::failed: return "failed";
-    case SoakStatus::interrupted: return "interrupted";
-  }
-  return "?";
-}
+void SoakOptions::check() const { check_fields(*this); }
 
 SoakResult run_soak(const SoakOptions& options) {
   options.check();

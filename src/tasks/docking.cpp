@@ -15,22 +15,6 @@
 
 namespace mjarm {
 
-const char* to_string(DockingOutcome outcome) noexcept {
-  switch (outcome) {
-    case DockingOutcome::seated:
-      return "seated";
-    case DockingOutcome::not_seated:
-      return "not_seated";
-    case DockingOutcome::diverged:
-      return "diverged";
-    case DockingOutcome::bad_command:
-      return "bad_command";
-    case DockingOutcome::interrupted:
-      return "interrupted";
-  }
-  return "unknown";
-}
-
 CameraSpec docking_camera(const DockingScene& scene, std::string_view camera) {
   const Eigen::Vector3d top = scene.options.X_WS.p;
   if (camera.empty())  // close to the socket, from the front right and above

@@ -4,11 +4,10 @@
 #include <cmath>
 #include <numbers>
 
-#include "docking_checks.hpp"
 #include "mjarm/error.hpp"
 #include "mjarm/lie/se3.hpp"
-#include "mjarm/trajectory/smoothstep.hpp"
 #include "mjarm/number_text.hpp"
+#include "mjarm/trajectory/smoothstep.hpp"
 
 namespace mjarm {
 
@@ -16,61 +15,20 @@ namespace {
 
 constexpr std::array<DockingLaw, 3> kLaws{DockingLaw::cic, DockingLaw::hqp_ac, DockingLaw::se3};
 
-void require_gains(const Vector6d& v, const std::string& what) {
-  static const char* const kAxes[] = {"x", "y", "z", "rx", "ry", "rz"};
-  for (int i = 0; i < 6; ++i)
-    docking_detail::require_positive(v[i], "docking controller", what + " " + kAxes[i]);
-}
-
 }  // namespace
 
-const char* to_string(DockingLaw law) noexcept {
-  switch (law) {
-    case DockingLaw::cic:
-      return "cic";
-    case DockingLaw::hqp_ac:
-      return "hqp-ac";
-    case DockingLaw::se3:
-      return "se3";
-  }
-  return "unknown";
-}
-
 DockingLaw docking_law(std::string_view name) {
-  for (DockingLaw law : kLaws)
-    if (name == to_string(law)) return law;
-  throw Error("unknown docking controller '" + std::string(name) +
-              "'; controllers: cic, hqp-ac, se3");
+  return parse_enum<DockingLaw>(name, "docking controller");
 }
 
 std::span<const DockingLaw> docking_laws() noexcept { return kLaws; }
 
-const char* to_string(ForceSource source) noexcept {
-  return source == ForceSource::sensor ? "sensor" : "observer";
-}
-
 void check(const DockingControllerOptions& o) {
-  if (!(o.sensor_cutoff > 0.0) || std::isnan(o.sensor_cutoff))
-    throw Error("docking controller: sensor_cutoff must be positive [Hz] (+inf: no filter), got " +
-                number_text(o.sensor_cutoff));
-  require_gains(o.se3_inertia, "se3_inertia");
-  require_gains(o.se3_stiffness, "se3_stiffness");
-  docking_detail::require_positive(o.se3_damping_ratio, "docking controller", "se3_damping_ratio");
-  docking_detail::require_positive(o.release_force, "docking controller", "release_force [N]");
-  docking_detail::require_positive(o.release_duration, "docking controller",
-                                   "release_duration [s]");
-  require_gains(o.cic_stiffness, "cic_stiffness");
-  require_gains(o.hqp_stiffness, "hqp_stiffness");
+  check_fields(o);
   if (o.law == DockingLaw::hqp_ac && (o.release_axes[3] || o.release_axes[4] || o.release_axes[5]))
     throw Error(
         "docking controller: hqp-ac releases translational axes only (release_axes rx, ry, rz "
         "must be off)");
-  docking_detail::require_positive(o.cic_damping_ratio, "docking controller", "cic_damping_ratio");
-  docking_detail::require_non_negative(o.nullspace_stiffness, "docking controller",
-                                       "nullspace_stiffness");
-  docking_detail::require_non_negative(o.nullspace_damping, "docking controller",
-                                       "nullspace_damping");
-  docking_detail::require_positive(o.control_period, "docking controller", "control_period [s]");
 }
 
 namespace {

@@ -4,7 +4,6 @@
 #include <cmath>
 #include <numbers>
 
-#include "docking_checks.hpp"
 #include "mjarm/error.hpp"
 #include "mjarm/lie/so3.hpp"
 
@@ -30,24 +29,7 @@ DockingInsertion docking_insertion(const Pose& X_WE, const Pose& X_WS) noexcept 
   return in;
 }
 
-void check(const DockingCriteria& c) {
-  docking_detail::require_positive(c.window, "docking criteria", "window [s]");
-  docking_detail::require_positive(c.depth_tolerance, "docking criteria", "depth_tolerance [m]");
-  docking_detail::require_positive(c.max_lateral, "docking criteria", "max_lateral [m]");
-  docking_detail::require_positive(c.max_tilt, "docking criteria", "max_tilt [rad]");
-  docking_detail::require_positive(c.max_speed, "docking criteria", "max_speed [m/s]");
-  docking_detail::require_positive(c.max_angular_speed, "docking criteria",
-                                   "max_angular_speed [rad/s]");
-  docking_detail::require_positive(c.max_force, "docking criteria", "max_force [N]");
-  docking_detail::require_positive(c.max_axial_moment, "docking criteria",
-                                   "max_axial_moment [N·m]");
-  docking_detail::require_positive(c.min_contact_fraction, "docking criteria",
-                                   "min_contact_fraction");
-  docking_detail::require_positive(c.max_saturation, "docking criteria", "max_saturation");
-  if (c.min_contact_fraction > 1.0 || c.max_saturation > 1.0)
-    throw Error(
-        "docking criteria: min_contact_fraction and max_saturation are fractions in (0, 1]");
-}
+void check(const DockingCriteria& c) { check_fields(c); }
 
 DockingMetrics evaluate_docking(std::span<const DockingSample> samples, const DockingGoal& goal,
                                 const DockingCriteria& criteria) {

@@ -5,7 +5,6 @@
 #include <numbers>
 #include <string>
 
-#include "docking_checks.hpp"
 #include "mjarm/error.hpp"
 #include "mjarm/lie/rotation.hpp"
 #include "mjarm/number_text.hpp"
@@ -18,12 +17,7 @@ constexpr double kPlate = 0.010;  // bottom plate thickness [m]
 constexpr std::array<double, 4> kSocketColor{0.35, 0.45, 0.6, 1.0};
 
 void check_geometry(const DockingGeometry& g) {
-  docking_detail::require_positive(g.peg_radius, "docking scene", "peg_radius [m]");
-  docking_detail::require_positive(g.peg_length, "docking scene", "peg_length [m]");
-  docking_detail::require_positive(g.bore_radius, "docking scene", "bore_radius [m]");
-  docking_detail::require_positive(g.bore_depth, "docking scene", "bore_depth [m]");
-  docking_detail::require_positive(g.chamfer, "docking scene", "chamfer [m]");
-  docking_detail::require_positive(g.wall, "docking scene", "wall [m]");
+  check_fields(g);
   if (!(g.bore_radius > g.peg_radius))
     throw Error("docking scene: the bore (radius " + number_text(g.bore_radius) +
                 " m) must be wider than the peg (radius " + number_text(g.peg_radius) + " m)");
@@ -31,18 +25,12 @@ void check_geometry(const DockingGeometry& g) {
     throw Error("docking scene: the peg (" + number_text(g.peg_length) +
                 " m) must be longer than the hole is deep (" +
                 number_text(g.bore_depth + g.chamfer) + " m), or the flange hits the socket");
-  if (g.sides < 8 || g.sides > 256)
-    throw Error("docking scene: sides must be 8 … 256, got " + std::to_string(g.sides));
-  if (!(g.friction >= 0.0) || !std::isfinite(g.friction))
-    throw Error("docking scene: friction must be ≥ 0 and finite, got " +
-                number_text(g.friction));
-  docking_detail::require_positive(g.solref[0], "docking scene", "solref time constant [s]");
-  docking_detail::require_positive(g.solref[1], "docking scene", "solref damping ratio");
+  check_value(g.solref[0], "docking scene", "solref[0] (time constant)", "s", Range::positive());
+  check_value(g.solref[1], "docking scene", "solref[1] (damping ratio)", "", Range::positive());
   const auto& s = g.solimp;
   if (!(s[0] > 0.0 && s[0] < 1.0 && s[1] > 0.0 && s[1] < 1.0 && s[0] <= s[1]) || !(s[2] > 0.0) ||
       !std::isfinite(s[2]))
     throw Error("docking scene: solimp must be 0 < dmin ≤ dmax < 1 and width > 0");
-  docking_detail::require_positive(g.ccd_tolerance, "docking scene", "ccd_tolerance [m]");
 }
 
 std::array<double, 3> array_of(const Eigen::Vector3d& v) { return {v.x(), v.y(), v.z()}; }

@@ -5,11 +5,10 @@
 #include <numbers>
 #include <string>
 
-#include "docking_checks.hpp"
 #include "mjarm/error.hpp"
 #include "mjarm/ik/pose_ik.hpp"
-#include "mjarm/sim/recorder.hpp"
 #include "mjarm/number_text.hpp"
+#include "mjarm/sim/recorder.hpp"
 
 namespace mjarm {
 
@@ -52,44 +51,15 @@ void check(const DockingOffset& o) {
                 number_text(o.dyaw) + " rad");
 }
 
-const char* to_string(DockingReference kind) noexcept {
-  return kind == DockingReference::two_phase ? "two-phase" : "single";
-}
-
 DockingReference docking_reference(std::string_view name) {
-  if (name == "two-phase") return DockingReference::two_phase;
-  if (name == "single") return DockingReference::single_segment;
-  throw Error("unknown docking reference '" + std::string(name) +
-              "'; references: two-phase, single");
+  return parse_enum<DockingReference>(name, "docking reference");
 }
 
 void check(const DockingMotion& m) {
-  docking_detail::require_positive(m.start_height, "docking motion", "start_height [m]");
-  docking_detail::require_positive(m.approach_time, "docking motion", "approach_time [s]");
-  docking_detail::require_positive(m.insertion_speed, "docking motion", "insertion_speed [m/s]");
-  docking_detail::require_positive(m.insertion_acceleration, "docking motion",
-                                   "insertion_acceleration [m/s²]");
-  docking_detail::require_positive(m.single_time, "docking motion", "single_time [s]");
-  docking_detail::require_positive(m.preload_ramp, "docking motion", "preload_ramp [s]");
-  docking_detail::require_positive(m.hold_time, "docking motion", "hold_time [s]");
-  if (!(m.standoff >= 0.0) || !(m.standoff < m.start_height))
+  check_fields(m);
+  if (!(m.standoff < m.start_height))
     throw Error("docking motion: standoff must be ≥ 0 and below start_height (" +
                 number_text(m.start_height) + " m), got " + number_text(m.standoff) + " m");
-  if (!(m.preload >= 0.0) || !std::isfinite(m.preload))
-    throw Error("docking motion: preload must be ≥ 0 and finite [N], got " +
-                number_text(m.preload));
-}
-
-const char* to_string(DockingPhase phase) noexcept {
-  switch (phase) {
-    case DockingPhase::approach:
-      return "approach";
-    case DockingPhase::insert:
-      return "insert";
-    case DockingPhase::hold:
-      return "hold";
-  }
-  return "unknown";
 }
 
 DockingPlan plan_docking(const DockingScene& scene, const DockingOffset& offset,

@@ -9,14 +9,12 @@
 
 namespace mjarm {
 
-const char* to_string(PickEvent event) noexcept {
-  switch (event) {
-    case PickEvent::none: return "none";
-    case PickEvent::entered: return "entered";
-    case PickEvent::left: return "left";
-    case PickEvent::held: return "held";
-  }
-  return "unknown";
+void check(const PickCriteria& criteria, std::string_view owner) {
+  check_fields(criteria, owner, "criteria.");
+  if (!(criteria.steady_window <= criteria.hold_time))
+    throw Error(std::string(owner) + ": criteria.steady_window must be ≤ hold_time (" +
+                number_text(criteria.hold_time) + " s), got " +
+                number_text(criteria.steady_window) + " s");
 }
 
 PickMonitor::PickMonitor(const Eigen::Vector3d& p_start, const Eigen::Vector3d& p_target,
@@ -24,15 +22,7 @@ PickMonitor::PickMonitor(const Eigen::Vector3d& p_start, const Eigen::Vector3d& 
     : target_(p_target), direction_(Eigen::Vector3d::Zero()), criteria_(criteria) {
   if (!p_start.allFinite()) throw Error("PickMonitor: the start point holds NaN/inf");
   if (!p_target.allFinite()) throw Error("PickMonitor: the target point holds NaN/inf");
-  if (!(criteria.tolerance > 0.0) || !std::isfinite(criteria.tolerance))
-    throw Error("PickMonitor: tolerance must be positive and finite [m], got " +
-                number_text(criteria.tolerance));
-  if (!(criteria.hold_time > 0.0) || !std::isfinite(criteria.hold_time))
-    throw Error("PickMonitor: hold_time must be positive and finite [s], got " +
-                number_text(criteria.hold_time));
-  if (!(criteria.steady_window > 0.0) || !(criteria.steady_window <= criteria.hold_time))
-    throw Error("PickMonitor: steady_window must be in (0, hold_time] [s], got " +
-                number_text(criteria.steady_window));
+  check(criteria, "pick monitor");
   const Eigen::Vector3d d = p_target - p_start;
   if (d.norm() > 1e-12) direction_ = d.normalized();
 }

@@ -22,36 +22,6 @@
 
 namespace mjarm {
 
-const char* to_string(PickPlaceFailure failure) noexcept {
-  switch (failure) {
-    case PickPlaceFailure::none:
-      return "none";
-    case PickPlaceFailure::diverged:
-      return "diverged";
-    case PickPlaceFailure::bad_command:
-      return "bad_command";
-    case PickPlaceFailure::interrupted:
-      return "interrupted";
-    case PickPlaceFailure::time_limit:
-      return "time_limit";
-    case PickPlaceFailure::not_grasped:
-      return "not_grasped";
-    case PickPlaceFailure::dropped:
-      return "dropped";
-    case PickPlaceFailure::table_contact:
-      return "table_contact";
-    case PickPlaceFailure::saturated:
-      return "saturated";
-    case PickPlaceFailure::misplaced:
-      return "misplaced";
-    case PickPlaceFailure::tilted:
-      return "tilted";
-    case PickPlaceFailure::not_resting:
-      return "not_resting";
-  }
-  return "unknown";
-}
-
 namespace {
 
 constexpr double kClassicHalfSize = 0.0075;
@@ -255,11 +225,7 @@ PickPlaceTrial draw_pick_place_trial(const PickPlaceOptions& options) {
 PickPlaceReport run_pick_place(const PickPlaceOptions& options) {
   check(options.motion);
   const PickPlaceCriteria& criteria = options.criteria;
-  if (!(criteria.placement_tolerance > 0.0) || !(criteria.rest_speed > 0.0) ||
-      !(criteria.max_tilt > 0.0) || !(criteria.max_saturation_time >= 0.0))
-    throw Error(
-        "pick and place: the placement tolerance, rest speed and tilt must be positive, "
-        "the saturation time ≥ 0");
+  check_fields(criteria, "pick and place", "criteria.");
   if (!(std::isfinite(options.grasp_force) && options.grasp_force > 0.0))
     throw Error("pick and place: grasp_force must be positive [N], got " +
                 number_text(options.grasp_force));

@@ -15,44 +15,6 @@
 
 namespace mjarm {
 
-const char* to_string(PickPlaceState state) noexcept {
-  switch (state) {
-    case PickPlaceState::approach:
-      return "APPROACH";
-    case PickPlaceState::dwell_a:
-      return "DWELL_A";
-    case PickPlaceState::descend:
-      return "DESCEND";
-    case PickPlaceState::dwell_b:
-      return "DWELL_B";
-    case PickPlaceState::grasp:
-      return "GRASP";
-    case PickPlaceState::dwell_c:
-      return "DWELL_C";
-    case PickPlaceState::lift:
-      return "LIFT";
-    case PickPlaceState::dwell_d:
-      return "DWELL_D";
-    case PickPlaceState::move:
-      return "MOVE";
-    case PickPlaceState::dwell_e:
-      return "DWELL_E";
-    case PickPlaceState::place:
-      return "PLACE";
-    case PickPlaceState::dwell_f:
-      return "DWELL_F";
-    case PickPlaceState::release:
-      return "RELEASE";
-    case PickPlaceState::done:
-      return "DONE";
-  }
-  return "UNKNOWN";
-}
-
-const char* to_string(GraspKind kind) noexcept {
-  return kind == GraspKind::weld ? "weld" : "friction";
-}
-
 GraspKind grasp_kind(std::string_view name) {
   if (name == "weld") return GraspKind::weld;
   if (name == "friction") return GraspKind::friction;
@@ -62,24 +24,15 @@ GraspKind grasp_kind(std::string_view name) {
 }
 
 void check(const PickPlaceMotion& m) {
-  const auto require = [](double v, const char* what, bool zero_allowed) {
-    if (!std::isfinite(v) || v < 0.0 || (!zero_allowed && v == 0.0))
-      throw Error(std::string("pick and place: ") + what + " must be finite and " +
-                  (zero_allowed ? "≥ 0" : "> 0") + ", got " + number_text(v));
-  };
-  require(m.approach_height, "approach_height [m]", false);
-  require(m.descend_height, "descend_height [m]", true);
-  require(m.lift_height, "lift_height [m]", false);
-  require(m.move_height, "move_height [m]", false);
-  require(m.place_height, "place_height [m]", true);
-  require(m.dwell_time, "dwell_time [s]", true);
-  require(m.grip_time, "grip_time [s]", false);
-  require(m.release_time, "release_time [s]", false);
-  require(m.settle_time, "settle_time [s]", false);
-  require(m.limits.max_velocity, "max_velocity [m/s]", false);
-  require(m.limits.max_acceleration, "max_acceleration [m/s²]", false);
-  require(m.limits.max_angular_velocity, "max_angular_velocity [rad/s]", false);
-  require(m.limits.max_angular_acceleration, "max_angular_acceleration [rad/s²]", false);
+  check_fields(m);
+  const CartesianLimits& l = m.limits;
+  check_value(l.max_velocity, "pick and place", "limits.max_velocity", "m/s", Range::positive());
+  check_value(l.max_acceleration, "pick and place", "limits.max_acceleration", "m/s²",
+              Range::positive());
+  check_value(l.max_angular_velocity, "pick and place", "limits.max_angular_velocity", "rad/s",
+              Range::positive());
+  check_value(l.max_angular_acceleration, "pick and place", "limits.max_angular_acceleration",
+              "rad/s²", Range::positive());
   if (m.approach_height < m.descend_height)
     throw Error("pick and place: approach_height must be ≥ descend_height");
 }

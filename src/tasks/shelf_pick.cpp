@@ -17,22 +17,6 @@
 
 namespace mjarm {
 
-const char* to_string(PickOutcome outcome) noexcept {
-  switch (outcome) {
-    case PickOutcome::held:
-      return "held";
-    case PickOutcome::not_held:
-      return "not_held";
-    case PickOutcome::diverged:
-      return "diverged";
-    case PickOutcome::bad_command:
-      return "bad_command";
-    case PickOutcome::interrupted:
-      return "interrupted";
-  }
-  return "unknown";
-}
-
 namespace {
 
 PickOutcome outcome_of(const RunResult& run, bool held) {

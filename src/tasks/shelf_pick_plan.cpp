@@ -123,11 +123,7 @@ Eigen::Vector3d draw_shelf_pick(const ShelfPickRobot& robot, const Chain& chain,
 ShelfPickPlan plan_shelf_pick(const ShelfPickRequest& request) {
   const ShelfPickRobot& robot = shelf_pick_robot(request.robot);
   check_shelf_pick_controller(request.controller);
-  const PickCriteria& c = request.criteria;
-  if (!(c.tolerance > 0.0) || !std::isfinite(c.tolerance) || !(c.hold_time > 0.0) ||
-      !std::isfinite(c.hold_time) || !(c.steady_window > 0.0) || !(c.steady_window <= c.hold_time))
-    throw Error("shelf pick: the tolerance and the hold time must be positive and finite, and the "
-                "steady window in (0, hold time]");
+  check(request.criteria, "shelf pick");
 
   const Robot model = Robot::bundled(robot.model);
   ShelfPickPlan plan{&robot, model, Chain(model, robot.frame), request.controller, request.seed,

@@ -13,20 +13,6 @@
 
 namespace mjarm {
 
-const char* to_string(PickPhase phase) noexcept {
-  switch (phase) {
-    case PickPhase::approach:
-      return "approach";
-    case PickPhase::settle:
-      return "settle";
-    case PickPhase::hold:
-      return "hold";
-    case PickPhase::release:
-      return "release";
-  }
-  return "unknown";
-}
-
 namespace {
 
 const ShelfPickGoal& checked(const Chain& chain, const ShelfPickGoal& goal) {
@@ -35,12 +21,7 @@ const ShelfPickGoal& checked(const Chain& chain, const ShelfPickGoal& goal) {
   if (!finite_pose(goal.X_WT)) throw Error("ShelfPickTask: the target pose X_WT holds NaN/inf");
   chain.check(goal.q_start, "ShelfPickGoal::q_start");
   chain.check(goal.q_target, "ShelfPickGoal::q_target");
-  if (!(goal.approach_time > 0.0) || !std::isfinite(goal.approach_time))
-    throw Error("ShelfPickTask: approach_time must be positive and finite [s], got " +
-                number_text(goal.approach_time));
-  if (!(goal.velocity_lag >= 0.0) || !std::isfinite(goal.velocity_lag))
-    throw Error("ShelfPickTask: velocity_lag must be ≥ 0 and finite [s], got " +
-                number_text(goal.velocity_lag));
+  check_fields(goal);
   return goal;
 }
 

@@ -3,14 +3,13 @@
 #include <cmath>
 #include <numbers>
 
-#include "docking_checks.hpp"
 #include "docking_run_loop.hpp"
 #include "mjarm/error.hpp"
 #include "mjarm/lie/so3.hpp"
+#include "mjarm/number_text.hpp"
 #include "mjarm/sim/simulation.hpp"
 #include "mjarm/tasks/docking_task.hpp"
 #include "mjarm/trajectory/smoothstep.hpp"
-#include "mjarm/number_text.hpp"
 
 namespace mjarm {
 
@@ -100,14 +99,7 @@ class GateSource final : public ReferenceSource {
 }  // namespace
 
 void check(const TrackingGateOptions& o) {
-  docking_detail::require_positive(o.radius, "tracking gate", "radius [m]");
-  docking_detail::require_positive(o.frequency, "tracking gate", "frequency [Hz]");
-  docking_detail::require_positive(o.ramp_time, "tracking gate", "ramp_time [s]");
-  docking_detail::require_positive(o.height, "tracking gate", "height [m]");
-  docking_detail::require_positive(o.max_acceleration, "tracking gate",
-                                   "max_acceleration [rad/s²]");
-  if (!(o.settle_time >= 0.0) || !std::isfinite(o.settle_time))
-    throw Error("tracking gate: settle_time must be ≥ 0 and finite [s]");
+  check_fields(o);
   if (!(o.ramp_time < 1.0 / o.frequency))
     throw Error("tracking gate: ramp_time (" + number_text(o.ramp_time) +
                 " s) must be shorter than a loop at cruise, 1/frequency = " +

@@ -96,7 +96,7 @@ TEST(EnvCommand, BadCommandLinesAreUsageErrors) {
   // names and counts of `bench env` itself, not only through the shared checker
   expect_error({"bench", "env", "--task", "reachh"}, 2, "--task: reachh not in {reach,");
   expect_error({"bench", "env", "--action-space", "ee_pose_delta"}, 2,
-               "--action-space: ee_pose_delta not in {");
+               "--action-space: unknown action space 'ee_pose_delta'; closest: ee_pose_deltas");
   expect_error({"bench", "env", "--steps", "1e12"}, 2,
                "--steps: '1e12' is not a whole number from 1 to 1000000");
   expect_error({"bench", "env", "--envs", "100000"}, 2, "--envs: '100000' is not a whole number");

@@ -142,7 +142,7 @@ TEST(DomainRandomizer, ResetStaysAllocationFreeAndDeterministic) {
 TEST(DomainRandomizer, BadRangesAreErrors) {
   RandomizationOptions r;
   r.mass = 1.0;
-  expect_error_containing([&] { r.check(); }, {"mass range must be in [0, 1)", "got 1"});
+  expect_error_containing([&] { r.check(); }, {"randomization: mass must be in [0, 1)", "got 1"});
   r.mass = -0.1;
   expect_error_containing([&] { r.check(); }, {"mass"});
   r.mass = 0.0;

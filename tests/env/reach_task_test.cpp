@@ -84,7 +84,8 @@ TEST(ReachTask, BadOptionsAreErrors) {
   test::expect_error_containing([&] { ReachTask t(o); }, {"start_perturbation"});
   o = ReachOptions{};
   o.target_half_width.x() = -0.1;
-  test::expect_error_containing([&] { ReachTask t(o); }, {"target box"});
+  test::expect_error_containing([&] { ReachTask t(o); },
+                                {"reach: target_half_width[0] must be finite and ≥ 0 [m]"});
   o = ReachOptions{};
   o.frame = "flange_site";
   test::expect_error_containing([&] { ReachTask t(o); }, {"flange_site"});

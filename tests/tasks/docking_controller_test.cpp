@@ -110,15 +110,15 @@ TEST(DockingController, BadOptionsAreNamed) {
     edit(o);
     return error_of([&] { DockingController(plain_scene(), o); });
   };
-  EXPECT_TRUE(contains(message([](auto& o) { o.se3_stiffness[2] = -1.0; }), "se3_stiffness z"));
-  EXPECT_TRUE(contains(message([](auto& o) { o.se3_inertia[4] = 0.0; }), "se3_inertia ry"));
+  EXPECT_TRUE(contains(message([](auto& o) { o.se3_stiffness[2] = -1.0; }), "se3_stiffness[2]"));
+  EXPECT_TRUE(contains(message([](auto& o) { o.se3_inertia[4] = 0.0; }), "se3_inertia[4]"));
   EXPECT_TRUE(
-      contains(message([](auto& o) { o.cic_stiffness[0] = std::nan(""); }), "cic_stiffness x"));
+      contains(message([](auto& o) { o.cic_stiffness[0] = std::nan(""); }), "cic_stiffness[0]"));
   EXPECT_TRUE(contains(message([](auto& o) { o.sensor_cutoff = 0.0; }), "sensor_cutoff"));
   EXPECT_TRUE(contains(message([](auto& o) { o.release_force = -2.0; }), "release_force"));
   EXPECT_TRUE(contains(message([](auto& o) { o.nullspace_damping = -1.0; }), "nullspace_damping"));
   EXPECT_TRUE(contains(message([](auto& o) { o.control_period = 0.0; }), "control_period"));
-  EXPECT_TRUE(contains(message([](auto& o) { o.hqp_stiffness[3] = 0.0; }), "hqp_stiffness rx"));
+  EXPECT_TRUE(contains(message([](auto& o) { o.hqp_stiffness[3] = 0.0; }), "hqp_stiffness[3]"));
   EXPECT_TRUE(contains(message([](auto& o) { o.release_duration = 0.0; }), "release_duration"));
   const std::string rotational = message([](auto& o) {
     o.law = DockingLaw::hqp_ac;

@@ -88,7 +88,7 @@ TEST(DockingGrid, BadGridsAreNamed) {
   EXPECT_TRUE(contains(error_of([&] { run_docking_grid(g); }), "not to the grid"));
   g = small_grid();
   g.base.controller.se3_stiffness[0] = 0.0;
-  EXPECT_TRUE(contains(error_of([&] { run_docking_grid(g); }), "se3_stiffness x"));
+  EXPECT_TRUE(contains(error_of([&] { run_docking_grid(g); }), "se3_stiffness[0]"));
 }
 
 }  // namespace

@@ -206,7 +206,8 @@ TEST(DockingMonitor, BadCriteriaAreNamed) {
   EXPECT_NE(error_of([&] { check(c); }).find("max_lateral"), std::string::npos);
   c = {};
   c.min_contact_fraction = 1.5;
-  EXPECT_NE(error_of([&] { check(c); }).find("fractions"), std::string::npos);
+  EXPECT_NE(error_of([&] { check(c); }).find("min_contact_fraction must be in (0, 1], got 1.5"),
+            std::string::npos);
   c = {};
   c.window = std::nan("");
   EXPECT_NE(error_of([&] { evaluate_docking({}, goal(), c); }).find("window"), std::string::npos);

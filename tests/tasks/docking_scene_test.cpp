@@ -202,7 +202,8 @@ TEST(DockingScene, BadGeometryIsNamed) {
   };
   EXPECT_TRUE(contains(message([](auto& o) { o.geometry.bore_radius = 0.014; }),
                        "must be wider than the peg"));
-  EXPECT_TRUE(contains(message([](auto& o) { o.geometry.sides = 6; }), "sides must be 8"));
+  EXPECT_TRUE(
+      contains(message([](auto& o) { o.geometry.sides = 6; }), "sides must be in [8, 256], got 6"));
   EXPECT_TRUE(contains(message([](auto& o) { o.geometry.peg_length = 0.04; }),
                        "longer than the hole is deep"));
   EXPECT_TRUE(contains(message([](auto& o) { o.geometry.chamfer = std::nan(""); }), "chamfer"));

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "mjarm/control/operational_space.hpp"
+#include "mjarm/fields.hpp"
 
 namespace mjarm {
 
@@ -30,8 +31,18 @@ enum class ActionSpace {
   ee_velocities
 };
 
-/// "joint_torques", "joint_positions", "joint_deltas", "ee_pose_deltas", "ee_velocities".
-const char* to_string(ActionSpace space) noexcept;
+/// The names (`to_string`, JSON, CLI and Python spelling).
+constexpr auto declared_names(const ActionSpace*) {
+  using E = ActionSpace;
+  return std::array{
+      EnumName{E::joint_torques, "joint_torques", "n torques [N m], held over the step"},
+      EnumName{E::joint_positions, "joint_positions", "n joint targets [rad]"},
+      EnumName{E::joint_deltas, "joint_deltas", "n increments of the joint target [rad]"},
+      EnumName{E::ee_pose_deltas, "ee_pose_deltas",
+               "[dx dy dz rx ry rz] of the goal pose (world axes; m, rotation vector rad)"},
+      EnumName{E::ee_velocities, "ee_velocities",
+               "[vx vy vz wx wy wz] (m/s, rad/s), integrated over the step"}};
+}
 
 /// Every action space, in the enum's order.
 const std::vector<ActionSpace>& action_spaces();
@@ -65,5 +76,25 @@ struct ActionOptions {
   /// @throws Error naming the first option that is out of range.
   void check() const;
 };
+
+/// `osc` is checked by its controller (its mode by `ActionOptions::check`).
+constexpr auto declared_fields(const ActionOptions*) {
+  using S = ActionOptions;
+  return declare<S>("action options",
+                    field("max_joint_delta", &S::max_joint_delta, "rad or m", Range::positive(),
+                          "joint_deltas: |dq| per step"),
+                    field("max_translation", &S::max_translation, "m", Range::positive(),
+                          "ee_pose_deltas: |dp| per axis per step"),
+                    field("max_rotation", &S::max_rotation, "rad", Range::positive(),
+                          "ee_pose_deltas: |r| per axis per step"),
+                    field("max_linear_speed", &S::max_linear_speed, "m/s", Range::positive(),
+                          "ee_velocities: |v| per axis"),
+                    field("max_angular_speed", &S::max_angular_speed, "rad/s", Range::positive(),
+                          "ee_velocities: |w| per axis"),
+                    field("joint_bandwidth", &S::joint_bandwidth, "rad/s", Range::positive(),
+                          "joint PD bandwidth"),
+                    field("max_joint_speed", &S::max_joint_speed, "rad/s or m/s", Range::positive(),
+                          "joint speed limit of the differential-IK QP"));
+}
 
 }  // namespace mjarm

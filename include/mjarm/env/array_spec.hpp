@@ -9,13 +9,18 @@
 #include <string_view>
 #include <vector>
 
+#include "mjarm/fields.hpp"
+
 namespace mjarm {
 
 /// Element type of an array. Every array of mjarm's environments holds doubles.
 enum class DType { float64 };
 
-/// "float64".
-const char* to_string(DType dtype) noexcept;
+/// The names (`to_string`, JSON, CLI and Python spelling).
+constexpr auto declared_names(const DType*) {
+  using E = DType;
+  return std::array{EnumName{E::float64, "float64"}};
+}
 
 /// A named array with its shape, dtype and bounds. Unbounded elements have −∞ / +∞ bounds.
 struct ArraySpec {

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "mjarm/env/env_task.hpp"
+#include "mjarm/fields.hpp"
 #include "mjarm/tasks/docking_monitor.hpp"
 #include "mjarm/tasks/docking_scene.hpp"
 #include "mjarm/tasks/docking_task.hpp"
@@ -41,6 +42,21 @@ struct DockingEnvOptions {
   double failure_penalty = 1.0;
 };
 
+/// `scene` is checked by the scene, `offset_range` and the motion's standoff by hand.
+constexpr auto declared_fields(const DockingEnvOptions*) {
+  using S = DockingEnvOptions;
+  return declare<S>("docking environment", field("motion", &S::motion, "the start (start_height)"),
+                    field("criteria", &S::criteria, "seating and failure thresholds"),
+                    field("start_perturbation", &S::start_perturbation, "rad",
+                          Range::non_negative(), "each arm joint of the start within ± this"),
+                    field("seated_time", &S::seated_time, "s", Range::non_negative(),
+                          "how long the seat must hold; 0: one step"),
+                    field("tilt_weight", &S::tilt_weight, "m/rad", Range::non_negative(),
+                          "weight of the peg's tilt in the reward"),
+                    field("failure_penalty", &S::failure_penalty, "", Range::non_negative(),
+                          "subtracted from the reward of a failing step"));
+}
+
 /// Why a docking episode ended by the task's rule (or did not).
 enum class DockingEnvOutcome {
   running,        ///< neither seated nor failed
@@ -49,8 +65,13 @@ enum class DockingEnvOutcome {
   other_contact,  ///< a contact that is not peg–socket (arm on the socket, peg on the floor…)
 };
 
-/// "running", "seated", "excess_force", "other_contact".
-const char* to_string(DockingEnvOutcome outcome) noexcept;
+/// The names (`to_string`, JSON, CLI and Python spelling).
+constexpr auto declared_names(const DockingEnvOutcome*) {
+  using E = DockingEnvOutcome;
+  return std::array{EnumName{E::running, "running"}, EnumName{E::seated, "seated"},
+                    EnumName{E::excess_force, "excess_force"},
+                    EnumName{E::other_contact, "other_contact"}};
+}
 
 /// Docking: the iiwa14 starts with the peg above the socket (`plan_docking`'s start
 /// configuration, each joint perturbed) and must seat the peg in the bore. Each step the

@@ -43,6 +43,7 @@
 #include <vector>
 
 #include "mjarm/env/action_space.hpp"
+#include "mjarm/fields.hpp"
 
 namespace mjarm {
 
@@ -71,14 +72,33 @@ struct EnvBenchmarkOptions {
   void check() const;
 };
 
+constexpr auto declared_fields(const EnvBenchmarkOptions*) {
+  using S = EnvBenchmarkOptions;
+  return declare<S>(
+      "env benchmark", field("task", &S::task, "environment task"),
+      field("action_space", &S::action_space, "action space"),
+      field("control_period", &S::control_period, "s", Range::positive(), "control step"),
+      field("steps", &S::steps, "", Range::at_least(1), "timed environment steps per round"),
+      field("warmup", &S::warmup, "", Range::at_least(0), "untimed steps before each timed run"),
+      field("rounds", &S::rounds, "", Range::at_least(1), "rounds of each measurement"),
+      field("envs", &S::envs, "", Range::at_least(1), "environments of the vectorized batch"),
+      field("batch_steps", &S::batch_steps, "", Range::at_least(1), "timed batch steps per run"),
+      field("max_threads", &S::max_threads, "", Range::closed(1, 256),
+            "thread count compared with one"),
+      field("seed", &S::seed, "seed of the actions and of the environments"));
+}
+
 /// How a benchmark ended.
 enum class EnvBenchmarkStatus {
   ok,          ///< every run completed
   interrupted  ///< the stop request said so; the figures cover the steps done
 };
 
-/// "ok", "interrupted".
-const char* to_string(EnvBenchmarkStatus status) noexcept;
+/// The names (`to_string`, JSON, CLI and Python spelling).
+constexpr auto declared_names(const EnvBenchmarkStatus*) {
+  using E = EnvBenchmarkStatus;
+  return std::array{EnumName{E::ok, "ok"}, EnumName{E::interrupted, "interrupted"}};
+}
 
 /// One round of the overhead measurement.
 struct EnvOverheadRound {
@@ -91,6 +111,23 @@ struct EnvOverheadRound {
   bool replay_identical = false;  ///< the replay ended in the environment's state bit for bit
 };
 
+constexpr auto declared_fields(const EnvOverheadRound*) {
+  using S = EnvOverheadRound;
+  return declare<S>(
+      "overhead round", field("steps", &S::steps, "", Range::at_least(0), "timed steps taken"),
+      field("env_cpu_s", &S::env_cpu_s, "s", Range::non_negative(),
+            "thread CPU time of the environment steps"),
+      field("bare_cpu_s", &S::bare_cpu_s, "s", Range::non_negative(),
+            "thread CPU time of the same physics as bare mj_step calls"),
+      field("env_wall_s", &S::env_wall_s, "s", Range::non_negative(),
+            "wall time of the environment steps"),
+      field("overhead", &S::overhead, "", Range::finite(), "env_cpu_s / bare_cpu_s − 1"),
+      field("episodes", &S::episodes, "", Range::at_least(0),
+            "episodes started in the timed steps"),
+      field("replay_identical", &S::replay_identical,
+            "the replay ended in the environment's state bit for bit"));
+}
+
 /// One vectorized run.
 struct VectorRun {
   int threads = 1;
@@ -101,6 +138,22 @@ struct VectorRun {
   double work_cpu_s = 0.0;        ///< Σ over batch steps of every environment's CPU time [s]
   double critical_cpu_s = 0.0;    ///< Σ over batch steps of the scheduled critical path [s]
 };
+
+constexpr auto declared_fields(const VectorRun*) {
+  using S = VectorRun;
+  return declare<S>(
+      "vector run", field("threads", &S::threads, "", Range::at_least(1), "threads"),
+      field("batch_steps", &S::batch_steps, "", Range::at_least(0), "timed batch steps taken"),
+      field("wall_s", &S::wall_s, "s", Range::non_negative(), "wall time of the timed batch steps"),
+      field("cpu_s", &S::cpu_s, "s", Range::non_negative(),
+            "process CPU time over the same stretch"),
+      field("steps_per_second", &S::steps_per_second, "1/s", Range::non_negative(),
+            "environment steps per wall second"),
+      field("work_cpu_s", &S::work_cpu_s, "s", Range::non_negative(),
+            "Σ over batch steps of every environment's CPU time"),
+      field("critical_cpu_s", &S::critical_cpu_s, "s", Range::non_negative(),
+            "Σ over batch steps of the scheduled critical path"));
+}
 
 /// Figures of one benchmark.
 struct EnvBenchmarkResult {

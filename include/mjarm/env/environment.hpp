@@ -52,6 +52,26 @@ struct EnvironmentOptions {
   double max_acceleration = 1e6;
 };
 
+/// `observations` is checked against the task's, the periods against the timestep by hand.
+constexpr auto declared_fields(const EnvironmentOptions*) {
+  using S = EnvironmentOptions;
+  return declare<S>(
+      "environment", field("action_space", &S::action_space, "what one action commands"),
+      field("action", &S::action, "bounds and gains of the action spaces"),
+      field("control_period", &S::control_period, "s", Range::positive(),
+            "control step T, a whole multiple of the physics timestep"),
+      field("controller_period", &S::controller_period, "s", Range::non_negative(),
+            "low-level controller period, a whole divisor of T; 0: the action space's own"),
+      field("time_limit", &S::time_limit, "s", Range::positive(),
+            "episode length: LAST with discount 1 after ceil(time_limit / T) steps"),
+      field("refuse_out_of_bounds", &S::refuse_out_of_bounds,
+            "refuse instead of clipping an action outside its bounds"),
+      field("randomization", &S::randomization, "domain randomization"),
+      field("seed", &S::seed, "seed of the episode seeds reset() without a seed draws"),
+      field("max_acceleration", &S::max_acceleration, "rad/s² or m/s²",
+            Range::positive().or_infinity(), "divergence bound on |q̈|"));
+}
+
 /// How often actions were clipped into their bounds.
 struct ClipCounts {
   std::int64_t steps = 0;   ///< steps whose action had at least one value clipped

@@ -14,6 +14,7 @@
 
 #include "mjarm/control/finger_force.hpp"
 #include "mjarm/env/env_task.hpp"
+#include "mjarm/fields.hpp"
 #include "mjarm/sim/grasp_monitor.hpp"
 #include "mjarm/tasks/pick_place.hpp"
 #include "mjarm/tasks/pick_place_scene.hpp"
@@ -41,6 +42,29 @@ struct PickPlaceEnvOptions {
   int noslip_iterations = 10;    ///< MuJoCo's noslip iterations of the scene (as the trials)
 };
 
+/// `ranges` is checked where a trial is drawn.
+constexpr auto declared_fields(const PickPlaceEnvOptions*) {
+  using S = PickPlaceEnvOptions;
+  return declare<S>(
+      "pick-place environment", field("robot", &S::robot, "a robot of pick_place_robots()"),
+      field("object_half_size", &S::object_half_size, "m", Range::positive(),
+            "the cube's half extent"),
+      field("object_mass", &S::object_mass, "kg", Range::positive(), "the cube's mass"),
+      field("object_friction", &S::object_friction, "", Range::positive(),
+            "sliding friction of the cube"),
+      field("criteria", &S::criteria, "placement tolerance, rest speed and tilt of a placed cube"),
+      field("grasp_force", &S::grasp_force, "N", Range::positive(),
+            "the fingers' squeeze once touching"),
+      field("start_perturbation", &S::start_perturbation, "rad", Range::non_negative(),
+            "each arm joint of the home posture within ± this"),
+      field("table_contact_fails", &S::table_contact_fails,
+            "a robot geom touching the table fails the episode"),
+      field("failure_penalty", &S::failure_penalty, "", Range::non_negative(),
+            "subtracted from the reward of a failing step"),
+      field("noslip_iterations", &S::noslip_iterations, "", Range::closed(0, 1000),
+            "MuJoCo's noslip iterations of the scene"));
+}
+
 /// How a pick-and-place episode stands.
 enum class PickPlaceEnvOutcome {
   running,        ///< not placed, not failed
@@ -49,8 +73,12 @@ enum class PickPlaceEnvOutcome {
   table_contact,  ///< a robot geom touched the table
 };
 
-/// "running", "placed", "fell", "table_contact".
-const char* to_string(PickPlaceEnvOutcome outcome) noexcept;
+/// The names (`to_string`, JSON, CLI and Python spelling).
+constexpr auto declared_names(const PickPlaceEnvOutcome*) {
+  using E = PickPlaceEnvOutcome;
+  return std::array{EnumName{E::running, "running"}, EnumName{E::placed, "placed"},
+                    EnumName{E::fell, "fell"}, EnumName{E::table_contact, "table_contact"}};
+}
 
 /// Pick and place: the arm starts at its `home` keyframe (each joint perturbed) with the
 /// fingers open; for episode seed K the cube's position and yaw and the target are those of

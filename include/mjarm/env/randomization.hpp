@@ -8,6 +8,7 @@
 #include <Eigen/Core>
 #include <vector>
 
+#include "mjarm/fields.hpp"
 #include "mjarm/random.hpp"
 
 namespace mjarm {
@@ -28,6 +29,19 @@ struct RandomizationOptions {
   /// @throws Error naming the first range that is not in [0, 1).
   void check() const;
 };
+
+constexpr auto declared_fields(const RandomizationOptions*) {
+  using S = RandomizationOptions;
+  constexpr Range kRelative{0.0, 1.0, false, true, false};  // [0, 1)
+  return declare<S>(
+      "randomization",
+      field("mass", &S::mass, "", kRelative, "body masses and inertias (one factor per body)"),
+      field("friction", &S::friction, "", kRelative, "geom friction (one factor per geom)"),
+      field("damping", &S::damping, "", kRelative, "joint damping (one factor per dof)"),
+      field("gain", &S::gain, "", kRelative, "actuator gains (one factor per actuator)"),
+      field("object_size", &S::object_size, "", kRelative,
+            "the task's object geoms (size, mass, inertia)"));
+}
 
 /// Applies `RandomizationOptions` to a model copy. Each `apply` first restores the nominal
 /// values (so the draws never compound), then draws, in this order and only for the non-zero

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "mjarm/env/env_task.hpp"
+#include "mjarm/fields.hpp"
 
 namespace mjarm {
 
@@ -27,6 +28,22 @@ struct ReachOptions {
   /// The episode terminates (success, discount 0) once ‖p_WE − p_T‖ ≤ this [m]; 0: never.
   double success_distance = 0.01;
 };
+
+constexpr auto declared_fields(const ReachOptions*) {
+  using S = ReachOptions;
+  return declare<S>("reach",
+                    field("model", &S::model, "a bundled torque-motor model or an MJCF file"),
+                    field("frame", &S::frame, "the end effector (a site or body of the model)"),
+                    field("keyframe", &S::keyframe, "the start configuration (qpos0 when empty)"),
+                    field("start_perturbation", &S::start_perturbation, "rad",
+                          Range::non_negative(), "each joint starts at keyframe ± this, uniform"),
+                    field("target_center", &S::target_center, "m", Range::finite(),
+                          "centre of the targets' box (world)"),
+                    field("target_half_width", &S::target_half_width, "m", Range::non_negative(),
+                          "half widths of the targets' box"),
+                    field("success_distance", &S::success_distance, "m", Range::non_negative(),
+                          "terminate once the tip is this close; 0: never"));
+}
 
 /// Reach: the end effector E starts at the keyframe (each joint perturbed) and should reach a
 /// target point T drawn at every episode. Reward r = −‖p_WE − p_T‖ [m] per step (dense);

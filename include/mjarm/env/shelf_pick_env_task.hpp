@@ -24,6 +24,16 @@ struct ShelfPickEnvOptions {
   double orientation_weight = 0.1;
 };
 
+/// The criteria are checked with their steady window against the hold time.
+constexpr auto declared_fields(const ShelfPickEnvOptions*) {
+  using S = ShelfPickEnvOptions;
+  return declare<S>("shelf-pick environment",
+                    field("robot", &S::robot, "a robot of shelf_pick_robots() with a pose task"),
+                    field("criteria", &S::criteria, "tolerance and hold time"),
+                    field("orientation_weight", &S::orientation_weight, "m/rad",
+                          Range::non_negative(), "weight of the orientation error in the reward"));
+}
+
 /// Shelf pick: the tool starts at the `home` keyframe with every joint perturbed and must bring
 /// its tip onto a pick point with the tool at its home orientation, then hold it there. For
 /// episode seed K the start and the pick point are those of `mjarm run shelf-pick --robot

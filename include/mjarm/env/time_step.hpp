@@ -8,6 +8,7 @@
 #include <string_view>
 
 #include "mjarm/env/array_spec.hpp"
+#include "mjarm/fields.hpp"
 
 namespace mjarm {
 
@@ -18,8 +19,12 @@ enum class StepType {
   last    ///< the episode ended: by termination (discount 0) or by the time limit (discount 1)
 };
 
-/// "first", "mid", "last".
-const char* to_string(StepType type) noexcept;
+/// The names (`to_string`, JSON and CLI spelling; Python binds FIRST, MID, LAST as dm_env).
+constexpr auto declared_names(const StepType*) {
+  using E = StepType;
+  return std::array{EnumName{E::first, "first"}, EnumName{E::mid, "mid"},
+                    EnumName{E::last, "last"}};
+}
 
 /// Why an episode ended (an addition to dm_env, which tells only by the discount).
 enum class EpisodeEnd {
@@ -29,8 +34,14 @@ enum class EpisodeEnd {
   diverged     ///< the physics diverged (`Simulation` fault) and was stopped: discount 0
 };
 
-/// "running", "terminated", "truncated", "diverged".
-const char* to_string(EpisodeEnd end) noexcept;
+/// The names (`to_string`, JSON, CLI and Python spelling).
+constexpr auto declared_names(const EpisodeEnd*) {
+  using E = EpisodeEnd;
+  return std::array{EnumName{E::running, "running", "not ended"},
+                    EnumName{E::terminated, "terminated", "the task ended it: discount 0"},
+                    EnumName{E::truncated, "truncated", "the time limit: discount 1"},
+                    EnumName{E::diverged, "diverged", "the physics diverged: discount 0"}};
+}
 
 /// A read-only view of one observation: the arrays of an `ObservationSpec`, back to back.
 /// It points into the environment's buffer and is valid until the next `step` or `reset`:

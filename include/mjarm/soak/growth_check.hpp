@@ -22,6 +22,7 @@
 #include <span>
 #include <vector>
 
+#include "mjarm/fields.hpp"
 #include "mjarm/soak/process_sample.hpp"
 
 namespace mjarm {
@@ -44,6 +45,24 @@ struct GrowthLimits {
   /// @throws Error naming the first bound out of range.
   void check() const;
 };
+
+constexpr auto declared_fields(const GrowthLimits*) {
+  using S = GrowthLimits;
+  return declare<S>(
+      "soak",
+      field("warmup_rounds", &S::warmup_rounds, "", Range::at_least(1),
+            "at least this many warm-up rounds"),
+      field("warmup_fraction", &S::warmup_fraction, "", Range{0.0, 1.0, false, true, false},
+            "and at least this share of the rounds"),
+      field("max_heap_slope_kib_per_hour", &S::max_heap_slope_kib_per_hour, "KiB/h",
+            Range::non_negative(), "heap growth allowed after the warm-up"),
+      field("heap_margin_kib", &S::heap_margin_kib, "KiB", Range::non_negative(),
+            "heap above the warm-up's largest allowed"),
+      field("max_rss_slope_kib_per_hour", &S::max_rss_slope_kib_per_hour, "KiB/h",
+            Range::non_negative(), "RSS growth allowed after the warm-up"),
+      field("rss_margin_kib", &S::rss_margin_kib, "KiB", Range::non_negative(),
+            "RSS above the warm-up's largest allowed"));
+}
 
 /// Samples after the warm-up needed to judge memory growth.
 inline constexpr int kMinJudgedRounds = 3;

@@ -30,6 +30,7 @@
 #include <string>
 #include <vector>
 
+#include "mjarm/fields.hpp"
 #include "mjarm/soak/growth_check.hpp"
 #include "mjarm/soak/process_sample.hpp"
 
@@ -47,6 +48,17 @@ struct SoakInjection {
   /// session's targets of the first hand move by 1 mm, the trials' largest object mass by 1 mg.
   int drift_from_round = 0;
 };
+
+constexpr auto declared_fields(const SoakInjection*) {
+  using S = SoakInjection;
+  return declare<S>("soak injection",
+                    field("leak_kib_per_round", &S::leak_kib_per_round, "KiB", Range::at_least(0),
+                          "heap memory taken and kept each round"),
+                    field("fds_per_round", &S::fds_per_round, "", Range::at_least(0),
+                          "descriptors opened and kept each round"),
+                    field("drift_from_round", &S::drift_from_round, "", Range::at_least(0),
+                          "from this round on every part is perturbed; 0: never"));
+}
 
 /// Settings of `run_soak`.
 struct SoakOptions {
@@ -74,6 +86,28 @@ struct SoakOptions {
   void check() const;
 };
 
+/// `tasks` and `vector_task` are checked against the task registry.
+constexpr auto declared_fields(const SoakOptions*) {
+  using S = SoakOptions;
+  return declare<S>(
+      "soak",
+      field("minutes", &S::minutes, "min", Range::positive(),
+            "no round starts after this wall-clock length"),
+      field("rounds", &S::rounds, "", Range::at_least(0), "at most this many rounds; 0: no bound"),
+      field("seed", &S::seed, "seed of the rounds"),
+      field("episodes", &S::episodes, "", Range::at_least(1),
+            "per task and action space per round"),
+      field("vector_task", &S::vector_task, "task of the vectorized batch"),
+      field("vector_envs", &S::vector_envs, "", Range::closed(1, 64),
+            "environments of the vectorized batch"),
+      field("vector_threads", &S::vector_threads, "", Range::closed(1, 64),
+            "threads of the vectorized batch"),
+      field("trials", &S::trials, "", Range::at_least(1), "pick-and-place trials per round"),
+      field("trial_threads", &S::trial_threads, "", Range::closed(1, 64), "threads of the trials"),
+      field("limits", &S::limits, "bounds of the growth rule"),
+      field("inject", &S::inject, "faults made on purpose"));
+}
+
 /// How a soak ended.
 enum class SoakStatus {
   ok,          ///< every check held
@@ -81,8 +115,12 @@ enum class SoakStatus {
   interrupted  ///< the stop request ended it; the checks cover the rounds done
 };
 
-/// "ok", "failed", "interrupted".
-const char* to_string(SoakStatus status) noexcept;
+/// The names (`to_string`, JSON, CLI and Python spelling).
+constexpr auto declared_names(const SoakStatus*) {
+  using E = SoakStatus;
+  return std::array{EnumName{E::ok, "ok"}, EnumName{E::failed, "failed"},
+                    EnumName{E::interrupted, "interrupted"}};
+}
 
 /// Work done, summed over the rounds (the round cut short included).
 struct SoakCounts {
@@ -95,6 +133,19 @@ struct SoakCounts {
   std::int64_t trials = 0;         ///< pick-and-place trials finished
   std::int64_t trial_successes = 0;
 };
+
+constexpr auto declared_fields(const SoakCounts*) {
+  using S = SoakCounts;
+  return declare<S>(
+      "soak counts", field("env_runs", &S::env_runs, "Environments built and run"),
+      field("env_episodes", &S::env_episodes, "whole episodes (single environments)"),
+      field("env_steps", &S::env_steps, "single-environment steps"),
+      field("vector_steps", &S::vector_steps, "environment steps of the vectorized batches"),
+      field("replays", &S::replays, "replays run to their end"),
+      field("replay_ticks", &S::replay_ticks, "control ticks replayed"),
+      field("trials", &S::trials, "pick-and-place trials finished"),
+      field("trial_successes", &S::trial_successes, "pick-and-place trials that succeeded"));
+}
 
 /// What a soak measured.
 struct SoakResult {

@@ -11,6 +11,7 @@
 #include <string_view>
 #include <vector>
 
+#include "mjarm/fields.hpp"
 #include "mjarm/render/camera.hpp"
 #include "mjarm/sim/run_result.hpp"
 #include "mjarm/tasks/docking_controller.hpp"
@@ -60,8 +61,13 @@ enum class DockingOutcome {
   interrupted   ///< SIGINT/SIGTERM
 };
 
-/// Human name ("seated", "not_seated", "diverged", "bad_command", "interrupted").
-const char* to_string(DockingOutcome outcome) noexcept;
+/// The names (`to_string`, JSON, CLI and Python spelling).
+constexpr auto declared_names(const DockingOutcome*) {
+  using E = DockingOutcome;
+  return std::array{EnumName{E::seated, "seated"}, EnumName{E::not_seated, "not_seated"},
+                    EnumName{E::diverged, "diverged"}, EnumName{E::bad_command, "bad_command"},
+                    EnumName{E::interrupted, "interrupted"}};
+}
 
 /// What a docking run did.
 struct DockingReport {

@@ -20,6 +20,7 @@
 #include "mjarm/dynamics/chain_dynamics.hpp"
 #include "mjarm/dynamics/friction_feed_forward.hpp"
 #include "mjarm/dynamics/task_space.hpp"
+#include "mjarm/fields.hpp"
 #include "mjarm/lie/types.hpp"
 #include "mjarm/tasks/docking_scene.hpp"
 
@@ -33,9 +34,14 @@ enum class DockingLaw {
            ///< (`Se3ImpedanceController`)
 };
 
-/// Human name ("cic", "hqp-ac", "se3").
-const char* to_string(DockingLaw law) noexcept;
-/// The law called @p name. @throws Error listing the choices.
+/// The names (`to_string`, JSON and CLI spelling; Python binds `hqp_ac`).
+constexpr auto declared_names(const DockingLaw*) {
+  using E = DockingLaw;
+  return std::array{EnumName{E::cic, "cic"}, EnumName{E::hqp_ac, "hqp-ac"},
+                    EnumName{E::se3, "se3"}};
+}
+
+/// The law called @p name. @throws Error naming the closest and listing the choices.
 DockingLaw docking_law(std::string_view name);
 /// Every law, in the order of the docs' tables.
 std::span<const DockingLaw> docking_laws() noexcept;
@@ -46,8 +52,11 @@ enum class ForceSource {
   observer  ///< the momentum observer's contact-only estimate (sensorless)
 };
 
-/// Human name ("sensor", "observer").
-const char* to_string(ForceSource source) noexcept;
+/// The names (`to_string`, JSON, CLI and Python spelling).
+constexpr auto declared_names(const ForceSource*) {
+  using E = ForceSource;
+  return std::array{EnumName{E::sensor, "sensor"}, EnumName{E::observer, "observer"}};
+}
 
 /// Gains and settings, per law where they differ (docs/docking.md lists the tuned values and
 /// why). Matrices act on [x, y, z, rx, ry, rz]: E's axes for se3, world axes for cic and hqp-ac.
@@ -89,6 +98,36 @@ struct DockingControllerOptions {
   FrictionMode friction_mode = FrictionMode::velocity;
   double control_period = 0.002;  ///< the observer's step [s] (> 0)
 };
+
+/// `release_axes` and `friction_mode` are bound by hand.
+constexpr auto declared_fields(const DockingControllerOptions*) {
+  using S = DockingControllerOptions;
+  return declare<S>(
+      "docking controller", field("law", &S::law, "the control law"),
+      field("source", &S::source, "where the measured wrench comes from"),
+      field("sensor_cutoff", &S::sensor_cutoff, "Hz", Range::positive().or_infinity(),
+            "low-pass cut-off on the sensor's wrench; inf: none"),
+      field("se3_inertia", &S::se3_inertia, "kg; kg·m²", Range::positive(), "se3: A (6,)"),
+      field("se3_stiffness", &S::se3_stiffness, "N/m; N·m/rad", Range::positive(), "se3: K (6,)"),
+      field("se3_damping_ratio", &S::se3_damping_ratio, "", Range::positive(),
+            "se3: D = 2ζ·√(A·K) per axis"),
+      field("release_force", &S::release_force, "N", Range::positive(),
+            "measured ‖f‖ that starts the release"),
+      field("release_duration", &S::release_duration, "s", Range::positive(),
+            "smoothstep of the release"),
+      field("cic_stiffness", &S::cic_stiffness, "N/m; N·m/rad", Range::positive(), "cic: K (6,)"),
+      field("cic_damping_ratio", &S::cic_damping_ratio, "", Range::positive(),
+            "cic: D = 2ζ·√(Λ_ii·K_i)"),
+      field("hqp_stiffness", &S::hqp_stiffness, "N/m; N·m/rad", Range::positive(),
+            "hqp-ac: K0 (6,), world axes"),
+      field("nullspace_stiffness", &S::nullspace_stiffness, "N·m/rad", Range::non_negative(),
+            "posture toward reference.joint.q"),
+      field("nullspace_damping", &S::nullspace_damping, "N·m·s/rad", Range::non_negative(),
+            "posture damping"),
+      field("friction_feed_forward", &S::friction_feed_forward,
+            "friction feed-forward from the model's dof_frictionloss"),
+      field("control_period", &S::control_period, "s", Range::positive(), "the observer's step"));
+}
 
 /// @throws Error naming the option when a gain or setting is out of range.
 void check(const DockingControllerOptions& options);

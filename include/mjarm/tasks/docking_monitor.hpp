@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "mjarm/fields.hpp"
 #include "mjarm/kinematics/manipulability.hpp"
 #include "mjarm/lie/pose.hpp"
 #include "mjarm/lie/types.hpp"
@@ -62,7 +63,28 @@ struct DockingCriteria {
   double max_saturation = 0.01;        ///< fraction of ticks with a clipped motor
 };
 
-/// @throws Error naming the criterion when one is not positive and finite (fractions in (0, 1]).
+constexpr auto declared_fields(const DockingCriteria*) {
+  using S = DockingCriteria;
+  return declare<S>(
+      "docking criteria",
+      field("window", &S::window, "s", Range::positive(), "the final window judged"),
+      field("depth_tolerance", &S::depth_tolerance, "m", Range::positive(),
+            "depth ≥ full depth − this"),
+      field("max_lateral", &S::max_lateral, "m", Range::positive(), "tip to bore axis"),
+      field("max_tilt", &S::max_tilt, "rad", Range::positive(), "peg axis to bore axis"),
+      field("max_speed", &S::max_speed, "m/s", Range::positive(), "tip speed"),
+      field("max_angular_speed", &S::max_angular_speed, "rad/s", Range::positive(),
+            "peg angular speed"),
+      field("min_contact_fraction", &S::min_contact_fraction, "", Range::open_closed(0.0, 1.0),
+            "of the window's samples in peg–socket contact"),
+      field("max_force", &S::max_force, "N", Range::positive(), "peak ‖f‖ of the contact force"),
+      field("max_axial_moment", &S::max_axial_moment, "N·m", Range::positive(),
+            "peak |τ·z_S| about the tip"),
+      field("max_saturation", &S::max_saturation, "", Range::open_closed(0.0, 1.0),
+            "fraction of ticks with a clipped motor"));
+}
+
+/// @throws Error naming the criterion when one is out of its declared range.
 void check(const DockingCriteria& criteria);
 
 /// Where the socket is: the true socket frame S (z out of the hole) and the depth of the hole.

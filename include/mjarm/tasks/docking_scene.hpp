@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "mjarm/fields.hpp"
 #include "mjarm/lie/pose.hpp"
 #include "mjarm/model/chain.hpp"
 #include "mjarm/model/robot.hpp"
@@ -49,6 +50,28 @@ struct DockingGeometry {
   /// (docs/docking.md).
   double ccd_tolerance = 1e-12;
 };
+
+/// Checked with the scene (`solref`, `solimp` and the sizes relative to each other by hand).
+constexpr auto declared_fields(const DockingGeometry*) {
+  using S = DockingGeometry;
+  return declare<S>(
+      "docking scene",
+      field("peg_radius", &S::peg_radius, "m", Range::positive(), "radius of the peg"),
+      field("peg_length", &S::peg_length, "m", Range::positive(),
+            "from the flange to the end face"),
+      field("bore_radius", &S::bore_radius, "m", Range::positive(),
+            "radius of the bore's inscribed circle"),
+      field("bore_depth", &S::bore_depth, "m", Range::positive(),
+            "straight part of the hole, below the chamfer"),
+      field("chamfer", &S::chamfer, "m", Range::positive(), "45° chamfer at the entry"),
+      field("sides", &S::sides, "", Range::closed(8, 256), "faces of the polygonal bore"),
+      field("wall", &S::wall, "m", Range::positive(),
+            "radial thickness of the socket beyond the chamfer"),
+      field("friction", &S::friction, "", Range::non_negative(),
+            "sliding friction of peg and socket"),
+      field("ccd_tolerance", &S::ccd_tolerance, "m", Range::positive(),
+            "tolerance of MuJoCo's convex collision"));
+}
 
 /// The Franka Emika Panda's identified joint Coulomb friction [N·m] (the --friction variant puts
 /// it on the iiwa14's joints 1–7).

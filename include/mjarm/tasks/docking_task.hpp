@@ -12,6 +12,7 @@
 #include <string_view>
 
 #include "mjarm/control/reference.hpp"
+#include "mjarm/fields.hpp"
 #include "mjarm/lie/pose.hpp"
 #include "mjarm/sim/run_result.hpp"
 #include "mjarm/tasks/docking_scene.hpp"
@@ -44,9 +45,14 @@ enum class DockingReference {
   single_segment
 };
 
-/// Human name ("two-phase", "single"); the reverse with `docking_reference` (throws listing the
-/// choices).
-const char* to_string(DockingReference kind) noexcept;
+/// The names (`to_string`, JSON and CLI spelling; Python binds `two_phase`, `single_segment`).
+constexpr auto declared_names(const DockingReference*) {
+  using E = DockingReference;
+  return std::array{EnumName{E::two_phase, "two-phase"}, EnumName{E::single_segment, "single"}};
+}
+
+/// The reference called @p name ("two-phase", "single").
+/// @throws Error naming the closest and listing the choices.
 DockingReference docking_reference(std::string_view name);
 
 /// Timing and sizes of the motion. Lengths in metres, times in seconds.
@@ -63,6 +69,31 @@ struct DockingMotion {
   double hold_time = 2.0;     ///< from the reference's arrival at the bottom to the end (> 0)
 };
 
+/// The standoff is checked against the start height by hand.
+constexpr auto declared_fields(const DockingMotion*) {
+  using S = DockingMotion;
+  return declare<S>(
+      "docking motion", field("reference", &S::reference, "the shape of the reference"),
+      field("start_height", &S::start_height, "m", Range::positive(),
+            "the tip above the true socket's top face at the start"),
+      field("standoff", &S::standoff, "m", Range::non_negative(),
+            "two-phase: the tip above the top face where insertion starts (< start_height)"),
+      field("approach_time", &S::approach_time, "s", Range::positive(),
+            "two-phase: start → standoff"),
+      field("insertion_speed", &S::insertion_speed, "m/s", Range::positive(),
+            "two-phase: cruise speed of the insertion"),
+      field("insertion_acceleration", &S::insertion_acceleration, "m/s²", Range::positive(),
+            "two-phase: acceleration of the insertion"),
+      field("single_time", &S::single_time, "s", Range::positive(),
+            "single-segment: start → seated"),
+      field("preload", &S::preload, "N", Range::non_negative(),
+            "force pushed along the insertion axis in the hold"),
+      field("preload_ramp", &S::preload_ramp, "s", Range::positive(),
+            "linear ramp of the preload from the start of the hold"),
+      field("hold_time", &S::hold_time, "s", Range::positive(),
+            "from the reference's arrival at the bottom to the end"));
+}
+
 /// @throws Error naming the value when a size or time is out of range.
 void check(const DockingMotion& motion);
 
@@ -73,8 +104,12 @@ enum class DockingPhase {
   hold       ///< the reference rests on the believed seated pose; the preload ramps in
 };
 
-/// Human name ("approach", "insert", "hold").
-const char* to_string(DockingPhase phase) noexcept;
+/// The names (`to_string`, JSON, CLI and Python spelling).
+constexpr auto declared_names(const DockingPhase*) {
+  using E = DockingPhase;
+  return std::array{EnumName{E::approach, "approach"}, EnumName{E::insert, "insert"},
+                    EnumName{E::hold, "hold"}};
+}
 
 /// Everything fixed before the run.
 struct DockingPlan {

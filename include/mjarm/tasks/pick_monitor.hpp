@@ -6,6 +6,9 @@
 #include <Eigen/Core>
 #include <cstdint>
 #include <limits>
+#include <string_view>
+
+#include "mjarm/fields.hpp"
 
 namespace mjarm {
 
@@ -18,6 +21,22 @@ struct PickCriteria {
   double steady_window = 0.1;
 };
 
+constexpr auto declared_fields(const PickCriteria*) {
+  using S = PickCriteria;
+  return declare<S>(
+      "pick criteria",
+      field("tolerance", &S::tolerance, "m", Range::positive(),
+            "the tip is at the target within this"),
+      field("hold_time", &S::hold_time, "s", Range::positive(), "and must stay there this long"),
+      field("steady_window", &S::steady_window, "s", Range::positive(),
+            "the last stretch of the hold judged as the steady state (≤ hold_time)"));
+}
+
+/// Checks each criterion against its range and the steady window against the hold time.
+/// @param owner who uses the criteria, for the message ("shelf pick")
+/// @throws Error "shelf pick: criteria.hold_time must be positive and finite [s], got 0"
+void check(const PickCriteria& criteria, std::string_view owner);
+
 /// What one `PickMonitor::observe` saw.
 enum class PickEvent {
   none,     ///< nothing changed
@@ -26,8 +45,12 @@ enum class PickEvent {
   held      ///< the tip stayed inside for the hold time: the pick is done
 };
 
-/// Human name ("none", "entered", "left", "held").
-const char* to_string(PickEvent event) noexcept;
+/// The names (`to_string`, JSON, CLI and Python spelling).
+constexpr auto declared_names(const PickEvent*) {
+  using E = PickEvent;
+  return std::array{EnumName{E::none, "none"}, EnumName{E::entered, "entered"},
+                    EnumName{E::left, "left"}, EnumName{E::held, "held"}};
+}
 
 /// The figures of one pick. Times are relative to the start of the motion [s]; NaN when the
 /// event did not happen.

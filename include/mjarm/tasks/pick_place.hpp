@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "mjarm/fields.hpp"
 #include "mjarm/sim/grasp_monitor.hpp"
 #include "mjarm/sim/run_result.hpp"
 #include "mjarm/sim/weld_grasp.hpp"
@@ -29,6 +30,20 @@ struct PickPlaceCriteria {
   double max_saturation_time = 0.2;
   GraspMonitorOptions grasp;  ///< slip 2 mm (event), drop 15 mm (lost during transport)
 };
+
+/// `grasp` is checked by its monitor.
+constexpr auto declared_fields(const PickPlaceCriteria*) {
+  using S = PickPlaceCriteria;
+  return declare<S>(
+      "pick and place",
+      field("placement_tolerance", &S::placement_tolerance, "m", Range::positive(),
+            "horizontal distance object ↔ target at the end"),
+      field("rest_speed", &S::rest_speed, "m/s", Range::positive(),
+            "the object's speed at the end below this"),
+      field("max_tilt", &S::max_tilt, "rad", Range::positive(), "object tilt at the end"),
+      field("max_saturation_time", &S::max_saturation_time, "s", Range::non_negative(),
+            "longest time one actuator may stay clipped without a break"));
+}
 
 /// Where a seed draws a trial from (uniform in each range).
 struct PickPlaceRanges {
@@ -89,8 +104,22 @@ enum class PickPlaceFailure {
   not_resting     ///< the object still moved at the end
 };
 
-/// "none", "diverged", ... (the failure table's row names).
-const char* to_string(PickPlaceFailure failure) noexcept;
+/// The names (`to_string`, JSON, CLI and Python spelling).
+constexpr auto declared_names(const PickPlaceFailure*) {
+  using E = PickPlaceFailure;
+  return std::array{EnumName{E::none, "none"},
+                    EnumName{E::diverged, "diverged"},
+                    EnumName{E::bad_command, "bad_command"},
+                    EnumName{E::interrupted, "interrupted"},
+                    EnumName{E::time_limit, "time_limit"},
+                    EnumName{E::not_grasped, "not_grasped"},
+                    EnumName{E::dropped, "dropped"},
+                    EnumName{E::table_contact, "table_contact"},
+                    EnumName{E::saturated, "saturated"},
+                    EnumName{E::misplaced, "misplaced"},
+                    EnumName{E::tilted, "tilted"},
+                    EnumName{E::not_resting, "not_resting"}};
+}
 
 /// What one trial did.
 struct PickPlaceReport {

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "mjarm/control/reference.hpp"
+#include "mjarm/fields.hpp"
 #include "mjarm/lie/pose.hpp"
 #include "mjarm/model/chain.hpp"
 #include "mjarm/sim/grasp_monitor.hpp"
@@ -45,8 +46,17 @@ enum class PickPlaceState {
   done      ///< hold still for settle_time; then the trial is judged
 };
 
-/// "APPROACH", "DWELL_A", ... as the classic code names them.
-const char* to_string(PickPlaceState state) noexcept;
+/// The names (`to_string`, JSON and CLI spelling; Python binds them in lower case).
+constexpr auto declared_names(const PickPlaceState*) {
+  using E = PickPlaceState;
+  return std::array{EnumName{E::approach, "APPROACH"}, EnumName{E::dwell_a, "DWELL_A"},
+                    EnumName{E::descend, "DESCEND"},   EnumName{E::dwell_b, "DWELL_B"},
+                    EnumName{E::grasp, "GRASP"},       EnumName{E::dwell_c, "DWELL_C"},
+                    EnumName{E::lift, "LIFT"},         EnumName{E::dwell_d, "DWELL_D"},
+                    EnumName{E::move, "MOVE"},         EnumName{E::dwell_e, "DWELL_E"},
+                    EnumName{E::place, "PLACE"},       EnumName{E::dwell_f, "DWELL_F"},
+                    EnumName{E::release, "RELEASE"},   EnumName{E::done, "DONE"}};
+}
 
 /// How the object is held.
 enum class GraspKind {
@@ -54,8 +64,12 @@ enum class GraspKind {
   friction  ///< only the finger contact forces hold it
 };
 
-/// "weld", "friction".
-const char* to_string(GraspKind kind) noexcept;
+/// The names (`to_string`, JSON, CLI and Python spelling).
+constexpr auto declared_names(const GraspKind*) {
+  using E = GraspKind;
+  return std::array{EnumName{E::weld, "weld"}, EnumName{E::friction, "friction"}};
+}
+
 /// The kind called @p name. @throws Error "unknown grasp 'x'; choices: weld, friction".
 GraspKind grasp_kind(std::string_view name);
 
@@ -76,6 +90,28 @@ struct PickPlaceMotion {
   CartesianLimits limits;
   double settle_time = 1.0;  ///< DONE lasts this long before the result is judged [s] (> 0)
 };
+
+/// `limits` and approach_height ≥ descend_height are checked by hand.
+constexpr auto declared_fields(const PickPlaceMotion*) {
+  using S = PickPlaceMotion;
+  return declare<S>(
+      "pick and place",
+      field("approach_height", &S::approach_height, "m", Range::positive(),
+            "APPROACH: the tool above the object's centre"),
+      field("descend_height", &S::descend_height, "m", Range::non_negative(),
+            "DESCEND: the tool above the object's centre"),
+      field("lift_height", &S::lift_height, "m", Range::positive(),
+            "LIFT: the tool above the object's start"),
+      field("move_height", &S::move_height, "m", Range::positive(),
+            "MOVE: the tool above the target"),
+      field("place_height", &S::place_height, "m", Range::non_negative(),
+            "PLACE: the tool above the target"),
+      field("dwell_time", &S::dwell_time, "s", Range::non_negative(), "each DWELL_*"),
+      field("grip_time", &S::grip_time, "s", Range::positive(), "GRASP: the fingers close"),
+      field("release_time", &S::release_time, "s", Range::positive(), "RELEASE: the fingers open"),
+      field("settle_time", &S::settle_time, "s", Range::positive(),
+            "DONE lasts this long before the result is judged"));
+}
 
 /// @throws Error naming the first constant out of range.
 void check(const PickPlaceMotion& motion);

@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <string>
 
+#include "mjarm/fields.hpp"
 #include "mjarm/sim/run_result.hpp"
 #include "mjarm/tasks/pick_monitor.hpp"
 #include "mjarm/tasks/shelf_pick_plan.hpp"
@@ -39,8 +40,13 @@ enum class PickOutcome {
   interrupted   ///< SIGINT/SIGTERM (see mjarm/interrupt.hpp)
 };
 
-/// Human name ("held", "not_held", ...).
-const char* to_string(PickOutcome outcome) noexcept;
+/// The names (`to_string`, JSON, CLI and Python spelling).
+constexpr auto declared_names(const PickOutcome*) {
+  using E = PickOutcome;
+  return std::array{EnumName{E::held, "held"}, EnumName{E::not_held, "not_held"},
+                    EnumName{E::diverged, "diverged"}, EnumName{E::bad_command, "bad_command"},
+                    EnumName{E::interrupted, "interrupted"}};
+}
 
 /// What a shelf pick did.
 struct ShelfPickReport {

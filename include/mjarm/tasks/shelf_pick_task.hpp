@@ -9,6 +9,7 @@
 #include <array>
 
 #include "mjarm/control/reference.hpp"
+#include "mjarm/fields.hpp"
 #include "mjarm/lie/pose.hpp"
 #include "mjarm/model/chain.hpp"
 #include "mjarm/sim/run_result.hpp"
@@ -29,8 +30,12 @@ enum class PickPhase {
   release    ///< the hold lasted long enough; gripper reference open (0); the run ends
 };
 
-/// Human name ("approach", "settle", "hold", "release").
-const char* to_string(PickPhase phase) noexcept;
+/// The names (`to_string`, JSON, CLI and Python spelling).
+constexpr auto declared_names(const PickPhase*) {
+  using E = PickPhase;
+  return std::array{EnumName{E::approach, "approach"}, EnumName{E::settle, "settle"},
+                    EnumName{E::hold, "hold"}, EnumName{E::release, "release"}};
+}
 
 /// Everything a `ShelfPickTask` needs, fixed before the run.
 struct ShelfPickGoal {
@@ -48,6 +53,19 @@ struct ShelfPickGoal {
   double velocity_lag = 0.0;
   PickCriteria criteria;  ///< tolerance and hold time
 };
+
+/// The poses and joint values are checked against the chain by hand.
+constexpr auto declared_fields(const ShelfPickGoal*) {
+  using S = ShelfPickGoal;
+  return declare<S>(
+      "shelf pick task",
+      field("approach_time", &S::approach_time, "s", Range::positive(),
+            "duration of the approach"),
+      field("position_only", &S::position_only, "only the position counts"),
+      field("velocity_lag", &S::velocity_lag, "s", Range::non_negative(),
+            "velocity references are evaluated this long before the positions'"),
+      field("criteria", &S::criteria, "tolerance and hold time"));
+}
 
 /// The shelf pick as a reference source. From the start time t₀ (data.time at the first
 /// `update`), with the approach of duration T built from the library's profiles (rest to rest,

@@ -9,6 +9,7 @@
 #include <string>
 
 #include "mjarm/control/reference.hpp"
+#include "mjarm/fields.hpp"
 #include "mjarm/lie/pose.hpp"
 #include "mjarm/sim/run_result.hpp"
 #include "mjarm/tasks/docking_controller.hpp"
@@ -29,6 +30,25 @@ struct TrackingGateOptions {
   double settle_time = 0.5;       ///< at rest after the eight, still measured [s]
   double max_acceleration = 1e6;  ///< divergence bound on |q̈| [rad/s²]
 };
+
+/// The ramp against the loop and the radius against the height are checked by hand.
+constexpr auto declared_fields(const TrackingGateOptions*) {
+  using S = TrackingGateOptions;
+  return declare<S>(
+      "tracking gate",
+      field("controller", &S::controller, "law, force source, gains (the docking ones)"),
+      field("joint_friction", &S::joint_friction, "the friction variant of the scene"),
+      field("radius", &S::radius, "m", Range::positive(), "r of the circle"),
+      field("frequency", &S::frequency, "Hz", Range::positive(), "loops per second at cruise"),
+      field("ramp_time", &S::ramp_time, "s", Range::positive(),
+            "the phase speed ramps in and out over this (< 1/frequency)"),
+      field("height", &S::height, "m", Range::positive(),
+            "the start point: the tip this far above the socket's top"),
+      field("settle_time", &S::settle_time, "s", Range::non_negative(),
+            "at rest after the eight, still measured"),
+      field("max_acceleration", &S::max_acceleration, "rad/s²", Range::positive(),
+            "divergence bound on |q̈|"));
+}
 
 /// @throws Error naming the value when a size or time is out of range.
 void check(const TrackingGateOptions& options);
