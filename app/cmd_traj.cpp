@@ -13,6 +13,7 @@
 #include <optional>
 
 #include "commands.hpp"
+#include "field_options.hpp"
 #include "mjarm/error.hpp"
 #include "mjarm/file_writer.hpp"
 #include "mjarm/interrupt.hpp"
@@ -28,9 +29,7 @@ using Eigen::VectorXd;
 
 // the kind's row of the library's table (the command line checked the name)
 const ProfileKindInfo& traj_kind(const std::string& name) {
-  const auto& kinds = profile_kinds();
-  return *std::find_if(kinds.begin(), kinds.end(),
-                       [&](const ProfileKindInfo& k) { return name == k.name; });
+  return profile_kind_info(parse_enum<ProfileKind>(name, "kind", "KIND"));
 }
 
 // what the move says besides its samples, e.g. {"limiting axis", "0 (velocity)"}
@@ -168,12 +167,9 @@ Command add_traj_command(CLI::App& root) {
     bool json = false;
   };
   auto options = std::make_shared<Options>();
-  std::vector<std::string> names;
   std::string kinds_help;
-  for (const ProfileKindInfo& kind : profile_kinds()) {
-    names.push_back(kind.name);
+  for (const ProfileKindInfo& kind : profile_kinds())
     kinds_help += std::string("\n  ") + kind.name + ": " + kind.summary;
-  }
   CLI::App* app = root.add_subcommand(
       "traj", "sample a motion profile (trapezoid, quintic, smoothstep, …) against its limits");
   app->footer("Kinds:" + kinds_help +
@@ -181,9 +177,9 @@ Command add_traj_command(CLI::App& root) {
               "the classic trapezoid (0.18 m/s, 0.9 m/s²). Without --duration each kind takes "
               "its shortest duration within the limits. --plot needs gnuplot (Debian: apt-get "
               "install gnuplot-nox).");
-  app->add_option("KIND", options->kind, "profile kind: " + join(names, " | "))
+  app->add_option("KIND", options->kind, "profile kind: " + join(enum_names<ProfileKind>(), " | "))
       ->required()
-      ->check(CLI::IsMember(names));
+      ->check(name_of<ProfileKind>("kind"));
   const auto vector_option = [&](const char* name, std::vector<double>& values, const char* help) {
     return app->add_option(name, values, help)
         ->check(finite_number())

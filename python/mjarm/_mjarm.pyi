@@ -360,23 +360,13 @@ class BiasTerm(enum.Enum):
     full = 1
     """h = C(q, q̇)·q̇ + g(q)"""
 
-class CameraKind:
-    """Members:
-
-  model
-
-  free
-
-  follow"""
-    model: ClassVar[CameraKind]
-    free: ClassVar[CameraKind]
-    follow: ClassVar[CameraKind]
-    def __init__(self, value: int) -> None: ...
-    @property
-    def name(self) -> str: ...
-    @property
-    def value(self) -> int: ...
-    def __int__(self) -> int: ...
+class CameraKind(enum.Enum):
+    model = 0
+    """a camera of the model, by name"""
+    free = 1
+    """look-at point, distance, azimuth and elevation"""
+    follow = 2
+    """like free, looking at a site or body"""
 
 class CameraSpec:
     """A model camera, a free camera or one following a frame."""
@@ -384,6 +374,7 @@ class CameraSpec:
         ...
     @property
     def azimuth(self) -> float:
+        """direction about the vertical [deg]; finite"""
         ...
     @azimuth.setter
     def azimuth(self, value: float) -> None: ...
@@ -391,11 +382,13 @@ class CameraSpec:
         ...
     @property
     def distance(self) -> float:
+        """camera to look-at point [m]; positive and finite"""
         ...
     @distance.setter
     def distance(self, value: float) -> None: ...
     @property
     def elevation(self) -> float:
+        """negative looks down [deg]; in (-90, 90)"""
         ...
     @elevation.setter
     def elevation(self, value: float) -> None: ...
@@ -407,12 +400,13 @@ class CameraSpec:
         ...
     @property
     def kind(self) -> CameraKind:
+        """how the camera is placed"""
         ...
     @kind.setter
     def kind(self, value: CameraKind) -> None: ...
     @property
     def lookat(self) -> NDArray[np.float64]:
-        """(3,) [m]"""
+        """free: point looked at, in W [m]; finite"""
         ...
     @lookat.setter
     def lookat(self, value: ArrayLike) -> None: ...
@@ -421,6 +415,7 @@ class CameraSpec:
         ...
     @property
     def name(self) -> str:
+        """model: camera name; follow: site or body name"""
         ...
     @name.setter
     def name(self, value: str) -> None: ...
@@ -948,23 +943,25 @@ class DiffIkOptions:
         ...
     @property
     def damping(self) -> float:
+        """λ of the regularisation λ‖v‖²; positive and finite"""
         ...
     @damping.setter
     def damping(self, value: float) -> None: ...
     @property
     def dt(self) -> float:
-        """control period [s]"""
+        """control period [s]; positive and finite"""
         ...
     @dt.setter
     def dt(self, value: float) -> None: ...
     @property
     def max_step(self) -> float:
+        """largest |Δq_i| per step; +inf: none [rad or m]; positive (+inf allowed)"""
         ...
     @max_step.setter
     def max_step(self, value: float) -> None: ...
     @property
     def velocity_limit(self) -> NDArray[np.float64]:
-        """joint velocity limits (n,) [rad/s]; empty = none"""
+        """joint velocity limits (n entries; empty: none) [rad/s or m/s]; positive (+inf allowed)"""
         ...
     @velocity_limit.setter
     def velocity_limit(self, value: ArrayLike) -> None: ...
@@ -989,23 +986,13 @@ class DiffIkStep:
         """joint velocity (n,)"""
         ...
 
-class DiffIkTaskKind:
-    """Members:
-
-  pose
-
-  position
-
-  posture"""
-    pose: ClassVar[DiffIkTaskKind]
-    position: ClassVar[DiffIkTaskKind]
-    posture: ClassVar[DiffIkTaskKind]
-    def __init__(self, value: int) -> None: ...
-    @property
-    def name(self) -> str: ...
-    @property
-    def value(self) -> int: ...
-    def __int__(self) -> int: ...
+class DiffIkTaskKind(enum.Enum):
+    pose = 0
+    """a frame's full pose (6 rows)"""
+    position = 1
+    """a frame's origin (3 rows)"""
+    posture = 2
+    """a joint configuration (n rows)"""
 
 class DockingController(Controller):
     """A docking law with its force source (torque mode); usable in a Simulation like any controller."""
@@ -2055,35 +2042,21 @@ Members:
 class Error:
     """Bad input at an API boundary (unknown name, wrong size, non-finite value, unloadable model); the message is the library's, naming the thing and what was expected."""
 
-class FaultCause:
-    """Members:
-
-  none
-
-  mujoco_warning
-
-  nonfinite_qpos
-
-  nonfinite_qvel
-
-  nonfinite_qacc
-
-  acceleration_bound
-
-  bad_command"""
-    none: ClassVar[FaultCause]
-    mujoco_warning: ClassVar[FaultCause]
-    nonfinite_qpos: ClassVar[FaultCause]
-    nonfinite_qvel: ClassVar[FaultCause]
-    nonfinite_qacc: ClassVar[FaultCause]
-    acceleration_bound: ClassVar[FaultCause]
-    bad_command: ClassVar[FaultCause]
-    def __init__(self, value: int) -> None: ...
-    @property
-    def name(self) -> str: ...
-    @property
-    def value(self) -> int: ...
-    def __int__(self) -> int: ...
+class FaultCause(enum.Enum):
+    none = 0
+    """no fault"""
+    mujoco_warning = 1
+    """MuJoCo flagged a fatal warning"""
+    nonfinite_qpos = 2
+    """NaN/inf in qpos after a step"""
+    nonfinite_qvel = 3
+    """NaN/inf in qvel after a step"""
+    nonfinite_qacc = 4
+    """NaN/inf in qacc"""
+    acceleration_bound = 5
+    """|qacc| above the bound"""
+    bad_command = 6
+    """a controller wrote NaN/inf"""
 
 class ForceSource(enum.Enum):
     """Where the measured wrench comes from."""
@@ -2291,87 +2264,76 @@ class GlobalIk:
     def stats(self) -> GlobalIkStats:
         ...
 
-class GlobalIkMethods:
-    """Members:
+class GlobalIkMethods(enum.Enum):
+    alternate = 0
+    """Levenberg–Marquardt and SQP in turn"""
+    levenberg_marquardt = 1
+    """Levenberg–Marquardt only"""
+    sqp = 2
+    """iterated differential-IK QP only"""
 
-  alternate
-
-  levenberg_marquardt
-
-  sqp"""
-    alternate: ClassVar[GlobalIkMethods]
-    levenberg_marquardt: ClassVar[GlobalIkMethods]
-    sqp: ClassVar[GlobalIkMethods]
-    def __init__(self, value: int) -> None: ...
-    @property
-    def name(self) -> str: ...
-    @property
-    def value(self) -> int: ...
-    def __int__(self) -> int: ...
-
-class GlobalIkMode:
-    """Members:
-
-  speed
-
-  distance
-
-  manipulability"""
-    speed: ClassVar[GlobalIkMode]
-    distance: ClassVar[GlobalIkMode]
-    manipulability: ClassVar[GlobalIkMode]
-    def __init__(self, value: int) -> None: ...
-    @property
-    def name(self) -> str: ...
-    @property
-    def value(self) -> int: ...
-    def __int__(self) -> int: ...
+class GlobalIkMode(enum.Enum):
+    speed = 0
+    """the first solution found"""
+    distance = 1
+    """the solution closest to the seed"""
+    manipulability = 2
+    """the solution with the largest √det(J Jᵀ)"""
 
 class GlobalIkOptions:
     def __init__(self: GlobalIkOptions) -> None:
         ...
     @property
     def damping(self) -> float:
+        """λ₀, the floor of the adaptive damping [m², rad²]; positive and finite"""
         ...
     @damping.setter
     def damping(self, value: float) -> None: ...
     @property
     def max_attempt_iterations(self) -> int:
+        """iterations per attempt before a restart; ≥ 1"""
         ...
     @max_attempt_iterations.setter
     def max_attempt_iterations(self, value: int) -> None: ...
     @property
     def max_restarts(self) -> int:
+        """restarts after the first attempt; ≥ 0"""
         ...
     @max_restarts.setter
     def max_restarts(self, value: int) -> None: ...
     @property
     def max_step(self) -> float:
+        """largest joint change per iteration [rad or m]; positive and finite"""
         ...
     @max_step.setter
     def max_step(self, value: float) -> None: ...
     @property
     def methods(self) -> GlobalIkMethods:
+        """local methods the restarts use"""
         ...
     @methods.setter
     def methods(self, value: GlobalIkMethods) -> None: ...
     @property
     def mode(self) -> GlobalIkMode:
+        """which solution to return"""
         ...
     @mode.setter
     def mode(self, value: GlobalIkMode) -> None: ...
     @property
     def seed(self) -> int:
+        """seed of the restart generator; ≥ 0"""
         ...
     @seed.setter
     def seed(self, value: int) -> None: ...
     @property
     def stall_iterations(self) -> int:
+        """window of the stall test; in [1, 64]"""
         ...
     @stall_iterations.setter
     def stall_iterations(self, value: int) -> None: ...
     @property
     def stall_ratio(self) -> float:
+        """restart when ½‖e‖² has not dropped below this × its value a window ago; in (0, 1)"""
         ...
     @stall_ratio.setter
     def stall_ratio(self, value: float) -> None: ...
@@ -2706,28 +2668,16 @@ class IkResult:
     def status(self) -> IkStatus:
         ...
 
-class IkStatus:
-    """How an IK solve ended.
-
-Members:
-
-  converged
-
-  not_converged
-
-  timeout
-
-  invalid_input"""
-    converged: ClassVar[IkStatus]
-    not_converged: ClassVar[IkStatus]
-    timeout: ClassVar[IkStatus]
-    invalid_input: ClassVar[IkStatus]
-    def __init__(self, value: int) -> None: ...
-    @property
-    def name(self) -> str: ...
-    @property
-    def value(self) -> int: ...
-    def __int__(self) -> int: ...
+class IkStatus(enum.Enum):
+    """How an IK solve ended."""
+    converged = 0
+    """every target within tolerance"""
+    not_converged = 1
+    """iteration limit or stall"""
+    timeout = 2
+    """the time budget ran out"""
+    invalid_input = 3
+    """a NaN appeared mid-solve"""
 
 class JacobianBlock(enum.Enum):
     full = 0
@@ -3467,32 +3417,19 @@ class OtgResult:
         """largest |profile duration - duration| over the DoFs [s]"""
         ...
 
-class OtgStatus:
-    """Members:
-
-  working
-
-  finished
-
-  error_brake
-
-  error_no_profile
-
-  error_synchronization
-
-  error_precision"""
-    working: ClassVar[OtgStatus]
-    finished: ClassVar[OtgStatus]
-    error_brake: ClassVar[OtgStatus]
-    error_no_profile: ClassVar[OtgStatus]
-    error_synchronization: ClassVar[OtgStatus]
-    error_precision: ClassVar[OtgStatus]
-    def __init__(self, value: int) -> None: ...
-    @property
-    def name(self) -> str: ...
-    @property
-    def value(self) -> int: ...
-    def __int__(self) -> int: ...
+class OtgStatus(enum.Enum):
+    working = 0
+    """a trajectory exists and the target is not reached yet"""
+    finished = 1
+    """the target is reached"""
+    error_brake = 2
+    """a DoF's brake did not fit its profile"""
+    error_no_profile = 3
+    """no time-optimal profile for a DoF"""
+    error_synchronization = 4
+    """a DoF has no profile of the synchronized duration"""
+    error_precision = 5
+    """the trajectory failed its final check"""
 
 class PickCriteria:
     """When a pick counts as held."""
@@ -4386,16 +4323,19 @@ class PlanOptions:
         ...
     @property
     def branch_spread(self) -> float:
+        """spread of the branch seeds around the previous configuration [rad]; positive and finite"""
         ...
     @branch_spread.setter
     def branch_spread(self, value: float) -> None: ...
     @property
     def detour_radius(self) -> float:
+        """largest offset of a detour from the straight path [rad]; positive and finite"""
         ...
     @detour_radius.setter
     def detour_radius(self, value: float) -> None: ...
     @property
     def detour_samples(self) -> int:
+        """intermediate configurations tried for a detour; ≥ 0"""
         ...
     @detour_samples.setter
     def detour_samples(self, value: int) -> None: ...
@@ -4406,46 +4346,55 @@ class PlanOptions:
     def ik(self, value: PoseIkOptions) -> None: ...
     @property
     def ik_branches(self) -> int:
+        """global-IK solves for other branches; ≥ 0"""
         ...
     @ik_branches.setter
     def ik_branches(self, value: int) -> None: ...
     @property
     def max_samples(self) -> int:
+        """states one plan may check in all; ≥ 1"""
         ...
     @max_samples.setter
     def max_samples(self, value: int) -> None: ...
     @property
     def max_segment_samples(self) -> int:
+        """samples one segment may have; ≥ 1"""
         ...
     @max_segment_samples.setter
     def max_segment_samples(self, value: int) -> None: ...
     @property
     def min_segment_duration(self) -> float:
+        """shortest segment [s]; positive and finite"""
         ...
     @min_segment_duration.setter
     def min_segment_duration(self, value: float) -> None: ...
     @property
     def sample_period(self) -> float:
+        """largest time between checked samples [s]; positive and finite"""
         ...
     @sample_period.setter
     def sample_period(self, value: float) -> None: ...
     @property
     def sample_step(self) -> float:
+        """largest joint motion between checked samples [rad or m]; positive and finite"""
         ...
     @sample_step.setter
     def sample_step(self, value: float) -> None: ...
     @property
     def seed(self) -> int:
+        """seed of branch seeds and detours; ≥ 0"""
         ...
     @seed.setter
     def seed(self, value: int) -> None: ...
     @property
     def stretch_attempts(self) -> int:
+        """how often a torque failure stretches a segment; ≥ 0"""
         ...
     @stretch_attempts.setter
     def stretch_attempts(self, value: int) -> None: ...
     @property
     def stretch_factor(self) -> float:
+        """how much each stretch lengthens the segment; finite and > 1"""
         ...
     @stretch_factor.setter
     def stretch_factor(self, value: float) -> None: ...
@@ -4473,38 +4422,23 @@ class PlanResult:
     def waypoints(self) -> list[WaypointReport]:
         ...
 
-class PlanStatus:
-    """Members:
-
-  ok
-
-  start_failed
-
-  unreachable
-
-  joint_limits
-
-  collision
-
-  singular
-
-  torque
-
-  blocked"""
-    ok: ClassVar[PlanStatus]
-    start_failed: ClassVar[PlanStatus]
-    unreachable: ClassVar[PlanStatus]
-    joint_limits: ClassVar[PlanStatus]
-    collision: ClassVar[PlanStatus]
-    singular: ClassVar[PlanStatus]
-    torque: ClassVar[PlanStatus]
-    blocked: ClassVar[PlanStatus]
-    def __init__(self, value: int) -> None: ...
-    @property
-    def name(self) -> str: ...
-    @property
-    def value(self) -> int: ...
-    def __int__(self) -> int: ...
+class PlanStatus(enum.Enum):
+    ok = 0
+    """every waypoint and every sample passed"""
+    start_failed = 1
+    """the start configuration fails a check"""
+    unreachable = 2
+    """no IK branch reaches the waypoint's pose"""
+    joint_limits = 3
+    """every IK solution is outside the joint ranges"""
+    collision = 4
+    """every IK solution is in collision"""
+    singular = 5
+    """every IK solution is too close to a singularity"""
+    torque = 6
+    """every IK solution needs more than the torque limits"""
+    blocked = 7
+    """no branch or detour gets there with every check passing"""
 
 class Pose:
     """Pose X_AB of a frame B in a frame A: x_A = R x_B + p. R is 3x3 (orthonormal), p is (3,) [m]. Compose with *, invert with inverse()."""
@@ -4865,16 +4799,19 @@ class RecorderOptions:
         ...
     @property
     def flush_rows(self) -> int:
+        """flush each CSV file every N rows; ≥ 1"""
         ...
     @flush_rows.setter
     def flush_rows(self, value: int) -> None: ...
     @property
     def frame(self) -> str:
+        """frame logged as the end effector; empty: the first controller's"""
         ...
     @frame.setter
     def frame(self, value: str) -> None: ...
     @property
     def state_decimation(self) -> int:
+        """one state row every N physics steps; ≥ 1"""
         ...
     @state_decimation.setter
     def state_decimation(self, value: int) -> None: ...
@@ -4907,16 +4844,19 @@ class RenderOptions:
         ...
     @property
     def reflections(self) -> bool:
+        """reflective materials"""
         ...
     @reflections.setter
     def reflections(self, value: bool) -> None: ...
     @property
     def shadows(self) -> bool:
+        """shadows cast by the model's lights"""
         ...
     @shadows.setter
     def shadows(self, value: bool) -> None: ...
     @property
     def skybox(self) -> bool:
+        """the model's skybox texture, if any"""
         ...
     @skybox.setter
     def skybox(self, value: bool) -> None: ...
@@ -5091,29 +5031,17 @@ class RunResult:
     def ticks(self) -> int:
         ...
 
-class RunStatus:
-    """Members:
-
-  duration_reached
-
-  finished
-
-  diverged
-
-  bad_command
-
-  interrupted"""
-    duration_reached: ClassVar[RunStatus]
-    finished: ClassVar[RunStatus]
-    diverged: ClassVar[RunStatus]
-    bad_command: ClassVar[RunStatus]
-    interrupted: ClassVar[RunStatus]
-    def __init__(self, value: int) -> None: ...
-    @property
-    def name(self) -> str: ...
-    @property
-    def value(self) -> int: ...
-    def __int__(self) -> int: ...
+class RunStatus(enum.Enum):
+    duration_reached = 0
+    """simulated the requested duration"""
+    finished = 1
+    """the reference source reported the task complete"""
+    diverged = 2
+    """stopped on a diverging step"""
+    bad_command = 3
+    """stopped because a controller wrote NaN/inf"""
+    interrupted = 4
+    """stopped because SIGINT/SIGTERM arrived"""
 
 class RunVideoOptions:
     """Size and rate of a run's video."""
@@ -5946,20 +5874,11 @@ class SyncedTrapezoid:
     def limiting_axis(self) -> int:
         ...
 
-class TargetKind:
-    """Members:
-
-  position
-
-  pose"""
-    position: ClassVar[TargetKind]
-    pose: ClassVar[TargetKind]
-    def __init__(self, value: int) -> None: ...
-    @property
-    def name(self) -> str: ...
-    @property
-    def value(self) -> int: ...
-    def __int__(self) -> int: ...
+class TargetKind(enum.Enum):
+    position = 0
+    """the frame origin only (3 rows)"""
+    pose = 1
+    """origin and orientation (6 rows)"""
 
 class TaskMode(enum.Enum):
     pose = 0
@@ -6124,26 +6043,15 @@ class TickResult:
     def time(self) -> float:
         ...
 
-class TickStatus:
-    """Members:
-
-  ok
-
-  finished
-
-  diverged
-
-  bad_command"""
-    ok: ClassVar[TickStatus]
-    finished: ClassVar[TickStatus]
-    diverged: ClassVar[TickStatus]
-    bad_command: ClassVar[TickStatus]
-    def __init__(self, value: int) -> None: ...
-    @property
-    def name(self) -> str: ...
-    @property
-    def value(self) -> int: ...
-    def __int__(self) -> int: ...
+class TickStatus(enum.Enum):
+    ok = 0
+    """the period was simulated"""
+    finished = 1
+    """the reference source reported the task complete"""
+    diverged = 2
+    """a physics step diverged"""
+    bad_command = 3
+    """a controller wrote NaN/inf"""
 
 class TimeStep:
     """One step of an episode (dm_env's TimeStep): step_type, reward and discount (None on FIRST), observation (dict name -> float64 array), and end (why the episode ended, on LAST). The observation is the time step's own copy: it never changes when the environment steps again, and can be kept as long as wanted. Iterates as (step_type, reward, discount, observation), like dm_env's namedtuple."""

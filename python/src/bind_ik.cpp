@@ -77,11 +77,7 @@ Eigen::VectorXd seed_of(const Chain& chain, py::handle q_seed) {
 }  // namespace
 
 void bind_ik(py::module_& m) {
-  py::enum_<IkStatus>(m, "IkStatus", "How an IK solve ended.")
-      .value("converged", IkStatus::converged)
-      .value("not_converged", IkStatus::not_converged)
-      .value("timeout", IkStatus::timeout)
-      .value("invalid_input", IkStatus::invalid_input);
+  def_enum<IkStatus>(m, "IkStatus", "How an IK solve ended.");
   py::class_<IkResult>(m, "IkResult", "The best configuration found, with its errors.")
       .def(py::init<>())
       .def_readonly("q", &IkResult::q, "joint values (n,)")
@@ -191,9 +187,7 @@ void bind_ik(py::module_& m) {
           py::arg("X_WT"), py::arg("q_seed"),
           "One solve per pose in the list from the same seed, without the GIL.");
 
-  py::enum_<TargetKind>(m, "TargetKind")
-      .value("position", TargetKind::position)
-      .value("pose", TargetKind::pose);
+  def_enum<TargetKind>(m, "TargetKind");
   py::class_<FrameTarget>(m, "FrameTarget", "A target for one frame of a multi-target solve.")
       .def(py::init([](std::string frame, TargetKind kind, py::handle X, double wp, double wo,
                        int priority) {
@@ -246,16 +240,9 @@ void bind_ik(py::module_& m) {
           py::arg("i"), "(position [m], orientation [rad]) of target i after the last solve");
 
   auto diff_options = py::class_<DiffIkOptions>(m, "DiffIkOptions");
-  diff_options.def(py::init<>())
-      .def_readwrite("dt", &DiffIkOptions::dt, "control period [s]")
-      .def_readwrite("damping", &DiffIkOptions::damping)
-      .def_readwrite("max_step", &DiffIkOptions::max_step);
-  vector_property<DiffIkOptions>(diff_options, "velocity_limit", &DiffIkOptions::velocity_limit,
-                                 "joint velocity limits (n,) [rad/s]; empty = none");
-  py::enum_<DiffIkTaskKind>(m, "DiffIkTaskKind")
-      .value("pose", DiffIkTaskKind::pose)
-      .value("position", DiffIkTaskKind::position)
-      .value("posture", DiffIkTaskKind::posture);
+  diff_options.def(py::init<>());
+  def_fields(diff_options);
+  def_enum<DiffIkTaskKind>(m, "DiffIkTaskKind");
   py::class_<DiffIkStep>(m, "DiffIkStep")
       .def_readonly("v", &DiffIkStep::v, "joint velocity (n,)")
       .def_readonly("q_next", &DiffIkStep::q_next, "q + v dt clipped into the limits (n,)")
@@ -308,34 +295,20 @@ void bind_ik(py::module_& m) {
           [](DiffIk& ik, py::handle q) { return ik.step(to_vector(q, "q", ik.chain().size())); },
           py::arg("q"), "One QP step from q (n,): DiffIkStep (v, q_next).");
 
-  py::enum_<GlobalIkMode>(m, "GlobalIkMode")
-      .value("speed", GlobalIkMode::speed)
-      .value("distance", GlobalIkMode::distance)
-      .value("manipulability", GlobalIkMode::manipulability);
-  py::enum_<GlobalIkMethods>(m, "GlobalIkMethods")
-      .value("alternate", GlobalIkMethods::alternate)
-      .value("levenberg_marquardt", GlobalIkMethods::levenberg_marquardt)
-      .value("sqp", GlobalIkMethods::sqp);
+  def_enum<GlobalIkMode>(m, "GlobalIkMode");
+  def_enum<GlobalIkMethods>(m, "GlobalIkMethods");
   auto tolerance = py::class_<PoseTolerance>(m, "PoseTolerance", "Per-component bounds (TRAC-IK).");
   tolerance.def(py::init<>()).def_static("uniform", &PoseTolerance::uniform, py::arg("value"));
   fixed_property<PoseTolerance>(tolerance, "bound", &PoseTolerance::bound,
                                 "[x, y, z] m then rotation-vector components rad (6,)");
-  py::class_<GlobalIkOptions>(m, "GlobalIkOptions")
-      .def(py::init<>())
-      .def_readwrite("mode", &GlobalIkOptions::mode)
-      .def_readwrite("methods", &GlobalIkOptions::methods)
+  py::class_<GlobalIkOptions> global_options(m, "GlobalIkOptions");
+  global_options.def(py::init<>())
       .def_property(
           "timeout", [](const GlobalIkOptions& o) { return o.timeout.count(); },
           [](GlobalIkOptions& o, double s) { o.timeout = std::chrono::duration<double>(s); },
           "wall-clock budget of one solve [s]")
-      .def_readwrite("tolerance", &GlobalIkOptions::tolerance)
-      .def_readwrite("max_restarts", &GlobalIkOptions::max_restarts)
-      .def_readwrite("seed", &GlobalIkOptions::seed)
-      .def_readwrite("max_attempt_iterations", &GlobalIkOptions::max_attempt_iterations)
-      .def_readwrite("stall_iterations", &GlobalIkOptions::stall_iterations)
-      .def_readwrite("stall_ratio", &GlobalIkOptions::stall_ratio)
-      .def_readwrite("damping", &GlobalIkOptions::damping)
-      .def_readwrite("max_step", &GlobalIkOptions::max_step);
+      .def_readwrite("tolerance", &GlobalIkOptions::tolerance);
+  def_fields(global_options);
   py::class_<GlobalIkStats>(m, "GlobalIkStats")
       .def_readonly("attempts", &GlobalIkStats::attempts)
       .def_readonly("solutions", &GlobalIkStats::solutions)

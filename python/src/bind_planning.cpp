@@ -1,5 +1,6 @@
 // planning room: the waypoint planner and the joint spline it returns.
 #include "bindings.hpp"
+#include "declared_fields.hpp"
 #include "mjarm/planning/waypoint_planner.hpp"
 
 namespace mjarm::python {
@@ -22,30 +23,10 @@ void bind_planning(py::module_& m) {
           },
           py::arg("t"), "(q, qd, qdd), each (n,)");
 
-  py::enum_<PlanStatus>(m, "PlanStatus")
-      .value("ok", PlanStatus::ok)
-      .value("start_failed", PlanStatus::start_failed)
-      .value("unreachable", PlanStatus::unreachable)
-      .value("joint_limits", PlanStatus::joint_limits)
-      .value("collision", PlanStatus::collision)
-      .value("singular", PlanStatus::singular)
-      .value("torque", PlanStatus::torque)
-      .value("blocked", PlanStatus::blocked);
-  py::class_<PlanOptions>(m, "PlanOptions")
-      .def(py::init<>())
-      .def_readwrite("sample_period", &PlanOptions::sample_period)
-      .def_readwrite("sample_step", &PlanOptions::sample_step)
-      .def_readwrite("min_segment_duration", &PlanOptions::min_segment_duration)
-      .def_readwrite("ik", &PlanOptions::ik)
-      .def_readwrite("ik_branches", &PlanOptions::ik_branches)
-      .def_readwrite("branch_spread", &PlanOptions::branch_spread)
-      .def_readwrite("detour_samples", &PlanOptions::detour_samples)
-      .def_readwrite("detour_radius", &PlanOptions::detour_radius)
-      .def_readwrite("stretch_attempts", &PlanOptions::stretch_attempts)
-      .def_readwrite("stretch_factor", &PlanOptions::stretch_factor)
-      .def_readwrite("seed", &PlanOptions::seed)
-      .def_readwrite("max_segment_samples", &PlanOptions::max_segment_samples)
-      .def_readwrite("max_samples", &PlanOptions::max_samples);
+  def_enum<PlanStatus>(m, "PlanStatus");
+  py::class_<PlanOptions> plan_options(m, "PlanOptions");
+  plan_options.def(py::init<>()).def_readwrite("ik", &PlanOptions::ik);
+  def_fields(plan_options);
   py::class_<WaypointReport>(m, "WaypointReport")
       .def_readonly("index", &WaypointReport::index)
       .def_readonly("X_WT", &WaypointReport::X_WT)

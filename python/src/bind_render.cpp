@@ -2,6 +2,7 @@
 #include <cstring>
 
 #include "bindings.hpp"
+#include "declared_fields.hpp"
 #include "mjarm/render/camera.hpp"
 #include "mjarm/render/offscreen_renderer.hpp"
 #include "mjarm/render/video_writer.hpp"
@@ -19,10 +20,7 @@ py::array_t<std::uint8_t> to_numpy(const Image& image) {
 }  // namespace
 
 void bind_render(py::module_& m) {
-  py::enum_<CameraKind>(m, "CameraKind")
-      .value("model", CameraKind::model)
-      .value("free", CameraKind::free)
-      .value("follow", CameraKind::follow);
+  def_enum<CameraKind>(m, "CameraKind");
   auto camera = py::class_<CameraSpec>(m, "CameraSpec",
                                        "A model camera, a free camera or one following a frame.");
   camera.def(py::init<>())
@@ -36,13 +34,8 @@ void bind_render(py::module_& m) {
           py::arg("elevation") = -25.0)
       .def_static("follow", &CameraSpec::follow, py::arg("frame"), py::arg("distance"),
                   py::arg("azimuth") = 135.0, py::arg("elevation") = -25.0)
-      .def_readwrite("kind", &CameraSpec::kind)
-      .def_readwrite("name", &CameraSpec::name)
-      .def_readwrite("distance", &CameraSpec::distance)
-      .def_readwrite("azimuth", &CameraSpec::azimuth)
-      .def_readwrite("elevation", &CameraSpec::elevation)
       .def("describe", &CameraSpec::describe);
-  fixed_property<CameraSpec>(camera, "lookat", &CameraSpec::lookat, "(3,) [m]");
+  def_fields(camera);
   m.def(
       "frame_robot",
       [](const Robot& r, const DataHandle& d, double az, double el) {
@@ -51,11 +44,9 @@ void bind_render(py::module_& m) {
       py::arg("robot"), py::arg("data"), py::arg("azimuth") = 135.0, py::arg("elevation") = -25.0,
       "A free camera that frames the whole robot.");
 
-  py::class_<RenderOptions>(m, "RenderOptions")
-      .def(py::init<>())
-      .def_readwrite("shadows", &RenderOptions::shadows)
-      .def_readwrite("reflections", &RenderOptions::reflections)
-      .def_readwrite("skybox", &RenderOptions::skybox);
+  py::class_<RenderOptions> render_options(m, "RenderOptions");
+  render_options.def(py::init<>());
+  def_fields(render_options);
   py::class_<OffscreenRenderer>(m, "OffscreenRenderer",
                                 "Headless rendering (EGL, no display). render() returns an "
                                 "(height, width, 3) uint8 array, top row first.")

@@ -82,25 +82,9 @@ bool in_main_thread() {
 
 void bind_sim(py::module_& m) {
   def_enum<SimulationMode>(m, "SimulationMode");
-  py::enum_<TickStatus>(m, "TickStatus")
-      .value("ok", TickStatus::ok)
-      .value("finished", TickStatus::finished)
-      .value("diverged", TickStatus::diverged)
-      .value("bad_command", TickStatus::bad_command);
-  py::enum_<RunStatus>(m, "RunStatus")
-      .value("duration_reached", RunStatus::duration_reached)
-      .value("finished", RunStatus::finished)
-      .value("diverged", RunStatus::diverged)
-      .value("bad_command", RunStatus::bad_command)
-      .value("interrupted", RunStatus::interrupted);
-  py::enum_<FaultCause>(m, "FaultCause")
-      .value("none", FaultCause::none)
-      .value("mujoco_warning", FaultCause::mujoco_warning)
-      .value("nonfinite_qpos", FaultCause::nonfinite_qpos)
-      .value("nonfinite_qvel", FaultCause::nonfinite_qvel)
-      .value("nonfinite_qacc", FaultCause::nonfinite_qacc)
-      .value("acceleration_bound", FaultCause::acceleration_bound)
-      .value("bad_command", FaultCause::bad_command);
+  def_enum<TickStatus>(m, "TickStatus");
+  def_enum<RunStatus>(m, "RunStatus");
+  def_enum<FaultCause>(m, "FaultCause");
   py::class_<StepFault>(m, "StepFault")
       .def_readonly("cause", &StepFault::cause)
       .def_readonly("time", &StepFault::time)
@@ -329,11 +313,9 @@ void bind_sim(py::module_& m) {
            "watches contacts between a and b (empty b: anything else); returns a handle")
       .def("contacts", &Simulation::contacts, py::arg("handle"));
 
-  py::class_<RecorderOptions>(m, "RecorderOptions")
-      .def(py::init<>())
-      .def_readwrite("state_decimation", &RecorderOptions::state_decimation)
-      .def_readwrite("flush_rows", &RecorderOptions::flush_rows)
-      .def_readwrite("frame", &RecorderOptions::frame);
+  py::class_<RecorderOptions> recorder_options(m, "RecorderOptions");
+  recorder_options.def(py::init<>());
+  def_fields(recorder_options);
   py::class_<RecorderHandle>(m, "Recorder",
                              "Records a Simulation into a directory (state/task/events CSV + "
                              "summary.json, atomic). Use as a context manager, or call finalize().")

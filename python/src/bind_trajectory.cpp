@@ -1,6 +1,7 @@
 // trajectory room: trapezoid, smoothstep family, quintics and their shortest duration, SE(3)
 // interpolation, the jerk-limited online generator.
 #include "bindings.hpp"
+#include "declared_fields.hpp"
 #include "mjarm/trajectory/otg/generator.hpp"
 #include "mjarm/trajectory/quintic.hpp"
 #include "mjarm/trajectory/quintic_duration.hpp"
@@ -154,13 +155,7 @@ void bind_trajectory(py::module_& m) {
       .def_property_readonly("duration", &Se3Interpolation::duration)
       .def("at", &Se3Interpolation::at, py::arg("t"));
 
-  py::enum_<OtgStatus>(m, "OtgStatus")
-      .value("working", OtgStatus::working)
-      .value("finished", OtgStatus::finished)
-      .value("error_brake", OtgStatus::error_brake)
-      .value("error_no_profile", OtgStatus::error_no_profile)
-      .value("error_synchronization", OtgStatus::error_synchronization)
-      .value("error_precision", OtgStatus::error_precision);
+  def_enum<OtgStatus>(m, "OtgStatus");
   py::class_<OtgResult>(m, "OtgResult")
       .def_readonly("status", &OtgResult::status)
       .def_readonly("duration", &OtgResult::duration)

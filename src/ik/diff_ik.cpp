@@ -29,7 +29,7 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 
 void check_gain(double gain) {
   if (!std::isfinite(gain) || gain <= 0.0 || gain > 1.0) {
-    throw Error("DiffIk: task gain must be in (0, 1], got " + number_text(gain));
+    throw Error("differential IK: task gain must be in (0, 1], got " + number_text(gain));
   }
 }
 
@@ -45,7 +45,7 @@ void add_lower_gram(Eigen::MatrixXd& H, const Matrix6Xd& A, const Matrix6Xd& WA,
 
 void check_weight(double weight, bool allow_zero, const char* what) {
   if (!std::isfinite(weight) || weight < 0.0 || (!allow_zero && weight == 0.0)) {
-    throw Error(std::string("DiffIk: ") + what + " must be finite and " +
+    throw Error(std::string("differential IK: ") + what + " must be finite and " +
                 (allow_zero ? "non-negative" : "positive") + ", got " + number_text(weight));
   }
 }
@@ -53,27 +53,11 @@ void check_weight(double weight, bool allow_zero, const char* what) {
 }  // namespace
 
 void check(const DiffIkOptions& options, int n) {
-  if (!std::isfinite(options.dt) || options.dt <= 0.0) {
-    throw Error("DiffIk: dt must be finite and positive, got " + number_text(options.dt) + " s");
-  }
-  if (!std::isfinite(options.damping) || options.damping <= 0.0) {
-    throw Error("DiffIk: damping must be finite and positive, got " +
-                number_text(options.damping));
-  }
-  if (std::isnan(options.max_step) || options.max_step <= 0.0) {
-    throw Error("DiffIk: max_step must be positive (+inf for none), got " +
-                number_text(options.max_step));
-  }
-  const Eigen::VectorXd& v = options.velocity_limit;
-  if (v.size() != 0 && v.size() != n) {
-    throw Error("DiffIk: velocity_limit has " + std::to_string(v.size()) +
+  check_fields(options);
+  const Eigen::Index size = options.velocity_limit.size();
+  if (size != 0 && size != n) {
+    throw Error("differential IK: velocity_limit has " + std::to_string(size) +
                 " entries, the chain has " + std::to_string(n) + " joints (or leave it empty)");
-  }
-  for (Eigen::Index i = 0; i < v.size(); ++i) {
-    if (std::isnan(v[i]) || v[i] <= 0.0) {
-      throw Error("DiffIk: velocity_limit[" + std::to_string(i) +
-                  "] must be positive (+inf for none), got " + number_text(v[i]));
-    }
   }
 }
 

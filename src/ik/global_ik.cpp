@@ -17,7 +17,7 @@
 namespace mjarm {
 namespace {
 
-constexpr int kMaxStallWindow = 64;
+constexpr int kMaxStallWindow = kGlobalIkMaxStallWindow;
 
 /// start + timeout on the steady clock, saturated: a timeout beyond half the clock's remaining
 /// range (about 146 years) never expires. A plain duration_cast of a huge double duration to
@@ -32,53 +32,13 @@ std::chrono::steady_clock::time_point deadline_after(std::chrono::steady_clock::
 
 }  // namespace
 
-const char* to_string(GlobalIkMode mode) noexcept {
-  switch (mode) {
-    case GlobalIkMode::speed:
-      return "speed";
-    case GlobalIkMode::distance:
-      return "distance";
-    case GlobalIkMode::manipulability:
-      return "manipulability";
-  }
-  return "unknown";
-}
-
-const char* to_string(GlobalIkMethods methods) noexcept {
-  switch (methods) {
-    case GlobalIkMethods::alternate:
-      return "alternate";
-    case GlobalIkMethods::levenberg_marquardt:
-      return "levenberg_marquardt";
-    case GlobalIkMethods::sqp:
-      return "sqp";
-  }
-  return "unknown";
-}
-
 void check(const GlobalIkOptions& o) {
-  const auto fail = [](const std::string& what) { throw Error("GlobalIk: " + what); };
   if (!(o.timeout.count() > 0.0) || !std::isfinite(o.timeout.count())) {
-    fail("timeout must be finite and positive, got " + number_text(o.timeout.count()) + " s");
+    throw Error("global IK: timeout must be positive and finite [s], got " +
+                number_text(o.timeout.count()));
   }
   check_tolerance(o.tolerance);
-  if (o.max_restarts < 0) fail("max_restarts must be >= 0, got " + std::to_string(o.max_restarts));
-  if (o.max_attempt_iterations < 1) {
-    fail("max_attempt_iterations must be >= 1, got " + std::to_string(o.max_attempt_iterations));
-  }
-  if (o.stall_iterations < 1 || o.stall_iterations > kMaxStallWindow) {
-    fail("stall_iterations must be in [1, " + std::to_string(kMaxStallWindow) + "], got " +
-         std::to_string(o.stall_iterations));
-  }
-  if (!(o.stall_ratio > 0.0 && o.stall_ratio < 1.0)) {
-    fail("stall_ratio must be in (0, 1), got " + number_text(o.stall_ratio));
-  }
-  if (!std::isfinite(o.damping) || o.damping <= 0.0) {
-    fail("damping must be finite and positive, got " + number_text(o.damping));
-  }
-  if (!std::isfinite(o.max_step) || o.max_step <= 0.0) {
-    fail("max_step must be finite and positive, got " + number_text(o.max_step));
-  }
+  check_fields(o);
 }
 
 GlobalIk::GlobalIk(const Chain& chain, const GlobalIkOptions& options)

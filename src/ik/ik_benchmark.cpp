@@ -46,26 +46,6 @@ constexpr double kCpuModeWallFactor = 20.0;
 
 }  // namespace
 
-const char* to_string(IkBenchmarkClock clock) noexcept {
-  switch (clock) {
-    case IkBenchmarkClock::wall:
-      return "wall";
-    case IkBenchmarkClock::thread_cpu:
-      return "thread_cpu";
-  }
-  return "unknown";
-}
-
-const char* to_string(IkSeedMode mode) noexcept {
-  switch (mode) {
-    case IkSeedMode::mid_range:
-      return "mid_range";
-    case IkSeedMode::random:
-      return "random";
-  }
-  return "unknown";
-}
-
 IkBenchmarkSolver global_ik_solver(const Chain& chain, const GlobalIkOptions& options) {
   auto solver = std::make_shared<GlobalIk>(chain, options);
   IkBenchmarkSolver s;
@@ -82,9 +62,7 @@ IkBenchmarkSolver global_ik_solver(const Chain& chain, const GlobalIkOptions& op
 
 IkBenchmarkResult run_ik_benchmark(const Chain& chain, const IkBenchmarkSolver& solver,
                                    const IkBenchmarkOptions& options) {
-  if (options.samples < 1) {
-    throw Error("IK benchmark: samples must be >= 1, got " + std::to_string(options.samples));
-  }
+  check_fields(options);
   if (!solver.solve) throw Error("IK benchmark: solver '" + solver.name + "' has no function");
   check_tolerance(options.tolerance);
   if (!(options.timeout.count() > 0.0) || !std::isfinite(options.timeout.count())) {

@@ -5,38 +5,10 @@
 #include <sstream>
 
 #include "mjarm/error.hpp"
-#include "mjarm/number_text.hpp"
 
 namespace mjarm {
 
-const char* to_string(CheckFailure failure) noexcept {
-  switch (failure) {
-    case CheckFailure::none:
-      return "none";
-    case CheckFailure::invalid:
-      return "invalid";
-    case CheckFailure::joint_limits:
-      return "joint_limits";
-    case CheckFailure::collision:
-      return "collision";
-    case CheckFailure::singular:
-      return "singular";
-    case CheckFailure::torque:
-      return "torque";
-  }
-  return "unknown";
-}
-
-void check(const CheckOptions& options) {
-  const auto non_negative = [](double v, const char* what) {
-    if (!(v >= 0.0) || !std::isfinite(v))
-      throw Error(std::string("check options: ") + what + " must be finite and >= 0, got " +
-                  number_text(v));
-  };
-  non_negative(options.min_singular_value, "min_singular_value");
-  non_negative(options.collision_margin, "collision_margin");
-  non_negative(options.limit_tolerance, "limit_tolerance");
-}
+void check(const CheckOptions& options) { check_fields(options); }
 
 namespace {
 

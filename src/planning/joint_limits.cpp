@@ -49,15 +49,7 @@ void check_vector(const Eigen::VectorXd& v, int n, const char* what, bool finite
 JointLimits joint_limits_from_model(const Chain& chain, const Eigen::VectorXd& q,
                                     const ModelLimitOptions& options) {
   chain.check(q, "limit configuration q");
-  if (!(options.velocity > 0.0) || !std::isfinite(options.velocity))
-    throw Error("model limits: velocity must be positive and finite, got " +
-                number_text(options.velocity));
-  if (!(options.torque_fraction > 0.0) || !(options.torque_fraction <= 1.0))
-    throw Error("model limits: torque_fraction must be in (0, 1], got " +
-                number_text(options.torque_fraction));
-  if (!(options.acceleration > 0.0) || !std::isfinite(options.acceleration))
-    throw Error("model limits: acceleration must be positive and finite, got " +
-                number_text(options.acceleration));
+  check_fields(options);
   const int n = chain.size();
   const Robot& robot = chain.robot();
   const mjModel& m = robot.model();

@@ -106,12 +106,10 @@ std::array<double, 256> motion_benchmark_instants(double T) {
 }
 
 ProfileBenchmarkResult run_profile_benchmark(const ProfileBenchmarkOptions& o) {
-  if (o.block < 1 || o.calls < o.block)
+  check_fields(o);
+  if (o.calls < o.block)
     throw Error("profile benchmark: calls (" + std::to_string(o.calls) +
-                ") must be at least one block of " + std::to_string(o.block) + " (≥ 1)");
-  if (o.recalculations < 16)
-    throw Error("profile benchmark: recalculations must be ≥ 16, got " +
-                std::to_string(o.recalculations));
+                ") must be at least one block of " + std::to_string(o.block));
   ProfileBenchmarkResult result;
   constexpr int kEvaluationCases = 6;  // and the recalculating one
   ProfileProgress progress{o};
@@ -235,7 +233,7 @@ MotionBenchmarkPath motion_benchmark_path(const Robot& robot) {
 }
 
 PlanBenchmarkResult run_plan_benchmark(const PlanBenchmarkOptions& o) {
-  if (o.plans < 1) throw Error("plan benchmark: plans must be ≥ 1, got " + std::to_string(o.plans));
+  check_fields(o);
   PlanBenchmarkResult out;
   const Robot robot = Robot::bundled("panda_torque");
   const MotionBenchmarkPath problem = motion_benchmark_path(robot);

@@ -11,52 +11,8 @@
 
 namespace mjarm {
 
-const char* to_string(PlanStatus status) noexcept {
-  switch (status) {
-    case PlanStatus::ok:
-      return "ok";
-    case PlanStatus::start_failed:
-      return "start_failed";
-    case PlanStatus::unreachable:
-      return "unreachable";
-    case PlanStatus::joint_limits:
-      return "joint_limits";
-    case PlanStatus::collision:
-      return "collision";
-    case PlanStatus::singular:
-      return "singular";
-    case PlanStatus::torque:
-      return "torque";
-    case PlanStatus::blocked:
-      return "blocked";
-  }
-  return "unknown";
-}
-
 void check(const PlanOptions& o) {
-  const auto positive = [](double v, const char* what) {
-    if (!(v > 0.0) || !std::isfinite(v))
-      throw Error(std::string("plan options: ") + what + " must be positive and finite, got " +
-                  number_text(v));
-  };
-  const auto non_negative = [](int v, const char* what) {
-    if (v < 0)
-      throw Error(std::string("plan options: ") + what + " must be >= 0, got " + std::to_string(v));
-  };
-  positive(o.sample_period, "sample_period");
-  positive(o.sample_step, "sample_step");
-  positive(o.min_segment_duration, "min_segment_duration");
-  positive(o.branch_spread, "branch_spread");
-  positive(o.detour_radius, "detour_radius");
-  non_negative(o.ik_branches, "ik_branches");
-  non_negative(o.detour_samples, "detour_samples");
-  non_negative(o.stretch_attempts, "stretch_attempts");
-  if (o.max_segment_samples < 1 || o.max_samples < 1)
-    throw Error("plan options: max_segment_samples and max_samples must be >= 1, got " +
-                std::to_string(o.max_segment_samples) + " and " + std::to_string(o.max_samples));
-  if (!(o.stretch_factor > 1.0) || !std::isfinite(o.stretch_factor))
-    throw Error("plan options: stretch_factor must be > 1 and finite, got " +
-                number_text(o.stretch_factor));
+  check_fields(o);
   check(o.checks);
   check(o.ik);
 }

@@ -84,12 +84,10 @@ std::string time_figure_preamble(const Recording& recording, const std::string& 
 }
 
 void check_single_figure(const PlotOptions& options, int min_height) {
-  if (options.width < 200 || options.height < min_height || options.width > 16384 ||
-      options.height > 16384)
-    throw Error("plot size " + std::to_string(options.width) + "x" +
-                std::to_string(options.height) + " is out of range (200x" +
-                std::to_string(min_height) + " … 16384x16384 pixels)");
-  if (!(options.timeout_s > 0.0)) throw Error("plot timeout must be positive");
+  check_fields(options);
+  if (options.height < min_height)
+    throw Error("plot: height must be ≥ " + std::to_string(min_height) +
+                " [pixels] for a single figure, got " + std::to_string(options.height));
 }
 
 std::string single_figure_preamble(const std::filesystem::path& png, const PlotOptions& options,

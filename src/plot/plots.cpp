@@ -51,11 +51,7 @@ bool png_complete(const std::filesystem::path& path) {
 
 std::vector<PlotInfo> make_plots(const Recording& recording, const fs::path& out_dir,
                                  const PlotOptions& options) {
-  if (options.width < 200 || options.height < 150 || options.width > 16384 ||
-      options.height > 16384)
-    throw Error("plot size " + std::to_string(options.width) + "x" +
-                std::to_string(options.height) + " is out of range (200x150 … 16384x16384 pixels)");
-  if (!(options.timeout_s > 0.0)) throw Error("plot timeout must be positive");
+  check_fields(options);
   // every figure is built (and every column checked) before anything is written or run
   const fs::path out = out_dir.empty() ? recording.directory() / "plots" : out_dir;
   std::error_code ec;

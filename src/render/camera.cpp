@@ -22,15 +22,6 @@ std::string number(double v) {
 
 }  // namespace
 
-const char* to_string(CameraKind kind) noexcept {
-  switch (kind) {
-    case CameraKind::model: return "model";
-    case CameraKind::free: return "free";
-    case CameraKind::follow: return "follow";
-  }
-  return "?";
-}
-
 CameraSpec CameraSpec::model_camera(std::string name) {
   CameraSpec spec;
   spec.kind = CameraKind::model;

@@ -267,9 +267,7 @@ VideoWriter::VideoWriter(const std::filesystem::path& path, int width, int heigh
   if (!std::isfinite(fps) || !(fps > 0.0))
     throw Error("video frame rate must be a finite number > 0 frames/s, got " +
                 number_text(fps) + " for " + quoted(path));
-  if (!std::isfinite(options.timeout_s) || !(options.timeout_s > 0.0))
-    throw Error("video timeout must be a finite number > 0 s, got " +
-                seconds_text(options.timeout_s) + " for " + quoted(path));
+  check_fields(options, "video " + quoted(path));
   // ffmpeg first: without it nothing is created
   const std::string ffmpeg = find_executable(options.ffmpeg);
 

@@ -2,7 +2,6 @@
 
 #include <mujoco/mujoco.h>
 
-#include <cmath>
 #include <string>
 
 #include "mjarm/error.hpp"
@@ -11,18 +10,6 @@
 #include "mjarm/number_text.hpp"
 
 namespace mjarm {
-
-const char* to_string(GraspEvent event) noexcept {
-  switch (event) {
-    case GraspEvent::none:
-      return "none";
-    case GraspEvent::slipped:
-      return "slipped";
-    case GraspEvent::dropped:
-      return "dropped";
-  }
-  return "unknown";
-}
 
 namespace {
 
@@ -37,11 +24,11 @@ GraspMonitor::GraspMonitor(Simulation& simulation, std::string_view gripper,
                            std::string_view object, const GeomSet& finger1, const GeomSet& finger2,
                            const GraspMonitorOptions& options)
     : simulation_(&simulation), options_(options) {
-  if (!(std::isfinite(options.slip_distance) && options.slip_distance > 0.0) ||
-      !(std::isfinite(options.drop_distance) && options.drop_distance > options.slip_distance)) {
-    throw Error("grasp monitor: slip_distance must be positive and drop_distance larger [m], got " +
-                number_text(options.slip_distance) + " and " +
-                number_text(options.drop_distance));
+  check_fields(options);
+  if (!(options.drop_distance > options.slip_distance)) {
+    throw Error("grasp monitor: drop_distance must be larger than slip_distance [m], got " +
+                number_text(options.drop_distance) + " and " +
+                number_text(options.slip_distance));
   }
   const mjModel& m = simulation.model();
   gripper_ = find_object(m, mjOBJ_BODY, gripper);

@@ -107,11 +107,7 @@ struct Recorder::Impl {
 Recorder::Recorder(const Simulation& simulation, const std::filesystem::path& directory,
                    const RecorderOptions& options)
     : uncaught_at_construction_(std::uncaught_exceptions()) {
-  if (options.state_decimation < 1 || options.flush_rows < 1) {
-    throw Error("recorder: state_decimation and flush_rows must be ≥ 1, got " +
-                std::to_string(options.state_decimation) + " and " +
-                std::to_string(options.flush_rows));
-  }
+  check_fields(options);
   const Robot& robot = simulation.robot();
   const mjModel& m = robot.model();
   // the frame is checked before anything touches the disk

@@ -34,19 +34,6 @@ std::string name_or(const mjModel& m, int type, int id, const char* kind) {
 
 }  // namespace
 
-const char* to_string(FaultCause cause) noexcept {
-  switch (cause) {
-    case FaultCause::none: return "none";
-    case FaultCause::mujoco_warning: return "mujoco_warning";
-    case FaultCause::nonfinite_qpos: return "nonfinite_qpos";
-    case FaultCause::nonfinite_qvel: return "nonfinite_qvel";
-    case FaultCause::nonfinite_qacc: return "nonfinite_qacc";
-    case FaultCause::acceleration_bound: return "acceleration_bound";
-    case FaultCause::bad_command: return "bad_command";
-  }
-  return "?";
-}
-
 int joint_of_qpos(const mjModel& m, int qpos_index) noexcept {
   for (int j = m.njnt - 1; j >= 0; --j) {
     if (m.jnt_qposadr[j] <= qpos_index) return j;

@@ -26,6 +26,7 @@ int free_joint_qpos(const Robot& robot, const std::string& name) {
 
 BimanualLiftResult run_bimanual_lift(SessionRecorder& recorder, const BimanualLiftOptions& o,
                                      const std::function<void(const TeleopSession&)>& on_tick) {
+  check_fields(o);
   TeleopSession& session = recorder.session();
   if (session.hands().size() != 2)
     throw Error("bimanual lift: the session needs two hands, it has " +

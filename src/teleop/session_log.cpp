@@ -38,8 +38,7 @@ std::string exact_text(double v) {
 const char* mode_name(SimulationMode m) { return to_string(m); }
 
 std::string task_text(const HandTask& t) {
-  return std::string(t.kind == TargetKind::pose ? "pose" : "position") + ":" +
-         std::to_string(t.priority);
+  return std::string(to_string(t.kind)) + ":" + std::to_string(t.priority);
 }
 
 }  // namespace

@@ -20,21 +20,15 @@ namespace mjarm {
 namespace {
 
 SimulationMode parse_mode(const std::string& text, const std::string& where) {
-  for (int k = 0; k < 3; ++k) {
-    if (text == to_string(static_cast<SimulationMode>(k))) return static_cast<SimulationMode>(k);
-  }
-  throw Error(where + ": " +
-              unknown_name_message("mode", text, {"kinematic", "position", "torque"}));
+  if (const auto mode = enum_from_name<SimulationMode>(text)) return *mode;
+  throw Error(where + ": " + unknown_name_message("mode", text, enum_names<SimulationMode>()));
 }
 
 HandTask parse_task(const std::string& text, const std::string& where) {
   const auto colon = text.find(':');
   HandTask t;
-  const std::string kind = text.substr(0, colon);
-  if (kind == "pose") {
-    t.kind = TargetKind::pose;
-  } else if (kind == "position") {
-    t.kind = TargetKind::position;
+  if (const auto kind = enum_from_name<TargetKind>(text.substr(0, colon))) {
+    t.kind = *kind;
   } else {
     throw Error(where + ": a hand task must be pose:<priority> or position:<priority>, got '" +
                 text + "'");

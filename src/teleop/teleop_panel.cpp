@@ -14,8 +14,6 @@ namespace mjarm {
 namespace {
 
 constexpr const char* kPoseNames[6] = {"x", "y", "z", "roll", "pitch", "yaw"};
-constexpr const char* kPresetNames[5] = {"front", "left", "right", "top", "overview"};
-constexpr const char* kPriorityNames[3] = {"equal", "right-over-left", "left-over-right"};
 constexpr int kKeyTab = 258;
 
 double parse_number(std::string_view name, std::string_view value) {
@@ -34,11 +32,12 @@ void check_range(std::string_view name, double v, double lo, double hi) {
                 ", " + number_text(hi) + "], got " + number_text(v));
 }
 
-int index_of(const char* const* names, int count, std::string_view name, std::string_view value) {
-  for (int i = 0; i < count; ++i)
-    if (value == names[i]) return i;
+// the value of panel value @p name called @p value
+template <DeclaredEnum E>
+E panel_choice(std::string_view name, std::string_view value) {
+  if (const auto found = enum_from_name<E>(value)) return *found;
   std::string list;
-  for (int i = 0; i < count; ++i) list += (i ? ", " : "") + std::string(names[i]);
+  for (const auto& n : names_of<E>()) list += (list.empty() ? "" : ", ") + std::string(n.name);
   throw Error("panel value '" + std::string(name) + "' must be one of " + list + ", got '" +
               std::string(value) + "'");
 }
@@ -155,9 +154,8 @@ void set_teleop_value(TeleopPanel& panel, const TeleopSession& session, std::str
   }
   if (head == "camera") {
     if (tail == "preset") {
-      const int k = index_of(kPresetNames, 5, name, value);
       apply_camera_preset(
-          panel.camera, static_cast<CameraPreset>(k),
+          panel.camera, panel_choice<CameraPreset>(name, value),
           Eigen::Vector3d(panel.camera.lookat[0], panel.camera.lookat[1], panel.camera.lookat[2]));
       return;
     }
@@ -180,12 +178,11 @@ void set_teleop_value(TeleopPanel& panel, const TeleopSession& session, std::str
     return;
   }
   if (name == "mode") {
-    static constexpr const char* kModes[3] = {"kinematic", "position", "torque"};
-    panel.mode = index_of(kModes, 3, name, value);
+    panel.mode = static_cast<int>(panel_choice<SimulationMode>(name, value));
     return;
   }
   if (name == "priority") {
-    panel.priority = index_of(kPriorityNames, 3, name, value);
+    panel.priority = static_cast<int>(panel_choice<TeleopPriority>(name, value));
     return;
   }
   if (name == "hand") {

@@ -246,17 +246,7 @@ struct TeleopSession::Rig {
 
 TeleopSession::TeleopSession(const Robot& robot, const TeleopOptions& options)
     : hands_(options.hands.empty() ? find_teleop_hands(robot) : options.hands), options_(options) {
-  auto positive = [](double v, const char* what) {
-    if (!(v > 0.0) || !std::isfinite(v))
-      throw Error(std::string("teleop: ") + what + " must be positive and finite, got " +
-                  number_text(v));
-  };
-  positive(options.max_joint_speed, "max_joint_speed");
-  positive(options.motor_gain, "motor_gain");
-  positive(options.motor_omega, "motor_omega");
-  positive(options.lift_travel_time, "lift_travel_time");
-  positive(options.gripper_travel_time, "gripper_travel_time");
-  if (options.ik_iterations < 1) throw Error("teleop: ik_iterations must be ≥ 1");
+  check_fields(options);
   const mjModel& m = robot.model();
   std::string lift = options.lift;
   if (!lift.empty() && mj_name2id(&m, mjOBJ_JOINT, lift.c_str()) < 0) {

@@ -112,14 +112,13 @@ void set_panel_value(PanelState& state, const PanelRanges& ranges, std::string_v
   }
   const int index = static_cast<int>(found - names.begin());
   if (name == "mode") {
-    for (int m = 0; m < 3; ++m) {
-      if (value == to_string(static_cast<SimulationMode>(m))) {
-        state.mode = m;
-        return;
-      }
+    if (const auto mode = enum_from_name<SimulationMode>(value)) {
+      state.mode = static_cast<int>(*mode);
+      return;
     }
-    throw Error("viewer panel: mode '" + std::string(value) +
-                "' is not one of kinematic, position, torque");
+    std::string modes;
+    for (const auto& n : enum_names<SimulationMode>()) modes += (modes.empty() ? "" : ", ") + n;
+    throw Error("viewer panel: mode '" + std::string(value) + "' is not one of " + modes);
   }
   double number = 0.0;
   const char* end = value.data() + value.size();

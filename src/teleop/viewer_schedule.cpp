@@ -11,13 +11,6 @@ namespace mjarm {
 
 namespace {
 
-void check_positive(double value, const char* what) {
-  if (!std::isfinite(value) || value <= 0.0) {
-    throw Error(std::string("viewer schedule: ") + what + " must be positive and finite, got " +
-                number_text(value));
-  }
-}
-
 // a due time within this of "now" counts as reached, so that exact multiples of a period
 // computed with rounding error do not slip by one loop iteration
 constexpr double kSlack = 1e-9;
@@ -37,11 +30,11 @@ ViewerSchedule::ViewerSchedule(const ViewerRates& rates, double control_period, 
       last_wall_(wall_start),
       next_render_(wall_start),
       next_input_(wall_start) {
-  check_positive(rates.render_hz, "render_hz");
-  check_positive(rates.input_hz, "input_hz");
-  check_positive(rates.speed, "speed");
-  check_positive(rates.max_catch_up, "max_catch_up");
-  check_positive(control_period, "control period");
+  check_fields(rates);
+  if (!std::isfinite(control_period) || control_period <= 0.0) {
+    throw Error("viewer schedule: the control period must be positive and finite [s], got " +
+                number_text(control_period));
+  }
   if (!std::isfinite(wall_start)) throw Error("viewer schedule: wall_start must be finite");
 }
 

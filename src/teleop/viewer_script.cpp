@@ -84,28 +84,6 @@ class LineParser {
 
 }  // namespace
 
-const char* to_string(ScriptAction action) noexcept {
-  switch (action) {
-    case ScriptAction::wait:
-      return "wait";
-    case ScriptAction::set:
-      return "set";
-    case ScriptAction::slider:
-      return "slider";
-    case ScriptAction::key:
-      return "key";
-    case ScriptAction::drag:
-      return "drag";
-    case ScriptAction::scroll:
-      return "scroll";
-    case ScriptAction::screenshot:
-      return "screenshot";
-    case ScriptAction::quit:
-      return "quit";
-  }
-  return "?";
-}
-
 int viewer_key_code(std::string_view name) noexcept {
   for (const auto& key : kKeys) {
     if (name == key.name) return key.code;
@@ -126,16 +104,18 @@ ViewerScript ViewerScript::parse(std::string_view text, std::string_view source)
     ScriptCommand c;
     c.line = number;
     const std::string& verb = words[0];
-    if (verb == "wait") {
+    const auto action = enum_from_name<ScriptAction>(verb);
+    if (!action) p.fail(unknown_name_message("command", verb, enum_names<ScriptAction>()));
+    c.action = *action;
+    if (c.action == ScriptAction::wait) {
       p.arguments(words, 1, "a frame count: wait N");
       const double n = p.number(words[1], "the frame count");
       if (n < 0 || n != std::floor(n))
         p.fail("the frame count must be a whole number ≥ 0");
       if (n > kMaxWaitFrames)
         p.fail("the frame count " + number_text(n) + " is more than the bound of 10⁷ frames");
-      c.action = ScriptAction::wait;
       c.frames = static_cast<int>(n);
-    } else if (verb == "set") {
+    } else if (c.action == ScriptAction::set) {
       p.arguments(words, 2, "a name and a value: set NAME VALUE");
       const auto& names = panel_value_names();
       if (std::find(names.begin(), names.end(), words[1]) == names.end() &&
@@ -144,10 +124,9 @@ ViewerScript ViewerScript::parse(std::string_view text, std::string_view source)
                "'; values: x y z roll pitch yaw gripper mode (one arm), <hand>.x … <hand>.gripper, "
                "lift, camera.*, priority, hand (several hands)");
       }
-      c.action = ScriptAction::set;
       c.name = words[1];
       c.value = words[2];
-    } else if (verb == "slider") {
+    } else if (c.action == ScriptAction::slider) {
       p.arguments(words, 2, "a slider and a fraction: slider NAME FRACTION");
       const auto& names = panel_value_names();
       const auto found = std::find(names.begin(), names.end(), words[1]);
@@ -158,11 +137,10 @@ ViewerScript ViewerScript::parse(std::string_view text, std::string_view source)
                "'; sliders: x y z roll pitch yaw gripper (one arm), <hand>.x … <hand>.gripper, "
                "lift, camera.azimuth … camera.lookat_z (several hands)");
       }
-      c.action = ScriptAction::slider;
       c.name = words[1];
       c.x = p.number(words[2], "the slider fraction");
       if (c.x < 0.0 || c.x > 1.0) p.fail("the slider fraction must lie in [0, 1]");
-    } else if (verb == "key") {
+    } else if (c.action == ScriptAction::key) {
       p.arguments(words, 1, "a key name: key space|right|backspace|escape|w|shift+w|…");
       const bool shift = words[1].rfind("shift+", 0) == 0;
       const std::string key = shift ? words[1].substr(6) : words[1];
@@ -170,33 +148,24 @@ ViewerScript ViewerScript::parse(std::string_view text, std::string_view source)
       if (code == 0 || (shift && (code < 'A' || code > 'Z'))) {
         p.fail("unknown key '" + words[1] + "'; keys: " + kKeyList);
       }
-      c.action = ScriptAction::key;
       c.name = key;
       if (shift) c.value = "shift";
-    } else if (verb == "drag") {
+    } else if (c.action == ScriptAction::drag) {
       p.arguments(words, 3, "a button and a displacement: drag left|right|middle DX DY");
       if (words[1] != "left" && words[1] != "right" && words[1] != "middle") {
         p.fail(unknown_name_message("mouse button", words[1], {"left", "right", "middle"}));
       }
-      c.action = ScriptAction::drag;
       c.name = words[1];
       c.x = p.number(words[2], "DX");
       c.y = p.number(words[3], "DY");
-    } else if (verb == "scroll") {
+    } else if (c.action == ScriptAction::scroll) {
       p.arguments(words, 1, "an amount: scroll DY");
-      c.action = ScriptAction::scroll;
       c.x = p.number(words[1], "the scroll amount");
-    } else if (verb == "screenshot") {
+    } else if (c.action == ScriptAction::screenshot) {
       p.arguments(words, 1, "a file: screenshot PATH");
-      c.action = ScriptAction::screenshot;
       c.name = words[1];
-    } else if (verb == "quit") {
+    } else if (c.action == ScriptAction::quit) {
       p.arguments(words, 0, "no argument");
-      c.action = ScriptAction::quit;
-    } else {
-      p.fail(unknown_name_message(
-          "command", verb,
-          {"wait", "set", "slider", "key", "drag", "scroll", "screenshot", "quit"}));
     }
     script.commands.push_back(std::move(c));
   }

@@ -123,9 +123,7 @@ ViewerSession::ViewerSession(const Robot& robot, const ViewerSessionOptions& opt
       options_(options),
       filter_(options.reference_limits),
       gripper_ramp_(options.gripper_travel_time) {
-  if (!(options.max_joint_speed > 0.0) || !std::isfinite(options.max_joint_speed)) {
-    throw Error("viewer: max_joint_speed must be positive and finite");
-  }
+  check_fields(options);
   std::string keyframe = options.keyframe;
   if (keyframe.empty()) {
     const auto keys = robot.keyframe_names();

@@ -22,6 +22,7 @@ const Pose& checked_pose(const Pose& X, const char* which) {
 }
 
 SyncedTrapezoid profile_of(const Pose& X0, const Pose& X1, const CartesianLimits& l) {
+  check_fields(l);
   checked_pose(X0, "start");
   checked_pose(X1, "goal");
   const double d = (X1.p - X0.p).norm();

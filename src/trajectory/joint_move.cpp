@@ -13,15 +13,15 @@ namespace mjarm {
 namespace {
 
 constexpr std::array<ProfileKindInfo, 5> kProfileKinds{{
-    {ProfileKind::trapezoid, "trapezoid",
+    {ProfileKind::trapezoid, to_string(ProfileKind::trapezoid),
      "trapezoidal velocity, every axis finishing together (rest to rest)", false, false, false},
-    {ProfileKind::quintic, "quintic",
+    {ProfileKind::quintic, to_string(ProfileKind::quintic),
      "quintic polynomial, any start and target (p, v, a); shortest duration", true, true, false},
-    {ProfileKind::smoothstep, "smoothstep", "x²(3 − 2x) ramp, C¹ (rest to rest)", false, true,
+    {ProfileKind::smoothstep, to_string(ProfileKind::smoothstep), "x²(3 − 2x) ramp, C¹ (rest to rest)", false, true,
      false},
-    {ProfileKind::smootherstep, "smootherstep",
+    {ProfileKind::smootherstep, to_string(ProfileKind::smootherstep),
      "6x⁵ − 15x⁴ + 10x³ ramp, C², minimum jerk (rest to rest)", false, true, false},
-    {ProfileKind::jerk_limited, "jerk-limited",
+    {ProfileKind::jerk_limited, to_string(ProfileKind::jerk_limited),
      "time-optimal under velocity, acceleration and jerk limits (needs --j-max), any start and "
      "target (p, v, a); a start beyond the limits brakes first",
      true, false, true},
@@ -219,8 +219,6 @@ TrajectoryPeaks profile_peaks(const JerkLimitedGenerator& otg) {
 }
 
 }  // namespace
-
-const char* to_string(ProfileKind kind) noexcept { return profile_kind_info(kind).name; }
 
 const std::array<ProfileKindInfo, 5>& profile_kinds() noexcept { return kProfileKinds; }
 

@@ -182,20 +182,6 @@ bool beyond_limit(double value, double limit) { return std::abs(value) > limit; 
 
 }  // namespace
 
-const char* to_string(QuinticDurationStatus status) noexcept {
-  switch (status) {
-    case QuinticDurationStatus::ok:
-      return "ok";
-    case QuinticDurationStatus::start_beyond_limits:
-      return "start beyond limits";
-    case QuinticDurationStatus::end_beyond_limits:
-      return "end beyond limits";
-    case QuinticDurationStatus::infeasible:
-      return "infeasible";
-  }
-  return "unknown";
-}
-
 QuinticDuration shortest_quintic_duration(const QuinticTrajectory::State& start,
                                           const QuinticTrajectory::State& end,
                                           const Eigen::VectorXd& max_velocity,

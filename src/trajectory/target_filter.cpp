@@ -9,27 +9,13 @@
 #include "mjarm/error.hpp"
 #include "mjarm/lie/so3.hpp"
 #include "mjarm/lie/so3_jacobian.hpp"
-#include "mjarm/number_text.hpp"
 
 namespace mjarm {
 
 namespace {
 
 std::vector<JerkLimits> filter_limits(const TargetFilterLimits& l) {
-  const struct {
-    double value;
-    const char* name;
-  } checks[] = {{l.velocity, "velocity [m/s]"},
-                {l.acceleration, "acceleration [m/s²]"},
-                {l.jerk, "jerk [m/s³]"},
-                {l.angular_velocity, "angular velocity [rad/s]"},
-                {l.angular_acceleration, "angular acceleration [rad/s²]"},
-                {l.angular_jerk, "angular jerk [rad/s³]"}};
-  for (const auto& c : checks) {
-    if (!(c.value > 0.0) || !std::isfinite(c.value))
-      throw Error(std::string("target filter: the ") + c.name +
-                  " limit must be positive and finite, got " + number_text(c.value));
-  }
+  check_fields(l);
   const JerkLimits linear{l.velocity, l.acceleration, l.jerk};
   const JerkLimits angular{l.angular_velocity, l.angular_acceleration, l.angular_jerk};
   return {linear, linear, linear, angular, angular, angular};

@@ -435,7 +435,8 @@ TEST(VideoWriter, TheTimeoutMustBeAPositiveFiniteNumber) {
     options.timeout_s = timeout;
     const std::string message = error_of(
         [&] { VideoWriter video(test::scratch() / "timeout.mp4", 64, 48, 30.0, options); });
-    EXPECT_NE(message.find("video timeout must be a finite number > 0 s"), std::string::npos)
+    EXPECT_NE(message.find("timeout.mp4': timeout_s must be positive and finite [s]"),
+              std::string::npos)
         << message;
   }
 }

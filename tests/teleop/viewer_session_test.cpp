@@ -219,7 +219,7 @@ TEST(ViewerSession, BadFrameOrKeyframeIsAnError) {
     ViewerSession session(Robot::bundled("panda"), options);
     FAIL() << "no error";
   } catch (const Error& e) {
-    EXPECT_NE(std::string(e.what()).find("angular jerk"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("angular_jerk"), std::string::npos) << e.what();
   }
   // several sites and none called tcp: the message lists them
   try {

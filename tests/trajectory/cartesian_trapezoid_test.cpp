@@ -104,7 +104,7 @@ TEST(CartesianTrapezoid, BadInput) {
             std::string::npos);
   CartesianLimits limits;
   limits.max_acceleration = 0.0;
-  EXPECT_NE(test::error_of([&] { CartesianTrapezoid(A, A, limits); }).find("max acceleration"),
+  EXPECT_NE(test::error_of([&] { CartesianTrapezoid(A, A, limits); }).find("max_acceleration"),
             std::string::npos);
 }
 

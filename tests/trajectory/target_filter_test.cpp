@@ -191,7 +191,7 @@ TEST(TargetFilter, BadInputIsRefusedOrIgnored) {
   try {
     TargetFilter(with(&TargetFilterLimits::angular_jerk, -2.0));
   } catch (const Error& e) {
-    EXPECT_NE(std::string(e.what()).find("angular jerk"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("angular_jerk"), std::string::npos) << e.what();
   }
   TargetFilter filter;
   const Pose start = Pose::from_rotation_vector({0.3, 0.0, 0.5}, {3.0, 0.0, 0.0});

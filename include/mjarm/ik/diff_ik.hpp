@@ -34,6 +34,7 @@
 #include <string_view>
 #include <vector>
 
+#include "mjarm/fields.hpp"
 #include "mjarm/kinematics/chain_kinematics.hpp"
 #include "mjarm/lie/pose.hpp"
 #include "mjarm/lie/types.hpp"
@@ -53,6 +54,17 @@ struct DiffIkOptions {
   double max_step = std::numeric_limits<double>::infinity();
 };
 
+constexpr auto declared_fields(const DiffIkOptions*) {
+  using S = DiffIkOptions;
+  return declare<S>(
+      "differential IK", field("dt", &S::dt, "s", Range::positive(), "control period"),
+      field("damping", &S::damping, "", Range::positive(), "λ of the regularisation λ‖v‖²"),
+      field("velocity_limit", &S::velocity_limit, "rad/s or m/s", Range::positive().or_infinity(),
+            "joint velocity limits (n entries; empty: none)"),
+      field("max_step", &S::max_step, "rad or m", Range::positive().or_infinity(),
+            "largest |Δq_i| per step; +inf: none"));
+}
+
 /// @throws Error naming the offending option (n = number of chain joints).
 void check(const DiffIkOptions& options, int n);
 
@@ -62,6 +74,13 @@ enum class DiffIkTaskKind {
   position,  ///< a frame's origin (3 rows, world axes)
   posture    ///< a joint configuration (n rows)
 };
+
+constexpr auto declared_names(const DiffIkTaskKind*) {
+  using K = DiffIkTaskKind;
+  return std::array{EnumName{K::pose, "pose", "a frame's full pose (6 rows)"},
+                    EnumName{K::position, "position", "a frame's origin (3 rows)"},
+                    EnumName{K::posture, "posture", "a joint configuration (n rows)"}};
+}
 
 /// The outcome of one `DiffIk::step()`, owned by the solver (valid until the next step).
 struct DiffIkStep {

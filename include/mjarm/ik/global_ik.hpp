@@ -54,9 +54,24 @@ enum class GlobalIkMethods {
   sqp                   ///< iterated differential-IK QP only
 };
 
-/// Human names ("speed", ..., "alternate", ...).
-const char* to_string(GlobalIkMode mode) noexcept;
-const char* to_string(GlobalIkMethods methods) noexcept;
+constexpr auto declared_names(const GlobalIkMode*) {
+  using M = GlobalIkMode;
+  return std::array{EnumName{M::speed, "speed", "the first solution found"},
+                    EnumName{M::distance, "distance", "the solution closest to the seed"},
+                    EnumName{M::manipulability, "manipulability",
+                             "the solution with the largest √det(J Jᵀ)"}};
+}
+
+constexpr auto declared_names(const GlobalIkMethods*) {
+  using M = GlobalIkMethods;
+  return std::array{
+      EnumName{M::alternate, "alternate", "Levenberg–Marquardt and SQP in turn"},
+      EnumName{M::levenberg_marquardt, "levenberg_marquardt", "Levenberg–Marquardt only"},
+      EnumName{M::sqp, "sqp", "iterated differential-IK QP only"}};
+}
+
+/// The longest stall window of `GlobalIk` (`GlobalIkOptions::stall_iterations` ≤ this).
+inline constexpr int kGlobalIkMaxStallWindow = 64;
 
 /// Options of `GlobalIk`.
 struct GlobalIkOptions {
@@ -82,6 +97,27 @@ struct GlobalIkOptions {
   double damping = 1e-9;
   double max_step = 1.0;  ///< largest joint change per iteration [rad or m] (> 0)
 };
+
+/// The fields of `GlobalIkOptions` but the timeout and the tolerance (checked by hand).
+constexpr auto declared_fields(const GlobalIkOptions*) {
+  using S = GlobalIkOptions;
+  return declare<S>(
+      "global IK", field("mode", &S::mode, "which solution to return"),
+      field("methods", &S::methods, "local methods the restarts use"),
+      field("max_restarts", &S::max_restarts, "", Range::non_negative(),
+            "restarts after the first attempt"),
+      field("seed", &S::seed, "", Range::non_negative(), "seed of the restart generator"),
+      field("max_attempt_iterations", &S::max_attempt_iterations, "", Range::at_least(1),
+            "iterations per attempt before a restart"),
+      field("stall_iterations", &S::stall_iterations, "",
+            Range::closed(1, kGlobalIkMaxStallWindow), "window of the stall test"),
+      field("stall_ratio", &S::stall_ratio, "", Range{0.0, 1.0, true, true, false},
+            "restart when ½‖e‖² has not dropped below this × its value a window ago"),
+      field("damping", &S::damping, "m², rad²", Range::positive(),
+            "λ₀, the floor of the adaptive damping"),
+      field("max_step", &S::max_step, "rad or m", Range::positive(),
+            "largest joint change per iteration"));
+}
 
 /// @throws Error naming the offending option.
 void check(const GlobalIkOptions& options);

@@ -33,8 +33,11 @@ enum class IkSeedMode {
   random      ///< a uniform random configuration inside the limits, independent of the target
 };
 
-/// Human name ("mid_range", "random").
-const char* to_string(IkSeedMode mode) noexcept;
+constexpr auto declared_names(const IkSeedMode*) {
+  using M = IkSeedMode;
+  return std::array{EnumName{M::mid_range, "mid_range", "the middle of every joint range"},
+                    EnumName{M::random, "random", "a uniform random configuration"}};
+}
 
 /// Which clock times the solves and enforces the budget.
 enum class IkBenchmarkClock {
@@ -50,8 +53,11 @@ enum class IkBenchmarkClock {
   thread_cpu
 };
 
-/// Human name ("wall", "thread_cpu").
-const char* to_string(IkBenchmarkClock clock) noexcept;
+constexpr auto declared_names(const IkBenchmarkClock*) {
+  using C = IkBenchmarkClock;
+  return std::array{EnumName{C::wall, "wall", "the steady clock"},
+                    EnumName{C::thread_cpu, "thread_cpu", "the calling thread's CPU time"}};
+}
 
 /// A solver under test: a name for the report and a function (X_WT, q_seed) → IkResult.
 struct IkBenchmarkSolver {
@@ -81,6 +87,18 @@ struct IkBenchmarkOptions {
   /// (`IkBenchmarkResult::interrupted`).
   std::function<bool()> stop;
 };
+
+/// The plain fields of `IkBenchmarkOptions` (the timeout and the tolerance are checked by hand).
+constexpr auto declared_fields(const IkBenchmarkOptions*) {
+  using S = IkBenchmarkOptions;
+  return declare<S>(
+      "IK benchmark", field("samples", &S::samples, "", Range::at_least(1), "N"),
+      field("seed", &S::seed, "", Range::non_negative(), "seeds the sample generator"),
+      field("seed_mode", &S::seed_mode, "where solves start"),
+      field("clock", &S::clock, "how solves are timed"),
+      field("max_restarts", &S::max_restarts, "", Range::non_negative(),
+            "restarts the built-in global solver may make per solve"));
+}
 
 /// Figures of one benchmark run.
 struct IkBenchmarkResult {

@@ -4,6 +4,8 @@
 
 #include <Eigen/Core>
 
+#include "mjarm/fields.hpp"
+
 namespace mjarm {
 
 /// How an IK solve ended.
@@ -14,15 +16,12 @@ enum class IkStatus {
   invalid_input   ///< a NaN appeared mid-solve (guarded): `q` is the last finite iterate
 };
 
-/// Human name of a status ("converged", ...).
-constexpr const char* to_string(IkStatus status) noexcept {
-  switch (status) {
-    case IkStatus::converged: return "converged";
-    case IkStatus::not_converged: return "not_converged";
-    case IkStatus::timeout: return "timeout";
-    case IkStatus::invalid_input: return "invalid_input";
-  }
-  return "unknown";
+constexpr auto declared_names(const IkStatus*) {
+  using S = IkStatus;
+  return std::array{EnumName{S::converged, "converged", "every target within tolerance"},
+                    EnumName{S::not_converged, "not_converged", "iteration limit or stall"},
+                    EnumName{S::timeout, "timeout", "the time budget ran out"},
+                    EnumName{S::invalid_input, "invalid_input", "a NaN appeared mid-solve"}};
 }
 
 /// The outcome of an IK solve: always the best configuration found, with its errors.

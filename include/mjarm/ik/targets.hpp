@@ -14,6 +14,7 @@
 #include <string>
 #include <string_view>
 
+#include "mjarm/fields.hpp"
 #include "mjarm/kinematics/chain_kinematics.hpp"
 #include "mjarm/lie/pose.hpp"
 
@@ -24,6 +25,12 @@ enum class TargetKind {
   position,  ///< the frame origin only (3 rows)
   pose       ///< origin and orientation (6 rows)
 };
+
+constexpr auto declared_names(const TargetKind*) {
+  using K = TargetKind;
+  return std::array{EnumName{K::position, "position", "the frame origin only (3 rows)"},
+                    EnumName{K::pose, "pose", "origin and orientation (6 rows)"}};
+}
 
 /// Number of task rows of a target kind: 3 (position) or 6 (pose).
 constexpr int task_rows(TargetKind kind) noexcept { return kind == TargetKind::position ? 3 : 6; }

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "mjarm/dynamics/chain_dynamics.hpp"
+#include "mjarm/fields.hpp"
 #include "mjarm/kinematics/manipulability.hpp"
 #include "mjarm/model/chain.hpp"
 #include "mjarm/planning/joint_limits.hpp"
@@ -28,8 +29,15 @@ enum class CheckFailure {
   torque         ///< τ = M·q̈ + h beyond a joint's torque limit
 };
 
-/// "none", "invalid", "joint_limits", "collision", "singular", "torque".
-const char* to_string(CheckFailure failure) noexcept;
+constexpr auto declared_names(const CheckFailure*) {
+  using F = CheckFailure;
+  return std::array{EnumName{F::none, "none", "every check passed"},
+                    EnumName{F::invalid, "invalid", "q, q̇ or q̈ holds NaN/inf"},
+                    EnumName{F::joint_limits, "joint_limits", "a joint outside its range"},
+                    EnumName{F::collision, "collision", "a moving geom touches another geom"},
+                    EnumName{F::singular, "singular", "σmin below the threshold"},
+                    EnumName{F::torque, "torque", "a joint's torque beyond its limit"}};
+}
 
 /// Thresholds of the checks.
 struct CheckOptions {
@@ -42,6 +50,18 @@ struct CheckOptions {
   /// Joints may exceed their range by this much [rad or m] (≥ 0; round-off of IK clamping).
   double limit_tolerance = 1e-9;
 };
+
+constexpr auto declared_fields(const CheckOptions*) {
+  using S = CheckOptions;
+  return declare<S>(
+      "configuration check",
+      field("min_singular_value", &S::min_singular_value, "", Range::non_negative(),
+            "smallest σmin of J_WE still accepted"),
+      field("collision_margin", &S::collision_margin, "m", Range::non_negative(),
+            "a contact counts below this signed distance"),
+      field("limit_tolerance", &S::limit_tolerance, "rad or m", Range::non_negative(),
+            "how far joints may exceed their range"));
+}
 
 /// @throws Error naming the option that is negative or not finite.
 void check(const CheckOptions& options);

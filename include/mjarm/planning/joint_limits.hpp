@@ -6,6 +6,7 @@
 #include <Eigen/Core>
 #include <string>
 
+#include "mjarm/fields.hpp"
 #include "mjarm/model/chain.hpp"
 
 namespace mjarm {
@@ -29,6 +30,18 @@ struct ModelLimitOptions {
   /// Acceleration used for a joint without a torque limit [rad/s² or m/s²] (> 0).
   double acceleration = 5.0;
 };
+
+constexpr auto declared_fields(const ModelLimitOptions*) {
+  using S = ModelLimitOptions;
+  return declare<S>(
+      "model limits",
+      field("velocity", &S::velocity, "rad/s or m/s", Range::positive(),
+            "velocity limit of every joint (MJCF has none)"),
+      field("torque_fraction", &S::torque_fraction, "", Range::open_closed(0.0, 1.0),
+            "share of the torque limit that sets the acceleration limit"),
+      field("acceleration", &S::acceleration, "rad/s² or m/s²", Range::positive(),
+            "acceleration limit of a joint without a torque limit"));
+}
 
 /// Limits read from the model at chain configuration @p q (n): torque limits from the actuator
 /// driving each joint (|gear|·min(|forcerange|) when force-limited, else |gear|·min(|ctrlrange|)

@@ -25,6 +25,7 @@
 #include <string>
 #include <vector>
 
+#include "mjarm/fields.hpp"
 #include "mjarm/lie/pose.hpp"
 #include "mjarm/model/chain.hpp"
 #include "mjarm/trajectory/quintic.hpp"
@@ -77,6 +78,19 @@ struct ProfileBenchmarkOptions {
   std::function<bool()> stop;
 };
 
+/// The numeric fields of `ProfileBenchmarkOptions`; calls ≥ block is checked by hand.
+constexpr auto declared_fields(const ProfileBenchmarkOptions*) {
+  using S = ProfileBenchmarkOptions;
+  return declare<S>(
+      "profile benchmark",
+      field("calls", &S::calls, "", Range::at_least(1), "timed calls per evaluation case"),
+      field("block", &S::block, "", Range::at_least(1), "calls per clock read"),
+      field("recalculations", &S::recalculations, "", Range::at_least(16),
+            "timed calls of the recalculating target-filter case"),
+      field("thread_cpu_clock", &S::thread_cpu_clock,
+            "the thread's CPU clock instead of the steady wall clock"));
+}
+
 /// Figures of one case.
 struct ProfileBenchmarkCase {
   std::string name;                    ///< "trapezoid", "quintic, 7 joints", …
@@ -118,6 +132,14 @@ struct PlanBenchmarkOptions {
   /// Asked after each plan whether to stop; may be empty.
   std::function<bool()> stop;
 };
+
+constexpr auto declared_fields(const PlanBenchmarkOptions*) {
+  using S = PlanBenchmarkOptions;
+  return declare<S>("plan benchmark",
+                    field("plans", &S::plans, "", Range::at_least(1), "timed plans"),
+                    field("thread_cpu_clock", &S::thread_cpu_clock,
+                          "the thread's CPU clock instead of the steady wall clock"));
+}
 
 /// Figures of the planning benchmark.
 struct PlanBenchmarkResult {

@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "mjarm/fields.hpp"
 #include "mjarm/ik/global_ik.hpp"
 #include "mjarm/ik/pose_ik.hpp"
 #include "mjarm/ik/result.hpp"
@@ -34,9 +35,18 @@ enum class PlanStatus {
   blocked  ///< the waypoint passes, but no branch or detour gets there with every check passing
 };
 
-/// "ok", "start_failed", "unreachable", "joint_limits", "collision", "singular", "torque",
-/// "blocked".
-const char* to_string(PlanStatus status) noexcept;
+constexpr auto declared_names(const PlanStatus*) {
+  using S = PlanStatus;
+  return std::array{
+      EnumName{S::ok, "ok", "every waypoint and every sample passed"},
+      EnumName{S::start_failed, "start_failed", "the start configuration fails a check"},
+      EnumName{S::unreachable, "unreachable", "no IK branch reaches the waypoint's pose"},
+      EnumName{S::joint_limits, "joint_limits", "every IK solution is outside the joint ranges"},
+      EnumName{S::collision, "collision", "every IK solution is in collision"},
+      EnumName{S::singular, "singular", "every IK solution is too close to a singularity"},
+      EnumName{S::torque, "torque", "every IK solution needs more than the torque limits"},
+      EnumName{S::blocked, "blocked", "no branch or detour gets there with every check passing"}};
+}
 
 /// Every setting of `WaypointPlanner`.
 struct PlanOptions {
@@ -69,6 +79,37 @@ struct PlanOptions {
   /// before the segment that would.
   std::int64_t max_samples = 1000000;
 };
+
+/// The plain fields of `PlanOptions`; `limits` (one entry per joint), `model_limits`, `checks`
+/// and `ik` are checked on their own.
+constexpr auto declared_fields(const PlanOptions*) {
+  using S = PlanOptions;
+  return declare<S>(
+      "waypoint planner",
+      field("sample_period", &S::sample_period, "s", Range::positive(),
+            "largest time between checked samples"),
+      field("sample_step", &S::sample_step, "rad or m", Range::positive(),
+            "largest joint motion between checked samples"),
+      field("min_segment_duration", &S::min_segment_duration, "s", Range::positive(),
+            "shortest segment"),
+      field("ik_branches", &S::ik_branches, "", Range::non_negative(),
+            "global-IK solves for other branches"),
+      field("branch_spread", &S::branch_spread, "rad", Range::positive(),
+            "spread of the branch seeds around the previous configuration"),
+      field("detour_samples", &S::detour_samples, "", Range::non_negative(),
+            "intermediate configurations tried for a detour"),
+      field("detour_radius", &S::detour_radius, "rad", Range::positive(),
+            "largest offset of a detour from the straight path"),
+      field("stretch_attempts", &S::stretch_attempts, "", Range::non_negative(),
+            "how often a torque failure stretches a segment"),
+      field("stretch_factor", &S::stretch_factor, "", Range{1.0, Range::inf, true, false, false},
+            "how much each stretch lengthens the segment"),
+      field("seed", &S::seed, "", Range::non_negative(), "seed of branch seeds and detours"),
+      field("max_segment_samples", &S::max_segment_samples, "", Range::at_least(1),
+            "samples one segment may have"),
+      field("max_samples", &S::max_samples, "", Range::at_least(1),
+            "states one plan may check in all"));
+}
 
 /// @throws Error naming the option out of range.
 void check(const PlanOptions& options);

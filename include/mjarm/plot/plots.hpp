@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "mjarm/fields.hpp"
 #include "mjarm/plot/recording.hpp"
 
 namespace mjarm::plot {
@@ -17,6 +18,16 @@ struct PlotOptions {
   int height = 720;         ///< [pixels], 150 … 16384
   double timeout_s = 60.0;  ///< how long gnuplot may take for all figures [s]
 };
+
+constexpr auto declared_fields(const PlotOptions*) {
+  using S = PlotOptions;
+  return declare<S>(
+      "plot", field("width", &S::width, "pixels", Range::closed(200, 16384), "image width"),
+      field("height", &S::height, "pixels", Range::closed(150, 16384),
+            "image height (a single figure: at least 300)"),
+      field("timeout_s", &S::timeout_s, "s", Range::positive(),
+            "how long gnuplot may take for all figures"));
+}
 
 /// One figure written, and what it shows.
 struct PlotInfo {

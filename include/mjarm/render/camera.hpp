@@ -17,6 +17,7 @@
 #include <Eigen/Geometry>
 #include <string>
 
+#include "mjarm/fields.hpp"
 #include "mjarm/model/robot.hpp"
 
 namespace mjarm {
@@ -28,8 +29,12 @@ enum class CameraKind {
   follow   ///< like `free`, with the look-at point on a site or body, re-read every frame
 };
 
-/// Human name of a camera kind ("model", "free", "follow").
-const char* to_string(CameraKind kind) noexcept;
+constexpr auto declared_names(const CameraKind*) {
+  using K = CameraKind;
+  return std::array{EnumName{K::model, "model", "a camera of the model, by name"},
+                    EnumName{K::free, "free", "look-at point, distance, azimuth and elevation"},
+                    EnumName{K::follow, "follow", "like free, looking at a site or body"}};
+}
 
 /// A camera request. Build one with the factories; fields not used by a kind are ignored.
 struct CameraSpec {
@@ -53,6 +58,19 @@ struct CameraSpec {
   /// One line for logs and `--json`: "free lookat [0, 0, 0.5] distance 2 azimuth 135 …".
   std::string describe() const;
 };
+
+/// Checked where a view is made of it (`free_camera_view`), with the camera's own wording.
+constexpr auto declared_fields(const CameraSpec*) {
+  using S = CameraSpec;
+  return declare<S>(
+      "camera", field("kind", &S::kind, "how the camera is placed"),
+      field("name", &S::name, "model: camera name; follow: site or body name"),
+      field("lookat", &S::lookat, "m", Range::finite(), "free: point looked at, in W"),
+      field("distance", &S::distance, "m", Range::positive(), "camera to look-at point"),
+      field("azimuth", &S::azimuth, "deg", Range::finite(), "direction about the vertical"),
+      field("elevation", &S::elevation, "deg", Range{-90.0, 90.0, true, true, false},
+            "negative looks down"));
+}
 
 /// A free camera that frames everything but the world body at state @p data: it looks at the
 /// centre of the bounding box of those bodies' geoms (planes excluded) from @p azimuth and

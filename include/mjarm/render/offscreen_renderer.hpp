@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "mjarm/fields.hpp"
 #include "mjarm/model/robot.hpp"
 #include "mjarm/render/camera.hpp"
 #include "mjarm/render/image.hpp"
@@ -35,6 +36,14 @@ struct RenderOptions {
   /// Balls added to the scene after the model's geoms (decoration: they cast no shadow).
   std::vector<RenderMarker> markers;
 };
+
+/// The switches of `RenderOptions`; the group masks and markers are set by hand.
+constexpr auto declared_fields(const RenderOptions*) {
+  using S = RenderOptions;
+  return declare<S>("render", field("shadows", &S::shadows, "shadows cast by the model's lights"),
+                    field("reflections", &S::reflections, "reflective materials"),
+                    field("skybox", &S::skybox, "the model's skybox texture, if any"));
+}
 
 /// Renders a `Robot`'s scene at a given `mjData` state into RGB images of a fixed size.
 ///

@@ -8,6 +8,7 @@
 #include <memory>
 #include <string>
 
+#include "mjarm/fields.hpp"
 #include "mjarm/render/image.hpp"
 
 namespace mjarm {
@@ -27,6 +28,17 @@ struct VideoOptions {
   /// Ctrl-C or SIGTERM (see mjarm/interrupt.hpp) ffmpeg gets at most 3 s more instead.
   double timeout_s = 60.0;
 };
+
+constexpr auto declared_fields(const VideoOptions*) {
+  using S = VideoOptions;
+  return declare<S>(
+      "video", field("ffmpeg", &S::ffmpeg, "the ffmpeg executable: a name on PATH or a path"),
+      field("codec", &S::codec, "ffmpeg's video encoder (libx264, mpeg4)"),
+      field("quality", &S::quality, "", Range::finite(),
+            "libx264's constant rate factor (0 … 51), else -q:v (1 … 31; 20 is mapped to 4)"),
+      field("timeout_s", &S::timeout_s, "s", Range::positive(),
+            "how long ffmpeg may take to accept a frame or to finalize the file"));
+}
 
 /// Writes frames of one size to an MP4 file (H.264 or MPEG-4, yuv420p, so width and height must
 /// be even). Frames are timed by their index: frame k is shown at k / fps seconds.

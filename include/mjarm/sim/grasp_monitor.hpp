@@ -6,6 +6,7 @@
 #include <Eigen/Core>
 #include <string_view>
 
+#include "mjarm/fields.hpp"
 #include "mjarm/lie/pose.hpp"
 #include "mjarm/sim/contact_query.hpp"
 
@@ -22,6 +23,15 @@ struct GraspMonitorOptions {
   double drop_distance = 0.015;
 };
 
+constexpr auto declared_fields(const GraspMonitorOptions*) {
+  using S = GraspMonitorOptions;
+  return declare<S>("grasp monitor",
+                    field("slip_distance", &S::slip_distance, "m", Range::positive(),
+                          "slip relative to the gripper that counts as slipped"),
+                    field("drop_distance", &S::drop_distance, "m", Range::positive(),
+                          "slip that counts as dropped; larger than slip_distance"));
+}
+
 /// What happened at one `GraspMonitor::update`.
 enum class GraspEvent {
   none,     ///< nothing new
@@ -29,8 +39,12 @@ enum class GraspEvent {
   dropped   ///< ... more than drop_distance (first time): the grasp is lost
 };
 
-/// Human name ("none", "slipped", "dropped").
-const char* to_string(GraspEvent event) noexcept;
+constexpr auto declared_names(const GraspEvent*) {
+  using E = GraspEvent;
+  return std::array{EnumName{E::none, "none", "nothing new"},
+                    EnumName{E::slipped, "slipped", "moved more than slip_distance (first time)"},
+                    EnumName{E::dropped, "dropped", "moved more than drop_distance (first time)"}};
+}
 
 /// The grasp as the last `update` saw it.
 struct GraspReading {

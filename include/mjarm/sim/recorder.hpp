@@ -52,6 +52,7 @@
 #include <vector>
 
 #include "mjarm/control/reference.hpp"
+#include "mjarm/fields.hpp"
 #include "mjarm/model/chain.hpp"
 #include "mjarm/sim/run_result.hpp"
 
@@ -78,6 +79,16 @@ struct RecorderOptions {
   /// The seed the run was drawn from, for summary.json's `invocation` (none: null).
   std::optional<std::uint64_t> seed;
 };
+
+constexpr auto declared_fields(const RecorderOptions*) {
+  using S = RecorderOptions;
+  return declare<S>(
+      "recorder",
+      field("state_decimation", &S::state_decimation, "", Range::at_least(1),
+            "one state row every N physics steps"),
+      field("flush_rows", &S::flush_rows, "", Range::at_least(1), "flush each CSV file every N rows"),
+      field("frame", &S::frame, "frame logged as the end effector; empty: the first controller's"));
+}
 
 /// Records the run of one `Simulation` into a directory. Build it after the controllers were
 /// added to the simulation (their commands and internals are columns), pass it to

@@ -11,6 +11,7 @@
 #include <utility>
 
 #include "mjarm/control/reference.hpp"
+#include "mjarm/fields.hpp"
 #include "mjarm/sim/step_fault.hpp"
 
 namespace mjarm {
@@ -32,9 +33,23 @@ enum class RunStatus {
   interrupted        ///< stopped because SIGINT/SIGTERM arrived (see interrupt.hpp)
 };
 
-/// Human names ("ok", "duration_reached", ...). The run names are the recorder's status strings.
-const char* to_string(TickStatus status) noexcept;
-const char* to_string(RunStatus status) noexcept;
+constexpr auto declared_names(const TickStatus*) {
+  using S = TickStatus;
+  return std::array{EnumName{S::ok, "ok", "the period was simulated"},
+                    EnumName{S::finished, "finished", "the reference source reported the task complete"},
+                    EnumName{S::diverged, "diverged", "a physics step diverged"},
+                    EnumName{S::bad_command, "bad_command", "a controller wrote NaN/inf"}};
+}
+
+/// The run names are the recorder's status strings.
+constexpr auto declared_names(const RunStatus*) {
+  using S = RunStatus;
+  return std::array{EnumName{S::duration_reached, "duration_reached", "simulated the requested duration"},
+                    EnumName{S::finished, "finished", "the reference source reported the task complete"},
+                    EnumName{S::diverged, "diverged", "stopped on a diverging step"},
+                    EnumName{S::bad_command, "bad_command", "stopped because a controller wrote NaN/inf"},
+                    EnumName{S::interrupted, "interrupted", "stopped because SIGINT/SIGTERM arrived"}};
+}
 
 /// One control tick. Plain data (no allocation).
 struct TickResult {

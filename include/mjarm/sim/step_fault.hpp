@@ -7,6 +7,8 @@
 #include <array>
 #include <string>
 
+#include "mjarm/fields.hpp"
+
 namespace mjarm {
 
 /// Why a simulation stopped stepping.
@@ -20,8 +22,16 @@ enum class FaultCause {
   bad_command          ///< a controller wrote NaN/inf (or a command of the wrong size/kind)
 };
 
-/// Human name ("nonfinite_qacc", ...).
-const char* to_string(FaultCause cause) noexcept;
+constexpr auto declared_names(const FaultCause*) {
+  using C = FaultCause;
+  return std::array{EnumName{C::none, "none", "no fault"},
+                    EnumName{C::mujoco_warning, "mujoco_warning", "MuJoCo flagged a fatal warning"},
+                    EnumName{C::nonfinite_qpos, "nonfinite_qpos", "NaN/inf in qpos after a step"},
+                    EnumName{C::nonfinite_qvel, "nonfinite_qvel", "NaN/inf in qvel after a step"},
+                    EnumName{C::nonfinite_qacc, "nonfinite_qacc", "NaN/inf in qacc"},
+                    EnumName{C::acceleration_bound, "acceleration_bound", "|qacc| above the bound"},
+                    EnumName{C::bad_command, "bad_command", "a controller wrote NaN/inf"}};
+}
 
 /// A fault and where it happened. Plain data: filled in the step loop without allocating.
 struct StepFault {

@@ -6,6 +6,7 @@
 #include <string>
 #include <string_view>
 
+#include "mjarm/fields.hpp"
 #include "mjarm/lie/pose.hpp"
 
 namespace mjarm {
@@ -20,6 +21,15 @@ struct WeldGraspOptions {
   double time_constant = 0.002;
   double damping_ratio = 1.0;
 };
+
+constexpr auto declared_fields(const WeldGraspOptions*) {
+  using S = WeldGraspOptions;
+  return declare<S>("weld grasp",
+                    field("time_constant", &S::time_constant, "s", Range::positive(),
+                          "solref time constant of the weld"),
+                    field("damping_ratio", &S::damping_ratio, "", Range::positive(),
+                          "solref damping ratio of the weld"));
+}
 
 /// A weld grasp on one `Simulation`: body1 (the gripper) holds body2 (the object).
 ///

@@ -10,6 +10,7 @@
 #include <functional>
 #include <string>
 
+#include "mjarm/fields.hpp"
 #include "mjarm/teleop/session_log.hpp"
 
 namespace mjarm {
@@ -28,6 +29,26 @@ struct BimanualLiftOptions {
   double hold_time = 1.0;         ///< [s] holding at the top
   double tolerance = 0.01;        ///< the bar must rise lift_height − this, and not sink by more
 };
+
+constexpr auto declared_fields(const BimanualLiftOptions*) {
+  using S = BimanualLiftOptions;
+  return declare<S>(
+      "bimanual lift", field("object", &S::object, "free body to lift"),
+      field("grasp_offset", &S::grasp_offset, "m", Range::finite(),
+            "grasp points at ±this along the bar's long axis"),
+      field("grasp_height", &S::grasp_height, "m", Range::finite(),
+            "tool frames this far above the bar's centre"),
+      field("approach_height", &S::approach_height, "m", Range::non_negative(),
+            "pre-grasp height above the grasp"),
+      field("lift_height", &S::lift_height, "m", Range::non_negative(), "how high to lift the bar"),
+      field("approach_time", &S::approach_time, "s", Range::non_negative(), "to the pre-grasp poses"),
+      field("descend_time", &S::descend_time, "s", Range::non_negative(), "down to the grasp"),
+      field("close_time", &S::close_time, "s", Range::non_negative(), "closing the fingers"),
+      field("lift_time", &S::lift_time, "s", Range::non_negative(), "lifting"),
+      field("hold_time", &S::hold_time, "s", Range::non_negative(), "holding at the top"),
+      field("tolerance", &S::tolerance, "m", Range::non_negative(),
+            "the bar must rise lift_height − this, and not sink by more"));
+}
 
 /// What the scripted lift did.
 struct BimanualLiftResult {

@@ -12,6 +12,7 @@
 #include <string_view>
 #include <vector>
 
+#include "mjarm/fields.hpp"
 #include "mjarm/teleop/teleop_session.hpp"
 
 namespace mjarm {
@@ -24,6 +25,13 @@ struct HandPanel {
 
 /// Camera presets.
 enum class CameraPreset { front = 0, left, right, top, overview };
+
+constexpr auto declared_names(const CameraPreset*) {
+  using P = CameraPreset;
+  return std::array{EnumName{P::front, "front"}, EnumName{P::left, "left"},
+                    EnumName{P::right, "right"}, EnumName{P::top, "top"},
+                    EnumName{P::overview, "overview"}};
+}
 
 /// The camera section: a free camera (render/camera.hpp conventions).
 struct CameraPanel {
@@ -40,6 +48,15 @@ enum class TeleopPriority {
   right_over_left = 1,  ///< right pose first, left position second
   left_over_right = 2   ///< left pose first, right position second
 };
+
+constexpr auto declared_names(const TeleopPriority*) {
+  using P = TeleopPriority;
+  return std::array{EnumName{P::equal, "equal", "every hand a pose at priority 0"},
+                    EnumName{P::right_over_left, "right-over-left",
+                             "right pose first, left position second"},
+                    EnumName{P::left_over_right, "left-over-right",
+                             "left pose first, right position second"}};
+}
 
 /// What the panel holds.
 struct TeleopPanel {

@@ -33,6 +33,7 @@
 #include <string_view>
 #include <vector>
 
+#include "mjarm/fields.hpp"
 #include "mjarm/ik/result.hpp"
 #include "mjarm/ik/targets.hpp"
 #include "mjarm/lie/pose.hpp"
@@ -99,6 +100,33 @@ struct TeleopOptions {
   double motor_omega = 30.0;    ///< motor mode: computed-torque bandwidth [rad/s] (> 0)
   std::vector<HandTask> tasks;  ///< per hand (empty: every hand a pose at priority 0)
 };
+
+/// The plain fields of `TeleopOptions` (the hands and their tasks are checked against the model).
+constexpr auto declared_fields(const TeleopOptions*) {
+  using S = TeleopOptions;
+  return declare<S>(
+      "teleop", field("lift", &S::lift, "the lift joint (\"\": none)"),
+      field("lift_in_ik", &S::lift_in_ik, "the lift is an IK joint shared by the hands"),
+      field("keyframe", &S::keyframe, "initial keyframe (\"\": home, else qpos0)"),
+      field("mode", &S::mode, "initial mode"),
+      field("kinematic_period", &S::kinematic_period, "s", Range::non_negative(),
+            "kinematic mode: simulated time per tick, rounded to whole timesteps (≥ 1)"),
+      field("control_period", &S::control_period, "s", Range::non_negative(),
+            "position and motor modes: control period; 0: one physics step"),
+      field("reference_limits", &S::reference_limits, "limits of each hand's reference"),
+      field("gripper_travel_time", &S::gripper_travel_time, "s", Range::positive(),
+            "full gripper opening or closing"),
+      field("lift_travel_time", &S::lift_travel_time, "s", Range::positive(),
+            "the lift's full stroke"),
+      field("max_joint_speed", &S::max_joint_speed, "rad/s", Range::positive(),
+            "kinematic/position: largest IK joint speed"),
+      field("ik_iterations", &S::ik_iterations, "", Range::at_least(1),
+            "kinematic/position: IK iterations per tick"),
+      field("motor_gain", &S::motor_gain, "1/s", Range::positive(),
+            "motor mode: fraction of the pose error removed per second"),
+      field("motor_omega", &S::motor_omega, "rad/s", Range::positive(),
+            "motor mode: computed-torque bandwidth"));
+}
 
 /// What the overlays show about one hand.
 struct HandStats {

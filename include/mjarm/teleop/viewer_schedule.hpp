@@ -10,6 +10,8 @@
 
 #include <cstdint>
 
+#include "mjarm/fields.hpp"
+
 namespace mjarm {
 
 /// Rates of the viewer loop.
@@ -22,6 +24,17 @@ struct ViewerRates {
   /// then runs slower than real time, at the rate it can, while frames and input keep coming.
   double max_catch_up = 0.05;
 };
+
+constexpr auto declared_fields(const ViewerRates*) {
+  using S = ViewerRates;
+  return declare<S>(
+      "viewer schedule",
+      field("render_hz", &S::render_hz, "Hz", Range::positive(), "frames drawn per wall second"),
+      field("input_hz", &S::input_hz, "Hz", Range::positive(), "input polls per wall second"),
+      field("speed", &S::speed, "", Range::positive(), "simulated seconds per wall second"),
+      field("max_catch_up", &S::max_catch_up, "s", Range::positive(),
+            "largest simulated time one update may ask for"));
+}
 
 /// What the loop should do at one `ViewerSchedule::update`.
 struct ScheduleStep {

@@ -29,13 +29,25 @@
 #include <string_view>
 #include <vector>
 
+#include "mjarm/fields.hpp"
+
 namespace mjarm {
 
 /// What a script line asks for.
 enum class ScriptAction { wait, set, slider, key, drag, scroll, screenshot, quit };
 
-/// Human name of an action (the script keyword).
-const char* to_string(ScriptAction action) noexcept;
+/// The names are the script keywords.
+constexpr auto declared_names(const ScriptAction*) {
+  using A = ScriptAction;
+  return std::array{EnumName{A::wait, "wait", "wait N frames"},
+                    EnumName{A::set, "set", "set a panel value"},
+                    EnumName{A::slider, "slider", "move a slider to a fraction"},
+                    EnumName{A::key, "key", "press a key"},
+                    EnumName{A::drag, "drag", "drag the mouse"},
+                    EnumName{A::scroll, "scroll", "scroll the mouse wheel"},
+                    EnumName{A::screenshot, "screenshot", "save the frame as a PNG"},
+                    EnumName{A::quit, "quit", "end the session"}};
+}
 
 /// One parsed script line.
 struct ScriptCommand {

@@ -21,6 +21,7 @@
 #include <memory>
 #include <string>
 
+#include "mjarm/fields.hpp"
 #include "mjarm/ik/result.hpp"
 #include "mjarm/lie/pose.hpp"
 #include "mjarm/model/chain.hpp"
@@ -56,6 +57,28 @@ struct ViewerSessionOptions {
   int ik_iterations = 10;            ///< IK iterations per tick, warm-started (≥ 1)
   std::size_t range_samples = 2000;  ///< workspace samples for the slider ranges (> 0)
 };
+
+constexpr auto declared_fields(const ViewerSessionOptions*) {
+  using S = ViewerSessionOptions;
+  return declare<S>(
+      "viewer", field("site", &S::site, "end-effector frame (\"\": tcp, else the only site)"),
+      field("keyframe", &S::keyframe, "initial keyframe (\"\": home, else qpos0)"),
+      field("mode", &S::mode, "initial mode"),
+      field("kinematic_period", &S::kinematic_period, "s", Range::non_negative(),
+            "kinematic mode: simulated time per tick, rounded to whole timesteps (≥ 1)"),
+      field("control_period", &S::control_period, "s", Range::non_negative(),
+            "position and torque modes: control period; 0: one physics step"),
+      field("reference_limits", &S::reference_limits,
+            "limits of the reference that follows the panel target"),
+      field("gripper_travel_time", &S::gripper_travel_time, "s", Range::positive(),
+            "full gripper opening or closing"),
+      field("max_joint_speed", &S::max_joint_speed, "rad/s or m/s", Range::positive(),
+            "kinematic and position modes: largest joint speed of the IK output"),
+      field("ik_iterations", &S::ik_iterations, "", Range::at_least(1),
+            "IK iterations per tick, warm-started"),
+      field("range_samples", &S::range_samples, "", Range::at_least(1),
+            "workspace samples for the slider ranges"));
+}
 
 /// What the overlays show; refreshed after every `step`, `reset`, `set_target` and mode change.
 struct ViewerStats {

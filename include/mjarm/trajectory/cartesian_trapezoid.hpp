@@ -5,6 +5,7 @@
 
 #include <Eigen/Core>
 
+#include "mjarm/fields.hpp"
 #include "mjarm/lie/pose.hpp"
 #include "mjarm/lie/types.hpp"
 #include "mjarm/trajectory/pose_sample.hpp"
@@ -19,6 +20,18 @@ struct CartesianLimits {
   double max_angular_velocity = 0.5;      ///< about the turn axis [rad/s] (> 0)
   double max_angular_acceleration = 3.0;  ///< [rad/s²] (> 0)
 };
+
+constexpr auto declared_fields(const CartesianLimits*) {
+  using S = CartesianLimits;
+  return declare<S>(
+      "Cartesian trapezoid",
+      field("max_velocity", &S::max_velocity, "m/s", Range::positive(), "along the line"),
+      field("max_acceleration", &S::max_acceleration, "m/s²", Range::positive(), "along the line"),
+      field("max_angular_velocity", &S::max_angular_velocity, "rad/s", Range::positive(),
+            "about the turn axis"),
+      field("max_angular_acceleration", &S::max_angular_acceleration, "rad/s²", Range::positive(),
+            "about the turn axis"));
+}
 
 /// From X_start to X_goal at rest, in world axes: with d = ‖p₁ − p₀‖, u = (p₁ − p₀)/d and the
 /// turn R₁·R₀ᵀ = Exp(θ·k) (world axis k, angle θ ∈ [0, π]), the two axes (d under the linear

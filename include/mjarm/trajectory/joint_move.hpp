@@ -12,6 +12,7 @@
 #include <variant>
 #include <vector>
 
+#include "mjarm/fields.hpp"
 #include "mjarm/trajectory/otg/generator.hpp"
 #include "mjarm/trajectory/quintic.hpp"
 #include "mjarm/trajectory/quintic_duration.hpp"
@@ -30,8 +31,15 @@ enum class ProfileKind {
   jerk_limited,  ///< `JerkLimitedGenerator`: time-optimal under a jerk limit too
 };
 
-/// "trapezoid", "quintic", "smoothstep", "smootherstep", "jerk-limited" (`mjarm traj`'s KIND).
-const char* to_string(ProfileKind kind) noexcept;
+/// The names are `mjarm traj`'s KIND.
+constexpr auto declared_names(const ProfileKind*) {
+  using K = ProfileKind;
+  return std::array{EnumName{K::trapezoid, "trapezoid", "trapezoidal velocity"},
+                    EnumName{K::quintic, "quintic", "quintic polynomial, shortest duration"},
+                    EnumName{K::smoothstep, "smoothstep", "smoothstep ramp (C¹)"},
+                    EnumName{K::smootherstep, "smootherstep", "smootherstep ramp (C², minimum jerk)"},
+                    EnumName{K::jerk_limited, "jerk-limited", "time-optimal under a jerk limit too"}};
+}
 
 /// What a profile kind is and what it takes.
 struct ProfileKindInfo {

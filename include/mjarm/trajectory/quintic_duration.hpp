@@ -5,6 +5,7 @@
 
 #include <Eigen/Core>
 
+#include "mjarm/fields.hpp"
 #include "mjarm/trajectory/quintic.hpp"
 
 namespace mjarm {
@@ -17,8 +18,16 @@ enum class QuinticDurationStatus {
   infeasible            ///< the limits hold at both ends but no duration keeps them in between
 };
 
-/// "ok", "start beyond limits", "end beyond limits", "infeasible".
-const char* to_string(QuinticDurationStatus status) noexcept;
+/// The names are spelled with spaces, as messages use them (Python: start_beyond_limits, …).
+constexpr auto declared_names(const QuinticDurationStatus*) {
+  using S = QuinticDurationStatus;
+  return std::array{EnumName{S::ok, "ok", "the shortest feasible duration"},
+                    EnumName{S::start_beyond_limits, "start beyond limits",
+                             "a start velocity or acceleration is beyond its limit"},
+                    EnumName{S::end_beyond_limits, "end beyond limits",
+                             "an end velocity or acceleration is beyond its limit"},
+                    EnumName{S::infeasible, "infeasible", "no duration keeps the limits"}};
+}
 
 /// The result of `shortest_quintic_duration`.
 struct QuinticDuration {

@@ -8,6 +8,7 @@
 
 #include <array>
 
+#include "mjarm/fields.hpp"
 #include "mjarm/lie/pose.hpp"
 #include "mjarm/lie/types.hpp"
 #include "mjarm/trajectory/otg/generator.hpp"
@@ -24,6 +25,19 @@ struct TargetFilterLimits {
   double angular_acceleration = 6.0;  ///< |φ̈_i| [rad/s²] (> 0)
   double angular_jerk = 60.0;         ///< |φ⃛_i| [rad/s³] (> 0)
 };
+
+constexpr auto declared_fields(const TargetFilterLimits*) {
+  using S = TargetFilterLimits;
+  return declare<S>(
+      "target filter",
+      field("velocity", &S::velocity, "m/s", Range::positive(), "|ṗ_i|"),
+      field("acceleration", &S::acceleration, "m/s²", Range::positive(), "|p̈_i|"),
+      field("jerk", &S::jerk, "m/s³", Range::positive(), "|p⃛_i|"),
+      field("angular_velocity", &S::angular_velocity, "rad/s", Range::positive(), "|φ̇_i|"),
+      field("angular_acceleration", &S::angular_acceleration, "rad/s²", Range::positive(),
+            "|φ̈_i|"),
+      field("angular_jerk", &S::angular_jerk, "rad/s³", Range::positive(), "|φ⃛_i|"));
+}
 
 /// The filtered reference X_WR(t) following a target X_WT. Six coordinates move under
 /// `JerkLimitedGenerator` (time-optimal, jerk-limited, synchronized: all six arrive together):

@@ -16,24 +16,6 @@
 
 namespace mjarm {
 
-const char* to_string(OtgStatus status) noexcept {
-  switch (status) {
-    case OtgStatus::working:
-      return "working";
-    case OtgStatus::finished:
-      return "finished";
-    case OtgStatus::error_brake:
-      return "error_brake";
-    case OtgStatus::error_no_profile:
-      return "error_no_profile";
-    case OtgStatus::error_synchronization:
-      return "error_synchronization";
-    case OtgStatus::error_precision:
-      return "error_precision";
-  }
-  return "unknown";
-}
-
 namespace {
 
 /// A cheap guess of the minimum duration of one DoF (brake excluded), to pick the DoF whose
@@ -77,15 +59,8 @@ std::string otg_number(double x) {
 JerkLimitedGenerator::JerkLimitedGenerator(std::span<const JerkLimits> limits)
     : limits_(limits.begin(), limits.end()) {
   if (limits_.empty()) throw Error("JerkLimitedGenerator: expected limits for at least one DoF");
-  for (std::size_t i = 0; i < limits_.size(); ++i) {
-    const JerkLimits& l = limits_[i];
-    const std::pair<const char*, double> entries[] = {
-        {"velocity", l.velocity}, {"acceleration", l.acceleration}, {"jerk", l.jerk}};
-    for (const auto& [name, value] : entries)
-      if (!(value > 0.0) || !std::isfinite(value))
-        throw Error("JerkLimitedGenerator: DoF " + std::to_string(i) + ": " + name +
-                    " limit must be positive and finite, got " + otg_number(value));
-  }
+  for (std::size_t i = 0; i < limits_.size(); ++i)
+    check_fields(limits_[i], "JerkLimitedGenerator: DoF " + std::to_string(i));
   profiles_.resize(limits_.size());
   blocks_.resize(limits_.size());
   reach_.resize(limits_.size());

@@ -46,8 +46,17 @@ enum class OtgStatus {
   error_precision,
 };
 
-/// Short lowercase name of a status ("working", "error_synchronization", ...).
-const char* to_string(OtgStatus status) noexcept;
+constexpr auto declared_names(const OtgStatus*) {
+  using S = OtgStatus;
+  return std::array{
+      EnumName{S::working, "working", "a trajectory exists and the target is not reached yet"},
+      EnumName{S::finished, "finished", "the target is reached"},
+      EnumName{S::error_brake, "error_brake", "a DoF's brake did not fit its profile"},
+      EnumName{S::error_no_profile, "error_no_profile", "no time-optimal profile for a DoF"},
+      EnumName{S::error_synchronization, "error_synchronization",
+               "a DoF has no profile of the synchronized duration"},
+      EnumName{S::error_precision, "error_precision", "the trajectory failed its final check"}};
+}
 
 /// Result of a calculation. A result that says working or finished has been checked: every
 /// DoF's profile ends on its target, lasts the synchronized duration and keeps its limits after

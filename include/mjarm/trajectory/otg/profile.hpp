@@ -9,6 +9,8 @@
 
 #include <array>
 
+#include "mjarm/fields.hpp"
+
 namespace mjarm {
 
 struct TrajectorySample;  // trajectory/trajectory_sample.hpp
@@ -20,6 +22,14 @@ struct JerkLimits {
   double acceleration = 1.0;  ///< a_max [u/s²]
   double jerk = 1.0;          ///< j_max [u/s³]
 };
+
+constexpr auto declared_fields(const JerkLimits*) {
+  using S = JerkLimits;
+  return declare<S>("jerk limits",
+                    field("velocity", &S::velocity, "u/s", Range::positive(), "v_max"),
+                    field("acceleration", &S::acceleration, "u/s²", Range::positive(), "a_max"),
+                    field("jerk", &S::jerk, "u/s³", Range::positive(), "j_max"));
+}
 
 /// Position, velocity and acceleration of one degree of freedom.
 struct KinematicState {

@@ -243,15 +243,7 @@ void check_blocked_against_reference(OtgCaseSampler& sampler, int steps, int see
 }  // namespace
 
 OtgValidationResult run_otg_validation(const OtgValidationOptions& options) {
-  if (options.cases < 1 || options.dofs < 1)
-    throw Error("run_otg_validation: expected cases ≥ 1 and dofs ≥ 1, got " +
-                std::to_string(options.cases) + " and " + std::to_string(options.dofs));
-  if (!(options.brake_share >= 0.0 && options.brake_share <= 1.0))
-    throw Error("run_otg_validation: brake_share must be in [0, 1], got " +
-                number_text(options.brake_share));
-  if (options.structure_seeds < 0)
-    throw Error("run_otg_validation: structure_seeds must be ≥ 0, got " +
-                std::to_string(options.structure_seeds));
+  check_fields(options);
   OtgValidationResult r;
   r.cases = options.cases;
   r.dofs = options.dofs;

@@ -6,7 +6,6 @@
 #include <string>
 
 #include "mjarm/error.hpp"
-#include "mjarm/number_text.hpp"
 #include "mjarm/random.hpp"
 
 namespace mjarm {
@@ -326,17 +325,11 @@ StructureSearchResult structure_search_min_time(const KinematicState& start,
                                                 const KinematicState& target,
                                                 const JerkLimits& limits,
                                                 const StructureSearchOptions& options) {
-  for (const double x : {limits.velocity, limits.acceleration, limits.jerk})
-    if (!(x > 0.0) || !std::isfinite(x))
-      throw Error("structure_search_min_time: limits must be positive and finite, got v " +
-                  number_text(limits.velocity) + ", a " + number_text(limits.acceleration) + ", j " +
-                  number_text(limits.jerk));
+  check_fields(limits, "structure search");
   for (const double x : {start.p, start.v, start.a, target.p, target.v, target.a})
     if (!std::isfinite(x))
       throw Error("structure_search_min_time: start and target must be finite");
-  if (options.seeds < 1)
-    throw Error("structure_search_min_time: seeds must be ≥ 1, got " +
-                std::to_string(options.seeds));
+  check_fields(options);
   const double V = limits.velocity, A = limits.acceleration, J = limits.jerk;
   // positions relative to the start: the round-off of an offset stays out of the residuals
   const KinematicState s0{0.0, start.v, start.a};

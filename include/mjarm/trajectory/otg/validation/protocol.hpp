@@ -11,6 +11,8 @@
 #include <functional>
 #include <string>
 
+#include "mjarm/fields.hpp"
+
 namespace mjarm {
 
 /// What to run.
@@ -38,6 +40,25 @@ struct OtgValidationOptions {
   /// the cases done so far and `OtgValidationResult::interrupted` set.
   std::function<bool()> stop;
 };
+
+/// The plain fields of `OtgValidationOptions`.
+constexpr auto declared_fields(const OtgValidationOptions*) {
+  using S = OtgValidationOptions;
+  return declare<S>(
+      "OTG validation", field("cases", &S::cases, "", Range::at_least(1), "random n-DoF cases"),
+      field("dofs", &S::dofs, "", Range::at_least(1), "DoFs per case"),
+      field("seed", &S::seed, "", Range::non_negative(), "seed of the case generator"),
+      field("brake_share", &S::brake_share, "", Range::closed(0.0, 1.0),
+            "share of DoFs that start beyond their limits"),
+      field("reference_cases", &S::reference_cases, "", Range::non_negative(),
+            "one-DoF cases checked against the grid reference"),
+      field("reference_steps", &S::reference_steps, "", Range::at_least(1),
+            "jerk steps of the reference grid"),
+      field("structure_seeds", &S::structure_seeds, "", Range::non_negative(),
+            "starting points per structure of the structure search; 0: none"),
+      field("thread_cpu_clock", &S::thread_cpu_clock,
+            "time on the calling thread's CPU clock instead of the steady wall clock"));
+}
 
 /// What was measured.
 struct OtgValidationResult {

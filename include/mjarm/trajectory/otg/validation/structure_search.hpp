@@ -34,6 +34,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "mjarm/fields.hpp"
 #include "mjarm/trajectory/otg/profile.hpp"
 #include "mjarm/trajectory/otg/validation/structures.hpp"
 
@@ -47,6 +48,14 @@ struct StructureSearchOptions {
   std::uint64_t seed = 0;  ///< seed of the starting points
 };
 
+constexpr auto declared_fields(const StructureSearchOptions*) {
+  using S = StructureSearchOptions;
+  return declare<S>("structure search",
+                    field("seeds", &S::seeds, "", Range::at_least(1),
+                          "starting points per structure"),
+                    field("seed", &S::seed, "", Range::non_negative(), "seed of the starting points"));
+}
+
 /// One solution: a structure and its phase durations.
 struct StructureSolution {
   SwitchingStructure structure;                                    ///< the arcs
@@ -59,6 +68,12 @@ enum class StructureSearchStatus {
   found,        ///< at least one structure has a valid solution
   no_solution,  ///< none has (the start cannot reach the target within the limits)
 };
+
+constexpr auto declared_names(const StructureSearchStatus*) {
+  using S = StructureSearchStatus;
+  return std::array{EnumName{S::found, "found", "a structure has a valid solution"},
+                    EnumName{S::no_solution, "no_solution", "no structure has one"}};
+}
 
 /// What the search found.
 struct StructureSearchResult {
