@@ -14,14 +14,13 @@ set(MJARM_FUZZ_SANITIZERS -fsanitize=address,undefined -fno-sanitize-recover=all
 # the readers and what they call (the link closure of the entry points in fuzz/*_target.cpp):
 # a sixth of the library, so the fuzz build compiles in a fraction of the full one
 set(MJARM_FUZZ_LIBRARY_SOURCES
-  closest_names.cpp file_writer.cpp json_document.cpp number_text.cpp
+  closest_names.cpp fields.cpp file_writer.cpp json_document.cpp number_text.cpp
   ik/targets.cpp
   kinematics/chain_kinematics.cpp kinematics/manipulability.cpp kinematics/workspace.cpp
   lie/coefficients.cpp lie/pose.cpp lie/pose_error.cpp lie/rotation.cpp lie/se3.cpp
   lie/se3_jacobian.cpp lie/so3.cpp
   planning/waypoint_file.cpp
   plot/csv_table.cpp plot/recording.cpp
-  sim/run_result.cpp
   teleop/session_log_reader.cpp teleop/viewer_panel.cpp teleop/viewer_script.cpp)
 file(GLOB MJARM_FUZZ_ROOM_SOURCES CONFIGURE_DEPENDS RELATIVE ${PROJECT_SOURCE_DIR}/src
      ${PROJECT_SOURCE_DIR}/src/model/*.cpp ${PROJECT_SOURCE_DIR}/src/scene/*.cpp)
