@@ -347,12 +347,29 @@ void check_output_file(const std::string& path, const std::string& option, bool 
   if (!fs::is_directory(parent, ec))
     throw UsageError(option + ": " + shown(parent) + " is not a folder, so " + shown(file) +
                      " cannot be created");
-  // create the file itself (exclusively) and remove it: the one test that cannot be wrong
-  const int fd = open(file.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0644);
-  if (fd < 0)
-    throw UsageError(option + ": cannot create " + shown(file) + ": " + std::strerror(errno));
-  close(fd);
-  unlink(file.c_str());
+  // create the file itself (exclusively) and remove it: the one test that cannot be wrong. Another
+  // run writing the same file may create it meanwhile (its own check, or its output): then the
+  // file exists, and what counts is that it opens for writing.
+  for (int attempt = 0;; ++attempt) {
+    int fd = open(file.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0644);
+    if (fd >= 0) {
+      close(fd);
+      unlink(file.c_str());
+      return;
+    }
+    int error = errno;
+    if (error == EEXIST && attempt < 8) {
+      fd = open(file.c_str(), O_WRONLY | O_NONBLOCK | O_CLOEXEC);
+      if (fd >= 0) {
+        close(fd);
+        return;
+      }
+      error = errno;
+      if (error == ENOENT) continue;  // gone again: try to create it once more
+      throw UsageError(option + ": cannot write " + shown(file) + ": " + std::strerror(error));
+    }
+    throw UsageError(option + ": cannot create " + shown(file) + ": " + std::strerror(error));
+  }
 }
 
 void check_output_folder(const std::string& path, const std::string& option) {
