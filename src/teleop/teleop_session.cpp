@@ -145,11 +145,11 @@ struct TeleopSession::Rig {
     if (!lift.empty()) lift_qpos = model.jnt_qposadr[robot.joint(lift)];
     // kinematic mode: a move that makes the robot touch anything is rolled back
     const std::string root = detail::root_body(model, arms.joint_ids().front());
-    sim = detail::rig_simulation(
-        robot, m, o.kinematic_period, o.control_period,
-        m == SimulationMode::kinematic && !root.empty() ? GeomSet::of_bodies(robot, {root})
-                                                        : GeomSet(),
-        period);
+    sim = detail::rig_simulation(robot, m, o.kinematic_period, o.control_period,
+                                 m == SimulationMode::kinematic && !root.empty()
+                                     ? GeomSet::of_bodies(robot, {root})
+                                     : GeomSet(),
+                                 period);
     std::vector<std::string> driven;
     if (!lift.empty()) driven.push_back(lift);
     driven.insert(driven.end(), arm_joints.begin(), arm_joints.end());

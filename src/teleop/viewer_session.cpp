@@ -120,7 +120,8 @@ ViewerSession::ViewerSession(const Robot& robot, const ViewerSessionOptions& opt
   });
   rigs_.for_each([this](Rig&) { reset(); });
   restart_reference();
-  ranges_ = panel_ranges(rigs_.rig(SimulationMode::kinematic).arm, stats_.X_WE, options.range_samples);
+  ranges_ =
+      panel_ranges(rigs_.rig(SimulationMode::kinematic).arm, stats_.X_WE, options.range_samples);
   initial_panel_ = panel_state(stats_.X_WE, ranges_, 0.0, mode());
   set_target(initial_panel_);
 }

@@ -25,9 +25,9 @@
 #include "mjarm/model/chain.hpp"
 #include "mjarm/model/robot.hpp"
 #include "mjarm/sim/contact_query.hpp"
+#include "mjarm/sim/simulation.hpp"
 #include "mjarm/teleop/detail/mode_rigs.hpp"
 #include "mjarm/teleop/viewer_panel.hpp"
-#include "mjarm/sim/simulation.hpp"
 #include "mjarm/trajectory/ramped_command.hpp"
 #include "mjarm/trajectory/target_filter.hpp"
 
