@@ -1,7 +1,10 @@
 #include "teleop_model.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
+
+#include "mjarm/error.hpp"
 
 namespace mjarm::detail {
 
@@ -53,6 +56,62 @@ std::vector<std::string> gripper_joints(const Chain& arm) {
     if (b == last_body && name != nullptr) names.emplace_back(name);
   }
   return names;
+}
+
+void build_mode_rigs(const Robot& robot, std::array<std::string, 3>& reasons,
+                     const std::function<void(const Robot&, SimulationMode)>& build) {
+  for (int m = 0; m < 3; ++m) {
+    const auto mode = static_cast<SimulationMode>(m);
+    const bool torque = mode == SimulationMode::torque;
+    try {
+      std::optional<Robot> model = robot;
+      if (mode != SimulationMode::kinematic) model = model_variant(robot, torque);
+      if (!model) {
+        reasons[m] = model_variant_missing(robot, torque);
+        continue;
+      }
+      build(*model, mode);
+    } catch (const Error& e) {
+      if (mode == SimulationMode::kinematic) throw;  // the frame itself is wrong
+      reasons[m] = std::string(to_string(mode)) + " mode unavailable: " + e.what();
+    }
+  }
+}
+
+std::string initial_keyframe(const Robot& robot, const std::string& keyframe) {
+  if (!keyframe.empty()) {
+    robot.keyframe(keyframe);  // throws for an unknown name, listing close ones
+    return keyframe;
+  }
+  const auto keys = robot.keyframe_names();
+  return std::find(keys.begin(), keys.end(), "home") != keys.end() ? "home" : "";
+}
+
+Pose read_frame(const mjData& d, const FrameRef& frame) noexcept {
+  const bool site = frame.kind == FrameKind::site;
+  const double* p = site ? d.site_xpos + 3 * frame.id : d.xpos + 3 * frame.id;
+  const double* R = site ? d.site_xmat + 9 * frame.id : d.xmat + 9 * frame.id;
+  Pose X;
+  X.p = Eigen::Vector3d(p[0], p[1], p[2]);
+  X.R = Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(R);
+  return X;
+}
+
+std::unique_ptr<Simulation> rig_simulation(const Robot& robot, SimulationMode mode,
+                                           double kinematic_period, double control_period,
+                                           const GeomSet& contact_check, double& period) {
+  SimulationOptions options;
+  options.mode = mode;
+  const double h = robot.model().opt.timestep;
+  if (mode == SimulationMode::kinematic) {
+    period = h * std::max(1.0, std::round(kinematic_period / h));
+    options.contact_check_a = contact_check;
+  } else {
+    options.control_period = control_period;
+  }
+  auto sim = std::make_unique<Simulation>(robot, options);
+  if (mode != SimulationMode::kinematic) period = sim->control_period();
+  return sim;
 }
 
 void reset_simulation(Simulation& sim, const std::string& keyframe) {

@@ -55,17 +55,6 @@ std::vector<std::string> teleop_arm_joints(const Robot& robot, const std::vector
   return names;
 }
 
-// the pose of a frame in the data, read directly (the chain checked the id)
-Pose read_frame(const mjData& d, const FrameRef& frame) noexcept {
-  const bool site = frame.kind == FrameKind::site;
-  const double* p = site ? d.site_xpos + 3 * frame.id : d.xpos + 3 * frame.id;
-  const double* R = site ? d.site_xmat + 9 * frame.id : d.xmat + 9 * frame.id;
-  Pose X;
-  X.p = Eigen::Vector3d(p[0], p[1], p[2]);
-  X.R = Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(R);
-  return X;
-}
-
 }  // namespace
 
 std::vector<TeleopHand> find_teleop_hands(const Robot& robot) {
@@ -154,19 +143,13 @@ struct TeleopSession::Rig {
       }
     }
     if (!lift.empty()) lift_qpos = model.jnt_qposadr[robot.joint(lift)];
-    SimulationOptions so;
-    so.mode = m;
-    const double h = model.opt.timestep;
-    if (m == SimulationMode::kinematic) {
-      period = h * std::max(1.0, std::round(o.kinematic_period / h));
-      const int joint = arms.joint_ids().front();
-      const std::string root = detail::root_body(model, joint);
-      if (!root.empty()) so.contact_check_a = GeomSet::of_bodies(robot, {root});
-    } else {
-      so.control_period = o.control_period;
-    }
-    sim = std::make_unique<Simulation>(robot, so);
-    if (m != SimulationMode::kinematic) period = sim->control_period();
+    // kinematic mode: a move that makes the robot touch anything is rolled back
+    const std::string root = detail::root_body(model, arms.joint_ids().front());
+    sim = detail::rig_simulation(robot, m, o.kinematic_period, o.control_period,
+                                 m == SimulationMode::kinematic && !root.empty()
+                                     ? GeomSet::of_bodies(robot, {root})
+                                     : GeomSet(),
+                                 period);
     std::vector<std::string> driven;
     if (!lift.empty()) driven.push_back(lift);
     driven.insert(driven.end(), arm_joints.begin(), arm_joints.end());
@@ -259,12 +242,7 @@ TeleopSession::TeleopSession(const Robot& robot, const TeleopOptions& options)
     const int j = robot.joint(lift);
     lift_range_ = {m.jnt_range[2 * j], m.jnt_range[2 * j + 1]};
   }
-  if (options_.keyframe.empty()) {
-    const auto keys = robot.keyframe_names();
-    if (std::find(keys.begin(), keys.end(), "home") != keys.end()) options_.keyframe = "home";
-  } else {
-    robot.keyframe(options_.keyframe);  // throws for an unknown name
-  }
+  options_.keyframe = detail::initial_keyframe(robot, options_.keyframe);
   tasks_ = options.tasks;
   if (tasks_.empty()) tasks_.assign(hands_.size(), HandTask{});
   if (tasks_.size() != hands_.size())
@@ -274,33 +252,14 @@ TeleopSession::TeleopSession(const Robot& robot, const TeleopOptions& options)
   const std::string direct = options.lift_in_ik ? std::string() : lift;
   if (has_lift_) lift_qpos_ = m.jnt_qposadr[robot.joint(lift)];
   const auto arm_joints = teleop_arm_joints(robot, hands_, direct);
-  for (int k = 0; k < 3; ++k) {
-    const auto mode = static_cast<SimulationMode>(k);
-    try {
-      std::optional<Robot> model = robot;
-      if (mode != SimulationMode::kinematic)
-        model = detail::model_variant(robot, mode == SimulationMode::torque);
-      if (!model) {
-        reasons_[k] = detail::model_variant_missing(robot, mode == SimulationMode::torque);
-        continue;
-      }
-      rigs_[k] = std::make_unique<Rig>(*model, mode, hands_, arm_joints, direct, options_);
-    } catch (const Error& e) {
-      if (mode == SimulationMode::kinematic) throw;
-      reasons_[k] = std::string(to_string(mode)) + " mode unavailable: " + e.what();
-    }
-  }
-  if (!available(options.mode)) throw Error("teleop: " + reasons_[static_cast<int>(options.mode)]);
+  rigs_.build(robot, options.mode, "teleop", [&](const Robot& model, SimulationMode mode) {
+    return std::make_unique<Rig>(model, mode, hands_, arm_joints, direct, options_);
+  });
   build_ik();
   smooth_ = std::make_unique<Smoothing>(options_, hands_.size(), lift_range_);
   stats_.hands.resize(hands_.size());
   targets_.hands.resize(hands_.size());
-  for (int k = 0; k < 3; ++k) {
-    if (rigs_[k] == nullptr) continue;
-    mode_ = static_cast<SimulationMode>(k);
-    reset();
-  }
-  mode_ = options.mode;
+  rigs_.for_each([this](Rig&) { reset(); });
   restart_references();
   initial_.hands.resize(hands_.size());
   for (std::size_t i = 0; i < hands_.size(); ++i) initial_.hands[i] = {stats_.hands[i].X_WE, 0.0};
@@ -312,31 +271,30 @@ TeleopSession::TeleopSession(const Robot& robot, const TeleopOptions& options)
 TeleopSession::~TeleopSession() = default;
 
 void TeleopSession::build_ik() {
-  for (auto& rig : rigs_) {
-    if (rig == nullptr) continue;
-    const DataPtr d = rig->robot.make_data();
-    mj_forward(&rig->robot.model(), d.get());
-    if (rig->mode == SimulationMode::torque) {
+  rigs_.for_each([this](Rig& rig) {
+    const DataPtr d = rig.robot.make_data();
+    mj_forward(&rig.robot.model(), d.get());
+    if (rig.mode == SimulationMode::torque) {
       DiffIkOptions o;
-      o.dt = rig->period;
+      o.dt = rig.period;
       o.damping = 1e-4;
-      o.velocity_limit = Eigen::VectorXd::Constant(rig->arms.size(), options_.max_joint_speed);
-      rig->dik = std::make_unique<DiffIk>(rig->arms, o);
-      const double gain = std::min(1.0, options_.motor_gain * rig->period);
+      o.velocity_limit = Eigen::VectorXd::Constant(rig.arms.size(), options_.max_joint_speed);
+      rig.dik = std::make_unique<DiffIk>(rig.arms, o);
+      const double gain = std::min(1.0, options_.motor_gain * rig.period);
       for (std::size_t i = 0; i < hands_.size(); ++i) {
         const double w = std::pow(1e-2, tasks_[i].priority);
         if (tasks_[i].kind == TargetKind::pose) {
-          rig->dik->add_pose_task(hands_[i].frame, w, w, gain);
+          rig.dik->add_pose_task(hands_[i].frame, w, w, gain);
         } else {
-          rig->dik->add_position_task(hands_[i].frame, w, gain);
+          rig.dik->add_position_task(hands_[i].frame, w, gain);
         }
       }
       // a weak pull to the initial posture settles the arms' redundant motion
       const std::vector<double> q0 = options_.keyframe.empty()
-                                         ? std::vector<double>(d->qpos, d->qpos + rig->robot.nq())
-                                         : rig->robot.keyframe_qpos(options_.keyframe);
-      rig->dik->add_posture_task(rig->arms.gather(q0.data()), 1e-4, gain);
-      continue;
+                                         ? std::vector<double>(d->qpos, d->qpos + rig.robot.nq())
+                                         : rig.robot.keyframe_qpos(options_.keyframe);
+      rig.dik->add_posture_task(rig.arms.gather(q0.data()), 1e-4, gain);
+      return;
     }
     std::vector<FrameTarget> targets;
     for (std::size_t i = 0; i < hands_.size(); ++i) {
@@ -344,7 +302,7 @@ void TeleopSession::build_ik() {
       t.frame = hands_[i].frame;
       t.kind = tasks_[i].kind;
       t.priority = tasks_[i].priority;
-      t.X_WT = frame_pose(rig->robot.model(), *d, rig->frames[i].frame());
+      t.X_WT = frame_pose(rig.robot.model(), *d, rig.frames[i].frame());
       targets.push_back(t);
     }
     MultiTargetIkOptions o;
@@ -352,8 +310,8 @@ void TeleopSession::build_ik() {
     o.stall_iterations = options_.ik_iterations;
     o.position_tolerance = 1e-4;
     o.orientation_tolerance = 1e-3;
-    rig->ik = std::make_unique<MultiTargetIk>(rig->robot, rig->arms.joint_names(), targets, o);
-  }
+    rig.ik = std::make_unique<MultiTargetIk>(rig.robot, rig.arms.joint_names(), targets, o);
+  });
 }
 
 void TeleopSession::set_task(int hand, const HandTask& task) {
@@ -365,34 +323,15 @@ void TeleopSession::set_task(int hand, const HandTask& task) {
   build_ik();
 }
 
-const Robot& TeleopSession::robot() const noexcept { return rigs_[static_cast<int>(mode_)]->robot; }
-Simulation& TeleopSession::simulation() noexcept { return *rigs_[static_cast<int>(mode_)]->sim; }
-const Simulation& TeleopSession::simulation() const noexcept {
-  return *rigs_[static_cast<int>(mode_)]->sim;
-}
-double TeleopSession::control_period() const noexcept {
-  return rigs_[static_cast<int>(mode_)]->period;
-}
-
-bool TeleopSession::available(SimulationMode mode) const noexcept {
-  const int k = static_cast<int>(mode);
-  return k >= 0 && k < 3 && rigs_[k] != nullptr;
-}
-
-const std::string& TeleopSession::unavailable_reason(SimulationMode mode) const noexcept {
-  static const std::string none;
-  const int k = static_cast<int>(mode);
-  return k >= 0 && k < 3 ? reasons_[k] : none;
-}
+const Robot& TeleopSession::robot() const noexcept { return rigs_.current().robot; }
+Simulation& TeleopSession::simulation() noexcept { return *rigs_.current().sim; }
+const Simulation& TeleopSession::simulation() const noexcept { return *rigs_.current().sim; }
+double TeleopSession::control_period() const noexcept { return rigs_.current().period; }
 
 void TeleopSession::set_mode(SimulationMode mode) {
-  if (mode == mode_) return;
-  if (!available(mode)) throw Error("teleop: " + unavailable_reason(mode));
-  Rig& from = *rigs_[static_cast<int>(mode_)];
-  Rig& to = *rigs_[static_cast<int>(mode)];
-  detail::carry_state(*from.sim, *to.sim);
-  to.ticks = from.ticks;
-  mode_ = mode;
+  const std::int64_t ticks = rigs_.current().ticks;
+  if (!rigs_.switch_to(mode, "teleop")) return;
+  rigs_.current().ticks = ticks;
   restart_references();
 }
 
@@ -411,7 +350,7 @@ void TeleopSession::set_targets(const TeleopTargets& targets) {
 }
 
 void TeleopSession::reset() {
-  Rig& rig = *rigs_[static_cast<int>(mode_)];
+  Rig& rig = rigs_.current();
   detail::reset_simulation(*rig.sim, options_.keyframe);
   rig.ticks = 0;
   stats_.rollbacks = 0;
@@ -421,12 +360,12 @@ void TeleopSession::reset() {
 
 // the references restart where the hands and the lift are
 void TeleopSession::restart_references() {
-  Rig& rig = *rigs_[static_cast<int>(mode_)];
+  Rig& rig = rigs_.current();
   rig.read_q();
   rig.q_cmd = rig.q;
   const mjData& d = rig.sim->data();
   for (std::size_t i = 0; i < hands_.size(); ++i) {
-    smooth_->poses[i].reset(read_frame(d, rig.frames[i].frame()));
+    smooth_->poses[i].reset(detail::read_frame(d, rig.frames[i].frame()));
     if (rig.mode == SimulationMode::torque && rig.finger_pd[i])
       rig.finger_pd[i]->set_command(smooth_->grippers[i].value());
   }
@@ -437,7 +376,7 @@ void TeleopSession::restart_references() {
 }
 
 int TeleopSession::step(int ticks) noexcept {
-  Rig& rig = *rigs_[static_cast<int>(mode_)];
+  Rig& rig = rigs_.current();
   int done = 0;
   for (; done < ticks && !stats_.faulted; ++done) {
     if (!tick(rig)) break;
@@ -533,9 +472,9 @@ bool TeleopSession::tick(Rig& rig) noexcept {
 }
 
 void TeleopSession::refresh_stats() noexcept {
-  Rig& rig = *rigs_[static_cast<int>(mode_)];
+  Rig& rig = rigs_.current();
   const mjData& d = rig.sim->data();
-  stats_.mode = mode_;
+  stats_.mode = mode();
   stats_.time = d.time;
   stats_.ticks = rig.ticks;
   stats_.lift = lift_qpos_ >= 0 ? d.qpos[lift_qpos_] : 0.0;
@@ -543,7 +482,7 @@ void TeleopSession::refresh_stats() noexcept {
   const auto saturated = rig.sim->saturated();
   for (std::size_t i = 0; i < hands_.size(); ++i) {
     HandStats& h = stats_.hands[i];
-    h.X_WE = read_frame(d, rig.frames[i].frame());
+    h.X_WE = detail::read_frame(d, rig.frames[i].frame());
     h.X_WR = smooth_->poses[i].pose();
     h.X_WT = targets_.hands[i].X_WT;
     const FrameErrors e = frame_errors(h.X_WE, h.X_WR);

@@ -1,5 +1,6 @@
 #include "teleop_ui.hpp"
 
+#include <algorithm>
 #include <cctype>
 #include <cstdio>
 #include <string>
@@ -40,29 +41,18 @@ std::unique_ptr<ViewerUi> make_teleop_ui(TeleopPanel& panel, const TeleopSession
   std::string hand_names;
   for (const auto& h : hands) hand_names += (hand_names.empty() ? "" : "\n") + capitalized(h.name);
   const auto lift = session.lift_range();
-  ui->add_section(
-      "Simulation",
-      {{mjITEM_RADIO, "Mode", 1, &panel.mode, "Kinematic\nPosition\nMotor", "mode"},
-       {mjITEM_RADIO, "Priority", 1, &panel.priority, "Equal\nR over L\nL over R", "priority"},
-       {mjITEM_RADIO, "Keys move", 1, &panel.selected, hand_names, "hand"},
-       {mjITEM_SLIDERNUM, "lift [m]", session.has_lift() ? 1 : 0, &panel.lift,
-        ui_range(lift[0], std::max(lift[1], lift[0] + 1e-6)), "lift"},
-       {mjITEM_BUTTON, "Pause", 1, nullptr, " #32", "pause"},
-       {mjITEM_BUTTON, "Step", 1, nullptr, " #262", "step"},
-       {mjITEM_BUTTON, "Reset", 1, nullptr, " #259", "reset"}});
-  static const char* const kLabels[6] = {"x [m]",      "y [m]",       "z [m]",
-                                         "roll [rad]", "pitch [rad]", "yaw [rad]"};
-  static const char* const kNames[6] = {"x", "y", "z", "roll", "pitch", "yaw"};
+  std::vector<UiItemDef> simulation = {
+      {mjITEM_RADIO, "Mode", 1, &panel.mode, "Kinematic\nPosition\nMotor", "mode"},
+      {mjITEM_RADIO, "Priority", 1, &panel.priority, "Equal\nR over L\nL over R", "priority"},
+      {mjITEM_RADIO, "Keys move", 1, &panel.selected, hand_names, "hand"},
+      {mjITEM_SLIDERNUM, "lift [m]", session.has_lift() ? 1 : 0, &panel.lift,
+       ui_range(lift[0], std::max(lift[1], lift[0] + 1e-6)), "lift"}};
+  for (auto& button : run_buttons()) simulation.push_back(std::move(button));
+  ui->add_section("Simulation", simulation);
   for (std::size_t i = 0; i < hands.size(); ++i) {
-    std::vector<UiItemDef> items;
-    for (int k = 0; k < 6; ++k) {
-      items.push_back({mjITEM_SLIDERNUM, kLabels[k], 1, &panel.hands[i].pose[k],
-                       ui_range(ranges[i].lower[k], ranges[i].upper[k]),
-                       hands[i].name + "." + kNames[k]});
-    }
-    items.push_back({mjITEM_SLIDERNUM, "gripper", hands[i].fingers.empty() ? 0 : 1,
-                     &panel.hands[i].gripper, "0 1", hands[i].name + ".gripper"});
-    ui->add_section(capitalized(hands[i].name) + " hand", items);
+    ui->add_section(capitalized(hands[i].name) + " hand",
+                    target_items(panel.hands[i].pose, panel.hands[i].gripper, ranges[i],
+                                 !hands[i].fingers.empty(), hands[i].name + "."));
   }
   CameraPanel& c = panel.camera;
   ui->add_section(

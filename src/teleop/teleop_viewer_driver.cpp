@@ -5,7 +5,6 @@
 
 #include <memory>
 
-#include "mjarm/error.hpp"
 #include "mjarm/file_writer.hpp"
 #include "mjarm/teleop/session_log.hpp"
 #include "teleop_ui.hpp"
@@ -89,9 +88,7 @@ class TeleopDriver final : public ViewerDriver {
   void set_value(const std::string& name, const std::string& value, mjvCamera& camera) override {
     set_teleop_value(panel_, session_, name, value);
     if (name == "mode") {
-      const auto wanted = static_cast<SimulationMode>(panel_.mode);
-      apply_mode();  // reverts the panel and leaves a note when the mode is unavailable
-      if (session_.mode() != wanted) throw Error(session_.unavailable_reason(wanted));
+      apply_mode(/*strict=*/true);
     } else if (name == "priority") {
       apply_priority();
     } else if (name.rfind("camera.", 0) == 0) {
@@ -200,16 +197,10 @@ class TeleopDriver final : public ViewerDriver {
   }
 
   // the panel's mode radio → the session (through the recorder)
-  void apply_mode() {
-    const auto mode = static_cast<SimulationMode>(panel_.mode);
-    if (mode == session_.mode()) return;
-    if (!session_.available(mode)) {
-      note = session_.unavailable_reason(mode);
-      panel_.mode = static_cast<int>(session_.mode());
-      return;
-    }
-    recorder_.set_mode(mode);
-    note.clear();
+  void apply_mode(bool strict = false) {
+    ViewerDriver::apply_mode(
+        panel_.mode, static_cast<SimulationMode>(panel_.mode), session_,
+        [this](SimulationMode mode) { recorder_.set_mode(mode); }, strict);
   }
 
   // the panel's priority radio → each hand's task (only those that change are recorded)

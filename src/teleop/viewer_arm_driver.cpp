@@ -1,6 +1,5 @@
 // The viewer's single-arm driver: a `ViewerSession`, its `PanelState` and panel.
 
-#include "mjarm/error.hpp"
 #include "viewer_driver.hpp"
 
 namespace mjarm::detail {
@@ -30,11 +29,7 @@ class ArmDriver final : public ViewerDriver {
 
   void set_value(const std::string& name, const std::string& value, mjvCamera&) override {
     set_panel_value(panel_, session_.ranges(), name, value);
-    if (name == "mode") {
-      const SimulationMode wanted = panel_mode(panel_);
-      apply_mode();  // reverts the panel and leaves a note when the mode is unavailable
-      if (session_.mode() != wanted) throw Error(session_.unavailable_reason(wanted));
-    }
+    if (name == "mode") apply_mode(/*strict=*/true);
     session_.set_target(panel_);
   }
 
@@ -87,16 +82,10 @@ class ArmDriver final : public ViewerDriver {
 
  private:
   // the panel's mode radio → the session
-  void apply_mode() {
-    const SimulationMode mode = panel_mode(panel_);
-    if (mode == session_.mode()) return;
-    if (!session_.available(mode)) {
-      note = session_.unavailable_reason(mode);
-      panel_.mode = static_cast<int>(session_.mode());
-      return;
-    }
-    session_.set_mode(mode);
-    note.clear();
+  void apply_mode(bool strict = false) {
+    ViewerDriver::apply_mode(
+        panel_.mode, panel_mode(panel_), session_,
+        [this](SimulationMode mode) { session_.set_mode(mode); }, strict);
   }
 
   ViewerSession session_;

@@ -3,13 +3,16 @@
 // window, the GL resources, the camera, the schedule and the event routing; a driver owns the
 // session, its panel state and the mjui panel bound to it, and says what to draw. Two drivers:
 // one arm (`ViewerSession`, viewer_arm_driver.cpp) and several hands (`TeleopSession` with its
-// recorder, teleop_viewer_driver.cpp).
+// recorder, teleop_viewer_driver.cpp); they share the shell, the mode switch (`apply_mode` here,
+// `detail::ModeRigs` in the sessions), the panel sections (viewer_ui.hpp), the markers and the
+// overlay's common lines.
 
 #include <mujoco/mujoco.h>
 
 #include <memory>
 #include <string>
 
+#include "mjarm/error.hpp"
 #include "mjarm/model/robot.hpp"
 #include "mjarm/teleop/viewer.hpp"
 #include "viewer_overlay.hpp"
@@ -66,6 +69,25 @@ class ViewerDriver {
 
   /// A note for people (a mode that could not be selected, …); empty when none.
   std::string note;
+
+ protected:
+  /// The mode switch of both drivers: the panel's mode radio @p radio asks for @p wanted; when
+  /// @p session can run it, @p switch_mode(wanted) switches (the note is cleared), else the radio
+  /// goes back to the session's mode and the note says why — an error too when @p strict (a named
+  /// edit from a script or --set).
+  template <class Session, class Switch>
+  void apply_mode(int& radio, SimulationMode wanted, const Session& session, Switch&& switch_mode,
+                  bool strict = false) {
+    if (wanted == session.mode()) return;
+    if (!session.available(wanted)) {
+      note = session.unavailable_reason(wanted);
+      radio = static_cast<int>(session.mode());
+      if (strict) throw Error(note);
+      return;
+    }
+    switch_mode(wanted);
+    note.clear();
+  }
 };
 
 std::unique_ptr<ViewerDriver> make_arm_driver(const Robot& robot, const ViewerOptions& options);

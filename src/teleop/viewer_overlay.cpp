@@ -19,6 +19,19 @@ void line(OverlayText& out, const char* label, const char* value) {
   out.values += value;
 }
 
+// the lines both overlays start with: mode (and "paused"), simulated time and speed, frame rate
+void head_lines(OverlayText& out, const char* mode, double time, const OverlayInfo& info) {
+  out.labels.clear();
+  out.values.clear();
+  char text[256];
+  std::snprintf(text, sizeof(text), "%s%s", mode, info.paused ? "  (paused)" : "");
+  line(out, "Mode", text);
+  std::snprintf(text, sizeof(text), "%.2f s  (speed %.2fx)", time, info.speed);
+  line(out, "Time", text);
+  std::snprintf(text, sizeof(text), "%.1f fps", info.fps);
+  line(out, "Frame rate", text);
+}
+
 }  // namespace
 
 RateMeter::RateMeter(double window) noexcept
@@ -41,16 +54,8 @@ void RateMeter::add(double now, double amount) noexcept {
 
 void format_overlay(const ViewerStats& stats, const OverlayInfo& info, const mjModel& m,
                     std::span<const std::uint8_t> saturated, OverlayText& out) {
-  out.labels.clear();
-  out.values.clear();
+  head_lines(out, to_string(stats.mode), stats.time, info);
   char text[256];
-
-  std::snprintf(text, sizeof(text), "%s%s", to_string(stats.mode), info.paused ? "  (paused)" : "");
-  line(out, "Mode", text);
-  std::snprintf(text, sizeof(text), "%.2f s  (speed %.2fx)", stats.time, info.speed);
-  line(out, "Time", text);
-  std::snprintf(text, sizeof(text), "%.1f fps", info.fps);
-  line(out, "Frame rate", text);
   std::snprintf(text, sizeof(text), "%.1f mm  %.2f deg", stats.tracking_position * 1000.0,
                 stats.tracking_orientation * kDegrees);
   line(out, "Tracking error", text);
@@ -99,18 +104,10 @@ void format_teleop_overlay(const TeleopStats& stats, const std::vector<TeleopHan
                            const TeleopPanel& panel, const OverlayInfo& info, OverlayText& common,
                            OverlayText& hands_text) {
   static constexpr const char* kPriorities[3] = {"equal", "right over left", "left over right"};
-  common.labels.clear();
-  common.values.clear();
-  char text[256];
   const bool kinematic = stats.mode == SimulationMode::kinematic;
-  std::snprintf(text, sizeof(text), "%s%s",
-                stats.mode == SimulationMode::torque ? "motor" : to_string(stats.mode),
-                info.paused ? "  (paused)" : "");
-  line(common, "Mode", text);
-  std::snprintf(text, sizeof(text), "%.2f s  (speed %.2fx)", stats.time, info.speed);
-  line(common, "Time", text);
-  std::snprintf(text, sizeof(text), "%.1f fps", info.fps);
-  line(common, "Frame rate", text);
+  head_lines(common, stats.mode == SimulationMode::torque ? "motor" : to_string(stats.mode),
+             stats.time, info);
+  char text[256];
   std::snprintf(text, sizeof(text), "%.3f m  (reference %.3f m)", stats.lift, stats.lift_reference);
   line(common, "Lift", text);
   line(common, "Priority",

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <filesystem>
 #include <optional>
 #include <vector>
 
@@ -64,19 +63,10 @@ struct ViewerSession::Rig {
       : robot(r), mode(m), arm(robot, site) {
     const auto fingers = gripper_joints(arm);
     if (!fingers.empty()) gripper.emplace(robot, fingers, site);
-    const double h = robot.model().opt.timestep;
-    SimulationOptions sim_options;
-    sim_options.mode = m;
-    if (m == SimulationMode::kinematic) {
-      period = h * std::max(1.0, std::round(o.kinematic_period / h));
-    } else {
-      sim_options.control_period = o.control_period;
-    }
-    sim = std::make_unique<Simulation>(robot, sim_options);
+    sim = detail::rig_simulation(robot, m, o.kinematic_period, o.control_period, GeomSet(), period);
     if (gripper && m != SimulationMode::torque)
       grip = std::make_unique<GripperTargetController>(*gripper);
     if (m != SimulationMode::kinematic) {
-      period = sim->control_period();
       if (m == SimulationMode::position) {
         joints = std::make_unique<JointTargetController>(arm);
         sim->add_controller(*joints);
@@ -124,81 +114,29 @@ ViewerSession::ViewerSession(const Robot& robot, const ViewerSessionOptions& opt
       filter_(options.reference_limits),
       gripper_ramp_(options.gripper_travel_time) {
   check_fields(options);
-  std::string keyframe = options.keyframe;
-  if (keyframe.empty()) {
-    const auto keys = robot.keyframe_names();
-    if (std::find(keys.begin(), keys.end(), "home") != keys.end()) keyframe = "home";
-  } else {
-    robot.keyframe(keyframe);  // throws for an unknown name, listing close ones
-  }
-  options_.keyframe = keyframe;
-
-  // one rig per mode; a mode whose rig cannot be built is unavailable, with the reason
-  for (int m = 0; m < 3; ++m) {
-    const auto mode = static_cast<SimulationMode>(m);
-    try {
-      std::optional<Robot> model = robot;
-      if (mode != SimulationMode::kinematic)
-        model = detail::model_variant(robot, mode == SimulationMode::torque);
-      if (!model) {
-        reasons_[m] = detail::model_variant_missing(robot, mode == SimulationMode::torque);
-        continue;
-      }
-      rigs_[m] = std::make_unique<Rig>(*model, mode, site_, options_);
-    } catch (const Error& e) {
-      if (mode == SimulationMode::kinematic) throw;  // the frame itself is wrong
-      reasons_[m] = std::string(to_string(mode)) + " mode unavailable: " + e.what();
-    }
-  }
-  if (!available(options.mode)) throw Error("viewer: " + reasons_[static_cast<int>(options.mode)]);
-  mode_ = options.mode;
-  // every rig starts in the initial state, so that a mode switch before any motion is seamless
-  for (int m = 0; m < 3; ++m) {
-    if (rigs_[m] == nullptr) continue;
-    mode_ = static_cast<SimulationMode>(m);
-    reset();
-  }
-  mode_ = options.mode;
+  options_.keyframe = detail::initial_keyframe(robot, options.keyframe);
+  rigs_.build(robot, options.mode, "viewer", [&](const Robot& model, SimulationMode mode) {
+    return std::make_unique<Rig>(model, mode, site_, options_);
+  });
+  rigs_.for_each([this](Rig&) { reset(); });
   restart_reference();
-  ranges_ = panel_ranges(rigs_[0]->arm, stats_.X_WE, options.range_samples);
-  initial_panel_ = panel_state(stats_.X_WE, ranges_, 0.0, mode_);
+  ranges_ =
+      panel_ranges(rigs_.rig(SimulationMode::kinematic).arm, stats_.X_WE, options.range_samples);
+  initial_panel_ = panel_state(stats_.X_WE, ranges_, 0.0, mode());
   set_target(initial_panel_);
 }
 
 ViewerSession::~ViewerSession() = default;
 
-const Robot& ViewerSession::robot() const noexcept { return rigs_[static_cast<int>(mode_)]->robot; }
-Simulation& ViewerSession::simulation() noexcept { return *rigs_[static_cast<int>(mode_)]->sim; }
-const Simulation& ViewerSession::simulation() const noexcept {
-  return *rigs_[static_cast<int>(mode_)]->sim;
-}
-const Chain& ViewerSession::arm() const noexcept { return rigs_[static_cast<int>(mode_)]->arm; }
-
-bool ViewerSession::available(SimulationMode mode) const noexcept {
-  const int m = static_cast<int>(mode);
-  return m >= 0 && m < 3 && rigs_[m] != nullptr;
-}
-
-const std::string& ViewerSession::unavailable_reason(SimulationMode mode) const noexcept {
-  static const std::string none;
-  const int m = static_cast<int>(mode);
-  return m >= 0 && m < 3 ? reasons_[m] : none;
-}
-
-bool ViewerSession::has_gripper() const noexcept {
-  return rigs_[static_cast<int>(mode_)]->gripper.has_value();
-}
-
-double ViewerSession::control_period() const noexcept {
-  return rigs_[static_cast<int>(mode_)]->period;
-}
+const Robot& ViewerSession::robot() const noexcept { return rigs_.current().robot; }
+Simulation& ViewerSession::simulation() noexcept { return *rigs_.current().sim; }
+const Simulation& ViewerSession::simulation() const noexcept { return *rigs_.current().sim; }
+const Chain& ViewerSession::arm() const noexcept { return rigs_.current().arm; }
+bool ViewerSession::has_gripper() const noexcept { return rigs_.current().gripper.has_value(); }
+double ViewerSession::control_period() const noexcept { return rigs_.current().period; }
 
 void ViewerSession::set_mode(SimulationMode mode) {
-  if (mode == mode_) return;
-  if (!available(mode)) throw Error("viewer: " + unavailable_reason(mode));
-  detail::carry_state(*rigs_[static_cast<int>(mode_)]->sim, *rigs_[static_cast<int>(mode)]->sim);
-  mode_ = mode;
-  restart_reference();
+  if (rigs_.switch_to(mode, "viewer")) restart_reference();
 }
 
 void ViewerSession::set_target(const PanelState& panel) noexcept {
@@ -208,7 +146,7 @@ void ViewerSession::set_target(const PanelState& panel) noexcept {
 }
 
 void ViewerSession::reset() {
-  Rig& rig = *rigs_[static_cast<int>(mode_)];
+  Rig& rig = rigs_.current();
   detail::reset_simulation(*rig.sim, options_.keyframe);
   rig.read_q();
   rig.q_home = rig.q;
@@ -218,7 +156,7 @@ void ViewerSession::reset() {
 
 // the reference restarts at the end effector, the servo targets at the configuration
 void ViewerSession::restart_reference() {
-  Rig& rig = *rigs_[static_cast<int>(mode_)];
+  Rig& rig = rigs_.current();
   rig.read_q();
   rig.q_cmd = rig.q;
   rig.reference.joint.q = rig.q;
@@ -233,7 +171,7 @@ void ViewerSession::restart_reference() {
 }
 
 int ViewerSession::step(int ticks) noexcept {
-  Rig& rig = *rigs_[static_cast<int>(mode_)];
+  Rig& rig = rigs_.current();
   int done = 0;
   for (; done < ticks && !stats_.faulted; ++done) {
     if (!tick(rig)) break;
@@ -294,18 +232,11 @@ bool ViewerSession::tick(Rig& rig) noexcept {
 }
 
 void ViewerSession::refresh_stats() noexcept {
-  Rig& rig = *rigs_[static_cast<int>(mode_)];
+  Rig& rig = rigs_.current();
   const mjData& d = rig.sim->data();
-  const FrameRef& frame = rig.arm.frame();
-  // frame_pose checks the id, which the chain already did: read the pose directly
-  const double* p =
-      frame.kind == FrameKind::site ? d.site_xpos + 3 * frame.id : d.xpos + 3 * frame.id;
-  const double* R =
-      frame.kind == FrameKind::site ? d.site_xmat + 9 * frame.id : d.xmat + 9 * frame.id;
-  stats_.mode = mode_;
+  stats_.mode = mode();
   stats_.time = d.time;
-  stats_.X_WE.p = Eigen::Vector3d(p[0], p[1], p[2]);
-  stats_.X_WE.R = Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(R);
+  stats_.X_WE = detail::read_frame(d, rig.arm.frame());
   stats_.X_WR = filter_.pose();
   stats_.gripper = gripper_ramp_.value();
   stats_.X_WT = X_WT_;

@@ -28,22 +28,33 @@ ViewerUi::ViewerUi() : ui_(std::make_unique<mjUI>()) {
   layout(1, 1);
 }
 
-ViewerUi::ViewerUi(PanelState& state, const PanelRanges& ranges, bool gripper) : ViewerUi() {
+std::vector<UiItemDef> target_items(double (&pose)[6], double& gripper, const PanelRanges& ranges,
+                                    bool has_gripper, const std::string& prefix) {
   static const char* const kLabels[6] = {"x [m]",      "y [m]",       "z [m]",
                                          "roll [rad]", "pitch [rad]", "yaw [rad]"};
   const auto& names = panel_value_names();  // x y z roll pitch yaw gripper mode
-  std::vector<UiItemDef> target;
+  std::vector<UiItemDef> items;
   for (int i = 0; i < 6; ++i) {
-    target.push_back({mjITEM_SLIDERNUM, kLabels[i], 1, &state.target[i],
-                      ui_range(ranges.lower[i], ranges.upper[i]), names[i]});
+    items.push_back({mjITEM_SLIDERNUM, kLabels[i], 1, &pose[i],
+                     ui_range(ranges.lower[i], ranges.upper[i]), prefix + names[i]});
   }
-  target.push_back({mjITEM_SLIDERNUM, "gripper", gripper ? 1 : 0, &state.gripper, "0 1", names[6]});
-  add_section("Target", target);
-  add_section("Simulation",
-              {{mjITEM_RADIO, "Mode", 1, &state.mode, "Kinematic\nPosition\nTorque", names[7]},
-               {mjITEM_BUTTON, "Pause", 1, nullptr, " #32", "pause"},
-               {mjITEM_BUTTON, "Step", 1, nullptr, " #262", "step"},
-               {mjITEM_BUTTON, "Reset", 1, nullptr, " #259", "reset"}});
+  items.push_back(
+      {mjITEM_SLIDERNUM, "gripper", has_gripper ? 1 : 0, &gripper, "0 1", prefix + names[6]});
+  return items;
+}
+
+std::vector<UiItemDef> run_buttons() {
+  return {{mjITEM_BUTTON, "Pause", 1, nullptr, " #32", "pause"},
+          {mjITEM_BUTTON, "Step", 1, nullptr, " #262", "step"},
+          {mjITEM_BUTTON, "Reset", 1, nullptr, " #259", "reset"}};
+}
+
+ViewerUi::ViewerUi(PanelState& state, const PanelRanges& ranges, bool gripper) : ViewerUi() {
+  add_section("Target", target_items(state.target, state.gripper, ranges, gripper, ""));
+  std::vector<UiItemDef> simulation = {
+      {mjITEM_RADIO, "Mode", 1, &state.mode, "Kinematic\nPosition\nTorque", "mode"}};
+  for (auto& button : run_buttons()) simulation.push_back(std::move(button));
+  add_section("Simulation", simulation);
 }
 
 ViewerUi::~ViewerUi() = default;

@@ -55,6 +55,17 @@ enum ViewerRect : int { rect_window = 0, rect_panel = 1, rect_view = 2 };
 /// digits).
 std::string ui_range(double lower, double upper);
 
+/// The items of a target section, shared by both panels: sliders "PREFIXx", "PREFIXy",
+/// "PREFIXz" [m], "PREFIXroll", "PREFIXpitch", "PREFIXyaw" [rad] bound to @p pose with ranges
+/// from @p ranges, and "PREFIXgripper" (0 open … 1 closed) bound to @p gripper, disabled when
+/// @p has_gripper is false. @p prefix is "" for the single-arm panel, "<hand>." for a hand.
+std::vector<UiItemDef> target_items(double (&pose)[6], double& gripper, const PanelRanges& ranges,
+                                    bool has_gripper, const std::string& prefix);
+
+/// The run buttons that close the "Simulation" section of both panels: Pause/Run (space),
+/// Step (right arrow), Reset (backspace), named "pause", "step", "reset".
+std::vector<UiItemDef> run_buttons();
+
 /// The panel and the layout. Holds pointers into @p state: the state must outlive it and stay
 /// where it is.
 class ViewerUi {

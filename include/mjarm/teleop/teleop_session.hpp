@@ -40,6 +40,7 @@
 #include "mjarm/model/robot.hpp"
 #include "mjarm/sim/contact_query.hpp"
 #include "mjarm/sim/simulation.hpp"
+#include "mjarm/teleop/detail/mode_rigs.hpp"
 #include "mjarm/trajectory/target_filter.hpp"
 
 namespace mjarm {
@@ -179,9 +180,11 @@ class TeleopSession {
   Simulation& simulation() noexcept;
   const Simulation& simulation() const noexcept;
 
-  SimulationMode mode() const noexcept { return mode_; }
-  bool available(SimulationMode mode) const noexcept;
-  const std::string& unavailable_reason(SimulationMode mode) const noexcept;
+  SimulationMode mode() const noexcept { return rigs_.mode(); }
+  bool available(SimulationMode mode) const noexcept { return rigs_.available(mode); }
+  const std::string& unavailable_reason(SimulationMode mode) const noexcept {
+    return rigs_.unavailable_reason(mode);
+  }
   /// Switches mode carrying the state over; references restart where the hands are.
   /// @throws Error when @p mode is unavailable.
   void set_mode(SimulationMode mode);
@@ -219,9 +222,7 @@ class TeleopSession {
   bool has_lift_ = false;
   int lift_qpos_ = -1;
   std::array<double, 2> lift_range_{0.0, 0.0};
-  std::array<std::unique_ptr<Rig>, 3> rigs_;
-  std::array<std::string, 3> reasons_;
-  SimulationMode mode_ = SimulationMode::position;
+  detail::ModeRigs<Rig> rigs_;
   std::vector<HandTask> tasks_;
   TeleopTargets initial_;
   TeleopTargets targets_;

@@ -17,8 +17,6 @@
 
 #include <mujoco/mujoco.h>
 
-#include <array>
-#include <memory>
 #include <string>
 
 #include "mjarm/fields.hpp"
@@ -26,9 +24,10 @@
 #include "mjarm/lie/pose.hpp"
 #include "mjarm/model/chain.hpp"
 #include "mjarm/model/robot.hpp"
-#include "mjarm/teleop/viewer_panel.hpp"
 #include "mjarm/sim/contact_query.hpp"
 #include "mjarm/sim/simulation.hpp"
+#include "mjarm/teleop/detail/mode_rigs.hpp"
+#include "mjarm/teleop/viewer_panel.hpp"
 #include "mjarm/trajectory/ramped_command.hpp"
 #include "mjarm/trajectory/target_filter.hpp"
 
@@ -124,11 +123,13 @@ class ViewerSession {
   /// Name of the end-effector frame.
   const std::string& site() const noexcept { return site_; }
 
-  SimulationMode mode() const noexcept { return mode_; }
+  SimulationMode mode() const noexcept { return rigs_.mode(); }
   /// True when @p mode can run on this model.
-  bool available(SimulationMode mode) const noexcept;
+  bool available(SimulationMode mode) const noexcept { return rigs_.available(mode); }
   /// Why @p mode cannot run (empty when it can).
-  const std::string& unavailable_reason(SimulationMode mode) const noexcept;
+  const std::string& unavailable_reason(SimulationMode mode) const noexcept {
+    return rigs_.unavailable_reason(mode);
+  }
   /// Switches mode, carrying the configuration (and velocity) over; the reference restarts at
   /// the current end-effector pose. Nothing happens when @p mode is the current one.
   /// @throws Error when @p mode is unavailable (with the reason).
@@ -168,9 +169,7 @@ class ViewerSession {
 
   std::string site_;
   ViewerSessionOptions options_;
-  std::array<std::unique_ptr<Rig>, 3> rigs_;
-  std::array<std::string, 3> reasons_;
-  SimulationMode mode_ = SimulationMode::kinematic;
+  detail::ModeRigs<Rig> rigs_;
   PanelRanges ranges_;
   PanelState initial_panel_;
   Pose X_WT_;
