@@ -31,7 +31,7 @@ fi
 if [ ! -f "$build/CMakeCache.txt" ]; then
   # -O1 -g1: libFuzzer's speed with readable stacks at a third of the -O2 compile time
   # shellcheck disable=SC2086  # FUZZ_CMAKE_FLAGS holds several flags
-  cmake -S . -B "$build" -DMJARM_FUZZ=ON -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=Debug \
+  cmake -S . -B "$build" -DMJARM_FUZZ=ON -DMJARM_WERROR=ON -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=Debug \
     -DCMAKE_CXX_FLAGS_DEBUG="-O1 -g1" ${FUZZ_CMAKE_FLAGS:-}
 fi
 cmake --build "$build" -j "${JOBS:-$(nproc)}"

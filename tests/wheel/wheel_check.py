@@ -11,8 +11,9 @@ By default the build runs without pip's build isolation, in WORK_DIR/build-env: 
 environment holding exactly the build requirements of pyproject.toml (what isolation would
 install), with a build folder kept between runs (scikit-build-core's build-dir), so a second run
 recompiles only what changed; isolation's temporary paths would make every run a full build. It
-compiles unoptimized (-O0, and GCC collects its garbage rarely): what is checked is the
-package, not the speed of its code.
+compiles with GCC and -Werror (make test's own build is clang's: so both compilers see all of
+mjarm's code but the tests), unoptimized (-O0, and GCC collects its garbage rarely): what is
+checked is the package, not the speed of its code.
 --isolated builds exactly as `pip install .` does: isolated, Release, in a temporary build folder.
 """
 import json
@@ -85,7 +86,10 @@ def main():
              "--config-settings=cmake.build-type=Debug",
              "--config-settings=cmake.define.CMAKE_CXX_FLAGS_DEBUG=-O0",
              "--config-settings=cmake.define.MJARM_GCC_COLLECT_RARELY=ON",
-             "--config-settings=cmake.define.MJARM_UNITY_BUILD=ON", source])
+             "--config-settings=cmake.define.MJARM_UNITY_BUILD=ON",
+             # GCC, strict: make test's own build is clang's, so everything compiles with both
+             "--config-settings=cmake.define.CMAKE_CXX_COMPILER=g++",
+             "--config-settings=cmake.define.MJARM_WERROR=ON", source])
     wheels = list(dist.glob("mjarm-*.whl"))
     check(len(wheels) == 1, f"one wheel in {dist}: {wheels}")
     wheel = wheels[0]
