@@ -1,12 +1,21 @@
 #include "mjarm/control/acceleration_control.hpp"
 
+#include <Eigen/Cholesky>
+
 #include "control_checks.hpp"
 
 namespace mjarm {
 
+struct AccelerationController::Factor {
+  Eigen::LLT<Small> llt;
+};
+
 AccelerationController::AccelerationController(const Chain& chain,
                                                const AccelerationControlOptions& options)
-    : options_(options), rows_(task_rows(options.mode)), dynamics_(chain) {
+    : options_(options),
+      rows_(task_rows(options.mode)),
+      dynamics_(chain),
+      llt_(make_workspace<Factor>()) {
   using O = AccelerationControlOptions;
   check_fields(detail::ignored_rows_cleared(options, rows_, &O::stiffness, &O::damping), "accel");
   const int n = dynamics_.size();
@@ -21,17 +30,25 @@ AccelerationController::AccelerationController(const Chain& chain,
   passive_.setZero(n);
 }
 
+AccelerationController::~AccelerationController() = default;
+AccelerationController::AccelerationController(const AccelerationController& other) = default;
+AccelerationController& AccelerationController::operator=(const AccelerationController& other) =
+    default;
+AccelerationController::AccelerationController(AccelerationController&& other) noexcept = default;
+AccelerationController& AccelerationController::operator=(AccelerationController&& other) noexcept =
+    default;
+
 void AccelerationController::apply_pinv(const Eigen::Ref<const Eigen::VectorXd>& y,
                                         Eigen::Ref<Eigen::VectorXd> x) noexcept {
   if (rows_ <= J_.cols()) {
     // J⁺·y = Jᵀ·(J·Jᵀ + λ²I)⁻¹·y
-    small_.head(rows_) = llt_.solve(y);
+    small_.head(rows_) = llt_->llt.solve(y);
     x.noalias() = J_.transpose() * small_.head(rows_);
   } else {
     // J⁺·y = (Jᵀ·J + λ²I)⁻¹·Jᵀ·y
     const auto n = J_.cols();
     small_.head(n).noalias() = J_.transpose() * y;
-    x = llt_.solve(small_.head(n));
+    x = llt_->llt.solve(small_.head(n));
   }
 }
 
@@ -57,16 +74,16 @@ void AccelerationController::compute(const mjData& data, const Reference& refere
   } else {
     gram_.noalias() = J_.transpose() * J_;
   }
-  llt_.compute(gram_);
+  llt_->llt.compute(gram_);
   double w = 0.0;
-  if (llt_.info() == Eigen::Success) w = llt_.matrixLLT().diagonal().prod();
+  if (llt_->llt.info() == Eigen::Success) w = llt_->llt.matrixLLT().diagonal().prod();
   const double w0 = options_.manipulability_threshold;
   double lambda = w < w0 ? options_.max_damping * (1.0 - w / w0) : 0.0;
-  if (lambda > 0.0 || llt_.info() != Eigen::Success) {
+  if (lambda > 0.0 || llt_->llt.info() != Eigen::Success) {
     // a singular Gram matrix with no damping allowed still gets a tiny regularization
     const double lambda2 = lambda > 0.0 ? lambda * lambda : 1e-12;
     gram_.diagonal().array() += lambda2;
-    llt_.compute(gram_);
+    llt_->llt.compute(gram_);
     lambda = std::sqrt(lambda2);
   }
   apply_pinv(task_, qdd_);

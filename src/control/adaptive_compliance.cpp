@@ -1,5 +1,6 @@
 #include "mjarm/control/adaptive_compliance.hpp"
 
+#include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
 #include <string>
@@ -8,8 +9,12 @@
 
 namespace mjarm {
 
+struct AdaptiveCompliance::Solver {
+  Eigen::SelfAdjointEigenSolver<Matrix6d> eigen;
+};
+
 AdaptiveCompliance::AdaptiveCompliance(const AdaptiveComplianceOptions& options)
-    : options_(options) {
+    : options_(options), eigen_(make_workspace<Solver>()) {
   const Matrix6d& K0 = options.stiffness;
   if (!K0.allFinite()) {
     throw Error("hqp-ac: stiffness K0 must be finite, got diagonal " +
@@ -31,6 +36,12 @@ AdaptiveCompliance::AdaptiveCompliance(const AdaptiveComplianceOptions& options)
   update(Vector6d::Zero(), Matrix6d::Identity());
 }
 
+AdaptiveCompliance::~AdaptiveCompliance() = default;
+AdaptiveCompliance::AdaptiveCompliance(const AdaptiveCompliance& other) = default;
+AdaptiveCompliance& AdaptiveCompliance::operator=(const AdaptiveCompliance& other) = default;
+AdaptiveCompliance::AdaptiveCompliance(AdaptiveCompliance&& other) noexcept = default;
+AdaptiveCompliance& AdaptiveCompliance::operator=(AdaptiveCompliance&& other) noexcept = default;
+
 void AdaptiveCompliance::update(const Vector6d& F,
                                 const Eigen::Ref<const Eigen::MatrixXd>& Lambda_inv) noexcept {
   const double norm = F.allFinite() ? F.norm() : 0.0;
@@ -40,12 +51,12 @@ void AdaptiveCompliance::update(const Vector6d& F,
   K_ = scale_ * options_.stiffness;
 
   // Λ^½ from the eigen-decomposition of Λ⁻¹, its small eigenvalues floored
-  eigen_.compute(Lambda_inv.topLeftCorner<6, 6>());
+  eigen_->eigen.compute(Lambda_inv.topLeftCorner<6, 6>());
   Vector6d d;
   for (int i = 0; i < 6; ++i) {
-    d[i] = 1.0 / std::sqrt(std::max(eigen_.eigenvalues()[i], options_.min_eigenvalue));
+    d[i] = 1.0 / std::sqrt(std::max(eigen_->eigen.eigenvalues()[i], options_.min_eigenvalue));
   }
-  const Matrix6d& V = eigen_.eigenvectors();
+  const Matrix6d& V = eigen_->eigen.eigenvectors();
   Lambda_sqrt_.noalias() = V * d.asDiagonal() * V.transpose();
   // D_r = √s·(Λ^½·K0^½ + K0^½·Λ^½)
   D_.noalias() = Lambda_sqrt_ * K0_sqrt_;

@@ -1,5 +1,6 @@
 #include "mjarm/control/hqp_ac.hpp"
 
+#include <Eigen/Cholesky>
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -54,6 +55,12 @@ ManipulabilityOptions hqp_manipulability_options() {
 
 }  // namespace
 
+struct HqpAcController::Factors {
+  explicit Factors(int n) : llt(n) {}
+  Eigen::LLT<Eigen::MatrixXd> llt;  // of H (n×n)
+  Eigen::LLT<Matrix6d> gram_llt;    // of J·Jᵀ
+};
+
 HqpAcController::HqpAcController(const Chain& chain, const HqpAcOptions& options)
     : options_(hqp_checked(options, chain)),
       dynamics_(chain),
@@ -65,7 +72,7 @@ HqpAcController::HqpAcController(const Chain& chain, const HqpAcOptions& options
       friction_on_(options.friction_feed_forward && friction_.active()),
       main_qp_(chain.size(), 0, chain.size()),
       null_qp_(chain.size(), 6, chain.size()),
-      llt_(chain.size()) {
+      factors_(make_workspace<Factors>(chain.size())) {
   const int n = chain.size();
   main_qp_.settings() = options.qp;
   null_qp_.settings() = options.qp;
@@ -106,6 +113,10 @@ HqpAcController::HqpAcController(const Chain& chain, const HqpAcOptions& options
     v->setZero(n);
   }
 }
+
+HqpAcController::~HqpAcController() = default;
+HqpAcController::HqpAcController(HqpAcController&& other) noexcept = default;
+HqpAcController& HqpAcController::operator=(HqpAcController&& other) noexcept = default;
 
 void HqpAcController::reset() noexcept {
   source_.reset();
@@ -289,10 +300,10 @@ bool HqpAcController::solve_main() noexcept {
 void HqpAcController::least_squares() noexcept {
   // the main QP's unconstrained minimizer, H·q̈ = −g (H and g of solve_main), clamped into the
   // box (a crossed pair of bounds clamps between them)
-  llt_.compute(H_);
-  if (llt_.info() == Eigen::Success) {
+  factors_->llt.compute(H_);
+  if (factors_->llt.info() == Eigen::Success) {
     qdd_ = -g_;
-    llt_.solveInPlace(qdd_);
+    factors_->llt.solveInPlace(qdd_);
   } else {
     qdd_.setZero();
   }
@@ -311,9 +322,10 @@ void HqpAcController::null_goal() noexcept {
   // ω = √det(J·Jᵀ) from the Cholesky factor of the 6×6 Gram matrix (Π L_ii); the analytic
   // gradient (an SVD in `Manipulability`) only below the threshold, where the term acts
   gram_.noalias() = J_ * J_.transpose();
-  gram_llt_.compute(gram_);
+  factors_->gram_llt.compute(gram_);
   double w = 0.0;
-  if (gram_llt_.info() == Eigen::Success) w = gram_llt_.matrixLLT().diagonal().prod();
+  if (factors_->gram_llt.info() == Eigen::Success)
+    w = factors_->gram_llt.matrixLLT().diagonal().prod();
   if (w < options_.manipulability_threshold) {
     // the state is finite (checked), so the evaluation cannot throw
     w = manipulability_.evaluate(q, gradient_).manipulability;

@@ -1,5 +1,6 @@
 #include "mjarm/dynamics/momentum_observer.hpp"
 
+#include <Eigen/Cholesky>
 #include <algorithm>
 #include <cmath>
 #include <string>
@@ -77,9 +78,17 @@ void mass_derivative_velocity(const Chain& chain, const mjData& d, mjData& scrat
   out /= 2.0 * eps;
 }
 
+struct MomentumObserver::Solver {
+  Eigen::LDLT<Eigen::Matrix<double, 6, 6>> ldlt;
+};
+
 MomentumObserver::MomentumObserver(const Chain& chain, const FrictionFeedForward& friction,
                                    MomentumObserverOptions options)
-    : chain_(chain), friction_(friction), options_(options), n_(chain.size()) {
+    : chain_(chain),
+      friction_(friction),
+      options_(options),
+      n_(chain.size()),
+      solver_(make_workspace<Solver>()) {
   check_fields(options_);
   if (friction_.size() != n_) {
     throw Error("momentum observer: the friction model has " + std::to_string(friction_.size()) +
@@ -100,11 +109,15 @@ MomentumObserver::MomentumObserver(const Chain& chain, const FrictionFeedForward
     work_.assign(static_cast<std::size_t>(6 * m.nbody), 0.0);
   }
   JJt_.setIdentity();
-  solver_.compute(JJt_);
+  solver_->ldlt.compute(JJt_);
 }
 
 MomentumObserver::MomentumObserver(const Chain& chain, MomentumObserverOptions options)
     : MomentumObserver(chain, FrictionFeedForward(chain), options) {}
+
+MomentumObserver::~MomentumObserver() = default;
+MomentumObserver::MomentumObserver(MomentumObserver&& other) noexcept = default;
+MomentumObserver& MomentumObserver::operator=(MomentumObserver&& other) noexcept = default;
 
 void MomentumObserver::reset() noexcept {
   started_ = false;
@@ -158,11 +171,11 @@ ObserverStatus MomentumObserver::update(const mjData& d, const ChainDynamics& dy
   const Matrix6Xd& J = dynamics.jacobian();
   JJt_.noalias() = J * J.transpose();
   JJt_.diagonal().array() += options_.wrench_damping;
-  solver_.compute(JJt_);
+  solver_->ldlt.compute(JJt_);
   wrench_.noalias() = J * all_.r;
-  wrench_ = solver_.solve(wrench_);
+  wrench_ = solver_->ldlt.solve(wrench_);
   contact_wrench_.noalias() = J * contact_.r;
-  contact_wrench_ = solver_.solve(contact_wrench_);
+  contact_wrench_ = solver_->ldlt.solve(contact_wrench_);
   return ObserverStatus::ok;
 }
 

@@ -1,5 +1,6 @@
 #include "mjarm/dynamics/task_space.hpp"
 
+#include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -12,8 +13,17 @@ namespace mjarm {
 
 namespace tsk = task_space_kernels;
 
+struct TaskSpaceDynamics::Solver {
+  explicit Solver(int size) : eigen(size) {}
+  // `compute_eigenvalues` (const) fills the cache through it
+  mutable Eigen::SelfAdjointEigenSolver<SmallMatrix> eigen;
+};
+
 TaskSpaceDynamics::TaskSpaceDynamics(int dofs, int task_rows, TaskSpaceOptions options)
-    : n_(dofs), m_(task_rows), options_(options), eigen_(std::clamp(task_rows, 1, 6)) {
+    : n_(dofs),
+      m_(task_rows),
+      options_(options),
+      solver_(make_workspace<Solver>(std::clamp(task_rows, 1, 6))) {
   if (dofs < 1) throw Error("TaskSpaceDynamics: dofs must be >= 1, got " + std::to_string(dofs));
   if (task_rows < 1 || task_rows > 6) {
     throw Error("TaskSpaceDynamics: task_rows must be in 1..6, got " + std::to_string(task_rows));
@@ -39,6 +49,12 @@ TaskSpaceDynamics::TaskSpaceDynamics(int dofs, int task_rows, TaskSpaceOptions o
   N_ = Eigen::MatrixXd::Identity(n_, n_);
   eigenvalues_ = Eigen::VectorXd::Ones(m_);
 }
+
+TaskSpaceDynamics::~TaskSpaceDynamics() = default;
+TaskSpaceDynamics::TaskSpaceDynamics(const TaskSpaceDynamics& other) = default;
+TaskSpaceDynamics& TaskSpaceDynamics::operator=(const TaskSpaceDynamics& other) = default;
+TaskSpaceDynamics::TaskSpaceDynamics(TaskSpaceDynamics&& other) noexcept = default;
+TaskSpaceDynamics& TaskSpaceDynamics::operator=(TaskSpaceDynamics&& other) noexcept = default;
 
 TaskSpaceStatus TaskSpaceDynamics::update(const Eigen::Ref<const Eigen::MatrixXd>& M,
                                           const Eigen::Ref<const Eigen::MatrixXd>& J) noexcept {
@@ -102,8 +118,8 @@ bool TaskSpaceDynamics::above_floor_exactly() noexcept {
 bool TaskSpaceDynamics::eigen_lambda() noexcept {
   // Λ = V·diag(1/max(λ, floor))·Vᵀ: exact when every λ is above the floor, bounded otherwise
   small_ = Lambda_inv_;
-  eigen_.compute(small_, Eigen::ComputeEigenvectors);
-  eigenvalues_ = eigen_.eigenvalues();
+  solver_->eigen.compute(small_, Eigen::ComputeEigenvectors);
+  eigenvalues_ = solver_->eigen.eigenvalues();
   eigenvalues_ready_ = true;
   bool floored = false;
   for (int k = 0; k < m_; ++k) {
@@ -112,7 +128,7 @@ bool TaskSpaceDynamics::eigen_lambda() noexcept {
     floored = floored || low;
     scaled_[k] = 1.0 / (low ? options_.min_eigenvalue : lambda);
   }
-  const auto& V = eigen_.eigenvectors();
+  const auto& V = solver_->eigen.eigenvectors();
   scaled_vectors_.noalias() = V * scaled_.asDiagonal();
   small_.noalias() = scaled_vectors_ * V.transpose();
   Lambda_ = small_;
@@ -120,8 +136,8 @@ bool TaskSpaceDynamics::eigen_lambda() noexcept {
 }
 
 void TaskSpaceDynamics::compute_eigenvalues() const noexcept {
-  eigen_.compute(Lambda_inv_, Eigen::EigenvaluesOnly);
-  eigenvalues_ = eigen_.eigenvalues();
+  solver_->eigen.compute(Lambda_inv_, Eigen::EigenvaluesOnly);
+  eigenvalues_ = solver_->eigen.eigenvalues();
   eigenvalues_ready_ = true;
 }
 

@@ -1,5 +1,6 @@
 #include "mjarm/ik/local_ik_workspace.hpp"
 
+#include <Eigen/Cholesky>
 #include <string>
 
 #include "mjarm/error.hpp"
@@ -48,5 +49,42 @@ void LocalIkWorkspace::update_secondary() noexcept {
   add_limit_bias(chain_, limits_, q_, bias_);
   add_posture_pull(q_pref_, posture_gain_, q_, bias_);
 }
+
+template <int Rows>
+bool LocalIkWorkspace::damped_task_step(
+    const Eigen::Matrix<double, Rows, Eigen::Dynamic>& J,
+    const Eigen::Matrix<double, Rows, 1>& target, double lambda_sq,
+    Eigen::Matrix<double, Rows, Eigen::Dynamic>& J_free) noexcept {
+  using Square = Eigen::Matrix<double, Rows, Rows>;
+  using Column = Eigen::Matrix<double, Rows, 1>;
+  return limited_step(
+      [&](const Eigen::VectorXd& locked, const Eigen::VectorXd& dq_locked, Eigen::VectorXd& dq) {
+        J_free = J;
+        for (int i = 0; i < chain_.size(); ++i) {
+          if (locked[i] != 0.0) J_free.col(i).setZero();
+        }
+        const Column r = target - J * dq_locked;
+        Square A = J_free * J_free.transpose();
+        A.diagonal().array() += lambda_sq;
+        dq.noalias() = J_free.transpose() * A.llt().solve(r);
+        if (has_secondary_) {
+          projected_ = bias_.cwiseProduct((1.0 - locked.array()).matrix());
+          Square N = J_free * J_free.transpose();
+          N.diagonal().array() += eps_sq_;
+          const Column z = N.ldlt().solve(J_free * projected_);
+          projected_.noalias() -= J_free.transpose() * z;
+          dq += secondary_scale(dq.norm(), projected_.norm(), secondary_ratio_) * projected_;
+        }
+        dq += dq_locked;
+      });
+}
+
+// the task sizes of PositionIk (3) and PoseIk (6)
+template bool LocalIkWorkspace::damped_task_step<3>(
+    const Eigen::Matrix<double, 3, Eigen::Dynamic>&, const Eigen::Matrix<double, 3, 1>&, double,
+    Eigen::Matrix<double, 3, Eigen::Dynamic>&) noexcept;
+template bool LocalIkWorkspace::damped_task_step<6>(
+    const Eigen::Matrix<double, 6, Eigen::Dynamic>&, const Eigen::Matrix<double, 6, 1>&, double,
+    Eigen::Matrix<double, 6, Eigen::Dynamic>&) noexcept;
 
 }  // namespace mjarm

@@ -1,5 +1,6 @@
 #include "mjarm/kinematics/manipulability.hpp"
 
+#include <Eigen/SVD>
 #include <cmath>
 #include <limits>
 #include <string>
@@ -8,6 +9,14 @@
 #include "mjarm/number_text.hpp"
 
 namespace mjarm {
+
+struct Manipulability::Svds {
+  // preallocating both decompositions keeps compute() free of heap allocation
+  Svds(int rows, int cols)
+      : values(rows, cols), vectors(rows, cols, Eigen::ComputeThinU | Eigen::ComputeThinV) {}
+  Eigen::JacobiSVD<Eigen::MatrixXd> values;   // singular values only
+  Eigen::JacobiSVD<Eigen::MatrixXd> vectors;  // with thin U and V, for the gradient
+};
 
 Manipulability::Manipulability(const Chain& chain, const ManipulabilityOptions& options)
     : options_(options), kin_(chain) {
@@ -29,13 +38,16 @@ Manipulability::Manipulability(const Chain& chain, const ManipulabilityOptions& 
   }
   J_.setZero(6, n);
   J_block_.setZero(rows_, n);
-  // preallocating both decompositions keeps compute() free of heap allocation
-  svd_values_ = Eigen::JacobiSVD<Eigen::MatrixXd>(rows_, n);
-  svd_vectors_ =
-      Eigen::JacobiSVD<Eigen::MatrixXd>(rows_, n, Eigen::ComputeThinU | Eigen::ComputeThinV);
+  svd_ = make_workspace<Svds>(rows_, n);
   sigma_.setZero(std::min(rows_, n));
   weights_.setZero(6, n);
 }
+
+Manipulability::~Manipulability() = default;
+Manipulability::Manipulability(const Manipulability& other) = default;
+Manipulability& Manipulability::operator=(const Manipulability& other) = default;
+Manipulability::Manipulability(Manipulability&& other) noexcept = default;
+Manipulability& Manipulability::operator=(Manipulability&& other) noexcept = default;
 
 const ManipulabilityResult& Manipulability::evaluate(const Eigen::Ref<const Eigen::VectorXd>& q) {
   chain().check(q, "q");
@@ -61,11 +73,11 @@ void Manipulability::compute(const Eigen::Ref<const Eigen::VectorXd>& q, bool ve
   kin_.jacobian(J_, JacobianFrame::world_aligned);
   J_block_ = J_.middleRows(first_row_, rows_);
   if (vectors) {
-    svd_vectors_.compute(J_block_);
-    sigma_ = svd_vectors_.singularValues();
+    svd_->vectors.compute(J_block_);
+    sigma_ = svd_->vectors.singularValues();
   } else {
-    svd_values_.compute(J_block_);
-    sigma_ = svd_values_.singularValues();
+    svd_->values.compute(J_block_);
+    sigma_ = svd_->values.singularValues();
   }
   const int p = static_cast<int>(sigma_.size());
   double w = 1.0;
@@ -94,8 +106,8 @@ void Manipulability::compute_gradient(Eigen::Ref<Eigen::VectorXd> gradient) noex
   // weights = U·diag(c)·Vᵀ with cofactors c_k = Π_{l≠k} σ_l (= w/σ_k without dividing), so that
   // ∂w/∂q_i = Σ_k c_k u_kᵀ ∂J_i v_k = Σ_j <∂J_i column j, weights column j>
   const int p = static_cast<int>(sigma_.size());
-  const auto& U = svd_vectors_.matrixU();
-  const auto& V = svd_vectors_.matrixV();
+  const auto& U = svd_->vectors.matrixU();
+  const auto& V = svd_->vectors.matrixV();
   weights_.setZero();
   for (int k = 0; k < p; ++k) {
     double c = 1.0;

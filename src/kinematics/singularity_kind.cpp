@@ -1,6 +1,7 @@
 #include "mjarm/kinematics/singularity_kind.hpp"
 
 #include <Eigen/Eigenvalues>
+#include <Eigen/SVD>
 #include <algorithm>
 #include <cmath>
 #include <optional>
@@ -73,13 +74,19 @@ Eigen::VectorXd second_probe(const Chain& chain) {
 
 }  // namespace
 
+struct SingularityClassifier::Svd {
+  // preallocated: classify() computes into it
+  Svd(int rows, int cols) : svd(rows, cols, Eigen::ComputeFullV) {}
+  Eigen::JacobiSVD<Eigen::MatrixXd> svd;
+};
+
 SingularityClassifier::SingularityClassifier(const Chain& chain,
                                              const ManipulabilityOptions& measure,
                                              const SingularityThresholds& thresholds)
     : thresholds_(thresholds), manipulability_(chain, measure) {
   check_fields(thresholds);
   const int n = chain.size();
-  svd_ = Eigen::JacobiSVD<Eigen::MatrixXd>(manipulability_.rows(), n, Eigen::ComputeFullV);
+  svd_ = make_workspace<Svd>(manipulability_.rows(), n);
 
   // the parts of the arm, from its axes at two configurations: a relation that holds at both is
   // one of the design (axes meeting at a joint centre, joints parallel by construction)
@@ -134,6 +141,14 @@ SingularityClassifier::SingularityClassifier(const Chain& chain,
     }
   }
 }
+
+SingularityClassifier::~SingularityClassifier() = default;
+SingularityClassifier::SingularityClassifier(const SingularityClassifier& other) = default;
+SingularityClassifier& SingularityClassifier::operator=(const SingularityClassifier& other) =
+    default;
+SingularityClassifier::SingularityClassifier(SingularityClassifier&& other) noexcept = default;
+SingularityClassifier& SingularityClassifier::operator=(SingularityClassifier&& other) noexcept =
+    default;
 
 SingularityGeometry SingularityClassifier::geometry(const Eigen::Ref<const Eigen::VectorXd>& q) {
   manipulability_.chain().check(q, "q");
@@ -198,10 +213,10 @@ SingularityClassification SingularityClassifier::classify(
   c.above_condition_number = r.condition_number > thresholds_.condition_number;
   c.geometry = measure_geometry();
   // the joint motion that moves the frame least, with a sign fixed by its largest entry
-  svd_.compute(manipulability_.jacobian_block());
-  const Eigen::VectorXd& sigma = svd_.singularValues();
-  const Eigen::Index p = sigma.size(), n = svd_.matrixV().cols();
-  c.null_direction = svd_.matrixV().col(p - 1);
+  svd_->svd.compute(manipulability_.jacobian_block());
+  const Eigen::VectorXd& sigma = svd_->svd.singularValues();
+  const Eigen::Index p = sigma.size(), n = svd_->svd.matrixV().cols();
+  c.null_direction = svd_->svd.matrixV().col(p - 1);
   Eigen::Index largest = 0;
   c.null_direction.cwiseAbs().maxCoeff(&largest);
   if (c.null_direction[largest] < 0.0) c.null_direction = -c.null_direction;
@@ -214,7 +229,7 @@ SingularityClassification SingularityClassifier::classify(
                        sigma[0] > thresholds_.condition_number * sigma[first - 1])) {
     --first;
   }
-  const Eigen::MatrixXd lost = svd_.matrixV().rightCols(n - first);
+  const Eigen::MatrixXd lost = svd_->svd.matrixV().rightCols(n - first);
 
   // kinds are judged on the full Jacobian only: the geometry speaks of motion and orientation;
   // a kind is named when its geometry holds and the lost motions involve its joints

@@ -3,7 +3,6 @@
 /// `AccelerationController`: end-effector control at the acceleration level through inverse
 /// dynamics (target → desired task acceleration → joint acceleration → joint torque).
 
-#include <Eigen/Cholesky>
 #include <Eigen/Core>
 #include <array>
 #include <span>
@@ -15,6 +14,7 @@
 #include "mjarm/dynamics/chain_dynamics.hpp"
 #include "mjarm/fields.hpp"
 #include "mjarm/lie/types.hpp"
+#include "mjarm/workspace_ptr.hpp"
 
 namespace mjarm {
 
@@ -81,6 +81,11 @@ class AccelerationController final : public Controller {
  public:
   /// @throws Error when a gain is negative or not finite, or w₀ is not > 0.
   explicit AccelerationController(const Chain& chain, const AccelerationControlOptions& options = {});
+  ~AccelerationController() override;
+  AccelerationController(const AccelerationController& other);
+  AccelerationController& operator=(const AccelerationController& other);
+  AccelerationController(AccelerationController&& other) noexcept;
+  AccelerationController& operator=(AccelerationController&& other) noexcept;
 
   std::string_view name() const noexcept override { return "accel"; }
   CommandKind command_kind() const noexcept override { return CommandKind::torque; }
@@ -112,7 +117,8 @@ class AccelerationController final : public Controller {
   // workspace
   Eigen::MatrixXd J_;        // m×n
   Small gram_;               // J·Jᵀ (m ≤ n) or Jᵀ·J (m > n), + λ²·I
-  Eigen::LLT<Small> llt_;
+  struct Factor;             // its Cholesky factor (in the .cpp: Eigen/Cholesky)
+  WorkspacePtr<Factor> llt_;
   SmallVector small_;        // m or n
   Vector6d xdd_ = Vector6d::Zero();
   Eigen::VectorXd qdd_;      // n

@@ -4,10 +4,10 @@
 /// K_r = clip((1 − α(F))·K0, r_min·K0, K0) and D_r = Λ^½·K_r^½ + K_r^½·Λ^½.
 
 #include <Eigen/Core>
-#include <Eigen/Eigenvalues>
 
 #include "mjarm/fields.hpp"
 #include "mjarm/lie/types.hpp"
+#include "mjarm/workspace_ptr.hpp"
 
 namespace mjarm {
 
@@ -55,6 +55,11 @@ class AdaptiveCompliance {
   /// @throws Error when K0 is not symmetric positive definite or finite (naming its
   ///         eigenvalues), or a scalar option is out of range.
   explicit AdaptiveCompliance(const AdaptiveComplianceOptions& options = {});
+  ~AdaptiveCompliance();
+  AdaptiveCompliance(const AdaptiveCompliance& other);
+  AdaptiveCompliance& operator=(const AdaptiveCompliance& other);
+  AdaptiveCompliance(AdaptiveCompliance&& other) noexcept;
+  AdaptiveCompliance& operator=(AdaptiveCompliance&& other) noexcept;
 
   const AdaptiveComplianceOptions& options() const noexcept { return options_; }
 
@@ -75,7 +80,8 @@ class AdaptiveCompliance {
  private:
   AdaptiveComplianceOptions options_;
   Matrix6d K0_sqrt_ = Matrix6d::Identity();
-  Eigen::SelfAdjointEigenSolver<Matrix6d> eigen_;
+  struct Solver;  // the eigen solver of Λ⁻¹ (in the .cpp: Eigen/Eigenvalues)
+  WorkspacePtr<Solver> eigen_;
   double force_ = 0.0;
   double alpha_ = 0.5;
   double scale_ = 0.5;

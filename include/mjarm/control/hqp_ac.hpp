@@ -5,7 +5,7 @@
 /// singularity avoidance and posture, both under hard joint velocity, position and torque
 /// bounds over a look-ahead horizon.
 
-#include <Eigen/Cholesky>
+#include <Eigen/Core>
 #include <array>
 #include <cstdint>
 #include <span>
@@ -22,6 +22,7 @@
 #include "mjarm/kinematics/manipulability.hpp"
 #include "mjarm/lie/types.hpp"
 #include "mjarm/qp/dense_qp.hpp"
+#include "mjarm/workspace_ptr.hpp"
 
 namespace mjarm {
 
@@ -194,6 +195,9 @@ class HqpAcController final : public Controller {
   ///         non-positive horizon, velocity or torque limit, a zero preload axis, a size that is
   ///         neither 1 nor n), or from `WrenchSource` (a missing F/T sensor names the site).
   explicit HqpAcController(const Chain& chain, const HqpAcOptions& options = {});
+  ~HqpAcController() override;
+  HqpAcController(HqpAcController&& other) noexcept;
+  HqpAcController& operator=(HqpAcController&& other) noexcept;
 
   std::string_view name() const noexcept override { return "hqp-ac"; }
   CommandKind command_kind() const noexcept override { return CommandKind::torque; }
@@ -261,7 +265,10 @@ class HqpAcController final : public Controller {
   bool friction_on_ = false;
   qp::DenseQp main_qp_;
   qp::DenseQp null_qp_;
-  Eigen::LLT<Eigen::MatrixXd> llt_;  // the fallback's least squares
+  // the Cholesky factors of the fallback's least squares and of J·Jᵀ (in the .cpp:
+  // Eigen/Cholesky)
+  struct Factors;
+  WorkspacePtr<Factors> factors_;
   // fixed per chain
   Eigen::VectorXd v_max_, tau_min_, tau_max_, friction_room_, q_lo_, q_hi_;
   Eigen::Vector3d axis_ = Eigen::Vector3d::UnitZ();
@@ -285,7 +292,6 @@ class HqpAcController final : public Controller {
   Eigen::VectorXd qdd1_, qdd0_, qdd_, gradient_, goal_, beq_, tau_ff_;  // n
   Eigen::MatrixXd J_;                                                   // 6×n
   Matrix6d gram_ = Matrix6d::Zero();                                    // J·Jᵀ
-  Eigen::LLT<Matrix6d> gram_llt_;
   std::array<std::string, 12> names_{"position_error",     "orientation_error", "force_effective",
                                      "stiffness_scale",    "preload",           "manipulability",
                                      "main_iterations",    "null_iterations",   "least_squares",

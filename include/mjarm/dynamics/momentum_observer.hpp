@@ -6,7 +6,6 @@
 
 #include <mujoco/mujoco.h>
 
-#include <Eigen/Cholesky>
 #include <Eigen/Core>
 #include <vector>
 
@@ -15,6 +14,7 @@
 #include "mjarm/fields.hpp"
 #include "mjarm/lie/types.hpp"
 #include "mjarm/model/robot.hpp"
+#include "mjarm/workspace_ptr.hpp"
 
 namespace mjarm {
 
@@ -108,6 +108,9 @@ class MomentumObserver {
                    MomentumObserverOptions options = {});
   /// Same, with the friction model read from the chain's model (default options).
   explicit MomentumObserver(const Chain& chain, MomentumObserverOptions options = {});
+  ~MomentumObserver();
+  MomentumObserver(MomentumObserver&& other) noexcept;
+  MomentumObserver& operator=(MomentumObserver&& other) noexcept;
 
   int size() const noexcept { return n_; }                                      ///< n
   const MomentumObserverOptions& options() const noexcept { return options_; }  ///< as built
@@ -152,7 +155,8 @@ class MomentumObserver {
   std::vector<double> work_;  // 6·nbody or 2·nv
   Eigen::VectorXd p_, beta_, ctv_, mdv_, e_, input_, passive_;
   Eigen::Matrix<double, 6, 6> JJt_;
-  Eigen::LDLT<Eigen::Matrix<double, 6, 6>> solver_;
+  struct Solver;  // the LDLT factor of J·Jᵀ + εI (in the .cpp: Eigen/Cholesky)
+  WorkspacePtr<Solver> solver_;
   Vector6d wrench_ = Vector6d::Zero();
   Vector6d contact_wrench_ = Vector6d::Zero();
 };

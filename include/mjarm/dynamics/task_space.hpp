@@ -4,12 +4,11 @@
 /// inverse J̄ and the null-space projector N of one task Jacobian, with a bounded path near
 /// singularities.
 
-#include <Eigen/Cholesky>
 #include <Eigen/Core>
-#include <Eigen/Eigenvalues>
 
 #include "mjarm/dynamics/chain_dynamics.hpp"
 #include "mjarm/fields.hpp"
+#include "mjarm/workspace_ptr.hpp"
 
 namespace mjarm {
 
@@ -83,6 +82,11 @@ class TaskSpaceDynamics {
   /// @param task_rows m, the number of task rows (1..6): 6 for a full pose task, 3 for position.
   /// @throws Error when a size is out of range or options.min_eigenvalue is not > 0 and finite.
   TaskSpaceDynamics(int dofs, int task_rows = 6, TaskSpaceOptions options = {});
+  ~TaskSpaceDynamics();
+  TaskSpaceDynamics(const TaskSpaceDynamics& other);
+  TaskSpaceDynamics& operator=(const TaskSpaceDynamics& other);
+  TaskSpaceDynamics(TaskSpaceDynamics&& other) noexcept;
+  TaskSpaceDynamics& operator=(TaskSpaceDynamics&& other) noexcept;
 
   int dofs() const noexcept { return n_; }                               ///< n
   int task_rows() const noexcept { return m_; }                          ///< m
@@ -132,7 +136,7 @@ class TaskSpaceDynamics {
   double condition() const noexcept;
 
  private:
-  // at most 6×6: fixed-capacity storage keeps the eigen solver off the heap
+  // at most 6×6: fixed-capacity storage keeps the eigen solver from allocating
   using SmallMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, 6, 6>;
   using SmallVector = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 6, 1>;
 
@@ -169,8 +173,10 @@ class TaskSpaceDynamics {
   SmallMatrix small_;           // Λ⁻¹ handed to the eigen solver; on the fast path its factor R
   SmallMatrix scaled_vectors_;  // V·diag(1/λ); on the fast path R⁻¹
   SmallVector scaled_;          // 1 / floored eigenvalues
+  // the eigen solver (in the .cpp: Eigen/Eigenvalues stays out of this header)
+  struct Solver;
+  WorkspacePtr<Solver> solver_;
   // caches filled on first access after an update
-  mutable Eigen::SelfAdjointEigenSolver<SmallMatrix> eigen_;
   mutable Eigen::MatrixXd MinvJt_;  // n×m, M⁻¹·Jᵀ
   mutable Eigen::MatrixXd Jbar_;
   mutable Eigen::MatrixXd M_inv_;

@@ -9,8 +9,9 @@
 /// ε² gives the (near-exact) null-space projector N = I − Jᵀ(JJᵀ + ε²I)⁻¹J whose eigenvalues
 /// ε²/(σᵢ² + ε²) all lie in [0, 1], so projected secondary terms never blow up.
 
-#include <Eigen/Cholesky>
 #include <Eigen/Core>
+
+#include "mjarm/workspace_ptr.hpp"
 
 namespace mjarm {
 
@@ -21,6 +22,11 @@ class DampedLeastSquares {
   /// Workspace for Jacobians of @p rows task rows and @p cols joints.
   /// @throws Error when a size is not positive.
   DampedLeastSquares(int rows, int cols);
+  ~DampedLeastSquares();
+  DampedLeastSquares(const DampedLeastSquares& other);
+  DampedLeastSquares& operator=(const DampedLeastSquares& other);
+  DampedLeastSquares(DampedLeastSquares&& other) noexcept;
+  DampedLeastSquares& operator=(DampedLeastSquares&& other) noexcept;
 
   int rows() const noexcept { return static_cast<int>(A_.rows()); }
   int cols() const noexcept { return static_cast<int>(y_n_.size()); }
@@ -47,8 +53,9 @@ class DampedLeastSquares {
                            Eigen::Ref<Eigen::MatrixXd> P) noexcept;
 
  private:
+  struct Factor;                     // its Cholesky factor (in the .cpp: Eigen/Cholesky)
   Eigen::MatrixXd A_;                // JJᵀ + λ²I (rows × rows)
-  Eigen::LLT<Eigen::MatrixXd> llt_;  // its Cholesky factor
+  WorkspacePtr<Factor> llt_;
   Eigen::VectorXd y_m_;              // rows-sized scratch
   Eigen::VectorXd y_n_;              // cols-sized scratch
   Eigen::MatrixXd X_;                // (JJᵀ + λ²I)⁻¹J (rows × cols)

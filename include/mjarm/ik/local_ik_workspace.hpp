@@ -12,7 +12,6 @@
 /// - the stall counter.
 /// Its settings are those every local solver has (`LocalIkSettings`).
 
-#include <Eigen/Cholesky>
 #include <Eigen/Core>
 #include <algorithm>
 #include <limits>
@@ -93,6 +92,7 @@ class LocalIkWorkspace {
   /// @param J task Jacobian (Rows × n) @param target task step wanted (Rows)
   /// @param lambda_sq λ² (units of J squared) @param J_free the solver's Rows × n scratch
   /// @return false when the step holds NaN/inf
+  /// Defined in the library for Rows 3 and 6 (the factorizations stay out of this header).
   template <int Rows>
   bool damped_task_step(const Eigen::Matrix<double, Rows, Eigen::Dynamic>& J,
                         const Eigen::Matrix<double, Rows, 1>& target, double lambda_sq,
@@ -166,35 +166,6 @@ bool LocalIkWorkspace::limited_step(SolveFree&& solve_free) noexcept {
   const double largest = dq_.cwiseAbs().maxCoeff();
   if (largest > max_step_) dq_ *= max_step_ / largest;
   return dq_.allFinite();
-}
-
-template <int Rows>
-bool LocalIkWorkspace::damped_task_step(
-    const Eigen::Matrix<double, Rows, Eigen::Dynamic>& J,
-    const Eigen::Matrix<double, Rows, 1>& target, double lambda_sq,
-    Eigen::Matrix<double, Rows, Eigen::Dynamic>& J_free) noexcept {
-  using Square = Eigen::Matrix<double, Rows, Rows>;
-  using Column = Eigen::Matrix<double, Rows, 1>;
-  return limited_step(
-      [&](const Eigen::VectorXd& locked, const Eigen::VectorXd& dq_locked, Eigen::VectorXd& dq) {
-        J_free = J;
-        for (int i = 0; i < chain_.size(); ++i) {
-          if (locked[i] != 0.0) J_free.col(i).setZero();
-        }
-        const Column r = target - J * dq_locked;
-        Square A = J_free * J_free.transpose();
-        A.diagonal().array() += lambda_sq;
-        dq.noalias() = J_free.transpose() * A.llt().solve(r);
-        if (has_secondary_) {
-          projected_ = bias_.cwiseProduct((1.0 - locked.array()).matrix());
-          Square N = J_free * J_free.transpose();
-          N.diagonal().array() += eps_sq_;
-          const Column z = N.ldlt().solve(J_free * projected_);
-          projected_.noalias() -= J_free.transpose() * z;
-          dq += secondary_scale(dq.norm(), projected_.norm(), secondary_ratio_) * projected_;
-        }
-        dq += dq_locked;
-      });
 }
 
 template <class Improves>

@@ -4,13 +4,13 @@
 /// with the analytic gradient ∂w/∂q. Preallocated: evaluating allocates nothing.
 
 #include <Eigen/Core>
-#include <Eigen/SVD>
 #include <vector>
 
 #include "mjarm/fields.hpp"
 #include "mjarm/kinematics/chain_kinematics.hpp"
 #include "mjarm/lie/types.hpp"
 #include "mjarm/model/chain.hpp"
+#include "mjarm/workspace_ptr.hpp"
 
 namespace mjarm {
 
@@ -85,6 +85,11 @@ class Manipulability {
   /// @throws Error when a threshold is negative or not finite, or singular_tolerance exceeds
   /// near_singular_threshold.
   explicit Manipulability(const Chain& chain, const ManipulabilityOptions& options = {});
+  ~Manipulability();
+  Manipulability(const Manipulability& other);
+  Manipulability& operator=(const Manipulability& other);
+  Manipulability(Manipulability&& other) noexcept;
+  Manipulability& operator=(Manipulability&& other) noexcept;
 
   const Chain& chain() const noexcept { return kin_.chain(); }
   const ManipulabilityOptions& options() const noexcept { return options_; }
@@ -131,8 +136,8 @@ class Manipulability {
   // workspace
   Matrix6Xd J_;
   Eigen::MatrixXd J_block_;
-  Eigen::JacobiSVD<Eigen::MatrixXd> svd_values_;   // singular values only
-  Eigen::JacobiSVD<Eigen::MatrixXd> svd_vectors_;  // with thin U and V, for the gradient
+  struct Svds;  // the two SVDs of J_block_ (in the .cpp: Eigen/SVD)
+  WorkspacePtr<Svds> svd_;
   SingularValues sigma_;
   Matrix6Xd weights_;  // U·diag(Π_{l≠k} σ_l)·Vᵀ in the 6 rows, zero outside the block
   ManipulabilityResult result_;

@@ -5,13 +5,13 @@
 /// configuration singular, and the joint direction that is lost.
 
 #include <Eigen/Core>
-#include <Eigen/SVD>
 #include <limits>
 #include <utility>
 #include <vector>
 
 #include "mjarm/kinematics/manipulability.hpp"
 #include "mjarm/model/chain.hpp"
+#include "mjarm/workspace_ptr.hpp"
 
 namespace mjarm {
 
@@ -123,6 +123,11 @@ class SingularityClassifier {
   /// @throws Error when the thresholds are not finite and positive, or @p measure is invalid.
   explicit SingularityClassifier(const Chain& chain, const ManipulabilityOptions& measure = {},
                                  const SingularityThresholds& thresholds = {});
+  ~SingularityClassifier();
+  SingularityClassifier(const SingularityClassifier& other);
+  SingularityClassifier& operator=(const SingularityClassifier& other);
+  SingularityClassifier(SingularityClassifier&& other) noexcept;
+  SingularityClassifier& operator=(SingularityClassifier&& other) noexcept;
 
   const ArmStructure& structure() const noexcept { return structure_; }
   const SingularityThresholds& thresholds() const noexcept { return thresholds_; }
@@ -144,7 +149,8 @@ class SingularityClassifier {
   SingularityThresholds thresholds_;
   Manipulability manipulability_;
   ArmStructure structure_;
-  Eigen::JacobiSVD<Eigen::MatrixXd> svd_;
+  struct Svd;  // the full-V SVD of the measured block (in the .cpp: Eigen/SVD)
+  WorkspacePtr<Svd> svd_;
 };
 
 }  // namespace mjarm
