@@ -13,6 +13,7 @@
 #include <memory>
 
 #include "commands.hpp"
+#include "mjarm/address_sanitizer.hpp"
 #include "mjarm/control/control_benchmark.hpp"
 #include "mjarm/error.hpp"
 #include "mjarm/ik/ik_benchmark.hpp"
@@ -31,15 +32,7 @@ void count_heap_allocation() noexcept {
 }
 }  // namespace
 
-// under AddressSanitizer (GCC: __SANITIZE_ADDRESS__; clang: __has_feature) malloc is ASan's
-#if defined(__SANITIZE_ADDRESS__)
-#define MJARM_BENCH_ASAN 1
-#elif defined(__has_feature)
-#if __has_feature(address_sanitizer)
-#define MJARM_BENCH_ASAN 1
-#endif
-#endif
-#if defined(MJARM_BENCH_ASAN)
+#if defined(MJARM_ADDRESS_SANITIZER)
 // from the sanitizer runtime's allocator interface (GCC does not install its header)
 extern "C" int __sanitizer_install_malloc_and_free_hooks(void (*malloc_hook)(const volatile void*,
                                                                              std::size_t),

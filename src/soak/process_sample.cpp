@@ -8,17 +8,11 @@
 #include <fstream>
 #include <string>
 
+#include "mjarm/address_sanitizer.hpp"
 #include "mjarm/error.hpp"
 
-// Under AddressSanitizer malloc is ASan's, and glibc's mallinfo2 reports zero: ask ASan instead.
-#if defined(__SANITIZE_ADDRESS__)
-#define MJARM_HEAP_FROM_ASAN 1
-#elif defined(__has_feature)
-#if __has_feature(address_sanitizer)
-#define MJARM_HEAP_FROM_ASAN 1
-#endif
-#endif
-#ifdef MJARM_HEAP_FROM_ASAN
+// Under AddressSanitizer glibc's mallinfo2 reports zero: ask the sanitizer instead.
+#ifdef MJARM_ADDRESS_SANITIZER
 // the sanitizer runtime's own interface (sanitizer/allocator_interface.h, which GCC does not
 // install)
 extern "C" std::size_t __sanitizer_get_current_allocated_bytes();
@@ -35,7 +29,7 @@ ProcessSample sample_process() {
     if (!(statm >> size >> resident)) throw Error("cannot read /proc/self/statm (resident memory)");
     s.rss_kib = static_cast<double>(resident) * static_cast<double>(sysconf(_SC_PAGESIZE)) / 1024.0;
   }
-#ifdef MJARM_HEAP_FROM_ASAN
+#ifdef MJARM_ADDRESS_SANITIZER
   s.heap_kib = static_cast<double>(__sanitizer_get_current_allocated_bytes()) / 1024.0;
 #else
   {

@@ -17,7 +17,7 @@
 #include "mjarm/kinematics/workspace.hpp"
 #include "support/reference_linear_algebra.hpp"
 #include "support/test_models.hpp"
-#include "support/address_sanitizer.hpp"
+#include "mjarm/address_sanitizer.hpp"
 
 // Allocation counting for the whole test_kinematics executable: malloc, calloc and realloc are
 // interposed (libstdc++'s operator new and Eigen both allocate through malloc) and forwarded to
@@ -30,7 +30,7 @@ long allocations() { return g_allocations.load(std::memory_order_relaxed); }
 
 long mjarm::test::heap_allocations() noexcept { return allocations(); }
 
-#if defined(MJARM_TEST_ASAN)
+#if defined(MJARM_ADDRESS_SANITIZER)
 // GCC 12 cannot see that this operator new allocates with malloc, and warns on free below
 #pragma GCC diagnostic ignored "-Wmismatched-new-delete"
 void* operator new(std::size_t size) {

@@ -18,7 +18,7 @@
 #include "mjarm/qp/box_qp.hpp"
 #include "mjarm/qp/dense_qp.hpp"
 #include "qp/qp_test_support.hpp"
-#include "support/address_sanitizer.hpp"
+#include "mjarm/address_sanitizer.hpp"
 
 namespace {
 
@@ -31,7 +31,7 @@ void note_allocation() noexcept {
 
 }  // namespace
 
-#if defined(MJARM_TEST_ASAN)
+#if defined(MJARM_ADDRESS_SANITIZER)
 extern "C" int __sanitizer_install_malloc_and_free_hooks(void (*malloc_hook)(const volatile void*,
                                                                              std::size_t),
                                                          void (*free_hook)(const volatile void*));
@@ -72,7 +72,7 @@ int posix_memalign(void** out, std::size_t alignment, std::size_t size) noexcept
 }
 #endif
 
-#if !defined(MJARM_TEST_ASAN) && defined(__GLIBC__)
+#if !defined(MJARM_ADDRESS_SANITIZER) && defined(__GLIBC__)
 // the global operator new replaced as well, on the same glibc heap
 extern "C" void __libc_free(void* ptr);
 void* operator new(std::size_t size) {

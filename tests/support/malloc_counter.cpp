@@ -13,13 +13,13 @@
 #include <cstdint>
 #include <cstdlib>
 #include <memory>
-#include "support/address_sanitizer.hpp"
+#include "mjarm/address_sanitizer.hpp"
 
 namespace {
 std::atomic<std::uint64_t> g_support_malloc_calls{0};
 }  // namespace
 
-#if defined(MJARM_TEST_ASAN)
+#if defined(MJARM_ADDRESS_SANITIZER)
 // from the sanitizer runtime's allocator interface (GCC does not install its header)
 extern "C" int __sanitizer_install_malloc_and_free_hooks(void (*malloc_hook)(const volatile void*,
                                                                              std::size_t),

@@ -12,7 +12,7 @@
 #include "mjarm/error.hpp"
 #include "mjarm/lie/so3.hpp"
 #include "mjarm/trajectory/smoothstep.hpp"
-#include "support/address_sanitizer.hpp"
+#include "mjarm/address_sanitizer.hpp"
 
 // ---- allocation counter (see tests/ik/malloc_counter.hpp) ----
 // Weak definitions: if another test file of this executable counts allocations the same way,
@@ -21,7 +21,7 @@ namespace {
 std::atomic<std::uint64_t> g_viewer_malloc_calls{0};
 }  // namespace
 
-#if defined(MJARM_TEST_ASAN)
+#if defined(MJARM_ADDRESS_SANITIZER)
 extern "C" int __sanitizer_install_malloc_and_free_hooks(void (*malloc_hook)(const volatile void*,
                                                                              std::size_t),
                                                          void (*free_hook)(const volatile void*));

@@ -27,7 +27,7 @@
 #include "mjarm/teleop/viewer_session.hpp"
 #include "support/files.hpp"
 #include "teleop/teleop_ui.hpp"
-#include "support/address_sanitizer.hpp"
+#include "mjarm/address_sanitizer.hpp"
 
 namespace mjarm {
 namespace {
@@ -201,7 +201,7 @@ std::optional<std::string> display_prefix() {
     return std::nullopt;
   }
   std::string prefix = "DISPLAY=" + server.display() + " ";
-#if defined(MJARM_TEST_ASAN)
+#if defined(MJARM_ADDRESS_SANITIZER)
   prefix += "ASAN_OPTIONS=detect_leaks=0 ";  // Mesa and X11 keep allocations until exit
 #endif
   // a viewer that hangs fails the test instead of hanging it
