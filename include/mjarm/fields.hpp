@@ -24,6 +24,7 @@
 /// @endcode
 
 #include <Eigen/Core>
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <concepts>
@@ -202,15 +203,52 @@ struct is_eigen_vector : std::false_type {};
 template <int R, int O, int MR>
 struct is_eigen_vector<Eigen::Matrix<double, R, 1, O, MR, 1>> : std::true_type {};
 
+template <class T>
+struct is_number_array : std::false_type {};
+template <std::size_t N>
+struct is_number_array<std::array<double, N>> : std::true_type {};
+template <>
+struct is_number_array<std::vector<double>> : std::true_type {};
+
 }  // namespace detail
 
 /// A number field: arithmetic but not bool.
 template <class T>
 concept NumberField = std::is_arithmetic_v<T> && !std::same_as<T, bool>;
 
-/// A field holding a column vector of doubles (`Eigen::Vector3d`, `Eigen::VectorXd`, …).
+/// A field holding numbers in a row: a column vector of doubles (`Eigen::Vector3d`,
+/// `Eigen::VectorXd`, …), a `std::array<double, N>` or a `std::vector<double>`.
 template <class T>
-concept VectorField = detail::is_eigen_vector<T>::value;
+concept VectorField = detail::is_eigen_vector<T>::value || detail::is_number_array<T>::value;
+
+/// The length every value of vector field type @p T has; -1 when it varies.
+template <VectorField T>
+constexpr Eigen::Index fixed_length() {
+  if constexpr (detail::is_eigen_vector<T>::value)
+    return T::RowsAtCompileTime == Eigen::Dynamic ? -1 : T::RowsAtCompileTime;
+  else if constexpr (std::same_as<T, std::vector<double>>)
+    return -1;
+  else
+    return static_cast<Eigen::Index>(std::tuple_size_v<T>);
+}
+
+/// The numbers of a vector field, viewed (not copied).
+template <VectorField T>
+Eigen::Map<const Eigen::VectorXd> vector_view(const T& value) {
+  return {value.data(), static_cast<Eigen::Index>(value.size())};
+}
+
+/// Sets vector field @p value to @p numbers, whose length the caller checked against
+/// `fixed_length<T>()`.
+template <VectorField T>
+void assign_vector(T& value, const Eigen::Ref<const Eigen::VectorXd>& numbers) {
+  if constexpr (detail::is_eigen_vector<T>::value)
+    value = numbers;
+  else if constexpr (std::same_as<T, std::vector<double>>)
+    value.assign(numbers.data(), numbers.data() + numbers.size());
+  else
+    std::copy(numbers.data(), numbers.data() + numbers.size(), value.begin());
+}
 
 /// The value called @p word of @p E.
 /// @param kind what the value is ("mode") for the message
@@ -256,10 +294,11 @@ void check_value(const T& value, std::string_view owner, const std::string& path
       detail::throw_out_of_range(owner, path, range, unit, static_cast<double>(value),
                                  std::is_integral_v<T>);
   } else if constexpr (VectorField<T>) {
-    for (Eigen::Index i = 0; i < value.size(); ++i) {
-      if (!range.contains(value[i]))
+    const auto numbers = vector_view(value);
+    for (Eigen::Index i = 0; i < numbers.size(); ++i) {
+      if (!range.contains(numbers[i]))
         detail::throw_out_of_range(owner, path + "[" + std::to_string(i) + "]", range, unit,
-                                   value[i], false);
+                                   numbers[i], false);
     }
   } else if constexpr (DeclaredEnum<T>) {
     if (!enum_from_name<T>(to_string(value)))

@@ -34,8 +34,8 @@ nlohmann::ordered_json value_to_json(const T& value) {
     return value;
   } else if constexpr (VectorField<T>) {
     auto array = nlohmann::ordered_json::array();
-    for (Eigen::Index i = 0; i < value.size(); ++i)
-      array.push_back(std::isfinite(value[i]) ? nlohmann::ordered_json(value[i]) : nullptr);
+    for (const double x : vector_view(value))
+      array.push_back(std::isfinite(x) ? nlohmann::ordered_json(x) : nullptr);
     return array;
   } else if constexpr (DeclaredEnum<T>) {
     return to_string(value);
@@ -72,15 +72,15 @@ void value_from_json(const Json& j, T& value, std::string_view owner, const std:
     value = static_cast<T>(json_number(j, where, range));
   } else if constexpr (VectorField<T>) {
     if (!j.is_array()) throw Error(where + " must be an array of numbers, got " + j.dump());
-    if (T::RowsAtCompileTime != Eigen::Dynamic &&
-        static_cast<Eigen::Index>(j.size()) != T::RowsAtCompileTime) {
-      throw Error(where + " must have " + std::to_string(T::RowsAtCompileTime) +
-                  " numbers, got " + std::to_string(j.size()));
+    constexpr Eigen::Index length = fixed_length<T>();
+    if (length >= 0 && static_cast<Eigen::Index>(j.size()) != length) {
+      throw Error(where + " must have " + std::to_string(length) + " numbers, got " +
+                  std::to_string(j.size()));
     }
-    T read(static_cast<Eigen::Index>(j.size()));
+    Eigen::VectorXd read(static_cast<Eigen::Index>(j.size()));
     for (std::size_t i = 0; i < j.size(); ++i)
       read[static_cast<Eigen::Index>(i)] = json_number(j[i], where + "[" + std::to_string(i) + "]", range);
-    value = read;
+    assign_vector(value, read);
   } else if constexpr (DeclaredEnum<T>) {
     if (!j.is_string()) throw Error(where + " must be a name, got " + j.dump());
     // "unknown shape 'cube' in gains.json; closest: …; shapes: …"

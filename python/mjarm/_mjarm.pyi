@@ -211,28 +211,16 @@ class ActuatorInfo:
     def name(self) -> str:
         ...
 
-class ActuatorKind:
-    """What an actuator does, from its gain and bias.
-
-Members:
-
-  motor
-
-  position
-
-  velocity
-
-  general"""
-    motor: ClassVar[ActuatorKind]
-    position: ClassVar[ActuatorKind]
-    velocity: ClassVar[ActuatorKind]
-    general: ClassVar[ActuatorKind]
-    def __init__(self, value: int) -> None: ...
-    @property
-    def name(self) -> str: ...
-    @property
-    def value(self) -> int: ...
-    def __int__(self) -> int: ...
+class ActuatorKind(enum.Enum):
+    """What an actuator does, from its gain and bias."""
+    motor = 0
+    """force = gear·ctrl"""
+    position = 1
+    """force = kp·(ctrl − q) − kv·q̇"""
+    velocity = 2
+    """force = kv·(ctrl − q̇)"""
+    general = 3
+    """anything else"""
 
 class AdaptiveComplianceOptions:
     def __init__(self: AdaptiveComplianceOptions) -> None:
@@ -275,7 +263,7 @@ class ArenaSpec:
         ...
     @property
     def floor_half_size(self) -> NDArray[np.float64]:
-        """floor plane half extents x, y (2,) [m]"""
+        """floor plane half extents x, y [m]; positive and finite"""
         ...
     @floor_half_size.setter
     def floor_half_size(self, value: ArrayLike) -> None: ...
@@ -287,25 +275,25 @@ class ArenaSpec:
     def table(self, value: bool) -> None: ...
     @property
     def table_center(self) -> NDArray[np.float64]:
-        """table centre x, y in world (2,) [m]"""
+        """table centre x, y in world [m]; finite"""
         ...
     @table_center.setter
     def table_center(self, value: ArrayLike) -> None: ...
     @property
     def table_friction(self) -> NDArray[np.float64]:
-        """sliding, torsional, rolling (3,)"""
+        """sliding, torsional, rolling; finite and ≥ 0"""
         ...
     @table_friction.setter
     def table_friction(self, value: ArrayLike) -> None: ...
     @property
     def table_half_size(self) -> NDArray[np.float64]:
-        """table top half extents x, y (2,) [m]"""
+        """table top half extents x, y [m]; positive and finite"""
         ...
     @table_half_size.setter
     def table_half_size(self, value: ArrayLike) -> None: ...
     @property
     def table_height(self) -> float:
-        """top surface height [m]"""
+        """height of the top surface [m]; finite and > 0.05"""
         ...
     @table_height.setter
     def table_height(self, value: float) -> None: ...
@@ -764,6 +752,7 @@ class CompoundFixtureSpec:
         ...
     @property
     def name(self) -> str:
+        """unique in the scene"""
         ...
     @name.setter
     def name(self, value: str) -> None: ...
@@ -775,13 +764,13 @@ class CompoundFixtureSpec:
     def pieces(self, value: list[ObjectSpec]) -> None: ...
     @property
     def pos(self) -> NDArray[np.float64]:
-        """position of the body in world (3,) [m]"""
+        """position of the body in world [m]; finite"""
         ...
     @pos.setter
     def pos(self, value: ArrayLike) -> None: ...
     @property
     def quat(self) -> NDArray[np.float64]:
-        """orientation (4,) w, x, y, z"""
+        """orientation w, x, y, z; finite"""
         ...
     @quat.setter
     def quat(self, value: ArrayLike) -> None: ...
@@ -2149,13 +2138,13 @@ class FreePose:
         ...
     @property
     def p_WB(self) -> NDArray[np.float64]:
-        """position (3,) [m]"""
+        """position [m]; finite"""
         ...
     @p_WB.setter
     def p_WB(self, value: ArrayLike) -> None: ...
     @property
     def quat_WB(self) -> NDArray[np.float64]:
-        """orientation (4,) w, x, y, z"""
+        """orientation w, x, y, z, unit; finite"""
         ...
     @quat_WB.setter
     def quat_WB(self, value: ArrayLike) -> None: ...
@@ -2854,28 +2843,16 @@ class JointSpline:
     def size(self) -> int:
         ...
 
-class JointType:
-    """Joint types in MuJoCo's order.
-
-Members:
-
-  free
-
-  ball
-
-  slide
-
-  hinge"""
-    free: ClassVar[JointType]
-    ball: ClassVar[JointType]
-    slide: ClassVar[JointType]
-    hinge: ClassVar[JointType]
-    def __init__(self, value: int) -> None: ...
-    @property
-    def name(self) -> str: ...
-    @property
-    def value(self) -> int: ...
-    def __int__(self) -> int: ...
+class JointType(enum.Enum):
+    """Joint types in MuJoCo's order."""
+    free = 0
+    """6 dofs: position and unit quaternion, nq 7"""
+    ball = 1
+    """3 rotational dofs: unit quaternion, nq 4"""
+    slide = 2
+    """1 translational dof [m]"""
+    hinge = 3
+    """1 rotational dof [rad]"""
 
 class KinematicStep:
     def __init__(*args: Any, **kwargs: Any) -> Any: ...
@@ -3172,31 +3149,18 @@ class MultiTargetMode(enum.Enum):
     prioritized = 1
     """strict priorities by null-space projection"""
 
-class ObjectShape:
-    """Shapes of objects and fixtures.
-
-Members:
-
-  box
-
-  sphere
-
-  cylinder
-
-  capsule
-
-  mesh"""
-    box: ClassVar[ObjectShape]
-    sphere: ClassVar[ObjectShape]
-    cylinder: ClassVar[ObjectShape]
-    capsule: ClassVar[ObjectShape]
-    mesh: ClassVar[ObjectShape]
-    def __init__(self, value: int) -> None: ...
-    @property
-    def name(self) -> str: ...
-    @property
-    def value(self) -> int: ...
-    def __int__(self) -> int: ...
+class ObjectShape(enum.Enum):
+    """Shapes of objects and fixtures."""
+    box = 0
+    """size: 3 half extents"""
+    sphere = 1
+    """size: radius"""
+    cylinder = 2
+    """size: radius, half length"""
+    capsule = 3
+    """size: radius, half length of the cylinder"""
+    mesh = 4
+    """the convex hull of a mesh file or of vertices"""
 
 class ObjectSpec:
     """A rigid object: free (Scene.add_object: a free joint, nq += 7) or fixed (Scene.add_fixture). Names: body 'name', geom 'name/geom', site 'name/center', joint 'name/joint', mesh 'name/mesh'."""
@@ -3205,13 +3169,13 @@ class ObjectSpec:
         ...
     @property
     def friction(self) -> NDArray[np.float64]:
-        """sliding, torsional, rolling (3,), >= 0"""
+        """sliding, torsional, rolling; finite and ≥ 0"""
         ...
     @friction.setter
     def friction(self, value: ArrayLike) -> None: ...
     @property
     def mass(self) -> float:
-        """[kg], > 0"""
+        """mass [kg]; positive and finite"""
         ...
     @mass.setter
     def mass(self, value: float) -> None: ...
@@ -3222,25 +3186,32 @@ class ObjectSpec:
     @mesh_file.setter
     def mesh_file(self, value: str) -> None: ...
     @property
+    def mesh_vertices(self) -> NDArray[np.float64]:
+        """for shape mesh instead of a file: x y z of at least 4 points, not in one plane [m]; finite"""
+        ...
+    @mesh_vertices.setter
+    def mesh_vertices(self, value: ArrayLike) -> None: ...
+    @property
     def name(self) -> str:
+        """unique in the scene"""
         ...
     @name.setter
     def name(self, value: str) -> None: ...
     @property
     def pos(self) -> NDArray[np.float64]:
-        """position in world (3,) [m]"""
+        """position in world [m]; finite"""
         ...
     @pos.setter
     def pos(self, value: ArrayLike) -> None: ...
     @property
     def quat(self) -> NDArray[np.float64]:
-        """orientation (4,) w, x, y, z"""
+        """orientation in world w, x, y, z; finite"""
         ...
     @quat.setter
     def quat(self, value: ArrayLike) -> None: ...
     @property
     def rgba(self) -> NDArray[np.float64]:
-        """colour (4,)"""
+        """colour; in [0, 1]"""
         ...
     @rgba.setter
     def rgba(self, value: ArrayLike) -> None: ...
@@ -3252,7 +3223,7 @@ class ObjectSpec:
     def shape(self, value: ArrayLike) -> None: ...
     @property
     def size(self) -> NDArray[np.float64]:
-        """box: 3 half extents; sphere: radius; cylinder, capsule: radius, half length [m]; mesh: 3 scale factors or empty"""
+        """box: 3 half extents; sphere: radius; cylinder, capsule: radius, half length; mesh: 3 scale factors or none [m]; positive and finite"""
         ...
     @size.setter
     def size(self, value: ArrayLike) -> None: ...
@@ -4994,13 +4965,13 @@ class RobotSpec:
     def name(self, value: str) -> None: ...
     @property
     def pos(self) -> NDArray[np.float64]:
-        """mount position in world (3,) [m]"""
+        """mount position in world [m]; finite"""
         ...
     @pos.setter
     def pos(self, value: ArrayLike) -> None: ...
     @property
     def quat(self) -> NDArray[np.float64]:
-        """mount orientation (4,) w, x, y, z"""
+        """mount orientation w, x, y, z; finite"""
         ...
     @quat.setter
     def quat(self, value: ArrayLike) -> None: ...
@@ -5155,42 +5126,43 @@ class SceneCameraSpec:
         ...
     @property
     def body(self) -> str:
-        """parent body, '' for the world"""
+        """parent body, empty for the world"""
         ...
     @body.setter
     def body(self, value: str) -> None: ...
     @property
     def fovy(self) -> float:
-        """vertical field of view [deg]"""
+        """vertical field of view [deg]; in (0, 180)"""
         ...
     @fovy.setter
     def fovy(self, value: float) -> None: ...
     @property
     def name(self) -> str:
+        """unique in the scene"""
         ...
     @name.setter
     def name(self, value: str) -> None: ...
     @property
     def pos(self) -> NDArray[np.float64]:
-        """in the parent body (3,) [m]"""
+        """position in the parent body [m]; finite"""
         ...
     @pos.setter
     def pos(self, value: ArrayLike) -> None: ...
     @property
     def quat(self) -> NDArray[np.float64]:
-        """(4,) w, x, y, z"""
+        """orientation w, x, y, z; finite"""
         ...
     @quat.setter
     def quat(self, value: ArrayLike) -> None: ...
     @property
     def target(self) -> str:
-        """body to look at, or ''"""
+        """body to look at, or empty"""
         ...
     @target.setter
     def target(self, value: str) -> None: ...
     @property
     def xyaxes(self) -> NDArray[np.float64]:
-        """image x and y axes in the parent body (6,); zeros: use quat"""
+        """image x and y axes in the parent body, not parallel; all zero: use quat; finite"""
         ...
     @xyaxes.setter
     def xyaxes(self, value: ArrayLike) -> None: ...
@@ -5328,6 +5300,7 @@ class SensorSpec:
         ...
     @property
     def name(self) -> str:
+        """unique in the scene"""
         ...
     @name.setter
     def name(self, value: str) -> None: ...
@@ -5350,34 +5323,20 @@ class SensorTiming(enum.Enum):
     after_forward = 1
     """measured at d.time"""
 
-class SensorType:
-    """Sensor types a scene can add.
-
-Members:
-
-  jointpos
-
-  framepos
-
-  framequat
-
-  touch
-
-  force
-
-  torque"""
-    jointpos: ClassVar[SensorType]
-    framepos: ClassVar[SensorType]
-    framequat: ClassVar[SensorType]
-    touch: ClassVar[SensorType]
-    force: ClassVar[SensorType]
-    torque: ClassVar[SensorType]
-    def __init__(self, value: int) -> None: ...
-    @property
-    def name(self) -> str: ...
-    @property
-    def value(self) -> int: ...
-    def __int__(self) -> int: ...
+class SensorType(enum.Enum):
+    """Sensor types a scene can add."""
+    jointpos = 0
+    """a joint's position [rad or m]"""
+    framepos = 1
+    """a frame's position in world [m]"""
+    framequat = 2
+    """a frame's orientation w, x, y, z"""
+    touch = 3
+    """normal contact force in a site's volume [N]"""
+    force = 4
+    """force at a site, in its frame [N]"""
+    torque = 5
+    """torque at a site, in its frame [N·m]"""
 
 class ShelfPickOptions:
     def __init__(self: ShelfPickOptions) -> None:
@@ -5759,36 +5718,37 @@ class SiteSpec:
         ...
     @property
     def body(self) -> str:
-        """parent body, '' for the world"""
+        """parent body, empty for the world"""
         ...
     @body.setter
     def body(self, value: str) -> None: ...
     @property
     def name(self) -> str:
+        """unique in the scene"""
         ...
     @name.setter
     def name(self, value: str) -> None: ...
     @property
     def pos(self) -> NDArray[np.float64]:
-        """in the parent body (3,) [m]"""
+        """position in the parent body [m]; finite"""
         ...
     @pos.setter
     def pos(self, value: ArrayLike) -> None: ...
     @property
     def quat(self) -> NDArray[np.float64]:
-        """(4,) w, x, y, z"""
+        """orientation w, x, y, z; finite"""
         ...
     @quat.setter
     def quat(self, value: ArrayLike) -> None: ...
     @property
     def rgba(self) -> NDArray[np.float64]:
-        """colour (4,)"""
+        """colour; in [0, 1]"""
         ...
     @rgba.setter
     def rgba(self, value: ArrayLike) -> None: ...
     @property
     def size(self) -> float:
-        """sphere radius [m]"""
+        """sphere radius [m]; positive and finite"""
         ...
     @size.setter
     def size(self, value: float) -> None: ...
@@ -6427,6 +6387,7 @@ class WeldSpec:
         ...
     @property
     def active(self) -> bool:
+        """on from the start"""
         ...
     @active.setter
     def active(self, value: bool) -> None: ...
@@ -6444,12 +6405,13 @@ class WeldSpec:
     def body2(self, value: str) -> None: ...
     @property
     def name(self) -> str:
+        """unique in the scene"""
         ...
     @name.setter
     def name(self, value: str) -> None: ...
     @property
     def solref(self) -> NDArray[np.float64]:
-        """time constant [s], damping ratio (2,)"""
+        """time constant [s], damping ratio; positive and finite"""
         ...
     @solref.setter
     def solref(self, value: ArrayLike) -> None: ...

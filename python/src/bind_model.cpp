@@ -2,6 +2,7 @@
 #include <mujoco/mujoco.h>
 
 #include "bindings.hpp"
+#include "declared_fields.hpp"
 #include "mjarm/model/chain.hpp"
 #include "mjarm/model/model_size.hpp"
 
@@ -33,16 +34,8 @@ void data_field(py::class_<DataHandle>& cls, const char* name, Getter getter, co
 }  // namespace
 
 void bind_model(py::module_& m) {
-  py::enum_<JointType>(m, "JointType", "Joint types in MuJoCo's order.")
-      .value("free", JointType::free)
-      .value("ball", JointType::ball)
-      .value("slide", JointType::slide)
-      .value("hinge", JointType::hinge);
-  py::enum_<ActuatorKind>(m, "ActuatorKind", "What an actuator does, from its gain and bias.")
-      .value("motor", ActuatorKind::motor)
-      .value("position", ActuatorKind::position)
-      .value("velocity", ActuatorKind::velocity)
-      .value("general", ActuatorKind::general);
+  def_enum<JointType>(m, "JointType", "Joint types in MuJoCo's order.");
+  def_enum<ActuatorKind>(m, "ActuatorKind", "What an actuator does, from its gain and bias.");
 
   py::class_<JointInfo>(m, "JointInfo", "One joint of the model.")
       .def_readonly("name", &JointInfo::name)

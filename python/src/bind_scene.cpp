@@ -1,5 +1,6 @@
 // scene room: the parts of a scene (specs), Scene (compose, find and edit, compile), scene files,
 // the pose of a free object in a Data.
+#include "declared_fields.hpp"
 #include "mjarm/scene/free_pose.hpp"
 #include "mjarm/scene/scene.hpp"
 #include "mjarm/scene/scene_file.hpp"
@@ -29,57 +30,29 @@ mjData& writable_data(const Robot& robot, DataHandle& h, const char* call) {
 }
 
 void bind_scene_specs(py::module_& m) {
-  py::enum_<ObjectShape>(m, "ObjectShape", "Shapes of objects and fixtures.")
-      .value("box", ObjectShape::box)
-      .value("sphere", ObjectShape::sphere)
-      .value("cylinder", ObjectShape::cylinder)
-      .value("capsule", ObjectShape::capsule)
-      .value("mesh", ObjectShape::mesh);
-  py::enum_<SensorType>(m, "SensorType", "Sensor types a scene can add.")
-      .value("jointpos", SensorType::jointpos)
-      .value("framepos", SensorType::framepos)
-      .value("framequat", SensorType::framequat)
-      .value("touch", SensorType::touch)
-      .value("force", SensorType::force)
-      .value("torque", SensorType::torque);
+  def_enum<ObjectShape>(m, "ObjectShape", "Shapes of objects and fixtures.");
+  def_enum<SensorType>(m, "SensorType", "Sensor types a scene can add.");
 
   auto arena = py::class_<ArenaSpec>(
       m, "ArenaSpec",
       "Floor, two lights and an optional table. Names: arena/floor, arena/table (body), "
       "arena/table_top (geom), arena/table_surface (site on the top's centre).");
   fields_init<ArenaSpec>(arena, "ArenaSpec");
-  array_property<ArenaSpec>(arena, "floor_half_size", &ArenaSpec::floor_half_size,
-                            "floor plane half extents x, y (2,) [m]");
-  arena.def_readwrite("table", &ArenaSpec::table, "add a table");
-  array_property<ArenaSpec>(arena, "table_center", &ArenaSpec::table_center,
-                            "table centre x, y in world (2,) [m]");
-  array_property<ArenaSpec>(arena, "table_half_size", &ArenaSpec::table_half_size,
-                            "table top half extents x, y (2,) [m]");
-  arena.def_readwrite("table_height", &ArenaSpec::table_height, "top surface height [m]");
-  array_property<ArenaSpec>(arena, "table_friction", &ArenaSpec::table_friction,
-                            "sliding, torsional, rolling (3,)");
+  def_fields(arena);
 
   auto robot = py::class_<RobotSpec>(
       m, "RobotSpec",
       "A robot from any MJCF (bundled name or file); its names get the prefix name + '/', its "
       "root bodies sit in a fixed body 'name' at pos, quat.");
   fields_init<RobotSpec>(robot, "RobotSpec");
-  robot.def_readwrite("name", &RobotSpec::name, "prefix, unique in the scene")
-      .def_readwrite("model", &RobotSpec::model, "bundled name or MJCF file path");
-  array_property<RobotSpec>(robot, "pos", &RobotSpec::pos, "mount position in world (3,) [m]");
-  array_property<RobotSpec>(robot, "quat", &RobotSpec::quat, "mount orientation (4,) w, x, y, z");
-  robot.def_readwrite("keep_arena", &RobotSpec::keep_arena,
-                      "keep the model's own floor planes, lights and skybox");
+  def_fields(robot);
 
   auto gripper = py::class_<GripperSpec>(
       m, "GripperSpec",
       "A gripper MJCF attached rigidly at a site or body of a robot (no joint in between); names "
       "get the prefix robot + '/' + name + '/'.");
   fields_init<GripperSpec>(gripper, "GripperSpec");
-  gripper.def_readwrite("robot", &GripperSpec::robot, "a robot already in the scene")
-      .def_readwrite("model", &GripperSpec::model, "bundled gripper name or MJCF file path")
-      .def_readwrite("frame", &GripperSpec::frame, "site or body of the robot, unprefixed")
-      .def_readwrite("name", &GripperSpec::name, "prefix inside the robot's");
+  def_fields(gripper);
 
   auto object = py::class_<ObjectSpec>(
       m, "ObjectSpec",
@@ -87,81 +60,48 @@ void bind_scene_specs(py::module_& m) {
       "(Scene.add_fixture). Names: body 'name', geom 'name/geom', site 'name/center', joint "
       "'name/joint', mesh 'name/mesh'.");
   fields_init<ObjectSpec>(object, "ObjectSpec");
-  object.def_readwrite("name", &ObjectSpec::name);
+  def_fields(object);
+  // the enum fields also take their names
   enum_property<ObjectSpec>(
       object, "shape", &ObjectSpec::shape, [](const std::string& s) { return object_shape(s); },
       "ObjectShape or its name ('box', 'sphere', 'cylinder', 'capsule', 'mesh')");
-  list_property<ObjectSpec>(object, "size", &ObjectSpec::size,
-                            "box: 3 half extents; sphere: radius; cylinder, capsule: radius, "
-                            "half length [m]; mesh: 3 scale factors or empty");
-  object.def_readwrite("mesh_file", &ObjectSpec::mesh_file, "STL/OBJ/MSH file, for shape mesh")
-      .def_readwrite("mass", &ObjectSpec::mass, "[kg], > 0");
-  array_property<ObjectSpec>(object, "friction", &ObjectSpec::friction,
-                             "sliding, torsional, rolling (3,), >= 0");
-  array_property<ObjectSpec>(object, "pos", &ObjectSpec::pos, "position in world (3,) [m]");
-  array_property<ObjectSpec>(object, "quat", &ObjectSpec::quat, "orientation (4,) w, x, y, z");
-  array_property<ObjectSpec>(object, "rgba", &ObjectSpec::rgba, "colour (4,)");
 
   auto compound = py::class_<CompoundFixtureSpec>(
       m, "CompoundFixtureSpec",
       "A fixture of several pieces (ObjectSpec, each at its pose in the fixture's frame) in one "
       "static body. Names: body 'name', geoms 'name/<piece>', site 'name/center'.");
   fields_init<CompoundFixtureSpec>(compound, "CompoundFixtureSpec");
-  compound.def_readwrite("name", &CompoundFixtureSpec::name);
-  array_property<CompoundFixtureSpec>(compound, "pos", &CompoundFixtureSpec::pos,
-                                      "position of the body in world (3,) [m]");
-  array_property<CompoundFixtureSpec>(compound, "quat", &CompoundFixtureSpec::quat,
-                                      "orientation (4,) w, x, y, z");
+  def_fields(compound);
   compound.def_readwrite("pieces", &CompoundFixtureSpec::pieces,
                          "list[ObjectSpec]; a copy: assign the whole list");
 
   auto camera = py::class_<SceneCameraSpec>(
       m, "SceneCameraSpec", "A camera fixed to a body (or the world), optionally tracking a body.");
   fields_init<SceneCameraSpec>(camera, "SceneCameraSpec");
-  camera.def_readwrite("name", &SceneCameraSpec::name)
-      .def_readwrite("body", &SceneCameraSpec::body, "parent body, '' for the world");
-  array_property<SceneCameraSpec>(camera, "pos", &SceneCameraSpec::pos,
-                                  "in the parent body (3,) [m]");
-  array_property<SceneCameraSpec>(camera, "xyaxes", &SceneCameraSpec::xyaxes,
-                                  "image x and y axes in the parent body (6,); zeros: use quat");
-  array_property<SceneCameraSpec>(camera, "quat", &SceneCameraSpec::quat, "(4,) w, x, y, z");
-  camera.def_readwrite("fovy", &SceneCameraSpec::fovy, "vertical field of view [deg]")
-      .def_readwrite("target", &SceneCameraSpec::target, "body to look at, or ''");
+  def_fields(camera);
 
   auto site = py::class_<SiteSpec>(m, "SiteSpec", "A site on a body (or the world).");
   fields_init<SiteSpec>(site, "SiteSpec");
-  site.def_readwrite("name", &SiteSpec::name)
-      .def_readwrite("body", &SiteSpec::body, "parent body, '' for the world");
-  array_property<SiteSpec>(site, "pos", &SiteSpec::pos, "in the parent body (3,) [m]");
-  array_property<SiteSpec>(site, "quat", &SiteSpec::quat, "(4,) w, x, y, z");
-  site.def_readwrite("size", &SiteSpec::size, "sphere radius [m]");
-  array_property<SiteSpec>(site, "rgba", &SiteSpec::rgba, "colour (4,)");
+  def_fields(site);
 
   auto sensor = py::class_<SensorSpec>(
       m, "SensorSpec",
       "A sensor on a named element: a joint (jointpos), a site (touch, force, torque) or a site, "
       "body, geom or camera (framepos, framequat).");
   fields_init<SensorSpec>(sensor, "SensorSpec");
-  sensor.def_readwrite("name", &SensorSpec::name);
+  def_fields(sensor);
   enum_property<SensorSpec>(
       sensor, "type", &SensorSpec::type, [](const std::string& s) { return sensor_type(s); },
       "SensorType or its name");
-  sensor.def_readwrite("target", &SensorSpec::target, "the element it reads");
 
   auto weld = py::class_<WeldSpec>(
       m, "WeldSpec", "A weld equality between two bodies, inactive unless active is set.");
   fields_init<WeldSpec>(weld, "WeldSpec");
-  weld.def_readwrite("name", &WeldSpec::name)
-      .def_readwrite("body1", &WeldSpec::body1, "e.g. 'arm/hand'")
-      .def_readwrite("body2", &WeldSpec::body2, "e.g. 'cube'")
-      .def_readwrite("active", &WeldSpec::active);
-  array_property<WeldSpec>(weld, "solref", &WeldSpec::solref,
-                           "time constant [s], damping ratio (2,)");
+  def_fields(weld);
 
   auto free = py::class_<FreePose>(m, "FreePose", "Pose of a free body B in world W.");
   fields_init<FreePose>(free, "FreePose");
-  array_property<FreePose>(free, "p_WB", &FreePose::p_WB, "position (3,) [m]");
-  array_property<FreePose>(free, "quat_WB", &FreePose::quat_WB, "orientation (4,) w, x, y, z");
+  def_fields(free);
 }
 
 }  // namespace

@@ -35,10 +35,9 @@ void def_fields(py::class_<S, Extra...>& cls) {
     if constexpr (VectorField<T>) {
       // any array-like of numbers, converted and sized like every other argument
       cls.def_property(
-          name.c_str(), [member](const S& s) { return Eigen::VectorXd(s.*member); },
+          name.c_str(), [member](const S& s) { return Eigen::VectorXd(vector_view(s.*member)); },
           [member, name](S& s, py::handle v) {
-            s.*member = to_vector(v, name.c_str(),
-                                  T::RowsAtCompileTime == Eigen::Dynamic ? -1 : T::RowsAtCompileTime);
+            assign_vector(s.*member, to_vector(v, name.c_str(), fixed_length<T>()));
           },
           doc.c_str());
     } else if constexpr (Declared<T>) {

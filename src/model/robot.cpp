@@ -277,34 +277,6 @@ void add_load_message(std::vector<std::string>& warnings, const char* raw, std::
 
 }  // namespace model_detail
 
-const char* to_string(JointType type) noexcept {
-  switch (type) {
-    case JointType::free:
-      return "free";
-    case JointType::ball:
-      return "ball";
-    case JointType::slide:
-      return "slide";
-    case JointType::hinge:
-      return "hinge";
-  }
-  return "unknown";
-}
-
-const char* to_string(ActuatorKind kind) noexcept {
-  switch (kind) {
-    case ActuatorKind::motor:
-      return "motor";
-    case ActuatorKind::position:
-      return "position";
-    case ActuatorKind::velocity:
-      return "velocity";
-    case ActuatorKind::general:
-      return "general";
-  }
-  return "unknown";
-}
-
 std::uint64_t mujoco_warning_count() noexcept {
   return mujoco_warnings_printed.load(std::memory_order_relaxed);
 }

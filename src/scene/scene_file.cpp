@@ -3,6 +3,8 @@
 #include <yaml-cpp/depthguard.h>
 #include <yaml-cpp/yaml.h>
 
+#include <algorithm>
+#include <initializer_list>
 #include <map>
 
 #include "frame_check.hpp"
@@ -89,6 +91,11 @@ class Fields {
   void read(const std::string& key, bool& out) const {
     if (has(key)) out = flag(key);
   }
+  void read(const std::string& key, std::vector<double>& out) const {
+    if (has(key)) out = numbers(key);
+  }
+  void read(const std::string& key, ObjectShape& out) const { read_enum(key, out, &object_shape); }
+  void read(const std::string& key, SensorType& out) const { read_enum(key, out, &sensor_type); }
 
   /// Runs @p add, prefixing any error with this entry's place.
   template <class Fn>
@@ -112,11 +119,45 @@ class Fields {
                 (n.IsScalar() ? ", got '" + n.Scalar() + "'" : std::string()));
   }
 
+  // "s.yaml:2: unknown object shape 'cub'; closest: box; …"
+  template <class E>
+  void read_enum(const std::string& key, E& out, E (*parse)(std::string_view)) const {
+    if (!has(key)) return;
+    try {
+      out = parse(text(key));
+    } catch (const Error& e) {
+      fail(at(key), e.what());
+    }
+  }
+
   YAML::Node node_;
   std::string what_;
   const std::string& source_;
   std::map<std::string, YAML::Node> values_;
 };
+
+/// The keys of a part written as spec @p S: the names its fields declare, but @p left_out, then
+/// @p extra.
+template <Declared S>
+std::vector<std::string> keys_of(std::initializer_list<std::string_view> left_out,
+                                 std::initializer_list<std::string_view> extra = {}) {
+  std::vector<std::string> keys;
+  for_each_field<S>([&](const auto& field) {
+    if (std::find(left_out.begin(), left_out.end(), field.name) == left_out.end())
+      keys.emplace_back(field.name);
+  });
+  keys.insert(keys.end(), extra.begin(), extra.end());
+  return keys;
+}
+
+/// Reads into @p spec every declared field whose key @p f holds, after checking that it holds
+/// the @p required ones.
+template <Declared S>
+void read_declared(const Fields& f, S& spec, std::initializer_list<const char*> required) {
+  for (const char* key : required) f.at(key);
+  for_each_field<S>(
+      [&](const auto& field) { f.read(std::string(field.name), spec.*(field.member)); });
+}
 
 // the entries of a top-level list
 std::vector<YAML::Node> entries(const Fields& top, const std::string& key) {
@@ -139,25 +180,9 @@ std::string resolve(const std::string& path, const fs::path& base_dir, bool mayb
 
 ObjectSpec read_object(const Fields& f, const fs::path& base_dir) {
   ObjectSpec spec;
-  spec.name = f.text("name");
-  if (f.has("shape")) {
-    const std::string shape = f.text("shape");
-    try {
-      spec.shape = object_shape(shape);
-    } catch (const Error& e) {
-      f.fail(f.at("shape"), e.what());
-    }
-  }
-  if (f.has("size"))
-    spec.size = f.numbers("size");
-  else if (spec.shape == ObjectShape::mesh)
-    spec.size.clear();
+  read_declared(f, spec, {"name"});
+  if (!f.has("size") && spec.shape == ObjectShape::mesh) spec.size.clear();
   if (f.has("mesh")) spec.mesh_file = resolve(f.text("mesh"), base_dir, false);
-  f.read("mass", spec.mass);
-  f.read("friction", spec.friction);
-  f.read("pos", spec.pos);
-  f.read("quat", spec.quat);
-  f.read("rgba", spec.rgba);
   return spec;
 }
 
@@ -239,26 +264,23 @@ Scene parse_scene(std::string_view text, const fs::path& base_dir, const std::st
   const auto robots = entries(top, "robots");
   for (std::size_t i = 0; i < robots.size(); ++i) {
     const Fields f(robots[i], entry_name(robots[i], "robot", i),
-                   {"name", "model", "pos", "quat", "keep_arena", "gripper"}, source);
+                   keys_of<RobotSpec>({}, {"gripper"}), source);
     RobotSpec spec;
-    spec.name = f.text("name");
-    spec.model = resolve(f.text("model"), base_dir, true);
-    f.read("pos", spec.pos);
-    f.read("quat", spec.quat);
-    f.read("keep_arena", spec.keep_arena);
+    read_declared(f, spec, {"name", "model"});
+    spec.model = resolve(spec.model, base_dir, true);
     f.apply([&] { scene.add_robot(spec); });
     if (!f.has("gripper")) continue;
     const Fields g(f.at("gripper"), "gripper of robot '" + spec.name + "'",
-                   {"model", "frame", "name"}, source);
+                   keys_of<GripperSpec>({"robot"}), source);
     GripperSpec gripper;
+    read_declared(g, gripper, {"model", "frame"});
     gripper.robot = spec.name;
-    gripper.model = resolve(g.text("model"), base_dir, true);
-    gripper.frame = g.text("frame");
-    g.read("name", gripper.name);
+    gripper.model = resolve(gripper.model, base_dir, true);
     g.apply([&] { scene.attach_gripper(gripper); });
   }
-  const std::vector<std::string> object_keys{"name",     "shape", "size", "mesh", "mass",
-                                             "friction", "pos",   "quat", "rgba"};
+  // a file names a mesh by its path ("mesh"); vertices are given through the API only
+  const std::vector<std::string> object_keys =
+      keys_of<ObjectSpec>({"mesh_file", "mesh_vertices"}, {"mesh"});
   for (const char* kind : {"objects", "fixtures"}) {
     const auto list = entries(top, kind);
     const bool free = std::string(kind) == "objects";
@@ -271,29 +293,20 @@ Scene parse_scene(std::string_view text, const fs::path& base_dir, const std::st
   }
   const auto sites = entries(top, "sites");
   for (std::size_t i = 0; i < sites.size(); ++i) {
-    const Fields f(sites[i], entry_name(sites[i], "site", i),
-                   {"name", "body", "pos", "quat", "size", "rgba"}, source);
+    const Fields f(sites[i], entry_name(sites[i], "site", i), keys_of<SiteSpec>({}), source);
     SiteSpec spec;
-    spec.name = f.text("name");
-    f.read("body", spec.body);
-    f.read("pos", spec.pos);
-    f.read("quat", spec.quat);
-    f.read("size", spec.size);
-    f.read("rgba", spec.rgba);
+    read_declared(f, spec, {"name"});
     f.apply([&] { scene.add_site(spec); });
   }
   const auto cameras = entries(top, "cameras");
   for (std::size_t i = 0; i < cameras.size(); ++i) {
-    const Fields f(cameras[i], entry_name(cameras[i], "camera", i),
-                   {"name", "body", "pos", "xyaxes", "quat", "fovy", "target"}, source);
+    const Fields f(cameras[i], entry_name(cameras[i], "camera", i), keys_of<SceneCameraSpec>({}),
+                   source);
     SceneCameraSpec spec;
-    spec.name = f.text("name");
-    f.read("body", spec.body);
-    f.read("pos", spec.pos);
+    read_declared(f, spec, {"name"});
     if (f.has("xyaxes")) {
       if (f.has("quat"))
         f.fail(f.at("quat"), "camera '" + spec.name + "' has both 'xyaxes' and 'quat': give one");
-      f.read("xyaxes", spec.xyaxes);
       // given, all zero is degenerate (the API reads all zero as "use quat")
       try {
         scene_detail::check_orientation("xyaxes", spec.xyaxes, "camera '" + spec.name + "'");
@@ -301,35 +314,21 @@ Scene parse_scene(std::string_view text, const fs::path& base_dir, const std::st
         f.fail(f.at("xyaxes"), e.what());
       }
     }
-    f.read("quat", spec.quat);
-    f.read("fovy", spec.fovy);
-    f.read("target", spec.target);
     f.apply([&] { scene.add_camera(spec); });
   }
   const auto sensors = entries(top, "sensors");
   for (std::size_t i = 0; i < sensors.size(); ++i) {
-    const Fields f(sensors[i], entry_name(sensors[i], "sensor", i), {"name", "type", "target"},
+    const Fields f(sensors[i], entry_name(sensors[i], "sensor", i), keys_of<SensorSpec>({}),
                    source);
     SensorSpec spec;
-    spec.name = f.text("name");
-    try {
-      spec.type = sensor_type(f.text("type"));
-    } catch (const Error& e) {
-      f.fail(f.at("type"), e.what());
-    }
-    spec.target = f.text("target");
+    read_declared(f, spec, {"name", "type", "target"});
     f.apply([&] { scene.add_sensor(spec); });
   }
   const auto welds = entries(top, "welds");
   for (std::size_t i = 0; i < welds.size(); ++i) {
-    const Fields f(welds[i], entry_name(welds[i], "weld", i),
-                   {"name", "body1", "body2", "active", "solref"}, source);
+    const Fields f(welds[i], entry_name(welds[i], "weld", i), keys_of<WeldSpec>({}), source);
     WeldSpec spec;
-    spec.name = f.text("name");
-    spec.body1 = f.text("body1");
-    spec.body2 = f.text("body2");
-    f.read("active", spec.active);
-    f.read("solref", spec.solref);
+    read_declared(f, spec, {"name", "body1", "body2"});
     f.apply([&] { scene.add_weld(spec); });
   }
   const auto edits = entries(top, "edits");

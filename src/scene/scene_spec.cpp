@@ -7,32 +7,10 @@
 #include "frame_check.hpp"
 #include "mjarm/error.hpp"
 #include "mjarm/model/finite_model.hpp"
-#include "mjarm/model/names.hpp"
 #include "mjarm/number_text.hpp"
 
 namespace mjarm {
 namespace {
-
-constexpr const char* kShapeNames[] = {"box", "sphere", "cylinder", "capsule", "mesh"};
-constexpr const char* kSensorNames[] = {"jointpos", "framepos", "framequat",
-                                        "touch",    "force",    "torque"};
-
-std::string joined(std::span<const char* const> names) {
-  std::string out;
-  for (std::size_t i = 0; i < names.size(); ++i) out += (i ? ", " : "") + std::string(names[i]);
-  return out;
-}
-
-template <std::size_t N>
-int index_of(std::string_view name, const char* const (&names)[N], const char* what) {
-  for (std::size_t i = 0; i < N; ++i)
-    if (name == names[i]) return static_cast<int>(i);
-  const std::vector<std::string> all(std::begin(names), std::end(names));
-  std::string message = "unknown " + std::string(what) + " '" + std::string(name) + "'";
-  const auto close = closest_names(name, all, 2);
-  if (!close.empty()) message += "; closest: " + close.front();
-  throw Error(message + "; " + what + "s: " + joined(names));
-}
 
 void check_name(const std::string& name, const std::string& what) {
   if (name.empty()) throw Error(what + " needs a non-empty name");
@@ -64,16 +42,12 @@ void check_rgba(const std::array<double, 4>& rgba, const std::string& what) {
 
 }  // namespace
 
-const char* to_string(ObjectShape shape) noexcept { return kShapeNames[static_cast<int>(shape)]; }
-
 ObjectShape object_shape(std::string_view name) {
-  return static_cast<ObjectShape>(index_of(name, kShapeNames, "object shape"));
+  return parse_enum<ObjectShape>(name, "object shape");
 }
 
-const char* to_string(SensorType type) noexcept { return kSensorNames[static_cast<int>(type)]; }
-
 SensorType sensor_type(std::string_view name) {
-  return static_cast<SensorType>(index_of(name, kSensorNames, "sensor type"));
+  return parse_enum<SensorType>(name, "sensor type");
 }
 
 void validate(const ArenaSpec& spec) {

@@ -3,6 +3,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <type_traits>
+#include <vector>
 
 #include "support/error_message.hpp"
 
@@ -92,6 +94,63 @@ TEST(SceneSpec, RobotsCamerasSitesWeldsAndArenasAreChecked) {
   arena.table = true;
   arena.table_height = 0.0;
   EXPECT_TRUE(says(error_of([&] { validate(arena); }), "table_height"));
+}
+
+// The declared ranges (the Python docs say them) are the ones validate() enforces: below or
+// above a declared bound, or NaN, in any numeric field is refused with the field's name.
+template <class S>
+void expect_declared_ranges_enforced(const S& good) {
+  validate(good);
+  for_each_field<S>([&](const auto& f) {
+    using T = typename std::decay_t<decltype(f)>::Type;
+    if constexpr (NumberField<T> || VectorField<T>) {
+      std::vector<double> outside{NAN};
+      if (f.range.min > -Range::inf)
+        outside.push_back(f.range.min_open ? f.range.min : f.range.min - 1.0);
+      if (f.range.max < Range::inf)
+        outside.push_back(f.range.max_open ? f.range.max : f.range.max + 1.0);
+      for (const double x : outside) {
+        S bad = good;
+        if constexpr (NumberField<T>) {
+          bad.*(f.member) = x;
+        } else {
+          if ((bad.*(f.member)).empty()) continue;
+          (bad.*(f.member))[0] = x;
+        }
+        const std::string message = error_of([&] { validate(bad); });
+        EXPECT_TRUE(says(message, std::string(f.name)))
+            << fields_of<S>().owner << " " << f.name << " = " << x << ": " << message;
+      }
+    }
+  });
+}
+
+TEST(SceneSpec, DeclaredRangesAreTheOnesValidateEnforces) {
+  ArenaSpec arena;
+  arena.table = true;  // the table's fields are checked when there is one
+  expect_declared_ranges_enforced(arena);
+  expect_declared_ranges_enforced(RobotSpec{"arm", "panda", {}, {1, 0, 0, 0}, false});
+  ObjectSpec cube;
+  cube.name = "cube";
+  expect_declared_ranges_enforced(cube);
+  ObjectSpec tetra;
+  tetra.name = "tetra";
+  tetra.shape = ObjectShape::mesh;
+  tetra.size.clear();
+  tetra.mesh_vertices = {0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1};
+  expect_declared_ranges_enforced(tetra);
+  CompoundFixtureSpec bin;
+  bin.name = "bin";
+  bin.pieces = {cube};
+  expect_declared_ranges_enforced(bin);
+  SceneCameraSpec camera;
+  camera.name = "c";
+  camera.xyaxes = {1, 0, 0, 0, 1, 0};
+  expect_declared_ranges_enforced(camera);
+  SiteSpec site;
+  site.name = "s";
+  expect_declared_ranges_enforced(site);
+  expect_declared_ranges_enforced(WeldSpec{"w", "a", "b", false, {0.002, 1.0}});
 }
 
 }  // namespace

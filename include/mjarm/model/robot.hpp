@@ -12,6 +12,8 @@
 #include <string_view>
 #include <vector>
 
+#include "mjarm/fields.hpp"
+
 namespace mjarm {
 
 /// Deletes an `mjData` with `mj_deleteData`.
@@ -29,8 +31,13 @@ enum class JointType {
   hinge = mjJNT_HINGE
 };
 
-/// Human name of a joint type ("hinge", ...).
-const char* to_string(JointType type) noexcept;
+constexpr auto declared_names(const JointType*) {
+  using J = JointType;
+  return std::array{EnumName{J::free, "free", "6 dofs: position and unit quaternion, nq 7"},
+                    EnumName{J::ball, "ball", "3 rotational dofs: unit quaternion, nq 4"},
+                    EnumName{J::slide, "slide", "1 translational dof [m]"},
+                    EnumName{J::hinge, "hinge", "1 rotational dof [rad]"}};
+}
 
 /// One joint of the model.
 struct JointInfo {
@@ -53,8 +60,13 @@ enum class ActuatorKind {
   general    ///< anything else
 };
 
-/// Human name of an actuator kind.
-const char* to_string(ActuatorKind kind) noexcept;
+constexpr auto declared_names(const ActuatorKind*) {
+  using A = ActuatorKind;
+  return std::array{EnumName{A::motor, "motor", "force = gear·ctrl"},
+                    EnumName{A::position, "position", "force = kp·(ctrl − q) − kv·q̇"},
+                    EnumName{A::velocity, "velocity", "force = kv·(ctrl − q̇)"},
+                    EnumName{A::general, "general", "anything else"}};
+}
 
 /// One actuator of the model.
 struct ActuatorInfo {

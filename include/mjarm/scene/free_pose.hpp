@@ -8,6 +8,7 @@
 #include <array>
 #include <string_view>
 
+#include "mjarm/fields.hpp"
 #include "mjarm/model/robot.hpp"
 
 namespace mjarm {
@@ -17,6 +18,13 @@ struct FreePose {
   std::array<double, 3> p_WB{0.0, 0.0, 0.0};          ///< position [m]
   std::array<double, 4> quat_WB{1.0, 0.0, 0.0, 0.0};  ///< orientation (w, x, y, z), unit
 };
+
+constexpr auto declared_fields(const FreePose*) {
+  using S = FreePose;
+  return declare<S>("free pose", field("p_WB", &S::p_WB, "m", Range::finite(), "position"),
+                    field("quat_WB", &S::quat_WB, "", Range::finite(),
+                          "orientation w, x, y, z, unit"));
+}
 
 /// The qpos address of the free joint of @p body (a body name, e.g. "cube", or the name of a
 /// free joint, e.g. "cube/joint").

@@ -2,11 +2,16 @@
 /// @file
 /// What a scene is made of: plain descriptions of an arena, robots, grippers, objects, cameras,
 /// sites, sensors and welds, checked by `validate()` before they are composed (see `Scene`).
+/// Each declares its fields (fields.hpp: the Python properties and their docs); `validate()`
+/// checks the declared ranges in its own words (with MuJoCo's magnitude bound, the sizes a shape
+/// takes and the checks that relate fields).
 
 #include <array>
 #include <string>
 #include <string_view>
 #include <vector>
+
+#include "mjarm/fields.hpp"
 
 namespace mjarm {
 
@@ -21,6 +26,22 @@ struct ArenaSpec {
   std::array<double, 3> table_friction{1.0, 0.005, 0.0001};  ///< sliding, torsional, rolling
 };
 
+constexpr auto declared_fields(const ArenaSpec*) {
+  using S = ArenaSpec;
+  return declare<S>(
+      "arena",
+      field("floor_half_size", &S::floor_half_size, "m", Range::positive(),
+            "floor plane half extents x, y"),
+      field("table", &S::table, "add a table"),
+      field("table_center", &S::table_center, "m", Range::finite(), "table centre x, y in world"),
+      field("table_half_size", &S::table_half_size, "m", Range::positive(),
+            "table top half extents x, y"),
+      field("table_height", &S::table_height, "m", Range{0.05, Range::inf, true, false, false},
+            "height of the top surface"),
+      field("table_friction", &S::table_friction, "", Range::non_negative(),
+            "sliding, torsional, rolling"));
+}
+
 /// A robot from any MJCF: a bundled name ("arm6", "panda_hand", ...) or a file path (URDF is not
 /// attached: convert it to MJCF first). Every name in it gets the prefix `name + "/"`
 /// ("left/joint1"); the robot's root bodies go inside a fixed body called `name` placed at `pos`,
@@ -34,6 +55,16 @@ struct RobotSpec {
   bool keep_arena = false;
 };
 
+constexpr auto declared_fields(const RobotSpec*) {
+  using S = RobotSpec;
+  return declare<S>("robot", field("name", &S::name, "prefix, unique in the scene"),
+                    field("model", &S::model, "bundled name or MJCF file path"),
+                    field("pos", &S::pos, "m", Range::finite(), "mount position in world"),
+                    field("quat", &S::quat, "", Range::finite(), "mount orientation w, x, y, z"),
+                    field("keep_arena", &S::keep_arena,
+                          "keep the model's own floor planes, lights and skybox"));
+}
+
 /// A gripper MJCF attached rigidly to a robot frame (no joint is added between them: the
 /// scene's nq grows by the gripper's own joints only). Names get the prefix
 /// `robot + "/" + name + "/"`; the gripper's root bodies go inside a body `robot/name` placed at
@@ -45,13 +76,28 @@ struct GripperSpec {
   std::string name = "gripper";  ///< prefix inside the robot's
 };
 
+constexpr auto declared_fields(const GripperSpec*) {
+  using S = GripperSpec;
+  return declare<S>("gripper", field("robot", &S::robot, "a robot already in the scene"),
+                    field("model", &S::model, "bundled gripper name or MJCF file path"),
+                    field("frame", &S::frame, "site or body of the robot, unprefixed"),
+                    field("name", &S::name, "prefix inside the robot's"));
+}
+
 /// Shapes of objects and fixtures.
 enum class ObjectShape { box, sphere, cylinder, capsule, mesh };
 
-/// Human name of a shape ("box", ...).
-const char* to_string(ObjectShape shape) noexcept;
-/// The shape called @p name.
-/// @throws Error naming the closest shape names when @p name is not one.
+constexpr auto declared_names(const ObjectShape*) {
+  using O = ObjectShape;
+  return std::array{EnumName{O::box, "box", "size: 3 half extents"},
+                    EnumName{O::sphere, "sphere", "size: radius"},
+                    EnumName{O::cylinder, "cylinder", "size: radius, half length"},
+                    EnumName{O::capsule, "capsule", "size: radius, half length of the cylinder"},
+                    EnumName{O::mesh, "mesh", "the convex hull of a mesh file or of vertices"}};
+}
+
+/// The shape called @p name (`parse_enum` with the kind "object shape").
+/// @throws Error "unknown object shape 'cub'; closest: box; object shapes: box, …"
 ObjectShape object_shape(std::string_view name);
 
 /// A rigid object: free (`Scene::add_object`, adds a free joint: nq += 7, nv += 6) or fixed to
@@ -74,6 +120,24 @@ struct ObjectSpec {
   std::array<double, 4> rgba{0.8, 0.3, 0.2, 1.0};
 };
 
+constexpr auto declared_fields(const ObjectSpec*) {
+  using S = ObjectSpec;
+  return declare<S>(
+      "object", field("name", &S::name, "unique in the scene"),
+      field("shape", &S::shape, "box, sphere, cylinder, capsule or mesh"),
+      field("size", &S::size, "m", Range::positive(),
+            "box: 3 half extents; sphere: radius; cylinder, capsule: radius, half length; mesh: 3 "
+            "scale factors or none"),
+      field("mesh_file", &S::mesh_file, "STL/OBJ/MSH file, for shape mesh"),
+      field("mesh_vertices", &S::mesh_vertices, "m", Range::finite(),
+            "for shape mesh instead of a file: x y z of at least 4 points, not in one plane"),
+      field("mass", &S::mass, "kg", Range::positive(), "mass"),
+      field("friction", &S::friction, "", Range::non_negative(), "sliding, torsional, rolling"),
+      field("pos", &S::pos, "m", Range::finite(), "position in world"),
+      field("quat", &S::quat, "", Range::finite(), "orientation in world w, x, y, z"),
+      field("rgba", &S::rgba, "", Range::closed(0.0, 1.0), "colour"));
+}
+
 /// A fixture made of several pieces in one static body: a hollow part (a socket, a bin) has to
 /// be built from convex pieces, since MuJoCo collides a mesh through its convex hull. One body
 /// instead of one per piece also keeps MuJoCo's broad phase from pairing the pieces with each
@@ -86,6 +150,14 @@ struct CompoundFixtureSpec {
   /// (the body is static); names are unique within the fixture.
   std::vector<ObjectSpec> pieces;
 };
+
+/// The pieces are not declared: each is an `ObjectSpec`, checked as one.
+constexpr auto declared_fields(const CompoundFixtureSpec*) {
+  using S = CompoundFixtureSpec;
+  return declare<S>("fixture", field("name", &S::name, "unique in the scene"),
+                    field("pos", &S::pos, "m", Range::finite(), "position of the body in world"),
+                    field("quat", &S::quat, "", Range::finite(), "orientation w, x, y, z"));
+}
 
 /// A camera fixed to a body (or the world), optionally tracking a body.
 struct SceneCameraSpec {
@@ -100,6 +172,20 @@ struct SceneCameraSpec {
   std::string target;  ///< body to look at (mode targetbody), or empty
 };
 
+constexpr auto declared_fields(const SceneCameraSpec*) {
+  using S = SceneCameraSpec;
+  return declare<S>(
+      "camera", field("name", &S::name, "unique in the scene"),
+      field("body", &S::body, "parent body, empty for the world"),
+      field("pos", &S::pos, "m", Range::finite(), "position in the parent body"),
+      field("xyaxes", &S::xyaxes, "", Range::finite(),
+            "image x and y axes in the parent body, not parallel; all zero: use quat"),
+      field("quat", &S::quat, "", Range::finite(), "orientation w, x, y, z"),
+      field("fovy", &S::fovy, "deg", Range{0.0, 180.0, true, true, false},
+            "vertical field of view"),
+      field("target", &S::target, "body to look at, or empty"));
+}
+
 /// A site on a body (or the world).
 struct SiteSpec {
   std::string name;
@@ -110,13 +196,31 @@ struct SiteSpec {
   std::array<double, 4> rgba{0.2, 0.8, 0.2, 1.0};
 };
 
+constexpr auto declared_fields(const SiteSpec*) {
+  using S = SiteSpec;
+  return declare<S>("site", field("name", &S::name, "unique in the scene"),
+                    field("body", &S::body, "parent body, empty for the world"),
+                    field("pos", &S::pos, "m", Range::finite(), "position in the parent body"),
+                    field("quat", &S::quat, "", Range::finite(), "orientation w, x, y, z"),
+                    field("size", &S::size, "m", Range::positive(), "sphere radius"),
+                    field("rgba", &S::rgba, "", Range::closed(0.0, 1.0), "colour"));
+}
+
 /// Sensor types a scene can add.
 enum class SensorType { jointpos, framepos, framequat, touch, force, torque };
 
-/// Human name of a sensor type ("jointpos", ...).
-const char* to_string(SensorType type) noexcept;
-/// The sensor type called @p name.
-/// @throws Error naming the closest sensor types when @p name is not one.
+constexpr auto declared_names(const SensorType*) {
+  using T = SensorType;
+  return std::array{EnumName{T::jointpos, "jointpos", "a joint's position [rad or m]"},
+                    EnumName{T::framepos, "framepos", "a frame's position in world [m]"},
+                    EnumName{T::framequat, "framequat", "a frame's orientation w, x, y, z"},
+                    EnumName{T::touch, "touch", "normal contact force in a site's volume [N]"},
+                    EnumName{T::force, "force", "force at a site, in its frame [N]"},
+                    EnumName{T::torque, "torque", "torque at a site, in its frame [N·m]"}};
+}
+
+/// The sensor type called @p name (`parse_enum` with the kind "sensor type").
+/// @throws Error "unknown sensor type 'frampos'; closest: framepos; sensor types: …"
 SensorType sensor_type(std::string_view name);
 
 /// A sensor on a named element: a joint (jointpos), a site (touch, force, torque) or a site,
@@ -127,6 +231,13 @@ struct SensorSpec {
   std::string target;
 };
 
+constexpr auto declared_fields(const SensorSpec*) {
+  using S = SensorSpec;
+  return declare<S>("sensor", field("name", &S::name, "unique in the scene"),
+                    field("type", &S::type, "what it measures"),
+                    field("target", &S::target, "the element it reads"));
+}
+
 /// A weld equality between two bodies (e.g. a gripper body and an object), declared inactive
 /// unless @p active: the grasp switches it on.
 struct WeldSpec {
@@ -136,6 +247,16 @@ struct WeldSpec {
   bool active = false;
   std::array<double, 2> solref{0.002, 1.0};  ///< time constant [s], damping ratio
 };
+
+constexpr auto declared_fields(const WeldSpec*) {
+  using S = WeldSpec;
+  return declare<S>("weld", field("name", &S::name, "unique in the scene"),
+                    field("body1", &S::body1, "e.g. 'arm/hand'"),
+                    field("body2", &S::body2, "e.g. 'cube'"),
+                    field("active", &S::active, "on from the start"),
+                    field("solref", &S::solref, "", Range::positive(),
+                          "time constant [s], damping ratio"));
+}
 
 /// Checks sizes, masses, frictions, frames (a zero or non-finite quaternion, a camera's zero or
 /// parallel axes) and names of a spec.
