@@ -1,6 +1,6 @@
 #pragma once
 // Shared pieces of the render tests: scenes, pixel statistics, a scratch folder and a way to run
-// programs (the CLI, ffprobe) without a shell.
+// programs (the CLI, ffprobe) without a shell, the video tests' pattern and ffprobe check.
 
 #include <fcntl.h>
 #include <gtest/gtest.h>
@@ -130,6 +130,77 @@ inline ProcessRun run_process(std::vector<std::string> argv, std::vector<std::st
   run.out = slurp(out);
   run.err = slurp(err);
   return run;
+}
+
+// ---- videos: a moving test pattern, ffprobe's view of a file, a hostile file name
+
+// a frame with a square that moves with k, so the encoder has something to do
+inline Image moving_square(int w, int h, int k) {
+  Image image(w, h);
+  for (int y = 0; y < h; ++y) {
+    for (int x = 0; x < w; ++x) {
+      std::uint8_t* p = image.at(x, y);
+      const bool square = x >= 2 * k && x < 2 * k + 12 && y >= 10 && y < 22;
+      p[0] = square ? 230 : 20;
+      p[1] = static_cast<std::uint8_t>(4 * y);
+      p[2] = static_cast<std::uint8_t>(3 * x);
+    }
+  }
+  return image;
+}
+
+inline std::string find_on_path(const std::string& name) {
+  const char* env = std::getenv("PATH");
+  std::string path = env != nullptr ? env : "";
+  std::size_t begin = 0;
+  while (begin <= path.size()) {
+    std::size_t end = path.find(':', begin);
+    if (end == std::string::npos) end = path.size();
+    const fs::path candidate = fs::path(path.substr(begin, end - begin)) / name;
+    if (::access(candidate.c_str(), X_OK) == 0) return candidate;
+    begin = end + 1;
+  }
+  return {};
+}
+
+struct Probe {
+  int frames = -1;
+  int width = 0;
+  int height = 0;
+  std::string codec;
+};
+
+// ffprobe decodes every frame and reports the count; -1 when the file is not a valid video
+inline Probe probe(const fs::path& video) {
+  const std::string ffprobe = find_on_path("ffprobe");
+  EXPECT_FALSE(ffprobe.empty()) << "ffprobe (Debian package ffmpeg) is needed by this test";
+  const auto run = run_process({ffprobe, "-v", "error", "-count_frames", "-select_streams", "v:0",
+                                "-show_entries", "stream=nb_read_frames,width,height,codec_name",
+                                "-of", "default=noprint_wrappers=1", video.string()});
+  Probe p;
+  if (run.exit_code != 0) return p;
+  std::istringstream lines(run.out);
+  std::string line;
+  while (std::getline(lines, line)) {
+    const auto eq = line.find('=');
+    if (eq == std::string::npos) continue;
+    const std::string key = line.substr(0, eq), value = line.substr(eq + 1);
+    if (key == "nb_read_frames") p.frames = std::atoi(value.c_str());
+    if (key == "width") p.width = std::atoi(value.c_str());
+    if (key == "height") p.height = std::atoi(value.c_str());
+    if (key == "codec_name") p.codec = value;
+  }
+  return p;
+}
+
+inline bool has_moov_atom(const fs::path& video) {
+  return slurp(video).find("moov") != std::string::npos;
+}
+
+// issue 16, item 3: the video path reaches ffmpeg's command line as one argv entry, never
+// through a shell nor read as an option or a protocol: every byte of the name is kept
+inline std::string hostile_video_name() {
+  return "-y:v\n'`touch PWNED1`$(touch PWNED2)\"; system \"touch PWNED3\" %d \\.mp4";
 }
 
 }  // namespace mjarm::test
