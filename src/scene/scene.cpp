@@ -12,6 +12,7 @@
 #include "mjarm/model/mjcf_spec.hpp"
 #include "mjarm/model/names.hpp"
 #include "mjarm/model/user_file.hpp"
+#include "scene_keyframes.hpp"
 #include "scene_parts.hpp"
 #include "spec_attributes.hpp"
 
@@ -19,6 +20,7 @@ namespace mjarm {
 
 namespace fs = std::filesystem;
 using scene_detail::NameKey;
+using scene_detail::PartKeys;
 
 namespace {
 
@@ -35,8 +37,8 @@ constexpr std::pair<std::string_view, mjtObj> kNamedKinds[] = {
     {"key", mjOBJ_KEY}};
 
 // element types that take a default class
-constexpr mjtObj kClassedTypes[] = {mjOBJ_JOINT, mjOBJ_GEOM,     mjOBJ_SITE,     mjOBJ_CAMERA,
-                                    mjOBJ_LIGHT, mjOBJ_MESH,     mjOBJ_MATERIAL, mjOBJ_PAIR,
+constexpr mjtObj kClassedTypes[] = {mjOBJ_JOINT,    mjOBJ_GEOM,   mjOBJ_SITE,     mjOBJ_CAMERA,
+                                    mjOBJ_LIGHT,    mjOBJ_MESH,   mjOBJ_MATERIAL, mjOBJ_PAIR,
                                     mjOBJ_EQUALITY, mjOBJ_TENDON, mjOBJ_ACTUATOR};
 
 /// The object type of a kind of named element ("body", ..., "key", "default"), or nullopt.
@@ -55,8 +57,7 @@ std::string name_of(mjsElement* e) {
 /// Names of the elements of @p type in @p spec, in the spec's order.
 std::vector<std::string> element_names(const mjSpec& spec, mjtObj type) {
   std::vector<std::string> names;
-  for (mjsElement* e = mjs_firstElement(&spec, type); e != nullptr;
-       e = mjs_nextElement(&spec, e)) {
+  for (mjsElement* e = mjs_firstElement(&spec, type); e != nullptr; e = mjs_nextElement(&spec, e)) {
     std::string n = name_of(e);
     if (!n.empty()) names.push_back(std::move(n));
   }
@@ -121,33 +122,7 @@ void strip_arena(mjSpec& part) {
   for (mjsElement* e : doomed) mjs_delete(&part, e);
 }
 
-int joint_coordinates(const mjModel& m, int joint) {
-  switch (m.jnt_type[joint]) {
-    case mjJNT_FREE:
-      return 7;
-    case mjJNT_BALL:
-      return 4;
-    default:
-      return 1;
-  }
-}
-
 }  // namespace
-
-// named, not anonymous: Scene::Impl (declared in a header) holds it
-namespace scene_detail {
-
-/// A keyed part: its keyframes are combined with the other parts' by name at compile time.
-struct PartKeys {
-  std::string prefix;                  ///< "left/"
-  std::vector<std::string> keys;       ///< the part's own key names ("home")
-  std::vector<std::string> joints;     ///< its joints, prefixed
-  std::vector<std::string> actuators;  ///< its actuators, prefixed
-};
-
-}  // namespace scene_detail
-
-using scene_detail::PartKeys;
 
 struct Scene::Impl {
   std::string name;
@@ -155,8 +130,8 @@ struct Scene::Impl {
   std::map<NameKey, std::string> owners;  // every name a part brought -> that part
   std::set<std::string> robots;
   bool arena = false;
-  std::vector<PartKeys> keyed;           // parts with keyframes, in the order they came
-  std::vector<std::string> options;      // <option> attributes the scene set itself
+  std::vector<PartKeys> keyed;       // parts with keyframes, in the order they came
+  std::vector<std::string> options;  // <option> attributes the scene set itself
   std::vector<std::string> warnings;
 
   Impl() = default;
@@ -213,8 +188,8 @@ struct Scene::Impl {
     }
     const std::string n(element_name);
     if (mjsElement* e = mjs_findElement(spec.get(), *type, n.c_str())) return *e;
-    std::string message = why + ": no " + std::string(kind) + " named '" + n + "' in scene '" +
-                          name + "'";
+    std::string message =
+        why + ": no " + std::string(kind) + " named '" + n + "' in scene '" + name + "'";
     const auto close = closest_names(element_name, names_of(kind), 3);
     if (!close.empty()) message += "; closest: " + list(close);
     throw Error(message);
@@ -287,52 +262,7 @@ struct Scene::Impl {
 
   /// A copy of the spec compiled into a Robot, the parts' keyframes combined by name.
   std::pair<SpecPtr, Robot> compile_copy() const {
-    SpecPtr copy(mj_copySpec(spec.get()));
-    if (!copy) throw Error("scene '" + name + "': MuJoCo could not copy the scene's spec");
-    const std::string what = "scene '" + name + "'";
-    Robot robot = Robot::from_spec(*copy, what, warnings);
-    if (keyed.empty()) return {std::move(copy), std::move(robot)};
-    // the parts' keys, assembled in the scene's layout by the first compilation, become one
-    // key per name: each part's values at its own joints and actuators, qpos0 and 0 elsewhere
-    const mjModel& m = robot.model();
-    std::vector<std::string> combined;
-    for (const PartKeys& part : keyed)
-      for (const std::string& key : part.keys)
-        if (std::find(combined.begin(), combined.end(), key) == combined.end())
-          combined.push_back(key);
-    for (const std::string& key : combined) {
-      std::vector<double> qpos(m.qpos0, m.qpos0 + m.nq);
-      std::vector<double> ctrl(static_cast<std::size_t>(m.nu), 0.0);
-      for (const PartKeys& part : keyed) {
-        if (std::find(part.keys.begin(), part.keys.end(), key) == part.keys.end()) continue;
-        const int k = mj_name2id(&m, mjOBJ_KEY, (part.prefix + key).c_str());
-        if (k < 0) continue;
-        for (const std::string& joint : part.joints) {
-          const int j = mj_name2id(&m, mjOBJ_JOINT, joint.c_str());
-          if (j < 0) continue;
-          const int adr = m.jnt_qposadr[j];
-          const double* from = m.key_qpos + static_cast<std::ptrdiff_t>(k) * m.nq + adr;
-          std::copy(from, from + joint_coordinates(m, j), qpos.begin() + adr);
-        }
-        for (const std::string& actuator : part.actuators) {
-          const int a = mj_name2id(&m, mjOBJ_ACTUATOR, actuator.c_str());
-          if (a >= 0) ctrl[static_cast<std::size_t>(a)] = m.key_ctrl[k * m.nu + a];
-        }
-      }
-      mjsKey* spec_key = mjs_addKey(copy.get());
-      mjs_setName(spec_key->element, key.c_str());
-      mjs_setDouble(spec_key->qpos, qpos.data(), m.nq);
-      if (m.nu > 0) mjs_setDouble(spec_key->ctrl, ctrl.data(), m.nu);
-    }
-    for (const PartKeys& part : keyed) {
-      for (const std::string& key : part.keys) {
-        const std::string name = part.prefix + key;
-        if (mjsElement* e = mjs_findElement(copy.get(), mjOBJ_KEY, name.c_str()))
-          mjs_delete(copy.get(), e);
-      }
-    }
-    Robot combined_robot = Robot::from_spec(*copy, what, warnings);
-    return {std::move(copy), std::move(combined_robot)};
+    return scene_detail::compile_combining_keys(*spec, name, warnings, keyed);
   }
 };
 
@@ -434,8 +364,8 @@ void Scene::attach_gripper(const GripperSpec& spec) {
     std::copy(site->quat, site->quat + 4, quat);
     if (site->alt.type != mjORIENTATION_QUAT) {
       const mjsCompiler* compiler = mjs_getCompiler(site->element);
-      if (const char* error = mjs_resolveOrientation(quat, compiler->degree, compiler->eulerseq,
-                                                     &site->alt))
+      if (const char* error =
+              mjs_resolveOrientation(quat, compiler->degree, compiler->eulerseq, &site->alt))
         throw Error(source + ": the orientation of site '" + frame + "': " + error);
     }
   }
@@ -586,9 +516,7 @@ bool Scene::has(std::string_view kind, std::string_view element_name) const {
   return impl_->exists(kind, std::string(element_name));
 }
 
-std::vector<std::string> Scene::names(std::string_view kind) const {
-  return impl_->names_of(kind);
-}
+std::vector<std::string> Scene::names(std::string_view kind) const { return impl_->names_of(kind); }
 
 std::optional<std::string> Scene::attribute(std::string_view kind, std::string_view element_name,
                                             std::string_view attr) const {
