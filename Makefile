@@ -3,7 +3,7 @@ BUILD   ?= build
 JOBS    ?= $(shell nproc)
 CMAKE_FLAGS ?=
 
-.PHONY: all setup build demo test fuzz release-test bench bench-peers format tidy clean
+.PHONY: all setup build demo test check-gcc fuzz release-test bench bench-peers format tidy clean
 
 all: build
 
@@ -30,8 +30,8 @@ demo:
 	./$(DEMO_BUILD)/mjarm demo
 
 # Every test, once, in one build that is both strict (-Werror) and sanitized: ASan + UBSan, clang
-# (its build takes three quarters of GCC's CPU time; GCC compiles the library, the CLI and the
-# bindings once more, strict too, in the wheel check: tests/wheel), Ninja, the library at -O1, the
+# (its build takes three quarters of GCC's CPU time; GCC's build is `make check-gcc`, which CI
+# runs after this), Ninja, the library at -O1, the
 # code that drives it (CLI, tests, examples) at -O0, one translation unit per room
 # (docs/architecture.md, "Build"). Four UBSan checks that ASan or Eigen already make are left out
 # (CMakeLists.txt): with them the optimized library compiled in twice the time and the suite ran
@@ -51,6 +51,14 @@ $(TEST_BUILD)/CMakeCache.txt:
 test: setup $(TEST_BUILD)/CMakeCache.txt
 	cmake --build $(TEST_BUILD) -j $(JOBS)
 	cd $(TEST_BUILD) && $(SANITIZER_ENV) ctest --output-on-failure -j $(JOBS) --timeout 900
+
+# GCC's build of what users build with it (`pip install .`, `make demo`): the library, the CLI and
+# the bindings, strict (-Werror), in the wheel check that make test runs with clang
+# (tests/wheel/wheel_check.py, kept in build-gcc). CI runs it after make test, so every change
+# meets both compilers.
+GCC_BUILD ?= build-gcc
+check-gcc: setup
+	CMAKE_BUILD_PARALLEL_LEVEL=$(JOBS) python3 tests/wheel/wheel_check.py . $(GCC_BUILD) --compiler g++
 
 # The fuzz targets (fuzz/, docs/hardening.md "Fuzzing"): libFuzzer on each file reader, built by
 # clang in build-fuzz. `make test` runs each for a bounded, deterministic number of inputs; this
@@ -88,4 +96,4 @@ format:
 	clang-format -i $$(git ls-files '*.cpp' '*.hpp')
 
 clean:
-	rm -rf $(BUILD) $(TEST_BUILD) build-bench $(PEERS_BUILD) build-fuzz
+	rm -rf $(BUILD) $(TEST_BUILD) build-bench $(PEERS_BUILD) build-fuzz $(GCC_BUILD)
