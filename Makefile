@@ -39,6 +39,11 @@ demo:
 # LeakSanitizer ignores what Mesa, EGL, GLFW and X11 keep for the life of the process
 # (scripts/lsan.supp).
 TEST_BUILD ?= build-test
+# ccache, so the wheel check (tests/wheel) compiles nothing the sanitized tree compiled: its build
+# folder sits beside $(TEST_BUILD), and paths below the source tree count relative to it
+COMPILER_CACHE = $(if $(shell command -v ccache),-DCMAKE_CXX_COMPILER_LAUNCHER=ccache)
+export CCACHE_BASEDIR = $(CURDIR)
+export CCACHE_NOHASHDIR = true
 SANITIZER_ENV = ASAN_OPTIONS=detect_leaks=1:abort_on_error=0 \
   LSAN_OPTIONS=suppressions=$(CURDIR)/scripts/lsan.supp \
   UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
@@ -46,7 +51,7 @@ SANITIZER_ENV = ASAN_OPTIONS=detect_leaks=1:abort_on_error=0 \
 $(TEST_BUILD)/CMakeCache.txt:
 	cmake -S . -B $(TEST_BUILD) -G Ninja -DCMAKE_BUILD_TYPE=Debug -DMJARM_SANITIZE=ON \
 	  -DMJARM_WERROR=ON -DCMAKE_CXX_COMPILER=clang++ -DMJARM_UNITY_BUILD=ON \
-	  -DCMAKE_CXX_FLAGS_DEBUG="-O1 -g1" $(CMAKE_FLAGS)
+	  -DCMAKE_CXX_FLAGS_DEBUG="-O1 -g1" $(COMPILER_CACHE) $(CMAKE_FLAGS)
 
 test: setup $(TEST_BUILD)/CMakeCache.txt
 	cmake --build $(TEST_BUILD) -j $(JOBS)
@@ -96,4 +101,4 @@ format:
 	clang-format -i $$(git ls-files '*.cpp' '*.hpp')
 
 clean:
-	rm -rf $(BUILD) $(TEST_BUILD) build-bench $(PEERS_BUILD) build-fuzz $(GCC_BUILD)
+	rm -rf $(BUILD) $(TEST_BUILD) $(TEST_BUILD)-wheel build-bench $(PEERS_BUILD) build-fuzz $(GCC_BUILD)

@@ -5,7 +5,8 @@ folder): the package imports, loads a bundled model and solves an IK; `python -m
 console script `mjarm` run the CLI inside the package; the models are the package's; the
 binaries' run paths lead to the environment's mujoco, and one libmujoco is loaded.
 
-Usage: wheel_check.py SOURCE_DIR WORK_DIR [--compiler CXX | --isolated]
+Usage: wheel_check.py SOURCE_DIR WORK_DIR [--compiler CXX | --like BUILD [--preload LIBS] |
+                                            --isolated]
 
 By default the build runs without pip's build isolation, in WORK_DIR/build-env: a virtual
 environment holding exactly the build requirements of pyproject.toml (what isolation would
@@ -13,7 +14,13 @@ install), with a build folder kept between runs (scikit-build-core's build-dir),
 recompiles only what changed; isolation's temporary paths would make every run a full build. It
 compiles with CXX (c++ when not given: GCC on Debian, what `pip install .` uses) and -Werror,
 unoptimized (-O0, and GCC collects its garbage rarely): what is checked is the package, not the
-speed of its code. make test passes its own compiler, clang; `make check-gcc` passes g++.
+speed of its code (`make check-gcc` passes g++).
+--like BUILD compiles as the build folder BUILD does (its compiler, flags, sanitizers, compiler
+launcher), in the environment of its interpreter (MJARM_PYTHON_EXECUTABLE: the project's .venv,
+which holds the build requirements at their pins), in the folder BUILD-wheel beside it: so a
+compiler cache (make test's ccache) gives it BUILD's objects instead of a second compile. A
+sanitized wheel's binaries also run from the sanitizer runtime's folder, and the Python that
+uses them gets LIBS (colon-separated: the runtime first) preloaded, as make test's Python suite.
 --isolated builds exactly as `pip install .` does: isolated, Release, in a temporary build folder.
 """
 import json
@@ -58,11 +65,51 @@ def make_venv(path):
 PIP = ["-m", "pip", "--disable-pip-version-check", "--no-input"]
 
 
+def cache_entries(build):
+    """The entries of a build folder's CMakeCache.txt, by name."""
+    entries = {}
+    for line in (build / "CMakeCache.txt").read_text().splitlines():
+        m = re.match(r"([A-Za-z_][A-Za-z0-9_]*):[A-Z]+=(.*)", line)
+        if m:
+            entries[m.group(1)] = m.group(2)
+    return entries
+
+
+def build_like(build, source, dist, requires):
+    """Builds the wheel as the build folder `build` compiles (--like); returns its environment."""
+    cache = cache_entries(build)
+    builder = Path(cache["MJARM_PYTHON_EXECUTABLE"])
+    pins = dict(r.split("==") for r in requires)
+    installed = run([builder, "-c", "import importlib.metadata as m, sys; "
+                     "print(' '.join(m.version(n) for n in sys.argv[1:]))", *pins]).split()
+    for (name, pin), version in zip(pins.items(), installed):
+        check(version == pin, f"{builder} has {name} {version}, pyproject.toml builds with {pin}")
+    if failures:
+        sys.exit("the build environment is not pyproject.toml's (run scripts/setup_venv.sh)")
+    build_type = cache["CMAKE_BUILD_TYPE"]
+    defines = {"CMAKE_BUILD_TYPE": build_type,
+               f"CMAKE_CXX_FLAGS_{build_type.upper()}":
+                   cache.get(f"CMAKE_CXX_FLAGS_{build_type.upper()}", "")}
+    for name in ["CMAKE_CXX_COMPILER", "CMAKE_CXX_COMPILER_LAUNCHER", "MJARM_SANITIZE",
+                 "MJARM_UNITY_BUILD", "MJARM_WERROR", "MJARM_GCC_COLLECT_RARELY"]:
+        if cache.get(name):
+            defines[name] = cache[name]
+    run([builder, *PIP, "wheel", "--no-build-isolation", "--no-deps", "-q", "-w", dist,
+         f"--config-settings=build-dir={build}-wheel",
+         *(f"--config-settings=cmake.define.{k}={v}" for k, v in defines.items()), source],
+        env={**os.environ, "CMAKE_GENERATOR": cache["CMAKE_GENERATOR"]})
+
+
 def main():
     source, work = Path(sys.argv[1]).resolve(), Path(sys.argv[2]).resolve()
     options = sys.argv[3:]
     isolated = "--isolated" in options
-    compiler = options[options.index("--compiler") + 1] if "--compiler" in options else "c++"
+
+    def option(name, default=None):
+        return options[options.index(name) + 1] if name in options else default
+
+    compiler, like = option("--compiler", "c++"), option("--like")
+    preload = [lib for lib in option("--preload", "").split(":") if lib]
     work.mkdir(parents=True, exist_ok=True)
     pyproject = tomllib.loads((source / "pyproject.toml").read_text())
     version = re.search(r"project\(mjarm VERSION ([0-9.]+)",
@@ -75,6 +122,8 @@ def main():
     if isolated:
         builder = make_venv(work / "isolated-env")
         run([builder, *PIP, "wheel", "--no-deps", "-q", "-w", dist, source])
+    elif like:
+        build_like(Path(like).resolve(), source, dist, pyproject["build-system"]["requires"])
     else:
         builder = work / "build-env" / "bin" / "python"
         requires = pyproject["build-system"]["requires"]
@@ -129,8 +178,10 @@ def main():
     for binary, runpath in [(package / "bin" / "mjarm", "$ORIGIN/../../mujoco"),
                             (extension, "$ORIGIN/../mujoco")]:
         dynamic = run(["readelf", "-d", binary])
-        check(f"[{runpath}]" in dynamic and dynamic.count("RUNPATH") == 1,
-              f"{binary.name}'s run path is {runpath} only")
+        # a sanitized build's binaries find the sanitizer runtime first, in its own folder
+        expected = ":".join([str(Path(lib).parent) for lib in preload[:1]] + [runpath])
+        check(f"[{expected}]" in dynamic and dynamic.count("RUNPATH") == 1,
+              f"{binary.name}'s run path is {expected} only")
         check(f"[libmujoco.so.{mujoco_version}]" in dynamic, f"{binary.name} needs libmujoco")
         linked = run(["ldd", binary])
         check("not found" not in linked, f"ldd {binary.name} finds every library:\n{linked}")
@@ -143,6 +194,9 @@ def main():
     # used from elsewhere, with nothing pointing into the source or build tree
     env = {k: v for k, v in os.environ.items()
            if k != "PYTHONPATH" and not k.startswith("MJARM_")}
+    if preload:
+        # as make test's Python suite: the runtime first; CPython keeps memory until exit
+        env.update(LD_PRELOAD=":".join(preload), ASAN_OPTIONS="detect_leaks=0")
     outside = work / "elsewhere"
     outside.mkdir(exist_ok=True)
 
