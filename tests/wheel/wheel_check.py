@@ -76,7 +76,7 @@ def cache_entries(build):
 
 
 def build_like(build, source, dist, requires):
-    """Builds the wheel as the build folder `build` compiles (--like); returns its environment."""
+    """Builds the wheel into `dist` as the build folder `build` compiles (--like)."""
     cache = cache_entries(build)
     builder = Path(cache["MJARM_PYTHON_EXECUTABLE"])
     pins = dict(r.split("==") for r in requires)
