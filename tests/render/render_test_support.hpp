@@ -16,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include "executable_on_path.hpp"
 #include "mjarm/error.hpp"
 #include "mjarm/model/robot.hpp"
 #include "mjarm/render/image.hpp"
@@ -149,20 +150,6 @@ inline Image moving_square(int w, int h, int k) {
   return image;
 }
 
-inline std::string find_on_path(const std::string& name) {
-  const char* env = std::getenv("PATH");
-  std::string path = env != nullptr ? env : "";
-  std::size_t begin = 0;
-  while (begin <= path.size()) {
-    std::size_t end = path.find(':', begin);
-    if (end == std::string::npos) end = path.size();
-    const fs::path candidate = fs::path(path.substr(begin, end - begin)) / name;
-    if (::access(candidate.c_str(), X_OK) == 0) return candidate;
-    begin = end + 1;
-  }
-  return {};
-}
-
 struct Probe {
   int frames = -1;
   int width = 0;
@@ -172,7 +159,7 @@ struct Probe {
 
 // ffprobe decodes every frame and reports the count; -1 when the file is not a valid video
 inline Probe probe(const fs::path& video) {
-  const std::string ffprobe = find_on_path("ffprobe");
+  const std::string ffprobe = executable_on_path("ffprobe");
   EXPECT_FALSE(ffprobe.empty()) << "ffprobe (Debian package ffmpeg) is needed by this test";
   const auto run = run_process({ffprobe, "-v", "error", "-count_frames", "-select_streams", "v:0",
                                 "-show_entries", "stream=nb_read_frames,width,height,codec_name",

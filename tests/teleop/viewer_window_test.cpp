@@ -25,6 +25,7 @@
 #include "mjarm/render/png.hpp"
 #include "mjarm/teleop/session_log.hpp"
 #include "mjarm/teleop/viewer_session.hpp"
+#include "executable_on_path.hpp"
 #include "support/files.hpp"
 #include "teleop/teleop_ui.hpp"
 #include "mjarm/address_sanitizer.hpp"
@@ -75,7 +76,7 @@ fs::path fresh_dir(const std::string& name) {
 class VirtualDisplay {
  public:
   VirtualDisplay() {
-    const std::string xvfb = program_on_path("Xvfb");
+    const std::string xvfb = executable_on_path("Xvfb");
     if (xvfb.empty()) {
       error_ =
           "no Xvfb on PATH: the viewer test needs one; scripts/setup.sh installs Debian's xvfb";
@@ -148,20 +149,6 @@ class VirtualDisplay {
   const std::string& error() const { return error_; }
 
  private:
-  static std::string program_on_path(const std::string& name) {
-    const char* env = std::getenv("PATH");
-    const std::string path = env != nullptr ? env : "";
-    std::size_t begin = 0;
-    while (begin <= path.size()) {
-      std::size_t end = path.find(':', begin);
-      if (end == std::string::npos) end = path.size();
-      const fs::path candidate = fs::path(path.substr(begin, end - begin)) / name;
-      if (::access(candidate.c_str(), X_OK) == 0) return candidate;
-      begin = end + 1;
-    }
-    return {};
-  }
-
   // SIGTERM, then SIGKILL if the server has not ended within 10 s; reaped either way
   void stop() {
     if (pid_ > 0) {
