@@ -10,6 +10,8 @@
 # input that takes more than FUZZ_TIMEOUT (20) s or more than FUZZ_RSS_MB (2048) MB. Its input
 # is kept in build-fuzz/findings/TARGET/ and the command that reproduces it is printed; once
 # fixed, the input goes to fuzz/regressions/TARGET/, which the test suite replays (tests/fuzz).
+# FUZZ_PROGRAMS=DIR runs the programs DIR already holds instead of building build-fuzz (make test:
+# the sanitized test build makes them), with the staged files and findings in FUZZ_BUILD.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -24,17 +26,21 @@ table=fuzz/corpora.txt
 timeout=${FUZZ_TIMEOUT:-20}
 rss_mb=${FUZZ_RSS_MB:-2048}
 
-if ! command -v clang++ >/dev/null; then
-  echo "fuzz: clang++ not found (Debian: clang and libclang-rt-14-dev; make setup installs them)" >&2
-  exit 1
+programs=${FUZZ_PROGRAMS:-}
+if [ -z "$programs" ]; then
+  if ! command -v clang++ >/dev/null; then
+    echo "fuzz: clang++ not found (Debian: clang and libclang-rt-14-dev; make setup installs them)" >&2
+    exit 1
+  fi
+  if [ ! -f "$build/CMakeCache.txt" ]; then
+    # -O1 -g1: libFuzzer's speed with readable stacks at a third of the -O2 compile time
+    # shellcheck disable=SC2086  # FUZZ_CMAKE_FLAGS holds several flags
+    cmake -S . -B "$build" -DMJARM_FUZZ=ON -DMJARM_WERROR=ON -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=Debug \
+      -DCMAKE_CXX_FLAGS_DEBUG="-O1 -g1" ${FUZZ_CMAKE_FLAGS:-}
+  fi
+  cmake --build "$build" -j "${JOBS:-$(nproc)}"
+  programs=$build
 fi
-if [ ! -f "$build/CMakeCache.txt" ]; then
-  # -O1 -g1: libFuzzer's speed with readable stacks at a third of the -O2 compile time
-  # shellcheck disable=SC2086  # FUZZ_CMAKE_FLAGS holds several flags
-  cmake -S . -B "$build" -DMJARM_FUZZ=ON -DMJARM_WERROR=ON -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=Debug \
-    -DCMAKE_CXX_FLAGS_DEBUG="-O1 -g1" ${FUZZ_CMAKE_FLAGS:-}
-fi
-cmake --build "$build" -j "${JOBS:-$(nproc)}"
 
 # the column of corpora.txt lines of one kind for one target
 field() { awk -v kind="$1" -v target="$2" -v col="$3" '$1 == kind && $2 == target { print $col }' "$table"; }
@@ -44,7 +50,7 @@ if [ ${#targets[@]} -eq 0 ]; then
   mapfile -t targets < <(awk '$1 == "runs" { print $2 }' "$table")
 fi
 for t in "${targets[@]}"; do
-  if [ ! -x "$build/fuzz_$t" ] || [ -z "$(field runs "$t" 3)" ]; then
+  if [ ! -x "$programs/fuzz_$t" ] || [ -z "$(field runs "$t" 3)" ]; then
     echo "fuzz: no target '$t' (targets: $(awk '$1 == "runs" { printf "%s ", $2 }' "$table"))" >&2
     exit 2
   fi
@@ -95,7 +101,7 @@ run() {
   local rc=0
   ASAN_OPTIONS=detect_leaks=1 LSAN_OPTIONS=suppressions=$PWD/scripts/lsan.supp \
     UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
-    "$build/fuzz_$t" "${args[@]}" "$corpus" "$build/seeds/$t" > "$log" 2>&1 || rc=$?
+    "$programs/fuzz_$t" "${args[@]}" "$corpus" "$build/seeds/$t" > "$log" 2>&1 || rc=$?
   local stats
   stats=$(awk '/^stat::number_of_executed_units/ { runs = $2 } /^stat::average_exec_per_sec/ { rate = $2 }
                /^stat::peak_rss_mb/ { rss = $2 }
@@ -113,7 +119,7 @@ run() {
   echo "  log: $log"
   if [ -n "$input" ]; then
     echo "  input: $input"
-    echo "  reproduce: ASAN_OPTIONS=detect_leaks=1 LSAN_OPTIONS=suppressions=\$PWD/scripts/lsan.supp $build/fuzz_$t $input"
+    echo "  reproduce: ASAN_OPTIONS=detect_leaks=1 LSAN_OPTIONS=suppressions=\$PWD/scripts/lsan.supp $programs/fuzz_$t $input"
     echo "  once fixed: cp $input fuzz/regressions/$t/ (the test suite replays it)"
   fi
   return 1
