@@ -65,10 +65,10 @@ GCC_BUILD ?= build-gcc
 check-gcc: setup
 	CMAKE_BUILD_PARALLEL_LEVEL=$(JOBS) python3 tests/wheel/wheel_check.py . $(GCC_BUILD) --compiler g++
 
-# The fuzz targets (fuzz/, docs/hardening.md "Fuzzing"): libFuzzer on each file reader, built by
-# clang in build-fuzz. `make test` runs each for a bounded, deterministic number of inputs; this
-# runs each for FUZZ_SECONDS, growing the corpora in build-fuzz/corpus. FUZZ=name runs one target,
-# FUZZ_PARALLEL=2 two at a time.
+# The fuzz targets (fuzz/, docs/hardening.md "Fuzzing"): libFuzzer on each file reader. `make test`
+# runs each for a bounded, deterministic number of inputs on the programs its build makes; this
+# builds them by clang in build-fuzz and runs each for FUZZ_SECONDS, growing the corpora in
+# build-fuzz/corpus. FUZZ=name runs one target, FUZZ_PARALLEL=2 two at a time.
 FUZZ_SECONDS ?= 600
 FUZZ ?=
 fuzz: setup

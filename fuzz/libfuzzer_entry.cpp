@@ -1,4 +1,4 @@
-// libFuzzer's entry point for one target (fuzz/CMakeLists.txt compiles it once per target, with
+// libFuzzer's entry point for one target (fuzz/fuzz_programs.cmake compiles it once per target, with
 // MJARM_FUZZ_TARGET naming the target's function).
 #include <cstddef>
 #include <cstdint>
