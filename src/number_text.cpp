@@ -21,4 +21,12 @@ std::string number_text(double value, int significant_digits) {
   return text;
 }
 
+std::optional<double> number_from_text(std::string_view text) {
+  double value = 0.0;
+  const char* end = text.data() + text.size();
+  const auto parsed = std::from_chars(text.data(), end, value);
+  if (text.empty() || parsed.ec != std::errc() || parsed.ptr != end) return std::nullopt;
+  return value;
+}
+
 }  // namespace mjarm

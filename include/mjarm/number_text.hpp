@@ -4,7 +4,9 @@
 /// double ("0.1", "1e+308", "-2.5e-07"), so an error never prints 1e308 with 300 digits nor
 /// rounds a value the user typed into another one.
 
+#include <optional>
 #include <string>
+#include <string_view>
 
 namespace mjarm {
 
@@ -16,5 +18,9 @@ std::string number_text(double value);
 /// "1e-08"), for figures read by people rather than read back; "nan", "inf" and "-inf" spelled
 /// out.
 std::string number_text(double value, int significant_digits);
+
+/// The number @p text spells, whole and nothing else ("0.1", "-2.5e-07", "inf"; not "0.1 ",
+/// "1,5" or ""), or nothing.
+std::optional<double> number_from_text(std::string_view text);
 
 }  // namespace mjarm

@@ -1,7 +1,6 @@
 #include "mjarm/teleop/viewer_panel.hpp"
 
 #include <algorithm>
-#include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <numbers>
@@ -10,6 +9,7 @@
 #include "mjarm/error.hpp"
 #include "mjarm/kinematics/workspace.hpp"
 #include "mjarm/lie/rotation.hpp"
+#include "mjarm/number_text.hpp"
 
 namespace mjarm {
 
@@ -120,10 +120,9 @@ void set_panel_value(PanelState& state, const PanelRanges& ranges, std::string_v
     for (const auto& n : enum_names<SimulationMode>()) modes += (modes.empty() ? "" : ", ") + n;
     throw Error("viewer panel: mode '" + std::string(value) + "' is not one of " + modes);
   }
-  double number = 0.0;
-  const char* end = value.data() + value.size();
-  const auto parsed = std::from_chars(value.data(), end, number);
-  if (value.empty() || parsed.ec != std::errc() || parsed.ptr != end || !std::isfinite(number)) {
+  const auto parsed = number_from_text(value);
+  const double number = parsed ? *parsed : std::nan("");
+  if (!std::isfinite(number)) {
     throw Error("viewer panel: " + std::string(name) + " needs a finite number, got '" +
                 std::string(value) + "'");
   }

@@ -3,7 +3,6 @@
 #include <mujoco/mjui.h>
 
 #include <algorithm>
-#include <charconv>
 #include <cmath>
 #include <sstream>
 
@@ -63,13 +62,10 @@ class LineParser {
   }
 
   double number(const std::string& word, const char* what) const {
-    double v = 0.0;
-    const char* end = word.data() + word.size();
-    const auto parsed = std::from_chars(word.data(), end, v);
-    if (parsed.ec != std::errc() || parsed.ptr != end || !std::isfinite(v)) {
+    const auto v = number_from_text(word);
+    if (!v || !std::isfinite(*v))
       fail(std::string(what) + " must be a finite number, got '" + word + "'");
-    }
-    return v;
+    return *v;
   }
 
   void arguments(const std::vector<std::string>& words, std::size_t count,
@@ -110,8 +106,7 @@ ViewerScript ViewerScript::parse(std::string_view text, std::string_view source)
     if (c.action == ScriptAction::wait) {
       p.arguments(words, 1, "a frame count: wait N");
       const double n = p.number(words[1], "the frame count");
-      if (n < 0 || n != std::floor(n))
-        p.fail("the frame count must be a whole number ≥ 0");
+      if (n < 0 || n != std::floor(n)) p.fail("the frame count must be a whole number ≥ 0");
       if (n > kMaxWaitFrames)
         p.fail("the frame count " + number_text(n) + " is more than the bound of 10⁷ frames");
       c.frames = static_cast<int>(n);
