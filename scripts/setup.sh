@@ -43,6 +43,8 @@ if [ "$profile" = all ]; then
     ccache
     # the Python extension compiles against Debian's python3 headers
     python3-dev
+    # a Slurm cluster of one node for the tests of the Slurm path (scripts/slurm_local.sh)
+    slurm-wlm munge
   )
 fi
 
