@@ -66,13 +66,14 @@ for s in sockets:
 print(*(s.getsockname()[1] for s in sockets))
 PYTHON
 )
+# every daemon and client talks to 127.0.0.1, whatever the host name resolves to
 host=$(hostname -s)
 # the node as slurmd sees it: a configuration that differs from the hardware is refused
 node=$(slurmd -C | head -1)
 export SLURM_CONF="$work/slurm.conf"
 cat > "$SLURM_CONF" <<CONF
 ClusterName=mjarm-local
-SlurmctldHost=$host
+SlurmctldHost=$host(127.0.0.1)
 SlurmctldPort=$ctld_port
 SlurmdPort=$slurmd_port
 SlurmUser=$(id -un)
@@ -97,7 +98,7 @@ AccountingStorageType=accounting_storage/none
 MpiDefault=none
 ReturnToService=2
 SchedulerParameters=sched_interval=1
-$node State=UNKNOWN
+$node NodeAddr=127.0.0.1 State=UNKNOWN
 PartitionName=local Nodes=$host Default=YES MaxTime=INFINITE State=UP
 CONF
 
