@@ -53,9 +53,12 @@ $(TEST_BUILD)/CMakeCache.txt:
 	  -DMJARM_WERROR=ON -DCMAKE_CXX_COMPILER=clang++ -DMJARM_UNITY_BUILD=ON \
 	  -DCMAKE_CXX_FLAGS_DEBUG="-O1 -g1" $(COMPILER_CACHE) $(CMAKE_FLAGS)
 
+# one CTest job more than cores: a few tests mostly wait (the one-node Slurm cluster, the checks of a
+# stuck ffmpeg), and the extra job keeps both cores busy meanwhile (the suite 249.8 s → 241.1 s)
+TEST_JOBS ?= $(shell echo $$(( $(JOBS) + 1 )))
 test: setup $(TEST_BUILD)/CMakeCache.txt
 	cmake --build $(TEST_BUILD) -j $(JOBS)
-	cd $(TEST_BUILD) && $(SANITIZER_ENV) ctest --output-on-failure -j $(JOBS) --timeout 900
+	cd $(TEST_BUILD) && $(SANITIZER_ENV) ctest --output-on-failure -j $(TEST_JOBS) --timeout 900
 
 # GCC's build of what users build with it (`pip install .`, `make demo`): the library, the CLI and
 # the bindings, strict (-Werror), in the wheel check that make test runs with clang
