@@ -1,8 +1,10 @@
 #include "mjarm/field_table.hpp"
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 
+#include "mjarm/closest_names.hpp"
 #include "mjarm/error.hpp"
 #include "mjarm/number_text.hpp"
 
@@ -68,6 +70,16 @@ nlohmann::ordered_json field_text_to_json(const FieldInfo& info, std::string_vie
     }
   }
   refuse(info, where, "a value of a known kind", text);
+}
+
+const FieldInfo& field_at(const std::vector<FieldInfo>& table, std::string_view path,
+                          std::string_view where) {
+  const auto info =
+      std::find_if(table.begin(), table.end(), [&](const FieldInfo& i) { return i.path == path; });
+  if (info != table.end()) return *info;
+  std::vector<std::string> paths;
+  for (const FieldInfo& i : table) paths.push_back(i.path);
+  throw Error(owner_prefix(where) + unknown_name_message("field", path, paths));
 }
 
 }  // namespace mjarm::detail

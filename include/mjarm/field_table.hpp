@@ -6,14 +6,11 @@
 /// one field set by its path, from a JSON value or from a word as a command line writes it, with
 /// the checks and messages of JSON input (fields_json.hpp).
 
-#include <algorithm>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <string_view>
 #include <vector>
 
-#include "mjarm/closest_names.hpp"
-#include "mjarm/error.hpp"
 #include "mjarm/fields.hpp"
 #include "mjarm/fields_json.hpp"
 
@@ -95,6 +92,11 @@ void list_fields(const S& s, const std::string& prefix, std::vector<FieldInfo>& 
 nlohmann::ordered_json field_text_to_json(const FieldInfo& info, std::string_view text,
                                           std::string_view where);
 
+/// The field at @p path of @p table.
+/// @throws Error "where: unknown field 'object-size'; closest: object_size; fields: …"
+const FieldInfo& field_at(const std::vector<FieldInfo>& table, std::string_view path,
+                          std::string_view where);
+
 }  // namespace detail
 
 /// Every field of @p s, nested ones flattened, in declaration order; each with its value in @p s.
@@ -113,10 +115,7 @@ std::vector<FieldInfo> field_table(const S& s = S{}) {
 template <Declared S>
 void set_field(S& s, std::string_view path, const nlohmann::ordered_json& value,
                std::string_view where) {
-  std::vector<std::string> paths;
-  for (const FieldInfo& info : field_table(s)) paths.push_back(info.path);
-  if (std::find(paths.begin(), paths.end(), path) == paths.end())
-    throw Error(detail::owner_prefix(where) + unknown_name_message("field", path, paths));
+  detail::field_at(field_table(s), path, where);
   // {"criteria": {"rest_speed": value}}: read by fields_from_json into a copy
   nlohmann::ordered_json nested = value;
   std::string_view rest = path;
@@ -136,14 +135,8 @@ void set_field(S& s, std::string_view path, const nlohmann::ordered_json& value,
 template <Declared S>
 void set_field_text(S& s, std::string_view path, std::string_view text, std::string_view where) {
   const std::vector<FieldInfo> table = field_table(s);
-  const auto info =
-      std::find_if(table.begin(), table.end(), [&](const FieldInfo& i) { return i.path == path; });
-  if (info == table.end()) {
-    std::vector<std::string> paths;
-    for (const FieldInfo& i : table) paths.push_back(i.path);
-    throw Error(detail::owner_prefix(where) + unknown_name_message("field", path, paths));
-  }
-  set_field(s, path, detail::field_text_to_json(*info, text, where), where);
+  set_field(s, path, detail::field_text_to_json(detail::field_at(table, path, where), text, where),
+            where);
 }
 
 }  // namespace mjarm
