@@ -11,6 +11,9 @@ rm -rf "$work"
 mkdir -p "$work"
 cluster="$work/cluster"
 slurm_local="$source_dir/scripts/slurm_local.sh"
+# the jobs' command lines, this run's own (another run of the check may share the machine)
+long_a="sleep 301.$$"
+long_b="sleep 302.$$"
 
 passed=0
 failed=0
@@ -62,18 +65,18 @@ for _ in \$(seq 300); do
 done
 sbatch --wait --quiet -o /dev/null "$work/fails.sh"
 echo "\$?" > "$work/failing_status.txt"
-job=\$(sbatch --parsable -o /dev/null --wrap "sleep 301")
+job=\$(sbatch --parsable -o /dev/null --wrap "$long_a")
 for _ in \$(seq 100); do
   [ "\$(squeue -h -j "\$job" -o %T)" = RUNNING ] && break
   sleep 0.1
 done
-pgrep -fx "sleep 301" > /dev/null && echo running > "$work/cancelled.txt"
+pgrep -fx "$long_a" > /dev/null && echo running > "$work/cancelled.txt"
 scancel "\$job"
 for _ in \$(seq 100); do
-  pgrep -fx "sleep 301" > /dev/null || break
+  pgrep -fx "$long_a" > /dev/null || break
   sleep 0.1
 done
-pgrep -fx "sleep 301" > /dev/null || echo ended >> "$work/cancelled.txt"
+pgrep -fx "$long_a" > /dev/null || echo ended >> "$work/cancelled.txt"
 exit 7
 SESSION
 chmod +x "$work/session.sh"
@@ -98,16 +101,16 @@ fi
 # 2. a TERM while a job runs: the job and every daemon end, the script exits 143
 cat > "$work/long.sh" <<SESSION
 #!/usr/bin/env bash
-sbatch --wait --quiet -o /dev/null --wrap "sleep 302"
+sbatch --wait --quiet -o /dev/null --wrap "$long_b"
 SESSION
 chmod +x "$work/long.sh"
 bash "$slurm_local" "$cluster" "$work/long.sh" > "$work/term.log" 2>&1 &
 script=$!
 for _ in $(seq 300); do
-  pgrep -fx "sleep 302" > /dev/null && break
+  pgrep -fx "$long_b" > /dev/null && break
   sleep 0.1
 done
-expect "the job to be stopped started" pgrep -fx "sleep 302" > /dev/null
+expect "the job to be stopped started" pgrep -fx "$long_b" > /dev/null
 kill -TERM "$script"
 set +e
 wait "$script"
@@ -115,8 +118,8 @@ status=$?
 set -e
 expect "a TERM ends the script with 143, got $status" [ "$status" -eq 143 ]
 expect "every daemon stopped after a TERM" daemons_gone
-expect "the running job's process ended with the cluster" job_gone "sleep 302"
-expect "the command's sbatch ended with the script" job_gone "sbatch --wait --quiet -o /dev/null --wrap sleep 302"
+expect "the running job's process ended with the cluster" job_gone "$long_b"
+expect "the command's sbatch ended with the script" job_gone "sbatch --wait --quiet -o /dev/null --wrap $long_b"
 
 # 3. a folder that is not the script's: refused before anything starts, left as it was
 mkdir -p "$work/other"
