@@ -22,6 +22,8 @@ std::string number_text(double value, int significant_digits) {
 }
 
 std::optional<double> number_from_text(std::string_view text) {
+  // a sign that only says "positive", as people write it; std::from_chars takes '-' only
+  if (text.size() > 1 && text[0] == '+' && text[1] != '-' && text[1] != '+') text.remove_prefix(1);
   double value = 0.0;
   const char* end = text.data() + text.size();
   const auto parsed = std::from_chars(text.data(), end, value);

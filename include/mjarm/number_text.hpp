@@ -19,8 +19,8 @@ std::string number_text(double value);
 /// out.
 std::string number_text(double value, int significant_digits);
 
-/// The number @p text spells, whole and nothing else ("0.1", "-2.5e-07", "inf"; not "0.1 ",
-/// "1,5" or ""), or nothing.
+/// The number @p text spells, whole and nothing else ("0.1", "+2", "-2.5e-07", "inf", "nan";
+/// not "0.1 ", "1,5", "0x10", "1e999" or ""), or nothing. The same in every locale.
 std::optional<double> number_from_text(std::string_view text);
 
 }  // namespace mjarm

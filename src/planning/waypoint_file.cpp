@@ -11,6 +11,7 @@
 #include "mjarm/error.hpp"
 #include "mjarm/model/names.hpp"
 #include "mjarm/model/user_file.hpp"
+#include "mjarm/number_text.hpp"
 #include "quoted_path.hpp"
 
 namespace mjarm {
@@ -162,13 +163,15 @@ WaypointPath parse_waypoints_csv(std::string_view text, std::string_view source)
     std::istringstream cells(line);
     std::string cell;
     while (std::getline(cells, cell, ',')) {
-      const char* begin = cell.c_str();
-      char* end = nullptr;
-      const double v = std::strtod(begin, &end);
-      while (end != nullptr && (*end == ' ' || *end == '\t')) ++end;
-      if (end == begin || *end != '\0') throw Error(where + ": '" + cell + "' is not a number");
-      if (!std::isfinite(v)) throw Error(where + ": '" + cell + "' is not a finite number");
-      values.push_back(v);
+      // spaces and tabs around a number are allowed
+      const auto first = cell.find_first_not_of(" \t");
+      const auto v = number_from_text(
+          first == std::string::npos
+              ? std::string_view()
+              : std::string_view(cell).substr(first, cell.find_last_not_of(" \t") - first + 1));
+      if (!v) throw Error(where + ": '" + cell + "' is not a number");
+      if (!std::isfinite(*v)) throw Error(where + ": '" + cell + "' is not a finite number");
+      values.push_back(*v);
     }
     if (header_columns != 0 && values.size() != header_columns)
       throw Error(where + ": " + std::to_string(values.size()) + " values, but the header (line " +

@@ -7,6 +7,7 @@
 
 #include "mjarm/error.hpp"
 #include "mjarm/model/user_file.hpp"
+#include "mjarm/number_text.hpp"
 #include "quoted_path.hpp"
 
 namespace mjarm::plot {
@@ -46,10 +47,9 @@ bool parse_number(const std::string& cell, double& value) {
     value = std::nan("");
     return true;
   }
-  errno = 0;
-  char* end = nullptr;
-  value = std::strtod(cell.c_str(), &end);  // also reads "nan", "inf", "-inf"
-  return end == cell.c_str() + cell.size();
+  const auto number = number_from_text(cell);  // also reads "nan", "inf", "-inf"
+  if (number) value = *number;
+  return number.has_value();
 }
 
 }  // namespace

@@ -12,6 +12,7 @@
 #include "mjarm/ik/targets.hpp"
 #include "mjarm/model/names.hpp"
 #include "mjarm/model/user_file.hpp"
+#include "mjarm/number_text.hpp"
 #include "mjarm/teleop/session_log.hpp"
 #include "session_format.hpp"
 
@@ -56,11 +57,10 @@ struct LineReader {
   }
   double real(const char* what) {
     const std::string w = word(what);
-    char* end = nullptr;
-    const double v = std::strtod(w.c_str(), &end);
-    if (end == w.c_str() || *end != '\0' || !std::isfinite(v))
+    const auto v = number_from_text(w);
+    if (!v || !std::isfinite(*v))
       throw Error(where() + ": " + what + " must be a finite number, got '" + w + "'");
-    return v;
+    return *v;
   }
   std::int64_t integer(const char* what) {
     const std::string w = word(what);

@@ -17,13 +17,11 @@ constexpr const char* kPoseNames[6] = {"x", "y", "z", "roll", "pitch", "yaw"};
 constexpr int kKeyTab = 258;
 
 double parse_number(std::string_view name, std::string_view value) {
-  const std::string text(value);
-  char* end = nullptr;
-  const double v = std::strtod(text.c_str(), &end);
-  if (text.empty() || end != text.c_str() + text.size() || !std::isfinite(v))
-    throw Error("panel value '" + std::string(name) + "' must be a finite number, got '" + text +
-                "'");
-  return v;
+  const auto v = number_from_text(value);
+  if (!v || !std::isfinite(*v))
+    throw Error("panel value '" + std::string(name) + "' must be a finite number, got '" +
+                std::string(value) + "'");
+  return *v;
 }
 
 void check_range(std::string_view name, double v, double lo, double hi) {

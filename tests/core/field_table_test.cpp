@@ -161,6 +161,10 @@ TEST(NumberFromText, ReadsAWholeNumberAndNothingElse) {
   EXPECT_EQ(number_from_text("0.1"), 0.1);
   EXPECT_EQ(number_from_text("-2.5e-07"), -2.5e-07);
   EXPECT_EQ(number_from_text("inf"), Range::inf);
+  EXPECT_EQ(number_from_text("+2"), 2.0);
+  EXPECT_FALSE(number_from_text("+-2"));
+  EXPECT_FALSE(number_from_text("+"));
+  EXPECT_FALSE(number_from_text("0x10"));
   EXPECT_FALSE(number_from_text(""));
   EXPECT_FALSE(number_from_text(" 1"));
   EXPECT_FALSE(number_from_text("1,5"));
