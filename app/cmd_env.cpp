@@ -25,8 +25,8 @@ namespace {
 Json spec_json(const ArraySpec& spec) {
   Json minimum = Json::array(), maximum = Json::array();
   for (Eigen::Index i = 0; i < spec.minimum.size(); ++i) {
-    minimum.push_back(bound_json(spec.minimum[i]));
-    maximum.push_back(bound_json(spec.maximum[i]));
+    minimum.push_back(number_or_null(spec.minimum[i]));
+    maximum.push_back(number_or_null(spec.maximum[i]));
   }
   return {{"name", spec.name},
           {"shape", spec.shape},

@@ -154,7 +154,7 @@ Json plan_json(const PlannedPath& p) {
                          {"message", w.message}});
   Json torque = Json::array();
   for (Eigen::Index i = 0; i < r.limits.max_torque.size(); ++i)
-    torque.push_back(bound_json(r.limits.max_torque[i]));
+    torque.push_back(number_or_null(r.limits.max_torque[i]));
   return Json{{"model", p.robot.name()},
               {"frame", p.chain->frame().name},
               {"start", p.start.source},

@@ -41,7 +41,6 @@ std::string point_text(const Eigen::Vector3d& p) {
 /// Millimetres with 4 decimals, "—" for NaN (the event did not happen).
 std::string mm(double metres) { return std::isnan(metres) ? "—" : fixed(metres * 1e3, 4); }
 std::string sec(double seconds) { return std::isnan(seconds) ? "—" : fixed(seconds, 3); }
-Json number_or_null(double v) { return std::isfinite(v) ? Json(v) : Json(nullptr); }
 
 /// Throws UsageError (exit 2) for an unknown robot or controller, with the choices.
 void check_names(const std::string& robot, const std::string& controller) {

@@ -31,7 +31,6 @@ std::string millimetres(double metres, int decimals = 3) {
 std::string figure_text(double v, int decimals = 3) {
   return std::isnan(v) ? "—" : fixed(v, decimals);
 }
-Json finite_or_null(double v) { return std::isfinite(v) ? Json(v) : Json(nullptr); }
 
 std::string pick_place_title(const PickPlaceOptions& o) {
   return "pick and place on " + o.robot + ", " + to_string(o.grasp) + " grasp, " +
@@ -49,8 +48,8 @@ std::string replay_command(const PickPlaceCliOptions& cli, std::uint64_t seed) {
 
 Json pick_place_stat_json(const PickPlaceStat& s, double scale = 1.0) {
   return Json{{"count", s.count},
-              {"mean", finite_or_null(s.mean * scale)},
-              {"max", finite_or_null(s.max * scale)}};
+              {"mean", number_or_null(s.mean * scale)},
+              {"max", number_or_null(s.max * scale)}};
 }
 
 Json pick_place_trial_json(const PickPlaceReport& r) {
@@ -65,14 +64,14 @@ Json pick_place_trial_json(const PickPlaceReport& r) {
                               {"mass", o.mass},
                               {"friction", o.friction}}},
               {"target", {r.trial.target[0], r.trial.target[1]}},
-              {"placement_error", finite_or_null(r.placement_error)},
-              {"tilt", finite_or_null(r.tilt)},
-              {"final_speed", finite_or_null(r.final_speed)},
-              {"cycle_time", finite_or_null(r.cycle_time)},
-              {"grasp_force", finite_or_null(r.trace.transport_force_mean)},
-              {"grasp_force_max", finite_or_null(r.trace.transport_force_max)},
-              {"weld_jump", finite_or_null(r.trace.weld_jump)},
-              {"weld_settle", finite_or_null(r.trace.weld_settle)},
+              {"placement_error", number_or_null(r.placement_error)},
+              {"tilt", number_or_null(r.tilt)},
+              {"final_speed", number_or_null(r.final_speed)},
+              {"cycle_time", number_or_null(r.cycle_time)},
+              {"grasp_force", number_or_null(r.trace.transport_force_mean)},
+              {"grasp_force_max", number_or_null(r.trace.transport_force_max)},
+              {"weld_jump", number_or_null(r.trace.weld_jump)},
+              {"weld_settle", number_or_null(r.trace.weld_settle)},
               {"max_slip", r.trace.max_slip},
               {"closed", r.trace.closed},
               {"slipped", r.trace.slipped},
@@ -383,7 +382,7 @@ void run_pick_place_scenario(PickPlaceCliOptions cli, const RunCommonOptions& co
                 {"summary",
                  {{"trials", s.trials},
                   {"successes", s.successes},
-                  {"success_rate", finite_or_null(s.success_rate())},
+                  {"success_rate", number_or_null(s.success_rate())},
                   {"failures", failures},
                   {"placement_error", pick_place_stat_json(s.placement_error)},
                   {"cycle_time", pick_place_stat_json(s.cycle_time)},

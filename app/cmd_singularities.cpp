@@ -30,7 +30,7 @@ Json entry_json(const SingularityEntry& e, const Chain& chain) {
           {"within_limits", chain.within_limits(e.q)},
           {"singular_values", vector_json(e.singular_values)},
           {"sigma_min", e.sigma_min},
-          {"condition_number", bound_json(e.condition_number)},
+          {"condition_number", number_or_null(e.condition_number)},
           {"manipulability", e.manipulability},
           {"status", to_string(e.status)},
           {"below_sigma_min", e.below_sigma_min},

@@ -349,14 +349,12 @@ Command add_traj_command(CLI::App& root) {
                                 {"acceleration", vector_json(r.max_acceleration)}};
           document["limits"]["jerk"] = Json::array();
           for (Eigen::Index i = 0; i < n; ++i)
-            document["limits"]["jerk"].push_back(
-                bound_json(std::isnan(r.max_jerk[i]) ? std::numeric_limits<double>::infinity()
-                                                     : r.max_jerk[i]));
+            document["limits"]["jerk"].push_back(number_or_null(r.max_jerk[i]));  // NaN: none
           document["peaks"] = {{"velocity", vector_json(peaks.velocity)},
                                {"acceleration", vector_json(peaks.acceleration)}};
           document["peaks"]["jerk"] = Json::array();  // null: unbounded (acceleration steps)
           for (Eigen::Index i = 0; i < n; ++i)
-            document["peaks"]["jerk"].push_back(bound_json(peaks.jerk[i]));
+            document["peaks"]["jerk"].push_back(number_or_null(peaks.jerk[i]));
           document["notes"] = Json::object();
           for (const auto& [key, value] : notes) document["notes"][key] = value;
           document["violations"] = violations;

@@ -158,7 +158,7 @@ Json matrix_json(const Eigen::Ref<const Eigen::MatrixXd>& m) {
   return rows;
 }
 
-Json bound_json(double v) { return std::isfinite(v) ? Json(v) : Json(nullptr); }
+Json number_or_null(double v) { return std::isfinite(v) ? Json(v) : Json(nullptr); }
 
 void print_json(const Json& document) { std::cout << document.dump(2) << '\n'; }
 

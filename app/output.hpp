@@ -108,8 +108,9 @@ Json vector_json(const Eigen::Ref<const Eigen::VectorXd>& v);
 /// A matrix as a JSON array of rows.
 Json matrix_json(const Eigen::Ref<const Eigen::MatrixXd>& m);
 
-/// A bound as JSON: the number, or null when infinite (JSON has no infinity).
-Json bound_json(double v);
+/// A number as JSON: the number, or null when it is not finite (JSON has neither infinity nor NaN:
+/// an unbounded limit, an event that did not happen).
+Json number_or_null(double v);
 
 /// Writes one JSON document (2-space indent) and a newline to stdout.
 void print_json(const Json& document);
