@@ -4,6 +4,7 @@
 #include <charconv>
 #include <cmath>
 
+#include "blank_trim.hpp"
 #include "mjarm/closest_names.hpp"
 #include "mjarm/error.hpp"
 #include "mjarm/number_text.hpp"
@@ -27,12 +28,6 @@ nlohmann::ordered_json number_json(const FieldInfo& info, std::string_view word,
   if (std::isfinite(*number)) return *number;
   if (*number > 0 && info.range.allow_infinity && info.range.max == Range::inf) return nullptr;
   throw_out_of_range(where, info.path, info.range, info.unit, *number, false);
-}
-
-std::string_view trimmed(std::string_view word) {
-  const auto first = word.find_first_not_of(" \t");
-  if (first == std::string_view::npos) return {};
-  return word.substr(first, word.find_last_not_of(" \t") - first + 1);
 }
 
 }  // namespace
@@ -62,7 +57,7 @@ nlohmann::ordered_json field_text_to_json(const FieldInfo& info, std::string_vie
       std::string_view rest = text;
       while (true) {
         const auto comma = rest.find(',');
-        numbers.push_back(number_json(info, trimmed(rest.substr(0, comma)), where));
+        numbers.push_back(number_json(info, without_blanks(rest.substr(0, comma)), where));
         if (comma == std::string_view::npos) break;
         rest = rest.substr(comma + 1);
       }
@@ -80,6 +75,13 @@ const FieldInfo& field_at(const std::vector<FieldInfo>& table, std::string_view 
   std::vector<std::string> paths;
   for (const FieldInfo& i : table) paths.push_back(i.path);
   throw Error(owner_prefix(where) + unknown_name_message("field", path, paths));
+}
+
+nlohmann::ordered_json nested_at(std::string_view path, nlohmann::ordered_json value) {
+  for (std::size_t dot; (dot = path.rfind('.')) != std::string_view::npos;
+       path = path.substr(0, dot))
+    value = nlohmann::ordered_json{{std::string(path.substr(dot + 1)), std::move(value)}};
+  return nlohmann::ordered_json{{std::string(path), std::move(value)}};
 }
 
 }  // namespace mjarm::detail

@@ -97,6 +97,20 @@ nlohmann::ordered_json field_text_to_json(const FieldInfo& info, std::string_vie
 const FieldInfo& field_at(const std::vector<FieldInfo>& table, std::string_view path,
                           std::string_view where);
 
+/// @p value under the keys of @p path: {"criteria": {"rest_speed": value}} for
+/// "criteria.rest_speed".
+nlohmann::ordered_json nested_at(std::string_view path, nlohmann::ordered_json value);
+
+/// Sets the field at @p path, which the caller found in @p s's table, through fields_from_json
+/// on a copy: @p s changes only when the value is accepted.
+template <Declared S>
+void set_listed_field(S& s, std::string_view path, const nlohmann::ordered_json& value,
+                      std::string_view where) {
+  S changed = s;
+  fields_from_json(nested_at(path, value), changed, where);
+  s = std::move(changed);
+}
+
 }  // namespace detail
 
 /// Every field of @p s, nested ones flattened, in declaration order; each with its value in @p s.
@@ -116,16 +130,7 @@ template <Declared S>
 void set_field(S& s, std::string_view path, const nlohmann::ordered_json& value,
                std::string_view where) {
   detail::field_at(field_table(s), path, where);
-  // {"criteria": {"rest_speed": value}}: read by fields_from_json into a copy
-  nlohmann::ordered_json nested = value;
-  std::string_view rest = path;
-  for (std::size_t dot; (dot = rest.rfind('.')) != std::string_view::npos;
-       rest = rest.substr(0, dot))
-    nested = nlohmann::ordered_json{{std::string(rest.substr(dot + 1)), nested}};
-  nested = nlohmann::ordered_json{{std::string(rest), nested}};
-  S changed = s;
-  fields_from_json(nested, changed, where);
-  s = std::move(changed);
+  detail::set_listed_field(s, path, value, where);
 }
 
 /// Sets the field at @p path of @p s from @p text as a command line writes it: a number
@@ -135,8 +140,8 @@ void set_field(S& s, std::string_view path, const nlohmann::ordered_json& value,
 template <Declared S>
 void set_field_text(S& s, std::string_view path, std::string_view text, std::string_view where) {
   const std::vector<FieldInfo> table = field_table(s);
-  set_field(s, path, detail::field_text_to_json(detail::field_at(table, path, where), text, where),
-            where);
+  const FieldInfo& info = detail::field_at(table, path, where);
+  detail::set_listed_field(s, path, detail::field_text_to_json(info, text, where), where);
 }
 
 }  // namespace mjarm

@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "blank_trim.hpp"
 #include "json_document.hpp"
 #include "mjarm/error.hpp"
 #include "mjarm/model/names.hpp"
@@ -46,9 +47,7 @@ std::size_t checked_header(const std::string& line, const std::string& where) {
   std::vector<std::string> names;
   std::istringstream cells(line);
   for (std::string cell; std::getline(cells, cell, ',');) {
-    const std::size_t begin = cell.find_first_not_of(" \t");
-    const std::size_t end = cell.find_last_not_of(" \t");
-    std::string column = begin == std::string::npos ? "" : cell.substr(begin, end - begin + 1);
+    std::string column(without_blanks(cell));
     for (char& c : column) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
     if (std::find(kColumns.begin(), kColumns.end(), column) == kColumns.end())
       throw Error(where + ": " + unknown_name_message("column", column, kColumns, "the header"));
@@ -163,12 +162,7 @@ WaypointPath parse_waypoints_csv(std::string_view text, std::string_view source)
     std::istringstream cells(line);
     std::string cell;
     while (std::getline(cells, cell, ',')) {
-      // spaces and tabs around a number are allowed
-      const auto first = cell.find_first_not_of(" \t");
-      const auto v = number_from_text(
-          first == std::string::npos
-              ? std::string_view()
-              : std::string_view(cell).substr(first, cell.find_last_not_of(" \t") - first + 1));
+      const auto v = number_from_text(without_blanks(cell));
       if (!v) throw Error(where + ": '" + cell + "' is not a number");
       if (!std::isfinite(*v)) throw Error(where + ": '" + cell + "' is not a finite number");
       values.push_back(*v);
