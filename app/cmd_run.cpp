@@ -13,6 +13,7 @@
 #include "commands.hpp"
 #include "mjarm/error.hpp"
 #include "mjarm/interrupt.hpp"
+#include "mjarm/scenarios/registry.hpp"
 #include "mjarm/tasks/shelf_pick.hpp"
 #include "output.hpp"
 
@@ -50,6 +51,24 @@ void check_names(const std::string& robot, const std::string& controller) {
   } catch (const Error& e) {
     throw UsageError(e.what());
   }
+}
+
+/// `mjarm run --list`: every scenario of the registry with its parameters, metrics and verdicts.
+void list_scenarios(bool json) {
+  if (json) {
+    Json doc = Json::array();
+    for (const Scenario* s : scenarios()) doc.push_back(scenario_json(*s));
+    print_json({{"scenarios", doc}});
+    return;
+  }
+  Table table({{"scenario", Table::Align::left},
+               {"parameters"},
+               {"metrics"},
+               {"what it does", Table::Align::left}});
+  for (const Scenario* s : scenarios())
+    table.add_row({std::string(s->name()), std::to_string(s->parameters().size()),
+                   std::to_string(s->metrics().size()), std::string(s->doc())});
+  table.print(std::cout, 0);
 }
 
 }  // namespace
@@ -279,6 +298,7 @@ Command add_run_command(CLI::App& root) {
     double max_acceleration = 1e6;
     double settle_time = 1.0;
     bool all = false;
+    bool list = false;
     int seeds = 1;
     std::string video;
     std::string camera;
@@ -294,7 +314,12 @@ Command add_run_command(CLI::App& root) {
       "run",
       "run a closed-loop scenario in simulation and print its figures (shelf-pick, plan, docking, "
       "pick-place)");
-  app->add_option("scenario", o->scenario, "scenario to run: " + join(kScenarios))->required();
+  CLI::Option* scenario =
+      app->add_option("scenario", o->scenario, "scenario to run: " + join(kScenarios));
+  app->add_flag("--list", o->list,
+                "list the scenarios of the registry (--json: each with its parameters, units, "
+                "ranges, defaults, metrics and verdicts)")
+      ->excludes(scenario);
   app->add_option("plan_robot", o->plan.model, "run plan: the robot (planar2 | panda)");
   add_plan_options(*app, o->plan, false);
   app->get_option("--waypoints")->required(false);
@@ -382,6 +407,9 @@ Command add_run_command(CLI::App& root) {
 
   return {app, [o, app, controller, robot, seed, seeds, settle, period, max_acceleration, all, pick,
                 docking_only, pick_place_only] {
+            if (o->list) return list_scenarios(o->json);
+            if (o->scenario.empty())
+              throw UsageError("run needs a SCENARIO (" + join(kScenarios, " | ") + ") or --list");
             if (o->scenario == "docking") {
               for (const std::string& name : pick_place_only)
                 if (app->count(name) > 0) throw UsageError(name + " is a pick-place option");

@@ -34,6 +34,7 @@ nlohmann::ordered_json number_json(const FieldInfo& info, std::string_view word,
 
 nlohmann::ordered_json field_text_to_json(const FieldInfo& info, std::string_view text,
                                           std::string_view where) {
+  if (info.optional && text == "none") return nullptr;
   switch (info.kind) {
     case FieldKind::number:
       return number_json(info, text, where);

@@ -42,15 +42,28 @@ struct FieldInfo {
   Range range;                     ///< numbers: the values accepted
   std::vector<std::string> names;  ///< name: the enum's names, in order
   Eigen::Index length = -1;        ///< numbers: how many, -1 when it varies
+  bool optional = false;           ///< may hold no value: null, "none" on a command line
   std::string doc;                 ///< one line
   nlohmann::ordered_json value;    ///< its value in the struct listed (as fields_to_json writes it)
 };
 
 namespace detail {
 
+/// The type a field holds a value of: T, or T for std::optional<T>.
+template <class T>
+struct value_type_of {
+  using type = T;
+};
+template <class T>
+struct value_type_of<std::optional<T>> {
+  using type = T;
+};
+
 template <class T>
 constexpr FieldKind field_kind() {
-  if constexpr (std::same_as<T, bool>)
+  if constexpr (OptionalField<T>)
+    return field_kind<typename T::value_type>();
+  else if constexpr (std::same_as<T, bool>)
     return FieldKind::flag;
   else if constexpr (std::same_as<T, std::string>)
     return FieldKind::text;
@@ -77,8 +90,10 @@ void list_fields(const S& s, const std::string& prefix, std::vector<FieldInfo>& 
       info.kind = field_kind<T>();
       info.unit = f.unit;
       info.range = f.range;
-      if constexpr (DeclaredEnum<T>) info.names = enum_names<T>();
-      if constexpr (VectorField<T>) info.length = fixed_length<T>();
+      using Value = typename detail::value_type_of<T>::type;
+      info.optional = OptionalField<T>;
+      if constexpr (DeclaredEnum<Value>) info.names = enum_names<Value>();
+      if constexpr (VectorField<Value>) info.length = fixed_length<Value>();
       info.doc = f.doc;
       info.value = value_to_json(s.*(f.member));
       table.push_back(std::move(info));
@@ -87,7 +102,7 @@ void list_fields(const S& s, const std::string& prefix, std::vector<FieldInfo>& 
 }
 
 /// The JSON value @p text stands for as a field of @p info's kind ("0.1", "inf", "7", "true",
-/// "torque", "0.1,0.2,0.3").
+/// "torque", "0.1,0.2,0.3"; "none" for no value of an optional field).
 /// @throws Error naming @p where and the field when the word is not of the kind
 nlohmann::ordered_json field_text_to_json(const FieldInfo& info, std::string_view text,
                                           std::string_view where);
@@ -135,7 +150,7 @@ void set_field(S& s, std::string_view path, const nlohmann::ordered_json& value,
 
 /// Sets the field at @p path of @p s from @p text as a command line writes it: a number
 /// ("0.02", "1e-3", "inf" where the range takes it), a whole number, true or false, a name, any
-/// text, or numbers separated by commas ("0.4,0,0.3").
+/// text, or numbers separated by commas ("0.4,0,0.3"); "none" clears an optional field.
 /// @throws Error as `set_field`, or for a word that is not of the field's kind
 template <Declared S>
 void set_field_text(S& s, std::string_view path, std::string_view text, std::string_view where) {

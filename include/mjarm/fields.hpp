@@ -210,6 +210,11 @@ struct is_number_array<std::array<double, N>> : std::true_type {};
 template <>
 struct is_number_array<std::vector<double>> : std::true_type {};
 
+template <class T>
+struct is_optional : std::false_type {};
+template <class T>
+struct is_optional<std::optional<T>> : std::true_type {};
+
 }  // namespace detail
 
 /// A number field: arithmetic but not bool.
@@ -220,6 +225,11 @@ concept NumberField = std::is_arithmetic_v<T> && !std::same_as<T, bool>;
 /// `Eigen::VectorXd`, …), a `std::array<double, N>` or a `std::vector<double>`.
 template <class T>
 concept VectorField = detail::is_eigen_vector<T>::value || detail::is_number_array<T>::value;
+
+/// A field that may hold no value (`std::optional` of a number, a vector or a name): "not set",
+/// null in JSON, for a value the code then chooses (drawn from the seed, say).
+template <class T>
+concept OptionalField = detail::is_optional<T>::value;
 
 /// The length every value of vector field type @p T has; -1 when it varies.
 template <VectorField T>
@@ -300,6 +310,8 @@ void check_value(const T& value, std::string_view owner, const std::string& path
         detail::throw_out_of_range(owner, path + "[" + std::to_string(i) + "]", range, unit,
                                    numbers[i], false);
     }
+  } else if constexpr (OptionalField<T>) {
+    if (value) check_value(*value, owner, path, unit, range);
   } else if constexpr (DeclaredEnum<T>) {
     if (!enum_from_name<T>(to_string(value)))
       detail::throw_unnamed_enum(owner, path, static_cast<long>(value));

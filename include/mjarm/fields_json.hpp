@@ -2,8 +2,9 @@
 /// @file
 /// JSON in and out for declared structs (fields.hpp): every declared field under its name, in
 /// declaration order; enums by name, vectors as arrays, nested structs as objects, a non-finite
-/// number as null (JSON has no infinity). Reading is strict: an unknown key gets the closest name,
-/// a wrong type says what was expected, and the values are checked against their ranges.
+/// number as null (JSON has no infinity), an optional field without a value as null. Reading is
+/// strict: an unknown key gets the closest name, a wrong type says what was expected, and the
+/// values are checked against their ranges.
 
 #include <nlohmann/json.hpp>
 #include <string>
@@ -37,6 +38,8 @@ nlohmann::ordered_json value_to_json(const T& value) {
     for (const double x : vector_view(value))
       array.push_back(std::isfinite(x) ? nlohmann::ordered_json(x) : nullptr);
     return array;
+  } else if constexpr (OptionalField<T>) {
+    return value ? value_to_json(*value) : nlohmann::ordered_json(nullptr);
   } else if constexpr (DeclaredEnum<T>) {
     return to_string(value);
   } else if constexpr (Declared<T>) {
@@ -81,6 +84,14 @@ void value_from_json(const Json& j, T& value, std::string_view owner, const std:
     for (std::size_t i = 0; i < j.size(); ++i)
       read[static_cast<Eigen::Index>(i)] = json_number(j[i], where + "[" + std::to_string(i) + "]", range);
     assign_vector(value, read);
+  } else if constexpr (OptionalField<T>) {
+    if (j.is_null()) {
+      value.reset();
+    } else {
+      typename T::value_type set = value.value_or(typename T::value_type{});
+      value_from_json(j, set, owner, path, range);
+      value = std::move(set);
+    }
   } else if constexpr (DeclaredEnum<T>) {
     if (!j.is_string()) throw Error(where + " must be a name, got " + j.dump());
     // "unknown shape 'cube' in gains.json; closest: …; shapes: …"

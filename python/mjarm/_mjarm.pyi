@@ -3613,7 +3613,7 @@ class PickPlaceMotion:
     def lift_height(self, value: float) -> None: ...
     @property
     def limits(self) -> CartesianLimits:
-        """CartesianLimits of the segments"""
+        """speed limits of the Cartesian segments"""
         ...
     @limits.setter
     def limits(self, value: CartesianLimits) -> None: ...
@@ -5038,6 +5038,77 @@ class RunVideoOptions:
     @width.setter
     def width(self, value: int) -> None: ...
 
+class Scenario:
+    """A scenario of the registry: its parameters, metrics and verdicts."""
+    def __init__(*args: Any, **kwargs: Any) -> Any: ...
+    def __repr__(self: Scenario) -> str:
+        ...
+    @property
+    def camera(self) -> str:
+        ...
+    @property
+    def doc(self) -> str:
+        ...
+    @property
+    def metrics(self) -> list:
+        """list of {name, unit, better, doc}"""
+        ...
+    @property
+    def name(self) -> str:
+        ...
+    @property
+    def parameters(self) -> list:
+        """list of {name, kind, unit, range, names, length, optional, default, doc}"""
+        ...
+    def resolve(self: Scenario, **kwargs) -> dict:
+        """Every parameter's value after the keywords are set on the defaults (checked)."""
+        ...
+    @property
+    def verdicts(self) -> list[str]:
+        """the success first"""
+        ...
+
+class ScenarioOutputs:
+    """What a trial writes besides its figures (none by default)."""
+    def __init__(self: ScenarioOutputs) -> None:
+        ...
+    @property
+    def cameras(self) -> list[str]:
+        """camera names; empty = the scenario's default"""
+        ...
+    @cameras.setter
+    def cameras(self, value: list[str]) -> None: ...
+    @property
+    def fps(self) -> float:
+        """frames per simulated second"""
+        ...
+    @fps.setter
+    def fps(self, value: float) -> None: ...
+    @property
+    def height(self) -> int:
+        """[pixels], even"""
+        ...
+    @height.setter
+    def height(self, value: int) -> None: ...
+    @property
+    def record(self) -> str | os.PathLike[str]:
+        """recording folder; '' = none"""
+        ...
+    @record.setter
+    def record(self, value: str | os.PathLike[str]) -> None: ...
+    @property
+    def video(self) -> str | os.PathLike[str]:
+        """MP4 path; '' = none"""
+        ...
+    @video.setter
+    def video(self, value: str | os.PathLike[str]) -> None: ...
+    @property
+    def width(self) -> int:
+        """[pixels], even"""
+        ...
+    @width.setter
+    def width(self, value: int) -> None: ...
+
 class Scene:
     """One MuJoCo model composed of parts (arena, robots, grippers, objects, fixtures, cameras, sites, sensors, welds), every part's names prefixed; found and edited by name, then compiled into a Robot. Every add_* takes a spec or its fields as keywords, checks it and leaves the scene unchanged when it raises mjarm.Error. A Scene is a value: copy() it per trial. docs/scene.md."""
     def __init__(self: Scene, name: str = ...) -> None:
@@ -6204,6 +6275,49 @@ class TrapezoidSample:
     def velocity(self) -> float:
         ...
 
+class TrialOutcome:
+    """How one trial ended: the run's status, the scenario's verdict and its typed metrics (the same shape for every scenario)."""
+    def __init__(*args: Any, **kwargs: Any) -> Any: ...
+    @property
+    def end_time(self) -> float:
+        """[s]"""
+        ...
+    @property
+    def message(self) -> str:
+        ...
+    @property
+    def metrics(self) -> dict:
+        """the scenario's metrics by name (None: did not happen); units: Scenario.metrics"""
+        ...
+    @property
+    def parameters(self) -> dict:
+        """every parameter's value the trial ran with, by name"""
+        ...
+    @property
+    def recording(self) -> str | os.PathLike[str]:
+        ...
+    @property
+    def recording_error(self) -> str:
+        ...
+    @property
+    def scenario(self) -> str:
+        ...
+    @property
+    def status(self) -> str:
+        ...
+    @property
+    def success(self) -> bool:
+        ...
+    @property
+    def verdict(self) -> str:
+        ...
+    @property
+    def video_error(self) -> str:
+        ...
+    @property
+    def videos(self) -> list[str | os.PathLike[str]]:
+        ...
+
 class VectorEnvironment:
     """N environments of one task stepped together on a thread pool (the GIL released), with automatic resets: a row whose last step was LAST is reset by the next step (its action row checked but unused) and returns FIRST. Environment i is seeded splitmix64(seed + i): the results are the same bit for bit whatever the thread count."""
     def __enter__(self: ArrayLike) -> ArrayLike:
@@ -6564,6 +6678,9 @@ def env_task_names() -> list[str]:
 def find_frame(robot: Robot | mujoco.MjModel, name: str) -> FrameRef:
     """The frame called name: a site first, then a body."""
     ...
+def find_scenario(name: str) -> Scenario:
+    """The scenario called name (an unknown name raises with the closest)."""
+    ...
 def forward_kinematics(chain: Chain, q: ArrayLike) -> Pose:
     """X_WE at q (n,), other joints at qpos0 (builds a ChainKinematics per call)."""
     ...
@@ -6636,6 +6753,9 @@ def run_pick_place(options: PickPlaceOptions) -> PickPlaceReport:
 def run_pick_place_trials(options: PickPlaceBatchOptions, on_progress: ArrayLike = ...) -> PickPlaceBatch:
     """Runs options.trials trials in parallel (GIL released; the workers share nothing). on_progress(done) is called after each trial, one call at a time. Returns a PickPlaceBatch; Ctrl-C raises KeyboardInterrupt."""
     ...
+def run_scenario(name: str, *, outputs: ScenarioOutputs = ..., **kwargs) -> TrialOutcome:
+    """Runs one trial of the scenario called name with the keyword parameters (names with underscores; nested ones as 'motion.approach_height' through **{...}); returns its TrialOutcome. The GIL is released while it runs."""
+    ...
 def run_shelf_pick(options: ShelfPickOptions) -> ShelfPickReport:
     """Plans, simulates and measures one shelf pick (GIL released); see docs/tasks.md."""
     ...
@@ -6647,6 +6767,9 @@ def sample_workspace(chain: Chain, samples: int = ..., seed: int = ..., compute_
     ...
 def scan_singularities(chain: Chain, samples: int, seed: int, keep_worst: int = ...) -> SingularityScan:
     """Seeded random scan keeping the lowest-sigma_min samples (GIL released)."""
+    ...
+def scenarios() -> list:
+    """Every scenario of the registry, in the order `mjarm run --list` shows them."""
     ...
 def set_free_pose(robot: Robot | mujoco.MjModel, data: Data | mujoco.MjData, body: str, p_WB: ArrayLike, quat_WB: ArrayLike = ...) -> None:
     """Writes a free body's pose p_WB (3,) [m], quat_WB (4,) w x y z (normalized) into owned data's qpos; call data.forward() after."""

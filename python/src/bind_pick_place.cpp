@@ -68,7 +68,6 @@ void bind_pick_place_options(py::module_& m) {
       "the object's centre or above the target [m]; times [s].");
   fields_init<PickPlaceMotion>(motion, "PickPlaceMotion");
   def_fields(motion);
-  motion.def_readwrite("limits", &PickPlaceMotion::limits, "CartesianLimits of the segments");
 
   auto monitor = py::class_<GraspMonitorOptions>(m, "GraspMonitorOptions",
                                                  "When a held object has slipped or is lost.");

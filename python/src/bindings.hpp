@@ -69,5 +69,6 @@ void bind_scene(py::module_& m);
 void bind_tasks(py::module_& m);
 void bind_render(py::module_& m);
 void bind_env(py::module_& m);
+void bind_scenarios(py::module_& m);
 
 }  // namespace mjarm::python

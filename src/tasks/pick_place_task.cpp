@@ -24,15 +24,7 @@ GraspKind grasp_kind(std::string_view name) {
 }
 
 void check(const PickPlaceMotion& m) {
-  check_fields(m);
-  const CartesianLimits& l = m.limits;
-  check_value(l.max_velocity, "pick and place", "limits.max_velocity", "m/s", Range::positive());
-  check_value(l.max_acceleration, "pick and place", "limits.max_acceleration", "m/s²",
-              Range::positive());
-  check_value(l.max_angular_velocity, "pick and place", "limits.max_angular_velocity", "rad/s",
-              Range::positive());
-  check_value(l.max_angular_acceleration, "pick and place", "limits.max_angular_acceleration",
-              "rad/s²", Range::positive());
+  check_fields(m);  // the limits too, as "pick and place: limits.max_velocity …"
   if (m.approach_height < m.descend_height)
     throw Error("pick and place: approach_height must be ≥ descend_height");
 }

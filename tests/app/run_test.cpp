@@ -47,6 +47,29 @@ TEST(RunCli, HelpNamesTheScenarioAndOptions) {
     EXPECT_NE(run.out.find(word), std::string::npos) << word;
 }
 
+TEST(RunCli, ListShowsTheScenariosOfTheRegistry) {
+  const CliRun text = run_cli({"run", "--list"});
+  ASSERT_EQ(text.exit_code, 0) << text.err;
+  for (const char* name : {"shelf-pick", "pick-place", "docking"})
+    EXPECT_NE(text.out.find(name), std::string::npos) << name;
+  const json doc = run_json({"run", "--list", "--json"});
+  ASSERT_EQ(doc["scenarios"].size(), 3u);
+  const json& pick_place = doc["scenarios"][1];
+  EXPECT_EQ(pick_place["name"], "pick-place");
+  bool found = false;
+  for (const json& p : pick_place["parameters"]) {
+    if (p["name"] != "object-size") continue;
+    found = true;
+    EXPECT_EQ(p["unit"], "m");
+    EXPECT_EQ(p["range"], "in [0.005, 0.05]");
+    EXPECT_TRUE(p["default"].is_null());
+    EXPECT_EQ(p["optional"], true);
+  }
+  EXPECT_TRUE(found);
+  expect_error({"run", "--list", "docking"}, 2, "excludes");
+  expect_error({"run"}, 2, "run needs a SCENARIO");
+}
+
 TEST(RunCli, JsonHoldsEveryFigure) {
   const std::vector<std::string> args{"run", "shelf-pick", "--robot", "planar2", "--controller",
                                       "ct",  "--seed",     "5",       "--json"};

@@ -157,6 +157,48 @@ TEST(FieldTable, RefusesWhatIsNotTheFieldsKindOrRangeAndLeavesTheStructAsItWas) 
   EXPECT_THAT(t.gains, ElementsAre(1.0, 2.0));  // unchanged by a refused value
 }
 
+struct Draw {
+  std::optional<double> half_size;              // drawn from the seed when not set
+  std::optional<std::array<double, 2>> object;  // x y, drawn when not set
+};
+
+constexpr auto declared_fields(const Draw*) {
+  using S = Draw;
+  return declare<S>("draw",
+                    field("half_size", &S::half_size, "m", Range::closed(0.005, 0.05), "cube"),
+                    field("object", &S::object, "m", Range::finite(), "where it starts"));
+}
+
+TEST(FieldTable, AnOptionalFieldIsSetChecked_AndClearedByNone) {
+  Draw d;
+  std::vector<FieldInfo> table = field_table(d);
+  ASSERT_EQ(table.size(), 2u);
+  EXPECT_TRUE(table[0].optional);
+  EXPECT_EQ(table[0].kind, FieldKind::number);
+  EXPECT_EQ(table[1].kind, FieldKind::numbers);
+  EXPECT_EQ(table[1].length, 2);
+  EXPECT_TRUE(table[0].value.is_null());
+
+  set_field_text(d, "half_size", "0.02", "--half-size");
+  set_field_text(d, "object", "0.4,-0.1", "--object");
+  ASSERT_TRUE(d.half_size && d.object);
+  EXPECT_EQ(*d.half_size, 0.02);
+  EXPECT_EQ((*d.object)[1], -0.1);
+  EXPECT_EQ(fields_to_json(d).dump(), R"({"half_size":0.02,"object":[0.4,-0.1]})");
+  try {
+    set_field_text(d, "half_size", "0.5", "--half-size");
+    FAIL() << "a value out of range was accepted";
+  } catch (const Error& e) {
+    EXPECT_EQ(std::string(e.what()),
+              "--half-size: half_size must be in [0.005, 0.05] [m], got 0.5");
+  }
+  EXPECT_EQ(*d.half_size, 0.02);
+  set_field_text(d, "half_size", "none", "--half-size");
+  set_field(d, "object", nullptr, "sweep.yaml");
+  EXPECT_FALSE(d.half_size || d.object);
+  EXPECT_EQ(fields_to_json(d).dump(), R"({"half_size":null,"object":null})");
+}
+
 TEST(NumberFromText, ReadsAWholeNumberAndNothingElse) {
   EXPECT_EQ(number_from_text("0.1"), 0.1);
   EXPECT_EQ(number_from_text("-2.5e-07"), -2.5e-07);

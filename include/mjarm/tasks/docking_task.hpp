@@ -8,6 +8,7 @@
 
 #include <Eigen/Core>
 #include <array>
+#include <numbers>
 #include <optional>
 #include <string_view>
 
@@ -32,6 +33,16 @@ struct DockingOffset {
   double dy = 0.0;    ///< [m], |dy| ≤ 0.05
   double dyaw = 0.0;  ///< about the socket's axis [rad], |dyaw| ≤ π
 };
+
+constexpr auto declared_fields(const DockingOffset*) {
+  using S = DockingOffset;
+  return declare<S>(
+      "docking offset",
+      field("dx", &S::dx, "m", Range::closed(-0.05, 0.05), "along the socket's x"),
+      field("dy", &S::dy, "m", Range::closed(-0.05, 0.05), "along the socket's y"),
+      field("dyaw", &S::dyaw, "rad", Range::closed(-std::numbers::pi, std::numbers::pi),
+            "about the socket's axis"));
+}
 
 /// @throws Error naming the value when an offset is not finite or out of its range.
 void check(const DockingOffset& offset);

@@ -91,7 +91,7 @@ struct PickPlaceMotion {
   double settle_time = 1.0;  ///< DONE lasts this long before the result is judged [s] (> 0)
 };
 
-/// `limits` and approach_height ≥ descend_height are checked by hand.
+/// approach_height ≥ descend_height is checked by hand.
 constexpr auto declared_fields(const PickPlaceMotion*) {
   using S = PickPlaceMotion;
   return declare<S>(
@@ -109,6 +109,7 @@ constexpr auto declared_fields(const PickPlaceMotion*) {
       field("dwell_time", &S::dwell_time, "s", Range::non_negative(), "each DWELL_*"),
       field("grip_time", &S::grip_time, "s", Range::positive(), "GRASP: the fingers close"),
       field("release_time", &S::release_time, "s", Range::positive(), "RELEASE: the fingers open"),
+      field("limits", &S::limits, "speed limits of the Cartesian segments"),
       field("settle_time", &S::settle_time, "s", Range::positive(),
             "DONE lasts this long before the result is judged"));
 }

@@ -1,0 +1,80 @@
+#pragma once
+/// @file
+/// `DeclaredScenario<P>`: a `Scenario` whose parameters are the declared fields of struct @p P
+/// (fields.hpp). A scenario then writes only its description and `run_trial(const P&, …)`; the
+/// parameter table, the names as command lines write them, and the checks of every value come
+/// from the declaration.
+
+#include <string>
+
+#include "mjarm/field_table.hpp"
+#include "mjarm/scenarios/scenario.hpp"
+
+namespace mjarm {
+
+namespace detail {
+
+/// The field path a parameter name stands for: dashes as underscores.
+std::string parameter_path(std::string_view name);
+
+/// Checks that @p name (dashes or underscores) is a parameter of @p table.
+/// @throws Error "where: unknown parameter 'objct-size'; closest: object-size; parameters: …"
+void check_parameter_name(const std::vector<FieldInfo>& table, std::string_view name,
+                          std::string_view where);
+
+/// @p table with every path written as a parameter name.
+std::vector<FieldInfo> as_parameters(std::vector<FieldInfo> table);
+
+}  // namespace detail
+
+template <Declared P>
+class DeclaredScenario : public Scenario {
+ public:
+  using Parameters = P;
+
+  std::vector<FieldInfo> parameters() const override {
+    return detail::as_parameters(field_table(P{}));
+  }
+
+  /// The typed parameters @p values stand for, every value checked.
+  /// @throws Error as `resolve`
+  P parameters_from(const nlohmann::ordered_json& values) const {
+    const std::string where(name());
+    if (!values.is_object())
+      throw Error(where + ": the parameters must be an object of names to values, got " +
+                  values.dump());
+    P p;
+    const std::vector<FieldInfo> table = parameters();
+    for (auto it = values.begin(); it != values.end(); ++it) {
+      detail::check_parameter_name(table, it.key(), where);
+      detail::set_listed_field(p, detail::parameter_path(it.key()), it.value(), where);
+    }
+    return p;
+  }
+
+  nlohmann::ordered_json resolve(const nlohmann::ordered_json& values) const override {
+    return values_of(parameters_from(values));
+  }
+
+  TrialOutcome run(const nlohmann::ordered_json& values,
+                   const ScenarioOutputs& outputs = {}) const override {
+    const P p = parameters_from(values);
+    TrialOutcome outcome = run_trial(p, outputs);
+    outcome.scenario = name();
+    outcome.parameters = values_of(p);
+    return outcome;
+  }
+
+  /// Runs one trial with typed parameters (checked by the caller or by `parameters_from`).
+  virtual TrialOutcome run_trial(const P& parameters, const ScenarioOutputs& outputs) const = 0;
+
+ private:
+  static nlohmann::ordered_json values_of(const P& p) {
+    nlohmann::ordered_json values = nlohmann::ordered_json::object();
+    for (const FieldInfo& info : detail::as_parameters(field_table(p)))
+      values[info.path] = info.value;
+    return values;
+  }
+};
+
+}  // namespace mjarm

@@ -1,0 +1,135 @@
+// The scenario registry (mjarm/scenarios/): `mjarm.scenarios()`, `mjarm.find_scenario(name)`,
+// `mjarm.run_scenario(name, **parameters)` returning a `TrialOutcome`. Parameters go in as
+// Python values (keywords with underscores, as the command line's names with dashes) and are
+// checked by the library exactly as a command line's or a sweep file's.
+#include <nlohmann/json.hpp>
+
+#include "bindings.hpp"
+#include "mjarm/scenarios/registry.hpp"
+
+namespace mjarm::python {
+
+namespace {
+
+using Json = nlohmann::ordered_json;
+
+/// A Python value as JSON: None, bool, int, float, str, or a sequence of them (an array).
+Json json_of(py::handle value, const std::string& name) {
+  if (value.is_none()) return nullptr;
+  if (py::isinstance<py::bool_>(value)) return value.cast<bool>();
+  if (py::isinstance<py::int_>(value)) return value.cast<long long>();
+  if (py::isinstance<py::float_>(value)) return value.cast<double>();
+  if (py::isinstance<py::str>(value)) return value.cast<std::string>();
+  if (py::hasattr(value, "tolist") && !py::isinstance<py::str>(value))
+    return json_of(value.attr("tolist")(), name);  // NumPy arrays and scalars
+  if (py::isinstance<py::sequence>(value)) {
+    Json array = Json::array();
+    for (py::handle item : value) array.push_back(json_of(item, name));
+    return array;
+  }
+  throw Error("parameter " + name + ": a number, flag, name, sequence of numbers or None, got " +
+              std::string(py::str(py::type::of(value).attr("__name__"))));
+}
+
+/// Keyword parameters as the JSON object a scenario reads.
+Json values_json(const py::kwargs& values) {
+  Json j = Json::object();
+  for (const auto& [key, value] : values) {
+    const std::string name = key.cast<std::string>();
+    j[name] = json_of(value, name);
+  }
+  return j;
+}
+
+/// JSON as Python values (through the json module: dicts keep their order).
+py::object python_of(const Json& j) { return py::module_::import("json").attr("loads")(j.dump()); }
+
+}  // namespace
+
+void bind_scenarios(py::module_& m) {
+  py::class_<ScenarioOutputs>(m, "ScenarioOutputs",
+                              "What a trial writes besides its figures (none by default).")
+      .def(py::init<>())
+      .def_readwrite("record", &ScenarioOutputs::record, "recording folder; '' = none")
+      .def_readwrite("video", &ScenarioOutputs::video, "MP4 path; '' = none")
+      .def_readwrite("cameras", &ScenarioOutputs::cameras,
+                     "camera names; empty = the scenario's default")
+      .def_readwrite("width", &ScenarioOutputs::width, "[pixels], even")
+      .def_readwrite("height", &ScenarioOutputs::height, "[pixels], even")
+      .def_readwrite("fps", &ScenarioOutputs::fps, "frames per simulated second");
+
+  py::class_<TrialOutcome>(m, "TrialOutcome",
+                           "How one trial ended: the run's status, the scenario's verdict and its "
+                           "typed metrics (the same shape for every scenario).")
+      .def_readonly("scenario", &TrialOutcome::scenario)
+      .def_property_readonly(
+          "metrics",
+          [](const TrialOutcome& o) {
+            return py::dict(python_of(outcome_json(find_scenario(o.scenario), o)["metrics"]));
+          },
+          "the scenario's metrics by name (None: did not happen); units: Scenario.metrics")
+      .def_property_readonly("status",
+                             [](const TrialOutcome& o) { return std::string(to_string(o.status)); })
+      .def_readonly("verdict", &TrialOutcome::verdict)
+      .def_readonly("success", &TrialOutcome::success)
+      .def_readonly("message", &TrialOutcome::message)
+      .def_readonly("end_time", &TrialOutcome::end_time, "[s]")
+      .def_readonly("recording", &TrialOutcome::recording)
+      .def_readonly("recording_error", &TrialOutcome::recording_error)
+      .def_readonly("videos", &TrialOutcome::videos)
+      .def_readonly("video_error", &TrialOutcome::video_error)
+      .def_property_readonly(
+          "parameters", [](const TrialOutcome& o) { return py::dict(python_of(o.parameters)); },
+          "every parameter's value the trial ran with, by name")
+      .def("__bool__", [](const TrialOutcome& o) { return o.success; });
+
+  py::class_<Scenario, std::unique_ptr<Scenario, py::nodelete>>(
+      m, "Scenario", "A scenario of the registry: its parameters, metrics and verdicts.")
+      .def_property_readonly("name", [](const Scenario& s) { return std::string(s.name()); })
+      .def_property_readonly("doc", [](const Scenario& s) { return std::string(s.doc()); })
+      .def_property_readonly("camera", [](const Scenario& s) { return std::string(s.camera()); })
+      .def_property_readonly("verdicts", &Scenario::verdicts, "the success first")
+      .def_property_readonly(
+          "metrics",
+          [](const Scenario& s) { return py::list(python_of(scenario_json(s)["metrics"])); },
+          "list of {name, unit, better, doc}")
+      .def_property_readonly(
+          "parameters",
+          [](const Scenario& s) { return py::list(python_of(scenario_json(s)["parameters"])); },
+          "list of {name, kind, unit, range, names, length, optional, default, doc}")
+      .def(
+          "resolve",
+          [](const Scenario& s, const py::kwargs& values) {
+            return py::dict(python_of(s.resolve(values_json(values))));
+          },
+          "Every parameter's value after the keywords are set on the defaults (checked).")
+      .def("__repr__",
+           [](const Scenario& s) { return "<mjarm.Scenario '" + std::string(s.name()) + "'>"; });
+
+  m.def(
+      "scenarios",
+      [] {
+        py::list list;
+        for (const Scenario* s : scenarios())
+          list.append(py::cast(s, py::return_value_policy::reference));
+        return list;
+      },
+      "Every scenario of the registry, in the order `mjarm run --list` shows them.");
+  m.def("find_scenario", &find_scenario, py::arg("name"), py::return_value_policy::reference,
+        "The scenario called name (an unknown name raises with the closest).");
+  m.def(
+      "run_scenario",
+      [](const std::string& name, const ScenarioOutputs* outputs, const py::kwargs& values) {
+        const Scenario& scenario = find_scenario(name);
+        const Json j = values_json(values);
+        const ScenarioOutputs given = outputs != nullptr ? *outputs : ScenarioOutputs{};
+        py::gil_scoped_release release;
+        return scenario.run(j, given);
+      },
+      py::arg("name"), py::kw_only(), py::arg("outputs") = py::none(),
+      "Runs one trial of the scenario called name with the keyword parameters (names with "
+      "underscores; nested ones as 'motion.approach_height' through **{...}); returns its "
+      "TrialOutcome. The GIL is released while it runs.");
+}
+
+}  // namespace mjarm::python

@@ -1,0 +1,29 @@
+#include "mjarm/scenarios/registry.hpp"
+
+#include <array>
+#include <string>
+#include <vector>
+
+#include "mjarm/closest_names.hpp"
+#include "mjarm/error.hpp"
+#include "scenarios/scenario_parts.hpp"
+
+namespace mjarm {
+
+std::span<const Scenario* const> scenarios() {
+  // a new scenario: its files and one line here
+  static const std::array<const Scenario*, 3> all{&shelf_pick_scenario(), &pick_place_scenario(),
+                                                  &docking_scenario()};
+  return all;
+}
+
+const Scenario& find_scenario(std::string_view name) {
+  std::vector<std::string> names;
+  for (const Scenario* s : scenarios()) {
+    if (s->name() == name) return *s;
+    names.emplace_back(s->name());
+  }
+  throw Error(unknown_name_message("scenario", name, names));
+}
+
+}  // namespace mjarm

@@ -1,0 +1,195 @@
+// The scenario registry (mjarm/scenarios/): names and lookup, the parameters as declared (names
+// as command lines write them, kinds, ranges, defaults equal to the tasks' own), values checked
+// with the scenario's name, and one trial of each scenario through the registry judged as the
+// task judges it.
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "mjarm/error.hpp"
+#include "mjarm/fields_json.hpp"
+#include "mjarm/scenarios/docking_scenario.hpp"
+#include "mjarm/scenarios/pick_place_scenario.hpp"
+#include "mjarm/scenarios/registry.hpp"
+#include "mjarm/scenarios/shelf_pick_scenario.hpp"
+#include "support/error_message.hpp"
+
+namespace mjarm {
+namespace {
+
+using Json = nlohmann::ordered_json;
+using test::error_of;
+using ::testing::ElementsAre;
+using ::testing::HasSubstr;
+
+const FieldInfo& parameter(const Scenario& s, const std::string& name) {
+  static std::vector<FieldInfo> table;
+  table = s.parameters();
+  for (const FieldInfo& p : table)
+    if (p.path == name) return p;
+  throw Error("no parameter " + name);
+}
+
+double metric(const Scenario& s, const TrialOutcome& o, const std::string& name) {
+  for (std::size_t i = 0; i < s.metrics().size(); ++i)
+    if (s.metrics()[i].name == name) return o.metrics.at(i);
+  throw Error("no metric " + name);
+}
+
+TEST(Scenarios, AreListedAndFoundByName) {
+  std::vector<std::string> names;
+  for (const Scenario* s : scenarios()) names.emplace_back(s->name());
+  EXPECT_THAT(names, ElementsAre("shelf-pick", "pick-place", "docking"));
+  EXPECT_EQ(&find_scenario("docking"), scenarios()[2]);
+  const std::string message = error_of([] { find_scenario("pick-plce"); });
+  EXPECT_THAT(message, HasSubstr("unknown scenario 'pick-plce'; closest: pick-place"));
+  for (const Scenario* s : scenarios()) {
+    EXPECT_FALSE(s->doc().empty()) << s->name();
+    EXPECT_FALSE(s->camera().empty()) << s->name();
+    EXPECT_GE(s->verdicts().size(), 2u) << s->name();
+    EXPECT_GE(s->metrics().size(), 5u) << s->name();
+  }
+}
+
+TEST(Scenarios, ParametersAreTheDeclaredFieldsUnderTheirCommandLineNames) {
+  const Scenario& pp = find_scenario("pick-place");
+  const FieldInfo& size = parameter(pp, "object-size");
+  EXPECT_EQ(size.kind, FieldKind::number);
+  EXPECT_TRUE(size.optional);
+  EXPECT_EQ(size.unit, "m");
+  EXPECT_TRUE(size.value.is_null());  // drawn from the seed by default
+  EXPECT_EQ(parameter(pp, "motion.approach-height").value, PickPlaceMotion{}.approach_height);
+  EXPECT_EQ(parameter(pp, "motion.limits.max-velocity").unit, "m/s");
+  EXPECT_THAT(parameter(pp, "grasp").names, ElementsAre("weld", "friction"));
+  EXPECT_EQ(parameter(find_scenario("docking"), "controller.law").value, "se3");
+  EXPECT_EQ(parameter(find_scenario("shelf-pick"), "pick").length, 3);
+
+  const Json json = scenario_json(pp);
+  EXPECT_EQ(json["name"], "pick-place");
+  EXPECT_EQ(json["verdicts"][0], "placed");
+  EXPECT_EQ(json["metrics"][1]["name"], "placement_error");
+  EXPECT_EQ(json["metrics"][1]["better"], "lower");
+}
+
+TEST(Scenarios, DefaultsAreTheTasksOwn) {
+  EXPECT_EQ(fields_to_json(pick_place_options(PickPlaceParameters{}).motion),
+            fields_to_json(PickPlaceOptions{}.motion));
+  EXPECT_EQ(fields_to_json(pick_place_options(PickPlaceParameters{}).criteria),
+            fields_to_json(PickPlaceOptions{}.criteria));
+  EXPECT_EQ(pick_place_options(PickPlaceParameters{}).grasp_force, PickPlaceOptions{}.grasp_force);
+  EXPECT_EQ(fields_to_json(docking_options(DockingParameters{}).controller),
+            fields_to_json(DockingOptions{}.controller));
+  EXPECT_EQ(fields_to_json(docking_options(DockingParameters{}).motion),
+            fields_to_json(DockingOptions{}.motion));
+  const ShelfPickOptions shelf = shelf_pick_options(ShelfPickParameters{});
+  EXPECT_EQ(shelf.request.robot, ShelfPickOptions{}.request.robot);
+  EXPECT_EQ(shelf.settle_time, ShelfPickOptions{}.settle_time);
+  EXPECT_EQ(fields_to_json(shelf.request.criteria),
+            fields_to_json(ShelfPickOptions{}.request.criteria));
+}
+
+TEST(Scenarios, ValuesAreCheckedWithTheScenariosName) {
+  const Scenario& pp = find_scenario("pick-place");
+  const Json values =
+      pp.resolve(Json{{"object_size", 0.015}, {"grasp", "friction"}, {"motion.dwell-time", 0.2}});
+  EXPECT_EQ(values["object-size"], 0.015);
+  EXPECT_EQ(values["grasp"], "friction");
+  EXPECT_EQ(values["motion.dwell-time"], 0.2);
+  EXPECT_TRUE(values["target"].is_null());
+  EXPECT_THAT(error_of([&] {
+                pp.resolve(Json{{"objct-size", 0.02}});
+              }),
+              HasSubstr("pick-place: unknown parameter 'objct-size'; closest: object-size"));
+  EXPECT_EQ(error_of([&] {
+              pp.resolve(Json{{"object-size", 0.5}});
+            }),
+            "pick-place: object_size must be in [0.005, 0.05] [m], got 0.5");
+  EXPECT_EQ(error_of([&] {
+              pp.resolve(Json{{"seed", -1}});
+            }),
+            "pick-place: seed must be ≥ 0, got -1");
+  EXPECT_THAT(error_of([&] {
+                pp.resolve(Json{{"grasp", "glue"}});
+              }),
+              HasSubstr("unknown grasp 'glue'"));
+  EXPECT_EQ(error_of([&] {
+              pp.resolve(Json{{"target", {0.1}}});
+            }),
+            "pick-place: target must have 2 numbers, got 1");
+  EXPECT_THAT(error_of([&] { pp.resolve(Json::array()); }),
+              HasSubstr("pick-place: the parameters must be an object"));
+  EXPECT_EQ(error_of([] {
+              find_scenario("docking").resolve(Json{{"offset.dx", 0.06}});
+            }),
+            "docking: offset.dx must be in [-0.05, 0.05] [m], got 0.06");
+}
+
+TEST(Scenarios, AShelfPickThroughTheRegistryIsTheTasksOwnRun) {
+  const Scenario& s = find_scenario("shelf-pick");
+  const Json values{{"robot", "planar2"}, {"controller", "ct"}, {"seed", 4}};
+  const TrialOutcome o = s.run(values);
+  ShelfPickParameters p;
+  p.robot = "planar2";
+  p.controller = "ct";
+  p.seed = 4;
+  const ShelfPickReport direct = run_shelf_pick(shelf_pick_options(p));
+  EXPECT_EQ(o.scenario, "shelf-pick");
+  EXPECT_TRUE(o.success) << o.message;
+  EXPECT_EQ(o.verdict, "held");
+  EXPECT_EQ(o.status, direct.run.status);
+  ASSERT_EQ(o.metrics.size(), s.metrics().size());
+  EXPECT_EQ(metric(s, o, "time_to_tolerance"), direct.metrics.time_to_tolerance);
+  EXPECT_EQ(metric(s, o, "steady_state_max"), direct.metrics.steady_state_max);
+  EXPECT_EQ(o.parameters["robot"], "planar2");
+  EXPECT_EQ(o.parameters["criteria.tolerance"], PickCriteria{}.tolerance);
+
+  const Json json = outcome_json(s, o);
+  EXPECT_EQ(json["verdict"], "held");
+  EXPECT_EQ(json["metrics"]["time_to_tolerance"], direct.metrics.time_to_tolerance);
+  EXPECT_TRUE(json["outputs"]["recording"].is_null());
+  EXPECT_EQ(json["parameters"]["seed"], 4);
+}
+
+TEST(Scenarios, APickAndPlaceThroughTheRegistryIsJudgedOnEveryCriterion) {
+  const Scenario& s = find_scenario("pick-place");
+  // a brisk machine: same states and checks as the classic pace
+  const Json values{{"seed", 3},
+                    {"motion.dwell-time", 0.15},
+                    {"motion.grip-time", 0.3},
+                    {"motion.release-time", 0.3},
+                    {"motion.settle-time", 0.6},
+                    {"motion.limits.max-velocity", 0.25},
+                    {"motion.limits.max-acceleration", 2.0}};
+  const TrialOutcome o = s.run(values);
+  EXPECT_TRUE(o.success) << o.message;
+  EXPECT_EQ(o.verdict, "placed");
+  EXPECT_LE(metric(s, o, "placement_error"), PickPlaceCriteria{}.placement_tolerance);
+  EXPECT_GT(metric(s, o, "cycle_time"), 0.0);
+
+  // a verdict other than success: a placement tolerance no trial meets
+  Json strict = values;
+  strict["criteria.placement-tolerance"] = 1e-7;
+  const TrialOutcome missed = s.run(strict);
+  EXPECT_FALSE(missed.success);
+  EXPECT_EQ(missed.verdict, "misplaced");
+  EXPECT_THAT(missed.message, HasSubstr("from the target"));
+  EXPECT_EQ(metric(s, missed, "cycle_time"), metric(s, o, "cycle_time"));
+}
+
+TEST(Scenarios, ADockingThroughTheRegistrySeats) {
+  const Scenario& s = find_scenario("docking");
+  const Json values{{"offset.dx", 0.003},
+                    {"motion.start-height", 0.03},
+                    {"motion.approach-time", 0.6},
+                    {"motion.insertion-speed", 0.02},
+                    {"motion.hold-time", 1.2}};
+  const TrialOutcome o = s.run(values);
+  EXPECT_TRUE(o.success) << o.message;
+  EXPECT_EQ(o.verdict, "seated");
+  EXPECT_LE(metric(s, o, "peak_force"), DockingCriteria{}.max_force);
+  EXPECT_GT(metric(s, o, "first_contact_time"), 0.0);
+}
+
+}  // namespace
+}  // namespace mjarm
