@@ -54,6 +54,7 @@ Command add_plot_command(CLI::App& root);    ///< `mjarm plot RECORDING …` (cm
 Command add_traj_command(CLI::App& root);    ///< `mjarm traj KIND …` (cmd_traj.cpp)
 Command add_plan_command(CLI::App& root);    ///< `mjarm plan ROBOT --waypoints F` (cmd_plan.cpp)
 Command add_soak_command(CLI::App& root);    ///< `mjarm soak [--minutes M]` (cmd_soak.cpp)
+Command add_sweep_command(CLI::App& root);  ///< `mjarm sweep run FILE --out DIR …` (cmd_sweep.cpp)
 
 /// What `mjarm plan` and `mjarm run plan` read from the command line.
 struct PlanCliOptions {

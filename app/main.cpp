@@ -68,6 +68,7 @@ int main(int argc, char** argv) {
   commands.push_back(add_plan_command(app));
   commands.push_back(add_env_command(app));
   commands.push_back(add_soak_command(app));
+  commands.push_back(add_sweep_command(app));
   commands.push_back(add_demo_command(app));
   add_model_size_option(app);
 

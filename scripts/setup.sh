@@ -18,8 +18,10 @@ packages=(
   # when it is missing)
   ninja-build
   libeigen3-dev libtinyxml2-dev libcli11-dev nlohmann-json3-dev
-  # scene files (YAML, and JSON through the same parser)
+  # scene and sweep files (YAML, and JSON through the same parser)
   libyaml-cpp-dev
+  # a sweep's results (mjarm sweep): SQLite
+  libsqlite3-dev
   # render room (part of the default build, tested headless): EGL + desktop GL headers, Mesa's
   # EGL vendor and software rasteriser (no GPU, no display), PNG frames, ffmpeg for MP4 video
   libegl-dev libgl-dev libopengl-dev libegl-mesa0 libgl1-mesa-dri libpng-dev ffmpeg

@@ -9,7 +9,8 @@
 # with SLURM_CONF set (sbatch, squeue, scancel and sinfo then talk to this cluster), and stops every
 # daemon by the PID it wrote when it ends — also on failure or a signal — after cancelling the jobs
 # left (their processes would outlive slurmd). Exits with COMMAND's status; 3 when the cluster did
-# not come up (the daemons' logs are printed). The daemons run as the user who runs it (root not
+# not come up (the daemons' logs are printed). SLURM_LOCAL_EXTRA_CONF, when set, is appended to
+# the configuration (e.g. "MaxArraySize=4"). The daemons run as the user who runs it (root not
 # needed: slurmd then runs only that user's jobs, which is all a local sweep submits). Run it under
 # `unshare --pid --fork --kill-child` to be sure nothing outlives it.
 set -euo pipefail
@@ -101,6 +102,8 @@ SchedulerParameters=sched_interval=1
 $node NodeAddr=127.0.0.1 State=UNKNOWN
 PartitionName=local Nodes=$host Default=YES MaxTime=INFINITE State=UP
 CONF
+# more configuration lines from the caller (a small MaxArraySize, say)
+[ -z "${SLURM_LOCAL_EXTRA_CONF:-}" ] || printf '%s\n' "$SLURM_LOCAL_EXTRA_CONF" >> "$SLURM_CONF"
 
 # TERM to each PID given, then KILL to those still running 5 s later
 stop_pids() {
