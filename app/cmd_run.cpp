@@ -1,27 +1,31 @@
 // `mjarm run SCENARIO`: runs a ready-made closed-loop scenario in simulation and prints its
-// figures, optionally with a video of the run. Scenarios: shelf-pick (docs/tasks.md), plan
-// (docs/planning.md), docking (docs/docking.md, cmd_run_docking.cpp).
+// figures, optionally with a video of the run. One subcommand per scenario, each with its own
+// options and every other parameter of the registry (scenario_options.hpp): shelf-pick
+// (docs/tasks.md), pick-place (cmd_run_pick_place.cpp), docking (cmd_run_docking.cpp), plan
+// (cmd_run_plan.cpp); `mjarm run --list`.
 
 #include <algorithm>
 #include <cmath>
 #include <iostream>
 #include <memory>
 #include <optional>
+#include <set>
 #include <string>
 #include <vector>
 
 #include "commands.hpp"
+#include "mjarm/closest_names.hpp"
 #include "mjarm/error.hpp"
 #include "mjarm/interrupt.hpp"
 #include "mjarm/scenarios/registry.hpp"
+#include "mjarm/scenarios/shelf_pick_scenario.hpp"
 #include "mjarm/tasks/shelf_pick.hpp"
 #include "output.hpp"
+#include "scenario_options.hpp"
 
 namespace mjarm::cli {
 
 namespace {
-
-const std::vector<std::string> kScenarios{"shelf-pick", "plan", "docking", "pick-place"};
 
 /// Most frames `run --video` may film after the approach (--fps × --settle-time): 5 minutes of
 /// video at 30 fps, about 20 minutes of software rendering at 640x480.
@@ -286,89 +290,107 @@ void run_all(const ShelfPickOptions& base, int seeds, bool json) {
 
 }  // namespace
 
-Command add_run_command(CLI::App& root) {
+namespace {
+
+/// Refuses what a scenario's subcommand did not take (it allows extras so as to say this): an
+/// option of another scenario or a misspelt one, with the closest of its own.
+void refuse_extras(const CLI::App& app) {
+  const std::vector<std::string> extra = app.remaining();
+  if (extra.empty()) return;
+  const std::string where = "run " + app.get_name();
+  const auto option = std::find_if(extra.begin(), extra.end(),
+                                   [](const std::string& w) { return w.rfind("-", 0) == 0; });
+  if (option == extra.end())
+    throw UsageError(where + ": unexpected argument '" + extra.front() + "'");
+  const std::string word = option->substr(0, option->find('='));
+  std::vector<std::string> names;
+  for (const CLI::Option* o : app.get_options())
+    for (const std::string& name : o->get_lnames()) names.push_back("--" + name);
+  const std::vector<std::string> closest = closest_names(word, names);
+  throw UsageError(where + ": unknown option '" + word + "'" +
+                   (closest.empty() ? std::string() : "; closest: " + join(closest)) + " (mjarm " +
+                   where + " --help lists them)");
+}
+
+/// The options every scenario's video takes.
+struct VideoCli {
+  std::string path, camera, size = "640x480";
+  double fps = 30.0;
+};
+
+CLI::Option* add_video_options(CLI::App& app, VideoCli& o, const std::string& camera_help) {
+  CLI::Option* video = app.add_option(
+      "--video", o.path, "write an MP4 of the run (rendered headless; needs Debian's ffmpeg)");
+  if (!camera_help.empty()) app.add_option("--camera", o.camera, camera_help)->needs(video);
+  app.add_option("--size", o.size, "video size WIDTHxHEIGHT [pixels], even")
+      ->check(pixel_size({2, 2}, true, {4096, 4096}))
+      ->needs(video)
+      ->capture_default_str();
+  app.add_option("--fps", o.fps, "video frames per simulated second")
+      ->check(number_in(1.0, 240.0))
+      ->needs(video)
+      ->capture_default_str();
+  return video;
+}
+
+/// The options of the shelf pick and the planned motion that set the simulation.
+struct SimulationCli {
+  std::uint64_t seed = 1;
+  double control_period = 0.0;
+  double max_acceleration = 1e6;
+  double settle_time = 1.0;
+};
+
+void add_simulation_options(CLI::App& app, SimulationCli& o, const std::string& seed_help,
+                            const std::string& settle_help) {
+  app.add_option("--seed", o.seed, seed_help)->check(non_negative_integer())->capture_default_str();
+  app.add_option("--control-period", o.control_period,
+                 "control period [s], a whole multiple of the timestep (0: one physics step)")
+      ->check(duration_at_most(1.0, "s", true))
+      ->capture_default_str();
+  app.add_option("--max-acceleration", o.max_acceleration,
+                 "divergence bound on |joint acceleration| [rad/s²]")
+      ->check(finite_number())
+      ->capture_default_str();
+  app.add_option("--settle-time", o.settle_time, settle_help)
+      ->check(duration_at_most(60.0, "s"))
+      ->capture_default_str();
+}
+
+/// `mjarm run shelf-pick`: one pick, or every robot × controller (--all).
+Command add_shelf_pick_subcommand(CLI::App& run) {
   struct Options {
-    std::string scenario;
-    std::string robot = "panda";
-    std::string controller = "osc";
+    std::string robot = "panda", controller = "osc", record;
     std::vector<double> pick;
-    std::uint64_t seed = 1;
-    std::string record;
-    double control_period = 0.0;
-    double max_acceleration = 1e6;
-    double settle_time = 1.0;
-    bool all = false;
-    bool list = false;
+    SimulationCli sim;
+    VideoCli video;
+    bool all = false, json = false;
     int seeds = 1;
-    std::string video;
-    std::string camera;
-    std::string size = "640x480";
-    double fps = 30.0;
-    bool json = false;
-    PlanCliOptions plan;             // run plan ROBOT --waypoints FILE (cmd_run_plan.cpp)
-    DockingCliOptions docking;       // run docking … (cmd_run_docking.cpp)
-    PickPlaceCliOptions pick_place;  // run pick-place … (cmd_run_pick_place.cpp)
+    std::unique_ptr<ScenarioOptions> parameters;
   };
   auto o = std::make_shared<Options>();
-  CLI::App* app = root.add_subcommand(
-      "run",
-      "run a closed-loop scenario in simulation and print its figures (shelf-pick, plan, docking, "
-      "pick-place)");
-  CLI::Option* scenario =
-      app->add_option("scenario", o->scenario, "scenario to run: " + join(kScenarios));
-  app->add_flag("--list", o->list,
-                "list the scenarios of the registry (--json: each with its parameters, units, "
-                "ranges, defaults, metrics and verdicts)")
-      ->excludes(scenario);
-  app->add_option("plan_robot", o->plan.model, "run plan: the robot (planar2 | panda)");
-  add_plan_options(*app, o->plan, false);
-  app->get_option("--waypoints")->required(false);
-  CLI::Option* robot = app->add_option(
-      "--robot", o->robot,
-      "shelf-pick: planar2 | panda (default panda); pick-place: arm6 | panda_hand (default arm6)");
-  CLI::Option* controller =
-      app->add_option(
-             "--controller", o->controller,
-             "shelf-pick: ct | osc | task-pd | accel; docking: cic | hqp-ac | se3 (default) | all")
-          ->capture_default_str();
+  const Scenario& scenario = find_scenario("shelf-pick");
+  CLI::App* app =
+      run.add_subcommand("shelf-pick", std::string(scenario.doc()) + " (docs/tasks.md)");
+  app->allow_extras();
+  app->add_option("--robot", o->robot, "planar2 | panda")->capture_default_str();
+  app->add_option("--controller", o->controller, "ct | osc | task-pd | accel")
+      ->capture_default_str();
   CLI::Option* pick = app->add_option("--pick", o->pick,
                                       "pick point x y z in the world [m] "
                                       "(default: drawn from the seed)")
                           ->expected(3)
                           ->check(finite_number());
-  app->add_option("--seed", o->seed,
-                  "seed: draws the pick point when --pick is absent and perturbs the start "
-                  "(same seed, same run bit for bit)")
-      ->check(non_negative_integer())
-      ->capture_default_str();
+  add_simulation_options(*app, o->sim,
+                         "seed: draws the pick point when --pick is absent and perturbs the start "
+                         "(same seed, same run bit for bit)",
+                         "time allowed after the approach to enter the tolerance and hold [s]");
   CLI::Option* record =
       app->add_option("--record", o->record, "record state, task and events into DIR");
-  app->add_option("--control-period", o->control_period,
-                  "control period [s], a whole multiple of the timestep (0: one physics step)")
-      ->check(duration_at_most(1.0, "s", true))
-      ->capture_default_str();
-  app->add_option("--max-acceleration", o->max_acceleration,
-                  "divergence bound on |joint acceleration| [rad/s²]")
-      ->check(finite_number())
-      ->capture_default_str();
-  app->add_option("--settle-time", o->settle_time,
-                  "time allowed after the approach to enter the tolerance and hold [s]")
-      ->check(duration_at_most(60.0, "s"))
-      ->capture_default_str();
-  CLI::Option* video = app->add_option(
-      "--video", o->video, "write an MP4 of the run (rendered headless; needs Debian's ffmpeg)");
-  app->add_option("--camera", o->camera,
-                  "video camera: a camera of the model, or 'follow' (the tool tip); default: a "
-                  "free camera framing the robot and the pick point")
-      ->needs(video);
-  app->add_option("--size", o->size, "video size WIDTHxHEIGHT [pixels], even")
-      ->check(pixel_size({2, 2}, true, {4096, 4096}))
-      ->needs(video)
-      ->capture_default_str();
-  app->add_option("--fps", o->fps, "video frames per simulated second")
-      ->check(number_in(1.0, 240.0))
-      ->needs(video)
-      ->capture_default_str();
+  CLI::Option* video = add_video_options(
+      *app, o->video,
+      "video camera: a camera of the model, or 'follow' (the tool tip); default: a free camera "
+      "framing the robot and the pick point");
   app->add_flag("--all", o->all, "every robot × controller (a table of the worst figures)")
       ->excludes(pick)
       ->excludes(record)
@@ -377,135 +399,44 @@ Command add_run_command(CLI::App& root) {
       ->check(count_in(1, 10000))
       ->capture_default_str();
   add_json_flag(*app, o->json);
-  add_docking_options(*app, o->docking);
-  add_pick_place_options(*app, o->pick_place);
-  CLI::Option* seeds = app->get_option("--seeds");
-  CLI::Option* seed = app->get_option("--seed");
-  CLI::Option* settle = app->get_option("--settle-time");
-  CLI::Option* period = app->get_option("--control-period");
-  CLI::Option* max_acceleration = app->get_option("--max-acceleration");
-  CLI::Option* all = app->get_option("--all");
-  const std::vector<CLI::Option*> docking_only{app->get_option("--sensorless"),
-                                               app->get_option("--friction"),
-                                               app->get_option("--offset"),
-                                               app->get_option("--grid"),
-                                               app->get_option("--gate"),
-                                               app->get_option("--reference"),
-                                               app->get_option("--insertion-speed"),
-                                               app->get_option("--preload"),
-                                               app->get_option("--stiffness"),
-                                               app->get_option("--plot"),
-                                               app->get_option("--jobs")};
-
-  const std::vector<std::string> pick_place_only{
-      "--grasp",          "--mode",        "--trials",          "--threads",
-      "--classic",        "--object",      "--target",          "--object-size",
-      "--grasp-force",    "--weld-solref", "--noslip",          "--approach-height",
-      "--descend-height", "--lift-height", "--move-height",     "--place-height",
-      "--dwell",          "--grip-time",   "--release-time",    "--max-speed",
-      "--max-accel",      "--cameras",     "--video-per-camera"};
-
-  return {app, [o, app, controller, robot, seed, seeds, settle, period, max_acceleration, all, pick,
-                docking_only, pick_place_only] {
-            if (o->list) return list_scenarios(o->json);
-            if (o->scenario.empty())
-              throw UsageError("run needs a SCENARIO (" + join(kScenarios, " | ") + ") or --list");
-            if (o->scenario == "docking") {
-              for (const std::string& name : pick_place_only)
-                if (app->count(name) > 0) throw UsageError(name + " is a pick-place option");
-              for (const CLI::Option* shelf :
-                   {robot, pick, seed, seeds, settle, period, max_acceleration, all})
-                if (shelf->count() > 0)
-                  throw UsageError(shelf->get_name() + " is not a docking option");
-              if (!o->plan.model.empty() || !o->plan.waypoints.empty())
-                throw UsageError("ROBOT and --waypoints belong to 'run plan'");
-              if (!o->record.empty()) check_output_folder(o->record, "--record");
-              DockingVideo video;
-              if (!o->video.empty()) {
-                check_output_file(o->video, "--video");
-                const PixelSize size = parse_pixel_size(o->size);
-                video.path = o->video;
-                video.camera = o->camera;
-                video.options.width = size.width;
-                video.options.height = size.height;
-                video.options.fps = o->fps;
-              }
-              return run_docking_scenario(o->docking,
-                                          controller->count() > 0 ? o->controller : "se3", video,
-                                          o->record, o->json, kMaxVideoFrames);
-            }
-            for (const CLI::Option* docking : docking_only)
-              if (docking->count() > 0)
-                throw UsageError(docking->get_name() + " is a docking option ('run docking')");
-            if (o->scenario == "pick-place") {
-              if (o->all || !o->pick.empty() || controller->count() > 0 ||
-                  app->count("--camera") > 0 || app->count("--seeds") > 0 ||
-                  !o->plan.model.empty() || !o->plan.waypoints.empty())
-                throw UsageError(
-                    "--all, --seeds, --pick, --controller, --camera, ROBOT and --waypoints are "
-                    "not pick-place options (see mjarm run --help)");
-              RunCommonOptions common;
-              common.robot = robot->count() > 0 ? o->robot : "";
-              common.seed = o->seed;
-              common.record = o->record;
-              common.control_period = o->control_period;
-              common.max_acceleration = o->max_acceleration;
-              common.settle_time = o->settle_time;
-              common.video = o->video;
-              common.size = o->size;
-              common.fps = o->fps;
-              common.json = o->json;
-              return run_pick_place_scenario(o->pick_place, common);
-            }
-            for (const std::string& name : pick_place_only) {
-              if (app->count(name) > 0) throw UsageError(name + " is a pick-place option");
-            }
-            if (o->scenario == "plan") {
-              if (o->plan.waypoints.empty()) throw UsageError("run plan needs --waypoints FILE");
-              const InterruptGuard interrupts;
-              if (o->all || !o->pick.empty() || !o->record.empty() || !o->video.empty())
-                throw UsageError("--all, --pick, --record and --video are shelf-pick options");
-              o->plan.seed = o->seed;
-              return run_plan_scenario(o->plan, o->controller, o->settle_time, o->control_period,
-                                       o->max_acceleration, o->json);
-            }
-            if (!o->plan.model.empty() || !o->plan.waypoints.empty() || !o->plan.q.empty() ||
-                !o->plan.key.empty() || !o->plan.max_velocity.empty() ||
-                !o->plan.max_acceleration.empty() || !o->plan.max_torque.empty())
-              throw UsageError("ROBOT, --waypoints, --q, --key and the limits belong to 'run plan'");
-            if (o->scenario != "shelf-pick")
-              throw UsageError("unknown scenario '" + o->scenario +
-                               "'; scenarios: " + join(kScenarios));
+  o->parameters = std::make_unique<ScenarioOptions>(
+      *app, scenario,
+      std::set<std::string>{"robot", "controller", "pick", "seed", "control-period",
+                            "max-acceleration", "settle-time"});
+  return {app, [o, app] {
+            refuse_extras(*app);
             if (o->seeds != 1 && !o->all) throw UsageError("--seeds needs --all");
             // the outputs are checked before the work
             if (!o->record.empty()) check_output_folder(o->record, "--record");
-            if (!o->video.empty()) check_output_file(o->video, "--video");
+            if (!o->video.path.empty()) check_output_file(o->video.path, "--video");
             ShelfPickOptions options;
             options.request.robot = o->robot;
             options.request.controller = o->controller;
-            options.request.seed = o->seed;
+            options.request.seed = o->sim.seed;
             if (!o->pick.empty())
               options.request.pick = Eigen::Vector3d(o->pick[0], o->pick[1], o->pick[2]);
             options.record = o->record;
-            options.control_period = o->control_period;
-            options.max_acceleration = o->max_acceleration;
-            options.settle_time = o->settle_time;
-            if (!o->video.empty()) {
+            options.control_period = o->sim.control_period;
+            options.max_acceleration = o->sim.max_acceleration;
+            options.settle_time = o->sim.settle_time;
+            apply_parameters(shelf_pick_scenario(), o->parameters->values(), options,
+                             shelf_pick_parameters);
+            if (!o->video.path.empty()) {
               // the work before it starts: the run lasts the approach (a second or two) plus
               // --settle-time, and every simulated second films --fps frames
-              const double frames = o->fps * o->settle_time;
+              const double frames = o->video.fps * o->sim.settle_time;
               if (frames > kMaxVideoFrames)
-                throw UsageError("--video at --fps " + readable(o->fps) + " with --settle-time " +
-                                 readable(o->settle_time) + " s would film up to " +
-                                 readable(std::ceil(frames)) + " frames after the approach; at " +
-                                 "most " + readable(kMaxVideoFrames) +
-                                 " (lower --fps or --settle-time)");
-              const PixelSize size = parse_pixel_size(o->size);
-              options.video.path = o->video;
-              options.video.camera = o->camera;
+                throw UsageError("--video at --fps " + readable(o->video.fps) +
+                                 " with --settle-time " + readable(o->sim.settle_time) +
+                                 " s would film up to " + readable(std::ceil(frames)) +
+                                 " frames after the approach; at most " +
+                                 readable(kMaxVideoFrames) + " (lower --fps or --settle-time)");
+              const PixelSize size = parse_pixel_size(o->video.size);
+              options.video.path = o->video.path;
+              options.video.camera = o->video.camera;
               options.video.options.width = size.width;
               options.video.options.height = size.height;
-              options.video.options.fps = o->fps;
+              options.video.options.fps = o->video.fps;
             }
             const InterruptGuard interrupts;  // Ctrl-C ends the run with a finalized recording
             if (o->all) return run_all(options, o->seeds, o->json);
@@ -528,6 +459,189 @@ Command add_run_command(CLI::App& root) {
                           report.run.message + outputs);
             if (!report.recording_error.empty() || !report.video_error.empty())
               throw Error(outputs.substr(2));  // without the leading "; "
+          }};
+}
+
+/// `mjarm run pick-place`: one trial, or a batch (--trials).
+Command add_pick_place_subcommand(CLI::App& run) {
+  struct Options {
+    std::string robot, record;
+    SimulationCli sim;
+    VideoCli video;
+    bool json = false;
+    PickPlaceCliOptions pick_place;
+    std::unique_ptr<ScenarioOptions> parameters;
+  };
+  auto o = std::make_shared<Options>();
+  const Scenario& scenario = find_scenario("pick-place");
+  CLI::App* app =
+      run.add_subcommand("pick-place", std::string(scenario.doc()) + " (docs/pick_place.md)");
+  app->allow_extras();
+  app->add_option("--robot", o->robot, "arm6 | panda_hand (default arm6)");
+  add_simulation_options(*app, o->sim,
+                         "seed: draws the object, its size, mass, friction and the "
+                         "target (same seed, same trial)",
+                         "DONE lasts this long before the trial is judged [s]");
+  app->add_option("--record", o->record, "record state, task and events into DIR");
+  add_video_options(*app, o->video, "");
+  add_json_flag(*app, o->json);
+  add_pick_place_options(*app, o->pick_place);
+  o->parameters =
+      std::make_unique<ScenarioOptions>(*app, scenario,
+                                        std::set<std::string>{"robot",
+                                                              "grasp",
+                                                              "mode",
+                                                              "seed",
+                                                              "object",
+                                                              "target",
+                                                              "object-size",
+                                                              "classic",
+                                                              "grasp-force",
+                                                              "noslip",
+                                                              "weld.time-constant",
+                                                              "weld.damping-ratio",
+                                                              "motion.approach-height",
+                                                              "motion.descend-height",
+                                                              "motion.lift-height",
+                                                              "motion.move-height",
+                                                              "motion.place-height",
+                                                              "motion.dwell-time",
+                                                              "motion.grip-time",
+                                                              "motion.release-time",
+                                                              "motion.limits.max-velocity",
+                                                              "motion.limits.max-acceleration",
+                                                              "motion.settle-time",
+                                                              "control-period",
+                                                              "max-acceleration"});
+  return {app, [o, app] {
+            refuse_extras(*app);
+            RunCommonOptions common;
+            common.robot = o->robot;
+            common.seed = o->sim.seed;
+            common.record = o->record;
+            common.control_period = o->sim.control_period;
+            common.max_acceleration = o->sim.max_acceleration;
+            common.settle_time = o->sim.settle_time;
+            common.video = o->video.path;
+            common.size = o->video.size;
+            common.fps = o->video.fps;
+            common.json = o->json;
+            PickPlaceCliOptions pick_place = o->pick_place;
+            pick_place.parameters = o->parameters->values();
+            run_pick_place_scenario(pick_place, common);
+          }};
+}
+
+/// `mjarm run docking`: one run, the 27-offset grid or the tracking gate.
+Command add_docking_subcommand(CLI::App& run) {
+  struct Options {
+    std::string controller = "se3", record;
+    VideoCli video;
+    bool json = false;
+    DockingCliOptions docking;
+    std::unique_ptr<ScenarioOptions> parameters;
+  };
+  auto o = std::make_shared<Options>();
+  const Scenario& scenario = find_scenario("docking");
+  CLI::App* app = run.add_subcommand("docking", std::string(scenario.doc()) + " (docs/docking.md)");
+  app->allow_extras();
+  app->add_option("--controller", o->controller, "cic | hqp-ac | se3 | all (all: --grid or --gate)")
+      ->capture_default_str();
+  app->add_option("--record", o->record, "record state, task and events into DIR");
+  add_video_options(*app, o->video,
+                    "video camera: a camera of the model, or 'follow' (the peg tip); default: a "
+                    "free camera close to the socket");
+  add_json_flag(*app, o->json);
+  add_docking_options(*app, o->docking);
+  o->parameters = std::make_unique<ScenarioOptions>(
+      *app, scenario,
+      std::set<std::string>{"controller.law", "controller.source", "joint-friction", "offset.dx",
+                            "offset.dy", "offset.dyaw", "motion.reference",
+                            "motion.insertion-speed", "motion.preload", "controller.se3-stiffness",
+                            "controller.cic-stiffness", "controller.hqp-stiffness"});
+  return {app, [o, app] {
+            refuse_extras(*app);
+            if (!o->record.empty()) check_output_folder(o->record, "--record");
+            DockingVideo video;
+            if (!o->video.path.empty()) {
+              check_output_file(o->video.path, "--video");
+              const PixelSize size = parse_pixel_size(o->video.size);
+              video.path = o->video.path;
+              video.camera = o->video.camera;
+              video.options.width = size.width;
+              video.options.height = size.height;
+              video.options.fps = o->video.fps;
+            }
+            DockingCliOptions docking = o->docking;
+            docking.parameters = o->parameters->values();
+            run_docking_scenario(docking, o->controller, video, o->record, o->json,
+                                 kMaxVideoFrames);
+          }};
+}
+
+/// `mjarm run plan ROBOT --waypoints FILE`: the planned motion tracked in simulation.
+Command add_plan_subcommand(CLI::App& run) {
+  struct Options {
+    PlanCliOptions plan;
+    std::string controller = "osc";
+    SimulationCli sim;
+    bool json = false;
+  };
+  auto o = std::make_shared<Options>();
+  CLI::App* app = run.add_subcommand(
+      "plan",
+      "plan through Cartesian waypoints and track the plan in simulation (docs/planning.md)");
+  app->allow_extras();
+  app->add_option("ROBOT", o->plan.model, "the robot (planar2 | panda)");
+  add_plan_options(*app, o->plan, false);
+  app->get_option("--waypoints")->required(false);
+  app->add_option("--controller", o->controller, "ct | osc | task-pd | accel")
+      ->capture_default_str();
+  add_simulation_options(*app, o->sim, "seed of the IK branches and detours",
+                         "time the final target is held after the plan ends [s]");
+  add_json_flag(*app, o->json);
+  return {app, [o, app] {
+            refuse_extras(*app);
+            if (o->plan.waypoints.empty()) throw UsageError("run plan needs --waypoints FILE");
+            const InterruptGuard interrupts;
+            o->plan.seed = o->sim.seed;
+            run_plan_scenario(o->plan, o->controller, o->sim.settle_time, o->sim.control_period,
+                              o->sim.max_acceleration, o->json);
+          }};
+}
+
+}  // namespace
+
+Command add_run_command(CLI::App& root) {
+  auto list = std::make_shared<bool>(false);
+  auto json = std::make_shared<bool>(false);
+  CLI::App* app = root.add_subcommand(
+      "run",
+      "run a closed-loop scenario in simulation and print its figures: mjarm run SCENARIO "
+      "[options] (shelf-pick, pick-place, docking, plan); mjarm run SCENARIO --help for its "
+      "options and parameters; mjarm run --list");
+  app->require_subcommand(0, 1);
+  app->allow_extras();  // an unknown scenario, named with the closest below
+  app->add_flag("--list", *list,
+                "list the scenarios of the registry (--json: each with its parameters, units, "
+                "ranges, defaults, metrics and verdicts)");
+  app->add_flag("--json", *json, "with --list: JSON");
+  const std::vector<Command> scenarios{add_shelf_pick_subcommand(*app),
+                                       add_pick_place_subcommand(*app),
+                                       add_docking_subcommand(*app), add_plan_subcommand(*app)};
+  return {app, [app, list, json, scenarios] {
+            std::vector<std::string> names;
+            for (const Command& scenario : scenarios) names.push_back(scenario.app->get_name());
+            if (!app->remaining().empty())
+              throw UsageError(unknown_name_message("scenario", app->remaining().front(), names));
+            for (const Command& scenario : scenarios) {
+              if (!scenario.app->parsed()) continue;
+              if (*list) throw UsageError("--list lists every scenario: give no SCENARIO with it");
+              return scenario.run();
+            }
+            if (*list) return list_scenarios(*json);
+            throw UsageError("run needs a SCENARIO (" + join(names, " | ") +
+                             ") or --list; mjarm run SCENARIO --help");
           }};
 }
 

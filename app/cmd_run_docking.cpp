@@ -10,10 +10,12 @@
 #include "commands.hpp"
 #include "mjarm/error.hpp"
 #include "mjarm/interrupt.hpp"
+#include "mjarm/scenarios/docking_scenario.hpp"
 #include "mjarm/tasks/docking_grid.hpp"
 #include "mjarm/tasks/docking_plot.hpp"
 #include "mjarm/tasks/docking_task.hpp"
 #include "mjarm/tasks/tracking_gate.hpp"
+#include "scenario_options.hpp"
 
 namespace mjarm::cli {
 
@@ -110,6 +112,8 @@ DockingOptions base_options(const DockingCliOptions& cli) {
                        compact(cli.offset[2]));
     }
   }
+  // the registry's parameters that have no option of their own here
+  apply_parameters(docking_scenario(), cli.parameters, o, docking_parameters);
   return o;
 }
 

@@ -14,7 +14,9 @@
 #include "commands.hpp"
 #include "mjarm/error.hpp"
 #include "mjarm/interrupt.hpp"
+#include "mjarm/scenarios/pick_place_scenario.hpp"
 #include "mjarm/tasks/pick_place_trials.hpp"
+#include "scenario_options.hpp"
 
 namespace mjarm::cli {
 
@@ -267,6 +269,8 @@ void run_pick_place_scenario(PickPlaceCliOptions cli, const RunCommonOptions& co
     o.target_position = std::array<double, 2>{cli.target[0], cli.target[1]};
   if (cli.object_size > 0.0) o.object_half_size = cli.object_size;
   if (cli.solref.size() == 2) o.weld = {cli.solref[0], cli.solref[1]};
+  // the registry's parameters that have no option of their own here
+  apply_parameters(pick_place_scenario(), cli.parameters, o, pick_place_parameters);
   const bool batch = cli.trials > 1;
   if (batch && !common.video.empty())
     throw UsageError("--video films one trial: replay it alone with --seed K (and no --trials)");

@@ -14,6 +14,7 @@
 #include "mjarm/model/user_file.hpp"
 #include "mjarm/sweep/local_backend.hpp"
 #include "mjarm/sweep/slurm_backend.hpp"
+#include "mjarm/sweep/sweep_plots.hpp"
 #include "mjarm/sweep/sweep_report.hpp"
 #include "mjarm/version.hpp"
 #include "output.hpp"
@@ -217,6 +218,8 @@ Command add_sweep_command(CLI::App& root) {
     std::int64_t shard_size = 0, index = -1;
     bool json = false, csv = false, export_json = false, require_complete = false;
     SlurmCli slurm;
+    std::string plot;
+    std::vector<std::string> heat_map;
   };
   auto o = std::make_shared<Options>();
   CLI::App* sweep = root.add_subcommand(
@@ -276,6 +279,13 @@ Command add_sweep_command(CLI::App& root) {
   CLI::App* report = sweep->add_subcommand(
       "report", "success rate per axis value with 95 % Wilson intervals, metric medians and p95");
   add_folder_argument(*report, o->dir);
+  report->add_option("--plot", o->plot,
+                     "draw the figures into this folder: success against each varied parameter, "
+                     "a success heat map, the metrics' distributions (needs gnuplot)");
+  report
+      ->add_option("--heat-map", o->heat_map,
+                   "the heat map's axes X Y (default: the first two axes with several values)")
+      ->expected(2);
   add_json_flag(*report, o->json);
 
   CLI::App* shard = sweep->add_subcommand(
@@ -400,7 +410,24 @@ Command add_sweep_command(CLI::App& root) {
             }
             if (report->parsed()) {
               const SweepReport r = sweep_report(folder);
-              if (o->json) return print_json(sweep_report_json(r));
+              if (!o->heat_map.empty() && o->plot.empty())
+                throw UsageError("--heat-map needs --plot DIR");
+              std::vector<plot::PlotInfo> figures;
+              if (!o->plot.empty()) {
+                check_output_folder(o->plot, "--plot");
+                SweepPlotOptions plot_options;
+                plot_options.heat_map = o->heat_map;
+                figures = plot_sweep(folder, o->plot, plot_options);
+              }
+              if (o->json) {
+                Json doc = sweep_report_json(r);
+                Json paths = Json::array();
+                for (const plot::PlotInfo& f : figures) paths.push_back(f.path.string());
+                doc["figures"] = paths;
+                return print_json(doc);
+              }
+              for (const plot::PlotInfo& f : figures)
+                std::cout << "figure: " << f.path.string() << "\n";
               std::cout << "sweep " << r.scenario << " (plan " << r.hash << "): success "
                         << rate_text(r.success)
                         << (r.success.trials < r.planned

@@ -103,6 +103,7 @@ struct DockingCliOptions {
   std::vector<double> stiffness;        ///< --stiffness (6 values; empty: the law's default)
   std::string plot;                     ///< --plot DIR
   int jobs = 0;                         ///< --jobs
+  Json parameters = Json::object();  ///< the registry's parameters given (--criteria.max-force …)
 };
 /// Registers the docking options on `mjarm run` (cmd_run_docking.cpp).
 void add_docking_options(CLI::App& app, DockingCliOptions& options);
@@ -135,6 +136,7 @@ struct PickPlaceCliOptions {
   double object_size = 0.0;
   std::vector<std::string> cameras;
   bool separate = false;
+  Json parameters = Json::object();  ///< the registry's parameters given (--criteria.max-tilt …)
 };
 /// Registers the pick-place options on `run` (cmd_run_pick_place.cpp).
 void add_pick_place_options(CLI::App& app, PickPlaceCliOptions& options);

@@ -9,14 +9,22 @@ namespace mjarm {
 
 DockingOptions docking_options(const DockingParameters& p) {
   DockingOptions o;
+  apply(p, o);
+  o.keep_samples = false;
+  return o;
+}
+
+DockingParameters docking_parameters(const DockingOptions& o) {
+  return {o.controller, o.offset, o.motion, o.criteria, o.joint_friction, o.max_acceleration};
+}
+
+void apply(const DockingParameters& p, DockingOptions& o) {
   o.controller = p.controller;
   o.offset = p.offset;
   o.motion = p.motion;
   o.criteria = p.criteria;
   o.joint_friction = p.joint_friction;
   o.max_acceleration = p.max_acceleration;
-  o.keep_samples = false;
-  return o;
 }
 
 namespace {
@@ -91,7 +99,7 @@ class DockingScenario final : public DeclaredScenario<DockingParameters> {
 
 }  // namespace
 
-const Scenario& docking_scenario() {
+const DeclaredScenario<DockingParameters>& docking_scenario() {
   static const DockingScenario scenario;
   return scenario;
 }

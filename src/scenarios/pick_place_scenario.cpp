@@ -6,6 +6,32 @@ namespace mjarm {
 
 PickPlaceOptions pick_place_options(const PickPlaceParameters& p) {
   PickPlaceOptions o;
+  apply(p, o);
+  return o;
+}
+
+PickPlaceParameters pick_place_parameters(const PickPlaceOptions& o) {
+  PickPlaceParameters p;
+  p.robot = o.robot;
+  p.grasp = o.grasp;
+  p.mode = o.mode;
+  p.seed = static_cast<std::int64_t>(o.seed);
+  p.object = o.object_position;
+  p.target = o.target_position;
+  p.object_size = o.object_half_size;
+  p.classic = o.classic;
+  p.motion = o.motion;
+  p.criteria = o.criteria;
+  p.weld = o.weld;
+  p.grasp_force = o.grasp_force;
+  p.noslip = o.noslip_iterations;
+  p.impratio = o.impratio;
+  p.control_period = o.control_period;
+  p.max_acceleration = o.max_acceleration;
+  return p;
+}
+
+void apply(const PickPlaceParameters& p, PickPlaceOptions& o) {
   o.robot = p.robot;
   o.grasp = p.grasp;
   o.mode = p.mode;
@@ -22,7 +48,6 @@ PickPlaceOptions pick_place_options(const PickPlaceParameters& p) {
   o.impratio = p.impratio;
   o.control_period = p.control_period;
   o.max_acceleration = p.max_acceleration;
-  return o;
 }
 
 namespace {
@@ -84,7 +109,7 @@ class PickPlaceScenario final : public DeclaredScenario<PickPlaceParameters> {
 
 }  // namespace
 
-const Scenario& pick_place_scenario() {
+const DeclaredScenario<PickPlaceParameters>& pick_place_scenario() {
   static const PickPlaceScenario scenario;
   return scenario;
 }

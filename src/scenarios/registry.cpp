@@ -6,7 +6,9 @@
 
 #include "mjarm/closest_names.hpp"
 #include "mjarm/error.hpp"
-#include "scenarios/scenario_parts.hpp"
+#include "mjarm/scenarios/docking_scenario.hpp"
+#include "mjarm/scenarios/pick_place_scenario.hpp"
+#include "mjarm/scenarios/shelf_pick_scenario.hpp"
 
 namespace mjarm {
 

@@ -8,11 +8,6 @@
 
 namespace mjarm {
 
-// every built-in scenario, one function each (registry.cpp lists them)
-const Scenario& shelf_pick_scenario();
-const Scenario& pick_place_scenario();
-const Scenario& docking_scenario();
-
 namespace detail {
 
 /// The size, frame rate (and default encoding) of @p outputs' video.

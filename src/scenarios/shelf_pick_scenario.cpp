@@ -7,6 +7,24 @@ namespace mjarm {
 
 ShelfPickOptions shelf_pick_options(const ShelfPickParameters& p) {
   ShelfPickOptions o;
+  apply(p, o);
+  return o;
+}
+
+ShelfPickParameters shelf_pick_parameters(const ShelfPickOptions& o) {
+  ShelfPickParameters p;
+  p.robot = o.request.robot;
+  p.controller = o.request.controller;
+  p.seed = static_cast<std::int64_t>(o.request.seed);
+  p.pick = o.request.pick;
+  p.criteria = o.request.criteria;
+  p.control_period = o.control_period;
+  p.max_acceleration = o.max_acceleration;
+  p.settle_time = o.settle_time;
+  return p;
+}
+
+void apply(const ShelfPickParameters& p, ShelfPickOptions& o) {
   o.request.robot = p.robot;
   o.request.controller = p.controller;
   o.request.seed = static_cast<std::uint64_t>(p.seed);
@@ -15,7 +33,6 @@ ShelfPickOptions shelf_pick_options(const ShelfPickParameters& p) {
   o.control_period = p.control_period;
   o.max_acceleration = p.max_acceleration;
   o.settle_time = p.settle_time;
-  return o;
 }
 
 namespace {
@@ -76,7 +93,7 @@ class ShelfPickScenario final : public DeclaredScenario<ShelfPickParameters> {
 
 }  // namespace
 
-const Scenario& shelf_pick_scenario() {
+const DeclaredScenario<ShelfPickParameters>& shelf_pick_scenario() {
   static const ShelfPickScenario scenario;
   return scenario;
 }

@@ -165,11 +165,28 @@ TEST(CliBounds, ModelsBeyondTheElementBoundAreRefusedBeforeCompiling) {
 }
 
 TEST(CliBounds, EveryCommandThatLoadsAModelTakesTheElementBound) {
-  for (const std::vector<std::string>& command :
-       {std::vector<std::string>{"info"}, {"fk"}, {"workspace"}, {"singularities"}, {"ik"},
-        {"render"}, {"view"}, {"replay"}, {"bimanual"}, {"run"}, {"plan"}, {"demo"},
-        {"env", "list"}, {"env", "run"}, {"bench", "ik"}, {"bench", "control"}, {"bench", "env"},
-        {"bench", "plan"}}) {
+  for (const std::vector<std::string>& command : {std::vector<std::string>{"info"},
+                                                  {"fk"},
+                                                  {"workspace"},
+                                                  {"singularities"},
+                                                  {"ik"},
+                                                  {"render"},
+                                                  {"view"},
+                                                  {"replay"},
+                                                  {"bimanual"},
+                                                  {"run", "shelf-pick"},
+                                                  {"run", "pick-place"},
+                                                  {"run", "docking"},
+                                                  {"run", "plan"},
+                                                  {"sweep", "run"},
+                                                  {"plan"},
+                                                  {"demo"},
+                                                  {"env", "list"},
+                                                  {"env", "run"},
+                                                  {"bench", "ik"},
+                                                  {"bench", "control"},
+                                                  {"bench", "env"},
+                                                  {"bench", "plan"}}) {
     const CliRun help = run_cli(with(command, {"--help"}));
     EXPECT_EQ(help.exit_code, 0) << command.front();
     EXPECT_NE(help.out.find("--max-model-elements"), std::string::npos) << command.front();

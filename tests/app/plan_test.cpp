@@ -157,9 +157,9 @@ TEST(RunPlanCli, TracksThePlanAndReportsTheError) {
                "unknown robot");
   expect_error({"run", "plan", "panda", "--waypoints", plan_file("five.json", kFive), "--record",
                 (scratch() / "rec").string()},
-               2, "shelf-pick options");
+               2, "run plan: unknown option '--record'");
   expect_error({"run", "shelf-pick", "--waypoints", plan_file("five.json", kFive)}, 2,
-               "belong to 'run plan'");
+               "run shelf-pick: unknown option '--waypoints'");
 }
 
 }  // namespace

@@ -23,10 +23,12 @@ using mjarm::test::slurp;
 using nlohmann::json;
 
 TEST(RunDockingCli, HelpNamesTheDockingOptions) {
-  const CliRun run = run_cli({"run", "--help"});
+  const CliRun run = run_cli({"run", "docking", "--help"});
   EXPECT_EQ(run.exit_code, 0);
+  // its own options, then every other parameter of the registry with unit, range and default
   for (const char* word : {"docking", "--sensorless", "--friction", "--offset", "--grid", "--gate",
-                           "--plot", "--jobs", "cic | hqp-ac | se3"})
+                           "--plot", "--jobs", "cic | hqp-ac | se3", "--criteria.max-force",
+                           "peak ‖f‖ of the contact force [N]; positive and finite (default 40.0)"})
     EXPECT_NE(run.out.find(word), std::string::npos) << word;
 }
 
@@ -86,9 +88,13 @@ TEST(RunDockingCli, BadCommandLinesAreRefusedBeforeTheWork) {
   expect_error({"run", "docking", "--controller", "all"}, 2, "needs --grid or --gate");
   expect_error({"run", "docking", "--grid", "--offset", "1", "0", "0"}, 2, "single docking run");
   expect_error({"run", "docking", "--grid", "--gate"}, 2, "excludes");
-  expect_error({"run", "docking", "--robot", "panda"}, 2, "--robot is not a docking option");
-  expect_error({"run", "docking", "--seed", "3"}, 2, "--seed is not a docking option");
-  expect_error({"run", "shelf-pick", "--sensorless"}, 2, "--sensorless is a docking option");
+  expect_error({"run", "docking", "--robot", "panda"}, 2, "run docking: unknown option '--robot'");
+  expect_error({"run", "docking", "--seed", "3"}, 2, "run docking: unknown option '--seed'");
+  expect_error({"run", "shelf-pick", "--sensorless"}, 2,
+               "run shelf-pick: unknown option '--sensorless'");
+  expect_error({"run", "docking", "--preloud", "3"}, 2, "closest: --preload");
+  expect_error({"run", "docking", "--criteria.max-force", "-3"}, 2,
+               "docking: criteria.max_force must be positive and finite [N], got -3");
   expect_error({"run", "docking", "--reference", "double"}, 2, "references: two-phase, single");
   expect_error({"run", "docking", "--jobs", "100"}, 2, "--jobs");
   expect_error({"run", "docking", "--insertion-speed", "0"}, 2, "--insertion-speed");

@@ -33,11 +33,13 @@ std::vector<std::string> brisk_pick_place(std::vector<std::string> args) {
 }
 
 TEST(RunPickPlaceCli, HelpNamesTheOptions) {
-  const CliRun run = run_cli({"run", "--help"});
+  const CliRun run = run_cli({"run", "pick-place", "--help"});
   EXPECT_EQ(run.exit_code, 0);
-  for (const char* word : {"pick-place", "--grasp", "--mode", "--trials", "--threads", "--classic",
-                           "--object", "--target", "--cameras", "--video-per-camera",
-                           "--grasp-force", "--weld-solref", "--noslip", "--place-height"})
+  for (const char* word :
+       {"pick-place", "--grasp", "--mode", "--trials", "--threads", "--classic", "--object",
+        "--target", "--cameras", "--video-per-camera", "--grasp-force", "--weld-solref", "--noslip",
+        "--place-height", "--criteria.max-tilt", "--impratio",
+        "--motion.limits.max-angular-velocity"})
     EXPECT_NE(run.out.find(word), std::string::npos) << word;
 }
 
@@ -154,8 +156,12 @@ TEST(RunPickPlaceCli, BadCommandLines) {
   expect_error({"run", "pick-place", "--video", "v.mp4", "--cameras", "front,back"}, 2,
                "unknown camera 'back'");
   expect_error({"run", "pick-place", "--cameras", "top"}, 2, "need --video FILE");
-  expect_error({"run", "pick-place", "--controller", "osc"}, 2, "not pick-place options");
-  expect_error({"run", "shelf-pick", "--grasp", "weld"}, 2, "--grasp is a pick-place option");
+  expect_error({"run", "pick-place", "--controller", "osc"}, 2,
+               "run pick-place: unknown option '--controller'");
+  expect_error({"run", "shelf-pick", "--grasp", "weld"}, 2,
+               "run shelf-pick: unknown option '--grasp'");
+  expect_error({"run", "pick-place", "--impratio", "0.5"}, 2,
+               "pick-place: impratio must be finite and ≥ 1, got 0.5");
   expect_error({"run", "pick-place", "--trials", "0"}, 2, "--trials");
   expect_error({"run", "pick-place", "--trials", "20000"}, 2, "--trials");
   expect_error({"run", "pick-place", "--object", "0.3"}, 2, "--object");

@@ -40,11 +40,17 @@ void expect_recording(const fs::path& dir, const std::string& status) {
 }
 
 TEST(RunCli, HelpNamesTheScenarioAndOptions) {
-  const CliRun run = run_cli({"run", "--help"});
+  const CliRun scenarios = run_cli({"run", "--help"});
+  EXPECT_EQ(scenarios.exit_code, 0);
+  for (const char* word : {"shelf-pick", "pick-place", "docking", "plan", "--list"})
+    EXPECT_NE(scenarios.out.find(word), std::string::npos) << word;
+  const CliRun run = run_cli({"run", "shelf-pick", "--help"});
   EXPECT_EQ(run.exit_code, 0);
   for (const char* word : {"shelf-pick", "--robot", "--controller", "--pick", "--seed", "--record",
-                           "--json", "--all", "--video", "--camera", "--size", "--fps"})
+                           "--json", "--all", "--video", "--camera", "--size", "--fps",
+                           "--criteria.tolerance", "[m]; positive and finite (default 0.001)"})
     EXPECT_NE(run.out.find(word), std::string::npos) << word;
+  EXPECT_EQ(run.out.find("--grasp"), std::string::npos);  // another scenario's
 }
 
 TEST(RunCli, ListShowsTheScenariosOfTheRegistry) {
@@ -66,8 +72,21 @@ TEST(RunCli, ListShowsTheScenariosOfTheRegistry) {
     EXPECT_EQ(p["optional"], true);
   }
   EXPECT_TRUE(found);
-  expect_error({"run", "--list", "docking"}, 2, "excludes");
-  expect_error({"run"}, 2, "run needs a SCENARIO");
+  expect_error({"run", "--list", "docking"}, 2, "give no SCENARIO with it");
+  expect_error({"run"}, 2, "run needs a SCENARIO (shelf-pick | pick-place | docking | plan)");
+}
+
+TEST(RunCli, EveryParameterOfTheRegistryIsAnOption) {
+  const json doc =
+      run_json({"run", "shelf-pick", "--robot", "planar2", "--controller", "ct",
+                "--criteria.tolerance", "0.002", "--criteria.hold-time", "0.1", "--json"});
+  EXPECT_EQ(doc["tolerance"], 0.002);
+  EXPECT_EQ(doc["hold_time"], 0.1);
+  EXPECT_EQ(doc["outcome"], "held");
+  expect_error({"run", "shelf-pick", "--criteria.tolerance", "-1"}, 2,
+               "shelf-pick: criteria.tolerance must be positive and finite [m], got -1");
+  expect_error({"run", "shelf-pick", "--criteria.tolerance", "wide"}, 2,
+               "--criteria.tolerance: criteria.tolerance must be a number, got 'wide'");
 }
 
 TEST(RunCli, JsonHoldsEveryFigure) {
@@ -211,7 +230,7 @@ TEST(RunCli, DemoFailsWhenItsVideoFails) {
 TEST(RunCli, BadInputFailsClearly) {
   expect_error({"run", "shelf-pick", "--robot", "ur5"}, 2, "choices: planar2, panda");
   expect_error({"run", "shelf-pick", "--controller", "pid"}, 2, "choices: ct, osc, task-pd, accel");
-  expect_error({"run", "shelf-place"}, 2, "unknown scenario 'shelf-place'; scenarios: shelf-pick");
+  expect_error({"run", "shelf-place"}, 2, "unknown scenario 'shelf-place'; closest: shelf-pick");
   expect_error({"run", "shelf-pick", "--robot", "planar2", "--pick", "0.92", "0", "1"}, 1,
                "planar2 reaches 0.2");
   expect_error({"run", "shelf-pick", "--robot", "planar2", "--pick", "0.92", "0", "1"}, 1,

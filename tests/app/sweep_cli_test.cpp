@@ -50,6 +50,10 @@ TEST(SweepCli, RunsMergesAndReportsASweepFile) {
   const json report = run_json({"sweep", "report", out.string(), "--json"});
   EXPECT_EQ(report["groups"][1]["value"], "osc");
   EXPECT_EQ(report["groups"][1]["success"]["trials"], 3);
+  const json plotted = run_json(
+      {"sweep", "report", out.string(), "--plot", (scratch() / "figures").string(), "--json"});
+  EXPECT_EQ(plotted["figures"].size(), 2u);  // success against the one axis, the metrics
+  EXPECT_TRUE(fs::exists(scratch() / "figures" / "success_vs_controller.png"));
   const CliRun text = run_cli({"sweep", "report", out.string()});
   EXPECT_EQ(text.exit_code, 0) << text.err;
   EXPECT_NE(text.out.find("success 6/6"), std::string::npos) << text.out;

@@ -11,6 +11,7 @@
 #include "mjarm/error.hpp"
 #include "mjarm/interrupt.hpp"
 #include "mjarm/sweep/local_backend.hpp"
+#include "mjarm/sweep/sweep_plots.hpp"
 #include "mjarm/sweep/sweep_report.hpp"
 #include "support/error_message.hpp"
 #include "support/files.hpp"
@@ -164,6 +165,25 @@ record: failures
   EXPECT_EQ(r.groups[0].success.successes, 0);
   EXPECT_EQ(r.groups[1].success.trials, 1);
   EXPECT_EQ(sweep_report_json(r)["groups"][1]["success"]["rate"], 1.0);
+}
+
+TEST(SweepReport, TheFiguresAreDrawnPerAxisWithAHeatMapAndTheMetrics) {
+  const SweepFolder folder = prepared("figures");
+  run(folder, 2);
+  merge_sweep(folder);
+  const std::vector<plot::PlotInfo> figures = plot_sweep(folder, folder.dir / "figures");
+  std::vector<std::string> names;
+  for (const plot::PlotInfo& f : figures) {
+    names.push_back(f.name);
+    EXPECT_TRUE(fs::exists(f.path)) << f.path;
+  }
+  EXPECT_EQ(names,
+            (std::vector<std::string>{"success_vs_controller", "success_vs_criteria_tolerance",
+                                      "success_heat_map", "metric_distributions"}));
+  SweepPlotOptions options;
+  options.heat_map = {"controller", "criteria.tolerence"};
+  EXPECT_THAT(error_of([&] { plot_sweep(folder, folder.dir / "figures", options); }),
+              HasSubstr("unknown axis 'criteria.tolerence'; closest: criteria.tolerance"));
 }
 
 TEST(SweepReport, WilsonIntervalsAreTheTextbooks) {

@@ -39,17 +39,26 @@ class DeclaredScenario : public Scenario {
   /// The typed parameters @p values stand for, every value checked.
   /// @throws Error as `resolve`
   P parameters_from(const nlohmann::ordered_json& values) const {
+    P p;
+    set(p, values);
+    return p;
+  }
+
+  /// Sets @p values (an object of parameter names to values) on @p p, each checked; @p p is
+  /// unchanged when one is refused.
+  /// @throws Error as `resolve`
+  void set(P& p, const nlohmann::ordered_json& values) const {
     const std::string where(name());
     if (!values.is_object())
       throw Error(where + ": the parameters must be an object of names to values, got " +
                   values.dump());
-    P p;
+    P changed = p;
     const std::vector<FieldInfo> table = parameters();
     for (auto it = values.begin(); it != values.end(); ++it) {
       detail::check_parameter_name(table, it.key(), where);
-      detail::set_listed_field(p, detail::parameter_path(it.key()), it.value(), where);
+      detail::set_listed_field(changed, detail::parameter_path(it.key()), it.value(), where);
     }
-    return p;
+    p = std::move(changed);
   }
 
   nlohmann::ordered_json resolve(const nlohmann::ordered_json& values) const override {

@@ -34,5 +34,13 @@ constexpr auto declared_fields(const DockingParameters*) {
 
 /// The docking's options for @p p (no recording, no video, no samples kept).
 DockingOptions docking_options(const DockingParameters& p);
+/// Sets the fields of @p options that @p p covers; the others (scene, recording, video,
+/// samples) are kept.
+void apply(const DockingParameters& p, DockingOptions& options);
+/// The parameters @p options stand for.
+DockingParameters docking_parameters(const DockingOptions& options);
+
+/// The docking of the registry.
+const DeclaredScenario<DockingParameters>& docking_scenario();
 
 }  // namespace mjarm

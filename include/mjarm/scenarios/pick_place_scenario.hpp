@@ -63,5 +63,12 @@ constexpr auto declared_fields(const PickPlaceParameters*) {
 
 /// The pick and place's options for @p p (no recording, no video).
 PickPlaceOptions pick_place_options(const PickPlaceParameters& p);
+/// Sets the fields of @p options that @p p covers; the others (ranges, recording, video) are kept.
+void apply(const PickPlaceParameters& p, PickPlaceOptions& options);
+/// The parameters @p options stand for.
+PickPlaceParameters pick_place_parameters(const PickPlaceOptions& options);
+
+/// The pick and place of the registry.
+const DeclaredScenario<PickPlaceParameters>& pick_place_scenario();
 
 }  // namespace mjarm

@@ -45,5 +45,12 @@ constexpr auto declared_fields(const ShelfPickParameters*) {
 
 /// The shelf pick's options for @p p (no recording, no video).
 ShelfPickOptions shelf_pick_options(const ShelfPickParameters& p);
+/// Sets the fields of @p options that @p p covers; the others (recording, video) are kept.
+void apply(const ShelfPickParameters& p, ShelfPickOptions& options);
+/// The parameters @p options stand for.
+ShelfPickParameters shelf_pick_parameters(const ShelfPickOptions& options);
+
+/// The shelf pick of the registry.
+const DeclaredScenario<ShelfPickParameters>& shelf_pick_scenario();
 
 }  // namespace mjarm
