@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <map>
+#include <mutex>
 #include <string>
 
 #include "mjarm/error.hpp"
@@ -120,12 +122,28 @@ Eigen::Vector3d draw_shelf_pick(const ShelfPickRobot& robot, const Chain& chain,
   return pick;
 }
 
+namespace {
+
+/// The bundled model called @p name, loaded once per process and shared (its mjModel is
+/// immutable): a batch or sweep of short picks would otherwise spend much of each loading it,
+/// one thread at a time (MuJoCo's XML loader is not thread-safe).
+Robot shared_bundled(const std::string& name) {
+  static std::mutex mutex;
+  static std::map<std::string, Robot> loaded;
+  const std::lock_guard lock(mutex);
+  const auto it = loaded.find(name);
+  if (it != loaded.end()) return it->second;
+  return loaded.emplace(name, Robot::bundled(name)).first->second;
+}
+
+}  // namespace
+
 ShelfPickPlan plan_shelf_pick(const ShelfPickRequest& request) {
   const ShelfPickRobot& robot = shelf_pick_robot(request.robot);
   check_shelf_pick_controller(request.controller);
   check(request.criteria, "shelf pick");
 
-  const Robot model = Robot::bundled(robot.model);
+  const Robot model = shared_bundled(robot.model);
   ShelfPickPlan plan{&robot, model, Chain(model, robot.frame), request.controller, request.seed,
                      Eigen::Vector3d::Zero(), false, {}, {}, {}};
   const Chain& chain = plan.chain;
