@@ -312,27 +312,6 @@ void refuse_extras(const CLI::App& app) {
                    where + " --help lists them)");
 }
 
-/// The options every scenario's video takes.
-struct VideoCli {
-  std::string path, camera, size = "640x480";
-  double fps = 30.0;
-};
-
-CLI::Option* add_video_options(CLI::App& app, VideoCli& o, const std::string& camera_help) {
-  CLI::Option* video = app.add_option(
-      "--video", o.path, "write an MP4 of the run (rendered headless; needs Debian's ffmpeg)");
-  if (!camera_help.empty()) app.add_option("--camera", o.camera, camera_help)->needs(video);
-  app.add_option("--size", o.size, "video size WIDTHxHEIGHT [pixels], even")
-      ->check(pixel_size({2, 2}, true, {4096, 4096}))
-      ->needs(video)
-      ->capture_default_str();
-  app.add_option("--fps", o.fps, "video frames per simulated second")
-      ->check(number_in(1.0, 240.0))
-      ->needs(video)
-      ->capture_default_str();
-  return video;
-}
-
 /// The options of the shelf pick and the planned motion that set the simulation.
 struct SimulationCli {
   std::uint64_t seed = 1;
@@ -388,7 +367,7 @@ Command add_shelf_pick_subcommand(CLI::App& run) {
   CLI::Option* record =
       app->add_option("--record", o->record, "record state, task and events into DIR");
   CLI::Option* video = add_video_options(
-      *app, o->video,
+      *app, o->video, "the run",
       "video camera: a camera of the model, or 'follow' (the tool tip); default: a free camera "
       "framing the robot and the pick point");
   app->add_flag("--all", o->all, "every robot × controller (a table of the worst figures)")
@@ -483,7 +462,7 @@ Command add_pick_place_subcommand(CLI::App& run) {
                          "target (same seed, same trial)",
                          "DONE lasts this long before the trial is judged [s]");
   app->add_option("--record", o->record, "record state, task and events into DIR");
-  add_video_options(*app, o->video, "");
+  add_video_options(*app, o->video, "the run");
   add_json_flag(*app, o->json);
   add_pick_place_options(*app, o->pick_place);
   o->parameters =
@@ -548,7 +527,7 @@ Command add_docking_subcommand(CLI::App& run) {
   app->add_option("--controller", o->controller, "cic | hqp-ac | se3 | all (all: --grid or --gate)")
       ->capture_default_str();
   app->add_option("--record", o->record, "record state, task and events into DIR");
-  add_video_options(*app, o->video,
+  add_video_options(*app, o->video, "the run",
                     "video camera: a camera of the model, or 'follow' (the peg tip); default: a "
                     "free camera close to the socket");
   add_json_flag(*app, o->json);

@@ -33,6 +33,14 @@ std::string rate_text(const SuccessRate& r) {
          "; 95 % interval " + fixed(100.0 * r.low, 1) + "–" + percent(r.high) + ")";
 }
 
+Json success_json(const SuccessRate& r) {
+  return {{"successes", r.successes},
+          {"trials", r.trials},
+          {"rate", r.rate},
+          {"low", r.low},
+          {"high", r.high}};
+}
+
 Json merge_json(const SweepMerge& m, const SweepFolder& folder) {
   return {{"database", folder.results().string()},
           {"shards", m.shards},
@@ -76,11 +84,7 @@ void run_here(const SweepFolder& folder, const SweepPlan& plan, int jobs, bool j
                   {"interrupted", r.interrupted},
                   {"seconds", r.seconds}};
     doc["merge"] = merge_json(merge, folder);
-    doc["success"] = {{"successes", success.successes},
-                      {"trials", success.trials},
-                      {"rate", success.rate},
-                      {"low", success.low},
-                      {"high", success.high}};
+    doc["success"] = success_json(success);
     print_json(doc);
   } else {
     std::cout << "ran " << r.shards_run << " shards (" << r.trials_run << " trials) on " << r.jobs
@@ -187,11 +191,7 @@ void submit_to_slurm(const SweepFolder& folder, const SweepPlan& plan, const Slu
   const SuccessRate success = sweep_report(folder).success;
   if (json) {
     doc["merge"] = merge_json(merge, folder);
-    doc["success"] = {{"successes", success.successes},
-                      {"trials", success.trials},
-                      {"rate", success.rate},
-                      {"low", success.low},
-                      {"high", success.high}};
+    doc["success"] = success_json(success);
     print_json(doc);
     return;
   }

@@ -17,29 +17,10 @@ namespace mjarm::cli {
 
 namespace {
 
-struct TeleopVideoOptions {
-  std::string path;
-  std::string size = "640x480";
-  double fps = 30.0;
-};
-
-void add_teleop_video_options(CLI::App& app, TeleopVideoOptions& o) {
-  CLI::Option* video = app.add_option(
-      "--video", o.path, "write an MP4 of the session (rendered headless; needs Debian's ffmpeg)");
-  app.add_option("--size", o.size, "video size WIDTHxHEIGHT [pixels], even")
-      ->check(pixel_size({2, 2}, true, {4096, 4096}))
-      ->needs(video)
-      ->capture_default_str();
-  app.add_option("--fps", o.fps, "video frames per simulated second")
-      ->check(number_in(1.0, 240.0))
-      ->needs(video)
-      ->capture_default_str();
-}
-
 // the video of a session: frames on the simulation clock, from a camera framing the robot
 class TeleopVideo {
  public:
-  TeleopVideo(const TeleopSession& session, const TeleopVideoOptions& o) {
+  TeleopVideo(const TeleopSession& session, const VideoCli& o) {
     const PixelSize size = parse_pixel_size(o.size);
     RunVideoOptions options;
     options.width = size.width;
@@ -109,7 +90,7 @@ Command add_replay_command(CLI::App& root) {
   struct Options {
     std::string file;
     std::string model;
-    TeleopVideoOptions video;
+    VideoCli video;
     bool json = false;
   };
   auto o = std::make_shared<Options>();
@@ -120,7 +101,7 @@ Command add_replay_command(CLI::App& root) {
   app->add_option("--model", o->model,
                   "model to replay on (default: the one the file names); it must be the model "
                   "the session was recorded on");
-  add_teleop_video_options(*app, o->video);
+  add_video_options(*app, o->video, "the session");
   add_json_flag(*app, o->json);
   return {app, [o] {
             if (!o->video.path.empty()) check_output_file(o->video.path, "--video");
@@ -191,7 +172,7 @@ Command add_bimanual_command(CLI::App& root) {
     std::string mode = "position";
     std::string record;
     double lift_height = 0.2;
-    TeleopVideoOptions video;
+    VideoCli video;
     bool json = false;
   };
   auto o = std::make_shared<Options>();
@@ -204,7 +185,7 @@ Command add_bimanual_command(CLI::App& root) {
       ->check(number_in(0.0, 0.5))
       ->capture_default_str();
   app->add_option("--record-session", o->record, "write the session to FILE (mjarm replay FILE)");
-  add_teleop_video_options(*app, o->video);
+  add_video_options(*app, o->video, "the session");
   add_json_flag(*app, o->json);
   return {
       app, [o] {

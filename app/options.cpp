@@ -395,3 +395,23 @@ void check_output_folder(const std::string& path, const std::string& option) {
 }
 
 }  // namespace mjarm::cli
+
+namespace mjarm::cli {
+
+CLI::Option* add_video_options(CLI::App& app, VideoCli& o, const std::string& what,
+                               const std::string& camera_help) {
+  CLI::Option* video = app.add_option(
+      "--video", o.path, "write an MP4 of " + what + " (rendered headless; needs Debian's ffmpeg)");
+  if (!camera_help.empty()) app.add_option("--camera", o.camera, camera_help)->needs(video);
+  app.add_option("--size", o.size, "video size WIDTHxHEIGHT [pixels], even")
+      ->check(pixel_size({2, 2}, true, {4096, 4096}))
+      ->needs(video)
+      ->capture_default_str();
+  app.add_option("--fps", o.fps, "video frames per simulated second")
+      ->check(number_in(1.0, 240.0))
+      ->needs(video)
+      ->capture_default_str();
+  return video;
+}
+
+}  // namespace mjarm::cli

@@ -74,6 +74,16 @@ CLI::Option* add_model_argument(CLI::App& command, std::string& model);
 CLI::Option* add_site_option(CLI::App& command, std::string& site);
 
 /// Adds `--json` to @p command.
+/// What a command's video options read.
+struct VideoCli {
+  std::string path, camera, size = "640x480";
+  double fps = 30.0;
+};
+/// Adds `--video` ("write an MP4 of @p what …"), `--camera` when @p camera_help is not empty,
+/// `--size` and `--fps` (both needing --video); returns the --video option.
+CLI::Option* add_video_options(CLI::App& app, VideoCli& o, const std::string& what,
+                               const std::string& camera_help = {});
+
 CLI::Option* add_json_flag(CLI::App& command, bool& json);
 
 /// Loads MODEL (a bundled name or a path) with `Robot::load`.
