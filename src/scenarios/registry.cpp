@@ -6,6 +6,7 @@
 
 #include "mjarm/closest_names.hpp"
 #include "mjarm/error.hpp"
+#include "mjarm/scenarios/bimanual_lift_scenario.hpp"
 #include "mjarm/scenarios/docking_scenario.hpp"
 #include "mjarm/scenarios/pick_place_scenario.hpp"
 #include "mjarm/scenarios/shelf_pick_scenario.hpp"
@@ -14,8 +15,8 @@ namespace mjarm {
 
 std::span<const Scenario* const> scenarios() {
   // a new scenario: its files and one line here
-  static const std::array<const Scenario*, 3> all{&shelf_pick_scenario(), &pick_place_scenario(),
-                                                  &docking_scenario()};
+  static const std::array<const Scenario*, 4> all{&shelf_pick_scenario(), &pick_place_scenario(),
+                                                  &docking_scenario(), &bimanual_lift_scenario()};
   return all;
 }
 

@@ -9,10 +9,14 @@
 
 #include "mjarm/error.hpp"
 #include "mjarm/fields_json.hpp"
+#include "mjarm/model/robot.hpp"
 #include "mjarm/scenarios/docking_scenario.hpp"
 #include "mjarm/scenarios/pick_place_scenario.hpp"
 #include "mjarm/scenarios/registry.hpp"
 #include "mjarm/scenarios/shelf_pick_scenario.hpp"
+#include "mjarm/teleop/bimanual_lift.hpp"
+#include "mjarm/teleop/session_log.hpp"
+#include "mjarm/teleop/teleop_session.hpp"
 #include "support/error_message.hpp"
 
 namespace mjarm {
@@ -40,7 +44,7 @@ double metric(const Scenario& s, const TrialOutcome& o, const std::string& name)
 TEST(Scenarios, AreListedAndFoundByName) {
   std::vector<std::string> names;
   for (const Scenario* s : scenarios()) names.emplace_back(s->name());
-  EXPECT_THAT(names, ElementsAre("shelf-pick", "pick-place", "docking"));
+  EXPECT_THAT(names, ElementsAre("shelf-pick", "pick-place", "docking", "bimanual-lift"));
   EXPECT_EQ(&find_scenario("docking"), scenarios()[2]);
   const std::string message = error_of([] { find_scenario("pick-plce"); });
   EXPECT_THAT(message, HasSubstr("unknown scenario 'pick-plce'; closest: pick-place"));
@@ -48,7 +52,7 @@ TEST(Scenarios, AreListedAndFoundByName) {
     EXPECT_FALSE(s->doc().empty()) << s->name();
     EXPECT_FALSE(s->camera().empty()) << s->name();
     EXPECT_GE(s->verdicts().size(), 2u) << s->name();
-    EXPECT_GE(s->metrics().size(), 5u) << s->name();
+    EXPECT_GE(s->metrics().size(), 4u) << s->name();
   }
 }
 
@@ -189,6 +193,29 @@ TEST(Scenarios, ADockingThroughTheRegistrySeats) {
   EXPECT_EQ(o.verdict, "seated");
   EXPECT_LE(metric(s, o, "peak_force"), DockingCriteria{}.max_force);
   EXPECT_GT(metric(s, o, "first_contact_time"), 0.0);
+}
+
+TEST(Scenarios, ABimanualLiftThroughTheRegistryIsTheSessionsOwnLift) {
+  const Scenario& s = find_scenario("bimanual-lift");
+  const TrialOutcome o = s.run(Json::object());
+  EXPECT_TRUE(o.success) << o.message;
+  EXPECT_EQ(o.verdict, "lifted");
+  EXPECT_EQ(o.status, RunStatus::finished);
+  // the same lift run by hand on a session of the same scene
+  const Robot robot = Robot::bundled("dual_arm_box");
+  TeleopSession session(robot, TeleopOptions{});
+  SessionRecorder recorder(session);
+  const BimanualLiftResult direct = run_bimanual_lift(recorder);
+  EXPECT_EQ(metric(s, o, "lifted"), direct.lifted);
+  EXPECT_EQ(metric(s, o, "sag"), direct.sag);
+  EXPECT_EQ(o.end_time, session.stats().time);
+
+  // a tolerance the lift cannot meet: judged not lifted, with the lift's own message
+  const TrialOutcome strict = s.run(Json{{"lift.tolerance", 1e-6}});
+  EXPECT_FALSE(strict.success);
+  EXPECT_EQ(strict.verdict, "not_lifted");
+  EXPECT_THAT(strict.message, HasSubstr("the bar rose"));
+  EXPECT_EQ(metric(s, strict, "lifted"), direct.lifted);
 }
 
 }  // namespace

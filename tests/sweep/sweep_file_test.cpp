@@ -187,6 +187,7 @@ TEST(SweepFile, TheExampleSweepsAreValidAndAsLargeAsTheySay) {
   const std::map<std::string, std::int64_t> trials{{"shelf_pick.yaml", 240},
                                                    {"pick_place.yaml", 160},
                                                    {"docking.yaml", 150},
+                                                   {"bimanual_lift.yaml", 30},
                                                    {"pick_place_random.yaml", 200}};
   std::size_t seen = 0;
   for (const auto& entry : std::filesystem::directory_iterator(dir)) {
