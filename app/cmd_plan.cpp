@@ -12,6 +12,7 @@
 #include "mjarm/file_writer.hpp"
 #include "mjarm/interrupt.hpp"
 #include "mjarm/planning/waypoint_file.hpp"
+#include "mjarm/planning/waypoint_path_plan.hpp"
 #include "mjarm/plot/gnuplot.hpp"
 #include "mjarm/plot/trajectory_plot.hpp"
 
@@ -125,12 +126,9 @@ PlannedPath plan_path(const PlanCliOptions& o) {
   options.limits.max_torque = per_joint(o.max_torque, n, "--torque-limit");
   options.checks.min_singular_value = o.min_sigma;
   options.seed = o.seed;
-  WaypointPlanner planner(chain, options);
-  planner.set_fixed_qpos(out.start.qpos);
-  ChainKinematics kin(chain);
-  kin.set_fixed_qpos(out.start.qpos);
-  out.poses = file.poses(kin.update(out.start.q).R);
-  out.result = planner.plan(out.start.q, out.poses);
+  WaypointPathPlan plan = plan_waypoint_path(chain, out.start.qpos, file, options);
+  out.poses = std::move(plan.poses);
+  out.result = std::move(plan.result);
   return out;
 }
 

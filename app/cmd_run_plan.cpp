@@ -7,8 +7,7 @@
 
 #include "commands.hpp"
 #include "mjarm/error.hpp"
-#include "mjarm/planning/planned_reference.hpp"
-#include "mjarm/sim/simulation.hpp"
+#include "mjarm/tasks/planned_motion.hpp"
 #include "mjarm/tasks/shelf_pick_controllers.hpp"
 
 namespace mjarm::cli {
@@ -45,21 +44,15 @@ void run_plan_scenario(const PlanCliOptions& given, const std::string& controlle
     }
     throw Error("no plan: " + plan.result.message);
   }
-  const Chain& chain = *plan.chain;
-  SimulationOptions sim_options;
-  sim_options.mode = SimulationMode::torque;
-  sim_options.control_period = control_period;
-  sim_options.max_acceleration = max_acceleration;
-  Simulation sim(plan.robot, sim_options);
-  const std::unique_ptr<Controller> controller =
-      make_shelf_pick_controller(controller_name, chain, *robot);
-  sim.add_controller(*controller);
-  std::vector<double> qpos(plan.start.qpos.data(), plan.start.qpos.data() + plan.start.qpos.size());
-  sim.set_state(qpos, std::vector<double>(static_cast<std::size_t>(plan.robot.nv()), 0.0));
-  PlannedReference source(chain, plan.result.trajectory, settle_time,
-                          sim.uses_rk4() ? 0.0 : 0.5 * sim.timestep());
-  const RunResult run = sim.run(source, source.run_time() + 1.0);
-  const TrackingError& e = source.tracking();
+  TrackingOptions tracking;
+  tracking.controller = controller_name;
+  tracking.settle_time = settle_time;
+  tracking.control_period = control_period;
+  tracking.max_acceleration = max_acceleration;
+  const PlannedMotionRun tracked =
+      track_planned_motion(*plan.chain, *robot, plan.start.qpos, plan.result.trajectory, tracking);
+  const RunResult& run = tracked.run;
+  const TrackingError& e = tracked.tracking;
   if (json) {
     Json doc = plan_json(plan);
     doc["scenario"] = "plan";
@@ -77,7 +70,7 @@ void run_plan_scenario(const PlanCliOptions& given, const std::string& controlle
   } else {
     print_plan(std::cout, plan);
     std::cout << "tracked in simulation by " << controller_name << " (torque mode, control period "
-              << compact(sim.control_period()) << " s): " << to_string(run.status) << '\n';
+              << compact(tracked.control_period) << " s): " << to_string(run.status) << '\n';
     print_fields(
         std::cout,
         {{"position error [mm]", "max " + fixed(e.max_position * 1e3, 3) + ", RMS " +

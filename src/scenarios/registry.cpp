@@ -9,14 +9,16 @@
 #include "mjarm/scenarios/bimanual_lift_scenario.hpp"
 #include "mjarm/scenarios/docking_scenario.hpp"
 #include "mjarm/scenarios/pick_place_scenario.hpp"
+#include "mjarm/scenarios/plan_scenario.hpp"
 #include "mjarm/scenarios/shelf_pick_scenario.hpp"
 
 namespace mjarm {
 
 std::span<const Scenario* const> scenarios() {
   // a new scenario: its files and one line here
-  static const std::array<const Scenario*, 4> all{&shelf_pick_scenario(), &pick_place_scenario(),
-                                                  &docking_scenario(), &bimanual_lift_scenario()};
+  static const std::array<const Scenario*, 5> all{&shelf_pick_scenario(), &pick_place_scenario(),
+                                                  &docking_scenario(), &plan_scenario(),
+                                                  &bimanual_lift_scenario()};
   return all;
 }
 

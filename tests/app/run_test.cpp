@@ -56,10 +56,10 @@ TEST(RunCli, HelpNamesTheScenarioAndOptions) {
 TEST(RunCli, ListShowsTheScenariosOfTheRegistry) {
   const CliRun text = run_cli({"run", "--list"});
   ASSERT_EQ(text.exit_code, 0) << text.err;
-  for (const char* name : {"shelf-pick", "pick-place", "docking", "bimanual-lift"})
+  for (const char* name : {"shelf-pick", "pick-place", "docking", "plan", "bimanual-lift"})
     EXPECT_NE(text.out.find(name), std::string::npos) << name;
   const json doc = run_json({"run", "--list", "--json"});
-  ASSERT_EQ(doc["scenarios"].size(), 4u);
+  ASSERT_EQ(doc["scenarios"].size(), 5u);
   const json& pick_place = doc["scenarios"][1];
   EXPECT_EQ(pick_place["name"], "pick-place");
   bool found = false;

@@ -11,7 +11,7 @@ import mjarm
 
 def test_scenarios_are_listed_with_their_parameters_and_metrics():
     names = [s.name for s in mjarm.scenarios()]
-    assert names == ["shelf-pick", "pick-place", "docking", "bimanual-lift"]
+    assert names == ["shelf-pick", "pick-place", "docking", "plan", "bimanual-lift"]
     pick_place = mjarm.find_scenario("pick-place")
     assert pick_place.verdicts[0] == "placed"
     size = next(p for p in pick_place.parameters if p["name"] == "object-size")

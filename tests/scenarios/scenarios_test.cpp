@@ -6,18 +6,22 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <filesystem>
+#include <fstream>
 
 #include "mjarm/error.hpp"
 #include "mjarm/fields_json.hpp"
 #include "mjarm/model/robot.hpp"
 #include "mjarm/scenarios/docking_scenario.hpp"
 #include "mjarm/scenarios/pick_place_scenario.hpp"
+#include "mjarm/scenarios/plan_scenario.hpp"
 #include "mjarm/scenarios/registry.hpp"
 #include "mjarm/scenarios/shelf_pick_scenario.hpp"
 #include "mjarm/teleop/bimanual_lift.hpp"
 #include "mjarm/teleop/session_log.hpp"
 #include "mjarm/teleop/teleop_session.hpp"
 #include "support/error_message.hpp"
+#include "support/files.hpp"
 
 namespace mjarm {
 namespace {
@@ -44,7 +48,7 @@ double metric(const Scenario& s, const TrialOutcome& o, const std::string& name)
 TEST(Scenarios, AreListedAndFoundByName) {
   std::vector<std::string> names;
   for (const Scenario* s : scenarios()) names.emplace_back(s->name());
-  EXPECT_THAT(names, ElementsAre("shelf-pick", "pick-place", "docking", "bimanual-lift"));
+  EXPECT_THAT(names, ElementsAre("shelf-pick", "pick-place", "docking", "plan", "bimanual-lift"));
   EXPECT_EQ(&find_scenario("docking"), scenarios()[2]);
   const std::string message = error_of([] { find_scenario("pick-plce"); });
   EXPECT_THAT(message, HasSubstr("unknown scenario 'pick-plce'; closest: pick-place"));
@@ -216,6 +220,32 @@ TEST(Scenarios, ABimanualLiftThroughTheRegistryIsTheSessionsOwnLift) {
   EXPECT_EQ(strict.verdict, "not_lifted");
   EXPECT_THAT(strict.message, HasSubstr("the bar rose"));
   EXPECT_EQ(metric(s, strict, "lifted"), direct.lifted);
+}
+
+TEST(Scenarios, APlannedMotionThroughTheRegistryIsTrackedOrNotPlanned) {
+  const std::filesystem::path file = test::scratch() / "three.json";
+  std::ofstream(file) << R"({"waypoints": [{"position": [0.45, 0.0, 0.50]},
+    {"position": [0.45, 0.20, 0.40]}, {"position": [0.35, 0.25, 0.35]}]})";
+  const Scenario& s = find_scenario("plan");
+  const TrialOutcome o = s.run(Json{{"waypoints", file.string()}, {"controller", "ct"}});
+  EXPECT_TRUE(o.success) << o.message;
+  EXPECT_EQ(o.verdict, "tracked");
+  PlannedMotionOptions options;
+  options.waypoints = file;
+  options.tracking.controller = "ct";
+  const PlannedMotionReport direct = run_planned_motion(options);
+  ASSERT_TRUE(direct.planned());
+  EXPECT_EQ(metric(s, o, "max_position_error"), direct.tracked.tracking.max_position);
+  EXPECT_EQ(metric(s, o, "duration"), direct.plan.result.trajectory.duration());
+  EXPECT_LT(metric(s, o, "max_position_error"), 0.01);
+
+  const std::filesystem::path far = test::scratch() / "far.json";
+  std::ofstream(far) << R"({"waypoints": [{"position": [3.0, 0.0, 0.5]}]})";
+  const TrialOutcome missed = s.run(Json{{"waypoints", far.string()}});
+  EXPECT_FALSE(missed.success);
+  EXPECT_EQ(missed.verdict, "not_planned");
+  EXPECT_FALSE(missed.message.empty());
+  EXPECT_THAT(error_of([&] { s.run(Json::object()); }), HasSubstr("waypoints names no file"));
 }
 
 }  // namespace
