@@ -70,6 +70,11 @@ for _ in \$(seq 100); do
   [ "\$(squeue -h -j "\$job" -o %T)" = RUNNING ] && break
   sleep 0.1
 done
+# RUNNING in squeue comes before the job's process: wait for that too (a loaded machine)
+for _ in \$(seq 100); do
+  pgrep -fx "$long_a" > /dev/null && break
+  sleep 0.1
+done
 pgrep -fx "$long_a" > /dev/null && echo running > "$work/cancelled.txt"
 scancel "\$job"
 for _ in \$(seq 100); do
