@@ -21,14 +21,15 @@ LocalSweepResult run_sweep_local(const SweepFolder& folder, const SweepPlan& pla
   const FolderLock lock(folder.dir, "sweep folder");  // one run or merge at a time
   const auto t0 = std::chrono::steady_clock::now();
   const ShardStates states = shard_states(folder, plan);
-  std::vector<std::int64_t> todo = states.missing;
-  for (const auto& [index, why] : states.damaged) todo.push_back(index);
-  std::sort(todo.begin(), todo.end());
+  std::vector<std::int64_t> to_run = states.missing;
+  for (const auto& [index, why] : states.damaged) to_run.push_back(index);
+  std::sort(to_run.begin(), to_run.end());
 
   LocalSweepResult result;
   const int cores = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
-  result.jobs = std::max(1, std::min<int>(options.jobs > 0 ? options.jobs : cores,
-                                          static_cast<int>(std::max<std::size_t>(todo.size(), 1))));
+  result.jobs =
+      std::max(1, std::min<int>(options.jobs > 0 ? options.jobs : cores,
+                                static_cast<int>(std::max<std::size_t>(to_run.size(), 1))));
   std::int64_t done = 0;
   for (const std::int64_t k : states.done) done += plan.shard(k).count;
 
@@ -38,13 +39,13 @@ LocalSweepResult run_sweep_local(const SweepFolder& folder, const SweepPlan& pla
   const auto work = [&] {
     while (true) {
       const std::size_t i = next.fetch_add(1);
-      if (i >= todo.size() || interrupt_requested()) return;
+      if (i >= to_run.size() || interrupt_requested()) return;
       {
         const std::lock_guard lock(mutex);
         if (error) return;
       }
       try {
-        const bool written = run_sweep_shard(folder, plan, todo[i], [&] {
+        const bool written = run_sweep_shard(folder, plan, to_run[i], [&] {
           const std::lock_guard lock(mutex);
           ++done;
           if (options.progress) options.progress(done, plan.trials);
@@ -52,7 +53,7 @@ LocalSweepResult run_sweep_local(const SweepFolder& folder, const SweepPlan& pla
         const std::lock_guard lock(mutex);
         if (written) {
           ++result.shards_run;
-          result.trials_run += plan.shard(todo[i]).count;
+          result.trials_run += plan.shard(to_run[i]).count;
         }
       } catch (...) {
         const std::lock_guard lock(mutex);
@@ -67,7 +68,7 @@ LocalSweepResult run_sweep_local(const SweepFolder& folder, const SweepPlan& pla
   for (std::thread& w : workers) w.join();
   if (error) std::rethrow_exception(error);
 
-  result.shards_left = static_cast<std::int64_t>(todo.size()) - result.shards_run;
+  result.shards_left = static_cast<std::int64_t>(to_run.size()) - result.shards_run;
   result.interrupted = result.shards_left > 0 && interrupt_requested();
   result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return result;

@@ -154,10 +154,10 @@ SlurmSubmission submit_sweep_slurm(const SweepFolder& folder, const SweepPlan& p
   if (o.cpus_per_task < 1 || o.throttle < 0)
     throw Error("slurm: cpus per task must be ≥ 1 and the throttle ≥ 0");
   const ShardStates states = shard_states(folder, plan);
-  std::vector<std::int64_t> todo = states.missing;
-  for (const auto& [index, why] : states.damaged) todo.push_back(index);
-  std::sort(todo.begin(), todo.end());
-  if (todo.empty())
+  std::vector<std::int64_t> to_run = states.missing;
+  for (const auto& [index, why] : states.damaged) to_run.push_back(index);
+  std::sort(to_run.begin(), to_run.end());
+  if (to_run.empty())
     throw Error("every shard of '" + folder.dir.string() + "' is done: nothing to submit");
 
   SlurmSubmission submission;
@@ -174,11 +174,11 @@ SlurmSubmission submit_sweep_slurm(const SweepFolder& folder, const SweepPlan& p
 
   // one array per MaxArraySize shards: a task's shard is the line of its index in a list
   const auto chunk = static_cast<std::size_t>(submission.max_array_size);
-  for (std::size_t first = 0, k = 0; first < todo.size(); first += chunk, ++k) {
-    const std::size_t count = std::min(chunk, todo.size() - first);
+  for (std::size_t first = 0, k = 0; first < to_run.size(); first += chunk, ++k) {
+    const std::size_t count = std::min(chunk, to_run.size() - first);
     const fs::path list = dir / ("array-" + std::to_string(k) + ".shards");
     std::string lines;
-    for (std::size_t i = first; i < first + count; ++i) lines += std::to_string(todo[i]) + "\n";
+    for (std::size_t i = first; i < first + count; ++i) lines += std::to_string(to_run[i]) + "\n";
     write_text(list, lines, "shard list");
     const fs::path script = dir / ("array-" + std::to_string(k) + ".sbatch");
     std::string text = sbatch_header(plan, o, logs);
@@ -198,7 +198,7 @@ SlurmSubmission submit_sweep_slurm(const SweepFolder& folder, const SweepPlan& p
                  quoted(sweep_dir) + " --require-complete\n",
              "sbatch script");
   submission.scripts.push_back(merge);
-  submission.shards = static_cast<std::int64_t>(todo.size());
+  submission.shards = static_cast<std::int64_t>(to_run.size());
   if (o.dry_run) return submission;
 
   // all or nothing: a failed submission cancels the jobs submitted before it
