@@ -58,12 +58,6 @@ SweepMerge merge_sweep(const SweepFolder& folder) {
   const SweepPlan plan = read_sweep_plan(folder);
   const FolderLock lock(folder.dir, "sweep folder");  // one run or merge at a time
   const Scenario& scenario = find_scenario(plan.file.scenario);
-  const ShardStates states = shard_states(folder, plan);
-  if (!states.damaged.empty())
-    throw Error(std::to_string(states.damaged.size()) + " damaged shard file" +
-                (states.damaged.size() > 1 ? "s" : "") + " (" + states.damaged.front().second +
-                (states.damaged.size() > 1 ? "; …" : "") +
-                "): run them again with mjarm sweep resume; nothing merged");
 
   // the columns: the varied parameters typed as the scenario declares them, then the metrics
   const std::vector<std::string> varied = varied_parameters(plan);
@@ -114,8 +108,21 @@ SweepMerge merge_sweep(const SweepFolder& folder) {
     std::set<std::string> hosts;
     std::string first_started, last_started;
     double shard_seconds = 0.0;
-    for (const std::int64_t k : states.done) {
-      const ShardFile shard = read_shard_file(folder, plan, k);
+    // every shard file read once; a damaged one fails the merge after the others were read
+    std::vector<std::string> damaged;
+    for (std::int64_t k = 0; k < plan.shards(); ++k) {
+      std::error_code ec;
+      if (!fs::exists(folder.shard(k), ec)) {
+        ++merge.missing;
+        continue;
+      }
+      ShardFile shard;
+      try {
+        shard = read_shard_file(folder, plan, k);
+      } catch (const Error& e) {
+        damaged.push_back(e.what());
+        continue;
+      }
       for (const Json& row : shard.rows) {
         const std::int64_t trial = row["trial"].get<std::int64_t>();
         const Json values = trial_values(plan, trial);
@@ -146,6 +153,11 @@ SweepMerge merge_sweep(const SweepFolder& folder) {
       shard_seconds += shard.seconds;
       ++merge.shards;
     }
+    if (!damaged.empty())
+      throw Error(std::to_string(damaged.size()) + " damaged shard file" +
+                  (damaged.size() > 1 ? "s" : "") + " (" + damaged.front() +
+                  (damaged.size() > 1 ? "; …" : "") +
+                  "): run them again with mjarm sweep resume; nothing merged");
     std::string host_list;
     for (const std::string& h : hosts) host_list += (host_list.empty() ? "" : ",") + h;
     SqliteStatement sweep = db.prepare("INSERT INTO sweep VALUES (" + placeholders(11) + ")");
@@ -166,7 +178,6 @@ SweepMerge merge_sweep(const SweepFolder& folder) {
                 "': " + ec.message());
   cleanup.done = true;
   sync_path(folder.dir);
-  merge.missing = static_cast<std::int64_t>(states.missing.size());
   merge.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return merge;
 }
