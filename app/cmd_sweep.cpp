@@ -179,8 +179,7 @@ void submit_to_slurm(const SweepFolder& folder, const SweepPlan& plan, const Slu
                                folder.dir.string() + ", mjarm sweep cancel to stop them)",
                            interrupt_signal());
   const ShardStates states = shard_states(folder, plan);
-  std::vector<std::int64_t> failed = states.missing;
-  for (const auto& [k, why] : states.damaged) failed.push_back(k);
+  const std::vector<std::int64_t> failed = states.to_run();
   if (!failed.empty()) {
     std::string why = std::to_string(failed.size()) + " of " + std::to_string(plan.shards()) +
                       " shards did not finish: " + slurm_shard_failure(folder, failed.front());

@@ -21,9 +21,7 @@ LocalSweepResult run_sweep_local(const SweepFolder& folder, const SweepPlan& pla
   const FolderLock lock(folder.dir, "sweep folder");  // one run or merge at a time
   const auto t0 = std::chrono::steady_clock::now();
   const ShardStates states = shard_states(folder, plan);
-  std::vector<std::int64_t> to_run = states.missing;
-  for (const auto& [index, why] : states.damaged) to_run.push_back(index);
-  std::sort(to_run.begin(), to_run.end());
+  const std::vector<std::int64_t> to_run = states.to_run();
 
   LocalSweepResult result;
   const int cores = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));

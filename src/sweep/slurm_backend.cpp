@@ -154,9 +154,7 @@ SlurmSubmission submit_sweep_slurm(const SweepFolder& folder, const SweepPlan& p
   if (o.cpus_per_task < 1 || o.throttle < 0)
     throw Error("slurm: cpus per task must be ≥ 1 and the throttle ≥ 0");
   const ShardStates states = shard_states(folder, plan);
-  std::vector<std::int64_t> to_run = states.missing;
-  for (const auto& [index, why] : states.damaged) to_run.push_back(index);
-  std::sort(to_run.begin(), to_run.end());
+  const std::vector<std::int64_t> to_run = states.to_run();
   if (to_run.empty())
     throw Error("every shard of '" + folder.dir.string() + "' is done: nothing to submit");
 

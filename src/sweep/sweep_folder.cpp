@@ -2,6 +2,7 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -167,6 +168,13 @@ ShardFile read_shard_file(const SweepFolder& folder, const SweepPlan& plan, std:
   file.seconds = doc.value("seconds", 0.0);
   file.started = doc.value("started", "");
   return file;
+}
+
+std::vector<std::int64_t> ShardStates::to_run() const {
+  std::vector<std::int64_t> shards = missing;
+  for (const auto& [index, why] : damaged) shards.push_back(index);
+  std::sort(shards.begin(), shards.end());
+  return shards;
 }
 
 ShardStates shard_states(const SweepFolder& folder, const SweepPlan& plan) {

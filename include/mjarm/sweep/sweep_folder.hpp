@@ -56,6 +56,9 @@ struct ShardStates {
   std::vector<std::int64_t> missing;  ///< no file
   /// A file that is not a whole shard of this plan (truncated, edited, another sweep's), with why.
   std::vector<std::pair<std::int64_t, std::string>> damaged;
+
+  /// The shards to run (again): the missing and the damaged, in order.
+  std::vector<std::int64_t> to_run() const;
 };
 
 ShardStates shard_states(const SweepFolder& folder, const SweepPlan& plan);
