@@ -11,14 +11,15 @@
 #include "mjarm/scenarios/pick_place_scenario.hpp"
 #include "mjarm/scenarios/plan_scenario.hpp"
 #include "mjarm/scenarios/shelf_pick_scenario.hpp"
+#include "mjarm/scenarios/wiping_scenario.hpp"
 
 namespace mjarm {
 
 std::span<const Scenario* const> scenarios() {
   // a new scenario: its files and one line here
-  static const std::array<const Scenario*, 5> all{&shelf_pick_scenario(), &pick_place_scenario(),
-                                                  &docking_scenario(), &plan_scenario(),
-                                                  &bimanual_lift_scenario()};
+  static const std::array<const Scenario*, 6> all{&shelf_pick_scenario(),    &pick_place_scenario(),
+                                                  &docking_scenario(),       &plan_scenario(),
+                                                  &bimanual_lift_scenario(), &wiping_scenario()};
   return all;
 }
 

@@ -5,13 +5,13 @@
 #include <cstdio>
 #include <optional>
 
-#include "docking_run_loop.hpp"
 #include "mjarm/error.hpp"
 #include "mjarm/interrupt.hpp"
 #include "mjarm/model/names.hpp"
 #include "mjarm/sim/recorder.hpp"
 #include "mjarm/sim/simulation.hpp"
 #include "run_outputs.hpp"
+#include "torque_run_loop.hpp"
 
 namespace mjarm {
 
@@ -72,7 +72,7 @@ DockingReport run_docking(const DockingOptions& options) {
   report.source = options.controller.source;
   report.joint_friction = options.joint_friction;
 
-  Simulation sim(scene->robot, docking_detail::torque_simulation(options.max_acceleration));
+  Simulation sim(scene->robot, torque_run::torque_simulation(options.max_acceleration));
   DockingControllerOptions controller_options = options.controller;
   controller_options.control_period = sim.control_period();
   DockingController controller(*scene, controller_options);
@@ -81,7 +81,7 @@ DockingReport run_docking(const DockingOptions& options) {
   scene->chain.scatter(report.plan.q_start, qpos.data());
   const std::vector<double> qvel(static_cast<std::size_t>(scene->robot.nv()), 0.0);
   sim.set_state(qpos, qvel);
-  docking_detail::start_held(sim, scene->chain);
+  torque_run::start_held(sim, scene->chain);
   report.control_period = sim.control_period();
 
   std::optional<RunVideo> video;
@@ -105,7 +105,7 @@ DockingReport run_docking(const DockingOptions& options) {
   samples.reserve(static_cast<std::size_t>(report.plan.duration() / sim.control_period()) + 8);
   DockingSample sample;
   report.run =
-      docking_detail::run_ticks(sim, task, recorder ? &*recorder : nullptr, "docking", [&] {
+      torque_run::run_ticks(sim, task, recorder ? &*recorder : nullptr, "docking", [&] {
         const std::span<const std::uint8_t> saturated = sim.saturated();
         const bool any =
             std::any_of(saturated.begin(), saturated.end(), [](std::uint8_t s) { return s != 0; });

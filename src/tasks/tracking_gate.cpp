@@ -3,13 +3,13 @@
 #include <cmath>
 #include <numbers>
 
-#include "docking_run_loop.hpp"
 #include "mjarm/error.hpp"
 #include "mjarm/lie/so3.hpp"
 #include "mjarm/number_text.hpp"
 #include "mjarm/sim/simulation.hpp"
 #include "mjarm/tasks/docking_task.hpp"
 #include "mjarm/trajectory/smoothstep.hpp"
+#include "torque_run_loop.hpp"
 
 namespace mjarm {
 
@@ -159,7 +159,7 @@ TrackingGateReport run_tracking_gate(const TrackingGateOptions& options) {
   report.X_start.p += (g.chamfer + g.bore_depth + options.height) * scene->options.X_WS.R.col(2);
   const Robot& robot = scene->robot;
   const Eigen::VectorXd q_start = docking_start_configuration(*scene, report.X_start);
-  Simulation sim(robot, docking_detail::torque_simulation(options.max_acceleration));
+  Simulation sim(robot, torque_run::torque_simulation(options.max_acceleration));
   DockingControllerOptions controller_options = options.controller;
   controller_options.control_period = sim.control_period();
   DockingController controller(*scene, controller_options);
@@ -167,12 +167,12 @@ TrackingGateReport run_tracking_gate(const TrackingGateOptions& options) {
   std::vector<double> qpos(static_cast<std::size_t>(robot.nq()), 0.0);
   scene->chain.scatter(q_start, qpos.data());
   sim.set_state(qpos, std::vector<double>(static_cast<std::size_t>(robot.nv()), 0.0));
-  docking_detail::start_held(sim, scene->chain);
+  torque_run::start_held(sim, scene->chain);
   GateSource source(options, report.X_start, q_start, sim.uses_rk4() ? 0.0 : 0.5 * sim.timestep());
 
   const int tip = robot.site(DockingNames::tip);
   const double loop = 1.0 / options.frequency + options.ramp_time;
-  report.run = docking_detail::run_ticks(sim, source, nullptr, "gate", [&] {
+  report.run = torque_run::run_ticks(sim, source, nullptr, "gate", [&] {
     // the step just taken: kinematics and contacts of its start state, the tick's reference
     const mjData& d = sim.data();
     if (d.ncon > 0) ++report.contact_ticks;

@@ -17,6 +17,7 @@
 #include "mjarm/scenarios/plan_scenario.hpp"
 #include "mjarm/scenarios/registry.hpp"
 #include "mjarm/scenarios/shelf_pick_scenario.hpp"
+#include "mjarm/scenarios/wiping_scenario.hpp"
 #include "mjarm/teleop/bimanual_lift.hpp"
 #include "mjarm/teleop/session_log.hpp"
 #include "mjarm/teleop/teleop_session.hpp"
@@ -48,7 +49,8 @@ double metric(const Scenario& s, const TrialOutcome& o, const std::string& name)
 TEST(Scenarios, AreListedAndFoundByName) {
   std::vector<std::string> names;
   for (const Scenario* s : scenarios()) names.emplace_back(s->name());
-  EXPECT_THAT(names, ElementsAre("shelf-pick", "pick-place", "docking", "plan", "bimanual-lift"));
+  EXPECT_THAT(
+      names, ElementsAre("shelf-pick", "pick-place", "docking", "plan", "bimanual-lift", "wiping"));
   EXPECT_EQ(&find_scenario("docking"), scenarios()[2]);
   const std::string message = error_of([] { find_scenario("pick-plce"); });
   EXPECT_THAT(message, HasSubstr("unknown scenario 'pick-plce'; closest: pick-place"));
@@ -197,6 +199,20 @@ TEST(Scenarios, ADockingThroughTheRegistrySeats) {
   EXPECT_EQ(o.verdict, "seated");
   EXPECT_LE(metric(s, o, "peak_force"), DockingCriteria{}.max_force);
   EXPECT_GT(metric(s, o, "first_contact_time"), 0.0);
+}
+
+TEST(Scenarios, AWipeThroughTheRegistryIsTheTasksOwnRun) {
+  const Scenario& s = find_scenario("wiping");
+  const Json values{
+      {"control.law", "osc"}, {"path.length", 0.1}, {"motion.speed", 0.04}, {"seed", 2}};
+  const TrialOutcome o = s.run(values);
+  const WipingReport r = run_wiping(wiping_options(wiping_scenario().parameters_from(values)));
+  EXPECT_TRUE(o.success) << o.message;
+  EXPECT_EQ(o.verdict, to_string(r.outcome));
+  EXPECT_EQ(metric(s, o, "force_rms_error"), r.metrics.force_rms_error);
+  EXPECT_EQ(metric(s, o, "path_max_error"), r.metrics.path_max_error);
+  EXPECT_EQ(o.parameters["control.law"], "osc");
+  EXPECT_EQ(o.parameters["motion.force"], WipingMotion{}.force);
 }
 
 TEST(Scenarios, ABimanualLiftThroughTheRegistryIsTheSessionsOwnLift) {

@@ -1,7 +1,8 @@
 #pragma once
-// The tick loop of the docking runs and the tracking gate: `Simulation::run` with a hook after
-// every tick, where the contacts and constraint forces of the step just taken are consistent
-// (a reference source runs before them). Internal to the tasks room.
+// The tick loop of the torque-mode task runs (docking, the tracking gate, wiping):
+// `Simulation::run` with a hook after every tick, where the contacts and constraint forces of
+// the step just taken are consistent (a reference source runs before them). Internal to the
+// tasks room.
 
 #include <cstdint>
 #include <cstdio>
@@ -11,7 +12,7 @@
 #include "mjarm/sim/recorder.hpp"
 #include "mjarm/sim/simulation.hpp"
 
-namespace mjarm::docking_detail {
+namespace mjarm::torque_run {
 
 /// Ticks @p sim with @p source until the source finishes, a step diverges, a controller writes
 /// NaN or an interrupt arrives, calling @p after_tick() after every good tick. The message says
@@ -91,4 +92,4 @@ inline SimulationOptions torque_simulation(double max_acceleration) {
   return options;
 }
 
-}  // namespace mjarm::docking_detail
+}  // namespace mjarm::torque_run
