@@ -2,7 +2,8 @@
 // figures, optionally with a video of the run. One subcommand per scenario, each with its own
 // options and every other parameter of the registry (scenario_options.hpp): shelf-pick
 // (cmd_run_shelf_pick.cpp), pick-place (cmd_run_pick_place.cpp), docking (cmd_run_docking.cpp),
-// plan (cmd_run_plan.cpp); `mjarm run --list`.
+// plan (cmd_run_plan.cpp), every other scenario of the registry from its parameters alone
+// (cmd_run_scenario.cpp); `mjarm run --list`.
 
 #include <algorithm>
 #include <iostream>
@@ -235,7 +236,7 @@ Command add_run_command(CLI::App& root) {
   CLI::App* app = root.add_subcommand(
       "run",
       "run a closed-loop scenario in simulation and print its figures: mjarm run SCENARIO "
-      "[options] (shelf-pick, pick-place, docking, plan); mjarm run SCENARIO --help for its "
+      "[options] (mjarm run --list names them); mjarm run SCENARIO --help for its "
       "options and parameters; mjarm run --list");
   app->require_subcommand(0, 1);
   app->allow_extras();  // an unknown scenario, named with the closest below
@@ -243,9 +244,12 @@ Command add_run_command(CLI::App& root) {
                 "list the scenarios of the registry (--json: each with its parameters, units, "
                 "ranges, defaults, metrics and verdicts)");
   app->add_flag("--json", *json, "with --list: JSON");
-  const std::vector<Command> scenarios{add_shelf_pick_subcommand(*app),
-                                       add_pick_place_subcommand(*app),
-                                       add_docking_subcommand(*app), add_plan_subcommand(*app)};
+  std::vector<Command> scenarios{add_shelf_pick_subcommand(*app), add_pick_place_subcommand(*app),
+                                 add_docking_subcommand(*app), add_plan_subcommand(*app)};
+  for (const Scenario* s : mjarm::scenarios())  // the others, from the registry alone
+    if (std::none_of(scenarios.begin(), scenarios.end(),
+                     [s](const Command& c) { return c.app->get_name() == s->name(); }))
+      scenarios.push_back(add_scenario_subcommand(*app, *s));
   return {app, [app, list, json, scenarios] {
             std::vector<std::string> names;
             for (const Command& scenario : scenarios) names.push_back(scenario.app->get_name());

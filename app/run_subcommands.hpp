@@ -7,6 +7,7 @@
 #include <string>
 
 #include "commands.hpp"
+#include "mjarm/scenarios/scenario.hpp"
 
 namespace mjarm::cli {
 
@@ -33,5 +34,9 @@ void add_simulation_options(CLI::App& app, SimulationCli& o, const std::string& 
 
 /// `mjarm run shelf-pick` (cmd_run_shelf_pick.cpp).
 Command add_shelf_pick_subcommand(CLI::App& run);
+
+/// `mjarm run SCENARIO` for a scenario of the registry without a subcommand of its own: its
+/// parameters, --record, --video and --json (cmd_run_scenario.cpp).
+Command add_scenario_subcommand(CLI::App& run, const Scenario& scenario);
 
 }  // namespace mjarm::cli

@@ -56,10 +56,11 @@ TEST(RunCli, HelpNamesTheScenarioAndOptions) {
 TEST(RunCli, ListShowsTheScenariosOfTheRegistry) {
   const CliRun text = run_cli({"run", "--list"});
   ASSERT_EQ(text.exit_code, 0) << text.err;
-  for (const char* name : {"shelf-pick", "pick-place", "docking", "plan", "bimanual-lift"})
+  for (const char* name :
+       {"shelf-pick", "pick-place", "docking", "plan", "bimanual-lift", "wiping"})
     EXPECT_NE(text.out.find(name), std::string::npos) << name;
   const json doc = run_json({"run", "--list", "--json"});
-  ASSERT_EQ(doc["scenarios"].size(), 5u);
+  ASSERT_EQ(doc["scenarios"].size(), 6u);
   const json& pick_place = doc["scenarios"][1];
   EXPECT_EQ(pick_place["name"], "pick-place");
   bool found = false;
@@ -73,7 +74,31 @@ TEST(RunCli, ListShowsTheScenariosOfTheRegistry) {
   }
   EXPECT_TRUE(found);
   expect_error({"run", "--list", "docking"}, 2, "give no SCENARIO with it");
-  expect_error({"run"}, 2, "run needs a SCENARIO (shelf-pick | pick-place | docking | plan)");
+  expect_error({"run"}, 2,
+               "run needs a SCENARIO (shelf-pick | pick-place | docking | plan | bimanual-lift | "
+               "wiping)");
+}
+
+TEST(RunCli, AScenarioWithoutItsOwnSubcommandRunsFromItsParameters) {
+  const CliRun help = run_cli({"run", "wiping", "--help"});
+  ASSERT_EQ(help.exit_code, 0) << help.err;
+  for (const char* word : {"--motion.force", "normal force to wipe with [N]; in [0.5, 60]",
+                           "--control.law", "osc | cic", "--record", "--video", "--json"})
+    EXPECT_NE(help.out.find(word), std::string::npos) << word;
+  const json doc = run_json(
+      {"run", "wiping", "--path.length", "0.1", "--motion.force", "8", "--seed", "4", "--json"});
+  EXPECT_EQ(doc["scenario"], "wiping");
+  EXPECT_EQ(doc["verdict"], "wiped");
+  EXPECT_EQ(doc["parameters"]["motion.force"], 8.0);
+  EXPECT_LT(doc["metrics"]["force_rms_error"].get<double>(), 1.0);
+  const CliRun text = run_cli({"run", "wiping", "--path.length", "0.05"});
+  ASSERT_EQ(text.exit_code, 0) << text.err;
+  EXPECT_NE(text.out.find("wiping: wiped"), std::string::npos) << text.out;
+  EXPECT_NE(text.out.find("path_max_error"), std::string::npos) << text.out;
+  expect_error({"run", "wiping", "--motion.force", "-1"}, 2,
+               "wiping: motion.force must be in [0.5, 60] [N], got -1");
+  expect_error({"run", "wiping", "--motion.forse", "3"}, 2,
+               "run wiping: unknown option '--motion.forse'; closest: --motion.force");
 }
 
 TEST(RunCli, EveryParameterOfTheRegistryIsAnOption) {

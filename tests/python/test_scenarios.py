@@ -11,7 +11,7 @@ import mjarm
 
 def test_scenarios_are_listed_with_their_parameters_and_metrics():
     names = [s.name for s in mjarm.scenarios()]
-    assert names == ["shelf-pick", "pick-place", "docking", "plan", "bimanual-lift"]
+    assert names == ["shelf-pick", "pick-place", "docking", "plan", "bimanual-lift", "wiping"]
     pick_place = mjarm.find_scenario("pick-place")
     assert pick_place.verdicts[0] == "placed"
     size = next(p for p in pick_place.parameters if p["name"] == "object-size")
@@ -49,6 +49,14 @@ def test_a_pick_place_with_a_fixed_object_is_judged():
     assert o.parameters["object"] == [0.26, -0.08] and o.parameters["object-size"] == 0.015
     assert o.metrics["placement_error"] <= 0.005
     assert math.isfinite(o.metrics["cycle_time"])
+
+
+def test_a_wipe_by_name_holds_its_force():
+    o = mjarm.run_scenario("wiping", **{"control.law": "osc", "path.length": 0.08,
+                                        "motion.force": 12.0, "seed": 5})
+    assert o.success and o.verdict == "wiped", o.message
+    assert o.metrics["force_rms_error"] < 1.0 and o.metrics["contact_fraction"] == 1.0
+    assert o.parameters["motion.force"] == 12.0 and o.parameters["control.law"] == "osc"
 
 
 def test_bad_parameters_are_refused_with_the_librarys_message():
