@@ -186,7 +186,8 @@ TEST(SweepFile, TheExampleSweepsAreValidAndAsLargeAsTheySay) {
       std::filesystem::path(MJARM_MODELS_DIR) / ".." / "examples" / "sweeps";
   const std::map<std::string, std::int64_t> trials{
       {"shelf_pick.yaml", 240},   {"pick_place.yaml", 160}, {"docking.yaml", 150},
-      {"bimanual_lift.yaml", 30}, {"plan.yaml", 60},        {"pick_place_random.yaml", 200}};
+      {"bimanual_lift.yaml", 30}, {"plan.yaml", 60},        {"pick_place_random.yaml", 200},
+      {"wiping.yaml", 120}};
   std::size_t seen = 0;
   for (const auto& entry : std::filesystem::directory_iterator(dir)) {
     const std::string name = entry.path().filename().string();
