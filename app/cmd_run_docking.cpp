@@ -251,6 +251,7 @@ void run_grid(const DockingCliOptions& cli, const std::vector<DockingLaw>& laws,
   grid.jobs = cli.jobs;
   DockingSceneOptions scene_options;
   scene_options.joint_friction = cli.friction;
+  scene_options.geometry = grid.base.geometry;
   grid.base.scene = std::make_shared<const DockingScene>(build_docking_scene(scene_options));
   const int per_law = static_cast<int>(grid.x.size() * grid.y.size() * grid.yaw.size());
   const int planned = per_law * static_cast<int>(laws.size());
@@ -336,6 +337,8 @@ void run_grid(const DockingCliOptions& cli, const std::vector<DockingLaw>& laws,
 void run_gate(const DockingCliOptions& cli, const std::vector<DockingLaw>& laws, bool json) {
   TrackingGateOptions o;
   const DockingOptions base = base_options(cli);
+  if (!same_geometry(base.geometry, DockingGeometry{}))
+    throw UsageError("the tracking gate (--gate) runs in free space: --geometry.* does not apply");
   o.controller = base.controller;
   o.joint_friction = cli.friction;
   DockingSceneOptions scene_options;

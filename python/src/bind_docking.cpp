@@ -308,6 +308,7 @@ void bind_runs(py::module_& m) {
       .def_readwrite("motion", &DockingOptions::motion, "DockingMotion")
       .def_readwrite("criteria", &DockingOptions::criteria, "DockingCriteria")
       .def_readwrite("joint_friction", &DockingOptions::joint_friction)
+      .def_readwrite("geometry", &DockingOptions::geometry, "DockingGeometry")
       .def_property(
           "scene",
           [](const DockingOptions& o) -> std::shared_ptr<DockingScene> {

@@ -52,6 +52,8 @@ void bind_tasks(py::module_& m) {
       .def_readwrite("control_period", &ShelfPickOptions::control_period)
       .def_readwrite("max_acceleration", &ShelfPickOptions::max_acceleration)
       .def_readwrite("settle_time", &ShelfPickOptions::settle_time)
+      .def_readwrite("gain_scale", &ShelfPickOptions::gain_scale,
+                     "the tuned gains scaled: stiffness x s, damping x sqrt(s)")
       .def_readwrite("state_decimation", &ShelfPickOptions::state_decimation)
       .def_property(
           "video", [](const ShelfPickOptions& o) { return o.video.path; },

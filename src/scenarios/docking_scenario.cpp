@@ -1,5 +1,6 @@
 #include "mjarm/scenarios/docking_scenario.hpp"
 
+#include <deque>
 #include <limits>
 #include <mutex>
 
@@ -15,7 +16,8 @@ DockingOptions docking_options(const DockingParameters& p) {
 }
 
 DockingParameters docking_parameters(const DockingOptions& o) {
-  return {o.controller, o.offset, o.motion, o.criteria, o.joint_friction, o.max_acceleration};
+  return {o.controller,     o.offset,   o.motion,          o.criteria,
+          o.joint_friction, o.geometry, o.max_acceleration};
 }
 
 void apply(const DockingParameters& p, DockingOptions& o) {
@@ -24,20 +26,25 @@ void apply(const DockingParameters& p, DockingOptions& o) {
   o.motion = p.motion;
   o.criteria = p.criteria;
   o.joint_friction = p.joint_friction;
+  o.geometry = p.geometry;
   o.max_acceleration = p.max_acceleration;
 }
 
 namespace {
 
-/// The scene of each variant, compiled once and shared by every trial (its model is immutable):
-/// a sweep's trials then spend their time simulating.
-std::shared_ptr<const DockingScene> scene_of(bool joint_friction) {
+/// The scene of each variant and geometry, compiled once and shared by every trial (its model is
+/// immutable): a sweep's trials then spend their time simulating. The last 16 are kept.
+std::shared_ptr<const DockingScene> scene_of(bool joint_friction, const DockingGeometry& g) {
   static std::mutex mutex;
-  static std::shared_ptr<const DockingScene> scenes[2];
+  static std::deque<std::shared_ptr<const DockingScene>> scenes;
   const std::lock_guard lock(mutex);
-  auto& scene = scenes[joint_friction ? 1 : 0];
-  if (!scene) scene = shared_docking_scene(nullptr, joint_friction);
-  return scene;
+  for (const auto& scene : scenes)
+    if (scene->options.joint_friction == joint_friction &&
+        same_geometry(scene->options.geometry, g))
+      return scene;
+  scenes.push_back(shared_docking_scene(nullptr, joint_friction, g));
+  if (scenes.size() > 16) scenes.pop_front();
+  return scenes.back();
 }
 
 class DockingScenario final : public DeclaredScenario<DockingParameters> {
@@ -70,7 +77,7 @@ class DockingScenario final : public DeclaredScenario<DockingParameters> {
   TrialOutcome run_trial(const DockingParameters& p,
                          const ScenarioOutputs& outputs) const override {
     DockingOptions options = docking_options(p);
-    options.scene = scene_of(p.joint_friction);
+    options.scene = scene_of(p.joint_friction, p.geometry);
     options.record = outputs.record;
     if (!outputs.video.empty()) {
       options.video.path = outputs.video;

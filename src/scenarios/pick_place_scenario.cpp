@@ -20,6 +20,7 @@ PickPlaceParameters pick_place_parameters(const PickPlaceOptions& o) {
   p.target = o.target_position;
   p.object_size = o.object_half_size;
   p.classic = o.classic;
+  p.ranges = o.ranges;
   p.motion = o.motion;
   p.criteria = o.criteria;
   p.weld = o.weld;
@@ -40,6 +41,7 @@ void apply(const PickPlaceParameters& p, PickPlaceOptions& o) {
   o.target_position = p.target;
   o.object_half_size = p.object_size;
   o.classic = p.classic;
+  o.ranges = p.ranges;
   o.motion = p.motion;
   o.criteria = p.criteria;
   o.weld = p.weld;

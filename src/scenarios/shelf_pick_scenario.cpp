@@ -20,6 +20,7 @@ ShelfPickParameters shelf_pick_parameters(const ShelfPickOptions& o) {
   p.criteria = o.request.criteria;
   p.control_period = o.control_period;
   p.max_acceleration = o.max_acceleration;
+  p.gain_scale = o.gain_scale;
   p.settle_time = o.settle_time;
   return p;
 }
@@ -33,6 +34,7 @@ void apply(const ShelfPickParameters& p, ShelfPickOptions& o) {
   o.control_period = p.control_period;
   o.max_acceleration = p.max_acceleration;
   o.settle_time = p.settle_time;
+  o.gain_scale = p.gain_scale;
 }
 
 namespace {

@@ -66,7 +66,7 @@ DockingReport run_docking(const DockingOptions& options) {
   check(options.criteria);
   check(options.controller);
   const std::shared_ptr<const DockingScene> scene =
-      shared_docking_scene(options.scene, options.joint_friction);
+      shared_docking_scene(options.scene, options.joint_friction, options.geometry);
   DockingReport report{.plan = plan_docking(*scene, options.offset, options.motion)};
   report.controller = to_string(options.controller.law);
   report.source = options.controller.source;

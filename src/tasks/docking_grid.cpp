@@ -60,7 +60,7 @@ DockingGridResult run_docking_grid(const DockingGridOptions& options,
 
   DockingOptions base = options.base;
   base.keep_samples = false;
-  base.scene = shared_docking_scene(base.scene, base.joint_friction);
+  base.scene = shared_docking_scene(base.scene, base.joint_friction, base.geometry);
   std::vector<DockingOffset> offsets;
   for (double x : options.x)
     for (double y : options.y)

@@ -219,17 +219,30 @@ DockingScene build_docking_scene(const DockingSceneOptions& options) {
   return scene;
 }
 
+bool same_geometry(const DockingGeometry& a, const DockingGeometry& b) noexcept {
+  return a.peg_radius == b.peg_radius && a.peg_length == b.peg_length &&
+         a.bore_radius == b.bore_radius && a.bore_depth == b.bore_depth && a.chamfer == b.chamfer &&
+         a.sides == b.sides && a.wall == b.wall && a.friction == b.friction &&
+         a.solref == b.solref && a.solimp == b.solimp && a.ccd_tolerance == b.ccd_tolerance;
+}
+
 std::shared_ptr<const DockingScene> shared_docking_scene(std::shared_ptr<const DockingScene> given,
-                                                         bool joint_friction) {
+                                                         bool joint_friction,
+                                                         const DockingGeometry& geometry) {
   if (!given) {
     DockingSceneOptions options;
     options.joint_friction = joint_friction;
+    options.geometry = geometry;
     return std::make_shared<const DockingScene>(build_docking_scene(options));
   }
   if (given->options.joint_friction != joint_friction)
     throw Error("docking: the scene given was built " +
                 std::string(given->options.joint_friction ? "with" : "without") +
                 " joint friction, the options ask for the other variant");
+  if (!same_geometry(given->options.geometry, geometry))
+    throw Error(
+        "docking: the scene given was built for another peg or socket than the options "
+        "ask for");
   return given;
 }
 

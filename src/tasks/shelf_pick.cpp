@@ -63,7 +63,7 @@ ShelfPickReport run_shelf_pick(const ShelfPickOptions& options) {
   sim_options.max_acceleration = options.max_acceleration;
   Simulation sim(plan.model, sim_options);
   const std::unique_ptr<Controller> controller =
-      make_shelf_pick_controller(plan.controller, plan.chain, *plan.robot);
+      make_shelf_pick_controller(plan.controller, plan.chain, *plan.robot, options.gain_scale);
   sim.add_controller(*controller);
   const std::vector<double> qvel(static_cast<std::size_t>(plan.model.nv()), 0.0);
   sim.set_state(plan.qpos_start, qvel);

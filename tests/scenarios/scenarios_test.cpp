@@ -97,6 +97,46 @@ TEST(Scenarios, DefaultsAreTheTasksOwn) {
   EXPECT_EQ(shelf.settle_time, ShelfPickOptions{}.settle_time);
   EXPECT_EQ(fields_to_json(shelf.request.criteria),
             fields_to_json(ShelfPickOptions{}.request.criteria));
+  EXPECT_EQ(shelf.gain_scale, ShelfPickOptions{}.gain_scale);
+  EXPECT_EQ(fields_to_json(pick_place_options(PickPlaceParameters{}).ranges),
+            fields_to_json(PickPlaceOptions{}.ranges));
+  EXPECT_TRUE(same_geometry(docking_options(DockingParameters{}).geometry, DockingGeometry{}));
+}
+
+TEST(Scenarios, GainsRangesAndGeometryAreParametersThatReachTheTask) {
+  // the shelf pick's gains: task-pd has no model feed-forward, so a quarter of its stiffness
+  // (half its bandwidth) brings the tip in later and leaves it further off in the steady state
+  const Scenario& shelf = find_scenario("shelf-pick");
+  const Json base{{"robot", "planar2"}, {"controller", "task-pd"}, {"seed", 4}};
+  Json soft = base;
+  soft["gain-scale"] = 0.25;
+  const TrialOutcome tuned = shelf.run(base);
+  const TrialOutcome softer = shelf.run(soft);
+  EXPECT_TRUE(tuned.success && softer.success) << softer.message;
+  EXPECT_GT(metric(shelf, softer, "time_to_tolerance"), metric(shelf, tuned, "time_to_tolerance"));
+  EXPECT_GT(metric(shelf, softer, "steady_state_max"),
+            10.0 * metric(shelf, tuned, "steady_state_max"));
+  EXPECT_EQ(softer.parameters["gain-scale"], 0.25);
+  EXPECT_THAT(error_of([&] {
+                shelf.resolve(Json{{"gain-scale", 0.0}});
+              }),
+              HasSubstr("shelf-pick: gain_scale must be in [0.01, 100], got 0"));
+  // the pick and place's draw ranges
+  const PickPlaceOptions heavy = pick_place_options(pick_place_scenario().parameters_from(
+      Json{{"ranges.mass", {0.5, 0.5}}, {"ranges.friction", {0.8, 0.8}}, {"seed", 9}}));
+  const PickPlaceTrial trial = draw_pick_place_trial(heavy);
+  EXPECT_EQ(trial.object.mass, 0.5);
+  EXPECT_EQ(trial.object.friction, 0.8);
+  PickPlaceOptions reversed = heavy;
+  reversed.ranges.mass = {0.5, 0.1};
+  EXPECT_THAT(error_of([&] { draw_pick_place_trial(reversed); }),
+              HasSubstr("the mass [kg] range must be finite, increasing"));
+  // the docking's peg and socket: a scene built for other ones is refused before any work
+  DockingOptions wide =
+      docking_options(docking_scenario().parameters_from(Json{{"geometry.bore-radius", 0.016}}));
+  EXPECT_EQ(wide.geometry.bore_radius, 0.016);
+  wide.scene = std::make_shared<const DockingScene>(build_docking_scene());
+  EXPECT_THAT(error_of([&] { run_docking(wide); }), HasSubstr("another peg or socket"));
 }
 
 TEST(Scenarios, ValuesAreCheckedWithTheScenariosName) {

@@ -17,6 +17,7 @@ struct DockingParameters {
   DockingMotion motion = DockingOptions{}.motion;
   DockingCriteria criteria = DockingOptions{}.criteria;
   bool joint_friction = DockingOptions{}.joint_friction;
+  DockingGeometry geometry = DockingOptions{}.geometry;
   double max_acceleration = DockingOptions{}.max_acceleration;
 };
 
@@ -28,6 +29,7 @@ constexpr auto declared_fields(const DockingParameters*) {
       field("motion", &S::motion, "reference shape and timing, preload"),
       field("criteria", &S::criteria, "when the peg counts as seated"),
       field("joint_friction", &S::joint_friction, "the variant with Franka joint friction"),
+      field("geometry", &S::geometry, "the peg and the socket: sizes, friction, collision"),
       field("max_acceleration", &S::max_acceleration, "rad/s²", Range::positive(),
             "divergence bound on |joint acceleration|"));
 }

@@ -24,6 +24,7 @@ struct PickPlaceParameters {
   std::optional<std::array<double, 2>> target;  ///< target x y [m]; none: drawn
   std::optional<double> object_size;            ///< cube half extent [m]; none: drawn
   bool classic = PickPlaceOptions{}.classic;
+  PickPlaceRanges ranges = PickPlaceOptions{}.ranges;
   PickPlaceMotion motion = PickPlaceOptions{}.motion;
   PickPlaceCriteria criteria = PickPlaceOptions{}.criteria;
   WeldGraspOptions weld = PickPlaceOptions{}.weld;
@@ -47,6 +48,7 @@ constexpr auto declared_fields(const PickPlaceParameters*) {
       field("object_size", &S::object_size, "m", Range::closed(0.005, 0.05),
             "cube half extent; none: drawn"),
       field("classic", &S::classic, "the classic scene edits (7.5 mm cube, short fingers)"),
+      field("ranges", &S::ranges, "what the seed draws the object and target from"),
       field("motion", &S::motion, "heights, dwell and grip times, speed limits"),
       field("criteria", &S::criteria, "what the trial is judged by"),
       field("weld", &S::weld, "the weld of the weld grasp"),
@@ -63,7 +65,7 @@ constexpr auto declared_fields(const PickPlaceParameters*) {
 
 /// The pick and place's options for @p p (no recording, no video).
 PickPlaceOptions pick_place_options(const PickPlaceParameters& p);
-/// Sets the fields of @p options that @p p covers; the others (ranges, recording, video) are kept.
+/// Sets the fields of @p options that @p p covers; the others (recording, video) are kept.
 void apply(const PickPlaceParameters& p, PickPlaceOptions& options);
 /// The parameters @p options stand for.
 PickPlaceParameters pick_place_parameters(const PickPlaceOptions& options);

@@ -24,6 +24,7 @@ struct ShelfPickParameters {
   double control_period = ShelfPickOptions{}.control_period;
   double max_acceleration = ShelfPickOptions{}.max_acceleration;
   double settle_time = ShelfPickOptions{}.settle_time;
+  double gain_scale = ShelfPickOptions{}.gain_scale;
 };
 
 constexpr auto declared_fields(const ShelfPickParameters*) {
@@ -40,7 +41,9 @@ constexpr auto declared_fields(const ShelfPickParameters*) {
       field("max_acceleration", &S::max_acceleration, "rad/s²", Range::positive(),
             "divergence bound on |joint acceleration|"),
       field("settle_time", &S::settle_time, "s", Range::open_closed(0.0, 60.0),
-            "time allowed after the approach to enter the tolerance and hold"));
+            "time allowed after the approach to enter the tolerance and hold"),
+      field("gain_scale", &S::gain_scale, "", Range::closed(0.01, 100.0),
+            "the tuned gains scaled: stiffness × s, damping × √s"));
 }
 
 /// The shelf pick's options for @p p (no recording, no video).

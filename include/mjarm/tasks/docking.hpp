@@ -43,8 +43,9 @@ struct DockingOptions {
   DockingMotion motion;                 ///< reference shape and timing, preload
   DockingCriteria criteria;             ///< the seating criteria
   bool joint_friction = false;          ///< the variant with Franka joint friction
+  DockingGeometry geometry;             ///< the peg and the socket
   /// A compiled scene to use (shared between runs: its model is immutable); null: built from
-  /// `joint_friction`. Its `options.joint_friction` must then match.
+  /// `joint_friction` and `geometry`. Its options must then match them.
   std::shared_ptr<const DockingScene> scene;
   double max_acceleration = 1e6;  ///< divergence bound on |q̈| [rad/s²]
   std::filesystem::path record;   ///< recording directory; empty: none

@@ -138,10 +138,14 @@ Scene docking_scene(const DockingSceneOptions& options = {});
 /// @throws Error as `docking_scene`, or when the scene does not compile.
 DockingScene build_docking_scene(const DockingSceneOptions& options = {});
 
-/// @p given when set (it must be the @p joint_friction variant), else a new scene of that
-/// variant: the scene a run shares or builds.
-/// @throws Error when @p given is the other variant, or as `build_docking_scene`.
+/// True when @p a and @p b build the same peg and socket (every field, solref and solimp too).
+bool same_geometry(const DockingGeometry& a, const DockingGeometry& b) noexcept;
+
+/// @p given when set (it must be the @p joint_friction variant of @p geometry), else a new scene
+/// of that variant: the scene a run shares or builds.
+/// @throws Error when @p given is another variant or geometry, or as `build_docking_scene`.
 std::shared_ptr<const DockingScene> shared_docking_scene(std::shared_ptr<const DockingScene> given,
-                                                         bool joint_friction);
+                                                         bool joint_friction,
+                                                         const DockingGeometry& geometry = {});
 
 }  // namespace mjarm

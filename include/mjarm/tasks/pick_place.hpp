@@ -54,6 +54,24 @@ struct PickPlaceRanges {
   double min_separation = 0.08;                  ///< object start ↔ target, horizontal [m]
 };
 
+/// Each range [low, high] is checked by the draw (`draw_pick_place_trial`): not reversed, within
+/// the bounds below.
+constexpr auto declared_fields(const PickPlaceRanges*) {
+  using S = PickPlaceRanges;
+  return declare<S>(
+      "pick and place ranges",
+      field("half_size", &S::half_size, "m", Range::closed(1e-3, 0.05),
+            "cube half extent drawn from [low, high]"),
+      field("mass", &S::mass, "kg", Range::closed(1e-4, 10.0),
+            "object mass drawn from [low, high]"),
+      field("friction", &S::friction, "", Range::closed(0.0, 5.0),
+            "object sliding friction drawn from [low, high]"),
+      field("yaw", &S::yaw, "rad", Range::closed(-3.141592653589793, 3.141592653589793),
+            "object yaw drawn from [low, high]"),
+      field("min_separation", &S::min_separation, "m", Range::closed(0.0, 1.0),
+            "object start ↔ target, horizontal"));
+}
+
 /// One trial's draw: everything random about it.
 struct PickPlaceTrial {
   std::uint64_t seed = 1;

@@ -27,6 +27,9 @@ struct ShelfPickOptions {
   /// Time allowed after the approach for entering the tolerance and holding [s] (> 0): the run
   /// stops at approach_time + settle_time + hold_time at the latest.
   double settle_time = 1.0;
+  /// The controller's gains scaled from the tuned ones (`make_shelf_pick_controller`): every
+  /// stiffness × s, every damping × √s, so the damping ratio stays (> 0).
+  double gain_scale = 1.0;
   int state_decimation = 1;  ///< one state row every N physics steps when recording
   ShelfPickVideo video;      ///< MP4 of the run; empty path: no video
 };
