@@ -143,18 +143,6 @@ TEST(ConcurrentWriters, TwoRunsWritingOneVideoLeaveOneWholeVideo) {
       "bimanual_video",
       {"bimanual", "--lift", "0.1", "--size", "64x48", "--fps", "2", "--video", "@"},
       {"bimanual", "--lift", "0.2", "--size", "64x48", "--fps", "2", "--video", "@"}, ".mp4");
-  // replay: two sessions of different lifts, each replayed into one video
-  const fs::path low = scratch() / "concurrent_low.session";
-  const fs::path high = scratch() / "concurrent_high.session";
-  for (const auto& [lift, session] : {std::pair{"0.1", low}, std::pair{"0.2", high}}) {
-    RunningProcess record(
-        writing_to({"bimanual", "--lift", lift, "--record-session", "@"}, session), scratch());
-    ASSERT_TRUE(record.wait(900));
-    ASSERT_EQ(record.exit_code(), 0) << record.err();
-  }
-  expect_the_last_whole_file_stays(
-      "replay_video", {"replay", low.string(), "--size", "64x48", "--fps", "2", "--video", "@"},
-      {"replay", high.string(), "--size", "64x48", "--fps", "2", "--video", "@"}, ".mp4");
 }
 
 TEST(ConcurrentWriters, TwoRunsRecordingOneSessionLeaveOneWholeSession) {
