@@ -1,7 +1,8 @@
-// `mjarm env list [--json]`: the environment tasks, their action spaces and observations.
-// `mjarm env run TASK [--policy random|zero] [--episodes N] [--action-space S] [--envs E]
-// [--threads T] [--seed S] [--time-limit T] [--json]`: episodes of a task, their returns and
-// the steps per second (docs/env.md).
+// `mjarm env list [--json]`: the environment tasks, their options, action spaces and
+// observations.
+// `mjarm env run TASK [task options] [--policy random|zero] [--episodes N] [--action-space S]
+// [--envs E] [--threads T] [--seed S] [--time-limit T] [--json]`: episodes of a task, their
+// returns and the steps per second (docs/env.md).
 
 #include <time.h>
 
@@ -12,12 +13,15 @@
 
 #include "commands.hpp"
 #include "field_options.hpp"
+#include "mjarm/closest_names.hpp"
 #include "mjarm/env/observation_set.hpp"
 #include "mjarm/env/task_registry.hpp"
 #include "mjarm/env/vector_environment.hpp"
 #include "mjarm/interrupt.hpp"
 #include "mjarm/random.hpp"
+#include "mjarm/scenarios/scenario.hpp"
 #include "output.hpp"
+#include "parameter_options.hpp"
 
 namespace mjarm::cli {
 namespace {
@@ -54,8 +58,11 @@ void list_tasks(bool json) {
     for (const ArraySpec& a : env.observation_spec().arrays()) observations.push_back(spec_json(a));
     const std::vector<std::string> available = ObservationSet::available(*task);
     if (json) {
+      Json parameters = Json::array();
+      for (const FieldInfo& p : env_task_parameters(name)) parameters.push_back(parameter_json(p));
       tasks.push_back({{"name", name},
                        {"description", task->description()},
+                       {"options", std::move(parameters)},
                        {"model", task->robot().name()},
                        {"joints", task->chain().size()},
                        {"control_period_s", env.options().control_period},
@@ -87,6 +94,7 @@ void list_tasks(bool json) {
 
 struct RunOptions {
   std::string task;
+  Json task_options = Json::object();  ///< the task's own options given (`mjarm env run TASK --…`)
   std::string policy = "random";
   int episodes = 10;
   std::string action_space = "ee_pose_deltas";
@@ -116,7 +124,13 @@ void run_episodes(const RunOptions& options) {
   o.action_space = action_space(options.action_space);
   o.time_limit = options.time_limit;
   o.seed = options.seed;
-  VectorEnvironment batch(options.task, o, options.envs, options.threads);
+  std::unique_ptr<EnvTask> task;
+  try {
+    task = make_env_task(options.task, options.task_options);
+  } catch (const Error& e) {
+    throw UsageError(e.what());
+  }
+  VectorEnvironment batch(std::move(task), o, options.envs, options.threads);
   const ArraySpec& spec = batch.action_spec();
   const std::size_t width = static_cast<std::size_t>(spec.size());
   const std::size_t n = static_cast<std::size_t>(batch.size());
@@ -180,6 +194,7 @@ void run_episodes(const RunOptions& options) {
                       {"steps", e.steps},
                       {"end", to_string(e.end)}});
     print_json({{"task", options.task},
+                {"task_options", options.task_options},
                 {"policy", options.policy},
                 {"action_space", options.action_space},
                 {"envs", options.envs},
@@ -236,10 +251,19 @@ Command add_env_command(CLI::App& root) {
   CLI::App* run = env->add_subcommand(
       "run",
       "episodes of TASK with a random (uniform within the action bounds) or zero-action "
-      "policy: the return and length of each, the steps per second");
-  run->add_option("TASK", options->task, "environment task")
-      ->required()
-      ->check(CLI::IsMember(env_task_names()));
+      "policy: the return and length of each, the steps per second; mjarm env run TASK --help "
+      "for the task's own options");
+  run->require_subcommand(0, 1);
+  run->allow_extras();  // an unknown task or option, named with the closest below
+  // one subcommand per task with its declared options; the options below fall through to run
+  std::vector<std::pair<CLI::App*, std::shared_ptr<ParameterOptions>>> tasks;
+  for (const std::string& name : env_task_names()) {
+    CLI::App* task = run->add_subcommand(name, "the " + name + " task (mjarm env list)");
+    task->fallthrough();
+    tasks.emplace_back(task, std::make_shared<ParameterOptions>(
+                                 *task, env_task_parameters(name),
+                                 "Options of the " + name + " task (mjarm env list --json)"));
+  }
   run->add_option("--policy", options->policy, "random or zero")
       ->check(CLI::IsMember({"random", "zero"}));
   run->add_option("--episodes", options->episodes, "episodes to complete")
@@ -255,9 +279,31 @@ Command add_env_command(CLI::App& root) {
       ->check(number_in(0.02, 3600.0));
   add_json_flag(*run, options->json);
 
-  return {env, [list, list_json, run, options] {
+  return {env, [list, list_json, run, options, tasks] {
             if (list->parsed()) return list_tasks(*list_json);
-            if (run->parsed()) return run_episodes(*options);
+            if (!run->parsed()) return;
+            const std::vector<std::string> extra = run->remaining();
+            for (const auto& [task, parameters] : tasks) {
+              if (!task->parsed()) continue;
+              if (!extra.empty()) {
+                std::vector<std::string> names;
+                const CLI::App* apps[] = {task, run};
+                for (const CLI::App* app : apps)
+                  for (const CLI::Option* o : app->get_options())
+                    for (const std::string& n : o->get_lnames()) names.push_back("--" + n);
+                const std::string word = extra.front().substr(0, extra.front().find('='));
+                const std::vector<std::string> closest = closest_names(word, names);
+                throw UsageError("env run " + task->get_name() + ": unexpected '" + word + "'" +
+                                 (closest.empty() ? std::string() : "; closest: " + join(closest)));
+              }
+              options->task = task->get_name();
+              options->task_options = parameters->values();
+              return run_episodes(*options);
+            }
+            if (!extra.empty())
+              throw UsageError(unknown_name_message("task", extra.front(), env_task_names()));
+            throw UsageError("env run needs a TASK (" + join(env_task_names(), " | ") +
+                             "); mjarm env run TASK --help");
           }};
 }
 

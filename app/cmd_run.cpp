@@ -1,6 +1,6 @@
 // `mjarm run SCENARIO`: runs a ready-made closed-loop scenario in simulation and prints its
 // figures, optionally with a video of the run. One subcommand per scenario, each with its own
-// options and every other parameter of the registry (scenario_options.hpp): shelf-pick
+// options and every other parameter of the registry (parameter_options.hpp): shelf-pick
 // (cmd_run_shelf_pick.cpp), pick-place (cmd_run_pick_place.cpp), docking (cmd_run_docking.cpp),
 // plan (cmd_run_plan.cpp), every other scenario of the registry from its parameters alone
 // (cmd_run_scenario.cpp); `mjarm run --list`.
@@ -17,8 +17,8 @@
 #include "mjarm/interrupt.hpp"
 #include "mjarm/scenarios/registry.hpp"
 #include "output.hpp"
+#include "parameter_options.hpp"
 #include "run_subcommands.hpp"
-#include "scenario_options.hpp"
 
 namespace mjarm::cli {
 
@@ -88,7 +88,7 @@ Command add_pick_place_subcommand(CLI::App& run) {
     VideoCli video;
     bool json = false;
     PickPlaceCliOptions pick_place;
-    std::unique_ptr<ScenarioOptions> parameters;
+    std::unique_ptr<ParameterOptions> parameters;
   };
   auto o = std::make_shared<Options>();
   const Scenario& scenario = find_scenario("pick-place");
@@ -105,32 +105,32 @@ Command add_pick_place_subcommand(CLI::App& run) {
   add_json_flag(*app, o->json);
   add_pick_place_options(*app, o->pick_place);
   o->parameters =
-      std::make_unique<ScenarioOptions>(*app, scenario,
-                                        std::set<std::string>{"robot",
-                                                              "grasp",
-                                                              "mode",
-                                                              "seed",
-                                                              "object",
-                                                              "target",
-                                                              "object-size",
-                                                              "classic",
-                                                              "grasp-force",
-                                                              "noslip",
-                                                              "weld.time-constant",
-                                                              "weld.damping-ratio",
-                                                              "motion.approach-height",
-                                                              "motion.descend-height",
-                                                              "motion.lift-height",
-                                                              "motion.move-height",
-                                                              "motion.place-height",
-                                                              "motion.dwell-time",
-                                                              "motion.grip-time",
-                                                              "motion.release-time",
-                                                              "motion.limits.max-velocity",
-                                                              "motion.limits.max-acceleration",
-                                                              "motion.settle-time",
-                                                              "control-period",
-                                                              "max-acceleration"});
+      std::make_unique<ParameterOptions>(*app, scenario,
+                                         std::set<std::string>{"robot",
+                                                               "grasp",
+                                                               "mode",
+                                                               "seed",
+                                                               "object",
+                                                               "target",
+                                                               "object-size",
+                                                               "classic",
+                                                               "grasp-force",
+                                                               "noslip",
+                                                               "weld.time-constant",
+                                                               "weld.damping-ratio",
+                                                               "motion.approach-height",
+                                                               "motion.descend-height",
+                                                               "motion.lift-height",
+                                                               "motion.move-height",
+                                                               "motion.place-height",
+                                                               "motion.dwell-time",
+                                                               "motion.grip-time",
+                                                               "motion.release-time",
+                                                               "motion.limits.max-velocity",
+                                                               "motion.limits.max-acceleration",
+                                                               "motion.settle-time",
+                                                               "control-period",
+                                                               "max-acceleration"});
   return {app, [o, app] {
             refuse_extras(*app);
             RunCommonOptions common;
@@ -157,7 +157,7 @@ Command add_docking_subcommand(CLI::App& run) {
     VideoCli video;
     bool json = false;
     DockingCliOptions docking;
-    std::unique_ptr<ScenarioOptions> parameters;
+    std::unique_ptr<ParameterOptions> parameters;
   };
   auto o = std::make_shared<Options>();
   const Scenario& scenario = find_scenario("docking");
@@ -171,7 +171,7 @@ Command add_docking_subcommand(CLI::App& run) {
                     "free camera close to the socket");
   add_json_flag(*app, o->json);
   add_docking_options(*app, o->docking);
-  o->parameters = std::make_unique<ScenarioOptions>(
+  o->parameters = std::make_unique<ParameterOptions>(
       *app, scenario,
       std::set<std::string>{"controller.law", "controller.source", "joint-friction", "offset.dx",
                             "offset.dy", "offset.dyaw", "motion.reference",

@@ -15,7 +15,7 @@
 #include "mjarm/tasks/docking_plot.hpp"
 #include "mjarm/tasks/docking_task.hpp"
 #include "mjarm/tasks/tracking_gate.hpp"
-#include "scenario_options.hpp"
+#include "parameter_options.hpp"
 
 namespace mjarm::cli {
 

@@ -16,7 +16,7 @@
 #include "mjarm/interrupt.hpp"
 #include "mjarm/scenarios/pick_place_scenario.hpp"
 #include "mjarm/tasks/pick_place_trials.hpp"
-#include "scenario_options.hpp"
+#include "parameter_options.hpp"
 
 namespace mjarm::cli {
 

@@ -12,8 +12,8 @@
 #include "mjarm/scenarios/scenario.hpp"
 #include "options.hpp"
 #include "output.hpp"
+#include "parameter_options.hpp"
 #include "run_subcommands.hpp"
-#include "scenario_options.hpp"
 
 namespace mjarm::cli {
 
@@ -43,7 +43,7 @@ Command add_scenario_subcommand(CLI::App& run, const Scenario& scenario) {
     std::string record;
     VideoCli video;
     bool json = false;
-    std::unique_ptr<ScenarioOptions> parameters;
+    std::unique_ptr<ParameterOptions> parameters;
   };
   auto o = std::make_shared<Options>();
   CLI::App* app = run.add_subcommand(std::string(scenario.name()),
@@ -53,7 +53,7 @@ Command add_scenario_subcommand(CLI::App& run, const Scenario& scenario) {
   add_video_options(*app, o->video, "the run",
                     "video camera: " + std::string(scenario.camera()) + " (default: the first)");
   add_json_flag(*app, o->json);
-  o->parameters = std::make_unique<ScenarioOptions>(*app, scenario, std::set<std::string>{});
+  o->parameters = std::make_unique<ParameterOptions>(*app, scenario, std::set<std::string>{});
   return {app, [o, app, &scenario] {
             refuse_extras(*app);
             ScenarioOutputs outputs;

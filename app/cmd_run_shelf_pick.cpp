@@ -16,8 +16,8 @@
 #include "mjarm/scenarios/shelf_pick_scenario.hpp"
 #include "mjarm/tasks/shelf_pick.hpp"
 #include "output.hpp"
+#include "parameter_options.hpp"
 #include "run_subcommands.hpp"
-#include "scenario_options.hpp"
 
 namespace mjarm::cli {
 
@@ -273,7 +273,7 @@ Command add_shelf_pick_subcommand(CLI::App& run) {
     VideoCli video;
     bool all = false, json = false;
     int seeds = 1;
-    std::unique_ptr<ScenarioOptions> parameters;
+    std::unique_ptr<ParameterOptions> parameters;
   };
   auto o = std::make_shared<Options>();
   const Scenario& scenario = find_scenario("shelf-pick");
@@ -306,7 +306,7 @@ Command add_shelf_pick_subcommand(CLI::App& run) {
       ->check(count_in(1, 10000))
       ->capture_default_str();
   add_json_flag(*app, o->json);
-  o->parameters = std::make_unique<ScenarioOptions>(
+  o->parameters = std::make_unique<ParameterOptions>(
       *app, scenario,
       std::set<std::string>{"robot", "controller", "pick", "seed", "control-period",
                             "max-acceleration", "settle-time"});

@@ -1881,8 +1881,8 @@ class Environment:
     def __exit__(self: Environment, *args) -> bool:
         """Leaves a `with` block: close()."""
         ...
-    def __init__(self: Environment, task: str, options: ArrayLike = ..., **kwargs) -> None:
-        """Environment(task, options=None, **overrides): the task by name (env_task_names()), with EnvironmentOptions (None: the defaults) whose fields keyword arguments override (e.g. time_limit=0.5, action_space='joint_torques'). Raises mjarm.Error for an unknown task, observation or option, and options out of range."""
+    def __init__(self: Environment, task: str, options: ArrayLike = ..., task_options: ArrayLike = ..., **kwargs) -> None:
+        """Environment(task, options=None, task_options=None, **overrides): the task by name (env_task_names()) with its own options set from the dict task_options (names as env_task_parameters(task) lists them, e.g. {'criteria.max-force': 30}), with EnvironmentOptions (None: the defaults) whose fields keyword arguments override (e.g. time_limit=0.5, action_space='joint_torques'). Raises mjarm.Error for an unknown task, task option, observation or option, and options out of range."""
         ...
     def action_spec(self: Environment) -> ArraySpec:
         """ArraySpec 'action': shape (n,), float64, its bounds."""
@@ -6686,6 +6686,9 @@ def env_observations(task: str) -> list[str]:
     ...
 def env_task_names() -> list[str]:
     """The environment tasks' names ('reach', ...)."""
+    ...
+def env_task_parameters(task: str) -> list:
+    """The options of the task called task: a list of dicts (name as task_options takes it, kind, unit, range, names, length, optional, default, doc)."""
     ...
 def find_frame(robot: Robot | mujoco.MjModel, name: str) -> FrameRef:
     """The frame called name: a site first, then a body."""

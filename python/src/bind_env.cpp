@@ -17,6 +17,8 @@
 #include "mjarm/env/observation_set.hpp"
 #include "mjarm/env/task_registry.hpp"
 #include "mjarm/env/vector_environment.hpp"
+#include "mjarm/scenarios/scenario.hpp"
+#include "parameter_values.hpp"
 
 namespace mjarm::python {
 namespace {
@@ -147,13 +149,16 @@ EnvironmentOptions to_options(py::handle options, const py::kwargs& overrides) {
   return o.cast<EnvironmentOptions>();
 }
 
-PyEnvironment make_environment(const std::string& task, py::handle options,
+PyEnvironment make_environment(const std::string& task, py::handle options, py::handle task_options,
                                const py::kwargs& overrides) {
   const EnvironmentOptions o = to_options(options, overrides);
+  const nlohmann::ordered_json values = task_options.is_none()
+                                            ? nlohmann::ordered_json::object()
+                                            : values_json(py::cast<py::dict>(task_options));
   PyEnvironment e;
   {
     py::gil_scoped_release release;
-    e.env = std::make_unique<Environment>(task, o);
+    e.env = std::make_unique<Environment>(make_env_task(task, values), o);
   }
   e.layout = std::make_shared<const ObservationLayout>(e.env->observation_spec());
   e.task = task;
@@ -170,10 +175,13 @@ void bind_environment(py::module_& m) {
       "counted (or refused with refuse_out_of_bounds). The GIL is released while it steps. "
       "Not thread-safe: one thread per environment. See docs/env.md and docs/python.md.")
       .def(py::init(&make_environment), py::arg("task"), py::arg("options") = py::none(),
-           "Environment(task, options=None, **overrides): the task by name (env_task_names()), "
-           "with EnvironmentOptions (None: the defaults) whose fields keyword arguments override "
+           py::arg("task_options") = py::none(),
+           "Environment(task, options=None, task_options=None, **overrides): the task by name "
+           "(env_task_names()) with its own options set from the dict task_options (names as "
+           "env_task_parameters(task) lists them, e.g. {'criteria.max-force': 30}), with "
+           "EnvironmentOptions (None: the defaults) whose fields keyword arguments override "
            "(e.g. time_limit=0.5, action_space='joint_torques'). Raises mjarm.Error for an "
-           "unknown task, observation or option, and options out of range.")
+           "unknown task, task option, observation or option, and options out of range.")
       .def(
           "reset",
           [](PyEnvironment& e, py::handle seed) {
@@ -366,6 +374,16 @@ void bind_environment(py::module_& m) {
           py::arg("i"), "ClipCounts of environment i's current episode.");
 
   m.def("env_task_names", &env_task_names, "The environment tasks' names ('reach', ...).");
+  m.def(
+      "env_task_parameters",
+      [](const std::string& task) {
+        nlohmann::ordered_json list = nlohmann::ordered_json::array();
+        for (const FieldInfo& p : env_task_parameters(task)) list.push_back(parameter_json(p));
+        return py::list(python_of(list));
+      },
+      py::arg("task"),
+      "The options of the task called task: a list of dicts (name as task_options takes it, "
+      "kind, unit, range, names, length, optional, default, doc).");
   m.def(
       "env_observations",
       [](const std::string& task) { return ObservationSet::available(*make_env_task(task)); },

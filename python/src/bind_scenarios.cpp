@@ -6,45 +6,11 @@
 
 #include "bindings.hpp"
 #include "mjarm/scenarios/registry.hpp"
+#include "parameter_values.hpp"
 
 namespace mjarm::python {
 
-namespace {
-
 using Json = nlohmann::ordered_json;
-
-/// A Python value as JSON: None, bool, int, float, str, or a sequence of them (an array).
-Json json_of(py::handle value, const std::string& name) {
-  if (value.is_none()) return nullptr;
-  if (py::isinstance<py::bool_>(value)) return value.cast<bool>();
-  if (py::isinstance<py::int_>(value)) return value.cast<long long>();
-  if (py::isinstance<py::float_>(value)) return value.cast<double>();
-  if (py::isinstance<py::str>(value)) return value.cast<std::string>();
-  if (py::hasattr(value, "tolist") && !py::isinstance<py::str>(value))
-    return json_of(value.attr("tolist")(), name);  // NumPy arrays and scalars
-  if (py::isinstance<py::sequence>(value)) {
-    Json array = Json::array();
-    for (py::handle item : value) array.push_back(json_of(item, name));
-    return array;
-  }
-  throw Error("parameter " + name + ": a number, flag, name, sequence of numbers or None, got " +
-              std::string(py::str(py::type::of(value).attr("__name__"))));
-}
-
-/// Keyword parameters as the JSON object a scenario reads.
-Json values_json(const py::kwargs& values) {
-  Json j = Json::object();
-  for (const auto& [key, value] : values) {
-    const std::string name = key.cast<std::string>();
-    j[name] = json_of(value, name);
-  }
-  return j;
-}
-
-/// JSON as Python values (through the json module: dicts keep their order).
-py::object python_of(const Json& j) { return py::module_::import("json").attr("loads")(j.dump()); }
-
-}  // namespace
 
 void bind_scenarios(py::module_& m) {
   py::class_<ScenarioOutputs>(m, "ScenarioOutputs",

@@ -72,23 +72,25 @@ Json outcome_json(const Scenario& scenario, const TrialOutcome& outcome) {
                        {"video_error", text_or_null(outcome.video_error)}}}};
 }
 
+Json parameter_json(const FieldInfo& p) {
+  Json entry{{"name", p.path}, {"kind", to_string(p.kind)}, {"unit", p.unit}};
+  if (p.kind == FieldKind::number || p.kind == FieldKind::integer || p.kind == FieldKind::numbers)
+    entry["range"] = p.range.text(p.kind == FieldKind::integer);
+  if (!p.names.empty()) entry["names"] = p.names;
+  if (p.length >= 0) entry["length"] = p.length;
+  entry["optional"] = p.optional;
+  entry["default"] = p.value;
+  entry["doc"] = p.doc;
+  return entry;
+}
+
 Json scenario_json(const Scenario& scenario) {
   Json metrics = Json::array();
   for (const MetricInfo& m : scenario.metrics())
     metrics.push_back(
         {{"name", m.name}, {"unit", m.unit}, {"better", to_string(m.better)}, {"doc", m.doc}});
   Json parameters = Json::array();
-  for (const FieldInfo& p : scenario.parameters()) {
-    Json entry{{"name", p.path}, {"kind", to_string(p.kind)}, {"unit", p.unit}};
-    if (p.kind == FieldKind::number || p.kind == FieldKind::integer || p.kind == FieldKind::numbers)
-      entry["range"] = p.range.text(p.kind == FieldKind::integer);
-    if (!p.names.empty()) entry["names"] = p.names;
-    if (p.length >= 0) entry["length"] = p.length;
-    entry["optional"] = p.optional;
-    entry["default"] = p.value;
-    entry["doc"] = p.doc;
-    parameters.push_back(std::move(entry));
-  }
+  for (const FieldInfo& p : scenario.parameters()) parameters.push_back(parameter_json(p));
   return Json{{"name", scenario.name()},       {"doc", scenario.doc()},
               {"camera", scenario.camera()},   {"verdicts", scenario.verdicts()},
               {"metrics", std::move(metrics)}, {"parameters", std::move(parameters)}};

@@ -45,6 +45,28 @@ TEST(EnvCommand, ListsTheTasksWithTheirSpecs) {
   EXPECT_NE(text.out.find("ee_pose_deltas: action: float64[6]"), std::string::npos) << text.out;
 }
 
+TEST(EnvCommand, EachTaskTakesItsOwnOptions) {
+  const CliRun help = run_cli({"env", "run", "docking", "--help"});
+  ASSERT_EQ(help.exit_code, 0) << help.err;
+  for (const char* word : {"--criteria.max-force", "--scene.geometry.chamfer", "[N]"})
+    EXPECT_NE(help.out.find(word), std::string::npos) << word;
+  const json listed = run_json({"env", "list", "--json"});
+  EXPECT_EQ(listed["tasks"][0]["options"].back()["name"], "success-distance");
+  // within 0.9 m of any target: the reach succeeds on its first step
+  const json j = run_json({"env", "run", "reach", "--success-distance", "0.9", "--episodes", "1",
+                           "--policy", "zero", "--json"});
+  EXPECT_EQ(j["task_options"]["success-distance"], 0.9);
+  ASSERT_EQ(j["episodes"].size(), 1u);
+  EXPECT_EQ(j["episodes"][0]["end"], "terminated");
+  EXPECT_EQ(j["episodes"][0]["steps"], 1);
+  expect_error({"env", "run", "reach", "--success-distance", "-1"}, 2,
+               "env reach: success_distance must be");
+  expect_error({"env", "run", "reach", "--sucess-distance", "1"}, 2,
+               "env run reach: unexpected '--sucess-distance'; closest: --success-distance");
+  expect_error({"env", "run"}, 2,
+               "env run needs a TASK (reach | shelf-pick | pick-place | docking)");
+}
+
 TEST(EnvCommand, RunsSeededEpisodesTheSameOnAnyThreadCount) {
   auto run = [](const std::string& threads) {
     return run_json({"env", "run", "reach", "--episodes", "3", "--envs", "2", "--threads", threads,

@@ -215,6 +215,17 @@ def test_options_and_action_spaces():
     assert env.physics_steps_per_step == 10
 
 
+def test_task_options_by_name():
+    names = [p["name"] for p in mjarm.env_task_parameters("reach")]
+    assert "success-distance" in names and "target-center" in names
+    # within 0.9 m of any target: the reach succeeds on its first step
+    env = mjarm.Environment("reach", task_options={"success-distance": 0.9}, time_limit=0.2)
+    env.reset(1)
+    assert env.step(np.zeros(6)).last()
+    with pytest.raises(mjarm.Error, match="unknown parameter 'sucess-distance'"):
+        mjarm.Environment("reach", task_options={"sucess-distance": 0.9})
+
+
 # --- the vectorized environment ---------------------------------------------------------------
 
 def rollout(threads, steps=30):

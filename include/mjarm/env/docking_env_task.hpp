@@ -42,10 +42,15 @@ struct DockingEnvOptions {
   double failure_penalty = 1.0;
 };
 
-/// `scene` is checked by the scene, `offset_range` and the motion's standoff by hand.
+/// The socket's pose (`scene.X_WS`), the signs of `offset_range` and the motion's standoff are
+/// checked by hand.
 constexpr auto declared_fields(const DockingEnvOptions*) {
   using S = DockingEnvOptions;
-  return declare<S>("docking environment", field("motion", &S::motion, "the start (start_height)"),
+  return declare<S>("docking environment",
+                    field("scene", &S::scene, "the peg, the socket, the sensor, joint friction"),
+                    field("motion", &S::motion, "the start (start_height)"),
+                    field("offset_range", &S::offset_range,
+                          "each episode's believed socket off by up to ± these"),
                     field("criteria", &S::criteria, "seating and failure thresholds"),
                     field("start_perturbation", &S::start_perturbation, "rad",
                           Range::non_negative(), "each arm joint of the start within ± this"),

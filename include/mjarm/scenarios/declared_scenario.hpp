@@ -27,6 +27,25 @@ std::vector<FieldInfo> as_parameters(std::vector<FieldInfo> table);
 
 }  // namespace detail
 
+/// Sets @p values (an object of parameter names, dashes or underscores, to values) on the
+/// declared fields of @p p, each checked; @p p is unchanged when one is refused.
+/// @throws Error "where: unknown parameter 'objct-size'; closest: object-size; …", or naming
+///         the parameter for a value of the wrong kind or out of range
+template <Declared P>
+void set_parameters(P& p, const nlohmann::ordered_json& values, std::string_view where) {
+  const std::string owner(where);
+  if (!values.is_object())
+    throw Error(owner + ": the parameters must be an object of names to values, got " +
+                values.dump());
+  P changed = p;
+  const std::vector<FieldInfo> table = detail::as_parameters(field_table(P{}));
+  for (auto it = values.begin(); it != values.end(); ++it) {
+    detail::check_parameter_name(table, it.key(), owner);
+    detail::set_listed_field(changed, detail::parameter_path(it.key()), it.value(), owner);
+  }
+  p = std::move(changed);
+}
+
 template <Declared P>
 class DeclaredScenario : public Scenario {
  public:
@@ -47,20 +66,7 @@ class DeclaredScenario : public Scenario {
   /// Sets @p values (an object of parameter names to values) on @p p, each checked; @p p is
   /// unchanged when one is refused.
   /// @throws Error as `resolve`
-  void set(P& p, const nlohmann::ordered_json& values) const {
-    const std::string where(name());
-    if (!values.is_object())
-      throw Error(where + ": the parameters must be an object of names to values, got " +
-                  values.dump());
-    P changed = p;
-    const std::vector<FieldInfo> table = parameters();
-    for (auto it = values.begin(); it != values.end(); ++it) {
-      detail::check_parameter_name(table, it.key(), where);
-      detail::set_listed_field(changed, detail::parameter_path(it.key()), it.value(), where);
-    }
-    p = std::move(changed);
-  }
-
+  void set(P& p, const nlohmann::ordered_json& values) const { set_parameters(p, values, name()); }
   nlohmann::ordered_json resolve(const nlohmann::ordered_json& values) const override {
     return values_of(parameters_from(values));
   }

@@ -98,6 +98,10 @@ std::string parameter_name(std::string_view path);
 /// verdict, success, message, end_time, metrics (by name; null when not happened) and outputs.
 nlohmann::ordered_json outcome_json(const Scenario& scenario, const TrialOutcome& outcome);
 
+/// One parameter as JSON: name, kind, unit, range (numbers), names (enums), length, optional,
+/// default, doc.
+nlohmann::ordered_json parameter_json(const FieldInfo& parameter);
+
 /// The scenario's description as JSON: name, doc, camera, verdicts, metrics and parameters (name,
 /// kind, unit, range, names, length, optional, default, doc).
 nlohmann::ordered_json scenario_json(const Scenario& scenario);

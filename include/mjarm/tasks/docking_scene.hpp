@@ -96,6 +96,15 @@ struct DockingSceneOptions {
   bool joint_friction = false;
 };
 
+/// `X_WS` is bound by hand (a pose); the rest as declared.
+constexpr auto declared_fields(const DockingSceneOptions*) {
+  using S = DockingSceneOptions;
+  return declare<S>(
+      "docking scene options", field("geometry", &S::geometry, "the peg and the socket"),
+      field("ft_sensor", &S::ft_sensor, "the F/T sensor pair at the flange"),
+      field("joint_friction", &S::joint_friction, "the Franka joint friction on joints 1–7"));
+}
+
 /// Names in the docking scene.
 struct DockingNames {
   static constexpr const char* robot = "iiwa";

@@ -1,4 +1,4 @@
-#include "scenario_options.hpp"
+#include "parameter_options.hpp"
 
 #include "mjarm/error.hpp"
 #include "mjarm/field_table.hpp"
@@ -26,11 +26,16 @@ std::string parameter_help(const FieldInfo& info) {
 
 }  // namespace
 
-ScenarioOptions::ScenarioOptions(CLI::App& app, const Scenario& scenario,
-                                 const std::set<std::string>& covered) {
-  const std::string group = "Parameters of " + std::string(scenario.name()) +
-                            " (mjarm run --list --json; docs/scenarios.md)";
-  for (const FieldInfo& info : scenario.parameters()) {
+ParameterOptions::ParameterOptions(CLI::App& app, const Scenario& scenario,
+                                   const std::set<std::string>& covered)
+    : ParameterOptions(app, scenario.parameters(),
+                       "Parameters of " + std::string(scenario.name()) +
+                           " (mjarm run --list --json; docs/scenarios.md)",
+                       covered) {}
+
+ParameterOptions::ParameterOptions(CLI::App& app, const std::vector<FieldInfo>& parameters,
+                                   const std::string& group, const std::set<std::string>& covered) {
+  for (const FieldInfo& info : parameters) {
     if (covered.count(info.path) > 0) continue;
     auto given = std::make_unique<Given>();
     given->info = info;
@@ -48,7 +53,7 @@ ScenarioOptions::ScenarioOptions(CLI::App& app, const Scenario& scenario,
   }
 }
 
-Json ScenarioOptions::values() const {
+Json ParameterOptions::values() const {
   Json values = Json::object();
   for (const auto& given : given_) {
     if (given->option->count() == 0) continue;
