@@ -158,8 +158,6 @@ Json matrix_json(const Eigen::Ref<const Eigen::MatrixXd>& m) {
   return rows;
 }
 
-Json number_or_null(double v) { return std::isfinite(v) ? Json(v) : Json(nullptr); }
-
 void print_json(const Json& document) { std::cout << document.dump(2) << '\n'; }
 
 bool stderr_is_terminal() noexcept { return ::isatty(STDERR_FILENO) == 1; }

@@ -15,6 +15,8 @@
 #include <utility>
 #include <vector>
 
+#include "mjarm/json_or_null.hpp"
+
 namespace mjarm::cli {
 
 /// JSON documents keep their keys in insertion order, so that output reads top-down.
@@ -107,10 +109,6 @@ Json vector_json(const Eigen::Ref<const Eigen::VectorXd>& v);
 
 /// A matrix as a JSON array of rows.
 Json matrix_json(const Eigen::Ref<const Eigen::MatrixXd>& m);
-
-/// A number as JSON: the number, or null when it is not finite (JSON has neither infinity nor NaN:
-/// an unbounded limit, an event that did not happen).
-Json number_or_null(double v);
 
 /// Writes one JSON document (2-space indent) and a newline to stdout.
 void print_json(const Json& document);

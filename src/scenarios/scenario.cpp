@@ -5,6 +5,7 @@
 
 #include "mjarm/closest_names.hpp"
 #include "mjarm/error.hpp"
+#include "mjarm/json_or_null.hpp"
 #include "mjarm/scenarios/declared_scenario.hpp"
 
 namespace mjarm {
@@ -18,10 +19,6 @@ std::string replaced(std::string_view text, char from, char to) {
   std::replace(out.begin(), out.end(), from, to);
   return out;
 }
-
-Json number_or_null(double x) { return std::isfinite(x) ? Json(x) : Json(nullptr); }
-
-Json text_or_null(const std::string& text) { return text.empty() ? Json(nullptr) : Json(text); }
 
 }  // namespace
 

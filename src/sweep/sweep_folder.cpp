@@ -13,6 +13,7 @@
 #include "mjarm/error.hpp"
 #include "mjarm/file_writer.hpp"
 #include "mjarm/interrupt.hpp"
+#include "mjarm/json_or_null.hpp"
 #include "mjarm/scenarios/registry.hpp"
 
 namespace mjarm {
@@ -55,8 +56,6 @@ std::string utc_now() {
   std::strftime(text, sizeof text, "%Y-%m-%dT%H:%M:%SZ", &utc);
   return text;
 }
-
-Json text_or_null(const std::string& text) { return text.empty() ? Json(nullptr) : Json(text); }
 
 /// One trial's row, as the shard file keeps it: its files relative to the sweep's folder (the
 /// same row wherever the folder is mounted).

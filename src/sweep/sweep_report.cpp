@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 
+#include "mjarm/json_or_null.hpp"
 #include "mjarm/scenarios/registry.hpp"
 
 namespace mjarm {
@@ -24,8 +25,6 @@ MetricSummary summarize(const MetricInfo& info, std::vector<double> values) {
   s.p95 = values[static_cast<std::size_t>(std::ceil(0.95 * static_cast<double>(n))) - 1];
   return s;
 }
-
-Json number_or_null(double x) { return std::isfinite(x) ? Json(x) : Json(nullptr); }
 
 Json rate_json(const SuccessRate& r) {
   return Json{{"successes", r.successes},
