@@ -104,33 +104,14 @@ Command add_pick_place_subcommand(CLI::App& run) {
   add_video_options(*app, o->video, "the run");
   add_json_flag(*app, o->json);
   add_pick_place_options(*app, o->pick_place);
-  o->parameters =
-      std::make_unique<ParameterOptions>(*app, scenario,
-                                         std::set<std::string>{"robot",
-                                                               "grasp",
-                                                               "mode",
-                                                               "seed",
-                                                               "object",
-                                                               "target",
-                                                               "object-size",
-                                                               "classic",
-                                                               "grasp-force",
-                                                               "noslip",
-                                                               "weld.time-constant",
-                                                               "weld.damping-ratio",
-                                                               "motion.approach-height",
-                                                               "motion.descend-height",
-                                                               "motion.lift-height",
-                                                               "motion.move-height",
-                                                               "motion.place-height",
-                                                               "motion.dwell-time",
-                                                               "motion.grip-time",
-                                                               "motion.release-time",
-                                                               "motion.limits.max-velocity",
-                                                               "motion.limits.max-acceleration",
-                                                               "motion.settle-time",
-                                                               "control-period",
-                                                               "max-acceleration"});
+  // the parameters its older options set under other names
+  o->parameters = std::make_unique<ParameterOptions>(
+      *app, scenario,
+      std::set<std::string>{"weld.time-constant", "weld.damping-ratio", "motion.approach-height",
+                            "motion.descend-height", "motion.lift-height", "motion.move-height",
+                            "motion.place-height", "motion.dwell-time", "motion.grip-time",
+                            "motion.release-time", "motion.limits.max-velocity",
+                            "motion.limits.max-acceleration", "motion.settle-time"});
   return {app, [o, app] {
             refuse_extras(*app);
             RunCommonOptions common;
@@ -171,6 +152,8 @@ Command add_docking_subcommand(CLI::App& run) {
                     "free camera close to the socket");
   add_json_flag(*app, o->json);
   add_docking_options(*app, o->docking);
+  // the parameters its older options set under other names (--controller, --friction,
+  // --sensorless, --offset DX DY DYAW, --reference, --insertion-speed, --preload, --stiffness)
   o->parameters = std::make_unique<ParameterOptions>(
       *app, scenario,
       std::set<std::string>{"controller.law", "controller.source", "joint-friction", "offset.dx",

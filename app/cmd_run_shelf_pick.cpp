@@ -306,10 +306,7 @@ Command add_shelf_pick_subcommand(CLI::App& run) {
       ->check(count_in(1, 10000))
       ->capture_default_str();
   add_json_flag(*app, o->json);
-  o->parameters = std::make_unique<ParameterOptions>(
-      *app, scenario,
-      std::set<std::string>{"robot", "controller", "pick", "seed", "control-period",
-                            "max-acceleration", "settle-time"});
+  o->parameters = std::make_unique<ParameterOptions>(*app, scenario);
   return {app, [o, app] {
             refuse_extras(*app);
             if (o->seeds != 1 && !o->all) throw UsageError("--seeds needs --all");

@@ -155,7 +155,11 @@ void add_model_size_option(CLI::App& root) {
       "sweep status", "sweep merge", "sweep export", "sweep report", "sweep cancel"};
   const auto add = [](auto& self, CLI::App& app, const std::string& path) -> void {
     const auto children = app.get_subcommands({});
-    if (!children.empty()) {
+    // subcommands that fall through to their command (`env run TASK`) leave it to the command
+    const bool through =
+        !children.empty() && std::all_of(children.begin(), children.end(),
+                                         [](const CLI::App* c) { return c->get_fallthrough(); });
+    if (!children.empty() && !through) {
       for (CLI::App* child : children)
         self(self, *child, (path.empty() ? "" : path + " ") + child->get_name());
       return;

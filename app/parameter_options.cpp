@@ -27,16 +27,17 @@ std::string parameter_help(const FieldInfo& info) {
 }  // namespace
 
 ParameterOptions::ParameterOptions(CLI::App& app, const Scenario& scenario,
-                                   const std::set<std::string>& covered)
+                                   const std::set<std::string>& spelled)
     : ParameterOptions(app, scenario.parameters(),
                        "Parameters of " + std::string(scenario.name()) +
                            " (mjarm run --list --json; docs/scenarios.md)",
-                       covered) {}
+                       spelled) {}
 
 ParameterOptions::ParameterOptions(CLI::App& app, const std::vector<FieldInfo>& parameters,
-                                   const std::string& group, const std::set<std::string>& covered) {
+                                   const std::string& group, const std::set<std::string>& spelled) {
   for (const FieldInfo& info : parameters) {
-    if (covered.count(info.path) > 0) continue;
+    if (spelled.count(info.path) > 0 || app.get_option_no_throw("--" + info.path) != nullptr)
+      continue;
     auto given = std::make_unique<Given>();
     given->info = info;
     CLI::Option* option = app.add_option("--" + info.path, given->words, parameter_help(info));

@@ -19,14 +19,18 @@ namespace mjarm::cli {
 
 class ParameterOptions {
  public:
-  /// Adds `--NAME` for every one of @p parameters but those in @p covered (the command's own
-  /// options set them), in the help group @p group: a value for a number, name or text, one or
-  /// more numbers for a vector (`--pick 0.4 0 0.3` or `0.4,0,0.3`), `--NAME` or `--NAME=false`
-  /// for a flag, `none` for no value of an optional parameter.
+  /// Adds `--NAME` for every one of @p parameters, in the help group @p group: a value for a
+  /// number, name or text, one or more numbers for a vector (`--pick 0.4 0 0.3` or
+  /// `0.4,0,0.3`), `--NAME` or `--NAME=false` for a flag, `none` for no value of an optional
+  /// parameter. A parameter the command already has an option of that name for is left to it
+  /// (`--robot`), and so is one in @p spelled: the parameters an older option of the command
+  /// sets under another name (`motion.dwell-time`, set by `--dwell`; kept so that existing
+  /// command lines work).
   ParameterOptions(CLI::App& app, const std::vector<FieldInfo>& parameters,
-                   const std::string& group, const std::set<std::string>& covered = {});
+                   const std::string& group, const std::set<std::string>& spelled = {});
   /// The parameters of @p scenario, in a group named after it.
-  ParameterOptions(CLI::App& app, const Scenario& scenario, const std::set<std::string>& covered);
+  ParameterOptions(CLI::App& app, const Scenario& scenario,
+                   const std::set<std::string>& spelled = {});
 
   /// The parameters given on the command line, as the scenario or task reads them (empty object
   /// when none).
