@@ -1,8 +1,7 @@
 #include "mjarm/scenarios/wiping_scenario.hpp"
 
-#include <map>
+#include <deque>
 #include <mutex>
-#include <tuple>
 
 #include "scenarios/scenario_parts.hpp"
 
@@ -24,23 +23,16 @@ WipingOptions wiping_options(const WipingParameters& p) {
 namespace {
 
 /// The scene of each surface, compiled once and shared by every trial (its model is
-/// immutable); a sweep's trials then spend their time simulating. Bounded: a sweep over many
-/// surfaces starts over past 32.
-std::shared_ptr<const WipingScene> scene_of(const WipingSurface& s) {
-  using Key = std::tuple<double, double, double, double, bool>;
+/// immutable): a sweep's trials then spend their time simulating. The last 16 are kept.
+std::shared_ptr<const WipingScene> scene_of(const WipingSurface& surface) {
   static std::mutex mutex;
-  static std::map<Key, std::shared_ptr<const WipingScene>> scenes;
-  const Key key{s.table_height, s.friction, s.pad_radius, s.pad_time_constant, s.joint_friction};
+  static std::deque<std::shared_ptr<const WipingScene>> scenes;
   const std::lock_guard lock(mutex);
-  auto& scene = scenes[key];
-  if (!scene) {
-    if (scenes.size() > 32) {
-      scenes.clear();
-      return std::make_shared<const WipingScene>(build_wiping_scene(s));
-    }
-    scene = std::make_shared<const WipingScene>(build_wiping_scene(s));
-  }
-  return scene;
+  for (const auto& scene : scenes)
+    if (same_surface(scene->surface, surface)) return scene;
+  scenes.push_back(std::make_shared<const WipingScene>(build_wiping_scene(surface)));
+  if (scenes.size() > 16) scenes.pop_front();
+  return scenes.back();
 }
 
 class WipingScenario final : public DeclaredScenario<WipingParameters> {

@@ -123,6 +123,13 @@ void add_socket(Scene& scene, const Pose& X_WS, const DockingGeometry& g) {
 
 }  // namespace
 
+void add_franka_joint_friction(Scene& scene, const std::string& robot) {
+  for (std::size_t j = 0; j < kFrankaFrictionLoss.size(); ++j) {
+    const double f[1] = {kFrankaFrictionLoss[j]};
+    scene.set_attribute("joint", robot + "/joint" + std::to_string(j + 1), "frictionloss", f);
+  }
+}
+
 Eigen::VectorXd iiwa14_max_velocity() {
   Eigen::VectorXd v(7);
   v << 85.0, 85.0, 100.0, 75.0, 130.0, 135.0, 135.0;
@@ -173,14 +180,7 @@ Scene docking_scene(const DockingSceneOptions& options) {
     scene.add_sensor({DockingNames::force, SensorType::force, DockingNames::ft_site});
     scene.add_sensor({DockingNames::torque, SensorType::torque, DockingNames::ft_site});
   }
-  if (options.joint_friction) {
-    for (std::size_t j = 0; j < kFrankaFrictionLoss.size(); ++j) {
-      const double f[1] = {kFrankaFrictionLoss[j]};
-      scene.set_attribute("joint",
-                          std::string(DockingNames::robot) + "/joint" + std::to_string(j + 1),
-                          "frictionloss", f);
-    }
-  }
+  if (options.joint_friction) add_franka_joint_friction(scene, DockingNames::robot);
   add_socket(scene, X_WS, g);
   return scene;
 }

@@ -6,9 +6,9 @@
 #include <string>
 
 #include "mjarm/error.hpp"
-#include "mjarm/ik/pose_ik.hpp"
 #include "mjarm/number_text.hpp"
 #include "mjarm/sim/recorder.hpp"
+#include "mjarm/tasks/home_ik.hpp"
 
 namespace mjarm {
 
@@ -96,12 +96,7 @@ std::array<double, 3> docking_phase_times(const DockingMotion& motion,
 }
 
 Eigen::VectorXd docking_start_configuration(const DockingScene& scene, const Pose& X_WE) {
-  const Eigen::VectorXd q_home = scene.chain.gather(scene.robot.keyframe_qpos("home").data());
-  PoseIkOptions ik_options;
-  ik_options.posture.q_pref = q_home;
-  ik_options.posture.gain = 0.2;
-  PoseIk ik(scene.chain, ik_options);
-  const IkResult result = ik.solve(X_WE, q_home);
+  const IkResult result = home_pose_ik(scene.robot, scene.chain, X_WE);
   if (result.status != IkStatus::converged)
     throw Error("docking: the start pose (tip at (" + number_text(X_WE.p.x()) + ", " +
                 number_text(X_WE.p.y()) + ", " + number_text(X_WE.p.z()) +

@@ -39,12 +39,6 @@ std::unique_ptr<Controller> wiping_controller(const WipingScene& scene, const Wi
   return std::make_unique<CartesianImpedanceController>(scene.chain, o);
 }
 
-bool same_surface(const WipingSurface& a, const WipingSurface& b) {
-  return a.table_height == b.table_height && a.friction == b.friction &&
-         a.pad_radius == b.pad_radius && a.pad_time_constant == b.pad_time_constant &&
-         a.joint_friction == b.joint_friction;
-}
-
 CameraSpec wiping_camera(const WipingPlan& plan, const std::string& camera) {
   if (camera.empty()) {
     const Eigen::Vector3d middle = plan.start + 0.5 * plan.length * plan.direction;

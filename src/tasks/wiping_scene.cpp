@@ -38,14 +38,7 @@ Scene wiping_scene(const WipingSurface& surface) {
   scene.set_attribute("geom", pad, "solref", solref);
   scene.add_sensor({WipingNames::force, SensorType::force, WipingNames::ft_site});
   scene.add_sensor({WipingNames::torque, SensorType::torque, WipingNames::ft_site});
-  if (surface.joint_friction) {
-    for (std::size_t j = 0; j < kFrankaFrictionLoss.size(); ++j) {
-      const double f[1] = {kFrankaFrictionLoss[j]};
-      scene.set_attribute("joint",
-                          std::string(WipingNames::robot) + "/joint" + std::to_string(j + 1),
-                          "frictionloss", f);
-    }
-  }
+  if (surface.joint_friction) add_franka_joint_friction(scene, WipingNames::robot);
   ObjectSpec table;
   table.name = WipingNames::table;
   table.shape = ObjectShape::box;
@@ -56,6 +49,12 @@ Scene wiping_scene(const WipingSurface& surface) {
   scene.add_fixture(table);
   scene.set_attribute("geom", std::string(WipingNames::table) + "/geom", "solref", solref);
   return scene;
+}
+
+bool same_surface(const WipingSurface& a, const WipingSurface& b) noexcept {
+  return a.table_height == b.table_height && a.friction == b.friction &&
+         a.pad_radius == b.pad_radius && a.pad_time_constant == b.pad_time_constant &&
+         a.joint_friction == b.joint_friction;
 }
 
 WipingScene build_wiping_scene(const WipingSurface& surface) {

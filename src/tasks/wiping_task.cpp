@@ -6,9 +6,9 @@
 #include <string>
 
 #include "mjarm/error.hpp"
-#include "mjarm/ik/pose_ik.hpp"
 #include "mjarm/number_text.hpp"
 #include "mjarm/sim/recorder.hpp"
+#include "mjarm/tasks/home_ik.hpp"
 
 namespace mjarm {
 
@@ -31,12 +31,7 @@ void check_on_table(const Eigen::Vector3d& p, double margin, const char* which) 
 }
 
 Eigen::VectorXd start_configuration(const WipingScene& scene, const Pose& X_WE) {
-  const Eigen::VectorXd q_home = scene.chain.gather(scene.robot.keyframe_qpos("home").data());
-  PoseIkOptions options;
-  options.posture.q_pref = q_home;
-  options.posture.gain = 0.2;
-  PoseIk ik(scene.chain, options);
-  const IkResult result = ik.solve(X_WE, q_home);
+  const IkResult result = home_pose_ik(scene.robot, scene.chain, X_WE);
   if (result.status != IkStatus::converged)
     throw Error("wiping: the start (tip at (" + number_text(X_WE.p.x()) + ", " +
                 number_text(X_WE.p.y()) + ", " + number_text(X_WE.p.z()) +

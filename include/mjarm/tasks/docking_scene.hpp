@@ -78,6 +78,10 @@ constexpr auto declared_fields(const DockingGeometry*) {
 inline constexpr std::array<double, 7> kFrankaFrictionLoss{1.137, 1.137, 1.137, 1.137,
                                                            0.763, 0.44,  0.248};
 
+/// Puts `kFrankaFrictionLoss` on joints 1–7 of the iiwa14 called @p robot in @p scene (its joints
+/// `ROBOT/joint1` … `ROBOT/joint7`): the friction variant of the docking and the wiping.
+void add_franka_joint_friction(Scene& scene, const std::string& robot);
+
 /// The iiwa14's joint speed limits (KUKA LBR iiwa 14 R820 datasheet: 85, 85, 100, 75, 130, 135,
 /// 135 °/s) [rad/s].
 Eigen::VectorXd iiwa14_max_velocity();

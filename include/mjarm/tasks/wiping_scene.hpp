@@ -67,6 +67,9 @@ struct WipingScene {
 /// @throws Error for a value of @p surface out of its range.
 Scene wiping_scene(const WipingSurface& surface = {});
 
+/// True when @p a and @p b build the same scene (every field).
+bool same_surface(const WipingSurface& a, const WipingSurface& b) noexcept;
+
 /// Compiles `wiping_scene(surface)` and looks up its names.
 /// @throws Error as `wiping_scene`, or when the scene does not compile.
 WipingScene build_wiping_scene(const WipingSurface& surface = {});
