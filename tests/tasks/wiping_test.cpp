@@ -9,6 +9,7 @@
 #include <cmath>
 #include <memory>
 
+#include "ik/malloc_counter.hpp"
 #include "support/error_message.hpp"
 
 namespace mjarm {
@@ -75,6 +76,29 @@ TEST(Wiping, WithJointFrictionCicsFeedForwardKeepsThePathThatOscLoses) {
   EXPECT_EQ(with_ff.outcome, WipingOutcome::wiped) << wiping_result_line(with_ff);
   EXPECT_EQ(without.outcome, WipingOutcome::off_path) << wiping_result_line(without);
   EXPECT_GT(without.metrics.path_max_error, 1.5 * with_ff.metrics.path_max_error);
+}
+
+TEST(Wiping, TheTasksUpdateAllocatesNothingAfterTheFirstTickAndPressesAsPlanned) {
+  const WipingScene& scene = *shared_wiping_scene();
+  const WipingMotion motion;
+  const WipingPlan plan = plan_wiping(scene, WipingPath{}, motion, 1);
+  DataPtr d = scene.robot.make_data();
+  mj_forward(&scene.robot.model(), d.get());
+  WipingTask task(scene, plan, motion, WipingForceLoop{}, 1);
+  Reference r;
+  task.update(*d, r);
+  const std::uint64_t before = test::malloc_calls();
+  double pressing = 0.0;
+  for (int k = 0; 0.01 * k < plan.duration() - 1e-6; ++k) {
+    d->time = 0.01 * k;
+    ASSERT_TRUE(task.update(*d, r)) << d->time;
+    if (task.phase() == WipingPhase::stroke) pressing = -r.task.F_ext[2];
+  }
+  EXPECT_EQ(test::malloc_calls() - before, 0u);
+  // nothing touches the table here: the loop adds up to F_d, the bound of its integral
+  EXPECT_NEAR(pressing, 2.0 * motion.force, 1e-9);
+  d->time = plan.duration();
+  EXPECT_FALSE(task.update(*d, r));
 }
 
 TEST(Wiping, RefusesAStrokeOffTheTableAndASceneOfAnotherSurface) {

@@ -146,6 +146,8 @@ WipingPlan plan_wiping(const WipingScene& scene, const WipingPath& path, const W
 /// never throws.
 class WipingTask final : public ReferenceSource {
  public:
+  /// @param scene the scene the run simulates (must outlive the task: the task reads its F/T
+  ///        sensor)
   /// @param recorder where phase events go (may be null; must outlive the task)
   /// @throws Error for a force loop out of range
   WipingTask(const WipingScene& scene, const WipingPlan& plan, const WipingMotion& motion,
