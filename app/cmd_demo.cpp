@@ -13,7 +13,7 @@
 #include "mjarm/interrupt.hpp"
 #include "mjarm/plot/gnuplot.hpp"
 #include "mjarm/plot/plots.hpp"
-#include "mjarm/tasks/shelf_pick.hpp"
+#include "mjarm/tasks/shelf_pick/shelf_pick.hpp"
 #include "output.hpp"
 
 namespace mjarm::cli {

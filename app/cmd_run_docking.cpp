@@ -11,10 +11,10 @@
 #include "mjarm/error.hpp"
 #include "mjarm/interrupt.hpp"
 #include "mjarm/scenarios/docking_scenario.hpp"
-#include "mjarm/tasks/docking_grid.hpp"
-#include "mjarm/tasks/docking_plot.hpp"
-#include "mjarm/tasks/docking_task.hpp"
-#include "mjarm/tasks/tracking_gate.hpp"
+#include "mjarm/tasks/docking/grid.hpp"
+#include "mjarm/tasks/docking/plot.hpp"
+#include "mjarm/tasks/docking/task.hpp"
+#include "mjarm/tasks/docking/tracking_gate.hpp"
 #include "parameter_options.hpp"
 
 namespace mjarm::cli {

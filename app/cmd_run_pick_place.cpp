@@ -15,7 +15,7 @@
 #include "mjarm/error.hpp"
 #include "mjarm/interrupt.hpp"
 #include "mjarm/scenarios/pick_place_scenario.hpp"
-#include "mjarm/tasks/pick_place_trials.hpp"
+#include "mjarm/tasks/pick_place/trials.hpp"
 #include "parameter_options.hpp"
 
 namespace mjarm::cli {

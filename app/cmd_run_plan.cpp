@@ -8,7 +8,7 @@
 #include "commands.hpp"
 #include "mjarm/error.hpp"
 #include "mjarm/tasks/planned_motion.hpp"
-#include "mjarm/tasks/shelf_pick_controllers.hpp"
+#include "mjarm/tasks/shelf_pick/controllers.hpp"
 
 namespace mjarm::cli {
 

@@ -14,7 +14,7 @@
 #include "mjarm/interrupt.hpp"
 #include "mjarm/scenarios/registry.hpp"
 #include "mjarm/scenarios/shelf_pick_scenario.hpp"
-#include "mjarm/tasks/shelf_pick.hpp"
+#include "mjarm/tasks/shelf_pick/shelf_pick.hpp"
 #include "output.hpp"
 #include "parameter_options.hpp"
 #include "run_subcommands.hpp"

@@ -15,8 +15,8 @@
 #include "mjarm/kinematics/workspace.hpp"
 #include "mjarm/model/robot.hpp"
 #include "mjarm/planning/waypoint_planner.hpp"
-#include "mjarm/tasks/docking.hpp"
-#include "mjarm/tasks/pick_place.hpp"
+#include "mjarm/tasks/docking/docking.hpp"
+#include "mjarm/tasks/pick_place/pick_place.hpp"
 #include "options.hpp"
 #include "output.hpp"
 

@@ -20,8 +20,8 @@
 
 #include "mjarm/scene/scene.hpp"
 #include "mjarm/scene/scene_file.hpp"
-#include "mjarm/tasks/docking_scene.hpp"
-#include "mjarm/tasks/pick_place_scene.hpp"
+#include "mjarm/tasks/docking/scene.hpp"
+#include "mjarm/tasks/pick_place/scene.hpp"
 
 namespace {
 

@@ -5,7 +5,7 @@
 
 #include <cstdio>
 
-#include "mjarm/tasks/shelf_pick.hpp"
+#include "mjarm/tasks/shelf_pick/shelf_pick.hpp"
 
 int main() {
   mjarm::ShelfPickOptions options;

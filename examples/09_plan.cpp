@@ -9,7 +9,7 @@
 #include "mjarm/planning/planned_reference.hpp"
 #include "mjarm/planning/waypoint_planner.hpp"
 #include "mjarm/sim/simulation.hpp"
-#include "mjarm/tasks/shelf_pick_controllers.hpp"
+#include "mjarm/tasks/shelf_pick/controllers.hpp"
 
 int main() {
   const mjarm::Robot robot = mjarm::Robot::bundled("panda_torque");

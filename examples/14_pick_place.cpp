@@ -8,7 +8,7 @@
 
 #include <cstdio>
 
-#include "mjarm/tasks/pick_place.hpp"
+#include "mjarm/tasks/pick_place/pick_place.hpp"
 
 namespace {
 

@@ -5,9 +5,9 @@
 
 #include "controller_step.hpp"
 #include "declared_fields.hpp"
-#include "mjarm/tasks/docking.hpp"
-#include "mjarm/tasks/docking_grid.hpp"
-#include "mjarm/tasks/tracking_gate.hpp"
+#include "mjarm/tasks/docking/docking.hpp"
+#include "mjarm/tasks/docking/grid.hpp"
+#include "mjarm/tasks/docking/tracking_gate.hpp"
 #include "spec_support.hpp"
 
 namespace mjarm::python {

@@ -5,8 +5,8 @@
 #include <mutex>
 
 #include "declared_fields.hpp"
-#include "mjarm/tasks/pick_place.hpp"
-#include "mjarm/tasks/pick_place_trials.hpp"
+#include "mjarm/tasks/pick_place/pick_place.hpp"
+#include "mjarm/tasks/pick_place/trials.hpp"
 #include "spec_support.hpp"
 
 namespace mjarm::python {

@@ -2,7 +2,7 @@
 // and docking (bind_docking.cpp).
 #include "bindings.hpp"
 #include "declared_fields.hpp"
-#include "mjarm/tasks/shelf_pick.hpp"
+#include "mjarm/tasks/shelf_pick/shelf_pick.hpp"
 #include "spec_support.hpp"
 
 namespace mjarm::python {

@@ -7,7 +7,7 @@
 #include "mjarm/lie/rotation.hpp"
 #include "mjarm/number_text.hpp"
 #include "mjarm/sim/simulation.hpp"
-#include "mjarm/tasks/pick_place_controllers.hpp"
+#include "mjarm/tasks/pick_place/controllers.hpp"
 
 namespace mjarm {
 namespace {

@@ -16,7 +16,7 @@
 #include "mjarm/error.hpp"
 #include "mjarm/model/mujoco_library.hpp"
 #include "mjarm/random.hpp"
-#include "mjarm/tasks/pick_place_trials.hpp"
+#include "mjarm/tasks/pick_place/trials.hpp"
 #include "mjarm/teleop/bimanual_lift.hpp"
 #include "mjarm/teleop/session_log.hpp"
 

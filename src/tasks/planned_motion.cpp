@@ -7,7 +7,7 @@
 #include "mjarm/error.hpp"
 #include "mjarm/model/robot.hpp"
 #include "mjarm/sim/simulation.hpp"
-#include "mjarm/tasks/shelf_pick_controllers.hpp"
+#include "mjarm/tasks/shelf_pick/controllers.hpp"
 
 namespace mjarm {
 

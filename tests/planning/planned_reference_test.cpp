@@ -10,7 +10,7 @@
 #include "mjarm/kinematics/finite_difference.hpp"
 #include "mjarm/planning/waypoint_planner.hpp"
 #include "mjarm/sim/simulation.hpp"
-#include "mjarm/tasks/shelf_pick_controllers.hpp"
+#include "mjarm/tasks/shelf_pick/controllers.hpp"
 #include "planning/planning_support.hpp"
 
 namespace mjarm {

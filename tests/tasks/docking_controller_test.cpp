@@ -1,12 +1,11 @@
-#include "mjarm/tasks/docking_controller.hpp"
-
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <limits>
 
 #include "ik/malloc_counter.hpp"
-#include "mjarm/tasks/docking_task.hpp"
+#include "mjarm/tasks/docking/controller.hpp"
+#include "mjarm/tasks/docking/task.hpp"
 #include "support/error_message.hpp"
 #include "tasks/docking_test_support.hpp"
 

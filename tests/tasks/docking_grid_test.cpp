@@ -1,11 +1,10 @@
-#include "mjarm/tasks/docking_grid.hpp"
-
 #include <gtest/gtest.h>
 
 #include <csignal>
 #include <numbers>
 
 #include "mjarm/interrupt.hpp"
+#include "mjarm/tasks/docking/grid.hpp"
 #include "support/error_message.hpp"
 #include "tasks/docking_test_support.hpp"
 

@@ -1,5 +1,3 @@
-#include "mjarm/tasks/docking_monitor.hpp"
-
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -8,7 +6,8 @@
 #include "mjarm/ik/pose_ik.hpp"
 #include "mjarm/kinematics/contacts.hpp"
 #include "mjarm/sim/contact_query.hpp"
-#include "mjarm/tasks/docking_task.hpp"
+#include "mjarm/tasks/docking/monitor.hpp"
+#include "mjarm/tasks/docking/task.hpp"
 #include "support/error_message.hpp"
 #include "tasks/docking_test_support.hpp"
 

@@ -1,5 +1,3 @@
-#include "mjarm/tasks/docking_scene.hpp"
-
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -8,6 +6,7 @@
 #include "mjarm/dynamics/force_torque_sensor.hpp"
 #include "mjarm/ik/pose_ik.hpp"
 #include "mjarm/sim/contact_query.hpp"
+#include "mjarm/tasks/docking/scene.hpp"
 #include "support/error_message.hpp"
 #include "tasks/docking_test_support.hpp"
 

@@ -1,5 +1,3 @@
-#include "mjarm/tasks/docking_task.hpp"
-
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -8,6 +6,7 @@
 #include "ik/malloc_counter.hpp"
 #include "mjarm/kinematics/chain_kinematics.hpp"
 #include "mjarm/lie/so3.hpp"
+#include "mjarm/tasks/docking/task.hpp"
 #include "support/error_message.hpp"
 #include "tasks/docking_test_support.hpp"
 

@@ -1,11 +1,11 @@
-#include "mjarm/tasks/docking.hpp"
+#include "mjarm/tasks/docking/docking.hpp"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <numbers>
 
-#include "mjarm/tasks/docking_plot.hpp"
+#include "mjarm/tasks/docking/plot.hpp"
 #include "support/error_message.hpp"
 #include "support/files.hpp"
 #include "tasks/docking_test_support.hpp"

@@ -1,8 +1,6 @@
 // The pick-and-place scene: names, the table top (a box, with exact contacts for the object
 // resting on it), the object's friction, the classic edits, bad input.
 
-#include "mjarm/tasks/pick_place_scene.hpp"
-
 #include <gtest/gtest.h>
 #include <mujoco/mujoco.h>
 
@@ -12,6 +10,7 @@
 
 #include "mjarm/error.hpp"
 #include "mjarm/scene/free_pose.hpp"
+#include "mjarm/tasks/pick_place/scene.hpp"
 #include "support/error_message.hpp"
 
 namespace mjarm {

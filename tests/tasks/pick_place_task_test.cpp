@@ -1,8 +1,6 @@
 // PickPlaceTask on its own: the schedule and the segments' poses, the weld switched at the right
 // instants, an allocation-free control loop, bad input.
 
-#include "mjarm/tasks/pick_place_task.hpp"
-
 #include <gtest/gtest.h>
 
 #include <memory>
@@ -15,8 +13,9 @@
 #include "mjarm/sim/grasp_monitor.hpp"
 #include "mjarm/sim/simulation.hpp"
 #include "mjarm/sim/weld_grasp.hpp"
-#include "mjarm/tasks/pick_place_controllers.hpp"
-#include "mjarm/tasks/pick_place_scene.hpp"
+#include "mjarm/tasks/pick_place/controllers.hpp"
+#include "mjarm/tasks/pick_place/scene.hpp"
+#include "mjarm/tasks/pick_place/task.hpp"
 #include "support/error_message.hpp"
 
 namespace mjarm {

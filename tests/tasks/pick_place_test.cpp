@@ -2,7 +2,7 @@
 // grasp on the panda in torque mode, the machine's schedule and events, determinism, an
 // allocation-free control loop, a run that diverges mid-trial, and bad input.
 
-#include "mjarm/tasks/pick_place.hpp"
+#include "mjarm/tasks/pick_place/pick_place.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,8 +1,6 @@
 // Trial batches: parallel trials equal the same trials run alone, the summary's figures, a batch
 // whose trials diverge goes on and keeps every recording, bad input.
 
-#include "mjarm/tasks/pick_place_trials.hpp"
-
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -10,6 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "mjarm/error.hpp"
+#include "mjarm/tasks/pick_place/trials.hpp"
 #include "support/error_message.hpp"
 #include "support/files.hpp"
 

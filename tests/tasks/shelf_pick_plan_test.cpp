@@ -1,5 +1,3 @@
-#include "mjarm/tasks/shelf_pick_plan.hpp"
-
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -9,6 +7,7 @@
 #include "mjarm/error.hpp"
 #include "mjarm/kinematics/chain_kinematics.hpp"
 #include "mjarm/tasks/approach_timing.hpp"
+#include "mjarm/tasks/shelf_pick/plan.hpp"
 #include "support/error_message.hpp"
 
 namespace mjarm {

@@ -1,5 +1,3 @@
-#include "mjarm/tasks/shelf_pick_task.hpp"
-
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -11,6 +9,7 @@
 #include "mjarm/kinematics/chain_kinematics.hpp"
 #include "mjarm/kinematics/finite_difference.hpp"
 #include "mjarm/lie/so3.hpp"
+#include "mjarm/tasks/shelf_pick/task.hpp"
 #include "mjarm/trajectory/smoothstep.hpp"
 
 namespace mjarm {

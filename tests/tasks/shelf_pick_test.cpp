@@ -1,4 +1,4 @@
-#include "mjarm/tasks/shelf_pick.hpp"
+#include "mjarm/tasks/shelf_pick/shelf_pick.hpp"
 
 #include <gtest/gtest.h>
 #include <unistd.h>

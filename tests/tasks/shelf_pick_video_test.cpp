@@ -2,8 +2,6 @@
 // pick point, a video does not change the figures, and an encoder that dies mid-run leaves the
 // run going and reports why.
 
-#include "mjarm/tasks/shelf_pick_video.hpp"
-
 #include <gtest/gtest.h>
 #include <sys/stat.h>
 #include <unistd.h>
@@ -14,7 +12,8 @@
 #include <string>
 
 #include "mjarm/error.hpp"
-#include "mjarm/tasks/shelf_pick.hpp"
+#include "mjarm/tasks/shelf_pick/shelf_pick.hpp"
+#include "mjarm/tasks/shelf_pick/video.hpp"
 #include "support/files.hpp"
 
 namespace mjarm {

@@ -1,4 +1,4 @@
-#include "mjarm/tasks/tracking_gate.hpp"
+#include "mjarm/tasks/docking/tracking_gate.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,7 +1,7 @@
 // The wiping task (mjarm/tasks/wiping*.hpp): a stroke at a constant normal force with either law,
 // the force loop against the feed-forward alone (whose error is the normal spring's pull towards
 // the believed table: a physical cross-check), joint friction, and bad input.
-#include "mjarm/tasks/wiping.hpp"
+#include "mjarm/tasks/wiping/wiping.hpp"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>

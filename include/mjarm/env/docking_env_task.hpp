@@ -11,9 +11,9 @@
 
 #include "mjarm/env/env_task.hpp"
 #include "mjarm/fields.hpp"
-#include "mjarm/tasks/docking_monitor.hpp"
-#include "mjarm/tasks/docking_scene.hpp"
-#include "mjarm/tasks/docking_task.hpp"
+#include "mjarm/tasks/docking/monitor.hpp"
+#include "mjarm/tasks/docking/scene.hpp"
+#include "mjarm/tasks/docking/task.hpp"
 
 namespace mjarm {
 

@@ -16,8 +16,8 @@
 #include "mjarm/env/env_task.hpp"
 #include "mjarm/fields.hpp"
 #include "mjarm/sim/grasp_monitor.hpp"
-#include "mjarm/tasks/pick_place.hpp"
-#include "mjarm/tasks/pick_place_scene.hpp"
+#include "mjarm/tasks/pick_place/pick_place.hpp"
+#include "mjarm/tasks/pick_place/scene.hpp"
 
 namespace mjarm {
 

@@ -12,7 +12,7 @@
 
 #include "mjarm/env/env_task.hpp"
 #include "mjarm/tasks/pick_monitor.hpp"
-#include "mjarm/tasks/shelf_pick_plan.hpp"
+#include "mjarm/tasks/shelf_pick/plan.hpp"
 
 namespace mjarm {
 

@@ -5,7 +5,7 @@
 
 #include "mjarm/fields.hpp"
 #include "mjarm/scenarios/declared_scenario.hpp"
-#include "mjarm/tasks/docking.hpp"
+#include "mjarm/tasks/docking/docking.hpp"
 
 namespace mjarm {
 

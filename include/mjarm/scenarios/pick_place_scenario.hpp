@@ -10,7 +10,7 @@
 
 #include "mjarm/fields.hpp"
 #include "mjarm/scenarios/declared_scenario.hpp"
-#include "mjarm/tasks/pick_place.hpp"
+#include "mjarm/tasks/pick_place/pick_place.hpp"
 
 namespace mjarm {
 

@@ -10,7 +10,7 @@
 #include "mjarm/fields.hpp"
 #include "mjarm/scenarios/declared_scenario.hpp"
 #include "mjarm/tasks/pick_monitor.hpp"
-#include "mjarm/tasks/shelf_pick.hpp"
+#include "mjarm/tasks/shelf_pick/shelf_pick.hpp"
 
 namespace mjarm {
 

@@ -8,7 +8,7 @@
 
 #include "mjarm/fields.hpp"
 #include "mjarm/scenarios/declared_scenario.hpp"
-#include "mjarm/tasks/wiping.hpp"
+#include "mjarm/tasks/wiping/wiping.hpp"
 
 namespace mjarm {
 

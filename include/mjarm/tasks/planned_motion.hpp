@@ -13,7 +13,7 @@
 #include "mjarm/planning/planned_reference.hpp"
 #include "mjarm/planning/waypoint_path_plan.hpp"
 #include "mjarm/sim/run_result.hpp"
-#include "mjarm/tasks/shelf_pick_plan.hpp"
+#include "mjarm/tasks/shelf_pick/plan.hpp"
 
 namespace mjarm {
 
