@@ -1,8 +1,6 @@
 #include "mjarm/scenarios/docking_scenario.hpp"
 
-#include <deque>
 #include <limits>
-#include <mutex>
 
 #include "scenarios/scenario_parts.hpp"
 
@@ -32,19 +30,14 @@ void apply(const DockingParameters& p, DockingOptions& o) {
 
 namespace {
 
-/// The scene of each variant and geometry, compiled once and shared by every trial (its model is
-/// immutable): a sweep's trials then spend their time simulating. The last 16 are kept.
+/// The scene of each variant and geometry, shared by the trials that use it.
 std::shared_ptr<const DockingScene> scene_of(bool joint_friction, const DockingGeometry& g) {
-  static std::mutex mutex;
-  static std::deque<std::shared_ptr<const DockingScene>> scenes;
-  const std::lock_guard lock(mutex);
-  for (const auto& scene : scenes)
-    if (scene->options.joint_friction == joint_friction &&
-        same_geometry(scene->options.geometry, g))
-      return scene;
-  scenes.push_back(shared_docking_scene(nullptr, joint_friction, g));
-  if (scenes.size() > 16) scenes.pop_front();
-  return scenes.back();
+  static detail::SceneCache<DockingScene> scenes;
+  return scenes.get(
+      [&](const DockingScene& s) {
+        return s.options.joint_friction == joint_friction && same_geometry(s.options.geometry, g);
+      },
+      [&] { return shared_docking_scene(nullptr, joint_friction, g); });
 }
 
 class DockingScenario final : public DeclaredScenario<DockingParameters> {

@@ -1,6 +1,10 @@
 #pragma once
 // What the built-in scenarios share when they turn a task's report into a TrialOutcome.
 
+#include <algorithm>
+#include <deque>
+#include <memory>
+#include <mutex>
 #include <string_view>
 
 #include "mjarm/scenarios/scenario.hpp"
@@ -23,6 +27,28 @@ TrialOutcome outcome_of(const RunResult& run, std::string_view verdict, bool suc
 /// The recording and the video's error, as the task reports them.
 void take_outputs(TrialOutcome& outcome, const std::filesystem::path& recording,
                   const std::string& recording_error, const std::string& video_error);
+
+/// The scenes a scenario's trials ask for, each compiled once and shared (its model is
+/// immutable): a sweep's trials then spend their time simulating. The last 16 are kept.
+template <class Scene>
+class SceneCache {
+ public:
+  /// The kept scene for which @p same(scene) holds, else @p build()'s, kept.
+  template <class Same, class Build>
+  std::shared_ptr<const Scene> get(Same same, Build build) {
+    const std::lock_guard lock(mutex_);
+    const auto it = std::find_if(scenes_.begin(), scenes_.end(),
+                                 [&](const auto& scene) { return same(*scene); });
+    if (it != scenes_.end()) return *it;
+    scenes_.push_back(build());
+    if (scenes_.size() > 16) scenes_.pop_front();
+    return scenes_.back();
+  }
+
+ private:
+  std::mutex mutex_;
+  std::deque<std::shared_ptr<const Scene>> scenes_;
+};
 
 }  // namespace detail
 

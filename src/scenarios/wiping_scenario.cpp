@@ -1,8 +1,5 @@
 #include "mjarm/scenarios/wiping_scenario.hpp"
 
-#include <deque>
-#include <mutex>
-
 #include "scenarios/scenario_parts.hpp"
 
 namespace mjarm {
@@ -22,17 +19,12 @@ WipingOptions wiping_options(const WipingParameters& p) {
 
 namespace {
 
-/// The scene of each surface, compiled once and shared by every trial (its model is
-/// immutable): a sweep's trials then spend their time simulating. The last 16 are kept.
+/// The scene of each surface, shared by the trials that use it.
 std::shared_ptr<const WipingScene> scene_of(const WipingSurface& surface) {
-  static std::mutex mutex;
-  static std::deque<std::shared_ptr<const WipingScene>> scenes;
-  const std::lock_guard lock(mutex);
-  for (const auto& scene : scenes)
-    if (same_surface(scene->surface, surface)) return scene;
-  scenes.push_back(std::make_shared<const WipingScene>(build_wiping_scene(surface)));
-  if (scenes.size() > 16) scenes.pop_front();
-  return scenes.back();
+  static detail::SceneCache<WipingScene> scenes;
+  return scenes.get(
+      [&](const WipingScene& s) { return same_surface(s.surface, surface); },
+      [&] { return std::make_shared<const WipingScene>(build_wiping_scene(surface)); });
 }
 
 class WipingScenario final : public DeclaredScenario<WipingParameters> {

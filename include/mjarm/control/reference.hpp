@@ -12,6 +12,19 @@ struct JointReference {
   Eigen::VectorXd q;    ///< position [rad or m]
   Eigen::VectorXd qd;   ///< velocity [rad/s or m/s]
   Eigen::VectorXd qdd;  ///< acceleration [rad/s² or m/s²]
+
+  /// The posture @p q_rest at rest (velocity and acceleration zero). Sizes the vectors when their
+  /// size differs (the first call); allocates nothing after that.
+  void hold(const Eigen::VectorXd& q_rest) {
+    if (q.size() != q_rest.size()) {
+      q.resize(q_rest.size());
+      qd.resize(q_rest.size());
+      qdd.resize(q_rest.size());
+    }
+    q = q_rest;
+    qd.setZero();
+    qdd.setZero();
+  }
 };
 
 /// Desired motion of the chain's end-effector frame E, all in world axes.

@@ -167,14 +167,7 @@ bool DockingTask::update(const mjData& data, Reference& reference) noexcept {
   if (t >= t_hold && motion_.preload > 0.0)
     reference.task.F_ext.head<3>() =
         motion_.preload * std::min(1.0, (t - t_hold) / motion_.preload_ramp) * direction_;
-  JointReference& joint = reference.joint;
-  const Eigen::Index n = plan_.q_start.size();
-  if (joint.q.size() != n) joint.q.resize(n);  // the first tick only
-  if (joint.qd.size() != n) joint.qd.resize(n);
-  if (joint.qdd.size() != n) joint.qdd.resize(n);
-  joint.q = plan_.q_start;
-  joint.qd.setZero();
-  joint.qdd.setZero();
+  reference.joint.hold(plan_.q_start);  // the null-space posture
   X_WD_ = now.X_WE;
   return true;
 }

@@ -71,15 +71,7 @@ class GateSource final : public ReferenceSource {
     reference.task.V_WE = lagged.V_WE;
     reference.task.A_WE = now.A_WE;
     reference.task.F_ext.setZero();
-    JointReference& joint = reference.joint;
-    if (joint.q.size() != q_start_.size()) {  // the first tick only
-      joint.q.resize(q_start_.size());
-      joint.qd.resize(q_start_.size());
-      joint.qdd.resize(q_start_.size());
-    }
-    joint.q = q_start_;
-    joint.qd.setZero();
-    joint.qdd.setZero();
+    reference.joint.hold(q_start_);
     X_WD_ = now.X_WE;
     return true;
   }

@@ -7,14 +7,6 @@
 
 namespace mjarm {
 
-namespace {
-
-constexpr double kTableNear = 0.3;   // the table's near edge in front of the robot [m]
-constexpr double kTableDepth = 0.5;  // along x [m]
-constexpr double kTableWidth = 0.9;  // along y [m]
-
-}  // namespace
-
 Scene wiping_scene(const WipingSurface& surface) {
   check_fields(surface);
   Scene scene("wiping");
@@ -42,8 +34,8 @@ Scene wiping_scene(const WipingSurface& surface) {
   ObjectSpec table;
   table.name = WipingNames::table;
   table.shape = ObjectShape::box;
-  table.size = {0.5 * kTableDepth, 0.5 * kTableWidth, 0.5 * surface.table_height};
-  table.pos = {kTableNear + 0.5 * kTableDepth, 0.0, 0.5 * surface.table_height};
+  table.size = {0.5 * kWipingTableDepth, 0.5 * kWipingTableWidth, 0.5 * surface.table_height};
+  table.pos = {kWipingTableNear + 0.5 * kWipingTableDepth, 0.0, 0.5 * surface.table_height};
   table.friction = {surface.friction, 0.005, 0.0001};
   table.rgba = {0.72, 0.62, 0.48, 1.0};
   scene.add_fixture(table);

@@ -14,8 +14,8 @@ namespace mjarm {
 
 namespace {
 
-// The table's top face in x and y (wiping_scene.cpp) [m].
-constexpr double kTableXMin = 0.3, kTableXMax = 0.8, kTableYHalf = 0.45;
+constexpr double kTableXMin = kWipingTableNear, kTableXMax = kWipingTableNear + kWipingTableDepth,
+                 kTableYHalf = 0.5 * kWipingTableWidth;
 
 /// The tool pointing straight down, its x against the world's (the iiwa's flange at home).
 Eigen::Matrix3d tool_down() { return Eigen::Vector3d(-1.0, 1.0, -1.0).asDiagonal(); }
@@ -158,14 +158,7 @@ bool WipingTask::update(const mjData& data, Reference& reference) noexcept {
   task.F_ext.setZero();
   task.F_ext(2) = -commanded_force_;
 
-  JointReference& joint = reference.joint;
-  const Eigen::Index n = plan_.q_start.size();
-  if (joint.q.size() != n) joint.q.resize(n);  // the first tick only
-  if (joint.qd.size() != n) joint.qd.resize(n);
-  if (joint.qdd.size() != n) joint.qdd.resize(n);
-  joint.q = plan_.q_start;
-  joint.qd.setZero();
-  joint.qdd.setZero();
+  reference.joint.hold(plan_.q_start);  // the null-space posture
   return true;
 }
 

@@ -39,6 +39,12 @@ constexpr auto declared_fields(const WipingSurface*) {
             "the Franka Panda's joint Coulomb friction on the iiwa14"));
 }
 
+/// The table's top face, in front of the robot: x from its near edge over its depth, y within
+/// ± half its width [m].
+inline constexpr double kWipingTableNear = 0.3;
+inline constexpr double kWipingTableDepth = 0.5;
+inline constexpr double kWipingTableWidth = 0.9;
+
 /// Names in the wiping scene.
 struct WipingNames {
   static constexpr const char* robot = "iiwa";
@@ -62,7 +68,7 @@ struct WipingScene {
 
 /// The parts of the wiping scene, not compiled: arena, iiwa14_torque, the tool
 /// (models/grippers/wiping_tool.xml) at `attachment_site` with its F/T sensors, the table (a box
-/// from the floor to `table_height`, 0.5 × 0.9 m, its near edge 0.3 m in front of the robot);
+/// from the floor to `table_height`, its top as the constants above say);
 /// elliptic friction cones, pad and table as soft as `pad_time_constant` says.
 /// @throws Error for a value of @p surface out of its range.
 Scene wiping_scene(const WipingSurface& surface = {});
