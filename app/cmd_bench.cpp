@@ -16,6 +16,7 @@
 #include "mjarm/address_sanitizer.hpp"
 #include "mjarm/control/control_benchmark.hpp"
 #include "mjarm/error.hpp"
+#include "mjarm/fields_json.hpp"
 #include "mjarm/ik/ik_benchmark.hpp"
 #include "mjarm/interrupt.hpp"
 #include "output.hpp"
@@ -82,20 +83,6 @@ extern "C" int posix_memalign(void** pointer, std::size_t alignment, std::size_t
 namespace mjarm::cli {
 namespace {
 
-Json result_json(const IkBenchmarkResult& r) {
-  return {{"solver", r.solver},
-          {"seed_mode", to_string(r.seed_mode)},
-          {"timeout_ms", r.timeout_ms},
-          {"samples", r.samples},
-          {"successes", r.successes},
-          {"success_rate", r.success_rate},
-          {"mean_time_ms", r.mean_time_ms},
-          {"median_time_ms", r.median_time_ms},
-          {"p99_time_ms", r.p99_time_ms},
-          {"max_time_ms", r.max_time_ms},
-          {"mean_iterations", r.mean_iterations}};
-}
-
 /// MODEL, or its torque-driven variant when MODEL is a bundled name that has one ("panda" →
 /// "panda_torque"): the control benchmark drives motors.
 Robot load_torque_model(const std::string& model) {
@@ -121,17 +108,11 @@ double control_target_us(const std::string& name) {
 
 Json controller_json(const ControllerBenchmark& c) {
   const double target = control_target_us(c.name);
-  return {{"name", c.name},
-          {"target_median_us", target > 0.0 ? Json(target) : Json(nullptr)},
-          {"meets_target", target > 0.0 ? Json(c.median_us <= target) : Json(nullptr)},
-          {"steps", c.steps},
-          {"median_us", c.median_us},
-          {"p99_us", c.p99_us},
-          {"mean_us", c.mean_us},
-          {"max_us", c.max_us},
-          {"allocations", c.allocations},
-          {"allocations_per_step", c.allocations_per_step},
-          {"rms_position_error_m", c.rms_position_error}};
+  Json row{{"name", c.name},
+           {"target_median_us", target > 0.0 ? Json(target) : Json(nullptr)},
+           {"meets_target", target > 0.0 ? Json(c.median_us <= target) : Json(nullptr)}};
+  row.update(fields_to_json(c));
+  return row;
 }
 
 /// `mjarm bench control`: registers the subcommand on @p bench.
@@ -346,7 +327,7 @@ Command add_bench_command(CLI::App& root) {
             };
             if (options->json) {
               Json runs = Json::array();
-              for (const auto& r : results) runs.push_back(result_json(r));
+              for (const auto& r : results) runs.push_back(fields_to_json(r));
               print_json({{"model", robot.name()},
                           {"frame", chain.frame().name},
                           {"joints", chain.size()},

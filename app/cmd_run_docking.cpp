@@ -9,6 +9,7 @@
 
 #include "commands.hpp"
 #include "mjarm/error.hpp"
+#include "mjarm/fields_json.hpp"
 #include "mjarm/interrupt.hpp"
 #include "mjarm/scenarios/docking_scenario.hpp"
 #include "mjarm/tasks/docking/grid.hpp"
@@ -49,39 +50,6 @@ std::string failure_counts(const std::map<std::string, int>& counts) {
   std::vector<std::string> items;
   for (const auto& [why, n] : counts) items.push_back(why + " ×" + std::to_string(n));
   return items.empty() ? "none" : join(items);
-}
-
-Json metrics_json(const DockingMetrics& m) {
-  return Json{{"seated", m.seated},
-              {"failures", m.failures},
-              {"peak_force", m.peak_force},
-              {"peak_axial_force", m.peak_axial_force},
-              {"peak_wrench", m.peak_wrench},
-              {"peak_axial_moment", m.peak_axial_moment},
-              {"steady_axial_force", m.steady_axial_force},
-              {"steady_wrench", m.steady_wrench},
-              {"steady_lateral", m.steady_lateral},
-              {"steady_tilt", m.steady_tilt},
-              {"max_lateral", m.max_lateral},
-              {"max_tilt", m.max_tilt},
-              {"min_depth", m.min_depth},
-              {"max_speed", m.max_speed},
-              {"max_angular_speed", m.max_angular_speed},
-              {"contact_fraction", m.contact_fraction},
-              {"max_joint_position_percent", m.max_joint_position},
-              {"max_joint_velocity_percent", m.max_joint_velocity},
-              {"min_manipulability", m.min_manipulability},
-              {"position_rms", m.position_rms},
-              {"orientation_rms", m.orientation_rms},
-              {"free_samples", m.free_samples},
-              {"saturation", m.saturation},
-              {"first_contact_time",
-               m.first_contact_time < 0.0 ? Json(nullptr) : Json(m.first_contact_time)},
-              {"samples", m.samples}};
-}
-
-Json offset_json(const DockingOffset& o) {
-  return Json{{"dx", o.dx}, {"dy", o.dy}, {"dyaw", o.dyaw}};
 }
 
 DockingOptions base_options(const DockingCliOptions& cli) {
@@ -173,7 +141,7 @@ Json docking_json(const DockingReport& r) {
       {"controller", r.controller},
       {"source", to_string(r.source)},
       {"joint_friction", r.joint_friction},
-      {"offset", offset_json(r.plan.offset)},
+      {"offset", fields_to_json(r.plan.offset)},
       {"approach_time", r.plan.approach_time},
       {"insert_time", r.plan.insert_time},
       {"hold_time", r.plan.hold_time},
@@ -181,7 +149,7 @@ Json docking_json(const DockingReport& r) {
       {"status", to_string(r.run.status)},
       {"message", r.run.message},
       {"end_time", r.run.end_time},
-      {"metrics", metrics_json(r.metrics)},
+      {"metrics", fields_to_json(r.metrics)},
       {"bad_wrench_ticks", r.bad_wrench_ticks},
       {"qp_fallbacks",
        {{"least_squares", r.qp_least_squares}, {"null_space_dropped", r.qp_null_space_dropped}}},
@@ -277,9 +245,9 @@ void run_grid(const DockingCliOptions& cli, const std::vector<DockingLaw>& laws,
     for (const DockingGridResult& g : results) {
       Json runs = Json::array();
       for (const DockingGridRun& run : g.runs)
-        runs.push_back({{"offset", offset_json(run.offset)},
+        runs.push_back({{"offset", fields_to_json(run.offset)},
                         {"outcome", to_string(run.outcome)},
-                        {"metrics", metrics_json(run.metrics)}});
+                        {"metrics", fields_to_json(run.metrics)}});
       Json failures = Json::object();
       for (const auto& [why, n] : g.failures) failures[why] = n;
       rows.push_back({{"controller", g.controller},

@@ -11,6 +11,7 @@
 
 #include "commands.hpp"
 #include "mjarm/error.hpp"
+#include "mjarm/fields_json.hpp"
 #include "mjarm/interrupt.hpp"
 #include "mjarm/scenarios/registry.hpp"
 #include "mjarm/scenarios/shelf_pick_scenario.hpp"
@@ -74,17 +75,7 @@ Json shelf_pick_json(const ShelfPickReport& r) {
            {"status", to_string(r.run.status)},
            {"message", r.run.message},
            {"end_time", r.run.end_time}};
-  doc["metrics"] = Json{{"time_to_tolerance", number_or_null(m.time_to_tolerance)},
-                        {"first_entry_time", number_or_null(m.first_entry_time)},
-                        {"overshoot", m.overshoot},
-                        {"steady_state_mean", number_or_null(m.steady_state_mean)},
-                        {"steady_state_max", number_or_null(m.steady_state_max)},
-                        {"hold_mean", number_or_null(m.hold_mean)},
-                        {"hold_max", number_or_null(m.hold_max)},
-                        {"orientation_error_max", number_or_null(m.orientation_error_max)},
-                        {"hold_end_time", number_or_null(m.hold_end_time)},
-                        {"exits", m.exits},
-                        {"final_error", number_or_null(m.final_error)}};
+  doc["metrics"] = fields_to_json(m);
   doc["saturated_ticks"] = r.saturated_ticks;
   doc["recording"] = r.recording.empty() ? Json(nullptr) : Json(r.recording.string());
   doc["recording_error"] = r.recording_error.empty() ? Json(nullptr) : Json(r.recording_error);

@@ -109,6 +109,13 @@ constexpr Field<S, T> field(std::string_view name, T S::*member, std::string_vie
   return {name, member, {}, Range{-Range::inf, Range::inf, false, false, true}, doc};
 }
 
+/// A report's field (read, not checked): name, member, unit ("" when none), doc.
+template <class S, class T>
+constexpr Field<S, T> field(std::string_view name, T S::*member, std::string_view unit,
+                            std::string_view doc) {
+  return {name, member, unit, Range{-Range::inf, Range::inf, false, false, true}, doc};
+}
+
 /// The declared fields of struct @p S, in order, and how messages name the struct ("simulation").
 template <class S, class... T>
 struct FieldList {
@@ -230,6 +237,10 @@ concept VectorField = detail::is_eigen_vector<T>::value || detail::is_number_arr
 /// null in JSON, for a value the code then chooses (drawn from the seed, say).
 template <class T>
 concept OptionalField = detail::is_optional<T>::value;
+
+/// A field holding a list of names (`std::vector<std::string>`): a report's reasons, say.
+template <class T>
+concept NameListField = std::same_as<T, std::vector<std::string>>;
 
 /// The length every value of vector field type @p T has; -1 when it varies.
 template <VectorField T>

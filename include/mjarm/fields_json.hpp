@@ -26,7 +26,7 @@ namespace detail {
 
 template <class T>
 nlohmann::ordered_json value_to_json(const T& value) {
-  if constexpr (std::same_as<T, bool> || std::same_as<T, std::string>) {
+  if constexpr (std::same_as<T, bool> || std::same_as<T, std::string> || NameListField<T>) {
     return value;
   } else if constexpr (NumberField<T>) {
     if constexpr (std::is_floating_point_v<T>) {
@@ -67,6 +67,14 @@ void value_from_json(const Json& j, T& value, std::string_view owner, const std:
   } else if constexpr (std::same_as<T, std::string>) {
     if (!j.is_string()) throw Error(where + " must be a string, got " + j.dump());
     value = j.template get<std::string>();
+  } else if constexpr (NameListField<T>) {
+    if (!j.is_array()) throw Error(where + " must be an array of strings, got " + j.dump());
+    std::vector<std::string> read;
+    for (const auto& each : j) {
+      if (!each.is_string()) throw Error(where + " must hold strings, got " + each.dump());
+      read.push_back(each.template get<std::string>());
+    }
+    value = std::move(read);
   } else if constexpr (std::is_integral_v<T>) {
     if (!j.is_number_integer())
       throw Error(where + " must be a whole number, got " + j.dump());
@@ -88,7 +96,10 @@ void value_from_json(const Json& j, T& value, std::string_view owner, const std:
     if (j.is_null()) {
       value.reset();
     } else {
-      typename T::value_type set = value.value_or(typename T::value_type{});
+      typename T::value_type set{};
+      if constexpr (detail::is_eigen_vector<typename T::value_type>::value)
+        set.setZero();  // Eigen leaves a fixed vector uninitialized
+      if (value) set = *value;
       value_from_json(j, set, owner, path, range);
       value = std::move(set);
     }

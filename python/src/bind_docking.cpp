@@ -207,37 +207,19 @@ void bind_motion(py::module_& m) {
 }
 
 void bind_docking_results(py::module_& m) {
-  py::class_<DockingMetrics>(m, "DockingMetrics",
-                             "Metrics of one run: whole run, final window, verdict. Forces [N], "
-                             "moments [N m], lengths [m], angles [rad].")
-      .def_readonly("samples", &DockingMetrics::samples)
-      .def_readonly("peak_force", &DockingMetrics::peak_force)
-      .def_readonly("peak_axial_force", &DockingMetrics::peak_axial_force)
-      .def_readonly("peak_wrench", &DockingMetrics::peak_wrench)
-      .def_readonly("peak_axial_moment", &DockingMetrics::peak_axial_moment)
-      .def_readonly("max_joint_position", &DockingMetrics::max_joint_position, "[% of limit]")
-      .def_readonly("max_joint_velocity", &DockingMetrics::max_joint_velocity, "[% of limit]")
-      .def_readonly("min_manipulability", &DockingMetrics::min_manipulability)
-      .def_readonly("position_rms", &DockingMetrics::position_rms, "free motion")
-      .def_readonly("orientation_rms", &DockingMetrics::orientation_rms, "free motion")
-      .def_readonly("free_samples", &DockingMetrics::free_samples)
-      .def_readonly("saturation", &DockingMetrics::saturation, "fraction of ticks")
-      .def_readonly("first_contact_time", &DockingMetrics::first_contact_time, "-1: never")
-      .def_readonly("joint_limits_ok", &DockingMetrics::joint_limits_ok)
-      .def_readonly("other_contact", &DockingMetrics::other_contact)
-      .def_readonly("finite", &DockingMetrics::finite)
-      .def_readonly("steady_axial_force", &DockingMetrics::steady_axial_force)
-      .def_readonly("steady_wrench", &DockingMetrics::steady_wrench)
-      .def_readonly("steady_lateral", &DockingMetrics::steady_lateral)
-      .def_readonly("steady_tilt", &DockingMetrics::steady_tilt)
-      .def_readonly("max_lateral", &DockingMetrics::max_lateral)
-      .def_readonly("max_tilt", &DockingMetrics::max_tilt)
-      .def_readonly("min_depth", &DockingMetrics::min_depth)
-      .def_readonly("max_speed", &DockingMetrics::max_speed)
-      .def_readonly("max_angular_speed", &DockingMetrics::max_angular_speed)
-      .def_readonly("contact_fraction", &DockingMetrics::contact_fraction)
-      .def_readonly("seated", &DockingMetrics::seated)
-      .def_readonly("failures", &DockingMetrics::failures, "why not seated: list of names");
+  auto metrics =
+      py::class_<DockingMetrics>(
+          m, "DockingMetrics",
+          "Metrics of one run: whole run, final window, verdict. Forces [N], "
+          "moments [N m], lengths [m], angles [rad].")
+          // the names before the declaration (the JSON's) took the percent
+          .def_property_readonly(
+              "max_joint_position", [](const DockingMetrics& d) { return d.max_joint_position; },
+              "alias of max_joint_position_percent")
+          .def_property_readonly(
+              "max_joint_velocity", [](const DockingMetrics& d) { return d.max_joint_velocity; },
+              "alias of max_joint_velocity_percent");
+  def_readonly_fields(metrics);
   def_enum<DockingOutcome>(m, "DockingOutcome", "How a docking run ended.");
   py::class_<DockingReport>(m, "DockingReport", "What a docking run did.")
       .def_readonly("plan", &DockingReport::plan)

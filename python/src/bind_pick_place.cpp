@@ -167,25 +167,9 @@ void bind_pick_place_options(py::module_& m) {
 }
 
 void bind_pick_place_results(py::module_& m) {
-  py::class_<PickPlaceTrace>(m, "PickPlaceTrace", "What the machine saw (NaN: did not happen).")
-      .def_readonly("state", &PickPlaceTrace::state, "the state at the end")
-      .def_readonly("start_time", &PickPlaceTrace::start_time, "[s]")
-      .def_readonly("done_time", &PickPlaceTrace::done_time, "DONE entered: the cycle time [s]")
-      .def_readonly("closed", &PickPlaceTrace::closed, "both fingers touched when GRASP ended")
-      .def_readonly("closing_force", &PickPlaceTrace::closing_force, "[N]")
-      .def_readonly("welded", &PickPlaceTrace::welded)
-      .def_readonly("weld_jump", &PickPlaceTrace::weld_jump, "object moved by the switch [m]")
-      .def_readonly("weld_settle", &PickPlaceTrace::weld_settle, "weld stretch over DWELL_C [m]")
-      .def_readonly("slipped", &PickPlaceTrace::slipped)
-      .def_readonly("dropped", &PickPlaceTrace::dropped)
-      .def_readonly("dropped_time", &PickPlaceTrace::dropped_time, "[s]")
-      .def_readonly("max_slip", &PickPlaceTrace::max_slip, "[m]")
-      .def_readonly("transport_force_mean", &PickPlaceTrace::transport_force_mean, "[N]")
-      .def_readonly("transport_force_max", &PickPlaceTrace::transport_force_max, "[N]")
-      .def_readonly("table_contact", &PickPlaceTrace::table_contact)
-      .def_readonly("table_contact_time", &PickPlaceTrace::table_contact_time, "[s]")
-      .def_readonly("longest_saturation", &PickPlaceTrace::longest_saturation, "[ticks]")
-      .def_readonly("saturated_actuator", &PickPlaceTrace::saturated_actuator, "-1: none");
+  auto trace = py::class_<PickPlaceTrace>(m, "PickPlaceTrace",
+                                          "What the machine saw (NaN: did not happen).");
+  def_readonly_fields(trace);
 
   py::class_<PickPlaceReport>(m, "PickPlaceReport", "What one trial did.")
       .def_readonly("trial", &PickPlaceReport::trial, "PickPlaceTrial: the draw")

@@ -11,20 +11,8 @@ void bind_tasks(py::module_& m) {
   py::class_<PickCriteria> criteria(m, "PickCriteria", "When a pick counts as held.");
   criteria.def(py::init<>());
   def_fields(criteria);
-  py::class_<PickMetrics>(m, "PickMetrics")
-      .def_readonly("held", &PickMetrics::held)
-      .def_readonly("first_entry_time", &PickMetrics::first_entry_time)
-      .def_readonly("time_to_tolerance", &PickMetrics::time_to_tolerance)
-      .def_readonly("hold_end_time", &PickMetrics::hold_end_time)
-      .def_readonly("overshoot", &PickMetrics::overshoot)
-      .def_readonly("hold_mean", &PickMetrics::hold_mean)
-      .def_readonly("hold_max", &PickMetrics::hold_max)
-      .def_readonly("steady_state_mean", &PickMetrics::steady_state_mean)
-      .def_readonly("steady_state_max", &PickMetrics::steady_state_max)
-      .def_readonly("orientation_error_max", &PickMetrics::orientation_error_max)
-      .def_readonly("exits", &PickMetrics::exits)
-      .def_readonly("final_error", &PickMetrics::final_error)
-      .def_readonly("samples", &PickMetrics::samples);
+  auto metrics = py::class_<PickMetrics>(m, "PickMetrics", "How a tip approached its target.");
+  def_readonly_fields(metrics);
   def_enum<PickOutcome>(m, "PickOutcome");
   def_enum<PickPhase>(m, "PickPhase");
   py::class_<ShelfPickRequest>(m, "ShelfPickRequest")

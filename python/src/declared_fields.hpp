@@ -53,6 +53,25 @@ void def_fields(py::class_<S, Extra...>& cls) {
   });
 }
 
+/// Defines a read-only property for every declared field of report @p S on @p cls; the
+/// docstring says the doc and the unit.
+template <Declared S, class... Extra>
+void def_readonly_fields(py::class_<S, Extra...>& cls) {
+  for_each_field<S>([&](const auto& f) {
+    using T = typename std::decay_t<decltype(f)>::Type;
+    const auto member = f.member;
+    std::string doc(f.doc);
+    if (!f.unit.empty()) doc += " [" + std::string(f.unit) + "]";
+    if constexpr (VectorField<T>) {
+      cls.def_property_readonly(
+          std::string(f.name).c_str(),
+          [member](const S& s) { return Eigen::VectorXd(vector_view(s.*member)); }, doc.c_str());
+    } else {
+      cls.def_readonly(std::string(f.name).c_str(), member, doc.c_str());
+    }
+  });
+}
+
 /// A Python enum (an `enum.Enum`) of the names @p E declares, each with its doc. Python's own
 /// enum type, not a pybind11 class: it compiles in a fraction of the time (a pybind11 enum
 /// instantiates its operators and casters per type) and behaves as users expect of an enum

@@ -81,16 +81,9 @@ class DockingScenario final : public DeclaredScenario<DockingParameters> {
     const DockingMetrics& m = r.metrics;
     TrialOutcome out = detail::outcome_of(r.run, to_string(r.outcome), r.ok());
     if (r.outcome == DockingOutcome::not_seated) out.message = docking_result_line(r);
-    out.metrics = {m.peak_force,
-                   m.peak_axial_force,
-                   m.steady_axial_force,
-                   m.steady_lateral,
-                   m.steady_tilt,
-                   m.min_depth,
-                   m.first_contact_time < 0.0 ? std::numeric_limits<double>::quiet_NaN()
-                                              : m.first_contact_time,
-                   m.position_rms,
-                   m.saturation};
+    out.metrics = {m.peak_force,         m.peak_axial_force, m.steady_axial_force,
+                   m.steady_lateral,     m.steady_tilt,      m.min_depth,
+                   m.first_contact_time, m.position_rms,     m.saturation};
     detail::take_outputs(out, r.recording, r.recording_error, r.video_error);
     if (r.video_written) out.videos.push_back(r.video);
     return out;

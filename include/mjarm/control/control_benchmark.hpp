@@ -95,6 +95,22 @@ struct ControllerBenchmark {
   double rms_position_error = 0.0;
 };
 
+constexpr auto declared_fields(const ControllerBenchmark*) {
+  using S = ControllerBenchmark;
+  return declare<S>(
+      "controller benchmark", field("name", &S::name, "the controller's name"),
+      field("steps", &S::steps, "", "timed ticks"),
+      field("median_us", &S::median_us, "µs", "median time of one compute"),
+      field("p99_us", &S::p99_us, "µs", "99th percentile (nearest rank)"),
+      field("mean_us", &S::mean_us, "µs", "mean time of one compute"),
+      field("max_us", &S::max_us, "µs", "slowest tick"),
+      field("allocations", &S::allocations, "", "heap allocations while timed; -1: not counted"),
+      field("allocations_per_step", &S::allocations_per_step, "",
+            "allocations / steps; -1: not counted"),
+      field("rms_position_error_m", &S::rms_position_error, "m",
+            "RMS distance of E to the reference over the timed ticks"));
+}
+
 /// Figures of one benchmark run.
 struct ControlBenchmarkResult {
   ControlBenchmarkStatus status = ControlBenchmarkStatus::ok;

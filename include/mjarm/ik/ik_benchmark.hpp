@@ -120,6 +120,27 @@ struct IkBenchmarkResult {
   int solver_converged = 0;      ///< solves whose status was converged (cross-check of the test)
 };
 
+constexpr auto declared_fields(const IkBenchmarkResult*) {
+  using S = IkBenchmarkResult;
+  return declare<S>(
+      "ik benchmark result", field("solver", &S::solver, "the solver's name"),
+      field("seed_mode", &S::seed_mode, "where the solves start"),
+      field("timeout_ms", &S::timeout_ms, "ms", "time budget per solve"),
+      field("samples", &S::samples, "", "N, or the samples done when interrupted"),
+      field("successes", &S::successes, "", "samples meeting the success test"),
+      field("success_rate", &S::success_rate, "", "successes / N"),
+      field("mean_time_ms", &S::mean_time_ms, "ms", "mean time per solve, failures included"),
+      field("median_time_ms", &S::median_time_ms, "ms", "median time per solve"),
+      field("p99_time_ms", &S::p99_time_ms, "ms", "99th percentile (nearest rank)"),
+      field("max_time_ms", &S::max_time_ms, "ms", "slowest solve"),
+      field("mean_iterations", &S::mean_iterations, "", "mean iterations per solve"),
+      field("solver_converged", &S::solver_converged, "",
+            "solves whose status was converged (cross-check of the test)"),
+      field("robot", &S::robot, "the model's name"), field("frame", &S::frame, "the chain's frame"),
+      field("clock", &S::clock, "what the times measure"),
+      field("interrupted", &S::interrupted, "the stop request ended the run early"));
+}
+
 /// The default solver of the protocol: `GlobalIk` on @p chain with @p options, named
 /// "global_ik(<methods>, <mode>)".
 /// @throws Error for invalid options.

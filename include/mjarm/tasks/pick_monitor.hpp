@@ -91,6 +91,30 @@ struct PickMetrics {
   std::int64_t samples = 0;
 };
 
+constexpr auto declared_fields(const PickMetrics*) {
+  using S = PickMetrics;
+  return declare<S>(
+      "pick metrics",
+      field("time_to_tolerance", &S::time_to_tolerance, "s",
+            "start of the stay that completed the hold; NaN (null) when not held"),
+      field("first_entry_time", &S::first_entry_time, "s", "first error ≤ tolerance"),
+      field("overshoot", &S::overshoot, "m",
+            "largest distance past the target, along the approach"),
+      field("steady_state_mean", &S::steady_state_mean, "m",
+            "mean error over the hold's last steady window"),
+      field("steady_state_max", &S::steady_state_max, "m",
+            "largest error over the hold's last steady window"),
+      field("hold_mean", &S::hold_mean, "m", "mean error over the completed hold"),
+      field("hold_max", &S::hold_max, "m", "largest error over the completed hold"),
+      field("orientation_error_max", &S::orientation_error_max, "rad",
+            "largest orientation error over the completed hold"),
+      field("hold_end_time", &S::hold_end_time, "s", "the hold completed"),
+      field("exits", &S::exits, "", "times the tip left the tolerance after entering"),
+      field("final_error", &S::final_error, "m", "error at the last sample"),
+      field("held", &S::held, "the tip stayed within tolerance for the hold time"),
+      field("samples", &S::samples, "", "samples observed"));
+}
+
 /// Watches the tip of a tool approach a target point, one sample per control tick, and keeps
 /// the figures of `PickMetrics`. Once the hold is complete further samples are ignored.
 /// Allocation-free; never throws after construction.

@@ -121,7 +121,7 @@ struct DockingMetrics {
   double orientation_rms = 0.0;
   int free_samples = 0;              ///< samples in that RMS
   double saturation = 0.0;           ///< fraction of ticks with a clipped motor
-  double first_contact_time = -1.0;  ///< [s]; −1 when never
+  double first_contact_time = std::numeric_limits<double>::quiet_NaN();  ///< [s]; NaN: never
   bool joint_limits_ok = true;
   bool other_contact = false;
   int other_geom1 = -1, other_geom2 = -1;
@@ -144,6 +144,43 @@ struct DockingMetrics {
   /// "too_short", plus the run's own ("diverged", "bad_command", "interrupted") added by the run.
   std::vector<std::string> failures;
 };
+
+constexpr auto declared_fields(const DockingMetrics*) {
+  using S = DockingMetrics;
+  return declare<S>(
+      "docking metrics", field("seated", &S::seated, "the verdict"),
+      field("failures", &S::failures, "why not seated: names, empty when seated"),
+      field("peak_force", &S::peak_force, "N", "max ‖f‖ of the peg's contact force"),
+      field("peak_axial_force", &S::peak_axial_force, "N", "max f·z_S (the peg pushing in)"),
+      field("peak_wrench", &S::peak_wrench, "", "max ‖[f; τ]‖, τ about the tip (N, N·m mixed)"),
+      field("peak_axial_moment", &S::peak_axial_moment, "N·m", "max |τ·z_S|"),
+      field("steady_axial_force", &S::steady_axial_force, "N", "final window: mean f·z_S"),
+      field("steady_wrench", &S::steady_wrench, "", "final window: mean ‖[f; τ]‖"),
+      field("steady_lateral", &S::steady_lateral, "m", "final window: mean tip to bore axis"),
+      field("steady_tilt", &S::steady_tilt, "rad", "final window: mean peg axis to bore axis"),
+      field("max_lateral", &S::max_lateral, "m", "final window: largest tip to bore axis"),
+      field("max_tilt", &S::max_tilt, "rad", "final window: largest peg axis to bore axis"),
+      field("min_depth", &S::min_depth, "m", "final window: least tip depth below the top face"),
+      field("max_speed", &S::max_speed, "m/s", "final window: largest tip speed"),
+      field("max_angular_speed", &S::max_angular_speed, "rad/s",
+            "final window: largest peg angular speed"),
+      field("contact_fraction", &S::contact_fraction, "",
+            "final window: fraction of samples in peg–socket contact"),
+      field("max_joint_position_percent", &S::max_joint_position, "%",
+            "max |q − mid| / half range, of the limit"),
+      field("max_joint_velocity_percent", &S::max_joint_velocity, "%", "max |q̇| / v_max"),
+      field("min_manipulability", &S::min_manipulability, "", "min √det(J·Jᵀ)"),
+      field("position_rms", &S::position_rms, "m", "free motion: RMS of ‖p_E − p_D‖"),
+      field("orientation_rms", &S::orientation_rms, "rad", "free motion: RMS rotation error"),
+      field("free_samples", &S::free_samples, "", "samples before the first contact"),
+      field("saturation", &S::saturation, "", "fraction of ticks with a clipped motor"),
+      field("first_contact_time", &S::first_contact_time, "s",
+            "first peg–socket contact; NaN (null) when never"),
+      field("samples", &S::samples, "", "samples judged"),
+      field("joint_limits_ok", &S::joint_limits_ok, "every sample within the joint limits"),
+      field("other_contact", &S::other_contact, "a contact other than peg–socket"),
+      field("finite", &S::finite, "every sample finite"));
+}
 
 /// The metrics of @p samples (in time order) against @p goal and @p criteria. A run shorter than
 /// the window fails with "too_short"; an empty one gives zero metrics and that failure.

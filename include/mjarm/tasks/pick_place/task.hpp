@@ -169,6 +169,31 @@ struct PickPlaceTrace {
   int saturated_actuator = -1;
 };
 
+constexpr auto declared_fields(const PickPlaceTrace*) {
+  using S = PickPlaceTrace;
+  return declare<S>(
+      "pick and place trace", field("state", &S::state, "the state at the end"),
+      field("start_time", &S::start_time, "s", "simulated time of the first update"),
+      field("done_time", &S::done_time, "s", "DONE entered, from the start: the cycle time"),
+      field("closed", &S::closed, "both fingers touched the object when GRASP ended"),
+      field("closing_force", &S::closing_force, "N", "grasp force then"),
+      field("welded", &S::welded, "the weld was switched on"),
+      field("weld_jump", &S::weld_jump, "m", "how far switching the weld on moved the object"),
+      field("weld_settle", &S::weld_settle, "m", "how far the weld stretched over DWELL_C"),
+      field("slipped", &S::slipped, "the object moved more than slip_distance in the gripper"),
+      field("dropped", &S::dropped, "… more than drop_distance: lost between GRASP and RELEASE"),
+      field("dropped_time", &S::dropped_time, "s", "from the start"),
+      field("max_slip", &S::max_slip, "m", "largest slip between GRASP and RELEASE"),
+      field("transport_force_mean", &S::transport_force_mean, "N",
+            "mean grasp force from LIFT to the end of DWELL_F"),
+      field("transport_force_max", &S::transport_force_max, "N", "largest of it"),
+      field("table_contact", &S::table_contact, "a robot geom touched the table"),
+      field("table_contact_time", &S::table_contact_time, "s", "first time, from the start"),
+      field("longest_saturation", &S::longest_saturation, "ticks",
+            "longest run of ticks with one actuator's command clipped"),
+      field("saturated_actuator", &S::saturated_actuator, "", "that actuator; -1: none"));
+}
+
 /// The pick and place as a reference source: the state schedule is fixed at construction (every
 /// segment is a `CartesianTrapezoid` between the goal's poses, every dwell and finger ramp a
 /// fixed time), so `update` only samples it, switches the grasp at the state changes and keeps
