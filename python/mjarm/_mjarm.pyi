@@ -348,6 +348,34 @@ class BiasTerm(enum.Enum):
     full = 1
     """h = C(q, q̇)·q̇ + g(q)"""
 
+class BodyPoses:
+    """Forward kinematics of every body at once (mj_kinematics on a scratch data of its own): each link's world frame, not only the end frame."""
+    def __init__(self: BodyPoses, robot: Robot | mujoco.MjModel) -> None:
+        ...
+    def __len__(self: BodyPoses) -> int:
+        ...
+    @property
+    def names(self) -> list[str]:
+        """the bodies in id order, world first"""
+        ...
+    def pose(self: BodyPoses, body: str) -> Pose:
+        """X_WB of the body called body"""
+        ...
+    @property
+    def positions(self) -> NDArray[np.float64]:
+        """body origins, world (nbody, 3) [m]"""
+        ...
+    @property
+    def rotations(self) -> NDArray[np.float64]:
+        """body orientations R_WB (nbody, 3, 3)"""
+        ...
+    def update(self: BodyPoses, qpos: ArrayLike) -> BodyPoses:
+        """All poses at the full configuration qpos (nq,); returns self."""
+        ...
+    def update_chain(self: BodyPoses, chain: Chain, q: ArrayLike) -> BodyPoses:
+        """All poses at the chain's joint values q (the other joints at qpos0); returns self."""
+        ...
+
 class CameraKind(enum.Enum):
     model = 0
     """a camera of the model, by name"""
@@ -808,6 +836,74 @@ class ConstantReferenceSource(ReferenceSource):
     def __init__(self: ConstantReferenceSource, reference: Reference) -> None:
         ...
 
+class ContactForce:
+    """One active contact: the geoms and bodies (ids and names), where, how far, and the force geom1 exerts on geom2 in world axes, split into its normal and friction parts."""
+    def __init__(*args: Any, **kwargs: Any) -> Any: ...
+    @property
+    def body1(self) -> int:
+        """body of geom1 (0: world)"""
+        ...
+    @property
+    def body1_name(self) -> str:
+        """'world' for body 0"""
+        ...
+    @property
+    def body2(self) -> int:
+        """body of geom2"""
+        ...
+    @property
+    def body2_name(self) -> str:
+        """'' when unnamed"""
+        ...
+    @property
+    def distance(self) -> float:
+        """signed distance; negative: penetration [m]"""
+        ...
+    @property
+    def force_W(self) -> NDArray[np.float64]:
+        """force of geom1 on geom2, world axes [N]"""
+        ...
+    @property
+    def frame(self) -> NDArray[np.float64]:
+        """contact frame, world (3, 3): rows are the normal and the two tangents"""
+        ...
+    @property
+    def friction_W(self) -> NDArray[np.float64]:
+        """its tangential part (friction), world axes [N]"""
+        ...
+    @property
+    def geom1(self) -> int:
+        """geom id"""
+        ...
+    @property
+    def geom1_name(self) -> str:
+        """'' when unnamed"""
+        ...
+    @property
+    def geom2(self) -> int:
+        """geom id"""
+        ...
+    @property
+    def geom2_name(self) -> str:
+        """'' when unnamed"""
+        ...
+    @property
+    def normal(self) -> NDArray[np.float64]:
+        """unit normal from geom1 to geom2, world"""
+        ...
+    @property
+    def normal_force(self) -> float:
+        """its normal component (≥ 0) [N]"""
+        ...
+    @property
+    def position(self) -> NDArray[np.float64]:
+        """contact point, world [m]"""
+        ...
+    @property
+    def torque_W(self) -> NDArray[np.float64]:
+        """torsional and rolling torque of geom1 on geom2, world axes [N·m]"""
+        ...
+
 class ContactSummary:
     """Contacts between two geom sets, summed."""
     def __init__(*args: Any, **kwargs: Any) -> Any: ...
@@ -856,12 +952,19 @@ class Data:
     def actuator_force(self) -> NDArray[np.float64]:
         """actuator forces (nu,)"""
         ...
+    def contact_forces(self: Data) -> list[ContactForce]:
+        """Every active contact (after mj_forward or a step), in MuJoCo's order."""
+        ...
     @property
     def ctrl(self) -> NDArray[np.float64]:
         """actuator inputs (nu,)"""
         ...
     def forward(self: Data) -> None:
         """mj_forward on owned data or a mujoco.MjData: recomputes kinematics and dynamics after writing qpos/qvel."""
+        ...
+    @property
+    def named(self) -> NamedData:
+        """every mjData array by element name (NamedData)"""
         ...
     @property
     def qacc(self) -> NDArray[np.float64]:
@@ -883,9 +986,15 @@ class Data:
     def qvel(self) -> NDArray[np.float64]:
         """joint velocities (nv,)"""
         ...
+    def restore(self: Data, snapshot: StateSnapshot, forward: bool = ...) -> None:
+        """Writes the snapshot's state (the next step is the one after the snapshot); with forward, mj_forward recomputes the derived quantities. Refuses a snapshot of another model."""
+        ...
     @property
     def sensordata(self) -> NDArray[np.float64]:
         """all sensor values (nsensordata,)"""
+        ...
+    def snapshot(self: Data) -> StateSnapshot:
+        """The state that determines the next step."""
         ...
     @property
     def time(self) -> float:
@@ -1392,94 +1501,123 @@ class DockingMetrics:
     def __init__(*args: Any, **kwargs: Any) -> Any: ...
     @property
     def contact_fraction(self) -> float:
+        """final window: fraction of samples in peg–socket contact"""
         ...
     @property
     def failures(self) -> list[str]:
-        """why not seated: list of names"""
+        """why not seated: names, empty when seated"""
         ...
     @property
     def finite(self) -> bool:
+        """every sample finite"""
         ...
     @property
     def first_contact_time(self) -> float:
-        """-1: never"""
+        """first peg–socket contact; NaN (null) when never [s]"""
         ...
     @property
     def free_samples(self) -> int:
+        """samples before the first contact"""
         ...
     @property
     def joint_limits_ok(self) -> bool:
+        """every sample within the joint limits"""
         ...
     @property
     def max_angular_speed(self) -> float:
+        """final window: largest peg angular speed [rad/s]"""
         ...
     @property
     def max_joint_position(self) -> float:
-        """[% of limit]"""
+        """alias of max_joint_position_percent"""
+        ...
+    @property
+    def max_joint_position_percent(self) -> float:
+        """max |q − mid| / half range, of the limit [%]"""
         ...
     @property
     def max_joint_velocity(self) -> float:
-        """[% of limit]"""
+        """alias of max_joint_velocity_percent"""
+        ...
+    @property
+    def max_joint_velocity_percent(self) -> float:
+        """max |q̇| / v_max [%]"""
         ...
     @property
     def max_lateral(self) -> float:
+        """final window: largest tip to bore axis [m]"""
         ...
     @property
     def max_speed(self) -> float:
+        """final window: largest tip speed [m/s]"""
         ...
     @property
     def max_tilt(self) -> float:
+        """final window: largest peg axis to bore axis [rad]"""
         ...
     @property
     def min_depth(self) -> float:
+        """final window: least tip depth below the top face [m]"""
         ...
     @property
     def min_manipulability(self) -> float:
+        """min √det(J·Jᵀ)"""
         ...
     @property
     def orientation_rms(self) -> float:
-        """free motion"""
+        """free motion: RMS rotation error [rad]"""
         ...
     @property
     def other_contact(self) -> bool:
+        """a contact other than peg–socket"""
         ...
     @property
     def peak_axial_force(self) -> float:
+        """max f·z_S (the peg pushing in) [N]"""
         ...
     @property
     def peak_axial_moment(self) -> float:
+        """max |τ·z_S| [N·m]"""
         ...
     @property
     def peak_force(self) -> float:
+        """max ‖f‖ of the peg's contact force [N]"""
         ...
     @property
     def peak_wrench(self) -> float:
+        """max ‖[f; τ]‖, τ about the tip (N, N·m mixed)"""
         ...
     @property
     def position_rms(self) -> float:
-        """free motion"""
+        """free motion: RMS of ‖p_E − p_D‖ [m]"""
         ...
     @property
     def samples(self) -> int:
+        """samples judged"""
         ...
     @property
     def saturation(self) -> float:
-        """fraction of ticks"""
+        """fraction of ticks with a clipped motor"""
         ...
     @property
     def seated(self) -> bool:
+        """the verdict"""
         ...
     @property
     def steady_axial_force(self) -> float:
+        """final window: mean f·z_S [N]"""
         ...
     @property
     def steady_lateral(self) -> float:
+        """final window: mean tip to bore axis [m]"""
         ...
     @property
     def steady_tilt(self) -> float:
+        """final window: mean peg axis to bore axis [rad]"""
         ...
     @property
     def steady_wrench(self) -> float:
+        """final window: mean ‖[f; τ]‖"""
         ...
 
 class DockingMotion:
@@ -3155,6 +3293,153 @@ class MultiTargetMode(enum.Enum):
     prioritized = 1
     """strict priorities by null-space projection"""
 
+class NamedArray:
+    """One mjData array by element name: a[name] (or a[id]) is the element's values, a view into the data (writable for the step's inputs of a writable Data), a[name] = values writes them. A ball joint covers 4 qpos and 3 qvel, a free joint 7 and 6."""
+    def __init__(*args: Any, **kwargs: Any) -> Any: ...
+    def __len__(self: NamedArray) -> int:
+        ...
+    def __repr__(self: NamedArray) -> str:
+        ...
+    @property
+    def input(self) -> bool:
+        """True for an input of the next step (writable), False for a result of mj_forward"""
+        ...
+    @property
+    def names(self) -> list[str]:
+        """the elements' names in id order ('' for an unnamed one)"""
+        ...
+    @property
+    def quantity(self) -> str:
+        """the mjData field"""
+        ...
+    def size(self: NamedArray, element: ArrayLike) -> int:
+        """how many values the element covers"""
+        ...
+
+class NamedData:
+    """mjData by element name, as dm_control's physics.named.data: named.qpos['joint1'], named.site_xpos['attachment_site'], named.sensordata['force'] = ...; unknown names raise mjarm.Error with the closest."""
+    def __init__(*args: Any, **kwargs: Any) -> Any: ...
+    @property
+    def act(self) -> NamedArray:
+        """actuator activations (none for a stateless actuator)"""
+        ...
+    @property
+    def actuator_force(self) -> NamedArray:
+        """actuator forces [N or N·m] (computed by mj_forward)"""
+        ...
+    @property
+    def actuator_length(self) -> NamedArray:
+        """actuator lengths [m or rad] (computed by mj_forward)"""
+        ...
+    @property
+    def actuator_velocity(self) -> NamedArray:
+        """actuator velocities (computed by mj_forward)"""
+        ...
+    @property
+    def cfrc_ext(self) -> NamedArray:
+        """external (contact) wrench on the body at the subtree centre of mass: τ, f (computed by mj_forward)"""
+        ...
+    @property
+    def ctrl(self) -> NamedArray:
+        """actuator inputs"""
+        ...
+    @property
+    def cvel(self) -> NamedArray:
+        """body velocity at the subtree centre of mass: ω, v [rad/s, m/s] (computed by mj_forward)"""
+        ...
+    @property
+    def geom_xmat(self) -> NamedArray:
+        """geom orientation, world (3×3, row-major) (computed by mj_forward)"""
+        ...
+    @property
+    def geom_xpos(self) -> NamedArray:
+        """geom position, world [m] (computed by mj_forward)"""
+        ...
+    @property
+    def mocap_pos(self) -> NamedArray:
+        """a mocap body's position, world [m]"""
+        ...
+    @property
+    def mocap_quat(self) -> NamedArray:
+        """a mocap body's orientation, world (w x y z)"""
+        ...
+    @property
+    def qacc(self) -> NamedArray:
+        """joint accelerations [rad/s² or m/s²] (computed by mj_forward)"""
+        ...
+    @property
+    def qacc_warmstart(self) -> NamedArray:
+        """the constraint solver's warm start [rad/s² or m/s²]"""
+        ...
+    @property
+    def qfrc_actuator(self) -> NamedArray:
+        """actuator forces in joint space [N·m or N] (computed by mj_forward)"""
+        ...
+    @property
+    def qfrc_applied(self) -> NamedArray:
+        """applied generalized forces [N·m or N]"""
+        ...
+    @property
+    def qfrc_bias(self) -> NamedArray:
+        """bias forces C(q, q̇)·q̇ + g(q) [N·m or N] (computed by mj_forward)"""
+        ...
+    @property
+    def qfrc_constraint(self) -> NamedArray:
+        """constraint forces: contacts, limits, equalities [N·m or N] (computed by mj_forward)"""
+        ...
+    @property
+    def qfrc_passive(self) -> NamedArray:
+        """passive forces: springs, dampers, friction loss [N·m or N] (computed by mj_forward)"""
+        ...
+    @property
+    def qpos(self) -> NamedArray:
+        """joint positions [rad or m]; a free joint: x y z qw qx qy qz"""
+        ...
+    @property
+    def qvel(self) -> NamedArray:
+        """joint velocities [rad/s or m/s]; a free joint: v (world), ω (body)"""
+        ...
+    @property
+    def sensordata(self) -> NamedArray:
+        """sensor values (computed by mj_forward)"""
+        ...
+    @property
+    def site_xmat(self) -> NamedArray:
+        """site orientation, world (3×3, row-major) (computed by mj_forward)"""
+        ...
+    @property
+    def site_xpos(self) -> NamedArray:
+        """site position, world [m] (computed by mj_forward)"""
+        ...
+    @property
+    def subtree_com(self) -> NamedArray:
+        """centre of mass of the body's subtree, world [m] (computed by mj_forward)"""
+        ...
+    @property
+    def xfrc_applied(self) -> NamedArray:
+        """applied force and torque at the body's centre of mass, world [N, N·m]"""
+        ...
+    @property
+    def ximat(self) -> NamedArray:
+        """body principal inertia axes, world (3×3, row-major) (computed by mj_forward)"""
+        ...
+    @property
+    def xipos(self) -> NamedArray:
+        """body centre of mass, world [m] (computed by mj_forward)"""
+        ...
+    @property
+    def xmat(self) -> NamedArray:
+        """body frame orientation, world (3×3, row-major) (computed by mj_forward)"""
+        ...
+    @property
+    def xpos(self) -> NamedArray:
+        """body frame origin, world [m] (computed by mj_forward)"""
+        ...
+    @property
+    def xquat(self) -> NamedArray:
+        """body frame orientation, world (w x y z) (computed by mj_forward)"""
+        ...
+
 class ObjectShape(enum.Enum):
     """Shapes of objects and fixtures."""
     box = 0
@@ -3432,45 +3717,59 @@ class PickCriteria:
     def tolerance(self, value: float) -> None: ...
 
 class PickMetrics:
+    """How a tip approached its target."""
     def __init__(*args: Any, **kwargs: Any) -> Any: ...
     @property
     def exits(self) -> int:
+        """times the tip left the tolerance after entering"""
         ...
     @property
     def final_error(self) -> float:
+        """error at the last sample [m]"""
         ...
     @property
     def first_entry_time(self) -> float:
+        """first error ≤ tolerance [s]"""
         ...
     @property
     def held(self) -> bool:
+        """the tip stayed within tolerance for the hold time"""
         ...
     @property
     def hold_end_time(self) -> float:
+        """the hold completed [s]"""
         ...
     @property
     def hold_max(self) -> float:
+        """largest error over the completed hold [m]"""
         ...
     @property
     def hold_mean(self) -> float:
+        """mean error over the completed hold [m]"""
         ...
     @property
     def orientation_error_max(self) -> float:
+        """largest orientation error over the completed hold [rad]"""
         ...
     @property
     def overshoot(self) -> float:
+        """largest distance past the target, along the approach [m]"""
         ...
     @property
     def samples(self) -> int:
+        """samples observed"""
         ...
     @property
     def steady_state_max(self) -> float:
+        """largest error over the hold's last steady window [m]"""
         ...
     @property
     def steady_state_mean(self) -> float:
+        """mean error over the hold's last steady window [m]"""
         ...
     @property
     def time_to_tolerance(self) -> float:
+        """start of the stay that completed the hold; NaN (null) when not held [s]"""
         ...
 
 class PickOutcome(enum.Enum):
@@ -4176,41 +4475,43 @@ class PickPlaceTrace:
     def __init__(*args: Any, **kwargs: Any) -> Any: ...
     @property
     def closed(self) -> bool:
-        """both fingers touched when GRASP ended"""
+        """both fingers touched the object when GRASP ended"""
         ...
     @property
     def closing_force(self) -> float:
-        """[N]"""
+        """grasp force then [N]"""
         ...
     @property
     def done_time(self) -> float:
-        """DONE entered: the cycle time [s]"""
+        """DONE entered, from the start: the cycle time [s]"""
         ...
     @property
     def dropped(self) -> bool:
+        """… more than drop_distance: lost between GRASP and RELEASE"""
         ...
     @property
     def dropped_time(self) -> float:
-        """[s]"""
+        """from the start [s]"""
         ...
     @property
     def longest_saturation(self) -> int:
-        """[ticks]"""
+        """longest run of ticks with one actuator's command clipped [ticks]"""
         ...
     @property
     def max_slip(self) -> float:
-        """[m]"""
+        """largest slip between GRASP and RELEASE [m]"""
         ...
     @property
     def saturated_actuator(self) -> int:
-        """-1: none"""
+        """that actuator; -1: none"""
         ...
     @property
     def slipped(self) -> bool:
+        """the object moved more than slip_distance in the gripper"""
         ...
     @property
     def start_time(self) -> float:
-        """[s]"""
+        """simulated time of the first update [s]"""
         ...
     @property
     def state(self) -> PickPlaceState:
@@ -4218,29 +4519,31 @@ class PickPlaceTrace:
         ...
     @property
     def table_contact(self) -> bool:
+        """a robot geom touched the table"""
         ...
     @property
     def table_contact_time(self) -> float:
-        """[s]"""
+        """first time, from the start [s]"""
         ...
     @property
     def transport_force_max(self) -> float:
-        """[N]"""
+        """largest of it [N]"""
         ...
     @property
     def transport_force_mean(self) -> float:
-        """[N]"""
+        """mean grasp force from LIFT to the end of DWELL_F [N]"""
         ...
     @property
     def weld_jump(self) -> float:
-        """object moved by the switch [m]"""
+        """how far switching the weld on moved the object [m]"""
         ...
     @property
     def weld_settle(self) -> float:
-        """weld stretch over DWELL_C [m]"""
+        """how far the weld stretched over DWELL_C [m]"""
         ...
     @property
     def welded(self) -> bool:
+        """the weld was switched on"""
         ...
 
 class PickPlaceTrial:
@@ -5598,6 +5901,10 @@ class Simulation:
     def move_chain(self: Simulation, chain: Chain, q: ArrayLike, dt: float, recorder: Recorder | None = ...) -> KinematicStep:
         ...
     @property
+    def named(self) -> NamedData:
+        """the simulation's mjData by element name (read-only views)"""
+        ...
+    @property
     def options(self) -> SimulationOptions:
         ...
     @property
@@ -5613,6 +5920,9 @@ class Simulation:
         ...
     def reset(self: Simulation, keyframe: str | None = ...) -> None:
         """mj_resetData (or a keyframe), forward, controllers reset"""
+        ...
+    def restore(self: Simulation, snapshot: StateSnapshot) -> None:
+        """Puts a snapshot back: the ticks that follow are the ones that followed it (stateless controllers); clears a fault."""
         ...
     @property
     def robot(self) -> Robot:
@@ -5630,6 +5940,9 @@ class Simulation:
         """read-only view of a sensor's values"""
         ...
     def set_state(self: Simulation, qpos: ArrayLike, qvel: ArrayLike) -> None:
+        ...
+    def snapshot(self: Simulation) -> StateSnapshot:
+        """The state that determines the next tick (not the controllers' own state)."""
         ...
     @property
     def steps_per_tick(self) -> int:
@@ -5835,6 +6148,24 @@ class SiteSpec:
         ...
     @size.setter
     def size(self, value: float) -> None: ...
+
+class StateSnapshot:
+    """Everything in mjData that determines the next step (MuJoCo's mjSTATE_INTEGRATION), with the model's signature: restore it and step, and the trajectory is the one that followed it, bit for bit."""
+    def __init__(*args: Any, **kwargs: Any) -> Any: ...
+    def __repr__(self: StateSnapshot) -> str:
+        ...
+    @property
+    def signature(self) -> int:
+        """the model's signature"""
+        ...
+    @property
+    def time(self) -> float:
+        """simulated time [s]"""
+        ...
+    @property
+    def values(self) -> NDArray[np.float64]:
+        """a copy of the values, in mj_getState's order"""
+        ...
 
 class StepFault:
     def __init__(*args: Any, **kwargs: Any) -> Any: ...
@@ -6820,6 +7151,9 @@ def task_error(X_WE: ArrayLike, X_WD: ArrayLike) -> NDArray[np.float64]:
 def trap_frac(profile: TrapezoidProfile, t: float) -> float:
     ...
 def trap_profile(distance: float, max_velocity: float = ..., max_acceleration: float = ...) -> TrapezoidProfile:
+    ...
+def wrap_to_pi(angle: ArrayLike) -> ArrayLike:
+    """The angle (a number or an array) wrapped into [-pi, pi]: the nearest equivalent angle."""
     ...
 
 class so3:

@@ -10,6 +10,8 @@
 #include "mjarm/ik/pose_ik.hpp"
 #include "mjarm/ik/position_ik.hpp"
 #include "mjarm/number_text.hpp"
+#include "mjarm/sim/simulation.hpp"
+#include "mujoco_interop.hpp"
 
 namespace mjarm::python {
 namespace {
@@ -70,7 +72,19 @@ std::vector<Pose> poses_of(const std::vector<py::object>& targets) {
   return poses;
 }
 
+/// The seed: joint values, or where the arm is now in a Simulation, a Data or a mujoco.MjData of
+/// the chain's model (the seeds' idiom: solve from the current state).
 Eigen::VectorXd seed_of(const Chain& chain, py::handle q_seed) {
+  const auto current = [&](const DataHandle& h) {
+    return chain.gather(data_of(chain.robot(), h, "solve", "the chain's model").qpos);
+  };
+  if (py::isinstance<DataHandle>(q_seed)) return current(q_seed.cast<const DataHandle&>());
+  if (py::isinstance<Simulation>(q_seed)) {
+    auto& sim = q_seed.cast<Simulation&>();
+    return current(
+        DataHandle(sim.robot(), &sim.data(), py::reinterpret_borrow<py::object>(q_seed)));
+  }
+  if (is_mujoco_data(q_seed)) return current(data_from_mujoco(q_seed));
   return to_vector(q_seed, "q_seed", chain.size());
 }
 

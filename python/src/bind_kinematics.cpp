@@ -1,6 +1,7 @@
 // kinematics room: FK, Jacobians, J̇q̇, manipulability, singularity reports, workspace sampling.
 #include "bindings.hpp"
 #include "declared_fields.hpp"
+#include "mjarm/kinematics/body_poses.hpp"
 #include "mjarm/kinematics/chain_kinematics.hpp"
 #include "mjarm/kinematics/frame_state.hpp"
 #include "mjarm/kinematics/manipulability.hpp"
@@ -181,6 +182,51 @@ void bind_kinematics(py::module_& m) {
       },
       py::arg("chain"), py::arg("samples"), py::arg("seed"), py::arg("keep_worst") = 10,
       "Seeded random scan keeping the lowest-sigma_min samples (GIL released).");
+
+  py::class_<BodyPoses>(m, "BodyPoses",
+                        "Forward kinematics of every body at once (mj_kinematics on a scratch "
+                        "data of its own): each link's world frame, not only the end frame.")
+      .def(py::init<const Robot&>(), py::arg("robot"))
+      .def(
+          "update",
+          [](BodyPoses& b, py::handle qpos) {
+            b.update(to_vector(qpos, "qpos"));
+            return &b;
+          },
+          py::arg("qpos"), py::return_value_policy::reference_internal,
+          "All poses at the full configuration qpos (nq,); returns self.")
+      .def(
+          "update_chain",
+          [](BodyPoses& b, const Chain& chain, py::handle q) {
+            b.update(chain, to_vector(q, "q", chain.size()));
+            return &b;
+          },
+          py::arg("chain"), py::arg("q"), py::return_value_policy::reference_internal,
+          "All poses at the chain's joint values q (the other joints at qpos0); returns self.")
+      .def(
+          "pose", [](const BodyPoses& b, std::string_view name) { return b.pose(name); },
+          py::arg("body"), "X_WB of the body called body")
+      .def_property_readonly("names", &BodyPoses::names, "the bodies in id order, world first")
+      .def_property_readonly(
+          "positions",
+          [](const BodyPoses& b) {
+            Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor> P(b.size(), 3);
+            for (int i = 0; i < b.size(); ++i) P.row(i) = b.pose(i).p;
+            return P;
+          },
+          "body origins, world (nbody, 3) [m]")
+      .def_property_readonly(
+          "rotations",
+          [](const BodyPoses& b) {
+            py::array_t<double> R({b.size(), 3, 3});
+            auto r = R.mutable_unchecked<3>();
+            for (int i = 0; i < b.size(); ++i)
+              for (int j = 0; j < 3; ++j)
+                for (int k = 0; k < 3; ++k) r(i, j, k) = b.pose(i).R(j, k);
+            return R;
+          },
+          "body orientations R_WB (nbody, 3, 3)")
+      .def("__len__", &BodyPoses::size);
 
   py::class_<WorkspaceResult>(m, "WorkspaceResult")
       .def_readonly("samples", &WorkspaceResult::samples)

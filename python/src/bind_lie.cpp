@@ -122,6 +122,17 @@ void bind_lie(py::module_& m) {
       "rpy_from_rotation", [](py::handle R) { return rpy_from_rotation(m3(R, "R")); },
       py::arg("R"));
   m.def(
+      "wrap_to_pi",
+      [](py::handle angle) -> py::object {
+        if (py::isinstance<py::float_>(angle) || py::isinstance<py::int_>(angle))
+          return py::float_(wrap_to_pi(angle.cast<double>()));
+        Eigen::VectorXd v = to_vector(angle, "angle");
+        for (double& x : v) x = wrap_to_pi(x);
+        return py::cast(v);
+      },
+      py::arg("angle"),
+      "The angle (a number or an array) wrapped into [-pi, pi]: the nearest equivalent angle.");
+  m.def(
       "log_error",
       [](py::handle a, py::handle b) { return log_error(to_pose(a, "X_WE"), to_pose(b, "X_WT")); },
       py::arg("X_WE"), py::arg("X_WT"), "Body pose error log(X_EW X_WT) = [v; w] (6,), in E.");

@@ -63,6 +63,7 @@ void bind_ik(py::module_& m);
 void bind_dynamics(py::module_& m);
 void bind_control(py::module_& m);
 void bind_sim(py::module_& m);
+void bind_state(py::module_& m);
 void bind_trajectory(py::module_& m);
 void bind_planning(py::module_& m);
 void bind_scene(py::module_& m);

@@ -23,6 +23,7 @@ PYBIND11_MODULE(_mjarm, m) {
   mjarm::python::bind_dynamics(m);
   mjarm::python::bind_control(m);
   mjarm::python::bind_sim(m);
+  mjarm::python::bind_state(m);
   mjarm::python::bind_trajectory(m);
   mjarm::python::bind_planning(m);
   mjarm::python::bind_scene(m);

@@ -1,6 +1,14 @@
 #include "mjarm/kinematics/contacts.hpp"
 
 namespace mjarm {
+namespace {
+
+std::string name_of(const mjModel& m, mjtObj type, int id) {
+  const char* name = mj_id2name(&m, type, id);
+  return name != nullptr ? name : "";
+}
+
+}  // namespace
 
 std::vector<ContactForce> contact_forces(const mjModel& m, const mjData& d) {
   std::vector<ContactForce> out;
@@ -18,9 +26,17 @@ std::vector<ContactForce> contact_forces(const mjModel& m, const mjData& d) {
     f.geom2 = con.geom2;
     f.body1 = m.geom_bodyid[con.geom1];
     f.body2 = m.geom_bodyid[con.geom2];
+    f.geom1_name = name_of(m, mjOBJ_GEOM, f.geom1);
+    f.geom2_name = name_of(m, mjOBJ_GEOM, f.geom2);
+    f.body1_name = name_of(m, mjOBJ_BODY, f.body1);
+    f.body2_name = name_of(m, mjOBJ_BODY, f.body2);
     f.position = Eigen::Map<const Eigen::Vector3d>(con.pos);
     f.normal = C.row(0).transpose();
+    f.frame = C;
+    f.distance = con.dist;
     f.force_W = C.transpose() * Eigen::Map<const Eigen::Vector3d>(f_C);
+    f.normal_force = f_C[0];
+    f.friction_W = f.force_W - f.normal_force * f.normal;
     f.torque_W = C.transpose() * Eigen::Map<const Eigen::Vector3d>(f_C + 3);
     out.push_back(f);
   }

@@ -150,6 +150,14 @@ void Simulation::set_state(std::span<const double> qpos, std::span<const double>
   refresh_watches(options_.mode != SimulationMode::kinematic);
 }
 
+void Simulation::restore(const StateSnapshot& snapshot) {
+  snapshot.restore(model(), *data_);
+  mj_forward(&model(), data_.get());
+  fault_ = StepFault{};
+  detector_.rebase(*data_);
+  refresh_watches(options_.mode != SimulationMode::kinematic);
+}
+
 void Simulation::forward() {
   mj_forward(&model(), data_.get());
   refresh_watches(options_.mode != SimulationMode::kinematic);

@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include "mjarm/model/robot.hpp"
 
 namespace mjarm {
@@ -62,6 +64,29 @@ TEST_F(ContactsTest, RestingBoxCarriesItsWeight) {
   const int floor = 0;
   const Eigen::Vector3d on_floor = contact_force_on_body(contacts, floor);
   EXPECT_LT((on_floor + Eigen::Vector3d(0, 0, 3.5 * g_)).norm(), 1e-3 * 3.5 * g_);
+}
+
+TEST_F(ContactsTest, RecordsNameTheGeomsAndSplitTheForce) {
+  const std::vector<ContactForce> contacts = contact_forces(m(), *d_);
+  ASSERT_FALSE(contacts.empty());
+  int top_on_bottom = 0;
+  for (const ContactForce& c : contacts) {
+    EXPECT_EQ(c.geom1_name, mj_id2name(&m(), mjOBJ_GEOM, c.geom1));
+    EXPECT_EQ(c.body2_name, mj_id2name(&m(), mjOBJ_BODY, c.body2));
+    if (c.geom1_name == "floor") EXPECT_EQ(c.body1_name, "world");
+    if (c.geom2_name == "top_geom" || c.geom1_name == "top_geom") ++top_on_bottom;
+    // normal and friction parts add up to the force; the friction part is tangential
+    EXPECT_LT((c.normal_force * c.normal + c.friction_W - c.force_W).norm(), 1e-12);
+    EXPECT_NEAR(c.friction_W.dot(c.normal), 0.0, 1e-9);
+    EXPECT_NEAR(c.normal_force, c.force_W.dot(c.normal), 1e-9);
+    EXPECT_GE(c.normal_force, 0.0);
+    // the frame's first row is the normal, the rows orthonormal
+    EXPECT_LT((c.frame.row(0).transpose() - c.normal).norm(), 1e-15);
+    EXPECT_LT((c.frame * c.frame.transpose() - Eigen::Matrix3d::Identity()).norm(), 1e-9);
+    // resting boxes: the geoms touch within MuJoCo's soft penetration (under a millimetre)
+    EXPECT_LT(std::abs(c.distance), 1e-3);
+  }
+  EXPECT_GE(top_on_bottom, 1);
 }
 
 TEST_F(ContactsTest, StackedBoxesLoadTheirSupports) {

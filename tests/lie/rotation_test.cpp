@@ -5,6 +5,7 @@
 #include <Eigen/Geometry>
 #include <cmath>
 #include <initializer_list>
+#include <limits>
 #include <numbers>
 #include <random>
 
@@ -128,6 +129,23 @@ TEST(Rotation, DegenerateQuaternionThrows) {
   EXPECT_THROW(rotation_from_quaternion(NAN, 0.0, 0.0, 1.0), Error);
   EXPECT_THROW(rotation_from_quaternion(Eigen::Vector4d(INFINITY, 0.0, 0.0, 0.0)), Error);
   EXPECT_NO_THROW(rotation_from_quaternion(1e-6, 0.0, 0.0, 0.0));
+}
+
+TEST(WrapToPi, GivesTheNearestEquivalentAngle) {
+  constexpr double pi = std::numbers::pi;
+  EXPECT_DOUBLE_EQ(wrap_to_pi(0.5), 0.5);
+  EXPECT_NEAR(wrap_to_pi(3.0 * pi / 2.0), -pi / 2.0, 1e-15);
+  EXPECT_NEAR(wrap_to_pi(-3.0 * pi / 2.0), pi / 2.0, 1e-15);
+  EXPECT_NEAR(wrap_to_pi(7.0), 7.0 - 2.0 * pi, 1e-15);
+  EXPECT_NEAR(wrap_to_pi(1000.0 * pi + 0.25), 0.25, 1e-12);
+  for (double a = -20.0; a <= 20.0; a += 0.37) {
+    const double w = wrap_to_pi(a);
+    EXPECT_LE(std::abs(w), pi);
+    EXPECT_NEAR(std::sin(w), std::sin(a), 1e-12);  // the same angle
+    EXPECT_NEAR(std::cos(w), std::cos(a), 1e-12);
+  }
+  EXPECT_TRUE(std::isnan(wrap_to_pi(std::numeric_limits<double>::infinity())));
+  EXPECT_TRUE(std::isnan(wrap_to_pi(std::numeric_limits<double>::quiet_NaN())));
 }
 
 }  // namespace

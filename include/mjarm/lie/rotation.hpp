@@ -7,6 +7,8 @@
 /// roll about the fixed x axis, then pitch about the fixed y axis, then yaw about the fixed z.
 
 #include <Eigen/Core>
+#include <cmath>
+#include <numbers>
 
 namespace mjarm {
 
@@ -43,5 +45,11 @@ Eigen::Matrix3d rotation_from_rpy(const Eigen::Vector3d& rpy) noexcept;
 /// @param R rotation matrix (3×3, orthonormal)
 /// @return (roll, pitch, yaw) (rad)
 Eigen::Vector3d rpy_from_rotation(const Eigen::Matrix3d& R) noexcept;
+
+/// @p angle wrapped into [−π, π] (the nearest equivalent angle: `std::remainder` by 2π, exact);
+/// NaN for NaN or ±infinity.
+inline double wrap_to_pi(double angle) noexcept {
+  return std::remainder(angle, 2.0 * std::numbers::pi);
+}
 
 }  // namespace mjarm

@@ -20,6 +20,7 @@
 #include "mjarm/sim/contact_query.hpp"
 #include "mjarm/sim/run_result.hpp"
 #include "mjarm/sim/simulation_options.hpp"
+#include "mjarm/sim/state_snapshot.hpp"
 #include "mjarm/sim/step_fault.hpp"
 
 namespace mjarm {
@@ -92,9 +93,18 @@ class Simulation {
   /// Writes the full qpos (nq) and qvel (nv), then mj_forward; clears a fault.
   /// @throws Error on wrong sizes or NaN/inf.
   void set_state(std::span<const double> qpos, std::span<const double> qvel);
+  /// Everything in `mjData` that determines the next tick (`StateSnapshot`); the controllers' and
+  /// reference sources' own state is not in it.
+  StateSnapshot snapshot() const { return StateSnapshot::of(model(), *data_); }
+  /// Puts @p snapshot back and recomputes the derived quantities (mj_forward): the ticks that
+  /// follow are the ones that followed the snapshot, bit for bit, for stateless controllers;
+  /// clears a fault.
+  /// @throws Error when @p snapshot was taken of another model.
+  void restore(const StateSnapshot& snapshot);
   /// mj_forward: recomputes everything derived from qpos/qvel/ctrl. Between ticks the derived
   /// quantities lag one physics step (they belong to the start of the last step); calling this
-  /// makes them current but changes the trajectory at round-off level (MuJoCo's warm start).
+  /// makes them current; it writes no part of the integration state, so the ticks that follow
+  /// are unchanged (MuJoCo 4.0.1).
   void forward();
 
   // ---- controllers ----
