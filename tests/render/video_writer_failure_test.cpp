@@ -300,7 +300,14 @@ TEST(VideoCli, SignalsEndARunWhoseFfmpegIsStuck) {
     EXPECT_FALSE(run.signaled());
     EXPECT_EQ(run.exit_code(), 128 + signal) << run.err();
     EXPECT_NE(run.err().find("interrupted"), std::string::npos) << run.err();
-    EXPECT_NE(run.err().find("ffmpeg did not"), std::string::npos) << run.err();
+    // blocked on the full pipe, the writer gives up on ffmpeg ("ffmpeg did not take frame …");
+    // a signal that comes before the pipe is full (a loaded machine: one frame written) finds
+    // the writer free, and closing it cuts the video short: both end the run, neither leaves
+    // ffmpeg behind
+    const bool gave_up = run.err().find("ffmpeg did not") != std::string::npos;
+    const bool cut_short =
+        run.err().find("was not written: interrupted after") != std::string::npos;
+    EXPECT_TRUE(gave_up || cut_short) << run.err();
     EXPECT_FALSE(test::process_alive(ffmpeg)) << "ffmpeg " << ffmpeg << " outlived the run";
     const std::string summary = test::slurp(dir / "rec" / "summary.json");
     EXPECT_NE(summary.find("\"interrupted\""), std::string::npos) << summary;
