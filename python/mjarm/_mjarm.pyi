@@ -1005,6 +1005,157 @@ class Data:
         """False once a call's data outlived its call."""
         ...
 
+class DhActuators(enum.Enum):
+    """How a DH arm's joints are driven."""
+    none = 0
+    motor = 1
+    position = 2
+
+class DhArm:
+    """An arm from its DH table: links (DhLink rows), base (world) and tool (after the last row) as 4x4 transforms; dh_robot(arm) builds and loads it."""
+    def __init__(self: DhArm, **kwargs) -> None:
+        """Default values, with any field set by keyword."""
+        ...
+    @property
+    def actuators(self) -> DhActuators:
+        """how the joints are driven"""
+        ...
+    @actuators.setter
+    def actuators(self, value: DhActuators) -> None: ...
+    @property
+    def base(self) -> NDArray[np.float64]:
+        """the base frame in the world (4, 4)"""
+        ...
+    @base.setter
+    def base(self, value: ArrayLike) -> None: ...
+    @property
+    def convention(self) -> DhConvention:
+        """standard or modified DH"""
+        ...
+    @convention.setter
+    def convention(self, value: DhConvention) -> None: ...
+    @property
+    def damping(self) -> float:
+        """joint damping; finite and ≥ 0"""
+        ...
+    @damping.setter
+    def damping(self, value: float) -> None: ...
+    @property
+    def effort(self) -> float:
+        """actuator force limit [N·m or N]; positive and finite"""
+        ...
+    @effort.setter
+    def effort(self, value: float) -> None: ...
+    @property
+    def gravity(self) -> bool:
+        """gravity on (−9.81 m/s² along z)"""
+        ...
+    @gravity.setter
+    def gravity(self, value: bool) -> None: ...
+    @property
+    def links(self) -> list[DhLink]:
+        """the table's rows, base to tool"""
+        ...
+    @links.setter
+    def links(self, value: list[DhLink]) -> None: ...
+    @property
+    def name(self) -> str:
+        """the model's name (letters, digits, _ and -)"""
+        ...
+    @name.setter
+    def name(self, value: str) -> None: ...
+    @property
+    def position_gain(self) -> float:
+        """position servo kp; positive and finite"""
+        ...
+    @position_gain.setter
+    def position_gain(self, value: float) -> None: ...
+    @property
+    def radius(self) -> float:
+        """the links' capsules [m]; positive and finite"""
+        ...
+    @radius.setter
+    def radius(self, value: float) -> None: ...
+    @property
+    def tool(self) -> NDArray[np.float64]:
+        """the end site in the last row's frame (4, 4)"""
+        ...
+    @tool.setter
+    def tool(self, value: ArrayLike) -> None: ...
+
+class DhConvention(enum.Enum):
+    """Where a DH row's constant transform sits."""
+    standard = 0
+    """A = Rz(θ) Tz(d) Tx(a) Rx(α)"""
+    modified = 1
+    """T = Rx(α) Tx(a) Rz(θ) Tz(d) (Craig)"""
+
+class DhLink:
+    """One row of a DH table: the link and its joint."""
+    def __init__(self: DhLink, **kwargs) -> None:
+        """Default values, with any field set by keyword."""
+        ...
+    @property
+    def a(self) -> float:
+        """link length [m]; finite"""
+        ...
+    @a.setter
+    def a(self, value: float) -> None: ...
+    @property
+    def alpha(self) -> float:
+        """link twist [rad]; finite"""
+        ...
+    @alpha.setter
+    def alpha(self, value: float) -> None: ...
+    @property
+    def com(self) -> NDArray[np.float64] | None:
+        """centre of mass in the link's frame; None: the capsule's [m]"""
+        ...
+    @com.setter
+    def com(self, value: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[3, 1]"] | None) -> None: ...
+    @property
+    def d(self) -> float:
+        """link offset (prismatic: added to the joint value) [m]; finite"""
+        ...
+    @d.setter
+    def d(self, value: float) -> None: ...
+    @property
+    def inertia(self) -> NDArray[np.float64] | None:
+        """principal moments of inertia; None: the capsule's [kg·m²]"""
+        ...
+    @inertia.setter
+    def inertia(self, value: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[3, 1]"] | None) -> None: ...
+    @property
+    def lower(self) -> float:
+        """joint range, lower end [rad or m]; finite"""
+        ...
+    @lower.setter
+    def lower(self, value: float) -> None: ...
+    @property
+    def mass(self) -> float:
+        """link mass [kg]; positive and finite"""
+        ...
+    @mass.setter
+    def mass(self, value: float) -> None: ...
+    @property
+    def prismatic(self) -> bool:
+        """the joint slides along z instead of turning"""
+        ...
+    @prismatic.setter
+    def prismatic(self, value: bool) -> None: ...
+    @property
+    def theta(self) -> float:
+        """joint angle at zero (revolute: added) [rad]; finite"""
+        ...
+    @theta.setter
+    def theta(self, value: float) -> None: ...
+    @property
+    def upper(self) -> float:
+        """joint range, upper end [rad or m]; finite"""
+        ...
+    @upper.setter
+    def upper(self, value: float) -> None: ...
+
 class DiffIk:
     """Differential IK as a QP with exact joint and velocity limits."""
     def __init__(self: DiffIk, chain: Chain, options: DiffIkOptions = ...) -> None:
@@ -3312,7 +3463,7 @@ class NamedArray:
     def quantity(self) -> str:
         """the mjData field"""
         ...
-    def size(self: NamedArray, element: ArrayLike) -> int:
+    def size(self: NamedArray, element: str | int) -> int:
         """how many values the element covers"""
         ...
 
@@ -7005,6 +7156,12 @@ def build_docking_scene(options: DockingSceneOptions = ...) -> DockingScene:
     ...
 def build_pick_place_scene(options: PickPlaceSceneOptions) -> PickPlaceScene:
     """Composes and compiles the scene of one trial (GIL released)."""
+    ...
+def dh_mjcf(arm: DhArm) -> str:
+    """The arm's MJCF: bodies link1..n, joints joint1..n, site 'end', keyframe 'zero'."""
+    ...
+def dh_robot(arm: DhArm) -> Robot:
+    """The arm's MJCF, loaded."""
     ...
 def docking_scene(options: DockingSceneOptions = ...) -> Scene:
     """The docking scene's parts as a Scene, not compiled."""

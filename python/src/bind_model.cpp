@@ -4,7 +4,9 @@
 #include "bindings.hpp"
 #include "declared_fields.hpp"
 #include "mjarm/model/chain.hpp"
+#include "mjarm/model/dh_model.hpp"
 #include "mjarm/model/model_size.hpp"
+#include "spec_support.hpp"
 
 namespace mjarm::python {
 namespace {
@@ -215,6 +217,25 @@ void bind_model(py::module_& m) {
         return "<Robot '" + r.name() + "' nq=" + std::to_string(r.nq()) +
                " nv=" + std::to_string(r.nv()) + " nu=" + std::to_string(r.nu()) + ">";
       });
+
+  def_enum<DhConvention>(m, "DhConvention", "Where a DH row's constant transform sits.");
+  def_enum<DhActuators>(m, "DhActuators", "How a DH arm's joints are driven.");
+  auto dh_link = py::class_<DhLink>(m, "DhLink", "One row of a DH table: the link and its joint.");
+  fields_init<DhLink>(dh_link, "DhLink");
+  def_fields(dh_link);
+  auto dh_arm = py::class_<DhArm>(
+      m, "DhArm",
+      "An arm from its DH table: links (DhLink rows), base (world) and tool (after the last row) "
+      "as 4x4 transforms; dh_robot(arm) builds and loads it.");
+  fields_init<DhArm>(dh_arm, "DhArm");
+  def_fields(dh_arm);
+  dh_arm.def_readwrite("links", &DhArm::links, "the table's rows, base to tool");
+  fixed_property<DhArm>(dh_arm, "base", &DhArm::base, "the base frame in the world (4, 4)");
+  fixed_property<DhArm>(dh_arm, "tool", &DhArm::tool,
+                        "the end site in the last row's frame (4, 4)");
+  m.def("dh_mjcf", &dh_mjcf, py::arg("arm"),
+        "The arm's MJCF: bodies link1..n, joints joint1..n, site 'end', keyframe 'zero'.");
+  m.def("dh_robot", &dh_robot, py::arg("arm"), "The arm's MJCF, loaded.");
 
   py::enum_<FrameKind>(m, "FrameKind")
       .value("site", FrameKind::site)

@@ -17,6 +17,9 @@
 namespace mjarm::python {
 namespace {
 
+/// An element: its name or its id.
+using Element = std::variant<std::string, int>;
+
 /// The elements of one quantity of a Data: `data.named.qpos`.
 struct NamedArray {
   py::object handle;  // the mjarm.Data, kept alive
@@ -25,20 +28,20 @@ struct NamedArray {
   DataHandle& data() const { return handle.cast<DataHandle&>(); }
   NamedData named() const { return {data().model(), data().get()}; }
 
-  int id_of(const py::handle& key) const {
-    if (py::isinstance<py::str>(key)) return named().id(*quantity, key.cast<std::string>());
-    if (py::isinstance<py::int_>(key)) {
-      const int id = key.cast<int>();
-      named_slice(data().model(), *quantity, id);  // throws for an id out of range
-      return id;
-    }
-    throw Error("named " + std::string(quantity->name) +
-                ": an element is a name or a number, got " +
-                std::string(py::str(py::type::of(key))));
+  int id_of(const Element& key) const {
+    if (const auto* name = std::get_if<std::string>(&key)) return named().id(*quantity, *name);
+    const int id = std::get<int>(key);
+    named_slice(data().model(), *quantity, id);  // throws for an id out of range
+    return id;
+  }
+
+  static std::string text(const Element& key) {
+    if (const auto* name = std::get_if<std::string>(&key)) return *name;
+    return std::to_string(std::get<int>(key));
   }
 
   /// Writable when the data is (owned, the user's) and the quantity is an input of the step.
-  py::array_t<double> get(const py::handle& key) const {
+  py::array_t<double> get(const Element& key) const {
     const int id = id_of(key);
     DataHandle& h = data();
     const NamedSlice slice = named_slice(h.model(), *quantity, id);
@@ -48,7 +51,7 @@ struct NamedArray {
     return readonly_view(values, slice.size, handle);
   }
 
-  void set(const py::handle& key, const py::handle& value) const {
+  void set(const Element& key, const py::handle& value) const {
     DataHandle& h = data();
     const std::string what = "named " + std::string(quantity->name);
     if (!quantity->input) {
@@ -66,7 +69,7 @@ struct NamedArray {
     }
     const int id = id_of(key);
     const NamedSlice slice = named_slice(h.model(), *quantity, id);
-    const std::string element = py::str(key);
+    const std::string element = text(key);
     // one value may be written as a number
     const bool number = py::isinstance<py::float_>(value) || py::isinstance<py::int_>(value);
     const py::object values_in = slice.size == 1 && number
@@ -121,7 +124,7 @@ void bind_state(py::module_& m) {
           "the elements' names in id order ('' for an unnamed one)")
       .def(
           "size",
-          [](const NamedArray& a, const py::object& key) {
+          [](const NamedArray& a, const Element& key) {
             return named_slice(a.data().model(), *a.quantity, a.id_of(key)).size;
           },
           py::arg("element"), "how many values the element covers")

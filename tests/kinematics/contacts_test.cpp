@@ -89,6 +89,15 @@ TEST_F(ContactsTest, RecordsNameTheGeomsAndSplitTheForce) {
   EXPECT_GE(top_on_bottom, 1);
 }
 
+TEST_F(ContactsTest, ARestingBoxStandsOnFourCornersThatShareItsWeight) {
+  // the textbook case: a 1 kg box on a plane, four corner contacts of m·g/4 = 2.4525 N each
+  std::vector<double> corners;
+  for (const ContactForce& c : contact_forces(m(), *d_))
+    if (c.geom2_name == "box_geom" || c.geom1_name == "box_geom") corners.push_back(c.normal_force);
+  ASSERT_EQ(corners.size(), 4u);
+  for (const double f : corners) EXPECT_NEAR(f, 9.81 / 4.0, 1e-3) << "of 2.4525 N";
+}
+
 TEST_F(ContactsTest, StackedBoxesLoadTheirSupports) {
   const std::vector<ContactForce> contacts = contact_forces(m(), *d_);
   const int bottom = robot_.body("bottom"), top = robot_.body("top");
