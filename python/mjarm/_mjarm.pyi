@@ -836,6 +836,58 @@ class ConstantReferenceSource(ReferenceSource):
     def __init__(self: ConstantReferenceSource, reference: Reference) -> None:
         ...
 
+class ConstraintSummary:
+    """What the constraint solver had to do: rows by kind, active rows, the largest force, the solver's iterations."""
+    def __init__(*args: Any, **kwargs: Any) -> Any: ...
+    @property
+    def active(self) -> int:
+        """rows not satisfied: they push or hold"""
+        ...
+    @property
+    def contact(self) -> int:
+        """contact rows"""
+        ...
+    @property
+    def contacts(self) -> int:
+        """contacts (ncon)"""
+        ...
+    @property
+    def equality(self) -> int:
+        """equality rows"""
+        ...
+    @property
+    def friction(self) -> int:
+        """dof and tendon friction-loss rows"""
+        ...
+    @property
+    def islands(self) -> int:
+        """constraint islands"""
+        ...
+    @property
+    def limit(self) -> int:
+        """joint and tendon limit rows"""
+        ...
+    @property
+    def max_force(self) -> float:
+        """largest |efc_force| [N or N·m]"""
+        ...
+    @property
+    def rows(self) -> int:
+        """constraint rows (nefc)"""
+        ...
+    @property
+    def solver_gradient(self) -> float:
+        """the last iteration's gradient norm (island 0)"""
+        ...
+    @property
+    def solver_improvement(self) -> float:
+        """the last iteration's cost reduction (island 0)"""
+        ...
+    @property
+    def solver_iterations(self) -> int:
+        """summed over the islands"""
+        ...
+
 class ContactForce:
     """One active contact: the geoms and bodies (ids and names), where, how far, and the force geom1 exerts on geom2 in world axes, split into its normal and friction parts."""
     def __init__(*args: Any, **kwargs: Any) -> Any: ...
@@ -951,6 +1003,9 @@ class Data:
     @property
     def actuator_force(self) -> NDArray[np.float64]:
         """actuator forces (nu,)"""
+        ...
+    def constraint_summary(self: Data) -> ConstraintSummary:
+        """The constraint rows of the data by kind (after mj_forward or a step)."""
         ...
     def contact_forces(self: Data) -> list[ContactForce]:
         """Every active contact (after mj_forward or a step), in MuJoCo's order."""
@@ -3468,7 +3523,7 @@ class NamedArray:
         ...
 
 class NamedData:
-    """mjData by element name, as dm_control's physics.named.data: named.qpos['joint1'], named.site_xpos['attachment_site'], named.sensordata['force'] = ...; unknown names raise mjarm.Error with the closest."""
+    """mjData by element name, as dm_control's physics.named.data: named.qpos['joint1'], named.site_xpos['attachment_site'], named.ctrl['joint2'] = 1.5; unknown names raise mjarm.Error with the closest."""
     def __init__(*args: Any, **kwargs: Any) -> Any: ...
     @property
     def act(self) -> NamedArray:
@@ -3497,6 +3552,10 @@ class NamedData:
     @property
     def cvel(self) -> NamedArray:
         """body velocity at the subtree centre of mass: ω, v [rad/s, m/s] (computed by mj_forward)"""
+        ...
+    @property
+    def eq_active(self) -> NamedSwitches:
+        """equality constraints switched on (True) or off, by name"""
         ...
     @property
     def geom_xmat(self) -> NamedArray:
@@ -3589,6 +3648,16 @@ class NamedData:
     @property
     def xquat(self) -> NamedArray:
         """body frame orientation, world (w x y z) (computed by mj_forward)"""
+        ...
+
+class NamedSwitches:
+    """The equality constraints by name: s[name] is True when active; s[name] = False switches one off (a simulation's too: the next step sees it)."""
+    def __init__(*args: Any, **kwargs: Any) -> Any: ...
+    def __len__(self: NamedSwitches) -> int:
+        ...
+    @property
+    def names(self) -> list[str]:
+        """the equality constraints' names in id order ('' for an unnamed one)"""
         ...
 
 class ObjectShape(enum.Enum):

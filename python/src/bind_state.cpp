@@ -8,9 +8,11 @@
 #include "bindings.hpp"
 #include "declared_fields.hpp"
 #include "mjarm/error.hpp"
+#include "mjarm/kinematics/constraint_summary.hpp"
 #include "mjarm/kinematics/contacts.hpp"
 #include "mjarm/model/named_data.hpp"
 #include "mjarm/model/names.hpp"
+#include "mjarm/number_text.hpp"
 #include "mjarm/sim/simulation.hpp"
 #include "mjarm/sim/state_snapshot.hpp"
 
@@ -89,11 +91,47 @@ struct NamedArray {
         "named " + std::string(quantity->name) + " (" + object_kind_name(quantity->element) + "s):";
     const double* array = named_array(h.model(), h.get(), *quantity).data();
     for (int id = 0; id < static_cast<int>(names.size()); ++id) {
+      if (quantity->name.starts_with("mocap_") && h.model().body_mocapid[id] < 0) continue;
       const NamedSlice slice = named_slice(h.model(), *quantity, id);
       out += "\n  " + (names[id].empty() ? "#" + std::to_string(id) : names[id]) + ":";
-      for (int i = 0; i < slice.size; ++i) out += " " + std::to_string(array[slice.offset + i]);
+      for (int i = 0; i < slice.size; ++i) out += " " + number_text(array[slice.offset + i], 6);
     }
     return out;
+  }
+};
+
+/// The equality constraints switched on or off, by name: `data.named.eq_active['grasp']`.
+struct NamedSwitches {
+  py::object handle;  // the mjarm.Data, kept alive
+
+  DataHandle& data() const { return handle.cast<DataHandle&>(); }
+
+  int id_of(const Element& key) const {
+    const mjModel& m = data().model();
+    if (const auto* name = std::get_if<std::string>(&key))
+      return find_object(m, mjOBJ_EQUALITY, *name);
+    const int id = std::get<int>(key);
+    if (id < 0 || id >= m.neq) {
+      throw Error("named eq_active: the model has " + std::to_string(m.neq) +
+                  " equality constraints, no number " + std::to_string(id));
+    }
+    return id;
+  }
+
+  bool get(const Element& key) const { return data().get().eq_active[id_of(key)] != 0; }
+
+  /// A simulation's switch goes through the simulation (its own bookkeeping); a writable Data's
+  /// is written.
+  void set(const Element& key, bool on) const {
+    DataHandle& h = data();
+    const int id = id_of(key);
+    if (h.kind == DataHandle::Kind::simulation) {
+      h.owner.cast<Simulation&>().set_equality_active(id, on);
+    } else if (h.writable()) {
+      h.get().eq_active[id] = on ? 1 : 0;
+    } else {
+      throw Error("named eq_active: this Data was lent for one call and is read-only");
+    }
   }
 };
 
@@ -139,7 +177,7 @@ void bind_state(py::module_& m) {
   auto view = py::class_<NamedView>(
       m, "NamedData",
       "mjData by element name, as dm_control's physics.named.data: named.qpos['joint1'], "
-      "named.site_xpos['attachment_site'], named.sensordata['force'] = ...; unknown names raise "
+      "named.site_xpos['attachment_site'], named.ctrl['joint2'] = 1.5; unknown names raise "
       "mjarm.Error with the closest.");
   for (const NamedQuantity& q : named_quantities()) {
     const NamedQuantity* quantity = &q;
@@ -151,6 +189,27 @@ void bind_state(py::module_& m) {
         },
         doc.c_str());
   }
+
+  py::class_<NamedSwitches>(m, "NamedSwitches",
+                            "The equality constraints by name: s[name] is True when active; "
+                            "s[name] = False switches one off (a simulation's too: the next "
+                            "step sees it).")
+      .def("__getitem__", &NamedSwitches::get, py::arg("equality"))
+      .def("__setitem__", &NamedSwitches::set, py::arg("equality"), py::arg("active"))
+      .def("__len__", [](const NamedSwitches& s) { return s.data().model().neq; })
+      .def_property_readonly(
+          "names",
+          [](const NamedSwitches& s) { return object_names(s.data().model(), mjOBJ_EQUALITY); },
+          "the equality constraints' names in id order ('' for an unnamed one)");
+  view.def_property_readonly(
+      "eq_active", [](const NamedView& v) { return NamedSwitches{v.handle}; },
+      "equality constraints switched on (True) or off, by name");
+
+  py::class_<ConstraintSummary> summary(
+      m, "ConstraintSummary",
+      "What the constraint solver had to do: rows by kind, active rows, the largest force, the "
+      "solver's iterations.");
+  def_readonly_fields(summary);
 
   py::class_<StateSnapshot>(
       m, "StateSnapshot",
@@ -181,6 +240,9 @@ void bind_state(py::module_& m) {
       "contact frame, world (3, 3): rows are the normal and the two tangents");
 
   auto data = py::reinterpret_borrow<py::class_<DataHandle>>(m.attr("Data"));
+  data.def(
+      "constraint_summary", [](const DataHandle& h) { return constraint_summary(h.get()); },
+      "The constraint rows of the data by kind (after mj_forward or a step).");
   data.def(
       "contact_forces", [](const DataHandle& h) { return contact_forces(h.model(), h.get()); },
       "Every active contact (after mj_forward or a step), in MuJoCo's order.");

@@ -55,7 +55,8 @@ def test_named_views_cover_each_element_and_write_through():
     assert named.xmat["arm"].shape == (9,) and named.cvel["arm"].shape == (6,)
     assert not named.xpos["arm"].flags.writeable  # computed by mj_forward
     assert named.act["filtered"].shape == (1,)
-    assert "hinge: 0.7" in repr(named.qpos)
+    assert "hinge: 0.7\n" in repr(named.qpos)
+    assert "target: 0.1 0.2 0.3" in repr(named.mocap_pos)   # only the mocap bodies
 
 
 def test_named_refuses_unknown_names_bad_sizes_and_read_only_writes():
@@ -199,3 +200,40 @@ def test_body_poses_place_every_link():
         np.testing.assert_array_equal(poses.rotations[i].ravel(), named.xmat[i])
     np.testing.assert_array_equal(poses.pose("link7").p, named.xpos["link7"])
     assert poses.names[0] == "world" and len(poses) == len(poses.names)
+
+
+WELDED = """
+<mujoco model="welded">
+  <worldbody>
+    <geom name="floor" type="plane" size="2 2 0.1"/>
+    <body name="held" pos="0 0 1">
+      <freejoint/>
+      <geom type="sphere" size="0.05" mass="2" contype="0" conaffinity="0"/>
+    </body>
+  </worldbody>
+  <equality><weld name="grasp" body1="held"/></equality>
+</mujoco>
+"""
+
+
+def test_equalities_by_name_and_the_constraint_summary():
+    model = mujoco.MjModel.from_xml_string(WELDED)
+    data = mujoco.MjData(model)
+    state = mjarm.Data(data)
+    assert state.named.eq_active["grasp"] and state.named.eq_active.names == ["grasp"]
+    mujoco.mj_forward(model, data)
+    held = state.constraint_summary()
+    assert held.equality == 6 and held.rows == 6 and held.max_force > 1.0
+    state.named.eq_active["grasp"] = False
+    assert data.eq_active[0] == 0
+    mujoco.mj_forward(model, data)
+    assert state.constraint_summary().rows == 0
+    with pytest.raises(mjarm.Error, match="closest: grasp"):
+        state.named.eq_active["grap"]
+
+
+def test_a_simulations_equality_switches_by_name():
+    sim = mjarm.Simulation(mjarm.Robot.from_string(WELDED))
+    assert sim.named.eq_active["grasp"]
+    sim.named.eq_active["grasp"] = False
+    assert not sim.named.eq_active["grasp"] and sim.data.named.eq_active[0] is False
