@@ -91,9 +91,14 @@ constexpr std::array kEntries{
 };
 // clang-format on
 
-const Entry& entry_of(const NamedQuantity& q) {
+const Entry* find_entry(std::string_view name) noexcept {
   for (const Entry& e : kEntries)
-    if (e.quantity.name == q.name) return e;
+    if (e.quantity.name == name) return &e;
+  return nullptr;
+}
+
+const Entry& entry_of(const NamedQuantity& q) {
+  if (const Entry* e = find_entry(q.name)) return *e;
   throw Error("named data: unknown quantity '" + std::string(q.name) + "'");
 }
 
@@ -120,8 +125,7 @@ std::span<const NamedQuantity> named_quantities() noexcept {
 }
 
 const NamedQuantity& named_quantity(std::string_view name) {
-  for (const Entry& e : kEntries)
-    if (e.quantity.name == name) return e.quantity;
+  if (const Entry* e = find_entry(name)) return e->quantity;
   std::vector<std::string> known;
   for (const Entry& e : kEntries) known.emplace_back(e.quantity.name);
   throw Error(unknown_name_message("quantity", name, known));
@@ -180,9 +184,7 @@ NamedSlice named_slice(const mjModel& m, const NamedQuantity& q, int id) {
 }
 
 std::span<mjtNum> named_array(const mjModel& m, mjData& d, const NamedQuantity& q) noexcept {
-  const Entry* found = nullptr;
-  for (const Entry& e : kEntries)
-    if (e.quantity.name == q.name) found = &e;
+  const Entry* found = find_entry(q.name);
   if (found == nullptr) return {};
   std::size_t size = 0;
   switch (found->layout) {
@@ -219,11 +221,14 @@ std::vector<std::string> NamedData::names(const NamedQuantity& q) const {
 Eigen::Map<Eigen::VectorXd> NamedData::operator()(std::string_view quantity,
                                                   std::string_view element) const {
   const NamedQuantity& q = named_quantity(quantity);
-  return (*this)(quantity, id(q, element));
+  return values(q, id(q, element));
 }
 
 Eigen::Map<Eigen::VectorXd> NamedData::operator()(std::string_view quantity, int id) const {
-  const NamedQuantity& q = named_quantity(quantity);
+  return values(named_quantity(quantity), id);
+}
+
+Eigen::Map<Eigen::VectorXd> NamedData::values(const NamedQuantity& q, int id) const {
   const NamedSlice slice = named_slice(*model_, q, id);
   return {named_array(*model_, *data_, q).data() + slice.offset, slice.size};
 }

@@ -77,6 +77,8 @@ class NamedData {
   mjData& data() const noexcept { return *data_; }
 
  private:
+  Eigen::Map<Eigen::VectorXd> values(const NamedQuantity& q, int id) const;
+
   const mjModel* model_;
   mjData* data_;
 };
