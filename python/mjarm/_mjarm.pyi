@@ -3913,6 +3913,119 @@ class OtgStatus(enum.Enum):
     error_precision = 5
     """the trajectory failed its final check"""
 
+class PassiveViewer:
+    """A window on your own loop (mujoco.viewer.launch_passive): the window runs in a thread of its own and draws the state your loop hands over with sync(). Double-click selects a body; Ctrl + right drag pulls it, Ctrl + left drag turns it (a spring written into the data's xfrc_applied at each sync). Markers and plotted values go with the next sync. A context manager: leaving the block closes the window. Prefer mjarm.viewer.launch_passive."""
+    def __enter__(self: PassiveViewer) -> PassiveViewer:
+        ...
+    def __exit__(self: PassiveViewer, *args) -> None:
+        ...
+    def __init__(self: PassiveViewer, robot: Robot | mujoco.MjModel, data: Data | mujoco.MjData, options: PassiveViewerOptions = ...) -> None:
+        """Opens the window on robot showing data, which your loop keeps stepping. Raises mjarm.Error when there is no display, the data is another model's, or an option is out of range."""
+        ...
+    def add_arrow(self: PassiveViewer, start: ArrayLike, end: ArrayLike, rgba: ArrayLike = ..., radius: float = ...) -> bool:
+        """An arrow from start to end [m], radius [m] thick."""
+        ...
+    def add_frame(self: PassiveViewer, pose: ArrayLike, length: float = ...) -> bool:
+        """Draws the axes of pose (a Pose or 4x4 matrix; x red, y green, z blue), length [m] long, with the next sync. False when the markers of one sync are used up."""
+        ...
+    def add_line(self: PassiveViewer, start: ArrayLike, end: ArrayLike, rgba: ArrayLike = ..., width: float = ...) -> bool:
+        """A line segment, width pixels wide."""
+        ...
+    def add_sphere(self: PassiveViewer, position: ArrayLike, radius: float, rgba: ArrayLike = ...) -> bool:
+        """A ball of radius [m]."""
+        ...
+    def add_text(self: PassiveViewer, position: ArrayLike, text: str, rgba: ArrayLike = ...) -> bool:
+        """A text label (at most 99 bytes shown) at position [m]."""
+        ...
+    def close(self: PassiveViewer) -> None:
+        """Closes the window and waits for its thread."""
+        ...
+    def is_running(self: PassiveViewer) -> bool:
+        """False once the window closed (the user, escape, the script's end, close(), an error)."""
+        ...
+    @property
+    def perturbing(self) -> bool:
+        """whether a Ctrl drag pulls or turns the selected body now"""
+        ...
+    def plot(self: PassiveViewer, line: str, value: float) -> None:
+        """Sets plot line's value for the next sync (the 'Your plots' figure; at most 8 lines)."""
+        ...
+    @property
+    def report(self) -> ViewerReport:
+        """what the window did (complete once it closed)"""
+        ...
+    @property
+    def selected_body(self) -> int:
+        """the body the mouse selected (0: none)"""
+        ...
+    def sync(self: PassiveViewer) -> None:
+        """Hands the current state, markers and plotted values over to the window, and writes the mouse's perturbation into the data. Raises the window's error (once); nothing once the window closed."""
+        ...
+    @property
+    def syncs(self) -> int:
+        """states handed over so far"""
+        ...
+
+class PassiveViewerOptions:
+    """How the passive viewer's window looks and runs."""
+    def __init__(self: PassiveViewerOptions, **kwargs) -> None:
+        """Default values, with any field set by keyword."""
+        ...
+    @property
+    def camera(self) -> CameraSpec | None:
+        """the camera at the start: a free or model CameraSpec (None: frames the model)"""
+        ...
+    @camera.setter
+    def camera(self, value: CameraSpec | None) -> None: ...
+    @property
+    def figure_seconds(self) -> float:
+        """simulated time the figures span [s]; positive and finite"""
+        ...
+    @figure_seconds.setter
+    def figure_seconds(self, value: float) -> None: ...
+    @property
+    def height(self) -> int:
+        """window height [pixels]; ≥ 240"""
+        ...
+    @height.setter
+    def height(self, value: int) -> None: ...
+    @property
+    def max_markers(self) -> int:
+        """markers one sync can carry; in [0, 10000]"""
+        ...
+    @max_markers.setter
+    def max_markers(self, value: int) -> None: ...
+    @property
+    def render_hz(self) -> float:
+        """frames drawn per wall second [Hz]; positive and finite"""
+        ...
+    @render_hz.setter
+    def render_hz(self, value: float) -> None: ...
+    @property
+    def script(self) -> ArrayLike:
+        """scripted input as text (select, press, move, release, drag, key, set, screenshot, wait; see docs/viewer.md); reads back the number of commands, or None"""
+        ...
+    @script.setter
+    def script(self, value: str | None) -> None: ...
+    @property
+    def show_figures(self) -> bool:
+        """figures shown from the start"""
+        ...
+    @show_figures.setter
+    def show_figures(self, value: bool) -> None: ...
+    @property
+    def title(self) -> str:
+        """window title ("" = mjarm: <model name>)"""
+        ...
+    @title.setter
+    def title(self, value: str) -> None: ...
+    @property
+    def width(self) -> int:
+        """window width [pixels]; ≥ 320"""
+        ...
+    @width.setter
+    def width(self, value: int) -> None: ...
+
 class PickCriteria:
     """When a pick counts as held."""
     def __init__(self: PickCriteria) -> None:
@@ -6986,6 +7099,30 @@ class VideoWriter:
     def frames(self) -> int:
         ...
     def write(self: VideoWriter, frame: ArrayLike) -> None:
+        ...
+
+class ViewerReport:
+    """What a viewer's window did."""
+    def __init__(*args: Any, **kwargs: Any) -> Any: ...
+    @property
+    def ended_by(self) -> str:
+        """how it ended: 'window closed', 'escape', 'closed by the program', 'end of script', 'quit', 'interrupted', 'error'"""
+        ...
+    @property
+    def frames(self) -> int:
+        """frames drawn"""
+        ...
+    @property
+    def gl(self) -> str:
+        """OpenGL vendor, renderer and version"""
+        ...
+    @property
+    def screenshots(self) -> list[str]:
+        """the screenshots a script wrote, in order (paths)"""
+        ...
+    @property
+    def wall_seconds(self) -> float:
+        """how long the window was open [s]"""
         ...
 
 class WaypointPlanner:

@@ -29,6 +29,7 @@ PYBIND11_MODULE(_mjarm, m) {
   mjarm::python::bind_scene(m);
   mjarm::python::bind_tasks(m);
   mjarm::python::bind_render(m);
+  mjarm::python::bind_teleop(m);
   mjarm::python::bind_env(m);
   mjarm::python::bind_scenarios(m);
 }
