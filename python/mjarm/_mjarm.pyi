@@ -5756,6 +5756,9 @@ class Scene:
     def __init__(self: Scene, name: str = ...) -> None:
         """An empty scene (no floor)."""
         ...
+    def add(self: Scene, tag: str, name: str, parent: str = ..., class_name: str = ..., attributes: ArrayLike = ..., **kwargs) -> None:
+        """Adds any element by its MJCF tag (body, joint, geom, site, camera, light; general, motor, position, velocity; a sensor's tag; default) and attributes, given as keywords or a dict (a default's as 'geom.rgba'; values as text, numbers or sequences of numbers): checked now, with the closest names for an unknown tag, parent, class or attribute; the scene is unchanged when it raises. parent: the parent body ('' = the world), or a default's parent class; class_name: the default class it starts from."""
+        ...
     def add_arena(self: Scene, spec: ArrayLike = ..., **kwargs) -> None:
         """add_arena(spec: ArenaSpec | None = None, **fields): floor, lights, optional table"""
         ...
