@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <optional>
 #include <string>
 
 #include "mjarm/env/action_driver.hpp"
@@ -40,6 +41,8 @@ struct Environment::Impl {
   Eigen::VectorXd q, qd;
   std::vector<double> observation;
   std::vector<double> action;  // the clipped action of the current step
+  std::optional<ArraySpec> task_action;  // the task's own action, mapped onto the space's
+  std::vector<double> space_action;      // the action space's values of the current step
   EpisodeRandom random;
   Random seeds;  // episode seeds for reset() without one
   StepContext context;
@@ -106,7 +109,16 @@ Environment::Impl::Impl(std::unique_ptr<EnvTask> t, const EnvironmentOptions& o)
   q.setZero(n);
   qd.setZero(n);
   observation.assign(static_cast<std::size_t>(observations->spec().size()), 0.0);
-  action.assign(static_cast<std::size_t>(driver->spec().size()), 0.0);
+  task_action = task->action_spec();
+  if (task_action) {
+    task_action->check();
+    if (!task_action->bounded())
+      throw Error("environment: the task's action '" + task_action->name +
+                  "' needs finite bounds on every element (" + task_action->describe() + ")");
+  }
+  space_action.assign(static_cast<std::size_t>(driver->spec().size()), 0.0);
+  action.assign(static_cast<std::size_t>(task_action ? task_action->size() : driver->spec().size()),
+                0.0);
   context.sim = sim.get();
   time_step.observation = Observation(&empty_spec, {});
 }
@@ -190,16 +202,17 @@ TimeStep Environment::step(std::span<const double> action) {
   if (e.ended)
     throw Error("environment: step() after the last step of the episode (" +
                 std::string(to_string(e.time_step.end)) + "); call reset() to start another");
-  const ArraySpec& spec = e.driver->spec();
+  const ArraySpec& spec = e.task_action ? *e.task_action : e.driver->spec();
+  const std::string space = e.task_action ? "the task's action '" + e.task_action->name + "'"
+                                          : std::string(to_string(e.options.action_space));
   const std::size_t size = static_cast<std::size_t>(spec.size());
   if (action.size() != size)
-    throw Error("environment: the action (" + std::string(to_string(e.options.action_space)) +
-                ") needs " + std::to_string(size) + " values, got " +
-                std::to_string(action.size()));
+    throw Error("environment: the action (" + space + ") needs " + std::to_string(size) +
+                " values, got " + std::to_string(action.size()));
   for (std::size_t i = 0; i < size; ++i) {
     if (!std::isfinite(action[i]))
       throw Error("environment: action[" + std::to_string(i) + "] is " + value_text(action[i]) +
-                  " (" + to_string(e.options.action_space) + " needs finite values)");
+                  " (" + space + " needs finite values)");
   }
   // clip into the bounds (or refuse), counting
   std::int64_t clipped = 0;
@@ -211,7 +224,7 @@ TimeStep Environment::step(std::span<const double> action) {
       if (e.options.refuse_out_of_bounds)
         throw Error("environment: action[" + std::to_string(i) + "] = " + value_text(a) +
                     " is outside its bounds [" + value_text(lo) + ", " + value_text(hi) + "] (" +
-                    to_string(e.options.action_space) + "; refuse_out_of_bounds is set)");
+                    space + "; refuse_out_of_bounds is set)");
       ++clipped;
     }
     e.action[i] = std::clamp(a, lo, hi);
@@ -224,8 +237,21 @@ TimeStep Environment::step(std::span<const double> action) {
   }
 
   // the task, the reference, the physics
+  std::span<const double> space_action = e.action;
+  if (e.task_action) {
+    // the task's action onto the action space's values, inside their bounds
+    e.task->map_action(e.context, e.action, e.space_action);
+    const ArraySpec& bounds = e.driver->spec();
+    for (std::size_t i = 0; i < e.space_action.size(); ++i) {
+      const auto k = static_cast<Eigen::Index>(i);
+      const double v = e.space_action[i];
+      e.space_action[i] = std::isfinite(v) ? std::clamp(v, bounds.minimum[k], bounds.maximum[k])
+                                           : 0.0;  // a broken mapping commands nothing
+    }
+    space_action = e.space_action;
+  }
   e.task->before_step(e.context, e.action);
-  const Reference& reference = e.driver->apply(e.action, e.sim->data());
+  const Reference& reference = e.driver->apply(space_action, e.sim->data());
   EpisodeEnd end = EpisodeEnd::running;
   for (int k = 0; k < e.ticks_per_step; ++k) {
     if (!e.sim->tick(reference).ok()) {
@@ -248,7 +274,9 @@ TimeStep Environment::step(std::span<const double> action) {
   return e.make_time_step(e.ended ? StepType::last : StepType::mid, end, reward);
 }
 
-const ArraySpec& Environment::action_spec() const noexcept { return impl_->driver->spec(); }
+const ArraySpec& Environment::action_spec() const noexcept {
+  return impl_->task_action ? *impl_->task_action : impl_->driver->spec();
+}
 const ObservationSpec& Environment::observation_spec() const noexcept {
   return impl_->observations->spec();
 }

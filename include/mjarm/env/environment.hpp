@@ -129,6 +129,8 @@ class Environment {
   /// True after `close()`.
   bool closed() const noexcept;
 
+  /// The action agents give: the task's own (`EnvTask::action_spec`) when it has one, else the
+  /// action space's.
   const ArraySpec& action_spec() const noexcept;
   const ObservationSpec& observation_spec() const noexcept;
   /// The last time step returned (FIRST before any reset, with an empty observation).
