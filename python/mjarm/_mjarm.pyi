@@ -2225,8 +2225,8 @@ class Environment:
     def __exit__(self: Environment, *args) -> bool:
         """Leaves a `with` block: close()."""
         ...
-    def __init__(self: Environment, task: str, options: ArrayLike = ..., task_options: ArrayLike = ..., **kwargs) -> None:
-        """Environment(task, options=None, task_options=None, **overrides): the task by name (env_task_names()) with its own options set from the dict task_options (names as env_task_parameters(task) lists them, e.g. {'criteria.max-force': 30}), with EnvironmentOptions (None: the defaults) whose fields keyword arguments override (e.g. time_limit=0.5, action_space='joint_torques'). Raises mjarm.Error for an unknown task, task option, observation or option, and options out of range."""
+    def __init__(self: Environment, task: ArrayLike, options: ArrayLike = ..., task_options: ArrayLike = ..., **kwargs) -> None:
+        """Environment(task, options=None, task_options=None, **overrides): the task by name (env_task_names()) with its own options set from the dict task_options (names as env_task_parameters(task) lists them, e.g. {'criteria.max-force': 30}), or an instance of a subclass of mjarm.EnvTask (a task written in Python: its hooks run with the GIL taken for each call, and an exception a hook raises ends the episode and is raised by reset/step), with EnvironmentOptions (None: the defaults) whose fields keyword arguments override (e.g. time_limit=0.5, action_space='joint_torques'). Raises mjarm.Error for an unknown task, task option, observation or option, and options out of range."""
         ...
     def action_spec(self: Environment) -> ArraySpec:
         """ArraySpec 'action': shape (n,), float64, its bounds."""
@@ -6503,6 +6503,30 @@ class StateSnapshot:
         """a copy of the values, in mj_getState's order"""
         ...
 
+class StepContext:
+    """What a Python task's hook sees of the environment (valid for the call): the chain's end-effector pose and twist after the physics, the step and the episode's time, and the simulation's state as a Data lent for the call."""
+    @property
+    def V_WE(self) -> NDArray[np.float64]:
+        """end-effector twist (6,) [v; w], world axes [m/s, rad/s]"""
+        ...
+    @property
+    def X_WE(self) -> Pose:
+        """end-effector pose in W"""
+        ...
+    def __init__(*args: Any, **kwargs: Any) -> Any: ...
+    @property
+    def data(self) -> ArrayLike:
+        """the simulation's Data, lent for the call (read-only arrays)"""
+        ...
+    @property
+    def step(self) -> int:
+        """control steps since the episode's start"""
+        ...
+    @property
+    def time(self) -> float:
+        """simulated time since the episode's start [s]"""
+        ...
+
 class StepFault:
     def __init__(*args: Any, **kwargs: Any) -> Any: ...
     @property
@@ -7004,7 +7028,7 @@ class VectorEnvironment:
     def __exit__(self: VectorEnvironment, *args) -> bool:
         """Leaves a `with` block: close()."""
         ...
-    def __init__(self: VectorEnvironment, task: str, count: int, threads: int = ..., options: ArrayLike = ..., **kwargs) -> None:
+    def __init__(self: VectorEnvironment, task: ArrayLike, count: int, threads: int = ..., options: ArrayLike = ..., **kwargs) -> None:
         """VectorEnvironment(task, count, threads=1, options=None, **overrides): count environments (1..4096) on threads threads (1..256). Raises mjarm.Error as Environment, and for counts out of range."""
         ...
     def __len__(self: VectorEnvironment) -> int:
