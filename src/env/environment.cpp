@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <optional>
 #include <string>
 
@@ -43,6 +44,11 @@ struct Environment::Impl {
   std::vector<double> action;  // the clipped action of the current step
   std::optional<ArraySpec> task_action;  // the task's own action, mapped onto the space's
   std::vector<double> space_action;      // the action space's values of the current step
+  std::vector<double> delayed;           // action_latency: ring of the last latency + 1 actions
+  int delayed_next = 0;                  // the slot the next action goes to
+  int delayed_count = 0;                 // actions given in this episode, up to latency + 1
+  Random noise;                          // the episode's observation noise
+  std::optional<ObservationSpec> noisy_spec;  // the observations' spec, unbounded by the noise
   EpisodeRandom random;
   Random seeds;  // episode seeds for reset() without one
   StepContext context;
@@ -119,6 +125,15 @@ Environment::Impl::Impl(std::unique_ptr<EnvTask> t, const EnvironmentOptions& o)
   space_action.assign(static_cast<std::size_t>(driver->spec().size()), 0.0);
   action.assign(static_cast<std::size_t>(task_action ? task_action->size() : driver->spec().size()),
                 0.0);
+  delayed.assign(action.size() * static_cast<std::size_t>(o.action_latency + 1), 0.0);
+  if (o.observation_noise > 0.0) {
+    std::vector<ArraySpec> arrays = observations->spec().arrays();
+    for (ArraySpec& a : arrays) {
+      a.minimum.setConstant(-std::numeric_limits<double>::infinity());
+      a.maximum.setConstant(std::numeric_limits<double>::infinity());
+    }
+    noisy_spec.emplace(std::move(arrays));
+  }
   context.sim = sim.get();
   time_step.observation = Observation(&empty_spec, {});
 }
@@ -142,6 +157,9 @@ void Environment::Impl::update_context() noexcept {
 
 TimeStep Environment::Impl::make_time_step(StepType type, EpisodeEnd end, double reward) noexcept {
   observations->fill(context, *task, observation);
+  if (options.observation_noise > 0.0) {
+    for (double& v : observation) v += normal(noise, 0.0, options.observation_noise);
+  }
   TimeStep ts;
   ts.step_type = type;
   ts.end = end;
@@ -149,7 +167,7 @@ TimeStep Environment::Impl::make_time_step(StepType type, EpisodeEnd end, double
     ts.reward = reward;
     ts.discount = end == EpisodeEnd::terminated || end == EpisodeEnd::diverged ? 0.0 : 1.0;
   }
-  ts.observation = Observation(&observations->spec(), observation);
+  ts.observation = Observation(noisy_spec ? &*noisy_spec : &observations->spec(), observation);
   time_step = ts;
   return ts;
 }
@@ -182,6 +200,10 @@ TimeStep Environment::reset(std::uint64_t seed) {
   if (e.closed) refuse_closed(*e.task, "reset()");
   e.started = false;
   e.random.reseed(seed);
+  // the noise's own stream: the task's and the randomization's draws are the same without it
+  e.noise.seed(splitmix64(seed ^ 0x6f62736e6f697365ull));
+  e.delayed_next = 0;
+  e.delayed_count = 0;
   if (e.randomizer)
     e.randomizer->apply(*e.sim->editable_model(), e.sim->data(), e.random.randomization);
   e.task->initialize_episode(*e.sim, e.random);
@@ -236,6 +258,25 @@ TimeStep Environment::step(std::span<const double> action) {
     e.total_clips.values += clipped;
   }
 
+  // action_latency: the action of `latency` steps ago (the episode's first one until then)
+  if (e.options.action_latency > 0) {
+    const std::size_t n = e.action.size();
+    const int slots = e.options.action_latency + 1;
+    std::copy(e.action.begin(), e.action.end(),
+              e.delayed.begin() + static_cast<std::ptrdiff_t>(n) * e.delayed_next);
+    if (e.delayed_count == 0) {  // the first action fills the line
+      for (int k = 1; k < slots; ++k)
+        std::copy(e.action.begin(), e.action.end(),
+                  e.delayed.begin() + static_cast<std::ptrdiff_t>(n) * k);
+      // (slot 0 was just written; the ring is full of the first action)
+    }
+    e.delayed_count = std::min(e.delayed_count + 1, slots);
+    e.delayed_next = (e.delayed_next + 1) % slots;
+    // the oldest slot is the one written next
+    const auto oldest = e.delayed.begin() + static_cast<std::ptrdiff_t>(n) * e.delayed_next;
+    std::copy(oldest, oldest + static_cast<std::ptrdiff_t>(n), e.action.begin());
+  }
+
   // the task, the reference, the physics
   std::span<const double> space_action = e.action;
   if (e.task_action) {
@@ -278,7 +319,7 @@ const ArraySpec& Environment::action_spec() const noexcept {
   return impl_->task_action ? *impl_->task_action : impl_->driver->spec();
 }
 const ObservationSpec& Environment::observation_spec() const noexcept {
-  return impl_->observations->spec();
+  return impl_->noisy_spec ? *impl_->noisy_spec : impl_->observations->spec();
 }
 const TimeStep& Environment::time_step() const noexcept { return impl_->time_step; }
 const EnvironmentOptions& Environment::options() const noexcept { return impl_->options; }

@@ -154,3 +154,27 @@ def test_bad_tasks_are_refused():
         env.step(np.zeros(3))
     with pytest.raises(mjarm.Error, match="task_options"):
         mjarm.Environment(Reach(), task_options={"x": 1})
+
+
+def test_noise_and_latency_on_any_task_show_in_the_gymnasium_spaces():
+    import mjarm.gym
+
+    env = mjarm.gym.GymEnv("reach", observation_noise=0.05, action_latency=1)
+    clean = mjarm.gym.GymEnv("reach")
+    # some observation of the task is bounded (the pose's quaternion); with noise none is
+    assert any(np.isfinite(box.low).any() for box in clean.observation_space.values())
+    assert all(np.isinf(box.low).all() and np.isinf(box.high).all()
+               for box in env.observation_space.values())
+    a, _ = env.reset(seed=4)
+    b, _ = mjarm.gym.GymEnv("reach", observation_noise=0.05, action_latency=1).reset(seed=4)
+    np.testing.assert_array_equal(a["joint_positions"], b["joint_positions"])
+    c, _ = clean.reset(seed=4)
+    assert not np.array_equal(a["joint_positions"], c["joint_positions"])
+    # a Python task takes them too
+    task_env = mjarm.Environment(Reach(), action_space="ee_velocities", observation_noise=0.01,
+                                 action_latency=3)
+    assert task_env.options.action_latency == 3
+    task_env.reset(seed=0)
+    task_env.step(np.zeros(3))
+    with pytest.raises(mjarm.Error, match="action_latency"):
+        mjarm.Environment("reach", action_latency=-1)
