@@ -2231,6 +2231,10 @@ class Environment:
     def action_spec(self: Environment) -> ArraySpec:
         """ArraySpec 'action': shape (n,), float64, its bounds."""
         ...
+    @property
+    def chain(self) -> Chain:
+        """the arm the actions drive (a Chain; its frame is the end effector)"""
+        ...
     def close(self: Environment) -> None:
         """Closes the environment (dm_env's interface): reset() and step() then raise mjarm.Error; a closed environment stays closed. Closing twice is allowed; the memory goes with the object."""
         ...
@@ -2269,6 +2273,10 @@ class Environment:
         ...
     def reward_spec(self: Environment) -> ArraySpec:
         """ArraySpec 'reward': a float64 scalar, unbounded (dm_env's default)."""
+        ...
+    @property
+    def robot(self) -> Robot:
+        """the model the task simulates (a Robot)"""
         ...
     def step(self: Environment, action: ArrayLike) -> TimeStep:
         """One control step with action (float64 array-like of shape action_spec().shape) -> MID or LAST TimeStep. Raises ValueError naming the expected shape for a wrong shape or dtype, mjarm.Error for NaN/inf, before the first reset and after LAST (call reset())."""

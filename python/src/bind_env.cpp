@@ -291,6 +291,12 @@ void bind_environment(py::module_& m) {
           "Leaves a `with` block: close().")
       .def_readonly("task", &PyEnvironment::task, "the task's name")
       .def_property_readonly(
+          "robot", [](const PyEnvironment& e) { return e.env->task().robot(); },
+          "the model the task simulates (a Robot)")
+      .def_property_readonly(
+          "chain", [](const PyEnvironment& e) { return e.env->task().chain(); },
+          "the arm the actions drive (a Chain; its frame is the end effector)")
+      .def_property_readonly(
           "options", [](const PyEnvironment& e) { return e.env->options(); },
           "the EnvironmentOptions (a copy)")
       .def_property_readonly(

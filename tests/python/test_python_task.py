@@ -178,3 +178,20 @@ def test_noise_and_latency_on_any_task_show_in_the_gymnasium_spaces():
     task_env.step(np.zeros(3))
     with pytest.raises(mjarm.Error, match="action_latency"):
         mjarm.Environment("reach", action_latency=-1)
+
+
+def test_the_overhead_benchmark_runs_a_small_count():
+    import json
+    import subprocess
+    import sys
+
+    out = subprocess.run([sys.executable, "-m", "mjarm.bench_task", "--steps", "20", "--rounds",
+                          "1", "--json"], capture_output=True, text=True, timeout=300)
+    assert out.returncode == 0, out.stderr
+    figures = json.loads(out.stdout)
+    assert figures["cpp_us_per_step"] > 0 and figures["python_us_per_step"] > 0
+    assert figures["ratio"] == pytest.approx(figures["python_us_per_step"] /
+                                             figures["cpp_us_per_step"])
+    bad = subprocess.run([sys.executable, "-m", "mjarm.bench_task", "--steps", "1"],
+                         capture_output=True, text=True, timeout=60)
+    assert bad.returncode == 2 and "--steps" in bad.stderr
