@@ -231,6 +231,18 @@ TEST(PassiveViewerWindow, CloseFromTheProgramEndsRunningAndLaterSyncsDoNothing) 
   EXPECT_EQ(viewer.syncs(), 50);
 }
 
+TEST(PassiveViewerWindow, EscapeClosesTheWindowAndEndsRunning) {
+  use_passive_display();
+  const Robot robot = Robot::from_string(kFloatingBox);
+  DataPtr data = robot.make_data();
+  PassiveViewerOptions options = passive_options();
+  options.script = ViewerScript::parse("wait 5\nkey escape\nwait 1000\n");
+  PassiveViewer viewer(robot, *data, options);
+  run_user_loop(viewer, robot, *data, [] {});
+  EXPECT_FALSE(viewer.running());
+  EXPECT_EQ(viewer.report().ended_by, "escape") << "not the script's end: it waits 1000 frames";
+}
+
 TEST(PassiveViewerWindow, AScriptErrorReachesTheLoop) {
   use_passive_display();
   const Robot robot = Robot::from_string(kFloatingBox);
