@@ -143,7 +143,8 @@ EnvironmentOptions to_options(py::handle options, const py::kwargs& overrides) {
       throw Error("environment: unknown option '" + name +
                   "' (see EnvironmentOptions: action_space, action, control_period, "
                   "controller_period, time_limit, observations, refuse_out_of_bounds, "
-                  "randomization, seed, max_acceleration, observation_noise, action_latency)");
+                  "randomization, seed, max_acceleration, observation_noise, action_latency, "
+                  "pixels_width, pixels_height)");
     }
     o.attr(name.c_str()) = value;
   }

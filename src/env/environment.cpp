@@ -107,7 +107,8 @@ Environment::Impl::Impl(std::unique_ptr<EnvTask> t, const EnvironmentOptions& o)
     randomizer =
         std::make_unique<DomainRandomizer>(robot.model(), o.randomization, task->object_geoms());
   observations = std::make_unique<ObservationSet>(
-      *task, *sim, o.observations.empty() ? task->default_observations() : o.observations);
+      *task, *sim, o.observations.empty() ? task->default_observations() : o.observations,
+      o.pixels_width, o.pixels_height);
 
   kinematics = std::make_unique<ChainKinematics>(chain);
   const int n = chain.size();

@@ -2,10 +2,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "mjarm/error.hpp"
 #include "mjarm/lie/rotation.hpp"
 #include "mjarm/model/names.hpp"
+#include "observation_pixels.hpp"
 
 namespace mjarm {
 namespace {
@@ -67,11 +69,15 @@ std::vector<std::string> ObservationSet::available(const EnvTask& task) {
     const char* name = mj_id2name(&m, mjOBJ_SENSOR, id);
     if (name != nullptr && name[0] != '\0') names.push_back(std::string(kSensorPrefix) + name);
   }
+  for (std::string& p : pixel_observations(task.robot())) names.push_back(std::move(p));
   return names;
 }
 
+ObservationSet::~ObservationSet() = default;
+
 ObservationSet::ObservationSet(const EnvTask& task, Simulation& sim,
-                               const std::vector<std::string>& names) {
+                               const std::vector<std::string>& names, int pixels_width,
+                               int pixels_height) {
   const std::string task_name(task.name());
   if (names.empty())
     throw Error("observations of task '" + task_name +
@@ -111,6 +117,19 @@ ObservationSet::ObservationSet(const EnvTask& task, Simulation& sim,
       check_contacts_on(robot, arm, task_name);
       entry.index = sim.watch_contacts(arm, GeomSet{});
       specs.push_back(ArraySpec::vector(name, 3));
+    } else if (name.rfind("pixels:", 0) == 0 || name.rfind("depth:", 0) == 0) {
+      const bool pixels = name[0] == 'p';
+      if (!cameras_) cameras_ = std::make_unique<Cameras>(robot, pixels_width, pixels_height);
+      entry.source = pixels ? Source::pixels : Source::depth;
+      entry.index = cameras_->camera(name.substr(pixels ? 7 : 6));
+      ArraySpec spec;
+      spec.name = name;
+      spec.shape = pixels ? std::vector<int>{pixels_height, pixels_width, 3}
+                          : std::vector<int>{pixels_height, pixels_width};
+      spec.minimum = Eigen::VectorXd::Zero(spec.size());
+      spec.maximum = Eigen::VectorXd::Constant(
+          spec.size(), pixels ? 255.0 : std::numeric_limits<double>::infinity());
+      specs.push_back(spec);
     } else if (name.rfind(kSensorPrefix, 0) == 0) {
       const std::string sensor = name.substr(kSensorPrefix.size());
       const int id = try_find_object(m, mjOBJ_SENSOR, sensor);
@@ -157,6 +176,7 @@ void ObservationSet::fill(const StepContext& context, const EnvTask& task,
   const Chain& chain = task.chain();
   const mjData& d = context.data();
   const int n = chain.size();
+  if (cameras_) cameras_->rendered = -1;  // a new state: pictures are drawn again
   for (std::size_t k = 0; k < entries_.size(); ++k) {
     const Entry& e = entries_[k];
     const int size = spec_.arrays()[k].size();
@@ -191,6 +211,14 @@ void ObservationSet::fill(const StepContext& context, const EnvTask& task,
       }
       case Source::task:
         task.observe(e.index, context, std::span<double>(o, static_cast<std::size_t>(size)));
+        break;
+      case Source::pixels:
+        cameras_->render(e.index, d);
+        std::copy(cameras_->image.rgb.begin(), cameras_->image.rgb.end(), o);
+        break;
+      case Source::depth:
+        cameras_->render(e.index, d);
+        std::copy(cameras_->depth.begin(), cameras_->depth.end(), o);
         break;
     }
   }

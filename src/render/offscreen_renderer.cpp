@@ -258,6 +258,16 @@ OffscreenRenderer::OffscreenRenderer(OffscreenRenderer&&) noexcept = default;
 OffscreenRenderer& OffscreenRenderer::operator=(OffscreenRenderer&&) noexcept = default;
 
 void OffscreenRenderer::render(const mjData& data, const CameraSpec& camera, Image& out) {
+  render_into(data, camera, out, nullptr);
+}
+
+void OffscreenRenderer::render(const mjData& data, const CameraSpec& camera, Image& out,
+                               std::vector<float>& depth) {
+  render_into(data, camera, out, &depth);
+}
+
+void OffscreenRenderer::render_into(const mjData& data, const CameraSpec& camera, Image& out,
+                                    std::vector<float>* depth) {
   if (!impl_) throw Error("OffscreenRenderer used after close()");
   Impl& s = *impl_;
   mjvCamera cam = s.prepare(data, camera);
@@ -274,7 +284,20 @@ void OffscreenRenderer::render(const mjData& data, const CameraSpec& camera, Ima
     const mjrRect viewport{0, 0, width_, height_};
     mjr_setBuffer(mjFB_OFFSCREEN, &s.gpu);
     mjr_render(viewport, &s.scene, &s.gpu);
-    mjr_readPixels(out.rgb.data(), nullptr, viewport, &s.gpu);
+    if (depth != nullptr) depth->resize(out.pixels());
+    mjr_readPixels(out.rgb.data(), depth != nullptr ? depth->data() : nullptr, viewport, &s.gpu);
+  }
+  if (depth != nullptr) {
+    // the depth buffer's [0, 1] back to distances: d = near / (1 − z·(1 − near/far))
+    const double extent = m.stat.extent;
+    const double near = m.vis.map.znear * extent, far = m.vis.map.zfar * extent;
+    for (float& z : *depth) z = static_cast<float>(near / (1.0 - z * (1.0 - near / far)));
+    const std::size_t width = static_cast<std::size_t>(width_);
+    for (int top = 0, bottom = height_ - 1; top < bottom; ++top, --bottom) {
+      std::swap_ranges(depth->begin() + static_cast<std::ptrdiff_t>(width * top),
+                       depth->begin() + static_cast<std::ptrdiff_t>(width * (top + 1)),
+                       depth->begin() + static_cast<std::ptrdiff_t>(width * bottom));
+    }
   }
   // OpenGL's row 0 is the bottom: swap rows so that row 0 is the top
   const std::size_t stride = static_cast<std::size_t>(width_) * 3;

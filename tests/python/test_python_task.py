@@ -195,3 +195,22 @@ def test_the_overhead_benchmark_runs_a_small_count():
     bad = subprocess.run([sys.executable, "-m", "mjarm.bench_task", "--steps", "1"],
                          capture_output=True, text=True, timeout=60)
     assert bad.returncode == 2 and "--steps" in bad.stderr
+
+
+def test_pictures_are_observations_and_show_in_the_gymnasium_spaces():
+    import mjarm.gym
+
+    env = mjarm.Environment("reach", observations=["pixels:free", "depth:free",
+                                                   "joint_positions"],
+                            pixels_width=40, pixels_height=30)
+    ts = env.reset(seed=0)
+    rgb, depth = ts.observation["pixels:free"], ts.observation["depth:free"]
+    assert rgb.shape == (30, 40, 3) and depth.shape == (30, 40)
+    assert 0.0 <= rgb.min() and rgb.max() <= 255.0 and rgb.max() - rgb.min() > 50
+    assert np.all(np.isfinite(depth)) and depth.min() > 0.0
+    gym = mjarm.gym.GymEnv("reach", observations=["pixels:free"], pixels_width=40,
+                           pixels_height=30)
+    assert gym.observation_space["pixels:free"].shape == (30, 40, 3)
+    assert "pixels:free" in mjarm.env_observations("reach")
+    with pytest.raises(mjarm.Error, match="no such camera"):
+        mjarm.Environment("reach", observations=["pixels:nowhere"])

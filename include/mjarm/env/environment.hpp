@@ -59,6 +59,8 @@ struct EnvironmentOptions {
   /// the action given at step k − latency; the first `action_latency` steps of an episode apply
   /// its first action. The task's hooks see the action applied.
   int action_latency = 0;
+  int pixels_width = 84;   ///< width of the `pixels:` and `depth:` observations [pixels]
+  int pixels_height = 84;  ///< their height [pixels]
 };
 
 /// `observations` is checked against the task's, the periods against the timestep by hand.
@@ -82,7 +84,11 @@ constexpr auto declared_fields(const EnvironmentOptions*) {
       field("observation_noise", &S::observation_noise, "", Range::non_negative(),
             "standard deviation of the Gaussian noise on every observation value (own units)"),
       field("action_latency", &S::action_latency, "steps", Range::closed(0, 1000),
-            "control steps between an action and the step that applies it"));
+            "control steps between an action and the step that applies it"),
+      field("pixels_width", &S::pixels_width, "pixels", Range::closed(16, 4096),
+            "width of the pixels: and depth: observations"),
+      field("pixels_height", &S::pixels_height, "pixels", Range::closed(16, 4096),
+            "height of the pixels: and depth: observations"));
 }
 
 /// How often actions were clipped into their bounds.

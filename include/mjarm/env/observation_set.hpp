@@ -3,6 +3,7 @@
 /// `ObservationSet`: the observations an environment was asked for, by name, checked against
 /// what the task, the model and the simulation can give, and written into one buffer.
 
+#include <memory>
 #include <span>
 #include <string>
 #include <vector>
@@ -25,6 +26,9 @@ namespace mjarm {
 /// of the chain's root subtree: arm and tool), world axes [N] | | `sensor:NAME` | its dimension |
 /// the MJCF sensor NAME (bounded by its cutoff when it has one) | | task names | task's | what the
 /// task provides (`target`, `object_pose`, …) |
+/// | `pixels:CAMERA` | h × w × 3 | the picture of model camera CAMERA (or `free`: a free camera
+/// framing the model), RGB values 0…255, row 0 the top, rendered headless (EGL) |
+/// | `depth:CAMERA` | h × w | its depth: distance from the camera's plane [m] |
 ///
 /// Positions, velocities, pose and twist are computed from the current qpos and qvel; contact
 /// forces and sensors are MuJoCo's, from the start of the step's last physics step (as
@@ -37,7 +41,12 @@ class ObservationSet {
   ///         `object_pose`: switched off here), a sensor the model does not have, or
   ///         `contact_forces` on a model whose contacts are disabled or whose arm has no
   ///         colliding geom. An empty list is an error too.
-  ObservationSet(const EnvTask& task, Simulation& sim, const std::vector<std::string>& names);
+  /// @param pixels_width, pixels_height size of the `pixels:` and `depth:` images [pixels]
+  ObservationSet(const EnvTask& task, Simulation& sim, const std::vector<std::string>& names,
+                 int pixels_width = 84, int pixels_height = 84);
+  ~ObservationSet();
+  ObservationSet(const ObservationSet&) = delete;
+  ObservationSet& operator=(const ObservationSet&) = delete;
 
   const ObservationSpec& spec() const noexcept { return spec_; }
 
@@ -58,15 +67,19 @@ class ObservationSet {
     ee_twist,
     contact_forces,
     sensor,
-    task
+    task,
+    pixels,
+    depth
   };
   struct Entry {
     Source source = Source::joint_positions;
-    int index = -1;  // sensor id, task observation index or contact watch handle
+    int index = -1;  // sensor id, task observation index, contact watch handle or camera
   };
+  struct Cameras;  // the renderer and the cameras of pixels and depth (observation_pixels.cpp)
 
   std::vector<Entry> entries_;
   ObservationSpec spec_;
+  std::unique_ptr<Cameras> cameras_;
 };
 
 }  // namespace mjarm

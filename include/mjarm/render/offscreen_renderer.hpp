@@ -91,6 +91,11 @@ class OffscreenRenderer {
   ///         free or follow camera is so far away that the whole model lies beyond the far
   ///         clipping plane (visual/map zfar × statistic extent from it: an empty picture).
   void render(const mjData& data, const CameraSpec& camera, Image& out);
+  /// As above, and the depth: @p depth gets width·height distances from the camera's plane
+  /// along its axis [m], row 0 the top, from OpenGL's depth buffer linearized with MuJoCo's
+  /// near and far planes (`visual/map` znear and zfar times the model's extent); where nothing
+  /// is drawn, the far plane. Allocation-free after the first call at this size.
+  void render(const mjData& data, const CameraSpec& camera, Image& out, std::vector<float>& depth);
 
   /// Same as above, into a new image.
   Image render(const mjData& data, const CameraSpec& camera);
@@ -119,6 +124,8 @@ class OffscreenRenderer {
   const std::string& gl_description() const;
 
  private:
+  void render_into(const mjData& data, const CameraSpec& camera, Image& out,
+                   std::vector<float>* depth);
   struct Impl;
   std::unique_ptr<Impl> impl_;
   int width_ = 0;
