@@ -77,7 +77,8 @@ void bind_pick_place_options(py::module_& m) {
   auto weld = py::class_<WeldGraspOptions>(m, "WeldGraspOptions", "The weld's solref.");
   fields_init<WeldGraspOptions>(weld, "WeldGraspOptions");
   weld.def_readwrite("time_constant", &WeldGraspOptions::time_constant, "[s]")
-      .def_readwrite("damping_ratio", &WeldGraspOptions::damping_ratio);
+      .def_readwrite("damping_ratio", &WeldGraspOptions::damping_ratio,
+                     "damping ratio of the weld constraint");
 
   auto criteria =
       py::class_<PickPlaceCriteria>(m, "PickPlaceCriteria", "What a trial is judged by.");
@@ -110,8 +111,9 @@ void bind_pick_place_options(py::module_& m) {
 
   auto trial = py::class_<PickPlaceTrial>(m, "PickPlaceTrial", "One trial's draw.");
   fields_init<PickPlaceTrial>(trial, "PickPlaceTrial");
-  trial.def_readwrite("seed", &PickPlaceTrial::seed)
-      .def_readwrite("object", &PickPlaceTrial::object);
+  trial.def_readwrite("seed", &PickPlaceTrial::seed, "the seed the trial was drawn from")
+      .def_readwrite("object", &PickPlaceTrial::object,
+                     "the object's size, mass, friction, position and yaw");
   array_property<PickPlaceTrial>(trial, "target", &PickPlaceTrial::target, "x, y (2,) [m]");
 
   auto video_options =
@@ -162,7 +164,8 @@ void bind_pick_place_options(py::module_& m) {
       .def_readwrite("max_acceleration", &PickPlaceOptions::max_acceleration,
                      "divergence bound on |qdd|")
       .def_readwrite("record", &PickPlaceOptions::record, "recording directory; '' = none")
-      .def_readwrite("state_decimation", &PickPlaceOptions::state_decimation)
+      .def_readwrite("state_decimation", &PickPlaceOptions::state_decimation,
+                     "one state row every N physics steps when recording")
       .def_readwrite("video", &PickPlaceOptions::video, "PickPlaceVideo");
 }
 
@@ -173,12 +176,13 @@ void bind_pick_place_results(py::module_& m) {
 
   py::class_<PickPlaceReport>(m, "PickPlaceReport", "What one trial did.")
       .def_readonly("trial", &PickPlaceReport::trial, "PickPlaceTrial: the draw")
-      .def_readonly("robot", &PickPlaceReport::robot)
-      .def_readonly("grasp", &PickPlaceReport::grasp)
-      .def_readonly("mode", &PickPlaceReport::mode)
+      .def_readonly("robot", &PickPlaceReport::robot, "the robot's name")
+      .def_readonly("grasp", &PickPlaceReport::grasp, "how the object was held (friction or weld)")
+      .def_readonly("mode", &PickPlaceReport::mode,
+                    "how the robot moved (kinematic, position or torque)")
       .def_readonly("run", &PickPlaceReport::run, "RunResult")
       .def_readonly("trace", &PickPlaceReport::trace, "PickPlaceTrace")
-      .def_readonly("success", &PickPlaceReport::success)
+      .def_readonly("success", &PickPlaceReport::success, "the object ended at the target")
       .def_readonly("failure", &PickPlaceReport::failure, "PickPlaceFailure")
       .def_readonly("reason", &PickPlaceReport::reason, "one line; '' on success")
       .def_readonly("placement_error", &PickPlaceReport::placement_error, "horizontal [m]")
@@ -186,20 +190,26 @@ void bind_pick_place_results(py::module_& m) {
       .def_readonly("tilt", &PickPlaceReport::tilt, "[rad]")
       .def_readonly("cycle_time", &PickPlaceReport::cycle_time, "[s]")
       .def_readonly("control_period", &PickPlaceReport::control_period, "[s]")
-      .def_readonly("recording", &PickPlaceReport::recording)
-      .def_readonly("recording_error", &PickPlaceReport::recording_error)
-      .def_readonly("videos", &PickPlaceReport::videos)
-      .def_readonly("video_frames", &PickPlaceReport::video_frames)
-      .def_readonly("video_error", &PickPlaceReport::video_error)
+      .def_readonly("recording", &PickPlaceReport::recording,
+                    "the recording directory (empty when not recorded)")
+      .def_readonly("recording_error", &PickPlaceReport::recording_error,
+                    "why the recording is incomplete (empty when fine)")
+      .def_readonly("videos", &PickPlaceReport::videos, "the MP4s asked for")
+      .def_readonly("video_frames", &PickPlaceReport::video_frames, "frames written per video")
+      .def_readonly("video_error", &PickPlaceReport::video_error,
+                    "why a video was not written (empty when fine)")
       .def("ok", &PickPlaceReport::ok, "True on success");
 
   py::class_<PickPlaceStat>(m, "PickPlaceStat", "Mean and largest of a figure (NaN when none).")
-      .def_readonly("count", &PickPlaceStat::count)
-      .def_readonly("mean", &PickPlaceStat::mean)
-      .def_readonly("max", &PickPlaceStat::max);
+      .def_readonly("count", &PickPlaceStat::count, "values added (NaN skipped)")
+      .def_readonly("mean", &PickPlaceStat::mean,
+                    "mean value, in the quantity's unit (NaN when none)")
+      .def_readonly("max", &PickPlaceStat::max,
+                    "largest value, in the quantity's unit (NaN when none)");
   py::class_<PickPlaceSummary>(m, "PickPlaceSummary", "The figures of a batch.")
       .def_readonly("trials", &PickPlaceSummary::trials, "trials that ran to their end")
-      .def_readonly("successes", &PickPlaceSummary::successes)
+      .def_readonly("successes", &PickPlaceSummary::successes,
+                    "trials that ended with the object at the target")
       .def_readonly("interrupted", &PickPlaceSummary::interrupted, "cut short (not in trials)")
       .def_property_readonly(
           "failures",
@@ -220,24 +230,31 @@ void bind_pick_place_results(py::module_& m) {
   py::class_<PickPlaceBatch>(m, "PickPlaceBatch", "What a batch did.")
       .def_readonly("reports", &PickPlaceBatch::reports, "list[PickPlaceReport], seed order")
       .def_readonly("summary", &PickPlaceBatch::summary, "PickPlaceSummary")
-      .def_readonly("interrupted", &PickPlaceBatch::interrupted);
+      .def_readonly("interrupted", &PickPlaceBatch::interrupted, "Ctrl-C stopped the batch");
 }
 
 void bind_scene_of_a_trial(py::module_& m) {
   py::class_<PickPlaceRobot>(m, "PickPlaceRobot",
                              "A robot the pick and place knows (names unprefixed, world [m]).")
-      .def_readonly("name", &PickPlaceRobot::name)
-      .def_readonly("position_model", &PickPlaceRobot::position_model)
-      .def_readonly("torque_model", &PickPlaceRobot::torque_model)
-      .def_readonly("tool", &PickPlaceRobot::tool)
-      .def_readonly("hand", &PickPlaceRobot::hand)
-      .def_readonly("fingers", &PickPlaceRobot::fingers)
+      .def_readonly("name", &PickPlaceRobot::name, "what the user types (\"arm6\")")
+      .def_readonly("position_model", &PickPlaceRobot::position_model,
+                    "bundled model with position servos (\"arm6\")")
+      .def_readonly("torque_model", &PickPlaceRobot::torque_model,
+                    "bundled model with torque motors (\"arm6_torque\")")
+      .def_readonly("tool", &PickPlaceRobot::tool, "tool site between the fingertips (\"grip\")")
+      .def_readonly("hand", &PickPlaceRobot::hand, "body carrying the fingers (\"link6\")")
+      .def_readonly("fingers", &PickPlaceRobot::fingers,
+                    "the two finger joints; each finger's body and geom share its name")
       .def_property_readonly(
           "mount", [](const PickPlaceRobot& r) { return to_array(r.mount.data(), 3); }, "(3,)")
-      .def_readonly("own_table", &PickPlaceRobot::own_table)
-      .def_readonly("table_height", &PickPlaceRobot::table_height)
-      .def_readonly("min_radius", &PickPlaceRobot::min_radius)
-      .def_readonly("max_radius", &PickPlaceRobot::max_radius)
+      .def_readonly("own_table", &PickPlaceRobot::own_table,
+                    "the model brings its table (body \"table\"); else the arena's")
+      .def_readonly("table_height", &PickPlaceRobot::table_height,
+                    "height of the table's top surface [m]")
+      .def_readonly("min_radius", &PickPlaceRobot::min_radius,
+                    "smallest horizontal distance of a trial's points from the base axis [m]")
+      .def_readonly("max_radius", &PickPlaceRobot::max_radius,
+                    "largest horizontal distance of a trial's points from the base axis [m]")
       .def_readonly("max_bearing", &PickPlaceRobot::max_bearing, "[rad]");
   m.def("pick_place_robots", &pick_place_robots, "The robots of the pick and place, in order.");
   m.def("pick_place_robot", &pick_place_robot, py::arg("name"), py::return_value_policy::copy,
@@ -246,11 +263,13 @@ void bind_scene_of_a_trial(py::module_& m) {
   auto scene_options = py::class_<PickPlaceSceneOptions>(m, "PickPlaceSceneOptions",
                                                          "What the scene of one trial is made of.");
   fields_init<PickPlaceSceneOptions>(scene_options, "PickPlaceSceneOptions");
-  scene_options.def_readwrite("robot", &PickPlaceSceneOptions::robot);
+  scene_options.def_readwrite("robot", &PickPlaceSceneOptions::robot,
+                              "the robot's name (see pick_place_robots())");
   enum_property<PickPlaceSceneOptions>(
       scene_options, "mode", &PickPlaceSceneOptions::mode,
       [](const std::string& s) { return simulation_mode_named(s); }, "servo or motor model");
-  scene_options.def_readwrite("object", &PickPlaceSceneOptions::object);
+  scene_options.def_readwrite("object", &PickPlaceSceneOptions::object,
+                              "the object's size, mass, friction, position and yaw");
   array_property<PickPlaceSceneOptions>(scene_options, "target", &PickPlaceSceneOptions::target,
                                         "x, y (2,) [m]");
   list_property<PickPlaceSceneOptions>(scene_options, "finger_travel",
@@ -258,21 +277,29 @@ void bind_scene_of_a_trial(py::module_& m) {
                                        "[lower, upper] per finger [m]; empty: the model's");
   scene_options
       .def_readwrite("finger_servo_gain", &PickPlaceSceneOptions::finger_servo_gain, "0: model's")
-      .def_readwrite("noslip_iterations", &PickPlaceSceneOptions::noslip_iterations)
-      .def_readwrite("impratio", &PickPlaceSceneOptions::impratio);
+      .def_readwrite("noslip_iterations", &PickPlaceSceneOptions::noslip_iterations,
+                     "solver option noslip_iterations (0: MuJoCo's default, none)")
+      .def_readwrite("impratio", &PickPlaceSceneOptions::impratio,
+                     "MuJoCo's frictional-to-normal impedance ratio (≥ 1)");
   py::class_<PickPlaceScene>(
       m, "PickPlaceScene", "A composed pick-and-place scene and the (prefixed) names a run needs.")
       .def_readonly("model", &PickPlaceScene::model, "Robot: the compiled scene")
-      .def_readonly("tool", &PickPlaceScene::tool)
-      .def_readonly("hand", &PickPlaceScene::hand)
-      .def_readonly("fingers", &PickPlaceScene::fingers)
-      .def_readonly("arm_joints", &PickPlaceScene::arm_joints)
-      .def_readonly("table", &PickPlaceScene::table)
-      .def_readonly("robot_root", &PickPlaceScene::robot_root)
-      .def_readonly("object", &PickPlaceScene::object)
-      .def_readonly("target", &PickPlaceScene::target)
-      .def_readonly("weld", &PickPlaceScene::weld)
-      .def_readonly("cameras", &PickPlaceScene::cameras)
+      .def_readonly("tool", &PickPlaceScene::tool,
+                    "tool site between the fingertips (\"arm6/grip\")")
+      .def_readonly("hand", &PickPlaceScene::hand, "body carrying the fingers (\"arm6/link6\")")
+      .def_readonly("fingers", &PickPlaceScene::fingers,
+                    "the two finger joints (= bodies = geoms, \"arm6/finger_left\")")
+      .def_readonly("arm_joints", &PickPlaceScene::arm_joints,
+                    "the arm's hinge joints, base to flange")
+      .def_readonly("table", &PickPlaceScene::table, "table body (\"arm6/table\", \"arena/table\")")
+      .def_readonly("robot_root", &PickPlaceScene::robot_root,
+                    "body whose subtree is the robot (\"arm6/base\", \"panda\")")
+      .def_readonly("object", &PickPlaceScene::object, "the free body (geom \"object/geom\")")
+      .def_readonly("target", &PickPlaceScene::target,
+                    "world site at the target (object centre at rest)")
+      .def_readonly("weld", &PickPlaceScene::weld, "weld hand → object (inactive at the start)")
+      .def_readonly("cameras", &PickPlaceScene::cameras,
+                    "the scene's cameras: \"front\", \"side\", \"top\"")
       .def_readonly("table_height", &PickPlaceScene::table_height, "[m]");
   m.def(
       "build_pick_place_scene",

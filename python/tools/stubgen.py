@@ -43,6 +43,10 @@ def clean_type(t, module_prefix):
     t = t.replace("collections.abc.Callable", "Callable").replace("collections.abc.Iterator", "Iterator")
     t = t.replace("typing.Any", "Any")
     t = re.sub(r'typing\.Annotated\[(NDArray\[[^\]]*\]), "[^"]*"\]', r"\1", t)
+    # a std::array's size is pybind11's annotation; the type is the list
+    t = re.sub(r'typing\.Annotated\[(list\[[^\]]*\]), "FixedSize\(\d+\)"\]', r"\1", t)
+    t = re.sub(r'typing\.Annotated\[numpy\.typing\.ArrayLike, numpy\.float64, "[^"]*"\]', "ArrayLike", t)
+    t = re.sub(r"\bnumpy\.dtype\b", "np.dtype[Any]", t)
     t = re.sub(r"\bnumpy\.ndarray\b(?!\[)", "NDArray[Any]", t)
     t = re.sub(r"numpy\.ndarray\[numpy\.float64(\[[^\]]*\])?(, flags\.[a-z_]+)*\]", "NDArray[np.float64]", t)
     t = re.sub(r"numpy\.ndarray\[numpy\.uint8(\[[^\]]*\])?\]", "NDArray[np.uint8]", t)
@@ -95,8 +99,11 @@ def signatures(obj):
     doc = obj.__doc__ or ""
     sigs, text = [], []
     for line in doc.splitlines():
-        m = SIG.match(line.strip())
-        unnamed = UNNAMED_SIG.match(line.strip()) if not obj.__name__ else None
+        # pybind11 writes a signature first, or numbered after "Overloaded function.": a line of
+        # the text that reads like a call ("add_object(spec): a free object (nq += 7)") is text
+        at_signature = not sigs and not text or re.match(r"\d+\. ", line.strip())
+        m = SIG.match(line.strip()) if at_signature else None
+        unnamed = UNNAMED_SIG.match(line.strip()) if at_signature and not obj.__name__ else None
         if m and m.group(1) == obj.__name__:
             sigs.append((m.group(2), m.group(3) or "None"))
         elif unnamed:
@@ -132,6 +139,8 @@ def docstring(text, indent):
     if not text:
         return ""
     text = text.replace('"""', "'''").replace("\\", "\\\\")
+    if text.endswith('"'):  # would run into the closing quotes
+        text = text[:-1] + '\\"'
     return f'{indent}    """{text}"""\n'
 
 
@@ -189,7 +198,8 @@ def class_stub(name, cls, prefix):
         for member in cls.__members__:
             body += f"    {member}: ClassVar[{name}]\n"
         body += "    def __init__(self, value: int) -> None: ...\n"
-        body += "    @property\n    def name(self) -> str: ...\n    @property\n    def value(self) -> int: ...\n"
+        body += ('    @property\n    def name(self) -> str:\n        """the member\'s name"""\n        ...\n'
+                 '    @property\n    def value(self) -> int:\n        """the member\'s integer value"""\n        ...\n')
         body += "    def __int__(self) -> int: ...\n"
         return head + body + "\n"
     for attr, value in sorted(cls.__dict__.items()):
