@@ -4442,7 +4442,7 @@ class PickPlaceOptions:
     @object_half_size.setter
     def object_half_size(self, value: float | None) -> None: ...
     @property
-    def object_position(self) -> ArrayLike:
+    def object_position(self) -> NDArray[np.float64] | None:
         """object centre x, y (2,) [m], or None: drawn"""
         ...
     @object_position.setter
@@ -4478,7 +4478,7 @@ class PickPlaceOptions:
     @state_decimation.setter
     def state_decimation(self, value: int) -> None: ...
     @property
-    def target_position(self) -> ArrayLike:
+    def target_position(self) -> NDArray[np.float64] | None:
         """target x, y (2,) [m], or None: drawn"""
         ...
     @target_position.setter
@@ -6347,7 +6347,7 @@ class ShelfPickRequest:
     @criteria.setter
     def criteria(self, value: PickCriteria) -> None: ...
     @property
-    def pick(self) -> ArrayLike:
+    def pick(self) -> NDArray[np.float64] | None:
         """pick point (3,) [m], or None: drawn from the seed"""
         ...
     @pick.setter

@@ -18,9 +18,9 @@ void optional_pair(Class& cls, const char* name, std::optional<std::array<double
                    const char* doc) {
   cls.def_property(
       name,
-      [member](const T& o) -> py::object {
-        if (!(o.*member)) return py::none();
-        return to_array((o.*member)->data(), 2);
+      [member](const T& o) -> std::optional<Eigen::Vector2d> {
+        if (!(o.*member)) return std::nullopt;
+        return Eigen::Vector2d((*(o.*member))[0], (*(o.*member))[1]);
       },
       [member, name](T& o, py::handle v) {
         if (v.is_none()) {

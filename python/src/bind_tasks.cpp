@@ -23,9 +23,7 @@ void bind_tasks(py::module_& m) {
                      "the controller's name (see shelf_pick_controllers())")
       .def_property(
           "pick",
-          [](const ShelfPickRequest& r) -> py::object {
-            return r.pick ? py::cast(Eigen::Vector3d(*r.pick)) : py::none();
-          },
+          [](const ShelfPickRequest& r) -> std::optional<Eigen::Vector3d> { return r.pick; },
           [](ShelfPickRequest& r, py::handle p) {
             if (p.is_none())
               r.pick.reset();
