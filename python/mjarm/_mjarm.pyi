@@ -86,7 +86,7 @@ class Controller:
         ...
     @property
     def internal_values(self) -> NDArray[np.float64]:
-        """values of those internals from the last compute, in internal_names order (k,)"""
+        """values of those internals from the last compute, in internal_names order (len(internal_names),)"""
         ...
     @property
     def name(self) -> str:
@@ -7885,3 +7885,19 @@ class se3:
     @staticmethod
     def vee(xi_hat: ArrayLike) -> NDArray[np.float64]:
         ...
+
+from . import model as model
+from . import lie as lie
+from . import kinematics as kinematics
+from . import ik as ik
+from . import dynamics as dynamics
+from . import control as control
+from . import sim as sim
+from . import state as state
+from . import trajectory as trajectory
+from . import planning as planning
+from . import scene as scene
+from . import tasks as tasks
+from . import render as render
+from . import env as env
+from . import scenario as scenario

@@ -97,7 +97,8 @@ void bind_control(py::module_& m) {
             const auto s = c.internal_values();
             return to_array(s.data(), static_cast<Eigen::Index>(s.size()));
           },
-          "values of those internals from the last compute, in internal_names order (k,)")
+          "values of those internals from the last compute, in internal_names order "
+          "(len(internal_names),)")
       .def(
           "compute",
           [](Controller& c, const DataHandle& d, const Reference& reference, py::handle out) {
