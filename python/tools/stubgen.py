@@ -102,7 +102,7 @@ def signatures(obj):
     for line in doc.splitlines():
         # pybind11 writes a signature first, or numbered after "Overloaded function.": a line of
         # the text that reads like a call ("add_object(spec): a free object (nq += 7)") is text
-        at_signature = not sigs and not text or re.match(r"\d+\. ", line.strip())
+        at_signature = (not sigs and not text) or re.match(r"\d+\. ", line.strip())
         m = SIG.match(line.strip()) if at_signature else None
         unnamed = UNNAMED_SIG.match(line.strip()) if at_signature and not obj.__name__ else None
         if m and m.group(1) == obj.__name__:
