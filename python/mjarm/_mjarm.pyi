@@ -6541,14 +6541,15 @@ class SimulationOptions:
     def own_model(self, value: bool) -> None: ...
 
 class SingularityEntry:
+    """The measures of one configuration."""
     def __init__(*args: Any, **kwargs: Any) -> Any: ...
     @property
     def above_condition_number(self) -> bool:
-        """σmax/σmin above the threshold (relative)"""
+        """σmax/σmin > thresholds.condition_number (relative)"""
         ...
     @property
     def below_sigma_min(self) -> bool:
-        """σmin below the threshold (absolute)"""
+        """σmin < thresholds.sigma_min (absolute)"""
         ...
     @property
     def condition_number(self) -> float:
@@ -6568,7 +6569,7 @@ class SingularityEntry:
         ...
     @property
     def null_direction(self) -> NDArray[np.float64]:
-        """joint motion that moves the frame least: right singular vector of σmin, unit (n,)"""
+        """right singular vector of σmin: the joint motion that moves the frame least (unit, chain order, largest entry positive) (n,)"""
         ...
     @property
     def q(self) -> NDArray[np.float64]:
@@ -6588,10 +6589,11 @@ class SingularityEntry:
         ...
 
 class SingularityScan:
+    """Result of a random scan."""
     def __init__(*args: Any, **kwargs: Any) -> Any: ...
     @property
     def flagged_count(self) -> int:
-        """samples crossing either threshold"""
+        """samples crossing either threshold (σmin < thresholds.sigma_min or condition above thresholds.condition_number)"""
         ...
     @property
     def near_singular_count(self) -> int:
@@ -6611,7 +6613,7 @@ class SingularityScan:
         ...
     @property
     def worst(self) -> list[SingularityEntry]:
-        """the lowest-σmin samples, lowest first"""
+        """the lowest-σmin samples, lowest first (at most keep_worst), named "sample <index>\""""
         ...
 
 class SingularityStatus(enum.Enum):

@@ -144,30 +144,12 @@ void bind_kinematics(py::module_& m) {
   auto thresholds = py::class_<SingularityThresholds>(m, "SingularityThresholds");
   thresholds.def(py::init<>());
   def_fields(thresholds);
-  py::class_<SingularityEntry>(m, "SingularityEntry")
-      .def_readonly("name", &SingularityEntry::name,
-                    "what the entry is (\"sample <index>\", or the configuration's name)")
-      .def_readonly("q", &SingularityEntry::q, "configuration, chain order (n,) [rad or m]")
-      .def_property_readonly(
-          "singular_values",
-          [](const SingularityEntry& e) { return Eigen::VectorXd(e.singular_values); },
-          "singular values of the measured block, decreasing (min(m, n),)")
-      .def_readonly("sigma_min", &SingularityEntry::sigma_min, "smallest singular value")
-      .def_readonly("condition_number", &SingularityEntry::condition_number,
-                    "σmax/σmin, +inf when singular")
-      .def_readonly("manipulability", &SingularityEntry::manipulability,
-                    "Yoshikawa's w = √det(J·Jᵀ)")
-      .def_readonly("status", &SingularityEntry::status, "regular, near-singular or singular")
-      .def_readonly("below_sigma_min", &SingularityEntry::below_sigma_min,
-                    "σmin below the threshold (absolute)")
-      .def_readonly("above_condition_number", &SingularityEntry::above_condition_number,
-                    "σmax/σmin above the threshold (relative)")
-      .def_property_readonly(
-          "kinds", [](const SingularityEntry& e) { return kind_names(e.kinds); },
-          "'wrist', 'elbow', 'shoulder' or 'unclassified'")
-      .def_readonly(
-          "null_direction", &SingularityEntry::null_direction,
-          "joint motion that moves the frame least: right singular vector of σmin, unit (n,)");
+  auto entry =
+      py::class_<SingularityEntry>(m, "SingularityEntry", "The measures of one configuration.");
+  def_readonly_fields(entry);
+  entry.def_property_readonly(
+      "kinds", [](const SingularityEntry& e) { return kind_names(e.kinds); },
+      "'wrist', 'elbow', 'shoulder' or 'unclassified'");
   m.def(
       "singularity_report",
       [](const Chain& chain, const std::vector<std::pair<std::string, py::object>>& extra,
@@ -180,17 +162,8 @@ void bind_kinematics(py::module_& m) {
       py::arg("chain"), py::arg("extra") = std::vector<std::pair<std::string, py::object>>{},
       py::arg("options") = ManipulabilityOptions{}, py::arg("thresholds") = SingularityThresholds{},
       "Entries for qpos0, centre, every keyframe and the (name, q) pairs in extra.");
-  py::class_<SingularityScan>(m, "SingularityScan")
-      .def_readonly("samples", &SingularityScan::samples,
-                    "samples drawn (fewer than asked when interrupted)")
-      .def_readonly("seed", &SingularityScan::seed, "seed of the samples")
-      .def_readonly("singular_count", &SingularityScan::singular_count,
-                    "samples classified singular")
-      .def_readonly("near_singular_count", &SingularityScan::near_singular_count,
-                    "samples classified near-singular")
-      .def_readonly("flagged_count", &SingularityScan::flagged_count,
-                    "samples crossing either threshold")
-      .def_readonly("worst", &SingularityScan::worst, "the lowest-σmin samples, lowest first");
+  auto scan = py::class_<SingularityScan>(m, "SingularityScan", "Result of a random scan.");
+  def_readonly_fields(scan);
   m.def(
       "scan_singularities",
       [](const Chain& chain, std::size_t samples, std::uint64_t seed, std::size_t keep_worst) {
