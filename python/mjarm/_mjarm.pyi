@@ -267,7 +267,7 @@ class AdaptiveComplianceOptions:
     def min_stiffness_ratio(self, value: float) -> None: ...
     @property
     def stiffness(self) -> NDArray[np.float64]:
-        """K0 (6, 6)"""
+        """nominal task stiffness K0, symmetric positive definite (6, 6) [N/m; N·m/rad]"""
         ...
     @stiffness.setter
     def stiffness(self, value: ArrayLike) -> None: ...
@@ -561,19 +561,19 @@ class CartesianLimits:
         ...
     @property
     def max_acceleration(self) -> float:
-        """[m/s^2]"""
+        """largest linear acceleration (> 0) [m/s²]"""
         ...
     @max_acceleration.setter
     def max_acceleration(self, value: float) -> None: ...
     @property
     def max_angular_acceleration(self) -> float:
-        """[rad/s^2]"""
+        """largest angular acceleration (> 0) [rad/s²]"""
         ...
     @max_angular_acceleration.setter
     def max_angular_acceleration(self, value: float) -> None: ...
     @property
     def max_angular_velocity(self) -> float:
-        """[rad/s]"""
+        """largest angular velocity about the turn axis (> 0) [rad/s]"""
         ...
     @max_angular_velocity.setter
     def max_angular_velocity(self, value: float) -> None: ...
@@ -659,7 +659,7 @@ class ChainDynamics:
         ...
     @property
     def bias(self) -> NDArray[np.float64]:
-        """h = C qd + g (n,)"""
+        """bias forces h = C(q, q̇)·q̇ + g(q) on the chain's dofs (n,) [N·m or N]"""
         ...
     @property
     def bias_acceleration(self) -> NDArray[np.float64]:
@@ -671,7 +671,7 @@ class ChainDynamics:
         ...
     @property
     def gravity(self) -> NDArray[np.float64]:
-        """g (n,)"""
+        """gravity torques g(q) that hold the arm still (n,) [N·m or N]"""
         ...
     def inverse_dynamics(self: ChainDynamics, data: Data | mujoco.MjData, qdd: ArrayLike) -> NDArray[np.float64]:
         """tau = M qdd + h (n,)"""
@@ -682,7 +682,7 @@ class ChainDynamics:
         ...
     @property
     def mass_matrix(self) -> NDArray[np.float64]:
-        """M (n, n) [kg m^2 or kg]"""
+        """joint-space inertia M, armature included (n, n) [kg·m² or kg]"""
         ...
     @property
     def pose(self) -> Pose:
@@ -1615,7 +1615,7 @@ class DockingGridOptions:
         ...
     @property
     def base(self) -> DockingOptions:
-        """DockingOptions (no record or video)"""
+        """everything but the offset (DockingOptions; no record or video)"""
         ...
     @base.setter
     def base(self, value: DockingOptions) -> None: ...
@@ -1665,39 +1665,39 @@ class DockingGridResult:
         ...
     @property
     def max_lateral(self) -> float:
-        """[m]"""
+        """worst final-window lateral error [m]"""
         ...
     @property
     def max_orientation_rms(self) -> float:
-        """[rad]"""
+        """worst free-motion orientation RMS [rad]"""
         ...
     @property
     def max_peak_axial_force(self) -> float:
-        """[N]"""
+        """largest peak axial force over the runs [N]"""
         ...
     @property
     def max_peak_axial_moment(self) -> float:
-        """[N m]"""
+        """largest peak axial moment over the runs [N·m]"""
         ...
     @property
     def max_peak_force(self) -> float:
-        """[N]"""
+        """largest peak contact force over the runs [N]"""
         ...
     @property
     def max_position_rms(self) -> float:
-        """[m]"""
+        """worst free-motion position RMS [m]"""
         ...
     @property
     def max_steady_axial_force(self) -> float:
-        """[N]"""
+        """largest final-window axial force [N]"""
         ...
     @property
     def max_tilt(self) -> float:
-        """[rad]"""
+        """worst final-window tilt [rad]"""
         ...
     @property
     def min_steady_axial_force(self) -> float:
-        """[N]"""
+        """smallest final-window axial force [N]"""
         ...
     @property
     def planned(self) -> int:
@@ -1956,19 +1956,19 @@ class DockingOffset:
         ...
     @property
     def dx(self) -> float:
-        """[m]"""
+        """error of the believed socket along x, |dx| ≤ 0.05 [m]"""
         ...
     @dx.setter
     def dx(self, value: float) -> None: ...
     @property
     def dy(self) -> float:
-        """[m]"""
+        """error of the believed socket along y, |dy| ≤ 0.05 [m]"""
         ...
     @dy.setter
     def dy(self, value: float) -> None: ...
     @property
     def dyaw(self) -> float:
-        """[rad]"""
+        """error of the believed socket about its axis, |dyaw| ≤ π [rad]"""
         ...
     @dyaw.setter
     def dyaw(self, value: float) -> None: ...
@@ -1980,19 +1980,19 @@ class DockingOptions:
         ...
     @property
     def controller(self) -> DockingControllerOptions:
-        """DockingControllerOptions"""
+        """law, force source, gains"""
         ...
     @controller.setter
     def controller(self, value: DockingControllerOptions) -> None: ...
     @property
     def criteria(self) -> DockingCriteria:
-        """DockingCriteria"""
+        """the seating criteria"""
         ...
     @criteria.setter
     def criteria(self, value: DockingCriteria) -> None: ...
     @property
     def geometry(self) -> DockingGeometry:
-        """DockingGeometry"""
+        """the peg and the socket"""
         ...
     @geometry.setter
     def geometry(self, value: DockingGeometry) -> None: ...
@@ -2010,19 +2010,19 @@ class DockingOptions:
     def keep_samples(self, value: bool) -> None: ...
     @property
     def max_acceleration(self) -> float:
-        """[rad/s^2]"""
+        """divergence bound on |q̈| [rad/s²]"""
         ...
     @max_acceleration.setter
     def max_acceleration(self, value: float) -> None: ...
     @property
     def motion(self) -> DockingMotion:
-        """DockingMotion"""
+        """reference shape and timing, preload"""
         ...
     @motion.setter
     def motion(self, value: DockingMotion) -> None: ...
     @property
     def offset(self) -> DockingOffset:
-        """DockingOffset"""
+        """the error of the believed socket pose"""
         ...
     @offset.setter
     def offset(self, value: DockingOffset) -> None: ...
@@ -2040,7 +2040,7 @@ class DockingOptions:
     def scene(self, value: DockingScene) -> None: ...
     @property
     def video(self) -> DockingVideo:
-        """DockingVideo"""
+        """MP4 of the run (empty path: none)"""
         ...
     @video.setter
     def video(self, value: DockingVideo) -> None: ...
@@ -2078,22 +2078,22 @@ class DockingPlan:
     def __init__(*args: Any, **kwargs: Any) -> Any: ...
     @property
     def approach_time(self) -> float:
-        """[s]"""
+        """duration of the approach to the standoff [s]"""
         ...
     def duration(self: DockingPlan) -> float:
         """[s]"""
         ...
     @property
     def full_depth(self) -> float:
-        """[m]"""
+        """chamfer + bore depth [m]"""
         ...
     @property
     def hold_time(self) -> float:
-        """[s]"""
+        """duration of the hold at the end [s]"""
         ...
     @property
     def insert_time(self) -> float:
-        """[s]"""
+        """duration of the insertion (0 for single-segment) [s]"""
         ...
     @property
     def offset(self) -> DockingOffset:
@@ -2101,7 +2101,7 @@ class DockingPlan:
         ...
     @property
     def q_start(self) -> NDArray[np.float64]:
-        """(7,)"""
+        """the arm at X_start, IK from the home keyframe (7,) [rad]"""
         ...
 
 class DockingReference:
@@ -2134,7 +2134,7 @@ class DockingReport:
         ...
     @property
     def control_period(self) -> float:
-        """[s]"""
+        """control period of the run [s]"""
         ...
     @property
     def controller(self) -> str:
@@ -2180,7 +2180,7 @@ class DockingReport:
         ...
     @property
     def run(self) -> RunResult:
-        """RunResult"""
+        """the simulation's account (status, end time, message)"""
         ...
     @property
     def sample_count(self) -> int:
@@ -2223,7 +2223,7 @@ class DockingScene:
         ...
     @property
     def peg(self) -> GeomSet:
-        """GeomSet"""
+        """the peg's geoms"""
         ...
     @property
     def peg_body(self) -> int:
@@ -2231,11 +2231,11 @@ class DockingScene:
         ...
     @property
     def peg_com_E(self) -> NDArray[np.float64]:
-        """(3,)"""
+        """the peg's centre of mass in E (3,) [m]"""
         ...
     @property
     def peg_mass(self) -> float:
-        """[kg]"""
+        """the peg's mass [kg]"""
         ...
     @property
     def robot(self) -> Robot:
@@ -2246,7 +2246,7 @@ class DockingScene:
         ...
     @property
     def socket(self) -> GeomSet:
-        """GeomSet"""
+        """the socket's geoms"""
         ...
 
 class DockingSceneOptions:
@@ -2292,7 +2292,7 @@ class DockingVideo:
     def camera(self, value: str) -> None: ...
     @property
     def options(self) -> RunVideoOptions:
-        """RunVideoOptions"""
+        """size, frame rate, encoding, render options"""
         ...
     @options.setter
     def options(self, value: RunVideoOptions) -> None: ...
@@ -2806,7 +2806,7 @@ class GlobalIkStats:
         ...
     @property
     def elapsed(self) -> float:
-        """[s]"""
+        """wall-clock time of the solve [s]"""
         ...
     @property
     def lm_solutions(self) -> int:
@@ -2837,13 +2837,13 @@ class GraspMonitorOptions:
         ...
     @property
     def drop_distance(self) -> float:
-        """[m]"""
+        """the object is lost beyond this distance from its grasped pose (> slip_distance) [m]"""
         ...
     @drop_distance.setter
     def drop_distance(self, value: float) -> None: ...
     @property
     def slip_distance(self) -> float:
-        """[m]"""
+        """the object has slipped once it moved this far from its grasped pose (> 0) [m]"""
         ...
     @slip_distance.setter
     def slip_distance(self, value: float) -> None: ...
@@ -2965,7 +2965,7 @@ class HqpAcOptions:
         ...
     @property
     def compensate_passive(self) -> bool:
-        """ĥ = h − τ_passive"""
+        """cancel the passive forces (joint damping, springs): ĥ = h − τ_passive"""
         ...
     @compensate_passive.setter
     def compensate_passive(self, value: bool) -> None: ...
@@ -3113,11 +3113,11 @@ class IkResult:
         ...
     @property
     def orientation_error(self) -> float:
-        """[rad]"""
+        """rotation angle between target and achieved [rad]"""
         ...
     @property
     def position_error(self) -> float:
-        """[m]"""
+        """‖p_target − p‖, worst target for multi-target [m]"""
         ...
     @property
     def q(self) -> NDArray[np.float64]:
@@ -3280,19 +3280,19 @@ class JointReference:
         ...
     @property
     def q(self) -> NDArray[np.float64]:
-        """(n,) [rad or m]"""
+        """position (n,) [rad or m]"""
         ...
     @q.setter
     def q(self, value: ArrayLike) -> None: ...
     @property
     def qd(self) -> NDArray[np.float64]:
-        """(n,)"""
+        """velocity (n,) [rad/s or m/s]"""
         ...
     @qd.setter
     def qd(self, value: ArrayLike) -> None: ...
     @property
     def qdd(self) -> NDArray[np.float64]:
-        """(n,)"""
+        """acceleration (n,) [rad/s² or m/s²]"""
         ...
     @qdd.setter
     def qdd(self, value: ArrayLike) -> None: ...
@@ -3305,7 +3305,7 @@ class JointSpline:
         ...
     @property
     def duration(self) -> float:
-        """[s]"""
+        """total duration [s]"""
         ...
     @property
     def empty(self) -> bool:
@@ -3517,7 +3517,7 @@ class ManipulabilityResult:
         ...
     @property
     def manipulability(self) -> float:
-        """Yoshikawa w"""
+        """Yoshikawa manipulability w = √det(J·Jᵀ)"""
         ...
     @property
     def sigma_max(self) -> float:
@@ -4178,7 +4178,7 @@ class PickPlaceBatch:
         ...
     @property
     def summary(self) -> PickPlaceSummary:
-        """PickPlaceSummary"""
+        """the figures of the batch"""
         ...
 
 class PickPlaceBatchOptions:
@@ -4206,7 +4206,7 @@ class PickPlaceBatchOptions:
     def threads(self, value: int) -> None: ...
     @property
     def trials(self) -> int:
-        """>= 1"""
+        """number of trials (≥ 1)"""
         ...
     @trials.setter
     def trials(self, value: int) -> None: ...
@@ -4218,7 +4218,7 @@ class PickPlaceCriteria:
         ...
     @property
     def grasp(self) -> GraspMonitorOptions:
-        """GraspMonitorOptions"""
+        """when the object slipped or was dropped"""
         ...
     @grasp.setter
     def grasp(self, value: GraspMonitorOptions) -> None: ...
@@ -4341,7 +4341,7 @@ class PickPlaceObject:
     def friction(self, value: float) -> None: ...
     @property
     def mass(self) -> float:
-        """[kg]"""
+        """object mass [kg]"""
         ...
     @mass.setter
     def mass(self, value: float) -> None: ...
@@ -4365,7 +4365,7 @@ class PickPlaceObject:
     def size(self, value: ArrayLike) -> None: ...
     @property
     def yaw(self) -> float:
-        """[rad]"""
+        """rotation about the vertical [rad]"""
         ...
     @yaw.setter
     def yaw(self, value: float) -> None: ...
@@ -4389,7 +4389,7 @@ class PickPlaceOptions:
     def control_period(self, value: float) -> None: ...
     @property
     def criteria(self) -> PickPlaceCriteria:
-        """PickPlaceCriteria"""
+        """when a trial succeeds, and grasp monitoring"""
         ...
     @criteria.setter
     def criteria(self, value: PickPlaceCriteria) -> None: ...
@@ -4407,7 +4407,7 @@ class PickPlaceOptions:
     def grasp_force(self, value: float) -> None: ...
     @property
     def impratio(self) -> float:
-        """>= 1"""
+        """MuJoCo's frictional-to-normal impedance ratio (≥ 1)"""
         ...
     @impratio.setter
     def impratio(self, value: float) -> None: ...
@@ -4425,13 +4425,13 @@ class PickPlaceOptions:
     def mode(self, value: ArrayLike) -> None: ...
     @property
     def motion(self) -> PickPlaceMotion:
-        """PickPlaceMotion"""
+        """the motion's timing and Cartesian limits"""
         ...
     @motion.setter
     def motion(self, value: PickPlaceMotion) -> None: ...
     @property
     def noslip_iterations(self) -> int:
-        """0: off"""
+        """MuJoCo's noslip solver iterations (0: off)"""
         ...
     @noslip_iterations.setter
     def noslip_iterations(self, value: int) -> None: ...
@@ -4449,7 +4449,7 @@ class PickPlaceOptions:
     def object_position(self, value: ArrayLike) -> None: ...
     @property
     def ranges(self) -> PickPlaceRanges:
-        """PickPlaceRanges"""
+        """the ranges trials are drawn from"""
         ...
     @ranges.setter
     def ranges(self, value: PickPlaceRanges) -> None: ...
@@ -4485,13 +4485,13 @@ class PickPlaceOptions:
     def target_position(self, value: ArrayLike) -> None: ...
     @property
     def video(self) -> PickPlaceVideo:
-        """PickPlaceVideo"""
+        """MP4 of one or more cameras (empty path: none)"""
         ...
     @video.setter
     def video(self, value: PickPlaceVideo) -> None: ...
     @property
     def weld(self) -> WeldGraspOptions:
-        """WeldGraspOptions"""
+        """the weld's solref (weld grasp)"""
         ...
     @weld.setter
     def weld(self, value: WeldGraspOptions) -> None: ...
@@ -4503,31 +4503,31 @@ class PickPlaceRanges:
         ...
     @property
     def friction(self) -> NDArray[np.float64]:
-        """(2,)"""
+        """object sliding friction drawn from [low, high]; in [0, 5]"""
         ...
     @friction.setter
     def friction(self, value: ArrayLike) -> None: ...
     @property
     def half_size(self) -> NDArray[np.float64]:
-        """cube half extent (2,) [m]"""
+        """cube half extent drawn from [low, high] [m]; in [0.001, 0.05]"""
         ...
     @half_size.setter
     def half_size(self, value: ArrayLike) -> None: ...
     @property
     def mass(self) -> NDArray[np.float64]:
-        """(2,) [kg]"""
+        """object mass drawn from [low, high] [kg]; in [1e-04, 10]"""
         ...
     @mass.setter
     def mass(self, value: ArrayLike) -> None: ...
     @property
     def min_separation(self) -> float:
-        """object start to target, horizontal [m]"""
+        """object start ↔ target, horizontal [m]; in [0, 1]"""
         ...
     @min_separation.setter
     def min_separation(self, value: float) -> None: ...
     @property
     def yaw(self) -> NDArray[np.float64]:
-        """(2,) [rad]"""
+        """object yaw drawn from [low, high] [rad]; in [-3.141592653589793, 3.141592653589793]"""
         ...
     @yaw.setter
     def yaw(self, value: ArrayLike) -> None: ...
@@ -4537,19 +4537,19 @@ class PickPlaceReport:
     def __init__(*args: Any, **kwargs: Any) -> Any: ...
     @property
     def control_period(self) -> float:
-        """[s]"""
+        """control period of the run [s]"""
         ...
     @property
     def cycle_time(self) -> float:
-        """[s]"""
+        """time from start to DONE [s]"""
         ...
     @property
     def failure(self) -> PickPlaceFailure:
-        """PickPlaceFailure"""
+        """why the trial failed (none on success)"""
         ...
     @property
     def final_speed(self) -> float:
-        """[m/s]"""
+        """object speed at the end [m/s]"""
         ...
     @property
     def grasp(self) -> GraspKind:
@@ -4584,7 +4584,7 @@ class PickPlaceReport:
         ...
     @property
     def run(self) -> RunResult:
-        """RunResult"""
+        """the simulation's account (status, end time, message)"""
         ...
     @property
     def success(self) -> bool:
@@ -4592,11 +4592,11 @@ class PickPlaceReport:
         ...
     @property
     def tilt(self) -> float:
-        """[rad]"""
+        """object tilt at the end [rad]"""
         ...
     @property
     def trace(self) -> PickPlaceTrace:
-        """PickPlaceTrace"""
+        """grasp force, weld jump and settle, slip, table contact, saturation"""
         ...
     @property
     def trial(self) -> PickPlaceTrial:
@@ -4628,7 +4628,7 @@ class PickPlaceRobot:
         ...
     @property
     def max_bearing(self) -> float:
-        """[rad]"""
+        """largest bearing of a trial's points from +x [rad]"""
         ...
     @property
     def max_radius(self) -> float:
@@ -4640,7 +4640,7 @@ class PickPlaceRobot:
         ...
     @property
     def mount(self) -> NDArray[np.float64]:
-        """(3,)"""
+        """where the robot's base stands in the arena (3,) [m]"""
         ...
     @property
     def name(self) -> str:
@@ -4704,7 +4704,7 @@ class PickPlaceScene:
         ...
     @property
     def table_height(self) -> float:
-        """[m]"""
+        """height of the table's top surface [m]"""
         ...
     @property
     def target(self) -> str:
@@ -4768,7 +4768,7 @@ class PickPlaceSceneOptions:
     def robot(self, value: str) -> None: ...
     @property
     def target(self) -> NDArray[np.float64]:
-        """x, y (2,) [m]"""
+        """where the object should end, x, y (2,) [m]"""
         ...
     @target.setter
     def target(self, value: ArrayLike) -> None: ...
@@ -4867,7 +4867,7 @@ class PickPlaceSummary:
         ...
     @property
     def max_slip(self) -> PickPlaceStat:
-        """[m]"""
+        """largest slip, over the trials that closed on the object [m]"""
         ...
     @property
     def placement_error(self) -> PickPlaceStat:
@@ -4886,11 +4886,11 @@ class PickPlaceSummary:
         ...
     @property
     def weld_jump(self) -> PickPlaceStat:
-        """[m]"""
+        """weld jump, over the trials whose weld was switched on [m]"""
         ...
     @property
     def weld_settle(self) -> PickPlaceStat:
-        """[m]"""
+        """weld settle, over the trials whose weld was switched on [m]"""
         ...
 
 class PickPlaceTrace:
@@ -4988,7 +4988,7 @@ class PickPlaceTrial:
     def seed(self, value: int) -> None: ...
     @property
     def target(self) -> NDArray[np.float64]:
-        """x, y (2,) [m]"""
+        """where the object should end, x, y (2,) [m]"""
         ...
     @target.setter
     def target(self, value: ArrayLike) -> None: ...
@@ -5006,7 +5006,7 @@ class PickPlaceVideo:
     def cameras(self, value: list[str]) -> None: ...
     @property
     def options(self) -> RunVideoOptions:
-        """RunVideoOptions"""
+        """size of each camera's picture, frame rate, encoding, render"""
         ...
     @options.setter
     def options(self, value: RunVideoOptions) -> None: ...
@@ -5691,7 +5691,7 @@ class Robot:
         ...
     @property
     def nu(self) -> int:
-        """actuators"""
+        """number of actuators"""
         ...
     @property
     def nv(self) -> int:
@@ -6048,13 +6048,13 @@ class Se3ImpedanceOptions:
     def compensate_passive(self, value: bool) -> None: ...
     @property
     def damping(self) -> NDArray[np.float64]:
-        """D (6, 6)"""
+        """damping D, symmetric positive definite (6, 6) [N·s/m; N·m·s/rad]"""
         ...
     @damping.setter
     def damping(self, value: ArrayLike) -> None: ...
     @property
     def inertia(self) -> NDArray[np.float64]:
-        """A (6, 6)"""
+        """desired apparent inertia A, symmetric positive definite (6, 6) [kg; kg·m²]"""
         ...
     @inertia.setter
     def inertia(self, value: ArrayLike) -> None: ...
@@ -6078,7 +6078,7 @@ class Se3ImpedanceOptions:
     def release(self, value: StiffnessRelease) -> None: ...
     @property
     def stiffness(self) -> NDArray[np.float64]:
-        """K (6, 6)"""
+        """stiffness K, symmetric positive semi-definite (6, 6) [N/m; N·m/rad]"""
         ...
     @stiffness.setter
     def stiffness(self, value: ArrayLike) -> None: ...
@@ -7028,7 +7028,7 @@ class TimeStep:
         ...
     @property
     def step_type(self) -> StepType:
-        """StepType"""
+        """first, mid or last step of the episode"""
         ...
     @property
     def values(self) -> ArrayLike:
@@ -7040,19 +7040,19 @@ class TrackingErrors:
     def __init__(*args: Any, **kwargs: Any) -> Any: ...
     @property
     def max_orientation(self) -> float:
-        """[rad]"""
+        """largest angle of R_refᵀ·R_E [rad]"""
         ...
     @property
     def max_position(self) -> float:
-        """[m]"""
+        """largest ‖p_E − p_ref‖ [m]"""
         ...
     @property
     def orientation_rms(self) -> float:
-        """[rad]"""
+        """RMS of the angle of R_refᵀ·R_E [rad]"""
         ...
     @property
     def position_rms(self) -> float:
-        """[m]"""
+        """RMS of ‖p_E − p_ref‖ [m]"""
         ...
     @property
     def samples(self) -> int:
@@ -7205,7 +7205,7 @@ class TrialOutcome:
     def __init__(*args: Any, **kwargs: Any) -> Any: ...
     @property
     def end_time(self) -> float:
-        """[s]"""
+        """simulated time at the end [s]"""
         ...
     @property
     def message(self) -> str:
@@ -7440,7 +7440,7 @@ class WeldGraspOptions:
     def damping_ratio(self, value: float) -> None: ...
     @property
     def time_constant(self) -> float:
-        """[s]"""
+        """time constant of the weld's solref (> 0) [s]"""
         ...
     @time_constant.setter
     def time_constant(self, value: float) -> None: ...
@@ -7556,7 +7556,7 @@ class WrenchReading:
         ...
     @property
     def wrench(self) -> NDArray[np.float64]:
-        """[f; tau] (6,) [N; N m]"""
+        """the wrench [f; τ], linear first, in the axes and about the point asked for (6,) [N, N·m]"""
         ...
 
 class WrenchSourceKind(enum.Enum):

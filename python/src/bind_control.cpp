@@ -46,9 +46,10 @@ void bind_control(py::module_& m) {
   auto joint =
       py::class_<JointReference>(m, "JointReference", "Desired joint motion (chain order).");
   joint.def(py::init<>());
-  vector_property<JointReference>(joint, "q", &JointReference::q, "(n,) [rad or m]");
-  vector_property<JointReference>(joint, "qd", &JointReference::qd, "(n,)");
-  vector_property<JointReference>(joint, "qdd", &JointReference::qdd, "(n,)");
+  vector_property<JointReference>(joint, "q", &JointReference::q, "position (n,) [rad or m]");
+  vector_property<JointReference>(joint, "qd", &JointReference::qd, "velocity (n,) [rad/s or m/s]");
+  vector_property<JointReference>(joint, "qdd", &JointReference::qdd,
+                                  "acceleration (n,) [rad/s² or m/s²]");
   auto task =
       py::class_<TaskReference>(m, "TaskReference", "Desired motion of the frame E, world axes.");
   task.def(py::init<>())
@@ -176,10 +177,15 @@ void bind_control(py::module_& m) {
                      "the λ axes [x, y, z, rx, ry, rz] (E's own axes) whose stiffness goes to zero "
                      "on contact (6,)");
   auto se3o = options_class<Se3ImpedanceOptions>(m, "Se3ImpedanceOptions");
-  fixed_property<Se3ImpedanceOptions>(se3o, "inertia", &Se3ImpedanceOptions::inertia, "A (6, 6)");
-  fixed_property<Se3ImpedanceOptions>(se3o, "damping", &Se3ImpedanceOptions::damping, "D (6, 6)");
-  fixed_property<Se3ImpedanceOptions>(se3o, "stiffness", &Se3ImpedanceOptions::stiffness,
-                                      "K (6, 6)");
+  fixed_property<Se3ImpedanceOptions>(
+      se3o, "inertia", &Se3ImpedanceOptions::inertia,
+      "desired apparent inertia A, symmetric positive definite (6, 6) [kg; kg·m²]");
+  fixed_property<Se3ImpedanceOptions>(
+      se3o, "damping", &Se3ImpedanceOptions::damping,
+      "damping D, symmetric positive definite (6, 6) [N·s/m; N·m·s/rad]");
+  fixed_property<Se3ImpedanceOptions>(
+      se3o, "stiffness", &Se3ImpedanceOptions::stiffness,
+      "stiffness K, symmetric positive semi-definite (6, 6) [N/m; N·m/rad]");
   def_enum<Se3ImpedanceStatus>(m, "Se3ImpedanceStatus");
   auto se3_controller = py::class_<Se3ImpedanceController, Controller>(
       m, "Se3ImpedanceController", "SE(3) Lie-group impedance (full 6x6 A, D, K).");
@@ -216,8 +222,9 @@ void bind_control(py::module_& m) {
   bind_compute<CartesianImpedanceController>(cic_controller);
 
   auto compliance = options_class<AdaptiveComplianceOptions>(m, "AdaptiveComplianceOptions");
-  fixed_property<AdaptiveComplianceOptions>(compliance, "stiffness",
-                                            &AdaptiveComplianceOptions::stiffness, "K0 (6, 6)");
+  fixed_property<AdaptiveComplianceOptions>(
+      compliance, "stiffness", &AdaptiveComplianceOptions::stiffness,
+      "nominal task stiffness K0, symmetric positive definite (6, 6) [N/m; N·m/rad]");
   options_class<HqpAcPreload>(m, "HqpAcPreload");
   options_class<HqpAcOptions>(m, "HqpAcOptions");
   def_enum<HqpAcStatus>(m, "HqpAcStatus");

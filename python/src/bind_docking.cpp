@@ -97,12 +97,13 @@ void bind_scene_and_controller(py::module_& m) {
       .def_readonly("robot", &DockingScene::robot, "the scene's model")
       .def_readonly("chain", &DockingScene::chain, "iiwa joints 1-7, frame: the peg tip")
       .def_readonly("options", &DockingScene::options, "the options the scene was built with")
-      .def_readonly("peg", &DockingScene::peg, "GeomSet")
-      .def_readonly("socket", &DockingScene::socket, "GeomSet")
+      .def_readonly("peg", &DockingScene::peg, "the peg's geoms")
+      .def_readonly("socket", &DockingScene::socket, "the socket's geoms")
       .def_readonly("peg_body", &DockingScene::peg_body, "body id of the peg")
-      .def_readonly("peg_mass", &DockingScene::peg_mass, "[kg]")
+      .def_readonly("peg_mass", &DockingScene::peg_mass, "the peg's mass [kg]")
       .def_property_readonly(
-          "peg_com_E", [](const DockingScene& s) { return Eigen::Vector3d(s.peg_com_E); }, "(3,)")
+          "peg_com_E", [](const DockingScene& s) { return Eigen::Vector3d(s.peg_com_E); },
+          "the peg's centre of mass in E (3,) [m]")
       .def("seated", py::overload_cast<>(&DockingScene::seated, py::const_),
            "Pose of the tip seated at the bottom of the hole.");
   m.def(
@@ -170,9 +171,12 @@ void bind_motion(py::module_& m) {
              return DockingOffset{dx, dy, dyaw};
            }),
            py::arg("dx") = 0.0, py::arg("dy") = 0.0, py::arg("dyaw") = 0.0)
-      .def_readwrite("dx", &DockingOffset::dx, "[m]")
-      .def_readwrite("dy", &DockingOffset::dy, "[m]")
-      .def_readwrite("dyaw", &DockingOffset::dyaw, "[rad]");
+      .def_readwrite("dx", &DockingOffset::dx,
+                     "error of the believed socket along x, |dx| ≤ 0.05 [m]")
+      .def_readwrite("dy", &DockingOffset::dy,
+                     "error of the believed socket along y, |dy| ≤ 0.05 [m]")
+      .def_readwrite("dyaw", &DockingOffset::dyaw,
+                     "error of the believed socket about its axis, |dyaw| ≤ π [rad]");
   py::enum_<DockingReference>(m, "DockingReference", "The shape of the reference.")
       .value("two_phase", DockingReference::two_phase)
       .value("single_segment", DockingReference::single_segment);
@@ -200,11 +204,14 @@ void bind_motion(py::module_& m) {
                     "E above the believed socket by the standoff")
       .def_readonly("X_seated", &DockingPlan::X_seated, "in the believed socket")
       .def_property_readonly(
-          "q_start", [](const DockingPlan& p) { return Eigen::VectorXd(p.q_start); }, "(7,)")
-      .def_readonly("full_depth", &DockingPlan::full_depth, "[m]")
-      .def_readonly("approach_time", &DockingPlan::approach_time, "[s]")
-      .def_readonly("insert_time", &DockingPlan::insert_time, "[s]")
-      .def_readonly("hold_time", &DockingPlan::hold_time, "[s]")
+          "q_start", [](const DockingPlan& p) { return Eigen::VectorXd(p.q_start); },
+          "the arm at X_start, IK from the home keyframe (7,) [rad]")
+      .def_readonly("full_depth", &DockingPlan::full_depth, "chamfer + bore depth [m]")
+      .def_readonly("approach_time", &DockingPlan::approach_time,
+                    "duration of the approach to the standoff [s]")
+      .def_readonly("insert_time", &DockingPlan::insert_time,
+                    "duration of the insertion (0 for single-segment) [s]")
+      .def_readonly("hold_time", &DockingPlan::hold_time, "duration of the hold at the end [s]")
       .def("duration", &DockingPlan::duration, "[s]");
   m.def(
       "plan_docking",
@@ -237,11 +244,13 @@ void bind_docking_results(py::module_& m) {
       .def_readonly("source", &DockingReport::source, "where the measured wrench came from")
       .def_readonly("joint_friction", &DockingReport::joint_friction,
                     "the variant with Franka joint friction")
-      .def_readonly("run", &DockingReport::run, "RunResult")
+      .def_readonly("run", &DockingReport::run,
+                    "the simulation's account (status, end time, message)")
       .def_readonly("metrics", &DockingReport::metrics, "forces, depths and times of the run")
       .def_readonly("outcome", &DockingReport::outcome,
                     "seated, not seated, or why the run stopped")
-      .def_readonly("control_period", &DockingReport::control_period, "[s]")
+      .def_readonly("control_period", &DockingReport::control_period,
+                    "control period of the run [s]")
       .def_readonly("bad_wrench_ticks", &DockingReport::bad_wrench_ticks,
                     "non-finite sensor readings (taken as zero)")
       .def_readonly(
@@ -293,15 +302,23 @@ void bind_docking_results(py::module_& m) {
       .def_readonly("runs", &DockingGridResult::runs,
                     "the completed runs, in matrix order (x slowest, then y, then yaw)")
       .def_readonly("seated", &DockingGridResult::seated, "completed runs that seated the peg")
-      .def_readonly("max_peak_force", &DockingGridResult::max_peak_force, "[N]")
-      .def_readonly("max_peak_axial_force", &DockingGridResult::max_peak_axial_force, "[N]")
-      .def_readonly("max_peak_axial_moment", &DockingGridResult::max_peak_axial_moment, "[N m]")
-      .def_readonly("max_lateral", &DockingGridResult::max_lateral, "[m]")
-      .def_readonly("max_tilt", &DockingGridResult::max_tilt, "[rad]")
-      .def_readonly("min_steady_axial_force", &DockingGridResult::min_steady_axial_force, "[N]")
-      .def_readonly("max_steady_axial_force", &DockingGridResult::max_steady_axial_force, "[N]")
-      .def_readonly("max_position_rms", &DockingGridResult::max_position_rms, "[m]")
-      .def_readonly("max_orientation_rms", &DockingGridResult::max_orientation_rms, "[rad]")
+      .def_readonly("max_peak_force", &DockingGridResult::max_peak_force,
+                    "largest peak contact force over the runs [N]")
+      .def_readonly("max_peak_axial_force", &DockingGridResult::max_peak_axial_force,
+                    "largest peak axial force over the runs [N]")
+      .def_readonly("max_peak_axial_moment", &DockingGridResult::max_peak_axial_moment,
+                    "largest peak axial moment over the runs [N·m]")
+      .def_readonly("max_lateral", &DockingGridResult::max_lateral,
+                    "worst final-window lateral error [m]")
+      .def_readonly("max_tilt", &DockingGridResult::max_tilt, "worst final-window tilt [rad]")
+      .def_readonly("min_steady_axial_force", &DockingGridResult::min_steady_axial_force,
+                    "smallest final-window axial force [N]")
+      .def_readonly("max_steady_axial_force", &DockingGridResult::max_steady_axial_force,
+                    "largest final-window axial force [N]")
+      .def_readonly("max_position_rms", &DockingGridResult::max_position_rms,
+                    "worst free-motion position RMS [m]")
+      .def_readonly("max_orientation_rms", &DockingGridResult::max_orientation_rms,
+                    "worst free-motion orientation RMS [rad]")
       .def_readonly("failures", &DockingGridResult::failures, "reason -> runs");
 }
 
@@ -310,16 +327,17 @@ void bind_runs(py::module_& m) {
   fields_init<DockingVideo>(video, "DockingVideo");
   video.def_readwrite("path", &DockingVideo::path, "MP4; '' = none")
       .def_readwrite("camera", &DockingVideo::camera, "'' (default view), 'follow' or a camera")
-      .def_readwrite("options", &DockingVideo::options, "RunVideoOptions");
+      .def_readwrite("options", &DockingVideo::options,
+                     "size, frame rate, encoding, render options");
   auto options = py::class_<DockingOptions>(m, "DockingOptions", "How to run one docking.");
   fields_init<DockingOptions>(options, "DockingOptions");
-  options.def_readwrite("controller", &DockingOptions::controller, "DockingControllerOptions")
-      .def_readwrite("offset", &DockingOptions::offset, "DockingOffset")
-      .def_readwrite("motion", &DockingOptions::motion, "DockingMotion")
-      .def_readwrite("criteria", &DockingOptions::criteria, "DockingCriteria")
+  options.def_readwrite("controller", &DockingOptions::controller, "law, force source, gains")
+      .def_readwrite("offset", &DockingOptions::offset, "the error of the believed socket pose")
+      .def_readwrite("motion", &DockingOptions::motion, "reference shape and timing, preload")
+      .def_readwrite("criteria", &DockingOptions::criteria, "the seating criteria")
       .def_readwrite("joint_friction", &DockingOptions::joint_friction,
                      "the variant with Franka joint friction")
-      .def_readwrite("geometry", &DockingOptions::geometry, "DockingGeometry")
+      .def_readwrite("geometry", &DockingOptions::geometry, "the peg and the socket")
       .def_property(
           "scene",
           [](const DockingOptions& o) -> std::shared_ptr<DockingScene> {
@@ -327,9 +345,10 @@ void bind_runs(py::module_& m) {
           },
           [](DockingOptions& o, std::shared_ptr<DockingScene> s) { o.scene = std::move(s); },
           "a compiled DockingScene shared by runs, or None: built per run")
-      .def_readwrite("max_acceleration", &DockingOptions::max_acceleration, "[rad/s^2]")
+      .def_readwrite("max_acceleration", &DockingOptions::max_acceleration,
+                     "divergence bound on |q̈| [rad/s²]")
       .def_readwrite("record", &DockingOptions::record, "recording directory; '' = none")
-      .def_readwrite("video", &DockingOptions::video, "DockingVideo")
+      .def_readwrite("video", &DockingOptions::video, "MP4 of the run (empty path: none)")
       .def_readwrite("keep_samples", &DockingOptions::keep_samples, "keep every tick's sample");
 
   m.def(
@@ -346,7 +365,8 @@ void bind_runs(py::module_& m) {
       m, "DockingGridOptions",
       "The matrix of offsets (x, y [m], yaw [rad] values) and the base options of every run.");
   fields_init<DockingGridOptions>(grid, "DockingGridOptions");
-  grid.def_readwrite("base", &DockingGridOptions::base, "DockingOptions (no record or video)");
+  grid.def_readwrite("base", &DockingGridOptions::base,
+                     "everything but the offset (DockingOptions; no record or video)");
   list_property<DockingGridOptions>(grid, "x", &DockingGridOptions::x, "dx values (n,) [m]");
   list_property<DockingGridOptions>(grid, "y", &DockingGridOptions::y, "dy values (n,) [m]");
   list_property<DockingGridOptions>(grid, "yaw", &DockingGridOptions::yaw,
@@ -390,10 +410,12 @@ void bind_gate(py::module_& m) {
       "a compiled DockingScene, or None: built");
   py::class_<TrackingErrors>(m, "TrackingErrors", "Errors over a stretch of the gate.")
       .def_readonly("samples", &TrackingErrors::samples, "ticks the errors were taken over")
-      .def_readonly("position_rms", &TrackingErrors::position_rms, "[m]")
-      .def_readonly("orientation_rms", &TrackingErrors::orientation_rms, "[rad]")
-      .def_readonly("max_position", &TrackingErrors::max_position, "[m]")
-      .def_readonly("max_orientation", &TrackingErrors::max_orientation, "[rad]");
+      .def_readonly("position_rms", &TrackingErrors::position_rms, "RMS of ‖p_E − p_ref‖ [m]")
+      .def_readonly("orientation_rms", &TrackingErrors::orientation_rms,
+                    "RMS of the angle of R_refᵀ·R_E [rad]")
+      .def_readonly("max_position", &TrackingErrors::max_position, "largest ‖p_E − p_ref‖ [m]")
+      .def_readonly("max_orientation", &TrackingErrors::max_orientation,
+                    "largest angle of R_refᵀ·R_E [rad]");
   py::class_<TrackingGateReport>(m, "TrackingGateReport", "What the gate measured.")
       .def_readonly("controller", &TrackingGateReport::controller,
                     "the docking law: \"cic\", \"hqp-ac\" or \"se3\"")

@@ -40,12 +40,13 @@ void bind_dynamics(py::module_& m) {
           "chain joint velocities at the last update() (n,) [rad/s or m/s]")
       .def_property_readonly(
           "mass_matrix", [](const ChainDynamics& d) { return Eigen::MatrixXd(d.mass_matrix()); },
-          "M (n, n) [kg m^2 or kg]")
+          "joint-space inertia M, armature included (n, n) [kg·m² or kg]")
       .def_property_readonly(
           "bias", [](const ChainDynamics& d) { return Eigen::VectorXd(d.bias()); },
-          "h = C qd + g (n,)")
+          "bias forces h = C(q, q̇)·q̇ + g(q) on the chain's dofs (n,) [N·m or N]")
       .def_property_readonly(
-          "gravity", [](const ChainDynamics& d) { return Eigen::VectorXd(d.gravity()); }, "g (n,)")
+          "gravity", [](const ChainDynamics& d) { return Eigen::VectorXd(d.gravity()); },
+          "gravity torques g(q) that hold the arm still (n,) [N·m or N]")
       .def_property_readonly(
           "pose", [](const ChainDynamics& d) { return d.pose(); },
           "pose X_WE of the chain's frame at the last update()")
@@ -125,7 +126,8 @@ void bind_dynamics(py::module_& m) {
   py::class_<WrenchReading>(m, "WrenchReading")
       .def_property_readonly(
           "wrench", [](const WrenchReading& r) { return Vector6d(r.wrench); },
-          "[f; tau] (6,) [N; N m]")
+          "the wrench [f; τ], linear first, in the axes and about the point asked for (6,) [N, "
+          "N·m]")
       .def_readonly("time", &WrenchReading::time,
                     "simulation time at which the value was measured [s]")
       .def_readonly("age", &WrenchReading::age,

@@ -96,8 +96,10 @@ void bind_ik(py::module_& m) {
       .def(py::init<>())
       .def_readonly("q", &IkResult::q, "joint values (n,)")
       .def_readonly("status", &IkResult::status, "converged, or why the solve stopped")
-      .def_readonly("position_error", &IkResult::position_error, "[m]")
-      .def_readonly("orientation_error", &IkResult::orientation_error, "[rad]")
+      .def_readonly("position_error", &IkResult::position_error,
+                    "‖p_target − p‖, worst target for multi-target [m]")
+      .def_readonly("orientation_error", &IkResult::orientation_error,
+                    "rotation angle between target and achieved [rad]")
       .def_readonly("iterations", &IkResult::iterations, "iterations run (all restarts together)")
       .def("ok", &IkResult::ok, "status is converged")
       .def("__repr__", [](const IkResult& r) {
@@ -340,7 +342,7 @@ void bind_ik(py::module_& m) {
                     "solutions found by the SQP method")
       .def_readonly("manipulability", &GlobalIkStats::manipulability,
                     "√det(J·Jᵀ) at the returned q (0 without a solution)")
-      .def_readonly("elapsed", &GlobalIkStats::elapsed, "[s]");
+      .def_readonly("elapsed", &GlobalIkStats::elapsed, "wall-clock time of the solve [s]");
   py::class_<GlobalIk>(m, "GlobalIk",
                        "Random restarts of local methods within a time budget "
                        "(GIL released during solves).")

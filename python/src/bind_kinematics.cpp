@@ -100,7 +100,8 @@ void bind_kinematics(py::module_& m) {
   manipulability_options.def(py::init<>());
   def_fields(manipulability_options);
   py::class_<ManipulabilityResult>(m, "ManipulabilityResult")
-      .def_readonly("manipulability", &ManipulabilityResult::manipulability, "Yoshikawa w")
+      .def_readonly("manipulability", &ManipulabilityResult::manipulability,
+                    "Yoshikawa manipulability w = √det(J·Jᵀ)")
       .def_readonly("sigma_max", &ManipulabilityResult::sigma_max, "largest singular value σmax")
       .def_readonly("sigma_min", &ManipulabilityResult::sigma_min, "smallest singular value σmin")
       .def_readonly("condition_number", &ManipulabilityResult::condition_number,

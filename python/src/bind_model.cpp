@@ -192,7 +192,7 @@ void bind_model(py::module_& m) {
                              "MuJoCo's warnings while loading the model (parser and compiler)")
       .def_property_readonly("nq", &Robot::nq, "position coordinates")
       .def_property_readonly("nv", &Robot::nv, "degrees of freedom")
-      .def_property_readonly("nu", &Robot::nu, "actuators")
+      .def_property_readonly("nu", &Robot::nu, "number of actuators")
       .def_property_readonly(
           "timestep", [](const Robot& r) { return r.model().opt.timestep; }, "physics timestep [s]")
       .def("joint", &Robot::joint, py::arg("name"), "joint id by name")

@@ -10,7 +10,7 @@ void bind_planning(py::module_& m) {
       .def_property_readonly("empty", &JointSpline::empty, "True when the spline has no knots")
       .def_property_readonly("size", &JointSpline::size, "number of joints n (0 when empty)")
       .def_property_readonly("segments", &JointSpline::segments, "number of segments K")
-      .def_property_readonly("duration", &JointSpline::duration, "[s]")
+      .def_property_readonly("duration", &JointSpline::duration, "total duration [s]")
       .def("knot_time", &JointSpline::knot_time, py::arg("k"))
       .def_property_readonly("knots", &JointSpline::knots,
                              "the knot positions (K + 1 arrays of shape (n,)) [rad or m]")

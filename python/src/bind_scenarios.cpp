@@ -41,7 +41,7 @@ void bind_scenarios(py::module_& m) {
                     "one of the scenario's verdicts (\"held\", \"misplaced\", \"seated\")")
       .def_readonly("success", &TrialOutcome::success, "the verdict is the scenario's success")
       .def_readonly("message", &TrialOutcome::message, "one line: what happened (why it failed)")
-      .def_readonly("end_time", &TrialOutcome::end_time, "[s]")
+      .def_readonly("end_time", &TrialOutcome::end_time, "simulated time at the end [s]")
       .def_readonly("recording", &TrialOutcome::recording,
                     "the recording folder (empty when not recorded)")
       .def_readonly("recording_error", &TrialOutcome::recording_error,
