@@ -43,6 +43,7 @@ _import_mujoco()
 from ._mjarm import *  # noqa: E402,F401,F403
 from ._mjarm import Error, so3, se3  # noqa: E402,F401
 from ._mjarm import __doc__ as _native_doc  # noqa: E402,F401
+from .env_task import EnvTask  # noqa: E402,F401
 
 
 def _register_rooms() -> None:

@@ -2310,8 +2310,8 @@ class Environment:
     def __exit__(self: Environment, *args) -> bool:
         """Leaves a `with` block: close()."""
         ...
-    def __init__(self: Environment, task: str, options: ArrayLike = ..., task_options: ArrayLike = ..., **kwargs) -> None:
-        """Environment(task, options=None, task_options=None, **overrides): the task by name (env_task_names()) with its own options set from the dict task_options (names as env_task_parameters(task) lists them, e.g. {'criteria.max-force': 30}), with EnvironmentOptions (None: the defaults) whose fields keyword arguments override (e.g. time_limit=0.5, action_space='joint_torques'). Raises mjarm.Error for an unknown task, task option, observation or option, and options out of range."""
+    def __init__(self: Environment, task: ArrayLike, options: ArrayLike = ..., task_options: ArrayLike = ..., **kwargs) -> None:
+        """Environment(task, options=None, task_options=None, **overrides): the task by name (env_task_names()) with its own options set from the dict task_options (names as env_task_parameters(task) lists them, e.g. {'criteria.max-force': 30}), or an instance of a subclass of mjarm.EnvTask (a task written in Python: its hooks run with the GIL taken for each call, and an exception a hook raises ends the episode and is raised by reset/step), with EnvironmentOptions (None: the defaults) whose fields keyword arguments override (e.g. time_limit=0.5, action_space='joint_torques'). Raises mjarm.Error for an unknown task, task option, observation or option, and options out of range."""
         ...
     def action_spec(self: Environment) -> ArraySpec:
         """ArraySpec 'action': shape (n,), float64, its bounds."""
@@ -2386,6 +2386,12 @@ class EnvironmentOptions:
     @action.setter
     def action(self, value: ActionOptions) -> None: ...
     @property
+    def action_latency(self) -> int:
+        """control steps between an action and the step that applies it [steps]; in [0, 1000]"""
+        ...
+    @action_latency.setter
+    def action_latency(self, value: int) -> None: ...
+    @property
     def action_space(self) -> ActionSpace:
         """an ActionSpace, or its name ('ee_pose_deltas', ...)"""
         ...
@@ -2409,6 +2415,12 @@ class EnvironmentOptions:
         ...
     @max_acceleration.setter
     def max_acceleration(self, value: float) -> None: ...
+    @property
+    def observation_noise(self) -> float:
+        """standard deviation of the Gaussian noise on every observation value (own units); finite and ≥ 0"""
+        ...
+    @observation_noise.setter
+    def observation_noise(self, value: float) -> None: ...
     @property
     def observations(self) -> list[str]:
         """observation names ([]: the task's defaults); see env_observations(task)"""
@@ -4072,6 +4084,119 @@ class OtgStatus(enum.Enum):
     """a DoF has no profile of the synchronized duration"""
     error_precision = 5
     """the trajectory failed its final check"""
+
+class PassiveViewer:
+    """A window on your own loop (mujoco.viewer.launch_passive): the window runs in a thread of its own and draws the state your loop hands over with sync(). Double-click selects a body; Ctrl + right drag pulls it, Ctrl + left drag turns it (a spring written into the data's xfrc_applied at each sync). Markers and plotted values go with the next sync. A context manager: leaving the block closes the window. Prefer mjarm.viewer.launch_passive."""
+    def __enter__(self: PassiveViewer) -> PassiveViewer:
+        ...
+    def __exit__(self: PassiveViewer, *args) -> None:
+        ...
+    def __init__(self: PassiveViewer, robot: Robot | mujoco.MjModel, data: Data | mujoco.MjData, options: PassiveViewerOptions = ...) -> None:
+        """Opens the window on robot showing data, which your loop keeps stepping. Raises mjarm.Error when there is no display, the data is another model's, or an option is out of range."""
+        ...
+    def add_arrow(self: PassiveViewer, start: ArrayLike, end: ArrayLike, rgba: ArrayLike = ..., radius: float = ...) -> bool:
+        """An arrow from start to end [m], radius [m] thick."""
+        ...
+    def add_frame(self: PassiveViewer, pose: ArrayLike, length: float = ...) -> bool:
+        """Draws the axes of pose (a Pose or 4x4 matrix; x red, y green, z blue), length [m] long, with the next sync. False when the markers of one sync are used up."""
+        ...
+    def add_line(self: PassiveViewer, start: ArrayLike, end: ArrayLike, rgba: ArrayLike = ..., width: float = ...) -> bool:
+        """A line segment, width pixels wide."""
+        ...
+    def add_sphere(self: PassiveViewer, position: ArrayLike, radius: float, rgba: ArrayLike = ...) -> bool:
+        """A ball of radius [m]."""
+        ...
+    def add_text(self: PassiveViewer, position: ArrayLike, text: str, rgba: ArrayLike = ...) -> bool:
+        """A text label (at most 99 bytes shown) at position [m]."""
+        ...
+    def close(self: PassiveViewer) -> None:
+        """Closes the window and waits for its thread."""
+        ...
+    def is_running(self: PassiveViewer) -> bool:
+        """False once the window closed (the user, escape, the script's end, close(), an error)."""
+        ...
+    @property
+    def perturbing(self) -> bool:
+        """whether a Ctrl drag pulls or turns the selected body now"""
+        ...
+    def plot(self: PassiveViewer, line: str, value: float) -> None:
+        """Sets plot line's value for the next sync (the 'Your plots' figure; at most 8 lines)."""
+        ...
+    @property
+    def report(self) -> ViewerReport:
+        """what the window did (complete once it closed)"""
+        ...
+    @property
+    def selected_body(self) -> int:
+        """the body the mouse selected (0: none)"""
+        ...
+    def sync(self: PassiveViewer) -> None:
+        """Hands the current state, markers and plotted values over to the window, and writes the mouse's perturbation into the data. Raises the window's error (once); nothing once the window closed."""
+        ...
+    @property
+    def syncs(self) -> int:
+        """states handed over so far"""
+        ...
+
+class PassiveViewerOptions:
+    """How the passive viewer's window looks and runs."""
+    def __init__(self: PassiveViewerOptions, **kwargs) -> None:
+        """Default values, with any field set by keyword."""
+        ...
+    @property
+    def camera(self) -> CameraSpec | None:
+        """the camera at the start: a free or model CameraSpec (None: frames the model)"""
+        ...
+    @camera.setter
+    def camera(self, value: CameraSpec | None) -> None: ...
+    @property
+    def figure_seconds(self) -> float:
+        """simulated time the figures span [s]; positive and finite"""
+        ...
+    @figure_seconds.setter
+    def figure_seconds(self, value: float) -> None: ...
+    @property
+    def height(self) -> int:
+        """window height [pixels]; ≥ 240"""
+        ...
+    @height.setter
+    def height(self, value: int) -> None: ...
+    @property
+    def max_markers(self) -> int:
+        """markers one sync can carry; in [0, 10000]"""
+        ...
+    @max_markers.setter
+    def max_markers(self, value: int) -> None: ...
+    @property
+    def render_hz(self) -> float:
+        """frames drawn per wall second [Hz]; positive and finite"""
+        ...
+    @render_hz.setter
+    def render_hz(self, value: float) -> None: ...
+    @property
+    def script(self) -> ArrayLike:
+        """scripted input as text (select, press, move, release, drag, key, set, screenshot, wait; see docs/viewer.md); reads back the number of commands, or None"""
+        ...
+    @script.setter
+    def script(self, value: str | None) -> None: ...
+    @property
+    def show_figures(self) -> bool:
+        """figures shown from the start"""
+        ...
+    @show_figures.setter
+    def show_figures(self, value: bool) -> None: ...
+    @property
+    def title(self) -> str:
+        """window title ("" = mjarm: <model name>)"""
+        ...
+    @title.setter
+    def title(self, value: str) -> None: ...
+    @property
+    def width(self) -> int:
+        """window width [pixels]; ≥ 320"""
+        ...
+    @width.setter
+    def width(self, value: int) -> None: ...
 
 class PickCriteria:
     """When a pick counts as held."""
@@ -5901,6 +6026,9 @@ class Scene:
     def __init__(self: Scene, name: str = ...) -> None:
         """An empty scene (no floor)."""
         ...
+    def add(self: Scene, tag: str, name: str, parent: str = ..., class_name: str = ..., attributes: ArrayLike = ..., **kwargs) -> None:
+        """Adds any element by its MJCF tag (body, joint, geom, site, camera, light; general, motor, position, velocity; a sensor's tag; default) and attributes, given as keywords or a dict (a default's as 'geom.rgba'; values as text, numbers or sequences of numbers): checked now, with the closest names for an unknown tag, parent, class or attribute; the scene is unchanged when it raises. parent: the parent body ('' = the world), or a default's parent class; class_name: the default class it starts from."""
+        ...
     def add_arena(self: Scene, spec: ArrayLike = ..., **kwargs) -> None:
         """add_arena(spec: ArenaSpec | None = None, **fields): floor, lights, optional table"""
         ...
@@ -6706,6 +6834,30 @@ class StateSnapshot:
         """a copy of the values, in mj_getState's order"""
         ...
 
+class StepContext:
+    """What a Python task's hook sees of the environment (valid for the call): the chain's end-effector pose and twist after the physics, the step and the episode's time, and the simulation's state as a Data lent for the call."""
+    @property
+    def V_WE(self) -> NDArray[np.float64]:
+        """end-effector twist (6,) [v; w], world axes [m/s, rad/s]"""
+        ...
+    @property
+    def X_WE(self) -> Pose:
+        """end-effector pose in W"""
+        ...
+    def __init__(*args: Any, **kwargs: Any) -> Any: ...
+    @property
+    def data(self) -> ArrayLike:
+        """the simulation's Data, lent for the call (read-only arrays)"""
+        ...
+    @property
+    def step(self) -> int:
+        """control steps since the episode's start"""
+        ...
+    @property
+    def time(self) -> float:
+        """simulated time since the episode's start [s]"""
+        ...
+
 class StepFault:
     def __init__(*args: Any, **kwargs: Any) -> Any: ...
     @property
@@ -7259,7 +7411,7 @@ class VectorEnvironment:
     def __exit__(self: VectorEnvironment, *args) -> bool:
         """Leaves a `with` block: close()."""
         ...
-    def __init__(self: VectorEnvironment, task: str, count: int, threads: int = ..., options: ArrayLike = ..., **kwargs) -> None:
+    def __init__(self: VectorEnvironment, task: ArrayLike, count: int, threads: int = ..., options: ArrayLike = ..., **kwargs) -> None:
         """VectorEnvironment(task, count, threads=1, options=None, **overrides): count environments (1..4096) on threads threads (1..256). Raises mjarm.Error as Environment, and for counts out of range."""
         ...
     def __len__(self: VectorEnvironment) -> int:
@@ -7359,6 +7511,30 @@ class VideoWriter:
         """frames written so far"""
         ...
     def write(self: VideoWriter, frame: ArrayLike) -> None:
+        ...
+
+class ViewerReport:
+    """What a viewer's window did."""
+    def __init__(*args: Any, **kwargs: Any) -> Any: ...
+    @property
+    def ended_by(self) -> str:
+        """how it ended: 'window closed', 'escape', 'closed by the program', 'end of script', 'quit', 'interrupted', 'error'"""
+        ...
+    @property
+    def frames(self) -> int:
+        """frames drawn"""
+        ...
+    @property
+    def gl(self) -> str:
+        """OpenGL vendor, renderer and version"""
+        ...
+    @property
+    def screenshots(self) -> list[str]:
+        """the screenshots a script wrote, in order (paths)"""
+        ...
+    @property
+    def wall_seconds(self) -> float:
+        """how long the window was open [s]"""
         ...
 
 class WaypointPlanner:
@@ -7901,5 +8077,6 @@ from . import planning as planning
 from . import scene as scene
 from . import tasks as tasks
 from . import render as render
+from . import teleop as teleop
 from . import env as env
 from . import scenario as scenario

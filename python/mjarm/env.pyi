@@ -10,6 +10,7 @@ from ._mjarm import (
     EnvironmentOptions as EnvironmentOptions,
     EpisodeEnd as EpisodeEnd,
     RandomizationOptions as RandomizationOptions,
+    StepContext as StepContext,
     StepType as StepType,
     TimeStep as TimeStep,
     VectorEnvironment as VectorEnvironment,

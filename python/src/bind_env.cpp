@@ -19,6 +19,7 @@
 #include "mjarm/env/vector_environment.hpp"
 #include "mjarm/scenarios/scenario.hpp"
 #include "parameter_values.hpp"
+#include "python_env_task.hpp"
 
 namespace mjarm::python {
 namespace {
@@ -142,31 +143,70 @@ EnvironmentOptions to_options(py::handle options, const py::kwargs& overrides) {
       throw Error("environment: unknown option '" + name +
                   "' (see EnvironmentOptions: action_space, action, control_period, "
                   "controller_period, time_limit, observations, refuse_out_of_bounds, "
-                  "randomization, seed, max_acceleration)");
+                  "randomization, seed, max_acceleration, observation_noise, action_latency)");
     }
     o.attr(name.c_str()) = value;
   }
   return o.cast<EnvironmentOptions>();
 }
 
-PyEnvironment make_environment(const std::string& task, py::handle options, py::handle task_options,
+/// A task written in Python: an instance of `mjarm.EnvTask` (python/mjarm/env_task.py) run by
+/// a `PythonEnvTask`; null for a task name.
+std::unique_ptr<EnvTask> python_task(const py::object& task) {
+  if (py::isinstance<py::str>(task)) return nullptr;
+  const py::object base = py::module_::import("mjarm.env_task").attr("EnvTask");
+  if (!py::isinstance(task, base)) {
+    throw py::type_error(
+        "environment: the task is a name (env_task_names()) or an instance of a "
+        "subclass of mjarm.EnvTask, got " +
+        py::str(py::type::of(task).attr("__name__")).cast<std::string>());
+  }
+  return std::make_unique<PythonEnvTask>(task);
+}
+
+/// Raises what a Python task's hook raised in environment @p i of @p v (the first one).
+void raise_task_errors(const VectorEnvironment& v) {
+  for (int i = 0; i < v.size(); ++i) raise_task_error(v.environment(i).task());
+}
+
+PyEnvironment make_environment(const py::object& task, py::handle options, py::handle task_options,
                                const py::kwargs& overrides) {
   const EnvironmentOptions o = to_options(options, overrides);
+  std::unique_ptr<EnvTask> own = python_task(task);
+  if (own && !task_options.is_none())
+    throw Error(
+        "environment: task_options are for a task by name; a Python task takes its "
+        "options in its own constructor");
   const nlohmann::ordered_json values = task_options.is_none()
                                             ? nlohmann::ordered_json::object()
                                             : values_json(py::cast<py::dict>(task_options));
   PyEnvironment e;
   {
     py::gil_scoped_release release;
-    e.env = std::make_unique<Environment>(make_env_task(task, values), o);
+    e.env = std::make_unique<Environment>(
+        own ? std::move(own) : make_env_task(task.cast<std::string>(), values), o);
   }
   e.layout = std::make_shared<const ObservationLayout>(e.env->observation_spec());
-  e.task = task;
+  e.task = std::string(e.env->task().name());
   e.action.resize(static_cast<std::size_t>(e.env->action_spec().size()));
   return e;
 }
 
 void bind_environment(py::module_& m) {
+  py::class_<PyStepContext>(
+      m, "StepContext",
+      "What a Python task's hook sees of the environment (valid for the call): the chain's "
+      "end-effector pose and twist after the physics, the step and the episode's time, and the "
+      "simulation's state as a Data lent for the call.")
+      .def_readonly("X_WE", &PyStepContext::X_WE, "end-effector pose in W")
+      .def_property_readonly(
+          "V_WE", [](const PyStepContext& c) { return Eigen::VectorXd(c.V_WE); },
+          "end-effector twist (6,) [v; w], world axes [m/s, rad/s]")
+      .def_readonly("step", &PyStepContext::step, "control steps since the episode's start")
+      .def_readonly("time", &PyStepContext::time, "simulated time since the episode's start [s]")
+      .def_readonly("data", &PyStepContext::data,
+                    "the simulation's Data, lent for the call (read-only arrays)");
+
   py::class_<PyEnvironment>(
       m, "Environment",
       "A learning environment with dm_env's interface on a task (reach, shelf-pick): reset() -> "
@@ -178,7 +218,10 @@ void bind_environment(py::module_& m) {
            py::arg("task_options") = py::none(),
            "Environment(task, options=None, task_options=None, **overrides): the task by name "
            "(env_task_names()) with its own options set from the dict task_options (names as "
-           "env_task_parameters(task) lists them, e.g. {'criteria.max-force': 30}), with "
+           "env_task_parameters(task) lists them, e.g. {'criteria.max-force': 30}), or an "
+           "instance of a subclass of mjarm.EnvTask (a task written in Python: its hooks run "
+           "with the GIL taken for each call, and an exception a hook raises ends the episode "
+           "and is raised by reset/step), with "
            "EnvironmentOptions (None: the defaults) whose fields keyword arguments override "
            "(e.g. time_limit=0.5, action_space='joint_torques'). Raises mjarm.Error for an "
            "unknown task, task option, observation or option, and options out of range.")
@@ -192,6 +235,7 @@ void bind_environment(py::module_& m) {
               py::gil_scoped_release release;
               ts = s ? e.env->reset(*s) : e.env->reset();
             }
+            raise_task_error(e.env->task());
             return e.convert(ts);
           },
           py::arg("seed") = py::none(),
@@ -208,6 +252,7 @@ void bind_environment(py::module_& m) {
               py::gil_scoped_release release;
               ts = e.env->step(e.action);
             }
+            raise_task_error(e.env->task());
             return e.convert(ts);
           },
           py::arg("action"),
@@ -277,16 +322,19 @@ void bind_environment(py::module_& m) {
       "automatic resets: a row whose last step was LAST is reset by the next step (its action "
       "row checked but unused) and returns FIRST. Environment i is seeded splitmix64(seed + i): "
       "the results are the same bit for bit whatever the thread count.")
-      .def(py::init([](const std::string& task, int count, int threads, py::handle options,
+      .def(py::init([](const py::object& task, int count, int threads, py::handle options,
                        const py::kwargs& overrides) {
              const EnvironmentOptions o = to_options(options, overrides);
+             std::unique_ptr<EnvTask> own = python_task(task);
              PyVectorEnvironment v;
              {
                py::gil_scoped_release release;
-               v.env = std::make_unique<VectorEnvironment>(task, o, count, threads);
+               v.env = own ? std::make_unique<VectorEnvironment>(std::move(own), o, count, threads)
+                           : std::make_unique<VectorEnvironment>(task.cast<std::string>(), o, count,
+                                                                 threads);
              }
              v.layout = std::make_shared<const ObservationLayout>(v.env->observation_spec());
-             v.task = task;
+             v.task = std::string(v.env->environment(0).task().name());
              v.actions.resize(static_cast<std::size_t>(count) *
                               static_cast<std::size_t>(v.env->action_spec().size()));
              return v;
@@ -304,6 +352,7 @@ void bind_environment(py::module_& m) {
               py::gil_scoped_release release;
               v.env->reset();
             }
+            raise_task_errors(*v.env);
             return v.convert();
           },
           "Resets every environment (the next seed of each one's sequence): every row FIRST.")
@@ -320,6 +369,7 @@ void bind_environment(py::module_& m) {
               py::gil_scoped_release release;
               v.env->step(v.actions);
             }
+            raise_task_errors(*v.env);
             return v.convert();
           },
           py::arg("actions"),

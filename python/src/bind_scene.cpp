@@ -106,6 +106,23 @@ void bind_scene_specs(py::module_& m) {
 
 }  // namespace
 
+namespace {
+
+/// A Python value as MJCF attribute text: a string as it is, a bool as true/false, a number or a
+/// sequence of numbers in the shortest round-trip form, separated by spaces.
+std::string mjcf_text(const py::handle& value) {
+  if (py::isinstance<py::str>(value)) return value.cast<std::string>();
+  if (py::isinstance<py::bool_>(value)) return value.cast<bool>() ? "true" : "false";
+  if (py::isinstance<py::float_>(value) || py::isinstance<py::int_>(value))
+    return number_text(value.cast<double>());
+  const Eigen::VectorXd v = to_vector(value, "attribute value");
+  std::string text;
+  for (const double x : v) text += (text.empty() ? "" : " ") + number_text(x);
+  return text;
+}
+
+}  // namespace
+
 void bind_scene(py::module_& m) {
   bind_scene_specs(m);
   py::class_<Scene>(
@@ -157,6 +174,27 @@ void bind_scene(py::module_& m) {
       .def("add_weld", adder(&Scene::add_weld, "add_weld", "WeldSpec"),
            py::arg("spec") = py::none(),
            "add_weld(spec: WeldSpec | None = None, **fields): a weld, inactive unless asked")
+      .def(
+          "add",
+          [](Scene& s, const std::string& tag, const std::string& name, const std::string& parent,
+             const std::string& class_name, const py::object& attributes, const py::kwargs& more) {
+            ElementSpec e{tag, name, parent, class_name, {}};
+            const auto take = [&e](const py::handle& items) {
+              for (const auto& [key, value] : items.cast<py::dict>())
+                e.attributes.emplace_back(py::str(key).cast<std::string>(), mjcf_text(value));
+            };
+            if (!attributes.is_none()) take(attributes);
+            take(more);
+            s.add(e);
+          },
+          py::arg("tag"), py::arg("name"), py::arg("parent") = "", py::arg("class_name") = "",
+          py::arg("attributes") = py::none(),
+          "Adds any element by its MJCF tag (body, joint, geom, site, camera, light; general, "
+          "motor, position, velocity; a sensor's tag; default) and attributes, given as keywords "
+          "or a dict (a default's as 'geom.rgba'; values as text, numbers or sequences of "
+          "numbers): checked now, with the closest names for an unknown tag, parent, class or "
+          "attribute; the scene is unchanged when it raises. parent: the parent body ('' = the "
+          "world), or a default's parent class; class_name: the default class it starts from.")
       .def("has", &Scene::has, py::arg("kind"), py::arg("name"),
            "Whether an element of kind ('body', 'joint', 'geom', 'site', 'camera', 'light', "
            "'actuator', 'sensor', 'tendon', 'equality', 'mesh', 'material', 'texture', "

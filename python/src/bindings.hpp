@@ -69,6 +69,7 @@ void bind_planning(py::module_& m);
 void bind_scene(py::module_& m);
 void bind_tasks(py::module_& m);
 void bind_render(py::module_& m);
+void bind_teleop(py::module_& m);
 void bind_env(py::module_& m);
 void bind_scenarios(py::module_& m);
 

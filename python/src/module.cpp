@@ -64,6 +64,8 @@ PYBIND11_MODULE(_mjarm, m) {
   bind_room(m, rooms, "scene", "Scenes built from a description.", bind_scene);
   bind_room(m, rooms, "tasks", "Tasks: shelf pick, pick and place, docking.", bind_tasks);
   bind_room(m, rooms, "render", "Offscreen rendering and video.", bind_render);
+  bind_room(m, rooms, "teleop", "The passive viewer: a window on the user's own loop.",
+            bind_teleop);
   bind_room(m, rooms, "env", "Reinforcement-learning environments.", bind_env);
   // `mjarm.scenarios()` is the registry's own function, so its room takes the singular
   bind_room(m, rooms, "scenario", "The scenario registry: scenarios, runs and their outcomes.",

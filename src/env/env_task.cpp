@@ -1,5 +1,7 @@
 #include "mjarm/env/env_task.hpp"
 
+#include <algorithm>
+
 namespace mjarm {
 
 void EpisodeRandom::reseed(std::uint64_t value) noexcept {
@@ -12,6 +14,11 @@ std::vector<std::string> EnvTask::default_observations() const {
   std::vector<std::string> names{"joint_positions", "joint_velocities", "ee_pose"};
   for (const ArraySpec& spec : observation_specs()) names.push_back(spec.name);
   return names;
+}
+
+void EnvTask::map_action(const StepContext&, std::span<const double>,
+                         std::span<double> space_action) noexcept {
+  std::fill(space_action.begin(), space_action.end(), 0.0);
 }
 
 void EnvTask::before_step(const StepContext&, std::span<const double>) noexcept {}

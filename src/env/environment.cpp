@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
+#include <optional>
 #include <string>
 
 #include "mjarm/env/action_driver.hpp"
@@ -40,6 +42,13 @@ struct Environment::Impl {
   Eigen::VectorXd q, qd;
   std::vector<double> observation;
   std::vector<double> action;  // the clipped action of the current step
+  std::optional<ArraySpec> task_action;  // the task's own action, mapped onto the space's
+  std::vector<double> space_action;      // the action space's values of the current step
+  std::vector<double> delayed;           // action_latency: ring of the last latency + 1 actions
+  int delayed_next = 0;                  // the slot the next action goes to
+  int delayed_count = 0;                 // actions given in this episode, up to latency + 1
+  Random noise;                          // the episode's observation noise
+  std::optional<ObservationSpec> noisy_spec;  // the observations' spec, unbounded by the noise
   EpisodeRandom random;
   Random seeds;  // episode seeds for reset() without one
   StepContext context;
@@ -106,7 +115,25 @@ Environment::Impl::Impl(std::unique_ptr<EnvTask> t, const EnvironmentOptions& o)
   q.setZero(n);
   qd.setZero(n);
   observation.assign(static_cast<std::size_t>(observations->spec().size()), 0.0);
-  action.assign(static_cast<std::size_t>(driver->spec().size()), 0.0);
+  task_action = task->action_spec();
+  if (task_action) {
+    task_action->check();
+    if (!task_action->bounded())
+      throw Error("environment: the task's action '" + task_action->name +
+                  "' needs finite bounds on every element (" + task_action->describe() + ")");
+  }
+  space_action.assign(static_cast<std::size_t>(driver->spec().size()), 0.0);
+  action.assign(static_cast<std::size_t>(task_action ? task_action->size() : driver->spec().size()),
+                0.0);
+  delayed.assign(action.size() * static_cast<std::size_t>(o.action_latency + 1), 0.0);
+  if (o.observation_noise > 0.0) {
+    std::vector<ArraySpec> arrays = observations->spec().arrays();
+    for (ArraySpec& a : arrays) {
+      a.minimum.setConstant(-std::numeric_limits<double>::infinity());
+      a.maximum.setConstant(std::numeric_limits<double>::infinity());
+    }
+    noisy_spec.emplace(std::move(arrays));
+  }
   context.sim = sim.get();
   time_step.observation = Observation(&empty_spec, {});
 }
@@ -130,6 +157,9 @@ void Environment::Impl::update_context() noexcept {
 
 TimeStep Environment::Impl::make_time_step(StepType type, EpisodeEnd end, double reward) noexcept {
   observations->fill(context, *task, observation);
+  if (options.observation_noise > 0.0) {
+    for (double& v : observation) v += normal(noise, 0.0, options.observation_noise);
+  }
   TimeStep ts;
   ts.step_type = type;
   ts.end = end;
@@ -137,7 +167,7 @@ TimeStep Environment::Impl::make_time_step(StepType type, EpisodeEnd end, double
     ts.reward = reward;
     ts.discount = end == EpisodeEnd::terminated || end == EpisodeEnd::diverged ? 0.0 : 1.0;
   }
-  ts.observation = Observation(&observations->spec(), observation);
+  ts.observation = Observation(noisy_spec ? &*noisy_spec : &observations->spec(), observation);
   time_step = ts;
   return ts;
 }
@@ -170,6 +200,10 @@ TimeStep Environment::reset(std::uint64_t seed) {
   if (e.closed) refuse_closed(*e.task, "reset()");
   e.started = false;
   e.random.reseed(seed);
+  // the noise's own stream: the task's and the randomization's draws are the same without it
+  e.noise.seed(splitmix64(seed ^ 0x6f62736e6f697365ull));
+  e.delayed_next = 0;
+  e.delayed_count = 0;
   if (e.randomizer)
     e.randomizer->apply(*e.sim->editable_model(), e.sim->data(), e.random.randomization);
   e.task->initialize_episode(*e.sim, e.random);
@@ -190,16 +224,17 @@ TimeStep Environment::step(std::span<const double> action) {
   if (e.ended)
     throw Error("environment: step() after the last step of the episode (" +
                 std::string(to_string(e.time_step.end)) + "); call reset() to start another");
-  const ArraySpec& spec = e.driver->spec();
+  const ArraySpec& spec = e.task_action ? *e.task_action : e.driver->spec();
+  const std::string space = e.task_action ? "the task's action '" + e.task_action->name + "'"
+                                          : std::string(to_string(e.options.action_space));
   const std::size_t size = static_cast<std::size_t>(spec.size());
   if (action.size() != size)
-    throw Error("environment: the action (" + std::string(to_string(e.options.action_space)) +
-                ") needs " + std::to_string(size) + " values, got " +
-                std::to_string(action.size()));
+    throw Error("environment: the action (" + space + ") needs " + std::to_string(size) +
+                " values, got " + std::to_string(action.size()));
   for (std::size_t i = 0; i < size; ++i) {
     if (!std::isfinite(action[i]))
       throw Error("environment: action[" + std::to_string(i) + "] is " + value_text(action[i]) +
-                  " (" + to_string(e.options.action_space) + " needs finite values)");
+                  " (" + space + " needs finite values)");
   }
   // clip into the bounds (or refuse), counting
   std::int64_t clipped = 0;
@@ -211,7 +246,7 @@ TimeStep Environment::step(std::span<const double> action) {
       if (e.options.refuse_out_of_bounds)
         throw Error("environment: action[" + std::to_string(i) + "] = " + value_text(a) +
                     " is outside its bounds [" + value_text(lo) + ", " + value_text(hi) + "] (" +
-                    to_string(e.options.action_space) + "; refuse_out_of_bounds is set)");
+                    space + "; refuse_out_of_bounds is set)");
       ++clipped;
     }
     e.action[i] = std::clamp(a, lo, hi);
@@ -223,9 +258,41 @@ TimeStep Environment::step(std::span<const double> action) {
     e.total_clips.values += clipped;
   }
 
+  // action_latency: the action of `latency` steps ago (the episode's first one until then)
+  if (e.options.action_latency > 0) {
+    const std::size_t n = e.action.size();
+    const int slots = e.options.action_latency + 1;
+    std::copy(e.action.begin(), e.action.end(),
+              e.delayed.begin() + static_cast<std::ptrdiff_t>(n) * e.delayed_next);
+    if (e.delayed_count == 0) {  // the first action fills the line
+      for (int k = 1; k < slots; ++k)
+        std::copy(e.action.begin(), e.action.end(),
+                  e.delayed.begin() + static_cast<std::ptrdiff_t>(n) * k);
+      // (slot 0 was just written; the ring is full of the first action)
+    }
+    e.delayed_count = std::min(e.delayed_count + 1, slots);
+    e.delayed_next = (e.delayed_next + 1) % slots;
+    // the oldest slot is the one written next
+    const auto oldest = e.delayed.begin() + static_cast<std::ptrdiff_t>(n) * e.delayed_next;
+    std::copy(oldest, oldest + static_cast<std::ptrdiff_t>(n), e.action.begin());
+  }
+
   // the task, the reference, the physics
+  std::span<const double> space_action = e.action;
+  if (e.task_action) {
+    // the task's action onto the action space's values, inside their bounds
+    e.task->map_action(e.context, e.action, e.space_action);
+    const ArraySpec& bounds = e.driver->spec();
+    for (std::size_t i = 0; i < e.space_action.size(); ++i) {
+      const auto k = static_cast<Eigen::Index>(i);
+      const double v = e.space_action[i];
+      e.space_action[i] = std::isfinite(v) ? std::clamp(v, bounds.minimum[k], bounds.maximum[k])
+                                           : 0.0;  // a broken mapping commands nothing
+    }
+    space_action = e.space_action;
+  }
   e.task->before_step(e.context, e.action);
-  const Reference& reference = e.driver->apply(e.action, e.sim->data());
+  const Reference& reference = e.driver->apply(space_action, e.sim->data());
   EpisodeEnd end = EpisodeEnd::running;
   for (int k = 0; k < e.ticks_per_step; ++k) {
     if (!e.sim->tick(reference).ok()) {
@@ -248,9 +315,11 @@ TimeStep Environment::step(std::span<const double> action) {
   return e.make_time_step(e.ended ? StepType::last : StepType::mid, end, reward);
 }
 
-const ArraySpec& Environment::action_spec() const noexcept { return impl_->driver->spec(); }
+const ArraySpec& Environment::action_spec() const noexcept {
+  return impl_->task_action ? *impl_->task_action : impl_->driver->spec();
+}
 const ObservationSpec& Environment::observation_spec() const noexcept {
-  return impl_->observations->spec();
+  return impl_->noisy_spec ? *impl_->noisy_spec : impl_->observations->spec();
 }
 const TimeStep& Environment::time_step() const noexcept { return impl_->time_step; }
 const EnvironmentOptions& Environment::options() const noexcept { return impl_->options; }

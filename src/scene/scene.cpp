@@ -12,6 +12,7 @@
 #include "mjarm/model/mjcf_spec.hpp"
 #include "mjarm/model/names.hpp"
 #include "mjarm/model/user_file.hpp"
+#include "scene_elements.hpp"
 #include "scene_keyframes.hpp"
 #include "scene_parts.hpp"
 #include "spec_attributes.hpp"
@@ -510,6 +511,46 @@ void Scene::add_weld(const WeldSpec& spec) {
   weld->active = spec.active;
   std::copy(spec.solref.begin(), spec.solref.end(), weld->solref);
   impl_->claim({{"equality", spec.name}}, source);
+}
+
+void Scene::add(const ElementSpec& element) {
+  const std::string what = element.tag + " '" + element.name + "'";
+  const auto kind = scene_detail::element_kind(element.tag);
+  if (!kind) {
+    throw Error("scene '" + impl_->name +
+                "': " + unknown_name_message("tag", element.tag, scene_detail::all_tags()));
+  }
+  if (element.name.empty())
+    throw Error("scene '" + impl_->name + "': a " + element.tag + " to add needs a name");
+  const bool in_body = *kind != "actuator" && *kind != "sensor" && *kind != "default";
+  if (*kind == "default") {
+    if (mjs_findDefault(impl_->spec.get(), element.name.c_str()) != nullptr)
+      throw Error("name clash in scene '" + impl_->name + "': default class '" + element.name +
+                  "' exists already");
+  } else {
+    impl_->check_free({{std::string(*kind), element.name}}, "an added " + element.tag);
+  }
+  if (in_body && !element.parent.empty()) impl_->require("body", element.parent, what + " parent");
+  // the class it starts from: its own, or a default's parent class
+  const std::string& class_name = *kind == "default" ? element.parent : element.class_name;
+  if (!class_name.empty() && mjs_findDefault(impl_->spec.get(), class_name.c_str()) == nullptr) {
+    throw Error(what + ": no default class '" + class_name + "' in scene '" + impl_->name +
+                "'; classes: " + list(impl_->names_of("default")));
+  }
+  // made on a copy, which replaces the spec once every attribute was taken: a failure leaves
+  // the scene as it was
+  SpecPtr copy(mj_copySpec(impl_->spec.get()));
+  if (!copy) throw Error("scene '" + impl_->name + "': MuJoCo could not copy the scene's spec");
+  mjsBody* parent =
+      in_body ? mjs_findBody(copy.get(), element.parent.empty() ? "world" : element.parent.c_str())
+              : nullptr;
+  mjsDefault* def = class_name.empty()
+                        ? (*kind == "default" ? mjs_getSpecDefault(copy.get()) : nullptr)
+                        : mjs_findDefault(copy.get(), class_name.c_str());
+  scene_detail::make_element(*copy, element, parent, def, what);
+  impl_->spec = std::move(copy);
+  if (*kind != "default")
+    impl_->claim({{std::string(*kind), element.name}}, "an added " + element.tag);
 }
 
 bool Scene::has(std::string_view kind, std::string_view element_name) const {

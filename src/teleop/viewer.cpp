@@ -48,8 +48,18 @@ ViewerReport run_viewer(const Robot& robot, const ViewerOptions& options) {
 
 namespace detail {
 
+namespace {
+
+int mouse_button(const std::string& name) {
+  return name == "left" ? mjBUTTON_LEFT : name == "right" ? mjBUTTON_RIGHT : mjBUTTON_MIDDLE;
+}
+
+}  // namespace
+
 ViewerReport ViewerShell::run() {
-  const bool scripted = options_.script.has_value();
+  // a script runs on a virtual clock (deterministic, as fast as frames are drawn) unless the
+  // driver shows a loop that runs on the wall clock
+  const bool scripted = options_.script.has_value() && driver_->virtual_clock();
   const double wall_start = glfwGetTime();
   clock_ = scripted ? 0.0 : wall_start;
   for (const auto& [name, value] : options_.set) {
@@ -62,6 +72,7 @@ ViewerReport ViewerShell::run() {
   schedule_ = ViewerSchedule(options_.rates, driver_->control_period(), clock_);
   while (!quit_) {
     if (!scripted) clock_ = glfwGetTime();
+    driver_->update();
     const ScheduleStep step = schedule_.update(clock_, paused_);
     if (step.poll_input) {
       glfwPollEvents();
@@ -69,12 +80,15 @@ ViewerReport ViewerShell::run() {
       if (glfwWindowShouldClose(window_.get())) {
         quit_ = true;
         ended_by_ = "window closed";
+      } else if (driver_->finished()) {
+        quit_ = true;
+        ended_by_ = "closed by the program";
       } else if (interrupt_requested()) {
         quit_ = true;
         ended_by_ = "interrupted";
         report_.signal = interrupt_signal();
       }
-      if (scripted && !quit_) run_script();
+      if (options_.script && !quit_) run_script();
       driver_->read_panel();  // the panel is read at the input rate
     }
     if (quit_) break;
@@ -88,7 +102,7 @@ ViewerReport ViewerShell::run() {
     }
     // a script's wait counts frames: resume it as soon as they are drawn, not at the next input
     // poll (rendering at 1000 Hz with input at 20 Hz, that came 50 frames later)
-    if (scripted && step.render && frames_ >= wait_until_) run_script();
+    if (options_.script && step.render && frames_ >= wait_until_) run_script();
     if (scripted) {
       clock_ = schedule_.next_due();  // jump straight to the next event
     } else {
@@ -163,13 +177,29 @@ void ViewerShell::execute(const ScriptCommand& c) {
       break;
     }
     case ScriptAction::drag: {
-      const int button = c.name == "left"    ? mjBUTTON_LEFT
-                         : c.name == "right" ? mjBUTTON_RIGHT
-                                             : mjBUTTON_MIDDLE;
-      press(button, cx, cy);
+      press(mouse_button(c.name), cx, cy);
       constexpr int kSteps = 10;  // a drag is a series of moves, as a hand makes it
       for (int k = 1; k <= kSteps; ++k) move_to(cx + c.x * k / kSteps, cy - c.y * k / kSteps);
       release(cx + c.x, cy - c.y);
+      break;
+    }
+    case ScriptAction::select:
+      // two presses at one clock: a double-click
+      for (int k = 0; k < 2; ++k) {
+        press(mjBUTTON_LEFT, cx + c.x, cy - c.y);
+        release(cx + c.x, cy - c.y);
+      }
+      break;
+    case ScriptAction::press:
+      press(mouse_button(c.name), cx + c.x, cy - c.y, c.value == "ctrl");
+      break;
+    case ScriptAction::move:
+      move_to(cx + c.x, cy - c.y);
+      break;
+    case ScriptAction::release: {
+      mjuiState& s = ui_.input();
+      release(s.x, s.y);
+      s.control = 0;
       break;
     }
     case ScriptAction::scroll: {

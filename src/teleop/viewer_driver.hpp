@@ -67,6 +67,24 @@ class ViewerDriver {
   /// On an error: keeps what was recorded (writes the session file), never throws.
   virtual void save() noexcept {}
 
+  // ---- a window on someone else's loop (the passive viewer) ----
+  /// At every loop iteration, before events and drawing: takes the newest state handed over.
+  virtual void update() {}
+  /// True when the program asks the window to close.
+  virtual bool finished() const noexcept { return false; }
+  /// Whether a double-click selects a body and Ctrl + drag perturbs it (`set_perturbation`).
+  virtual bool perturbs() const noexcept { return false; }
+  /// The mouse's selection or drag changed.
+  virtual void set_perturbation(const mjvPerturb& pert) { (void)pert; }
+  /// Draws over the 3-D view after the overlays (figures).
+  virtual void draw(const mjrRect& view, const mjrContext& con) {
+    (void)view;
+    (void)con;
+  }
+  /// Whether a script runs on a virtual clock (one render period per frame); the passive viewer
+  /// shows a loop that runs on the wall clock, so its scripts do too.
+  virtual bool virtual_clock() const noexcept { return true; }
+
   /// A note for people (a mode that could not be selected, …); empty when none.
   std::string note;
 

@@ -153,6 +153,24 @@ ViewerScript ViewerScript::parse(std::string_view text, std::string_view source)
       c.name = words[1];
       c.x = p.number(words[2], "DX");
       c.y = p.number(words[3], "DY");
+    } else if (c.action == ScriptAction::select || c.action == ScriptAction::move) {
+      p.arguments(words, 2, "a point: DX DY pixels from the view's centre");
+      c.x = p.number(words[1], "DX");
+      c.y = p.number(words[2], "DY");
+    } else if (c.action == ScriptAction::press) {
+      p.arguments(words, 3, "a button and a point: press [ctrl+]left|right|middle DX DY");
+      const bool control = words[1].rfind("ctrl+", 0) == 0;
+      const std::string button = control ? words[1].substr(5) : words[1];
+      if (button != "left" && button != "right" && button != "middle") {
+        p.fail(unknown_name_message("mouse button", words[1],
+                                    {"left", "right", "middle", "ctrl+left", "ctrl+right"}));
+      }
+      c.name = button;
+      if (control) c.value = "ctrl";
+      c.x = p.number(words[2], "DX");
+      c.y = p.number(words[3], "DY");
+    } else if (c.action == ScriptAction::release) {
+      p.arguments(words, 0, "no argument");
     } else if (c.action == ScriptAction::scroll) {
       p.arguments(words, 1, "an amount: scroll DY");
       c.x = p.number(words[1], "the scroll amount");

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cstdlib>
 #include <string>
+#include <utility>
 
 #include "mjarm/error.hpp"
 
@@ -42,9 +43,14 @@ GlfwLibrary::~GlfwLibrary() { glfwTerminate(); }
 void WindowDeleter::operator()(GLFWwindow* window) const noexcept { glfwDestroyWindow(window); }
 
 ViewerShell::ViewerShell(const Robot& robot, const ViewerOptions& options)
+    : ViewerShell(options.several_hands ? make_teleop_driver(robot, options)
+                                        : make_arm_driver(robot, options),
+                  options, "mjarm view: " + robot.name()) {}
+
+ViewerShell::ViewerShell(std::unique_ptr<ViewerDriver> driver, const ViewerOptions& options,
+                         const std::string& title)
     : options_(options),
-      driver_(options.several_hands ? make_teleop_driver(robot, options)
-                                    : make_arm_driver(robot, options)),
+      driver_(std::move(driver)),
       ui_(driver_->ui()),
       schedule_(options.rates, driver_->control_period(), 0.0) {
   if (options.width < 320 || options.height < 240) {
@@ -52,7 +58,6 @@ ViewerShell::ViewerShell(const Robot& robot, const ViewerOptions& options)
                 std::to_string(options.width) + "×" + std::to_string(options.height));
   }
   // multisampling when the display offers it (Xvfb may not)
-  const std::string title = "mjarm view: " + robot.name();
   for (const int samples : {4, 0}) {
     glfwWindowHint(GLFW_SAMPLES, samples);
     window_.reset(glfwCreateWindow(options.width, options.height, title.c_str(), nullptr, nullptr));
@@ -78,6 +83,7 @@ ViewerShell::ViewerShell(const Robot& robot, const ViewerOptions& options)
   }
 
   mjv_defaultOption(&vis_);
+  mjv_defaultPerturb(&pert_);
   mjv_defaultScene(&scene_);
   mjr_defaultContext(&con_);
   driver_->initial_camera(camera_);
@@ -134,7 +140,8 @@ void ViewerShell::render(Image* capture) {
   }
   mjData& d = driver_->data();
   const mjModel& m = driver_->robot().model();
-  mjv_updateScene(&m, &d, &vis_, nullptr, &camera_, mjCAT_ALL, &scene_);
+  mjv_updateScene(&m, &d, &vis_, driver_->perturbs() ? &pert_ : nullptr, &camera_, mjCAT_ALL,
+                  &scene_);
   driver_->add_markers(scene_);
 
   mjr_setBuffer(mjFB_WINDOW, &con_);
@@ -153,6 +160,7 @@ void ViewerShell::render(Image* capture) {
   }
   mjr_overlay(mjFONT_NORMAL, mjGRID_BOTTOMLEFT, view, driver_->help(), nullptr, &con_);
   if (paused_) mjr_overlay(mjFONT_BIG, mjGRID_BOTTOMRIGHT, view, "Paused", nullptr, &con_);
+  driver_->draw(view, con_);
   mjui_render(&ui_.ui(), &ui_.input(), &con_);
 
   if (capture != nullptr) {
@@ -242,14 +250,19 @@ void ViewerShell::read_window_input() {
   ui_.move_pointer(x * buffer_to_window_, s.rect[rect_window].height - y * buffer_to_window_);
 }
 
-void ViewerShell::press(int button, double x, double y) {
+void ViewerShell::press(int button, double x, double y, bool control) {
   mjuiState& s = ui_.input();
   ui_.move_pointer(x, y);
   s.left = button == mjBUTTON_LEFT;
   s.right = button == mjBUTTON_RIGHT;
   s.middle = button == mjBUTTON_MIDDLE;
+  s.control = control ? 1 : s.control;
   s.type = mjEVENT_PRESS;
-  s.doubleclick = 0;
+  // a second press of the same button in the 3-D view within a third of a second is a
+  // double-click (a selection), for a driver that selects bodies
+  constexpr double kDoubleClick = 0.3;  // [s]
+  s.doubleclick = driver_->perturbs() && s.mouserect == rect_view && button == s.button &&
+                  clock_ - s.buttontime < kDoubleClick;
   s.button = button;
   s.buttontime = clock_;
   if (s.mouserect != 0) {
@@ -273,6 +286,10 @@ void ViewerShell::release(double x, double y) {
   on_event();
   s.dragrect = 0;
   s.dragbutton = 0;
+  if (pert_.active != 0) {  // the drag ends: so does the spring
+    pert_.active = 0;
+    driver_->set_perturbation(pert_);
+  }
 }
 
 void ViewerShell::on_event() {
@@ -292,6 +309,15 @@ void ViewerShell::on_event() {
     mjv_moveCamera(&m, mjMOUSE_ZOOM, 0.0, -0.05 * s.sy, &camera_);
     driver_->camera_moved(camera_);
     refresh_panel_ = true;
+  } else if (s.type == mjEVENT_PRESS && s.mouserect == rect_view && driver_->perturbs()) {
+    on_view_press();
+  } else if (s.type == mjEVENT_MOVE && s.dragrect == rect_view && pert_.active != 0) {
+    // as simulate: right translates the spring's anchor, left turns it (shift: horizontal plane)
+    const int action = s.right ? (s.shift ? mjMOUSE_MOVE_H : mjMOUSE_MOVE_V)
+                               : (s.shift ? mjMOUSE_ROTATE_H : mjMOUSE_ROTATE_V);
+    const double h = std::max(1, ui_.view().height);
+    mjv_movePerturb(&m, &driver_->data(), action, s.dx / h, -s.dy / h, &scene_, &pert_);
+    driver_->set_perturbation(pert_);
   } else if (s.type == mjEVENT_MOVE && s.dragrect == rect_view) {
     int action = mjMOUSE_NONE;
     if (s.left) {
@@ -308,6 +334,42 @@ void ViewerShell::on_event() {
       refresh_panel_ = true;
     }
   }
+}
+
+// Ctrl + a button with a body selected starts a drag: right translates, left rotates (simulate's
+// bindings); else a double-click selects the body under the pointer (or clears the selection)
+bool ViewerShell::on_view_press() {
+  const mjuiState& s = ui_.input();
+  const mjModel& m = driver_->robot().model();
+  mjData& d = driver_->data();
+  if (s.control != 0 && pert_.select > 0 && (s.left || s.right)) {
+    mjv_initPerturb(&m, &d, &scene_, &pert_);
+    pert_.active = s.right ? mjPERT_TRANSLATE : mjPERT_ROTATE;
+    driver_->set_perturbation(pert_);
+    return true;
+  }
+  if (s.doubleclick != 0) {
+    const mjrRect view = ui_.view();
+    mjtNum point[3] = {0.0, 0.0, 0.0};
+    int geom = -1, flex = -1, skin = -1;  // (MuJoCo 4.0.1 writes them all, whatever it says)
+    const int body = mjv_select(
+        &m, &d, &vis_, static_cast<mjtNum>(view.width) / std::max(1, view.height),
+        (s.x - view.left) / std::max(1, view.width), (s.y - view.bottom) / std::max(1, view.height),
+        &scene_, point, &geom, &flex, &skin);
+    pert_.active = 0;
+    pert_.select = body > 0 ? body : 0;
+    pert_.flexselect = -1;
+    pert_.skinselect = -1;
+    if (body > 0) {
+      // the grabbed point in the body's frame: the spring pulls there
+      mjtNum offset[3];
+      mju_sub3(offset, point, d.xpos + 3 * body);
+      mju_mulMatTVec(pert_.localpos, d.xmat + 9 * body, offset, 3, 3);
+    }
+    driver_->set_perturbation(pert_);
+    return true;
+  }
+  return false;
 }
 
 void ViewerShell::on_key(int key, bool shift) {

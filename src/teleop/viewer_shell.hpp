@@ -34,7 +34,11 @@ struct WindowDeleter {
 
 class ViewerShell {
  public:
+  /// The viewer of `run_viewer`: one arm or several hands, as @p options say.
   ViewerShell(const Robot& robot, const ViewerOptions& options);
+  /// A window driven by @p driver (the passive viewer's), titled @p title.
+  ViewerShell(std::unique_ptr<ViewerDriver> driver, const ViewerOptions& options,
+              const std::string& title);
   ~ViewerShell();
   ViewerShell(const ViewerShell&) = delete;
   ViewerShell& operator=(const ViewerShell&) = delete;
@@ -56,7 +60,8 @@ class ViewerShell {
   void on_key(int key, bool shift);
   void on_panel(PanelAction action);
   void reset();
-  void press(int button, double x, double y);
+  void press(int button, double x, double y, bool control = false);
+  bool on_view_press();  // selection and the start of a perturbation; true when handled
   void release(double x, double y);
   void move_to(double x, double y);
   // runs an event handler from a GLFW callback: an exception must not unwind through GLFW's C
@@ -86,6 +91,7 @@ class ViewerShell {
   mjvCamera camera_{};
   mjvOption vis_{};
   mjrContext con_{};
+  mjvPerturb pert_{};  // the selected body and the mouse's drag on it (perturbing drivers)
   const mjModel* gl_model_ = nullptr;  // the model the context and scene were made for
 
   ViewerSchedule schedule_;

@@ -334,6 +334,8 @@ TEST(Environment, StepAllocatesNothing) {
   for (ActionSpace space : action_spaces()) {
     EnvironmentOptions options;
     options.action_space = space;
+    options.observation_noise = 0.01;  // the noise and the delay line allocate nothing either
+    options.action_latency = 2;
     options.observations = {
         "joint_positions", "joint_velocities", "ee_pose",        "ee_twist",
         "target",          "target_offset",    "contact_forces", "sensor:arm/ft_torque"};

@@ -195,3 +195,35 @@ def test_free_pose_round_trip_and_refusals(panda_torque):
     sim = mjarm.Simulation(robot)
     with pytest.raises(mjarm.Error, match="Simulation.set_state"):
         mjarm.set_free_pose(robot, sim.data, "cube", [0, 0, 0])
+
+
+def test_any_element_is_added_by_its_tag_and_attributes():
+    """The textbook two-link planar arm, element by element (dm_control's mjcf job)."""
+    scene = mjarm.Scene("planar")
+    scene.add("default", "link", attributes={"geom.type": "capsule", "geom.size": 0.02,
+                                             "joint.axis": [0, 0, 1]})
+    scene.add("body", "link1")
+    scene.add("joint", "shoulder", "link1", class_name="link")
+    scene.add("geom", "upper", "link1", class_name="link", fromto=[0, 0, 0, 0.3, 0, 0])
+    scene.add("body", "link2", "link1", pos=[0.3, 0, 0])
+    scene.add("joint", "elbow", "link2", class_name="link")
+    scene.add("geom", "fore", "link2", class_name="link", fromto="0 0 0 0.3 0 0")
+    scene.add("site", "tip", "link2", pos=(0.3, 0, 0))
+    scene.add("motor", "shoulder_motor", joint="shoulder", gear=2, ctrlrange=[-1, 1])
+    scene.add("jointpos", "elbow_angle", joint="elbow")
+    robot = scene.compile()
+    data = robot.make_data()
+    data.qpos[:] = [0.0, np.pi / 4]
+    data.forward()
+    tip = data.named.site_xpos["tip"]
+    np.testing.assert_allclose(tip, [0.512132, 0.212132, 0.0], atol=5e-7)
+    assert data.named.sensordata["elbow_angle"][0] == pytest.approx(np.pi / 4)
+    assert 'name="shoulder_motor"' in scene.xml()
+    before = scene.xml()
+    with pytest.raises(mjarm.Error, match="closest: geom"):
+        scene.add("gemo", "x", "link1")
+    with pytest.raises(mjarm.Error, match="closest: size"):
+        scene.add("geom", "g", "link1", szie=0.1)
+    with pytest.raises(mjarm.Error, match="closest: link1, link2"):
+        scene.add("site", "s", "link3")
+    assert scene.xml() == before

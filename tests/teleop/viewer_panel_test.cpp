@@ -192,8 +192,9 @@ TEST(ViewerScript, ErrorsNameTheLine) {
   EXPECT_EQ(message("wait 1\njump 3\n").rfind("s.txt:2: unknown command 'jump'", 0), 0u)
       << message("wait 1\njump 3\n");
   // the closest command, as for an unknown key in every file mjarm reads (issue 29, item 1)
-  EXPECT_EQ(message("wiat 3\n"), "s.txt:1: unknown command 'wiat'; closest: wait; commands: wait, "
-                                  "set, slider, key, drag, scroll, screenshot, quit");
+  EXPECT_EQ(message("wiat 3\n"),
+            "s.txt:1: unknown command 'wiat'; closest: wait; commands: wait, "
+            "set, slider, key, drag, scroll, select, press, move, release, screenshot, quit");
   EXPECT_NE(message("drag lefft 1 2").find("unknown mouse button 'lefft'; closest: left"),
             std::string::npos);
   EXPECT_NE(message("wait -1").find("s.txt:1: the frame count must be a whole number"),

@@ -6,6 +6,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <span>
 #include <string>
 #include <string_view>
@@ -59,7 +60,8 @@ struct StepContext {
 /// concurrently:
 ///
 ///     reset:  initialize_episode → observation
-///     step:   before_step → physics → after_step → observation → reward → terminated
+///     step:   [map_action →] before_step → physics → after_step → observation → reward →
+///             terminated
 ///
 /// Hooks after construction must not allocate (the environment's step allocates nothing) and
 /// must not throw; `initialize_episode` may do both.
@@ -97,6 +99,16 @@ class EnvTask {
   /// The controller period the task needs [s] (a whole divisor of the control step), used when
   /// `EnvironmentOptions::controller_period` is 0; 0 (the default): the action space's own.
   virtual double controller_period() const noexcept { return 0.0; }
+
+  /// The task's own action, when it has one: any bounded array, which `map_action` turns into
+  /// the values of the environment's action space at each step (so the environment's controllers
+  /// carry it out). nullopt (the default): agents act in that action space directly.
+  virtual std::optional<ArraySpec> action_spec() const { return std::nullopt; }
+  /// With a task action (`action_spec`): writes the action space's values for the checked and
+  /// clipped task action @p action into @p space_action (its size; clipped into the space's
+  /// bounds afterwards). Called before `before_step`. The default writes zeros.
+  virtual void map_action(const StepContext& context, std::span<const double> action,
+                          std::span<double> space_action) noexcept;
 
   /// Starts an episode: puts the simulation in its start state (reset, set_state) and draws
   /// the episode's goal from @p random.task. The model is already randomized.

@@ -50,6 +50,15 @@ struct EnvironmentOptions {
   std::uint64_t seed = 0;
   /// Divergence bound on |q̈| (`SimulationOptions::max_acceleration`) [rad/s² or m/s²].
   double max_acceleration = 1e6;
+  /// Standard deviation of the Gaussian noise added to every observation value, in each value's
+  /// own unit (0: none). The noisy observations' bounds become unbounded in the spec. Drawn from
+  /// the episode's own noise stream (splitmix64 of the episode's seed, mixed): a seed gives the
+  /// same noise, and the task's draws are the same with or without noise.
+  double observation_noise = 0.0;
+  /// Control steps between an action and the step that applies it (0: none): step k applies
+  /// the action given at step k − latency; the first `action_latency` steps of an episode apply
+  /// its first action. The task's hooks see the action applied.
+  int action_latency = 0;
 };
 
 /// `observations` is checked against the task's, the periods against the timestep by hand.
@@ -69,7 +78,11 @@ constexpr auto declared_fields(const EnvironmentOptions*) {
       field("randomization", &S::randomization, "domain randomization"),
       field("seed", &S::seed, "seed of the episode seeds reset() without a seed draws"),
       field("max_acceleration", &S::max_acceleration, "rad/s² or m/s²",
-            Range::positive().or_infinity(), "divergence bound on |q̈|"));
+            Range::positive().or_infinity(), "divergence bound on |q̈|"),
+      field("observation_noise", &S::observation_noise, "", Range::non_negative(),
+            "standard deviation of the Gaussian noise on every observation value (own units)"),
+      field("action_latency", &S::action_latency, "steps", Range::closed(0, 1000),
+            "control steps between an action and the step that applies it"));
 }
 
 /// How often actions were clipped into their bounds.
@@ -129,6 +142,8 @@ class Environment {
   /// True after `close()`.
   bool closed() const noexcept;
 
+  /// The action agents give: the task's own (`EnvTask::action_spec`) when it has one, else the
+  /// action space's.
   const ArraySpec& action_spec() const noexcept;
   const ObservationSpec& observation_spec() const noexcept;
   /// The last time step returned (FIRST before any reset, with an empty observation).

@@ -67,6 +67,12 @@ class Scene {
   void add_sensor(const SensorSpec& spec);
   /// Adds a weld equality. @throws Error when a body does not exist (with the closest names).
   void add_weld(const WeldSpec& spec);
+  /// Adds any element by its MJCF tag and attributes (`ElementSpec`), checked when added: the
+  /// tag, the name (free in the scene), the parent body or class, the default class, every
+  /// attribute's name (closest names), kind and count. MuJoCo judges the rest (a negative size,
+  /// a sensor without its object) when the scene is compiled.
+  /// @throws Error naming the element and what is wrong; the scene is unchanged.
+  void add(const ElementSpec& element);
 
   /// Whether an element of @p kind ("body", "joint", "geom", "site", "camera", "light",
   /// "actuator", "sensor", "tendon", "equality", "mesh", "material", "texture", "default") is

@@ -9,6 +9,7 @@
 #include <array>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include "mjarm/fields.hpp"
@@ -257,6 +258,28 @@ constexpr auto declared_fields(const WeldSpec*) {
                     field("solref", &S::solref, "", Range::positive(),
                           "time constant [s], damping ratio"));
 }
+
+/// Any element, by its MJCF tag and attributes: what `Scene::add` makes (the job of dm_control's
+/// `mjcf.RootElement`, on the scene's spec). Tags:
+/// - in a body (`parent`: the body, "" for the world): body, joint, geom, site, camera, light;
+/// - actuators: general, motor, position (attributes kp, kv), velocity (kv), with the
+///   transmission as in MJCF (joint, jointinparent, tendon, site, body);
+/// - sensors: jointpos, jointvel, actuatorpos, actuatorvel, actuatorfrc, framepos, framequat,
+///   framexaxis, frameyaxis, framezaxis, framelinvel, frameangvel, framelinacc, frameangacc,
+///   touch, force, torque, accelerometer, velocimeter, gyro, magnetometer, subtreecom,
+///   subtreelinvel, subtreeangmom, clock; the object as in MJCF (joint, actuator, site, body, or
+///   objtype + objname, reftype + refname);
+/// - default: a default class (`parent`: its parent class, "" for main); its attributes are
+///   "<element>.<attribute>" ("geom.rgba", "joint.damping", "position.kp" is written
+///   "actuator.gainprm").
+struct ElementSpec {
+  std::string tag;
+  std::string name;        ///< unique in the scene among its kind (a default: the class name)
+  std::string parent;      ///< the parent body, or a default's parent class ("" = world / main)
+  std::string class_name;  ///< the default class the element starts from ("" = its parent's)
+  /// MJCF attributes, applied in order: numbers separated by spaces, keywords, names.
+  std::vector<std::pair<std::string, std::string>> attributes;
+};
 
 /// Checks sizes, masses, frictions, frames (a zero or non-finite quaternion, a camera's zero or
 /// parallel axes) and names of a spec.

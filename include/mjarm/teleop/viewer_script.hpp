@@ -18,6 +18,13 @@
 ///     drag BUTTON DX DY      drag the mouse in the 3-D view: left rotates, right moves,
 ///                            middle zooms; DX, DY in pixels (y down)
 ///     scroll DY              scroll wheel in the 3-D view (positive zooms in)
+///     select DX DY           double-click at (DX, DY) pixels from the 3-D view's centre (y down):
+///                            selects the body there, or clears the selection (passive viewer)
+///     press BUTTON DX DY     press left|right|middle at (DX, DY) from the view's centre;
+///                            ctrl+right / ctrl+left hold Ctrl: perturb the selected body
+///     move DX DY             move the pointer to (DX, DY) from the view's centre (a pressed
+///                            button drags)
+///     release                release the pressed button
 ///     screenshot PATH        draw a frame and save the window as a PNG
 ///     quit                   end the session (also implied at the end of the script)
 ///
@@ -34,7 +41,20 @@
 namespace mjarm {
 
 /// What a script line asks for.
-enum class ScriptAction { wait, set, slider, key, drag, scroll, screenshot, quit };
+enum class ScriptAction {
+  wait,
+  set,
+  slider,
+  key,
+  drag,
+  scroll,
+  select,
+  press,
+  move,
+  release,
+  screenshot,
+  quit
+};
 
 /// The names are the script keywords.
 constexpr auto declared_names(const ScriptAction*) {
@@ -45,6 +65,10 @@ constexpr auto declared_names(const ScriptAction*) {
                     EnumName{A::key, "key", "press a key"},
                     EnumName{A::drag, "drag", "drag the mouse"},
                     EnumName{A::scroll, "scroll", "scroll the mouse wheel"},
+                    EnumName{A::select, "select", "double-click: select a body"},
+                    EnumName{A::press, "press", "press a mouse button"},
+                    EnumName{A::move, "move", "move the pointer"},
+                    EnumName{A::release, "release", "release the mouse button"},
                     EnumName{A::screenshot, "screenshot", "save the frame as a PNG"},
                     EnumName{A::quit, "quit", "end the session"}};
 }
@@ -53,10 +77,11 @@ constexpr auto declared_names(const ScriptAction*) {
 struct ScriptCommand {
   ScriptAction action = ScriptAction::wait;
   int line = 0;       ///< 1-based line in the source (0 for commands built in code)
-  std::string name;   ///< set/slider: value name; key: key name; drag: button; screenshot: path
-  std::string value;  ///< set: the value as written; key: "shift" for shift+KEY
-  double x = 0.0;     ///< slider: fraction; drag: DX [pixels]; scroll: DY
-  double y = 0.0;     ///< drag: DY [pixels]
+  /// set/slider: value name; key: key name; drag/press: button; screenshot: path
+  std::string name;
+  std::string value;  ///< set: the value as written; key: "shift" for shift+KEY; press: "ctrl"
+  double x = 0.0;     ///< slider: fraction; drag/select/press/move: DX [pixels]; scroll: DY
+  double y = 0.0;     ///< drag/select/press/move: DY [pixels]
   int frames = 0;     ///< wait: frame count
 };
 
