@@ -45,4 +45,17 @@ from ._mjarm import Error, so3, se3  # noqa: E402,F401
 from ._mjarm import __doc__ as _native_doc  # noqa: E402,F401
 from .env_task import EnvTask  # noqa: E402,F401
 
+
+def _register_rooms() -> None:
+    """Each room of the library is a namespace of the extension (``mjarm.ik``, ``mjarm.control``,
+    ...) holding the names its bindings define; registered here so that ``import mjarm.ik`` and
+    ``from mjarm.ik import PoseIk`` find it."""
+    import sys
+    from . import _mjarm
+    for room in _mjarm._rooms:
+        sys.modules[f"{__name__}.{room}"] = getattr(_mjarm, room)
+
+
+_register_rooms()
+
 __version__ = "0.1.0"

@@ -67,24 +67,30 @@ class Controller:
         ...
     @property
     def chain(self) -> Chain:
+        """the chain this controller commands"""
         ...
     @property
     def command_kind(self) -> CommandKind:
+        """whether compute writes torques or position targets"""
         ...
     @property
     def compensates_bias(self) -> bool:
+        """True when the commands already cancel the bias forces (gravity, possibly Coriolis)"""
         ...
     def compute(self: Controller, data: Data | mujoco.MjData, reference: Reference, out: ArrayLike = ...) -> NDArray[np.float64]:
         """One tick's command (n,) for the state in data (fresh after forward): torques or position targets in chain order. With out (a writable float64 array (n,)) the command is written there and out is returned, so a loop allocates nothing."""
         ...
     @property
     def internal_names(self) -> list[str]:
+        """names of the internals a recorder logs each tick"""
         ...
     @property
     def internal_values(self) -> NDArray[np.float64]:
+        """values of those internals from the last compute, in internal_names order (len(internal_names),)"""
         ...
     @property
     def name(self) -> str:
+        """short identifier, e.g. "osc", "ct", "joint-pd\""""
         ...
     def reset(self: Controller) -> None:
         """forgets integrators and filters"""
@@ -99,6 +105,7 @@ class AccelerationController(Controller):
         ...
     @property
     def options(self) -> AccelerationControlOptions:
+        """the controller's options"""
         ...
 
 class ActionOptions:
@@ -177,21 +184,27 @@ class ActuatorInfo:
         ...
     @property
     def ctrl_limited(self) -> bool:
+        """the control input is clamped to [ctrl_lower, ctrl_upper]"""
         ...
     @property
     def ctrl_lower(self) -> float:
+        """lower end of the control range (meaningful when ctrl_limited)"""
         ...
     @property
     def ctrl_upper(self) -> float:
+        """upper end of the control range (meaningful when ctrl_limited)"""
         ...
     @property
     def force_limited(self) -> bool:
+        """the actuator force is clamped to [force_lower, force_upper]"""
         ...
     @property
     def force_lower(self) -> float:
+        """lower end of the force range [N or N·m] (meaningful when force_limited)"""
         ...
     @property
     def force_upper(self) -> float:
+        """upper end of the force range [N or N·m] (meaningful when force_limited)"""
         ...
     @property
     def gear(self) -> float:
@@ -199,6 +212,7 @@ class ActuatorInfo:
         ...
     @property
     def id(self) -> int:
+        """the actuator's id in the model"""
         ...
     @property
     def joint(self) -> int | None:
@@ -206,9 +220,11 @@ class ActuatorInfo:
         ...
     @property
     def kind(self) -> ActuatorKind:
+        """what the actuator does, read from its gain and bias parameters"""
         ...
     @property
     def name(self) -> str:
+        """the actuator's name in the model"""
         ...
 
 class ActuatorKind(enum.Enum):
@@ -251,7 +267,7 @@ class AdaptiveComplianceOptions:
     def min_stiffness_ratio(self, value: float) -> None: ...
     @property
     def stiffness(self) -> NDArray[np.float64]:
-        """K0 (6, 6)"""
+        """nominal task stiffness K0, symmetric positive definite (6, 6) [N/m; N·m/rad]"""
         ...
     @stiffness.setter
     def stiffness(self, value: ArrayLike) -> None: ...
@@ -312,7 +328,7 @@ class ArraySpec:
         """One line: 'name: float64[7] in [...]'."""
         ...
     @property
-    def dtype(self) -> numpy.dtype:
+    def dtype(self) -> np.dtype[Any]:
         """numpy.dtype('float64'): every array of mjarm's environments holds doubles"""
         ...
     def generate_value(self: ArraySpec) -> NDArray[np.float64]:
@@ -545,19 +561,19 @@ class CartesianLimits:
         ...
     @property
     def max_acceleration(self) -> float:
-        """[m/s^2]"""
+        """largest linear acceleration (> 0) [m/s²]"""
         ...
     @max_acceleration.setter
     def max_acceleration(self, value: float) -> None: ...
     @property
     def max_angular_acceleration(self) -> float:
-        """[rad/s^2]"""
+        """largest angular acceleration (> 0) [rad/s²]"""
         ...
     @max_angular_acceleration.setter
     def max_angular_acceleration(self, value: float) -> None: ...
     @property
     def max_angular_velocity(self) -> float:
-        """[rad/s]"""
+        """largest angular velocity about the turn axis (> 0) [rad/s]"""
         ...
     @max_angular_velocity.setter
     def max_angular_velocity(self, value: float) -> None: ...
@@ -594,18 +610,22 @@ An explicit list of joints."""
         ...
     @property
     def dof_addresses(self) -> list[int]:
+        """index into qvel of each chain joint (n,)"""
         ...
     @property
     def frame(self) -> FrameRef:
+        """the end-effector frame (a site or a body)"""
         ...
     def gather(self: Chain, qpos: ArrayLike) -> NDArray[np.float64]:
         """the chain's joint values (n,) from a full qpos (nq,)"""
         ...
     @property
     def joint_ids(self) -> list[int]:
+        """model id of each chain joint, base to tip (n,)"""
         ...
     @property
     def joint_names(self) -> list[str]:
+        """name of each chain joint, base to tip (n,)"""
         ...
     @property
     def lower(self) -> NDArray[np.float64]:
@@ -613,9 +633,11 @@ An explicit list of joints."""
         ...
     @property
     def qpos_addresses(self) -> list[int]:
+        """index into qpos of each chain joint (n,)"""
         ...
     @property
     def robot(self) -> Robot:
+        """the model the chain belongs to"""
         ...
     def scatter(self: Chain, q: ArrayLike, qpos: ArrayLike) -> NDArray[np.float64]:
         """a copy of qpos (nq,) with the chain's joints set to q"""
@@ -637,17 +659,19 @@ class ChainDynamics:
         ...
     @property
     def bias(self) -> NDArray[np.float64]:
-        """h = C qd + g (n,)"""
+        """bias forces h = C(q, q̇)·q̇ + g(q) on the chain's dofs (n,) [N·m or N]"""
         ...
     @property
     def bias_acceleration(self) -> NDArray[np.float64]:
+        """bias acceleration J̇·q̇ of E, world-aligned, linear first (6,) [m/s², rad/s²]"""
         ...
     @property
     def chain(self) -> Chain:
+        """the chain the dynamics are restricted to"""
         ...
     @property
     def gravity(self) -> NDArray[np.float64]:
-        """g (n,)"""
+        """gravity torques g(q) that hold the arm still (n,) [N·m or N]"""
         ...
     def inverse_dynamics(self: ChainDynamics, data: Data | mujoco.MjData, qdd: ArrayLike) -> NDArray[np.float64]:
         """tau = M qdd + h (n,)"""
@@ -658,25 +682,30 @@ class ChainDynamics:
         ...
     @property
     def mass_matrix(self) -> NDArray[np.float64]:
-        """M (n, n) [kg m^2 or kg]"""
+        """joint-space inertia M, armature included (n, n) [kg·m² or kg]"""
         ...
     @property
     def pose(self) -> Pose:
+        """pose X_WE of the chain's frame at the last update()"""
         ...
     @property
     def q(self) -> NDArray[np.float64]:
+        """chain joint positions at the last update() (n,) [rad or m]"""
         ...
     @property
     def qd(self) -> NDArray[np.float64]:
+        """chain joint velocities at the last update() (n,) [rad/s or m/s]"""
         ...
     @property
     def size(self) -> int:
+        """number of chain dofs n"""
         ...
     def update(self: ChainDynamics, data: Data | mujoco.MjData) -> None:
         """Reads everything from data (never writes it)."""
         ...
     @property
     def velocity(self) -> NDArray[np.float64]:
+        """spatial velocity V_WE = [v; ω] of E, world axes (6,) [m/s, rad/s]"""
         ...
 
 class ChainKinematics:
@@ -694,6 +723,7 @@ class ChainKinematics:
         ...
     @property
     def chain(self) -> Chain:
+        """the chain whose kinematics are evaluated"""
         ...
     def jacobian(self: ChainKinematics, frame: JacobianFrame = ...) -> NDArray[np.float64]:
         """6 x n frame Jacobian at the last update, rows linear first [v; w]."""
@@ -961,12 +991,15 @@ class ContactSummary:
     def __init__(*args: Any, **kwargs: Any) -> Any: ...
     @property
     def contacts(self) -> int:
+        """active contacts between A and B (within the geoms' margins)"""
         ...
     @property
     def first_geom_a(self) -> int:
+        """geom id on side A of the first contact found (−1 when none)"""
         ...
     @property
     def first_geom_b(self) -> int:
+        """geom id on side B of the first contact found (−1 when none)"""
         ...
     @property
     def force_W(self) -> NDArray[np.float64]:
@@ -974,6 +1007,7 @@ class ContactSummary:
         ...
     @property
     def forces_valid(self) -> bool:
+        """False when the data held no constraint forces (kinematic mode): only counts and distances mean something"""
         ...
     @property
     def min_distance(self) -> float:
@@ -981,6 +1015,7 @@ class ContactSummary:
         ...
     @property
     def normal_force(self) -> float:
+        """sum of the normal components of the contact forces [N] (≥ 0)"""
         ...
 
 class CoriolisMethod(enum.Enum):
@@ -1167,7 +1202,7 @@ class DhLink:
         """centre of mass in the link's frame; None: the capsule's [m]"""
         ...
     @com.setter
-    def com(self, value: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[3, 1]"] | None) -> None: ...
+    def com(self, value: ArrayLike | None) -> None: ...
     @property
     def d(self) -> float:
         """link offset (prismatic: added to the joint value) [m]; finite"""
@@ -1179,7 +1214,7 @@ class DhLink:
         """principal moments of inertia; None: the capsule's [kg·m²]"""
         ...
     @inertia.setter
-    def inertia(self, value: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[3, 1]"] | None) -> None: ...
+    def inertia(self, value: ArrayLike | None) -> None: ...
     @property
     def lower(self) -> float:
         """joint range, lower end [rad or m]; finite"""
@@ -1223,6 +1258,7 @@ class DiffIk:
         ...
     @property
     def chain(self) -> Chain:
+        """the chain the tasks move"""
         ...
     def set_posture(self: DiffIk, task: int, q_ref: ArrayLike) -> None:
         ...
@@ -1236,6 +1272,7 @@ class DiffIk:
         ...
     @property
     def task_count(self) -> int:
+        """number of tasks added"""
         ...
     def task_error(self: DiffIk, task: int) -> NDArray[np.float64]:
         ...
@@ -1274,6 +1311,7 @@ class DiffIkStep:
     def __init__(*args: Any, **kwargs: Any) -> Any: ...
     @property
     def pulled_back(self) -> bool:
+        """a joint was outside its limits by more than one step can undo"""
         ...
     @property
     def q_next(self) -> NDArray[np.float64]:
@@ -1281,9 +1319,11 @@ class DiffIkStep:
         ...
     @property
     def qp_iterations(self) -> int:
+        """iterations of the box QP solver"""
         ...
     @property
     def qp_status(self) -> int:
+        """status of the box QP (solved in practice)"""
         ...
     @property
     def v(self) -> NDArray[np.float64]:
@@ -1304,6 +1344,7 @@ class DockingController(Controller):
         ...
     @property
     def bad_wrench_ticks(self) -> int:
+        """ticks whose sensor reading was not finite (taken as zero, or the last good value for se3)"""
         ...
     def compute(self: DockingController, data: Data | mujoco.MjData, reference: Reference, out: ArrayLike = ...) -> NDArray[np.float64]:
         """One tick's command (n,) for the state in data (fresh after forward): torques or position targets in chain order. With out (a writable float64 array (n,)) the command is written there and out is returned, so a loop allocates nothing."""
@@ -1314,6 +1355,7 @@ class DockingController(Controller):
         ...
     @property
     def options(self) -> DockingControllerOptions:
+        """the options the controller was built with"""
         ...
     @property
     def stiffness(self) -> NDArray[np.float64]:
@@ -1351,6 +1393,7 @@ class DockingControllerOptions:
     def friction_feed_forward(self, value: bool) -> None: ...
     @property
     def friction_mode(self) -> FrictionMode:
+        """what gives the friction feed-forward its sign: the joint velocity or the commanded torque"""
         ...
     @friction_mode.setter
     def friction_mode(self, value: FrictionMode) -> None: ...
@@ -1379,11 +1422,11 @@ class DockingControllerOptions:
     @nullspace_stiffness.setter
     def nullspace_stiffness(self, value: float) -> None: ...
     @property
-    def release_axes(self) -> typing.Annotated[list[bool], "FixedSize(6)"]:
+    def release_axes(self) -> list[bool]:
         """released on contact, E's [x, y, z, rx, ry, rz] (6 bools)"""
         ...
     @release_axes.setter
-    def release_axes(self, value: typing.Annotated[list[bool], "FixedSize(6)"]) -> None: ...
+    def release_axes(self, value: list[bool]) -> None: ...
     @property
     def release_duration(self) -> float:
         """smoothstep of the release [s]; positive and finite"""
@@ -1572,7 +1615,7 @@ class DockingGridOptions:
         ...
     @property
     def base(self) -> DockingOptions:
-        """DockingOptions (no record or video)"""
+        """everything but the offset (DockingOptions; no record or video)"""
         ...
     @base.setter
     def base(self, value: DockingOptions) -> None: ...
@@ -1606,6 +1649,7 @@ class DockingGridResult:
     def __init__(*args: Any, **kwargs: Any) -> Any: ...
     @property
     def controller(self) -> str:
+        """the docking law: "cic", "hqp-ac" or "se3\""""
         ...
     @property
     def failures(self) -> dict[str, int]:
@@ -1613,57 +1657,63 @@ class DockingGridResult:
         ...
     @property
     def interrupted(self) -> bool:
+        """Ctrl-C/SIGTERM stopped the matrix: runs holds the runs that completed"""
         ...
     @property
     def joint_friction(self) -> bool:
+        """the variant with Franka joint friction"""
         ...
     @property
     def max_lateral(self) -> float:
-        """[m]"""
+        """worst final-window lateral error [m]"""
         ...
     @property
     def max_orientation_rms(self) -> float:
-        """[rad]"""
+        """worst free-motion orientation RMS [rad]"""
         ...
     @property
     def max_peak_axial_force(self) -> float:
-        """[N]"""
+        """largest peak axial force over the runs [N]"""
         ...
     @property
     def max_peak_axial_moment(self) -> float:
-        """[N m]"""
+        """largest peak axial moment over the runs [N·m]"""
         ...
     @property
     def max_peak_force(self) -> float:
-        """[N]"""
+        """largest peak contact force over the runs [N]"""
         ...
     @property
     def max_position_rms(self) -> float:
-        """[m]"""
+        """worst free-motion position RMS [m]"""
         ...
     @property
     def max_steady_axial_force(self) -> float:
-        """[N]"""
+        """largest final-window axial force [N]"""
         ...
     @property
     def max_tilt(self) -> float:
-        """[rad]"""
+        """worst final-window tilt [rad]"""
         ...
     @property
     def min_steady_axial_force(self) -> float:
-        """[N]"""
+        """smallest final-window axial force [N]"""
         ...
     @property
     def planned(self) -> int:
+        """runs in the matrix"""
         ...
     @property
     def runs(self) -> list[DockingGridRun]:
+        """the completed runs, in matrix order (x slowest, then y, then yaw)"""
         ...
     @property
     def seated(self) -> int:
+        """completed runs that seated the peg"""
         ...
     @property
     def source(self) -> ForceSource:
+        """where the measured wrench came from"""
         ...
 
 class DockingGridRun:
@@ -1671,15 +1721,19 @@ class DockingGridRun:
     def __init__(*args: Any, **kwargs: Any) -> Any: ...
     @property
     def message(self) -> str:
+        """the run's own account (RunResult.message)"""
         ...
     @property
     def metrics(self) -> DockingMetrics:
+        """forces, depths and times of the run"""
         ...
     @property
     def offset(self) -> DockingOffset:
+        """the socket offset this run was given"""
         ...
     @property
     def outcome(self) -> DockingOutcome:
+        """seated, not seated, or why the run stopped"""
         ...
 
 class DockingLaw:
@@ -1697,9 +1751,13 @@ Members:
     se3: ClassVar[DockingLaw]
     def __init__(self, value: int) -> None: ...
     @property
-    def name(self) -> str: ...
+    def name(self) -> str:
+        """the member's name"""
+        ...
     @property
-    def value(self) -> int: ...
+    def value(self) -> int:
+        """the member's integer value"""
+        ...
     def __int__(self) -> int: ...
 
 class DockingMetrics:
@@ -1898,19 +1956,19 @@ class DockingOffset:
         ...
     @property
     def dx(self) -> float:
-        """[m]"""
+        """error of the believed socket along x, |dx| ≤ 0.05 [m]"""
         ...
     @dx.setter
     def dx(self, value: float) -> None: ...
     @property
     def dy(self) -> float:
-        """[m]"""
+        """error of the believed socket along y, |dy| ≤ 0.05 [m]"""
         ...
     @dy.setter
     def dy(self, value: float) -> None: ...
     @property
     def dyaw(self) -> float:
-        """[rad]"""
+        """error of the believed socket about its axis, |dyaw| ≤ π [rad]"""
         ...
     @dyaw.setter
     def dyaw(self, value: float) -> None: ...
@@ -1922,24 +1980,25 @@ class DockingOptions:
         ...
     @property
     def controller(self) -> DockingControllerOptions:
-        """DockingControllerOptions"""
+        """law, force source, gains"""
         ...
     @controller.setter
     def controller(self, value: DockingControllerOptions) -> None: ...
     @property
     def criteria(self) -> DockingCriteria:
-        """DockingCriteria"""
+        """the seating criteria"""
         ...
     @criteria.setter
     def criteria(self, value: DockingCriteria) -> None: ...
     @property
     def geometry(self) -> DockingGeometry:
-        """DockingGeometry"""
+        """the peg and the socket"""
         ...
     @geometry.setter
     def geometry(self, value: DockingGeometry) -> None: ...
     @property
     def joint_friction(self) -> bool:
+        """the variant with Franka joint friction"""
         ...
     @joint_friction.setter
     def joint_friction(self, value: bool) -> None: ...
@@ -1951,19 +2010,19 @@ class DockingOptions:
     def keep_samples(self, value: bool) -> None: ...
     @property
     def max_acceleration(self) -> float:
-        """[rad/s^2]"""
+        """divergence bound on |q̈| [rad/s²]"""
         ...
     @max_acceleration.setter
     def max_acceleration(self, value: float) -> None: ...
     @property
     def motion(self) -> DockingMotion:
-        """DockingMotion"""
+        """reference shape and timing, preload"""
         ...
     @motion.setter
     def motion(self, value: DockingMotion) -> None: ...
     @property
     def offset(self) -> DockingOffset:
-        """DockingOffset"""
+        """the error of the believed socket pose"""
         ...
     @offset.setter
     def offset(self, value: DockingOffset) -> None: ...
@@ -1981,7 +2040,7 @@ class DockingOptions:
     def scene(self, value: DockingScene) -> None: ...
     @property
     def video(self) -> DockingVideo:
-        """DockingVideo"""
+        """MP4 of the run (empty path: none)"""
         ...
     @video.setter
     def video(self, value: DockingVideo) -> None: ...
@@ -2010,36 +2069,39 @@ class DockingPlan:
         ...
     @property
     def X_standoff(self) -> Pose:
+        """E above the believed socket by the standoff"""
         ...
     @property
     def X_start(self) -> Pose:
+        """E at the start: above the true socket by start_height, peg down"""
         ...
     def __init__(*args: Any, **kwargs: Any) -> Any: ...
     @property
     def approach_time(self) -> float:
-        """[s]"""
+        """duration of the approach to the standoff [s]"""
         ...
     def duration(self: DockingPlan) -> float:
         """[s]"""
         ...
     @property
     def full_depth(self) -> float:
-        """[m]"""
+        """chamfer + bore depth [m]"""
         ...
     @property
     def hold_time(self) -> float:
-        """[s]"""
+        """duration of the hold at the end [s]"""
         ...
     @property
     def insert_time(self) -> float:
-        """[s]"""
+        """duration of the insertion (0 for single-segment) [s]"""
         ...
     @property
     def offset(self) -> DockingOffset:
+        """how the believed socket differs from the true one"""
         ...
     @property
     def q_start(self) -> NDArray[np.float64]:
-        """(7,)"""
+        """the arm at X_start, IK from the home keyframe (7,) [rad]"""
         ...
 
 class DockingReference:
@@ -2054,9 +2116,13 @@ Members:
     single_segment: ClassVar[DockingReference]
     def __init__(self, value: int) -> None: ...
     @property
-    def name(self) -> str: ...
+    def name(self) -> str:
+        """the member's name"""
+        ...
     @property
-    def value(self) -> int: ...
+    def value(self) -> int:
+        """the member's integer value"""
+        ...
     def __int__(self) -> int: ...
 
 class DockingReport:
@@ -2064,10 +2130,11 @@ class DockingReport:
     def __init__(*args: Any, **kwargs: Any) -> Any: ...
     @property
     def bad_wrench_ticks(self) -> int:
+        """non-finite sensor readings (taken as zero)"""
         ...
     @property
     def control_period(self) -> float:
-        """[s]"""
+        """control period of the run [s]"""
         ...
     @property
     def controller(self) -> str:
@@ -2075,58 +2142,72 @@ class DockingReport:
         ...
     @property
     def joint_friction(self) -> bool:
+        """the variant with Franka joint friction"""
         ...
     @property
     def metrics(self) -> DockingMetrics:
+        """forces, depths and times of the run"""
         ...
     def ok(self: DockingReport) -> bool:
         """True when seated"""
         ...
     @property
     def outcome(self) -> DockingOutcome:
+        """seated, not seated, or why the run stopped"""
         ...
     @property
     def plan(self) -> DockingPlan:
+        """the approach planned: offset, start and standoff poses"""
         ...
     @property
     def qp_least_squares(self) -> int:
+        """hqp-ac: ticks whose main QP failed (least-squares fallback); 0 for the other laws"""
         ...
     @property
     def qp_null_space_dropped(self) -> int:
+        """hqp-ac: ticks whose null-space QP failed (its step dropped); 0 for the other laws"""
         ...
     @property
     def recording(self) -> str | os.PathLike[str]:
+        """the recording directory (empty when not recorded)"""
         ...
     @property
     def recording_error(self) -> str:
+        """why the recording is incomplete (empty when fine)"""
         ...
     def result_line(self: DockingReport) -> str:
         """One line with the figures."""
         ...
     @property
     def run(self) -> RunResult:
-        """RunResult"""
+        """the simulation's account (status, end time, message)"""
         ...
     @property
     def sample_count(self) -> int:
+        """number of ticks sampled (0 when samples were not kept)"""
         ...
     def samples(self: DockingReport) -> dict:
         """Every tick's ground truth as arrays (N = sample_count; empty without keep_samples): t (N,), p_WE (N, 3), R_WE (N, 3, 3), V_WE (N, 6), p_WD (N, 3), F_peg (N, 6), F_measured (N, 6), stiffness (N, 6), joint_position_ratio, joint_velocity_ratio, manipulability (N,), contacts (N,) int, saturated, other_contact, within_limits, finite (N,) bool."""
         ...
     @property
     def source(self) -> ForceSource:
+        """where the measured wrench came from"""
         ...
     @property
     def video(self) -> str | os.PathLike[str]:
+        """the MP4 asked for (empty when no video)"""
         ...
     @property
     def video_error(self) -> str:
+        """why the video was not written (empty when fine)"""
         ...
     @property
     def video_frames(self) -> int:
+        """frames written to the video"""
         ...
     @property
     def video_written(self) -> bool:
+        """the MP4 is complete at its path (an old file is kept if not)"""
         ...
 
 class DockingScene:
@@ -2138,31 +2219,34 @@ class DockingScene:
         ...
     @property
     def options(self) -> DockingSceneOptions:
+        """the options the scene was built with"""
         ...
     @property
     def peg(self) -> GeomSet:
-        """GeomSet"""
+        """the peg's geoms"""
         ...
     @property
     def peg_body(self) -> int:
+        """body id of the peg"""
         ...
     @property
     def peg_com_E(self) -> NDArray[np.float64]:
-        """(3,)"""
+        """the peg's centre of mass in E (3,) [m]"""
         ...
     @property
     def peg_mass(self) -> float:
-        """[kg]"""
+        """the peg's mass [kg]"""
         ...
     @property
     def robot(self) -> Robot:
+        """the scene's model"""
         ...
     def seated(self: DockingScene) -> Pose:
         """Pose of the tip seated at the bottom of the hole."""
         ...
     @property
     def socket(self) -> GeomSet:
-        """GeomSet"""
+        """the socket's geoms"""
         ...
 
 class DockingSceneOptions:
@@ -2184,6 +2268,7 @@ class DockingSceneOptions:
     def ft_sensor(self, value: bool) -> None: ...
     @property
     def geometry(self) -> DockingGeometry:
+        """peg and socket dimensions"""
         ...
     @geometry.setter
     def geometry(self, value: DockingGeometry) -> None: ...
@@ -2207,7 +2292,7 @@ class DockingVideo:
     def camera(self, value: str) -> None: ...
     @property
     def options(self) -> RunVideoOptions:
-        """RunVideoOptions"""
+        """size, frame rate, encoding, render options"""
         ...
     @options.setter
     def options(self, value: RunVideoOptions) -> None: ...
@@ -2405,9 +2490,13 @@ Members:
     diverged: ClassVar[EpisodeEnd]
     def __init__(self, value: int) -> None: ...
     @property
-    def name(self) -> str: ...
+    def name(self) -> str:
+        """the member's name"""
+        ...
     @property
-    def value(self) -> int: ...
+    def value(self) -> int:
+        """the member's integer value"""
+        ...
     def __int__(self) -> int: ...
 
 class Error:
@@ -2448,6 +2537,7 @@ class ForceTorqueSensor:
         ...
     @property
     def site(self) -> str:
+        """the site's name"""
         ...
 
 class FrameKind:
@@ -2460,9 +2550,13 @@ class FrameKind:
     body: ClassVar[FrameKind]
     def __init__(self, value: int) -> None: ...
     @property
-    def name(self) -> str: ...
+    def name(self) -> str:
+        """the member's name"""
+        ...
     @property
-    def value(self) -> int: ...
+    def value(self) -> int:
+        """the member's integer value"""
+        ...
     def __int__(self) -> int: ...
 
 class FrameRef:
@@ -2470,18 +2564,22 @@ class FrameRef:
     def __init__(*args: Any, **kwargs: Any) -> Any: ...
     @property
     def id(self) -> int:
+        """the site's or body's id in the model"""
         ...
     @property
     def kind(self) -> FrameKind:
+        """site or body"""
         ...
     @property
     def name(self) -> str:
+        """the site's or body's name"""
         ...
 
 class FrameTarget:
     """A target for one frame of a multi-target solve."""
     @property
     def X_WT(self) -> Pose:
+        """target pose in W (position targets use X_WT.p only)"""
         ...
     @X_WT.setter
     def X_WT(self, value: Pose) -> None: ...
@@ -2489,26 +2587,31 @@ class FrameTarget:
         ...
     @property
     def frame(self) -> str:
+        """site or body name"""
         ...
     @frame.setter
     def frame(self, value: str) -> None: ...
     @property
     def kind(self) -> TargetKind:
+        """what is constrained: position or pose"""
         ...
     @kind.setter
     def kind(self, value: TargetKind) -> None: ...
     @property
     def orientation_weight(self) -> float:
+        """row weight of the orientation error (> 0, pose only)"""
         ...
     @orientation_weight.setter
     def orientation_weight(self, value: float) -> None: ...
     @property
     def position_weight(self) -> float:
+        """row weight of the position error (> 0)"""
         ...
     @position_weight.setter
     def position_weight(self, value: float) -> None: ...
     @property
     def priority(self) -> int:
+        """0 is the most important; equal priorities are stacked"""
         ...
     @priority.setter
     def priority(self, value: int) -> None: ...
@@ -2542,9 +2645,11 @@ class FrictionFeedForward:
         ...
     @property
     def damping(self) -> NDArray[np.float64]:
+        """viscous damping per dof (n,) [N·m·s/rad or N·s/m]"""
         ...
     @property
     def friction(self) -> NDArray[np.float64]:
+        """Coulomb friction per dof (n,) [N·m or N]"""
         ...
     def model_force(self: FrictionFeedForward, qd: ArrayLike) -> NDArray[np.float64]:
         ...
@@ -2608,6 +2713,7 @@ class GeomSet:
         ...
     @property
     def size(self) -> int:
+        """number of geoms in the set"""
         ...
 
 class GlobalIk:
@@ -2616,9 +2722,11 @@ class GlobalIk:
         ...
     @property
     def chain(self) -> Chain:
+        """the chain solved for"""
         ...
     @property
     def options(self) -> GlobalIkOptions:
+        """the options the solver was built with"""
         ...
     @options.setter
     def options(self, value: GlobalIkOptions) -> None: ...
@@ -2633,6 +2741,7 @@ class GlobalIk:
         ...
     @property
     def stats(self) -> GlobalIkStats:
+        """diagnostics of the last solve"""
         ...
 
 class GlobalIkMethods(enum.Enum):
@@ -2716,6 +2825,7 @@ class GlobalIkOptions:
     def timeout(self, value: float) -> None: ...
     @property
     def tolerance(self) -> PoseTolerance:
+        """acceptance test of a solution (default: 1e-5 on each component)"""
         ...
     @tolerance.setter
     def tolerance(self, value: PoseTolerance) -> None: ...
@@ -2724,22 +2834,27 @@ class GlobalIkStats:
     def __init__(*args: Any, **kwargs: Any) -> Any: ...
     @property
     def attempts(self) -> int:
+        """local runs started (1 + restarts)"""
         ...
     @property
     def elapsed(self) -> float:
-        """[s]"""
+        """wall-clock time of the solve [s]"""
         ...
     @property
     def lm_solutions(self) -> int:
+        """solutions found by Levenberg–Marquardt"""
         ...
     @property
     def manipulability(self) -> float:
+        """√det(J·Jᵀ) at the returned q (0 without a solution)"""
         ...
     @property
     def solutions(self) -> int:
+        """attempts that met the tolerance"""
         ...
     @property
     def sqp_solutions(self) -> int:
+        """solutions found by the SQP method"""
         ...
 
 class GraspKind(enum.Enum):
@@ -2754,13 +2869,13 @@ class GraspMonitorOptions:
         ...
     @property
     def drop_distance(self) -> float:
-        """[m]"""
+        """the object is lost beyond this distance from its grasped pose (> slip_distance) [m]"""
         ...
     @drop_distance.setter
     def drop_distance(self, value: float) -> None: ...
     @property
     def slip_distance(self) -> float:
-        """[m]"""
+        """the object has slipped once it moved this far from its grasped pose (> 0) [m]"""
         ...
     @slip_distance.setter
     def slip_distance(self, value: float) -> None: ...
@@ -2787,12 +2902,14 @@ class GripperPdController(Controller):
         ...
     @property
     def closed(self) -> NDArray[np.float64]:
+        """finger positions at fraction 1 (n,) [m or rad]"""
         ...
     def compute(self: GripperPdController, data: Data | mujoco.MjData, reference: Reference, out: ArrayLike = ...) -> NDArray[np.float64]:
         """One tick's command (n,) for the state in data (fresh after forward): torques or position targets in chain order. With out (a writable float64 array (n,)) the command is written there and out is returned, so a loop allocates nothing."""
         ...
     @property
     def open(self) -> NDArray[np.float64]:
+        """finger positions at fraction 0 (n,) [m or rad]"""
         ...
 
 class GripperPdOptions:
@@ -2865,12 +2982,14 @@ class HqpAcController(Controller):
         ...
     @property
     def acceleration(self) -> NDArray[np.float64]:
+        """commanded joint acceleration q̈ of the last compute (n,) [rad/s²]"""
         ...
     def compute(self: HqpAcController, data: Data | mujoco.MjData, reference: Reference, out: ArrayLike = ...) -> NDArray[np.float64]:
         """One tick's command (n,) for the state in data (fresh after forward): torques or position targets in chain order. With out (a writable float64 array (n,)) the command is written there and out is returned, so a loop allocates nothing."""
         ...
     @property
     def status(self) -> HqpAcStatus:
+        """status of the last compute"""
         ...
 
 class HqpAcOptions:
@@ -2878,7 +2997,7 @@ class HqpAcOptions:
         ...
     @property
     def compensate_passive(self) -> bool:
-        """ĥ = h − τ_passive"""
+        """cancel the passive forces (joint damping, springs): ĥ = h − τ_passive"""
         ...
     @compensate_passive.setter
     def compensate_passive(self, value: bool) -> None: ...
@@ -3019,17 +3138,18 @@ class IkResult:
         ...
     @property
     def iterations(self) -> int:
+        """iterations run (all restarts together)"""
         ...
     def ok(self: IkResult) -> bool:
         """status is converged"""
         ...
     @property
     def orientation_error(self) -> float:
-        """[rad]"""
+        """rotation angle between target and achieved [rad]"""
         ...
     @property
     def position_error(self) -> float:
-        """[m]"""
+        """‖p_target − p‖, worst target for multi-target [m]"""
         ...
     @property
     def q(self) -> NDArray[np.float64]:
@@ -3037,6 +3157,7 @@ class IkResult:
         ...
     @property
     def status(self) -> IkStatus:
+        """converged, or why the solve stopped"""
         ...
 
 class IkStatus(enum.Enum):
@@ -3081,12 +3202,15 @@ class JerkLimitedGenerator:
         ...
     @property
     def dofs(self) -> int:
+        """number of degrees of freedom"""
         ...
     @property
     def duration(self) -> float:
+        """synchronized duration of the last calculation [s]"""
         ...
     @property
     def result(self) -> OtgResult:
+        """the result of the last calculation"""
         ...
 
 class JointInfo:
@@ -3104,9 +3228,11 @@ class JointInfo:
         ...
     @property
     def id(self) -> int:
+        """the joint's id in the model"""
         ...
     @property
     def limited(self) -> bool:
+        """the joint has a range [lower, upper]"""
         ...
     @property
     def lower(self) -> float:
@@ -3114,6 +3240,7 @@ class JointInfo:
         ...
     @property
     def name(self) -> str:
+        """the joint's name in the model"""
         ...
     @property
     def qpos_address(self) -> int:
@@ -3121,6 +3248,7 @@ class JointInfo:
         ...
     @property
     def type(self) -> JointType:
+        """free, ball, slide or hinge"""
         ...
     @property
     def upper(self) -> float:
@@ -3136,6 +3264,7 @@ class JointPdController(Controller):
         ...
     @property
     def gains(self) -> JointPdGains:
+        """the gains, one entry per joint"""
         ...
 
 class JointPdGains:
@@ -3183,19 +3312,19 @@ class JointReference:
         ...
     @property
     def q(self) -> NDArray[np.float64]:
-        """(n,) [rad or m]"""
+        """position (n,) [rad or m]"""
         ...
     @q.setter
     def q(self, value: ArrayLike) -> None: ...
     @property
     def qd(self) -> NDArray[np.float64]:
-        """(n,)"""
+        """velocity (n,) [rad/s or m/s]"""
         ...
     @qd.setter
     def qd(self, value: ArrayLike) -> None: ...
     @property
     def qdd(self) -> NDArray[np.float64]:
-        """(n,)"""
+        """acceleration (n,) [rad/s² or m/s²]"""
         ...
     @qdd.setter
     def qdd(self, value: ArrayLike) -> None: ...
@@ -3208,21 +3337,25 @@ class JointSpline:
         ...
     @property
     def duration(self) -> float:
-        """[s]"""
+        """total duration [s]"""
         ...
     @property
     def empty(self) -> bool:
+        """True when the spline has no knots"""
         ...
     def knot_time(self: JointSpline, k: int) -> float:
         ...
     @property
     def knots(self) -> list[NDArray[np.float64]]:
+        """the knot positions (K + 1 arrays of shape (n,)) [rad or m]"""
         ...
     @property
     def segments(self) -> int:
+        """number of segments K"""
         ...
     @property
     def size(self) -> int:
+        """number of joints n (0 when empty)"""
         ...
 
 class JointType(enum.Enum):
@@ -3240,15 +3373,19 @@ class KinematicStep:
     def __init__(*args: Any, **kwargs: Any) -> Any: ...
     @property
     def geom_a(self) -> int:
+        """geom of set A of the contact that caused the rollback (−1 when none)"""
         ...
     @property
     def geom_b(self) -> int:
+        """geom of set B of the contact that caused the rollback (−1 when none)"""
         ...
     @property
     def rolled_back(self) -> bool:
+        """True when the move made a contact and was undone"""
         ...
     @property
     def time(self) -> float:
+        """simulated time after the call [s]"""
         ...
 
 class LimitBias:
@@ -3371,12 +3508,15 @@ class Manipulability:
         ...
     @property
     def jacobian_block(self) -> NDArray[np.float64]:
+        """the measured block of J_WE at the last evaluation, world-aligned (m, n)"""
         ...
     @property
     def rows(self) -> int:
+        """number of Jacobian rows measured (6 or 3)"""
         ...
     @property
     def singular_values(self) -> NDArray[np.float64]:
+        """singular values of the measured block, decreasing (min(m, n),)"""
         ...
 
 class ManipulabilityOptions:
@@ -3405,19 +3545,23 @@ class ManipulabilityResult:
     def __init__(*args: Any, **kwargs: Any) -> Any: ...
     @property
     def condition_number(self) -> float:
+        """σmax/σmin; +inf when the status is singular"""
         ...
     @property
     def manipulability(self) -> float:
-        """Yoshikawa w"""
+        """Yoshikawa manipulability w = √det(J·Jᵀ)"""
         ...
     @property
     def sigma_max(self) -> float:
+        """largest singular value σmax"""
         ...
     @property
     def sigma_min(self) -> float:
+        """smallest singular value σmin"""
         ...
     @property
     def status(self) -> SingularityStatus:
+        """regular, near-singular or singular"""
         ...
 
 class MomentumObserver:
@@ -3426,19 +3570,23 @@ class MomentumObserver:
         ...
     @property
     def contact_wrench(self) -> NDArray[np.float64]:
+        """contact-only wrench estimate, world axes about E's origin, [f; τ] (6,) [N, N·m]"""
         ...
     @property
     def momentum(self) -> NDArray[np.float64]:
+        """generalized momentum p = M·q̇ (n,) [kg·m²/s or kg·m/s]"""
         ...
     def reset(self: MomentumObserver) -> None:
         ...
     @property
     def residual(self) -> NDArray[np.float64]:
+        """residual r: all disturbance torques (n,) [N·m or N]"""
         ...
     def update(self: MomentumObserver, data: Data | mujoco.MjData, dynamics: ChainDynamics, tau: ArrayLike, dt: float) -> ObserverStatus:
         ...
     @property
     def wrench(self) -> NDArray[np.float64]:
+        """wrench estimate from r, world axes about E's origin, [f; τ] (6,) [N, N·m]"""
         ...
 
 class MomentumObserverOptions:
@@ -3481,6 +3629,7 @@ class MultiTargetIk:
         ...
     @property
     def chain(self) -> Chain:
+        """the shared joints (with the first target's frame)"""
         ...
     def set_fixed_qpos(self: MultiTargetIk, qpos: ArrayLike) -> None:
         ...
@@ -3492,6 +3641,7 @@ class MultiTargetIk:
         ...
     @property
     def target_count(self) -> int:
+        """number of targets"""
         ...
     def target_errors(self: MultiTargetIk, i: int) -> tuple[float, float]:
         """(position [m], orientation [rad]) of target i after the last solve"""
@@ -3787,14 +3937,17 @@ class OffscreenRenderer:
         ...
     @property
     def height(self) -> int:
+        """image height [pixels]"""
         ...
     @property
     def is_open(self) -> bool:
+        """False after close()"""
         ...
     def render(self: OffscreenRenderer, data: Data | mujoco.MjData, camera: CameraSpec) -> NDArray[np.uint8]:
         ...
     @property
     def width(self) -> int:
+        """image width [pixels]"""
         ...
 
 class OperationalSpaceController(Controller):
@@ -3806,14 +3959,17 @@ class OperationalSpaceController(Controller):
         ...
     @property
     def integral(self) -> NDArray[np.float64]:
+        """∫e dt after the last compute, first m entries used (6,) [m·s, rad·s]"""
         ...
     @property
     def options(self) -> OperationalSpaceOptions:
+        """the controller's options"""
         ...
     def set_measured_wrench(self: OperationalSpaceController, F_W: ArrayLike) -> None:
         ...
     @property
     def task_force(self) -> NDArray[np.float64]:
+        """task-space force F of the last compute, first m entries used (6,) [N, N·m]"""
         ...
 
 class OperationalSpaceOptions:
@@ -3908,6 +4064,7 @@ class OtgResult:
     def __init__(*args: Any, **kwargs: Any) -> Any: ...
     @property
     def duration(self) -> float:
+        """synchronized duration, brake included [s]"""
         ...
     @property
     def end_error(self) -> float:
@@ -3915,6 +4072,7 @@ class OtgResult:
         ...
     @property
     def failed_dof(self) -> int:
+        """the DoF that failed (error statuses only)"""
         ...
     @property
     def limit_excess(self) -> float:
@@ -3922,9 +4080,11 @@ class OtgResult:
         ...
     @property
     def limiting_dof(self) -> int:
+        """the DoF that sets the duration"""
         ...
     @property
     def status(self) -> OtgStatus:
+        """outcome of the calculation"""
         ...
     @property
     def sync_error(self) -> float:
@@ -4155,6 +4315,7 @@ class PickPlaceBatch:
     def __init__(*args: Any, **kwargs: Any) -> Any: ...
     @property
     def interrupted(self) -> bool:
+        """Ctrl-C stopped the batch"""
         ...
     @property
     def reports(self) -> list[PickPlaceReport]:
@@ -4162,7 +4323,7 @@ class PickPlaceBatch:
         ...
     @property
     def summary(self) -> PickPlaceSummary:
-        """PickPlaceSummary"""
+        """the figures of the batch"""
         ...
 
 class PickPlaceBatchOptions:
@@ -4190,7 +4351,7 @@ class PickPlaceBatchOptions:
     def threads(self, value: int) -> None: ...
     @property
     def trials(self) -> int:
-        """>= 1"""
+        """number of trials (≥ 1)"""
         ...
     @trials.setter
     def trials(self, value: int) -> None: ...
@@ -4202,7 +4363,7 @@ class PickPlaceCriteria:
         ...
     @property
     def grasp(self) -> GraspMonitorOptions:
-        """GraspMonitorOptions"""
+        """when the object slipped or was dropped"""
         ...
     @grasp.setter
     def grasp(self, value: GraspMonitorOptions) -> None: ...
@@ -4325,7 +4486,7 @@ class PickPlaceObject:
     def friction(self, value: float) -> None: ...
     @property
     def mass(self) -> float:
-        """[kg]"""
+        """object mass [kg]"""
         ...
     @mass.setter
     def mass(self, value: float) -> None: ...
@@ -4349,7 +4510,7 @@ class PickPlaceObject:
     def size(self, value: ArrayLike) -> None: ...
     @property
     def yaw(self) -> float:
-        """[rad]"""
+        """rotation about the vertical [rad]"""
         ...
     @yaw.setter
     def yaw(self, value: float) -> None: ...
@@ -4373,7 +4534,7 @@ class PickPlaceOptions:
     def control_period(self, value: float) -> None: ...
     @property
     def criteria(self) -> PickPlaceCriteria:
-        """PickPlaceCriteria"""
+        """when a trial succeeds, and grasp monitoring"""
         ...
     @criteria.setter
     def criteria(self, value: PickPlaceCriteria) -> None: ...
@@ -4391,7 +4552,7 @@ class PickPlaceOptions:
     def grasp_force(self, value: float) -> None: ...
     @property
     def impratio(self) -> float:
-        """>= 1"""
+        """MuJoCo's frictional-to-normal impedance ratio (≥ 1)"""
         ...
     @impratio.setter
     def impratio(self, value: float) -> None: ...
@@ -4409,13 +4570,13 @@ class PickPlaceOptions:
     def mode(self, value: ArrayLike) -> None: ...
     @property
     def motion(self) -> PickPlaceMotion:
-        """PickPlaceMotion"""
+        """the motion's timing and Cartesian limits"""
         ...
     @motion.setter
     def motion(self, value: PickPlaceMotion) -> None: ...
     @property
     def noslip_iterations(self) -> int:
-        """0: off"""
+        """MuJoCo's noslip solver iterations (0: off)"""
         ...
     @noslip_iterations.setter
     def noslip_iterations(self, value: int) -> None: ...
@@ -4426,14 +4587,14 @@ class PickPlaceOptions:
     @object_half_size.setter
     def object_half_size(self, value: float | None) -> None: ...
     @property
-    def object_position(self) -> ArrayLike:
+    def object_position(self) -> NDArray[np.float64] | None:
         """object centre x, y (2,) [m], or None: drawn"""
         ...
     @object_position.setter
     def object_position(self, value: ArrayLike) -> None: ...
     @property
     def ranges(self) -> PickPlaceRanges:
-        """PickPlaceRanges"""
+        """the ranges trials are drawn from"""
         ...
     @ranges.setter
     def ranges(self, value: PickPlaceRanges) -> None: ...
@@ -4457,24 +4618,25 @@ class PickPlaceOptions:
     def seed(self, value: int) -> None: ...
     @property
     def state_decimation(self) -> int:
+        """one state row every N physics steps when recording"""
         ...
     @state_decimation.setter
     def state_decimation(self, value: int) -> None: ...
     @property
-    def target_position(self) -> ArrayLike:
+    def target_position(self) -> NDArray[np.float64] | None:
         """target x, y (2,) [m], or None: drawn"""
         ...
     @target_position.setter
     def target_position(self, value: ArrayLike) -> None: ...
     @property
     def video(self) -> PickPlaceVideo:
-        """PickPlaceVideo"""
+        """MP4 of one or more cameras (empty path: none)"""
         ...
     @video.setter
     def video(self, value: PickPlaceVideo) -> None: ...
     @property
     def weld(self) -> WeldGraspOptions:
-        """WeldGraspOptions"""
+        """the weld's solref (weld grasp)"""
         ...
     @weld.setter
     def weld(self, value: WeldGraspOptions) -> None: ...
@@ -4486,31 +4648,31 @@ class PickPlaceRanges:
         ...
     @property
     def friction(self) -> NDArray[np.float64]:
-        """(2,)"""
+        """object sliding friction drawn from [low, high]; in [0, 5]"""
         ...
     @friction.setter
     def friction(self, value: ArrayLike) -> None: ...
     @property
     def half_size(self) -> NDArray[np.float64]:
-        """cube half extent (2,) [m]"""
+        """cube half extent drawn from [low, high] [m]; in [0.001, 0.05]"""
         ...
     @half_size.setter
     def half_size(self, value: ArrayLike) -> None: ...
     @property
     def mass(self) -> NDArray[np.float64]:
-        """(2,) [kg]"""
+        """object mass drawn from [low, high] [kg]; in [1e-04, 10]"""
         ...
     @mass.setter
     def mass(self, value: ArrayLike) -> None: ...
     @property
     def min_separation(self) -> float:
-        """object start to target, horizontal [m]"""
+        """object start ↔ target, horizontal [m]; in [0, 1]"""
         ...
     @min_separation.setter
     def min_separation(self, value: float) -> None: ...
     @property
     def yaw(self) -> NDArray[np.float64]:
-        """(2,) [rad]"""
+        """object yaw drawn from [low, high] [rad]; in [-3.141592653589793, 3.141592653589793]"""
         ...
     @yaw.setter
     def yaw(self, value: ArrayLike) -> None: ...
@@ -4520,25 +4682,27 @@ class PickPlaceReport:
     def __init__(*args: Any, **kwargs: Any) -> Any: ...
     @property
     def control_period(self) -> float:
-        """[s]"""
+        """control period of the run [s]"""
         ...
     @property
     def cycle_time(self) -> float:
-        """[s]"""
+        """time from start to DONE [s]"""
         ...
     @property
     def failure(self) -> PickPlaceFailure:
-        """PickPlaceFailure"""
+        """why the trial failed (none on success)"""
         ...
     @property
     def final_speed(self) -> float:
-        """[m/s]"""
+        """object speed at the end [m/s]"""
         ...
     @property
     def grasp(self) -> GraspKind:
+        """how the object was held (friction or weld)"""
         ...
     @property
     def mode(self) -> SimulationMode:
+        """how the robot moved (kinematic, position or torque)"""
         ...
     def ok(self: PickPlaceReport) -> bool:
         """True on success"""
@@ -4553,27 +4717,31 @@ class PickPlaceReport:
         ...
     @property
     def recording(self) -> str | os.PathLike[str]:
+        """the recording directory (empty when not recorded)"""
         ...
     @property
     def recording_error(self) -> str:
+        """why the recording is incomplete (empty when fine)"""
         ...
     @property
     def robot(self) -> str:
+        """the robot's name"""
         ...
     @property
     def run(self) -> RunResult:
-        """RunResult"""
+        """the simulation's account (status, end time, message)"""
         ...
     @property
     def success(self) -> bool:
+        """the object ended at the target"""
         ...
     @property
     def tilt(self) -> float:
-        """[rad]"""
+        """object tilt at the end [rad]"""
         ...
     @property
     def trace(self) -> PickPlaceTrace:
-        """PickPlaceTrace"""
+        """grasp force, weld jump and settle, slip, table contact, saturation"""
         ...
     @property
     def trial(self) -> PickPlaceTrial:
@@ -4581,54 +4749,67 @@ class PickPlaceReport:
         ...
     @property
     def video_error(self) -> str:
+        """why a video was not written (empty when fine)"""
         ...
     @property
     def video_frames(self) -> int:
+        """frames written per video"""
         ...
     @property
     def videos(self) -> list[str | os.PathLike[str]]:
+        """the MP4s asked for"""
         ...
 
 class PickPlaceRobot:
     """A robot the pick and place knows (names unprefixed, world [m])."""
     def __init__(*args: Any, **kwargs: Any) -> Any: ...
     @property
-    def fingers(self) -> typing.Annotated[list[str], "FixedSize(2)"]:
+    def fingers(self) -> list[str]:
+        """the two finger joints; each finger's body and geom share its name"""
         ...
     @property
     def hand(self) -> str:
+        """body carrying the fingers ("link6")"""
         ...
     @property
     def max_bearing(self) -> float:
-        """[rad]"""
+        """largest bearing of a trial's points from +x [rad]"""
         ...
     @property
     def max_radius(self) -> float:
+        """largest horizontal distance of a trial's points from the base axis [m]"""
         ...
     @property
     def min_radius(self) -> float:
+        """smallest horizontal distance of a trial's points from the base axis [m]"""
         ...
     @property
     def mount(self) -> NDArray[np.float64]:
-        """(3,)"""
+        """where the robot's base stands in the arena (3,) [m]"""
         ...
     @property
     def name(self) -> str:
+        """what the user types ("arm6")"""
         ...
     @property
     def own_table(self) -> bool:
+        """the model brings its table (body "table"); else the arena's"""
         ...
     @property
     def position_model(self) -> str:
+        """bundled model with position servos ("arm6")"""
         ...
     @property
     def table_height(self) -> float:
+        """height of the table's top surface [m]"""
         ...
     @property
     def tool(self) -> str:
+        """tool site between the fingertips ("grip")"""
         ...
     @property
     def torque_model(self) -> str:
+        """bundled model with torque motors ("arm6_torque")"""
         ...
 
 class PickPlaceScene:
@@ -4636,15 +4817,19 @@ class PickPlaceScene:
     def __init__(*args: Any, **kwargs: Any) -> Any: ...
     @property
     def arm_joints(self) -> list[str]:
+        """the arm's hinge joints, base to flange"""
         ...
     @property
     def cameras(self) -> list[str]:
+        """the scene's cameras: "front", "side", "top\""""
         ...
     @property
-    def fingers(self) -> typing.Annotated[list[str], "FixedSize(2)"]:
+    def fingers(self) -> list[str]:
+        """the two finger joints (= bodies = geoms, "arm6/finger_left")"""
         ...
     @property
     def hand(self) -> str:
+        """body carrying the fingers ("arm6/link6")"""
         ...
     @property
     def model(self) -> Robot:
@@ -4652,25 +4837,31 @@ class PickPlaceScene:
         ...
     @property
     def object(self) -> str:
+        """the free body (geom "object/geom")"""
         ...
     @property
     def robot_root(self) -> str:
+        """body whose subtree is the robot ("arm6/base", "panda")"""
         ...
     @property
     def table(self) -> str:
+        """table body ("arm6/table", "arena/table")"""
         ...
     @property
     def table_height(self) -> float:
-        """[m]"""
+        """height of the table's top surface [m]"""
         ...
     @property
     def target(self) -> str:
+        """world site at the target (object centre at rest)"""
         ...
     @property
     def tool(self) -> str:
+        """tool site between the fingertips ("arm6/grip")"""
         ...
     @property
     def weld(self) -> str:
+        """weld hand → object (inactive at the start)"""
         ...
 
 class PickPlaceSceneOptions:
@@ -4692,6 +4883,7 @@ class PickPlaceSceneOptions:
     def finger_travel(self, value: ArrayLike) -> None: ...
     @property
     def impratio(self) -> float:
+        """MuJoCo's frictional-to-normal impedance ratio (≥ 1)"""
         ...
     @impratio.setter
     def impratio(self, value: float) -> None: ...
@@ -4703,22 +4895,25 @@ class PickPlaceSceneOptions:
     def mode(self, value: ArrayLike) -> None: ...
     @property
     def noslip_iterations(self) -> int:
+        """solver option noslip_iterations (0: MuJoCo's default, none)"""
         ...
     @noslip_iterations.setter
     def noslip_iterations(self, value: int) -> None: ...
     @property
     def object(self) -> PickPlaceObject:
+        """the object's size, mass, friction, position and yaw"""
         ...
     @object.setter
     def object(self, value: PickPlaceObject) -> None: ...
     @property
     def robot(self) -> str:
+        """the robot's name (see pick_place_robots())"""
         ...
     @robot.setter
     def robot(self, value: str) -> None: ...
     @property
     def target(self) -> NDArray[np.float64]:
-        """x, y (2,) [m]"""
+        """where the object should end, x, y (2,) [m]"""
         ...
     @target.setter
     def target(self, value: ArrayLike) -> None: ...
@@ -4728,12 +4923,15 @@ class PickPlaceStat:
     def __init__(*args: Any, **kwargs: Any) -> Any: ...
     @property
     def count(self) -> int:
+        """values added (NaN skipped)"""
         ...
     @property
     def max(self) -> float:
+        """largest value, in the quantity's unit (NaN when none)"""
         ...
     @property
     def mean(self) -> float:
+        """mean value, in the quantity's unit (NaN when none)"""
         ...
 
 class PickPlaceState:
@@ -4784,9 +4982,13 @@ Members:
     done: ClassVar[PickPlaceState]
     def __init__(self, value: int) -> None: ...
     @property
-    def name(self) -> str: ...
+    def name(self) -> str:
+        """the member's name"""
+        ...
     @property
-    def value(self) -> int: ...
+    def value(self) -> int:
+        """the member's integer value"""
+        ...
     def __int__(self) -> int: ...
 
 class PickPlaceSummary:
@@ -4810,7 +5012,7 @@ class PickPlaceSummary:
         ...
     @property
     def max_slip(self) -> PickPlaceStat:
-        """[m]"""
+        """largest slip, over the trials that closed on the object [m]"""
         ...
     @property
     def placement_error(self) -> PickPlaceStat:
@@ -4821,6 +5023,7 @@ class PickPlaceSummary:
         ...
     @property
     def successes(self) -> int:
+        """trials that ended with the object at the target"""
         ...
     @property
     def trials(self) -> int:
@@ -4828,11 +5031,11 @@ class PickPlaceSummary:
         ...
     @property
     def weld_jump(self) -> PickPlaceStat:
-        """[m]"""
+        """weld jump, over the trials whose weld was switched on [m]"""
         ...
     @property
     def weld_settle(self) -> PickPlaceStat:
-        """[m]"""
+        """weld settle, over the trials whose weld was switched on [m]"""
         ...
 
 class PickPlaceTrace:
@@ -4918,17 +5121,19 @@ class PickPlaceTrial:
         ...
     @property
     def object(self) -> PickPlaceObject:
+        """the object's size, mass, friction, position and yaw"""
         ...
     @object.setter
     def object(self, value: PickPlaceObject) -> None: ...
     @property
     def seed(self) -> int:
+        """the seed the trial was drawn from"""
         ...
     @seed.setter
     def seed(self, value: int) -> None: ...
     @property
     def target(self) -> NDArray[np.float64]:
-        """x, y (2,) [m]"""
+        """where the object should end, x, y (2,) [m]"""
         ...
     @target.setter
     def target(self, value: ArrayLike) -> None: ...
@@ -4946,7 +5151,7 @@ class PickPlaceVideo:
     def cameras(self, value: list[str]) -> None: ...
     @property
     def options(self) -> RunVideoOptions:
-        """RunVideoOptions"""
+        """size of each camera's picture, frame rate, encoding, render"""
         ...
     @options.setter
     def options(self, value: RunVideoOptions) -> None: ...
@@ -4986,6 +5191,7 @@ class PlanOptions:
     def detour_samples(self, value: int) -> None: ...
     @property
     def ik(self) -> PoseIkOptions:
+        """the local IK from the previous waypoint"""
         ...
     @ik.setter
     def ik(self, value: PoseIkOptions) -> None: ...
@@ -5048,23 +5254,29 @@ class PlanResult:
     def __init__(*args: Any, **kwargs: Any) -> Any: ...
     @property
     def failed_waypoint(self) -> int:
+        """index of the waypoint that failed (−1: none, or the start)"""
         ...
     @property
     def message(self) -> str:
+        """one line for people"""
         ...
     def ok(self: PlanResult) -> bool:
         ...
     @property
     def samples(self) -> int:
+        """states checked along the trajectory"""
         ...
     @property
     def status(self) -> PlanStatus:
+        """ok, or why planning failed"""
         ...
     @property
     def trajectory(self) -> JointSpline:
+        """the timed trajectory (when ok)"""
         ...
     @property
     def waypoints(self) -> list[WaypointReport]:
+        """one report per waypoint reached or tried"""
         ...
 
 class PlanStatus(enum.Enum):
@@ -5153,9 +5365,11 @@ class PoseIk:
         ...
     @property
     def chain(self) -> Chain:
+        """the chain solved for"""
         ...
     @property
     def options(self) -> PoseIkOptions:
+        """the solver's options"""
         ...
     def set_fixed_qpos(self: PoseIk, qpos: ArrayLike) -> None:
         ...
@@ -5219,9 +5433,11 @@ class PositionIk:
         ...
     @property
     def chain(self) -> Chain:
+        """the chain solved for"""
         ...
     @property
     def options(self) -> PositionIkOptions:
+        """the solver's options"""
         ...
     def set_fixed_qpos(self: PositionIk, qpos: ArrayLike) -> None:
         ...
@@ -5267,25 +5483,31 @@ class Quintic:
     def at(self: Quintic, t: float) -> QuinticSample:
         ...
     @property
-    def coefficients(self) -> typing.Annotated[list[float], "FixedSize(6)"]:
+    def coefficients(self) -> list[float]:
+        """the coefficients c₀ … c₅ in powers of t (6,)"""
         ...
     @property
     def duration(self) -> float:
+        """the duration T [s]"""
         ...
 
 class QuinticDuration:
     def __init__(*args: Any, **kwargs: Any) -> Any: ...
     @property
     def duration(self) -> float:
+        """the shortest feasible T (when ok) [s]"""
         ...
     @property
     def limiting_joint(self) -> int:
+        """the joint whose limit is met at T (−1: none, T = floor)"""
         ...
     @property
     def status(self) -> QuinticDurationStatus:
+        """ok, or why no duration was found"""
         ...
     @property
     def velocity_limited(self) -> bool:
+        """True: its velocity limit is met; False: its acceleration limit"""
         ...
 
 class QuinticDurationStatus:
@@ -5304,24 +5526,32 @@ class QuinticDurationStatus:
     infeasible: ClassVar[QuinticDurationStatus]
     def __init__(self, value: int) -> None: ...
     @property
-    def name(self) -> str: ...
+    def name(self) -> str:
+        """the member's name"""
+        ...
     @property
-    def value(self) -> int: ...
+    def value(self) -> int:
+        """the member's integer value"""
+        ...
     def __int__(self) -> int: ...
 
 class QuinticSample:
     def __init__(*args: Any, **kwargs: Any) -> Any: ...
     @property
     def a(self) -> float:
+        """acceleration [u/s²]"""
         ...
     @property
     def j(self) -> float:
+        """jerk [u/s³]"""
         ...
     @property
     def p(self) -> float:
+        """position [u]"""
         ...
     @property
     def v(self) -> float:
+        """velocity [u/s]"""
         ...
 
 class QuinticTrajectory:
@@ -5333,24 +5563,30 @@ class QuinticTrajectory:
         ...
     @property
     def duration(self) -> float:
+        """the duration T [s]"""
         ...
     @property
     def size(self) -> int:
+        """the number of joints n"""
         ...
 
 class RampSample:
     def __init__(*args: Any, **kwargs: Any) -> Any: ...
     @property
     def ddds(self) -> float:
+        """third derivative d³s/dx³"""
         ...
     @property
     def dds(self) -> float:
+        """second derivative d²s/dx²"""
         ...
     @property
     def ds(self) -> float:
+        """first derivative ds/dx"""
         ...
     @property
     def s(self) -> float:
+        """value in [0, 1]"""
         ...
 
 class RandomizationOptions:
@@ -5404,14 +5640,17 @@ class Recorder:
         ...
     @property
     def directory(self) -> str | os.PathLike[str]:
+        """the recording directory (where the files end up)"""
         ...
     def event(self: Recorder, time: float, kind: str, message: str) -> None:
         ...
     @property
     def event_rows(self) -> int:
+        """rows written to events.csv"""
         ...
     @property
     def events_path(self) -> str | os.PathLike[str]:
+        """final path of events.csv"""
         ...
     def finalize(self: Recorder, status: str, message: str = ...) -> None:
         ...
@@ -5420,23 +5659,29 @@ class Recorder:
         ...
     @property
     def finalized(self) -> bool:
+        """True once the recording was finalized (or closed)"""
         ...
     def flush(self: Recorder) -> None:
         ...
     @property
     def state_path(self) -> str | os.PathLike[str]:
+        """final path of state.csv"""
         ...
     @property
     def state_rows(self) -> int:
+        """rows written to state.csv"""
         ...
     @property
     def summary_path(self) -> str | os.PathLike[str]:
+        """final path of summary.json"""
         ...
     @property
     def task_path(self) -> str | os.PathLike[str]:
+        """final path of task.csv"""
         ...
     @property
     def task_rows(self) -> int:
+        """rows written to task.csv"""
         ...
 
 class RecorderOptions:
@@ -5475,11 +5720,13 @@ class Reference:
     def gripper(self, value: float) -> None: ...
     @property
     def joint(self) -> JointReference:
+        """the joint-space reference (q, q̇, q̈)"""
         ...
     @joint.setter
     def joint(self, value: JointReference) -> None: ...
     @property
     def task(self) -> TaskReference:
+        """the task-space reference (pose, twist, acceleration, wrench)"""
         ...
     @task.setter
     def task(self, value: TaskReference) -> None: ...
@@ -5581,6 +5828,7 @@ class Robot:
         ...
     @property
     def name(self) -> str:
+        """the model's name"""
         ...
     @property
     def nq(self) -> int:
@@ -5588,7 +5836,7 @@ class Robot:
         ...
     @property
     def nu(self) -> int:
-        """actuators"""
+        """number of actuators"""
         ...
     @property
     def nv(self) -> int:
@@ -5654,26 +5902,33 @@ class RunResult:
     def __init__(*args: Any, **kwargs: Any) -> Any: ...
     @property
     def end_time(self) -> float:
+        """simulated time when the run stopped [s]"""
         ...
     @property
     def fault(self) -> StepFault:
+        """the fault when diverged or bad_command"""
         ...
     @property
     def message(self) -> str:
+        """one line for people: what happened, when, where"""
         ...
     def ok(self: RunResult) -> bool:
         ...
     @property
     def physics_steps(self) -> int:
+        """physics steps simulated"""
         ...
     @property
     def start_time(self) -> float:
+        """simulated time when the run started [s]"""
         ...
     @property
     def status(self) -> RunStatus:
+        """how the run ended"""
         ...
     @property
     def ticks(self) -> int:
+        """control ticks simulated"""
         ...
 
 class RunStatus(enum.Enum):
@@ -5719,9 +5974,11 @@ class Scenario:
         ...
     @property
     def camera(self) -> str:
+        """the scenario's default camera"""
         ...
     @property
     def doc(self) -> str:
+        """one line on what the scenario does"""
         ...
     @property
     def metrics(self) -> list:
@@ -5729,6 +5986,7 @@ class Scenario:
         ...
     @property
     def name(self) -> str:
+        """the scenario's name (as `mjarm run` takes it)"""
         ...
     @property
     def parameters(self) -> list:
@@ -5794,35 +6052,23 @@ class Scene:
     def add_arena(self: Scene, spec: ArrayLike = ..., **kwargs) -> None:
         """add_arena(spec: ArenaSpec | None = None, **fields): floor, lights, optional table"""
         ...
-    @overload
     def add_camera(self: Scene, spec: ArrayLike = ..., **kwargs) -> None:
-        ...
-    @overload
-    def add_camera(spec: SceneCameraSpec | None = ..., **fields) -> None:
+        """add_camera(spec: SceneCameraSpec | None = None, **fields)"""
         ...
     def add_fixture(self: Scene, spec: ArrayLike = ..., **kwargs) -> None:
         """add_fixture(spec: ObjectSpec | CompoundFixtureSpec | None = None, **fields): an object fixed to the world, or several pieces in one static body"""
         ...
-    @overload
     def add_object(self: Scene, spec: ArrayLike = ..., **kwargs) -> None:
-        ...
-    @overload
-    def add_object(spec: ObjectSpec | None = ..., **fields): a free ArrayLike (nq + = ...) -> None:
+        """add_object(spec: ObjectSpec | None = None, **fields): a free object (nq += 7)"""
         ...
     def add_robot(self: Scene, spec: ArrayLike = ..., **kwargs) -> None:
         """add_robot(spec: RobotSpec | None = None, **fields): a robot, names prefixed 'name/'"""
         ...
-    @overload
     def add_sensor(self: Scene, spec: ArrayLike = ..., **kwargs) -> None:
+        """add_sensor(spec: SensorSpec | None = None, **fields)"""
         ...
-    @overload
-    def add_sensor(spec: SensorSpec | None = ..., **fields) -> None:
-        ...
-    @overload
     def add_site(self: Scene, spec: ArrayLike = ..., **kwargs) -> None:
-        ...
-    @overload
-    def add_site(spec: SiteSpec | None = ..., **fields) -> None:
+        """add_site(spec: SiteSpec | None = None, **fields)"""
         ...
     def add_weld(self: Scene, spec: ArrayLike = ..., **kwargs) -> None:
         """add_weld(spec: WeldSpec | None = None, **fields): a weld, inactive unless asked"""
@@ -5924,9 +6170,11 @@ class Se3ImpedanceController(Controller):
         ...
     @property
     def error(self) -> NDArray[np.float64]:
+        """λ = log(X_EW·X_WD) at the last compute (6,) [m, rad]"""
         ...
     @property
     def options(self) -> Se3ImpedanceOptions:
+        """the controller's options"""
         ...
     def set_measured_wrench(self: Se3ImpedanceController, F_E: ArrayLike) -> None:
         ...
@@ -5934,6 +6182,7 @@ class Se3ImpedanceController(Controller):
         ...
     @property
     def status(self) -> Se3ImpedanceStatus:
+        """status of the last compute"""
         ...
 
 class Se3ImpedanceOptions:
@@ -5947,13 +6196,13 @@ class Se3ImpedanceOptions:
     def compensate_passive(self, value: bool) -> None: ...
     @property
     def damping(self) -> NDArray[np.float64]:
-        """D (6, 6)"""
+        """damping D, symmetric positive definite (6, 6) [N·s/m; N·m·s/rad]"""
         ...
     @damping.setter
     def damping(self, value: ArrayLike) -> None: ...
     @property
     def inertia(self) -> NDArray[np.float64]:
-        """A (6, 6)"""
+        """desired apparent inertia A, symmetric positive definite (6, 6) [kg; kg·m²]"""
         ...
     @inertia.setter
     def inertia(self, value: ArrayLike) -> None: ...
@@ -5977,7 +6226,7 @@ class Se3ImpedanceOptions:
     def release(self, value: StiffnessRelease) -> None: ...
     @property
     def stiffness(self) -> NDArray[np.float64]:
-        """K (6, 6)"""
+        """stiffness K, symmetric positive semi-definite (6, 6) [N/m; N·m/rad]"""
         ...
     @stiffness.setter
     def stiffness(self, value: ArrayLike) -> None: ...
@@ -6008,17 +6257,21 @@ class Se3Interpolation:
         ...
     @property
     def duration(self) -> float:
+        """the duration T [s]"""
         ...
 
 class Se3Sample:
     @property
     def A_WE(self) -> NDArray[np.float64]:
+        """spatial acceleration, world axes, linear first (6,) [m/s², rad/s²]"""
         ...
     @property
     def V_WE(self) -> NDArray[np.float64]:
+        """spatial velocity, world axes, linear first (6,) [m/s, rad/s]"""
         ...
     @property
     def X_WE(self) -> Pose:
+        """pose of E in W"""
         ...
     def __init__(*args: Any, **kwargs: Any) -> Any: ...
 
@@ -6027,18 +6280,23 @@ class SensorInfo:
     def __init__(*args: Any, **kwargs: Any) -> Any: ...
     @property
     def address(self) -> int:
+        """first index of the sensor's values in sensordata"""
         ...
     @property
     def dimension(self) -> int:
+        """number of values the sensor writes"""
         ...
     @property
     def id(self) -> int:
+        """the sensor's id in the model"""
         ...
     @property
     def name(self) -> str:
+        """the sensor's name in the model"""
         ...
     @property
     def type(self) -> str:
+        """e.g. "jointpos", "framepos", "force\""""
         ...
 
 class SensorSpec:
@@ -6091,6 +6349,7 @@ class ShelfPickOptions:
         ...
     @property
     def control_period(self) -> float:
+        """control period (0: one physics step; else a whole multiple of the timestep) [s]"""
         ...
     @control_period.setter
     def control_period(self, value: float) -> None: ...
@@ -6102,6 +6361,7 @@ class ShelfPickOptions:
     def gain_scale(self, value: float) -> None: ...
     @property
     def max_acceleration(self) -> float:
+        """divergence bound on |q̈| [rad/s²]"""
         ...
     @max_acceleration.setter
     def max_acceleration(self, value: float) -> None: ...
@@ -6113,16 +6373,19 @@ class ShelfPickOptions:
     def record(self, value: str | os.PathLike[str]) -> None: ...
     @property
     def request(self) -> ShelfPickRequest:
+        """robot, controller, pick point, seed, criteria"""
         ...
     @request.setter
     def request(self, value: ShelfPickRequest) -> None: ...
     @property
     def settle_time(self) -> float:
+        """time allowed after the approach for entering the tolerance and holding (> 0) [s]"""
         ...
     @settle_time.setter
     def settle_time(self, value: float) -> None: ...
     @property
     def state_decimation(self) -> int:
+        """one state row every N physics steps when recording"""
         ...
     @state_decimation.setter
     def state_decimation(self, value: int) -> None: ...
@@ -6134,6 +6397,7 @@ class ShelfPickOptions:
     def video(self, value: str | os.PathLike[str]) -> None: ...
     @property
     def video_camera(self) -> str:
+        """camera of the video ('' = the default)"""
         ...
     @video_camera.setter
     def video_camera(self, value: str) -> None: ...
@@ -6142,59 +6406,77 @@ class ShelfPickReport:
     def __init__(*args: Any, **kwargs: Any) -> Any: ...
     @property
     def approach_time(self) -> float:
+        """duration of the planned approach [s]"""
         ...
     @property
     def control_period(self) -> float:
+        """control period of the run [s]"""
         ...
     @property
     def controller(self) -> str:
+        """the controller that ran"""
         ...
     @property
     def final_phase(self) -> PickPhase:
+        """the phase the run ended in"""
         ...
     @property
     def metrics(self) -> PickMetrics:
+        """time to tolerance, overshoot, steady state, hold"""
         ...
     def ok(self: ShelfPickReport) -> bool:
         ...
     @property
     def outcome(self) -> PickOutcome:
+        """held, or why not"""
         ...
     @property
     def pick(self) -> NDArray[np.float64]:
+        """the pick point in W (3,) [m]"""
         ...
     @property
     def q_start(self) -> NDArray[np.float64]:
+        """joint positions at the start (n,) [rad]"""
         ...
     @property
     def q_target(self) -> NDArray[np.float64]:
+        """joint positions at the pick point (n,) [rad]"""
         ...
     @property
     def recording(self) -> str | os.PathLike[str]:
+        """the recording directory (empty when not recorded)"""
         ...
     @property
     def recording_error(self) -> str:
+        """why the recording could not be completed (empty when it was)"""
         ...
     @property
     def robot(self) -> str:
+        """the robot's name"""
         ...
     @property
     def run(self) -> RunResult:
+        """the simulation's account (status, end time, message)"""
         ...
     @property
     def saturated_ticks(self) -> int:
+        """the most control ticks any one motor was clipped to its torque limit"""
         ...
     @property
     def time_limit(self) -> float:
+        """simulated time allowed [s]"""
         ...
     @property
     def video(self) -> str | os.PathLike[str]:
+        """the MP4 written (empty when no video)"""
         ...
     @property
     def video_frames(self) -> int:
+        """frames in the video: ⌊(end − start)·fps⌋ + 1"""
         ...
     @property
     def video_written(self) -> bool:
+        """a complete, playable MP4 of the run is at video"""
         ...
 
 class ShelfPickRequest:
@@ -6202,27 +6484,31 @@ class ShelfPickRequest:
         ...
     @property
     def controller(self) -> str:
+        """the controller's name (see shelf_pick_controllers())"""
         ...
     @controller.setter
     def controller(self, value: str) -> None: ...
     @property
     def criteria(self) -> PickCriteria:
+        """when the pick counts as held (1 mm, 200 ms by default)"""
         ...
     @criteria.setter
     def criteria(self, value: PickCriteria) -> None: ...
     @property
-    def pick(self) -> ArrayLike:
+    def pick(self) -> NDArray[np.float64] | None:
         """pick point (3,) [m], or None: drawn from the seed"""
         ...
     @pick.setter
     def pick(self, value: ArrayLike) -> None: ...
     @property
     def robot(self) -> str:
+        """the robot's name (see shelf_pick_robots())"""
         ...
     @robot.setter
     def robot(self, value: str) -> None: ...
     @property
     def seed(self) -> int:
+        """seed of the drawn pick point"""
         ...
     @seed.setter
     def seed(self, value: int) -> None: ...
@@ -6241,9 +6527,11 @@ class Simulation:
         ...
     @property
     def control_period(self) -> float:
+        """control period [s]"""
         ...
     @property
     def controller_count(self) -> int:
+        """number of controllers added"""
         ...
     @property
     def ctrl(self) -> NDArray[np.float64]:
@@ -6257,11 +6545,13 @@ class Simulation:
         ...
     @property
     def fault(self) -> StepFault:
+        """the last fault (cause none when healthy)"""
         ...
     def forward(self: Simulation) -> None:
         ...
     @property
     def mode(self) -> SimulationMode:
+        """how the robot moves: kinematic, position or torque"""
         ...
     def move(self: Simulation, qpos: ArrayLike, dt: float, recorder: Recorder | None = ...) -> KinematicStep:
         """Kinematic mode: sets qpos (nq,), advances dt [s]."""
@@ -6274,9 +6564,11 @@ class Simulation:
         ...
     @property
     def options(self) -> SimulationOptions:
+        """the simulation's options"""
         ...
     @property
     def physics_steps(self) -> int:
+        """physics steps since reset"""
         ...
     @property
     def qpos(self) -> NDArray[np.float64]:
@@ -6294,15 +6586,18 @@ class Simulation:
         ...
     @property
     def robot(self) -> Robot:
+        """the simulated model"""
         ...
     def run(self: Simulation, source: ReferenceSource, duration: float, recorder: Recorder | None = ...) -> RunResult:
         """Ticks until duration [s] passed, the source finishes, a fault, or Ctrl-C (KeyboardInterrupt, the recording's events have it)."""
         ...
     @property
     def saturated(self) -> list[int]:
+        """one flag per actuator: 1 when the last tick's command was clipped on it"""
         ...
     @property
     def saturation_counts(self) -> list[int]:
+        """per actuator: how many ticks its command was clipped since reset"""
         ...
     def sensor(self: ArrayLike, name: str) -> NDArray[np.float64]:
         """read-only view of a sensor's values"""
@@ -6314,18 +6609,22 @@ class Simulation:
         ...
     @property
     def steps_per_tick(self) -> int:
+        """physics steps per control tick"""
         ...
     def tick(self: Simulation, reference: ArrayLike, recorder: Recorder | None = ...) -> TickResult:
         """One control tick with a Reference or from a ReferenceSource."""
         ...
     @property
     def ticks(self) -> int:
+        """control ticks since reset"""
         ...
     @property
     def time(self) -> float:
+        """simulated time [s]"""
         ...
     @property
     def timestep(self) -> float:
+        """physics timestep [s]"""
         ...
     def watch_contacts(self: Simulation, a: GeomSet, b: GeomSet = ...) -> int:
         """watches contacts between a and b (empty b: anything else); returns a handle"""
@@ -6348,11 +6647,13 @@ class SimulationOptions:
         ...
     @property
     def contact_check_a(self) -> GeomSet:
+        """kinematic mode: a move putting a geom of this set in contact with one of contact_check_b is rolled back (empty: no check)"""
         ...
     @contact_check_a.setter
     def contact_check_a(self, value: GeomSet) -> None: ...
     @property
     def contact_check_b(self) -> GeomSet:
+        """the other side of the contact check (empty with a non-empty contact_check_a: any other geom)"""
         ...
     @contact_check_b.setter
     def contact_check_b(self, value: GeomSet) -> None: ...
@@ -6388,15 +6689,19 @@ class SimulationOptions:
     def own_model(self, value: bool) -> None: ...
 
 class SingularityEntry:
+    """The measures of one configuration."""
     def __init__(*args: Any, **kwargs: Any) -> Any: ...
     @property
     def above_condition_number(self) -> bool:
+        """σmax/σmin > thresholds.condition_number (relative)"""
         ...
     @property
     def below_sigma_min(self) -> bool:
+        """σmin < thresholds.sigma_min (absolute)"""
         ...
     @property
     def condition_number(self) -> float:
+        """σmax/σmin, +inf when singular"""
         ...
     @property
     def kinds(self) -> list[str]:
@@ -6404,45 +6709,59 @@ class SingularityEntry:
         ...
     @property
     def manipulability(self) -> float:
+        """Yoshikawa's w = √det(J·Jᵀ)"""
         ...
     @property
     def name(self) -> str:
+        """what the entry is ("sample <index>", or the configuration's name)"""
         ...
     @property
     def null_direction(self) -> NDArray[np.float64]:
+        """right singular vector of σmin: the joint motion that moves the frame least (unit, chain order, largest entry positive) (n,)"""
         ...
     @property
     def q(self) -> NDArray[np.float64]:
+        """configuration, chain order (n,) [rad or m]"""
         ...
     @property
     def sigma_min(self) -> float:
+        """smallest singular value"""
         ...
     @property
     def singular_values(self) -> NDArray[np.float64]:
+        """singular values of the measured block, decreasing (min(m, n),)"""
         ...
     @property
     def status(self) -> SingularityStatus:
+        """regular, near-singular or singular"""
         ...
 
 class SingularityScan:
+    """Result of a random scan."""
     def __init__(*args: Any, **kwargs: Any) -> Any: ...
     @property
     def flagged_count(self) -> int:
+        """samples crossing either threshold (σmin < thresholds.sigma_min or condition above thresholds.condition_number)"""
         ...
     @property
     def near_singular_count(self) -> int:
+        """samples classified near-singular"""
         ...
     @property
     def samples(self) -> int:
+        """samples drawn (fewer than asked when interrupted)"""
         ...
     @property
     def seed(self) -> int:
+        """seed of the samples"""
         ...
     @property
     def singular_count(self) -> int:
+        """samples classified singular"""
         ...
     @property
     def worst(self) -> list[SingularityEntry]:
+        """the lowest-σmin samples, lowest first (at most keep_worst), named "sample <index>\""""
         ...
 
 class SingularityStatus(enum.Enum):
@@ -6563,26 +6882,33 @@ class StepFault:
     def __init__(*args: Any, **kwargs: Any) -> Any: ...
     @property
     def actuator(self) -> int:
+        """actuator id for ctrl faults"""
         ...
     @property
     def cause(self) -> FaultCause:
+        """what went wrong (none when healthy)"""
         ...
     @property
     def controller(self) -> int:
+        """controller index for bad_command"""
         ...
     @property
     def dof(self) -> int:
+        """index into qvel/qacc (or into qpos for qpos faults)"""
         ...
     @property
     def joint(self) -> int:
+        """joint id of the offending dof (−1 when not a joint)"""
         ...
     def ok(self: StepFault) -> bool:
         ...
     @property
     def time(self) -> float:
+        """simulated time at the start of the failing step [s]"""
         ...
     @property
     def value(self) -> float:
+        """the offending value"""
         ...
 
 class StepType:
@@ -6600,19 +6926,24 @@ Members:
     LAST: ClassVar[StepType]
     def __init__(self, value: int) -> None: ...
     @property
-    def name(self) -> str: ...
+    def name(self) -> str:
+        """the member's name"""
+        ...
     @property
-    def value(self) -> int: ...
+    def value(self) -> int:
+        """the member's integer value"""
+        ...
     def __int__(self) -> int: ...
 
 class StiffnessRelease:
     def __init__(self: StiffnessRelease) -> None:
         ...
     @property
-    def axes(self) -> typing.Annotated[list[bool], "FixedSize(6)"]:
+    def axes(self) -> list[bool]:
+        """the λ axes [x, y, z, rx, ry, rz] (E's own axes) whose stiffness goes to zero on contact (6,)"""
         ...
     @axes.setter
-    def axes(self, value: typing.Annotated[list[bool], "FixedSize(6)"]) -> None: ...
+    def axes(self, value: list[bool]) -> None: ...
     @property
     def contact_force(self) -> float:
         """the measured force that starts the release [N]; positive and finite"""
@@ -6635,9 +6966,11 @@ class SyncedTrapezoid:
         ...
     @property
     def duration(self) -> float:
+        """the common duration T (0 when start equals goal) [s]"""
         ...
     @property
     def limiting_axis(self) -> int:
+        """the axis that needs the longest time (it moves at its own limits)"""
         ...
 
 class TargetKind(enum.Enum):
@@ -6661,6 +6994,7 @@ class TaskPdController(Controller):
         ...
     @property
     def options(self) -> TaskPdOptions:
+        """the controller's options"""
         ...
 
 class TaskPdOptions:
@@ -6732,30 +7066,39 @@ class TaskSpaceDynamics:
         ...
     @property
     def condition(self) -> float:
+        """condition number of J·M⁻¹·Jᵀ (+inf when singular)"""
         ...
     @property
     def eigenvalues(self) -> NDArray[np.float64]:
+        """eigenvalues of J·M⁻¹·Jᵀ, ascending, before flooring (m,)"""
         ...
     @property
     def jbar(self) -> NDArray[np.float64]:
+        """dynamically consistent inverse J̄ = M⁻¹·Jᵀ·Λ (n, m)"""
         ...
     @property
     def lambda_(self) -> NDArray[np.float64]:
+        """task-space inertia Λ (m, m) [kg for linear rows, kg·m² for angular rows]"""
         ...
     @property
     def lambda_inverse(self) -> NDArray[np.float64]:
+        """Λ⁻¹ = J·M⁻¹·Jᵀ as computed, before flooring (m, m)"""
         ...
     @property
     def mass_inverse(self) -> NDArray[np.float64]:
+        """inverse joint-space inertia M⁻¹ (n, n)"""
         ...
     @property
     def min_singular_value(self) -> float:
+        """smallest singular value of J·M^(−1/2); → 0 at a singularity"""
         ...
     @property
     def nullspace(self) -> NDArray[np.float64]:
+        """null-space projector N = I − J̄·J (n, n)"""
         ...
     @property
     def status(self) -> TaskSpaceStatus:
+        """status of the last update"""
         ...
     def update(self: TaskSpaceDynamics, M: ArrayLike, J: ArrayLike) -> TaskSpaceStatus:
         ...
@@ -6796,17 +7139,21 @@ class TickResult:
     def __init__(*args: Any, **kwargs: Any) -> Any: ...
     @property
     def fault(self) -> StepFault:
+        """set when status is diverged or bad_command"""
         ...
     def ok(self: TickResult) -> bool:
         ...
     @property
     def saturated(self) -> int:
+        """actuators clipped by this tick's commands"""
         ...
     @property
     def status(self) -> TickStatus:
+        """how the tick went"""
         ...
     @property
     def time(self) -> float:
+        """simulated time at the end of the tick [s]"""
         ...
 
 class TickStatus(enum.Enum):
@@ -6853,7 +7200,7 @@ class TimeStep:
         ...
     @property
     def step_type(self) -> StepType:
-        """StepType"""
+        """first, mid or last step of the episode"""
         ...
     @property
     def values(self) -> ArrayLike:
@@ -6865,22 +7212,23 @@ class TrackingErrors:
     def __init__(*args: Any, **kwargs: Any) -> Any: ...
     @property
     def max_orientation(self) -> float:
-        """[rad]"""
+        """largest angle of R_refᵀ·R_E [rad]"""
         ...
     @property
     def max_position(self) -> float:
-        """[m]"""
+        """largest ‖p_E − p_ref‖ [m]"""
         ...
     @property
     def orientation_rms(self) -> float:
-        """[rad]"""
+        """RMS of the angle of R_refᵀ·R_E [rad]"""
         ...
     @property
     def position_rms(self) -> float:
-        """[m]"""
+        """RMS of ‖p_E − p_ref‖ [m]"""
         ...
     @property
     def samples(self) -> int:
+        """ticks the errors were taken over"""
         ...
 
 class TrackingGateOptions:
@@ -6947,16 +7295,19 @@ class TrackingGateReport:
     """What the gate measured."""
     @property
     def X_start(self) -> Pose:
+        """the start point c with the held orientation"""
         ...
     def __init__(*args: Any, **kwargs: Any) -> Any: ...
     @property
     def contact_ticks(self) -> int:
+        """ticks with any contact (must be 0: free space)"""
         ...
     @property
     def controller(self) -> str:
+        """the docking law: "cic", "hqp-ac" or "se3\""""
         ...
     @property
-    def loops(self) -> typing.Annotated[list[TrackingErrors], "FixedSize(2)"]:
+    def loops(self) -> list[TrackingErrors]:
         """circle, figure-eight"""
         ...
     def ok(self: TrackingGateReport) -> bool:
@@ -6966,12 +7317,15 @@ class TrackingGateReport:
         ...
     @property
     def run(self) -> RunResult:
+        """the simulation's account"""
         ...
     @property
     def source(self) -> ForceSource:
+        """where the measured wrench came from"""
         ...
     @property
     def total(self) -> TrackingErrors:
+        """errors over both loops and the settle time"""
         ...
 
 class TrapezoidProfile:
@@ -6982,32 +7336,40 @@ class TrapezoidProfile:
         ...
     @property
     def distance(self) -> float:
+        """the distance d [u]"""
         ...
     @property
     def duration(self) -> float:
+        """the duration T [s]"""
         ...
     def fraction(self: TrapezoidProfile, t: float) -> float:
         ...
     @property
     def peak_velocity(self) -> float:
+        """the highest speed reached (v_max for a trapezoid, less for a triangle) [u/s]"""
         ...
     @property
     def triangular(self) -> bool:
+        """True when v_max is never reached: the profile is a triangle"""
         ...
 
 class TrapezoidSample:
     def __init__(*args: Any, **kwargs: Any) -> Any: ...
     @property
     def acceleration(self) -> float:
+        """+a, 0 or −a [u/s²]"""
         ...
     @property
     def fraction(self) -> float:
+        """position/d in [0, 1]"""
         ...
     @property
     def position(self) -> float:
+        """distance covered, 0 … d [u]"""
         ...
     @property
     def velocity(self) -> float:
+        """speed, ≥ 0 [u/s]"""
         ...
 
 class TrialOutcome:
@@ -7015,10 +7377,11 @@ class TrialOutcome:
     def __init__(*args: Any, **kwargs: Any) -> Any: ...
     @property
     def end_time(self) -> float:
-        """[s]"""
+        """simulated time at the end [s]"""
         ...
     @property
     def message(self) -> str:
+        """one line: what happened (why it failed)"""
         ...
     @property
     def metrics(self) -> dict:
@@ -7030,27 +7393,35 @@ class TrialOutcome:
         ...
     @property
     def recording(self) -> str | os.PathLike[str]:
+        """the recording folder (empty when not recorded)"""
         ...
     @property
     def recording_error(self) -> str:
+        """why the recording is incomplete (empty when fine)"""
         ...
     @property
     def scenario(self) -> str:
+        """the scenario's name"""
         ...
     @property
     def status(self) -> str:
+        """the simulation's account"""
         ...
     @property
     def success(self) -> bool:
+        """the verdict is the scenario's success"""
         ...
     @property
     def verdict(self) -> str:
+        """one of the scenario's verdicts ("held", "misplaced", "seated")"""
         ...
     @property
     def video_error(self) -> str:
+        """why a video was not written (empty when fine)"""
         ...
     @property
     def videos(self) -> list[str | os.PathLike[str]]:
+        """the MP4s written complete"""
         ...
 
 class VectorEnvironment:
@@ -7153,9 +7524,11 @@ class VideoWriter:
         ...
     @property
     def complete(self) -> bool:
+        """True once the finalized, checked video is at path() (after a successful close())"""
         ...
     @property
     def frames(self) -> int:
+        """frames written so far"""
         ...
     def write(self: VideoWriter, frame: ArrayLike) -> None:
         ...
@@ -7190,6 +7563,7 @@ class WaypointPlanner:
         ...
     @property
     def chain(self) -> Chain:
+        """the chain planned for"""
         ...
     def plan(self: WaypointPlanner, q_start: ArrayLike, waypoints: list[ArrayLike]) -> PlanResult:
         """waypoints: Poses (or 4x4 matrices)"""
@@ -7198,42 +7572,55 @@ class WaypointPlanner:
         ...
 
 class WaypointReport:
+    """What happened at one waypoint."""
     @property
     def X_WT(self) -> Pose:
+        """the pose asked for"""
         ...
     def __init__(*args: Any, **kwargs: Any) -> Any: ...
     @property
     def branch(self) -> int:
+        """0: local IK from the previous waypoint; b ≥ 1: global branch b"""
         ...
     @property
     def detour(self) -> bool:
+        """True when a via configuration was inserted before it"""
         ...
     @property
     def ik(self) -> IkStatus:
+        """status of the IK that chose q"""
         ...
     @property
     def index(self) -> int:
+        """position in the path (0 = first waypoint after the start)"""
         ...
     @property
     def max_torque_ratio(self) -> float:
+        """largest |τ|/τ_max on the way here"""
         ...
     @property
     def message(self) -> str:
+        """"ok" or why it failed"""
         ...
     @property
     def min_sigma(self) -> float:
+        """smallest σmin on the way here"""
         ...
     @property
     def orientation_error(self) -> float:
+        """orientation error at q [rad]"""
         ...
     @property
     def position_error(self) -> float:
+        """position error at q [m]"""
         ...
     @property
     def q(self) -> NDArray[np.float64]:
+        """the configuration chosen, the best IK iterate on failure (n,) [rad or m]"""
         ...
     @property
     def time(self) -> float:
+        """arrival time in the trajectory (when ok) [s]"""
         ...
 
 class WeldGraspOptions:
@@ -7243,12 +7630,13 @@ class WeldGraspOptions:
         ...
     @property
     def damping_ratio(self) -> float:
+        """damping ratio of the weld constraint"""
         ...
     @damping_ratio.setter
     def damping_ratio(self, value: float) -> None: ...
     @property
     def time_constant(self) -> float:
-        """[s]"""
+        """time constant of the weld's solref (> 0) [s]"""
         ...
     @time_constant.setter
     def time_constant(self, value: float) -> None: ...
@@ -7293,6 +7681,7 @@ class WorkspaceResult:
     def __init__(*args: Any, **kwargs: Any) -> Any: ...
     @property
     def centroid(self) -> NDArray[np.float64]:
+        """mean frame position, world (3,) [m]"""
         ...
     @property
     def lower(self) -> NDArray[np.float64]:
@@ -7304,18 +7693,23 @@ class WorkspaceResult:
         ...
     @property
     def max_manipulability(self) -> float:
+        """largest manipulability over the samples (0 when not computed)"""
         ...
     @property
     def max_reach_from_base(self) -> float:
+        """max |p_WE − p_WB| [m]"""
         ...
     @property
     def max_reach_from_origin(self) -> float:
+        """max |p_WE| [m]"""
         ...
     @property
     def mean_manipulability(self) -> float:
+        """mean manipulability over the samples (0 when not computed)"""
         ...
     @property
     def min_manipulability(self) -> float:
+        """smallest manipulability over the samples (0 when not computed)"""
         ...
     @property
     def p_WB(self) -> NDArray[np.float64]:
@@ -7327,9 +7721,11 @@ class WorkspaceResult:
         ...
     @property
     def samples(self) -> int:
+        """samples drawn (fewer than asked when interrupted)"""
         ...
     @property
     def seed(self) -> int:
+        """seed of the samples"""
         ...
     @property
     def upper(self) -> NDArray[np.float64]:
@@ -7342,18 +7738,21 @@ class WrenchReading:
     def __init__(*args: Any, **kwargs: Any) -> Any: ...
     @property
     def age(self) -> float:
+        """d.time − time: one physics timestep for after_step, 0 otherwise [s]"""
         ...
     def ok(self: WrenchReading) -> bool:
         ...
     @property
     def status(self) -> WrenchStatus:
+        """ok, or non_finite (wrench zeroed)"""
         ...
     @property
     def time(self) -> float:
+        """simulation time at which the value was measured [s]"""
         ...
     @property
     def wrench(self) -> NDArray[np.float64]:
-        """[f; tau] (6,) [N; N m]"""
+        """the wrench [f; τ], linear first, in the axes and about the point asked for (6,) [N, N·m]"""
         ...
 
 class WrenchSourceKind(enum.Enum):
@@ -7684,3 +8083,20 @@ class se3:
     @staticmethod
     def vee(xi_hat: ArrayLike) -> NDArray[np.float64]:
         ...
+
+from . import model as model
+from . import lie as lie
+from . import kinematics as kinematics
+from . import ik as ik
+from . import dynamics as dynamics
+from . import control as control
+from . import sim as sim
+from . import state as state
+from . import trajectory as trajectory
+from . import planning as planning
+from . import scene as scene
+from . import tasks as tasks
+from . import render as render
+from . import teleop as teleop
+from . import env as env
+from . import scenario as scenario

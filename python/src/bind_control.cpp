@@ -22,7 +22,8 @@ template <typename C, typename O>
 void controller_class(py::module_& m, const char* name, const char* doc) {
   auto cls = py::class_<C, Controller>(m, name, doc);
   cls.def(py::init<const Chain&, const O&>(), py::arg("chain"), py::arg("options") = O{})
-      .def_property_readonly("options", [](const C& c) { return c.options(); });
+      .def_property_readonly(
+          "options", [](const C& c) { return c.options(); }, "the controller's options");
   bind_compute<C>(cls);
 }
 
@@ -45,9 +46,10 @@ void bind_control(py::module_& m) {
   auto joint =
       py::class_<JointReference>(m, "JointReference", "Desired joint motion (chain order).");
   joint.def(py::init<>());
-  vector_property<JointReference>(joint, "q", &JointReference::q, "(n,) [rad or m]");
-  vector_property<JointReference>(joint, "qd", &JointReference::qd, "(n,)");
-  vector_property<JointReference>(joint, "qdd", &JointReference::qdd, "(n,)");
+  vector_property<JointReference>(joint, "q", &JointReference::q, "position (n,) [rad or m]");
+  vector_property<JointReference>(joint, "qd", &JointReference::qd, "velocity (n,) [rad/s or m/s]");
+  vector_property<JointReference>(joint, "qdd", &JointReference::qdd,
+                                  "acceleration (n,) [rad/s² or m/s²]");
   auto task =
       py::class_<TaskReference>(m, "TaskReference", "Desired motion of the frame E, world axes.");
   task.def(py::init<>())
@@ -59,8 +61,9 @@ void bind_control(py::module_& m) {
   fixed_property<TaskReference>(task, "F_ext", &TaskReference::F_ext, "desired wrench (6,)");
   py::class_<Reference>(m, "Reference", "What a controller tracks this tick.")
       .def(py::init<>())
-      .def_readwrite("joint", &Reference::joint)
-      .def_readwrite("task", &Reference::task)
+      .def_readwrite("joint", &Reference::joint, "the joint-space reference (q, q̇, q̈)")
+      .def_readwrite("task", &Reference::task,
+                     "the task-space reference (pose, twist, acceleration, wrench)")
       .def_readwrite("gripper", &Reference::gripper, "0 open .. 1 closed")
       .def("copy", [](const Reference& r) { return r; });
 
@@ -72,21 +75,31 @@ void bind_control(py::module_& m) {
       "exception it raises stops the run and is raised by Simulation.tick/run.")
       .def(py::init<const Chain&, CommandKind, std::string>(), py::arg("chain"),
            py::arg("kind") = CommandKind::torque, py::arg("name") = "python")
-      .def_property_readonly("name", [](const Controller& c) { return std::string(c.name()); })
-      .def_property_readonly("command_kind", &Controller::command_kind)
-      .def_property_readonly("chain", &Controller::chain)
-      .def_property_readonly("compensates_bias", &Controller::compensates_bias)
+      .def_property_readonly(
+          "name", [](const Controller& c) { return std::string(c.name()); },
+          "short identifier, e.g. \"osc\", \"ct\", \"joint-pd\"")
+      .def_property_readonly("command_kind", &Controller::command_kind,
+                             "whether compute writes torques or position targets")
+      .def_property_readonly("chain", &Controller::chain, "the chain this controller commands")
+      .def_property_readonly(
+          "compensates_bias", &Controller::compensates_bias,
+          "True when the commands already cancel the bias forces (gravity, possibly Coriolis)")
       .def("reset", &Controller::reset, "forgets integrators and filters")
-      .def_property_readonly("internal_names",
-                             [](const Controller& c) {
-                               const auto s = c.internal_names();
-                               return std::vector<std::string>(s.begin(), s.end());
-                             })
-      .def_property_readonly("internal_values",
-                             [](const Controller& c) {
-                               const auto s = c.internal_values();
-                               return to_array(s.data(), static_cast<Eigen::Index>(s.size()));
-                             })
+      .def_property_readonly(
+          "internal_names",
+          [](const Controller& c) {
+            const auto s = c.internal_names();
+            return std::vector<std::string>(s.begin(), s.end());
+          },
+          "names of the internals a recorder logs each tick")
+      .def_property_readonly(
+          "internal_values",
+          [](const Controller& c) {
+            const auto s = c.internal_values();
+            return to_array(s.data(), static_cast<Eigen::Index>(s.size()));
+          },
+          "values of those internals from the last compute, in internal_names order "
+          "(len(internal_names),)")
       .def(
           "compute",
           [](Controller& c, const DataHandle& d, const Reference& reference, py::handle out) {
@@ -106,7 +119,7 @@ void bind_control(py::module_& m) {
   joint_pd
       .def(py::init<const Chain&, const JointPdOptions&>(), py::arg("chain"),
            py::arg("options") = JointPdOptions{})
-      .def_property_readonly("gains", &JointPdController::gains);
+      .def_property_readonly("gains", &JointPdController::gains, "the gains, one entry per joint");
   bind_compute<JointPdController>(joint_pd);
   auto gravity_servo = py::class_<GravityCompensationController, Controller>(
       m, "GravityCompensationController",
@@ -142,7 +155,8 @@ void bind_control(py::module_& m) {
   osc_controller
       .def(py::init<const Chain&, const OperationalSpaceOptions&>(), py::arg("chain"),
            py::arg("options") = OperationalSpaceOptions{})
-      .def_property_readonly("options", &OperationalSpaceController::options)
+      .def_property_readonly("options", &OperationalSpaceController::options,
+                             "the controller's options")
       .def(
           "set_measured_wrench",
           [](OperationalSpaceController& c, py::handle F) {
@@ -150,29 +164,41 @@ void bind_control(py::module_& m) {
           },
           py::arg("F_W"))
       .def_property_readonly(
-          "integral", [](const OperationalSpaceController& c) { return Vector6d(c.integral()); })
-      .def_property_readonly("task_force", [](const OperationalSpaceController& c) {
-        return Vector6d(c.task_force());
-      });
+          "integral", [](const OperationalSpaceController& c) { return Vector6d(c.integral()); },
+          "∫e dt after the last compute, first m entries used (6,) [m·s, rad·s]")
+      .def_property_readonly(
+          "task_force",
+          [](const OperationalSpaceController& c) { return Vector6d(c.task_force()); },
+          "task-space force F of the last compute, first m entries used (6,) [N, N·m]");
   bind_compute<OperationalSpaceController>(osc_controller);
 
   options_class<StiffnessRelease>(m, "StiffnessRelease")
-      .def_readwrite("axes", &StiffnessRelease::axes);
+      .def_readwrite("axes", &StiffnessRelease::axes,
+                     "the λ axes [x, y, z, rx, ry, rz] (E's own axes) whose stiffness goes to zero "
+                     "on contact (6,)");
   auto se3o = options_class<Se3ImpedanceOptions>(m, "Se3ImpedanceOptions");
-  fixed_property<Se3ImpedanceOptions>(se3o, "inertia", &Se3ImpedanceOptions::inertia, "A (6, 6)");
-  fixed_property<Se3ImpedanceOptions>(se3o, "damping", &Se3ImpedanceOptions::damping, "D (6, 6)");
-  fixed_property<Se3ImpedanceOptions>(se3o, "stiffness", &Se3ImpedanceOptions::stiffness,
-                                      "K (6, 6)");
+  fixed_property<Se3ImpedanceOptions>(
+      se3o, "inertia", &Se3ImpedanceOptions::inertia,
+      "desired apparent inertia A, symmetric positive definite (6, 6) [kg; kg·m²]");
+  fixed_property<Se3ImpedanceOptions>(
+      se3o, "damping", &Se3ImpedanceOptions::damping,
+      "damping D, symmetric positive definite (6, 6) [N·s/m; N·m·s/rad]");
+  fixed_property<Se3ImpedanceOptions>(
+      se3o, "stiffness", &Se3ImpedanceOptions::stiffness,
+      "stiffness K, symmetric positive semi-definite (6, 6) [N/m; N·m/rad]");
   def_enum<Se3ImpedanceStatus>(m, "Se3ImpedanceStatus");
   auto se3_controller = py::class_<Se3ImpedanceController, Controller>(
       m, "Se3ImpedanceController", "SE(3) Lie-group impedance (full 6x6 A, D, K).");
   se3_controller
       .def(py::init<const Chain&, const Se3ImpedanceOptions&>(), py::arg("chain"),
            py::arg("options") = Se3ImpedanceOptions{})
-      .def_property_readonly("options", &Se3ImpedanceController::options)
-      .def_property_readonly("status", &Se3ImpedanceController::status)
-      .def_property_readonly("error",
-                             [](const Se3ImpedanceController& c) { return Vector6d(c.error()); })
+      .def_property_readonly("options", &Se3ImpedanceController::options,
+                             "the controller's options")
+      .def_property_readonly("status", &Se3ImpedanceController::status,
+                             "status of the last compute")
+      .def_property_readonly(
+          "error", [](const Se3ImpedanceController& c) { return Vector6d(c.error()); },
+          "λ = log(X_EW·X_WD) at the last compute (6,) [m, rad]")
       .def(
           "set_measured_wrench",
           [](Se3ImpedanceController& c, py::handle F) {
@@ -196,8 +222,9 @@ void bind_control(py::module_& m) {
   bind_compute<CartesianImpedanceController>(cic_controller);
 
   auto compliance = options_class<AdaptiveComplianceOptions>(m, "AdaptiveComplianceOptions");
-  fixed_property<AdaptiveComplianceOptions>(compliance, "stiffness",
-                                            &AdaptiveComplianceOptions::stiffness, "K0 (6, 6)");
+  fixed_property<AdaptiveComplianceOptions>(
+      compliance, "stiffness", &AdaptiveComplianceOptions::stiffness,
+      "nominal task stiffness K0, symmetric positive definite (6, 6) [N/m; N·m/rad]");
   options_class<HqpAcPreload>(m, "HqpAcPreload");
   options_class<HqpAcOptions>(m, "HqpAcOptions");
   def_enum<HqpAcStatus>(m, "HqpAcStatus");
@@ -206,10 +233,11 @@ void bind_control(py::module_& m) {
   hqp_controller
       .def(py::init<const Chain&, const HqpAcOptions&>(), py::arg("chain"),
            py::arg("options") = HqpAcOptions{})
-      .def_property_readonly("status", &HqpAcController::status)
-      .def_property_readonly("acceleration", [](const HqpAcController& c) {
-        return Eigen::VectorXd(c.acceleration());
-      });
+      .def_property_readonly("status", &HqpAcController::status, "status of the last compute")
+      .def_property_readonly(
+          "acceleration",
+          [](const HqpAcController& c) { return Eigen::VectorXd(c.acceleration()); },
+          "commanded joint acceleration q̈ of the last compute (n,) [rad/s²]");
   bind_compute<HqpAcController>(hqp_controller);
 
   options_class<GripperPdOptions>(m, "GripperPdOptions");
@@ -218,10 +246,12 @@ void bind_control(py::module_& m) {
   gripper_controller
       .def(py::init<const Chain&, const GripperPdOptions&>(), py::arg("fingers"),
            py::arg("options") = GripperPdOptions{})
-      .def_property_readonly("open",
-                             [](const GripperPdController& c) { return Eigen::VectorXd(c.open()); })
       .def_property_readonly(
-          "closed", [](const GripperPdController& c) { return Eigen::VectorXd(c.closed()); });
+          "open", [](const GripperPdController& c) { return Eigen::VectorXd(c.open()); },
+          "finger positions at fraction 0 (n,) [m or rad]")
+      .def_property_readonly(
+          "closed", [](const GripperPdController& c) { return Eigen::VectorXd(c.closed()); },
+          "finger positions at fraction 1 (n,) [m or rad]");
   bind_compute<GripperPdController>(gripper_controller);
 
   m.def(

@@ -81,7 +81,8 @@ void bind_scene_and_controller(py::module_& m) {
   auto scene_options =
       py::class_<DockingSceneOptions>(m, "DockingSceneOptions", "How to build the docking scene.");
   fields_init<DockingSceneOptions>(scene_options, "DockingSceneOptions");
-  scene_options.def_readwrite("geometry", &DockingSceneOptions::geometry)
+  scene_options
+      .def_readwrite("geometry", &DockingSceneOptions::geometry, "peg and socket dimensions")
       .def_property(
           "X_WS", [](const DockingSceneOptions& o) { return o.X_WS; },
           [](DockingSceneOptions& o, py::handle X) { o.X_WS = to_pose(X, "X_WS"); },
@@ -93,15 +94,16 @@ void bind_scene_and_controller(py::module_& m) {
       m, "DockingScene",
       "The compiled docking scene (iiwa14 torque motors, peg, socket); immutable, shared by "
       "runs through DockingOptions.scene.")
-      .def_readonly("robot", &DockingScene::robot)
+      .def_readonly("robot", &DockingScene::robot, "the scene's model")
       .def_readonly("chain", &DockingScene::chain, "iiwa joints 1-7, frame: the peg tip")
-      .def_readonly("options", &DockingScene::options)
-      .def_readonly("peg", &DockingScene::peg, "GeomSet")
-      .def_readonly("socket", &DockingScene::socket, "GeomSet")
-      .def_readonly("peg_body", &DockingScene::peg_body)
-      .def_readonly("peg_mass", &DockingScene::peg_mass, "[kg]")
+      .def_readonly("options", &DockingScene::options, "the options the scene was built with")
+      .def_readonly("peg", &DockingScene::peg, "the peg's geoms")
+      .def_readonly("socket", &DockingScene::socket, "the socket's geoms")
+      .def_readonly("peg_body", &DockingScene::peg_body, "body id of the peg")
+      .def_readonly("peg_mass", &DockingScene::peg_mass, "the peg's mass [kg]")
       .def_property_readonly(
-          "peg_com_E", [](const DockingScene& s) { return Eigen::Vector3d(s.peg_com_E); }, "(3,)")
+          "peg_com_E", [](const DockingScene& s) { return Eigen::Vector3d(s.peg_com_E); },
+          "the peg's centre of mass in E (3,) [m]")
       .def("seated", py::overload_cast<>(&DockingScene::seated, py::const_),
            "Pose of the tip seated at the bottom of the hole.");
   m.def(
@@ -134,7 +136,9 @@ void bind_scene_and_controller(py::module_& m) {
                                           &force_source, "ForceSource or 'sensor', 'observer'");
   co.def_readwrite("release_axes", &DockingControllerOptions::release_axes,
                    "released on contact, E's [x, y, z, rx, ry, rz] (6 bools)")
-      .def_readwrite("friction_mode", &DockingControllerOptions::friction_mode);
+      .def_readwrite("friction_mode", &DockingControllerOptions::friction_mode,
+                     "what gives the friction feed-forward its sign: the joint velocity or the "
+                     "commanded torque");
 
   auto docking =
       py::class_<DockingController, Controller>(
@@ -143,7 +147,8 @@ void bind_scene_and_controller(py::module_& m) {
           "controller.")
           .def(py::init<const DockingScene&, const DockingControllerOptions&>(), py::arg("scene"),
                py::arg("options") = DockingControllerOptions{})
-          .def_property_readonly("options", &DockingController::options)
+          .def_property_readonly("options", &DockingController::options,
+                                 "the options the controller was built with")
           .def_property_readonly(
               "measured_wrench",
               [](const DockingController& c) { return Vector6d(c.measured_wrench()); },
@@ -151,7 +156,9 @@ void bind_scene_and_controller(py::module_& m) {
           .def_property_readonly(
               "stiffness", [](const DockingController& c) { return Vector6d(c.stiffness()); },
               "stiffness diagonal in force at the last compute (6,)")
-          .def_property_readonly("bad_wrench_ticks", &DockingController::bad_wrench_ticks);
+          .def_property_readonly("bad_wrench_ticks", &DockingController::bad_wrench_ticks,
+                                 "ticks whose sensor reading was not finite (taken as zero, or the "
+                                 "last good value for se3)");
   bind_compute<DockingController>(docking);
 }
 
@@ -164,9 +171,12 @@ void bind_motion(py::module_& m) {
              return DockingOffset{dx, dy, dyaw};
            }),
            py::arg("dx") = 0.0, py::arg("dy") = 0.0, py::arg("dyaw") = 0.0)
-      .def_readwrite("dx", &DockingOffset::dx, "[m]")
-      .def_readwrite("dy", &DockingOffset::dy, "[m]")
-      .def_readwrite("dyaw", &DockingOffset::dyaw, "[rad]");
+      .def_readwrite("dx", &DockingOffset::dx,
+                     "error of the believed socket along x, |dx| ≤ 0.05 [m]")
+      .def_readwrite("dy", &DockingOffset::dy,
+                     "error of the believed socket along y, |dy| ≤ 0.05 [m]")
+      .def_readwrite("dyaw", &DockingOffset::dyaw,
+                     "error of the believed socket about its axis, |dyaw| ≤ π [rad]");
   py::enum_<DockingReference>(m, "DockingReference", "The shape of the reference.")
       .value("two_phase", DockingReference::two_phase)
       .value("single_segment", DockingReference::single_segment);
@@ -184,18 +194,24 @@ void bind_motion(py::module_& m) {
   fields_init<DockingCriteria>(criteria, "DockingCriteria");
   def_fields(criteria);
   py::class_<DockingPlan>(m, "DockingPlan", "Everything fixed before a run (poses in world).")
-      .def_readonly("offset", &DockingPlan::offset)
+      .def_readonly("offset", &DockingPlan::offset,
+                    "how the believed socket differs from the true one")
       .def_readonly("X_WS", &DockingPlan::X_WS, "the true socket")
       .def_readonly("X_WB", &DockingPlan::X_WB, "the believed socket")
-      .def_readonly("X_start", &DockingPlan::X_start)
-      .def_readonly("X_standoff", &DockingPlan::X_standoff)
+      .def_readonly("X_start", &DockingPlan::X_start,
+                    "E at the start: above the true socket by start_height, peg down")
+      .def_readonly("X_standoff", &DockingPlan::X_standoff,
+                    "E above the believed socket by the standoff")
       .def_readonly("X_seated", &DockingPlan::X_seated, "in the believed socket")
       .def_property_readonly(
-          "q_start", [](const DockingPlan& p) { return Eigen::VectorXd(p.q_start); }, "(7,)")
-      .def_readonly("full_depth", &DockingPlan::full_depth, "[m]")
-      .def_readonly("approach_time", &DockingPlan::approach_time, "[s]")
-      .def_readonly("insert_time", &DockingPlan::insert_time, "[s]")
-      .def_readonly("hold_time", &DockingPlan::hold_time, "[s]")
+          "q_start", [](const DockingPlan& p) { return Eigen::VectorXd(p.q_start); },
+          "the arm at X_start, IK from the home keyframe (7,) [rad]")
+      .def_readonly("full_depth", &DockingPlan::full_depth, "chamfer + bore depth [m]")
+      .def_readonly("approach_time", &DockingPlan::approach_time,
+                    "duration of the approach to the standoff [s]")
+      .def_readonly("insert_time", &DockingPlan::insert_time,
+                    "duration of the insertion (0 for single-segment) [s]")
+      .def_readonly("hold_time", &DockingPlan::hold_time, "duration of the hold at the end [s]")
       .def("duration", &DockingPlan::duration, "[s]");
   m.def(
       "plan_docking",
@@ -222,19 +238,30 @@ void bind_docking_results(py::module_& m) {
   def_readonly_fields(metrics);
   def_enum<DockingOutcome>(m, "DockingOutcome", "How a docking run ended.");
   py::class_<DockingReport>(m, "DockingReport", "What a docking run did.")
-      .def_readonly("plan", &DockingReport::plan)
+      .def_readonly("plan", &DockingReport::plan,
+                    "the approach planned: offset, start and standoff poses")
       .def_readonly("controller", &DockingReport::controller, "'cic', 'hqp-ac', 'se3'")
-      .def_readonly("source", &DockingReport::source)
-      .def_readonly("joint_friction", &DockingReport::joint_friction)
-      .def_readonly("run", &DockingReport::run, "RunResult")
-      .def_readonly("metrics", &DockingReport::metrics)
-      .def_readonly("outcome", &DockingReport::outcome)
-      .def_readonly("control_period", &DockingReport::control_period, "[s]")
-      .def_readonly("bad_wrench_ticks", &DockingReport::bad_wrench_ticks)
-      .def_readonly("qp_least_squares", &DockingReport::qp_least_squares)
-      .def_readonly("qp_null_space_dropped", &DockingReport::qp_null_space_dropped)
-      .def_property_readonly("sample_count",
-                             [](const DockingReport& r) { return r.samples.size(); })
+      .def_readonly("source", &DockingReport::source, "where the measured wrench came from")
+      .def_readonly("joint_friction", &DockingReport::joint_friction,
+                    "the variant with Franka joint friction")
+      .def_readonly("run", &DockingReport::run,
+                    "the simulation's account (status, end time, message)")
+      .def_readonly("metrics", &DockingReport::metrics, "forces, depths and times of the run")
+      .def_readonly("outcome", &DockingReport::outcome,
+                    "seated, not seated, or why the run stopped")
+      .def_readonly("control_period", &DockingReport::control_period,
+                    "control period of the run [s]")
+      .def_readonly("bad_wrench_ticks", &DockingReport::bad_wrench_ticks,
+                    "non-finite sensor readings (taken as zero)")
+      .def_readonly(
+          "qp_least_squares", &DockingReport::qp_least_squares,
+          "hqp-ac: ticks whose main QP failed (least-squares fallback); 0 for the other laws")
+      .def_readonly(
+          "qp_null_space_dropped", &DockingReport::qp_null_space_dropped,
+          "hqp-ac: ticks whose null-space QP failed (its step dropped); 0 for the other laws")
+      .def_property_readonly(
+          "sample_count", [](const DockingReport& r) { return r.samples.size(); },
+          "number of ticks sampled (0 when samples were not kept)")
       .def(
           "samples", [](const DockingReport& r) { return sample_arrays(r.samples); },
           "Every tick's ground truth as arrays (N = sample_count; empty without keep_samples): "
@@ -242,38 +269,56 @@ void bind_docking_results(py::module_& m) {
           "F_measured (N, 6), stiffness (N, 6), joint_position_ratio, joint_velocity_ratio, "
           "manipulability (N,), contacts (N,) int, saturated, other_contact, within_limits, "
           "finite (N,) bool.")
-      .def_readonly("recording", &DockingReport::recording)
-      .def_readonly("recording_error", &DockingReport::recording_error)
-      .def_readonly("video", &DockingReport::video)
-      .def_readonly("video_frames", &DockingReport::video_frames)
-      .def_readonly("video_error", &DockingReport::video_error)
-      .def_readonly("video_written", &DockingReport::video_written)
+      .def_readonly("recording", &DockingReport::recording,
+                    "the recording directory (empty when not recorded)")
+      .def_readonly("recording_error", &DockingReport::recording_error,
+                    "why the recording is incomplete (empty when fine)")
+      .def_readonly("video", &DockingReport::video, "the MP4 asked for (empty when no video)")
+      .def_readonly("video_frames", &DockingReport::video_frames, "frames written to the video")
+      .def_readonly("video_error", &DockingReport::video_error,
+                    "why the video was not written (empty when fine)")
+      .def_readonly("video_written", &DockingReport::video_written,
+                    "the MP4 is complete at its path (an old file is kept if not)")
       .def("ok", &DockingReport::ok, "True when seated")
       .def("result_line", &docking_result_line, "One line with the figures.");
 
   py::class_<DockingGridRun>(m, "DockingGridRun", "One run of the grid.")
-      .def_readonly("offset", &DockingGridRun::offset)
-      .def_readonly("outcome", &DockingGridRun::outcome)
-      .def_readonly("metrics", &DockingGridRun::metrics)
-      .def_readonly("message", &DockingGridRun::message);
+      .def_readonly("offset", &DockingGridRun::offset, "the socket offset this run was given")
+      .def_readonly("outcome", &DockingGridRun::outcome,
+                    "seated, not seated, or why the run stopped")
+      .def_readonly("metrics", &DockingGridRun::metrics, "forces, depths and times of the run")
+      .def_readonly("message", &DockingGridRun::message,
+                    "the run's own account (RunResult.message)");
   py::class_<DockingGridResult>(m, "DockingGridResult",
                                 "The grid's runs (x slowest, then y, then yaw) and summary.")
-      .def_readonly("controller", &DockingGridResult::controller)
-      .def_readonly("source", &DockingGridResult::source)
-      .def_readonly("joint_friction", &DockingGridResult::joint_friction)
-      .def_readonly("planned", &DockingGridResult::planned)
-      .def_readonly("interrupted", &DockingGridResult::interrupted)
-      .def_readonly("runs", &DockingGridResult::runs)
-      .def_readonly("seated", &DockingGridResult::seated)
-      .def_readonly("max_peak_force", &DockingGridResult::max_peak_force, "[N]")
-      .def_readonly("max_peak_axial_force", &DockingGridResult::max_peak_axial_force, "[N]")
-      .def_readonly("max_peak_axial_moment", &DockingGridResult::max_peak_axial_moment, "[N m]")
-      .def_readonly("max_lateral", &DockingGridResult::max_lateral, "[m]")
-      .def_readonly("max_tilt", &DockingGridResult::max_tilt, "[rad]")
-      .def_readonly("min_steady_axial_force", &DockingGridResult::min_steady_axial_force, "[N]")
-      .def_readonly("max_steady_axial_force", &DockingGridResult::max_steady_axial_force, "[N]")
-      .def_readonly("max_position_rms", &DockingGridResult::max_position_rms, "[m]")
-      .def_readonly("max_orientation_rms", &DockingGridResult::max_orientation_rms, "[rad]")
+      .def_readonly("controller", &DockingGridResult::controller,
+                    "the docking law: \"cic\", \"hqp-ac\" or \"se3\"")
+      .def_readonly("source", &DockingGridResult::source, "where the measured wrench came from")
+      .def_readonly("joint_friction", &DockingGridResult::joint_friction,
+                    "the variant with Franka joint friction")
+      .def_readonly("planned", &DockingGridResult::planned, "runs in the matrix")
+      .def_readonly("interrupted", &DockingGridResult::interrupted,
+                    "Ctrl-C/SIGTERM stopped the matrix: runs holds the runs that completed")
+      .def_readonly("runs", &DockingGridResult::runs,
+                    "the completed runs, in matrix order (x slowest, then y, then yaw)")
+      .def_readonly("seated", &DockingGridResult::seated, "completed runs that seated the peg")
+      .def_readonly("max_peak_force", &DockingGridResult::max_peak_force,
+                    "largest peak contact force over the runs [N]")
+      .def_readonly("max_peak_axial_force", &DockingGridResult::max_peak_axial_force,
+                    "largest peak axial force over the runs [N]")
+      .def_readonly("max_peak_axial_moment", &DockingGridResult::max_peak_axial_moment,
+                    "largest peak axial moment over the runs [N·m]")
+      .def_readonly("max_lateral", &DockingGridResult::max_lateral,
+                    "worst final-window lateral error [m]")
+      .def_readonly("max_tilt", &DockingGridResult::max_tilt, "worst final-window tilt [rad]")
+      .def_readonly("min_steady_axial_force", &DockingGridResult::min_steady_axial_force,
+                    "smallest final-window axial force [N]")
+      .def_readonly("max_steady_axial_force", &DockingGridResult::max_steady_axial_force,
+                    "largest final-window axial force [N]")
+      .def_readonly("max_position_rms", &DockingGridResult::max_position_rms,
+                    "worst free-motion position RMS [m]")
+      .def_readonly("max_orientation_rms", &DockingGridResult::max_orientation_rms,
+                    "worst free-motion orientation RMS [rad]")
       .def_readonly("failures", &DockingGridResult::failures, "reason -> runs");
 }
 
@@ -282,15 +327,17 @@ void bind_runs(py::module_& m) {
   fields_init<DockingVideo>(video, "DockingVideo");
   video.def_readwrite("path", &DockingVideo::path, "MP4; '' = none")
       .def_readwrite("camera", &DockingVideo::camera, "'' (default view), 'follow' or a camera")
-      .def_readwrite("options", &DockingVideo::options, "RunVideoOptions");
+      .def_readwrite("options", &DockingVideo::options,
+                     "size, frame rate, encoding, render options");
   auto options = py::class_<DockingOptions>(m, "DockingOptions", "How to run one docking.");
   fields_init<DockingOptions>(options, "DockingOptions");
-  options.def_readwrite("controller", &DockingOptions::controller, "DockingControllerOptions")
-      .def_readwrite("offset", &DockingOptions::offset, "DockingOffset")
-      .def_readwrite("motion", &DockingOptions::motion, "DockingMotion")
-      .def_readwrite("criteria", &DockingOptions::criteria, "DockingCriteria")
-      .def_readwrite("joint_friction", &DockingOptions::joint_friction)
-      .def_readwrite("geometry", &DockingOptions::geometry, "DockingGeometry")
+  options.def_readwrite("controller", &DockingOptions::controller, "law, force source, gains")
+      .def_readwrite("offset", &DockingOptions::offset, "the error of the believed socket pose")
+      .def_readwrite("motion", &DockingOptions::motion, "reference shape and timing, preload")
+      .def_readwrite("criteria", &DockingOptions::criteria, "the seating criteria")
+      .def_readwrite("joint_friction", &DockingOptions::joint_friction,
+                     "the variant with Franka joint friction")
+      .def_readwrite("geometry", &DockingOptions::geometry, "the peg and the socket")
       .def_property(
           "scene",
           [](const DockingOptions& o) -> std::shared_ptr<DockingScene> {
@@ -298,9 +345,10 @@ void bind_runs(py::module_& m) {
           },
           [](DockingOptions& o, std::shared_ptr<DockingScene> s) { o.scene = std::move(s); },
           "a compiled DockingScene shared by runs, or None: built per run")
-      .def_readwrite("max_acceleration", &DockingOptions::max_acceleration, "[rad/s^2]")
+      .def_readwrite("max_acceleration", &DockingOptions::max_acceleration,
+                     "divergence bound on |q̈| [rad/s²]")
       .def_readwrite("record", &DockingOptions::record, "recording directory; '' = none")
-      .def_readwrite("video", &DockingOptions::video, "DockingVideo")
+      .def_readwrite("video", &DockingOptions::video, "MP4 of the run (empty path: none)")
       .def_readwrite("keep_samples", &DockingOptions::keep_samples, "keep every tick's sample");
 
   m.def(
@@ -317,7 +365,8 @@ void bind_runs(py::module_& m) {
       m, "DockingGridOptions",
       "The matrix of offsets (x, y [m], yaw [rad] values) and the base options of every run.");
   fields_init<DockingGridOptions>(grid, "DockingGridOptions");
-  grid.def_readwrite("base", &DockingGridOptions::base, "DockingOptions (no record or video)");
+  grid.def_readwrite("base", &DockingGridOptions::base,
+                     "everything but the offset (DockingOptions; no record or video)");
   list_property<DockingGridOptions>(grid, "x", &DockingGridOptions::x, "dx values (n,) [m]");
   list_property<DockingGridOptions>(grid, "y", &DockingGridOptions::y, "dy values (n,) [m]");
   list_property<DockingGridOptions>(grid, "yaw", &DockingGridOptions::yaw,
@@ -360,19 +409,25 @@ void bind_gate(py::module_& m) {
       [](TrackingGateOptions& o, std::shared_ptr<DockingScene> s) { o.scene = std::move(s); },
       "a compiled DockingScene, or None: built");
   py::class_<TrackingErrors>(m, "TrackingErrors", "Errors over a stretch of the gate.")
-      .def_readonly("samples", &TrackingErrors::samples)
-      .def_readonly("position_rms", &TrackingErrors::position_rms, "[m]")
-      .def_readonly("orientation_rms", &TrackingErrors::orientation_rms, "[rad]")
-      .def_readonly("max_position", &TrackingErrors::max_position, "[m]")
-      .def_readonly("max_orientation", &TrackingErrors::max_orientation, "[rad]");
+      .def_readonly("samples", &TrackingErrors::samples, "ticks the errors were taken over")
+      .def_readonly("position_rms", &TrackingErrors::position_rms, "RMS of ‖p_E − p_ref‖ [m]")
+      .def_readonly("orientation_rms", &TrackingErrors::orientation_rms,
+                    "RMS of the angle of R_refᵀ·R_E [rad]")
+      .def_readonly("max_position", &TrackingErrors::max_position, "largest ‖p_E − p_ref‖ [m]")
+      .def_readonly("max_orientation", &TrackingErrors::max_orientation,
+                    "largest angle of R_refᵀ·R_E [rad]");
   py::class_<TrackingGateReport>(m, "TrackingGateReport", "What the gate measured.")
-      .def_readonly("controller", &TrackingGateReport::controller)
-      .def_readonly("source", &TrackingGateReport::source)
-      .def_readonly("run", &TrackingGateReport::run)
-      .def_readonly("X_start", &TrackingGateReport::X_start)
+      .def_readonly("controller", &TrackingGateReport::controller,
+                    "the docking law: \"cic\", \"hqp-ac\" or \"se3\"")
+      .def_readonly("source", &TrackingGateReport::source, "where the measured wrench came from")
+      .def_readonly("run", &TrackingGateReport::run, "the simulation's account")
+      .def_readonly("X_start", &TrackingGateReport::X_start,
+                    "the start point c with the held orientation")
       .def_readonly("loops", &TrackingGateReport::loops, "circle, figure-eight")
-      .def_readonly("total", &TrackingGateReport::total)
-      .def_readonly("contact_ticks", &TrackingGateReport::contact_ticks)
+      .def_readonly("total", &TrackingGateReport::total,
+                    "errors over both loops and the settle time")
+      .def_readonly("contact_ticks", &TrackingGateReport::contact_ticks,
+                    "ticks with any contact (must be 0: free space)")
       .def("ok", &TrackingGateReport::ok)
       .def(
           "passes",

@@ -22,8 +22,9 @@ void bind_dynamics(py::module_& m) {
                             "Joint-space dynamics of a chain read from an up-to-date Data (after "
                             "forward): M, bias h, gravity g, J, J̇q̇, inverse dynamics.")
       .def(py::init<const Chain&>(), py::arg("chain"))
-      .def_property_readonly("chain", &ChainDynamics::chain)
-      .def_property_readonly("size", &ChainDynamics::size)
+      .def_property_readonly("chain", &ChainDynamics::chain,
+                             "the chain the dynamics are restricted to")
+      .def_property_readonly("size", &ChainDynamics::size, "number of chain dofs n")
       .def(
           "update",
           [](ChainDynamics& dyn, const DataHandle& d) {
@@ -31,24 +32,34 @@ void bind_dynamics(py::module_& m) {
                 data_of(dyn.chain().robot(), d, "ChainDynamics.update", "the chain's model"));
           },
           py::arg("data"), "Reads everything from data (never writes it).")
-      .def_property_readonly("q", [](const ChainDynamics& d) { return Eigen::VectorXd(d.q()); })
-      .def_property_readonly("qd", [](const ChainDynamics& d) { return Eigen::VectorXd(d.qd()); })
+      .def_property_readonly(
+          "q", [](const ChainDynamics& d) { return Eigen::VectorXd(d.q()); },
+          "chain joint positions at the last update() (n,) [rad or m]")
+      .def_property_readonly(
+          "qd", [](const ChainDynamics& d) { return Eigen::VectorXd(d.qd()); },
+          "chain joint velocities at the last update() (n,) [rad/s or m/s]")
       .def_property_readonly(
           "mass_matrix", [](const ChainDynamics& d) { return Eigen::MatrixXd(d.mass_matrix()); },
-          "M (n, n) [kg m^2 or kg]")
+          "joint-space inertia M, armature included (n, n) [kg·m² or kg]")
       .def_property_readonly(
           "bias", [](const ChainDynamics& d) { return Eigen::VectorXd(d.bias()); },
-          "h = C qd + g (n,)")
+          "bias forces h = C(q, q̇)·q̇ + g(q) on the chain's dofs (n,) [N·m or N]")
       .def_property_readonly(
-          "gravity", [](const ChainDynamics& d) { return Eigen::VectorXd(d.gravity()); }, "g (n,)")
-      .def_property_readonly("pose", [](const ChainDynamics& d) { return d.pose(); })
+          "gravity", [](const ChainDynamics& d) { return Eigen::VectorXd(d.gravity()); },
+          "gravity torques g(q) that hold the arm still (n,) [N·m or N]")
+      .def_property_readonly(
+          "pose", [](const ChainDynamics& d) { return d.pose(); },
+          "pose X_WE of the chain's frame at the last update()")
       .def_property_readonly(
           "jacobian", [](const ChainDynamics& d) { return Matrix6Xd(d.jacobian()); },
           "world-aligned J (6, n)")
-      .def_property_readonly("velocity",
-                             [](const ChainDynamics& d) { return Vector6d(d.velocity()); })
-      .def_property_readonly("bias_acceleration",
-                             [](const ChainDynamics& d) { return Vector6d(d.bias_acceleration()); })
+      .def_property_readonly(
+          "velocity", [](const ChainDynamics& d) { return Vector6d(d.velocity()); },
+          "spatial velocity V_WE = [v; ω] of E, world axes (6,) [m/s, rad/s]")
+      .def_property_readonly(
+          "bias_acceleration",
+          [](const ChainDynamics& d) { return Vector6d(d.bias_acceleration()); },
+          "bias acceleration J̇·q̇ of E, world-aligned, linear first (6,) [m/s², rad/s²]")
       .def(
           "inverse_dynamics",
           [](ChainDynamics& dyn, const DataHandle& d, py::handle qdd) {
@@ -83,39 +94,50 @@ void bind_dynamics(py::module_& m) {
             return t.update(d);
           },
           py::arg("dynamics"))
-      .def_property_readonly("status", &TaskSpaceDynamics::status)
-      .def_property_readonly("lambda_",
-                             [](const TaskSpaceDynamics& t) { return Eigen::MatrixXd(t.lambda()); })
+      .def_property_readonly("status", &TaskSpaceDynamics::status, "status of the last update")
+      .def_property_readonly(
+          "lambda_", [](const TaskSpaceDynamics& t) { return Eigen::MatrixXd(t.lambda()); },
+          "task-space inertia Λ (m, m) [kg for linear rows, kg·m² for angular rows]")
       .def_property_readonly(
           "lambda_inverse",
-          [](const TaskSpaceDynamics& t) { return Eigen::MatrixXd(t.lambda_inverse()); })
-      .def_property_readonly("jbar",
-                             [](const TaskSpaceDynamics& t) { return Eigen::MatrixXd(t.jbar()); })
+          [](const TaskSpaceDynamics& t) { return Eigen::MatrixXd(t.lambda_inverse()); },
+          "Λ⁻¹ = J·M⁻¹·Jᵀ as computed, before flooring (m, m)")
       .def_property_readonly(
-          "nullspace", [](const TaskSpaceDynamics& t) { return Eigen::MatrixXd(t.nullspace()); })
+          "jbar", [](const TaskSpaceDynamics& t) { return Eigen::MatrixXd(t.jbar()); },
+          "dynamically consistent inverse J̄ = M⁻¹·Jᵀ·Λ (n, m)")
+      .def_property_readonly(
+          "nullspace", [](const TaskSpaceDynamics& t) { return Eigen::MatrixXd(t.nullspace()); },
+          "null-space projector N = I − J̄·J (n, n)")
       .def_property_readonly(
           "mass_inverse",
-          [](const TaskSpaceDynamics& t) { return Eigen::MatrixXd(t.mass_inverse()); })
+          [](const TaskSpaceDynamics& t) { return Eigen::MatrixXd(t.mass_inverse()); },
+          "inverse joint-space inertia M⁻¹ (n, n)")
       .def_property_readonly(
           "eigenvalues",
-          [](const TaskSpaceDynamics& t) { return Eigen::VectorXd(t.eigenvalues()); })
-      .def_property_readonly("min_singular_value", &TaskSpaceDynamics::min_singular_value)
-      .def_property_readonly("condition", &TaskSpaceDynamics::condition);
+          [](const TaskSpaceDynamics& t) { return Eigen::VectorXd(t.eigenvalues()); },
+          "eigenvalues of J·M⁻¹·Jᵀ, ascending, before flooring (m,)")
+      .def_property_readonly("min_singular_value", &TaskSpaceDynamics::min_singular_value,
+                             "smallest singular value of J·M^(−1/2); → 0 at a singularity")
+      .def_property_readonly("condition", &TaskSpaceDynamics::condition,
+                             "condition number of J·M⁻¹·Jᵀ (+inf when singular)");
 
   def_enum<SensorTiming>(m, "SensorTiming");
   def_enum<WrenchStatus>(m, "WrenchStatus");
   py::class_<WrenchReading>(m, "WrenchReading")
       .def_property_readonly(
           "wrench", [](const WrenchReading& r) { return Vector6d(r.wrench); },
-          "[f; tau] (6,) [N; N m]")
-      .def_readonly("time", &WrenchReading::time)
-      .def_readonly("age", &WrenchReading::age)
-      .def_readonly("status", &WrenchReading::status)
+          "the wrench [f; τ], linear first, in the axes and about the point asked for (6,) [N, "
+          "N·m]")
+      .def_readonly("time", &WrenchReading::time,
+                    "simulation time at which the value was measured [s]")
+      .def_readonly("age", &WrenchReading::age,
+                    "d.time − time: one physics timestep for after_step, 0 otherwise [s]")
+      .def_readonly("status", &WrenchReading::status, "ok, or non_finite (wrench zeroed)")
       .def("ok", &WrenchReading::ok);
   py::class_<ForceTorqueSensor>(m, "ForceTorqueSensor", "F/T sensor pair on a site.")
       .def(py::init<const Robot&, std::string_view, SensorTiming>(), py::arg("robot"),
            py::arg("site"), py::arg("timing") = SensorTiming::after_step, py::keep_alive<1, 2>())
-      .def_property_readonly("site", &ForceTorqueSensor::site)
+      .def_property_readonly("site", &ForceTorqueSensor::site, "the site's name")
       .def(
           "read_site",
           [](const ForceTorqueSensor& s, const DataHandle& d) {
@@ -152,9 +174,11 @@ void bind_dynamics(py::module_& m) {
       .def(py::init<const Chain&, FrictionFeedForwardOptions>(), py::arg("chain"),
            py::arg("options") = FrictionFeedForwardOptions{})
       .def_property_readonly(
-          "friction", [](const FrictionFeedForward& f) { return Eigen::VectorXd(f.friction()); })
+          "friction", [](const FrictionFeedForward& f) { return Eigen::VectorXd(f.friction()); },
+          "Coulomb friction per dof (n,) [N·m or N]")
       .def_property_readonly(
-          "damping", [](const FrictionFeedForward& f) { return Eigen::VectorXd(f.damping()); })
+          "damping", [](const FrictionFeedForward& f) { return Eigen::VectorXd(f.damping()); },
+          "viscous damping per dof (n,) [N·m·s/rad or N·s/m]")
       .def("active", &FrictionFeedForward::active)
       .def(
           "apply",
@@ -194,13 +218,17 @@ void bind_dynamics(py::module_& m) {
           },
           py::arg("data"), py::arg("dynamics"), py::arg("tau"), py::arg("dt"))
       .def_property_readonly(
-          "residual", [](const MomentumObserver& o) { return Eigen::VectorXd(o.residual()); })
+          "residual", [](const MomentumObserver& o) { return Eigen::VectorXd(o.residual()); },
+          "residual r: all disturbance torques (n,) [N·m or N]")
       .def_property_readonly(
-          "momentum", [](const MomentumObserver& o) { return Eigen::VectorXd(o.momentum()); })
-      .def_property_readonly("wrench",
-                             [](const MomentumObserver& o) { return Vector6d(o.wrench()); })
+          "momentum", [](const MomentumObserver& o) { return Eigen::VectorXd(o.momentum()); },
+          "generalized momentum p = M·q̇ (n,) [kg·m²/s or kg·m/s]")
       .def_property_readonly(
-          "contact_wrench", [](const MomentumObserver& o) { return Vector6d(o.contact_wrench()); });
+          "wrench", [](const MomentumObserver& o) { return Vector6d(o.wrench()); },
+          "wrench estimate from r, world axes about E's origin, [f; τ] (6,) [N, N·m]")
+      .def_property_readonly(
+          "contact_wrench", [](const MomentumObserver& o) { return Vector6d(o.contact_wrench()); },
+          "contact-only wrench estimate, world axes about E's origin, [f; τ] (6,) [N, N·m]");
 }
 
 }  // namespace mjarm::python

@@ -188,7 +188,7 @@ void bind_time_steps(py::module_& m) {
   for (const auto& n : names_of<EpisodeEnd>()) end.value(n.name.data(), n.value, n.doc.data());
 
   py::class_<PyTimeStep>(m, "TimeStep", kTimeStepDoc)
-      .def_readonly("step_type", &PyTimeStep::step_type, "StepType")
+      .def_readonly("step_type", &PyTimeStep::step_type, "first, mid or last step of the episode")
       .def_readonly("reward", &PyTimeStep::reward, "float, None on FIRST")
       .def_readonly("discount", &PyTimeStep::discount,
                     "None on FIRST; 0 on a termination or divergence, 1 otherwise (a time-limit "

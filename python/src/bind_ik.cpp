@@ -95,10 +95,12 @@ void bind_ik(py::module_& m) {
   py::class_<IkResult>(m, "IkResult", "The best configuration found, with its errors.")
       .def(py::init<>())
       .def_readonly("q", &IkResult::q, "joint values (n,)")
-      .def_readonly("status", &IkResult::status)
-      .def_readonly("position_error", &IkResult::position_error, "[m]")
-      .def_readonly("orientation_error", &IkResult::orientation_error, "[rad]")
-      .def_readonly("iterations", &IkResult::iterations)
+      .def_readonly("status", &IkResult::status, "converged, or why the solve stopped")
+      .def_readonly("position_error", &IkResult::position_error,
+                    "‖p_target − p‖, worst target for multi-target [m]")
+      .def_readonly("orientation_error", &IkResult::orientation_error,
+                    "rotation angle between target and achieved [rad]")
+      .def_readonly("iterations", &IkResult::iterations, "iterations run (all restarts together)")
       .def("ok", &IkResult::ok, "status is converged")
       .def("__repr__", [](const IkResult& r) {
         return std::string("<IkResult ") + to_string(r.status) + " after " +
@@ -143,8 +145,8 @@ void bind_ik(py::module_& m) {
                          "repulsion. solve() releases the GIL.")
       .def(py::init<const Chain&, const PositionIkOptions&>(), py::arg("chain"),
            py::arg("options") = PositionIkOptions{})
-      .def_property_readonly("chain", &PositionIk::chain)
-      .def_property_readonly("options", &PositionIk::options)
+      .def_property_readonly("chain", &PositionIk::chain, "the chain solved for")
+      .def_property_readonly("options", &PositionIk::options, "the solver's options")
       .def(
           "set_fixed_qpos",
           [](PositionIk& ik, py::handle q) {
@@ -177,8 +179,8 @@ void bind_ik(py::module_& m) {
                      "Full-pose closed-loop IK on the SE(3) log error. solve() releases the GIL.")
       .def(py::init<const Chain&, const PoseIkOptions&>(), py::arg("chain"),
            py::arg("options") = PoseIkOptions{})
-      .def_property_readonly("chain", &PoseIk::chain)
-      .def_property_readonly("options", &PoseIk::options)
+      .def_property_readonly("chain", &PoseIk::chain, "the chain solved for")
+      .def_property_readonly("options", &PoseIk::options, "the solver's options")
       .def(
           "set_fixed_qpos",
           [](PoseIk& ik, py::handle q) {
@@ -210,12 +212,16 @@ void bind_ik(py::module_& m) {
            py::arg("frame"), py::arg("kind") = TargetKind::pose, py::arg("X_WT") = Pose(),
            py::arg("position_weight") = 1.0, py::arg("orientation_weight") = 1.0,
            py::arg("priority") = 0)
-      .def_readwrite("frame", &FrameTarget::frame)
-      .def_readwrite("kind", &FrameTarget::kind)
-      .def_readwrite("X_WT", &FrameTarget::X_WT)
-      .def_readwrite("position_weight", &FrameTarget::position_weight)
-      .def_readwrite("orientation_weight", &FrameTarget::orientation_weight)
-      .def_readwrite("priority", &FrameTarget::priority);
+      .def_readwrite("frame", &FrameTarget::frame, "site or body name")
+      .def_readwrite("kind", &FrameTarget::kind, "what is constrained: position or pose")
+      .def_readwrite("X_WT", &FrameTarget::X_WT,
+                     "target pose in W (position targets use X_WT.p only)")
+      .def_readwrite("position_weight", &FrameTarget::position_weight,
+                     "row weight of the position error (> 0)")
+      .def_readwrite("orientation_weight", &FrameTarget::orientation_weight,
+                     "row weight of the orientation error (> 0, pose only)")
+      .def_readwrite("priority", &FrameTarget::priority,
+                     "0 is the most important; equal priorities are stacked");
   def_enum<MultiTargetMode>(m, "MultiTargetMode");
   py::class_<MultiTargetIkOptions, LocalIkSettings> multi_options(m, "MultiTargetIkOptions");
   multi_options.def(py::init<>());
@@ -225,8 +231,9 @@ void bind_ik(py::module_& m) {
                     const MultiTargetIkOptions&>(),
            py::arg("robot"), py::arg("joints"), py::arg("targets"),
            py::arg("options") = MultiTargetIkOptions{})
-      .def_property_readonly("chain", &MultiTargetIk::chain)
-      .def_property_readonly("target_count", &MultiTargetIk::target_count)
+      .def_property_readonly("chain", &MultiTargetIk::chain,
+                             "the shared joints (with the first target's frame)")
+      .def_property_readonly("target_count", &MultiTargetIk::target_count, "number of targets")
       .def("target", &MultiTargetIk::target, py::arg("i"))
       .def(
           "set_target",
@@ -260,14 +267,16 @@ void bind_ik(py::module_& m) {
   py::class_<DiffIkStep>(m, "DiffIkStep")
       .def_readonly("v", &DiffIkStep::v, "joint velocity (n,)")
       .def_readonly("q_next", &DiffIkStep::q_next, "q + v dt clipped into the limits (n,)")
-      .def_property_readonly("qp_status",
-                             [](const DiffIkStep& s) { return static_cast<int>(s.qp_status); })
-      .def_readonly("qp_iterations", &DiffIkStep::qp_iterations)
-      .def_readonly("pulled_back", &DiffIkStep::pulled_back);
+      .def_property_readonly(
+          "qp_status", [](const DiffIkStep& s) { return static_cast<int>(s.qp_status); },
+          "status of the box QP (solved in practice)")
+      .def_readonly("qp_iterations", &DiffIkStep::qp_iterations, "iterations of the box QP solver")
+      .def_readonly("pulled_back", &DiffIkStep::pulled_back,
+                    "a joint was outside its limits by more than one step can undo");
   py::class_<DiffIk>(m, "DiffIk", "Differential IK as a QP with exact joint and velocity limits.")
       .def(py::init<const Chain&, const DiffIkOptions&>(), py::arg("chain"),
            py::arg("options") = DiffIkOptions{})
-      .def_property_readonly("chain", &DiffIk::chain)
+      .def_property_readonly("chain", &DiffIk::chain, "the chain the tasks move")
       .def("add_pose_task", &DiffIk::add_pose_task, py::arg("frame") = "",
            py::arg("position_weight") = 1.0, py::arg("orientation_weight") = 1.0,
            py::arg("gain") = 1.0)
@@ -299,7 +308,7 @@ void bind_ik(py::module_& m) {
           },
           py::arg("task"), py::arg("q_ref"))
       .def("set_weight", &DiffIk::set_weight, py::arg("task"), py::arg("weight"))
-      .def_property_readonly("task_count", &DiffIk::task_count)
+      .def_property_readonly("task_count", &DiffIk::task_count, "number of tasks added")
       .def("task_kind", &DiffIk::task_kind, py::arg("task"))
       .def(
           "task_error", [](const DiffIk& ik, int t) { return Eigen::VectorXd(ik.task_error(t)); },
@@ -321,22 +330,27 @@ void bind_ik(py::module_& m) {
           "timeout", [](const GlobalIkOptions& o) { return o.timeout.count(); },
           [](GlobalIkOptions& o, double s) { o.timeout = std::chrono::duration<double>(s); },
           "wall-clock budget of one solve [s]")
-      .def_readwrite("tolerance", &GlobalIkOptions::tolerance);
+      .def_readwrite("tolerance", &GlobalIkOptions::tolerance,
+                     "acceptance test of a solution (default: 1e-5 on each component)");
   def_fields(global_options);
   py::class_<GlobalIkStats>(m, "GlobalIkStats")
-      .def_readonly("attempts", &GlobalIkStats::attempts)
-      .def_readonly("solutions", &GlobalIkStats::solutions)
-      .def_readonly("lm_solutions", &GlobalIkStats::lm_solutions)
-      .def_readonly("sqp_solutions", &GlobalIkStats::sqp_solutions)
-      .def_readonly("manipulability", &GlobalIkStats::manipulability)
-      .def_readonly("elapsed", &GlobalIkStats::elapsed, "[s]");
+      .def_readonly("attempts", &GlobalIkStats::attempts, "local runs started (1 + restarts)")
+      .def_readonly("solutions", &GlobalIkStats::solutions, "attempts that met the tolerance")
+      .def_readonly("lm_solutions", &GlobalIkStats::lm_solutions,
+                    "solutions found by Levenberg–Marquardt")
+      .def_readonly("sqp_solutions", &GlobalIkStats::sqp_solutions,
+                    "solutions found by the SQP method")
+      .def_readonly("manipulability", &GlobalIkStats::manipulability,
+                    "√det(J·Jᵀ) at the returned q (0 without a solution)")
+      .def_readonly("elapsed", &GlobalIkStats::elapsed, "wall-clock time of the solve [s]");
   py::class_<GlobalIk>(m, "GlobalIk",
                        "Random restarts of local methods within a time budget "
                        "(GIL released during solves).")
       .def(py::init<const Chain&, const GlobalIkOptions&>(), py::arg("chain"),
            py::arg("options") = GlobalIkOptions{})
-      .def_property_readonly("chain", &GlobalIk::chain)
-      .def_property("options", &GlobalIk::options, &GlobalIk::set_options)
+      .def_property_readonly("chain", &GlobalIk::chain, "the chain solved for")
+      .def_property("options", &GlobalIk::options, &GlobalIk::set_options,
+                    "the options the solver was built with")
       .def(
           "set_fixed_qpos",
           [](GlobalIk& ik, py::handle q) {
@@ -365,7 +379,7 @@ void bind_ik(py::module_& m) {
             return solve_each(ik, poses_of(targets), seed_of(ik.chain(), seed));
           },
           py::arg("X_WT"), py::arg("q_seed"), "One solve per pose, without the GIL.")
-      .def_property_readonly("stats", &GlobalIk::stats);
+      .def_property_readonly("stats", &GlobalIk::stats, "diagnostics of the last solve");
 }
 
 }  // namespace mjarm::python

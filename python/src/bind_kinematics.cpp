@@ -28,7 +28,8 @@ void bind_kinematics(py::module_& m) {
                               "Forward kinematics and Jacobians of a Chain on the chain's own "
                               "bodies (agrees with mj_kinematics + mj_jacSite to ~1e-15).")
       .def(py::init<const Chain&>(), py::arg("chain"))
-      .def_property_readonly("chain", &ChainKinematics::chain)
+      .def_property_readonly("chain", &ChainKinematics::chain,
+                             "the chain whose kinematics are evaluated")
       .def(
           "set_fixed_qpos",
           [](ChainKinematics& k, py::handle qpos) {
@@ -99,16 +100,19 @@ void bind_kinematics(py::module_& m) {
   manipulability_options.def(py::init<>());
   def_fields(manipulability_options);
   py::class_<ManipulabilityResult>(m, "ManipulabilityResult")
-      .def_readonly("manipulability", &ManipulabilityResult::manipulability, "Yoshikawa w")
-      .def_readonly("sigma_max", &ManipulabilityResult::sigma_max)
-      .def_readonly("sigma_min", &ManipulabilityResult::sigma_min)
-      .def_readonly("condition_number", &ManipulabilityResult::condition_number)
-      .def_readonly("status", &ManipulabilityResult::status);
+      .def_readonly("manipulability", &ManipulabilityResult::manipulability,
+                    "Yoshikawa manipulability w = √det(J·Jᵀ)")
+      .def_readonly("sigma_max", &ManipulabilityResult::sigma_max, "largest singular value σmax")
+      .def_readonly("sigma_min", &ManipulabilityResult::sigma_min, "smallest singular value σmin")
+      .def_readonly("condition_number", &ManipulabilityResult::condition_number,
+                    "σmax/σmin; +inf when the status is singular")
+      .def_readonly("status", &ManipulabilityResult::status, "regular, near-singular or singular");
   py::class_<Manipulability>(m, "Manipulability",
                              "Manipulability measures of a chain, with the analytic gradient.")
       .def(py::init<const Chain&, const ManipulabilityOptions&>(), py::arg("chain"),
            py::arg("options") = ManipulabilityOptions{})
-      .def_property_readonly("rows", &Manipulability::rows)
+      .def_property_readonly("rows", &Manipulability::rows,
+                             "number of Jacobian rows measured (6 or 3)")
       .def(
           "evaluate",
           [](Manipulability& mm, py::handle q) {
@@ -125,10 +129,12 @@ void bind_kinematics(py::module_& m) {
           py::arg("q"), "(result, dw/dq (n,))")
       .def_property_readonly(
           "singular_values",
-          [](const Manipulability& mm) { return Eigen::VectorXd(mm.singular_values()); })
-      .def_property_readonly("jacobian_block", [](const Manipulability& mm) {
-        return Eigen::MatrixXd(mm.jacobian_block());
-      });
+          [](const Manipulability& mm) { return Eigen::VectorXd(mm.singular_values()); },
+          "singular values of the measured block, decreasing (min(m, n),)")
+      .def_property_readonly(
+          "jacobian_block",
+          [](const Manipulability& mm) { return Eigen::MatrixXd(mm.jacobian_block()); },
+          "the measured block of J_WE at the last evaluation, world-aligned (m, n)");
   m.def(
       "manipulability",
       [](const Chain& chain, py::handle q, const ManipulabilityOptions& o) {
@@ -139,22 +145,12 @@ void bind_kinematics(py::module_& m) {
   auto thresholds = py::class_<SingularityThresholds>(m, "SingularityThresholds");
   thresholds.def(py::init<>());
   def_fields(thresholds);
-  py::class_<SingularityEntry>(m, "SingularityEntry")
-      .def_readonly("name", &SingularityEntry::name)
-      .def_readonly("q", &SingularityEntry::q)
-      .def_property_readonly(
-          "singular_values",
-          [](const SingularityEntry& e) { return Eigen::VectorXd(e.singular_values); })
-      .def_readonly("sigma_min", &SingularityEntry::sigma_min)
-      .def_readonly("condition_number", &SingularityEntry::condition_number)
-      .def_readonly("manipulability", &SingularityEntry::manipulability)
-      .def_readonly("status", &SingularityEntry::status)
-      .def_readonly("below_sigma_min", &SingularityEntry::below_sigma_min)
-      .def_readonly("above_condition_number", &SingularityEntry::above_condition_number)
-      .def_property_readonly(
-          "kinds", [](const SingularityEntry& e) { return kind_names(e.kinds); },
-          "'wrist', 'elbow', 'shoulder' or 'unclassified'")
-      .def_readonly("null_direction", &SingularityEntry::null_direction);
+  auto entry =
+      py::class_<SingularityEntry>(m, "SingularityEntry", "The measures of one configuration.");
+  def_readonly_fields(entry);
+  entry.def_property_readonly(
+      "kinds", [](const SingularityEntry& e) { return kind_names(e.kinds); },
+      "'wrist', 'elbow', 'shoulder' or 'unclassified'");
   m.def(
       "singularity_report",
       [](const Chain& chain, const std::vector<std::pair<std::string, py::object>>& extra,
@@ -167,13 +163,8 @@ void bind_kinematics(py::module_& m) {
       py::arg("chain"), py::arg("extra") = std::vector<std::pair<std::string, py::object>>{},
       py::arg("options") = ManipulabilityOptions{}, py::arg("thresholds") = SingularityThresholds{},
       "Entries for qpos0, centre, every keyframe and the (name, q) pairs in extra.");
-  py::class_<SingularityScan>(m, "SingularityScan")
-      .def_readonly("samples", &SingularityScan::samples)
-      .def_readonly("seed", &SingularityScan::seed)
-      .def_readonly("singular_count", &SingularityScan::singular_count)
-      .def_readonly("near_singular_count", &SingularityScan::near_singular_count)
-      .def_readonly("flagged_count", &SingularityScan::flagged_count)
-      .def_readonly("worst", &SingularityScan::worst);
+  auto scan = py::class_<SingularityScan>(m, "SingularityScan", "Result of a random scan.");
+  def_readonly_fields(scan);
   m.def(
       "scan_singularities",
       [](const Chain& chain, std::size_t samples, std::uint64_t seed, std::size_t keep_worst) {
@@ -229,17 +220,23 @@ void bind_kinematics(py::module_& m) {
       .def("__len__", &BodyPoses::size);
 
   py::class_<WorkspaceResult>(m, "WorkspaceResult")
-      .def_readonly("samples", &WorkspaceResult::samples)
-      .def_readonly("seed", &WorkspaceResult::seed)
+      .def_readonly("samples", &WorkspaceResult::samples,
+                    "samples drawn (fewer than asked when interrupted)")
+      .def_readonly("seed", &WorkspaceResult::seed, "seed of the samples")
       .def_readonly("lower", &WorkspaceResult::lower, "bounding-box minimum (3,) [m]")
       .def_readonly("upper", &WorkspaceResult::upper, "bounding-box maximum (3,) [m]")
-      .def_readonly("centroid", &WorkspaceResult::centroid)
+      .def_readonly("centroid", &WorkspaceResult::centroid, "mean frame position, world (3,) [m]")
       .def_readonly("p_WB", &WorkspaceResult::p_WB, "the chain's base (3,) [m]")
-      .def_readonly("max_reach_from_base", &WorkspaceResult::max_reach_from_base)
-      .def_readonly("max_reach_from_origin", &WorkspaceResult::max_reach_from_origin)
-      .def_readonly("min_manipulability", &WorkspaceResult::min_manipulability)
-      .def_readonly("max_manipulability", &WorkspaceResult::max_manipulability)
-      .def_readonly("mean_manipulability", &WorkspaceResult::mean_manipulability)
+      .def_readonly("max_reach_from_base", &WorkspaceResult::max_reach_from_base,
+                    "max |p_WE − p_WB| [m]")
+      .def_readonly("max_reach_from_origin", &WorkspaceResult::max_reach_from_origin,
+                    "max |p_WE| [m]")
+      .def_readonly("min_manipulability", &WorkspaceResult::min_manipulability,
+                    "smallest manipulability over the samples (0 when not computed)")
+      .def_readonly("max_manipulability", &WorkspaceResult::max_manipulability,
+                    "largest manipulability over the samples (0 when not computed)")
+      .def_readonly("mean_manipulability", &WorkspaceResult::mean_manipulability,
+                    "mean manipulability over the samples (0 when not computed)")
       .def_property_readonly(
           "points",
           [](const WorkspaceResult& r) {

@@ -40,13 +40,13 @@ void bind_model(py::module_& m) {
   def_enum<ActuatorKind>(m, "ActuatorKind", "What an actuator does, from its gain and bias.");
 
   py::class_<JointInfo>(m, "JointInfo", "One joint of the model.")
-      .def_readonly("name", &JointInfo::name)
-      .def_readonly("id", &JointInfo::id)
-      .def_readonly("type", &JointInfo::type)
+      .def_readonly("name", &JointInfo::name, "the joint's name in the model")
+      .def_readonly("id", &JointInfo::id, "the joint's id in the model")
+      .def_readonly("type", &JointInfo::type, "free, ball, slide or hinge")
       .def_readonly("body", &JointInfo::body, "body the joint moves")
       .def_readonly("qpos_address", &JointInfo::qpos_address, "first index into qpos")
       .def_readonly("dof_address", &JointInfo::dof_address, "first index into qvel")
-      .def_readonly("limited", &JointInfo::limited)
+      .def_readonly("limited", &JointInfo::limited, "the joint has a range [lower, upper]")
       .def_readonly("lower", &JointInfo::lower, "range [rad or m] (when limited)")
       .def_readonly("upper", &JointInfo::upper, "range [rad or m] (when limited)")
       .def("__repr__", [](const JointInfo& j) {
@@ -54,27 +54,35 @@ void bind_model(py::module_& m) {
                ">";
       });
   py::class_<ActuatorInfo>(m, "ActuatorInfo", "One actuator of the model.")
-      .def_readonly("name", &ActuatorInfo::name)
-      .def_readonly("id", &ActuatorInfo::id)
-      .def_readonly("kind", &ActuatorInfo::kind)
+      .def_readonly("name", &ActuatorInfo::name, "the actuator's name in the model")
+      .def_readonly("id", &ActuatorInfo::id, "the actuator's id in the model")
+      .def_readonly("kind", &ActuatorInfo::kind,
+                    "what the actuator does, read from its gain and bias parameters")
       .def_readonly("joint", &ActuatorInfo::joint, "joint id it drives, or None")
-      .def_readonly("ctrl_limited", &ActuatorInfo::ctrl_limited)
-      .def_readonly("ctrl_lower", &ActuatorInfo::ctrl_lower)
-      .def_readonly("ctrl_upper", &ActuatorInfo::ctrl_upper)
-      .def_readonly("force_limited", &ActuatorInfo::force_limited)
-      .def_readonly("force_lower", &ActuatorInfo::force_lower)
-      .def_readonly("force_upper", &ActuatorInfo::force_upper)
+      .def_readonly("ctrl_limited", &ActuatorInfo::ctrl_limited,
+                    "the control input is clamped to [ctrl_lower, ctrl_upper]")
+      .def_readonly("ctrl_lower", &ActuatorInfo::ctrl_lower,
+                    "lower end of the control range (meaningful when ctrl_limited)")
+      .def_readonly("ctrl_upper", &ActuatorInfo::ctrl_upper,
+                    "upper end of the control range (meaningful when ctrl_limited)")
+      .def_readonly("force_limited", &ActuatorInfo::force_limited,
+                    "the actuator force is clamped to [force_lower, force_upper]")
+      .def_readonly("force_lower", &ActuatorInfo::force_lower,
+                    "lower end of the force range [N or N·m] (meaningful when force_limited)")
+      .def_readonly("force_upper", &ActuatorInfo::force_upper,
+                    "upper end of the force range [N or N·m] (meaningful when force_limited)")
       .def_readonly("gear", &ActuatorInfo::gear, "first gear component")
       .def("__repr__", [](const ActuatorInfo& a) {
         return "<ActuatorInfo '" + a.name + "' " + to_string(a.kind) + ">";
       });
   py::class_<SensorInfo>(m, "SensorInfo",
                          "One sensor; values at sensordata[address:address+dimension].")
-      .def_readonly("name", &SensorInfo::name)
-      .def_readonly("id", &SensorInfo::id)
-      .def_readonly("type", &SensorInfo::type)
-      .def_readonly("address", &SensorInfo::address)
-      .def_readonly("dimension", &SensorInfo::dimension);
+      .def_readonly("name", &SensorInfo::name, "the sensor's name in the model")
+      .def_readonly("id", &SensorInfo::id, "the sensor's id in the model")
+      .def_readonly("type", &SensorInfo::type, "e.g. \"jointpos\", \"framepos\", \"force\"")
+      .def_readonly("address", &SensorInfo::address,
+                    "first index of the sensor's values in sensordata")
+      .def_readonly("dimension", &SensorInfo::dimension, "number of values the sensor writes");
 
   auto data = py::class_<DataHandle>(
       m, "Data",
@@ -178,13 +186,13 @@ void bind_model(py::module_& m) {
                   "A bundled name (no '/' nor extension) or a file path.")
       .def_static("models_dir", &Robot::models_dir, "Directory of the bundled models.")
       .def_static("bundled_names", &Robot::bundled_names, "Names of the bundled models, sorted.")
-      .def_property_readonly("name", &Robot::name)
+      .def_property_readonly("name", &Robot::name, "the model's name")
       .def_property_readonly("source", &Robot::source, "where it was loaded from")
       .def_property_readonly("load_warnings", &Robot::load_warnings,
                              "MuJoCo's warnings while loading the model (parser and compiler)")
       .def_property_readonly("nq", &Robot::nq, "position coordinates")
       .def_property_readonly("nv", &Robot::nv, "degrees of freedom")
-      .def_property_readonly("nu", &Robot::nu, "actuators")
+      .def_property_readonly("nu", &Robot::nu, "number of actuators")
       .def_property_readonly(
           "timestep", [](const Robot& r) { return r.model().opt.timestep; }, "physics timestep [s]")
       .def("joint", &Robot::joint, py::arg("name"), "joint id by name")
@@ -241,9 +249,9 @@ void bind_model(py::module_& m) {
       .value("site", FrameKind::site)
       .value("body", FrameKind::body);
   py::class_<FrameRef>(m, "FrameRef", "An end-effector frame: a site or a body.")
-      .def_readonly("kind", &FrameRef::kind)
-      .def_readonly("id", &FrameRef::id)
-      .def_readonly("name", &FrameRef::name);
+      .def_readonly("kind", &FrameRef::kind, "site or body")
+      .def_readonly("id", &FrameRef::id, "the site's or body's id in the model")
+      .def_readonly("name", &FrameRef::name, "the site's or body's name");
 
   py::class_<Chain>(m, "Chain",
                     "The joints an algorithm moves, in order (index i = column i of a Jacobian), "
@@ -252,19 +260,24 @@ void bind_model(py::module_& m) {
            "Every hinge and slide joint on the path from the world to the frame.")
       .def(py::init<const Robot&, const std::vector<std::string>&, std::string_view>(),
            py::arg("robot"), py::arg("joints"), py::arg("frame"), "An explicit list of joints.")
-      .def_property_readonly("robot", &Chain::robot)
-      .def_property_readonly("frame", &Chain::frame)
+      .def_property_readonly("robot", &Chain::robot, "the model the chain belongs to")
+      .def_property_readonly("frame", &Chain::frame, "the end-effector frame (a site or a body)")
       .def_property_readonly("size", &Chain::size, "number of joints n")
       .def("__len__", &Chain::size)
-      .def_property_readonly("joint_names", &Chain::joint_names)
-      .def_property_readonly("joint_ids", &Chain::joint_ids)
-      .def_property_readonly("dof_addresses", &Chain::dof_addresses)
-      .def_property_readonly("qpos_addresses",
-                             [](const Chain& c) {
-                               std::vector<int> a;
-                               for (int i = 0; i < c.size(); ++i) a.push_back(c.qpos_address(i));
-                               return a;
-                             })
+      .def_property_readonly("joint_names", &Chain::joint_names,
+                             "name of each chain joint, base to tip (n,)")
+      .def_property_readonly("joint_ids", &Chain::joint_ids,
+                             "model id of each chain joint, base to tip (n,)")
+      .def_property_readonly("dof_addresses", &Chain::dof_addresses,
+                             "index into qvel of each chain joint (n,)")
+      .def_property_readonly(
+          "qpos_addresses",
+          [](const Chain& c) {
+            std::vector<int> a;
+            for (int i = 0; i < c.size(); ++i) a.push_back(c.qpos_address(i));
+            return a;
+          },
+          "index into qpos of each chain joint (n,)")
       .def("actuator", &Chain::actuator, py::arg("i"), "actuator driving joint i, or None")
       .def_property_readonly(
           "lower", [](const Chain& c) { return Eigen::VectorXd(c.lower()); },

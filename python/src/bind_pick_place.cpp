@@ -18,9 +18,9 @@ void optional_pair(Class& cls, const char* name, std::optional<std::array<double
                    const char* doc) {
   cls.def_property(
       name,
-      [member](const T& o) -> py::object {
-        if (!(o.*member)) return py::none();
-        return to_array((o.*member)->data(), 2);
+      [member](const T& o) -> std::optional<Eigen::Vector2d> {
+        if (!(o.*member)) return std::nullopt;
+        return Eigen::Vector2d((*(o.*member))[0], (*(o.*member))[1]);
       },
       [member, name](T& o, py::handle v) {
         if (v.is_none()) {
@@ -57,10 +57,12 @@ void bind_pick_place_options(py::module_& m) {
       py::class_<CartesianLimits>(m, "CartesianLimits", "Limits of a Cartesian trapezoid segment.");
   fields_init<CartesianLimits>(limits, "CartesianLimits");
   limits.def_readwrite("max_velocity", &CartesianLimits::max_velocity, "along the line [m/s]")
-      .def_readwrite("max_acceleration", &CartesianLimits::max_acceleration, "[m/s^2]")
-      .def_readwrite("max_angular_velocity", &CartesianLimits::max_angular_velocity, "[rad/s]")
+      .def_readwrite("max_acceleration", &CartesianLimits::max_acceleration,
+                     "largest linear acceleration (> 0) [m/s²]")
+      .def_readwrite("max_angular_velocity", &CartesianLimits::max_angular_velocity,
+                     "largest angular velocity about the turn axis (> 0) [rad/s]")
       .def_readwrite("max_angular_acceleration", &CartesianLimits::max_angular_acceleration,
-                     "[rad/s^2]");
+                     "largest angular acceleration (> 0) [rad/s²]");
 
   auto motion = py::class_<PickPlaceMotion>(
       m, "PickPlaceMotion",
@@ -72,29 +74,31 @@ void bind_pick_place_options(py::module_& m) {
   auto monitor = py::class_<GraspMonitorOptions>(m, "GraspMonitorOptions",
                                                  "When a held object has slipped or is lost.");
   fields_init<GraspMonitorOptions>(monitor, "GraspMonitorOptions");
-  monitor.def_readwrite("slip_distance", &GraspMonitorOptions::slip_distance, "[m]")
-      .def_readwrite("drop_distance", &GraspMonitorOptions::drop_distance, "[m]");
+  monitor
+      .def_readwrite(
+          "slip_distance", &GraspMonitorOptions::slip_distance,
+          "the object has slipped once it moved this far from its grasped pose (> 0) [m]")
+      .def_readwrite(
+          "drop_distance", &GraspMonitorOptions::drop_distance,
+          "the object is lost beyond this distance from its grasped pose (> slip_distance) [m]");
   auto weld = py::class_<WeldGraspOptions>(m, "WeldGraspOptions", "The weld's solref.");
   fields_init<WeldGraspOptions>(weld, "WeldGraspOptions");
-  weld.def_readwrite("time_constant", &WeldGraspOptions::time_constant, "[s]")
-      .def_readwrite("damping_ratio", &WeldGraspOptions::damping_ratio);
+  weld.def_readwrite("time_constant", &WeldGraspOptions::time_constant,
+                     "time constant of the weld's solref (> 0) [s]")
+      .def_readwrite("damping_ratio", &WeldGraspOptions::damping_ratio,
+                     "damping ratio of the weld constraint");
 
   auto criteria =
       py::class_<PickPlaceCriteria>(m, "PickPlaceCriteria", "What a trial is judged by.");
   fields_init<PickPlaceCriteria>(criteria, "PickPlaceCriteria");
   def_fields(criteria);
-  criteria.def_readwrite("grasp", &PickPlaceCriteria::grasp, "GraspMonitorOptions");
+  criteria.def_readwrite("grasp", &PickPlaceCriteria::grasp,
+                         "when the object slipped or was dropped");
 
   auto ranges = py::class_<PickPlaceRanges>(m, "PickPlaceRanges",
                                             "Where a seed draws a trial from (uniform, [lo, hi]).");
   fields_init<PickPlaceRanges>(ranges, "PickPlaceRanges");
-  array_property<PickPlaceRanges>(ranges, "half_size", &PickPlaceRanges::half_size,
-                                  "cube half extent (2,) [m]");
-  array_property<PickPlaceRanges>(ranges, "mass", &PickPlaceRanges::mass, "(2,) [kg]");
-  array_property<PickPlaceRanges>(ranges, "friction", &PickPlaceRanges::friction, "(2,)");
-  array_property<PickPlaceRanges>(ranges, "yaw", &PickPlaceRanges::yaw, "(2,) [rad]");
-  ranges.def_readwrite("min_separation", &PickPlaceRanges::min_separation,
-                       "object start to target, horizontal [m]");
+  def_fields(ranges);
 
   auto object = py::class_<PickPlaceObject>(m, "PickPlaceObject",
                                             "The object to pick, upright on the table.");
@@ -102,17 +106,19 @@ void bind_pick_place_options(py::module_& m) {
   object.def_readwrite("shape", &PickPlaceObject::shape, "'box' or 'cylinder'");
   list_property<PickPlaceObject>(object, "size", &PickPlaceObject::size,
                                  "box: half extents (3,); cylinder: radius, half height (2,) [m]");
-  object.def_readwrite("mass", &PickPlaceObject::mass, "[kg]")
+  object.def_readwrite("mass", &PickPlaceObject::mass, "object mass [kg]")
       .def_readwrite("friction", &PickPlaceObject::friction, "sliding friction");
   array_property<PickPlaceObject>(object, "position", &PickPlaceObject::position,
                                   "centre on the table x, y (2,) [m]");
-  object.def_readwrite("yaw", &PickPlaceObject::yaw, "[rad]");
+  object.def_readwrite("yaw", &PickPlaceObject::yaw, "rotation about the vertical [rad]");
 
   auto trial = py::class_<PickPlaceTrial>(m, "PickPlaceTrial", "One trial's draw.");
   fields_init<PickPlaceTrial>(trial, "PickPlaceTrial");
-  trial.def_readwrite("seed", &PickPlaceTrial::seed)
-      .def_readwrite("object", &PickPlaceTrial::object);
-  array_property<PickPlaceTrial>(trial, "target", &PickPlaceTrial::target, "x, y (2,) [m]");
+  trial.def_readwrite("seed", &PickPlaceTrial::seed, "the seed the trial was drawn from")
+      .def_readwrite("object", &PickPlaceTrial::object,
+                     "the object's size, mass, friction, position and yaw");
+  array_property<PickPlaceTrial>(trial, "target", &PickPlaceTrial::target,
+                                 "where the object should end, x, y (2,) [m]");
 
   auto video_options =
       py::class_<RunVideoOptions>(m, "RunVideoOptions", "Size and rate of a run's video.");
@@ -126,7 +132,8 @@ void bind_pick_place_options(py::module_& m) {
       .def_readwrite("cameras", &PickPlaceVideo::cameras,
                      "'front', 'side', 'top', 'follow'; empty: front")
       .def_readwrite("tiled", &PickPlaceVideo::tiled, "one tiled file (else one per camera)")
-      .def_readwrite("options", &PickPlaceVideo::options, "RunVideoOptions");
+      .def_readwrite("options", &PickPlaceVideo::options,
+                     "size of each camera's picture, frame rate, encoding, render");
 
   auto options = py::class_<PickPlaceOptions>(
       m, "PickPlaceOptions",
@@ -142,7 +149,7 @@ void bind_pick_place_options(py::module_& m) {
       [](const std::string& s) { return simulation_mode_named(s); },
       "SimulationMode.position (IK into servos) or .torque (operational space), or the name");
   options.def_readwrite("seed", &PickPlaceOptions::seed, "draws what is not fixed")
-      .def_readwrite("ranges", &PickPlaceOptions::ranges, "PickPlaceRanges");
+      .def_readwrite("ranges", &PickPlaceOptions::ranges, "the ranges trials are drawn from");
   optional_pair<PickPlaceOptions>(options, "object_position", &PickPlaceOptions::object_position,
                                   "object centre x, y (2,) [m], or None: drawn");
   optional_pair<PickPlaceOptions>(options, "target_position", &PickPlaceOptions::target_position,
@@ -152,18 +159,24 @@ void bind_pick_place_options(py::module_& m) {
                      "cube half extent [m], or None: drawn")
       .def_readwrite("classic", &PickPlaceOptions::classic,
                      "7.5 mm cube, finger travel [0, 0.012] m, finger servo gain 3200")
-      .def_readwrite("motion", &PickPlaceOptions::motion, "PickPlaceMotion")
-      .def_readwrite("criteria", &PickPlaceOptions::criteria, "PickPlaceCriteria")
-      .def_readwrite("weld", &PickPlaceOptions::weld, "WeldGraspOptions")
+      .def_readwrite("motion", &PickPlaceOptions::motion,
+                     "the motion's timing and Cartesian limits")
+      .def_readwrite("criteria", &PickPlaceOptions::criteria,
+                     "when a trial succeeds, and grasp monitoring")
+      .def_readwrite("weld", &PickPlaceOptions::weld, "the weld's solref (weld grasp)")
       .def_readwrite("grasp_force", &PickPlaceOptions::grasp_force, "finger squeeze [N]")
-      .def_readwrite("noslip_iterations", &PickPlaceOptions::noslip_iterations, "0: off")
-      .def_readwrite("impratio", &PickPlaceOptions::impratio, ">= 1")
+      .def_readwrite("noslip_iterations", &PickPlaceOptions::noslip_iterations,
+                     "MuJoCo's noslip solver iterations (0: off)")
+      .def_readwrite("impratio", &PickPlaceOptions::impratio,
+                     "MuJoCo's frictional-to-normal impedance ratio (≥ 1)")
       .def_readwrite("control_period", &PickPlaceOptions::control_period, "[s]; 0 = one step")
       .def_readwrite("max_acceleration", &PickPlaceOptions::max_acceleration,
                      "divergence bound on |qdd|")
       .def_readwrite("record", &PickPlaceOptions::record, "recording directory; '' = none")
-      .def_readwrite("state_decimation", &PickPlaceOptions::state_decimation)
-      .def_readwrite("video", &PickPlaceOptions::video, "PickPlaceVideo");
+      .def_readwrite("state_decimation", &PickPlaceOptions::state_decimation,
+                     "one state row every N physics steps when recording")
+      .def_readwrite("video", &PickPlaceOptions::video,
+                     "MP4 of one or more cameras (empty path: none)");
 }
 
 void bind_pick_place_results(py::module_& m) {
@@ -173,33 +186,43 @@ void bind_pick_place_results(py::module_& m) {
 
   py::class_<PickPlaceReport>(m, "PickPlaceReport", "What one trial did.")
       .def_readonly("trial", &PickPlaceReport::trial, "PickPlaceTrial: the draw")
-      .def_readonly("robot", &PickPlaceReport::robot)
-      .def_readonly("grasp", &PickPlaceReport::grasp)
-      .def_readonly("mode", &PickPlaceReport::mode)
-      .def_readonly("run", &PickPlaceReport::run, "RunResult")
-      .def_readonly("trace", &PickPlaceReport::trace, "PickPlaceTrace")
-      .def_readonly("success", &PickPlaceReport::success)
-      .def_readonly("failure", &PickPlaceReport::failure, "PickPlaceFailure")
+      .def_readonly("robot", &PickPlaceReport::robot, "the robot's name")
+      .def_readonly("grasp", &PickPlaceReport::grasp, "how the object was held (friction or weld)")
+      .def_readonly("mode", &PickPlaceReport::mode,
+                    "how the robot moved (kinematic, position or torque)")
+      .def_readonly("run", &PickPlaceReport::run,
+                    "the simulation's account (status, end time, message)")
+      .def_readonly("trace", &PickPlaceReport::trace,
+                    "grasp force, weld jump and settle, slip, table contact, saturation")
+      .def_readonly("success", &PickPlaceReport::success, "the object ended at the target")
+      .def_readonly("failure", &PickPlaceReport::failure, "why the trial failed (none on success)")
       .def_readonly("reason", &PickPlaceReport::reason, "one line; '' on success")
       .def_readonly("placement_error", &PickPlaceReport::placement_error, "horizontal [m]")
-      .def_readonly("final_speed", &PickPlaceReport::final_speed, "[m/s]")
-      .def_readonly("tilt", &PickPlaceReport::tilt, "[rad]")
-      .def_readonly("cycle_time", &PickPlaceReport::cycle_time, "[s]")
-      .def_readonly("control_period", &PickPlaceReport::control_period, "[s]")
-      .def_readonly("recording", &PickPlaceReport::recording)
-      .def_readonly("recording_error", &PickPlaceReport::recording_error)
-      .def_readonly("videos", &PickPlaceReport::videos)
-      .def_readonly("video_frames", &PickPlaceReport::video_frames)
-      .def_readonly("video_error", &PickPlaceReport::video_error)
+      .def_readonly("final_speed", &PickPlaceReport::final_speed, "object speed at the end [m/s]")
+      .def_readonly("tilt", &PickPlaceReport::tilt, "object tilt at the end [rad]")
+      .def_readonly("cycle_time", &PickPlaceReport::cycle_time, "time from start to DONE [s]")
+      .def_readonly("control_period", &PickPlaceReport::control_period,
+                    "control period of the run [s]")
+      .def_readonly("recording", &PickPlaceReport::recording,
+                    "the recording directory (empty when not recorded)")
+      .def_readonly("recording_error", &PickPlaceReport::recording_error,
+                    "why the recording is incomplete (empty when fine)")
+      .def_readonly("videos", &PickPlaceReport::videos, "the MP4s asked for")
+      .def_readonly("video_frames", &PickPlaceReport::video_frames, "frames written per video")
+      .def_readonly("video_error", &PickPlaceReport::video_error,
+                    "why a video was not written (empty when fine)")
       .def("ok", &PickPlaceReport::ok, "True on success");
 
   py::class_<PickPlaceStat>(m, "PickPlaceStat", "Mean and largest of a figure (NaN when none).")
-      .def_readonly("count", &PickPlaceStat::count)
-      .def_readonly("mean", &PickPlaceStat::mean)
-      .def_readonly("max", &PickPlaceStat::max);
+      .def_readonly("count", &PickPlaceStat::count, "values added (NaN skipped)")
+      .def_readonly("mean", &PickPlaceStat::mean,
+                    "mean value, in the quantity's unit (NaN when none)")
+      .def_readonly("max", &PickPlaceStat::max,
+                    "largest value, in the quantity's unit (NaN when none)");
   py::class_<PickPlaceSummary>(m, "PickPlaceSummary", "The figures of a batch.")
       .def_readonly("trials", &PickPlaceSummary::trials, "trials that ran to their end")
-      .def_readonly("successes", &PickPlaceSummary::successes)
+      .def_readonly("successes", &PickPlaceSummary::successes,
+                    "trials that ended with the object at the target")
       .def_readonly("interrupted", &PickPlaceSummary::interrupted, "cut short (not in trials)")
       .def_property_readonly(
           "failures",
@@ -213,32 +236,44 @@ void bind_pick_place_results(py::module_& m) {
       .def_readonly("placement_error", &PickPlaceSummary::placement_error, "[m], successes")
       .def_readonly("cycle_time", &PickPlaceSummary::cycle_time, "[s], successes")
       .def_readonly("grasp_force", &PickPlaceSummary::grasp_force, "transport mean [N]")
-      .def_readonly("weld_jump", &PickPlaceSummary::weld_jump, "[m]")
-      .def_readonly("weld_settle", &PickPlaceSummary::weld_settle, "[m]")
-      .def_readonly("max_slip", &PickPlaceSummary::max_slip, "[m]")
+      .def_readonly("weld_jump", &PickPlaceSummary::weld_jump,
+                    "weld jump, over the trials whose weld was switched on [m]")
+      .def_readonly("weld_settle", &PickPlaceSummary::weld_settle,
+                    "weld settle, over the trials whose weld was switched on [m]")
+      .def_readonly("max_slip", &PickPlaceSummary::max_slip,
+                    "largest slip, over the trials that closed on the object [m]")
       .def("success_rate", &PickPlaceSummary::success_rate, "in [0, 1]; NaN without trials");
   py::class_<PickPlaceBatch>(m, "PickPlaceBatch", "What a batch did.")
       .def_readonly("reports", &PickPlaceBatch::reports, "list[PickPlaceReport], seed order")
-      .def_readonly("summary", &PickPlaceBatch::summary, "PickPlaceSummary")
-      .def_readonly("interrupted", &PickPlaceBatch::interrupted);
+      .def_readonly("summary", &PickPlaceBatch::summary, "the figures of the batch")
+      .def_readonly("interrupted", &PickPlaceBatch::interrupted, "Ctrl-C stopped the batch");
 }
 
 void bind_scene_of_a_trial(py::module_& m) {
   py::class_<PickPlaceRobot>(m, "PickPlaceRobot",
                              "A robot the pick and place knows (names unprefixed, world [m]).")
-      .def_readonly("name", &PickPlaceRobot::name)
-      .def_readonly("position_model", &PickPlaceRobot::position_model)
-      .def_readonly("torque_model", &PickPlaceRobot::torque_model)
-      .def_readonly("tool", &PickPlaceRobot::tool)
-      .def_readonly("hand", &PickPlaceRobot::hand)
-      .def_readonly("fingers", &PickPlaceRobot::fingers)
+      .def_readonly("name", &PickPlaceRobot::name, "what the user types (\"arm6\")")
+      .def_readonly("position_model", &PickPlaceRobot::position_model,
+                    "bundled model with position servos (\"arm6\")")
+      .def_readonly("torque_model", &PickPlaceRobot::torque_model,
+                    "bundled model with torque motors (\"arm6_torque\")")
+      .def_readonly("tool", &PickPlaceRobot::tool, "tool site between the fingertips (\"grip\")")
+      .def_readonly("hand", &PickPlaceRobot::hand, "body carrying the fingers (\"link6\")")
+      .def_readonly("fingers", &PickPlaceRobot::fingers,
+                    "the two finger joints; each finger's body and geom share its name")
       .def_property_readonly(
-          "mount", [](const PickPlaceRobot& r) { return to_array(r.mount.data(), 3); }, "(3,)")
-      .def_readonly("own_table", &PickPlaceRobot::own_table)
-      .def_readonly("table_height", &PickPlaceRobot::table_height)
-      .def_readonly("min_radius", &PickPlaceRobot::min_radius)
-      .def_readonly("max_radius", &PickPlaceRobot::max_radius)
-      .def_readonly("max_bearing", &PickPlaceRobot::max_bearing, "[rad]");
+          "mount", [](const PickPlaceRobot& r) { return to_array(r.mount.data(), 3); },
+          "where the robot's base stands in the arena (3,) [m]")
+      .def_readonly("own_table", &PickPlaceRobot::own_table,
+                    "the model brings its table (body \"table\"); else the arena's")
+      .def_readonly("table_height", &PickPlaceRobot::table_height,
+                    "height of the table's top surface [m]")
+      .def_readonly("min_radius", &PickPlaceRobot::min_radius,
+                    "smallest horizontal distance of a trial's points from the base axis [m]")
+      .def_readonly("max_radius", &PickPlaceRobot::max_radius,
+                    "largest horizontal distance of a trial's points from the base axis [m]")
+      .def_readonly("max_bearing", &PickPlaceRobot::max_bearing,
+                    "largest bearing of a trial's points from +x [rad]");
   m.def("pick_place_robots", &pick_place_robots, "The robots of the pick and place, in order.");
   m.def("pick_place_robot", &pick_place_robot, py::arg("name"), py::return_value_policy::copy,
         "The robot called name (mjarm.Error listing the choices).");
@@ -246,34 +281,45 @@ void bind_scene_of_a_trial(py::module_& m) {
   auto scene_options = py::class_<PickPlaceSceneOptions>(m, "PickPlaceSceneOptions",
                                                          "What the scene of one trial is made of.");
   fields_init<PickPlaceSceneOptions>(scene_options, "PickPlaceSceneOptions");
-  scene_options.def_readwrite("robot", &PickPlaceSceneOptions::robot);
+  scene_options.def_readwrite("robot", &PickPlaceSceneOptions::robot,
+                              "the robot's name (see pick_place_robots())");
   enum_property<PickPlaceSceneOptions>(
       scene_options, "mode", &PickPlaceSceneOptions::mode,
       [](const std::string& s) { return simulation_mode_named(s); }, "servo or motor model");
-  scene_options.def_readwrite("object", &PickPlaceSceneOptions::object);
+  scene_options.def_readwrite("object", &PickPlaceSceneOptions::object,
+                              "the object's size, mass, friction, position and yaw");
   array_property<PickPlaceSceneOptions>(scene_options, "target", &PickPlaceSceneOptions::target,
-                                        "x, y (2,) [m]");
+                                        "where the object should end, x, y (2,) [m]");
   list_property<PickPlaceSceneOptions>(scene_options, "finger_travel",
                                        &PickPlaceSceneOptions::finger_travel,
                                        "[lower, upper] per finger [m]; empty: the model's");
   scene_options
       .def_readwrite("finger_servo_gain", &PickPlaceSceneOptions::finger_servo_gain, "0: model's")
-      .def_readwrite("noslip_iterations", &PickPlaceSceneOptions::noslip_iterations)
-      .def_readwrite("impratio", &PickPlaceSceneOptions::impratio);
+      .def_readwrite("noslip_iterations", &PickPlaceSceneOptions::noslip_iterations,
+                     "solver option noslip_iterations (0: MuJoCo's default, none)")
+      .def_readwrite("impratio", &PickPlaceSceneOptions::impratio,
+                     "MuJoCo's frictional-to-normal impedance ratio (≥ 1)");
   py::class_<PickPlaceScene>(
       m, "PickPlaceScene", "A composed pick-and-place scene and the (prefixed) names a run needs.")
       .def_readonly("model", &PickPlaceScene::model, "Robot: the compiled scene")
-      .def_readonly("tool", &PickPlaceScene::tool)
-      .def_readonly("hand", &PickPlaceScene::hand)
-      .def_readonly("fingers", &PickPlaceScene::fingers)
-      .def_readonly("arm_joints", &PickPlaceScene::arm_joints)
-      .def_readonly("table", &PickPlaceScene::table)
-      .def_readonly("robot_root", &PickPlaceScene::robot_root)
-      .def_readonly("object", &PickPlaceScene::object)
-      .def_readonly("target", &PickPlaceScene::target)
-      .def_readonly("weld", &PickPlaceScene::weld)
-      .def_readonly("cameras", &PickPlaceScene::cameras)
-      .def_readonly("table_height", &PickPlaceScene::table_height, "[m]");
+      .def_readonly("tool", &PickPlaceScene::tool,
+                    "tool site between the fingertips (\"arm6/grip\")")
+      .def_readonly("hand", &PickPlaceScene::hand, "body carrying the fingers (\"arm6/link6\")")
+      .def_readonly("fingers", &PickPlaceScene::fingers,
+                    "the two finger joints (= bodies = geoms, \"arm6/finger_left\")")
+      .def_readonly("arm_joints", &PickPlaceScene::arm_joints,
+                    "the arm's hinge joints, base to flange")
+      .def_readonly("table", &PickPlaceScene::table, "table body (\"arm6/table\", \"arena/table\")")
+      .def_readonly("robot_root", &PickPlaceScene::robot_root,
+                    "body whose subtree is the robot (\"arm6/base\", \"panda\")")
+      .def_readonly("object", &PickPlaceScene::object, "the free body (geom \"object/geom\")")
+      .def_readonly("target", &PickPlaceScene::target,
+                    "world site at the target (object centre at rest)")
+      .def_readonly("weld", &PickPlaceScene::weld, "weld hand → object (inactive at the start)")
+      .def_readonly("cameras", &PickPlaceScene::cameras,
+                    "the scene's cameras: \"front\", \"side\", \"top\"")
+      .def_readonly("table_height", &PickPlaceScene::table_height,
+                    "height of the table's top surface [m]");
   m.def(
       "build_pick_place_scene",
       [](const PickPlaceSceneOptions& o) {
@@ -295,7 +341,7 @@ void bind_pick_place(py::module_& m) {
       "A batch: trial k runs base with seed base.seed + k, on threads workers (0: one per core).");
   fields_init<PickPlaceBatchOptions>(batch, "PickPlaceBatchOptions");
   batch.def_readwrite("base", &PickPlaceBatchOptions::base, "PickPlaceOptions of every trial")
-      .def_readwrite("trials", &PickPlaceBatchOptions::trials, ">= 1")
+      .def_readwrite("trials", &PickPlaceBatchOptions::trials, "number of trials (≥ 1)")
       .def_readwrite("threads", &PickPlaceBatchOptions::threads, ">= 0; 0: one per core")
       .def_readwrite("record", &PickPlaceBatchOptions::record,
                      "when set, trial k records into record/seed_<seed>");

@@ -7,12 +7,13 @@ namespace mjarm::python {
 
 void bind_planning(py::module_& m) {
   py::class_<JointSpline>(m, "JointSpline", "A timed joint trajectory: quintic segments.")
-      .def_property_readonly("empty", &JointSpline::empty)
-      .def_property_readonly("size", &JointSpline::size)
-      .def_property_readonly("segments", &JointSpline::segments)
-      .def_property_readonly("duration", &JointSpline::duration, "[s]")
+      .def_property_readonly("empty", &JointSpline::empty, "True when the spline has no knots")
+      .def_property_readonly("size", &JointSpline::size, "number of joints n (0 when empty)")
+      .def_property_readonly("segments", &JointSpline::segments, "number of segments K")
+      .def_property_readonly("duration", &JointSpline::duration, "total duration [s]")
       .def("knot_time", &JointSpline::knot_time, py::arg("k"))
-      .def_property_readonly("knots", &JointSpline::knots)
+      .def_property_readonly("knots", &JointSpline::knots,
+                             "the knot positions (K + 1 arrays of shape (n,)) [rad or m]")
       .def(
           "at",
           [](const JointSpline& s, double t) {
@@ -25,35 +26,26 @@ void bind_planning(py::module_& m) {
 
   def_enum<PlanStatus>(m, "PlanStatus");
   py::class_<PlanOptions> plan_options(m, "PlanOptions");
-  plan_options.def(py::init<>()).def_readwrite("ik", &PlanOptions::ik);
+  plan_options.def(py::init<>())
+      .def_readwrite("ik", &PlanOptions::ik, "the local IK from the previous waypoint");
   def_fields(plan_options);
-  py::class_<WaypointReport>(m, "WaypointReport")
-      .def_readonly("index", &WaypointReport::index)
-      .def_readonly("X_WT", &WaypointReport::X_WT)
-      .def_readonly("q", &WaypointReport::q)
-      .def_readonly("ik", &WaypointReport::ik)
-      .def_readonly("position_error", &WaypointReport::position_error)
-      .def_readonly("orientation_error", &WaypointReport::orientation_error)
-      .def_readonly("branch", &WaypointReport::branch)
-      .def_readonly("detour", &WaypointReport::detour)
-      .def_readonly("min_sigma", &WaypointReport::min_sigma)
-      .def_readonly("max_torque_ratio", &WaypointReport::max_torque_ratio)
-      .def_readonly("time", &WaypointReport::time)
-      .def_readonly("message", &WaypointReport::message);
+  auto waypoint = py::class_<WaypointReport>(m, "WaypointReport", "What happened at one waypoint.");
+  def_readonly_fields(waypoint);
   py::class_<PlanResult>(m, "PlanResult")
-      .def_readonly("status", &PlanResult::status)
-      .def_readonly("failed_waypoint", &PlanResult::failed_waypoint)
-      .def_readonly("message", &PlanResult::message)
-      .def_readonly("waypoints", &PlanResult::waypoints)
-      .def_readonly("trajectory", &PlanResult::trajectory)
-      .def_readonly("samples", &PlanResult::samples)
+      .def_readonly("status", &PlanResult::status, "ok, or why planning failed")
+      .def_readonly("failed_waypoint", &PlanResult::failed_waypoint,
+                    "index of the waypoint that failed (−1: none, or the start)")
+      .def_readonly("message", &PlanResult::message, "one line for people")
+      .def_readonly("waypoints", &PlanResult::waypoints, "one report per waypoint reached or tried")
+      .def_readonly("trajectory", &PlanResult::trajectory, "the timed trajectory (when ok)")
+      .def_readonly("samples", &PlanResult::samples, "states checked along the trajectory")
       .def("ok", &PlanResult::ok);
   py::class_<WaypointPlanner>(m, "WaypointPlanner",
                               "Cartesian waypoints -> checked, timed joint trajectory (limits, "
                               "singularities, torque, contacts). plan() releases the GIL.")
       .def(py::init<const Chain&, const PlanOptions&>(), py::arg("chain"),
            py::arg("options") = PlanOptions{})
-      .def_property_readonly("chain", &WaypointPlanner::chain)
+      .def_property_readonly("chain", &WaypointPlanner::chain, "the chain planned for")
       .def(
           "set_fixed_qpos",
           [](WaypointPlanner& p, py::handle q) {

@@ -65,10 +65,10 @@ void bind_render(py::module_& m) {
             return to_numpy(image);
           },
           py::arg("data"), py::arg("camera"))
-      .def_property_readonly("width", &OffscreenRenderer::width)
-      .def_property_readonly("height", &OffscreenRenderer::height)
+      .def_property_readonly("width", &OffscreenRenderer::width, "image width [pixels]")
+      .def_property_readonly("height", &OffscreenRenderer::height, "image height [pixels]")
       .def("close", &OffscreenRenderer::close)
-      .def_property_readonly("is_open", &OffscreenRenderer::is_open);
+      .def_property_readonly("is_open", &OffscreenRenderer::is_open, "False after close()");
 
   py::class_<VideoWriter>(m, "VideoWriter", "MP4 through ffmpeg: a complete video or none.")
       .def(py::init([](const std::filesystem::path& p, int w, int h, double fps) {
@@ -92,8 +92,10 @@ void bind_render(py::module_& m) {
           },
           py::arg("frame"))
       .def("close", &VideoWriter::close)
-      .def_property_readonly("frames", &VideoWriter::frames)
-      .def_property_readonly("complete", &VideoWriter::complete);
+      .def_property_readonly("frames", &VideoWriter::frames, "frames written so far")
+      .def_property_readonly(
+          "complete", &VideoWriter::complete,
+          "True once the finalized, checked video is at path() (after a successful close())");
 }
 
 }  // namespace mjarm::python

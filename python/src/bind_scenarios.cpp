@@ -27,23 +27,28 @@ void bind_scenarios(py::module_& m) {
   py::class_<TrialOutcome>(m, "TrialOutcome",
                            "How one trial ended: the run's status, the scenario's verdict and its "
                            "typed metrics (the same shape for every scenario).")
-      .def_readonly("scenario", &TrialOutcome::scenario)
+      .def_readonly("scenario", &TrialOutcome::scenario, "the scenario's name")
       .def_property_readonly(
           "metrics",
           [](const TrialOutcome& o) {
             return py::dict(python_of(outcome_json(find_scenario(o.scenario), o)["metrics"]));
           },
           "the scenario's metrics by name (None: did not happen); units: Scenario.metrics")
-      .def_property_readonly("status",
-                             [](const TrialOutcome& o) { return std::string(to_string(o.status)); })
-      .def_readonly("verdict", &TrialOutcome::verdict)
-      .def_readonly("success", &TrialOutcome::success)
-      .def_readonly("message", &TrialOutcome::message)
-      .def_readonly("end_time", &TrialOutcome::end_time, "[s]")
-      .def_readonly("recording", &TrialOutcome::recording)
-      .def_readonly("recording_error", &TrialOutcome::recording_error)
-      .def_readonly("videos", &TrialOutcome::videos)
-      .def_readonly("video_error", &TrialOutcome::video_error)
+      .def_property_readonly(
+          "status", [](const TrialOutcome& o) { return std::string(to_string(o.status)); },
+          "the simulation's account")
+      .def_readonly("verdict", &TrialOutcome::verdict,
+                    "one of the scenario's verdicts (\"held\", \"misplaced\", \"seated\")")
+      .def_readonly("success", &TrialOutcome::success, "the verdict is the scenario's success")
+      .def_readonly("message", &TrialOutcome::message, "one line: what happened (why it failed)")
+      .def_readonly("end_time", &TrialOutcome::end_time, "simulated time at the end [s]")
+      .def_readonly("recording", &TrialOutcome::recording,
+                    "the recording folder (empty when not recorded)")
+      .def_readonly("recording_error", &TrialOutcome::recording_error,
+                    "why the recording is incomplete (empty when fine)")
+      .def_readonly("videos", &TrialOutcome::videos, "the MP4s written complete")
+      .def_readonly("video_error", &TrialOutcome::video_error,
+                    "why a video was not written (empty when fine)")
       .def_property_readonly(
           "parameters", [](const TrialOutcome& o) { return py::dict(python_of(o.parameters)); },
           "every parameter's value the trial ran with, by name")
@@ -51,9 +56,15 @@ void bind_scenarios(py::module_& m) {
 
   py::class_<Scenario, std::unique_ptr<Scenario, py::nodelete>>(
       m, "Scenario", "A scenario of the registry: its parameters, metrics and verdicts.")
-      .def_property_readonly("name", [](const Scenario& s) { return std::string(s.name()); })
-      .def_property_readonly("doc", [](const Scenario& s) { return std::string(s.doc()); })
-      .def_property_readonly("camera", [](const Scenario& s) { return std::string(s.camera()); })
+      .def_property_readonly(
+          "name", [](const Scenario& s) { return std::string(s.name()); },
+          "the scenario's name (as `mjarm run` takes it)")
+      .def_property_readonly(
+          "doc", [](const Scenario& s) { return std::string(s.doc()); },
+          "one line on what the scenario does")
+      .def_property_readonly(
+          "camera", [](const Scenario& s) { return std::string(s.camera()); },
+          "the scenario's default camera")
       .def_property_readonly("verdicts", &Scenario::verdicts, "the success first")
       .def_property_readonly(
           "metrics",

@@ -86,34 +86,40 @@ void bind_sim(py::module_& m) {
   def_enum<RunStatus>(m, "RunStatus");
   def_enum<FaultCause>(m, "FaultCause");
   py::class_<StepFault>(m, "StepFault")
-      .def_readonly("cause", &StepFault::cause)
-      .def_readonly("time", &StepFault::time)
-      .def_readonly("joint", &StepFault::joint)
-      .def_readonly("dof", &StepFault::dof)
-      .def_readonly("actuator", &StepFault::actuator)
-      .def_readonly("controller", &StepFault::controller)
-      .def_readonly("value", &StepFault::value)
+      .def_readonly("cause", &StepFault::cause, "what went wrong (none when healthy)")
+      .def_readonly("time", &StepFault::time, "simulated time at the start of the failing step [s]")
+      .def_readonly("joint", &StepFault::joint,
+                    "joint id of the offending dof (−1 when not a joint)")
+      .def_readonly("dof", &StepFault::dof, "index into qvel/qacc (or into qpos for qpos faults)")
+      .def_readonly("actuator", &StepFault::actuator, "actuator id for ctrl faults")
+      .def_readonly("controller", &StepFault::controller, "controller index for bad_command")
+      .def_readonly("value", &StepFault::value, "the offending value")
       .def("ok", &StepFault::ok);
   py::class_<TickResult>(m, "TickResult")
-      .def_readonly("status", &TickResult::status)
-      .def_readonly("time", &TickResult::time)
-      .def_readonly("saturated", &TickResult::saturated)
-      .def_readonly("fault", &TickResult::fault)
+      .def_readonly("status", &TickResult::status, "how the tick went")
+      .def_readonly("time", &TickResult::time, "simulated time at the end of the tick [s]")
+      .def_readonly("saturated", &TickResult::saturated,
+                    "actuators clipped by this tick's commands")
+      .def_readonly("fault", &TickResult::fault, "set when status is diverged or bad_command")
       .def("ok", &TickResult::ok);
   py::class_<RunResult>(m, "RunResult")
-      .def_readonly("status", &RunResult::status)
-      .def_readonly("start_time", &RunResult::start_time)
-      .def_readonly("end_time", &RunResult::end_time)
-      .def_readonly("ticks", &RunResult::ticks)
-      .def_readonly("physics_steps", &RunResult::physics_steps)
-      .def_readonly("fault", &RunResult::fault)
-      .def_readonly("message", &RunResult::message)
+      .def_readonly("status", &RunResult::status, "how the run ended")
+      .def_readonly("start_time", &RunResult::start_time, "simulated time when the run started [s]")
+      .def_readonly("end_time", &RunResult::end_time, "simulated time when the run stopped [s]")
+      .def_readonly("ticks", &RunResult::ticks, "control ticks simulated")
+      .def_readonly("physics_steps", &RunResult::physics_steps, "physics steps simulated")
+      .def_readonly("fault", &RunResult::fault, "the fault when diverged or bad_command")
+      .def_readonly("message", &RunResult::message,
+                    "one line for people: what happened, when, where")
       .def("ok", &RunResult::ok);
   py::class_<KinematicStep>(m, "KinematicStep")
-      .def_readonly("rolled_back", &KinematicStep::rolled_back)
-      .def_readonly("geom_a", &KinematicStep::geom_a)
-      .def_readonly("geom_b", &KinematicStep::geom_b)
-      .def_readonly("time", &KinematicStep::time);
+      .def_readonly("rolled_back", &KinematicStep::rolled_back,
+                    "True when the move made a contact and was undone")
+      .def_readonly("geom_a", &KinematicStep::geom_a,
+                    "geom of set A of the contact that caused the rollback (−1 when none)")
+      .def_readonly("geom_b", &KinematicStep::geom_b,
+                    "geom of set B of the contact that caused the rollback (−1 when none)")
+      .def_readonly("time", &KinematicStep::time, "simulated time after the call [s]");
 
   py::class_<GeomSet>(m, "GeomSet", "A set of geoms of one model.")
       .def(py::init<>())
@@ -123,18 +129,24 @@ void bind_sim(py::module_& m) {
       .def("complement", &GeomSet::complement, py::arg("robot"))
       .def("add", &GeomSet::add, py::arg("other"), py::return_value_policy::reference_internal)
       .def("contains", &GeomSet::contains, py::arg("geom"))
-      .def_property_readonly("size", &GeomSet::size)
+      .def_property_readonly("size", &GeomSet::size, "number of geoms in the set")
       .def("__len__", &GeomSet::size);
   py::class_<ContactSummary>(m, "ContactSummary", "Contacts between two geom sets, summed.")
-      .def_readonly("contacts", &ContactSummary::contacts)
+      .def_readonly("contacts", &ContactSummary::contacts,
+                    "active contacts between A and B (within the geoms' margins)")
       .def_readonly("min_distance", &ContactSummary::min_distance, "[m], +inf when none")
       .def_property_readonly(
           "force_W", [](const ContactSummary& c) { return Eigen::Vector3d(c.force_W); },
           "force A exerts on B, world (3,) [N]")
-      .def_readonly("normal_force", &ContactSummary::normal_force)
-      .def_readonly("forces_valid", &ContactSummary::forces_valid)
-      .def_readonly("first_geom_a", &ContactSummary::first_geom_a)
-      .def_readonly("first_geom_b", &ContactSummary::first_geom_b);
+      .def_readonly("normal_force", &ContactSummary::normal_force,
+                    "sum of the normal components of the contact forces [N] (≥ 0)")
+      .def_readonly("forces_valid", &ContactSummary::forces_valid,
+                    "False when the data held no constraint forces (kinematic mode): only counts "
+                    "and distances mean something")
+      .def_readonly("first_geom_a", &ContactSummary::first_geom_a,
+                    "geom id on side A of the first contact found (−1 when none)")
+      .def_readonly("first_geom_b", &ContactSummary::first_geom_b,
+                    "geom id on side B of the first contact found (−1 when none)");
 
   py::class_<SimulationOptions> simulation_options(m, "SimulationOptions");
   simulation_options.def(py::init<>())
@@ -145,8 +157,12 @@ void bind_sim(py::module_& m) {
              return o;
            }),
            py::arg("mode"), py::arg("control_period") = 0.0)
-      .def_readwrite("contact_check_a", &SimulationOptions::contact_check_a)
-      .def_readwrite("contact_check_b", &SimulationOptions::contact_check_b);
+      .def_readwrite("contact_check_a", &SimulationOptions::contact_check_a,
+                     "kinematic mode: a move putting a geom of this set in contact with one of "
+                     "contact_check_b is rolled back (empty: no check)")
+      .def_readwrite("contact_check_b", &SimulationOptions::contact_check_b,
+                     "the other side of the contact check (empty with a non-empty contact_check_a: "
+                     "any other geom)");
   def_fields(simulation_options);
 
   py::class_<ReferenceSource>(m, "ReferenceSource", "Produces each control tick's reference.");
@@ -165,15 +181,18 @@ void bind_sim(py::module_& m) {
                          "release the GIL (a Python controller takes it back for its call).")
       .def(py::init<const Robot&, const SimulationOptions&>(), py::arg("robot"),
            py::arg("options") = SimulationOptions{})
-      .def_property_readonly("robot", &Simulation::robot)
-      .def_property_readonly("options", &Simulation::options)
-      .def_property_readonly("mode", &Simulation::mode)
-      .def_property_readonly("timestep", &Simulation::timestep)
-      .def_property_readonly("control_period", &Simulation::control_period)
-      .def_property_readonly("steps_per_tick", &Simulation::steps_per_tick)
-      .def_property_readonly("time", &Simulation::time)
-      .def_property_readonly("ticks", &Simulation::ticks)
-      .def_property_readonly("physics_steps", &Simulation::physics_steps)
+      .def_property_readonly("robot", &Simulation::robot, "the simulated model")
+      .def_property_readonly("options", &Simulation::options, "the simulation's options")
+      .def_property_readonly("mode", &Simulation::mode,
+                             "how the robot moves: kinematic, position or torque")
+      .def_property_readonly("timestep", &Simulation::timestep, "physics timestep [s]")
+      .def_property_readonly("control_period", &Simulation::control_period, "control period [s]")
+      .def_property_readonly("steps_per_tick", &Simulation::steps_per_tick,
+                             "physics steps per control tick")
+      .def_property_readonly("time", &Simulation::time, "simulated time [s]")
+      .def_property_readonly("ticks", &Simulation::ticks, "control ticks since reset")
+      .def_property_readonly("physics_steps", &Simulation::physics_steps,
+                             "physics steps since reset")
       .def_property_readonly(
           "data",
           [](py::object self) {
@@ -223,20 +242,25 @@ void bind_sim(py::module_& m) {
       .def("forward", &Simulation::forward)
       .def("add_controller", &Simulation::add_controller, py::arg("controller"),
            py::keep_alive<1, 2>(), "Adds a controller (kept alive by the simulation).")
-      .def_property_readonly("controller_count", &Simulation::controller_count)
+      .def_property_readonly("controller_count", &Simulation::controller_count,
+                             "number of controllers added")
       .def(
           "command", [](const Simulation& s, int i) { return Eigen::VectorXd(s.command(i).value); },
           py::arg("i"), "the command controller i wrote at the last tick (n,)")
-      .def_property_readonly("saturated",
-                             [](const Simulation& s) {
-                               const auto f = s.saturated();
-                               return std::vector<int>(f.begin(), f.end());
-                             })
-      .def_property_readonly("saturation_counts",
-                             [](const Simulation& s) {
-                               const auto c = s.saturation_counts();
-                               return std::vector<std::int64_t>(c.begin(), c.end());
-                             })
+      .def_property_readonly(
+          "saturated",
+          [](const Simulation& s) {
+            const auto f = s.saturated();
+            return std::vector<int>(f.begin(), f.end());
+          },
+          "one flag per actuator: 1 when the last tick's command was clipped on it")
+      .def_property_readonly(
+          "saturation_counts",
+          [](const Simulation& s) {
+            const auto c = s.saturation_counts();
+            return std::vector<std::int64_t>(c.begin(), c.end());
+          },
+          "per actuator: how many ticks its command was clipped since reset")
       .def(
           "tick",
           [](Simulation& s, py::handle what, std::optional<RecorderHandle*> recorder) {
@@ -299,7 +323,8 @@ void bind_sim(py::module_& m) {
             return s.move(chain, to_vector(q, "q", chain.size()), dt, recorder_of(recorder));
           },
           py::arg("chain"), py::arg("q"), py::arg("dt"), py::arg("recorder") = py::none())
-      .def_property_readonly("fault", &Simulation::fault)
+      .def_property_readonly("fault", &Simulation::fault,
+                             "the last fault (cause none when healthy)")
       .def("describe", &Simulation::describe, py::arg("fault"))
       .def(
           "sensor",
@@ -347,23 +372,32 @@ void bind_sim(py::module_& m) {
           "finalizes (with the last run's status) if not finalized, and closes")
       .def_property_readonly(
           "finalized",
-          [](const RecorderHandle& h) { return !h.recorder || h.recorder->finalized(); })
-      .def_property_readonly("directory",
-                             [](const RecorderHandle& h) { return h.get().directory(); })
-      .def_property_readonly("state_path",
-                             [](const RecorderHandle& h) { return h.get().state_path(); })
-      .def_property_readonly("task_path",
-                             [](const RecorderHandle& h) { return h.get().task_path(); })
-      .def_property_readonly("events_path",
-                             [](const RecorderHandle& h) { return h.get().events_path(); })
-      .def_property_readonly("summary_path",
-                             [](const RecorderHandle& h) { return h.get().summary_path(); })
-      .def_property_readonly("state_rows",
-                             [](const RecorderHandle& h) { return h.get().state_rows(); })
-      .def_property_readonly("task_rows",
-                             [](const RecorderHandle& h) { return h.get().task_rows(); })
-      .def_property_readonly("event_rows",
-                             [](const RecorderHandle& h) { return h.get().event_rows(); })
+          [](const RecorderHandle& h) { return !h.recorder || h.recorder->finalized(); },
+          "True once the recording was finalized (or closed)")
+      .def_property_readonly(
+          "directory", [](const RecorderHandle& h) { return h.get().directory(); },
+          "the recording directory (where the files end up)")
+      .def_property_readonly(
+          "state_path", [](const RecorderHandle& h) { return h.get().state_path(); },
+          "final path of state.csv")
+      .def_property_readonly(
+          "task_path", [](const RecorderHandle& h) { return h.get().task_path(); },
+          "final path of task.csv")
+      .def_property_readonly(
+          "events_path", [](const RecorderHandle& h) { return h.get().events_path(); },
+          "final path of events.csv")
+      .def_property_readonly(
+          "summary_path", [](const RecorderHandle& h) { return h.get().summary_path(); },
+          "final path of summary.json")
+      .def_property_readonly(
+          "state_rows", [](const RecorderHandle& h) { return h.get().state_rows(); },
+          "rows written to state.csv")
+      .def_property_readonly(
+          "task_rows", [](const RecorderHandle& h) { return h.get().task_rows(); },
+          "rows written to task.csv")
+      .def_property_readonly(
+          "event_rows", [](const RecorderHandle& h) { return h.get().event_rows(); },
+          "rows written to events.csv")
       .def("__enter__", [](py::object self) { return self; })
       .def("__exit__", [](RecorderHandle& h, py::object type, py::object value, py::object) {
         if (h.recorder && !h.recorder->finalized()) {

@@ -35,18 +35,21 @@ QuinticTrajectory::State joint_state(py::handle q, py::handle qd, py::handle qdd
 
 void bind_trajectory(py::module_& m) {
   py::class_<TrapezoidProfile::Sample>(m, "TrapezoidSample")
-      .def_readonly("position", &TrapezoidProfile::Sample::position)
-      .def_readonly("velocity", &TrapezoidProfile::Sample::velocity)
-      .def_readonly("acceleration", &TrapezoidProfile::Sample::acceleration)
-      .def_readonly("fraction", &TrapezoidProfile::Sample::fraction);
+      .def_readonly("position", &TrapezoidProfile::Sample::position, "distance covered, 0 … d [u]")
+      .def_readonly("velocity", &TrapezoidProfile::Sample::velocity, "speed, ≥ 0 [u/s]")
+      .def_readonly("acceleration", &TrapezoidProfile::Sample::acceleration, "+a, 0 or −a [u/s²]")
+      .def_readonly("fraction", &TrapezoidProfile::Sample::fraction, "position/d in [0, 1]");
   py::class_<TrapezoidProfile>(m, "TrapezoidProfile", "Rest-to-rest trapezoidal velocity profile.")
       .def(py::init<double, double, double>(), py::arg("distance"),
            py::arg("max_velocity") = TrapezoidProfile::kDefaultMaxVelocity,
            py::arg("max_acceleration") = TrapezoidProfile::kDefaultMaxAcceleration)
-      .def_property_readonly("distance", &TrapezoidProfile::distance)
-      .def_property_readonly("duration", &TrapezoidProfile::duration)
-      .def_property_readonly("peak_velocity", &TrapezoidProfile::peak_velocity)
-      .def_property_readonly("triangular", &TrapezoidProfile::triangular)
+      .def_property_readonly("distance", &TrapezoidProfile::distance, "the distance d [u]")
+      .def_property_readonly("duration", &TrapezoidProfile::duration, "the duration T [s]")
+      .def_property_readonly(
+          "peak_velocity", &TrapezoidProfile::peak_velocity,
+          "the highest speed reached (v_max for a trapezoid, less for a triangle) [u/s]")
+      .def_property_readonly("triangular", &TrapezoidProfile::triangular,
+                             "True when v_max is never reached: the profile is a triangle")
       .def("at", py::overload_cast<double>(&TrapezoidProfile::at, py::const_), py::arg("t"))
       .def("fraction", &TrapezoidProfile::fraction, py::arg("t"));
   m.def("trap_profile", &trap_profile, py::arg("distance"),
@@ -59,8 +62,10 @@ void bind_trajectory(py::module_& m) {
              return SyncedTrapezoid(start, to_vector(b, "goal", start.size()), v, acc);
            }),
            py::arg("start"), py::arg("goal"), py::arg("max_velocity"), py::arg("max_acceleration"))
-      .def_property_readonly("duration", &SyncedTrapezoid::duration)
-      .def_property_readonly("limiting_axis", &SyncedTrapezoid::limiting_axis)
+      .def_property_readonly("duration", &SyncedTrapezoid::duration,
+                             "the common duration T (0 when start equals goal) [s]")
+      .def_property_readonly("limiting_axis", &SyncedTrapezoid::limiting_axis,
+                             "the axis that needs the longest time (it moves at its own limits)")
       .def(
           "at",
           [](const SyncedTrapezoid& s, double t) {
@@ -72,26 +77,27 @@ void bind_trajectory(py::module_& m) {
           py::arg("t"), "(position, velocity, acceleration), each (n,)");
 
   py::class_<RampSample>(m, "RampSample")
-      .def_readonly("s", &RampSample::s)
-      .def_readonly("ds", &RampSample::ds)
-      .def_readonly("dds", &RampSample::dds)
-      .def_readonly("ddds", &RampSample::ddds);
+      .def_readonly("s", &RampSample::s, "value in [0, 1]")
+      .def_readonly("ds", &RampSample::ds, "first derivative ds/dx")
+      .def_readonly("dds", &RampSample::dds, "second derivative d²s/dx²")
+      .def_readonly("ddds", &RampSample::ddds, "third derivative d³s/dx³");
   m.def("smoothstep", &smoothstep, py::arg("x"), "x^2 (3 - 2x) and its derivatives");
   m.def("smootherstep", &smootherstep, py::arg("x"), "6x^5 - 15x^4 + 10x^3 and its derivatives");
 
   py::class_<Quintic::Sample>(m, "QuinticSample")
-      .def_readonly("p", &Quintic::Sample::p)
-      .def_readonly("v", &Quintic::Sample::v)
-      .def_readonly("a", &Quintic::Sample::a)
-      .def_readonly("j", &Quintic::Sample::j);
+      .def_readonly("p", &Quintic::Sample::p, "position [u]")
+      .def_readonly("v", &Quintic::Sample::v, "velocity [u/s]")
+      .def_readonly("a", &Quintic::Sample::a, "acceleration [u/s²]")
+      .def_readonly("j", &Quintic::Sample::j, "jerk [u/s³]");
   py::class_<Quintic>(m, "Quintic", "A quintic between two (p, v, a) states over a duration.")
       .def(py::init([](py::handle start, py::handle end, double T) {
              const Eigen::Vector3d a = to_fixed<3>(start, "start"), b = to_fixed<3>(end, "end");
              return Quintic({a[0], a[1], a[2]}, {b[0], b[1], b[2]}, T);
            }),
            py::arg("start"), py::arg("end"), py::arg("duration"), "start, end: (p, v, a)")
-      .def_property_readonly("duration", &Quintic::duration)
-      .def_property_readonly("coefficients", &Quintic::coefficients)
+      .def_property_readonly("duration", &Quintic::duration, "the duration T [s]")
+      .def_property_readonly("coefficients", &Quintic::coefficients,
+                             "the coefficients c₀ … c₅ in powers of t (6,)")
       .def("at", py::overload_cast<double>(&Quintic::at, py::const_), py::arg("t"));
   py::class_<QuinticTrajectory>(m, "QuinticTrajectory", "n joints, one quintic each.")
       .def(py::init([](py::handle q0, py::handle q1, double T, py::handle qd0, py::handle qdd0,
@@ -103,8 +109,8 @@ void bind_trajectory(py::module_& m) {
            py::arg("q_start"), py::arg("q_end"), py::arg("duration"),
            py::arg("qd_start") = py::none(), py::arg("qdd_start") = py::none(),
            py::arg("qd_end") = py::none(), py::arg("qdd_end") = py::none())
-      .def_property_readonly("duration", &QuinticTrajectory::duration)
-      .def_property_readonly("size", &QuinticTrajectory::size)
+      .def_property_readonly("duration", &QuinticTrajectory::duration, "the duration T [s]")
+      .def_property_readonly("size", &QuinticTrajectory::size, "the number of joints n")
       .def(
           "at",
           [](const QuinticTrajectory& tr, double t) {
@@ -119,10 +125,12 @@ void bind_trajectory(py::module_& m) {
       .value("end_beyond_limits", QuinticDurationStatus::end_beyond_limits)
       .value("infeasible", QuinticDurationStatus::infeasible);
   py::class_<QuinticDuration>(m, "QuinticDuration")
-      .def_readonly("status", &QuinticDuration::status)
-      .def_readonly("duration", &QuinticDuration::duration)
-      .def_readonly("limiting_joint", &QuinticDuration::limiting_joint)
-      .def_readonly("velocity_limited", &QuinticDuration::velocity_limited);
+      .def_readonly("status", &QuinticDuration::status, "ok, or why no duration was found")
+      .def_readonly("duration", &QuinticDuration::duration, "the shortest feasible T (when ok) [s]")
+      .def_readonly("limiting_joint", &QuinticDuration::limiting_joint,
+                    "the joint whose limit is met at T (−1: none, T = floor)")
+      .def_readonly("velocity_limited", &QuinticDuration::velocity_limited,
+                    "True: its velocity limit is met; False: its acceleration limit");
   m.def(
       "shortest_quintic_duration",
       [](py::handle q0, py::handle q1, py::handle vmax, py::handle amax, double min_duration) {
@@ -136,11 +144,13 @@ void bind_trajectory(py::module_& m) {
       py::arg("min_duration") = 0.0, "rest to rest: the exact shortest duration within the limits");
 
   py::class_<Se3Interpolation::Sample>(m, "Se3Sample")
-      .def_readonly("X_WE", &Se3Interpolation::Sample::X_WE)
-      .def_property_readonly("V_WE",
-                             [](const Se3Interpolation::Sample& s) { return Vector6d(s.V_WE); })
-      .def_property_readonly("A_WE",
-                             [](const Se3Interpolation::Sample& s) { return Vector6d(s.A_WE); });
+      .def_readonly("X_WE", &Se3Interpolation::Sample::X_WE, "pose of E in W")
+      .def_property_readonly(
+          "V_WE", [](const Se3Interpolation::Sample& s) { return Vector6d(s.V_WE); },
+          "spatial velocity, world axes, linear first (6,) [m/s, rad/s]")
+      .def_property_readonly(
+          "A_WE", [](const Se3Interpolation::Sample& s) { return Vector6d(s.A_WE); },
+          "spatial acceleration, world axes, linear first (6,) [m/s², rad/s²]");
   py::class_<Se3Interpolation>(m, "Se3Interpolation",
                                "Pose interpolation that may start in motion (world axes).")
       .def(py::init([](py::handle X0, py::handle X1, double T, py::handle V0, py::handle A0) {
@@ -152,15 +162,16 @@ void bind_trajectory(py::module_& m) {
            }),
            py::arg("X_start"), py::arg("X_goal"), py::arg("duration"),
            py::arg("V_start") = py::none(), py::arg("A_start") = py::none())
-      .def_property_readonly("duration", &Se3Interpolation::duration)
+      .def_property_readonly("duration", &Se3Interpolation::duration, "the duration T [s]")
       .def("at", &Se3Interpolation::at, py::arg("t"));
 
   def_enum<OtgStatus>(m, "OtgStatus");
   py::class_<OtgResult>(m, "OtgResult")
-      .def_readonly("status", &OtgResult::status)
-      .def_readonly("duration", &OtgResult::duration)
-      .def_readonly("limiting_dof", &OtgResult::limiting_dof)
-      .def_readonly("failed_dof", &OtgResult::failed_dof)
+      .def_readonly("status", &OtgResult::status, "outcome of the calculation")
+      .def_readonly("duration", &OtgResult::duration, "synchronized duration, brake included [s]")
+      .def_readonly("limiting_dof", &OtgResult::limiting_dof, "the DoF that sets the duration")
+      .def_readonly("failed_dof", &OtgResult::failed_dof,
+                    "the DoF that failed (error statuses only)")
       .def_readonly("end_error", &OtgResult::end_error,
                     "largest end miss over the DoFs, relative to max(1, |start|, |target|)")
       .def_readonly("limit_excess", &OtgResult::limit_excess,
@@ -177,7 +188,7 @@ void bind_trajectory(py::module_& m) {
              return JerkLimitedGenerator(l);
            }),
            py::arg("limits"), "limits (n, 3): velocity, acceleration, jerk per DoF")
-      .def_property_readonly("dofs", &JerkLimitedGenerator::dofs)
+      .def_property_readonly("dofs", &JerkLimitedGenerator::dofs, "number of degrees of freedom")
       .def(
           "calculate",
           [](JerkLimitedGenerator& g, py::handle current, py::handle target) {
@@ -192,8 +203,10 @@ void bind_trajectory(py::module_& m) {
                                         states(target, "target", g.dofs()));
           },
           py::arg("current"), py::arg("target"))
-      .def_property_readonly("duration", &JerkLimitedGenerator::duration)
-      .def_property_readonly("result", &JerkLimitedGenerator::result)
+      .def_property_readonly("duration", &JerkLimitedGenerator::duration,
+                             "synchronized duration of the last calculation [s]")
+      .def_property_readonly("result", &JerkLimitedGenerator::result,
+                             "the result of the last calculation")
       .def(
           "at",
           [](const JerkLimitedGenerator& g, double t) {

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "mjarm/fields.hpp"
 #include "mjarm/kinematics/manipulability.hpp"
 #include "mjarm/kinematics/singularity_kind.hpp"
 #include "mjarm/kinematics/workspace.hpp"
@@ -22,25 +23,45 @@ struct NamedConfiguration {
   Eigen::VectorXd q;
 };
 
-/// The measures of one configuration.
+/// The measures of one configuration; the fields are documented where they are declared, below.
 struct SingularityEntry {
   std::string name;
-  Eigen::VectorXd q;               ///< chain order [rad or m]
-  SingularValues singular_values;  ///< of the measured block, decreasing
-  double sigma_min = 0.0;          ///< smallest singular value
-  double condition_number = 0.0;   ///< σmax/σmin, +infinity when singular
-  double manipulability = 0.0;     ///< Yoshikawa w
+  Eigen::VectorXd q;
+  SingularValues singular_values;
+  double sigma_min = 0.0;
+  double condition_number = 0.0;
+  double manipulability = 0.0;
   SingularityStatus status = SingularityStatus::singular;
-  bool below_sigma_min = false;         ///< σmin < thresholds.sigma_min (absolute)
-  bool above_condition_number = false;  ///< σmax/σmin > thresholds.condition_number (relative)
+  bool below_sigma_min = false;
+  bool above_condition_number = false;
   /// Empty when neither threshold is crossed; else the kinds found, or {unclassified} (see
   /// `SingularityClassification::kinds`).
   std::vector<SingularityKind> kinds;
-  /// Right singular vector of σmin: the joint motion that moves the frame least (unit, chain
-  /// order, largest entry positive).
   Eigen::VectorXd null_direction;
   SingularityGeometry geometry;  ///< the measures the kinds are judged on
 };
+
+/// The fields of `SingularityEntry` but `kinds` and `geometry` (reported on their own).
+constexpr auto declared_fields(const SingularityEntry*) {
+  using S = SingularityEntry;
+  return declare<S>(
+      "singularity entry",
+      field("name", &S::name,
+            "what the entry is (\"sample <index>\", or the configuration's name)"),
+      field("q", &S::q, "rad or m", "configuration, chain order (n,)"),
+      field("singular_values", &S::singular_values, "",
+            "singular values of the measured block, decreasing (min(m, n),)"),
+      field("sigma_min", &S::sigma_min, "", "smallest singular value"),
+      field("condition_number", &S::condition_number, "", "σmax/σmin, +inf when singular"),
+      field("manipulability", &S::manipulability, "", "Yoshikawa's w = √det(J·Jᵀ)"),
+      field("status", &S::status, "regular, near-singular or singular"),
+      field("below_sigma_min", &S::below_sigma_min, "σmin < thresholds.sigma_min (absolute)"),
+      field("above_condition_number", &S::above_condition_number,
+            "σmax/σmin > thresholds.condition_number (relative)"),
+      field("null_direction", &S::null_direction, "",
+            "right singular vector of σmin: the joint motion that moves the frame least (unit, "
+            "chain order, largest entry positive) (n,)"));
+}
 
 /// Entries for named configurations, in the order given.
 struct SingularityReport {
@@ -62,21 +83,36 @@ SingularityReport singularity_report(const Chain& chain,
                                      const ManipulabilityOptions& options = {},
                                      const SingularityThresholds& thresholds = {});
 
-/// Result of a random scan.
+/// Result of a random scan; the counts are documented where they are declared, below.
 struct SingularityScan {
   ManipulabilityOptions options;
   SingularityThresholds thresholds;
   SamplingStatus status = SamplingStatus::complete;
-  std::size_t samples = 0;  ///< samples drawn (fewer than asked when interrupted)
+  std::size_t samples = 0;
   std::uint64_t seed = 0;
-  std::size_t singular_count = 0;       ///< samples classified singular
-  std::size_t near_singular_count = 0;  ///< samples classified near-singular
-  /// Samples crossing either threshold (σmin < thresholds.sigma_min or condition above
-  /// thresholds.condition_number).
+  std::size_t singular_count = 0;
+  std::size_t near_singular_count = 0;
   std::size_t flagged_count = 0;
-  /// The lowest-σmin samples, lowest first (at most `keep_worst`), named "sample <index>".
   std::vector<SingularityEntry> worst;
 };
+
+/// The counts and samples of `SingularityScan` (its options, thresholds and status are reported
+/// on their own).
+constexpr auto declared_fields(const SingularityScan*) {
+  using S = SingularityScan;
+  return declare<S>(
+      "singularity scan",
+      field("samples", &S::samples, "", "samples drawn (fewer than asked when interrupted)"),
+      field("seed", &S::seed, "", "seed of the samples"),
+      field("singular_count", &S::singular_count, "", "samples classified singular"),
+      field("near_singular_count", &S::near_singular_count, "", "samples classified near-singular"),
+      field("flagged_count", &S::flagged_count, "",
+            "samples crossing either threshold (σmin < thresholds.sigma_min or condition above "
+            "thresholds.condition_number)"),
+      field(
+          "worst", &S::worst,
+          "the lowest-σmin samples, lowest first (at most keep_worst), named \"sample <index>\""));
+}
 
 /// Samples @p samples configurations uniformly within the limits (see `JointSampler`, seeded
 /// `Random`: the same seed gives the same scan) and keeps the @p keep_worst samples with

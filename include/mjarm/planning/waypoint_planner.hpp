@@ -114,23 +114,44 @@ constexpr auto declared_fields(const PlanOptions*) {
 /// @throws Error naming the option out of range.
 void check(const PlanOptions& options);
 
-/// What happened at one waypoint.
+/// What happened at one waypoint; its fields are documented where they are declared, below.
 struct WaypointReport {
-  int index = 0;      ///< position in the path (0 = first waypoint after the start)
-  Pose X_WT;          ///< the pose asked for
-  Eigen::VectorXd q;  ///< the configuration chosen (the best IK iterate on failure)
+  int index = 0;
+  Pose X_WT;
+  Eigen::VectorXd q;
   IkStatus ik = IkStatus::not_converged;
-  double position_error = 0.0;     ///< [m]
-  double orientation_error = 0.0;  ///< [rad]
-  int branch = 0;            ///< 0: local IK from the previous waypoint; b ≥ 1: global branch b
-  bool detour = false;       ///< true when a via configuration was inserted before it
+  double position_error = 0.0;
+  double orientation_error = 0.0;
+  int branch = 0;
+  bool detour = false;
   ConfigurationCheck check;  ///< the checks at the waypoint (at rest)
-  /// Over the samples of the segments that arrive here (the final trajectory when ok):
-  double min_sigma = 0.0;         ///< smallest σmin
-  double max_torque_ratio = 0.0;  ///< largest |τ|/τ_max
-  double time = 0.0;              ///< arrival time in the trajectory [s] (when ok)
-  std::string message;            ///< "ok" or why it failed
+  double min_sigma = 0.0;
+  double max_torque_ratio = 0.0;
+  double time = 0.0;
+  std::string message;
 };
+
+/// The fields of `WaypointReport` but `check` (a `ConfigurationCheck`, reported on its own).
+constexpr auto declared_fields(const WaypointReport*) {
+  using S = WaypointReport;
+  return declare<S>(
+      "waypoint",
+      field("index", &S::index, "", "position in the path (0 = first waypoint after the start)"),
+      field("X_WT", &S::X_WT, "the pose asked for"),
+      field("q", &S::q, "rad or m",
+            "the configuration chosen, the best IK iterate on failure (n,)"),
+      field("ik", &S::ik, "status of the IK that chose q"),
+      field("position_error", &S::position_error, "m", "position error at q"),
+      field("orientation_error", &S::orientation_error, "rad", "orientation error at q"),
+      field("branch", &S::branch, "",
+            "0: local IK from the previous waypoint; b ≥ 1: global branch b"),
+      field("detour", &S::detour, "True when a via configuration was inserted before it"),
+      // over the samples of the segments that arrive here (the final trajectory when ok)
+      field("min_sigma", &S::min_sigma, "", "smallest σmin on the way here"),
+      field("max_torque_ratio", &S::max_torque_ratio, "", "largest |τ|/τ_max on the way here"),
+      field("time", &S::time, "s", "arrival time in the trajectory (when ok)"),
+      field("message", &S::message, "\"ok\" or why it failed"));
+}
 
 /// The result of `WaypointPlanner::plan`.
 struct PlanResult {
