@@ -124,6 +124,7 @@ class PassiveDriver final : public ViewerDriver {
       series_[figure_contact].add(s.time, std::span(&s.contact, 1));
       series_[figure_actuators].add(s.time, s.actuator);
       series_[figure_plots].add(s.time, s.plots);
+      last_ = s;
     }
     if (plot_names_.size() != shared_->plot_names.size()) plot_names_ = shared_->plot_names;
   }
@@ -161,8 +162,17 @@ class PassiveDriver final : public ViewerDriver {
 
   void overlay(const OverlayInfo& info, OverlayText& left, OverlayText& right) const override {
     const mjModel& m = robot_.model();
-    left.labels = "Time\nFPS\nSelected";
-    left.values = number_text(shown_->time, 4) + " s\n" + number_text(info.fps, 3) + "\n";
+    left.labels = "Time\nFPS\nContacts\nAt limit\nSelected";
+    left.values = number_text(shown_->time, 4) + " s\n" + number_text(info.fps, 3) + "\n" +
+                  std::to_string(last_.contacts) + " (" + number_text(last_.contact, 3) +
+                  " N normal)\n";
+    // the actuators whose force is at its limit (the viewer's saturation line)
+    std::string saturated;
+    for (std::size_t k = 0; k < actuator_names_.size(); ++k) {
+      if (last_.actuator[k] >= 99.5f)
+        saturated += (saturated.empty() ? "" : ", ") + actuator_names_[k];
+    }
+    left.values += (saturated.empty() ? std::string("none") : saturated) + "\n";
     if (selected_ > 0) {
       const char* body = mj_id2name(&m, mjOBJ_BODY, selected_);
       left.values += body != nullptr ? std::string(body) : "body " + std::to_string(selected_);
@@ -191,6 +201,7 @@ class PassiveDriver final : public ViewerDriver {
   std::unique_ptr<mjvFigure[]> figures_;  // large (about 800 kB each): on the heap
   std::vector<std::string> contact_names_, actuator_names_, plot_names_;
   int selected_ = 0;  // the selected body (0: none)
+  FigureSample last_;  // the newest synced sample, for the overlay
 };
 
 }  // namespace

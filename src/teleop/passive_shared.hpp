@@ -27,6 +27,7 @@ inline constexpr int kPassiveFigureLines = 8;
 struct FigureSample {
   double time = 0.0;                                  ///< simulated time [s]
   float contact = 0.0f;                               ///< total normal contact force [N]
+  int contacts = 0;                                   ///< contacts (ncon)
   std::array<float, kPassiveFigureLines> actuator{};  ///< force / limit [%]
   std::array<float, kPassiveFigureLines> plots{};     ///< the loop's plot lines
 };

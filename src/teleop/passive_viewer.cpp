@@ -121,6 +121,7 @@ FigureSample figure_sample(const mjModel& m, const mjData& d,
     contact += wrench[0];  // the normal force, along the contact frame's first axis
   }
   s.contact = static_cast<float>(contact);
+  s.contacts = d.ncon;
   for (std::size_t k = 0; k < actuators.size(); ++k) {
     s.actuator[k] = static_cast<float>(100.0 * std::abs(d.actuator_force[actuators[k].id]) /
                                        actuators[k].limit);

@@ -338,7 +338,7 @@ void ViewerShell::on_event() {
 
 // Ctrl + a button with a body selected starts a drag: right translates, left rotates (simulate's
 // bindings); else a double-click selects the body under the pointer (or clears the selection)
-bool ViewerShell::on_view_press() {
+void ViewerShell::on_view_press() {
   const mjuiState& s = ui_.input();
   const mjModel& m = driver_->robot().model();
   mjData& d = driver_->data();
@@ -346,7 +346,7 @@ bool ViewerShell::on_view_press() {
     mjv_initPerturb(&m, &d, &scene_, &pert_);
     pert_.active = s.right ? mjPERT_TRANSLATE : mjPERT_ROTATE;
     driver_->set_perturbation(pert_);
-    return true;
+    return;
   }
   if (s.doubleclick != 0) {
     const mjrRect view = ui_.view();
@@ -367,9 +367,7 @@ bool ViewerShell::on_view_press() {
       mju_mulMatTVec(pert_.localpos, d.xmat + 9 * body, offset, 3, 3);
     }
     driver_->set_perturbation(pert_);
-    return true;
   }
-  return false;
 }
 
 void ViewerShell::on_key(int key, bool shift) {

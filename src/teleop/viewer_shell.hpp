@@ -61,7 +61,7 @@ class ViewerShell {
   void on_panel(PanelAction action);
   void reset();
   void press(int button, double x, double y, bool control = false);
-  bool on_view_press();  // selection and the start of a perturbation; true when handled
+  void on_view_press();  // a selection, or the start of a perturbation
   void release(double x, double y);
   void move_to(double x, double y);
   // runs an event handler from a GLFW callback: an exception must not unwind through GLFW's C
