@@ -10,19 +10,11 @@ each), the time a picture adds to a step, and the megapixels per second. Renderi
 import argparse
 import json
 import sys
-import time
 
 import numpy as np
 
 import mjarm
-
-
-def seconds_per_step(env, actions):
-    ts = env.reset(seed=1)
-    start = time.perf_counter()
-    for action in actions:
-        ts = env.reset() if ts.last() else env.step(action)
-    return (time.perf_counter() - start) / len(actions)
+from mjarm.bench_task import time_per_step
 
 
 def main(argv=None):
@@ -37,12 +29,12 @@ def main(argv=None):
     spec = base.action_spec()
     actions = np.random.default_rng(0).uniform(spec.minimum, spec.maximum,
                                                (args.steps, spec.minimum.size))
-    without = seconds_per_step(base, actions)
+    without = time_per_step(base, actions)
     figures = {"steps": args.steps, "step_without_picture_ms": without * 1e3, "sizes": []}
     for size in (84, 480):
         env = mjarm.Environment("reach", observations=["pixels:free", "joint_positions"],
                                 pixels_width=size, pixels_height=size)
-        with_picture = seconds_per_step(env, actions)
+        with_picture = time_per_step(env, actions)
         figures["sizes"].append({
             "size": size, "pictures_per_second": 1.0 / with_picture,
             "picture_ms": (with_picture - without) * 1e3,

@@ -107,22 +107,6 @@ fs::path resolve_model(const std::string& model, const fs::path& dir, const char
   throw Error(message + "; bundled " + what + "s in " + dir.string() + ": " + list(names));
 }
 
-/// Removes the floor planes and lights placed directly in a part's world, and its skybox.
-void strip_arena(mjSpec& part) {
-  std::vector<mjsElement*> doomed;
-  mjsBody* world = mjs_findBody(&part, "world");
-  for (mjsElement* e = mjs_firstChild(world, mjOBJ_GEOM, 0); e != nullptr;
-       e = mjs_nextChild(world, e, 0))
-    if (mjs_asGeom(e)->type == mjGEOM_PLANE) doomed.push_back(e);
-  for (mjsElement* e = mjs_firstChild(world, mjOBJ_LIGHT, 0); e != nullptr;
-       e = mjs_nextChild(world, e, 0))
-    doomed.push_back(e);
-  for (mjsElement* e = mjs_firstElement(&part, mjOBJ_TEXTURE); e != nullptr;
-       e = mjs_nextElement(&part, e))
-    if (mjs_asTexture(e)->type == mjTEXTURE_SKYBOX) doomed.push_back(e);
-  for (mjsElement* e : doomed) mjs_delete(&part, e);
-}
-
 }  // namespace
 
 struct Scene::Impl {
@@ -317,7 +301,7 @@ void Scene::add_robot(const RobotSpec& spec) {
   const std::string source = "robot '" + spec.name + "' (" + file.string() + ")";
   std::vector<std::string> parse_warnings;
   SpecPtr part = parse_mjcf_file(file, &parse_warnings);
-  if (!spec.keep_arena) strip_arena(*part);
+  if (!spec.keep_arena) scene_detail::strip_arena(*part);
   impl_->attach(std::move(part), spec.name + "/", impl_->world(), spec.name, spec.pos.data(),
                 spec.quat.data(), source);
   for (const auto& w : parse_warnings) impl_->warnings.push_back(source + ": " + w);
@@ -353,7 +337,7 @@ void Scene::attach_gripper(const GripperSpec& spec) {
   const std::string source = "gripper '" + prefix + "' (" + file.string() + ")";
   std::vector<std::string> parse_warnings;
   SpecPtr part = parse_mjcf_file(file, &parse_warnings);
-  strip_arena(*part);
+  scene_detail::strip_arena(*part);
   double pos[3] = {0.0, 0.0, 0.0};
   double quat[4] = {1.0, 0.0, 0.0, 0.0};
   mjsBody* parent = body;
@@ -522,7 +506,6 @@ void Scene::add(const ElementSpec& element) {
   }
   if (element.name.empty())
     throw Error("scene '" + impl_->name + "': a " + element.tag + " to add needs a name");
-  const bool in_body = *kind != "actuator" && *kind != "sensor" && *kind != "default";
   if (*kind == "default") {
     if (mjs_findDefault(impl_->spec.get(), element.name.c_str()) != nullptr)
       throw Error("name clash in scene '" + impl_->name + "': default class '" + element.name +
@@ -530,25 +513,16 @@ void Scene::add(const ElementSpec& element) {
   } else {
     impl_->check_free({{std::string(*kind), element.name}}, "an added " + element.tag);
   }
-  if (in_body && !element.parent.empty()) impl_->require("body", element.parent, what + " parent");
+  if (*kind != "actuator" && *kind != "sensor" && *kind != "default" && !element.parent.empty())
+    impl_->require("body", element.parent, what + " parent");
   // the class it starts from: its own, or a default's parent class
   const std::string& class_name = *kind == "default" ? element.parent : element.class_name;
   if (!class_name.empty() && mjs_findDefault(impl_->spec.get(), class_name.c_str()) == nullptr) {
     throw Error(what + ": no default class '" + class_name + "' in scene '" + impl_->name +
                 "'; classes: " + list(impl_->names_of("default")));
   }
-  // made on a copy, which replaces the spec once every attribute was taken: a failure leaves
-  // the scene as it was
-  SpecPtr copy(mj_copySpec(impl_->spec.get()));
-  if (!copy) throw Error("scene '" + impl_->name + "': MuJoCo could not copy the scene's spec");
-  mjsBody* parent =
-      in_body ? mjs_findBody(copy.get(), element.parent.empty() ? "world" : element.parent.c_str())
-              : nullptr;
-  mjsDefault* def = class_name.empty()
-                        ? (*kind == "default" ? mjs_getSpecDefault(copy.get()) : nullptr)
-                        : mjs_findDefault(copy.get(), class_name.c_str());
-  scene_detail::make_element(*copy, element, parent, def, what);
-  impl_->spec = std::move(copy);
+  // made on a copy that replaces the spec once every attribute was taken
+  impl_->spec = scene_detail::with_element(*impl_->spec, element, class_name, what);
   if (*kind != "default")
     impl_->claim({{std::string(*kind), element.name}}, "an added " + element.tag);
 }

@@ -253,4 +253,20 @@ void make_element(mjSpec& spec, const ElementSpec& e, mjsBody* parent, mjsDefaul
   apply_all(*made);
 }
 
+SpecPtr with_element(const mjSpec& scene, const ElementSpec& element, const std::string& class_name,
+                     const std::string& what) {
+  SpecPtr copy(mj_copySpec(&scene));
+  if (!copy) throw Error(what + ": MuJoCo could not copy the scene's spec");
+  const auto kind = element_kind(element.tag);
+  const bool in_body = kind && *kind != "actuator" && *kind != "sensor" && *kind != "default";
+  mjsBody* parent =
+      in_body ? mjs_findBody(copy.get(), element.parent.empty() ? "world" : element.parent.c_str())
+              : nullptr;
+  mjsDefault* def = class_name.empty()
+                        ? (element.tag == "default" ? mjs_getSpecDefault(copy.get()) : nullptr)
+                        : mjs_findDefault(copy.get(), class_name.c_str());
+  make_element(*copy, element, parent, def, what);
+  return copy;
+}
+
 }  // namespace mjarm::scene_detail

@@ -10,6 +10,7 @@
 #include <string_view>
 #include <vector>
 
+#include "mjarm/model/mjcf_spec.hpp"
 #include "mjarm/scene/scene_spec.hpp"
 
 namespace mjarm::scene_detail {
@@ -26,5 +27,12 @@ std::vector<std::string> all_tags();
 /// @throws Error for an attribute the element does not have (closest names) or a bad value.
 void make_element(mjSpec& spec, const ElementSpec& element, mjsBody* parent, mjsDefault* def,
                   const std::string& what);
+
+/// A copy of @p scene with @p element made in it (in its parent body, from class @p class_name:
+/// "" for the parent's, or for a default its parent class, main), checked names and class
+/// assumed: a failure leaves @p scene as it was.
+/// @throws Error as `make_element`, or when MuJoCo cannot copy the spec.
+SpecPtr with_element(const mjSpec& scene, const ElementSpec& element, const std::string& class_name,
+                     const std::string& what);
 
 }  // namespace mjarm::scene_detail

@@ -228,4 +228,19 @@ void add_compound(mjSpec& spec, const CompoundFixtureSpec& fixture,
   add_center_site(body, fixture.name);
 }
 
+void strip_arena(mjSpec& part) {
+  std::vector<mjsElement*> doomed;
+  mjsBody* world = mjs_findBody(&part, "world");
+  for (mjsElement* e = mjs_firstChild(world, mjOBJ_GEOM, 0); e != nullptr;
+       e = mjs_nextChild(world, e, 0))
+    if (mjs_asGeom(e)->type == mjGEOM_PLANE) doomed.push_back(e);
+  for (mjsElement* e = mjs_firstChild(world, mjOBJ_LIGHT, 0); e != nullptr;
+       e = mjs_nextChild(world, e, 0))
+    doomed.push_back(e);
+  for (mjsElement* e = mjs_firstElement(&part, mjOBJ_TEXTURE); e != nullptr;
+       e = mjs_nextElement(&part, e))
+    if (mjs_asTexture(e)->type == mjTEXTURE_SKYBOX) doomed.push_back(e);
+  for (mjsElement* e : doomed) mjs_delete(&part, e);
+}
+
 }  // namespace mjarm::scene_detail

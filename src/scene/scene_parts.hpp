@@ -1,7 +1,8 @@
 #pragma once
 // Parts the scene makes itself — the arena, objects, compound fixtures — added to the scene's
 // mjSpec element by element (mjs_addBody, mjs_addGeom, ...), with the names they take listed
-// first so the scene can check them before anything changes. Internal to the scene room.
+// first so the scene can check them before anything changes; and the arena a part brings,
+// which the scene removes. Internal to the scene room.
 
 #include <mujoco/mujoco.h>
 
@@ -39,5 +40,8 @@ std::vector<NameKey> compound_names(const CompoundFixtureSpec& spec);
 /// it; @p mesh_files are `object_mesh_file` of each piece.
 void add_compound(mjSpec& spec, const CompoundFixtureSpec& fixture,
                   const std::vector<std::string>& mesh_files);
+
+/// Removes the floor planes and lights placed directly in @p part's world, and its skybox.
+void strip_arena(mjSpec& part);
 
 }  // namespace mjarm::scene_detail
