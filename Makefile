@@ -36,6 +36,9 @@ demo:
 # (docs/architecture.md, "Build"). Four UBSan checks that ASan or Eigen already make are left out
 # (CMakeLists.txt): with them the optimized library compiled in twice the time and the suite ran
 # a third slower.
+# ASan keeps 64 MB of freed memory in quarantine instead of 256: a use after free is still caught
+# behind the last 64 MB freed, and the suite's processes touch fewer fresh pages (a fifteenth less
+# system time, a third less memory for a CLI run).
 # LeakSanitizer ignores what Mesa, EGL, GLFW and X11 keep for the life of the process
 # (scripts/lsan.supp).
 TEST_BUILD ?= build-test
@@ -44,7 +47,7 @@ TEST_BUILD ?= build-test
 COMPILER_CACHE = $(if $(shell command -v ccache),-DCMAKE_CXX_COMPILER_LAUNCHER=ccache)
 export CCACHE_BASEDIR = $(CURDIR)
 export CCACHE_NOHASHDIR = true
-SANITIZER_ENV = ASAN_OPTIONS=detect_leaks=1:abort_on_error=0 \
+SANITIZER_ENV = ASAN_OPTIONS=detect_leaks=1:abort_on_error=0:quarantine_size_mb=64 \
   LSAN_OPTIONS=suppressions=$(CURDIR)/scripts/lsan.supp \
   UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
 
