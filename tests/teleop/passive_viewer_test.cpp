@@ -105,20 +105,23 @@ TEST(PassiveViewerWindow, ScriptedCtrlRightDragPullsTheSelectedBodyAndTheSpringE
     wait 5
   )");
   PassiveViewer viewer(robot, d, options);
-  double force_before_selection = 0.0, largest_force_x = 0.0;
+  double force_before_selection = 0.0, largest_force_x = 0.0, rightmost_while_pulled = 0.0;
   int selected = 0;
   run_user_loop(viewer, robot, d, [&] {
     const double fx = d.xfrc_applied[6 * box];
     if (viewer.selected_body() == 0) force_before_selection += std::abs(fx);
     selected = std::max(selected, viewer.selected_body());
     largest_force_x = std::max(largest_force_x, fx);
+    // the box floats freely: after the release it drifts on with the speed it had, so the
+    // verdict is where the spring took it, not where it ends
+    if (fx != 0.0) rightmost_while_pulled = std::max(rightmost_while_pulled, d.qpos[0]);
   });
   viewer.close();
   EXPECT_EQ(viewer.report().ended_by, "end of script");
   EXPECT_EQ(selected, box);
   EXPECT_EQ(force_before_selection, 0.0);
   EXPECT_GT(largest_force_x, 0.0) << "the spring pulls towards the pointer: world +x";
-  EXPECT_GT(d.qpos[0], 0.02) << "the box moved right";
+  EXPECT_GT(rightmost_while_pulled, 0.02) << "the spring pulled the box right";
   // the spring holds the grabbed point of the front face, about which the box may swing
   // horizontally: its centre stays at the height of the drag
   EXPECT_NEAR(d.qpos[2], 0.5, 0.01);
@@ -146,16 +149,17 @@ TEST(PassiveViewerWindow, CtrlLeftDragTurnsTheSelectedBody) {
     wait 5
   )");
   PassiveViewer viewer(robot, d, options);
-  double largest_torque = 0.0;
+  double largest_torque = 0.0, largest_angle_while_turned = 0.0;
   run_user_loop(viewer, robot, d, [&] {
-    largest_torque =
-        std::max(largest_torque, Eigen::Map<const Eigen::Vector3d>(d.xfrc_applied + 6 + 3).norm());
+    const double torque = Eigen::Map<const Eigen::Vector3d>(d.xfrc_applied + 6 + 3).norm();
+    largest_torque = std::max(largest_torque, torque);
+    // where the spring turned the box (after the release it may turn on with the speed it had)
+    const double angle = 2.0 * std::acos(std::min(1.0, std::abs(d.qpos[3])));
+    if (torque != 0.0) largest_angle_while_turned = std::max(largest_angle_while_turned, angle);
   });
   viewer.close();
   EXPECT_GT(largest_torque, 0.0);
-  // the spring turns the box to where the pointer turned it, and its damping stops it there
-  const double angle = 2.0 * std::acos(std::min(1.0, std::abs(d.qpos[3])));
-  EXPECT_GT(angle, 0.1) << "the box turned [rad]";
+  EXPECT_GT(largest_angle_while_turned, 0.1) << "the box turned [rad]";
   EXPECT_LT(Eigen::Vector3d(d.qpos[0], d.qpos[1], d.qpos[2] - 0.5).norm(), 0.01)
       << "without moving away";
 }
