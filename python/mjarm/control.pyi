@@ -22,6 +22,7 @@ from ._mjarm import (
     HqpAcOptions as HqpAcOptions,
     HqpAcPreload as HqpAcPreload,
     HqpAcStatus as HqpAcStatus,
+    JointLimitOptions as JointLimitOptions,
     JointPdController as JointPdController,
     JointPdGains as JointPdGains,
     JointPdOptions as JointPdOptions,

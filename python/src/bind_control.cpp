@@ -149,6 +149,7 @@ void bind_control(py::module_& m) {
       m, "AccelerationController",
       "Resolved task acceleration through damped J^+, then M qdd + h.");
 
+  options_class<JointLimitOptions>(m, "JointLimitOptions");  // nested in osc, cic and se3
   options_class<OperationalSpaceOptions>(m, "OperationalSpaceOptions");
   auto osc_controller = py::class_<OperationalSpaceController, Controller>(
       m, "OperationalSpaceController", "Operational-space impedance (osc).");

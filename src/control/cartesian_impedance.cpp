@@ -52,6 +52,7 @@ OperationalSpaceOptions cic_law_options(const CartesianImpedanceOptions& o, bool
   law.nullspace_stiffness = o.nullspace_stiffness;
   law.compensate_passive = true;
   law.task_space = o.task_space;
+  law.joint_limits = o.joint_limits;
   return law;
 }
 

@@ -2,6 +2,7 @@
 
 #include <Eigen/Cholesky>
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <limits>
 #include <string>
@@ -124,8 +125,11 @@ void HqpAcController::reset() noexcept {
   null_qp_.reset_warm_start();
   has_start_ = false;
   in_contact_ = false;
+  preload_level_ = 0.0;
+  preload_from_ = 0.0;
   contact_time_ = 0.0;
   tick_ = HqpAcTick{};
+  diagnostics_ = HqpAcSolveDiagnostics{};
   counters_ = HqpAcCounters{};
   wrench_.setZero();
   preload_force_.setZero();
@@ -147,6 +151,21 @@ void HqpAcController::hold(const mjData& data, Eigen::Ref<Eigen::VectorXd> tau,
   finish(status);
 }
 
+void HqpAcController::update_preload(double force, double time) noexcept {
+  // contact with hysteresis; each change restarts a linear ramp from the level it had then
+  const HqpAcPreload& p = options_.preload;
+  const bool contact =
+      in_contact_ ? force >= p.release_ratio * p.contact_force : force >= p.contact_force;
+  if (contact != in_contact_) {
+    in_contact_ = contact;
+    preload_from_ = preload_level_;
+    contact_time_ = time;
+  }
+  const double elapsed = std::max(0.0, time - contact_time_);
+  preload_level_ = in_contact_ ? std::min(1.0, preload_from_ + elapsed / p.ramp_time)
+                               : std::max(0.0, preload_from_ - elapsed / p.release_time);
+}
+
 void HqpAcController::compute(const mjData& data, const Reference& reference,
                               JointCommand& command) noexcept {
   command.kind = CommandKind::torque;
@@ -154,6 +173,7 @@ void HqpAcController::compute(const mjData& data, const Reference& reference,
   if (command.value.size() != n) return;
   auto tau = command.value.head(n);
   tick_ = HqpAcTick{};
+  diagnostics_ = HqpAcSolveDiagnostics{};
   ++counters_.ticks;
   dynamics_.update(data);
 
@@ -180,10 +200,7 @@ void HqpAcController::compute(const mjData& data, const Reference& reference,
   const Pose& X_WE = dynamics_.pose();
   tick_.wrench_valid = source_.measure(data, X_WE) == WrenchStatus::ok;
   wrench_ = source_.wrench();
-  if (!in_contact_ && wrench_.head<3>().norm() >= options_.preload.contact_force) {
-    in_contact_ = true;
-    contact_time_ = data.time;
-  }
+  update_preload(wrench_.head<3>().norm(), data.time);
   tick_.in_contact = in_contact_;
   compliance_.update(wrench_, task_space_.lambda_inverse());
 
@@ -192,10 +209,8 @@ void HqpAcController::compute(const mjData& data, const Reference& reference,
   const Vector6d dv = dynamics_.velocity() - target.V_WE;
   Vector6d F = -(compliance_.damping() * dv) - compliance_.stiffness() * e;
   preload_force_.setZero();
-  if (options_.preload.force > 0.0 && in_contact_) {
-    const double ramp =
-        std::clamp((data.time - contact_time_) / options_.preload.ramp_time, 0.0, 1.0);
-    preload_force_ = ramp * options_.preload.force * (X_WE.R * axis_);
+  if (options_.preload.force > 0.0 && preload_level_ > 0.0) {
+    preload_force_ = preload_level_ * options_.preload.force * (X_WE.R * axis_);
     F.head<3>() += preload_force_;
   }
   b_ = target.A_WE - dynamics_.bias_acceleration();
@@ -288,7 +303,9 @@ bool HqpAcController::solve_main() noexcept {
   main_qp_.set_gradient(g_);
   main_qp_.set_inequalities(M_, row_lo_, row_hi_);
   main_qp_.set_bounds(lb_, ub_);
+  const auto start = std::chrono::steady_clock::now();
   const qp::QpResult& r = main_qp_.solve(qp::QpStart::warm);
+  record_solve(start, r.iterations, main_qp_.active_count(), false);
   tick_.main_qp = r.status;
   tick_.main_iterations = r.iterations;
   if (r.status != qp::QpStatus::solved) return false;
@@ -358,12 +375,32 @@ bool HqpAcController::solve_null() noexcept {
   widen(lb_, ub_, null_lb_, null_ub_);
   null_qp_.set_inequalities(M_, null_row_lo_, null_row_hi_);
   null_qp_.set_bounds(null_lb_, null_ub_);
+  const auto start = std::chrono::steady_clock::now();
   const qp::QpResult& r = null_qp_.solve(qp::QpStart::warm);
+  record_solve(start, r.iterations, null_qp_.active_count(), true);
   tick_.null_qp = r.status;
   tick_.null_iterations = r.iterations;
   if (r.status != qp::QpStatus::solved) return false;
   qdd_ = r.x;
   return true;
+}
+
+void HqpAcController::record_solve(std::chrono::steady_clock::time_point start, int iterations,
+                                   int active, bool null_space) noexcept {
+  const std::chrono::duration<double, std::micro> took = std::chrono::steady_clock::now() - start;
+  HqpAcSolveDiagnostics& g = diagnostics_;
+  const int n = dynamics_.size();
+  g.solve_time_us += took.count();
+  g.iterations += iterations;
+  if (null_space) {
+    g.null_iterations = iterations;
+    g.null_active = active;
+    g.null_constraints = 6 + 2 * n;
+  } else {
+    g.main_iterations = iterations;
+    g.main_active = active;
+    g.main_constraints = 2 * n;
+  }
 }
 
 void HqpAcController::finish(HqpAcStatus status) noexcept {
@@ -399,6 +436,8 @@ void HqpAcController::finish(HqpAcStatus status) noexcept {
   values_[9] = static_cast<double>(counters_.null_space_dropped);
   values_[10] = static_cast<double>(counters_.torque_clipped);
   values_[11] = static_cast<double>(static_cast<int>(status));
+  values_[12] = diagnostics_.main_active;
+  values_[13] = diagnostics_.null_active;
 }
 
 }  // namespace mjarm

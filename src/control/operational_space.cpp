@@ -12,7 +12,8 @@ OperationalSpaceController::OperationalSpaceController(const Chain& chain,
     : options_(options),
       rows_(task_rows(options.mode)),
       dynamics_(chain),
-      task_space_(chain.size(), task_rows(options.mode), options.task_space) {
+      task_space_(chain.size(), task_rows(options.mode), options.task_space),
+      limits_(chain, options.joint_limits) {
   using O = OperationalSpaceOptions;
   check_fields(detail::ignored_rows_cleared(options, rows_, &O::stiffness, &O::damping, &O::inertia,
                                             &O::integral_gain, &O::integral_limit),
@@ -109,6 +110,10 @@ void OperationalSpaceController::compute(const mjData& data, const Reference& re
   }
   task_space_.project_torque(tau0_, null_);
   tau += null_;
+  if (limits_.enabled()) {
+    limits_.update(dynamics_.q(), dynamics_.qd());
+    limits_.add_to(&task_space_, tau);
+  }
 
   values_[0] = e.head<3>().norm();
   values_[1] = m == 6 ? e.tail<3>().norm() : 0.0;

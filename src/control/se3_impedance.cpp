@@ -93,11 +93,23 @@ Vector6d se3_rotate6(const Eigen::Matrix3d& R, const Vector6d& x) noexcept {
   return y;
 }
 
+FrictionFeedForwardOptions se3_friction_options(const Se3ImpedanceOptions& o) {
+  FrictionFeedForwardOptions f = o.friction;
+  f.damping =
+      o.compensate_passive ? DampingCompensation::by_controller : DampingCompensation::feed_forward;
+  return f;
+}
+
 }  // namespace
 
 Se3ImpedanceController::Se3ImpedanceController(const Chain& chain,
                                                const Se3ImpedanceOptions& options)
-    : options_(options), dynamics_(chain), task_space_(chain.size(), 6, options.task_space) {
+    : options_(options),
+      dynamics_(chain),
+      task_space_(chain.size(), 6, options.task_space),
+      limits_(chain, options.joint_limits),
+      friction_(chain, se3_friction_options(options)),
+      friction_on_(options.friction_feed_forward && friction_.active()) {
   se3_require_positive_definite(options.inertia, "inertia A");
   se3_require_positive_definite(options.damping, "damping D");
   se3_require_stiffness(options.stiffness, options.release.axes);
@@ -109,6 +121,8 @@ Se3ImpedanceController::Se3ImpedanceController(const Chain& chain,
   tau0_.setZero(n);
   null_.setZero(n);
   passive_.setZero(n);
+  moving_.setZero(n);
+  friction_torque_.setZero(n);
 }
 
 void Se3ImpedanceController::reset() noexcept {
@@ -146,6 +160,7 @@ void Se3ImpedanceController::hold(const mjData& data, Eigen::Ref<Eigen::VectorXd
     tau -= passive_;
   }
   if (!tau.allFinite()) tau.setZero();
+  friction_torque_.setZero();
   accel_ref_.setZero();
   write_values();
 }
@@ -179,6 +194,20 @@ void Se3ImpedanceController::compute(const mjData& data, const Reference& refere
     status = Se3ImpedanceStatus::invalid_wrench;
   }
 
+  // the desired wrench, made by the spring: the target moved by K_ii⁻¹·F_d,i on the kept axes
+  target_ = target.X_WE;
+  const Vector6d& F_d = target.F_ext;
+  if (options_.wrench_feed_forward && F_d.allFinite() && !F_d.isZero(0.0)) {
+    const Vector6d F_D = se3_rotate6(target.X_WE.R.transpose(), F_d);
+    Vector6d shift = Vector6d::Zero();
+    for (int i = 0; i < 6; ++i) {
+      // on a kept axis K(t)_ii = K_ii (S_ii = 1): the release never changes the shift
+      const double k = options_.stiffness(i, i);
+      if (release_mask_[i] == 0.0 && k > 0.0) shift[i] = F_D[i] / k;
+    }
+    target_ = target.X_WE * se3::exp(shift);
+  }
+
   // contact-triggered release of the chosen stiffness axes
   if (!release_started_ && F_E.head<3>().norm() >= options_.release.contact_force) {
     start_release(data.time);
@@ -188,7 +217,7 @@ void Se3ImpedanceController::compute(const mjData& data, const Reference& refere
   // error T̃ = X_ED and its coordinates λ (principal branch, ‖ω‖ ≤ π < 2π)
   const Pose& X_WE = dynamics_.pose();
   const Eigen::Matrix3d& R = X_WE.R;
-  const Pose X_ED = X_WE.inverse() * target.X_WE;
+  const Pose X_ED = X_WE.inverse() * target_;
   lambda_ = se3::log(X_ED);
   const double theta = lambda_.tail<3>().norm();
   if (!lambda_.allFinite() || !(theta < lie::kTwoPi)) {
@@ -198,7 +227,7 @@ void Se3ImpedanceController::compute(const mjData& data, const Reference& refere
   // body twists of E and D, and D's body acceleration
   const Vector6d& V_W = dynamics_.velocity();  // [ṗ_WE; ω_WE] in W
   const Vector6d V = se3_rotate6(R.transpose(), V_W);
-  const Eigen::Matrix3d R_WDt = target.X_WE.R.transpose();
+  const Eigen::Matrix3d R_WDt = target_.R.transpose();
   const Vector6d V_d = se3_rotate6(R_WDt, target.V_WE);
   Vector6d A_d = se3_rotate6(R_WDt, target.A_WE);
   A_d.head<3>() -= V_d.tail<3>().cross(V_d.head<3>());
@@ -242,6 +271,21 @@ void Se3ImpedanceController::compute(const mjData& data, const Reference& refere
   }
   task_space_.project_torque(tau0_, null_);
   tau += null_;
+  if (limits_.enabled()) {
+    limits_.update(dynamics_.q(), dynamics_.qd());
+    limits_.add_to(&task_space_, tau);
+  }
+  if (friction_on_) {
+    // the part of τ that moves the joints sets the torque mode's sign
+    const Chain& c = dynamics_.chain();
+    for (int i = 0; i < n; ++i) {
+      moving_[i] = tau[i] - dynamics_.bias()[i] + data.qfrc_passive[c.dof_address(i)];
+    }
+    friction_torque_ = moving_;
+    friction_.apply(dynamics_.qd(), friction_torque_);
+    friction_torque_ -= moving_;
+    tau += friction_torque_;
+  }
   if (!tau.allFinite()) return hold(data, tau, Se3ImpedanceStatus::invalid_state);
   status_ = status;
   write_values();

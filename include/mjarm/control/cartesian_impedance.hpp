@@ -80,6 +80,8 @@ struct CartesianImpedanceOptions {
   WrenchSourceOptions force;
   /// The floor that bounds Λ near singularities.
   TaskSpaceOptions task_space;
+  /// The repulsive joint-limit term of the law (off by default; `JointLimitAvoidance`).
+  JointLimitOptions joint_limits;
 };
 
 constexpr auto declared_fields(const CartesianImpedanceOptions*) {
@@ -109,7 +111,8 @@ constexpr auto declared_fields(const CartesianImpedanceOptions*) {
             "add the friction feed-forward of dof_frictionloss"),
       field("friction", &S::friction, "mode and scales of the feed-forward"),
       field("force", &S::force, "where the measured wrench comes from"),
-      field("task_space", &S::task_space, "the floor of Λ near singularities"));
+      field("task_space", &S::task_space, "the floor of Λ near singularities"),
+      field("joint_limits", &S::joint_limits, "the repulsive joint-limit term"));
 }
 
 /// Outcome of the last `CartesianImpedanceController::compute`.
@@ -137,7 +140,8 @@ constexpr auto declared_names(const CicStatus*) {
 ///
 ///     natural:  F = Λ·(A_WD − J̇·q̇) + K·e + D·ė + K_i·∫e + F_ext
 ///     exact:    F = Λ·(A_WD + M_d⁻¹·(K·e + D·ė + K_i·∫e + F_m + F_ext) − J̇·q̇) − F_m
-///     τ₁ = Jᵀ·F + h − τ_passive + Nᵀ·(K_n·(q_ref − q) − D_n·q̇)     (OperationalSpaceController)
+///     τ₁ = Jᵀ·F + h − τ_passive + Nᵀ·(K_n·(q_ref − q) − D_n·q̇)     (OperationalSpaceController,
+///          with its joint-limit term when `joint_limits.enabled`)
 ///     τ  = τ₁ + f⊙tanh(q̇/v₀)                      (friction feed-forward, velocity mode: default)
 ///     τ  = τ₁ + f⊙tanh(s·τ_m/f),  τ_m = τ₁ − h + τ_passive                       (torque mode)
 ///

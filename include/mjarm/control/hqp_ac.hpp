@@ -7,6 +7,7 @@
 
 #include <Eigen/Core>
 #include <array>
+#include <chrono>
 #include <cstdint>
 #include <span>
 #include <string>
@@ -26,13 +27,18 @@
 
 namespace mjarm {
 
-/// A force pushed along the insertion axis once E is in contact, ramped in linearly.
+/// A force pushed along the insertion axis while E is in contact: ramped in linearly when
+/// contact starts, ramped out linearly when it is lost (no latch until `reset`).
 struct HqpAcPreload {
   double force = 0.0;  ///< P [N] (≥ 0); 0 (default) disables the preload
   /// The insertion axis in E's own axes (non-zero; normalized): the preload pushes E along it.
   Eigen::Vector3d axis = Eigen::Vector3d::UnitZ();
   double ramp_time = 0.5;      ///< from 0 to P over this [s] (> 0)
   double contact_force = 2.0;  ///< contact starts when the measured ‖f‖ reaches this [N] (> 0)
+  /// Contact is lost when the measured ‖f‖ falls below release_ratio·contact_force (in (0, 1]:
+  /// the hysteresis keeps a noisy measurement near the threshold from toggling it).
+  double release_ratio = 0.5;
+  double release_time = 0.2;  ///< from P to 0 over this once contact is lost [s] (> 0)
 };
 
 constexpr auto declared_fields(const HqpAcPreload*) {
@@ -42,7 +48,11 @@ constexpr auto declared_fields(const HqpAcPreload*) {
       field("axis", &S::axis, "", Range::finite(), "insertion axis in E's axes (non-zero)"),
       field("ramp_time", &S::ramp_time, "s", Range::positive(), "from 0 to P over this"),
       field("contact_force", &S::contact_force, "N", Range::positive(),
-            "contact starts when the measured ‖f‖ reaches this"));
+            "contact starts when the measured ‖f‖ reaches this"),
+      field("release_ratio", &S::release_ratio, "", Range::open_closed(0.0, 1.0),
+            "contact lost below release_ratio·contact_force"),
+      field("release_time", &S::release_time, "s", Range::positive(),
+            "from P to 0 once contact is lost"));
 }
 
 /// Settings of an `HqpAcController`. Defaults are the where it gives them (dt_p, ω_th,
@@ -144,9 +154,36 @@ struct HqpAcTick {
   bool wrench_valid = true;     ///< the measurement was finite
   bool task_damped = false;     ///< Λ floored
   bool torque_clipped = false;  ///< τ had to be clipped to the torque limits (fallback only)
-  bool in_contact = false;      ///< the preload's contact latch
+  bool in_contact = false;      ///< the preload's contact state (with hysteresis, no latch)
   double manipulability = 0.0;  ///< ω = √det(J·Jᵀ) of the 6-row J
 };
+
+/// Per-tick figures of the two QP solves of the last `compute`, for a recorder or the CLI. Zero
+/// when the tick sent the hold command (no QP ran).
+struct HqpAcSolveDiagnostics {
+  int iterations = 0;          ///< active-set steps of both QPs together
+  int main_iterations = 0;     ///< of the main QP
+  int null_iterations = 0;     ///< of the null-space QP (0 when it did not run)
+  int main_active = 0;         ///< constraints in the main QP's final working set
+  int null_active = 0;         ///< in the null-space QP's (its equality rows included)
+  int main_constraints = 0;    ///< the main QP's constraints: n torque rows + n bounds
+  int null_constraints = 0;    ///< the null-space QP's: 6 equality + n torque rows + n bounds
+  double solve_time_us = 0.0;  ///< steady-clock time of both solves [µs] (wall clock: not
+                               ///< reproducible, hence not among the internals)
+};
+
+constexpr auto declared_fields(const HqpAcSolveDiagnostics*) {
+  using S = HqpAcSolveDiagnostics;
+  return declare<S>(
+      "hqp-ac solve", field("iterations", &S::iterations, "", "active-set steps of both QPs"),
+      field("main_iterations", &S::main_iterations, "", "of the main QP"),
+      field("null_iterations", &S::null_iterations, "", "of the null-space QP"),
+      field("main_active", &S::main_active, "", "constraints active in the main QP"),
+      field("null_active", &S::null_active, "", "active in the null-space QP (equalities too)"),
+      field("main_constraints", &S::main_constraints, "", "constraints of the main QP"),
+      field("null_constraints", &S::null_constraints, "", "constraints of the null-space QP"),
+      field("solve_time_us", &S::solve_time_us, "µs", "time of both solves"));
+}
 
 /// Counts since construction or `reset` (a fallback is never silent).
 struct HqpAcCounters {
@@ -164,8 +201,9 @@ struct HqpAcCounters {
 ///
 ///     K_r, D_r    = AdaptiveCompliance(F_m, Λ⁻¹)          F_m: measured wrench (`WrenchSource`)
 ///     F_r         = −D_r·Δν − K_r·e
-///     F_p         = ramp·P·[R_WE·a; 0]                        (after contact; `HqpAcPreload`)
-///     b           = A_d + Λ⁻¹·(F_r + F_p) − J̇·q̇              (Λ⁻¹ = J·M⁻¹·Jᵀ, exact)
+///     F_p         = ramp·P·[R_WE·a; 0]         (ramp rises in contact, falls after;
+///     `HqpAcPreload`) b           = A_d + Λ⁻¹·(F_r + F_p) − J̇·q̇              (Λ⁻¹ = J·M⁻¹·Jᵀ,
+///     exact)
 ///   main QP:      min ½‖J·q̈ − b‖² + ½ε_s·q̈ᵀ·M·q̈              → q̈₁
 ///   null QP:      min ½(q̈ − q̈₁ − q̈₀)ᵀ·M·(q̈ − q̈₁ − q̈₀)  s.t.  J·q̈ = J·q̈₁   → q̈
 ///                 q̈₀ = k_sa·(ω_th − ω)⁺·∇ω + K_p·(q_start − q) − D_p·q̇
@@ -189,7 +227,8 @@ struct HqpAcCounters {
 ///
 /// Internals: position_error [m], orientation_error [rad], force_effective [N],
 /// stiffness_scale, preload [N], manipulability, main_iterations, null_iterations,
-/// least_squares, null_space_dropped (counts), status (the enum's value).
+/// least_squares, null_space_dropped (counts), torque_clipped, status (the enum's value),
+/// main_active, null_active (`HqpAcSolveDiagnostics`; its wall-clock time is not an internal).
 class HqpAcController final : public Controller {
  public:
   /// @throws Error when an option is out of range (K0 not symmetric positive definite, a
@@ -208,11 +247,15 @@ class HqpAcController final : public Controller {
   /// One tick; a command of the wrong size is left untouched.
   void compute(const mjData& data, const Reference& reference,
                JointCommand& command) noexcept override;
-  /// Forgets the start configuration, the contact latch, the counters, the observer and the
-  /// QPs' warm starts.
+  /// Forgets the start configuration, the contact state and preload, the counters, the observer and
+  /// the QPs' warm starts.
   void reset() noexcept override;
 
   const HqpAcTick& last_tick() const noexcept { return tick_; }
+  /// Iterations, active constraints and time of the last compute's QP solves.
+  const HqpAcSolveDiagnostics& solve_diagnostics() const noexcept { return diagnostics_; }
+  /// The preload's level of the last compute, in [0, 1] (F_p = level·P along the axis).
+  double preload_level() const noexcept { return preload_level_; }
   HqpAcStatus status() const noexcept { return tick_.status; }
   const HqpAcCounters& counters() const noexcept { return counters_; }
 
@@ -255,6 +298,10 @@ class HqpAcController final : public Controller {
   void null_goal() noexcept;
   bool solve_null() noexcept;
   void finish(HqpAcStatus status) noexcept;
+  /// Contact (with hysteresis) from the measured ‖f‖ @p force, and the preload's level.
+  void update_preload(double force, double time) noexcept;
+  void record_solve(std::chrono::steady_clock::time_point start, int iterations, int active,
+                    bool null_space) noexcept;
 
   HqpAcOptions options_;
   ChainDynamics dynamics_;
@@ -277,8 +324,11 @@ class HqpAcController final : public Controller {
   Eigen::VectorXd q_start_;
   bool has_start_ = false;
   bool in_contact_ = false;
-  double contact_time_ = 0.0;
+  double preload_level_ = 0.0;  // in [0, 1]
+  double preload_from_ = 0.0;   // the level when contact last changed
+  double contact_time_ = 0.0;   // when contact last changed [s]
   HqpAcTick tick_;
+  HqpAcSolveDiagnostics diagnostics_;
   HqpAcCounters counters_;
   // workspace
   Vector6d wrench_ = Vector6d::Zero();
@@ -293,11 +343,12 @@ class HqpAcController final : public Controller {
   Eigen::VectorXd qdd1_, qdd0_, qdd_, gradient_, goal_, beq_, tau_ff_;  // n
   Eigen::MatrixXd J_;                                                   // 6×n
   Matrix6d gram_ = Matrix6d::Zero();                                    // J·Jᵀ
-  std::array<std::string, 12> names_{"position_error",     "orientation_error", "force_effective",
+  std::array<std::string, 14> names_{"position_error",     "orientation_error", "force_effective",
                                      "stiffness_scale",    "preload",           "manipulability",
                                      "main_iterations",    "null_iterations",   "least_squares",
-                                     "null_space_dropped", "torque_clipped",    "status"};
-  std::array<double, 12> values_{};
+                                     "null_space_dropped", "torque_clipped",    "status",
+                                     "main_active",        "null_active"};
+  std::array<double, 14> values_{};
 };
 
 }  // namespace mjarm

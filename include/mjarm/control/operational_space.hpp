@@ -11,6 +11,7 @@
 #include <string_view>
 
 #include "mjarm/control/controller.hpp"
+#include "mjarm/control/joint_limit_avoidance.hpp"
 #include "mjarm/control/task_error.hpp"
 #include "mjarm/dynamics/chain_dynamics.hpp"
 #include "mjarm/dynamics/task_space.hpp"
@@ -58,6 +59,9 @@ struct OperationalSpaceOptions {
   double integral_hold_force = std::numeric_limits<double>::infinity();
   /// The floor that bounds Λ near singularities.
   TaskSpaceOptions task_space;
+  /// The repulsive joint-limit term (off by default), split between the null space and the
+  /// full joint space (`JointLimitAvoidance`).
+  JointLimitOptions joint_limits;
 };
 
 constexpr auto declared_fields(const OperationalSpaceOptions*) {
@@ -83,7 +87,8 @@ constexpr auto declared_fields(const OperationalSpaceOptions*) {
       field("wrench_feedback", &S::wrench_feedback, "render M_d with the measured wrench"),
       field("integral_hold_force", &S::integral_hold_force, "N", Range::positive().or_infinity(),
             "∫e held while ‖f_m‖ ≥ this; +inf: never"),
-      field("task_space", &S::task_space, "the floor of Λ near singularities"));
+      field("task_space", &S::task_space, "the floor of Λ near singularities"),
+      field("joint_limits", &S::joint_limits, "the repulsive joint-limit term"));
 }
 
 /// Operational-space impedance control. Each tick, with J the world-aligned Jacobian (its first
@@ -95,7 +100,7 @@ constexpr auto declared_fields(const OperationalSpaceOptions*) {
 ///     u  = A_WD + M_d⁻¹·f                                        (desired task acceleration)
 ///     F  = Λ·(u − J̇·q̇) + F_ext           (with task_inertia: F = Λ·(A_WD − J̇·q̇) + f + F_ext;
 ///                                          with wrench_feedback, see the option)
-///     τ  = Jᵀ·F + h − τ_passive + Nᵀ·(K_n·(q_ref − q) − D_n·q̇)
+///     τ  = Jᵀ·F + h − τ_passive + Nᵀ·(K_n·(q_ref − q) − D_n·q̇)  [+ the joint-limit term]
 ///
 /// h = C·q̇ + g is MuJoCo's qfrc_bias on the chain's dofs, τ_passive its qfrc_passive. With the
 /// model exact and no contact, M_d·ë + D·ė + K·e = 0 in free motion (to first order in the
@@ -135,6 +140,8 @@ class OperationalSpaceController final : public Controller {
   const Vector6d& measured_wrench() const noexcept { return wrench_; }
   /// True when the last `compute` held the integral (measured force at or above the threshold).
   bool integral_held() const noexcept { return integral_held_; }
+  /// The joint-limit term (its torque of the last `compute` when enabled).
+  const JointLimitAvoidance& joint_limits() const noexcept { return limits_; }
   /// The joint-space dynamics of the last `compute` (M, h, J, pose of E).
   const ChainDynamics& dynamics() const noexcept { return dynamics_; }
 
@@ -154,6 +161,7 @@ class OperationalSpaceController final : public Controller {
   int rows_ = 6;
   ChainDynamics dynamics_;
   TaskSpaceDynamics task_space_;
+  JointLimitAvoidance limits_;
   Vector6d damping_ = Vector6d::Zero();  // D with the automatic entries resolved (fixed M_d)
   Vector6d integral_ = Vector6d::Zero();
   Vector6d force_ = Vector6d::Zero();

@@ -11,7 +11,9 @@
 #include <string_view>
 
 #include "mjarm/control/controller.hpp"
+#include "mjarm/control/joint_limit_avoidance.hpp"
 #include "mjarm/dynamics/chain_dynamics.hpp"
+#include "mjarm/dynamics/friction_feed_forward.hpp"
 #include "mjarm/dynamics/task_space.hpp"
 #include "mjarm/fields.hpp"
 #include "mjarm/lie/pose.hpp"
@@ -63,6 +65,17 @@ struct Se3ImpedanceOptions {
   bool compensate_passive = true;
   /// The floor that bounds Λ near singularities.
   TaskSpaceOptions task_space;
+  /// The repulsive joint-limit term (off by default; `JointLimitAvoidance`).
+  JointLimitOptions joint_limits;
+  /// Feed the desired wrench F_d = reference.task.F_ext (world axes, what E should exert) forward
+  /// through the spring: the target is moved by K_ii⁻¹·F_d,i along each of D's axes i that is not
+  /// released and has K_ii > 0 (exact for a diagonal K). Off: F_ext is ignored.
+  bool wrench_feed_forward = false;
+  /// Add the friction feed-forward of the model's dof_frictionloss (a no-op without friction).
+  bool friction_feed_forward = false;
+  /// Mode and scales of the feed-forward (velocity mode by default). Its `damping` field is
+  /// ignored: by_controller with `compensate_passive`, feed_forward without.
+  FrictionFeedForwardOptions friction{.mode = FrictionMode::velocity};
 };
 
 // the 6×6 matrices stay undeclared: they are checked (symmetric, definite) and bound by hand
@@ -75,7 +88,13 @@ constexpr auto declared_fields(const Se3ImpedanceOptions*) {
                     field("nullspace_stiffness", &S::nullspace_stiffness, "N·m/rad or N/m",
                           Range::non_negative(), "K_n, null-space posture stiffness"),
                     field("compensate_passive", &S::compensate_passive, "cancel qfrc_passive"),
-                    field("task_space", &S::task_space, "the floor of Λ near singularities"));
+                    field("task_space", &S::task_space, "the floor of Λ near singularities"),
+                    field("joint_limits", &S::joint_limits, "the repulsive joint-limit term"),
+                    field("wrench_feed_forward", &S::wrench_feed_forward,
+                          "feed F_d = reference.task.F_ext forward through the spring"),
+                    field("friction_feed_forward", &S::friction_feed_forward,
+                          "add the friction feed-forward of dof_frictionloss"),
+                    field("friction", &S::friction, "mode and scales of the feed-forward"));
 }
 
 /// Outcome of the last `Se3ImpedanceController::compute`.
@@ -112,7 +131,11 @@ constexpr auto declared_names(const Se3ImpedanceStatus*) {
 ///     λ̈_ref = A⁻¹·(γ − D·λ̇ − K(t)·λ)
 ///     V̇_ref = Ad_T̃·V̇_d − E·λ̈_ref + ad_Ṽ·V − Ė·λ̇
 ///     q̈  = J̄_b·(V̇_ref − J̇_b·q̇) + M⁻¹·Nᵀ·τ₀,  τ₀ = K_n·(q_ref − q) − D_n·q̇
-///     τ  = M·q̈ + h − τ_passive − J_bᵀ·F_E
+///     τ  = M·q̈ + h − τ_passive − J_bᵀ·F_E   [+ the joint-limit term, `joint_limits`]
+///     τ += f⊙tanh(q̇/v₀)  or  f⊙tanh(s·τ_m/f), τ_m = τ − h + τ_passive   (`friction_feed_forward`)
+///
+/// With `wrench_feed_forward`, T_d above is T_d·exp(δ), δ_i = F_d,i/K_ii on D's kept axes
+/// (F_d = reference.task.F_ext in D's axes): at rest in contact the spring then pushes with F_d.
 ///
 /// J_b is the body Jacobian of E (V = J_b·q̇), J̄_b = M⁻¹·J_bᵀ·Λ_b its dynamically consistent
 /// inverse, N = I − J̄_b·J_b. With the model exact, the measured wrench exact (or zero in free
@@ -175,6 +198,13 @@ class Se3ImpedanceController final : public Controller {
   const Vector6d& reference_acceleration() const noexcept { return accel_ref_; }
   /// E = dexp(λ) of the last `compute`.
   const Matrix6d& dexp() const noexcept { return dexp_; }
+  /// The joint-limit term (its torque of the last `compute` when enabled).
+  const JointLimitAvoidance& joint_limits() const noexcept { return limits_; }
+  /// The friction feed-forward added by the last `compute` (n; zero when off) [N·m].
+  const Eigen::VectorXd& friction_torque() const noexcept { return friction_torque_; }
+  /// The target the law used at the last `compute`: reference.task.X_WE moved by the wrench
+  /// feed-forward.
+  const Pose& shifted_target() const noexcept { return target_; }
   /// The task-space dynamics of the last `compute` (world-aligned Jacobian: Λ_b and J̄_b are
   /// the same up to the rotation blkdiag(R_WE, R_WE)).
   const TaskSpaceDynamics& task_space() const noexcept { return task_space_; }
@@ -194,6 +224,10 @@ class Se3ImpedanceController final : public Controller {
   Se3ImpedanceOptions options_;
   ChainDynamics dynamics_;
   TaskSpaceDynamics task_space_;
+  JointLimitAvoidance limits_;
+  FrictionFeedForward friction_;
+  bool friction_on_ = false;
+  Pose target_;
   Matrix6d inertia_inverse_ = Matrix6d::Identity();
   Vector6d release_mask_ = Vector6d::Zero();  // 1 on released axes
   Vector6d wrench_ = Vector6d::Zero();
@@ -207,9 +241,11 @@ class Se3ImpedanceController final : public Controller {
   Vector6d accel_ref_ = Vector6d::Zero();
   Matrix6d dexp_ = Matrix6d::Identity();
   // workspace
-  Eigen::VectorXd tau0_;     // n
-  Eigen::VectorXd null_;     // n
-  Eigen::VectorXd passive_;  // n
+  Eigen::VectorXd tau0_;             // n
+  Eigen::VectorXd null_;             // n
+  Eigen::VectorXd passive_;          // n
+  Eigen::VectorXd moving_;           // n: τ − h + τ_passive
+  Eigen::VectorXd friction_torque_;  // n
   std::array<std::string, 17> names_{
       "lambda_x",      "lambda_y",      "lambda_z",       "lambda_rx",      "lambda_ry",
       "lambda_rz",     "lambda_dot_x",  "lambda_dot_y",   "lambda_dot_z",   "lambda_dot_rx",

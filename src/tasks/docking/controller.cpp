@@ -5,7 +5,6 @@
 #include <numbers>
 
 #include "mjarm/error.hpp"
-#include "mjarm/lie/se3.hpp"
 #include "mjarm/number_text.hpp"
 #include "mjarm/trajectory/smoothstep.hpp"
 
@@ -49,9 +48,7 @@ WrenchSourceOptions source_options(const DockingControllerOptions& o) {
 
 DockingController::DockingController(const DockingScene& scene,
                                      const DockingControllerOptions& options)
-    : options_(options),
-      dynamics_(scene.chain),
-      friction_(scene.chain, friction_options_for(true, options.friction_mode)) {
+    : options_(options), dynamics_(scene.chain) {
   check(options);
   const Chain& chain = scene.chain;
   const mjModel& m = scene.robot.model();
@@ -68,6 +65,9 @@ DockingController::DockingController(const DockingScene& scene,
       o.release.duration = options.release_duration;
       o.nullspace_stiffness = options.nullspace_stiffness;
       o.nullspace_damping = options.nullspace_damping;
+      o.wrench_feed_forward = true;  // the preload F_ext, made by the spring
+      o.friction_feed_forward = options.friction_feed_forward;
+      o.friction = friction_options_for(true, options.friction_mode);
       se3_ = std::make_unique<Se3ImpedanceController>(chain, o);
       law_ = se3_.get();
       source_.emplace(chain, source_options(options));  // names the site when it is missing
@@ -119,7 +119,6 @@ DockingController::DockingController(const DockingScene& scene,
     upper_[i] = std::max(lo, hi);
   }
   tau_ = Eigen::VectorXd::Zero(n);
-  move_ = Eigen::VectorXd::Zero(n);
   reference_.joint.q = Eigen::VectorXd::Zero(n);
   reference_.joint.qd = Eigen::VectorXd::Zero(n);
   reference_.joint.qdd = Eigen::VectorXd::Zero(n);
@@ -200,7 +199,6 @@ void DockingController::compute_hqp(const mjData& data, const Reference& referen
 
 void DockingController::compute_se3(const mjData& data, const Reference& reference,
                                     JointCommand& command) noexcept {
-  const int n = dynamics_.size();
   dynamics_.update(data);
   const Pose& X_WE = dynamics_.pose();
   if (source_->measure(data, X_WE) == WrenchStatus::ok) {
@@ -212,32 +210,11 @@ void DockingController::compute_se3(const mjData& data, const Reference& referen
   F_E.head<3>() = X_WE.R.transpose() * wrench_.head<3>();
   F_E.tail<3>() = X_WE.R.transpose() * wrench_.tail<3>();
   se3_->set_measured_wrench(F_E);
-  // the preload: shift the target so that the spring pushes with F_ext (D's axes)
+  // the law adds the preload (F_ext through its spring) and the friction feed-forward itself;
+  // the copy keeps the posture of a reference without joint.q at the last one given (or zero)
   copy_reference(reference);
-  const Vector6d& F_ext = reference.task.F_ext;
-  if (F_ext.allFinite() && !F_ext.isZero(0.0)) {
-    const Eigen::Matrix3d& R_WD = reference.task.X_WE.R;
-    Vector6d F_D;
-    F_D.head<3>() = R_WD.transpose() * F_ext.head<3>();
-    F_D.tail<3>() = R_WD.transpose() * F_ext.tail<3>();
-    Vector6d shift = Vector6d::Zero();
-    const Matrix6d& K = se3_->stiffness();
-    for (int i = 0; i < 6; ++i)
-      if (!options_.release_axes[static_cast<std::size_t>(i)] && K(i, i) > 0.0)
-        shift[i] = F_D[i] / K(i, i);
-    reference_.task.X_WE = reference.task.X_WE * se3::exp(shift);
-  }
   se3_->compute(data, reference_, command);
   stiffness_ = se3_->stiffness().diagonal();
-  if (options_.friction_feed_forward && friction_.active()) {
-    // the part of τ that moves the joints sets the torque mode's sign
-    const Eigen::VectorXd& h = dynamics_.bias();
-    for (int i = 0; i < n; ++i)
-      move_[i] = command.value[i] - h[i] + data.qfrc_passive[dynamics_.chain().dof_address(i)];
-    tau_ = move_;
-    friction_.apply(dynamics_.qd(), tau_);
-    command.value += tau_ - move_;
-  }
   tau_ = command.value.cwiseMax(lower_).cwiseMin(upper_);
   source_->record_command(data, dynamics_, tau_);  // the observer only
 }

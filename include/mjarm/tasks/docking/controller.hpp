@@ -90,8 +90,8 @@ struct DockingControllerOptions {
   // ---- all
   double nullspace_stiffness = 10.0;  ///< posture toward reference.joint.q [N·m/rad]
   double nullspace_damping = 5.0;     ///< [N·m·s/rad]
-  /// Friction feed-forward from the model's dof_frictionloss (a no-op on the plain model); cic
-  /// and hqp-ac add their own, se3 gets the wrapper's.
+  /// Friction feed-forward from the model's dof_frictionloss (a no-op on the plain model); each
+  /// law adds its own.
   bool friction_feed_forward = true;
   /// Its sign: the joint velocity (measured: 0.7 mm RMS in free motion with the Franka friction
   /// against 1.9 mm following the torque, docs/docking.md) or the commanded torque.
@@ -148,13 +148,12 @@ void check(const DockingControllerOptions& options);
 ///   `release_duration`, so that K_r acts on (I − s·P)·e. K_r ≥ 0.3·K0 by design: without the
 ///   release its spring holds the peg against the wall of a bore whose believed axis is off by
 ///   more than the radial clearance (docs/docking.md).
-/// - **se3**: `Se3ImpedanceController`, fed by this wrapper: the sensor's wrench through a
-///   first-order low-pass (`sensor_cutoff`), in E's axes; the preload as a shift of the target by
-///   K⁻¹·F_ext on the axes it keeps (the SE(3) law has no force feed-forward: its spring makes
-///   the force); the friction feed-forward (`friction_mode`; velocity mode f⊙tanh(q̇/v₀), or
-///   torque mode f⊙tanh(s·τ_m/f) on the part τ_m = τ − h + τ_passive that moves the joints; the
-///   damping is cancelled by the law already); the observer told the torque the motors apply
-///   (clipped to their ranges). A non-finite sensor reading is skipped (the last good value
+/// - **se3**: `Se3ImpedanceController`, configured with its wrench feed-forward (the preload
+///   F_ext as a shift of the target by K⁻¹·F_ext on the axes it keeps: its spring makes the
+///   force) and its friction feed-forward (`friction_mode`; the damping is cancelled by the law
+///   already), and fed by this wrapper: the sensor's wrench through a first-order low-pass
+///   (`sensor_cutoff`), in E's axes; the observer told the torque the motors apply (clipped to
+///   their ranges). A non-finite sensor reading is skipped (the last good value
 ///   kept) and counted.
 /// `compute` allocates nothing and never throws.
 class DockingController final : public Controller {
@@ -206,13 +205,12 @@ class DockingController final : public Controller {
   bool release_started_ = false;                 // hqp-ac's release
   double release_start_ = 0.0;
   double release_ = 0.0;
-  FrictionFeedForward friction_;
   double alpha_ = 1.0;  // low-pass gain per control tick
   Vector6d wrench_ = Vector6d::Zero();
   Vector6d stiffness_ = Vector6d::Zero();
   std::int64_t bad_wrench_ticks_ = 0;
   Reference reference_;  // the law's reference (preload shift), reused storage
-  Eigen::VectorXd lower_, upper_, tau_, move_;
+  Eigen::VectorXd lower_, upper_, tau_;
   std::vector<std::string> names_;
   mutable std::vector<double> values_;
 };
