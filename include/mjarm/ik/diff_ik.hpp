@@ -27,6 +27,12 @@
 ///
 /// The QP (n variables, box constraints only) is solved by qp::BoxQp, warm-started from the
 /// previous step's bound pattern; it is sized at construction and `step()` allocates nothing.
+///
+/// Inequality constraints (`add_constraint`: collision avoidance, configuration limits with a
+/// margin, a manipulability barrier — diff_ik_constraint.hpp) add rows C·v ≥ b and/or tighten
+/// the box. Once a constraint with rows is added the QP is solved by qp::DenseQp (general
+/// inequalities and the same box), sized when the constraint is added; without one, BoxQp
+/// gives today's results bit for bit.
 
 #include <Eigen/Core>
 #include <limits>
@@ -35,10 +41,12 @@
 #include <vector>
 
 #include "mjarm/fields.hpp"
+#include "mjarm/ik/diff_ik_constraint.hpp"
 #include "mjarm/kinematics/chain_kinematics.hpp"
 #include "mjarm/lie/pose.hpp"
 #include "mjarm/lie/types.hpp"
 #include "mjarm/qp/box_qp.hpp"
+#include "mjarm/qp/dense_qp.hpp"
 
 namespace mjarm {
 
@@ -91,6 +99,8 @@ struct DiffIkStep {
   /// one or confirming the answer; 1 when the warm-started bound pattern is the solution).
   int qp_iterations = 0;
   bool pulled_back = false;  ///< a joint was outside its limits by more than one step can undo
+  /// General inequality rows active in this step (0 without row constraints).
+  int constraint_rows = 0;
 };
 
 /// Differential-IK QP for the joints of one chain, with any number of weighted tasks on frames
@@ -139,6 +149,22 @@ class DiffIk {
   /// @throws Error for a wrong size or NaN
   void set_fixed_qpos(const Eigen::Ref<const Eigen::VectorXd>& qpos);
 
+  /// Adds an inequality constraint (rows and/or a box tightening) evaluated at every step's q.
+  /// The first constraint with rows switches the solver to qp::DenseQp; each addition resizes
+  /// it (allocates), `step()` still allocates nothing. `set_fixed_qpos` passes its qpos on to
+  /// the constraints added before it.
+  /// @return the constraint's index
+  /// @throws Error for a null constraint or one over a different number of joints
+  int add_constraint(std::unique_ptr<DiffIkConstraint> constraint);
+  /// Number of constraints added.
+  int constraint_count() const noexcept { return static_cast<int>(constraints_.size()); }
+  /// Constraint @p index. @throws Error for a bad index
+  DiffIkConstraint& constraint(int index);
+  /// The general rows of the last `step()`: C (m × n, m the sum of `max_rows()`) and b (m), the
+  /// QP having held C·v ≥ b. Unused rows are zero with b = −∞.
+  const Eigen::MatrixXd& constraint_matrix() const noexcept { return C_; }
+  const Eigen::VectorXd& constraint_lower() const noexcept { return c_lo_; }
+
   /// Number of tasks added.
   int task_count() const noexcept { return static_cast<int>(tasks_.size()); }
   /// Kind of task @p task. @throws Error for a bad index
@@ -174,7 +200,11 @@ class DiffIk {
   Chain chain_;
   DiffIkOptions options_;
   std::vector<std::unique_ptr<Task>> tasks_;
+  std::vector<std::unique_ptr<DiffIkConstraint>> constraints_;
   qp::BoxQp qp_;
+  std::unique_ptr<qp::DenseQp> dense_;  // once a constraint has rows
+  Eigen::MatrixXd C_;                   // general rows C·v ≥ c_lo_ (≤ c_hi_ = +∞)
+  Eigen::VectorXd c_lo_, c_hi_;
   DiffIkStep step_;
   // workspace
   Eigen::MatrixXd H_;
