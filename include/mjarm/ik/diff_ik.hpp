@@ -5,7 +5,7 @@
 /// Each step solves, for the joint velocity v (n, rad/s or m/s),
 ///
 ///     minimize    Σ_k ‖W_k^½ (A_k v − (α_k/dt)·e_k)‖² + λ‖v‖²
-///     subject to  lo ≤ v ≤ hi
+///     subject to  lo ≤ v ≤ hi       (and C·v ≥ b with constraint rows, below)
 ///
 /// with one term per task k (α_k ∈ (0, 1] its gain: the fraction of the error removed per step):
 /// - pose:     e = log(X_EW·X_WT) (body log error, frame E, m and rad),
@@ -94,9 +94,12 @@ constexpr auto declared_names(const DiffIkTaskKind*) {
 struct DiffIkStep {
   Eigen::VectorXd v;       ///< joint velocity (n) [rad/s or m/s], within the box
   Eigen::VectorXd q_next;  ///< q + v·dt clipped into the limits (n) [rad or m]
-  qp::QpStatus qp_status = qp::QpStatus::solved;  ///< status of the QP (solved in practice)
-  /// Iterations of the box QP solver (qp::BoxQp: reduced solves, each adding a bound, releasing
-  /// one or confirming the answer; 1 when the warm-started bound pattern is the solution).
+  /// Status of the QP: solved in practice without constraint rows; `infeasible` when the rows
+  /// and the box have no common point (v is then the box's point closest to rest).
+  qp::QpStatus qp_status = qp::QpStatus::solved;
+  /// Iterations of the QP solver: qp::BoxQp's reduced solves (each adding a bound, releasing
+  /// one or confirming the answer; 1 when the warm-started bound pattern is the solution), or,
+  /// with constraint rows, qp::DenseQp's Goldfarb–Idnani steps (additions and drops).
   int qp_iterations = 0;
   bool pulled_back = false;  ///< a joint was outside its limits by more than one step can undo
   /// General inequality rows active in this step (0 without row constraints).
