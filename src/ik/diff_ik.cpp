@@ -172,6 +172,35 @@ void DiffIk::set_fixed_qpos(const Eigen::Ref<const Eigen::VectorXd>& qpos) {
   for (auto& t : tasks_) {
     if (t->kin) t->kin->set_fixed_qpos(qpos);
   }
+  for (auto& c : constraints_) c->set_fixed_qpos(qpos);
+}
+
+int DiffIk::add_constraint(std::unique_ptr<DiffIkConstraint> constraint) {
+  if (!constraint) throw Error("DiffIk::add_constraint: the constraint is null");
+  const int n = chain_.size();
+  if (constraint->variables() != n) {
+    throw Error("DiffIk::add_constraint: the constraint is over " +
+                std::to_string(constraint->variables()) + " joints, the chain has " +
+                std::to_string(n));
+  }
+  constraints_.push_back(std::move(constraint));
+  int rows = 0;
+  for (const auto& c : constraints_) rows += c->max_rows();
+  if (rows > 0) {
+    dense_ = std::make_unique<qp::DenseQp>(n, 0, rows);
+    C_ = Eigen::MatrixXd::Zero(rows, n);
+    c_lo_ = Eigen::VectorXd::Constant(rows, -kInf);
+    c_hi_ = Eigen::VectorXd::Constant(rows, kInf);
+  }
+  return constraint_count() - 1;
+}
+
+DiffIkConstraint& DiffIk::constraint(int index) {
+  if (index < 0 || index >= constraint_count()) {
+    throw Error("DiffIk::constraint: no constraint " + std::to_string(index) + " (" +
+                std::to_string(constraint_count()) + " constraints)");
+  }
+  return *constraints_[index];
 }
 
 DiffIkTaskKind DiffIk::task_kind(int task) const { return task_at(task, "task_kind").kind; }
@@ -252,16 +281,46 @@ const DiffIkStep& DiffIk::step(const Eigen::Ref<const Eigen::VectorXd>& q) {
     }
   }
 
-  qp_.set_hessian(H_);
-  qp_.set_gradient(g_);
-  qp_.set_bounds(lo_, hi_);
-  const qp::BoxQpResult& r = qp_.solve(qp::QpStart::warm);
-  step_.qp_status = r.status;
-  step_.qp_iterations = r.iterations;
-  if (r.x.allFinite()) {
-    step_.v = r.x.cwiseMax(lo_).cwiseMin(hi_);
+  // the constraints' box tightenings stay inside the hard box and never empty it
+  for (auto& c : constraints_) c->tighten_box(q, options_.dt, lo_, hi_);
+
+  bool usable = false;
+  step_.constraint_rows = 0;
+  if (dense_) {
+    // general rows, one block per constraint; a block's unused rows are zero with b = −∞
+    int offset = 0;
+    for (auto& c : constraints_) {
+      const int m = c->max_rows();
+      if (m == 0) continue;
+      const int k = c->rows(q, options_.dt, C_.middleRows(offset, m), c_lo_.segment(offset, m));
+      C_.middleRows(offset + k, m - k).setZero();
+      c_lo_.segment(offset + k, m - k).setConstant(-kInf);
+      step_.constraint_rows += k;
+      offset += m;
+    }
+    dense_->set_hessian(H_);
+    dense_->set_gradient(g_);
+    dense_->set_inequalities(C_, c_lo_, c_hi_);
+    dense_->set_bounds(lo_, hi_);
+    const qp::QpResult& r = dense_->solve(qp::QpStart::warm);
+    step_.qp_status = r.status;
+    step_.qp_iterations = r.iterations;
+    usable = r.status == qp::QpStatus::solved && r.x.allFinite();
+    if (usable) step_.v = r.x.cwiseMax(lo_).cwiseMin(hi_);
   } else {
-    // never expected (H ≻ 0, box non-empty); the closest point of the box to rest is safe
+    qp_.set_hessian(H_);
+    qp_.set_gradient(g_);
+    qp_.set_bounds(lo_, hi_);
+    const qp::BoxQpResult& r = qp_.solve(qp::QpStart::warm);
+    step_.qp_status = r.status;
+    step_.qp_iterations = r.iterations;
+    usable = r.x.allFinite();
+    if (usable) step_.v = r.x.cwiseMax(lo_).cwiseMin(hi_);
+  }
+  if (!usable) {
+    // box QP: never expected (H ≻ 0, box non-empty); dense QP: the rows cannot all hold (e.g.
+    // a pair already inside min_distance that the velocity box cannot push out in one step).
+    // The closest point of the box to rest is safe; qp_status says what happened.
     step_.v = Eigen::VectorXd::Zero(n).cwiseMax(lo_).cwiseMin(hi_);
   }
 
@@ -276,6 +335,9 @@ const DiffIkStep& DiffIk::step(const Eigen::Ref<const Eigen::VectorXd>& q) {
   return step_;
 }
 
-void DiffIk::reset_warm_start() noexcept { qp_.reset_warm_start(); }
+void DiffIk::reset_warm_start() noexcept {
+  qp_.reset_warm_start();
+  if (dense_) dense_->reset_warm_start();
+}
 
 }  // namespace mjarm

@@ -186,7 +186,8 @@ TEST(CliBounds, EveryCommandThatLoadsAModelTakesTheElementBound) {
                                                   {"bench", "ik"},
                                                   {"bench", "control"},
                                                   {"bench", "env"},
-                                                  {"bench", "plan"}}) {
+                                                  {"bench", "plan"},
+                                                  {"bench", "diffik"}}) {
     const CliRun help = run_cli(with(command, {"--help"}));
     EXPECT_EQ(help.exit_code, 0) << command.front();
     EXPECT_NE(help.out.find("--max-model-elements"), std::string::npos) << command.front();

@@ -5,7 +5,7 @@
 /// Each step solves, for the joint velocity v (n, rad/s or m/s),
 ///
 ///     minimize    Σ_k ‖W_k^½ (A_k v − (α_k/dt)·e_k)‖² + λ‖v‖²
-///     subject to  lo ≤ v ≤ hi
+///     subject to  lo ≤ v ≤ hi       (and C·v ≥ b with constraint rows, below)
 ///
 /// with one term per task k (α_k ∈ (0, 1] its gain: the fraction of the error removed per step):
 /// - pose:     e = log(X_EW·X_WT) (body log error, frame E, m and rad),
@@ -27,6 +27,12 @@
 ///
 /// The QP (n variables, box constraints only) is solved by qp::BoxQp, warm-started from the
 /// previous step's bound pattern; it is sized at construction and `step()` allocates nothing.
+///
+/// Inequality constraints (`add_constraint`: collision avoidance, configuration limits with a
+/// margin, a manipulability barrier — diff_ik_constraint.hpp) add rows C·v ≥ b and/or tighten
+/// the box. Once a constraint with rows is added the QP is solved by qp::DenseQp (general
+/// inequalities and the same box), sized when the constraint is added; without one, BoxQp
+/// gives today's results bit for bit.
 
 #include <Eigen/Core>
 #include <limits>
@@ -35,10 +41,12 @@
 #include <vector>
 
 #include "mjarm/fields.hpp"
+#include "mjarm/ik/diff_ik_constraint.hpp"
 #include "mjarm/kinematics/chain_kinematics.hpp"
 #include "mjarm/lie/pose.hpp"
 #include "mjarm/lie/types.hpp"
 #include "mjarm/qp/box_qp.hpp"
+#include "mjarm/qp/dense_qp.hpp"
 
 namespace mjarm {
 
@@ -86,11 +94,16 @@ constexpr auto declared_names(const DiffIkTaskKind*) {
 struct DiffIkStep {
   Eigen::VectorXd v;       ///< joint velocity (n) [rad/s or m/s], within the box
   Eigen::VectorXd q_next;  ///< q + v·dt clipped into the limits (n) [rad or m]
-  qp::QpStatus qp_status = qp::QpStatus::solved;  ///< status of the QP (solved in practice)
-  /// Iterations of the box QP solver (qp::BoxQp: reduced solves, each adding a bound, releasing
-  /// one or confirming the answer; 1 when the warm-started bound pattern is the solution).
+  /// Status of the QP: solved in practice without constraint rows; `infeasible` when the rows
+  /// and the box have no common point (v is then the box's point closest to rest).
+  qp::QpStatus qp_status = qp::QpStatus::solved;
+  /// Iterations of the QP solver: qp::BoxQp's reduced solves (each adding a bound, releasing
+  /// one or confirming the answer; 1 when the warm-started bound pattern is the solution), or,
+  /// with constraint rows, qp::DenseQp's Goldfarb–Idnani steps (additions and drops).
   int qp_iterations = 0;
   bool pulled_back = false;  ///< a joint was outside its limits by more than one step can undo
+  /// General inequality rows active in this step (0 without row constraints).
+  int constraint_rows = 0;
 };
 
 /// Differential-IK QP for the joints of one chain, with any number of weighted tasks on frames
@@ -139,6 +152,22 @@ class DiffIk {
   /// @throws Error for a wrong size or NaN
   void set_fixed_qpos(const Eigen::Ref<const Eigen::VectorXd>& qpos);
 
+  /// Adds an inequality constraint (rows and/or a box tightening) evaluated at every step's q.
+  /// The first constraint with rows switches the solver to qp::DenseQp; each addition resizes
+  /// it (allocates), `step()` still allocates nothing. `set_fixed_qpos` passes its qpos on to
+  /// the constraints added before it.
+  /// @return the constraint's index
+  /// @throws Error for a null constraint or one over a different number of joints
+  int add_constraint(std::unique_ptr<DiffIkConstraint> constraint);
+  /// Number of constraints added.
+  int constraint_count() const noexcept { return static_cast<int>(constraints_.size()); }
+  /// Constraint @p index. @throws Error for a bad index
+  DiffIkConstraint& constraint(int index);
+  /// The general rows of the last `step()`: C (m × n, m the sum of `max_rows()`) and b (m), the
+  /// QP having held C·v ≥ b. Unused rows are zero with b = −∞.
+  const Eigen::MatrixXd& constraint_matrix() const noexcept { return C_; }
+  const Eigen::VectorXd& constraint_lower() const noexcept { return c_lo_; }
+
   /// Number of tasks added.
   int task_count() const noexcept { return static_cast<int>(tasks_.size()); }
   /// Kind of task @p task. @throws Error for a bad index
@@ -174,7 +203,11 @@ class DiffIk {
   Chain chain_;
   DiffIkOptions options_;
   std::vector<std::unique_ptr<Task>> tasks_;
+  std::vector<std::unique_ptr<DiffIkConstraint>> constraints_;
   qp::BoxQp qp_;
+  std::unique_ptr<qp::DenseQp> dense_;  // once a constraint has rows
+  Eigen::MatrixXd C_;                   // general rows C·v ≥ c_lo_ (≤ c_hi_ = +∞)
+  Eigen::VectorXd c_lo_, c_hi_;
   DiffIkStep step_;
   // workspace
   Eigen::MatrixXd H_;
