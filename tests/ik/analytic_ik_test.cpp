@@ -418,5 +418,75 @@ TEST(AnalyticIkSolve, LimitsFlagFollowsTheJointRanges) {
   EXPECT_LT((out - Eigen::VectorXd(q)).norm(), 1e-6);
 }
 
+TEST(AnalyticIkInGlobalIk, TriesTheClosedFormFirstAndCanBeTurnedOff) {
+  const Chain chain = test::chain_of("ur5e");
+  ChainKinematics kin(chain);
+  Vector6d q_true;
+  q_true << 0.3, -1.2, 1.1, -0.4, 0.8, -0.6;
+  const Pose target = kin.update(q_true);
+  const Eigen::VectorXd seed = q_true + Eigen::VectorXd::Constant(6, 0.1);
+  GlobalIkOptions options;
+  options.mode = GlobalIkMode::distance;
+  options.max_restarts = 20;
+  options.timeout = std::chrono::seconds(60);
+  GlobalIk global(chain, options);
+  const IkResult analytic = global.solve(target, seed);
+  ASSERT_TRUE(analytic.ok());
+  EXPECT_TRUE(global.stats().analytic);
+  EXPECT_EQ(global.stats().attempts, 0);
+  EXPECT_LT((analytic.q - Eigen::VectorXd(q_true)).norm(), 1e-9);  // the branch nearest the seed
+  EXPECT_LT(analytic.position_error, 1e-10);
+
+  options.analytic = false;
+  global.set_options(options);
+  const IkResult numeric = global.solve(target, seed);
+  ASSERT_TRUE(numeric.ok());
+  EXPECT_FALSE(global.stats().analytic);
+  EXPECT_GE(global.stats().attempts, 1);
+
+  // no closed form on the panda: the restarts run as before
+  GlobalIkOptions panda_options;
+  panda_options.max_restarts = 20;
+  panda_options.timeout = std::chrono::seconds(60);
+  const Chain panda = test::chain_of("panda");
+  GlobalIk panda_ik(panda, panda_options);
+  ChainKinematics panda_kin(panda);
+  panda_ik.solve(panda_kin.update(panda.center()), panda.center());
+  EXPECT_FALSE(panda_ik.stats().analytic);
+}
+
+TEST(AnalyticIkInGlobalIk, FallsBackWhenNoBranchIsWithinTheLimits) {
+  DhArm arm = puma_table();
+  arm.links[2].lower = -0.5;
+  arm.links[2].upper = 0.5;
+  const Chain chain = dh_chain(arm);
+  ChainKinematics kin(chain);
+  Vector6d q;
+  q << 0.2, 0.4, 0.1, -0.3, 0.7, 0.2;
+  GlobalIkOptions options;
+  options.max_restarts = 50;
+  options.timeout = std::chrono::seconds(60);
+  GlobalIk global(chain, options);
+  // reachable within the limits: the closed form answers
+  EXPECT_TRUE(global.solve(kin.update(q), chain.center()).ok());
+  EXPECT_TRUE(global.stats().analytic);
+  // a pose whose every branch needs the elbow beyond its narrow range: the search runs and fails
+  q[2] = 2.5;
+  Eigen::VectorXd unlimited = q;
+  DhArm free_arm = puma_table();
+  const Chain free_chain = dh_chain(free_arm);
+  ChainKinematics free_kin(free_chain);
+  const Pose beyond = free_kin.update(unlimited);
+  const AnalyticIk ik(chain);
+  const AnalyticIkSolution branches = ik.solve(beyond);
+  int inside = 0;
+  for (int b = 0; b < branches.count; ++b) inside += branches.branches[b].within_limits;
+  ASSERT_EQ(inside, 0);
+  const IkResult r = global.solve(beyond, chain.center());
+  EXPECT_FALSE(global.stats().analytic);
+  EXPECT_GE(global.stats().attempts, 1);
+  EXPECT_TRUE(chain.within_limits(r.q));
+}
+
 }  // namespace
 }  // namespace mjarm
