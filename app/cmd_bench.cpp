@@ -255,7 +255,8 @@ Command add_bench_command(CLI::App& root) {
   CLI::App* bench = root.add_subcommand(
       "bench",
       "benchmarks of the library: ik, control, otg (jerk-limited generator), traj (motion "
-      "profiles), plan (5-waypoint panda path), env (learning environment); see `mjarm bench NAME "
+      "profiles), plan (5-waypoint panda path), env (learning environment), analytic-ik "
+      "(closed-form 6R IK); see `mjarm bench NAME "
       "--help`");
   bench->require_subcommand(1);
   CLI::App* app = bench->add_subcommand(
@@ -288,13 +289,15 @@ Command add_bench_command(CLI::App& root) {
       *bench, [] { return g_heap_allocations.load(std::memory_order_relaxed); });
   const Command plan = add_bench_plan_subcommand(*bench);
   const Command env = add_bench_env_subcommand(*bench);
+  const Command analytic = add_bench_analytic_ik_subcommand(*bench);
 
-  return {bench, [options, app, control, otg, traj, plan, env] {
+  return {bench, [options, app, control, otg, traj, plan, env, analytic] {
             if (control.app->parsed()) return control.run();
             if (otg.app->parsed()) return otg.run();
             if (traj.app->parsed()) return traj.run();
             if (plan.app->parsed()) return plan.run();
             if (env.app->parsed()) return env.run();
+            if (analytic.app->parsed()) return analytic.run();
             if (!app->parsed()) return;
             const Robot robot = load_model(options->model);
             const Chain chain(robot, resolve_site(robot, options->site));

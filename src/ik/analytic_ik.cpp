@@ -4,6 +4,7 @@
 #include "mjarm/ik/analytic_ik.hpp"
 
 #include <cmath>
+#include <limits>
 #include <numbers>
 
 #include "ik/paden_kahan.hpp"
@@ -145,15 +146,23 @@ void AnalyticIk::add_branch(const Pose& X_WT, const Vector6d& theta, bool singul
   if (solution.count >= static_cast<int>(solution.branches.size())) return;
   AnalyticIkBranch& b = solution.branches[solution.count];
   for (int i = 0; i < 6; ++i) {
-    b.q[i] = std::remainder(theta[i], kTwoPi) + structure_.geometry.q_reference[i];
+    // the subproblems' angles lie within (−2π, 2π): one turn at most brings them to (−π, π]
+    double angle = theta[i];
+    if (angle > std::numbers::pi) angle -= kTwoPi;
+    if (angle <= -std::numbers::pi) angle += kTwoPi;
+    b.q[i] = angle + structure_.geometry.q_reference[i];
   }
-  const Pose X = forward(b.q);
-  b.position_error = (X.p - X_WT.p).norm();
-  b.orientation_error = rotation_angle_between(X.R, X_WT.R);
-  if (!(b.position_error <= options_.verify_tolerance) ||
-      !(b.orientation_error <= options_.verify_tolerance)) {
-    ++solution.dropped;
-    return;
+  if (options_.check_branches) {
+    const Pose X = forward(b.q);
+    b.position_error = (X.p - X_WT.p).norm();
+    b.orientation_error = rotation_angle_between(X.R, X_WT.R);
+    if (!(b.position_error <= options_.verify_tolerance) ||
+        !(b.orientation_error <= options_.verify_tolerance)) {
+      ++solution.dropped;
+      return;
+    }
+  } else {
+    b.position_error = b.orientation_error = std::numeric_limits<double>::quiet_NaN();
   }
   b.within_limits = true;
   for (int i = 0; i < 6; ++i) {

@@ -21,12 +21,15 @@ inline Eigen::Vector3d rotate_point(const Eigen::Vector3d& w, const Eigen::Vecto
   return a + rotate(w, theta, p - a);
 }
 
-/// R(ω, θ) as a matrix.
+/// R(ω, θ) as a matrix: c·I + s·[ω]× + (1 − c)·ωωᵀ, written out (the solver's inner loop).
 inline Eigen::Matrix3d rotation(const Eigen::Vector3d& w, double theta) {
-  const double c = std::cos(theta), s = std::sin(theta);
-  Eigen::Matrix3d K;
-  K << 0.0, -w.z(), w.y(), w.z(), 0.0, -w.x(), -w.y(), w.x(), 0.0;
-  return Eigen::Matrix3d::Identity() + s * K + (1.0 - c) * K * K;
+  const double c = std::cos(theta), s = std::sin(theta), v = 1.0 - c;
+  const double x = w.x(), y = w.y(), z = w.z();
+  Eigen::Matrix3d R;
+  R << c + v * x * x, v * x * y - s * z, v * x * z + s * y,  //
+      v * x * y + s * z, c + v * y * y, v * y * z - s * x,   //
+      v * x * z - s * y, v * y * z + s * x, c + v * z * z;
+  return R;
 }
 
 /// Subproblem 1: the θ with R(ω, θ)·u = v (their components along ω are assumed equal).

@@ -345,6 +345,23 @@ TEST(AnalyticIkSolve, OutOfReachGivesNoBranchAndSaysWhy) {
   EXPECT_EQ(ur.solve(inside).status, AnalyticIkStatus::out_of_reach);
 }
 
+TEST(AnalyticIkSolve, UncheckedBranchesAreTheSameWithoutErrors) {
+  const Chain chain = dh_chain(kuka_like_table());
+  AnalyticIkOptions options;
+  options.check_branches = false;
+  const AnalyticIk checked(chain), unchecked(chain, options);
+  ChainKinematics kin(chain);
+  Vector6d q;
+  q << 0.3, -0.5, 0.9, 1.1, -0.7, 2.0;
+  const Pose target = kin.update(q);
+  const AnalyticIkSolution a = checked.solve(target), b = unchecked.solve(target);
+  ASSERT_EQ(a.count, b.count);
+  for (int k = 0; k < a.count; ++k) {
+    EXPECT_EQ(a.branches[k].q, b.branches[k].q);
+    EXPECT_TRUE(std::isnan(b.branches[k].position_error));
+  }
+}
+
 TEST(AnalyticIkSolve, RejectsANonFiniteTarget) {
   const AnalyticIk ik(test::chain_of("ur5e"));
   Pose bad;

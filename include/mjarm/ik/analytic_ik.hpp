@@ -58,6 +58,9 @@ struct AnalyticIkOptions {
   /// A branch whose own forward kinematics misses the target by more than this [m and rad] is
   /// dropped (counted in `AnalyticIkSolution::dropped`) (> 0).
   double verify_tolerance = 1e-8;
+  /// Check every branch by the PoE forward kinematics (about half the cost of a solve). Off,
+  /// branches are returned unchecked and their errors are NaN.
+  bool check_branches = true;
 };
 
 constexpr auto declared_fields(const AnalyticIkOptions*) {
@@ -68,7 +71,9 @@ constexpr auto declared_fields(const AnalyticIkOptions*) {
                     field("singularity_tolerance", &S::singularity_tolerance, "", Range::positive(),
                           "flag a branch singular below this measure"),
                     field("verify_tolerance", &S::verify_tolerance, "m, rad", Range::positive(),
-                          "drop a branch whose forward kinematics misses by more"));
+                          "drop a branch whose forward kinematics misses by more"),
+                    field("check_branches", &S::check_branches,
+                          "check every branch by forward kinematics (off: errors are NaN)"));
 }
 
 /// The PoE geometry of a 6R chain at its reference configuration (world frame).
