@@ -256,7 +256,7 @@ Command add_bench_command(CLI::App& root) {
       "bench",
       "benchmarks of the library: ik, control, otg (jerk-limited generator), traj (motion "
       "profiles), plan (5-waypoint panda path), env (learning environment), diffik (collision "
-      "rows); see `mjarm bench NAME "
+      "rows), analytic-ik (closed-form 6R IK); see `mjarm bench NAME "
       "--help`");
   bench->require_subcommand(1);
   CLI::App* app = bench->add_subcommand(
@@ -290,14 +290,16 @@ Command add_bench_command(CLI::App& root) {
   const Command plan = add_bench_plan_subcommand(*bench);
   const Command env = add_bench_env_subcommand(*bench);
   const Command diffik = add_bench_diffik_subcommand(*bench);
+  const Command analytic = add_bench_analytic_ik_subcommand(*bench);
 
-  return {bench, [options, app, control, otg, traj, plan, env, diffik] {
+  return {bench, [options, app, control, otg, traj, plan, env, diffik, analytic] {
             if (control.app->parsed()) return control.run();
             if (otg.app->parsed()) return otg.run();
             if (traj.app->parsed()) return traj.run();
             if (plan.app->parsed()) return plan.run();
             if (env.app->parsed()) return env.run();
             if (diffik.app->parsed()) return diffik.run();
+            if (analytic.app->parsed()) return analytic.run();
             if (!app->parsed()) return;
             const Robot robot = load_model(options->model);
             const Chain chain(robot, resolve_site(robot, options->site));

@@ -46,6 +46,8 @@ Command add_bench_plan_subcommand(CLI::App& bench);
 Command add_bench_env_subcommand(CLI::App& bench);
 /// `mjarm bench diffik …` on @p bench (cmd_bench_diffik.cpp).
 Command add_bench_diffik_subcommand(CLI::App& bench);
+/// `mjarm bench analytic-ik …` on @p bench (cmd_bench_analytic_ik.cpp).
+Command add_bench_analytic_ik_subcommand(CLI::App& bench);
 Command add_env_command(CLI::App& root);     ///< `mjarm env list|run …` (cmd_env.cpp)
 Command add_render_command(CLI::App& root);  ///< `mjarm render MODEL --out P` (cmd_render.cpp)
 Command add_view_command(CLI::App& root);    ///< `mjarm view [MODEL]` (cmd_view.cpp)

@@ -54,6 +54,10 @@ GlobalIk::GlobalIk(const Chain& chain, const GlobalIkOptions& options)
     if (!std::isfinite(sample_lower_[i])) sample_lower_[i] = -half;
     if (!std::isfinite(sample_upper_[i])) sample_upper_[i] = half;
   }
+  // the closed form holds for the frame on a fixed base (joints off the chain would move it)
+  if (chain.unmoved_path_joints().empty() && analyze_analytic_ik(chain).solvable) {
+    analytic_.emplace(chain);
+  }
   J_ = Matrix6Xd::Zero(6, n);
   H_ = Eigen::MatrixXd::Zero(n, n);
   for (Eigen::VectorXd* v :
@@ -177,7 +181,13 @@ void GlobalIk::search(const Eigen::Ref<const Eigen::VectorXd>& q_seed, IkResult&
   int iterations = 0;
   Outcome last = Outcome::stalled;
   bool any_finite = false;
-  for (int attempt = 0;; ++attempt) {
+  const bool analytic_found = solve_analytically();
+  if (analytic_found) {
+    stats_.analytic = true;
+    stats_.solutions = 1;
+    q_solution_ = q_;
+  }
+  for (int attempt = 0; !analytic_found; ++attempt) {
     const bool use_sqp = options_.methods == GlobalIkMethods::sqp ||
                          (options_.methods == GlobalIkMethods::alternate && attempt % 2 == 1);
     if (attempt == 0) {
@@ -234,6 +244,17 @@ void GlobalIk::search(const Eigen::Ref<const Eigen::VectorXd>& q_seed, IkResult&
     stats_.manipulability = manipulability();
   }
   stats_.elapsed = std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+bool GlobalIk::solve_analytically() {
+  if (!analytic_ || !options_.analytic || position_only_ ||
+      options_.mode == GlobalIkMode::manipulability) {
+    return false;
+  }
+  analytic_->solve(X_WT_, analytic_solution_);
+  if (analytic_->closest_to(analytic_solution_, q_seed_, q_) < 0) return false;
+  E_ = evaluate(q_, e_);
+  return converged(e_);
 }
 
 GlobalIk::Outcome GlobalIk::run_attempt(bool use_sqp, Clock::time_point deadline,

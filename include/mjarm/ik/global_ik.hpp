@@ -30,7 +30,9 @@
 #include <chrono>
 #include <cstdint>
 #include <limits>
+#include <optional>
 
+#include "mjarm/ik/analytic_ik.hpp"
 #include "mjarm/ik/pose_tolerance.hpp"
 #include "mjarm/ik/result.hpp"
 #include "mjarm/kinematics/chain_kinematics.hpp"
@@ -96,6 +98,10 @@ struct GlobalIkOptions {
   /// targets at singular configurations still converge fast.
   double damping = 1e-9;
   double max_step = 1.0;  ///< largest joint change per iteration [rad or m] (> 0)
+  /// Pose targets in speed or distance mode: when the chain is a 6R arm of a closed-form family
+  /// (analytic_ik.hpp) on a fixed base, try its branch closest to the seed within the limits
+  /// first; the restarts run only when that branch misses the tolerance.
+  bool analytic = true;
 };
 
 /// The fields of `GlobalIkOptions` but the timeout and the tolerance (checked by hand).
@@ -109,14 +115,16 @@ constexpr auto declared_fields(const GlobalIkOptions*) {
       field("seed", &S::seed, "", Range::non_negative(), "seed of the restart generator"),
       field("max_attempt_iterations", &S::max_attempt_iterations, "", Range::at_least(1),
             "iterations per attempt before a restart"),
-      field("stall_iterations", &S::stall_iterations, "",
-            Range::closed(1, kGlobalIkMaxStallWindow), "window of the stall test"),
+      field("stall_iterations", &S::stall_iterations, "", Range::closed(1, kGlobalIkMaxStallWindow),
+            "window of the stall test"),
       field("stall_ratio", &S::stall_ratio, "", Range{0.0, 1.0, true, true, false},
             "restart when ½‖e‖² has not dropped below this × its value a window ago"),
       field("damping", &S::damping, "m², rad²", Range::positive(),
             "λ₀, the floor of the adaptive damping"),
       field("max_step", &S::max_step, "rad or m", Range::positive(),
-            "largest joint change per iteration"));
+            "largest joint change per iteration"),
+      field("analytic", &S::analytic,
+            "try the closed-form branches first (6R spherical-wrist or UR arms)"));
 }
 
 /// @throws Error naming the offending option.
@@ -130,6 +138,7 @@ struct GlobalIkStats {
   int sqp_solutions = 0;        ///< ... of which by the SQP method
   double manipulability = 0.0;  ///< √det(J Jᵀ) at the returned q (0 without a solution)
   double elapsed = 0.0;         ///< wall-clock time of the solve [s]
+  bool analytic = false;        ///< the solution is a closed-form branch (no attempt was run)
 };
 
 /// Global pose IK for one chain's frame (see the file comment). Construct once, solve many
@@ -191,12 +200,17 @@ class GlobalIk {
   void random_configuration(Eigen::VectorXd& q) noexcept;
   double uniform() noexcept;
   double manipulability() noexcept;
+  /// The closed-form branch closest to q_seed_ within the limits into q_ (e_, E_ evaluated);
+  /// true when it meets the tolerance.
+  bool solve_analytically();
 
   GlobalIkOptions options_;
   ChainKinematics kin_;
   qp::DenseQp qp_;
   Random rng_;
   GlobalIkStats stats_;
+  std::optional<AnalyticIk> analytic_;  // when the chain has a closed form
+  AnalyticIkSolution analytic_solution_;
   Eigen::VectorXd sample_lower_, sample_upper_;  // random-restart box (finite)
   // per-solve state
   Pose X_WT_;
