@@ -187,7 +187,8 @@ TEST(CliBounds, EveryCommandThatLoadsAModelTakesTheElementBound) {
                                                   {"bench", "control"},
                                                   {"bench", "env"},
                                                   {"bench", "plan"},
-                                                  {"bench", "diffik"}}) {
+                                                  {"bench", "diffik"},
+                                                  {"bench", "analytic-ik"}}) {
     const CliRun help = run_cli(with(command, {"--help"}));
     EXPECT_EQ(help.exit_code, 0) << command.front();
     EXPECT_NE(help.out.find("--max-model-elements"), std::string::npos) << command.front();
