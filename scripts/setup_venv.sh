@@ -131,8 +131,9 @@ problems="$(probe "${requirements[@]}")"
 [ $stamped -eq 1 ] && [ -z "$problems" ] && exit 0
 
 pip_install() {
-  # the project's pins constrain every install: a peer never moves mujoco or numpy
-  "$venv/bin/python" -m pip install --disable-pip-version-check --no-input -q \
+  # the project's pins constrain every install: a peer never moves mujoco or numpy. No bytecode
+  # compiled at install (half of pip's time): Python compiles a module when it is first imported.
+  "$venv/bin/python" -m pip install --disable-pip-version-check --no-input -q --no-compile \
     -c python/requirements.txt "$@" ||
     fail "pip failed (above). Without network, run this again once PyPI is reachable; otherwise" \
          "make the environment from scratch: rm -rf $venv && bash scripts/setup_venv.sh ${requirements[*]}"

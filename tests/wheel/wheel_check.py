@@ -168,7 +168,7 @@ def main():
 
     # a fresh environment, the wheel and its dependencies from the index
     python = make_venv(work / "venv")
-    run([python, *PIP, "install", "-q", wheel])
+    run([python, *PIP, "install", "-q", "--no-compile", wheel])
     site = Path(run([python, "-c", "import sysconfig; print(sysconfig.get_paths()['platlib'])"])
                 .strip())
     package, libmujoco = site / "mjarm", site / "mujoco" / f"libmujoco.so.{mujoco_version}"
