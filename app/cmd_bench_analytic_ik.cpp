@@ -8,13 +8,14 @@
 #include <iostream>
 #include <memory>
 #include <numbers>
-#include <random>
 #include <vector>
 
 #include "commands.hpp"
+#include "mjarm/benchmark_timing.hpp"
 #include "mjarm/fields.hpp"
 #include "mjarm/ik/analytic_ik.hpp"
 #include "mjarm/kinematics/chain_kinematics.hpp"
+#include "mjarm/random.hpp"
 #include "options.hpp"
 #include "output.hpp"
 
@@ -38,20 +39,13 @@ struct AnalyticIkFigures {
   double unchecked_median_us = 0.0, unchecked_p95_us = 0.0;
 };
 
-double percentile(std::vector<double>& values, double fraction) {
-  const auto k = static_cast<std::size_t>(fraction * static_cast<double>(values.size() - 1));
-  std::nth_element(values.begin(), values.begin() + static_cast<std::ptrdiff_t>(k), values.end());
-  return values[k];
-}
-
 AnalyticIkFigures run_protocol(const Chain& chain, int samples, std::uint64_t seed) {
   const AnalyticIk ik(chain);
   AnalyticIkOptions unchecked_options;
   unchecked_options.check_branches = false;
   const AnalyticIk unchecked(chain, unchecked_options);
   ChainKinematics kin(chain);
-  std::mt19937_64 rng(seed);
-  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  Random rng(seed);
   constexpr double pi = std::numbers::pi;
   AnalyticIkFigures f;
   std::vector<double> times_us, unchecked_us;
@@ -63,7 +57,7 @@ AnalyticIkFigures run_protocol(const Chain& chain, int samples, std::uint64_t se
     Vector6d q;  // uniform in the limits, within one turn
     for (int i = 0; i < 6; ++i) {
       const double lo = std::max(chain.lower()[i], -pi), hi = std::min(chain.upper()[i], pi);
-      q[i] = lo + unit(rng) * (hi - lo);
+      q[i] = uniform(rng, lo, hi);
     }
     const Pose target = kin.update(q);
     const auto start = Clock::now();
@@ -102,10 +96,12 @@ AnalyticIkFigures run_protocol(const Chain& chain, int samples, std::uint64_t se
   for (const double t : times_us) total += t;
   f.mean_us = total / samples;
   f.max_us = *std::max_element(times_us.begin(), times_us.end());
-  f.median_us = percentile(times_us, 0.5);
-  f.p95_us = percentile(times_us, 0.95);
-  f.unchecked_median_us = percentile(unchecked_us, 0.5);
-  f.unchecked_p95_us = percentile(unchecked_us, 0.95);
+  std::sort(times_us.begin(), times_us.end());
+  std::sort(unchecked_us.begin(), unchecked_us.end());
+  f.median_us = nearest_rank(times_us, 0.5);
+  f.p95_us = nearest_rank(times_us, 0.95);
+  f.unchecked_median_us = nearest_rank(unchecked_us, 0.5);
+  f.unchecked_p95_us = nearest_rank(unchecked_us, 0.95);
   return f;
 }
 

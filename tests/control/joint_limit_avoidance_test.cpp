@@ -12,6 +12,7 @@
 #include "mjarm/control/cartesian_impedance.hpp"
 #include "mjarm/control/operational_space.hpp"
 #include "mjarm/control/se3_impedance.hpp"
+#include "mjarm/random.hpp"
 #include "support/error_message.hpp"
 
 namespace mjarm {
@@ -37,15 +38,15 @@ TEST(JointLimitAvoidance, TorqueIsTheNegativeGradientOfThePotentialPlusDamping) 
   JointLimitAvoidance limits(rig.chain, o);
   const VectorX& lo = rig.chain.lower();
   const VectorX& hi = rig.chain.upper();
-  std::mt19937_64 rng(5);
-  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  Random rng(5);
   const int n = rig.chain.size();
   for (int trial = 0; trial < 20; ++trial) {
     VectorX q(n), qd(n);
     for (int i = 0; i < n; ++i) {
-      const double d = (0.05 + 0.9 * unit(rng)) * o.margin;  // inside the zone, not at its ends
-      q[i] = unit(rng) < 0.5 ? hi[i] - d : lo[i] + d;
-      qd[i] = 2.0 * unit(rng) - 1.0;
+      const double d =
+          (0.05 + 0.9 * uniform(rng, 0.0, 1.0)) * o.margin;  // inside the zone, not at its ends
+      q[i] = uniform(rng, 0.0, 1.0) < 0.5 ? hi[i] - d : lo[i] + d;
+      qd[i] = 2.0 * uniform(rng, 0.0, 1.0) - 1.0;
     }
     limits.update(q, VectorX::Zero(n));
     const VectorX tau_u = limits.torque();

@@ -13,6 +13,7 @@
 #include "mjarm/ik/global_ik.hpp"
 #include "mjarm/kinematics/chain_kinematics.hpp"
 #include "mjarm/model/dh_model.hpp"
+#include "mjarm/random.hpp"
 
 namespace mjarm {
 namespace {
@@ -82,13 +83,12 @@ struct RoundTrip {
 RoundTrip round_trip(const Chain& chain, int samples, std::uint64_t seed) {
   const AnalyticIk ik(chain);
   ChainKinematics kin(chain);
-  std::mt19937_64 rng(seed);
-  std::uniform_real_distribution<double> u(-kPi, kPi);
+  Random rng(seed);
   RoundTrip r;
   AnalyticIkSolution solution;
   for (int k = 0; k < samples; ++k) {
     Vector6d q;
-    for (int i = 0; i < 6; ++i) q[i] = u(rng);
+    for (int i = 0; i < 6; ++i) q[i] = uniform(rng, -kPi, kPi);
     const Pose target = kin.update(q);
     ik.solve(target, solution);
     EXPECT_EQ(solution.status, AnalyticIkStatus::solved) << "sample " << k;
@@ -146,11 +146,10 @@ TEST(AnalyticIkStructure, PoeFormMatchesMujoco) {
   const Chain chain = dh_chain(kuka_like_table());
   const AnalyticIk ik(chain);
   ChainKinematics kin(chain);
-  std::mt19937_64 rng(3);
-  std::uniform_real_distribution<double> u(-3.0, 3.0);
+  Random rng(3);
   for (int k = 0; k < 50; ++k) {
     Vector6d q;
-    for (int i = 0; i < 6; ++i) q[i] = u(rng);
+    for (int i = 0; i < 6; ++i) q[i] = uniform(rng, -3.0, 3.0);
     const Pose& mj = kin.update(q);
     const Pose poe = ik.forward(q);
     EXPECT_LT((mj.p - poe.p).norm(), 1e-13);
@@ -299,19 +298,18 @@ TEST(AnalyticIkSolve, FewerThanEightAreAllThereIs) {
   numeric.max_restarts = 50;
   numeric.tolerance = PoseTolerance::uniform(1e-9);
   GlobalIk search(chain, numeric);
-  std::mt19937_64 rng(21);
-  std::uniform_real_distribution<double> u(-kPi, kPi);
+  Random rng(21);
   int checked = 0, found = 0;
   for (int k = 0; k < 400 && checked < 3; ++k) {
     Vector6d q;
-    for (int i = 0; i < 6; ++i) q[i] = u(rng);
+    for (int i = 0; i < 6; ++i) q[i] = uniform(rng, -kPi, kPi);
     const Pose target = kin.update(q);
     const AnalyticIkSolution solution = ik.solve(target);
     if (solution.count == 8) continue;
     ++checked;
     for (int start = 0; start < 60; ++start) {
       Eigen::VectorXd seed(6);
-      for (int i = 0; i < 6; ++i) seed[i] = u(rng);
+      for (int i = 0; i < 6; ++i) seed[i] = uniform(rng, -kPi, kPi);
       const IkResult r = search.solve(target, seed);
       if (!r.ok()) continue;
       ++found;
@@ -374,11 +372,10 @@ TEST(AnalyticIkSolve, SolveAllocatesNothing) {
   const AnalyticIk ik(chain);
   ChainKinematics kin(chain);
   std::vector<Pose> targets;
-  std::mt19937_64 rng(5);
-  std::uniform_real_distribution<double> u(-kPi, kPi);
+  Random rng(5);
   for (int k = 0; k < 50; ++k) {
     Vector6d q;
-    for (int i = 0; i < 6; ++i) q[i] = u(rng);
+    for (int i = 0; i < 6; ++i) q[i] = uniform(rng, -kPi, kPi);
     targets.push_back(kin.update(q));
   }
   AnalyticIkSolution solution;

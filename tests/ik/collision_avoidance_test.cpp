@@ -12,6 +12,7 @@
 #include "mjarm/error.hpp"
 #include "mjarm/ik/diff_ik.hpp"
 #include "mjarm/kinematics/chain_kinematics.hpp"
+#include "mjarm/random.hpp"
 
 namespace mjarm {
 namespace {
@@ -141,11 +142,11 @@ TEST(CollisionAvoidance, EveryRowMatchesFiniteDifferencesOfTheDistance) {
   const double dt = 1.0;  // so b = −(d − d_min)
   Eigen::MatrixXd C(avoid.max_rows(), 3);
   Eigen::VectorXd b(avoid.max_rows());
-  std::mt19937_64 rng(11);
-  std::uniform_real_distribution<double> angle(-2.0, 2.0);
+  Random rng(11);
   int checked = 0;
   for (int trial = 0; trial < 40; ++trial) {
-    const Eigen::VectorXd q = Eigen::Vector3d(angle(rng), angle(rng), angle(rng));
+    const Eigen::VectorXd q =
+        Eigen::Vector3d(uniform(rng, -2.0, 2.0), uniform(rng, -2.0, 2.0), uniform(rng, -2.0, 2.0));
     const int k = avoid.rows(q, dt, C, b);
     ASSERT_EQ(k, avoid.pair_count());
     for (int r = 0; r < k; ++r) {
@@ -180,12 +181,12 @@ TEST(CollisionAvoidance, SolvedStepsHoldEveryRowTheyHad) {
   options.min_distance = 0.01;
   options.detection_distance = 0.3;
   ik.add_constraint(std::make_unique<CollisionAvoidance>(chain, options));
-  std::mt19937_64 rng(5);
-  std::uniform_real_distribution<double> angle(-2.4, 2.4), coord(-0.7, 0.7);
+  Random rng(5);
   int solved = 0, with_rows = 0;
   for (int trial = 0; trial < 300; ++trial) {
-    const Eigen::VectorXd q = Eigen::Vector3d(angle(rng), angle(rng), angle(rng));
-    ik.set_target(task, Eigen::Vector3d(coord(rng), coord(rng), 0.0));
+    const Eigen::VectorXd q =
+        Eigen::Vector3d(uniform(rng, -2.4, 2.4), uniform(rng, -2.4, 2.4), uniform(rng, -2.4, 2.4));
+    ik.set_target(task, Eigen::Vector3d(uniform(rng, -0.7, 0.7), uniform(rng, -0.7, 0.7), 0.0));
     const DiffIkStep& step = ik.step(q);
     if (step.qp_status != qp::QpStatus::solved) continue;
     ++solved;
