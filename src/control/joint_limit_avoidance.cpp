@@ -7,6 +7,7 @@
 
 #include "mjarm/dynamics/task_space.hpp"
 #include "mjarm/error.hpp"
+#include "mjarm/number_text.hpp"
 #include "mjarm/trajectory/smoothstep.hpp"
 
 namespace mjarm {
@@ -33,9 +34,9 @@ JointLimitAvoidance::JointLimitAvoidance(const Chain& chain, const JointLimitOpt
     const double lo = lower_[i], hi = upper_[i];
     if (!std::isfinite(lo) || !std::isfinite(hi)) continue;
     if (!(2.0 * options.margin < hi - lo)) {
-      throw Error("joint limits: margin " + std::to_string(options.margin) +
+      throw Error("joint limits: margin " + number_text(options.margin) +
                   " must be less than half the range of joint '" + chain.joint_names()[i] + "' [" +
-                  std::to_string(lo) + ", " + std::to_string(hi) + "]");
+                  number_text(lo) + ", " + number_text(hi) + "]");
     }
   }
   const int n = chain.size();
