@@ -16,20 +16,26 @@
 namespace mjarm {
 namespace {
 
+using detail::Angle;
 using detail::rotate_point;
 using detail::rotation;
 using Eigen::Matrix3d;
 using Eigen::Vector3d;
+using Angles = std::array<Angle, 6>;  // PoE angles θ with their cosines and sines
 
 constexpr double kTwoPi = 2.0 * std::numbers::pi;
 /// Relative slack of a cosine beyond ±1 that still counts as the edge (rounding, not reach).
 constexpr double kEdgeSlack = 1e-10;
 
-/// Rotation angle of Rᵀ·R_target [rad], accurate near zero (atan2 of sine and cosine parts).
+/// Rotation angle of Rᵀ·R_target [rad], accurate near zero (from its sine and cosine).
 double rotation_angle_between(const Matrix3d& R, const Matrix3d& R_target) {
   const Matrix3d D = R.transpose() * R_target;
   const Vector3d s(D(2, 1) - D(1, 2), D(0, 2) - D(2, 0), D(1, 0) - D(0, 1));
-  return std::atan2(0.5 * s.norm(), 0.5 * (D.trace() - 1.0));
+  const double sine = 0.5 * s.norm(), cosine = 0.5 * (D.trace() - 1.0);
+  // a branch that passes misses by ~1e-15: asin's series to x³ is exact there (error ~x⁵/40),
+  // and spares the check an atan2
+  if (sine < 1e-4 && cosine > 0.0) return sine + sine * sine * sine / 6.0;
+  return std::atan2(sine, cosine);
 }
 
 /// @p q moved by a multiple of 2π into [lower, upper] when one fits; unchanged otherwise.
@@ -47,7 +53,7 @@ double wrap_into(double q, double lower, double upper) {
 /// reach it: ω₂·(e₁⁻¹P) = ω₂·wrist (the rotations about the axes parallel to ω₂ keep that
 /// component). Returns the count; flags a singular shoulder (the point on axis 1).
 int shoulder_angles(const AnalyticIkGeometry& g, const Vector3d& P, double singular_tol,
-                    double theta[2], bool& singular) {
+                    Angle theta[2], bool& singular) {
   const Vector3d& w1 = g.axis[0];
   const Vector3d& w2 = g.axis[1];
   const Vector3d n = P - g.anchor[0];
@@ -60,10 +66,25 @@ int shoulder_angles(const AnalyticIkGeometry& g, const Vector3d& P, double singu
     // every θ₁ moves the point by at most `scale`: one representative when the offset fits
     const double offset = d - w1.dot(w2) * w1.dot(n);
     if (std::abs(offset) > floor) return 0;
-    theta[0] = count > 0 ? theta[0] : 0.0;
+    theta[0] = count > 0 ? theta[0] : Angle{};
     return 1;
   }
   return singular && count > 0 ? 1 : count;
+}
+
+/// The PoE forward kinematics at the angles θ (their cosines and sines: no trigonometric call).
+Pose poe_forward(const AnalyticIkGeometry& g, const Angle* theta) {
+  Matrix3d R = Matrix3d::Identity();
+  Vector3d p = Vector3d::Zero();
+  for (int i = 0; i < 6; ++i) {
+    const Matrix3d Ri = rotation(g.axis[i], theta[i]);
+    p += R * (g.anchor[i] - Ri * g.anchor[i]);
+    R = R * Ri;
+  }
+  Pose X;
+  X.R = R * g.M.R;
+  X.p = R * g.M.p + p;
+  return X;
 }
 
 /// A unit vector perpendicular to @p w.
@@ -104,18 +125,9 @@ AnalyticIk::AnalyticIk(const Chain& chain, const AnalyticIkOptions& options)
 }
 
 Pose AnalyticIk::forward(const Vector6d& q) const noexcept {
-  const AnalyticIkGeometry& g = structure_.geometry;
-  Matrix3d R = Matrix3d::Identity();
-  Vector3d p = Vector3d::Zero();
-  for (int i = 0; i < 6; ++i) {
-    const Matrix3d Ri = rotation(g.axis[i], q[i] - g.q_reference[i]);
-    p += R * (g.anchor[i] - Ri * g.anchor[i]);
-    R = R * Ri;
-  }
-  Pose X;
-  X.R = R * g.M.R;
-  X.p = R * g.M.p + p;
-  return X;
+  Angles theta;
+  for (int i = 0; i < 6; ++i) theta[i] = Angle::of(q[i] - structure_.geometry.q_reference[i]);
+  return poe_forward(structure_.geometry, theta.data());
 }
 
 AnalyticIkSolution AnalyticIk::solve(const Pose& X_WT) const {
@@ -141,19 +153,21 @@ void AnalyticIk::solve(const Pose& X_WT, AnalyticIkSolution& solution) const {
   }
 }
 
-void AnalyticIk::add_branch(const Pose& X_WT, const Vector6d& theta, bool singular,
+void AnalyticIk::add_branch(const Pose& X_WT, const Angle* theta, bool singular,
                             AnalyticIkSolution& solution) const noexcept {
   if (solution.count >= static_cast<int>(solution.branches.size())) return;
   AnalyticIkBranch& b = solution.branches[solution.count];
   for (int i = 0; i < 6; ++i) {
     // the subproblems' angles lie within (−2π, 2π): one turn at most brings them to (−π, π]
-    double angle = theta[i];
+    double angle = theta[i].value;
     if (angle > std::numbers::pi) angle -= kTwoPi;
     if (angle <= -std::numbers::pi) angle += kTwoPi;
     b.q[i] = angle + structure_.geometry.q_reference[i];
   }
   if (options_.check_branches) {
-    const Pose X = forward(b.q);
+    // the angles are atan2 of their cosines and sines (or sums of such angles): the check runs
+    // on those, with no trigonometric call
+    const Pose X = poe_forward(structure_.geometry, theta);
     b.position_error = (X.p - X_WT.p).norm();
     b.orientation_error = rotation_angle_between(X.R, X_WT.R);
     if (!(b.position_error <= options_.verify_tolerance) ||
@@ -183,18 +197,19 @@ void AnalyticIk::solve_spherical_wrist(const Pose& X_WT,
   const Vector3d pg = X_WT.p - Rg * g.M.p;
   const Vector3d P = Rg * g.wrist + pg;  // where the wrist centre must go
 
-  double shoulder[2];
+  Angle shoulder[2];
   bool shoulder_singular = false;
   const int shoulder_count = shoulder_angles(g, P, tol, shoulder, shoulder_singular);
   const Vector3d x6 = perpendicular(w[5]);
   const double k45 = w[3].dot(w[4]);
   const double den45 = 1.0 - k45 * k45;
   const Vector3d n45 = w[3].cross(w[4]);
-  Vector6d theta;
+  Angles theta;
   for (int i1 = 0; i1 < shoulder_count; ++i1) {
     theta[0] = shoulder[i1];
     const Vector3d X = rotate_point(w[0], a[0], -theta[0], P);  // e₁⁻¹·P
-    double elbow[2], elbow_margin = 0.0;
+    Angle elbow[2];
+    double elbow_margin = 0.0;
     int elbow_count = detail::subproblem3(w[2], g.wrist - a[2], a[1] - a[2], (X - a[1]).norm(),
                                           kEdgeSlack, elbow, elbow_margin);
     const bool elbow_singular = elbow_margin <= tol;
@@ -226,7 +241,7 @@ void AnalyticIk::solve_spherical_wrist(const Pose& X_WT,
         const Matrix3d R6 = (rotation(w[3], theta[3]) * rotation(w[4], theta[4])).transpose() * Rh;
         theta[5] = detail::subproblem1(w[5], x6, R6 * x6, m6);
         const bool singular = shoulder_singular || elbow_singular || wrist_singular || m2 <= tol;
-        add_branch(X_WT, theta, singular, solution);
+        add_branch(X_WT, theta.data(), singular, solution);
       }
     }
   }
@@ -242,17 +257,18 @@ void AnalyticIk::solve_parallel_shoulder(const Pose& X_WT,
   const Vector3d pg = X_WT.p - Rg * g.M.p;
   const Vector3d W = Rg * g.wrist + pg;  // where the meeting point of axes 5 and 6 must go
 
-  double shoulder[2];
+  Angle shoulder[2];
   bool shoulder_singular = false;
   const int shoulder_count = shoulder_angles(g, W, tol, shoulder, shoulder_singular);
   const Vector3d x4 = perpendicular(w[3]);
-  Vector6d theta;
+  Angles theta;
   for (int i1 = 0; i1 < shoulder_count; ++i1) {
     theta[0] = shoulder[i1];
     const Matrix3d R1 = rotation(w[0], theta[0]);
     const Matrix3d A = R1.transpose() * Rg;  // = Rot(ω₂, θ₂+θ₃+θ₄)·R₅·R₆
     // rotations about ω₂ keep ω₂·x: ω₂·(R₅ω₆) = ω₂·(Aω₆)
-    double wrist[2], wrist_margin = 0.0, wrist_scale = 0.0;
+    Angle wrist[2];
+    double wrist_margin = 0.0, wrist_scale = 0.0;
     const Vector3d tool_axis = A * w[5];
     int wrist_count = 0;
     if (tool_axis_along_shoulder_) {
@@ -260,7 +276,7 @@ void AnalyticIk::solve_parallel_shoulder(const Pose& X_WT,
       // product keeps a small θ₅ accurate where an arccosine would lose half the digits
       const double sine = w[1].cross(tool_axis).norm();
       const double cosine = w[1].dot(tool_axis) * w[1].dot(w[5]);
-      wrist[0] = std::atan2(sine, cosine);
+      wrist[0] = Angle::of_xy(cosine, sine);
       wrist[1] = -wrist[0];
       wrist_margin = sine;
       wrist_count = 2;
@@ -280,7 +296,8 @@ void AnalyticIk::solve_parallel_shoulder(const Pose& X_WT,
       Vector3d Q4 = rotate_point(w[4], a[4], -theta[4], a[3]);
       Q4 = rotate_point(w[5], a[5], -theta[5], Q4);
       Q4 = rotate_point(w[0], a[0], -theta[0], Rg * Q4 + pg);
-      double elbow[2], elbow_margin = 0.0;
+      Angle elbow[2];
+      double elbow_margin = 0.0;
       int elbow_count = detail::subproblem3(w[2], a[3] - a[2], a[1] - a[2], (Q4 - a[1]).norm(),
                                             kEdgeSlack, elbow, elbow_margin);
       const bool elbow_singular = elbow_margin <= tol;
@@ -296,7 +313,7 @@ void AnalyticIk::solve_parallel_shoulder(const Pose& X_WT,
         theta[3] = detail::subproblem1(w[3], x4, R4 * x4, m4);
         const bool singular =
             shoulder_singular || wrist_singular || elbow_singular || m6 <= tol || m2 <= tol;
-        add_branch(X_WT, theta, singular, solution);
+        add_branch(X_WT, theta.data(), singular, solution);
       }
     }
   }

@@ -12,8 +12,10 @@
 /// - parallel shoulder-elbow-wrist (the UR family): axes 2, 3, 4 parallel, axis 1 and axis 5 not
 ///   parallel to them, axes 5 and 6 intersecting (UR3/5/10/16, their e-series, ...).
 /// Both are solved by Paden–Kahan subproblems on the PoE form, giving up to 8 branches: 2
-/// (shoulder) × 2 (elbow) × 2 (wrist). Every branch is checked by the PoE forward kinematics
-/// before it is returned, so a numerical failure drops a branch instead of returning a wrong one.
+/// (shoulder) × 2 (elbow) × 2 (wrist). Each angle comes with its cosine and sine from the
+/// subproblems, so the solve calls no sine or cosine. Every branch is checked by the PoE forward
+/// kinematics before it is returned, so a numerical failure drops a branch instead of returning a
+/// wrong one.
 ///
 /// Conventions: joint values in chain order, each wrapped into its limits by ±2π where that is
 /// possible (`within_limits` says whether all six are); `closest_to` picks, per joint, the 2π
@@ -31,6 +33,10 @@
 #include "mjarm/model/chain.hpp"
 
 namespace mjarm {
+
+namespace detail {
+struct Angle;
+}
 
 /// Which closed-form structure a chain has.
 enum class AnalyticIkFamily {
@@ -58,7 +64,7 @@ struct AnalyticIkOptions {
   /// A branch whose own forward kinematics misses the target by more than this [m and rad] is
   /// dropped (counted in `AnalyticIkSolution::dropped`) (> 0).
   double verify_tolerance = 1e-8;
-  /// Check every branch by the PoE forward kinematics (about half the cost of a solve). Off,
+  /// Check every branch by the PoE forward kinematics (about a third of the cost of a solve). Off,
   /// branches are returned unchecked and their errors are NaN.
   bool check_branches = true;
 };
@@ -165,8 +171,9 @@ class AnalyticIk {
   Pose forward(const Vector6d& q) const noexcept;
 
  private:
-  /// Wraps the PoE angles θ into joint values and checks the branch; appends it when it passes.
-  void add_branch(const Pose& X_WT, const Vector6d& theta, bool singular,
+  /// Wraps the six PoE angles θ into joint values and checks the branch; appends it when it
+  /// passes.
+  void add_branch(const Pose& X_WT, const detail::Angle* theta, bool singular,
                   AnalyticIkSolution& solution) const noexcept;
   void solve_spherical_wrist(const Pose& X_WT, AnalyticIkSolution& solution) const noexcept;
   void solve_parallel_shoulder(const Pose& X_WT, AnalyticIkSolution& solution) const noexcept;
