@@ -162,7 +162,8 @@ std::string CartesianPathPlanner::Impl::jump(double step_measure, double mean_ra
   }
   // joint distance per unit of Cartesian step, so segments with shorter steps compare fairly
   rate = dq.norm() / std::max(step_measure, 1e-12);
-  if (options.jump_factor > 0.0 && steps_before > 0 && rate > options.jump_factor * mean_rate)
+  if (options.jump_factor > 0.0 && steps_before > 0 && mean_rate > 0.0 &&
+      rate > options.jump_factor * mean_rate)
     return "the joints move " + number_text(rate / mean_rate, 4) +
            " times the mean of the steps before (‖Δq‖ " + number_text(dq.norm(), 4) +
            "), more than the jump factor " + number_text(options.jump_factor);

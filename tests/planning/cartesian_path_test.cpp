@@ -6,6 +6,7 @@
 #include <cmath>
 #include <limits>
 
+#include "ik/malloc_counter.hpp"
 #include "mjarm/ik/global_ik.hpp"
 #include "mjarm/kinematics/chain_kinematics.hpp"
 #include "mjarm/lie/so3.hpp"
@@ -198,6 +199,23 @@ TEST(CartesianUr5e, AWristFlipIsAJumpWhenDetectionIsOn) {
   const CartesianPathResult near = cartesian_path(chain, qa, B, sigma);
   EXPECT_EQ(near.status, CartesianPathStatus::partial_limits) << near.message;
   EXPECT_EQ(near.check.failure, CheckFailure::singular);
+}
+
+TEST_F(CartesianPanda, StepsAllocateNothing) {
+  // a path's allocations (its result: knots, poses, segments, message) do not grow with its
+  // steps: the IK, the jump test and the checks of every step reuse the planner's buffers
+  CartesianPathPlanner planner(chain);
+  const auto allocations = [&](double length) {
+    Pose goal = X_home;
+    goal.p.y() += length;
+    planner.follow(home, {goal});  // warm
+    const std::uint64_t before = test::malloc_calls();
+    const CartesianPathResult r = planner.follow(home, {goal});
+    const std::uint64_t used = test::malloc_calls() - before;
+    EXPECT_TRUE(r.complete()) << r.message;
+    return used;
+  };
+  EXPECT_EQ(allocations(0.05), allocations(0.2));  // 10 and 40 steps
 }
 
 TEST_F(CartesianPanda, BadInputIsRefusedNamingTheField) {
