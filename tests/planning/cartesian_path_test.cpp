@@ -75,13 +75,21 @@ TEST_F(CartesianPanda, WaypointsAreFollowedInOrderAndTheirStepsAddUp) {
   a.p.x() += 0.1;  // 20 steps
   b.p = a.p;
   b.p.z() -= 0.06;  // 12 steps
-  const CartesianPathResult r = cartesian_path(chain, home, {a, b});
+  Pose c = b;
+  c.R = so3::exp(Eigen::Vector3d(0, 0, 0.4)) * b.R;  // turning in place: 20 steps of 0.02 rad
+  // (the relative jump test compares joint motion per unit of Cartesian step across segments of
+  // different step lengths and kinds: none of these is a jump)
+  const CartesianPathResult r = cartesian_path(chain, home, {a, b, c});
   ASSERT_TRUE(r.complete()) << r.message;
-  EXPECT_EQ(r.steps, 32);
-  ASSERT_EQ(r.knot_count(), 33);
-  EXPECT_LT((r.poses[20].p - a.p).norm(), 1e-5);  // the corner is a knot
+  EXPECT_EQ(r.steps, 52);
+  ASSERT_EQ(r.knot_count(), 53);
+  EXPECT_LT((r.poses[20].p - a.p).norm(), 1e-5);  // the corners are knots
   EXPECT_LT((r.poses[32].p - b.p).norm(), 1e-5);
   for (int k = 21; k <= 32; ++k) EXPECT_LT(off_line(r.poses[k].p, a.p, b.p), 1e-5) << k;
+  for (int k = 33; k <= 52; ++k) {
+    EXPECT_LT((r.poses[k].p - b.p).norm(), 1e-5) << k;
+    EXPECT_NEAR(so3::angle(b.R.transpose() * r.poses[k].R), 0.02 * (k - 32), 1e-5) << k;
+  }
   // a waypoint where E already is adds no step
   const CartesianPathResult same = cartesian_path(chain, home, {X_home, a});
   EXPECT_EQ(same.steps, 20);
