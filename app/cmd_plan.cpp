@@ -237,7 +237,9 @@ Command add_plan_command(CLI::App& root) {
   auto plot_dir = std::make_shared<std::string>();
   auto size = std::make_shared<std::string>("1280x1200");
   CLI::App* app = root.add_subcommand(
-      "plan", "plan a checked joint trajectory through Cartesian waypoints (docs/planning.md)");
+      "plan",
+      "plan a checked joint trajectory through Cartesian waypoints, or with --cartesian "
+      "follow straight lines through them (docs/planning.md)");
   add_model_argument(*app, o->model);
   add_site_option(*app, o->site);
   add_plan_options(*app, *o, true);
@@ -252,7 +254,14 @@ Command add_plan_command(CLI::App& root) {
       ->capture_default_str()
       ->check(pixel_size({200, 300}));
   add_json_flag(*app, *json);
-  return {app, [o, out, rate, json, plot_dir, size] {
+  auto cartesian = std::make_shared<CartesianCliOptions>();
+  add_cartesian_options(*app, *cartesian);
+  return {app, [o, out, rate, json, plot_dir, size, cartesian] {
+            if (cartesian->on) {
+              if (o->min_sigma < 0.0) throw UsageError("--min-sigma must be >= 0");
+              run_cartesian_plan(*o, *cartesian, *json);
+              return;
+            }
             if (!(*rate > 0.0) || *rate > 1e5)
               throw UsageError("--rate must be in (0, 100000] Hz, got " + compact(*rate));
             if (o->min_sigma < 0.0) throw UsageError("--min-sigma must be >= 0");

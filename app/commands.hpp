@@ -14,6 +14,7 @@
 #include "mjarm/kinematics/chain_kinematics.hpp"
 #include "mjarm/kinematics/workspace.hpp"
 #include "mjarm/model/robot.hpp"
+#include "mjarm/planning/cartesian_path.hpp"
 #include "mjarm/planning/waypoint_planner.hpp"
 #include "mjarm/tasks/docking/docking.hpp"
 #include "mjarm/tasks/pick_place/pick_place.hpp"
@@ -88,6 +89,19 @@ PlannedPath plan_path(const PlanCliOptions& options);
 /// The plan as JSON / as a table of per-waypoint checks.
 Json plan_json(const PlannedPath& plan);
 void print_plan(std::ostream& os, const PlannedPath& plan);
+/// What `mjarm plan --cartesian` reads besides the plan's options (cmd_plan_cartesian.cpp).
+struct CartesianCliOptions {
+  bool on = false;             ///< --cartesian
+  bool no_collisions = false;  ///< --no-collisions
+  CartesianPathOptions path;   ///< --max-step, --max-rotation-step, --jump-*
+};
+/// Registers --cartesian and its options on `mjarm plan` (after the plan's own: --cartesian
+/// excludes the options of a timed plan).
+void add_cartesian_options(CLI::App& app, CartesianCliOptions& options);
+/// Follows the waypoint file's straight lines, prints the result (--json: one document).
+/// @throws Error when the path is not complete (after printing); UsageError for bad options.
+void run_cartesian_plan(const PlanCliOptions& options, const CartesianCliOptions& cartesian,
+                        bool json);
 /// `mjarm run plan ROBOT --waypoints F --controller C` (cmd_run_plan.cpp).
 /// @param control_period, max_acceleration as `SimulationOptions` (0: one physics step)
 void run_plan_scenario(const PlanCliOptions& options, const std::string& controller,
