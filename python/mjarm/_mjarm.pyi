@@ -272,6 +272,132 @@ class AdaptiveComplianceOptions:
     @stiffness.setter
     def stiffness(self, value: ArrayLike) -> None: ...
 
+class AnalyticIk:
+    """Closed-form IK of a 6R chain: every branch."""
+    def __init__(self: AnalyticIk, chain: Chain, options: AnalyticIkOptions = ...) -> None:
+        ...
+    @property
+    def chain(self) -> Chain:
+        """the chain solved for"""
+        ...
+    def closest_to(self: AnalyticIk, solution: AnalyticIkSolution, seed: ArrayLike, within_limits_only: bool = ...) -> ArrayLike:
+        """(branch index, q shifted by 2 pi nearest the seed), or None"""
+        ...
+    @property
+    def family(self) -> AnalyticIkFamily:
+        """the structure recognised"""
+        ...
+    def forward(self: AnalyticIk, q: ArrayLike) -> Pose:
+        """The pose by the product of exponentials."""
+        ...
+    @property
+    def options(self) -> AnalyticIkOptions:
+        """its tolerances"""
+        ...
+    def solve(self: AnalyticIk, X_WT: ArrayLike) -> AnalyticIkSolution:
+        """Every branch reaching the pose (a Pose or 4x4)."""
+        ...
+
+class AnalyticIkBranch:
+    """One solution branch."""
+    def __init__(*args: Any, **kwargs: Any) -> Any: ...
+    @property
+    def orientation_error(self) -> float:
+        """rotation miss of its forward kinematics [rad]"""
+        ...
+    @property
+    def position_error(self) -> float:
+        """miss of its forward kinematics [m] (NaN unchecked)"""
+        ...
+    @property
+    def q(self) -> NDArray[np.float64]:
+        """joint values (6,), wrapped into the limits"""
+        ...
+    @property
+    def singular(self) -> bool:
+        """at a singular configuration"""
+        ...
+    @property
+    def within_limits(self) -> bool:
+        """all six within limits"""
+        ...
+
+class AnalyticIkFamily(enum.Enum):
+    spherical_wrist = 0
+    """axes 4, 5, 6 meet; axes 2 and 3 parallel"""
+    parallel_shoulder = 1
+    """axes 2, 3, 4 parallel; axes 5 and 6 meet (UR)"""
+
+class AnalyticIkOptions:
+    def __init__(self: AnalyticIkOptions) -> None:
+        ...
+    @property
+    def check_branches(self) -> bool:
+        """check every branch by forward kinematics (off: errors are NaN)"""
+        ...
+    @check_branches.setter
+    def check_branches(self, value: bool) -> None: ...
+    @property
+    def geometry_tolerance(self) -> float:
+        """axes parallel / intersecting within this [m, rad]; positive and finite"""
+        ...
+    @geometry_tolerance.setter
+    def geometry_tolerance(self, value: float) -> None: ...
+    @property
+    def singularity_tolerance(self) -> float:
+        """flag a branch singular below this measure; positive and finite"""
+        ...
+    @singularity_tolerance.setter
+    def singularity_tolerance(self, value: float) -> None: ...
+    @property
+    def verify_tolerance(self) -> float:
+        """drop a branch whose forward kinematics misses by more [m, rad]; positive and finite"""
+        ...
+    @verify_tolerance.setter
+    def verify_tolerance(self, value: float) -> None: ...
+
+class AnalyticIkSolution:
+    """Every branch of one solve."""
+    def __init__(*args: Any, **kwargs: Any) -> Any: ...
+    def __len__(self: AnalyticIkSolution) -> int:
+        ...
+    @property
+    def branches(self) -> list[AnalyticIkBranch]:
+        """the branches found (up to 8)"""
+        ...
+    @property
+    def dropped(self) -> int:
+        """branches that failed the forward-kinematics check"""
+        ...
+    @property
+    def status(self) -> AnalyticIkStatus:
+        """solved, or why not"""
+        ...
+
+class AnalyticIkStatus(enum.Enum):
+    solved = 0
+    """at least one branch"""
+    out_of_reach = 1
+    """the target is beyond the arm's reach"""
+    no_verified_branch = 2
+    """no branch passed the forward-kinematics check"""
+
+class AnalyticIkStructure:
+    """What analyze_analytic_ik found."""
+    def __init__(*args: Any, **kwargs: Any) -> Any: ...
+    @property
+    def family(self) -> AnalyticIkFamily:
+        """valid when solvable"""
+        ...
+    @property
+    def reason(self) -> str:
+        """why not (empty when solvable)"""
+        ...
+    @property
+    def solvable(self) -> bool:
+        """the chain has a closed form"""
+        ...
+
 class ArenaSpec:
     """Floor, two lights and an optional table. Names: arena/floor, arena/table (body), arena/table_top (geom), arena/table_surface (site on the top's centre)."""
     def __init__(self: ArenaSpec, **kwargs) -> None:
@@ -590,6 +716,152 @@ class CartesianLimits:
     @max_velocity.setter
     def max_velocity(self, value: float) -> None: ...
 
+class CartesianPathOptions:
+    def __init__(self: CartesianPathOptions) -> None:
+        ...
+    @property
+    def check_collisions(self) -> bool:
+        """judge contacts with the scene"""
+        ...
+    @check_collisions.setter
+    def check_collisions(self, value: bool) -> None: ...
+    @property
+    def check_step(self) -> float:
+        """largest joint motion between two checked states [rad or m]; positive and finite"""
+        ...
+    @check_step.setter
+    def check_step(self, value: float) -> None: ...
+    @property
+    def checks(self) -> CheckOptions:
+        """σmin, contact margin and joint-range tolerance"""
+        ...
+    @checks.setter
+    def checks(self, value: CheckOptions) -> None: ...
+    @property
+    def ik(self) -> PoseIkOptions:
+        """the local IK of each step (its tolerances)"""
+        ...
+    @ik.setter
+    def ik(self, value: PoseIkOptions) -> None: ...
+    @property
+    def jump_factor(self) -> float:
+        """a step's ‖Δq‖ beyond this × the mean so far is a jump (0: off); finite and ≥ 0"""
+        ...
+    @jump_factor.setter
+    def jump_factor(self, value: float) -> None: ...
+    @property
+    def jump_prismatic(self) -> float:
+        """a prismatic joint moving more in one step is a jump (0: off) [m]; finite and ≥ 0"""
+        ...
+    @jump_prismatic.setter
+    def jump_prismatic(self, value: float) -> None: ...
+    @property
+    def jump_revolute(self) -> float:
+        """a revolute joint moving more in one step is a jump (0: off) [rad]; finite and ≥ 0"""
+        ...
+    @jump_revolute.setter
+    def jump_revolute(self, value: float) -> None: ...
+    @property
+    def max_rotation_step(self) -> float:
+        """largest rotation of E between two step targets [rad]; positive and finite"""
+        ...
+    @max_rotation_step.setter
+    def max_rotation_step(self, value: float) -> None: ...
+    @property
+    def max_step(self) -> float:
+        """largest position change of E between two step targets [m]; positive and finite"""
+        ...
+    @max_step.setter
+    def max_step(self, value: float) -> None: ...
+    @property
+    def max_steps(self) -> int:
+        """steps one path may have; ≥ 1"""
+        ...
+    @max_steps.setter
+    def max_steps(self, value: int) -> None: ...
+
+class CartesianPathPlanner:
+    """Straight lines of E through waypoints, step by step (MoveIt's Cartesian paths). follow() releases the GIL."""
+    def __init__(self: CartesianPathPlanner, chain: Chain, options: CartesianPathOptions = ...) -> None:
+        ...
+    def follow(self: CartesianPathPlanner, q_start: ArrayLike, waypoints: list[ArrayLike]) -> CartesianPathResult:
+        """waypoints: Poses (or 4x4 matrices)"""
+        ...
+    @property
+    def options(self) -> CartesianPathOptions:
+        """its steps and checks"""
+        ...
+    def set_fixed_qpos(self: CartesianPathPlanner, qpos: ArrayLike) -> None:
+        ...
+
+class CartesianPathResult:
+    """What a Cartesian path reached."""
+    def __init__(*args: Any, **kwargs: Any) -> Any: ...
+    @property
+    def check(self) -> ConfigurationCheck:
+        """the failing state's checks"""
+        ...
+    def complete(self: CartesianPathResult) -> bool:
+        ...
+    @property
+    def fraction(self) -> float:
+        """share of the steps followed"""
+        ...
+    @property
+    def knots(self) -> NDArray[np.float64]:
+        """(n, knots): knot 0 is the start"""
+        ...
+    @property
+    def max_joint_step(self) -> float:
+        """largest joint motion between two knots [rad or m]"""
+        ...
+    @property
+    def max_orientation_error(self) -> float:
+        """largest miss of a knot's orientation [rad]"""
+        ...
+    @property
+    def max_position_error(self) -> float:
+        """largest miss of a knot's position [m]"""
+        ...
+    @property
+    def message(self) -> str:
+        """one line for people"""
+        ...
+    @property
+    def poses(self) -> list[Pose]:
+        """E at each knot"""
+        ...
+    @property
+    def status(self) -> CartesianPathStatus:
+        """complete, or why it stopped"""
+        ...
+    @property
+    def steps(self) -> int:
+        """steps of the whole path"""
+        ...
+    @property
+    def stopped_at_step(self) -> int:
+        """-1 when complete"""
+        ...
+    @property
+    def stopped_at_waypoint(self) -> int:
+        """the waypoint its segment leads to (-1 when complete)"""
+        ...
+
+class CartesianPathStatus(enum.Enum):
+    complete = 0
+    """every step followed"""
+    partial_ik_failure = 1
+    """a step's pose has no IK solution"""
+    partial_collision = 2
+    """a step touches the scene"""
+    partial_jump = 3
+    """a step's joint motion is a jump"""
+    partial_limits = 4
+    """a step leaves the joint ranges or comes too close to a singularity"""
+    invalid_input = 5
+    """the IK met a NaN mid-solve"""
+
 class Chain:
     """The joints an algorithm moves, in order (index i = column i of a Jacobian), and the end-effector frame (a site or a body)."""
     @overload
@@ -745,6 +1017,43 @@ class ChainKinematics:
         """Pose X_WE of the chain's frame at joint values q (n,)."""
         ...
 
+class CheckFailure(enum.Enum):
+    none = 0
+    """every check passed"""
+    invalid = 1
+    """q, q̇ or q̈ holds NaN/inf"""
+    joint_limits = 2
+    """a joint outside its range"""
+    collision = 3
+    """a moving geom touches another geom"""
+    singular = 4
+    """σmin below the threshold"""
+    torque = 5
+    """a joint's torque beyond its limit"""
+
+class CheckOptions:
+    """Thresholds of the checks."""
+    def __init__(self: CheckOptions) -> None:
+        ...
+    @property
+    def collision_margin(self) -> float:
+        """a contact counts below this signed distance [m]; finite and ≥ 0"""
+        ...
+    @collision_margin.setter
+    def collision_margin(self, value: float) -> None: ...
+    @property
+    def limit_tolerance(self) -> float:
+        """how far joints may exceed their range [rad or m]; finite and ≥ 0"""
+        ...
+    @limit_tolerance.setter
+    def limit_tolerance(self, value: float) -> None: ...
+    @property
+    def min_singular_value(self) -> float:
+        """smallest σmin of J_WE still accepted; finite and ≥ 0"""
+        ...
+    @min_singular_value.setter
+    def min_singular_value(self, value: float) -> None: ...
+
 class CicInertia(enum.Enum):
     natural = 0
     """the arm's own task inertia Λ(q)"""
@@ -772,6 +1081,67 @@ class ClipCounts:
     def values(self) -> int:
         """values clipped"""
         ...
+
+class DiffIkConstraint:
+    """An inequality of a differential-IK QP."""
+    def __init__(*args: Any, **kwargs: Any) -> Any: ...
+    @property
+    def max_rows(self) -> int:
+        """general rows it may add"""
+        ...
+
+class CollisionAvoidance(DiffIkConstraint):
+    """Geom pairs kept apart (rows from MuJoCo's distances)."""
+    def __init__(*args: Any, **kwargs: Any) -> Any: ...
+    @property
+    def min_distance_seen(self) -> float:
+        """smallest signed distance of any pair at any step so far [m]"""
+        ...
+    @property
+    def options(self) -> CollisionAvoidanceOptions:
+        """the pairs and distances"""
+        ...
+    def pair(self: CollisionAvoidance, i: int) -> tuple[int, int]:
+        """(geom id, geom id) of pair i"""
+        ...
+    @property
+    def pair_count(self) -> int:
+        """geom pairs watched"""
+        ...
+
+class CollisionAvoidanceOptions:
+    def __init__(self: CollisionAvoidanceOptions) -> None:
+        ...
+    @property
+    def detection_distance(self) -> float:
+        """pairs closer than this become rows (> min_distance) [m]; positive and finite"""
+        ...
+    @detection_distance.setter
+    def detection_distance(self, value: float) -> None: ...
+    @property
+    def gain(self) -> float:
+        """fraction of the remaining margin one step may close; in (0, 1]"""
+        ...
+    @gain.setter
+    def gain(self, value: float) -> None: ...
+    @property
+    def min_distance(self) -> float:
+        """smallest signed distance allowed [m]; finite and ≥ 0"""
+        ...
+    @min_distance.setter
+    def min_distance(self, value: float) -> None: ...
+    @property
+    def pairs(self) -> list[tuple[str, str]]:
+        """geom name pairs that must keep apart"""
+        ...
+    @pairs.setter
+    def pairs(self, value: list[tuple[str, str]]) -> None: ...
+    @property
+    def robot_vs_scene(self) -> bool:
+        """every geom moved by the chain against every geom outside the robot's tree"""
+        ...
+    @robot_vs_scene.setter
+    def robot_vs_scene(self, value: bool) -> None: ...
 
 class CollisionSpec:
     """Geoms that must not touch during a solve."""
@@ -862,6 +1232,64 @@ class ComputedTorqueOptions:
         ...
     @gains.setter
     def gains(self, value: JointPdGains) -> None: ...
+
+class ConfigurationCheck:
+    """What one state's checks measured."""
+    def __init__(*args: Any, **kwargs: Any) -> Any: ...
+    @property
+    def distance(self) -> float:
+        """its signed distance [m]"""
+        ...
+    @property
+    def failure(self) -> CheckFailure:
+        """the first failed check (none)"""
+        ...
+    @property
+    def geom1(self) -> int:
+        """the deepest contact's moving geom"""
+        ...
+    @property
+    def geom2(self) -> int:
+        """the other geom of that contact"""
+        ...
+    @property
+    def limit_joint(self) -> int:
+        """-1: none"""
+        ...
+    def ok(self: ConfigurationCheck) -> bool:
+        ...
+    @property
+    def sigma_min(self) -> float:
+        """smallest singular value of J"""
+        ...
+    @property
+    def torque_ratio(self) -> float:
+        """largest |tau_i| / tau_max,i"""
+        ...
+
+class ConfigurationLimit(DiffIkConstraint):
+    """A margin kept from every joint limit (a tighter box)."""
+    def __init__(*args: Any, **kwargs: Any) -> Any: ...
+    @property
+    def options(self) -> ConfigurationLimitOptions:
+        """the margin and gain"""
+        ...
+
+class ConfigurationLimitOptions:
+    def __init__(self: ConfigurationLimitOptions) -> None:
+        ...
+    @property
+    def gain(self) -> float:
+        """fraction of the remaining gap one step may close; in (0, 1]"""
+        ...
+    @gain.setter
+    def gain(self, value: float) -> None: ...
+    @property
+    def margin(self) -> float:
+        """kept from each joint limit [rad or m]; finite and ≥ 0"""
+        ...
+    @margin.setter
+    def margin(self, value: float) -> None: ...
 
 class ReferenceSource:
     """Produces each control tick's reference."""
@@ -1254,7 +1682,20 @@ class DhLink:
 
 class DiffIk:
     """Differential IK as a QP with exact joint and velocity limits."""
+    @overload
     def __init__(self: DiffIk, chain: Chain, options: DiffIkOptions = ...) -> None:
+        ...
+    @overload
+    def __init__(self: DiffIk, chain: Chain, options: DiffIkOptions = ...) -> None:
+        ...
+    def add_collision_avoidance(self: DiffIk, options: CollisionAvoidanceOptions) -> CollisionAvoidance:
+        """Keeps the options' geom pairs apart; returns the constraint (owned by this DiffIk)."""
+        ...
+    def add_configuration_limit(self: DiffIk, options: ConfigurationLimitOptions) -> ConfigurationLimit:
+        """Keeps a margin from every joint limit; returns the constraint."""
+        ...
+    def add_manipulability_barrier(self: DiffIk, options: ManipulabilityBarrierOptions) -> ManipulabilityBarrier:
+        """Keeps the manipulability above a floor; returns the constraint."""
         ...
     def add_pose_task(self: DiffIk, frame: str = ..., position_weight: float = ..., orientation_weight: float = ..., gain: float = ...) -> int:
         ...
@@ -1265,6 +1706,20 @@ class DiffIk:
     @property
     def chain(self) -> Chain:
         """the chain the tasks move"""
+        ...
+    def constraint(self: DiffIk, index: int) -> DiffIkConstraint:
+        ...
+    @property
+    def constraint_count(self) -> int:
+        """constraints added"""
+        ...
+    @property
+    def constraint_lower(self) -> NDArray[np.float64]:
+        """b (m,) of the last step (unused rows -inf)"""
+        ...
+    @property
+    def constraint_matrix(self) -> NDArray[np.float64]:
+        """C (m, n) of the last step: the QP held C v >= b (unused rows zero)"""
         ...
     def set_posture(self: DiffIk, task: int, q_ref: ArrayLike) -> None:
         ...
@@ -3570,6 +4025,40 @@ class Manipulability:
     def singular_values(self) -> NDArray[np.float64]:
         """singular values of the measured block, decreasing (min(m, n),)"""
         ...
+
+class ManipulabilityBarrier(DiffIkConstraint):
+    """Manipulability kept above a floor (one row)."""
+    def __init__(*args: Any, **kwargs: Any) -> Any: ...
+    @property
+    def manipulability(self) -> float:
+        """w at the last step's q"""
+        ...
+    @property
+    def options(self) -> ManipulabilityBarrierOptions:
+        """the floor and gain"""
+        ...
+
+class ManipulabilityBarrierOptions:
+    def __init__(self: ManipulabilityBarrierOptions) -> None:
+        ...
+    @property
+    def block(self) -> JacobianBlock:
+        """rows of J measured"""
+        ...
+    @block.setter
+    def block(self, value: JacobianBlock) -> None: ...
+    @property
+    def gain(self) -> float:
+        """fraction of w − w_min one step may lose; in (0, 1]"""
+        ...
+    @gain.setter
+    def gain(self, value: float) -> None: ...
+    @property
+    def min_manipulability(self) -> float:
+        """manipulability kept above this; positive and finite"""
+        ...
+    @min_manipulability.setter
+    def min_manipulability(self, value: float) -> None: ...
 
 class ManipulabilityOptions:
     def __init__(self: ManipulabilityOptions) -> None:
@@ -7897,6 +8386,9 @@ class WrenchStatus(enum.Enum):
     non_finite = 1
     """the wrench was zeroed"""
 
+def analyze_analytic_ik(chain: Chain, options: AnalyticIkOptions = ...) -> AnalyticIkStructure:
+    """Whether a chain has a closed-form IK, and which family (never raises for a chain)."""
+    ...
 def build_docking_scene(options: DockingSceneOptions = ...) -> DockingScene:
     """Composes and compiles the docking scene (GIL released)."""
     ...

@@ -1,11 +1,16 @@
-// ik room: position DLS, pose IK, multi-target, differential-IK QP, global IK; options, IkResult.
+// ik room: position DLS, pose IK, multi-target, differential-IK QP with its constraints, global
+// IK, closed-form 6R IK; options, IkResult.
 #include <pybind11/functional.h>
 
 #include "bindings.hpp"
 #include "declared_fields.hpp"
+#include "mjarm/ik/analytic_ik.hpp"
+#include "mjarm/ik/collision_avoidance.hpp"
+#include "mjarm/ik/configuration_limit.hpp"
 #include "mjarm/ik/diff_ik.hpp"
 #include "mjarm/ik/global_ik.hpp"
 #include "mjarm/ik/local_ik_settings.hpp"
+#include "mjarm/ik/manipulability_barrier.hpp"
 #include "mjarm/ik/multi_target_ik.hpp"
 #include "mjarm/ik/pose_ik.hpp"
 #include "mjarm/ik/position_ik.hpp"
@@ -15,6 +20,13 @@
 
 namespace mjarm::python {
 namespace {
+
+/// Makes constraint C from @p options on the DiffIk's chain and adds it; the DiffIk owns it.
+template <class C, class Options>
+C& add_constraint(DiffIk& ik, const Options& options) {
+  return static_cast<C&>(
+      ik.constraint(ik.add_constraint(std::make_unique<C>(ik.chain(), options))));
+}
 
 /// An `IkIterationCallback` that calls a Python function with (iteration, position_error,
 /// orientation_error, q) under the GIL; an exception it raises is kept and raised by the solve.
@@ -273,7 +285,60 @@ void bind_ik(py::module_& m) {
       .def_readonly("qp_iterations", &DiffIkStep::qp_iterations, "iterations of the box QP solver")
       .def_readonly("pulled_back", &DiffIkStep::pulled_back,
                     "a joint was outside its limits by more than one step can undo");
+  auto avoidance_options = py::class_<CollisionAvoidanceOptions>(m, "CollisionAvoidanceOptions");
+  avoidance_options.def(py::init<>());
+  def_fields(avoidance_options);
+  auto limit_options = py::class_<ConfigurationLimitOptions>(m, "ConfigurationLimitOptions");
+  limit_options.def(py::init<>());
+  def_fields(limit_options);
+  auto barrier_options =
+      py::class_<ManipulabilityBarrierOptions>(m, "ManipulabilityBarrierOptions");
+  barrier_options.def(py::init<>());
+  def_fields(barrier_options);
+  // constraints are made by DiffIk.add_*, which owns them; Python holds references
+  py::class_<DiffIkConstraint>(m, "DiffIkConstraint", "An inequality of a differential-IK QP.")
+      .def_property_readonly("max_rows", &DiffIkConstraint::max_rows, "general rows it may add");
+  py::class_<CollisionAvoidance, DiffIkConstraint>(
+      m, "CollisionAvoidance", "Geom pairs kept apart (rows from MuJoCo's distances).")
+      .def_property_readonly("options", &CollisionAvoidance::options, "the pairs and distances")
+      .def_property_readonly("pair_count", &CollisionAvoidance::pair_count, "geom pairs watched")
+      .def("pair", &CollisionAvoidance::pair, py::arg("i"), "(geom id, geom id) of pair i")
+      .def_property_readonly("min_distance_seen", &CollisionAvoidance::min_distance_seen,
+                             "smallest signed distance of any pair at any step so far [m]");
+  py::class_<ConfigurationLimit, DiffIkConstraint>(
+      m, "ConfigurationLimit", "A margin kept from every joint limit (a tighter box).")
+      .def_property_readonly("options", &ConfigurationLimit::options, "the margin and gain");
+  py::class_<ManipulabilityBarrier, DiffIkConstraint>(
+      m, "ManipulabilityBarrier", "Manipulability kept above a floor (one row).")
+      .def_property_readonly("options", &ManipulabilityBarrier::options, "the floor and gain")
+      .def_property_readonly("manipulability", &ManipulabilityBarrier::manipulability,
+                             "w at the last step's q");
   py::class_<DiffIk>(m, "DiffIk", "Differential IK as a QP with exact joint and velocity limits.")
+      .def(py::init<const Chain&, const DiffIkOptions&>(), py::arg("chain"),
+           py::arg("options") = DiffIkOptions{})
+      .def("add_collision_avoidance",
+           &add_constraint<CollisionAvoidance, CollisionAvoidanceOptions>, py::arg("options"),
+           py::return_value_policy::reference_internal,
+           "Keeps the options' geom pairs apart; returns the constraint (owned by this DiffIk).")
+      .def("add_configuration_limit",
+           &add_constraint<ConfigurationLimit, ConfigurationLimitOptions>, py::arg("options"),
+           py::return_value_policy::reference_internal,
+           "Keeps a margin from every joint limit; returns the constraint.")
+      .def("add_manipulability_barrier",
+           &add_constraint<ManipulabilityBarrier, ManipulabilityBarrierOptions>, py::arg("options"),
+           py::return_value_policy::reference_internal,
+           "Keeps the manipulability above a floor; returns the constraint.")
+      .def_property_readonly("constraint_count", &DiffIk::constraint_count, "constraints added")
+      .def("constraint", &DiffIk::constraint, py::arg("index"),
+           py::return_value_policy::reference_internal)
+      .def_property_readonly(
+          "constraint_matrix",
+          [](const DiffIk& ik) { return Eigen::MatrixXd(ik.constraint_matrix()); },
+          "C (m, n) of the last step: the QP held C v >= b (unused rows zero)")
+      .def_property_readonly(
+          "constraint_lower",
+          [](const DiffIk& ik) { return Eigen::VectorXd(ik.constraint_lower()); },
+          "b (m,) of the last step (unused rows -inf)")
       .def(py::init<const Chain&, const DiffIkOptions&>(), py::arg("chain"),
            py::arg("options") = DiffIkOptions{})
       .def_property_readonly("chain", &DiffIk::chain, "the chain the tasks move")
@@ -380,6 +445,62 @@ void bind_ik(py::module_& m) {
           },
           py::arg("X_WT"), py::arg("q_seed"), "One solve per pose, without the GIL.")
       .def_property_readonly("stats", &GlobalIk::stats, "diagnostics of the last solve");
+
+  auto analytic_options = py::class_<AnalyticIkOptions>(m, "AnalyticIkOptions");
+  analytic_options.def(py::init<>());
+  def_fields(analytic_options);
+  def_enum<AnalyticIkFamily>(m, "AnalyticIkFamily");
+  def_enum<AnalyticIkStatus>(m, "AnalyticIkStatus");
+  py::class_<AnalyticIkStructure>(m, "AnalyticIkStructure", "What analyze_analytic_ik found.")
+      .def_readonly("solvable", &AnalyticIkStructure::solvable, "the chain has a closed form")
+      .def_readonly("family", &AnalyticIkStructure::family, "valid when solvable")
+      .def_readonly("reason", &AnalyticIkStructure::reason, "why not (empty when solvable)");
+  m.def("analyze_analytic_ik", &analyze_analytic_ik, py::arg("chain"),
+        py::arg("options") = AnalyticIkOptions{},
+        "Whether a chain has a closed-form IK, and which family (never raises for a chain).");
+  py::class_<AnalyticIkBranch>(m, "AnalyticIkBranch", "One solution branch.")
+      .def_readonly("q", &AnalyticIkBranch::q, "joint values (6,), wrapped into the limits")
+      .def_readonly("within_limits", &AnalyticIkBranch::within_limits, "all six within limits")
+      .def_readonly("singular", &AnalyticIkBranch::singular, "at a singular configuration")
+      .def_readonly("position_error", &AnalyticIkBranch::position_error,
+                    "miss of its forward kinematics [m] (NaN unchecked)")
+      .def_readonly("orientation_error", &AnalyticIkBranch::orientation_error,
+                    "rotation miss of its forward kinematics [rad]");
+  py::class_<AnalyticIkSolution>(m, "AnalyticIkSolution", "Every branch of one solve.")
+      .def_readonly("status", &AnalyticIkSolution::status, "solved, or why not")
+      .def_readonly("dropped", &AnalyticIkSolution::dropped,
+                    "branches that failed the forward-kinematics check")
+      .def_property_readonly(
+          "branches",
+          [](const AnalyticIkSolution& s) {
+            return std::vector<AnalyticIkBranch>(s.branches.begin(), s.branches.begin() + s.count);
+          },
+          "the branches found (up to 8)")
+      .def("__len__", [](const AnalyticIkSolution& s) { return s.count; });
+  py::class_<AnalyticIk>(m, "AnalyticIk", "Closed-form IK of a 6R chain: every branch.")
+      .def(py::init<const Chain&, const AnalyticIkOptions&>(), py::arg("chain"),
+           py::arg("options") = AnalyticIkOptions{})
+      .def_property_readonly("chain", &AnalyticIk::chain, "the chain solved for")
+      .def_property_readonly("options", &AnalyticIk::options, "its tolerances")
+      .def_property_readonly("family", &AnalyticIk::family, "the structure recognised")
+      .def(
+          "solve", [](const AnalyticIk& ik, py::handle X) { return ik.solve(to_pose(X, "X_WT")); },
+          py::arg("X_WT"), "Every branch reaching the pose (a Pose or 4x4).")
+      .def(
+          "closest_to",
+          [](const AnalyticIk& ik, const AnalyticIkSolution& s, py::handle seed,
+             bool within_limits_only) -> py::object {
+            Eigen::VectorXd q(6);
+            const int k = ik.closest_to(s, to_vector(seed, "seed", 6), q, within_limits_only);
+            if (k < 0) return py::none();
+            return py::make_tuple(k, q);
+          },
+          py::arg("solution"), py::arg("seed"), py::arg("within_limits_only") = true,
+          "(branch index, q shifted by 2 pi nearest the seed), or None")
+      .def(
+          "forward",
+          [](const AnalyticIk& ik, py::handle q) { return ik.forward(to_fixed<6>(q, "q")); },
+          py::arg("q"), "The pose by the product of exponentials.");
 }
 
 }  // namespace mjarm::python

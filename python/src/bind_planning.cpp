@@ -1,6 +1,8 @@
-// planning room: the waypoint planner and the joint spline it returns.
+// planning room: the waypoint planner and the joint spline it returns, Cartesian paths, the
+// configuration checks they share.
 #include "bindings.hpp"
 #include "declared_fields.hpp"
+#include "mjarm/planning/cartesian_path.hpp"
 #include "mjarm/planning/waypoint_planner.hpp"
 
 namespace mjarm::python {
@@ -60,6 +62,66 @@ void bind_planning(py::module_& m) {
             for (const auto& w : waypoints) poses.push_back(to_pose(w, "waypoint"));
             py::gil_scoped_release release;
             return p.plan(q, poses);
+          },
+          py::arg("q_start"), py::arg("waypoints"), "waypoints: Poses (or 4x4 matrices)");
+
+  auto check_options = py::class_<CheckOptions>(m, "CheckOptions", "Thresholds of the checks.");
+  check_options.def(py::init<>());
+  def_fields(check_options);
+  def_enum<CheckFailure>(m, "CheckFailure");
+  py::class_<ConfigurationCheck>(m, "ConfigurationCheck", "What one state's checks measured.")
+      .def_readonly("failure", &ConfigurationCheck::failure, "the first failed check (none)")
+      .def_readonly("sigma_min", &ConfigurationCheck::sigma_min, "smallest singular value of J")
+      .def_readonly("torque_ratio", &ConfigurationCheck::torque_ratio,
+                    "largest |tau_i| / tau_max,i")
+      .def_readonly("limit_joint", &ConfigurationCheck::limit_joint, "-1: none")
+      .def_readonly("geom1", &ConfigurationCheck::geom1, "the deepest contact's moving geom")
+      .def_readonly("geom2", &ConfigurationCheck::geom2, "the other geom of that contact")
+      .def_readonly("distance", &ConfigurationCheck::distance, "its signed distance [m]")
+      .def("ok", &ConfigurationCheck::ok);
+
+  def_enum<CartesianPathStatus>(m, "CartesianPathStatus");
+  auto cartesian_options = py::class_<CartesianPathOptions>(m, "CartesianPathOptions");
+  cartesian_options.def(py::init<>())
+      .def_readwrite("ik", &CartesianPathOptions::ik, "the local IK of each step (its tolerances)");
+  def_fields(cartesian_options);
+  py::class_<CartesianPathResult>(m, "CartesianPathResult", "What a Cartesian path reached.")
+      .def_readonly("status", &CartesianPathResult::status, "complete, or why it stopped")
+      .def_readonly("fraction", &CartesianPathResult::fraction, "share of the steps followed")
+      .def_readonly("steps", &CartesianPathResult::steps, "steps of the whole path")
+      .def_readonly("stopped_at_step", &CartesianPathResult::stopped_at_step, "-1 when complete")
+      .def_readonly("stopped_at_waypoint", &CartesianPathResult::stopped_at_waypoint,
+                    "the waypoint its segment leads to (-1 when complete)")
+      .def_readonly("message", &CartesianPathResult::message, "one line for people")
+      .def_readonly("knots", &CartesianPathResult::knots, "(n, knots): knot 0 is the start")
+      .def_readonly("poses", &CartesianPathResult::poses, "E at each knot")
+      .def_readonly("max_position_error", &CartesianPathResult::max_position_error,
+                    "largest miss of a knot's position [m]")
+      .def_readonly("max_orientation_error", &CartesianPathResult::max_orientation_error,
+                    "largest miss of a knot's orientation [rad]")
+      .def_readonly("max_joint_step", &CartesianPathResult::max_joint_step,
+                    "largest joint motion between two knots [rad or m]")
+      .def_readonly("check", &CartesianPathResult::check, "the failing state's checks")
+      .def("complete", &CartesianPathResult::complete);
+  py::class_<CartesianPathPlanner>(m, "CartesianPathPlanner",
+                                   "Straight lines of E through waypoints, step by step (MoveIt's "
+                                   "Cartesian paths). follow() releases the GIL.")
+      .def(py::init<const Chain&, const CartesianPathOptions&>(), py::arg("chain"),
+           py::arg("options") = CartesianPathOptions{})
+      .def_property_readonly("options", &CartesianPathPlanner::options, "its steps and checks")
+      .def(
+          "set_fixed_qpos",
+          [](CartesianPathPlanner& p, py::handle q) { p.set_fixed_qpos(to_vector(q, "qpos")); },
+          py::arg("qpos"))
+      .def(
+          "follow",
+          [](CartesianPathPlanner& p, py::handle q_start,
+             const std::vector<py::object>& waypoints) {
+            const Eigen::VectorXd q = to_vector(q_start, "q_start");
+            std::vector<Pose> poses;
+            for (const auto& w : waypoints) poses.push_back(to_pose(w, "waypoint"));
+            py::gil_scoped_release release;
+            return p.follow(q, poses);
           },
           py::arg("q_start"), py::arg("waypoints"), "waypoints: Poses (or 4x4 matrices)");
 }
