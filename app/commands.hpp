@@ -42,6 +42,8 @@ Command add_bench_otg_subcommand(CLI::App& bench, std::function<std::uint64_t()>
 Command add_bench_traj_subcommand(CLI::App& bench, std::function<std::uint64_t()> allocations);
 /// `mjarm bench plan …` on @p bench (cmd_bench_motion.cpp).
 Command add_bench_plan_subcommand(CLI::App& bench);
+/// `mjarm bench ompl …` on @p bench (cmd_bench_ompl.cpp).
+Command add_bench_ompl_subcommand(CLI::App& bench);
 /// `mjarm bench env …` on @p bench (cmd_bench_env.cpp).
 Command add_bench_env_subcommand(CLI::App& bench);
 /// `mjarm bench diffik …` on @p bench (cmd_bench_diffik.cpp).
