@@ -72,8 +72,9 @@ struct PlanCliOptions {
   std::vector<double> max_velocity, max_acceleration, max_torque;
   double min_sigma = 0.02;
   std::uint64_t seed = 1;
+  std::string planner = "waypoint";  ///< waypoint | ompl:NAME (--planner)
 };
-/// Registers --waypoints, --q, --key, the limit overrides, --min-sigma (and --seed when
+/// Registers --waypoints, --q, --key, the limit overrides, --min-sigma, --planner (and --seed when
 /// @p with_seed; `run` has its own).
 void add_plan_options(CLI::App& app, PlanCliOptions& options, bool with_seed);
 /// A planned path with everything needed to print or run it.
