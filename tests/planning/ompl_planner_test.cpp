@@ -6,6 +6,7 @@
 #include <cmath>
 #include <limits>
 
+#include "ik/malloc_counter.hpp"
 #include "mjarm/error.hpp"
 #include "mjarm/kinematics/chain_kinematics.hpp"
 #include "mjarm/planning/collision_checker.hpp"
@@ -257,6 +258,23 @@ TEST(OmplCollisionChecker, AgreesWithTheConfigurationCheckOnRandomStates) {
   EXPECT_GT(collisions, 20);  // the comparison saw both answers
   EXPECT_LT(collisions, 280);
   EXPECT_EQ(fast.checks(), 300);
+}
+
+TEST(OmplCollisionChecker, AValidityCheckAllocatesNothing) {
+  const Robot robot = panda_with_box({0.4, 0.0, 0.4}, 0.15);
+  const Chain chain(robot, "attachment_site");
+  CollisionChecker checker(chain);
+  const Eigen::VectorXd free = home_q(robot);
+  Eigen::VectorXd touching = free;
+  touching[1] = 1.0;    // leaning into the box
+  checker.valid(free);  // warm
+  checker.valid(touching);
+  const std::uint64_t before = test::malloc_calls();
+  int collisions = 0;
+  for (int j = 0; j < 20; ++j)
+    collisions += (checker.valid(free) ? 0 : 1) + (checker.valid(touching) ? 0 : 1);
+  EXPECT_EQ(test::malloc_calls() - before, 0u);
+  EXPECT_EQ(collisions, 20);  // both answers were given
 }
 
 }  // namespace
