@@ -136,7 +136,7 @@ struct OmplPlanner::Impl {
   OmplResult plan(const Eigen::VectorXd& q_start, const OmplGoal& goal);
   /// The search, simplification and timing once the start and the goals are known to be valid.
   void search(const Eigen::VectorXd& q_start, const std::vector<Eigen::VectorXd>& goals,
-              OmplResult& result);
+              double resolution, OmplResult& result);
 
   Chain chain;
   OmplOptions options;
@@ -208,16 +208,24 @@ OmplResult OmplPlanner::Impl::plan(const Eigen::VectorXd& q_start, const OmplGoa
     result.validity_checks = checker.checks();
     return result;
   }
-  search(q_start, goals.states, result);
+  // a timed path that touches something between the validator's states is searched again once
+  // with a validator 4× finer (a new budget), before the status says so
+  for (const double resolution : {options.resolution, options.resolution / 4.0}) {
+    search(q_start, goals.states, resolution, result);
+    if (result.status != OmplStatus::trajectory_in_collision) break;
+  }
   result.validity_checks = checker.checks();
   return result;
 }
 
 void OmplPlanner::Impl::search(const Eigen::VectorXd& q_start,
-                               const std::vector<Eigen::VectorXd>& goals, OmplResult& result) {
+                               const std::vector<Eigen::VectorXd>& goals, double resolution,
+                               OmplResult& result) {
   const int n = chain.size();
+  result.path.clear();  // nothing of an earlier search is kept
+  result.path_length = 0.0;
   const ob::SpaceInformationPtr si =
-      ompl_detail::make_space_information(checker, options.resolution, options.seed);
+      ompl_detail::make_space_information(checker, resolution, options.seed);
   auto problem = std::make_shared<ob::ProblemDefinition>(si);
   ob::ScopedState<> state(si->getStateSpace());
   ompl_detail::copy_to_state(q_start, state.get());
@@ -280,7 +288,10 @@ void OmplPlanner::Impl::search(const Eigen::VectorXd& q_start,
   result.trajectory_samples = timed.samples;
   if (!timed.ok) {
     result.status = OmplStatus::trajectory_in_collision;
-    result.message = timed.message + " (lower the resolution)";
+    result.message = timed.message + " (the validator at " + number_text(resolution) +
+                     " rad; lower the resolution)";
+    result.path.clear();  // never a path through an obstacle
+    result.path_length = 0.0;
     return;
   }
   result.trajectory = timed.trajectory;

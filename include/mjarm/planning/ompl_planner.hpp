@@ -42,13 +42,15 @@ constexpr auto declared_names(const OmplPlannerType*) {
 
 /// How a plan ended.
 enum class OmplStatus {
-  success,                 ///< a checked, timed trajectory from the start to a goal
-  no_path_within_budget,   ///< the planner found no path within the time budget
-  start_in_collision,      ///< the start configuration touches something
-  goal_in_collision,       ///< every goal configuration touches something
-  goal_unreachable,        ///< the IK reached no goal pose (outside the workspace)
-  invalid_input,           ///< a start or goal outside the joint ranges, or not finite
-  trajectory_in_collision  ///< the timed path touches something between the validator's samples
+  success,                ///< a checked, timed trajectory from the start to a goal
+  no_path_within_budget,  ///< the planner found no path within the time budget
+  start_in_collision,     ///< the start configuration touches something
+  goal_in_collision,      ///< every goal configuration touches something
+  goal_unreachable,       ///< the IK reached no goal pose (outside the workspace)
+  invalid_input,          ///< a start or goal outside the joint ranges, or not finite
+  /// the timed path touches something between the validator's states, also after a second
+  /// search with the validator 4× finer
+  trajectory_in_collision
 };
 
 constexpr auto declared_names(const OmplStatus*) {
@@ -152,7 +154,7 @@ using OmplGoal = std::variant<JointGoal, PoseGoal, PoseRegionGoal>;
 struct OmplResult {
   OmplStatus status = OmplStatus::invalid_input;
   std::string message;                ///< one line for people
-  std::vector<Eigen::VectorXd> path;  ///< joint-space knots, start to goal (simplified)
+  std::vector<Eigen::VectorXd> path;  ///< joint-space knots, start to goal (on success only)
   double path_length = 0.0;           ///< Σ‖q_{k+1} − q_k‖₂ [rad]
   double planning_time = 0.0;         ///< wall-clock time of plan(): IK, search, simplification [s]
   std::int64_t validity_checks = 0;   ///< states judged by the collision checker
