@@ -288,15 +288,17 @@ Command add_bench_command(CLI::App& root) {
   const Command traj = add_bench_traj_subcommand(
       *bench, [] { return g_heap_allocations.load(std::memory_order_relaxed); });
   const Command plan = add_bench_plan_subcommand(*bench);
+  const Command ompl = add_bench_ompl_subcommand(*bench);
   const Command env = add_bench_env_subcommand(*bench);
   const Command diffik = add_bench_diffik_subcommand(*bench);
   const Command analytic = add_bench_analytic_ik_subcommand(*bench);
 
-  return {bench, [options, app, control, otg, traj, plan, env, diffik, analytic] {
+  return {bench, [options, app, control, otg, traj, plan, ompl, env, diffik, analytic] {
             if (control.app->parsed()) return control.run();
             if (otg.app->parsed()) return otg.run();
             if (traj.app->parsed()) return traj.run();
             if (plan.app->parsed()) return plan.run();
+            if (ompl.app->parsed()) return ompl.run();
             if (env.app->parsed()) return env.run();
             if (diffik.app->parsed()) return diffik.run();
             if (analytic.app->parsed()) return analytic.run();

@@ -126,6 +126,19 @@ PlannedPath plan_path(const PlanCliOptions& o) {
   options.limits.max_torque = per_joint(o.max_torque, n, "--torque-limit");
   options.checks.min_singular_value = o.min_sigma;
   options.seed = o.seed;
+  // ompl:NAME: a waypoint the straight joint motion from the previous knot to the local IK
+  // solution does not reach is reached by OMPL's NAME, instead of other IK branches and the
+  // random detour (PlanOptions::ompl_fallback)
+  if (o.planner.rfind("ompl:", 0) == 0) {
+    options.ompl.planner = parse_enum<OmplPlannerType>(o.planner.substr(5), "OMPL planner");
+    options.ik_branches = 0;
+    options.detour_samples = 0;
+    options.ompl_fallback = true;
+  } else if (o.planner != "waypoint") {
+    throw UsageError("--planner: '" + o.planner +
+                     "' is not waypoint, ompl:rrtconnect, ompl:prm, ompl:rrtstar or "
+                     "ompl:bitstar");
+  }
   WaypointPathPlan plan = plan_waypoint_path(chain, out.start.qpos, file, options);
   out.poses = std::move(plan.poses);
   out.result = std::move(plan.result);
@@ -144,6 +157,7 @@ Json plan_json(const PlannedPath& p) {
                          {"orientation_error", w.orientation_error},
                          {"branch", w.branch},
                          {"detour", w.detour},
+                         {"ompl_knots", w.ompl_knots},
                          {"check", to_string(w.check.failure)},
                          {"sigma_min", w.check.sigma_min},
                          {"segment_min_sigma", w.min_sigma},
@@ -222,6 +236,11 @@ void add_plan_options(CLI::App& app, PlanCliOptions& o, bool with_seed) {
       ->check(finite_number());
   app.add_option("--min-sigma", o.min_sigma, "smallest accepted singular value of the 6×n Jacobian")
       ->check(finite_number())
+      ->capture_default_str();
+  app.add_option("--planner", o.planner,
+                 "waypoint: IK branches, then a random detour, then OMPL's RRT-Connect; "
+                 "ompl:rrtconnect|prm|rrtstar|bitstar: the local IK solution, reached by the "
+                 "straight joint motion or else by OMPL's planner (docs/planning.md)")
       ->capture_default_str();
   if (with_seed)
     app.add_option("--seed", o.seed, "seed of the IK branches and detours")

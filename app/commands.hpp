@@ -43,6 +43,8 @@ Command add_bench_otg_subcommand(CLI::App& bench, std::function<std::uint64_t()>
 Command add_bench_traj_subcommand(CLI::App& bench, std::function<std::uint64_t()> allocations);
 /// `mjarm bench plan …` on @p bench (cmd_bench_motion.cpp).
 Command add_bench_plan_subcommand(CLI::App& bench);
+/// `mjarm bench ompl …` on @p bench (cmd_bench_ompl.cpp).
+Command add_bench_ompl_subcommand(CLI::App& bench);
 /// `mjarm bench env …` on @p bench (cmd_bench_env.cpp).
 Command add_bench_env_subcommand(CLI::App& bench);
 /// `mjarm bench diffik …` on @p bench (cmd_bench_diffik.cpp).
@@ -71,8 +73,9 @@ struct PlanCliOptions {
   std::vector<double> max_velocity, max_acceleration, max_torque;
   double min_sigma = 0.02;
   std::uint64_t seed = 1;
+  std::string planner = "waypoint";  ///< waypoint | ompl:NAME (--planner)
 };
-/// Registers --waypoints, --q, --key, the limit overrides, --min-sigma (and --seed when
+/// Registers --waypoints, --q, --key, the limit overrides, --min-sigma, --planner (and --seed when
 /// @p with_seed; `run` has its own).
 void add_plan_options(CLI::App& app, PlanCliOptions& options, bool with_seed);
 /// A planned path with everything needed to print or run it.

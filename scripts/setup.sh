@@ -20,6 +20,8 @@ packages=(
   libeigen3-dev libtinyxml2-dev libcli11-dev nlohmann-json3-dev
   # scene and sweep files (YAML, and JSON through the same parser)
   libyaml-cpp-dev
+  # sampling-based joint-space planning (mjarm::OmplPlanner, `mjarm plan --planner ompl:…`)
+  libompl-dev
   # a sweep's results (mjarm sweep): SQLite
   libsqlite3-dev
   # render room (part of the default build, tested headless): EGL + desktop GL headers, Mesa's

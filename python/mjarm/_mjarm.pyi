@@ -5767,6 +5767,12 @@ class PlanOptions:
     @min_segment_duration.setter
     def min_segment_duration(self, value: float) -> None: ...
     @property
+    def ompl_fallback(self) -> bool:
+        """plan with OMPL (RRT-Connect) when the detour fails"""
+        ...
+    @ompl_fallback.setter
+    def ompl_fallback(self, value: bool) -> None: ...
+    @property
     def sample_period(self) -> float:
         """largest time between checked samples [s]; positive and finite"""
         ...
@@ -8176,6 +8182,10 @@ class WaypointReport:
     @property
     def min_sigma(self) -> float:
         """smallest σmin on the way here"""
+        ...
+    @property
+    def ompl_knots(self) -> int:
+        """via knots the OMPL fallback added before it"""
         ...
     @property
     def orientation_error(self) -> float:

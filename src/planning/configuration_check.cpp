@@ -10,38 +10,20 @@ namespace mjarm {
 
 void check(const CheckOptions& options) { check_fields(options); }
 
-namespace {
-
-/// Per geom: 1 when its body is moved by a joint of @p chain (the joint's body or below it).
-std::vector<char> moving_geoms(const Chain& chain) {
-  const mjModel& m = chain.robot().model();
-  std::vector<char> moved_body(m.nbody, 0);
-  for (int id : chain.joint_ids()) moved_body[m.jnt_bodyid[id]] = 1;
-  // bodies come after their parents: one pass spreads the flag down the tree
-  for (int b = 1; b < m.nbody; ++b)
-    if (moved_body[m.body_parentid[b]]) moved_body[b] = 1;
-  std::vector<char> moving(m.ngeom, 0);
-  for (int g = 0; g < m.ngeom; ++g) moving[g] = moved_body[m.geom_bodyid[g]];
-  return moving;
-}
-
-std::string geom_name(const mjModel& m, int g) {
-  const char* name = mj_id2name(&m, mjOBJ_GEOM, g);
-  return name != nullptr ? "geom '" + std::string(name) + "'" : "geom #" + std::to_string(g);
-}
-
-}  // namespace
-
 ConfigurationChecker::ConfigurationChecker(const Chain& chain, const JointLimits& limits,
                                            const CheckOptions& options)
-    : chain_(chain), limits_(limits), options_(options), manipulability_(chain), dynamics_(chain) {
+    : chain_(chain),
+      limits_(limits),
+      options_(options),
+      manipulability_(chain),
+      dynamics_(chain),
+      contacts_(chain) {
   mjarm::check(limits, chain.size());
   mjarm::check(options);
   install_mujoco_handlers();
   data_ = chain.robot().make_data();
   const mjModel& m = chain.robot().model();
   fixed_qpos_ = Eigen::Map<const Eigen::VectorXd>(m.qpos0, m.nq);
-  moving_ = moving_geoms(chain);
   zero_ = Eigen::VectorXd::Zero(chain.size());
   tau_ = Eigen::VectorXd::Zero(chain.size());
   q_ = Eigen::VectorXd::Zero(chain.size());
@@ -86,16 +68,10 @@ const ConfigurationCheck& ConfigurationChecker::check(
   std::fill(d.qvel, d.qvel + m.nv, 0.0);
   for (int i = 0; i < n; ++i) d.qvel[chain_.dof_address(i)] = qd[i];
   mj_fwdPosition(&m, &d);
-  for (int c = 0; c < d.ncon; ++c) {
-    const mjContact& contact = d.contact[c];
-    const bool a = moving_[contact.geom1] != 0;
-    const bool b = moving_[contact.geom2] != 0;
-    if (!(a || b) || !(contact.dist < options_.collision_margin) || !(contact.dist < r.distance))
-      continue;
-    r.distance = contact.dist;
-    r.geom1 = a ? contact.geom1 : contact.geom2;
-    r.geom2 = a ? contact.geom2 : contact.geom1;
-  }
+  const RobotContact contact = contacts_.deepest(d, options_.collision_margin);
+  r.geom1 = contact.geom1;
+  r.geom2 = contact.geom2;
+  r.distance = contact.distance;
   mj_fwdVelocity(&m, &d);
   dynamics_.inverse_dynamics(d, qdd, tau_);
   for (int i = 0; i < n; ++i) {
@@ -120,7 +96,6 @@ const ConfigurationCheck& ConfigurationChecker::check(
 }
 
 std::string ConfigurationChecker::describe(const ConfigurationCheck& r) const {
-  const mjModel& m = chain_.robot().model();
   std::ostringstream out;
   switch (r.failure) {
     case CheckFailure::none:
@@ -134,8 +109,8 @@ std::string ConfigurationChecker::describe(const ConfigurationCheck& r) const {
       return out.str();
     }
     case CheckFailure::collision:
-      out << geom_name(m, r.geom1) << " of the robot touches " << geom_name(m, r.geom2)
-          << " (distance " << r.distance << " m)";
+      out << contacts_.geom_name(r.geom1) << " of the robot touches "
+          << contacts_.geom_name(r.geom2) << " (distance " << r.distance << " m)";
       return out.str();
     case CheckFailure::singular:
       out << "near a singularity: smallest singular value of the 6x" << chain_.size()

@@ -15,6 +15,7 @@ void check(const PlanOptions& o) {
   check_fields(o);
   check(o.checks);
   check(o.ik);
+  check(o.ompl);
 }
 
 namespace {
@@ -288,6 +289,42 @@ PlanResult WaypointPlanner::plan(const Eigen::VectorXd& q_start,
         accepted.emplace(target, second);
       }
     }
+    // the detour failed: OMPL searches the joint space to the closest valid solution
+    int ompl_knots = 0;
+    std::string ompl_note;
+    if (!accepted && !valid.empty() && options_.ompl_fallback) {
+      const Candidate target = *std::min_element(
+          valid.begin(), valid.end(), [&](const Candidate& a, const Candidate& b) {
+            return (a.ik.q - q_prev).norm() < (b.ik.q - q_prev).norm();
+          });
+      OmplOptions ompl = options_.ompl;
+      ompl.seed = options_.seed + static_cast<std::uint64_t>(w);
+      ompl.collision_margin = options_.checks.collision_margin;
+      OmplPlanner fallback(chain_, ompl);
+      fallback.set_fixed_qpos(fixed_qpos_);
+      const OmplResult path = fallback.plan(q_prev, JointGoal{target.ik.q});
+      // OMPL judged contacts only: every segment passes the full checks too, at rest
+      std::vector<SegmentCheck> legs;
+      for (std::size_t j = 1; path.ok() && j < path.path.size(); ++j) {
+        legs.push_back(check_rest_segment(path.path[j - 1], path.path[j]));
+        if (!legs.back().ok) break;
+      }
+      if (path.ok() && legs.size() + 1 == path.path.size() && legs.back().ok) {
+        for (std::size_t j = 1; j + 1 < path.path.size(); ++j) {
+          knots.push_back(path.path[j]);
+          floors.push_back(legs[j - 1].duration);
+          blend.push_back(1);
+          knot_waypoint.push_back(-1);
+        }
+        ompl_knots = static_cast<int>(path.path.size()) - 2;
+        accepted.emplace(target, legs.back());
+      } else if (path.ok() && !legs.empty()) {
+        first_segment = legs.back();  // why the OMPL path was refused
+        ompl_note = "; OMPL's path fails the checks";
+      } else {
+        ompl_note = "; OMPL: " + path.message;
+      }
+    }
     if (!accepted) {
       const int tried = 1 + options_.ik_branches;
       std::ostringstream why;
@@ -314,7 +351,8 @@ PlanResult WaypointPlanner::plan(const Eigen::VectorXd& q_start,
         why << "the motion from " << where(k) << " fails at t = " << first_segment->time
             << " s of the segment: " << checker.describe(first_segment->failure) << " ("
             << valid.size() << " valid IK solutions, " << options_.detour_samples
-            << " detour samples tried)";
+            << " detour samples tried" << (options_.ompl_fallback ? ", then OMPL" : "") << ")"
+            << ompl_note;
       }
       report.message = why.str();
       result.failed_waypoint = k;
@@ -329,7 +367,8 @@ PlanResult WaypointPlanner::plan(const Eigen::VectorXd& q_start,
     report.position_error = chosen.ik.position_error;
     report.orientation_error = chosen.ik.orientation_error;
     report.branch = chosen.branch;
-    report.detour = via.has_value();
+    report.detour = via.has_value() || ompl_knots > 0;
+    report.ompl_knots = ompl_knots;
     report.check = checker.check(chosen.ik.q);
     report.message = "ok";
     result.waypoints.push_back(report);

@@ -37,9 +37,9 @@ const char* kFive =
 TEST(PlanCli, HelpNamesTheOptions) {
   const CliRun run = run_cli({"plan", "--help"});
   EXPECT_EQ(run.exit_code, 0);
-  for (const char* option :
-       {"--waypoints", "--site", "--q", "--key", "--velocity-limit", "--acceleration-limit",
-        "--torque-limit", "--min-sigma", "--out", "--rate", "--plot", "--size", "--json"})
+  for (const char* option : {"--waypoints", "--site", "--q", "--key", "--velocity-limit",
+                             "--acceleration-limit", "--torque-limit", "--min-sigma", "--planner",
+                             "--out", "--rate", "--plot", "--size", "--json"})
     EXPECT_NE(run.out.find(option), std::string::npos) << option;
 }
 
@@ -138,6 +138,27 @@ TEST(PlanCli, AbsurdWorkIsRefusedNamingTheBound) {
   EXPECT_NE(rows.err.find("rows, more than 10⁶: lower --rate"), std::string::npos) << rows.err;
   EXPECT_NE(rows.out.find("result: ok"), std::string::npos) << rows.out;  // the plan is shown
   EXPECT_FALSE(fs::exists(csv));
+}
+
+TEST(PlanCli, OmplPlansAroundAnObstacleOfASceneFile) {
+  // a box in the way of joint 1's swing from home to a tool position on the left
+  const std::string scene = plan_file("ompl_box.yaml", R"(name: ompl_box
+robots:
+  - {name: panda, model: panda}
+fixtures:
+  - {name: wall, shape: box, size: [0.08, 0.08, 0.08], mass: 1, pos: [0.22, 0.22, 0.55]}
+)");
+  const std::string left =
+      plan_file("left.json", R"({"waypoints": [{"position": [-0.0089, 0.3067, 0.59]}]})");
+  const json blocked = run_json({"plan", scene, "--site", "panda/attachment_site", "--waypoints",
+                                 left, "--planner", "ompl:rrtconnect", "--json"});
+  ASSERT_EQ(blocked["status"], "ok") << blocked.dump();
+  ASSERT_EQ(blocked["waypoints"].size(), 1u);
+  EXPECT_GE(blocked["waypoints"][0]["ompl_knots"].get<int>(), 1) << blocked.dump();
+  EXPECT_TRUE(blocked["waypoints"][0]["detour"].get<bool>());
+  expect_error(
+      {"plan", scene, "--site", "panda/attachment_site", "--waypoints", left, "--planner", "rrt"},
+      2, "--planner: 'rrt' is not waypoint, ompl:rrtconnect");
 }
 
 TEST(RunPlanCli, TracksThePlanAndReportsTheError) {

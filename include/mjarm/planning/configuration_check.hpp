@@ -16,6 +16,7 @@
 #include "mjarm/kinematics/manipulability.hpp"
 #include "mjarm/model/chain.hpp"
 #include "mjarm/planning/joint_limits.hpp"
+#include "mjarm/planning/robot_contacts.hpp"
 
 namespace mjarm {
 
@@ -80,8 +81,9 @@ struct ConfigurationCheck {
 };
 
 /// Checks states (q, q̇, q̈) of one chain. "The robot" is every geom on a body moved by a chain
-/// joint; a contact counts when at least one of its geoms is such a geom (the model's
-/// contype/conaffinity filters and MuJoCo's parent–child exclusion apply). Torques are
+/// joint; a contact counts when at least one of its geoms is such a geom and the pair is not
+/// allowed (`RobotContacts`; the model's contype/conaffinity filters and MuJoCo's parent–child
+/// exclusion apply). Torques are
 /// τ = M(q)·q̈ + C(q, q̇)·q̇ + g(q) on the chain's dofs (`ChainDynamics::inverse_dynamics`; passive
 /// forces excluded). One `check` runs MuJoCo's `mj_fwdPosition` and `mj_fwdVelocity` on the
 /// owned scratch `mjData` and allocates nothing.
@@ -98,6 +100,9 @@ class ConfigurationChecker {
   /// Sets the joints that are not in the chain (full qpos, nq entries; default qpos0).
   /// @throws Error when the size is not nq or a value is not finite.
   void set_fixed_qpos(const Eigen::Ref<const Eigen::VectorXd>& qpos);
+
+  /// The contact filter (none allowed by default): allow pairs on it (`RobotContacts::allow`).
+  RobotContacts& contacts() noexcept { return contacts_; }
 
   /// Checks the state (n entries each, unchecked sizes). Never throws, allocates nothing.
   const ConfigurationCheck& check(const Eigen::Ref<const Eigen::VectorXd>& q,
@@ -118,7 +123,7 @@ class ConfigurationChecker {
   ChainDynamics dynamics_;
   DataPtr data_;
   Eigen::VectorXd fixed_qpos_;
-  std::vector<char> moving_;  // per geom: on a body moved by the chain
+  RobotContacts contacts_;
   Eigen::VectorXd zero_, tau_, q_;
   ConfigurationCheck result_;
 };

@@ -19,6 +19,7 @@
 #include "mjarm/planning/configuration_check.hpp"
 #include "mjarm/planning/joint_limits.hpp"
 #include "mjarm/planning/joint_spline.hpp"
+#include "mjarm/planning/ompl_planner.hpp"
 #include "mjarm/random.hpp"
 
 namespace mjarm {
@@ -78,10 +79,23 @@ struct PlanOptions {
   /// the default bounds a plan to well under a minute; a plan that would pass it is refused
   /// before the segment that would.
   std::int64_t max_samples = 1000000;
+  /// When the detour fails too, OMPL plans a joint-space path to the valid IK solution closest
+  /// to the previous knot (`OmplPlanner` with `ompl`); its knots become via knots, each segment
+  /// checked as every other.
+  bool ompl_fallback = true;
+  /// The fallback's options (its seed is replaced by the plan's; its collision margin by the
+  /// checks'). A budget of 2 s: a waypoint is a short motion.
+  OmplOptions ompl = default_fallback_options();
+
+  static OmplOptions default_fallback_options() {
+    OmplOptions o;
+    o.time_budget = 2.0;
+    return o;
+  }
 };
 
-/// The plain fields of `PlanOptions`; `limits` (one entry per joint), `model_limits`, `checks`
-/// and `ik` are checked on their own.
+/// The plain fields of `PlanOptions`; `limits` (one entry per joint), `model_limits`, `checks`,
+/// `ik` and `ompl` are checked on their own.
 constexpr auto declared_fields(const PlanOptions*) {
   using S = PlanOptions;
   return declare<S>(
@@ -108,7 +122,9 @@ constexpr auto declared_fields(const PlanOptions*) {
       field("max_segment_samples", &S::max_segment_samples, "", Range::at_least(1),
             "samples one segment may have"),
       field("max_samples", &S::max_samples, "", Range::at_least(1),
-            "states one plan may check in all"));
+            "states one plan may check in all"),
+      field("ompl_fallback", &S::ompl_fallback,
+            "plan with OMPL (RRT-Connect) when the detour fails"));
 }
 
 /// @throws Error naming the option out of range.
@@ -124,6 +140,7 @@ struct WaypointReport {
   double orientation_error = 0.0;
   int branch = 0;
   bool detour = false;
+  int ompl_knots = 0;        ///< via knots OMPL added before it (the fallback; 0: none)
   ConfigurationCheck check;  ///< the checks at the waypoint (at rest)
   double min_sigma = 0.0;
   double max_torque_ratio = 0.0;
@@ -146,6 +163,7 @@ constexpr auto declared_fields(const WaypointReport*) {
       field("branch", &S::branch, "",
             "0: local IK from the previous waypoint; b ≥ 1: global branch b"),
       field("detour", &S::detour, "True when a via configuration was inserted before it"),
+      field("ompl_knots", &S::ompl_knots, "", "via knots the OMPL fallback added before it"),
       // over the samples of the segments that arrive here (the final trajectory when ok)
       field("min_sigma", &S::min_sigma, "", "smallest σmin on the way here"),
       field("max_torque_ratio", &S::max_torque_ratio, "", "largest |τ|/τ_max on the way here"),
