@@ -14,8 +14,10 @@ namespace mjarm::topp {
 struct StepRows {
   Eigen::VectorXd alpha, beta, gamma;
   int count = 0;
+  Eigen::VectorXd offset, slope;  // scratch: each row's bound on u as offset + slope·x
 
-  explicit StepRows(int capacity) : alpha(capacity), beta(capacity), gamma(capacity) {}
+  explicit StepRows(int capacity)
+      : alpha(capacity), beta(capacity), gamma(capacity), offset(capacity), slope(capacity) {}
   /// Appends the two sides of lo ≤ α·u + β·x ≤ hi.
   void add_two_sided(double a, double b, double lo, double hi) noexcept {
     add(a, b, hi);
@@ -38,7 +40,7 @@ struct XInterval {
 
 /// The x ∈ [x_lo, x_hi] from which some u satisfies @p rows and x + 2Δu lies in @p next
 /// (the paper's one-step set Q(K_{i+1})). Allocates nothing.
-XInterval controllable_interval(const StepRows& rows, double delta, XInterval next, double x_lo,
+XInterval controllable_interval(StepRows& rows, double delta, XInterval next, double x_lo,
                                 double x_hi) noexcept;
 
 /// The feasible u at a given @p x (the interval may be empty by rounding; the caller decides).
