@@ -3,11 +3,11 @@
 // [--json]`: the validation protocol and timing of the time-optimal path parameterization
 // (docs/trajectory.md "Time-optimal path parameterization").
 
-#include <fstream>
 #include <iostream>
 #include <memory>
 
 #include "commands.hpp"
+#include "mjarm/file_writer.hpp"
 #include "mjarm/interrupt.hpp"
 #include "mjarm/trajectory/path/time_optimal_path.hpp"
 #include "mjarm/trajectory/path/validation/topp_protocol.hpp"
@@ -71,24 +71,25 @@ Command add_bench_topp_subcommand(CLI::App& bench, std::function<std::uint64_t()
         protocol.refinement_paths = options->refinement_paths;
         protocol.thread_cpu_clock = options->clock == "cpu";
         protocol.allocation_count = allocations;
-        std::ofstream cases;
+        // the cases file is complete or not written at all (docs/cli.md, "Files written")
+        std::unique_ptr<FileWriter> cases;
         if (!options->cases_out.empty()) {
-          cases.open(options->cases_out);
-          if (!cases) throw Error("bench topp: cannot write " + options->cases_out);
+          cases = std::make_unique<FileWriter>(options->cases_out, FileWriter::Mode::replace,
+                                               "TOPP cases");
           protocol.each_path = [&cases](int k, const ToppCase& c, const TimeOptimalPath& topp,
                                         double us) {
             Json waypoints = Json::array();
             for (const Eigen::VectorXd& w : c.waypoints) waypoints.push_back(vector_json(w));
-            cases << Json{{"path", k},
-                          {"waypoints", std::move(waypoints)},
-                          {"max_velocity", vector_json(c.max_velocity)},
-                          {"max_acceleration", vector_json(c.max_acceleration)},
-                          {"grid_intervals", topp.grid().size() - 1},
-                          {"status", to_string(topp.status())},
-                          {"duration", topp.duration()},
-                          {"calculation_us", us}}
-                         .dump()
-                  << '\n';
+            cases->write(Json{{"path", k},
+                              {"waypoints", std::move(waypoints)},
+                              {"max_velocity", vector_json(c.max_velocity)},
+                              {"max_acceleration", vector_json(c.max_acceleration)},
+                              {"grid_intervals", topp.grid().size() - 1},
+                              {"status", to_string(topp.status())},
+                              {"duration", topp.duration()},
+                              {"calculation_us", us}}
+                             .dump() +
+                         "\n");
           };
         }
         Progress progress("parameterizing", options->paths);
@@ -97,6 +98,7 @@ Command add_bench_topp_subcommand(CLI::App& bench, std::function<std::uint64_t()
         protocol.stop = [] { return interrupt_requested(); };
         const ToppValidationResult r = run_topp_validation(protocol);
         progress.finish();
+        if (cases && !r.interrupted) cases->commit();
         const double samples = 51.0 * (r.paths - r.failures);
         const double per_sample = r.allocations_counted && samples > 0
                                       ? static_cast<double>(r.sampling_allocations) / samples
