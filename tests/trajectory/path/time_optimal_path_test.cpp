@@ -94,9 +94,9 @@ TEST(TimeOptimalPath, ForwardPassStaysInTheControllableSets) {
 }
 
 // Sampled q̇ and q̈ against the limits: at the grid points exactly (1e-9 relative), everywhere
-// within the discretization's error, 10 % at N = 100 and 3 % at N = 400 (the worst of 10 000
-// paths is in docs/trajectory.md). And q̇, q̈ and q⃛ are the time derivatives of q, q̇ and q̈
-// (central differences inside a step, where s̈ is constant).
+// within the discretization's error: 15 % at N = 100 and 3 % at N = 400 (the worst of the bench's
+// 10 000 paths at N = 100 is 12 %, of 1000 at N = 400 1.9 %: docs/trajectory.md). And q̇, q̈ and q⃛
+// are the time derivatives of q, q̇ and q̈ (central differences inside a step, where s̈ is constant).
 TEST(TimeOptimalPath, SamplesKeepTheLimitsAndAreConsistent) {
   Random rng(5);
   TrajectorySample sample, plus, minus;
@@ -134,7 +134,7 @@ TEST(TimeOptimalPath, SamplesKeepTheLimitsAndAreConsistent) {
                 1e-4 * (scale + sample.jerk.norm()));
     }
     EXPECT_LE(worst_grid, 1e-9) << "trial " << trial;
-    EXPECT_LE(worst, trial % 2 == 0 ? 0.1 : 0.03) << "trial " << trial;
+    EXPECT_LE(worst, trial % 2 == 0 ? 0.15 : 0.03) << "trial " << trial;
   }
 }
 

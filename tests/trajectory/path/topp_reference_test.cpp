@@ -12,8 +12,8 @@ namespace {
 // The reference and TOPP-RA solve the same grid problem by unrelated methods: TOPP-RA's profile
 // keeps the reference's rows, so it cannot be shorter than the reference's minimum; it is longer
 // by the greedy forward pass's gap (on the grid, a higher speed at s_i can lower the highest
-// reachable speed at s_{i+1}: measured below 1.1 % at N = 50, 0.33 % at N = 100, 0.08 % at
-// N = 200, docs/trajectory.md), and the reference's answer does not depend on its start.
+// reachable speed at s_{i+1}: worst 1.9 % at N = 50, 0.44 % at N = 100, 0.083 % at N = 200 in
+// the bench, docs/trajectory.md), and the reference's answer does not depend on its start.
 TEST(ToppReference, AgreesWithReachabilityOnSeededPaths) {
   Random rng(21);
   for (int trial = 0; trial < 15; ++trial) {
@@ -56,8 +56,8 @@ TEST(ToppReference, GridExcessSeesAProfileOverTheLimits) {
 }
 
 // The protocol of `mjarm bench topp` on 40 paths at N = 100: limits exact at the grid points,
-// within the discretization's measured error between them (7.7 % worst of 300 paths at N = 100,
-// 1.8 % at N = 400), never shorter than the grid minimum, longer by less than 1 %.
+// within the discretization's error between them (12 % the worst of the bench's 10 000 paths at
+// N = 100), never shorter than the grid minimum, longer by less than 1 %.
 TEST(ToppValidation, SeededBatchPassesEveryCheck) {
   ToppValidationOptions options;
   options.paths = 40;
@@ -69,7 +69,7 @@ TEST(ToppValidation, SeededBatchPassesEveryCheck) {
   EXPECT_EQ(r.failures, 0) << r.first_failure;
   EXPECT_EQ(r.reference_failures, 0) << r.first_failure;
   EXPECT_LE(r.worst_grid_excess, 1e-9);
-  EXPECT_LE(r.worst_excess, 0.1);
+  EXPECT_LE(r.worst_excess, 0.15);
   EXPECT_LE(r.worst_shorter, 1e-9);
   EXPECT_LE(r.worst_longer, 0.01);
   EXPECT_LT(r.worst_refinement_change, 0.02);
