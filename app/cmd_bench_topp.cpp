@@ -24,6 +24,7 @@ Command add_bench_topp_subcommand(CLI::App& bench, std::function<std::uint64_t()
     int reference_paths = 10000;
     std::string reference_start = "topp";
     int refinement_paths = 1000;
+    int jerk_paths = 10000;
     std::string clock = "wall";
     std::string cases_out;
     bool json = false;
@@ -51,6 +52,9 @@ Command add_bench_topp_subcommand(CLI::App& bench, std::function<std::uint64_t()
   app->add_option("--refinement-paths", options->refinement_paths,
                   "the first M paths also timed on a grid 4x finer")
       ->check(count_in(0, 10000000));
+  app->add_option("--jerk-paths", options->jerk_paths,
+                  "the first J paths also run through the jerk-limited waypoint variant")
+      ->check(count_in(0, 10000000));
   app->add_option("--clock", options->clock,
                   "wall: steady clock; cpu: the thread's CPU time (for a shared machine)")
       ->check(CLI::IsMember({"wall", "cpu"}));
@@ -69,6 +73,7 @@ Command add_bench_topp_subcommand(CLI::App& bench, std::function<std::uint64_t()
         protocol.reference_paths = options->reference_paths;
         protocol.reference_from_topp = options->reference_start == "topp";
         protocol.refinement_paths = options->refinement_paths;
+        protocol.jerk_paths = options->jerk_paths;
         protocol.thread_cpu_clock = options->clock == "cpu";
         protocol.allocation_count = allocations;
         // the cases file is complete or not written at all (docs/cli.md, "Files written")
@@ -123,6 +128,13 @@ Command add_bench_topp_subcommand(CLI::App& bench, std::function<std::uint64_t()
                       {"reference_mean_newton_steps", r.reference_mean_newton},
                       {"refinement_paths", r.refinement_paths},
                       {"worst_refinement_change", r.worst_refinement_change},
+                      {"jerk_paths", r.jerk_paths},
+                      {"jerk_failures", r.jerk_failures},
+                      {"jerk_worst_excess", r.jerk_worst_excess},
+                      {"jerk_reduced_waypoints", r.jerk_reduced_waypoints},
+                      {"jerk_mean_over_topp", r.jerk_mean_over_topp},
+                      {"jerk_mean_over_stops", r.jerk_mean_over_stops},
+                      {"jerk_worst_over_stops", r.jerk_worst_over_stops},
                       {"clock", options->clock},
                       {"mean_us", r.mean_us},
                       {"median_us", r.median_us},
@@ -152,6 +164,15 @@ Command add_bench_topp_subcommand(CLI::App& bench, std::function<std::uint64_t()
                {"change on a 4× finer grid", compact(r.worst_refinement_change) + " (worst of " +
                                                  std::to_string(r.refinement_paths) +
                                                  " paths, relative)"},
+               {"jerk-limited through the waypoints",
+                std::to_string(r.jerk_paths) + " paths (j = 10·a), " +
+                    std::to_string(r.jerk_failures) + " failures, worst excess " +
+                    compact(r.jerk_worst_excess) + ", " + std::to_string(r.jerk_reduced_waypoints) +
+                    " waypoint velocities halved"},
+               {"jerk-limited duration",
+                "mean " + fixed(r.jerk_mean_over_topp, 3) + "× the time-optimal path's, mean " +
+                    fixed(r.jerk_mean_over_stops, 3) + " (worst " +
+                    fixed(r.jerk_worst_over_stops, 3) + ")× stopping at every waypoint"},
                {"allocations per sample", per_sample < 0.0 ? "-" : compact(per_sample)}});
           if (!r.first_failure.empty()) std::cout << "first failure: " << r.first_failure << '\n';
           std::cout << '\n';

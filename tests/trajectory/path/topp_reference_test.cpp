@@ -74,6 +74,13 @@ TEST(ToppValidation, SeededBatchPassesEveryCheck) {
   EXPECT_LE(r.worst_longer, 0.01);
   EXPECT_LT(r.worst_refinement_change, 0.02);
   EXPECT_GT(r.median_us, 0.0);
+  // the jerk-limited variant through the same waypoints: every segment within v, a and j, and
+  // faster on average than stopping at every waypoint
+  EXPECT_EQ(r.jerk_paths, 40);
+  EXPECT_EQ(r.jerk_failures, 0) << r.first_failure;
+  EXPECT_LE(r.jerk_worst_excess, 1e-9);
+  EXPECT_LT(r.jerk_mean_over_stops, 1.0);
+  EXPECT_GT(r.jerk_mean_over_topp, 1.0);  // a jerk limit only slows the motion down
 }
 
 }  // namespace

@@ -6,7 +6,9 @@
 #include <vector>
 
 #include "mjarm/benchmark_timing.hpp"
+#include "mjarm/error.hpp"
 #include "mjarm/number_text.hpp"
+#include "mjarm/trajectory/path/jerk_waypoints.hpp"
 #include "mjarm/trajectory/path/time_optimal_path.hpp"
 #include "mjarm/trajectory/path/validation/topp_reference.hpp"
 
@@ -100,6 +102,25 @@ double topp_analytic_excess(const TimeOptimalPath& topp) {
 
 double topp_now_us(bool cpu) { return 1e6 * benchmark_seconds(cpu); }
 
+/// The worst relative excess of every segment's profiles over their limits, at the analytic
+/// extrema of every phase (velocity and acceleration) and over every phase's jerk.
+double jerk_waypoint_excess(const JerkWaypointTrajectory& trajectory) {
+  double worst = -1.0;
+  for (int k = 0; k < trajectory.segments(); ++k) {
+    const JerkLimitedGenerator& g = trajectory.segment(k);
+    for (int j = 0; j < g.dofs(); ++j) {
+      const JerkLimits& l = g.limits(j);
+      const JerkProfile& p = g.profile(j);
+      const JerkExtrema e = p.extrema();
+      worst = std::max({worst, std::max(-e.v_min, e.v_max) / l.velocity - 1.0,
+                        std::max(-e.a_min, e.a_max) / l.acceleration - 1.0});
+      for (int phase = 0; phase < p.size(); ++phase)
+        worst = std::max(worst, std::abs(p.jerk(phase)) / l.jerk - 1.0);
+    }
+  }
+  return worst;
+}
+
 }  // namespace
 
 ToppCase random_topp_case(Random& rng, int dofs) {
@@ -135,7 +156,7 @@ ToppValidationResult run_topp_validation(const ToppValidationOptions& options) {
   std::vector<double> times;
   times.reserve(static_cast<std::size_t>(options.paths));
   TrajectorySample sample(options.dofs);
-  double reference_ms = 0.0, longer_sum = 0.0;
+  double reference_ms = 0.0, longer_sum = 0.0, jerk_topp_sum = 0.0, jerk_stop_sum = 0.0;
   long newton_steps = 0;
   const auto note = [&r](const std::string& what) {
     if (r.first_failure.empty()) r.first_failure = what;
@@ -196,6 +217,26 @@ ToppValidationResult run_topp_validation(const ToppValidationOptions& options) {
                number_text(-change) + " (relative)");
       }
     }
+    if (k < options.jerk_paths) {
+      ++r.jerk_paths;
+      try {
+        const Eigen::VectorXd jerk = 10.0 * c.max_acceleration;
+        const JerkWaypointTrajectory moving(topp, jerk);
+        JerkWaypointOptions stop_options;
+        stop_options.velocity_share = 0.0;
+        const JerkWaypointTrajectory stopping(topp, jerk, stop_options);
+        r.jerk_worst_excess = std::max(
+            {r.jerk_worst_excess, jerk_waypoint_excess(moving), jerk_waypoint_excess(stopping)});
+        r.jerk_reduced_waypoints += moving.reduced_waypoints();
+        jerk_topp_sum += moving.duration() / topp.duration();
+        const double over_stops = moving.duration() / stopping.duration();
+        jerk_stop_sum += over_stops;
+        r.jerk_worst_over_stops = std::max(r.jerk_worst_over_stops, over_stops);
+      } catch (const Error& e) {
+        ++r.jerk_failures;
+        note("path " + std::to_string(k) + ": jerk waypoints: " + e.what());
+      }
+    }
     if (k < options.refinement_paths) {
       const TimeOptimalPath fine(path, c.max_velocity, c.max_acceleration, fine_options);
       ++r.refinement_paths;
@@ -216,6 +257,10 @@ ToppValidationResult run_topp_validation(const ToppValidationOptions& options) {
     r.median_us = nearest_rank(times, 0.5);
     r.p95_us = nearest_rank(times, 0.95);
     r.max_us = times.back();
+  }
+  if (r.jerk_paths > r.jerk_failures) {
+    r.jerk_mean_over_topp = jerk_topp_sum / (r.jerk_paths - r.jerk_failures);
+    r.jerk_mean_over_stops = jerk_stop_sum / (r.jerk_paths - r.jerk_failures);
   }
   if (r.reference_paths > 0) {
     r.reference_mean_ms = reference_ms / r.reference_paths;

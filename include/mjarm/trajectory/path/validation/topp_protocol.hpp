@@ -9,7 +9,10 @@
 ///    or its vertex, and q̇_j's at the ends or where q̈_j = 0 (d(q′_j²ṡ²)/ds = 2q′_j·q̈_j);
 ///  - the duration against the independent grid reference (path/validation/topp_reference.hpp)
 ///    on the same grid;
-///  - sampling allocates nothing (when an allocation counter is given) —
+///  - sampling allocates nothing (when an allocation counter is given);
+///  - the jerk-limited variant through the same waypoints (JerkWaypointTrajectory, j = 10·a per
+///    joint): every segment's profiles within v, a and j at their analytic extrema, its duration
+///    against the time-optimal path's and against stopping at every waypoint —
 /// and the calculation time per path measured.
 
 #include <Eigen/Core>
@@ -37,6 +40,7 @@ struct ToppValidationOptions {
   /// not depend on the start) instead of its own feasible point.
   bool reference_from_topp = true;
   int refinement_paths = 100;     ///< the first paths also timed on a grid 4× finer
+  int jerk_paths = 10000;         ///< the first paths also run through JerkWaypointTrajectory
   bool thread_cpu_clock = false;  ///< time on the thread's CPU clock, not the steady clock
   /// Heap allocations of the process so far (optional; counted around each path's sampling).
   std::function<std::uint64_t()> allocation_count;
@@ -61,6 +65,8 @@ constexpr auto declared_fields(const ToppValidationOptions*) {
             "start the reference's Newton steps from TOPP-RA's profile"),
       field("refinement_paths", &S::refinement_paths, "", Range::non_negative(),
             "the first paths also timed on a grid 4× finer"),
+      field("jerk_paths", &S::jerk_paths, "", Range::non_negative(),
+            "the first paths also run through the jerk-limited waypoint variant"),
       field("thread_cpu_clock", &S::thread_cpu_clock,
             "time on the calling thread's CPU clock instead of the steady wall clock"));
 }
@@ -92,6 +98,15 @@ struct ToppValidationResult {
   int refinement_paths = 0;  ///< paths also timed on a 4× finer grid
   /// max over those of |T(N) − T(4N)|/T(4N): how far the grid's duration is from converged
   double worst_refinement_change = 0.0;
+  int jerk_paths = 0;     ///< paths run through JerkWaypointTrajectory
+  int jerk_failures = 0;  ///< of those, ones it threw on
+  /// max over their segments and joints of max(|v|/v_max, |a|/a_max, |j|/j_max) − 1 at the
+  /// analytic extrema of every phase (≤ 0 when within)
+  double jerk_worst_excess = -1.0;
+  int jerk_reduced_waypoints = 0;          ///< waypoint velocities halved to join a segment
+  double jerk_mean_over_topp = 0.0;        ///< mean duration ratio T_jerk / T_topp
+  double jerk_mean_over_stops = 0.0;       ///< mean T_jerk / T (stopping at every waypoint)
+  double jerk_worst_over_stops = 0.0;      ///< max T_jerk / T (stopping at every waypoint)
   std::uint64_t sampling_allocations = 0;  ///< heap allocations while sampling (when counted)
   bool allocations_counted = false;
   double mean_us = 0.0;                ///< mean parameterization time [µs]
