@@ -1,7 +1,7 @@
 // `mjarm bench topp [--paths N] [--dofs D] [--seed S] [--grid N] [--reference-paths K]
-// [--reference-start topp|own] [--refinement-paths M] [--clock wall|cpu] [--cases-out FILE]
-// [--json]`: the validation protocol and timing of the time-optimal path parameterization
-// (docs/trajectory.md "Time-optimal path parameterization").
+// [--reference-start topp|own] [--refinement-paths M] [--jerk-paths J] [--clock wall|cpu]
+// [--cases-out FILE] [--json]`: the validation protocol and timing of the time-optimal path
+// parameterization (docs/trajectory.md "Time-optimal path parameterization").
 
 #include <iostream>
 #include <memory>
