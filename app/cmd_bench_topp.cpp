@@ -132,6 +132,7 @@ Command add_bench_topp_subcommand(CLI::App& bench, std::function<std::uint64_t()
                       {"jerk_failures", r.jerk_failures},
                       {"jerk_worst_excess", r.jerk_worst_excess},
                       {"jerk_reduced_waypoints", r.jerk_reduced_waypoints},
+                      {"jerk_stopped_waypoints", r.jerk_stopped_waypoints},
                       {"jerk_mean_over_topp", r.jerk_mean_over_topp},
                       {"jerk_mean_over_stops", r.jerk_mean_over_stops},
                       {"jerk_worst_over_stops", r.jerk_worst_over_stops},
@@ -168,7 +169,8 @@ Command add_bench_topp_subcommand(CLI::App& bench, std::function<std::uint64_t()
                 std::to_string(r.jerk_paths) + " paths (j = 10·a), " +
                     std::to_string(r.jerk_failures) + " failures, worst excess " +
                     compact(r.jerk_worst_excess) + ", " + std::to_string(r.jerk_reduced_waypoints) +
-                    " waypoint velocities halved"},
+                    " waypoint velocities halved, " + std::to_string(r.jerk_stopped_waypoints) +
+                    " waypoints given a stop"},
                {"jerk-limited duration",
                 "mean " + fixed(r.jerk_mean_over_topp, 3) + "× the time-optimal path's, mean " +
                     fixed(r.jerk_mean_over_stops, 3) + " (worst " +

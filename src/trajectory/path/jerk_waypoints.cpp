@@ -56,28 +56,52 @@ JerkWaypointTrajectory::JerkWaypointTrajectory(const TimeOptimalPath& topp,
             .cwiseMin(topp.max_velocity());
   }
   std::vector<KinematicState> from(static_cast<std::size_t>(n)), to(static_cast<std::size_t>(n));
-  starts_.assign(1, 0.0);
+  // segment k from waypoint k to k + 1 at the waypoints' current velocities
+  const auto join = [&](int k, JerkLimitedGenerator& generator) {
+    for (Eigen::Index j = 0; j < n; ++j) {
+      const auto jj = static_cast<std::size_t>(j);
+      from[jj] = {path.waypoints()(j, k), velocities_[static_cast<std::size_t>(k)][j], 0.0};
+      to[jj] = {path.waypoints()(j, k + 1), velocities_[static_cast<std::size_t>(k + 1)][j], 0.0};
+    }
+    const OtgResult result = generator.calculate(from, to);
+    return result.status == OtgStatus::working || result.status == OtgStatus::finished;
+  };
   for (int k = 0; k + 1 < count; ++k) {
     JerkLimitedGenerator generator(limits);
     Eigen::VectorXd& v_next = velocities_[static_cast<std::size_t>(k + 1)];
-    for (int attempt = 0;; ++attempt) {
-      for (Eigen::Index j = 0; j < n; ++j) {
-        const auto jj = static_cast<std::size_t>(j);
-        from[jj] = {path.waypoints()(j, k), velocities_[static_cast<std::size_t>(k)][j], 0.0};
-        to[jj] = {path.waypoints()(j, k + 1), v_next[j], 0.0};
-      }
-      const OtgResult result = generator.calculate(from, to);
-      if (result.status == OtgStatus::working || result.status == OtgStatus::finished) break;
+    for (int attempt = 0; !join(k, generator); ++attempt) {
       if (v_next.isZero())
         throw Error("jerk waypoints: segment " + std::to_string(k) + " failed (" +
-                    to_string(result.status) + ") even with a stop at waypoint " +
+                    to_string(generator.result().status) + ") even with a stop at waypoint " +
                     std::to_string(k + 1));
       if (attempt == 0) ++reduced_;
       v_next = attempt < options.retries ? Eigen::VectorXd(0.5 * v_next) : Eigen::VectorXd::Zero(n);
     }
-    starts_.push_back(starts_.back() + generator.duration());
     segments_.push_back(std::move(generator));
   }
+  // a synchronized segment between two moving states can take longer than one through a stop:
+  // an interior waypoint whose two segments are shorter with a stop there gets the stop (each
+  // change shortens the whole, left to right, neighbours as they stand)
+  for (int k = 1; k + 1 < count; ++k) {
+    Eigen::VectorXd& v = velocities_[static_cast<std::size_t>(k)];
+    if (v.isZero()) continue;
+    const Eigen::VectorXd moving = v;
+    v.setZero();
+    JerkLimitedGenerator before(limits), after(limits);
+    const auto kk = static_cast<std::size_t>(k);
+    if (join(k - 1, before) && join(k, after) &&
+        before.duration() + after.duration() <
+            segments_[kk - 1].duration() + segments_[kk].duration()) {
+      segments_[kk - 1] = std::move(before);
+      segments_[kk] = std::move(after);
+      ++stopped_;
+    } else {
+      v = moving;
+    }
+  }
+  starts_.assign(1, 0.0);
+  for (const JerkLimitedGenerator& segment : segments_)
+    starts_.push_back(starts_.back() + segment.duration());
 }
 
 void JerkWaypointTrajectory::at(double t, TrajectorySample& sample) const {

@@ -55,6 +55,8 @@ TEST(JerkWaypoints, PassesWaypointsInMotionWithinTheLimits) {
     EXPECT_LT((after.position - c.waypoints.back()).norm(), 1e-8);
     EXPECT_LT(after.velocity.norm(), 1e-8);
     if (moving.duration() < stopping.duration()) ++faster;
+    // a stop is given where it shortens the two segments around it, so never much longer
+    EXPECT_LE(moving.duration(), 1.1 * stopping.duration()) << "trial " << trial;
   }
   EXPECT_GE(faster, trials - 2);
   EXPECT_GT(moving_waypoints, trials);

@@ -6,8 +6,9 @@
 /// (q′(s_k)·ṡ(s_k), zero acceleration), and each segment between waypoints is the jerk-limited
 /// generator's synchronized time-optimal motion (otg/generator.hpp) between those states. A
 /// segment the generator cannot join (the next waypoint's velocity out of reach within the
-/// segment) is retried with that velocity halved, up to a stop there. Every segment is the
-/// generator's checked result: within v, a and j at the analytic extrema of every phase.
+/// segment) is retried with that velocity halved, up to a stop there; then, left to right, an
+/// interior waypoint whose two segments are shorter through a stop gets the stop. Every segment
+/// is the generator's checked result: within v, a and j at the analytic extrema of every phase.
 ///
 /// The segments do not follow the spline between waypoints (each joint runs its own profile,
 /// synchronized in time): the waypoints are passed exactly, the path between them is the
@@ -67,6 +68,8 @@ class JerkWaypointTrajectory {
   const std::vector<Eigen::VectorXd>& waypoint_velocities() const noexcept { return velocities_; }
   /// Waypoint velocities that were halved to make their segment feasible.
   int reduced_waypoints() const noexcept { return reduced_; }
+  /// Interior waypoints given a stop because their two segments were shorter with one.
+  int stopped_waypoints() const noexcept { return stopped_; }
 
   /// q, q̇, q̈ and q⃛ at @p t [s] (clamped to [0, T]) into @p sample (resized to n when it is
   /// not; no allocation once it is).
@@ -77,6 +80,7 @@ class JerkWaypointTrajectory {
   std::vector<double> starts_;
   std::vector<Eigen::VectorXd> velocities_;
   int reduced_ = 0;
+  int stopped_ = 0;
 };
 
 }  // namespace mjarm

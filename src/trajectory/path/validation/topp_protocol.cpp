@@ -228,6 +228,7 @@ ToppValidationResult run_topp_validation(const ToppValidationOptions& options) {
         r.jerk_worst_excess = std::max(
             {r.jerk_worst_excess, jerk_waypoint_excess(moving), jerk_waypoint_excess(stopping)});
         r.jerk_reduced_waypoints += moving.reduced_waypoints();
+        r.jerk_stopped_waypoints += moving.stopped_waypoints();
         jerk_topp_sum += moving.duration() / topp.duration();
         const double over_stops = moving.duration() / stopping.duration();
         jerk_stop_sum += over_stops;

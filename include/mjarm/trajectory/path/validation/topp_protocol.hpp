@@ -104,6 +104,7 @@ struct ToppValidationResult {
   /// analytic extrema of every phase (≤ 0 when within)
   double jerk_worst_excess = -1.0;
   int jerk_reduced_waypoints = 0;          ///< waypoint velocities halved to join a segment
+  int jerk_stopped_waypoints = 0;          ///< interior waypoints given a stop (shorter segments)
   double jerk_mean_over_topp = 0.0;        ///< mean duration ratio T_jerk / T_topp
   double jerk_mean_over_stops = 0.0;       ///< mean T_jerk / T (stopping at every waypoint)
   double jerk_worst_over_stops = 0.0;      ///< max T_jerk / T (stopping at every waypoint)
