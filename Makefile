@@ -98,10 +98,11 @@ bench-peers: setup
 	@bash scripts/setup_venv.sh python/requirements.txt python/requirements-peers.txt
 	cmake -S . -B $(PEERS_BUILD) -DCMAKE_BUILD_TYPE=Release -DMJARM_BUILD_PEERS_BENCH=ON \
 	  -DMJARM_BUILD_TESTS=OFF -DMJARM_BUILD_EXAMPLES=OFF $(CMAKE_FLAGS)
-	cmake --build $(PEERS_BUILD) -j $(JOBS) --target mjarm_python bench_peers_pinocchio
+	cmake --build $(PEERS_BUILD) -j $(JOBS) --target mjarm_python bench_peers_pinocchio mjarm_cli
 	$(PEERS_PYTHON) bench/peers/pinocchio_side_by_side.py --bench $(PEERS_BUILD)/bench_peers_pinocchio
 	$(PEERS_PYTHON) bench/peers/ruckig_side_by_side.py
 	$(PEERS_PYTHON) bench/peers/mink_side_by_side.py
+	$(PEERS_PYTHON) bench/peers/toppra_side_by_side.py --mjarm $(PEERS_BUILD)/mjarm
 
 format:
 	clang-format -i $$(git ls-files '*.cpp' '*.hpp')

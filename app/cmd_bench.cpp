@@ -254,7 +254,8 @@ Command add_bench_command(CLI::App& root) {
   auto options = std::make_shared<Options>();
   CLI::App* bench = root.add_subcommand(
       "bench",
-      "benchmarks of the library: ik, control, otg (jerk-limited generator), traj (motion "
+      "benchmarks of the library: ik, control, otg (jerk-limited generator), topp (time-optimal "
+      "path parameterization), traj (motion "
       "profiles), plan (5-waypoint panda path), env (learning environment), diffik (collision "
       "rows), analytic-ik (closed-form 6R IK); see `mjarm bench NAME "
       "--help`");
@@ -285,6 +286,8 @@ Command add_bench_command(CLI::App& root) {
   const Command control = add_control_subcommand(*bench);
   const Command otg = add_bench_otg_subcommand(
       *bench, [] { return g_heap_allocations.load(std::memory_order_relaxed); });
+  const Command topp = add_bench_topp_subcommand(
+      *bench, [] { return g_heap_allocations.load(std::memory_order_relaxed); });
   const Command traj = add_bench_traj_subcommand(
       *bench, [] { return g_heap_allocations.load(std::memory_order_relaxed); });
   const Command plan = add_bench_plan_subcommand(*bench);
@@ -293,9 +296,10 @@ Command add_bench_command(CLI::App& root) {
   const Command diffik = add_bench_diffik_subcommand(*bench);
   const Command analytic = add_bench_analytic_ik_subcommand(*bench);
 
-  return {bench, [options, app, control, otg, traj, plan, ompl, env, diffik, analytic] {
+  return {bench, [options, app, control, otg, topp, traj, plan, ompl, env, diffik, analytic] {
             if (control.app->parsed()) return control.run();
             if (otg.app->parsed()) return otg.run();
+            if (topp.app->parsed()) return topp.run();
             if (traj.app->parsed()) return traj.run();
             if (plan.app->parsed()) return plan.run();
             if (ompl.app->parsed()) return ompl.run();

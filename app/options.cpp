@@ -151,7 +151,7 @@ PixelSize parse_pixel_size(const std::string& text) {
 void add_model_size_option(CLI::App& root) {
   // the commands that never load a model
   static const std::vector<std::string> kModelFree{
-      "models",       "plot",        "traj",         "bench otg",    "bench traj",
+      "models",       "plot",        "traj",         "bench otg",    "bench topp",  "bench traj",
       "sweep status", "sweep merge", "sweep export", "sweep report", "sweep cancel"};
   const auto add = [](auto& self, CLI::App& app, const std::string& path) -> void {
     const auto children = app.get_subcommands({});

@@ -25,9 +25,9 @@ install(TARGETS mjarm EXPORT mjarmTargets
   ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
   LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}
   RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
-# the generator's validation references are not part of the package (their target is not either)
+# the trajectory room's validation references are not part of the package (their target is not either)
 install(DIRECTORY include/mjarm DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}
-  REGEX "/trajectory/otg/validation$" EXCLUDE)
+  REGEX "/trajectory/(otg|path)/validation$" EXCLUDE)
 install(EXPORT mjarmTargets NAMESPACE mjarm:: DESTINATION ${CMAKE_INSTALL_LIBDIR}/cmake/mjarm)
 configure_package_config_file(cmake/mjarmConfig.cmake.in ${CMAKE_CURRENT_BINARY_DIR}/mjarmConfig.cmake
   INSTALL_DESTINATION ${CMAKE_INSTALL_LIBDIR}/cmake/mjarm)
