@@ -300,6 +300,15 @@ void OmplPlanner::Impl::search(const Eigen::VectorXd& q_start,
                    std::to_string(result.path.size()) + " knots, " +
                    number_text(result.path_length) + " rad, " +
                    number_text(result.trajectory.duration()) + " s";
+  if (options.time_optimal) {
+    std::string why;
+    result.time_optimal =
+        ompl_detail::time_optimally(result.path, result.limits, options.sample_step, configuration,
+                                    result.trajectory_samples, why);
+    result.message += result.time_optimal
+                          ? ", time-optimal " + number_text(result.time_optimal->duration()) + " s"
+                          : "; no time-optimal timing (" + why + ")";
+  }
 }
 
 }  // namespace mjarm

@@ -9,18 +9,39 @@
 
 namespace mjarm {
 
+namespace {
+
+/// The joints of a trajectory (0 when it is empty or not solved).
+Eigen::Index planned_joints(const JointSpline& spline) { return spline.size(); }
+Eigen::Index planned_joints(const TimeOptimalPath& path) { return path.solved() ? path.dofs() : 0; }
+
+}  // namespace
+
+PlannedReference::PlannedReference(const Chain& chain, TimeOptimalPath trajectory, double hold_time,
+                                   double velocity_lag)
+    : PlannedReference(chain, JointSpline{}, hold_time, velocity_lag, std::move(trajectory)) {}
+
 PlannedReference::PlannedReference(const Chain& chain, JointSpline trajectory, double hold_time,
                                    double velocity_lag)
+    : PlannedReference(chain, std::move(trajectory), hold_time, velocity_lag, std::nullopt) {}
+
+PlannedReference::PlannedReference(const Chain& chain, JointSpline spline, double hold_time,
+                                   double velocity_lag, std::optional<TimeOptimalPath> path)
     : chain_(chain),
-      trajectory_(std::move(trajectory)),
+      trajectory_(std::move(spline)),
       hold_time_(hold_time),
       velocity_lag_(velocity_lag),
       reference_kin_(chain),
       state_kin_(chain) {
-  if (trajectory_.empty()) throw Error("planned reference: the trajectory is empty");
-  if (trajectory_.size() != chain.size())
-    throw Error("planned reference: the trajectory has " + std::to_string(trajectory_.size()) +
+  if (path) trajectory_ = std::move(*path);
+  const Eigen::Index joints =
+      std::visit([](const auto& trajectory) { return planned_joints(trajectory); }, trajectory_);
+  if (joints == 0) throw Error("planned reference: the trajectory is empty (or not solved)");
+  if (joints != chain.size())
+    throw Error("planned reference: the trajectory has " + std::to_string(joints) +
                 " joints, the chain " + std::to_string(chain.size()));
+  duration_ = std::visit([](const auto& trajectory) { return trajectory.duration(); }, trajectory_);
+  sample_.resize(joints);
   if (!(hold_time >= 0.0) || !std::isfinite(hold_time))
     throw Error("planned reference: hold_time must be finite and >= 0 [s], got " +
                 number_text(hold_time));
@@ -38,10 +59,22 @@ void PlannedReference::reset() noexcept {
   tracking_ = TrackingError{};
 }
 
+void PlannedReference::sample(double t, Eigen::VectorXd& q, Eigen::VectorXd& qd,
+                              Eigen::VectorXd& qdd) noexcept {
+  if (const JointSpline* spline = std::get_if<JointSpline>(&trajectory_)) {
+    spline->at(t, q, qd, qdd);  // sizes fit: never throws
+    return;
+  }
+  std::get<TimeOptimalPath>(trajectory_).at(t, sample_);  // sized: allocates nothing
+  q = sample_.position;
+  qd = sample_.velocity;
+  qdd = sample_.acceleration;
+}
+
 void PlannedReference::evaluate(double t, Reference& reference) noexcept {
   const int n = chain_.size();
-  trajectory_.at(t, q_, qd_, qdd_);  // sizes fit: never throws
-  if (velocity_lag_ > 0.0) trajectory_.at(t - velocity_lag_, lagged_q_, qd_, lagged_qdd_);
+  sample(t, q_, qd_, qdd_);
+  if (velocity_lag_ > 0.0) sample(t - velocity_lag_, lagged_q_, qd_, lagged_qdd_);
   JointReference& joint = reference.joint;
   if (joint.q.size() != n) {  // the first tick sizes the reference
     joint.q.resize(n);

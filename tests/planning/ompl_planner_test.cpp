@@ -11,6 +11,7 @@
 #include "mjarm/kinematics/chain_kinematics.hpp"
 #include "mjarm/planning/collision_checker.hpp"
 #include "mjarm/planning/configuration_check.hpp"
+#include "mjarm/planning/planned_reference.hpp"
 #include "mjarm/planning/waypoint_planner.hpp"
 #include "mjarm/random.hpp"
 #include "planning/planning_support.hpp"
@@ -80,6 +81,45 @@ TEST_F(OmplPanda, StraightMotionCollidesOmplFindsATimedPathClearOfTheBox) {
   EXPECT_LT((q - goal).norm(), 1e-9);
   EXPECT_LT(qd.norm(), 1e-12);
   expect_trajectory_clear(r, chain);
+}
+
+TEST_F(OmplPanda, TheTimeOptimalTimingIsClearWithinTheLimitsAndFasterThanTheSpline) {
+  OmplPlanner planner(chain, fast());
+  const OmplResult r = planner.plan(start, JointGoal{goal});
+  ASSERT_TRUE(r.ok()) << r.message;
+  ASSERT_TRUE(r.time_optimal.has_value()) << r.message;
+  const TimeOptimalPath& path = *r.time_optimal;
+  EXPECT_LT(path.duration(), r.trajectory.duration());
+  // every 2 ms, by a separate checker: touching nothing, within the limits, from start to goal
+  CollisionChecker checker(chain);
+  TrajectorySample s(7);
+  const int m = static_cast<int>(std::ceil(path.duration() / 0.002));
+  for (int j = 0; j <= m; ++j) {
+    path.at(path.duration() * j / m, s);
+    ASSERT_TRUE(checker.valid(s.position)) << "t = " << path.duration() * j / m;
+    for (int i = 0; i < 7; ++i) {
+      EXPECT_LE(std::abs(s.velocity[i]), r.limits.max_velocity[i] * (1 + 1e-9));
+      EXPECT_LE(std::abs(s.acceleration[i]), r.limits.max_acceleration[i] * (1 + 1e-9));
+    }
+  }
+  path.at(0.0, s);
+  EXPECT_LT((s.position - start).norm(), 1e-9);
+  path.at(path.duration(), s);
+  EXPECT_LT((s.position - goal).norm(), 1e-9);
+  EXPECT_LT(s.velocity.norm(), 1e-9);
+
+  // tracked as a reference: the joint reference is the path's sample at t − t₀
+  PlannedReference reference(chain, path, 0.2);
+  EXPECT_DOUBLE_EQ(reference.run_time(), path.duration() + 0.2);
+  Reference ref;
+  reference.evaluate(0.5 * path.duration(), ref);
+  path.at(0.5 * path.duration(), s);
+  EXPECT_LT((ref.joint.q - s.position).norm(), 1e-15);
+  EXPECT_LT((ref.joint.qd - s.velocity).norm(), 1e-15);
+  EXPECT_EQ(reference.spline(), nullptr);
+  OmplOptions spline_only = fast();
+  spline_only.time_optimal = false;
+  EXPECT_FALSE(OmplPlanner(chain, spline_only).plan(start, JointGoal{goal}).time_optimal);
 }
 
 TEST_F(OmplPanda, TheSameSeedGivesTheSamePath) {

@@ -41,7 +41,7 @@ TEST(PlannedReference, TaskReferenceIsTheDerivativeOfTheJointReference) {
     source.evaluate(t, r);
     return Vector6d(r.task.V_WE);
   };
-  for (double t : {0.3, 0.9, 1.7, source.trajectory().knot_time(2)}) {
+  for (double t : {0.3, 0.9, 1.7, source.spline()->knot_time(2)}) {
     source.evaluate(t, b);
     // velocity: central difference of the pose, [ṗ; ω] in world axes
     const Vector6d V = finite_difference_pose_jacobian(pose, Eigen::VectorXd::Constant(1, t),

@@ -12,6 +12,7 @@
 #include <Eigen/Core>
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <string>
 #include <variant>
 #include <vector>
@@ -21,6 +22,7 @@
 #include "mjarm/model/chain.hpp"
 #include "mjarm/planning/joint_limits.hpp"
 #include "mjarm/planning/joint_spline.hpp"
+#include "mjarm/trajectory/path/time_optimal_path.hpp"
 
 namespace mjarm {
 
@@ -92,6 +94,8 @@ struct OmplOptions {
   double collision_margin = 0.0;  ///< a contact counts below this signed distance [m] (≥ 0)
   /// Checked samples of the timed trajectory are at most this far apart in any joint [rad].
   double sample_step = 0.01;
+  /// Also time the path as fast as the limits allow (`OmplResult::time_optimal`).
+  bool time_optimal = true;
   /// Joint limits of the timing; empty vectors are filled by `joint_limits_from_model`.
   JointLimits limits;
   ModelLimitOptions model_limits;  ///< how the model's limits are derived
@@ -121,6 +125,7 @@ constexpr auto declared_fields(const OmplOptions*) {
             "a contact counts below this signed distance"),
       field("sample_step", &S::sample_step, "rad", Range::open_closed(0.0, 1.0),
             "largest joint motion between checked trajectory samples"),
+      field("time_optimal", &S::time_optimal, "also time the path as fast as the limits allow"),
       field("log", &S::log, "keep OMPL's messages in the result"));
 }
 
@@ -160,6 +165,11 @@ struct OmplResult {
   std::int64_t validity_checks = 0;   ///< states judged by the collision checker
   int goal_states = 0;                ///< collision-free goal configurations given to OMPL
   JointSpline trajectory;             ///< rest-to-rest segments through the knots (on success)
+  /// On success with `OmplOptions::time_optimal`: the C² spline through the knots (or through
+  /// them with up to three halvings of their spacing, closer to the checked straight motions)
+  /// timed by TOPP-RA (trajectory/path/) under 0.97 × the limits, every sample checked within
+  /// the limits and touching nothing; none when no such timing passes (`message` says why).
+  std::optional<TimeOptimalPath> time_optimal;
   JointLimits limits;                 ///< the limits of the timing
   std::int64_t trajectory_samples = 0;  ///< samples of the trajectory checked
   std::vector<std::string> log;         ///< OMPL's messages (OmplOptions::log)

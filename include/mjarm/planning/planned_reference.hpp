@@ -8,12 +8,16 @@
 
 #include <Eigen/Core>
 #include <cstdint>
+#include <optional>
+#include <variant>
 
 #include "mjarm/control/reference.hpp"
 #include "mjarm/kinematics/chain_kinematics.hpp"
 #include "mjarm/model/chain.hpp"
 #include "mjarm/planning/joint_spline.hpp"
 #include "mjarm/sim/run_result.hpp"
+#include "mjarm/trajectory/path/time_optimal_path.hpp"
+#include "mjarm/trajectory/trajectory_sample.hpp"
 
 namespace mjarm {
 
@@ -42,22 +46,34 @@ class PlannedReference final : public ReferenceSource {
   ///         velocity_lag is negative or not finite.
   PlannedReference(const Chain& chain, JointSpline trajectory, double hold_time = 0.5,
                    double velocity_lag = 0.0);
+  /// The same for a time-optimal path (trajectory/path/): q, q̇, q̈ from its timing.
+  /// @throws Error as above, or when the path is not solved.
+  PlannedReference(const Chain& chain, TimeOptimalPath trajectory, double hold_time = 0.5,
+                   double velocity_lag = 0.0);
 
   bool update(const mjData& data, Reference& reference) noexcept override;
 
   /// The reference at trajectory time @p t [s] (no tracking measured). Sizes @p reference.
   void evaluate(double t, Reference& reference) noexcept;
 
-  const JointSpline& trajectory() const noexcept { return trajectory_; }
+  /// The spline tracked (nullptr when it is a time-optimal path).
+  const JointSpline* spline() const noexcept { return std::get_if<JointSpline>(&trajectory_); }
   const TrackingError& tracking() const noexcept { return tracking_; }
   /// The run time the source asks for: duration + hold [s].
-  double run_time() const noexcept { return trajectory_.duration() + hold_time_; }
+  double run_time() const noexcept { return duration_ + hold_time_; }
   /// Forgets the start time and the tracking figures.
   void reset() noexcept;
 
  private:
+  PlannedReference(const Chain& chain, JointSpline spline, double hold_time, double velocity_lag,
+                   std::optional<TimeOptimalPath> path);
+  /// q, q̇, q̈ of the trajectory at @p t into the given vectors.
+  void sample(double t, Eigen::VectorXd& q, Eigen::VectorXd& qd, Eigen::VectorXd& qdd) noexcept;
+
   Chain chain_;
-  JointSpline trajectory_;
+  std::variant<JointSpline, TimeOptimalPath> trajectory_;
+  double duration_ = 0.0;
+  TrajectorySample sample_;  // a time-optimal path's sample
   double hold_time_;
   double velocity_lag_;
   ChainKinematics reference_kin_;  // FK of the reference
