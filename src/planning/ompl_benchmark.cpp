@@ -78,7 +78,15 @@ Robot shelf_benchmark_scene() {
     add_box(xml, "clutter" + std::to_string(clutter++),
             {0.52, c.y + (c.y > 0 ? 0.17 : -0.17), c.bottom + 0.04}, {0.025, 0.025, 0.04}, red);
   }
+  // the torque motors of models/panda_torque.xml, so that the scene also runs under torque control
   xml << R"(  </worldbody>
+  <actuator>
+)";
+  for (int j = 1; j <= 7; ++j)
+    xml << "    <motor name=\"joint" << j << "\" joint=\"joint" << j
+        << "\" gear=\"1\" ctrllimited=\"true\" ctrlrange=\"" << (j <= 4 ? "-87 87" : "-12 12")
+        << "\"/>\n";
+  xml << R"(  </actuator>
   <keyframe><key name="home" qpos="0 -0.785 0 -2.356 0 1.571 0.785"/></keyframe>
 </mujoco>)";
   return Robot::from_string(xml.str(), Robot::models_dir());

@@ -66,7 +66,8 @@ struct OmplBenchmarkResult {
 
 /// The panda (models/panda) before the shelf: boards at z = 0.05, 0.35, 0.65, 0.95 m between
 /// x = 0.45 and 0.75 m, side walls at y = ±0.45 m, a divider at y = 0, a back wall, and three
-/// boxes in every cell behind and beside where the goals are drawn.
+/// boxes in every cell behind and beside where the goals are drawn; the torque motors of
+/// models/panda_torque.xml (published torque limits).
 Robot shelf_benchmark_scene();
 
 /// The seeded start/goal pairs: each a collision-free IK solution of a pose in one cell (tool
