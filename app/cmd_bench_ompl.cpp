@@ -77,6 +77,10 @@ Command add_bench_ompl_subcommand(CLI::App& bench) {
                       {"checks_median", r.checks_median},
                       {"knots_median", r.knots_median},
                       {"duration_median_s", r.duration_median},
+                      {"time_optimal", r.time_optimal},
+                      {"time_optimal_median_s", r.time_optimal_median},
+                      {"time_optimal_ratio_median", r.time_optimal_ratio_median},
+                      {"time_optimal_ratio_max", r.time_optimal_ratio_max},
                       {"check_us", r.check_us},
                       {"forward_us", r.forward_us},
                       {"checker_states", options->checker_states},
@@ -106,7 +110,11 @@ Command add_bench_ompl_subcommand(CLI::App& bench) {
                        fixed(r.checks_median, 0), fixed(r.knots_median, 0),
                        fixed(r.duration_median, 2)});
         table.print(std::cout);
-        std::cout << '\n';
+        std::cout << "time-optimal timing: " << r.time_optimal << " of " << r.successes
+                  << " paths, median " << fixed(r.time_optimal_median, 2)
+                  << " s; over the blended spline's duration median "
+                  << fixed(r.time_optimal_ratio_median, 3) << ", largest "
+                  << fixed(r.time_optimal_ratio_max, 3) << "\n\n";
         Table cost({{"per state", Table::Align::left}, {"[µs]"}});
         cost.add_row(
             {"validity check (mj_kinematics + mj_collision + filter)", fixed(r.check_us, 2)});

@@ -181,7 +181,7 @@ OmplBenchmarkResult run_ompl_benchmark(const OmplBenchmarkOptions& options) {
   }
 
   const auto pairs = shelf_benchmark_pairs(chain, options.pairs, options.seed);
-  std::vector<double> times, lengths, checks, knots, durations;
+  std::vector<double> times, lengths, checks, knots, durations, optimal, ratios;
   for (int k = 0; k < options.pairs; ++k) {
     if (options.stop && options.stop()) {
       r.interrupted = true;
@@ -201,6 +201,10 @@ OmplBenchmarkResult run_ompl_benchmark(const OmplBenchmarkOptions& options) {
       lengths.push_back(plan.path_length);
       knots.push_back(static_cast<double>(plan.path.size()));
       durations.push_back(plan.trajectory.duration());
+      if (plan.time_optimal) {
+        optimal.push_back(plan.time_optimal->duration());
+        ratios.push_back(optimal.back() / durations.back());
+      }
     }
     if (options.progress) options.progress(k + 1, options.pairs);
   }
@@ -213,6 +217,10 @@ OmplBenchmarkResult run_ompl_benchmark(const OmplBenchmarkOptions& options) {
   r.checks_median = median_of(checks);
   r.knots_median = median_of(knots);
   r.duration_median = median_of(durations);
+  r.time_optimal = static_cast<int>(optimal.size());
+  r.time_optimal_median = median_of(optimal);
+  r.time_optimal_ratio_median = median_of(ratios);
+  r.time_optimal_ratio_max = ratios.empty() ? 0.0 : *std::max_element(ratios.begin(), ratios.end());
   return r;
 }
 

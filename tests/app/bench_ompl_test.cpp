@@ -37,6 +37,12 @@ TEST(BenchOmpl, JsonReportsTheShelfPairs) {
   if (j["successes"].get<int>() > 0) {
     EXPECT_GT(j["length_median_rad"].get<double>(), 0.0);
     EXPECT_GE(j["knots_median"].get<double>(), 2.0);
+    EXPECT_LE(j["time_optimal"].get<int>(), j["successes"].get<int>());
+    if (j["time_optimal"].get<int>() > 0) {
+      EXPECT_GT(j["time_optimal_median_s"].get<double>(), 0.0);
+      EXPECT_LE(j["time_optimal_ratio_median"].get<double>(),
+                j["time_optimal_ratio_max"].get<double>());
+    }
   }
   EXPECT_GT(j["collision_share"].get<double>(), 0.0);  // the shelf is in the way of some states
 }

@@ -57,6 +57,10 @@ struct OmplBenchmarkResult {
   double checks_median = 0.0;    ///< validity checks per plan, median over all plans
   double knots_median = 0.0;     ///< knots of the simplified path, median over the successes
   double duration_median = 0.0;  ///< duration of the timed trajectory, median over successes [s]
+  int time_optimal = 0;          ///< successes that also have a time-optimal timing
+  double time_optimal_median = 0.0;  ///< its duration, median over those [s]
+  /// Its duration over the blended spline's, median and largest over those.
+  double time_optimal_ratio_median = 0.0, time_optimal_ratio_max = 0.0;
   double check_us = 0.0;    ///< one `CollisionChecker::valid` (mj_kinematics + mj_collision) [µs]
   double forward_us = 0.0;  ///< one `mj_forward` (its mj_collision included) + the filter [µs]
   double collision_share = 0.0;      ///< share of the timed random states in collision
