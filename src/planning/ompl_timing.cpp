@@ -67,10 +67,14 @@ TimedPath time_path(const std::vector<Eigen::VectorXd>& knots, const JointLimits
 namespace {
 
 /// TOPP-RA exceeds its limits between grid points by the discretization error (≤ 1.9 % at
-/// N = 400 on 10⁴ random paths, docs/trajectory.md): it is given limits this much lower.
+/// N = 400 on 10⁴ random paths, docs/trajectory.md): it is given limits this much lower, and on a
+/// path where that is not enough, lower still on a finer grid.
 constexpr double kToppLimitScale = 0.97;
 constexpr int kToppGridIntervals = 400;
-constexpr int kDensifications = 3;
+constexpr int kToppAttempts = 6;
+
+/// What a checked sample of a time-optimal path met first.
+enum class SampleFailure { none, limits, state };
 
 /// The knots with the midpoint of every segment inserted.
 std::vector<Eigen::VectorXd> densified(const std::vector<Eigen::VectorXd>& knots) {
@@ -86,12 +90,13 @@ std::vector<Eigen::VectorXd> densified(const std::vector<Eigen::VectorXd>& knots
 
 /// Checks every sample of @p path (every joint within its v and a; touching nothing), at most
 /// @p spacing apart in time; false at the first failing one (described in @p message).
-bool check_samples(const TimeOptimalPath& path, const JointLimits& limits, double spacing,
-                   ConfigurationChecker& checker, std::int64_t& samples, std::string& message) {
+SampleFailure check_samples(const TimeOptimalPath& path, const JointLimits& limits, double spacing,
+                            ConfigurationChecker& checker, std::int64_t& samples,
+                            std::string& message) {
   const double intervals = std::ceil(path.duration() / spacing);
   if (!(intervals < kMaxTrajectorySamples)) {
     message = "the time-optimal path would need more than 10^7 samples";
-    return false;
+    return SampleFailure::limits;
   }
   const auto m = std::max<std::int64_t>(1, static_cast<std::int64_t>(intervals));
   TrajectorySample sample(path.dofs());
@@ -102,15 +107,15 @@ bool check_samples(const TimeOptimalPath& path, const JointLimits& limits, doubl
     if (((sample.velocity.array().abs() - limits.max_velocity.array()) > 1e-9).any() ||
         ((sample.acceleration.array().abs() - limits.max_acceleration.array()) > 1e-9).any()) {
       message = "at t = " + number_text(t) + " s the time-optimal path exceeds a joint limit";
-      return false;
+      return SampleFailure::limits;
     }
     const ConfigurationCheck& c = checker.check(sample.position);
     if (!c.ok()) {
       message = "at t = " + number_text(t) + " s of the time-optimal path: " + checker.describe(c);
-      return false;
+      return SampleFailure::state;
     }
   }
-  return true;
+  return SampleFailure::none;
 }
 
 }  // namespace
@@ -122,16 +127,26 @@ std::optional<TimeOptimalPath> time_optimally(const std::vector<Eigen::VectorXd>
   const double spacing = sample_step / limits.max_velocity.maxCoeff();
   ToppOptions topp;
   topp.grid_intervals = kToppGridIntervals;
+  double scale = kToppLimitScale;
   std::vector<Eigen::VectorXd> through = knots;
-  for (int round = 0; round <= kDensifications; ++round) {
-    if (round > 0) through = densified(through);
-    TimeOptimalPath path(JointPath(through), kToppLimitScale * limits.max_velocity,
-                         kToppLimitScale * limits.max_acceleration, topp);
+  for (int attempt = 0; attempt < kToppAttempts; ++attempt) {
+    TimeOptimalPath path(JointPath(through), scale * limits.max_velocity,
+                         scale * limits.max_acceleration, topp);
     if (!path.solved()) {
       message = "the time-optimal parameterization found no profile";
       return std::nullopt;
     }
-    if (check_samples(path, limits, spacing, checker, samples, message)) return path;
+    switch (check_samples(path, limits, spacing, checker, samples, message)) {
+      case SampleFailure::none:
+        return path;
+      case SampleFailure::limits:  // the discretization error: a finer grid, lower limits
+        topp.grid_intervals *= 2;
+        scale *= 0.92;
+        break;
+      case SampleFailure::state:  // the spline cut a corner: closer to the straight motions
+        through = densified(through);
+        break;
+    }
   }
   return std::nullopt;
 }

@@ -30,9 +30,11 @@ TimedPath time_path(const std::vector<Eigen::VectorXd>& knots, const JointLimits
                     double sample_step, ConfigurationChecker& checker);
 
 /// The time-optimal timing of the C² spline through @p knots under @p limits (v, a), or none when
-/// no spline through them, with up to three halvings of the knot spacing (each brings the spline
-/// closer to the straight segments the validator checked), keeps every sample within the limits
-/// and touching nothing; @p samples counts the states checked, @p message says why there is none.
+/// six attempts leave a sample beyond the limits or touching something: after a sample beyond
+/// the limits the next attempt has a grid twice as fine and limits 8 % lower; after one touching
+/// something (or out of a range) the knot spacing is halved, which brings the spline closer to
+/// the straight segments the validator checked. @p samples counts the states checked,
+/// @p message says why there is none.
 std::optional<TimeOptimalPath> time_optimally(const std::vector<Eigen::VectorXd>& knots,
                                               const JointLimits& limits, double sample_step,
                                               ConfigurationChecker& checker, std::int64_t& samples,
