@@ -165,10 +165,10 @@ struct OmplResult {
   std::int64_t validity_checks = 0;   ///< states judged by the collision checker
   int goal_states = 0;                ///< collision-free goal configurations given to OMPL
   JointSpline trajectory;             ///< rest-to-rest segments through the knots (on success)
-  /// On success with `OmplOptions::time_optimal`: the C² spline through the knots (or through
-  /// them with up to three halvings of their spacing, closer to the checked straight motions)
-  /// timed by TOPP-RA (trajectory/path/) under 0.97 × the limits, every sample checked within
-  /// the limits and touching nothing; none when no such timing passes (`message` says why).
+  /// On success with `OmplOptions::time_optimal`: the C² spline through the knots timed by
+  /// TOPP-RA (trajectory/path/) under 0.97 × the limits, every sample checked within the limits
+  /// and touching nothing (retried with the knot spacing halved or a finer grid and lower limits,
+  /// docs/planning.md); none when no such timing passes (`message` says why).
   std::optional<TimeOptimalPath> time_optimal;
   JointLimits limits;                 ///< the limits of the timing
   std::int64_t trajectory_samples = 0;  ///< samples of the trajectory checked
