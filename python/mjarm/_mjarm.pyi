@@ -3762,6 +3762,23 @@ class JointLimitOptions:
     @margin.setter
     def margin(self, value: float) -> None: ...
 
+class JointPath:
+    """A C2 cubic spline through joint waypoints, by chord length (untimed)."""
+    def __init__(self: JointPath, waypoints: list[ArrayLike]) -> None:
+        """waypoints: arrays of n joint values (at least 2, distinct)"""
+        ...
+    @property
+    def dofs(self) -> int:
+        """joints n"""
+        ...
+    def evaluate(self: JointPath, s: float) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]]:
+        """(q, dq/ds, d2q/ds2) at the path parameter s"""
+        ...
+    @property
+    def length(self) -> float:
+        """chord length L of the path [rad or m]"""
+        ...
+
 class JointPdController(Controller):
     """Joint PD + gravity (torque)."""
     def __init__(self: JointPdController, chain: Chain, options: JointPdOptions = ...) -> None:
@@ -4490,6 +4507,180 @@ class OffscreenRenderer:
     def width(self) -> int:
         """image width [pixels]"""
         ...
+
+class OmplOptions:
+    def __init__(self: OmplOptions) -> None:
+        ...
+    @property
+    def allowed_collisions(self) -> list[tuple[str, str]]:
+        """pairs of geom or body names allowed to touch"""
+        ...
+    @allowed_collisions.setter
+    def allowed_collisions(self, value: list[tuple[str, str]]) -> None: ...
+    @property
+    def collision_margin(self) -> float:
+        """a contact counts below this signed distance [m]; finite and ≥ 0"""
+        ...
+    @collision_margin.setter
+    def collision_margin(self, value: float) -> None: ...
+    @property
+    def ik_goals(self) -> int:
+        """IK goals sampled for a pose; in [1, 1000]"""
+        ...
+    @ik_goals.setter
+    def ik_goals(self, value: int) -> None: ...
+    @property
+    def ik_timeout(self) -> float:
+        """budget of each IK solve [s]; in (0, 10]"""
+        ...
+    @ik_timeout.setter
+    def ik_timeout(self, value: float) -> None: ...
+    @property
+    def log(self) -> bool:
+        """keep OMPL's messages in the result"""
+        ...
+    @log.setter
+    def log(self, value: bool) -> None: ...
+    @property
+    def optimize(self) -> bool:
+        """optimizing planners use the whole budget"""
+        ...
+    @optimize.setter
+    def optimize(self, value: bool) -> None: ...
+    @property
+    def planner(self) -> OmplPlannerType:
+        """which OMPL planner searches"""
+        ...
+    @planner.setter
+    def planner(self, value: OmplPlannerType) -> None: ...
+    @property
+    def resolution(self) -> float:
+        """joint-space distance between the motion validator's checks [rad]; in (0, 1]"""
+        ...
+    @resolution.setter
+    def resolution(self, value: float) -> None: ...
+    @property
+    def sample_step(self) -> float:
+        """largest joint motion between checked trajectory samples [rad]; in (0, 1]"""
+        ...
+    @sample_step.setter
+    def sample_step(self, value: float) -> None: ...
+    @property
+    def seed(self) -> int:
+        """seed of every random draw; ≥ 0"""
+        ...
+    @seed.setter
+    def seed(self, value: int) -> None: ...
+    @property
+    def simplify(self) -> bool:
+        """simplify the path (shortcuts, smoothing)"""
+        ...
+    @simplify.setter
+    def simplify(self, value: bool) -> None: ...
+    @property
+    def time_budget(self) -> float:
+        """wall-clock budget of the search [s]; in (0, 3600]"""
+        ...
+    @time_budget.setter
+    def time_budget(self, value: float) -> None: ...
+    @property
+    def time_optimal(self) -> bool:
+        """also time the path as fast as the limits allow"""
+        ...
+    @time_optimal.setter
+    def time_optimal(self, value: bool) -> None: ...
+
+class OmplPlanner:
+    """Collision-free joint-space planning on OMPL with MuJoCo's collision detection. The plan_* methods release the GIL."""
+    def __init__(self: OmplPlanner, chain: Chain, options: OmplOptions = ...) -> None:
+        ...
+    @property
+    def options(self) -> OmplOptions:
+        """its planner, budget and checks"""
+        ...
+    def plan(self: OmplPlanner, q_start: ArrayLike, q_goal: ArrayLike) -> OmplResult:
+        """To a joint configuration."""
+        ...
+    def plan_to_pose(self: OmplPlanner, q_start: ArrayLike, X_WT: ArrayLike, position_tolerance: float = ..., orientation_tolerance: float = ...) -> OmplResult:
+        """To a pose of the chain's frame (through IK)."""
+        ...
+    def plan_to_region(self: OmplPlanner, q_start: ArrayLike, lower: ArrayLike, upper: ArrayLike, R_WT: ArrayLike, orientation_tolerance: float = ...) -> OmplResult:
+        """To the frame's origin in a box [lower, upper], its orientation near R_WT."""
+        ...
+    def set_fixed_qpos(self: OmplPlanner, qpos: ArrayLike) -> None:
+        ...
+
+class OmplPlannerType(enum.Enum):
+    rrtconnect = 0
+    """RRT-Connect (default)"""
+    prm = 1
+    """probabilistic roadmap"""
+    rrtstar = 2
+    """RRT*, asymptotically optimal"""
+    bitstar = 3
+    """Batch Informed Trees (BIT*)"""
+
+class OmplResult:
+    """A plan: status, path, timings, the work it took."""
+    def __init__(*args: Any, **kwargs: Any) -> Any: ...
+    @property
+    def goal_states(self) -> int:
+        """collision-free goal configurations"""
+        ...
+    @property
+    def message(self) -> str:
+        """one line for people"""
+        ...
+    def ok(self: OmplResult) -> bool:
+        ...
+    @property
+    def path(self) -> list[NDArray[np.float64]]:
+        """joint-space knots, start to goal (on success)"""
+        ...
+    @property
+    def path_length(self) -> float:
+        """joint-space length [rad]"""
+        ...
+    @property
+    def planning_time(self) -> float:
+        """wall-clock time of plan() [s]"""
+        ...
+    @property
+    def status(self) -> OmplStatus:
+        """success, or why not"""
+        ...
+    @property
+    def time_optimal(self) -> TimeOptimalPath | None:
+        """the time-optimal timing (a TimeOptimalPath), or None"""
+        ...
+    @property
+    def trajectory(self) -> JointSpline:
+        """the blended spline (on success)"""
+        ...
+    @property
+    def trajectory_samples(self) -> int:
+        """samples checked"""
+        ...
+    @property
+    def validity_checks(self) -> int:
+        """states judged"""
+        ...
+
+class OmplStatus(enum.Enum):
+    success = 0
+    """a checked, timed trajectory to a goal"""
+    no_path_within_budget = 1
+    """no path found within the time budget"""
+    start_in_collision = 2
+    """the start touches something"""
+    goal_in_collision = 3
+    """every goal touches something"""
+    goal_unreachable = 4
+    """the IK reached no goal pose"""
+    invalid_input = 5
+    """a start or goal outside the joint ranges"""
+    trajectory_in_collision = 6
+    """the timed path touches something between the validator's samples"""
 
 class OperationalSpaceController(Controller):
     """Operational-space impedance (osc)."""
@@ -7743,6 +7934,32 @@ class TickStatus(enum.Enum):
     bad_command = 3
     """a controller wrote NaN/inf"""
 
+class TimeOptimalPath:
+    """A JointPath timed as fast as the velocity and acceleration limits allow (TOPP-RA), rest to rest."""
+    def __init__(self: TimeOptimalPath, path: JointPath, max_velocity: ArrayLike, max_acceleration: ArrayLike, options: ToppOptions = ...) -> None:
+        ...
+    def at(self: TimeOptimalPath, t: float) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]]:
+        """(q, qd, qdd) at t [s], clamped to [0, T]"""
+        ...
+    @property
+    def duration(self) -> float:
+        """duration of the motion [s] (0 unless solved)"""
+        ...
+    @property
+    def grid_times(self) -> NDArray[np.float64]:
+        """the time of each grid point (N + 1,) [s]"""
+        ...
+    @property
+    def path(self) -> JointPath:
+        """the path timed"""
+        ...
+    def solved(self: TimeOptimalPath) -> bool:
+        ...
+    @property
+    def status(self) -> ToppStatus:
+        """solved, or infeasible"""
+        ...
+
 class TimeStep:
     """One step of an episode (dm_env's TimeStep): step_type, reward and discount (None on FIRST), observation (dict name -> float64 array), and end (why the episode ended, on LAST). The observation is the time step's own copy: it never changes when the environment steps again, and can be kept as long as wanted. Iterates as (step_type, reward, discount, observation), like dm_env's namedtuple."""
     def __init__(*args: Any, **kwargs: Any) -> Any: ...
@@ -7783,6 +8000,22 @@ class TimeStep:
     def values(self) -> ArrayLike:
         """the whole observation, the spec's arrays back to back (float64, (size,)); owned by this time step"""
         ...
+
+class ToppOptions:
+    def __init__(self: ToppOptions) -> None:
+        ...
+    @property
+    def grid_intervals(self) -> int:
+        """equal steps N of the path parameter; in [2, 1e+06]"""
+        ...
+    @grid_intervals.setter
+    def grid_intervals(self, value: int) -> None: ...
+
+class ToppStatus(enum.Enum):
+    solved = 0
+    """the forward pass ran to the end"""
+    infeasible = 1
+    """no profile on the grid starts at rest"""
 
 class TrackingErrors:
     """Errors over a stretch of the gate."""

@@ -3,6 +3,7 @@
 #include "bindings.hpp"
 #include "declared_fields.hpp"
 #include "mjarm/planning/cartesian_path.hpp"
+#include "mjarm/planning/ompl_planner.hpp"
 #include "mjarm/planning/waypoint_planner.hpp"
 
 namespace mjarm::python {
@@ -124,6 +125,84 @@ void bind_planning(py::module_& m) {
             return p.follow(q, poses);
           },
           py::arg("q_start"), py::arg("waypoints"), "waypoints: Poses (or 4x4 matrices)");
+
+  def_enum<OmplPlannerType>(m, "OmplPlannerType");
+  def_enum<OmplStatus>(m, "OmplStatus");
+  auto ompl_options = py::class_<OmplOptions>(m, "OmplOptions");
+  ompl_options.def(py::init<>())
+      .def_property(
+          "allowed_collisions",
+          [](const OmplOptions& o) {
+            std::vector<std::pair<std::string, std::string>> pairs;
+            for (const AllowedCollision& a : o.allowed_collisions)
+              pairs.emplace_back(a.first, a.second);
+            return pairs;
+          },
+          [](OmplOptions& o, const std::vector<std::pair<std::string, std::string>>& pairs) {
+            o.allowed_collisions.clear();
+            for (const auto& [first, second] : pairs)
+              o.allowed_collisions.push_back({first, second});
+          },
+          "pairs of geom or body names allowed to touch");
+  def_fields(ompl_options);
+  py::class_<OmplResult>(m, "OmplResult", "A plan: status, path, timings, the work it took.")
+      .def_readonly("status", &OmplResult::status, "success, or why not")
+      .def_readonly("message", &OmplResult::message, "one line for people")
+      .def_readonly("path", &OmplResult::path, "joint-space knots, start to goal (on success)")
+      .def_readonly("path_length", &OmplResult::path_length, "joint-space length [rad]")
+      .def_readonly("planning_time", &OmplResult::planning_time, "wall-clock time of plan() [s]")
+      .def_readonly("validity_checks", &OmplResult::validity_checks, "states judged")
+      .def_readonly("goal_states", &OmplResult::goal_states, "collision-free goal configurations")
+      .def_readonly("trajectory", &OmplResult::trajectory, "the blended spline (on success)")
+      .def_readonly("time_optimal", &OmplResult::time_optimal,
+                    "the time-optimal timing (a TimeOptimalPath), or None")
+      .def_readonly("trajectory_samples", &OmplResult::trajectory_samples, "samples checked")
+      .def("ok", &OmplResult::ok);
+  py::class_<OmplPlanner>(m, "OmplPlanner",
+                          "Collision-free joint-space planning on OMPL with MuJoCo's collision "
+                          "detection. The plan_* methods release the GIL.")
+      .def(py::init<const Chain&, const OmplOptions&>(), py::arg("chain"),
+           py::arg("options") = OmplOptions{})
+      .def_property_readonly("options", &OmplPlanner::options, "its planner, budget and checks")
+      .def(
+          "set_fixed_qpos",
+          [](OmplPlanner& p, py::handle q) { p.set_fixed_qpos(to_vector(q, "qpos")); },
+          py::arg("qpos"))
+      .def(
+          "plan",
+          [](OmplPlanner& p, py::handle q_start, py::handle q_goal) {
+            const Eigen::VectorXd start = to_vector(q_start, "q_start");
+            const OmplGoal goal = JointGoal{to_vector(q_goal, "q_goal")};
+            py::gil_scoped_release release;
+            return p.plan(start, goal);
+          },
+          py::arg("q_start"), py::arg("q_goal"), "To a joint configuration.")
+      .def(
+          "plan_to_pose",
+          [](OmplPlanner& p, py::handle q_start, py::handle X, double position_tolerance,
+             double orientation_tolerance) {
+            const Eigen::VectorXd start = to_vector(q_start, "q_start");
+            const OmplGoal goal =
+                PoseGoal{to_pose(X, "X_WT"), position_tolerance, orientation_tolerance};
+            py::gil_scoped_release release;
+            return p.plan(start, goal);
+          },
+          py::arg("q_start"), py::arg("X_WT"), py::arg("position_tolerance") = 1e-4,
+          py::arg("orientation_tolerance") = 1e-3, "To a pose of the chain's frame (through IK).")
+      .def(
+          "plan_to_region",
+          [](OmplPlanner& p, py::handle q_start, py::handle lower, py::handle upper, py::handle R,
+             double orientation_tolerance) {
+            const Eigen::VectorXd start = to_vector(q_start, "q_start");
+            const OmplGoal goal =
+                PoseRegionGoal{to_fixed<3>(lower, "lower"), to_fixed<3>(upper, "upper"),
+                               to_fixed_matrix<3, 3>(R, "R_WT"), orientation_tolerance};
+            py::gil_scoped_release release;
+            return p.plan(start, goal);
+          },
+          py::arg("q_start"), py::arg("lower"), py::arg("upper"), py::arg("R_WT"),
+          py::arg("orientation_tolerance") = 0.1,
+          "To the frame's origin in a box [lower, upper], its orientation near R_WT.");
 }
 
 }  // namespace mjarm::python

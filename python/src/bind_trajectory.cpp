@@ -3,6 +3,8 @@
 #include "bindings.hpp"
 #include "declared_fields.hpp"
 #include "mjarm/trajectory/otg/generator.hpp"
+#include "mjarm/trajectory/path/joint_path.hpp"
+#include "mjarm/trajectory/path/time_optimal_path.hpp"
 #include "mjarm/trajectory/quintic.hpp"
 #include "mjarm/trajectory/quintic_duration.hpp"
 #include "mjarm/trajectory/se3_interpolation.hpp"
@@ -217,6 +219,55 @@ void bind_trajectory(py::module_& m) {
             return out;
           },
           py::arg("t"), "(n, 4): position, velocity, acceleration, jerk at t [s]");
+
+  py::class_<JointPath>(m, "JointPath",
+                        "A C2 cubic spline through joint waypoints, by chord length (untimed).")
+      .def(py::init([](const std::vector<py::object>& waypoints) {
+             std::vector<Eigen::VectorXd> q;
+             for (const auto& w : waypoints) q.push_back(to_vector(w, "waypoint"));
+             return JointPath(q);
+           }),
+           py::arg("waypoints"), "waypoints: arrays of n joint values (at least 2, distinct)")
+      .def_property_readonly("dofs", &JointPath::dofs, "joints n")
+      .def_property_readonly("length", &JointPath::length, "chord length L of the path [rad or m]")
+      .def(
+          "evaluate",
+          [](const JointPath& path, double s) {
+            Eigen::VectorXd q(path.dofs()), dq(path.dofs()), ddq(path.dofs());
+            path.evaluate(s, q, dq, ddq);
+            return py::make_tuple(q, dq, ddq);
+          },
+          py::arg("s"), "(q, dq/ds, d2q/ds2) at the path parameter s");
+  auto topp_options = py::class_<ToppOptions>(m, "ToppOptions");
+  topp_options.def(py::init<>());
+  def_fields(topp_options);
+  def_enum<ToppStatus>(m, "ToppStatus");
+  py::class_<TimeOptimalPath>(m, "TimeOptimalPath",
+                              "A JointPath timed as fast as the velocity and acceleration limits "
+                              "allow (TOPP-RA), rest to rest.")
+      .def(py::init(
+               [](const JointPath& path, py::handle v, py::handle a, const ToppOptions& options) {
+                 return TimeOptimalPath(path, to_vector(v, "max_velocity", path.dofs()),
+                                        to_vector(a, "max_acceleration", path.dofs()), options);
+               }),
+           py::arg("path"), py::arg("max_velocity"), py::arg("max_acceleration"),
+           py::arg("options") = ToppOptions{})
+      .def_property_readonly("status", &TimeOptimalPath::status, "solved, or infeasible")
+      .def("solved", &TimeOptimalPath::solved)
+      .def_property_readonly("duration", &TimeOptimalPath::duration,
+                             "duration of the motion [s] (0 unless solved)")
+      .def_property_readonly("path", &TimeOptimalPath::path, "the path timed")
+      .def_property_readonly(
+          "grid_times", [](const TimeOptimalPath& p) { return Eigen::VectorXd(p.grid_times()); },
+          "the time of each grid point (N + 1,) [s]")
+      .def(
+          "at",
+          [](const TimeOptimalPath& p, double t) {
+            TrajectorySample s(p.dofs());
+            p.at(t, s);
+            return py::make_tuple(s.position, s.velocity, s.acceleration);
+          },
+          py::arg("t"), "(q, qd, qdd) at t [s], clamped to [0, T]");
 }
 
 }  // namespace mjarm::python

@@ -139,3 +139,49 @@ def test_cartesian_path_follows_a_line_and_stops_out_of_reach(panda_chain):
     with pytest.raises(mjarm.Error, match="max_step"):
         options.max_step = 0.0
         mjarm.CartesianPathPlanner(panda_chain, options)
+
+
+PANDA_WITH_BOX = """<mujoco model="panda_box">
+  <compiler angle="radian" autolimits="true"/>
+  <include file="common/scene.xml"/>
+  <include file="panda/panda_body.xml"/>
+  <worldbody><geom name="obstacle" type="box" pos="0.22 0.22 0.55" size="0.08 0.08 0.08"/></worldbody>
+  <keyframe><key name="home" qpos="0 -0.785 0 -2.356 0 1.571 0.785"/></keyframe>
+</mujoco>"""
+
+
+def test_ompl_plans_around_a_box_and_times_the_path_optimally():
+    robot = mjarm.Robot.from_string(PANDA_WITH_BOX, mjarm.Robot.models_dir())
+    chain = mjarm.Chain(robot, "attachment_site")
+    start = home(robot, chain)
+    goal = start.copy()
+    goal[0] = 1.6  # joint 1's swing to the left goes through the box
+    options = mjarm.OmplOptions()
+    options.planner = mjarm.OmplPlannerType.rrtconnect
+    options.time_budget = 20.0
+    result = mjarm.OmplPlanner(chain, options).plan(start, goal)
+    assert result.ok() and result.status == mjarm.OmplStatus.success, result.message
+    assert len(result.path) >= 3 and np.allclose(result.path[-1], goal)
+    path = result.time_optimal
+    assert isinstance(path, mjarm.TimeOptimalPath) and path.solved()
+    assert path.duration < result.trajectory.duration
+    q, qd, _ = path.at(path.duration)
+    assert np.allclose(q, goal, atol=1e-9) and np.linalg.norm(qd) < 1e-9
+    unknown = mjarm.OmplOptions()
+    unknown.allowed_collisions = [("obstacel", "link3")]
+    with pytest.raises(mjarm.Error, match="obstacel"):
+        mjarm.OmplPlanner(chain, unknown)
+    with pytest.raises(mjarm.Error, match="time_budget"):
+        options.time_budget = 0.0
+        mjarm.OmplPlanner(chain, options)
+
+
+def test_time_optimal_path_of_a_straight_line_is_the_trapezoid():
+    path = mjarm.JointPath([[0.0, 0.0], [1.0, 0.0]])
+    assert path.length == pytest.approx(1.0)
+    timed = mjarm.TimeOptimalPath(path, [0.5, 0.5], [1.0, 1.0])
+    assert timed.status == mjarm.ToppStatus.solved
+    # 1 rad at 0.5 rad/s with 1 rad/s²: 0.5 s up, 1.5 s cruise, 0.5 s down
+    assert 2.5 <= timed.duration <= 2.5 * (1 + 2.0 / 100)
+    with pytest.raises(mjarm.Error):
+        mjarm.TimeOptimalPath(path, [0.5, -1.0], [1.0, 1.0])
