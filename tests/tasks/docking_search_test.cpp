@@ -44,7 +44,7 @@ std::string search_why(const DockingReport& r) {
 
 TEST(DockingSearchPath, TheSpiralMovesAtItsSpeedAndGrowsByThePitchPerTurn) {
   DockingSearchOptions o;
-  o.pitch = 0.003;
+  o.pitch = 0.004;
   o.speed = 0.01;
   o.max_radius = 0.008;
   SearchPath path(o);

@@ -44,11 +44,11 @@ struct DockingSearchOptions {
   SearchPattern pattern = SearchPattern::spiral;
   double contact_force = 5.0;       ///< axial force held while searching [N] (≤ force_limit)
   double force_limit = 30.0;        ///< the force the search must stay under [N]
-  double pitch = 0.003;             ///< spiral: radial gain per turn; lissajous: line spacing [m]
+  double pitch = 0.004;             ///< spiral: radial gain per turn; lissajous: line spacing [m]
   double speed = 0.01;              ///< path speed (lissajous: each axis's peak speed) [m/s]
   double max_radius = 0.008;        ///< the search's extent around the miss [m]
   double timeout = 5.0;             ///< the longest search [s]
-  double drop_depth = 0.002;        ///< depth gained below the miss that counts as the drop [m]
+  double drop_depth = 0.001;        ///< depth gained below the miss that counts as the drop [m]
   double miss_force = 4.0;          ///< measured axial push that may be a miss [N]
   double miss_lateral_ratio = 0.3;  ///< lateral/axial measured force below which it is flat
   double miss_dwell = 0.05;         ///< how long the miss must hold [s]
