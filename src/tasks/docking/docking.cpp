@@ -130,6 +130,7 @@ DockingReport run_docking(const DockingOptions& options) {
   report.search_time = task.search_time();
   report.miss_time = task.miss_time();
   report.drop_time = task.drop_time();
+  report.hold_start = task.hold_start();
   report.seat_time = std::numeric_limits<double>::quiet_NaN();
   for (const DockingSample& s : samples)
     if (docking_insertion(s.X_WE, goal.X_WS).depth >=

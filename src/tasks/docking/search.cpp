@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <numbers>
 
@@ -24,13 +25,15 @@ void check(const DockingSearchOptions& o, const DockingGeometry& g) {
                 number_text(o.force_limit) + " N), got " + number_text(o.miss_force) + " N");
   // the peg searches on the socket's top face: its rim must stay over the socket
   const double outer = g.bore_radius + g.chamfer + g.wall;
-  if (o.max_radius + g.peg_radius > outer)
-    throw Error(
-        "docking search: max_radius must keep the peg over the socket's top face "
-        "(≤ " +
-        number_text(outer - g.peg_radius) + " m: outer radius " + number_text(outer) +
-        " m − peg radius " + number_text(g.peg_radius) + " m), got " + number_text(o.max_radius) +
-        " m");
+  if (o.max_radius + g.peg_radius > outer) {
+    char text[256];
+    std::snprintf(text, sizeof text,
+                  "docking search: max_radius must keep the peg over the socket's top face (≤ "
+                  "%.4g mm: outer radius %.4g mm − peg radius %.4g mm), got %.4g mm",
+                  1e3 * (outer - g.peg_radius), 1e3 * outer, 1e3 * g.peg_radius,
+                  1e3 * o.max_radius);
+    throw Error(text);
+  }
 }
 
 namespace {
@@ -46,9 +49,10 @@ SearchPath::SearchPath(const DockingSearchOptions& o)
     : options_(o),
       b_(o.pitch / (2.0 * std::numbers::pi)),
       theta_(0.0),
-      omega_(o.speed / o.max_radius),
+      omega_(o.speed / (o.max_radius / std::numbers::sqrt2)),
       kappa_(0.0) {
-  const double lines = std::max(1.0, std::ceil(std::numbers::pi * o.max_radius / o.pitch));
+  const double side = std::numbers::sqrt2 * o.max_radius;  // the square inside the circle
+  const double lines = std::max(1.0, std::ceil(0.5 * std::numbers::pi * side / o.pitch));
   kappa_ = (lines + 1.0) / lines;
 }
 
@@ -61,7 +65,7 @@ SearchPath::Sample SearchPath::at(double t) noexcept {
   Sample s;
   t = std::max(0.0, t);
   if (options_.pattern == SearchPattern::lissajous) {
-    const double R = options_.max_radius;
+    const double R = options_.max_radius / std::numbers::sqrt2;  // corners on the circle
     const double w = omega_, k = kappa_;
     s.offset = {R * std::sin(w * t), R * std::sin(k * w * t)};
     s.velocity = {R * w * std::cos(w * t), R * k * w * std::cos(k * w * t)};

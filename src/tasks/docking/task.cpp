@@ -194,7 +194,7 @@ DockingTask::SearchStep DockingTask::search(const mjData& data, double t,
     return SearchStep::dropped;
   }
   const SearchPath::Sample s = path_->at(t - search_start_);
-  if (s.radius > o.max_radius || search_total_ + (t - search_start_) > o.timeout) {
+  if (s.radius > o.max_radius * (1.0 + 1e-9) || search_total_ + (t - search_start_) > o.timeout) {
     search_total_ += t - search_start_;
     exhausted_ = true;
     if (recorder_ != nullptr) recorder_->event(data.time, "search", "exhausted");

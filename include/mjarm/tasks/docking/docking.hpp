@@ -94,6 +94,8 @@ struct DockingReport {
   double drop_time = 0.0;    ///< last drop since the start [s] (NaN: none)
   /// First time the tip reached the bottom (depth ≥ full depth − the depth tolerance) [s];
   /// NaN: never.
+  double hold_start =
+      0.0;  ///< when the hold began since the start [s] (the plan's without a search)
   double seat_time = 0.0;
   std::vector<DockingSample> samples{};  ///< every tick (when `keep_samples`)
   std::filesystem::path recording{};

@@ -19,7 +19,8 @@ namespace mjarm {
 enum class SearchPattern {
   none,      ///< no miss detection, no search: the insertion pushes until its time is up
   spiral,    ///< Archimedean spiral r = pitch·θ/2π, constant path speed
-  lissajous  ///< x = R·sin(ωt), y = R·sin(κωt), κ = (N+1)/N: a square of side 2R, lines ~pitch
+  lissajous  ///< x = a·sin(ωt), y = a·sin(κωt), κ = (N+1)/N, a = R/√2: the square inside the
+             ///< circle of radius R = max_radius, lines about pitch apart
 };
 
 /// The names (`to_string`, JSON, CLI and Python spelling).

@@ -202,6 +202,8 @@ class DockingTask final : public ReferenceSource {
   /// Time of the first miss and of the last drop since the start [s] (NaN: none).
   double miss_time() const noexcept { return miss_time_; }
   double drop_time() const noexcept { return drop_time_; }
+  /// When the hold begins (or began) since the start [s]: later than planned after a search.
+  double hold_start() const noexcept { return hold_start_; }
   /// The longest a run can take: the plan plus the search's timeout and a new insertion [s].
   double max_duration() const noexcept;
 
