@@ -117,6 +117,12 @@ void print_docking(std::ostream& os, const DockingReport& r) {
                      fixed(m.max_joint_velocity, 1) + " % of the limits"},
       {"min manipulability", fixed(m.min_manipulability, 4)},
       {"saturation", fixed(100.0 * m.saturation, 2) + " % of the ticks"}};
+  if (r.searches > 0)
+    fields.push_back(
+        {"search", std::to_string(r.searches) + " miss(es), first at " + fixed(r.miss_time, 3) +
+                       " s, " + fixed(r.search_time, 3) + " s searching" +
+                       (std::isnan(r.drop_time) ? std::string(", no drop")
+                                                : ", drop at " + fixed(r.drop_time, 3) + " s")});
   if (r.bad_wrench_ticks > 0)
     fields.push_back({"bad sensor readings", std::to_string(r.bad_wrench_ticks)});
   if (r.controller == "hqp-ac")
@@ -150,6 +156,11 @@ Json docking_json(const DockingReport& r) {
       {"message", r.run.message},
       {"end_time", r.run.end_time},
       {"metrics", fields_to_json(r.metrics)},
+      {"search",
+       {{"searches", r.searches},
+        {"search_time", r.search_time},
+        {"miss_time", std::isnan(r.miss_time) ? Json(nullptr) : Json(r.miss_time)},
+        {"drop_time", std::isnan(r.drop_time) ? Json(nullptr) : Json(r.drop_time)}}},
       {"bad_wrench_ticks", r.bad_wrench_ticks},
       {"qp_fallbacks",
        {{"least_squares", r.qp_least_squares}, {"null_space_dropped", r.qp_null_space_dropped}}},
@@ -394,6 +405,17 @@ void add_docking_options(CLI::App& app, DockingCliOptions& o) {
   CLI::Option* gate = app.add_flag(
       "--gate", o.gate, "docking: the free-space tracking gate (circle, then figure-eight)");
   grid->excludes(gate);
+  CLI::Option* map = app.add_flag(
+      "--map", o.map,
+      "docking: the capture region, radial offset 0–15 mm × 8 directions × yaw 0–25°, in "
+      "parallel (with --plot DIR: a polar heat map per law and docking_map.json)");
+  map->excludes(grid)->excludes(gate);
+  app.add_option("--map-step", o.map_step, "docking --map: radial step [mm]")
+      ->check(number_in(0.5, 15.0))
+      ->capture_default_str();
+  app.add_option("--map-yaw-step", o.map_yaw_step, "docking --map: yaw step [°]")
+      ->check(number_in(1.0, 25.0))
+      ->capture_default_str();
   app.add_option("--reference", o.reference, "docking: two-phase | single")->capture_default_str();
   app.add_option("--insertion-speed", o.insertion_speed,
                  "docking: cruise speed of the two-phase insertion [m/s]")
@@ -433,12 +455,15 @@ void run_docking_scenario(const DockingCliOptions& cli, const std::string& contr
     throw UsageError(
         "--offset, --record, --video and --plot belong to a single docking run, "
         "not to --grid or --gate");
-  if (!cli.grid && !cli.gate && laws.size() != 1)
-    throw UsageError("--controller all needs --grid or --gate");
+  if (cli.map && (!cli.offset.empty() || !record.empty() || !video.path.empty()))
+    throw UsageError("--offset, --record and --video belong to a single docking run, not to --map");
+  if (!cli.grid && !cli.gate && !cli.map && laws.size() != 1)
+    throw UsageError("--controller all needs --grid, --gate or --map");
   if (!cli.plot.empty()) check_output_folder(cli.plot, "--plot");
   const InterruptGuard interrupts;  // Ctrl-C stops the runs at their next tick
   if (cli.grid) return run_grid(cli, laws, json);
   if (cli.gate) return run_gate(cli, laws, json);
+  if (cli.map) return run_docking_map(cli, laws, base_options(cli), json);
   run_single(cli, laws.front(), video, record, json);
 }
 

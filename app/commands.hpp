@@ -120,6 +120,9 @@ struct DockingCliOptions {
   std::vector<double> offset;           ///< --offset DX DY [mm] DYAW [°] (empty: none)
   bool grid = false;                    ///< --grid: the 27 offsets
   bool gate = false;                    ///< --gate: the tracking gate
+  bool map = false;                     ///< --map: the capture region (polar offsets)
+  double map_step = 1.0;                ///< --map-step: its radial step [mm]
+  double map_yaw_step = 5.0;            ///< --map-yaw-step: its yaw step [°]
   std::string reference = "two-phase";  ///< --reference
   double insertion_speed = 0.01;        ///< --insertion-speed [m/s]
   double preload = 5.0;                 ///< --preload [N]
@@ -135,6 +138,11 @@ void add_docking_options(CLI::App& app, DockingCliOptions& options);
 void run_docking_scenario(const DockingCliOptions& options, const std::string& controller,
                           const DockingVideo& video, const std::string& record, bool json,
                           double max_video_frames);
+/// `mjarm run docking --map`: the capture region per law over radial offsets 0–15 mm ×
+/// 8 directions × yaw 0–25° from @p base (cmd_run_docking_map.cpp); the polar heat maps and the
+/// table (docking_map.json) into options.plot when given.
+void run_docking_map(const DockingCliOptions& options, const std::vector<DockingLaw>& laws,
+                     const DockingOptions& base, bool json);
 /// The options of `mjarm run` that every scenario shares.
 struct RunCommonOptions {
   std::string robot;  ///< empty: the scenario's default

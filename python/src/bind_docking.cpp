@@ -180,6 +180,11 @@ void bind_motion(py::module_& m) {
   py::enum_<DockingReference>(m, "DockingReference", "The shape of the reference.")
       .value("two_phase", DockingReference::two_phase)
       .value("single_segment", DockingReference::single_segment);
+  def_enum<SearchPattern>(m, "SearchPattern", "The docking's planar search pattern.");
+  auto search = py::class_<DockingSearchOptions>(
+      m, "DockingSearchOptions", "Miss detection and the search for the hole (docs/docking.md).");
+  fields_init<DockingSearchOptions>(search, "DockingSearchOptions");
+  def_fields(search);
   auto motion = py::class_<DockingMotion>(m, "DockingMotion",
                                           "Timing [s] and sizes [m] of the motion, the preload.");
   fields_init<DockingMotion>(motion, "DockingMotion");

@@ -128,6 +128,7 @@ Se3ImpedanceController::Se3ImpedanceController(const Chain& chain,
 void Se3ImpedanceController::reset() noexcept {
   wrench_.setZero();
   release_started_ = false;
+  release_armed_ = true;
   release_start_ = 0.0;
   release_ = 0.0;
   stiffness_now_ = options_.stiffness;
@@ -142,6 +143,13 @@ void Se3ImpedanceController::start_release(double time) noexcept {
   if (release_started_ || release_mask_.isZero() || !std::isfinite(time)) return;
   release_started_ = true;
   release_start_ = time;
+}
+
+void Se3ImpedanceController::set_release_armed(bool armed) noexcept {
+  release_armed_ = armed;
+  if (armed) return;
+  release_started_ = false;
+  release_ = 0.0;
 }
 
 void Se3ImpedanceController::update_release(double t) noexcept {
@@ -209,7 +217,8 @@ void Se3ImpedanceController::compute(const mjData& data, const Reference& refere
   }
 
   // contact-triggered release of the chosen stiffness axes
-  if (!release_started_ && F_E.head<3>().norm() >= options_.release.contact_force) {
+  if (release_armed_ && !release_started_ &&
+      F_E.head<3>().norm() >= options_.release.contact_force) {
     start_release(data.time);
   }
   update_release(data.time);

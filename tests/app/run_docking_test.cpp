@@ -85,7 +85,14 @@ TEST(RunDockingCli, BadCommandLinesAreRefusedBeforeTheWork) {
   expect_error({"run", "docking", "--offset", "nan", "0", "0"}, 2, "--offset");
   expect_error({"run", "docking", "--offset", "1", "2"}, 2, "--offset");
   expect_error({"run", "docking", "--controller", "osc"}, 2, "controllers: cic, hqp-ac, se3");
-  expect_error({"run", "docking", "--controller", "all"}, 2, "needs --grid or --gate");
+  expect_error({"run", "docking", "--controller", "all"}, 2, "needs --grid, --gate or --map");
+  expect_error({"run", "docking", "--map", "--offset", "1", "0", "0"}, 2, "not to --map");
+  expect_error({"run", "docking", "--map", "--grid"}, 2, "excludes");
+  expect_error({"run", "docking", "--map", "--map-step", "0"}, 2, "--map-step");
+  expect_error({"run", "docking", "--offset", "8", "8", "20", "--motion.search.pitch", "0"}, 2,
+               "motion.search.pitch must be positive");
+  expect_error({"run", "docking", "--offset", "8", "8", "20", "--motion.search.speed", "nan"}, 2,
+               "motion.search.speed");
   expect_error({"run", "docking", "--grid", "--offset", "1", "0", "0"}, 2, "single docking run");
   expect_error({"run", "docking", "--grid", "--gate"}, 2, "excludes");
   expect_error({"run", "docking", "--robot", "panda"}, 2, "run docking: unknown option '--robot'");

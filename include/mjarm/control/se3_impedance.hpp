@@ -181,6 +181,9 @@ class Se3ImpedanceController final : public Controller {
   /// Starts the stiffness release at simulated time @p time [s] (no effect when one has
   /// already started or no axis is released).
   void start_release(double time) noexcept;
+  /// Disarmed: any release is undone (full stiffness from the next `compute`) and contact
+  /// starts none; armed again (the default, and after `reset`): contact starts one.
+  void set_release_armed(bool armed) noexcept;
   /// True once a release has started (by contact force or `start_release`).
   bool release_started() const noexcept { return release_started_; }
   /// Release progress s ∈ [0, 1] at the last `compute`.
@@ -232,6 +235,7 @@ class Se3ImpedanceController final : public Controller {
   Vector6d release_mask_ = Vector6d::Zero();  // 1 on released axes
   Vector6d wrench_ = Vector6d::Zero();
   bool release_started_ = false;
+  bool release_armed_ = true;
   double release_start_ = 0.0;
   double release_ = 0.0;
   Matrix6d stiffness_now_ = Matrix6d::Zero();

@@ -137,9 +137,18 @@ void DockingController::reset() noexcept {
   law_->reset();
   if (source_) source_->reset();
   release_started_ = false;
+  release_armed_ = true;
   release_ = 0.0;
   wrench_.setZero();
   bad_wrench_ticks_ = 0;
+}
+
+void DockingController::set_release_armed(bool armed) noexcept {
+  release_armed_ = armed;
+  if (se3_) se3_->set_release_armed(armed);
+  if (armed) return;
+  release_started_ = false;
+  release_ = 0.0;
 }
 
 void DockingController::compute(const mjData& data, const Reference& reference,
@@ -173,7 +182,7 @@ void DockingController::compute_hqp(const mjData& data, const Reference& referen
       task_space_->update(dynamics_) != TaskSpaceStatus::not_positive_definite)
     reference_.task.A_WE.noalias() += task_space_->lambda_inverse() * F_ext;
   // the release: the target follows E along the released axes, K_r acts on (I − s·P)·e
-  if (!release_started_ &&
+  if (release_armed_ && !release_started_ &&
       hqp_->measured_wrench().head<3>().norm() >= options_.release_force) {  // previous tick
     release_started_ = true;
     release_start_ = data.time;

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <optional>
 
 #include "mjarm/error.hpp"
@@ -100,9 +101,10 @@ DockingReport run_docking(const DockingOptions& options) {
   DockingTask task(report.plan, options.motion, sim.uses_rk4() ? 0.0 : 0.5 * sim.timestep(),
                    recorder ? &*recorder : nullptr);
   if (video) task.set_observer(&*video);
+  task.attach(controller, mj_name2id(&sim.model(), mjOBJ_SITE, DockingNames::tip));
   DockingProbe probe(*scene, iiwa14_max_velocity());
   std::vector<DockingSample> samples;
-  samples.reserve(static_cast<std::size_t>(report.plan.duration() / sim.control_period()) + 8);
+  samples.reserve(static_cast<std::size_t>(task.max_duration() / sim.control_period()) + 8);
   DockingSample sample;
   report.run = torque_run::run_ticks(sim, task, recorder ? &*recorder : nullptr, "docking", [&] {
     const std::span<const std::uint8_t> saturated = sim.saturated();
@@ -124,6 +126,22 @@ DockingReport run_docking(const DockingOptions& options) {
     report.qp_null_space_dropped = hqp->counters().null_space_dropped;
   }
   report.outcome = docking_outcome_of(report.run, report.metrics.seated);
+  report.searches = task.searches();
+  report.search_time = task.search_time();
+  report.miss_time = task.miss_time();
+  report.drop_time = task.drop_time();
+  report.hold_start = task.hold_start();
+  report.seat_time = std::numeric_limits<double>::quiet_NaN();
+  for (const DockingSample& s : samples)
+    if (docking_insertion(s.X_WE, goal.X_WS).depth >=
+        goal.full_depth - options.criteria.depth_tolerance) {
+      report.seat_time = s.t;
+      break;
+    }
+  if (task.search_exhausted() && report.outcome == DockingOutcome::not_seated) {
+    report.outcome = DockingOutcome::search_exhausted;
+    report.metrics.failures.push_back(to_string(report.outcome));
+  }
   if (report.run.status != RunStatus::finished && report.run.status != RunStatus::duration_reached)
     report.metrics.failures.push_back(to_string(report.outcome));
   if (options.keep_samples) report.samples = std::move(samples);

@@ -61,10 +61,11 @@ DockingGridResult run_docking_grid(const DockingGridOptions& options,
   DockingOptions base = options.base;
   base.keep_samples = false;
   base.scene = shared_docking_scene(base.scene, base.joint_friction, base.geometry);
-  std::vector<DockingOffset> offsets;
-  for (double x : options.x)
-    for (double y : options.y)
-      for (double yaw : options.yaw) offsets.push_back({x, y, yaw});
+  std::vector<DockingOffset> offsets = options.offsets;
+  if (offsets.empty())
+    for (double x : options.x)
+      for (double y : options.y)
+        for (double yaw : options.yaw) offsets.push_back({x, y, yaw});
   for (const DockingOffset& o : offsets) check(o);
   check(base.motion);
   check(base.criteria);
@@ -102,8 +103,9 @@ DockingGridResult run_docking_grid(const DockingGridOptions& options,
         if (report.outcome == DockingOutcome::interrupted) {
           stop = true;  // cut short: not counted
         } else {
-          runs[static_cast<std::size_t>(i)] =
-              DockingGridRun{o.offset, report.outcome, report.metrics, report.run.message};
+          runs[static_cast<std::size_t>(i)] = DockingGridRun{
+              o.offset,        report.outcome,     report.metrics,  report.run.message,
+              report.searches, report.search_time, report.seat_time};
           ++done;
         }
       } catch (...) {

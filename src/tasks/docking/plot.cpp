@@ -48,6 +48,18 @@ plot::TimeSeriesFigure docking_figure(const DockingReport& r) {
   const double t_insert = plan.approach_time;
   const double t_hold = plan.approach_time + plan.insert_time;
   f.bands.push_back({0.0, t_insert, "approach"});
+  const double t_end = r.samples.back().t;
+  if (r.searches > 0 && std::isfinite(r.miss_time)) {
+    // approach, insert, search (first miss to last drop, or the end), insert again, hold
+    f.bands.push_back({t_insert, r.miss_time, "insert"});
+    const double t_drop = std::isfinite(r.drop_time) ? r.drop_time : t_end;
+    f.bands.push_back({r.miss_time, t_drop, "search"});
+    if (t_drop < t_end) {
+      f.bands.push_back({t_drop, r.hold_start, "insert"});
+      f.bands.push_back({r.hold_start, t_end, "hold"});
+    }
+    return f;
+  }
   if (plan.insert_time > 0.0) f.bands.push_back({t_insert, t_hold, "insert"});
   f.bands.push_back({t_hold, plan.duration(), "hold"});
   return f;

@@ -1,5 +1,6 @@
 #include "mjarm/tasks/docking/task.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <numbers>
@@ -67,6 +68,7 @@ DockingPlan plan_docking(const DockingScene& scene, const DockingOffset& offset,
   check(offset);
   check(motion);
   const DockingGeometry& g = scene.options.geometry;
+  check(motion.search, g);
   DockingPlan plan;
   plan.offset = offset;
   plan.X_WS = scene.options.X_WS;
@@ -113,7 +115,14 @@ DockingTask::DockingTask(const DockingPlan& plan, const DockingMotion& motion, d
       recorder_(recorder),
       approach_(approach_of(plan, motion)),
       direction_(-plan.X_WB.R.col(2)),
-      t0_(std::numeric_limits<double>::quiet_NaN()) {
+      t0_(std::numeric_limits<double>::quiet_NaN()),
+      insert_from_(plan.X_standoff),
+      insert_start_(plan.approach_time),
+      hold_start_(plan.approach_time + plan.insert_time),
+      X_hold_(plan.X_seated),
+      miss_since_(std::numeric_limits<double>::quiet_NaN()),
+      miss_time_(std::numeric_limits<double>::quiet_NaN()),
+      drop_time_(std::numeric_limits<double>::quiet_NaN()) {
   check(motion);
   if (!(velocity_lag >= 0.0) || !std::isfinite(velocity_lag))
     throw Error("docking task: velocity_lag must be ≥ 0 and finite [s]");
@@ -123,13 +132,99 @@ DockingTask::DockingTask(const DockingPlan& plan, const DockingMotion& motion, d
   X_WD_ = plan.X_start;
 }
 
+void DockingTask::attach(ContactChannel& channel, int tip_site) noexcept {
+  if (motion_.reference != DockingReference::two_phase ||
+      motion_.search.pattern == SearchPattern::none || tip_site < 0)
+    return;
+  channel_ = &channel;
+  tip_site_ = tip_site;
+  path_.emplace(motion_.search);
+}
+
+double DockingTask::max_duration() const noexcept {
+  if (channel_ == nullptr) return plan_.duration();
+  const double reinsert = TrapezoidProfile(motion_.standoff + plan_.full_depth,
+                                           motion_.insertion_speed, motion_.insertion_acceleration)
+                              .duration();
+  return plan_.duration() + motion_.search.timeout + reinsert;
+}
+
+Eigen::Vector3d DockingTask::tip(const mjData& data) const noexcept {
+  return Eigen::Map<const Eigen::Vector3d>(data.site_xpos + 3 * tip_site_);
+}
+
+bool DockingTask::missed(const mjData& data, double t) noexcept {
+  const DockingSearchOptions& o = motion_.search;
+  const Vector6d& F = channel_->measured_wrench();    // the environment on E
+  const double axial = -F.head<3>().dot(direction_);  // the peg pushing in
+  const double lateral = (F.head<3>() + axial * direction_).norm();
+  // the tip's depth below the believed top face (the seated pose is full_depth below it)
+  const double depth = (tip(data) - plan_.X_seated.p).dot(direction_) + plan_.full_depth;
+  const bool flat = F.allFinite() && axial >= o.miss_force &&
+                    lateral <= o.miss_lateral_ratio * axial && depth <= o.miss_max_depth;
+  if (!flat) {
+    miss_since_ = std::numeric_limits<double>::quiet_NaN();
+    return false;
+  }
+  if (std::isnan(miss_since_)) miss_since_ = t;
+  return t - miss_since_ >= o.miss_dwell - 1e-9;
+}
+
+void DockingTask::restart_insertion(const mjData& data, double t) noexcept {
+  insert_from_.R = plan_.X_seated.R;
+  insert_from_.p = tip(data);
+  const double length = std::max(0.0, (plan_.X_seated.p - insert_from_.p).dot(direction_));
+  insertion_.emplace(length, motion_.insertion_speed, motion_.insertion_acceleration);
+  insert_start_ = t;
+  hold_start_ = t + insertion_->duration();
+  X_hold_ = insert_from_;
+  X_hold_.p += length * direction_;
+  channel_->set_release_armed(true);
+}
+
+DockingTask::SearchStep DockingTask::search(const mjData& data, double t,
+                                            Reference& reference) noexcept {
+  const DockingSearchOptions& o = motion_.search;
+  const Eigen::Vector3d p = tip(data);
+  if ((p - center_).dot(direction_) >= o.drop_depth) {  // the drop into the hole
+    search_total_ += t - search_start_;
+    drop_time_ = t;
+    if (recorder_ != nullptr) recorder_->event(data.time, "search", "drop");
+    restart_insertion(data, t);
+    return SearchStep::dropped;
+  }
+  const SearchPath::Sample s = path_->at(t - search_start_);
+  if (s.radius > o.max_radius * (1.0 + 1e-9) || search_total_ + (t - search_start_) > o.timeout) {
+    search_total_ += t - search_start_;
+    exhausted_ = true;
+    if (recorder_ != nullptr) recorder_->event(data.time, "search", "exhausted");
+    return SearchStep::exhausted;
+  }
+  // the axial force held at contact_force: F_ext fed to the law, trimmed by the measured error
+  const Vector6d& F = channel_->measured_wrench();
+  const double axial = -F.head<3>().dot(direction_);
+  if (std::isfinite(axial))
+    trim_ = std::clamp(trim_ + o.force_gain * (o.contact_force - axial) * (t - last_t_),
+                       -o.force_trim, o.force_trim);
+  const Eigen::Matrix3d& R = plan_.X_WB.R;
+  reference.task.X_WE.R = plan_.X_seated.R;
+  reference.task.X_WE.p =
+      center_ + R.col(0) * s.offset.x() + R.col(1) * s.offset.y() + trim_ * direction_;
+  reference.task.V_WE.setZero();
+  reference.task.V_WE.head<3>() = R.col(0) * s.velocity.x() + R.col(1) * s.velocity.y();
+  reference.task.A_WE.setZero();
+  reference.task.F_ext.setZero();
+  reference.task.F_ext.head<3>() = o.contact_force * direction_;
+  return SearchStep::searching;
+}
+
 Se3Interpolation::Sample DockingTask::at(double t) const noexcept {
   if (t < plan_.approach_time) return approach_.at(t);
   Se3Interpolation::Sample s;
-  s.X_WE = plan_.X_seated;
-  if (insertion_ && t < plan_.approach_time + plan_.insert_time) {
-    const TrapezoidProfile::Sample i = insertion_->at(t - plan_.approach_time);
-    s.X_WE = plan_.X_standoff;
+  s.X_WE = X_hold_;
+  if (insertion_ && t < hold_start_) {
+    const TrapezoidProfile::Sample i = insertion_->at(std::max(0.0, t - insert_start_));
+    s.X_WE = insert_from_;
     s.X_WE.p += i.position * direction_;
     s.V_WE.head<3>() = i.velocity * direction_;
     s.A_WE.head<3>() = i.acceleration * direction_;
@@ -151,8 +246,34 @@ bool DockingTask::update(const mjData& data, Reference& reference) noexcept {
     started_ = true;
   }
   const double t = data.time - t0_;
-  if (t >= plan_.duration() - 1e-9) return false;
-  const double t_hold = plan_.approach_time + plan_.insert_time;
+  if (phase_ == DockingPhase::search) {
+    const SearchStep step = search(data, t, reference);
+    last_t_ = t;
+    if (step == SearchStep::exhausted) return false;
+    if (step == SearchStep::searching) {
+      reference.joint.hold(plan_.q_start);
+      X_WD_ = reference.task.X_WE;
+      return true;
+    }  // dropped: the new insertion below
+  } else if (t >= hold_start_ + plan_.hold_time - 1e-9) {
+    return false;
+  }
+  const double t_hold = hold_start_;
+  if (channel_ != nullptr && phase_ == DockingPhase::insert && t < t_hold && missed(data, t)) {
+    ++searches_;
+    if (std::isnan(miss_time_)) miss_time_ = t;
+    center_ = tip(data);
+    search_start_ = t;
+    last_t_ = t;
+    trim_ = 0.0;
+    path_.emplace(motion_.search);
+    channel_->set_release_armed(false);
+    enter(DockingPhase::search, data.time);
+    search(data, t, reference);
+    reference.joint.hold(plan_.q_start);
+    X_WD_ = reference.task.X_WE;
+    return true;
+  }
   enter(t < plan_.approach_time ? DockingPhase::approach
         : t < t_hold            ? DockingPhase::insert
                                 : DockingPhase::hold,

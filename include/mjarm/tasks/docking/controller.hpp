@@ -23,6 +23,7 @@
 #include "mjarm/fields.hpp"
 #include "mjarm/lie/types.hpp"
 #include "mjarm/tasks/docking/scene.hpp"
+#include "mjarm/tasks/docking/search.hpp"
 
 namespace mjarm {
 
@@ -156,7 +157,7 @@ void check(const DockingControllerOptions& options);
 ///   their ranges). A non-finite sensor reading is skipped (the last good value
 ///   kept) and counted.
 /// `compute` allocates nothing and never throws.
-class DockingController final : public Controller {
+class DockingController final : public Controller, public ContactChannel {
  public:
   /// @throws Error for bad options, or for `ForceSource::sensor` on a scene without the F/T
   ///         sensor pair (naming the site).
@@ -173,7 +174,10 @@ class DockingController final : public Controller {
   void reset() noexcept override;
 
   /// The measured wrench the law used at the last compute (world axes, about E) [N; N·m].
-  const Vector6d& measured_wrench() const noexcept { return wrench_; }
+  const Vector6d& measured_wrench() const noexcept override { return wrench_; }
+  /// The search's switch (`ContactChannel`): off undoes the release of se3 and hqp-ac and
+  /// keeps contact from starting one; cic has none.
+  void set_release_armed(bool armed) noexcept override;
   /// The diagonal of the stiffness in force at the last compute [N/m; N·m/rad] (se3: K(t)
   /// during a release; hqp-ac: the adaptive K_r, (I − s·P)·K_r during the release, world axes;
   /// cic: K).
@@ -203,6 +207,7 @@ class DockingController final : public Controller {
   std::optional<WrenchSource> source_;           // se3 only: the others own theirs
   std::optional<TaskSpaceDynamics> task_space_;  // hqp-ac: Λ⁻¹ for the preload
   bool release_started_ = false;                 // hqp-ac's release
+  bool release_armed_ = true;
   double release_start_ = 0.0;
   double release_ = 0.0;
   double alpha_ = 1.0;  // low-pass gain per control tick

@@ -59,15 +59,18 @@ enum class DockingOutcome {
   not_seated,   ///< the run ended as planned, some criterion failed (see the failures)
   diverged,     ///< the simulation diverged
   bad_command,  ///< the controller wrote NaN/inf
-  interrupted   ///< SIGINT/SIGTERM
+  interrupted,  ///< SIGINT/SIGTERM
+  /// a miss, then a search past its radius or timeout without the drop: the run ended there
+  search_exhausted
 };
 
 /// The names (`to_string`, JSON, CLI and Python spelling).
 constexpr auto declared_names(const DockingOutcome*) {
   using E = DockingOutcome;
-  return std::array{EnumName{E::seated, "seated"}, EnumName{E::not_seated, "not_seated"},
-                    EnumName{E::diverged, "diverged"}, EnumName{E::bad_command, "bad_command"},
-                    EnumName{E::interrupted, "interrupted"}};
+  return std::array{
+      EnumName{E::seated, "seated"},           EnumName{E::not_seated, "not_seated"},
+      EnumName{E::diverged, "diverged"},       EnumName{E::bad_command, "bad_command"},
+      EnumName{E::interrupted, "interrupted"}, EnumName{E::search_exhausted, "search_exhausted"}};
 }
 
 /// What a docking run did.
@@ -85,6 +88,15 @@ struct DockingReport {
   /// (its step dropped); 0 for the other laws.
   std::int64_t qp_least_squares = 0;
   std::int64_t qp_null_space_dropped = 0;
+  int searches = 0;          ///< misses detected (searches started)
+  double search_time = 0.0;  ///< time spent searching [s]
+  double miss_time = 0.0;    ///< first miss since the start [s] (NaN: none)
+  double drop_time = 0.0;    ///< last drop since the start [s] (NaN: none)
+  /// First time the tip reached the bottom (depth ≥ full depth − the depth tolerance) [s];
+  /// NaN: never.
+  double hold_start =
+      0.0;  ///< when the hold began since the start [s] (the plan's without a search)
+  double seat_time = 0.0;
   std::vector<DockingSample> samples{};  ///< every tick (when `keep_samples`)
   std::filesystem::path recording{};
   std::string recording_error{};  ///< why the recording is incomplete (empty when fine)

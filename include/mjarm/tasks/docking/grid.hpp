@@ -24,6 +24,9 @@ struct DockingGridOptions {
   std::vector<double> yaw{-15.0 * 3.14159265358979323846 / 180.0, 0.0,
                           15.0 * 3.14159265358979323846 / 180.0};  ///< dyaw values [rad]
   int jobs = 0;  ///< worker threads (≥ 0; 0: one per hardware thread, at most the run count)
+  /// An explicit list of offsets (the capture map's polar grid); when not empty, x, y and yaw
+  /// are ignored.
+  std::vector<DockingOffset> offsets;
 };
 
 /// One run of the matrix.
@@ -32,6 +35,9 @@ struct DockingGridRun {
   DockingOutcome outcome = DockingOutcome::not_seated;
   DockingMetrics metrics;
   std::string message;  ///< the run's own account (RunResult::message)
+  int searches = 0;     ///< misses detected
+  double search_time = 0.0;  ///< time spent searching [s]
+  double seat_time = 0.0;    ///< first time at the bottom [s] (NaN: never)
 };
 
 /// The matrix's outcome.
@@ -41,7 +47,7 @@ struct DockingGridResult {
   bool joint_friction = false;
   int planned = 0;           ///< runs in the matrix
   bool interrupted = false;  ///< Ctrl-C/SIGTERM: `runs` holds the runs that completed
-  /// The completed runs, in matrix order (x slowest, then y, then yaw).
+  /// The completed runs, in matrix order (x slowest, then y, then yaw; or the list's order).
   std::vector<DockingGridRun> runs;
   // summary of the completed runs
   int seated = 0;

@@ -17,6 +17,7 @@
 #include "mjarm/lie/pose.hpp"
 #include "mjarm/sim/run_result.hpp"
 #include "mjarm/tasks/docking/scene.hpp"
+#include "mjarm/tasks/docking/search.hpp"
 #include "mjarm/tasks/tick_observer.hpp"
 #include "mjarm/trajectory/se3_interpolation.hpp"
 #include "mjarm/trajectory/trapezoid.hpp"
@@ -78,6 +79,8 @@ struct DockingMotion {
   double preload = 5.0;       ///< force pushed along the insertion axis in the hold [N] (≥ 0)
   double preload_ramp = 0.3;  ///< linear ramp of the preload from the start of the hold (> 0)
   double hold_time = 2.0;     ///< from the reference's arrival at the bottom to the end (> 0)
+  /// two-phase: miss detection and the search for the hole (pattern none: off)
+  DockingSearchOptions search;
 };
 
 /// The standoff is checked against the start height by hand.
@@ -102,16 +105,19 @@ constexpr auto declared_fields(const DockingMotion*) {
       field("preload_ramp", &S::preload_ramp, "s", Range::positive(),
             "linear ramp of the preload from the start of the hold"),
       field("hold_time", &S::hold_time, "s", Range::positive(),
-            "from the reference's arrival at the bottom to the end"));
+            "from the reference's arrival at the bottom to the end"),
+      field("search", &S::search, "two-phase: miss detection and the search for the hole"));
 }
 
-/// @throws Error naming the value when a size or time is out of range.
+/// @throws Error naming the value when a size or time is out of range (the search's radius is
+///         checked against the socket by `plan_docking`).
 void check(const DockingMotion& motion);
 
 /// Phases, in order; each change is written to the recorder as a "phase" event.
 enum class DockingPhase {
   approach,  ///< two-phase: to the standoff; single-segment: the whole move
-  insert,    ///< two-phase: the slow insertion
+  insert,    ///< two-phase: the slow insertion (again from the drop after a search)
+  search,    ///< two-phase, after a miss: the planar search at a held contact force
   hold       ///< the reference rests on the believed seated pose; the preload ramps in
 };
 
@@ -119,7 +125,7 @@ enum class DockingPhase {
 constexpr auto declared_names(const DockingPhase*) {
   using E = DockingPhase;
   return std::array{EnumName{E::approach, "approach"}, EnumName{E::insert, "insert"},
-                    EnumName{E::hold, "hold"}};
+                    EnumName{E::search, "search"}, EnumName{E::hold, "hold"}};
 }
 
 /// Everything fixed before the run.
@@ -150,8 +156,9 @@ std::array<double, 3> docking_phase_times(const DockingMotion& motion,
 Eigen::VectorXd docking_start_configuration(const DockingScene& scene, const Pose& X_WE);
 
 /// The plan of a docking run: poses, the start configuration by IK (pose IK from the home
-/// keyframe with a pull towards it), segment durations.
-/// @throws Error for a bad offset or motion, or when IK cannot reach the start.
+/// keyframe with a pull towards it), segment durations (without a search: the planned run).
+/// @throws Error for a bad offset or motion (the search's options included, against the
+///         socket's size), or when IK cannot reach the start.
 DockingPlan plan_docking(const DockingScene& scene, const DockingOffset& offset,
                          const DockingMotion& motion);
 
@@ -161,6 +168,11 @@ DockingPlan plan_docking(const DockingScene& scene, const DockingOffset& offset,
 /// direction: the force E should exert on the socket). reference.joint.q is q_start (the
 /// null-space posture), velocities at t − velocity_lag (see `ShelfPickGoal::velocity_lag`).
 /// `update` returns false at t₀ + duration; it allocates nothing and never throws.
+/// With a `ContactChannel` attached (`attach`) and a search pattern, the insertion watches for
+/// a miss (`DockingSearchOptions`): it then searches in the believed socket's plane around the
+/// tip's position at the miss, the lateral release disarmed and F_ext = contact force along u,
+/// until the drop, when a new insertion goes straight down from the tip to the seated depth and
+/// the hold follows; a search past its radius or timeout ends the run (`search_exhausted`).
 class DockingTask final : public ReferenceSource {
  public:
   /// @param recorder where phase events go (may be null; must outlive the task)
@@ -176,11 +188,39 @@ class DockingTask final : public ReferenceSource {
   double start_time() const noexcept { return t0_; }
   /// Calls @p observer at every update (a video); may be null.
   void set_observer(TickObserver* observer) noexcept { observer_ = observer; }
+  /// Enables miss detection and search (two-phase, pattern not none): the measured wrench and
+  /// the release switch from @p channel (must outlive the task), the tip from the site
+  /// @p tip_site of the model the task runs on.
+  void attach(ContactChannel& channel, int tip_site) noexcept;
+
+  /// Misses detected (searches started).
+  int searches() const noexcept { return searches_; }
+  /// True when a search ended past its radius or timeout (the run then ended).
+  bool search_exhausted() const noexcept { return exhausted_; }
+  /// Time spent searching, over all searches [s].
+  double search_time() const noexcept { return search_total_; }
+  /// Time of the first miss and of the last drop since the start [s] (NaN: none).
+  double miss_time() const noexcept { return miss_time_; }
+  double drop_time() const noexcept { return drop_time_; }
+  /// When the hold begins (or began) since the start [s]: later than planned after a search.
+  double hold_start() const noexcept { return hold_start_; }
+  /// The longest a run can take: the plan plus the search's timeout and a new insertion [s].
+  double max_duration() const noexcept;
 
  private:
-  /// Pose, twist and acceleration of the reference at @p t since the start.
+  /// Pose, twist and acceleration of the reference at @p t since the start (approach,
+  /// insertion, hold).
   Se3Interpolation::Sample at(double t) const noexcept;
   void enter(DockingPhase phase, double t) noexcept;
+  /// The tip's position (world) from the model's kinematics of @p data.
+  Eigen::Vector3d tip(const mjData& data) const noexcept;
+  /// Insert phase: true once the miss has held for its dwell.
+  bool missed(const mjData& data, double t) noexcept;
+  enum class SearchStep { searching, dropped, exhausted };
+  /// The search's reference at @p t, or the drop (a new insertion begun) or its end.
+  SearchStep search(const mjData& data, double t, Reference& reference) noexcept;
+  /// A new insertion from the tip straight down to the seated depth, starting at @p t.
+  void restart_insertion(const mjData& data, double t) noexcept;
 
   DockingPlan plan_;
   DockingMotion motion_;
@@ -194,6 +234,25 @@ class DockingTask final : public ReferenceSource {
   bool started_ = false;
   double t0_;
   Pose X_WD_;
+  // the current insertion (the planned one, or from a drop) and the hold after it
+  Pose insert_from_;
+  double insert_start_;  // since t₀ [s]
+  double hold_start_;
+  Pose X_hold_;
+  // miss detection and search
+  ContactChannel* channel_ = nullptr;
+  int tip_site_ = -1;
+  std::optional<SearchPath> path_;
+  double miss_since_;  // NaN: no miss pending
+  double search_start_ = 0.0;
+  double search_total_ = 0.0;
+  double trim_ = 0.0;
+  double last_t_ = 0.0;
+  Eigen::Vector3d center_ = Eigen::Vector3d::Zero();
+  int searches_ = 0;
+  bool exhausted_ = false;
+  double miss_time_;
+  double drop_time_;
 };
 
 }  // namespace mjarm
