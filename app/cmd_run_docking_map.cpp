@@ -3,13 +3,13 @@
 // heat map per law and the table as JSON.
 
 #include <cmath>
-#include <fstream>
 #include <iostream>
 #include <numbers>
 
 #include "commands.hpp"
 #include "mjarm/error.hpp"
 #include "mjarm/fields_json.hpp"
+#include "mjarm/file_writer.hpp"
 #include "mjarm/interrupt.hpp"
 #include "mjarm/tasks/docking/capture_map.hpp"
 
@@ -123,9 +123,10 @@ void run_docking_map(const DockingCliOptions& cli, const std::vector<DockingLaw>
                  {"interrupted", interrupted},
                  {"controllers", tables}};
   if (!cli.plot.empty()) {
-    std::ofstream out(std::filesystem::path(cli.plot) / "docking_map.json");
-    out << doc.dump(1) << '\n';
-    if (!out) throw Error("docking map: cannot write " + cli.plot + "/docking_map.json");
+    FileWriter out(std::filesystem::path(cli.plot) / "docking_map.json", FileWriter::Mode::replace,
+                   "docking map JSON");
+    out.write(doc.dump(1) + "\n");
+    out.commit();
   }
   if (json) print_json(doc);
   if (interrupted)

@@ -2393,6 +2393,12 @@ class DockingMotion:
     @reference.setter
     def reference(self, value: ArrayLike) -> None: ...
     @property
+    def search(self) -> DockingSearchOptions:
+        """two-phase: miss detection and the search for the hole"""
+        ...
+    @search.setter
+    def search(self, value: DockingSearchOptions) -> None: ...
+    @property
     def single_time(self) -> float:
         """single-segment: start → seated [s]; positive and finite"""
         ...
@@ -2513,6 +2519,7 @@ class DockingOutcome(enum.Enum):
     diverged = 2
     bad_command = 3
     interrupted = 4
+    search_exhausted = 5
 
 class DockingPlan:
     """Everything fixed before a run (poses in world)."""
@@ -2739,6 +2746,96 @@ class DockingSceneOptions:
         ...
     @joint_friction.setter
     def joint_friction(self, value: bool) -> None: ...
+
+class DockingSearchOptions:
+    """Miss detection and the search for the hole (docs/docking.md)."""
+    def __init__(self: DockingSearchOptions, **kwargs) -> None:
+        """Default values, with any field set by keyword."""
+        ...
+    @property
+    def contact_force(self) -> float:
+        """axial force held while searching (≤ force_limit) [N]; positive and finite"""
+        ...
+    @contact_force.setter
+    def contact_force(self, value: float) -> None: ...
+    @property
+    def drop_depth(self) -> float:
+        """depth gained below the miss that counts as the drop into the hole [m]; positive and finite"""
+        ...
+    @drop_depth.setter
+    def drop_depth(self, value: float) -> None: ...
+    @property
+    def force_gain(self) -> float:
+        """axial trim of the reference per newton of force error [m/(N·s)]; finite and ≥ 0"""
+        ...
+    @force_gain.setter
+    def force_gain(self, value: float) -> None: ...
+    @property
+    def force_limit(self) -> float:
+        """the force the search stays under [N]; positive and finite"""
+        ...
+    @force_limit.setter
+    def force_limit(self, value: float) -> None: ...
+    @property
+    def force_trim(self) -> float:
+        """bound of the axial trim [m]; finite and ≥ 0"""
+        ...
+    @force_trim.setter
+    def force_trim(self, value: float) -> None: ...
+    @property
+    def max_radius(self) -> float:
+        """extent of the search around the miss (within the socket's top face) [m]; positive and finite"""
+        ...
+    @max_radius.setter
+    def max_radius(self, value: float) -> None: ...
+    @property
+    def miss_dwell(self) -> float:
+        """how long the miss must hold [s]; finite and ≥ 0"""
+        ...
+    @miss_dwell.setter
+    def miss_dwell(self, value: float) -> None: ...
+    @property
+    def miss_force(self) -> float:
+        """measured axial push that may be a miss [N]; positive and finite"""
+        ...
+    @miss_force.setter
+    def miss_force(self, value: float) -> None: ...
+    @property
+    def miss_lateral_ratio(self) -> float:
+        """lateral/axial measured force below which the face is flat; positive and finite"""
+        ...
+    @miss_lateral_ratio.setter
+    def miss_lateral_ratio(self, value: float) -> None: ...
+    @property
+    def miss_max_depth(self) -> float:
+        """the tip at most this far below the top face at a miss [m]; finite and ≥ 0"""
+        ...
+    @miss_max_depth.setter
+    def miss_max_depth(self, value: float) -> None: ...
+    @property
+    def pattern(self) -> SearchPattern:
+        """the planar search pattern; none: off"""
+        ...
+    @pattern.setter
+    def pattern(self, value: SearchPattern) -> None: ...
+    @property
+    def pitch(self) -> float:
+        """spiral: radial gain per turn; lissajous: line spacing [m]; positive and finite"""
+        ...
+    @pitch.setter
+    def pitch(self, value: float) -> None: ...
+    @property
+    def speed(self) -> float:
+        """path speed of the search [m/s]; positive and finite"""
+        ...
+    @speed.setter
+    def speed(self, value: float) -> None: ...
+    @property
+    def timeout(self) -> float:
+        """the longest search [s]; positive and finite"""
+        ...
+    @timeout.setter
+    def timeout(self, value: float) -> None: ...
 
 class DockingVideo:
     """A video of a docking run."""
@@ -7042,6 +7139,12 @@ class Se3Sample:
         """pose of E in W"""
         ...
     def __init__(*args: Any, **kwargs: Any) -> Any: ...
+
+class SearchPattern(enum.Enum):
+    """The docking's planar search pattern."""
+    none = 0
+    spiral = 1
+    lissajous = 2
 
 class SensorInfo:
     """One sensor; values at sensordata[address:address+dimension]."""
