@@ -35,7 +35,10 @@ def main():
     for line in data.read_text().splitlines():
         if line.startswith("---"):
             break  # the failed tests of the last run follow
-        name, runs, seconds = line.split()
+        name, runs, seconds = line.rsplit(maxsplit=2)
+        # a parameterized test's name holds its parameter's bytes (they change between builds)
+        if " " in name:
+            continue
         if name in current and name not in fixed and float(seconds) >= MIN_SECONDS:
             costs.append((float(seconds), name))
     costs.sort(reverse=True)
