@@ -362,6 +362,38 @@ TEST(Se3Impedance, ContactReleasesTheChosenAxesWithASmoothstep) {
   EXPECT_FALSE(fixed.release_started());
 }
 
+TEST(Se3Impedance, ADisarmedReleaseIsUndoneAndContactStartsNoneUntilArmedAgain) {
+  Se3RestCase s;
+  Se3ImpedanceOptions o;
+  o.release.axes[2] = true;
+  Se3ImpedanceController c(s.rig.chain, o);
+  JointCommand command{CommandKind::torque, VectorX::Zero(7)};
+  auto at = [&](double t) {
+    s.rig.d().time = t;
+    c.compute(s.rig.d(), s.ref, command);
+  };
+  const Vector6d contact = (Vector6d() << 0.0, 0.0, 2.5, 0, 0, 0).finished();
+  c.set_measured_wrench(contact);
+  at(1.0);
+  at(1.125);
+  ASSERT_NEAR(c.release_fraction(), 0.5, 1e-12);  // released half way
+  c.set_release_armed(false);
+  at(1.2);  // still in contact: full stiffness, no release
+  EXPECT_FALSE(c.release_started());
+  EXPECT_EQ(c.release_fraction(), 0.0);
+  EXPECT_EQ(c.stiffness()(2, 2), 400.0);
+  c.start_release(1.3);  // by hand, it still starts: disarming only stops contact
+  at(1.3);
+  EXPECT_TRUE(c.release_started());
+  c.set_release_armed(false);
+  c.set_release_armed(true);
+  at(1.5);  // armed again and in contact: a new release from now
+  EXPECT_TRUE(c.release_started());
+  EXPECT_EQ(c.release_fraction(), 0.0);
+  at(1.625);
+  EXPECT_NEAR(c.release_fraction(), 0.5, 1e-12);
+}
+
 TEST(Se3Impedance, BadGainsThrowNamingTheMatrix) {
   Se3RestCase s;
   auto expect_throw = [&](auto edit, const char* what) {
