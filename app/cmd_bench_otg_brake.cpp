@@ -97,7 +97,8 @@ Command add_bench_otg_brake_subcommand(CLI::App& bench) {
                           {"structure_optimal_shorter", r.structure_optimal.shorter},
                           {"structure_optimal_worst_ratio", r.structure_optimal.worst_ratio},
                           {"structure_mean_ms", r.structure_mean_ms},
-                          {"first_failure", r.first_failure}});
+                          {"first_failure", r.first_failure},
+                          {"first_structure_mismatch", r.first_structure_mismatch}});
             } else {
               print_fields(
                   std::cout,
@@ -123,6 +124,8 @@ Command add_bench_otg_brake_subcommand(CLI::App& bench) {
                                             " ms each"}});
               if (!r.first_failure.empty())
                 std::cout << "first failure: " << r.first_failure << '\n';
+              if (!r.first_structure_mismatch.empty())
+                std::cout << "first structure mismatch: " << r.first_structure_mismatch << '\n';
             }
             if (r.interrupted)
               throw InterruptedError(

@@ -218,7 +218,8 @@ BrakeOptimalityResult run_brake_optimality(const BrakeOptimalityOptions& options
           count(r.structure_optimal, optimal, found.duration);
           if (optimal > found.duration + kRelative * std::max(1.0, found.duration) ||
               optimal < found.duration - kRelative * std::max(1.0, found.duration))
-            fail(describe_brake_case("structure search differs", s, t, l));
+            if (r.first_structure_mismatch.empty())
+              r.first_structure_mismatch = describe_brake_case("structure search differs", s, t, l);
         }
       }
     }

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <string>
+#include <utility>
 
 #include "mjarm/error.hpp"
 #include "mjarm/random.hpp"
@@ -13,7 +14,8 @@ namespace mjarm {
 namespace {
 
 constexpr int kMaxPhases = SwitchingStructure::kMaxPhases;
-constexpr int kMaxConditions = 3 + 2 * 3;  // the end, and up to three inner cruises
+// the end, up to three inner cruises, and a brake's end
+constexpr int kMaxConditions = 3 + 2 * 3 + 1;
 constexpr int kMaxUnknowns = kMaxPhases + kMaxConditions;
 constexpr double kOnLimit = 1e-9;  // a first or last arc's state on its limit, relative
 constexpr double kAccept = 1e-9;   // end on target and limits kept, relative
@@ -70,8 +72,11 @@ struct PhaseScales {
 /// integrates the true motion all the same.
 class StructureSystem {
  public:
+  /// @p brake_end > 0: the brake ends at that phase boundary, where the velocity is
+  /// @p brake_velocity (side·v_max).
   StructureSystem(const SwitchingStructure& s, const KinematicState& start,
-                  const KinematicState& target, const JerkLimits& limits, const PhaseScales& scales)
+                  const KinematicState& target, const JerkLimits& limits, const PhaseScales& scales,
+                  int brake_end = 0, double brake_velocity = 0.0)
       : s_(s), start_(start) {
     const double V = limits.velocity, A = limits.acceleration;
     // the acceleration a motion reaches is at most a_max and, from rest, √(v_max·j_max)
@@ -113,6 +118,7 @@ class StructureSystem {
         snaps_[k] = 2;
       }
     }
+    if (brake_end > 0) add(brake_end, 1, brake_velocity);
     add(s.size, 0, target.p);
     if (!is_limit_arc(last)) {
       add(s.size, 1, target.v);
@@ -323,6 +329,29 @@ int brake_stage(JerkArc arc, double side) noexcept {
   return -1;
 }
 
+/// The first instant in [0, @p t] at which the motion from @p x under jerk @p j is startable,
+/// or −1: where side·v comes down to v_max (the only way in from a brake's states), or at @p t.
+double first_startable(const KinematicState& x, double j, double t, const JerkLimits& l,
+                       double side) noexcept {
+  if (startable(x, l, kAccept)) return 0.0;
+  // 0.5·j·τ² + a·τ + (v − side·v_max) = 0
+  const double c = x.v - side * l.velocity, b = x.a;
+  std::array<double, 2> roots{-1.0, -1.0};
+  if (j != 0.0) {
+    const double disc = b * b - 2.0 * j * c;
+    if (disc >= 0.0) {
+      const double r = std::sqrt(disc);
+      roots = {(-b - r) / j, (-b + r) / j};
+      if (roots[0] > roots[1]) std::swap(roots[0], roots[1]);
+    }
+  } else if (b != 0.0) {
+    roots[0] = -c / b;
+  }
+  for (const double tau : roots)
+    if (tau >= 0.0 && tau <= t && startable(advance(x, j, tau), l, kAccept)) return tau;
+  return startable(advance(x, j, t), l, kAccept) ? t : -1.0;
+}
+
 /// accept() for a start beyond the velocity limit on side @p side (its acceleration within):
 /// until the state first becomes startable, the phases follow the brake's order (full jerk
 /// against the violation, a hold at full deceleration, one release at full jerk) and the velocity
@@ -346,13 +375,23 @@ bool accept_braking(const SwitchingStructure& s, const std::array<double, kMaxPh
     const double t0 = crosses ? -x.a / j : 0.0;
     const double v_turn = x.v + x.a * t0 + 0.5 * j * t0 * t0;
     if (braking) {
-      if (t > 0.0) {
+      // the first instant the state is startable: where side·v comes down to v_max, or the end
+      const double entry = first_startable(x, j, t, l, side);
+      if (t > 0.0 && entry != 0.0) {  // a part of the brake: in its order
         const int k = brake_stage(s.arcs[i], side);
         if (k < stage) return false;
         stage = k;
       }
-      if (side * y.v < floor || (crosses && side * v_turn < floor)) return false;
-      braking = !startable(y, l, kAccept);
+      if (entry < 0.0) {
+        if (side * y.v < floor || (crosses && side * v_turn < floor)) return false;
+        x = y;
+        continue;
+      }
+      braking = false;
+      if (crosses && t0 <= entry && side * v_turn < floor) return false;
+      // from then on within the limits (the velocity's turn after it lies at the settled
+      // velocity, startable; checked all the same)
+      if (std::abs(y.v) > V || (crosses && t0 > entry && std::abs(v_turn) > V)) return false;
     } else if (std::abs(y.v) > V || (crosses && std::abs(v_turn) > V)) {
       return false;
     }
@@ -442,10 +481,8 @@ StructureSearchResult structure_search_min_time(const KinematicState& start,
     if (accepted(none.structure, none.durations, s0, tf, position_scale)) keep(none);
   }
   Random rng(options.seed);
-  for (const SwitchingStructure& s :
-       side == 0.0 ? switching_structures() : braking_switching_structures()) {
-    const StructureSystem system(s, s0, tf, limits, scales);
-    if (!system.valid() || system.unknowns() < system.conditions()) continue;
+  const auto search = [&](const SwitchingStructure& s, const StructureSystem& system) {
+    if (!system.valid() || system.unknowns() < system.conditions()) return;
     ++result.structures_tried;
     bool solved = false;
     for (int k = 0; k < options.seeds; ++k) {
@@ -481,6 +518,23 @@ StructureSearchResult structure_search_min_time(const KinematicState& start,
       solved = true;
     }
     result.structures_solved += solved ? 1 : 0;
+  };
+  for (const SwitchingStructure& s :
+       side == 0.0 ? switching_structures() : braking_switching_structures()) {
+    search(s, StructureSystem(s, s0, tf, limits, scales));
+    if (side == 0.0) continue;
+    // the brake may also end where a phase of the brake's order meets one that is not (the
+    // release, then jerk the other way): that boundary on the velocity limit, one condition more
+    int stage = 0;
+    for (int k = 1; k < s.size; ++k) {
+      const int before = brake_stage(s.arcs[k - 1], side);
+      if (before < stage) break;
+      stage = before;
+      const int after = brake_stage(s.arcs[k], side);
+      const bool cruise = s.arcs[k] == JerkArc::cruise_up || s.arcs[k] == JerkArc::cruise_down;
+      if (after >= stage || cruise) continue;
+      search(s, StructureSystem(s, s0, tf, limits, scales, k, side * V));
+    }
   }
   return result;
 }

@@ -76,6 +76,8 @@ struct BrakeOptimalityResult {
   BrakeDurationFigures structure_optimal;   ///< the generator's brake against the search
   double structure_mean_ms = 0.0;           ///< mean search time per DoF [ms] (wall clock)
   std::string first_failure;                ///< the first failure or mismatch (empty: none)
+  /// The first DoF whose duration differs from the structure search's (empty: none).
+  std::string first_structure_mismatch;
 };
 
 /// Runs the protocol (see the file).
