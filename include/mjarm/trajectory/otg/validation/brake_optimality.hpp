@@ -26,7 +26,9 @@ struct BrakeOptimalityOptions {
   int cases = 10000;          ///< random n-DoF cases (every DoF beyond its limits)
   int dofs = 7;               ///< DoFs per case
   std::uint64_t seed = 0;     ///< seed of the case generator
-  int family_members = 1000;  ///< brake-family members scanned per DoF (half of each spacing)
+  /// Brake-family members scanned per DoF (half uniform in the end acceleration, half in the
+  /// settled velocity).
+  int family_members = 1000;
   int structure_cases = 0;    ///< DoFs also given to the structure search (the first ones)
   int structure_seeds = 16;   ///< starting points per structure of that search
   /// Called now and then with (DoFs done, DoFs) (optional).
