@@ -82,7 +82,7 @@ struct DockingMotion {
   double hold_time = 2.0;     ///< from the reference's arrival at the bottom to the end (> 0)
   /// two-phase: miss detection and the search for the hole (pattern none: off)
   DockingSearchOptions search;
-  /// two-phase, laws with a lateral release: centring in the bore from the contact excursion
+  /// two-phase, laws with a lateral release, no joint friction: centring in the bore by a probe
   DockingCentringOptions centring;
 };
 
