@@ -72,6 +72,7 @@ JerkLimitedGenerator::JerkLimitedGenerator(std::span<const JerkLimits> limits)
   brake_durations_.resize(limits_.size());
   brake_phases_.resize(limits_.size());
   after_brake_.resize(limits_.size());
+  brake_chosen_.resize(limits_.size());
 }
 
 void JerkLimitedGenerator::check_states(std::span<const KinematicState> current,
@@ -118,6 +119,17 @@ bool JerkLimitedGenerator::solve_step1(int i) const noexcept {
   return jerk_detail::min_time_profile(problems_[i], after_brake_[i], targets_[i], blocks_[i]);
 }
 
+void JerkLimitedGenerator::set_after_brake(int i) noexcept {
+  const JerkProfile& p = profiles_[i];
+  const JerkLimits solve = binding_limits(limits_[i]);
+  brake_durations_[i] = p.duration();
+  brake_phases_[i] = p.size();
+  after_brake_[i] = p.end();
+  problems_[i].set(after_brake_[i], targets_[i].p - after_brake_[i].p, targets_[i].v, targets_[i].a,
+                   solve);
+  estimates_[i] = p.duration() + duration_estimate(problems_[i], solve);
+}
+
 OtgResult JerkLimitedGenerator::calculate(std::span<const KinematicState> current,
                                           std::span<const KinematicState> target) {
   check_states(current, target, false);
@@ -132,27 +144,36 @@ OtgResult JerkLimitedGenerator::calculate(std::span<const KinematicState> curren
     solved_[i] = 0;
     JerkProfile& p = profiles_[i];
     p.reset(current[i]);
-    const JerkLimits solve = binding_limits(limits_[i]);
-    // a start beyond the limits: the brake after which the whole motion is shortest
-    if (!append_optimal_brake(current[i], target[i], limits_[i], solve, p, brake_scratch_)) {
+    // a start beyond the limits: the standard brake for now; a DoF that decides the duration
+    // (one that gets its step 1) takes the brake after which its whole motion is shortest
+    brake_chosen_[i] = 0;
+    if (!append_brake(current[i], limits_[i], p)) {
       result_.status = OtgStatus::error_brake;
       result_.failed_dof = i;
       return result_;
     }
-    brake_durations_[i] = p.duration();
-    brake_phases_[i] = p.size();
-    after_brake_[i] = p.end();
-    problems_[i].set(after_brake_[i], target[i].p - after_brake_[i].p, target[i].v, target[i].a,
-                     solve);
-    estimates_[i] = p.duration() + duration_estimate(problems_[i], solve);
+    set_after_brake(i);
     if (estimates_[i] > estimates_[first]) first = i;
   }
+  bool brake_failed = false;
+  const auto solve_step1 = [&](int i) {
+    if (!brake_chosen_[i]) {
+      brake_chosen_[i] = 1;
+      JerkProfile& p = profiles_[i];
+      p.reset(current[i]);
+      brake_failed = !append_optimal_brake(current[i], target[i], limits_[i],
+                                           binding_limits(limits_[i]), p, brake_scratch_);
+      if (brake_failed) return false;
+      set_after_brake(i);
+    }
+    return this->solve_step1(i);
+  };
   // step 1 for the DoFs that decide the duration only: the one guessed slowest, then every DoF
   // that has no profile of the duration synchronized over those so far (it is slower, or the
   // duration lies in one of its blocked intervals). A duration that every DoF can take and
   // that is the smallest some of them can take is the smallest all can take.
   if (!solve_step1(first)) {
-    result_.status = OtgStatus::error_no_profile;
+    result_.status = brake_failed ? OtgStatus::error_brake : OtgStatus::error_no_profile;
     result_.failed_dof = first;
     return result_;
   }
@@ -174,7 +195,7 @@ OtgResult JerkLimitedGenerator::calculate(std::span<const KinematicState> curren
         reach_contains(reach_[i], target[i].p))
       continue;
     if (!solve_step1(i)) {
-      result_.status = OtgStatus::error_no_profile;
+      result_.status = brake_failed ? OtgStatus::error_brake : OtgStatus::error_no_profile;
       result_.failed_dof = i;
       return result_;
     }

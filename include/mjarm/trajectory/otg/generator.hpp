@@ -157,6 +157,8 @@ class JerkLimitedGenerator {
   void check_states(std::span<const KinematicState> current, std::span<const KinematicState> target,
                     bool velocity_interface) const;
   bool solve_step1(int i) const noexcept;
+  // the brake's duration, end state, step-1 problem and duration estimate of DoF i's profile
+  void set_after_brake(int i) noexcept;
   // the final check of a calculated trajectory (OtgResult's tolerances); sets result_.status
   void check_result(std::span<const KinematicState> current,
                     std::span<const KinematicState> target) noexcept;
@@ -175,6 +177,7 @@ class JerkLimitedGenerator {
   std::vector<int> brake_phases_;
   std::vector<KinematicState> after_brake_;
   OptimalBrakeScratch brake_scratch_;  // the brake chosen for the whole motion (position)
+  std::vector<char> brake_chosen_;     // per DoF: its brake is the chosen one (position)
   OtgResult result_;
   double time_ = 0.0;
 };

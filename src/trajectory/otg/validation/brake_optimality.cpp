@@ -190,8 +190,18 @@ BrakeOptimalityResult run_brake_optimality(const BrakeOptimalityOptions& options
         ++r.check_failures;
         fail(describe_brake_case("check", s, t, l));
       }
-      // the DoF's own minimum with each brake, against the best of its family
-      const double optimal = otg.brake_duration(d) + otg.block(d).t_min;
+      // the DoF's own minimum with each brake, against the best of its family: the generator
+      // of that DoF alone (in n DoFs, one that does not decide the duration keeps the standard
+      // brake when it reaches the target with it in that duration)
+      JerkLimitedGenerator alone(std::span<const JerkLimits>(&l, 1));
+      const OtgResult own = alone.calculate(std::span<const KinematicState>(&s, 1),
+                                            std::span<const KinematicState>(&t, 1));
+      const double optimal = own.duration;
+      if (own.status != OtgStatus::working && own.status != OtgStatus::finished) {
+        ++r.failures;
+        fail(describe_brake_case(to_string(own.status), s, t, l));
+        continue;
+      }
       standard.reset(s);
       append_brake(s, l, standard);
       const double with_standard = brake_and_step1(t, l, standard, block);
