@@ -1799,6 +1799,72 @@ class DiffIkTaskKind(enum.Enum):
     posture = 2
     """a joint configuration (n rows)"""
 
+class DockingCentringOptions:
+    """Centring in the bore from the contact excursion (docs/docking.md)."""
+    def __init__(self: DockingCentringOptions, **kwargs) -> None:
+        """Default values, with any field set by keyword."""
+        ...
+    @property
+    def contact_lag(self) -> float:
+        """the reference ahead of the tip that marks the wall [m]; positive and finite"""
+        ...
+    @contact_lag.setter
+    def contact_lag(self, value: float) -> None: ...
+    @property
+    def duration(self) -> float:
+        """the move to the believed axis [s]; positive and finite"""
+        ...
+    @duration.setter
+    def duration(self, value: float) -> None: ...
+    @property
+    def enabled(self) -> bool:
+        """centre the peg in the bore by a lateral probe"""
+        ...
+    @enabled.setter
+    def enabled(self, value: bool) -> None: ...
+    @property
+    def latest_depth(self) -> float:
+        """no centring starts deeper than this below the believed top face [m]; positive and finite"""
+        ...
+    @latest_depth.setter
+    def latest_depth(self, value: float) -> None: ...
+    @property
+    def min_excursion(self) -> float:
+        """lateral excursion from the reference that shows a contact moved the peg [m]; positive and finite"""
+        ...
+    @min_excursion.setter
+    def min_excursion(self, value: float) -> None: ...
+    @property
+    def probe_ramp(self) -> float:
+        """the probe's speed ramps in over this (smoothstep) [s]; positive and finite"""
+        ...
+    @probe_ramp.setter
+    def probe_ramp(self, value: float) -> None: ...
+    @property
+    def probe_speed(self) -> float:
+        """lateral speed of the probe for the wall [m/s]; positive and finite"""
+        ...
+    @probe_speed.setter
+    def probe_speed(self, value: float) -> None: ...
+    @property
+    def probe_travel(self) -> float:
+        """the longest probe (at least two radial clearances) [m]; positive and finite"""
+        ...
+    @probe_travel.setter
+    def probe_travel(self, value: float) -> None: ...
+    @property
+    def settle_speed(self) -> float:
+        """the tip's lateral speed below which the peg is at rest sideways [m/s]; positive and finite"""
+        ...
+    @settle_speed.setter
+    def settle_speed(self, value: float) -> None: ...
+    @property
+    def start_depth(self) -> float:
+        """the tip below the believed top face when the centring starts (past the chamfer) [m]; positive and finite"""
+        ...
+    @start_depth.setter
+    def start_depth(self, value: float) -> None: ...
+
 class DockingController(Controller):
     """A docking law with its force source (torque mode); usable in a Simulation like any controller."""
     def __init__(self: DockingController, scene: DockingScene, options: DockingControllerOptions = ...) -> None:
@@ -2356,6 +2422,12 @@ class DockingMotion:
         ...
     @approach_time.setter
     def approach_time(self, value: float) -> None: ...
+    @property
+    def centring(self) -> DockingCentringOptions:
+        """two-phase: centring in the bore from the contact excursion (se3, hqp-ac)"""
+        ...
+    @centring.setter
+    def centring(self, value: DockingCentringOptions) -> None: ...
     @property
     def hold_time(self) -> float:
         """from the reference's arrival at the bottom to the end [s]; positive and finite"""
