@@ -1,0 +1,256 @@
+// The page of a replay file (`mjarm replay-html`, docs/replay.md): the recorded run drawn with
+// three.js, played back, and its state exposed to tests as window.mjarmReplay.
+import * as THREE from 'three';
+import {OrbitControls} from 'three/addons/controls/OrbitControls.js';
+
+import {readReplayData} from './decode.js';
+import {buildPlots} from './plots.js';
+import {buildScene, poseBodies} from './scene.js';
+import {STYLE} from './style.js';
+
+function element(tag, attributes = {}, parent = null) {
+  const e = document.createElement(tag);
+  Object.assign(e, attributes);
+  if (parent) parent.appendChild(e);
+  return e;
+}
+
+function layout() {
+  element('style', {textContent: STYLE}, document.head);
+  const root = element('div', {id: 'mjarm-root'}, document.body);
+  const main = element('div', {id: 'mjarm-main'}, root);
+  const view = element('div', {id: 'mjarm-view'}, main);
+  const title = element('div', {id: 'mjarm-title'}, view);
+  const plots = element('div', {id: 'mjarm-plots'}, main);
+  const phases = element('div', {id: 'mjarm-phases'}, root);
+  const bar = element('div', {id: 'mjarm-bar'}, root);
+  const play = element('button', {textContent: 'play', title: 'play / pause (space)'}, bar);
+  const back = element('button', {textContent: '◀|', title: 'previous frame (←)'}, bar);
+  const step = element('button', {textContent: '|▶', title: 'next frame (→)'}, bar);
+  const speed = element('select', {title: 'playback speed'}, bar);
+  for (const s of [0.1, 0.25, 0.5, 1, 2, 4])
+    element('option', {value: s, textContent: `${s}×`, selected: s === 1}, speed);
+  const scrub = element(
+      'input', {id: 'mjarm-scrub', type: 'range', min: 0, max: 1, step: 'any', value: 0}, bar);
+  const time = element('span', {id: 'mjarm-time'}, bar);
+  const camera = element('select', {title: 'camera'}, bar);
+  const plotToggle = element('button', {textContent: 'plots', title: 'show / hide the plots'}, bar);
+  return {view, title, plots, phases, play, back, step, speed, scrub, time, camera, plotToggle};
+}
+
+function start() {
+  const data = readReplayData('mjarm-replay-data');
+  const ui = layout();
+  const {scene, bodies, meshCount, skipped, headlight} = buildScene(data);
+  const renderer = new THREE.WebGLRenderer({antialias: true, preserveDrawingBuffer: true});
+  // at most 2 device pixels per CSS pixel: software GL fills every one of them
+  renderer.setPixelRatio(Math.min(window.devicePixelRatio || 1, 2));
+  ui.view.appendChild(renderer.domElement);
+  const free =
+      new THREE.PerspectiveCamera(45, 1, Math.max(data.extent * 0.01, 0.001), data.extent * 100);
+  free.up.set(0, 0, 1);
+  // MuJoCo's free camera: looking at the model's centre from 1.5 extents, azimuth 90°, elevation
+  // −45°
+  const centre = new THREE.Vector3().fromArray(data.center);
+  const distance = 1.5 * data.extent;
+  free.position.set(
+      centre.x, centre.y - distance * Math.cos(Math.PI / 4),
+      centre.z + distance * Math.sin(Math.PI / 4));
+  free.lookAt(centre);
+  free.add(headlight);
+  scene.add(free);
+  const controls = new OrbitControls(free, renderer.domElement);
+  controls.target.copy(centre);
+  controls.update();
+  let orbited = false;  // paused, the view is drawn again only when the orbit moved it
+  controls.addEventListener('change', () => {
+    orbited = true;
+  });
+  const presets = new THREE.PerspectiveCamera(45, 1, free.near, free.far);
+  presets.add(headlight.clone());
+  scene.add(presets);
+  element('option', {value: -1, textContent: 'free camera'}, ui.camera);
+  data.cameras.forEach((c, i) => element('option', {value: i, textContent: c.name}, ui.camera));
+  let cameraIndex = -1;
+
+  const frames = data.frames.time;
+  const t0 = frames[0], t1 = frames[frames.length - 1];
+  let t = t0, playing = false, speed = 1, lastClock = null, frame = 0, renders = 0;
+  ui.scrub.min = t0;
+  ui.scrub.max = t1;
+  ui.title.textContent =
+      `${data.title} — ${data.model} — ${frames.length} frames at ${data.rate} Hz`;
+  for (const event of data.events.filter((e) => e.kind === 'phase')) {
+    element(
+        'span', {
+          textContent: event.message,
+          title: `${event.message} at ${event.t.toFixed(3)} s`,
+          style: `left:${(100 * (event.t - t0)) / Math.max(t1 - t0, 1e-9)}%`
+        },
+        ui.phases);
+  }
+  const plots = buildPlots(data, ui.plots, (time) => seek(time));
+
+  function placeCamera() {
+    if (cameraIndex < 0) return free;
+    const c = data.cameras[cameraIndex];
+    const parent = bodies[c.body];
+    parent.updateMatrixWorld();
+    const local = new THREE.Matrix4().compose(
+        new THREE.Vector3().fromArray(c.pos),
+        new THREE.Quaternion(c.quat[1], c.quat[2], c.quat[3], c.quat[0]),
+        new THREE.Vector3(1, 1, 1));
+    const world = parent.matrixWorld.clone().multiply(local);
+    world.decompose(presets.position, presets.quaternion, presets.scale);
+    presets.fov = c.fovy;
+    presets.updateProjectionMatrix();
+    return presets;
+  }
+
+  function resize() {
+    const w = ui.view.clientWidth, h = ui.view.clientHeight;
+    renderer.setSize(w, h, false);
+    for (const cam of [free, presets]) {
+      cam.aspect = w / Math.max(h, 1);
+      cam.updateProjectionMatrix();
+    }
+  }
+
+  function draw() {
+    frame = poseBodies(data, bodies, t);
+    const cam = placeCamera();
+    renderer.render(scene, cam);
+    ++renders;
+    ui.scrub.value = t;
+    ui.time.textContent = `${t.toFixed(3)} / ${t1.toFixed(3)} s  #${frame}`;
+    plots.cursor(t);
+  }
+
+  function seek(time) {
+    t = Math.min(Math.max(time, t0), t1);
+    draw();
+    return t;
+  }
+
+  function setPlaying(on) {
+    playing = on && t < t1;
+    lastClock = null;
+    ui.play.textContent = playing ? 'pause' : 'play';
+  }
+
+  function loop(clock) {
+    if (playing) {
+      if (lastClock !== null) t += ((clock - lastClock) / 1000) * speed;
+      lastClock = clock;
+      if (t >= t1) {
+        t = t1;
+        setPlaying(false);
+      }
+      draw();
+    } else if (orbited && cameraIndex < 0) {
+      orbited = false;
+      renderer.render(scene, free);
+    }
+    requestAnimationFrame(loop);
+  }
+
+  ui.play.onclick = () => setPlaying(!playing);
+  ui.step.onclick = () => {
+    setPlaying(false);
+    seek(frames[Math.min(frame + 1, frames.length - 1)]);
+  };
+  ui.back.onclick = () => {
+    setPlaying(false);
+    seek(frames[Math.max(frame - (t > frames[frame] ? 0 : 1), 0)]);
+  };
+  ui.speed.onchange = () => {
+    speed = Number(ui.speed.value);
+  };
+  ui.scrub.oninput = () => seek(Number(ui.scrub.value));
+  ui.camera.onchange = () => {
+    cameraIndex = Number(ui.camera.value);
+    controls.enabled = cameraIndex < 0;
+    draw();
+  };
+  ui.plotToggle.onclick = () => {
+    ui.plots.classList.toggle('hidden');
+    resize();
+    draw();
+  };
+  window.addEventListener('keydown', (e) => {
+    if (e.key === ' ') {
+      setPlaying(!playing);
+      e.preventDefault();
+    }
+    if (e.key === 'ArrowRight') ui.step.onclick();
+    if (e.key === 'ArrowLeft') ui.back.onclick();
+  });
+  window.addEventListener('resize', () => {
+    resize();
+    draw();
+  });
+  resize();
+  seek(t0);
+  requestAnimationFrame(loop);
+
+  // what tests read back (tests/web): the state of the page, and a way to drive it
+  window.mjarmReplay = {
+    ready: true,
+    meshCount,
+    skippedGeoms: skipped,
+    frameCount: frames.length,
+    startTime: t0,
+    endTime: t1,
+    cameras: data.cameras.map((c) => c.name),
+    bodies: data.bodies.map((b) => b.name),
+    freeJoints: data.free_joints,
+    frameTimes: () => Array.from(frames),
+    time: () => t,
+    frame: () => frame,
+    renders: () => renders,
+    seek,
+    play: () => setPlaying(true),
+    pause: () => setPlaying(false),
+    playing: () => playing,
+    setSpeed: (s) => {
+      speed = s;
+    },
+    setCamera: (name) => {
+      cameraIndex = name === null ? -1 : data.cameras.findIndex((c) => c.name === name);
+      ui.camera.value = cameraIndex;
+      controls.enabled = cameraIndex < 0;
+      draw();
+      return cameraIndex;
+    },
+    // the 3D view at a size of CSS pixels (null: back to the layout's), for pictures to compare
+    setViewSize: (width, height) => {
+      ui.view.style.flex = width ? 'none' : '';
+      ui.view.style.width = width ? `${width}px` : '';
+      ui.view.style.height = height ? `${height}px` : '';
+      resize();
+      draw();
+      const r = ui.view.getBoundingClientRect();
+      return {x: r.left, y: r.top, width: r.width, height: r.height};
+    },
+    showPlots: (on) => {
+      ui.plots.classList.toggle('hidden', !on);
+      resize();
+      draw();
+    },
+    bodyPose: (name) => {
+      const b = bodies.find((g) => g.name === name);
+      if (!b) return null;
+      return {
+        pos: b.position.toArray(),
+        quat: [b.quaternion.w, b.quaternion.x, b.quaternion.y, b.quaternion.z]
+      };
+    },
+  };
+}
+
+try {
+  start();
+} catch (error) {
+  document.body.textContent = `mjarm replay: ${error.message}`;
+  throw error;
+}
