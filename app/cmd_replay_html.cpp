@@ -6,6 +6,7 @@
 
 #include "commands.hpp"
 #include "mjarm/plot/recording.hpp"
+#include "mjarm/web/recorded_model.hpp"
 #include "mjarm/web/replay_html.hpp"
 
 namespace mjarm::cli {

@@ -6,7 +6,6 @@
 #include "base64.hpp"
 #include "mjarm/error.hpp"
 #include "mjarm/file_writer.hpp"
-#include "mjarm/model/user_file.hpp"
 #include "replay_bundle.hpp"
 #include "replay_frames.hpp"
 #include "replay_plots.hpp"
@@ -117,25 +116,6 @@ ReplayHtmlReport write_replay_html(const Robot& robot, const plot::Recording& re
   report.plots = plots.count;
   report.largest_gap = frames.largest_gap;
   return report;
-}
-
-Robot recorded_model(const plot::Recording& recording) {
-  const std::filesystem::path path = recording.directory() / "model.mjb";
-  if (!std::filesystem::exists(path)) {
-    throw Error("replay-html: the recording '" + recording.directory().string() +
-                "' holds no model.mjb (recorded before mjarm kept the model): name the model it "
-                "was recorded on with --model");
-  }
-  const std::string bytes = read_user_file(path, "recorded model", kMaxDataFileBytes);
-  mjModel* model = mj_loadModelBuffer(bytes.data(), static_cast<mjtSize>(bytes.size()));
-  if (model == nullptr) {
-    throw Error("replay-html: MuJoCo could not load the recorded model '" + path.string() +
-                "' (written by another MuJoCo version, or damaged)");
-  }
-  return Robot::from_model(
-      std::shared_ptr<const mjModel>(
-          model, [](const mjModel* p) { mj_deleteModel(const_cast<mjModel*>(p)); }),
-      path.string());
 }
 
 }  // namespace mjarm

@@ -132,6 +132,11 @@ ReplayScene replay_scene(const mjModel& m) {
   scene.cameras = m.ncam;
   // the free bodies (the objects a task moves): their recorded qpos is their world pose, which
   // the page's tests compare with what it draws
+  json["joints"] = nlohmann::json::array();
+  for (int j = 0; j < m.njnt; ++j) {
+    json["joints"].push_back(
+        {{"name", name_of(m, mjOBJ_JOINT, j, "joint")}, {"body", m.jnt_bodyid[j]}});
+  }
   json["free_joints"] = nlohmann::json::array();
   for (int j = 0; j < m.njnt; ++j) {
     if (m.jnt_type[j] != mjJNT_FREE) continue;

@@ -97,6 +97,7 @@ export async function openPage(browser, url) {
   const { sessionId } = await browser.send('Target.attachToTarget', { targetId, flatten: true });
   const page = {
     problems: [],
+    requests: [],
     loaded: false,
     send: (method, params) => browser.send(method, params, sessionId),
     async evaluate(expression) {
@@ -116,11 +117,13 @@ export async function openPage(browser, url) {
       page.problems.push(`console.${p.type}: ${p.args.map((a) => a.value ?? a.description).join(' ')}`);
     } else if (message.method === 'Log.entryAdded' && p.entry.level === 'error') {
       page.problems.push(`log: ${p.entry.text} ${p.entry.url || ''}`);
+    } else if (message.method === 'Network.requestWillBeSent') {
+      page.requests.push(p.request.url);
     } else if (message.method === 'Page.loadEventFired') {
       page.loaded = true;
     }
   });
-  for (const domain of ['Runtime', 'Log', 'Page']) await page.send(`${domain}.enable`);
+  for (const domain of ['Runtime', 'Log', 'Page', 'Network']) await page.send(`${domain}.enable`);
   const started = Date.now();
   await page.send('Page.navigate', { url });
   while (!page.loaded) {

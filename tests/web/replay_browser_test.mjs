@@ -2,7 +2,7 @@
 // written as a replay file, and opened by headless Chromium from file:// — no server, no
 // network. Checked: no console error or exception; as many meshes as the model has drawn geoms;
 // at several times the page puts every free object where state.csv says; a screenshot that is not
-// blank. Usage: node replay_browser_test.mjs MJARM_CLI WORK_DIR (MJARM_WEB_MODULES: the build
+// blank; the arm's silhouette against mjarm's own EGL rendering from the same camera. Usage: node replay_browser_test.mjs MJARM_CLI WORK_DIR (MJARM_WEB_MODULES: the build
 // tree's web/node_modules, for ws; CHROMIUM: the browser, default `chromium` on PATH).
 import { execFileSync } from 'node:child_process';
 import { mkdirSync, readFileSync, rmSync, writeFileSync, statSync } from 'node:fs';
@@ -113,7 +113,65 @@ try {
     colours.add((image.rgba[4 * i] << 16) | (image.rgba[4 * i + 1] << 8) | image.rgba[4 * i + 2]);
   }
   check(colours.size > 50, 'the screenshot is not blank', `${colours.size} colours in ${image.width}×${image.height} (${join(work, 'screenshot.png')})`);
+
+  // the arm's silhouette against mjarm's own EGL rendering of the same state from the same
+  // camera (`mjarm render --only-subtree`): the moving arm, the subtree of the body its first
+  // controlled joint moves
+  const summary = JSON.parse(readFileSync(join(recording, 'summary.json'), 'utf8'));
+  const joints = await page.evaluate('window.mjarmReplay.joints');
+  const arm = joints.find((j) => j.name === summary.controllers[0].joints[0]).body;
+  const tArm = info.times[Math.round(0.55 * (info.times.length - 1))];
+  const armRow = state.rows.reduce((best, r) => (Math.abs(r[tColumn] - tArm) < Math.abs(best[tColumn] - tArm) ? r : best));
+  const q = state.columns.map((c, i) => (c.startsWith('q.') ? armRow[i] : null)).filter((v) => v !== null);
+  const rect = await page.evaluate('window.mjarmReplay.setViewSize(640, 480)');
+  for (const view of info.cameras) {
+    const eglPath = join(work, `silhouette_${view}_egl.png`);
+    execFileSync(cli, ['render', join(recording, 'model.mjb'), '--q', ...q.map(String), '--allow-outside-range',
+                       '--camera', view, '--size', '640x480', '--only-subtree', arm, '--out', eglPath],
+                 // Mesa's software rasteriser allocates from JIT code LeakSanitizer cannot
+                 // attribute: a sanitized build renders without leak checking (tests/CMakeLists.txt)
+                 { stdio: ['ignore', 'ignore', 'inherit'],
+                   env: { ...process.env, ASAN_OPTIONS: `${process.env.ASAN_OPTIONS || ''}:detect_leaks=0` } });
+    const egl = decodePng(readFileSync(eglPath));
+    await page.evaluate(`window.mjarmReplay.setCamera(${JSON.stringify(view)}); window.mjarmReplay.seek(${tArm}); window.mjarmReplay.silhouette(${JSON.stringify(arm)})`);
+    const clip = await page.send('Page.captureScreenshot', { format: 'png', clip: { ...rect, scale: 1 } });
+    writeFileSync(join(work, `silhouette_${view}_page.png`), Buffer.from(clip.data, 'base64'));
+    const web = decodePng(Buffer.from(clip.data, 'base64'));
+    if (web.width !== egl.width || web.height !== egl.height) {
+      check(false, `camera ${view}: the two pictures have one size`, `page ${web.width}×${web.height}, EGL ${egl.width}×${egl.height}`);
+      continue;
+    }
+    // EGL: what differs from the background (the commonest colour of the border: the arm may
+    // cover a corner); the page: white on black
+    const counts = new Map();
+    for (let x = 0; x < egl.width; ++x) {
+      for (const y of [0, egl.height - 1]) {
+        const i = 4 * (y * egl.width + x);
+        const key = (egl.rgba[i] << 16) | (egl.rgba[i + 1] << 8) | egl.rgba[i + 2];
+        counts.set(key, (counts.get(key) || 0) + 1);
+      }
+    }
+    const commonest = [...counts.entries()].sort((p, r) => r[1] - p[1])[0][0];
+    const bg = [(commonest >> 16) & 255, (commonest >> 8) & 255, commonest & 255];
+    let both = 0, either = 0, inEgl = 0, inWeb = 0;
+    for (let i = 0; i < egl.width * egl.height; ++i) {
+      const a = Math.max(...[0, 1, 2].map((k) => Math.abs(egl.rgba[4 * i + k] - bg[k]))) > 30;
+      const b = web.rgba[4 * i] + web.rgba[4 * i + 1] + web.rgba[4 * i + 2] > 3 * 128;
+      both += a && b ? 1 : 0;
+      either += a || b ? 1 : 0;
+      inEgl += a ? 1 : 0;
+      inWeb += b ? 1 : 0;
+    }
+    const overlap = either > 0 ? both / either : 0;
+    check(inEgl > 0.01 * egl.width * egl.height, `camera ${view}: the arm (${arm} and below) fills part of the EGL picture`,
+          `${inEgl} pixels`);
+    check(overlap >= 0.9, `camera ${view}: the arm's silhouette matches mjarm's EGL rendering (intersection over union ≥ 0.9)`,
+          `${overlap.toFixed(3)} (page ${inWeb} pixels, EGL ${inEgl})`);
+  }
+  await page.evaluate('window.mjarmReplay.silhouette(null); window.mjarmReplay.setViewSize(null, null)');
   check(page.problems.length === 0, 'no console error or exception', page.problems.join('\n'));
+  const remote = page.requests.filter((url) => !/^(file|data|blob|about):/.test(url));
+  check(remote.length === 0, 'the page requests nothing but its own file', remote.join(' '));
 } catch (error) {
   check(false, 'the page test ran to its end', error.stack);
 } finally {

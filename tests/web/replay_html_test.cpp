@@ -23,6 +23,7 @@
 #include "mjarm/plot/recording.hpp"
 #include "mjarm/sim/recorder.hpp"
 #include "mjarm/sim/simulation.hpp"
+#include "mjarm/web/recorded_model.hpp"
 #include "sim/sim_test_support.hpp"
 #include "web/base64.hpp"
 #include "web/replay_scene.hpp"

@@ -42,6 +42,7 @@ function start() {
   const data = readReplayData('mjarm-replay-data');
   const ui = layout();
   const {scene, bodies, meshCount, skipped, headlight} = buildScene(data);
+  const background = scene.background;
   const renderer = new THREE.WebGLRenderer({antialias: true, preserveDrawingBuffer: true});
   // at most 2 device pixels per CSS pixel: software GL fills every one of them
   renderer.setPixelRatio(Math.min(window.devicePixelRatio || 1, 2));
@@ -204,6 +205,7 @@ function start() {
     cameras: data.cameras.map((c) => c.name),
     bodies: data.bodies.map((b) => b.name),
     freeJoints: data.free_joints,
+    joints: data.joints.map((j) => ({name: j.name, body: data.bodies[j.body].name})),
     frameTimes: () => Array.from(frames),
     time: () => t,
     frame: () => frame,
@@ -231,6 +233,28 @@ function start() {
       draw();
       const r = ui.view.getBoundingClientRect();
       return {x: r.left, y: r.top, width: r.width, height: r.height};
+    },
+    // only the subtree of body `root` (it and its descendants) in flat white on black (null:
+    // the scene again), for a silhouette to compare with mjarm's own rendering (tests/web)
+    silhouette: (root) => {
+      const top = data.bodies.findIndex((b) => b.name === root);
+      const inside = (id) => {
+        while (id > 0 && id !== top) id = data.bodies[id].parent;
+        return id === top;
+      };
+      const white = new THREE.MeshBasicMaterial({color: 0xffffff});
+      scene.background = root === null ? background : new THREE.Color(0, 0, 0);
+      ui.title.style.display = root === null ? '' : 'none';
+      bodies.forEach((body, id) => {
+        for (const mesh of body.children) {
+          if (!mesh.userData.mjarmGeom) continue;
+          mesh.userData.material ??= mesh.material;
+          mesh.material = root === null ? mesh.userData.material : white;
+          mesh.visible = root === null || inside(id);
+        }
+      });
+      draw();
+      return top;
     },
     showPlots: (on) => {
       ui.plots.classList.toggle('hidden', !on);

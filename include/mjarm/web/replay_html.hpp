@@ -62,10 +62,4 @@ ReplayHtmlReport write_replay_html(const Robot& robot, const plot::Recording& re
                                    const std::filesystem::path& out,
                                    const ReplayHtmlOptions& options = {});
 
-/// The model a recording was made on: its model.mjb (written by the recorder since the replay
-/// files; sim/recorder.hpp).
-/// @throws Error naming the file when the recording has none (pass the model instead) or when
-///         MuJoCo cannot load it.
-Robot recorded_model(const plot::Recording& recording);
-
 }  // namespace mjarm
