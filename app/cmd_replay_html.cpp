@@ -10,6 +10,12 @@
 #include "mjarm/web/replay_html.hpp"
 
 namespace mjarm::cli {
+
+void write_run_replay(const std::string& recording, const std::string& html) {
+  const plot::Recording loaded = plot::Recording::load(recording);
+  write_replay_html(recorded_model(loaded), loaded, html);
+}
+
 Command add_replay_html_command(CLI::App& root) {
   struct Options {
     std::string recording;

@@ -8,6 +8,7 @@
 #include "mjarm/file_writer.hpp"
 #include "replay_bundle.hpp"
 #include "replay_frames.hpp"
+#include "replay_overlays.hpp"
 #include "replay_plots.hpp"
 #include "replay_scene.hpp"
 
@@ -84,6 +85,7 @@ ReplayHtmlReport write_replay_html(const Robot& robot, const plot::Recording& re
   data["events"] = nlohmann::json::array();
   for (const plot::RecordedEvent& e : recording.events())
     data["events"].push_back({{"t", e.t}, {"kind", e.kind}, {"message", e.message}});
+  data["overlays"] = web_detail::replay_overlays(m, recording, frames.time);
   data["plot_time"] = plots.json["plot_time"];
   data["plots"] = plots.json["plots"];
 

@@ -87,6 +87,17 @@ try {
   }
   check(compared > 0 && worst < 1e-5, 'seeking puts the free objects where state.csv says',
         `largest difference ${worst.toExponential(2)} m over ${compared} coordinates`);
+  // the overlays: contacts where the object lies on the table, every non-phase event marked
+  // (a tenth into the run: the arm approaches, the object has settled on the table)
+  const tRest = info.times[Math.round(0.1 * (info.times.length - 1))];
+  await page.evaluate(`window.mjarmReplay.seek(${tRest})`);
+  const contacts = await page.evaluate('window.mjarmReplay.contactCount()');
+  check(contacts > 0, 'contacts are drawn where the object lies on the table', `${contacts} at t = ${tRest.toFixed(3)} s`);
+  const events = readFileSync(join(recording, 'events.csv'), 'utf8').trim().split('\n').slice(1)
+    .filter((line) => line.split(',')[1] !== 'phase').length;
+  const marks = await page.evaluate('window.mjarmReplay.eventMarks()');
+  check(marks === events && events > 0, 'every grasp and result event is marked on the timeline', `${marks} of ${events}`);
+
   // between frames the page interpolates: a time between two frames lies between their poses
   const mid = 0.5 * (info.times[10] + info.times[11]);
   const between = await page.evaluate(`window.mjarmReplay.seek(${mid})`);

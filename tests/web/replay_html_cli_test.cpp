@@ -69,6 +69,27 @@ TEST(ReplayHtmlCli, BadInputIsAClearErrorAndWritesNothing) {
   EXPECT_FALSE(fs::exists(out));
 }
 
+TEST(ReplayHtmlCli, ARecordedRunWritesItsPageWithHtml) {
+  const fs::path dir = scratch() / "replay_cli_run";
+  const fs::path html = scratch() / "replay_cli_run.html";
+  const mjarm::test::CliRun run =
+      run_cli({"run", "shelf-pick", "--robot", "planar2", "--settle-time", "0.3", "--record",
+               dir.string(), "--html", html.string()});
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  ASSERT_TRUE(fs::exists(html));
+  EXPECT_NE(mjarm::test::slurp(html).find("id=\"mjarm-replay-data\""), std::string::npos);
+  // --html needs --record; an unwritable page is refused before the run
+  const mjarm::test::CliRun alone =
+      run_cli({"run", "pick-place", "--html", (scratch() / "alone.html").string()});
+  EXPECT_EQ(alone.exit_code, 2) << alone.err;
+  EXPECT_NE(alone.err.find("--record"), std::string::npos) << alone.err;
+  const mjarm::test::CliRun nowhere =
+      run_cli({"run", "shelf-pick", "--robot", "planar2", "--record", (scratch() / "r2").string(),
+               "--html", (scratch() / "no_folder" / "x.html").string()});
+  EXPECT_EQ(nowhere.exit_code, 2) << nowhere.err;
+  EXPECT_FALSE(fs::exists(scratch() / "r2"));
+}
+
 TEST(ReplayHtmlCli, RenderLoadsTheRecordedModelAndDrawsASubtreeAlone) {
   const fs::path whole = scratch() / "replay_cli_whole.png";
   const fs::path alone = scratch() / "replay_cli_alone.png";

@@ -228,6 +228,37 @@ TEST_F(ReplayHtml, FramesHoldTheRecordedStatesAtTheRate) {
   EXPECT_LT(pos[((time.size() - 1) * nbody + cube) * 3 + 2], 0.3 - 0.05);
 }
 
+TEST_F(ReplayHtml, ContactsAtRestCarryTheCubesWeight) {
+  const mjarm::plot::Recording rec = mjarm::plot::Recording::load(recording());
+  const mjarm::Robot robot = mjarm::recorded_model(rec);
+  mjarm::write_replay_html(robot, rec, out("contacts.html"));
+  const json data = data_block(out("contacts.html"));
+  const std::vector<unsigned char> offset_bytes = unbase64(data["overlays"]["contacts"]["offsets"]);
+  std::vector<unsigned> offsets(offset_bytes.size() / 4);
+  std::memcpy(offsets.data(), offset_bytes.data(), offsets.size() * 4);
+  const std::vector<float> points = unbase64_floats(data["overlays"]["contacts"]["points"]);
+  const std::size_t frames = unbase64_floats(data["frames"]["time"]).size();
+  ASSERT_EQ(offsets.size(), frames + 1);
+  EXPECT_EQ(offsets.front(), 0u);
+  EXPECT_EQ(offsets.back() * 6, points.size());
+  EXPECT_EQ(offsets[1], 0u) << "the cube starts in the air";
+  // at the end the cube rests on the floor: its contacts push up with its weight in all
+  const unsigned first = offsets[frames - 1], last = offsets[frames];
+  ASSERT_GE(last - first, 3u) << "a resting box touches the floor at its corners";
+  double up = 0.0;
+  for (unsigned c = first; c < last; ++c) {
+    EXPECT_NEAR(points[6 * c + 2], 0.0, 2e-3) << "a contact point on the floor";
+    up += std::abs(points[6 * c + 5]);
+  }
+  const mjModel& m = robot.model();
+  const double weight = m.body_subtreemass[mj_name2id(&m, mjOBJ_BODY, "cube")] * -m.opt.gravity[2];
+  EXPECT_NEAR(up, weight, 0.25 * weight);
+  // the tool and the target frames follow task.csv
+  const std::vector<float> tool = unbase64_floats(data["overlays"]["tool"]);
+  ASSERT_EQ(tool.size(), frames * 7);
+  EXPECT_NEAR(tool[(frames - 1) * 7 + 0], rec.task().numbers("ee.x").back(), 1e-6);
+}
+
 TEST_F(ReplayHtml, ARateAboveTheRecordingsKeepsEveryRow) {
   const mjarm::plot::Recording rec = mjarm::plot::Recording::load(recording());
   mjarm::ReplayHtmlOptions options;

@@ -4,6 +4,7 @@ import * as THREE from 'three';
 import {OrbitControls} from 'three/addons/controls/OrbitControls.js';
 
 import {readReplayData} from './decode.js';
+import {buildOverlays} from './overlays.js';
 import {buildPlots} from './plots.js';
 import {buildScene, poseBodies} from './scene.js';
 import {STYLE} from './style.js';
@@ -35,7 +36,31 @@ function layout() {
   const time = element('span', {id: 'mjarm-time'}, bar);
   const camera = element('select', {title: 'camera'}, bar);
   const plotToggle = element('button', {textContent: 'plots', title: 'show / hide the plots'}, bar);
-  return {view, title, plots, phases, play, back, step, speed, scrub, time, camera, plotToggle};
+  const toggles = {};
+  for (const [name, title] of [
+           ['frames', 'the tool frame and the target frame'],
+           ['path', 'the planned path (the target over the run) and the tool\'s trace'],
+           ['contacts', 'contact points and force arrows'],
+  ]) {
+    const label = element('label', {title}, bar);
+    toggles[name] = element('input', {type: 'checkbox', checked: true}, label);
+    label.append(` ${name}`);
+  }
+  return {
+    view,
+    title,
+    plots,
+    phases,
+    play,
+    back,
+    step,
+    speed,
+    scrub,
+    time,
+    camera,
+    plotToggle,
+    toggles
+  };
 }
 
 function start() {
@@ -43,6 +68,7 @@ function start() {
   const ui = layout();
   const {scene, bodies, meshCount, skipped, headlight} = buildScene(data);
   const background = scene.background;
+  const overlays = buildOverlays(data, scene);
   const renderer = new THREE.WebGLRenderer({antialias: true, preserveDrawingBuffer: true});
   // at most 2 device pixels per CSS pixel: software GL fills every one of them
   renderer.setPixelRatio(Math.min(window.devicePixelRatio || 1, 2));
@@ -81,6 +107,16 @@ function start() {
   ui.scrub.max = t1;
   ui.title.textContent =
       `${data.title} — ${data.model} — ${frames.length} frames at ${data.rate} Hz`;
+  // grasp and other events as marks under the phases, their message on hover
+  for (const event of data.events.filter((e) => e.kind !== 'phase')) {
+    element(
+        'i', {
+          className: `mjarm-event mjarm-${event.kind}`,
+          title: `${event.kind} at ${event.t.toFixed(3)} s: ${event.message}`,
+          style: `left:${(100 * (event.t - t0)) / Math.max(t1 - t0, 1e-9)}%`
+        },
+        ui.phases);
+  }
   for (const event of data.events.filter((e) => e.kind === 'phase')) {
     element(
         'span', {
@@ -119,6 +155,7 @@ function start() {
 
   function draw() {
     frame = poseBodies(data, bodies, t);
+    overlays.update(frame);
     const cam = placeCamera();
     renderer.render(scene, cam);
     ++renders;
@@ -173,6 +210,15 @@ function start() {
     controls.enabled = cameraIndex < 0;
     draw();
   };
+  for (const [name, box] of Object.entries(ui.toggles)) {
+    box.disabled = !overlays.available[name];
+    box.checked = overlays.available[name];
+    overlays.groups[name].visible = box.checked;
+    box.onchange = () => {
+      overlays.groups[name].visible = box.checked;
+      draw();
+    };
+  }
   ui.plotToggle.onclick = () => {
     ui.plots.classList.toggle('hidden');
     resize();
@@ -205,6 +251,13 @@ function start() {
     cameras: data.cameras.map((c) => c.name),
     bodies: data.bodies.map((b) => b.name),
     freeJoints: data.free_joints,
+    contactCount: () => overlays.contactCount,
+    setOverlay: (name, on) => {
+      ui.toggles[name].checked = on;
+      overlays.groups[name].visible = on;
+      draw();
+    },
+    eventMarks: () => ui.phases.querySelectorAll('.mjarm-event').length,
     joints: data.joints.map((j) => ({name: j.name, body: data.bodies[j.body].name})),
     frameTimes: () => Array.from(frames),
     time: () => t,
@@ -245,6 +298,8 @@ function start() {
       const white = new THREE.MeshBasicMaterial({color: 0xffffff});
       scene.background = root === null ? background : new THREE.Color(0, 0, 0);
       ui.title.style.display = root === null ? '' : 'none';
+      for (const [name, group] of Object.entries(overlays.groups))
+        group.visible = root === null && ui.toggles[name].checked;
       bodies.forEach((body, id) => {
         for (const mesh of body.children) {
           if (!mesh.userData.mjarmGeom) continue;

@@ -16,5 +16,10 @@ html, body { margin: 0; height: 100%; background: #1e2329; color: #dde3ea;
 #mjarm-phases { position: relative; height: 16px; background: #242a31; font-size: 11px; }
 #mjarm-phases span { position: absolute; top: 1px; white-space: nowrap; border-left: 1px solid #8ab4f8;
   padding-left: 2px; color: #b8c4d0; }
+#mjarm-phases .mjarm-event { position: absolute; top: 0; width: 3px; height: 16px; margin-left: -1px;
+  background: #e8710a; cursor: help; }
+#mjarm-phases .mjarm-result { background: #34a853; }
+#mjarm-phases .mjarm-warning, #mjarm-phases .mjarm-divergence { background: #ea4335; }
+#mjarm-bar label { white-space: nowrap; color: #b8c4d0; }
 #mjarm-title { position: absolute; left: 8px; top: 6px; font-size: 12px; color: #b8c4d0; pointer-events: none; }
 `;
