@@ -111,6 +111,9 @@ try {
   await page.evaluate('window.mjarmReplay.pause()');
   check(after.t > info.times[0], 'playing moves the replay time on', `t = ${after.t.toFixed(3)} s after 2 s`);
   console.log(`playback: ${((after.renders - before) / 2).toFixed(1)} frames drawn per second`);
+  const cost = await page.evaluate('window.mjarmReplay.drawCost(60)');
+  const gl = await page.evaluate('window.mjarmReplay.softwareGl');
+  console.log(`drawing one frame: ${cost.toFixed(2)} ms (${(1000 / cost).toFixed(0)} per second at most; software GL: ${gl})`);
 
   // a screenshot from the model's first camera in mid-run, not blank
   const camera = info.cameras[0];

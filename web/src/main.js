@@ -63,15 +63,28 @@ function layout() {
   };
 }
 
+// True when WebGL runs on a software rasteriser.
+function softwareGl() {
+  const gl = document.createElement('canvas').getContext('webgl2');
+  if (!gl) return false;
+  const info = gl.getExtension('WEBGL_debug_renderer_info');
+  const name = info ? String(gl.getParameter(info.UNMASKED_RENDERER_WEBGL)) : '';
+  gl.getExtension('WEBGL_lose_context')?.loseContext();
+  return /swiftshader|llvmpipe|software/i.test(name);
+}
+
 function start() {
   const data = readReplayData('mjarm-replay-data');
   const ui = layout();
   const {scene, bodies, meshCount, skipped, headlight} = buildScene(data);
   const background = scene.background;
   const overlays = buildOverlays(data, scene);
-  const renderer = new THREE.WebGLRenderer({antialias: true, preserveDrawingBuffer: true});
+  // multisampling costs software GL (SwiftShader, llvmpipe: no GPU) more than a frame's budget
+  const software = softwareGl();
+  const renderer = new THREE.WebGLRenderer({antialias: !software, preserveDrawingBuffer: true});
   // at most 2 device pixels per CSS pixel: software GL fills every one of them
-  renderer.setPixelRatio(Math.min(window.devicePixelRatio || 1, 2));
+  const fullRatio = Math.min(window.devicePixelRatio || 1, 2);
+  renderer.setPixelRatio(fullRatio);
   ui.view.appendChild(renderer.domElement);
   const free =
       new THREE.PerspectiveCamera(45, 1, Math.max(data.extent * 0.01, 0.001), data.extent * 100);
@@ -174,6 +187,13 @@ function start() {
     playing = on && t < t1;
     lastClock = null;
     ui.play.textContent = playing ? 'pause' : 'play';
+    // software GL fills pixels slowly: while playing it draws a quarter of them (half in each
+    // direction); paused, seeking or stepping, the view is sharp again
+    if (software) {
+      renderer.setPixelRatio(playing ? 0.5 * fullRatio : fullRatio);
+      resize();
+      draw();
+    }
   }
 
   function loop(clock) {
@@ -245,6 +265,19 @@ function start() {
     ready: true,
     meshCount,
     skippedGeoms: skipped,
+    softwareGl: software,
+    // milliseconds to pose and draw one frame, the GPU (or software GL) waited for: n frames
+    // across the run (a figure for docs/replay.md; the browser's compositing is not counted)
+    drawCost: (n) => {
+      const gl = renderer.getContext();
+      const pixel = new Uint8Array(4);
+      const start = performance.now();
+      for (let i = 0; i < n; ++i) {
+        seek(t0 + ((t1 - t0) * i) / Math.max(n - 1, 1));
+        gl.readPixels(0, 0, 1, 1, gl.RGBA, gl.UNSIGNED_BYTE, pixel);  // waits for the frame
+      }
+      return (performance.now() - start) / n;
+    },
     frameCount: frames.length,
     startTime: t0,
     endTime: t1,
