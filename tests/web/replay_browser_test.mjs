@@ -128,6 +128,17 @@ try {
   }
   check(colours.size > 50, 'the screenshot is not blank', `${colours.size} colours in ${image.width}×${image.height} (${join(work, 'screenshot.png')})`);
 
+  // a click in the middle of the first plot moves the replay to the middle of its time axis
+  const box = await page.evaluate(`(() => { const r = document.querySelector('#mjarm-plots .u-over').getBoundingClientRect();
+    return { x: r.left + r.width / 2, y: r.top + r.height / 2 }; })()`);
+  for (const type of ['mouseMoved', 'mousePressed', 'mouseReleased']) {
+    await page.send('Input.dispatchMouseEvent', { type, x: box.x, y: box.y, button: 'left', clickCount: 1 });
+  }
+  const clicked = await page.evaluate('window.mjarmReplay.time()');
+  const middle = 0.5 * (info.times[0] + info.times[info.times.length - 1]);
+  check(Math.abs(clicked - middle) < 0.05 * (info.times[info.times.length - 1] - info.times[0]),
+        'a click on a plot moves the replay there', `t = ${clicked.toFixed(3)} s, the plot's middle ${middle.toFixed(3)} s`);
+
   // the arm's silhouette against mjarm's own EGL rendering of the same state from the same
   // camera (`mjarm render --only-subtree`): the moving arm, the subtree of the body its first
   // controlled joint moves
