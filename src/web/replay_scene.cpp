@@ -89,6 +89,8 @@ ReplayScene replay_scene(const mjModel& m) {
   json["geoms"] = nlohmann::json::array();
   json["meshes"] = nlohmann::json::array();
   std::map<int, int> mesh_index;  // model mesh id → index in "meshes"
+  json["textures"] = nlohmann::json::array();
+  std::map<int, int> texture_index;  // model texture id → index in "textures"
   for (int g = 0; g < m.ngeom; ++g) {
     if (!geom_drawn(m, g)) continue;
     const int type = m.geom_type[g];
@@ -102,21 +104,44 @@ ReplayScene replay_scene(const mjModel& m) {
     float rgba[4];
     geom_rgba(m, g, rgba);
     const int material = m.geom_matid[g];
+    // a plane's 2D texture (the floors' checker), its pixels embedded once; other geoms and
+    // other textures are drawn in their colour alone
+    int texture = -1;
+    const int tex = material >= 0 ? m.mat_texid[material * mjNTEXROLE + mjTEXROLE_RGB] : -1;
+    if (type == mjGEOM_PLANE && tex >= 0 && m.tex_type[tex] == mjTEXTURE_2D &&
+        (m.tex_nchannel[tex] == 3 || m.tex_nchannel[tex] == 4)) {
+      auto [where, added] = texture_index.emplace(tex, static_cast<int>(json["textures"].size()));
+      if (added) {
+        const std::size_t bytes = static_cast<std::size_t>(m.tex_width[tex]) *
+                                  static_cast<std::size_t>(m.tex_height[tex]) *
+                                  static_cast<std::size_t>(m.tex_nchannel[tex]);
+        json["textures"].push_back({{"width", m.tex_width[tex]},
+                                    {"height", m.tex_height[tex]},
+                                    {"channels", m.tex_nchannel[tex]},
+                                    {"data", base64(m.tex_data + m.tex_adr[tex], bytes)}});
+      }
+      texture = where->second;
+    }
     // MuJoCo's default material when the geom has none
     const float specular = material >= 0 ? m.mat_specular[material] : 0.5f;
     const float shininess = material >= 0 ? m.mat_shininess[material] : 0.5f;
     const float emission = material >= 0 ? m.mat_emission[material] : 0.0f;
-    json["geoms"].push_back({{"name", name_of(m, mjOBJ_GEOM, g, "geom")},
-                             {"type", geom_type_name(type)},
-                             {"body", m.geom_bodyid[g]},
-                             {"size", numbers(m.geom_size + 3 * g, 3)},
-                             {"pos", numbers(m.geom_pos + 3 * g, 3)},
-                             {"quat", numbers(m.geom_quat + 4 * g, 4)},
-                             {"rgba", numbers(rgba, 4)},
-                             {"specular", specular},
-                             {"shininess", shininess},
-                             {"emission", emission},
-                             {"mesh", mesh}});
+    json["geoms"].push_back(
+        {{"name", name_of(m, mjOBJ_GEOM, g, "geom")},
+         {"type", geom_type_name(type)},
+         {"body", m.geom_bodyid[g]},
+         {"size", numbers(m.geom_size + 3 * g, 3)},
+         {"pos", numbers(m.geom_pos + 3 * g, 3)},
+         {"quat", numbers(m.geom_quat + 4 * g, 4)},
+         {"rgba", numbers(rgba, 4)},
+         {"specular", specular},
+         {"shininess", shininess},
+         {"emission", emission},
+         {"mesh", mesh},
+         {"texture", texture},
+         {"texrepeat", material >= 0 ? numbers(m.mat_texrepeat + 2 * material, 2)
+                                     : nlohmann::json::array({1.0, 1.0})},
+         {"texuniform", material >= 0 && m.mat_texuniform[material] != 0}});
     ++scene.drawn_geoms;
   }
   scene.meshes = static_cast<int>(json["meshes"].size());

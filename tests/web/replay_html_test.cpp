@@ -40,10 +40,13 @@ constexpr const char* kReplayModel = R"(
   <option timestep="0.002"/>
   <asset>
     <material name="green" rgba="0 0.8 0 1"/>
+    <texture name="checker" type="2d" builtin="checker" width="8" height="8" rgb1="1 1 1"
+             rgb2="0 0 0"/>
+    <material name="floor" texture="checker" texrepeat="4 4"/>
     <mesh name="wedge" vertex="0 0 0  0.1 0 0  0 0.1 0  0 0 0.1"/>
   </asset>
   <worldbody>
-    <geom name="floor" type="plane" size="1 1 0.1"/>
+    <geom name="floor" type="plane" size="1 1 0.1" material="floor"/>
     <camera name="front" pos="0 -1.5 0.5" xyaxes="1 0 0 0 0.3 1"/>
     <body name="cube" pos="0.3 0 0.3">
       <freejoint name="cube_free"/>
@@ -283,6 +286,19 @@ TEST_F(ReplayHtml, GeomsAreDrawnInMujocosColours) {
   for (const json& g : scene.json["geoms"]) types.push_back(g["type"]);
   for (const char* type : {"plane", "box", "mesh", "capsule", "sphere", "cylinder", "ellipsoid"})
     EXPECT_NE(std::find(types.begin(), types.end(), type), types.end()) << type;
+  // the floor's checker: its pixels once, both colours in them, repeated as its material says
+  ASSERT_EQ(scene.json["textures"].size(), 1u);
+  const json& texture = scene.json["textures"][0];
+  const std::vector<unsigned char> pixels = unbase64(texture["data"]);
+  ASSERT_EQ(pixels.size(),
+            static_cast<std::size_t>(texture["width"].get<int>() * texture["height"].get<int>() *
+                                     texture["channels"].get<int>()));
+  EXPECT_NE(std::find(pixels.begin(), pixels.end(), 255), pixels.end());
+  EXPECT_NE(std::find(pixels.begin(), pixels.end(), 0), pixels.end());
+  for (const json& g : scene.json["geoms"]) {
+    EXPECT_EQ(g["texture"].get<int>(), g["name"] == "floor" ? 0 : -1) << g["name"];
+    if (g["name"] == "floor") EXPECT_FLOAT_EQ(g["texrepeat"][0].get<float>(), 4.0f);
+  }
   // the mesh's four vertices and faces are in the file
   const json& mesh = scene.json["meshes"][0];
   EXPECT_EQ(unbase64_floats(mesh["vert"]).size(), 12u);

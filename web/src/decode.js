@@ -30,6 +30,16 @@ export function readReplayData(elementId) {
     mesh.vert = floats(mesh.vert);
     mesh.face = uints(mesh.face);
   }
-  for (const series of data.series || []) series.values = floats(series.values);
+  for (const texture of data.textures || []) {
+    // RGB or RGBA bytes, row 0 first (as MuJoCo stores them), to RGBA
+    const bytes = bytesOf(texture.data);
+    const n = texture.width * texture.height;
+    const rgba = new Uint8Array(4 * n);
+    for (let i = 0; i < n; ++i) {
+      for (let k = 0; k < 3; ++k) rgba[4 * i + k] = bytes[texture.channels * i + k];
+      rgba[4 * i + 3] = texture.channels === 4 ? bytes[4 * i + 3] : 255;
+    }
+    texture.rgba = rgba;
+  }
   return data;
 }

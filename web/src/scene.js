@@ -39,9 +39,28 @@ function primitiveGeometry(geom, data) {
   }
 }
 
-function material(geom) {
+// A plane's texture, repeated as MuJoCo does: texrepeat times over the plane, or per metre when
+// the material is texuniform (the texture modulated by the colour, as MuJoCo draws it).
+function planeTexture(geom, data, geometry) {
+  if (geom.texture < 0) return null;
+  const t = data.textures[geom.texture];
+  const texture = new THREE.DataTexture(t.rgba, t.width, t.height, THREE.RGBAFormat);
+  texture.colorSpace = THREE.SRGBColorSpace;
+  texture.wrapS = texture.wrapT = THREE.RepeatWrapping;
+  texture.magFilter = THREE.LinearFilter;
+  texture.minFilter = THREE.LinearMipmapLinearFilter;
+  texture.generateMipmaps = true;
+  const {width, height} = geometry.parameters;
+  const [u, v] = geom.texrepeat;
+  texture.repeat.set(geom.texuniform ? u * width : u, geom.texuniform ? v * height : v);
+  texture.needsUpdate = true;
+  return texture;
+}
+
+function material(geom, data, geometry) {
   const [r, g, b, alpha] = geom.rgba;
   return new THREE.MeshPhongMaterial({
+    map: geom.type === 'plane' ? planeTexture(geom, data, geometry) : null,
     color: new THREE.Color().setRGB(r, g, b, THREE.SRGBColorSpace),
     emissive: new THREE.Color().setRGB(
         r * geom.emission, g * geom.emission, b * geom.emission, THREE.SRGBColorSpace),
@@ -72,7 +91,7 @@ export function buildScene(data) {
       skipped.push(geom.type);
       continue;
     }
-    const mesh = new THREE.Mesh(geometry, material(geom));
+    const mesh = new THREE.Mesh(geometry, material(geom, data, geometry));
     mesh.name = geom.name;
     mesh.position.fromArray(geom.pos);
     mesh.quaternion.set(geom.quat[1], geom.quat[2], geom.quat[3], geom.quat[0]);
