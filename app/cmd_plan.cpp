@@ -106,9 +106,9 @@ std::string plot_plan(const std::string& dir, const PlannedPath& p, double perio
 
 }  // namespace
 
-PlannedPath plan_path(const PlanCliOptions& o) {
+PlannedPath plan_path(const PlanCliOptions& o, std::optional<Robot> model) {
   const WaypointPath file = load_waypoints(o.waypoints);
-  PlannedPath out{load_model(o.model), std::nullopt, {}, {}, {}};
+  PlannedPath out{model ? std::move(*model) : load_model(o.model), std::nullopt, {}, {}, {}};
   std::string site = o.site.empty() && file.frame ? *file.frame : o.site;
   out.chain.emplace(out.robot, resolve_site(out.robot, site));
   const Chain& chain = *out.chain;

@@ -184,6 +184,7 @@ Command add_docking_subcommand(CLI::App& run) {
 Command add_plan_subcommand(CLI::App& run) {
   struct Options {
     PlanCliOptions plan;
+    std::string scene;
     std::string controller = "osc";
     SimulationCli sim;
     bool json = false;
@@ -198,6 +199,10 @@ Command add_plan_subcommand(CLI::App& run) {
   app->get_option("--waypoints")->required(false);
   app->add_option("--controller", o->controller, "ct | osc | task-pd | accel")
       ->capture_default_str();
+  app->add_option("--scene", o->scene,
+                  "a scene file (docs/scene.md) whose world the robot is placed in, at the "
+                  "origin: its fixtures, objects and other robots are obstacles to the plan, and "
+                  "a contact while tracking fails the run");
   add_simulation_options(*app, o->sim, "seed of the IK branches and detours",
                          "time the final target is held after the plan ends [s]");
   add_json_flag(*app, o->json);
@@ -206,8 +211,8 @@ Command add_plan_subcommand(CLI::App& run) {
             if (o->plan.waypoints.empty()) throw UsageError("run plan needs --waypoints FILE");
             const InterruptGuard interrupts;
             o->plan.seed = o->sim.seed;
-            run_plan_scenario(o->plan, o->controller, o->sim.settle_time, o->sim.control_period,
-                              o->sim.max_acceleration, o->json);
+            run_plan_scenario(o->plan, o->scene, o->controller, o->sim.settle_time,
+                              o->sim.control_period, o->sim.max_acceleration, o->json);
           }};
 }
 

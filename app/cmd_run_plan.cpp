@@ -1,6 +1,7 @@
-// `mjarm run plan ROBOT --waypoints FILE --controller NAME`: plans through the waypoints on the
-// robot's torque-motor model and tracks the plan in simulation under the chosen controller,
-// reporting the tracking error of the tool frame (docs/planning.md).
+// `mjarm run plan ROBOT --waypoints FILE --controller NAME [--scene FILE]`: plans through the
+// waypoints on the robot's torque-motor model (in a scene file's world of obstacles, if given) and
+// tracks the plan in simulation under the chosen controller, reporting the tracking error of the
+// tool frame and any contact the robot made (docs/planning.md).
 
 #include <iostream>
 #include <memory>
@@ -12,9 +13,28 @@
 
 namespace mjarm::cli {
 
-void run_plan_scenario(const PlanCliOptions& given, const std::string& controller_name,
-                       double settle_time, double control_period, double max_acceleration,
-                       bool json) {
+namespace {
+
+/// "none", or where the robot first touched something, how often and how deep.
+std::string contacts_text(const TrackingContacts& c) {
+  if (!c.any()) return "none";
+  return c.first_pair + " at t = " + fixed(c.first_time, 3) + " s; " + std::to_string(c.ticks) +
+         " ticks with a contact, deepest " + fixed(-c.deepest.distance * 1e3, 3) + " mm";
+}
+
+Json contacts_json(const TrackingContacts& c) {
+  if (!c.any()) return Json{{"ticks", 0}};
+  return Json{{"ticks", c.ticks},
+              {"first_time", c.first_time},
+              {"first_pair", c.first_pair},
+              {"deepest_penetration", -c.deepest.distance}};
+}
+
+}  // namespace
+
+void run_plan_scenario(const PlanCliOptions& given, const std::string& scene,
+                       const std::string& controller_name, double settle_time,
+                       double control_period, double max_acceleration, bool json) {
   std::vector<std::string> robots;
   for (const ShelfPickRobot& r : shelf_pick_robots()) robots.push_back(r.name);
   if (given.model.empty())
@@ -32,10 +52,11 @@ void run_plan_scenario(const PlanCliOptions& given, const std::string& controlle
     throw UsageError(e.what());
   }
   if (!(settle_time >= 0.0)) throw UsageError("--settle-time must be >= 0");
+  PlannedMotionWorld world = planned_motion_world(*robot, scene);
   PlanCliOptions options = given;
   options.model = robot->model;
-  if (options.site.empty()) options.site = robot->frame;
-  const PlannedPath plan = plan_path(options);
+  if (options.site.empty()) options.site = world.frame;
+  const PlannedPath plan = plan_path(options, std::move(world.model));
   if (!plan.result.ok()) {
     if (json) {
       print_json(plan_json(plan));
@@ -65,7 +86,9 @@ void run_plan_scenario(const PlanCliOptions& given, const std::string& controlle
                       {"rms_position_error", e.rms_position},
                       {"final_position_error", e.final_position},
                       {"max_orientation_error", e.max_orientation},
-                      {"final_orientation_error", e.final_orientation}};
+                      {"final_orientation_error", e.final_orientation},
+                      {"contacts", contacts_json(tracked.contacts)}};
+    if (!scene.empty()) doc["scene"] = scene;
     print_json(doc);
   } else {
     print_plan(std::cout, plan);
@@ -80,12 +103,15 @@ void run_plan_scenario(const PlanCliOptions& given, const std::string& controlle
                                           fixed(e.final_orientation * 1e3, 3)},
          {"simulated [s]", fixed(run.end_time, 3) + " (plan " +
                                fixed(plan.result.trajectory.duration(), 3) + " s + settle " +
-                               compact(settle_time) + " s)"}},
+                               compact(settle_time) + " s)"},
+         {"contacts", contacts_text(tracked.contacts)}},
         2);
   }
   if (!run.ok())
     throw Error("the tracking run ended " + std::string(to_string(run.status)) + ": " +
                 run.message);
+  if (tracked.contacts.any())
+    throw Error("the tracked robot touched " + contacts_text(tracked.contacts));
 }
 
 }  // namespace mjarm::cli

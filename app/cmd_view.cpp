@@ -6,8 +6,10 @@
 
 #include "commands.hpp"
 #include "field_options.hpp"
+#include "mjarm/interrupt.hpp"
 #include "mjarm/lie/rotation.hpp"
 #include "mjarm/teleop/viewer.hpp"
+#include "mjarm/teleop/web_viewer.hpp"
 #include "output.hpp"
 
 namespace mjarm::cli {
@@ -28,6 +30,11 @@ struct ViewOptions {
   double render_hz = 60.0;
   double input_hz = 20.0;
   double speed = 1.0;
+  bool web = false;
+  std::string host = "127.0.0.1";
+  int port = 0;
+  bool token = false;
+  double duration = 0.0;
   bool json = false;
 };
 
@@ -164,7 +171,80 @@ void print_hands_report(const Robot& robot, const ViewerReport& report) {
   }
 }
 
+/// `mjarm view MODEL --web`: the session in real time behind the live server until --duration or
+/// Ctrl-C; the address (with its token) is printed once on stderr when the server listens.
+void run_web_view(const ViewOptions& o, const Robot& robot, const ViewerSessionOptions& session) {
+  ViewerSession viewer(robot, session);
+  WebViewerOptions options;
+  options.server.host = o.host;
+  options.server.port = o.port;
+  options.server.require_token = o.token;
+  options.speed = o.speed;
+  options.frame_rate = o.render_hz;
+  options.duration = o.duration;
+  const InterruptGuard interrupts;
+  const WebViewerReport r = run_web_viewer(viewer, options, [&](const LiveServer& server) {
+    std::cerr << "mjarm view: " << robot.name() << " live at " << server.url()
+              << (server.token().empty() ? "" : " (the token is needed: keep the address private)")
+              << (o.duration > 0.0 ? "" : "; Ctrl-C stops") << std::endl;
+  });
+  const ViewerStats& s = r.stats;
+  if (o.json) {
+    print_json(
+        {{"model", robot.name()},
+         {"ended_by", r.ended_by},
+         {"mode", to_string(s.mode)},
+         {"frames", r.frames},
+         {"control_ticks", r.ticks},
+         {"sim_time", r.sim_time},
+         {"wall_seconds", r.wall_seconds},
+         {"real_time_factor", r.real_time_factor()},
+         {"dropped_sim_time", r.dropped},
+         {"messages",
+          {{"applied", r.applied}, {"refused", r.refused}, {"last_refusal", r.last_refusal}}},
+         {"server",
+          {{"pages", r.server.pages},
+           {"connections", r.server.connections},
+           {"clients", r.server.clients},
+           {"published", r.server.published},
+           {"sent", r.server.sent},
+           {"skipped", r.server.skipped},
+           {"refused", r.server.refused},
+           {"received", r.server.received},
+           {"inbox_dropped", r.server.inbox_dropped}}},
+         {"end_effector", pose_summary(s.X_WE)},
+         {"target", pose_summary(s.X_WT)},
+         {"fault", s.faulted ? Json(s.fault) : Json(nullptr)}});
+  } else {
+    print_fields(
+        std::cout,
+        {{"model", robot.name()},
+         {"ended by", r.ended_by},
+         {"mode", to_string(s.mode)},
+         {"simulated", fixed(r.sim_time, 3) + " s in " + fixed(r.wall_seconds, 2) +
+                           " s (real-time factor " + fixed(r.real_time_factor(), 3) + ")"},
+         {"frames", std::to_string(r.frames) + " published, " + std::to_string(r.server.sent) +
+                        " sent, " + std::to_string(r.server.skipped) + " skipped"},
+         {"browsers", std::to_string(r.server.connections) + " connected, " +
+                          std::to_string(r.server.refused) + " refused"},
+         {"messages", std::to_string(r.applied) + " applied, " + std::to_string(r.refused) +
+                          " refused" + (r.last_refusal.empty() ? "" : " (" + r.last_refusal + ")")},
+         {"end effector", vector_text(s.X_WE.p)},
+         {"target", vector_text(s.X_WT.p)}});
+  }
+  if (r.signal != 0)
+    throw InterruptedError("view: interrupted after " + std::to_string(r.frames) + " frames",
+                           r.signal);
+}
+
 void run_view(const ViewOptions& o) {
+  if (o.web && (!o.script.empty() || o.frames >= 0 || !o.screenshot.empty() ||
+                !o.record_session.empty() || !o.set.empty()))
+    throw UsageError(
+        "view: --web is driven from the browser: --script, --frames, --screenshot, "
+        "--record-session and --set belong to the window");
+  if (!o.web && (o.port != 0 || o.token || o.duration != 0.0 || o.host != "127.0.0.1"))
+    throw UsageError("view: --host, --port, --token and --duration go with --web");
   if (!o.screenshot.empty()) check_output_file(o.screenshot, "--screenshot");
   if (!o.record_session.empty()) check_output_file(o.record_session, "--record-session");
   const Robot robot = load_model(o.model);
@@ -176,6 +256,12 @@ void run_view(const ViewOptions& o) {
   if (!o.record_session.empty() && !options.several_hands) {
     throw UsageError("view: --record-session records sessions of several hands (e.g. dual_arm); '" +
                      robot.name() + "' has one end effector");
+  }
+  if (o.web) {
+    if (options.several_hands)
+      throw UsageError("view: --web drives one arm's panel; '" + robot.name() +
+                       "' has several hands");
+    return run_web_view(o, robot, options.session);
   }
   if (options.several_hands && !o.site.empty()) {
     throw UsageError("view: --site chooses the end effector of one arm; '" + robot.name() +
@@ -300,6 +386,19 @@ Command add_view_command(CLI::App& root) {
   app->add_option("--speed", options->speed,
                   "simulated seconds per wall-clock second, 0.01 to 100; default 1")
       ->check(number_in(0.01, 100.0));
+  app->add_flag("--web", options->web,
+                "no window: serve the viewer to a browser (a page at http://127.0.0.1:PORT/, the "
+                "state streamed over a WebSocket, the sliders sent back) while the simulation "
+                "runs in real time; the address is printed on stderr");
+  app->add_option("--host", options->host,
+                  "--web: the interface to listen on; default 127.0.0.1 (reach it through an SSH "
+                  "tunnel); any other needs the access token printed at start");
+  app->add_option("--port", options->port, "--web: the TCP port; default 0, a free one")
+      ->check(CLI::Range(0, 65535));
+  app->add_flag("--token", options->token, "--web: require the access token on 127.0.0.1 too");
+  app->add_option("--duration", options->duration,
+                  "--web: wall-clock seconds to serve, 0 to 10⁶; default 0, until Ctrl-C")
+      ->check(number_in(0.0, 1e6));
   add_json_flag(*app, options->json);
   return {app, [options] { run_view(*options); }};
 }

@@ -92,9 +92,10 @@ struct PlannedPath {
   std::vector<Pose> poses;
   PlanResult result;
 };
-/// Loads the model and the waypoint file, and plans (start: --q, --key, else keyframe 'home').
+/// Loads the model (@p model when given, else options.model) and the waypoint file, and plans
+/// (start: --q, --key, else keyframe 'home').
 /// @throws UsageError for limit lists of the wrong length; Error for bad files or models.
-PlannedPath plan_path(const PlanCliOptions& options);
+PlannedPath plan_path(const PlanCliOptions& options, std::optional<Robot> model = std::nullopt);
 /// The plan as JSON / as a table of per-waypoint checks.
 Json plan_json(const PlannedPath& plan);
 void print_plan(std::ostream& os, const PlannedPath& plan);
@@ -111,11 +112,12 @@ void add_cartesian_options(CLI::App& app, CartesianCliOptions& options);
 /// @throws Error when the path is not complete (after printing); UsageError for bad options.
 void run_cartesian_plan(const PlanCliOptions& options, const CartesianCliOptions& cartesian,
                         bool json);
-/// `mjarm run plan ROBOT --waypoints F --controller C` (cmd_run_plan.cpp).
+/// `mjarm run plan ROBOT --waypoints F --controller C [--scene S]` (cmd_run_plan.cpp).
+/// @param scene a scene file whose world the robot is placed in (empty: none)
 /// @param control_period, max_acceleration as `SimulationOptions` (0: one physics step)
-void run_plan_scenario(const PlanCliOptions& options, const std::string& controller,
-                       double settle_time, double control_period, double max_acceleration,
-                       bool json);
+void run_plan_scenario(const PlanCliOptions& options, const std::string& scene,
+                       const std::string& controller, double settle_time, double control_period,
+                       double max_acceleration, bool json);
 
 /// What `mjarm run docking` reads from the command line besides the shared run options.
 struct DockingCliOptions {

@@ -29,6 +29,8 @@ packages=(
   libegl-dev libgl-dev libopengl-dev libegl-mesa0 libgl1-mesa-dri libpng-dev ffmpeg
   # interactive viewer (part of the default build): GLFW windows
   libglfw3-dev
+  # the live web view's HTTP and WebSocket server (`mjarm view --web`): Boost.Beast, headers only
+  libboost-dev
   # plots of a recording (`mjarm plot`, the demo)
   gnuplot-nox
   # the project's virtual environment (MuJoCo, NumPy, pybind11, pytest from PyPI, pinned) on

@@ -11,6 +11,7 @@ PlannedMotionOptions planned_motion_options(const PlanParameters& p) {
   PlannedMotionOptions o;
   o.robot = p.robot;
   o.waypoints = p.waypoints;
+  o.scene = p.scene;
   o.seed = static_cast<std::uint64_t>(p.seed);
   o.min_sigma = p.min_sigma;
   o.tracking.controller = p.controller;
@@ -48,8 +49,8 @@ class PlanScenario final : public DeclaredScenario<PlanParameters> {
     return list;
   }
   const std::vector<std::string>& verdicts() const override {
-    static const std::vector<std::string> list{"tracked", "not_planned", "diverged", "bad_command",
-                                               "interrupted"};
+    static const std::vector<std::string> list{"tracked",  "not_planned", "collided",
+                                               "diverged", "bad_command", "interrupted"};
     return list;
   }
 
@@ -66,9 +67,13 @@ class PlanScenario final : public DeclaredScenario<PlanParameters> {
       return out;
     }
     const RunResult& run = r.tracked.run;
-    const bool tracked = run.ok();
-    TrialOutcome out =
-        detail::outcome_of(run, tracked ? "tracked" : to_string(run.status), tracked);
+    const bool touched = r.tracked.contacts.any();
+    const bool tracked = run.ok() && !touched;
+    TrialOutcome out = detail::outcome_of(
+        run, tracked ? "tracked" : (run.ok() ? "collided" : to_string(run.status)), tracked);
+    if (run.ok() && touched)
+      out.message = "the robot touched " + r.tracked.contacts.first_pair +
+                    " at t = " + std::to_string(r.tracked.contacts.first_time) + " s";
     const TrackingError& e = r.tracked.tracking;
     out.metrics = {r.plan.result.trajectory.duration(),
                    e.max_position,

@@ -161,6 +161,33 @@ fixtures:
       2, "--planner: 'rrt' is not waypoint, ompl:rrtconnect");
 }
 
+TEST(RunPlanCli, PlansAroundASceneFilesObstacleAndTracksWithoutAContact) {
+  const std::string scene = plan_file("run_plan_wall.yaml", R"(name: run_plan_wall
+fixtures:
+  - {name: wall, shape: box, size: [0.08, 0.08, 0.08], mass: 1, pos: [0.22, 0.22, 0.55]}
+)");
+  const std::string left =
+      plan_file("run_left.json", R"({"waypoints": [{"position": [-0.0089, 0.3067, 0.59]}]})");
+  const json doc = run_json({"run", "plan", "panda", "--scene", scene, "--waypoints", left,
+                             "--planner", "ompl:rrtconnect", "--controller", "ct", "--json"});
+  EXPECT_EQ(doc["status"], "ok");
+  EXPECT_EQ(doc["scene"], scene);
+  EXPECT_EQ(doc["frame"], "panda/attachment_site");
+  EXPECT_TRUE(doc["waypoints"][0]["detour"].get<bool>()) << doc.dump();
+  EXPECT_EQ(doc["run"]["status"], "finished");
+  EXPECT_EQ(doc["run"]["contacts"]["ticks"], 0);
+  EXPECT_LT(doc["run"]["max_position_error"].get<double>(), 0.01);
+  const CliRun text = run_cli({"run", "plan", "panda", "--scene", scene, "--waypoints", left,
+                               "--planner", "ompl:rrtconnect", "--controller", "ct"});
+  EXPECT_EQ(text.exit_code, 0) << text.err;
+  EXPECT_NE(text.out.find("contacts                  none"), std::string::npos) << text.out;
+  // a scene file holding the robot already: both named
+  const std::string twice =
+      plan_file("run_plan_twice.yaml", "name: twice\nrobots:\n  - {name: panda, model: panda}\n");
+  expect_error({"run", "plan", "panda", "--scene", twice, "--waypoints", left}, 1,
+               "cannot join the scene file " + twice);
+}
+
 TEST(RunPlanCli, TracksThePlanAndReportsTheError) {
   const json doc = run_json({"run", "plan", "panda", "--waypoints", plan_file("five.json", kFive),
                              "--controller", "osc", "--json"});

@@ -16,6 +16,7 @@ namespace mjarm {
 struct PlanParameters {
   std::string robot = PlannedMotionOptions{}.robot;
   std::string waypoints;  ///< the waypoint file (JSON or CSV)
+  std::string scene;      ///< a scene file of obstacles (empty: none)
   std::string controller = TrackingOptions{}.controller;
   std::int64_t seed = 1;
   double min_sigma = PlannedMotionOptions{}.min_sigma;
@@ -29,6 +30,8 @@ constexpr auto declared_fields(const PlanParameters*) {
   return declare<S>(
       "plan", field("robot", &S::robot, "planar2 | panda"),
       field("waypoints", &S::waypoints, "the waypoint file, JSON or CSV (docs/planning.md)"),
+      field("scene", &S::scene,
+            "a scene file whose fixtures and objects are obstacles (empty: the robot alone)"),
       field("controller", &S::controller, "ct | osc | task-pd | accel"),
       field("seed", &S::seed, "", Range::non_negative(), "the IK branches and detours"),
       field("min_sigma", &S::min_sigma, "", Range::non_negative(),

@@ -1,0 +1,13 @@
+#pragma once
+/// @file
+/// The page `mjarm view --web` serves: the bodies drawn from the streamed frames, the panel's
+/// sliders and modes from the greeting, each move sent back as a message (web_viewer.hpp).
+
+#include <string>
+
+namespace mjarm {
+
+/// The whole page, one self-contained HTML file (no network beyond its own server).
+const std::string& web_viewer_page();
+
+}  // namespace mjarm
