@@ -81,7 +81,7 @@ function start() {
   const overlays = buildOverlays(data, scene);
   // multisampling costs software GL (SwiftShader, llvmpipe: no GPU) more than a frame's budget
   const software = softwareGl();
-  const renderer = new THREE.WebGLRenderer({antialias: !software, preserveDrawingBuffer: true});
+  const renderer = new THREE.WebGLRenderer({antialias: !software});
   // at most 2 device pixels per CSS pixel: software GL fills every one of them
   const fullRatio = Math.min(window.devicePixelRatio || 1, 2);
   renderer.setPixelRatio(fullRatio);
@@ -166,15 +166,22 @@ function start() {
     }
   }
 
+  let lastPanel = 0;
   function draw() {
     frame = poseBodies(data, bodies, t);
     overlays.update(frame);
     const cam = placeCamera();
     renderer.render(scene, cam);
     ++renders;
-    ui.scrub.value = t;
-    ui.time.textContent = `${t.toFixed(3)} / ${t1.toFixed(3)} s  #${frame}`;
-    plots.cursor(t);
+    // the bar and the plots' cursors at most 15 times a second while playing: each change of the
+    // page is painted again, which software GL pays for as much as the 3D view
+    const now = performance.now();
+    if (!playing || now - lastPanel > 66) {
+      lastPanel = now;
+      ui.scrub.value = t;
+      ui.time.textContent = `${t.toFixed(3)} / ${t1.toFixed(3)} s  #${frame}`;
+      plots.cursor(t);
+    }
   }
 
   function seek(time) {
@@ -190,15 +197,30 @@ function start() {
     // software GL fills pixels slowly: while playing it draws a quarter of them (half in each
     // direction); paused, seeking or stepping, the view is sharp again
     if (software) {
-      renderer.setPixelRatio(playing ? 0.5 * fullRatio : fullRatio);
+      renderer.setPixelRatio(playing ? playRatio : fullRatio);
       resize();
       draw();
     }
   }
 
+  // software GL: while playing, the resolution steps down (to a quarter in each direction at
+  // most) as long as frames come slower than 60 per second
+  let playRatio = 0.5 * fullRatio, slowFrames = 0;
+  function adaptResolution(interval) {
+    slowFrames = interval > 1000 / 55 ? slowFrames + 1 : 0;
+    if (slowFrames < 10 || playRatio <= 0.25 * fullRatio) return;
+    slowFrames = 0;
+    playRatio = Math.max(0.25 * fullRatio, 0.8 * playRatio);
+    renderer.setPixelRatio(playRatio);
+    resize();
+  }
+
   function loop(clock) {
     if (playing) {
-      if (lastClock !== null) t += ((clock - lastClock) / 1000) * speed;
+      if (lastClock !== null) {
+        t += ((clock - lastClock) / 1000) * speed;
+        if (software) adaptResolution(clock - lastClock);
+      }
       lastClock = clock;
       if (t >= t1) {
         t = t1;
