@@ -286,6 +286,7 @@ Command add_bench_command(CLI::App& root) {
   const Command control = add_control_subcommand(*bench);
   const Command otg = add_bench_otg_subcommand(
       *bench, [] { return g_heap_allocations.load(std::memory_order_relaxed); });
+  const Command otg_brake = add_bench_otg_brake_subcommand(*bench);
   const Command topp = add_bench_topp_subcommand(
       *bench, [] { return g_heap_allocations.load(std::memory_order_relaxed); });
   const Command traj = add_bench_traj_subcommand(
@@ -296,9 +297,11 @@ Command add_bench_command(CLI::App& root) {
   const Command diffik = add_bench_diffik_subcommand(*bench);
   const Command analytic = add_bench_analytic_ik_subcommand(*bench);
 
-  return {bench, [options, app, control, otg, topp, traj, plan, ompl, env, diffik, analytic] {
+  return {bench,
+          [options, app, control, otg, otg_brake, topp, traj, plan, ompl, env, diffik, analytic] {
             if (control.app->parsed()) return control.run();
             if (otg.app->parsed()) return otg.run();
+            if (otg_brake.app->parsed()) return otg_brake.run();
             if (topp.app->parsed()) return topp.run();
             if (traj.app->parsed()) return traj.run();
             if (plan.app->parsed()) return plan.run();

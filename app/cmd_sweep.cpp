@@ -14,6 +14,7 @@
 #include "mjarm/model/user_file.hpp"
 #include "mjarm/sweep/local_backend.hpp"
 #include "mjarm/sweep/slurm_backend.hpp"
+#include "mjarm/sweep/sweep_dashboard.hpp"
 #include "mjarm/sweep/sweep_plots.hpp"
 #include "mjarm/sweep/sweep_report.hpp"
 #include "mjarm/version.hpp"
@@ -219,6 +220,7 @@ Command add_sweep_command(CLI::App& root) {
     SlurmCli slurm;
     std::string plot;
     std::vector<std::string> heat_map;
+    std::string html;
   };
   auto o = std::make_shared<Options>();
   CLI::App* sweep = root.add_subcommand(
@@ -285,6 +287,11 @@ Command add_sweep_command(CLI::App& root) {
       ->add_option("--heat-map", o->heat_map,
                    "the heat map's axes X Y (default: the first two axes with several values)")
       ->expected(2);
+  report->add_option("--html", o->html,
+                     "write the dashboard, one self-contained HTML file: success per axis with "
+                     "intervals, a heat map over two axes chosen on the page, the metrics' "
+                     "distributions, the trials filtered, a recorded trial's replay, recording "
+                     "and video linked (docs/sweep.md)");
   add_json_flag(*report, o->json);
 
   CLI::App* shard = sweep->add_subcommand(
@@ -411,6 +418,7 @@ Command add_sweep_command(CLI::App& root) {
               const SweepReport r = sweep_report(folder);
               if (!o->heat_map.empty() && o->plot.empty())
                 throw UsageError("--heat-map needs --plot DIR");
+              if (!o->html.empty()) check_output_file(o->html, "--html");
               std::vector<plot::PlotInfo> figures;
               if (!o->plot.empty()) {
                 check_output_folder(o->plot, "--plot");
@@ -418,15 +426,26 @@ Command add_sweep_command(CLI::App& root) {
                 plot_options.heat_map = o->heat_map;
                 figures = plot_sweep(folder, o->plot, plot_options);
               }
+              std::optional<SweepDashboard> dashboard;
+              if (!o->html.empty()) dashboard = write_sweep_dashboard(folder, o->html);
               if (o->json) {
                 Json doc = sweep_report_json(r);
                 Json paths = Json::array();
                 for (const plot::PlotInfo& f : figures) paths.push_back(f.path.string());
                 doc["figures"] = paths;
+                if (dashboard)
+                  doc["dashboard"] = {{"path", dashboard->path.string()},
+                                      {"trials", dashboard->trials},
+                                      {"recorded", dashboard->recorded},
+                                      {"bytes", dashboard->bytes}};
                 return print_json(doc);
               }
               for (const plot::PlotInfo& f : figures)
                 std::cout << "figure: " << f.path.string() << "\n";
+              if (dashboard)
+                std::cout << "dashboard: " << dashboard->path.string() << " (" << dashboard->trials
+                          << " trials, " << dashboard->recorded << " recorded, "
+                          << (dashboard->bytes + 1023) / 1024 << " KiB)\n";
               std::cout << "sweep " << r.scenario << " (plan " << r.hash << "): success "
                         << rate_text(r.success)
                         << (r.success.trials < r.planned

@@ -39,6 +39,8 @@ Command add_ik_command(CLI::App& root);             ///< `mjarm ik MODEL …` (c
 Command add_bench_command(CLI::App& root);          ///< `mjarm bench ik MODEL …` (cmd_bench.cpp)
 /// `mjarm bench otg …` on @p bench (cmd_bench_otg.cpp); @p allocations counts heap allocations.
 Command add_bench_otg_subcommand(CLI::App& bench, std::function<std::uint64_t()> allocations);
+/// `mjarm bench otg-brake …` on @p bench (cmd_bench_otg_brake.cpp).
+Command add_bench_otg_brake_subcommand(CLI::App& bench);
 /// `mjarm bench topp …` on @p bench (cmd_bench_topp.cpp); @p allocations as above.
 Command add_bench_topp_subcommand(CLI::App& bench, std::function<std::uint64_t()> allocations);
 /// `mjarm bench traj …` on @p bench (cmd_bench_motion.cpp); @p allocations as above.

@@ -4,8 +4,9 @@
 Protocol: `mjarm view MODEL --web --duration SECONDS --json` runs twice on this machine, once with
 no client and once with a client that completes the WebSocket handshake, shrinks its receive
 buffer to 4 KiB and never reads again (a browser tab frozen in a debugger). Each run prints its
-real-time factor (simulated time / wall time), the frames published, sent and skipped. The
-stalled client must cost the simulation nothing: both factors near 1.
+real-time factor (simulated time / wall time), the frames published, sent and skipped, and the
+clients still connected at the end (the server closes one that has not answered its pings for
+20 s). The stalled client must cost the simulation nothing: both factors near 1.
 
     python3 bench/web_stalled_client.py build-demo/mjarm [--model panda] [--seconds 10] [--json]
 """
@@ -35,8 +36,9 @@ def start_viewer(mjarm, model, seconds):
 
 def stalled_client(host, port):
     """A WebSocket client that shakes hands and then never reads."""
-    sock = socket.create_connection((host, port))
-    sock.setsockopt(socket.SOL_SOCKET, socket.SO_RCVBUF, 4096)
+    sock = socket.socket(socket.AF_INET, socket.SOCK_STREAM)
+    sock.setsockopt(socket.SOL_SOCKET, socket.SO_RCVBUF, 4096)  # before connecting: a small window
+    sock.connect((host, port))
     key = base64.b64encode(os.urandom(16)).decode()
     sock.sendall((f"GET /ws HTTP/1.1\r\nHost: {host}:{port}\r\nUpgrade: websocket\r\n"
                   f"Connection: Upgrade\r\nSec-WebSocket-Key: {key}\r\n"
@@ -66,7 +68,7 @@ def run(mjarm, model, seconds, stall):
             "sim_time": report["sim_time"], "wall_seconds": report["wall_seconds"],
             "dropped_sim_time": report["dropped_sim_time"], "published": server["published"],
             "sent": server["sent"], "skipped": server["skipped"],
-            "connections": server["connections"]}
+            "connections": server["connections"], "clients_at_end": server["clients"]}
 
 
 def main():
@@ -84,11 +86,11 @@ def main():
         return
     print(f"mjarm view {args.model} --web, {args.seconds:g} s each")
     print(f"{'client':<16}{'real-time factor':>18}{'dropped [s]':>13}{'published':>11}"
-          f"{'sent':>8}{'skipped':>9}")
+          f"{'sent':>8}{'skipped':>9}{'connected at end':>18}")
     for r in runs:
         name = "stalled" if r["stalled_client"] else "none"
         print(f"{name:<16}{r['real_time_factor']:>18.4f}{r['dropped_sim_time']:>13.3f}"
-              f"{r['published']:>11}{r['sent']:>8}{r['skipped']:>9}")
+              f"{r['published']:>11}{r['sent']:>8}{r['skipped']:>9}{r['clients_at_end']:>18}")
 
 
 if __name__ == "__main__":

@@ -13,16 +13,23 @@ The window runs in a thread of its own; ``sync()`` copies the state under a lock
 never waiting for a frame. Double-click selects a body; Ctrl + right drag pulls it, Ctrl + left
 drag turns it, through the data's ``xfrc_applied`` (written at each ``sync``, zeroed when the drag
 ends), as MuJoCo's simulate does. See docs/viewer.md.
+
+Without a display, ``launch_passive(model, data, web=True)`` serves the bodies to a browser
+instead: open ``viewer.url`` (127.0.0.1; ``host="0.0.0.0"`` needs the token within the url).
+``sync()`` publishes the poses and returns at once; it draws no markers or plots.
 """
 from . import _mjarm
 
-__all__ = ["launch_passive", "PassiveViewer", "PassiveViewerOptions"]
+__all__ = ["launch_passive", "PassiveViewer", "PassiveViewerOptions", "PassiveWebViewer",
+           "LiveServerOptions"]
 
 PassiveViewer = _mjarm.PassiveViewer
 PassiveViewerOptions = _mjarm.PassiveViewerOptions
+PassiveWebViewer = _mjarm.PassiveWebViewer
+LiveServerOptions = _mjarm.LiveServerOptions
 
 
-def launch_passive(model, data=None, *, camera=None, script=None, **options):
+def launch_passive(model, data=None, *, web=False, camera=None, script=None, **options):
     """Opens a passive viewer on ``model`` (an ``mjarm.Robot`` or ``mujoco.MjModel``) showing
     ``data`` (an ``mjarm.Data`` or ``mujoco.MjData``) — or on an ``mjarm.Simulation`` alone, its
     robot and data.
@@ -32,6 +39,10 @@ def launch_passive(model, data=None, *, camera=None, script=None, **options):
     ``render_hz``, ``title``, ``show_figures``, ``figure_seconds``, ``max_markers``).
     Returns the ``PassiveViewer``, a context manager that closes the window on leaving the block.
     Raises ``mjarm.Error`` when there is no display (set DISPLAY or run under xvfb-run).
+
+    ``web=True``: no window; a ``PassiveWebViewer`` serving the bodies to browsers at its ``url``,
+    its options ``LiveServerOptions`` fields by keyword (``host``, ``port``, ``require_token``,
+    ``send_rate``, ...).
     """
     if isinstance(model, _mjarm.Simulation):
         if data is not None:
@@ -39,6 +50,10 @@ def launch_passive(model, data=None, *, camera=None, script=None, **options):
         model, data = model.robot, model.data
     elif data is None:
         raise TypeError("launch_passive(model, data): the data to show is missing")
+    if web:
+        if camera is not None or script is not None:
+            raise TypeError("launch_passive(web=True) draws no camera view and runs no script")
+        return PassiveWebViewer(model, data, LiveServerOptions(**options))
     opts = PassiveViewerOptions(**options)
     if camera is not None:
         opts.camera = camera

@@ -185,6 +185,11 @@ void bind_motion(py::module_& m) {
       m, "DockingSearchOptions", "Miss detection and the search for the hole (docs/docking.md).");
   fields_init<DockingSearchOptions>(search, "DockingSearchOptions");
   def_fields(search);
+  auto centring = py::class_<DockingCentringOptions>(
+      m, "DockingCentringOptions",
+      "Centring in the bore from the contact excursion (docs/docking.md).");
+  fields_init<DockingCentringOptions>(centring, "DockingCentringOptions");
+  def_fields(centring);
   auto motion = py::class_<DockingMotion>(m, "DockingMotion",
                                           "Timing [s] and sizes [m] of the motion, the preload.");
   fields_init<DockingMotion>(motion, "DockingMotion");

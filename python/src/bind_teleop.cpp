@@ -2,6 +2,7 @@
 #include "bindings.hpp"
 #include "declared_fields.hpp"
 #include "mjarm/teleop/passive_viewer.hpp"
+#include "mjarm/teleop/passive_web_viewer.hpp"
 #include "spec_support.hpp"
 
 namespace mjarm::python {
@@ -144,6 +145,54 @@ void bind_teleop(py::module_& m) {
                              "the body the mouse selected (0: none)")
       .def_property_readonly("perturbing", &PassiveViewer::perturbing,
                              "whether a Ctrl drag pulls or turns the selected body now");
+
+  auto server_options = py::class_<LiveServerOptions>(
+      m, "LiveServerOptions",
+      "Where the web viewer listens and how it sends (127.0.0.1 by default; any other interface "
+      "needs the access token printed within its url).");
+  fields_init<LiveServerOptions>(server_options, "LiveServerOptions");
+  def_fields(server_options);
+  py::class_<PassiveWebViewer>(
+      m, "PassiveWebViewer",
+      "The passive viewer for machines without a display: your loop steps the data and calls "
+      "sync(); every browser at url sees the bodies move. sync() never waits for a browser. A "
+      "context manager: leaving the block stops serving. Prefer mjarm.viewer.launch_passive(..., "
+      "web=True).")
+      .def(py::init(
+               [](const Robot& robot, const DataHandle& data, const LiveServerOptions& options) {
+                 return std::make_unique<PassiveWebViewer>(
+                     robot, data_of(robot, data, "PassiveWebViewer"), options);
+               }),
+           py::arg("robot"), py::arg("data"), py::arg("options") = LiveServerOptions{},
+           py::keep_alive<1, 3>(),
+           "Serves robot's bodies as data holds them. Raises mjarm.Error when the data is "
+           "another model's or the address cannot be listened on.")
+      .def("sync", &PassiveWebViewer::sync,
+           "Publishes the data's time and body poses (as the last mj_step or mj_forward left "
+           "them) to every browser; returns at once.")
+      .def("is_running", &PassiveWebViewer::running, "False once closed.")
+      .def("close", &PassiveWebViewer::close, "Stops serving; the browsers are disconnected.")
+      .def("__enter__", [](PassiveWebViewer& v) -> PassiveWebViewer& { return v; })
+      .def("__exit__", [](PassiveWebViewer& v, const py::args&) { v.close(); })
+      .def_property_readonly("url", &PassiveWebViewer::url,
+                             "the page's address, with ?token=... when one is needed")
+      .def_property_readonly("syncs", &PassiveWebViewer::syncs, "states published so far")
+      .def_property_readonly(
+          "stats",
+          [](const PassiveWebViewer& v) {
+            const LiveServerStats s = v.stats();
+            py::dict d;
+            d["clients"] = s.clients;
+            d["connections"] = s.connections;
+            d["published"] = s.published;
+            d["sent"] = s.sent;
+            d["skipped"] = s.skipped;
+            d["refused"] = s.refused;
+            d["pages"] = s.pages;
+            return d;
+          },
+          "what the server did: clients now, connections, frames published, sent and skipped, "
+          "requests refused, pages served");
 }
 
 }  // namespace mjarm::python

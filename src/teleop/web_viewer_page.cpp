@@ -19,7 +19,7 @@ input[type=range] { width: 100%; }
 </style></head>
 <body><canvas id="view"></canvas>
 <div id="panel"><b id="title">mjarm live view</b> <span id="link">connecting…</span>
-<div id="sliders"></div><label>mode <select id="mode"></select></label>
+<div id="sliders"></div><label id="mode-label">mode <select id="mode"></select></label>
 <button id="reset">reset</button><div id="status"></div>
 <p>Drag to turn the view, scroll to zoom.</p></div>
 <script>
@@ -63,6 +63,9 @@ function greet(g) {
   }
   const mode = document.getElementById("mode");
   mode.textContent = "";
+  const panel = g.sliders.length > 0;  // the passive form is watched, not steered
+  document.getElementById("mode-label").hidden = !panel;
+  document.getElementById("reset").hidden = !panel;
   for (const m of g.modes) mode.append(new Option(m, m, false, m === g.mode));
   mode.onchange = () => send("mode", mode.value);
 }
@@ -86,12 +89,15 @@ function draw() {
   ctx.strokeStyle = "#9ab"; ctx.lineWidth = 4; ctx.beginPath();
   g.bodies.forEach((body, i) => { ctx.moveTo(...project(...at(body.parent))); ctx.lineTo(...project(...at(i + 1))); });
   ctx.stroke();
-  const dot = (p, colour, r) => { ctx.fillStyle = colour; ctx.beginPath(); ctx.arc(...project(...p), r, 0, 7); ctx.fill(); };
-  dot(f.slice(4, 7), "#e44", 6);  // target
-  dot(f.slice(1, 4), "#4e4", 4);  // end effector
-  document.getElementById("status").textContent =
-    "t " + f[0].toFixed(2) + " s\nend effector " + f.slice(1, 4).map((v) => v.toFixed(3)).join(" ") +
-    "\ntarget       " + f.slice(4, 7).map((v) => v.toFixed(3)).join(" ") + "\ngripper " + f[7].toFixed(2);
+  let status = "t " + f[0].toFixed(2) + " s";
+  if (head >= 8) {  // the viewer's panel: end effector, target, gripper (the passive form has none)
+    const dot = (p, colour, r) => { ctx.fillStyle = colour; ctx.beginPath(); ctx.arc(...project(...p), r, 0, 7); ctx.fill(); };
+    dot(f.slice(4, 7), "#e44", 6);  // target
+    dot(f.slice(1, 4), "#4e4", 4);  // end effector
+    status += "\nend effector " + f.slice(1, 4).map((v) => v.toFixed(3)).join(" ") +
+      "\ntarget       " + f.slice(4, 7).map((v) => v.toFixed(3)).join(" ") + "\ngripper " + f[7].toFixed(2);
+  }
+  document.getElementById("status").textContent = status;
 }
 let drag = null;
 canvas.onmousedown = (e) => { drag = [e.clientX, e.clientY]; };

@@ -223,14 +223,29 @@ TEST(CliTraj, BadCommandLinesFailCleanly) {
 // `working` for a 5.5·10¹¹ s trajectory 6e-2 from its target (the command then asked to lower
 // --rate); it now fails its final check, and the command says which axis and by how much
 TEST(CliTraj, JerkLimitedBeyondDoublePrecisionFailsNamingTheMiss) {
-  expect_error({"traj", "jerk-limited", "--start", "-0.5804920774730058", "--start-velocity",
-                "-15.018608104249864", "--start-acceleration", "-928.79517807056993", "--target",
-                "-0.43892084332795922", "--target-velocity", "206.49690288185306",
-                "--target-acceleration", "0.45104738979429015", "--v-max", "1e3", "--a-max", "1e3",
-                "--j-max", "1e-3"},
+  expect_error({"traj",
+                "jerk-limited",
+                "--start",
+                "-0.5804920774730058",
+                "--start-velocity",
+                "-15.018608104249864",
+                "--start-acceleration",
+                "-928.79517807056993",
+                "--target",
+                "-0.43892084332795922",
+                "--target-velocity",
+                "206.49690288185306",
+                "--target-acceleration",
+                "0.45104738979429015",
+                "--v-max",
+                "1e3",
+                "--a-max",
+                "1e3",
+                "--j-max",
+                "1e-3"},
                1,
                "jerk-limited: no trajectory on axis 0 (error_precision): its end misses the target "
-               "by 0.06157");
+               "by 0.0009225");
 }
 
 }  // namespace

@@ -7,10 +7,12 @@
 
 #include <csignal>
 #include <fstream>
+#include <nlohmann/json.hpp>
 
 #include "mjarm/error.hpp"
 #include "mjarm/interrupt.hpp"
 #include "mjarm/sweep/local_backend.hpp"
+#include "mjarm/sweep/sweep_dashboard.hpp"
 #include "mjarm/sweep/sweep_plots.hpp"
 #include "mjarm/sweep/sweep_report.hpp"
 #include "mjarm/web/replay_html.hpp"
@@ -188,6 +190,62 @@ TEST(SweepReport, TheFiguresAreDrawnPerAxisWithAHeatMapAndTheMetrics) {
   options.heat_map = {"controller", "criteria.tolerence"};
   EXPECT_THAT(error_of([&] { plot_sweep(folder, folder.dir / "figures", options); }),
               HasSubstr("unknown axis 'criteria.tolerence'; closest: criteria.tolerance"));
+}
+
+/// The data a dashboard page draws from (the JSON of its data element).
+nlohmann::json dashboard_data(const std::string& page) {
+  const std::string open = R"(<script type="application/json" id="data">)";
+  const std::size_t start = page.find(open) + open.size();
+  return nlohmann::json::parse(page.substr(start, page.find("</script>", start) - start));
+}
+
+TEST(SweepDashboard, HoldsEveryTrialAndTheReportAndFetchesNothing) {
+  const SweepFolder folder = prepared("dashboard");
+  run(folder, 2);
+  merge_sweep(folder);
+  const fs::path html = folder.dir / "dashboard.html";
+  const SweepDashboard d = write_sweep_dashboard(folder, html);
+  EXPECT_EQ(d.trials, 12);
+  EXPECT_EQ(d.recorded, 0);
+  const std::string page = slurp(html);
+  EXPECT_EQ(d.bytes, page.size());
+  const nlohmann::json data = dashboard_data(page);
+  EXPECT_EQ(data["rows"].size(), 12u);
+  EXPECT_EQ(data["parameters"], (nlohmann::json{"controller", "criteria.tolerance"}));
+  EXPECT_EQ(data["report"]["success"]["trials"], 12);
+  EXPECT_EQ(data["report"], nlohmann::json::parse(sweep_report_json(sweep_report(folder)).dump()));
+  // one file: nothing loaded from elsewhere
+  EXPECT_EQ(page.find("<script src"), std::string::npos);
+  EXPECT_EQ(page.find("<link"), std::string::npos);
+  EXPECT_EQ(page.find("@DATA@"), std::string::npos);
+  EXPECT_THAT(error_of([&] { write_sweep_dashboard(SweepFolder{scratch() / "none"}, html); }),
+              HasSubstr("none"));
+  EXPECT_EQ(slurp(html), page);  // a failed write leaves the last whole file
+}
+
+TEST(SweepDashboard, ARecordedTrialLinksItsReplayRecordingAndVideoFromWhereThePageIs) {
+  const std::string text = R"(
+scenario: shelf-pick
+parameters: {robot: planar2, controller: ct, settle-time: 0.05, criteria.hold-time: 0.04,
+             criteria.steady-window: 0.02}
+axes:
+  criteria.tolerance: [1.0e-9, 0.01]
+record: failures
+)";
+  const SweepFolder folder = prepared("dashboard_recorded", text, 2);
+  run(folder, 1);
+  merge_sweep(folder);
+  std::ofstream(folder.dir / "records/trial-00000000/replay.html") << "<p>replay</p>";
+  fs::create_directories(scratch() / "pages");
+  const fs::path html = scratch() / "pages" / "sweep.html";
+  const SweepDashboard d = write_sweep_dashboard(folder, html);
+  EXPECT_EQ(d.recorded, 1);
+  const nlohmann::json links = dashboard_data(slurp(html))["links"];
+  ASSERT_EQ(links.size(), 1u);
+  EXPECT_EQ(links["0"]["recording"], "../dashboard_recorded/records/trial-00000000/recording");
+  EXPECT_EQ(links["0"]["replay"], "../dashboard_recorded/records/trial-00000000/replay.html");
+  EXPECT_EQ(links["0"]["video"], "../dashboard_recorded/records/trial-00000000/video.mp4");
+  EXPECT_TRUE(fs::exists(html.parent_path() / links["0"]["video"].get<std::string>()));
 }
 
 TEST(SweepReport, WilsonIntervalsAreTheTextbooks) {

@@ -74,6 +74,7 @@ DockingPlan plan_docking(const DockingScene& scene, const DockingOffset& offset,
   plan.X_WS = scene.options.X_WS;
   plan.X_WB = plan.X_WS * rotation_z(offset.dyaw, Eigen::Vector3d(offset.dx, offset.dy, 0.0));
   plan.full_depth = g.chamfer + g.bore_depth;
+  plan.clearance = g.bore_radius - g.peg_radius;
   plan.X_start = above(scene, plan.X_WS, motion.start_height);
   plan.X_standoff = above(scene, plan.X_WB, motion.standoff);
   plan.X_seated = scene.seated(plan.X_WB);
@@ -120,6 +121,7 @@ DockingTask::DockingTask(const DockingPlan& plan, const DockingMotion& motion, d
       insert_start_(plan.approach_time),
       hold_start_(plan.approach_time + plan.insert_time),
       X_hold_(plan.X_seated),
+      centring_(motion.centring, plan.clearance),
       miss_since_(std::numeric_limits<double>::quiet_NaN()),
       miss_time_(std::numeric_limits<double>::quiet_NaN()),
       drop_time_(std::numeric_limits<double>::quiet_NaN()) {
@@ -133,16 +135,17 @@ DockingTask::DockingTask(const DockingPlan& plan, const DockingMotion& motion, d
 }
 
 void DockingTask::attach(ContactChannel& channel, int tip_site) noexcept {
-  if (motion_.reference != DockingReference::two_phase ||
-      motion_.search.pattern == SearchPattern::none || tip_site < 0)
-    return;
+  if (motion_.reference != DockingReference::two_phase || tip_site < 0) return;
+  search_on_ = motion_.search.pattern != SearchPattern::none;
+  centring_on_ = motion_.centring.enabled && channel.releases();
+  if (!search_on_ && !centring_on_) return;
   channel_ = &channel;
   tip_site_ = tip_site;
-  path_.emplace(motion_.search);
+  if (search_on_) path_.emplace(motion_.search);
 }
 
 double DockingTask::max_duration() const noexcept {
-  if (channel_ == nullptr) return plan_.duration();
+  if (!search_on_) return plan_.duration();
   const double reinsert = TrapezoidProfile(motion_.standoff + plan_.full_depth,
                                            motion_.insertion_speed, motion_.insertion_acceleration)
                               .duration();
@@ -180,6 +183,8 @@ void DockingTask::restart_insertion(const mjData& data, double t) noexcept {
   X_hold_ = insert_from_;
   X_hold_.p += length * direction_;
   channel_->set_release_armed(true);
+  centring_.reset();
+  rearm_at_hold_ = false;
 }
 
 DockingTask::SearchStep DockingTask::search(const mjData& data, double t,
@@ -216,6 +221,26 @@ DockingTask::SearchStep DockingTask::search(const mjData& data, double t,
   reference.task.F_ext.setZero();
   reference.task.F_ext.head<3>() = o.contact_force * direction_;
   return SearchStep::searching;
+}
+
+void DockingTask::centre(const mjData& data, double t, double t_hold, Se3Interpolation::Sample& now,
+                         Se3Interpolation::Sample& lagged) noexcept {
+  const Eigen::Vector3d p = tip(data);
+  if (phase_ == DockingPhase::insert && t < t_hold) {
+    const double depth = (p - plan_.X_seated.p).dot(direction_) + plan_.full_depth;
+    if (centring_.decide(depth, p, now.X_WE.p, direction_, t)) {
+      // the reference starts on the tip laterally when the stiffness comes back: nothing jumps
+      channel_->set_release_armed(false);
+      rearm_at_hold_ = true;
+    }
+  } else if (rearm_at_hold_ && t >= t_hold) {  // at the bottom the preload releases it again
+    channel_->set_release_armed(true);
+    rearm_at_hold_ = false;
+  }
+  if (!centring_.active()) return;
+  centring_.update(p, now.X_WE.p, t);
+  now.X_WE.p += centring_.shift(t);
+  lagged.V_WE.head<3>() += centring_.shift_rate(std::max(0.0, t - velocity_lag_));
 }
 
 Se3Interpolation::Sample DockingTask::at(double t) const noexcept {
@@ -259,7 +284,7 @@ bool DockingTask::update(const mjData& data, Reference& reference) noexcept {
     return false;
   }
   const double t_hold = hold_start_;
-  if (channel_ != nullptr && phase_ == DockingPhase::insert && t < t_hold && missed(data, t)) {
+  if (search_on_ && phase_ == DockingPhase::insert && t < t_hold && missed(data, t)) {
     ++searches_;
     if (std::isnan(miss_time_)) miss_time_ = t;
     center_ = tip(data);
@@ -279,8 +304,9 @@ bool DockingTask::update(const mjData& data, Reference& reference) noexcept {
                                 : DockingPhase::hold,
         data.time);
 
-  const Se3Interpolation::Sample now = at(t);
-  const Se3Interpolation::Sample lagged = at(std::max(0.0, t - velocity_lag_));
+  Se3Interpolation::Sample now = at(t);
+  Se3Interpolation::Sample lagged = at(std::max(0.0, t - velocity_lag_));
+  if (centring_on_) centre(data, t, t_hold, now, lagged);
   reference.task.X_WE = now.X_WE;
   reference.task.V_WE = lagged.V_WE;
   reference.task.A_WE = now.A_WE;

@@ -84,4 +84,66 @@ bool append_brake(const KinematicState& start, const JerkLimits& limits,
   return !(tau > 0.0) || profile.append(s * J, tau);
 }
 
+BrakeFamily brake_family(const KinematicState& start, const JerkLimits& limits) noexcept {
+  BrakeFamily family;
+  if (is_startable(start, limits)) return family;
+  const double V = limits.velocity * (1.0 - kBrakeMargin), A = limits.acceleration;
+  const double J = limits.jerk;
+  const double f = settled_velocity(start, J);
+  double s = 0.0;
+  if (std::abs(f) > V)
+    s = f > 0.0 ? 1.0 : -1.0;
+  else if (std::abs(start.v) > V)
+    s = start.v > 0.0 ? 1.0 : -1.0;
+  else
+    return family;  // only the acceleration is beyond: its ramp is the only brake
+  double a = s * start.a, v = s * start.v;
+  if (a < -A) {
+    // the forced ramp up to −A (v − a²/(2J) stays on it)
+    v -= 0.5 * (a * a - A * A) / J;
+    a = -A;
+  }
+  if (is_startable({0.0, s * v, s * a}, limits)) return family;  // that ramp was the brake
+  const double c = v + 0.5 * a * a / J;  // v + a²/(2J) stays c on a −J ramp
+  const double release_from = std::min(a, 0.0);
+  family.side = s;
+  family.highest = std::min(V, c - release_from * release_from / J);
+  family.lowest = std::min(family.highest, std::max({-V, V - 0.5 * A * A / J, 2.0 * V - c}));
+  return family;
+}
+
+bool append_brake_member(const KinematicState& start, const JerkLimits& limits, double settled,
+                         JerkProfile& profile) noexcept {
+  const BrakeFamily family = brake_family(start, limits);
+  if (family.side == 0.0) return append_brake(start, limits, profile);
+  const double V = limits.velocity * (1.0 - kBrakeMargin), A = limits.acceleration;
+  const double J = limits.jerk, s = family.side;
+  const double f_e = std::clamp(settled, family.lowest, family.highest);
+  double a = s * start.a, v = s * start.v;
+  if (a < -A) {
+    if (!profile.append(s * J, (-A - a) / J)) return false;
+    v = s * profile.end().v;
+    a = -A;
+  }
+  const double c = v + 0.5 * a * a / J;
+  if (f_e <= 2.0 * V - c) {
+    // no release: the −J ramp alone meets v = V (the later crossing)
+    const double tau = (a + std::sqrt(std::max(a * a + 2.0 * J * (v - V), 0.0))) / J;
+    return !(tau > 0.0) || profile.append(-s * J, tau);
+  }
+  // −J down to m (a hold there when m = −A), then the release: +J with v − a²/(2J) = f_e
+  const double m = -std::min(std::sqrt(J * std::max(c - f_e, 0.0)), A);
+  if ((a - m) / J > 0.0 && !profile.append(-s * J, (a - m) / J)) return false;
+  KinematicState e = profile.end();
+  if (m == -A) {
+    const double hold = (s * e.v - (f_e + 0.5 * A * A / J)) / A;
+    if (hold > 0.0 && !profile.append(0.0, hold)) return false;
+    e = profile.end();
+  }
+  // timed from the integrated state, as append_brake's: +J until v = V, the first crossing
+  const double ve = s * e.v, ae = s * e.a;
+  const double tau = (-ae - std::sqrt(std::max(ae * ae - 2.0 * J * (ve - V), 0.0))) / J;
+  return !(tau > 0.0) || profile.append(s * J, tau);
+}
+
 }  // namespace mjarm

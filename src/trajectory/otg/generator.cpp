@@ -132,7 +132,9 @@ OtgResult JerkLimitedGenerator::calculate(std::span<const KinematicState> curren
     solved_[i] = 0;
     JerkProfile& p = profiles_[i];
     p.reset(current[i]);
-    if (!append_brake(current[i], limits_[i], p)) {
+    const JerkLimits solve = binding_limits(limits_[i]);
+    // a start beyond the limits: the brake after which the whole motion is shortest
+    if (!append_optimal_brake(current[i], target[i], limits_[i], solve, p, brake_scratch_)) {
       result_.status = OtgStatus::error_brake;
       result_.failed_dof = i;
       return result_;
@@ -140,7 +142,6 @@ OtgResult JerkLimitedGenerator::calculate(std::span<const KinematicState> curren
     brake_durations_[i] = p.duration();
     brake_phases_[i] = p.size();
     after_brake_[i] = p.end();
-    const JerkLimits solve = binding_limits(limits_[i]);
     problems_[i].set(after_brake_[i], target[i].p - after_brake_[i].p, target[i].v, target[i].a,
                      solve);
     estimates_[i] = p.duration() + duration_estimate(problems_[i], solve);

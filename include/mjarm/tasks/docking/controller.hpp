@@ -178,6 +178,8 @@ class DockingController final : public Controller, public ContactChannel {
   /// The search's switch (`ContactChannel`): off undoes the release of se3 and hqp-ac and
   /// keeps contact from starting one; cic has none.
   void set_release_armed(bool armed) noexcept override;
+  /// se3 and hqp-ac release; the plain cic does not.
+  bool releases() const noexcept override { return options_.law != DockingLaw::cic; }
   /// The diagonal of the stiffness in force at the last compute [N/m; N·m/rad] (se3: K(t)
   /// during a release; hqp-ac: the adaptive K_r, (I − s·P)·K_r during the release, world axes;
   /// cic: K).

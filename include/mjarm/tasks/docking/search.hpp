@@ -126,6 +126,8 @@ class ContactChannel {
   virtual const Vector6d& measured_wrench() const noexcept = 0;
   /// Off: any release is undone and none starts; on: a contact starts one again.
   virtual void set_release_armed(bool armed) noexcept = 0;
+  /// True when the law has a lateral release (the centring applies to it).
+  virtual bool releases() const noexcept = 0;
 };
 
 }  // namespace mjarm

@@ -16,6 +16,7 @@
 #include "mjarm/fields.hpp"
 #include "mjarm/lie/pose.hpp"
 #include "mjarm/sim/run_result.hpp"
+#include "mjarm/tasks/docking/centring.hpp"
 #include "mjarm/tasks/docking/scene.hpp"
 #include "mjarm/tasks/docking/search.hpp"
 #include "mjarm/tasks/tick_observer.hpp"
@@ -81,6 +82,8 @@ struct DockingMotion {
   double hold_time = 2.0;     ///< from the reference's arrival at the bottom to the end (> 0)
   /// two-phase: miss detection and the search for the hole (pattern none: off)
   DockingSearchOptions search;
+  /// two-phase, laws with a lateral release, no joint friction: centring in the bore by a probe
+  DockingCentringOptions centring;
 };
 
 /// The standoff is checked against the start height by hand.
@@ -106,7 +109,9 @@ constexpr auto declared_fields(const DockingMotion*) {
             "linear ramp of the preload from the start of the hold"),
       field("hold_time", &S::hold_time, "s", Range::positive(),
             "from the reference's arrival at the bottom to the end"),
-      field("search", &S::search, "two-phase: miss detection and the search for the hole"));
+      field("search", &S::search, "two-phase: miss detection and the search for the hole"),
+      field("centring", &S::centring,
+            "two-phase: centring in the bore from the contact excursion (se3, hqp-ac)"));
 }
 
 /// @throws Error naming the value when a size or time is out of range (the search's radius is
@@ -138,6 +143,7 @@ struct DockingPlan {
   Pose X_seated;               ///< E seated in the believed socket (the reference's end)
   Eigen::VectorXd q_start;     ///< the arm at X_start (IK from the home keyframe) [rad]
   double full_depth = 0.0;     ///< chamfer + bore depth [m]
+  double clearance = 0.0;      ///< radial clearance at a bore face, bore − peg radius [m]
   double approach_time = 0.0;  ///< [s]
   double insert_time = 0.0;    ///< [s] (0 for single-segment)
   double hold_time = 0.0;      ///< [s]
@@ -173,6 +179,10 @@ DockingPlan plan_docking(const DockingScene& scene, const DockingOffset& offset,
 /// tip's position at the miss, the lateral release disarmed and F_ext = contact force along u,
 /// until the drop, when a new insertion goes straight down from the tip to the seated depth and
 /// the hold follows; a search past its radius or timeout ends the run (`search_exhausted`).
+/// With a channel whose law releases (`ContactChannel::releases`) and centring enabled, each
+/// insertion centres the peg in the bore (`BoreCentring`): the release disarmed from the
+/// centring's start to the hold, the reference shifted laterally to the believed-from-contact
+/// axis.
 class DockingTask final : public ReferenceSource {
  public:
   /// @param recorder where phase events go (may be null; must outlive the task)
@@ -188,9 +198,10 @@ class DockingTask final : public ReferenceSource {
   double start_time() const noexcept { return t0_; }
   /// Calls @p observer at every update (a video); may be null.
   void set_observer(TickObserver* observer) noexcept { observer_ = observer; }
-  /// Enables miss detection and search (two-phase, pattern not none): the measured wrench and
-  /// the release switch from @p channel (must outlive the task), the tip from the site
-  /// @p tip_site of the model the task runs on.
+  /// Enables miss detection and search (two-phase, pattern not none) and the centring
+  /// (two-phase, enabled, a law that releases): the measured wrench and the release switch from
+  /// @p channel (must outlive the task), the tip from the site @p tip_site of the model the task
+  /// runs on.
   void attach(ContactChannel& channel, int tip_site) noexcept;
 
   /// Misses detected (searches started).
@@ -202,6 +213,8 @@ class DockingTask final : public ReferenceSource {
   /// Time of the first miss and of the last drop since the start [s] (NaN: none).
   double miss_time() const noexcept { return miss_time_; }
   double drop_time() const noexcept { return drop_time_; }
+  /// The lateral excursion that started the last insertion's centring [m] (zero: none).
+  const Eigen::Vector3d& centring_excursion() const noexcept { return centring_.excursion(); }
   /// When the hold begins (or began) since the start [s]: later than planned after a search.
   double hold_start() const noexcept { return hold_start_; }
   /// The longest a run can take: the plan plus the search's timeout and a new insertion [s].
@@ -219,6 +232,10 @@ class DockingTask final : public ReferenceSource {
   enum class SearchStep { searching, dropped, exhausted };
   /// The search's reference at @p t, or the drop (a new insertion begun) or its end.
   SearchStep search(const mjData& data, double t, Reference& reference) noexcept;
+  /// Centring (`BoreCentring`): decides at its depth, disarms and re-arms the release, and
+  /// shifts the insertion's or the hold's reference @p now and its lagged velocity.
+  void centre(const mjData& data, double t, double t_hold, Se3Interpolation::Sample& now,
+              Se3Interpolation::Sample& lagged) noexcept;
   /// A new insertion from the tip straight down to the seated depth, starting at @p t.
   void restart_insertion(const mjData& data, double t) noexcept;
 
@@ -242,6 +259,10 @@ class DockingTask final : public ReferenceSource {
   // miss detection and search
   ContactChannel* channel_ = nullptr;
   int tip_site_ = -1;
+  bool search_on_ = false;
+  bool centring_on_ = false;
+  bool rearm_at_hold_ = false;  // the centring disarmed the release
+  BoreCentring centring_;
   std::optional<SearchPath> path_;
   double miss_since_;  // NaN: no miss pending
   double search_start_ = 0.0;

@@ -32,4 +32,24 @@ bool is_reachable(const KinematicState& s, const JerkLimits& limits) noexcept;
 bool append_brake(const KinematicState& start, const JerkLimits& limits,
                   JerkProfile& profile) noexcept;
 
+/// The brakes a start beyond its velocity limit may take (docs/trajectory_otg.md, "Brake"): seen
+/// on the side s of the violation (s = sign(f) when |f| > v_max, else sign(v)), after the forced
+/// ramp of an acceleration beyond its limit, full jerk down (−s·j), a hold at −s·a_max, and one
+/// release at full jerk up (+s·j), ending where the state becomes startable: at s·v = v_max with
+/// the settled velocity s·(v − a²/(2j)) = f_e. The members differ by f_e ∈ [lowest, highest].
+struct BrakeFamily {
+  double side = 0.0;     ///< s; 0 when the start has no choice (startable, or only a beyond)
+  double lowest = 0.0;   ///< the lowest f_e (the release as late as allowed) [u/s]
+  double highest = 0.0;  ///< the highest f_e (the release as early as allowed) [u/s]
+};
+
+/// The family of brakes from @p start (side 0 when append_brake() is the only brake).
+BrakeFamily brake_family(const KinematicState& start, const JerkLimits& limits) noexcept;
+
+/// Appends to @p profile (which must end at @p start) the member of brake_family(start) whose
+/// settled velocity is @p settled (clamped into [lowest, highest]); append_brake() when the
+/// family has side 0. @return false only when @p profile is full.
+bool append_brake_member(const KinematicState& start, const JerkLimits& limits, double settled,
+                         JerkProfile& profile) noexcept;
+
 }  // namespace mjarm

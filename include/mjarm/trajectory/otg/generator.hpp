@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "mjarm/trajectory/otg/block.hpp"
+#include "mjarm/trajectory/otg/optimal_brake.hpp"
 #include "mjarm/trajectory/otg/profile.hpp"
 #include "mjarm/trajectory/otg/reach.hpp"
 
@@ -173,6 +174,7 @@ class JerkLimitedGenerator {
   std::vector<double> brake_durations_;
   std::vector<int> brake_phases_;
   std::vector<KinematicState> after_brake_;
+  OptimalBrakeScratch brake_scratch_;  // the brake chosen for the whole motion (position)
   OtgResult result_;
   double time_ = 0.0;
 };

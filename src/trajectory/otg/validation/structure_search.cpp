@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <string>
+#include <utility>
 
 #include "mjarm/error.hpp"
 #include "mjarm/random.hpp"
@@ -13,7 +14,8 @@ namespace mjarm {
 namespace {
 
 constexpr int kMaxPhases = SwitchingStructure::kMaxPhases;
-constexpr int kMaxConditions = 3 + 2 * 3;  // the end, and up to three inner cruises
+// the end, up to three inner cruises, and a brake's end
+constexpr int kMaxConditions = 3 + 2 * 3 + 1;
 constexpr int kMaxUnknowns = kMaxPhases + kMaxConditions;
 constexpr double kOnLimit = 1e-9;  // a first or last arc's state on its limit, relative
 constexpr double kAccept = 1e-9;   // end on target and limits kept, relative
@@ -70,8 +72,11 @@ struct PhaseScales {
 /// integrates the true motion all the same.
 class StructureSystem {
  public:
+  /// @p brake_end > 0: the brake ends at that phase boundary, where the velocity is
+  /// @p brake_velocity (side·v_max).
   StructureSystem(const SwitchingStructure& s, const KinematicState& start,
-                  const KinematicState& target, const JerkLimits& limits, const PhaseScales& scales)
+                  const KinematicState& target, const JerkLimits& limits, const PhaseScales& scales,
+                  int brake_end = 0, double brake_velocity = 0.0)
       : s_(s), start_(start) {
     const double V = limits.velocity, A = limits.acceleration;
     // the acceleration a motion reaches is at most a_max and, from rest, √(v_max·j_max)
@@ -113,6 +118,7 @@ class StructureSystem {
         snaps_[k] = 2;
       }
     }
+    if (brake_end > 0) add(brake_end, 1, brake_velocity);
     add(s.size, 0, target.p);
     if (!is_limit_arc(last)) {
       add(s.size, 1, target.v);
@@ -304,6 +310,98 @@ bool accept(const SwitchingStructure& s, const std::array<double, kMaxPhases>& d
          std::abs(x.a - target.a) <= kAccept * std::max(1.0, std::abs(target.a));
 }
 
+/// Whether a profile within the limits can start at @p x: |a| ≤ a_max, |v| ≤ v_max and the
+/// velocity where the acceleration, ramped to zero at full jerk, ends is within ±v_max
+/// (relative @p slack).
+bool startable(const KinematicState& x, const JerkLimits& l, double slack) noexcept {
+  const double V = l.velocity * (1.0 + slack);
+  return std::abs(x.a) <= l.acceleration * (1.0 + slack) && std::abs(x.v) <= V &&
+         std::abs(x.v + x.a * std::abs(x.a) / (2.0 * l.jerk)) <= V;
+}
+
+/// The brake's order of a phase on the side @p side of the violation: 0 full jerk down (−side),
+/// 1 the hold at −side·a_max, 2 full jerk up; −1 for an arc no brake takes.
+int brake_stage(JerkArc arc, double side) noexcept {
+  const bool positive = side > 0.0;
+  if (arc == JerkArc::down) return positive ? 0 : 2;
+  if (arc == JerkArc::up) return positive ? 2 : 0;
+  if (arc == (positive ? JerkArc::hold_down : JerkArc::hold_up)) return 1;
+  return -1;
+}
+
+/// The first instant in [0, @p t] at which the motion from @p x under jerk @p j is startable,
+/// or −1: where side·v comes down to v_max (the only way in from a brake's states), or at @p t.
+double first_startable(const KinematicState& x, double j, double t, const JerkLimits& l,
+                       double side) noexcept {
+  if (startable(x, l, kAccept)) return 0.0;
+  // 0.5·j·τ² + a·τ + (v − side·v_max) = 0
+  const double c = x.v - side * l.velocity, b = x.a;
+  std::array<double, 2> roots{-1.0, -1.0};
+  if (j != 0.0) {
+    const double disc = b * b - 2.0 * j * c;
+    if (disc >= 0.0) {
+      const double r = std::sqrt(disc);
+      roots = {(-b - r) / j, (-b + r) / j};
+      if (roots[0] > roots[1]) std::swap(roots[0], roots[1]);
+    }
+  } else if (b != 0.0) {
+    roots[0] = -c / b;
+  }
+  for (const double tau : roots)
+    if (tau >= 0.0 && tau <= t && startable(advance(x, j, tau), l, kAccept)) return tau;
+  return startable(advance(x, j, t), l, kAccept) ? t : -1.0;
+}
+
+/// accept() for a start beyond the velocity limit on side @p side (its acceleration within):
+/// until the state first becomes startable, the phases follow the brake's order (full jerk
+/// against the violation, a hold at full deceleration, one release at full jerk) and the velocity
+/// does not pass beyond the other side's limit (nor below its start there); from then on the
+/// limits hold. Within the phase where it becomes startable they hold from that instant on: its
+/// velocity then moves towards the settled velocity, which is within, or linearly.
+bool accept_braking(const SwitchingStructure& s, const std::array<double, kMaxPhases>& durations,
+                    const KinematicState& start, const KinematicState& target, const JerkLimits& l,
+                    double position_scale, double side) {
+  const double V = l.velocity * (1.0 + kAccept), A = l.acceleration * (1.0 + kAccept);
+  const double floor = std::min(-V, side * start.v);  // of side·v while braking
+  KinematicState x = start;
+  bool braking = !startable(x, l, kAccept);
+  int stage = 0;
+  for (int i = 0; i < s.size; ++i) {
+    const double t = durations[i];
+    const double j = arc_jerk(s.arcs[i], l.jerk);
+    const KinematicState y = advance(x, j, t);
+    if (std::abs(y.a) > A) return false;
+    const bool crosses = j != 0.0 && x.a * y.a < 0.0;  // the acceleration crosses zero inside
+    const double t0 = crosses ? -x.a / j : 0.0;
+    const double v_turn = x.v + x.a * t0 + 0.5 * j * t0 * t0;
+    if (braking) {
+      // the first instant the state is startable: where side·v comes down to v_max, or the end
+      const double entry = first_startable(x, j, t, l, side);
+      if (t > 0.0 && entry != 0.0) {  // a part of the brake: in its order
+        const int k = brake_stage(s.arcs[i], side);
+        if (k < stage) return false;
+        stage = k;
+      }
+      if (entry < 0.0) {
+        if (side * y.v < floor || (crosses && side * v_turn < floor)) return false;
+        x = y;
+        continue;
+      }
+      braking = false;
+      if (crosses && t0 <= entry && side * v_turn < floor) return false;
+      // from then on within the limits (the velocity's turn after it lies at the settled
+      // velocity, startable; checked all the same)
+      if (std::abs(y.v) > V || (crosses && t0 > entry && std::abs(v_turn) > V)) return false;
+    } else if (std::abs(y.v) > V || (crosses && std::abs(v_turn) > V)) {
+      return false;
+    }
+    x = y;
+  }
+  return !braking && std::abs(x.p - target.p) <= kAccept * position_scale &&
+         std::abs(x.v - target.v) <= kAccept * std::max(1.0, std::abs(target.v)) &&
+         std::abs(x.a - target.a) <= kAccept * std::max(1.0, std::abs(target.a));
+}
+
 /// Adds @p d to the ascending distinct @p list (1e-10 relative apart).
 void record_duration(std::vector<double>& list, double d) {
   for (const double e : list)
@@ -315,7 +413,7 @@ void record_duration(std::vector<double>& list, double d) {
 
 KinematicState structure_end(const KinematicState& start, const JerkLimits& limits,
                              const StructureSolution& solution) noexcept {
-  KinematicState x = start;
+  KinematicState x = advance(start, solution.ramp_jerk, solution.ramp);
   for (int i = 0; i < solution.structure.size; ++i)
     x = advance(x, arc_jerk(solution.structure.arcs[i], limits.jerk), solution.durations[i]);
   return x;
@@ -332,19 +430,43 @@ StructureSearchResult structure_search_min_time(const KinematicState& start,
   check_fields(options);
   const double V = limits.velocity, A = limits.acceleration, J = limits.jerk;
   // positions relative to the start: the round-off of an offset stays out of the residuals
-  const KinematicState s0{0.0, start.v, start.a};
+  KinematicState s0{0.0, start.v, start.a};
+  // a start beyond the limits (see the header): an acceleration beyond its limit first ramps
+  // into it at full jerk (no choice), then the structures start from there; a velocity beyond
+  // (or that must pass beyond) is braked on its side
+  double ramp = 0.0, ramp_jerk = 0.0, side = 0.0;
+  if (!startable(s0, limits, 0.0)) {
+    const double f = s0.v + s0.a * std::abs(s0.a) / (2.0 * J);
+    side = std::abs(f) > V ? (f > 0.0 ? 1.0 : -1.0) : (s0.v > 0.0 ? 1.0 : -1.0);
+    if (std::abs(s0.a) > A) {
+      ramp_jerk = s0.a > 0.0 ? -J : J;
+      ramp = (std::abs(s0.a) - A) / J;
+      s0 = advance(s0, ramp_jerk, ramp);
+      s0.a = s0.a > 0.0 ? A : -A;  // exactly on the limit
+    }
+    if (startable(s0, limits, 1e-12)) side = 0.0;
+  }
+  const auto accepted = [&](const SwitchingStructure& s,
+                            const std::array<double, kMaxPhases>& durations,
+                            const KinematicState& from, const KinematicState& to, double scale) {
+    return side == 0.0 ? accept(s, durations, from, to, limits, scale)
+                       : accept_braking(s, durations, from, to, limits, scale, side);
+  };
   const KinematicState tf{target.p - start.p, target.v, target.a};
   const double position_scale = std::max({1.0, std::abs(start.p), std::abs(target.p)});
   // a full-jerk ramp spans at most 2·a_max and (from a = 0) 2·v_max; a hold spans at most
   // 2·v_max; a cruise covers the distance
   PhaseScales scales;
-  scales.bang = std::min(2.0 * A / J, 2.0 * std::sqrt(V / J));
-  scales.hold = 2.0 * V / A;
+  scales.bang = side != 0.0 ? 2.0 * A / J : std::min(2.0 * A / J, 2.0 * std::sqrt(V / J));
+  scales.hold = 2.0 * V / A + std::abs(s0.v) / A;
   scales.cruise = 1.5 * std::abs(tf.p) / V + V / A;
   scales.total = A / J + V / A + std::abs(tf.p) / V + std::abs(tf.v - s0.v) / A;
 
   StructureSearchResult result;
-  const auto keep = [&](const StructureSolution& solution) {
+  const auto keep = [&](StructureSolution solution) {
+    solution.ramp = ramp;
+    solution.ramp_jerk = ramp_jerk;
+    solution.duration += ramp;
     record_duration(result.durations, solution.duration);
     record_duration(result.feasible_durations, solution.duration);
     if (result.status == StructureSearchStatus::no_solution ||
@@ -356,12 +478,11 @@ StructureSearchResult structure_search_min_time(const KinematicState& start,
   };
   {  // already there: the motion of no phase
     const StructureSolution none;
-    if (accept(none.structure, none.durations, s0, tf, limits, position_scale)) keep(none);
+    if (accepted(none.structure, none.durations, s0, tf, position_scale)) keep(none);
   }
   Random rng(options.seed);
-  for (const SwitchingStructure& s : switching_structures()) {
-    const StructureSystem system(s, s0, tf, limits, scales);
-    if (!system.valid() || system.unknowns() < system.conditions()) continue;
+  const auto search = [&](const SwitchingStructure& s, const StructureSystem& system) {
+    if (!system.valid() || system.unknowns() < system.conditions()) return;
     ++result.structures_tried;
     bool solved = false;
     for (int k = 0; k < options.seeds; ++k) {
@@ -387,16 +508,33 @@ StructureSearchResult structure_search_min_time(const KinematicState& start,
       if (system.unknowns() > system.conditions()) {
         // a point of the family is a motion too: its duration is feasible
         const StructureSolution point = solution_at(u);
-        if (accept(s, point.durations, s0, tf, limits, position_scale))
-          record_duration(result.feasible_durations, point.duration);
+        if (accepted(s, point.durations, s0, tf, position_scale))
+          record_duration(result.feasible_durations, point.duration + ramp);
         if (!stationary_point(system, scales.total, u)) continue;
       }
       const StructureSolution solution = solution_at(u);
-      if (!accept(s, solution.durations, s0, tf, limits, position_scale)) continue;
+      if (!accepted(s, solution.durations, s0, tf, position_scale)) continue;
       keep(solution);
       solved = true;
     }
     result.structures_solved += solved ? 1 : 0;
+  };
+  for (const SwitchingStructure& s :
+       side == 0.0 ? switching_structures() : braking_switching_structures()) {
+    search(s, StructureSystem(s, s0, tf, limits, scales));
+    if (side == 0.0) continue;
+    // the brake may also end where a phase of the brake's order meets one that is not (the
+    // release, then jerk the other way): that boundary on the velocity limit, one condition more
+    int stage = 0;
+    for (int k = 1; k < s.size; ++k) {
+      const int before = brake_stage(s.arcs[k - 1], side);
+      if (before < stage) break;
+      stage = before;
+      const int after = brake_stage(s.arcs[k], side);
+      const bool cruise = s.arcs[k] == JerkArc::cruise_up || s.arcs[k] == JerkArc::cruise_down;
+      if (after >= stage || cruise) continue;
+      search(s, StructureSystem(s, s0, tf, limits, scales, k, side * V));
+    }
   }
   return result;
 }

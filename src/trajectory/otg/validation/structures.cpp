@@ -22,9 +22,14 @@ JerkArc neighbour_of(JerkArc limit_arc, bool after) noexcept {
   }
 }
 
-/// Whether @p next may follow @p previous (see the file comment of the header).
-bool may_follow(JerkArc previous, JerkArc next) noexcept {
+/// Whether @p next may follow @p previous (see the file comment of the header); @p braking lets
+/// a cruise follow the jerk that ends a brake on its side (+v_max after jerk up, −v_max after
+/// jerk down).
+bool may_follow(JerkArc previous, JerkArc next, bool braking) noexcept {
   if (previous == next) return false;
+  if (braking && ((previous == JerkArc::up && next == JerkArc::cruise_up) ||
+                  (previous == JerkArc::down && next == JerkArc::cruise_down)))
+    return true;
   const bool limit_before = is_limit_arc(previous), limit_after = is_limit_arc(next);
   if (limit_before && limit_after) return false;
   if (limit_after) return previous == neighbour_of(next, false);
@@ -32,17 +37,26 @@ bool may_follow(JerkArc previous, JerkArc next) noexcept {
   return true;  // up after down or down after up
 }
 
-void extend(SwitchingStructure& s, std::vector<SwitchingStructure>& out, int length) {
+void extend(SwitchingStructure& s, std::vector<SwitchingStructure>& out, int length, bool braking) {
   if (s.size == length) {
     out.push_back(s);
     return;
   }
   for (const JerkArc arc : kArcs) {
-    if (s.size > 0 && !may_follow(s.arcs[static_cast<std::size_t>(s.size - 1)], arc)) continue;
+    if (s.size > 0 && !may_follow(s.arcs[static_cast<std::size_t>(s.size - 1)], arc, braking))
+      continue;
     s.arcs[static_cast<std::size_t>(s.size++)] = arc;
-    extend(s, out, length);
+    extend(s, out, length, braking);
     --s.size;
   }
+}
+
+std::vector<SwitchingStructure> enumerate(bool braking) {
+  std::vector<SwitchingStructure> out;
+  SwitchingStructure s;
+  for (int length = 1; length <= SwitchingStructure::kMaxPhases; ++length)
+    extend(s, out, length, braking);
+  return out;
 }
 
 }  // namespace
@@ -76,12 +90,12 @@ std::string SwitchingStructure::name() const {
 }
 
 const std::vector<SwitchingStructure>& switching_structures() {
-  static const std::vector<SwitchingStructure> all = [] {
-    std::vector<SwitchingStructure> out;
-    SwitchingStructure s;
-    for (int length = 1; length <= SwitchingStructure::kMaxPhases; ++length) extend(s, out, length);
-    return out;
-  }();
+  static const std::vector<SwitchingStructure> all = enumerate(false);
+  return all;
+}
+
+const std::vector<SwitchingStructure>& braking_switching_structures() {
+  static const std::vector<SwitchingStructure> all = enumerate(true);
   return all;
 }
 

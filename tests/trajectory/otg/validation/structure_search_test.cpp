@@ -7,10 +7,12 @@
 #include <limits>
 #include <set>
 #include <string>
+#include <vector>
 
 #include "mjarm/error.hpp"
 #include "mjarm/random.hpp"
 #include "mjarm/trajectory/otg/brake.hpp"
+#include "mjarm/trajectory/otg/generator.hpp"
 #include "mjarm/trajectory/otg/min_time.hpp"
 #include "trajectory/otg/cases.hpp"
 
@@ -61,6 +63,40 @@ TEST(JerkLimitedStructures, EnumerationKeepsOnlyAdmissibleSequences) {
 
 // Rest to rest, textbook closed forms (not the generator's): all three limits reached,
 // T = d/v + v/a + a/j; only the jerk limit reached, T = 4·∛(d / 2j).
+// From beyond the velocity limit a brake's release (jerk towards the limit) may run straight
+// into a cruise on that limit: the braking enumeration adds exactly those sequences.
+TEST(JerkLimitedStructures, BrakingEnumerationAddsACruiseAfterTheRelease) {
+  const std::vector<SwitchingStructure>& all = switching_structures();
+  const std::vector<SwitchingStructure>& braking = braking_switching_structures();
+  EXPECT_GT(braking.size(), all.size());
+  std::set<std::string> names_all, names_braking;
+  for (const SwitchingStructure& s : all) names_all.insert(s.name());
+  for (const SwitchingStructure& s : braking) names_braking.insert(s.name());
+  EXPECT_EQ(names_braking.count("+ A+ − V− + A+ −"), 1u);
+  EXPECT_EQ(names_all.count("+ A+ − V− + A+ −"), 0u);
+  for (const std::string& name : names_all) EXPECT_EQ(names_braking.count(name), 1u) << name;
+  // the added ones each hold a release followed by a cruise on its side
+  for (const std::string& name : names_braking)
+    if (names_all.count(name) == 0)
+      EXPECT_TRUE(name.find("+ V+") != std::string::npos || name.find("− V−") != std::string::npos)
+          << name;
+}
+
+// A start beyond the limits is searched over the brake's ends: the shortest motion is the
+// generator's (its brake chosen for the whole motion), also where the brake ends in a cruise.
+TEST(JerkLimitedStructureSearch, SearchesTheBrakesEndFromBeyondTheLimits) {
+  const JerkLimits l{0.93065177329448479, 0.59588715772050138, 24.223010201097495};
+  const KinematicState s{2.1046360185479402, -1.4142738639755592, 0.4537810331639141};
+  const KinematicState t{-0.0018366082700844721, -0.75629058949630079, 0.47760799995267045};
+  JerkLimitedGenerator otg(std::vector<JerkLimits>{l});
+  const OtgResult g = otg.calculate(std::vector<KinematicState>{s}, std::vector<KinematicState>{t});
+  ASSERT_EQ(g.status, OtgStatus::working);
+  const StructureSearchResult r = structure_search_min_time(s, t, l, {8, 3});
+  ASSERT_EQ(r.status, StructureSearchStatus::found);
+  EXPECT_TRUE(near_duration(r.duration, g.duration)) << r.duration << " " << g.duration;
+  EXPECT_EQ(r.best.structure.name(), "+ A+ − V− + A+ −");
+}
+
 TEST(JerkLimitedStructureSearch, FindsTextbookRestToRestDurations) {
   const JerkLimits l{1.0, 2.0, 10.0};
   const StructureSearchResult full = structure_search_min_time({0, 0, 0}, {5.0, 0, 0}, l, {8, 0});

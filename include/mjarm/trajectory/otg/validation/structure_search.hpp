@@ -24,6 +24,20 @@
 /// The residuals are evaluated on a motion that restarts every inner limit arc exactly on its
 /// limit (the same motion at a root), so that an error before a long cruise does not grow
 /// along it.
+/// **Starts beyond the limits** (not startable: |a| > a_max, |v| > v_max, or the settled velocity
+/// f = v + a·|a|/(2 j_max) beyond ±v_max) are searched over the admissible motions of
+/// docs/trajectory_otg.md ("Brake"): an acceleration beyond its limit first ramps into it at full
+/// jerk (fixed, before the structure); then, until the state first becomes startable, the phases
+/// follow the brake's order on the violation's side s (s = sign(f) when |f| > v_max, else
+/// sign(v)): full jerk −s·j_max, a hold at −s·a_max, one release at +s·j_max — each possibly
+/// empty — and s·v stays ≥ min(−v_max, s·v₀); from then on the limits hold (the state may leave
+/// the startable states again, towards a target that is reachable but not startable). The brake
+/// ends where s·v first comes down to v_max, inside a phase (a release that the motion continues
+/// is not split: its end is free on the family of the structure's solutions) or at a phase
+/// boundary where the jerk turns against the brake's order (searched with that boundary's
+/// velocity on the limit as one condition more), so every member of the brake family is searched
+/// with the motion after it. A brake's release may run into a cruise on its limit, so these
+/// starts use braking_switching_structures().
 /// A solution counts when every duration is ≥ 0, its end is on the target (|Δp|, |Δv|, |Δa| ≤
 /// 1e-9·max(1, |value|)) and it keeps |v| ≤ v_max, |a| ≤ a_max (relative 1e-9) at every phase's
 /// ends and where the acceleration crosses zero inside a phase. Every solution is a true motion,
@@ -60,7 +74,11 @@ constexpr auto declared_fields(const StructureSearchOptions*) {
 struct StructureSolution {
   SwitchingStructure structure;                                    ///< the arcs
   std::array<double, SwitchingStructure::kMaxPhases> durations{};  ///< per phase [s]
-  double duration = 0.0;                                           ///< their sum [s]
+  /// Before the structure, from a start whose acceleration is beyond its limit: the ramp into it
+  /// at full jerk [s] and its jerk (0 and 0 otherwise).
+  double ramp = 0.0;
+  double ramp_jerk = 0.0;
+  double duration = 0.0;  ///< the ramp and the phases together [s]
 };
 
 /// Outcome of a search.

@@ -51,4 +51,9 @@ inline bool is_limit_arc(JerkArc arc) noexcept {
 /// Every admissible structure of 1 … 7 phases (see the file), shortest first; built once.
 const std::vector<SwitchingStructure>& switching_structures();
 
+/// The same for a start beyond the velocity limit: a brake from beyond +v_max ends on jerk up
+/// (its release), which a cruise at +v_max may then follow (at −v_max: jerk down); the other
+/// rules stay. A superset of switching_structures(); built once.
+const std::vector<SwitchingStructure>& braking_switching_structures();
+
 }  // namespace mjarm
