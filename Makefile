@@ -17,11 +17,13 @@ build: setup $(BUILD)/CMakeCache.txt
 	cmake --build $(BUILD) -j $(JOBS)
 
 # the main job: an end-to-end run of what mjarm does. It needs only the CLI: the packages for it
-# (setup.sh demo), and a Release build of the library and the CLI alone, one unit per room
+# (setup.sh demo), and a Release build of the library and the CLI alone, one unit per room, without
+# the replay page (MJARM_WEB=OFF: no npm; `mjarm replay-html` then says how to get it)
 DEMO_BUILD ?= build-demo
 $(DEMO_BUILD)/CMakeCache.txt:
 	cmake -S . -B $(DEMO_BUILD) -G Ninja -DCMAKE_BUILD_TYPE=Release -DMJARM_UNITY_BUILD=ON \
-	  -DMJARM_BUILD_TESTS=OFF -DMJARM_BUILD_EXAMPLES=OFF -DMJARM_PYTHON=OFF $(CMAKE_FLAGS)
+	  -DMJARM_BUILD_TESTS=OFF -DMJARM_BUILD_EXAMPLES=OFF -DMJARM_PYTHON=OFF -DMJARM_WEB=OFF \
+	  $(CMAKE_FLAGS)
 
 demo:
 	@bash scripts/setup.sh demo

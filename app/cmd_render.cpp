@@ -42,6 +42,23 @@ std::string apply_q(const Robot& robot, const std::vector<double>& q, mjData& d,
   return outside.empty() ? "--q" : "--q (outside the joint ranges)";
 }
 
+// A copy of @p robot's model whose geoms outside the subtree of body @p root (it and its
+// descendants) are in group 5, which is not drawn: the picture shows that subtree alone (a
+// silhouette to compare with another renderer's, tests/web).
+Robot robot_with_only_subtree(const Robot& robot, const std::string& root) {
+  const int top = mj_name2id(&robot.model(), mjOBJ_BODY, root.c_str());
+  if (top < 0)
+    throw UsageError("--only-subtree: model '" + robot.name() + "' has no body '" + root + "'");
+  std::shared_ptr<mjModel> copy(mj_copyModel(nullptr, &robot.model()), mj_deleteModel);
+  if (!copy) throw Error("render: MuJoCo could not copy the model");
+  for (int g = 0; g < copy->ngeom; ++g) {
+    int body = copy->geom_bodyid[g];
+    while (body > 0 && body != top) body = copy->body_parentid[body];
+    if (body != top) copy->geom_group[g] = mjNGROUP - 1;
+  }
+  return Robot::from_model(std::shared_ptr<const mjModel>(copy), robot.source());
+}
+
 }  // namespace
 
 Command add_render_command(CLI::App& root) {
@@ -58,6 +75,7 @@ Command add_render_command(CLI::App& root) {
     std::string size = "640x480";
     std::string out;
     bool no_shadows = false;
+    std::string only_subtree;
     bool allow_outside_range = false;
     bool json = false;
   };
@@ -103,11 +121,17 @@ Command add_render_command(CLI::App& root) {
       ->check(pixel_size());
   app->add_option("--out", options->out, "PNG file to write")->required();
   app->add_flag("--no-shadows", options->no_shadows, "draw without shadows");
+  app->add_option("--only-subtree", options->only_subtree,
+                  "draw only the geoms of this body and its descendants, on a plain background "
+                  "(no skybox, shadows or reflections): a silhouette to compare");
   add_json_flag(*app, options->json);
 
   return {app, [options, distance] {
             check_output_file(options->out, "--out");  // before the model loads or GL starts
-            const Robot robot = load_model(options->model);
+            const Robot robot =
+                options->only_subtree.empty()
+                    ? load_model(options->model)
+                    : robot_with_only_subtree(load_model(options->model), options->only_subtree);
             DataPtr data = robot.make_data();
             std::string configuration = "qpos0";
             if (!options->keyframe.empty()) {
@@ -144,6 +168,9 @@ Command add_render_command(CLI::App& root) {
             const PixelSize size = parse_pixel_size(options->size);
             RenderOptions render_options;
             render_options.shadows = !options->no_shadows;
+            if (!options->only_subtree.empty()) {
+              render_options.shadows = render_options.reflections = render_options.skybox = false;
+            }
             OffscreenRenderer renderer(robot, size.width, size.height, render_options);
             const Image image = renderer.render(*data, spec);
             // Ctrl-C or SIGTERM while the PNG is written: the old file is kept and nothing is

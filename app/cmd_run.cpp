@@ -238,6 +238,23 @@ Command add_run_command(CLI::App& root) {
     if (std::none_of(scenarios.begin(), scenarios.end(),
                      [s](const Command& c) { return c.app->get_name() == s->name(); }))
       scenarios.push_back(add_scenario_subcommand(*app, *s));
+  // --html FILE beside --record DIR: the recorded run's replay page (docs/replay.md), written
+  // once the run ended, from the recording as `mjarm replay-html DIR -o FILE` would
+  for (Command& scenario : scenarios) {
+    CLI::Option* record = scenario.app->get_option_no_throw("--record");
+    if (record == nullptr) continue;
+    auto html = std::make_shared<std::string>();
+    scenario.app
+        ->add_option("--html", *html,
+                     "with --record: also write the run's replay page, one self-contained HTML "
+                     "file (docs/replay.md)")
+        ->needs(record);
+    scenario.run = [run = scenario.run, html, record] {
+      if (!html->empty()) check_output_file(*html, "--html");
+      run();
+      if (!html->empty()) write_run_replay(record->as<std::string>(), *html);
+    };
+  }
   return {app, [app, list, json, scenarios] {
             std::vector<std::string> names;
             for (const Command& scenario : scenarios) names.push_back(scenario.app->get_name());

@@ -62,6 +62,10 @@ Command add_replay_command(CLI::App& root);  ///< `mjarm replay FILE` (cmd_teleo
 Command add_bimanual_command(CLI::App& root);  ///< `mjarm bimanual` (cmd_teleop.cpp)
 Command add_run_command(CLI::App& root);     ///< `mjarm run shelf-pick …` (cmd_run.cpp)
 Command add_plot_command(CLI::App& root);    ///< `mjarm plot RECORDING …` (cmd_plot.cpp)
+/// `mjarm replay-html RECORDING -o FILE` (cmd_replay_html.cpp)
+Command add_replay_html_command(CLI::App& root);
+/// Writes the replay page of the recording in @p recording to @p html (`mjarm run … --html`).
+void write_run_replay(const std::string& recording, const std::string& html);
 Command add_traj_command(CLI::App& root);    ///< `mjarm traj KIND …` (cmd_traj.cpp)
 Command add_plan_command(CLI::App& root);    ///< `mjarm plan ROBOT --waypoints F` (cmd_plan.cpp)
 Command add_soak_command(CLI::App& root);    ///< `mjarm soak [--minutes M]` (cmd_soak.cpp)

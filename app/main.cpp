@@ -64,6 +64,7 @@ int main(int argc, char** argv) {
   commands.push_back(add_bimanual_command(app));
   commands.push_back(add_run_command(app));
   commands.push_back(add_plot_command(app));
+  commands.push_back(add_replay_html_command(app));
   commands.push_back(add_traj_command(app));
   commands.push_back(add_plan_command(app));
   commands.push_back(add_env_command(app));

@@ -10,14 +10,16 @@
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
+#include <iostream>
 #include <limits>
 #include <numbers>
-#include <iostream>
 
 #include "mjarm/error.hpp"
 #include "mjarm/model/model_size.hpp"
+#include "mjarm/model/user_file.hpp"
 #include "mjarm/number_text.hpp"
 #include "mjarm/scene/scene_file.hpp"
+#include "mjarm/web/recorded_model.hpp"
 #include "output.hpp"
 
 namespace mjarm::cli {
@@ -192,6 +194,8 @@ CLI::Option* add_json_flag(CLI::App& command, bool& json) {
 }
 
 Robot load_model(const std::string& model) {
+  // a recording's model (model.mjb, docs/replay.md)
+  if (has_extension(model, ".mjb")) return load_mjb_model(model);
   if (!is_scene_file(model)) return Robot::load(model);
   const Scene scene = load_scene_file(model);
   for (const auto& warning : scene.warnings()) std::cerr << "mjarm: " << warning << "\n";

@@ -51,7 +51,14 @@ if [ "$profile" = all ]; then
     python3-dev
     # a Slurm cluster of one node for the tests of the Slurm path (scripts/slurm_local.sh)
     slurm-wlm munge
+    # the replay page's test (tests/web): headless Chromium, driven through its DevTools protocol
+    chromium
   )
+  # the replay page is bundled from npm at build time (web/, MJARM_WEB): Debian's Node.js and npm,
+  # only where no npm is on PATH (a node from elsewhere is kept, never installed over)
+  if ! command -v npm >/dev/null 2>&1; then
+    packages+=(nodejs npm)
+  fi
 fi
 
 missing=()

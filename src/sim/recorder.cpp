@@ -10,6 +10,7 @@
 #include "csv_stream.hpp"
 #include "mjarm/control/task_error.hpp"
 #include "mjarm/error.hpp"
+#include "mjarm/file_writer.hpp"
 #include "mjarm/sim/simulation.hpp"
 #include "recorder_summary.hpp"
 #include "staging_dir.hpp"
@@ -23,6 +24,9 @@ const std::string kState = "state.csv";
 const std::string kTask = "task.csv";
 const std::string kEvents = "events.csv";
 const std::string kSummary = "summary.json";
+// the compiled model, as MuJoCo saves it (mj_saveModel): a recording of a composed scene (the
+// pick and place) names no file to load again, and `mjarm replay-html` needs its geometry
+const std::string kModel = "model.mjb";
 
 std::string object_name(const mjModel& m, int type, int id, const char* fallback) {
   const char* name = mj_id2name(&m, type, id);
@@ -99,6 +103,7 @@ struct Recorder::Impl {
   std::int64_t steps_seen = 0;
   bool contact_forces = true;  // false in kinematic mode: no constraint forces are computed
   sim_detail::SummaryInfo info;
+  std::vector<char> model_bytes;  // model.mjb, saved at construction: written by finalize
 
   Impl(const Simulation& sim, const std::filesystem::path& dir, const RecorderOptions& opt)
       : simulation(&sim), controller_count(sim.controller_count()), options(opt), staging(dir) {}
@@ -221,6 +226,12 @@ Recorder::Recorder(const Simulation& simulation, const std::filesystem::path& di
   for (int a : im.saturation_columns)
     info.saturation.push_back({object_name(m, mjOBJ_ACTUATOR, a, "actuator"), 0});
   for (const ActuatorInfo& a : robot.actuators()) info.actuators.push_back(actuator_info(m, a));
+  // the model the simulation steps (its own copy when it has one), saved now: the simulation may
+  // be gone when the recorder finalizes
+  const mjModel& stepped = simulation.model();
+  im.model_bytes.resize(static_cast<std::size_t>(mj_sizeModel(&stepped)));
+  mj_saveModel(&stepped, nullptr, im.model_bytes.data(),
+               static_cast<mjtSize>(im.model_bytes.size()));
   info.files = {{"state", kState, static_cast<int>(state_columns.size())},
                 {"task", kTask, static_cast<int>(task_columns.size())},
                 {"events", kEvents, 3}};
@@ -381,6 +392,15 @@ void Recorder::finalize(std::string_view status, std::string_view message) {
   for (auto* csv : {im.state.get(), im.task.get(), im.events.get()}) {
     if (!csv->close() && failure.empty()) failure = csv->failure();
   }
+  if (failure.empty()) {
+    try {
+      FileWriter model(im.staging.staged(kModel), FileWriter::Mode::in_place, "recorded model");
+      model.write(im.model_bytes.data(), im.model_bytes.size());
+      model.commit();
+    } catch (const Error& e) {
+      failure = e.what();
+    }
+  }
   info.write_error = failure;
   // a recording with a failed write is never moved into the directory: the summary still goes
   // into the staging folder (when it can), so that the partial recording describes itself
@@ -397,7 +417,7 @@ void Recorder::finalize(std::string_view status, std::string_view message) {
     throw Error("recorder: " + failure + "; nothing was moved into '" + directory().string() +
                 "': the incomplete recording stays in '" + im.staging.staging().string() + "'");
   }
-  im.staging.commit({kState, kTask, kEvents}, kSummary);
+  im.staging.commit({kState, kTask, kEvents, kModel}, kSummary);
 }
 
 }  // namespace mjarm

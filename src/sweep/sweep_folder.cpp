@@ -14,7 +14,10 @@
 #include "mjarm/file_writer.hpp"
 #include "mjarm/interrupt.hpp"
 #include "mjarm/json_or_null.hpp"
+#include "mjarm/plot/recording.hpp"
 #include "mjarm/scenarios/registry.hpp"
+#include "mjarm/web/recorded_model.hpp"
+#include "mjarm/web/replay_html.hpp"
 
 namespace mjarm {
 
@@ -194,6 +197,22 @@ ShardStates shard_states(const SweepFolder& folder, const SweepPlan& plan) {
   return states;
 }
 
+namespace {
+
+// a recorded trial's replay page beside its recording (docs/replay.md), where this build holds
+// the page; a page that cannot be written is said in the trial's recording error
+void write_trial_replay(const SweepFolder& folder, std::int64_t trial, TrialOutcome& o) {
+  if (!replay_html_available()) return;
+  try {
+    const plot::Recording recording = plot::Recording::load(o.recording);
+    write_replay_html(recorded_model(recording), recording, folder.record(trial) / "replay.html");
+  } catch (const Error& e) {
+    o.recording_error = std::string("replay page: ") + e.what();
+  }
+}
+
+}  // namespace
+
 bool run_sweep_shard(const SweepFolder& folder, const SweepPlan& plan, std::int64_t index,
                      const std::function<void()>& on_trial) {
   if (index < 0 || index >= plan.shards())
@@ -223,6 +242,7 @@ bool run_sweep_shard(const SweepFolder& folder, const SweepPlan& plan, std::int6
           o.status != RunStatus::interrupted)
         o = scenario.run(values, outputs_of());  // the same trial again, kept this time
       if (o.status == RunStatus::interrupted) return false;
+      if (!o.recording.empty() && o.recording_error.empty()) write_trial_replay(folder, trial, o);
       row = row_of(plan, trial, o, folder.dir);
     } catch (const Error& e) {
       row = error_row(plan, trial, e.what(), scenario.metrics().size());

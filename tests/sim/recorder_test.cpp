@@ -275,10 +275,11 @@ TEST(Recorder, AFullDiskMovesNothingAndNamesTheKeptRows) {
   EXPECT_NE(write_error.find("state.csv"), std::string::npos) << write_error;
   EXPECT_NE(write_error.find("File too large"), std::string::npos) << write_error;
 
-  // the same run with room for it is complete
+  // the same run with room for it is complete (the largest file is model.mjb: the model with the
+  // pixels of its skybox and floor textures, 1.4 MB)
   Planar2Run again;
   const std::filesystem::path roomy = dir.path() / "roomy";
-  const test::LimitedRun ok = test::with_file_size_limit(1 << 20, [&] {
+  const test::LimitedRun ok = test::with_file_size_limit(4 << 20, [&] {
     Recorder recorder(again.sim, roomy);
     ConstantReferenceSource source(again.reference);
     recorder.finalize(again.sim.run(source, 0.5, &recorder));
@@ -286,6 +287,7 @@ TEST(Recorder, AFullDiskMovesNothingAndNamesTheKeptRows) {
   });
   EXPECT_EQ(ok.exit_code, 0) << ok.err;
   expect_complete(roomy);
+  EXPECT_TRUE(std::filesystem::exists(roomy / "model.mjb"));
 }
 
 TEST(Recorder, BadOptionsAndLateControllersAreRefused) {

@@ -15,6 +15,7 @@
 #include "mjarm/sweep/sweep_dashboard.hpp"
 #include "mjarm/sweep/sweep_plots.hpp"
 #include "mjarm/sweep/sweep_report.hpp"
+#include "mjarm/web/replay_html.hpp"
 #include "support/error_message.hpp"
 #include "support/files.hpp"
 
@@ -156,6 +157,9 @@ record: failures
   EXPECT_EQ(t.rows[0][t.column("recording")], "records/trial-00000000/recording");
   EXPECT_TRUE(fs::exists(folder.dir / "records/trial-00000000/recording/summary.json"));
   EXPECT_TRUE(fs::exists(folder.dir / "records/trial-00000000/video.mp4"));
+  // its replay page, where the build holds the page (MJARM_WEB)
+  EXPECT_EQ(fs::exists(folder.dir / "records/trial-00000000/replay.html"),
+            mjarm::replay_html_available());
   EXPECT_EQ(t.rows[1][t.column("verdict")], "held");
   EXPECT_TRUE(t.rows[1][t.column("recording")].is_null());  // a success keeps nothing
   EXPECT_FALSE(fs::exists(folder.record(1)));

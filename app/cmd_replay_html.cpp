@@ -1,0 +1,86 @@
+// `mjarm replay-html RECORDING -o FILE [--model M] [--rate HZ] [--title T] [--json]`: one HTML file
+// that replays a recording in any browser, offline (docs/replay.md).
+
+#include <iostream>
+#include <memory>
+
+#include "commands.hpp"
+#include "mjarm/plot/recording.hpp"
+#include "mjarm/web/recorded_model.hpp"
+#include "mjarm/web/replay_html.hpp"
+
+namespace mjarm::cli {
+
+void write_run_replay(const std::string& recording, const std::string& html) {
+  const plot::Recording loaded = plot::Recording::load(recording);
+  write_replay_html(recorded_model(loaded), loaded, html);
+}
+
+Command add_replay_html_command(CLI::App& root) {
+  struct Options {
+    std::string recording;
+    std::string out;
+    std::string model;
+    ReplayHtmlOptions replay;
+    bool json = false;
+  };
+  auto options = std::make_shared<Options>();
+  CLI::App* app = root.add_subcommand(
+      "replay-html",
+      "write one self-contained HTML file that replays a recording in a browser (offline): the "
+      "scene in 3D, play, scrub, step, cameras, plots");
+  app->footer(
+      "RECORDING is a folder written by `mjarm run … --record DIR`. The file holds the page's "
+      "script (three.js, bundled when mjarm was built) and the run: every body's pose at --rate "
+      "frames per simulated second (the page interpolates between them), the model's geoms and "
+      "cameras, the phases and the figures of `mjarm plot`. The model is the recording's "
+      "model.mjb unless --model names it. docs/replay.md");
+  app->add_option("RECORDING", options->recording,
+                  "recording folder (state.csv, task.csv, events.csv, summary.json, model.mjb)")
+      ->required();
+  app->add_option("-o,--out", options->out, "the HTML file to write")->required();
+  app->add_option("--model", options->model,
+                  "the model the recording was made on (bundled name or MJCF file) [default: the "
+                  "recording's model.mjb]");
+  app->add_option("--rate", options->replay.rate, "frames kept per simulated second [Hz]")
+      ->capture_default_str()
+      ->check(number_in(1.0, 10000.0));
+  app->add_option("--title", options->replay.title, "the page's title [default: RECORDING's name]");
+  add_json_flag(*app, options->json);
+
+  return {app, [options] {
+            check_output_file(options->out, "--out");
+            const plot::Recording recording = plot::Recording::load(options->recording);
+            const Robot robot =
+                options->model.empty() ? recorded_model(recording) : load_model(options->model);
+            const ReplayHtmlReport report =
+                write_replay_html(robot, recording, options->out, options->replay);
+            if (options->json) {
+              Json document;
+              document["recording"] = options->recording;
+              document["path"] = report.path.string();
+              document["bytes"] = report.bytes;
+              document["frames"] = report.frames;
+              document["state_rows"] = report.state_rows;
+              document["rate"] = report.rate;
+              document["start_time"] = report.start_time;
+              document["end_time"] = report.end_time;
+              document["largest_gap"] = report.largest_gap;
+              document["bodies"] = report.bodies;
+              document["drawn_geoms"] = report.drawn_geoms;
+              document["meshes"] = report.meshes;
+              document["cameras"] = report.cameras;
+              document["plots"] = report.plots;
+              print_json(document);
+              return;
+            }
+            std::cout << report.path.string() << ": " << report.bytes << " bytes, " << report.frames
+                      << " frames of " << report.state_rows << " state rows ("
+                      << readable(report.rate) << " per second, largest gap "
+                      << readable(report.largest_gap) << " s), " << report.drawn_geoms
+                      << " geoms drawn, " << report.cameras << " cameras, " << report.plots
+                      << " plots\n";
+          }};
+}
+
+}  // namespace mjarm::cli

@@ -1,0 +1,65 @@
+#pragma once
+/// @file
+/// `write_replay_html`: one self-contained HTML file that replays a recording in a browser —
+/// the model's geoms drawn by three.js (bundled into the file at build time), every body's
+/// recorded pose played back, scrubbed and stepped, the model's cameras as presets, the
+/// recording's figures plotted beside it (docs/replay.md).
+
+#include <cstdint>
+#include <filesystem>
+#include <string>
+
+#include "mjarm/fields.hpp"
+#include "mjarm/model/robot.hpp"
+#include "mjarm/plot/recording.hpp"
+
+namespace mjarm {
+
+struct ReplayHtmlOptions {
+  /// Frames kept per simulated second: the state rows nearest below each frame time (the page
+  /// interpolates between frames); a recording sparser than this keeps all its rows.
+  double rate = 60.0;
+  /// The page's title; empty: the recording's folder name.
+  std::string title;
+};
+
+constexpr auto declared_fields(const ReplayHtmlOptions*) {
+  using S = ReplayHtmlOptions;
+  return declare<S>("replay-html",
+                    field("rate", &S::rate, "Hz", Range::closed(1.0, 10000.0),
+                          "frames kept per simulated second"),
+                    field("title", &S::title, "the page's title; empty: the recording's folder"));
+}
+
+/// What was written.
+struct ReplayHtmlReport {
+  std::filesystem::path path;
+  std::uintmax_t bytes = 0;     ///< size of the file
+  int frames = 0;               ///< frames kept
+  std::int64_t state_rows = 0;  ///< rows of state.csv
+  double rate = 0.0;            ///< frames per simulated second actually kept (≤ options.rate)
+  double start_time = 0.0, end_time = 0.0;  ///< [s]
+  int bodies = 0;
+  int drawn_geoms = 0;  ///< geoms the page draws: MuJoCo's visible groups (0–2), alpha > 0
+  int meshes = 0;       ///< mesh assets embedded
+  int cameras = 0;
+  int plots = 0;
+  /// Largest step between two kept frames [s]: how far apart the recorded states the page
+  /// interpolates between can be.
+  double largest_gap = 0.0;
+};
+
+/// True when this build holds the page's script (three.js bundled at build time: MJARM_WEB).
+bool replay_html_available();
+
+/// Writes the replay of @p recording, recorded on @p robot's model, to @p out through a
+/// `FileWriter` (the file is complete or not there).
+/// @throws Error when the build holds no page script (how to get one is said), when the model
+///         does not match the recording (its qpos coordinates against state.csv's q.* columns,
+///         the first missing one named), when an option is out of range (named), or when the
+///         file cannot be written (named, with the reason; an older file is kept).
+ReplayHtmlReport write_replay_html(const Robot& robot, const plot::Recording& recording,
+                                   const std::filesystem::path& out,
+                                   const ReplayHtmlOptions& options = {});
+
+}  // namespace mjarm
