@@ -11,14 +11,8 @@ namespace {
 
 /// What a browser is told on connecting: the bodies in frame order and the frame's layout.
 std::string passive_greeting(const Robot& robot) {
-  const mjModel& m = robot.model();
-  nlohmann::json bodies = nlohmann::json::array();
-  for (int b = 1; b < m.nbody; ++b) {
-    const char* name = mj_id2name(&m, mjOBJ_BODY, b);
-    bodies.push_back({{"name", name != nullptr ? name : ""}, {"parent", m.body_parentid[b]}});
-  }
   return nlohmann::json{{"model", robot.name()},
-                        {"bodies", bodies},
+                        {"bodies", web_viewer_bodies(robot.model())},
                         {"frame",
                          {{"layout", "float32: time, then per body xyz and quaternion wxyz"},
                           {"header_floats", 1},

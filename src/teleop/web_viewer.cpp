@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <cstring>
 #include <nlohmann/json.hpp>
 #include <thread>
 #include <vector>
@@ -44,12 +43,6 @@ void write_frame(const ViewerSession& session, std::vector<float>& frame) {
 }  // namespace
 
 std::string web_viewer_greeting(const ViewerSession& session, const PanelState& panel) {
-  const mjModel& m = session.robot().model();
-  Json bodies = Json::array();
-  for (int b = 1; b < m.nbody; ++b) {
-    const char* name = mj_id2name(&m, mjOBJ_BODY, b);
-    bodies.push_back({{"name", name != nullptr ? name : ""}, {"parent", m.body_parentid[b]}});
-  }
   const PanelRanges& r = session.ranges();
   const std::vector<std::string>& names = panel_value_names();
   Json sliders = Json::array();
@@ -66,7 +59,7 @@ std::string web_viewer_greeting(const ViewerSession& session, const PanelState& 
     if (session.available(mode)) modes.push_back(to_string(mode));
   return Json{{"model", session.robot().name()},
               {"site", session.site()},
-              {"bodies", bodies},  // body k + 1 of the model; parent 0 is the world
+              {"bodies", web_viewer_bodies(session.robot().model())},
               {"frame",
                {{"layout",
                  "float32: time, end effector xyz, target xyz, gripper, then per body xyz and "

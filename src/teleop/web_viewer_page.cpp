@@ -120,4 +120,13 @@ const std::string& web_viewer_page() {
   return page;
 }
 
+nlohmann::json web_viewer_bodies(const mjModel& model) {
+  nlohmann::json bodies = nlohmann::json::array();
+  for (int b = 1; b < model.nbody; ++b) {
+    const char* name = mj_id2name(&model, mjOBJ_BODY, b);
+    bodies.push_back({{"name", name != nullptr ? name : ""}, {"parent", model.body_parentid[b]}});
+  }
+  return bodies;
+}
+
 }  // namespace mjarm
