@@ -8,6 +8,7 @@ namespace {
 // (the newest frame as numbers), refusedSends.
 constexpr const char* kPage = R"html(<!doctype html>
 <html lang="en"><head><meta charset="utf-8"><title>mjarm live view</title>
+<link rel="icon" href="data:,">
 <style>
 body { margin: 0; font: 13px sans-serif; display: flex; height: 100vh; background: #1d2024; color: #ddd; }
 #view { flex: 1; }
