@@ -1,7 +1,7 @@
 // A headless Chromium driven through its DevTools protocol, for the replay page's test: started
 // with a profile of its own and a debugging port the browser picks (read from DevToolsActivePort),
 // always stopped by its process id.
-import { spawn } from 'node:child_process';
+import { execFileSync, spawn } from 'node:child_process';
 import { mkdtempSync, readFileSync, existsSync, rmSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
@@ -132,4 +132,30 @@ export async function openPage(browser, url) {
   }
   page.loadMs = Date.now() - started;
   return page;
+}
+
+// The browser to drive: $CHROMIUM or `chromium` on PATH; a missing one ends the test (exit 1)
+// saying what installs it.
+export function findChromium(test) {
+  const named = process.env.CHROMIUM || 'chromium';
+  try {
+    return execFileSync('sh', ['-c', `command -v ${named}`], { encoding: 'utf8' }).trim();
+  } catch {
+    console.error(`${test}: no '${named}' on PATH: Debian's chromium package runs this ` +
+                  'test (scripts/setup.sh all installs it)');
+    process.exit(1);
+  }
+}
+
+// A test's checks: each printed as it is made; end() prints the counts and exits 1 on a failure.
+export class Checks {
+  constructor() { this.passed = 0; this.failed = 0; }
+  check(ok, what, detail = '') {
+    if (ok) ++this.passed; else ++this.failed;
+    console.log(`${ok ? 'ok  ' : 'FAIL'} ${what}${detail ? `: ${detail}` : ''}`);
+  }
+  end() {
+    console.log(`${this.passed} passed, ${this.failed} failed`);
+    process.exit(this.failed === 0 ? 0 : 1);
+  }
 }

@@ -4,8 +4,8 @@
 // follows; with --token the page without the token, or with another, is refused and with it
 // served. Usage: node live_browser_test.mjs MJARM_CLI (MJARM_WEB_MODULES: the build tree's
 // web/node_modules, for ws; CHROMIUM: the browser, default `chromium` on PATH).
-import { execFileSync, spawn } from 'node:child_process';
-import { Browser, openPage } from './devtools.mjs';
+import { spawn } from 'node:child_process';
+import { Browser, Checks, findChromium, openPage } from './devtools.mjs';
 
 const [cli] = process.argv.slice(2);
 if (!cli) {
@@ -14,22 +14,8 @@ if (!cli) {
 }
 const sleep = (ms) => new Promise((resolve) => setTimeout(resolve, ms));
 
-let passed = 0, failed = 0;
-function check(ok, what, detail = '') {
-  if (ok) ++passed; else ++failed;
-  console.log(`${ok ? 'ok  ' : 'FAIL'} ${what}${detail ? `: ${detail}` : ''}`);
-}
-
-function findChromium() {
-  const named = process.env.CHROMIUM || 'chromium';
-  try {
-    return execFileSync('sh', ['-c', `command -v ${named}`], { encoding: 'utf8' }).trim();
-  } catch {
-    console.error(`live browser test: no '${named}' on PATH: Debian's chromium package runs this ` +
-                  'test (scripts/setup.sh all installs it)');
-    process.exit(1);
-  }
-}
+const checks = new Checks();
+const check = checks.check.bind(checks);
 
 // `mjarm view panda --web …` running, and the address it printed on stderr
 async function startViewer(extra) {
@@ -63,7 +49,7 @@ async function until(page, expression, tries = 1200) {
   return false;
 }
 
-const chromium = findChromium();
+const chromium = findChromium('live browser test');
 const browser = await Browser.start(chromium);
 const viewers = [];
 try {
@@ -107,5 +93,4 @@ try {
   browser.stop();
   for (const child of viewers) stopViewer(child);
 }
-console.log(`${passed} passed, ${failed} failed`);
-process.exit(failed === 0 ? 0 : 1);
+checks.end();

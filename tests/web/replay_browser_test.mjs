@@ -8,7 +8,7 @@ import { execFileSync } from 'node:child_process';
 import { mkdirSync, readFileSync, rmSync, writeFileSync, statSync } from 'node:fs';
 import { join, resolve } from 'node:path';
 import { pathToFileURL } from 'node:url';
-import { Browser, openPage } from './devtools.mjs';
+import { Browser, Checks, findChromium, openPage } from './devtools.mjs';
 import { decodePng } from './png.mjs';
 
 const [cli, workArgument] = process.argv.slice(2);
@@ -20,29 +20,15 @@ const work = resolve(workArgument);
 rmSync(work, { recursive: true, force: true });
 mkdirSync(work, { recursive: true });
 
-let passed = 0, failed = 0;
-function check(ok, what, detail = '') {
-  if (ok) ++passed; else ++failed;
-  console.log(`${ok ? 'ok  ' : 'FAIL'} ${what}${detail ? `: ${detail}` : ''}`);
-}
-
-function findChromium() {
-  const named = process.env.CHROMIUM || 'chromium';
-  try {
-    return execFileSync('sh', ['-c', `command -v ${named}`], { encoding: 'utf8' }).trim();
-  } catch {
-    console.error(`replay browser test: no '${named}' on PATH: Debian's chromium package runs this ` +
-                  'test (scripts/setup.sh all installs it)');
-    process.exit(1);
-  }
-}
+const checks = new Checks();
+const check = checks.check.bind(checks);
 
 function csvRows(path) {
   const [header, ...lines] = readFileSync(path, 'utf8').trim().split('\n');
   return { columns: header.split(','), rows: lines.map((l) => l.split(',').map(Number)) };
 }
 
-const chromium = findChromium();
+const chromium = findChromium('replay browser test');
 const recording = join(work, 'rec');
 execFileSync(cli, ['run', 'pick-place', '--record', recording], { stdio: ['ignore', 'ignore', 'inherit'] });
 const html = join(work, 'run.html');
@@ -202,5 +188,4 @@ try {
 } finally {
   browser.stop();
 }
-console.log(`${passed} passed, ${failed} failed`);
-process.exit(failed === 0 ? 0 : 1);
+checks.end();
