@@ -344,7 +344,13 @@ export function buildScene(data) {
   return {scene, bodies, meshCount, skipped, headlight, sky};
 }
 
-// The frames either side of time t and the weight of the later one.
+// The frames either side of time t and the weight of the later one, in `at` (one object for
+// every call: posing a frame allocates nothing).
+const at = {
+  k: 0,
+  next: 0,
+  w: 0
+};
 function frameAt(time, t) {
   const n = time.length;
   let k = 0;
@@ -363,8 +369,10 @@ function frameAt(time, t) {
   }
   const next = Math.min(k + 1, n - 1);
   const span = time[next] - time[k];
-  const w = span > 0 ? Math.min(Math.max((t - time[k]) / span, 0), 1) : 0;
-  return {k, next, w};
+  at.k = k;
+  at.next = next;
+  at.w = span > 0 ? Math.min(Math.max((t - time[k]) / span, 0), 1) : 0;
+  return at;
 }
 
 const qa = new THREE.Quaternion(), qb = new THREE.Quaternion();
@@ -393,9 +401,9 @@ export function poseTrackedCamera(data, track, t, object) {
 // Poses every body at time t: the frames either side, positions mixed linearly, orientations
 // by spherical interpolation (the recording is decimated: docs/replay.md).
 export function poseBodies(data, bodies, t) {
-  const at = frameAt(data.frames.time, t);
+  const between = frameAt(data.frames.time, t);
   const {pos, quat} = data.frames;
   const nb = bodies.length;
-  for (let b = 0; b < nb; ++b) poseBetween(bodies[b], pos, quat, nb, b, at);
-  return at.k;
+  for (let b = 0; b < nb; ++b) poseBetween(bodies[b], pos, quat, nb, b, between);
+  return between.k;
 }
