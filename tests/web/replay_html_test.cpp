@@ -444,7 +444,7 @@ TEST(ReplayHtmlScene, TexturesSkyboxHeightFieldAndTrackingCamerasAreInThePage) {
   const json data = data_block(root.path() / "scene.html");
 
   // every texture once, its pixels as MuJoCo holds them (small: none halved)
-  ASSERT_EQ(data["textures"].size(), 3u) << "sky, grid (on five geoms), dice";
+  ASSERT_EQ(data["textures"].size(), 3u) << "sky, grid (on six geoms), dice";
   const int sky = data["skybox"];
   ASSERT_GE(sky, 0);
   EXPECT_EQ(data["textures"][sky]["type"], "skybox");

@@ -168,9 +168,11 @@ function mujocoUv(geometry, geom) {
         }
         break;
       }
-      default:  // plane, height field: planar
-        u = (0.5 * rx * x) / (geom.texuniform || !(size[0] > 0) ? 1 : size[0]) - 0.5;
-        v = (-0.5 * ry * y) / (geom.texuniform || !(size[1] > 0) ? 1 : size[1]) - 0.5;
+      default: {  // plane, height field: planar (a height field's over its size, texuniform or not)
+        const perMetre = geom.texuniform && geom.type === 'plane';
+        u = (0.5 * rx * x) / (perMetre || !(size[0] > 0) ? 1 : size[0]) - 0.5;
+        v = (-0.5 * ry * y) / (perMetre || !(size[1] > 0) ? 1 : size[1]) - 0.5;
+      }
     }
     uv[2 * i] = u;
     uv[2 * i + 1] = v;
