@@ -5,25 +5,10 @@
 #include <string>
 
 #include "mjarm/error.hpp"
+#include "recorded_state.hpp"
 
 namespace mjarm::web_detail {
 namespace {
-
-// the recorder's column names (sim/recorder.cpp): "q.<joint>", "q.<joint>.k" for free and ball
-// joints, "joint<id>" for a joint without a name
-std::vector<std::string> qpos_columns(const mjModel& m) {
-  std::vector<std::string> columns;
-  for (int j = 0; j < m.njnt; ++j) {
-    const int type = m.jnt_type[j];
-    const int n = type == mjJNT_FREE ? 7 : type == mjJNT_BALL ? 4 : 1;
-    const char* name = mj_id2name(&m, mjOBJ_JOINT, j);
-    const std::string base =
-        "q." +
-        ((name != nullptr && name[0] != '\0') ? std::string(name) : "joint" + std::to_string(j));
-    for (int k = 0; k < n; ++k) columns.push_back(n == 1 ? base : base + "." + std::to_string(k));
-  }
-  return columns;
-}
 
 std::vector<std::size_t> kept_rows(const std::vector<double>& t, double rate) {
   std::vector<std::size_t> rows;

@@ -7,6 +7,7 @@
 #include "mjarm/error.hpp"
 #include "mjarm/file_writer.hpp"
 #include "replay_bundle.hpp"
+#include "replay_cameras.hpp"
 #include "replay_frames.hpp"
 #include "replay_overlays.hpp"
 #include "replay_plots.hpp"
@@ -86,6 +87,7 @@ ReplayHtmlReport write_replay_html(const Robot& robot, const plot::Recording& re
   for (const plot::RecordedEvent& e : recording.events())
     data["events"].push_back({{"t", e.t}, {"kind", e.kind}, {"message", e.message}});
   data["overlays"] = web_detail::replay_overlays(m, recording, frames.time);
+  data["camera_poses"] = web_detail::replay_camera_poses(m, recording.state(), frames.time);
   data["plot_time"] = plots.json["plot_time"];
   data["plots"] = plots.json["plots"];
 

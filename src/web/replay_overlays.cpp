@@ -6,21 +6,10 @@
 
 #include "base64.hpp"
 #include "mjarm/error.hpp"
+#include "recorded_state.hpp"
 
 namespace mjarm::web_detail {
 namespace {
-
-// for each frame time, the last row at or before it
-std::vector<std::size_t> rows_before(const std::vector<double>& t,
-                                     const std::vector<double>& times) {
-  std::vector<std::size_t> rows;
-  rows.reserve(times.size());
-  for (double time : times) {
-    const auto after = std::upper_bound(t.begin(), t.end(), time + 1e-12);
-    rows.push_back(after == t.begin() ? 0 : static_cast<std::size_t>(after - t.begin() - 1));
-  }
-  return rows;
-}
 
 // "ee." or "ref." pose columns at @p rows, as frame-major floats; empty when a column is missing
 std::vector<float> poses(const plot::CsvTable& task, const std::string& prefix,
@@ -38,12 +27,6 @@ std::vector<float> poses(const plot::CsvTable& task, const std::string& prefix,
   return out;
 }
 
-// the recorder's names of a joint's columns (as replay_frames reads them)
-std::string joint_column(const mjModel& m, int j) {
-  const char* name = mj_id2name(&m, mjOBJ_JOINT, j);
-  return (name != nullptr && name[0] != '\0') ? std::string(name) : "joint" + std::to_string(j);
-}
-
 }  // namespace
 
 nlohmann::json replay_overlays(const mjModel& m, const plot::Recording& recording,
@@ -51,7 +34,7 @@ nlohmann::json replay_overlays(const mjModel& m, const plot::Recording& recordin
   nlohmann::json out;
   const plot::CsvTable& task = recording.task();
   const plot::CsvTable& state = recording.state();
-  const std::vector<std::size_t> task_rows = rows_before(task.numbers("t"), frame_times);
+  const std::vector<std::size_t> task_rows = rows_at_or_before(task.numbers("t"), frame_times);
   const std::vector<float> tool = poses(task, "ee.", task_rows);
   const std::vector<float> target = poses(task, "ref.", task_rows);
   if (!tool.empty()) out["tool"] = base64_floats(tool);
@@ -59,20 +42,11 @@ nlohmann::json replay_overlays(const mjModel& m, const plot::Recording& recordin
 
   // the state at each frame, as recorded: qpos, qvel (free/ball joints: 7/4 and 6/3 columns),
   // ctrl; contacts and their forces by mj_forward
-  const std::vector<std::size_t> state_rows = rows_before(state.numbers("t"), frame_times);
+  const std::vector<std::size_t> state_rows = rows_at_or_before(state.numbers("t"), frame_times);
   std::vector<std::vector<double>> qpos, qvel, ctrl;
-  for (int j = 0; j < m.njnt; ++j) {
-    const int type = m.jnt_type[j];
-    const int nq = type == mjJNT_FREE ? 7 : type == mjJNT_BALL ? 4 : 1;
-    const int nv = type == mjJNT_FREE ? 6 : type == mjJNT_BALL ? 3 : 1;
-    const std::string name = joint_column(m, j);
-    for (int k = 0; k < nq; ++k)
-      qpos.push_back(state.numbers("q." + name + (nq == 1 ? "" : "." + std::to_string(k))));
-    for (int k = 0; k < nv; ++k) {
-      const std::string column = "v." + name + (nv == 1 ? "" : "." + std::to_string(k));
-      qvel.push_back(state.has(column) ? state.numbers(column) : std::vector<double>());
-    }
-  }
+  for (const std::string& column : qpos_columns(m)) qpos.push_back(state.numbers(column));
+  for (const std::string& column : qvel_columns(m))
+    qvel.push_back(state.has(column) ? state.numbers(column) : std::vector<double>());
   for (int a = 0; a < m.nu; ++a) {
     const char* name = mj_id2name(&m, mjOBJ_ACTUATOR, a);
     const std::string column = std::string("ctrl.") + (name != nullptr ? name : "");

@@ -5,6 +5,8 @@
 #include <vector>
 
 #include "base64.hpp"
+#include "replay_cameras.hpp"
+#include "replay_textures.hpp"
 
 namespace mjarm::web_detail {
 namespace {
@@ -49,6 +51,38 @@ nlohmann::json numbers(const float* values, int n) {
   return array;
 }
 
+// a mesh's texture coordinates per face corner (the page draws its faces unshared), as MuJoCo
+// maps a texture on it; empty when the mesh has none
+std::vector<float> mesh_face_texcoords(const mjModel& m, int mesh) {
+  std::vector<float> uv;
+  const int adr = m.mesh_texcoordadr[mesh];
+  if (adr < 0) return uv;
+  const int face = m.mesh_faceadr[mesh], nface = m.mesh_facenum[mesh];
+  uv.reserve(static_cast<std::size_t>(6 * nface));
+  for (int f = face; f < face + nface; ++f) {
+    for (int k = 0; k < 3; ++k) {
+      const int t = adr + m.mesh_facetexcoord[3 * f + k];
+      uv.push_back(m.mesh_texcoord[2 * t]);
+      uv.push_back(m.mesh_texcoord[2 * t + 1]);
+    }
+  }
+  return uv;
+}
+
+// a height field: its grid of elevations (row-major, 0 … 1 of its height) and its size (x, y,
+// z_top, z_bottom: MuJoCo's hfield_size), drawn as mjr_uploadHField builds it
+nlohmann::json hfield_json(const mjModel& m, int h) {
+  const int nrow = m.hfield_nrow[h], ncol = m.hfield_ncol[h];
+  const std::span<const float> data(
+      m.hfield_data + m.hfield_adr[h],
+      static_cast<std::size_t>(nrow) * static_cast<std::size_t>(ncol));
+  return {{"name", name_of(m, mjOBJ_HFIELD, h, "hfield")},
+          {"nrow", nrow},
+          {"ncol", ncol},
+          {"size", numbers(m.hfield_size + 4 * h, 4)},
+          {"data", base64_floats(data)}};
+}
+
 nlohmann::json mesh_json(const mjModel& m, int mesh) {
   const int vert = m.mesh_vertadr[mesh], nvert = m.mesh_vertnum[mesh];
   const int face = m.mesh_faceadr[mesh], nface = m.mesh_facenum[mesh];
@@ -89,38 +123,37 @@ ReplayScene replay_scene(const mjModel& m) {
   json["geoms"] = nlohmann::json::array();
   json["meshes"] = nlohmann::json::array();
   std::map<int, int> mesh_index;  // model mesh id → index in "meshes"
-  json["textures"] = nlohmann::json::array();
-  std::map<int, int> texture_index;  // model texture id → index in "textures"
+  json["hfields"] = nlohmann::json::array();
+  std::map<int, int> hfield_index;  // model hfield id → index in "hfields"
+  ReplayTextures textures(m);
   for (int g = 0; g < m.ngeom; ++g) {
     if (!geom_drawn(m, g)) continue;
     const int type = m.geom_type[g];
-    int mesh = -1;
+    int mesh = -1, hfield = -1;
     if (type == mjGEOM_MESH && m.geom_dataid[g] >= 0) {
       const int id = m.geom_dataid[g];
       auto [where, added] = mesh_index.emplace(id, static_cast<int>(json["meshes"].size()));
       if (added) json["meshes"].push_back(mesh_json(m, id));
       mesh = where->second;
     }
+    if (type == mjGEOM_HFIELD && m.geom_dataid[g] >= 0) {
+      const int id = m.geom_dataid[g];
+      auto [where, added] = hfield_index.emplace(id, static_cast<int>(json["hfields"].size()));
+      if (added) json["hfields"].push_back(hfield_json(m, id));
+      hfield = where->second;
+    }
     float rgba[4];
     geom_rgba(m, g, rgba);
     const int material = m.geom_matid[g];
-    // a plane's 2D texture (the floors' checker), its pixels embedded once; other geoms and
-    // other textures are drawn in their colour alone
-    int texture = -1;
-    const int tex = material >= 0 ? m.mat_texid[material * mjNTEXROLE + mjTEXROLE_RGB] : -1;
-    if (type == mjGEOM_PLANE && tex >= 0 && m.tex_type[tex] == mjTEXTURE_2D &&
-        (m.tex_nchannel[tex] == 3 || m.tex_nchannel[tex] == 4)) {
-      auto [where, added] = texture_index.emplace(tex, static_cast<int>(json["textures"].size()));
-      if (added) {
-        const std::size_t bytes = static_cast<std::size_t>(m.tex_width[tex]) *
-                                  static_cast<std::size_t>(m.tex_height[tex]) *
-                                  static_cast<std::size_t>(m.tex_nchannel[tex]);
-        json["textures"].push_back({{"width", m.tex_width[tex]},
-                                    {"height", m.tex_height[tex]},
-                                    {"channels", m.tex_nchannel[tex]},
-                                    {"data", base64(m.tex_data + m.tex_adr[tex], bytes)}});
-      }
-      texture = where->second;
+    // the material's texture (2D or cube; MuJoCo draws a skybox texture on a geom as a cube), its
+    // pixels embedded once
+    const int texture =
+        material >= 0 ? textures.use(m.mat_texid[material * mjNTEXROLE + mjTEXROLE_RGB]) : -1;
+    // a mesh's own texture coordinates, when a texture is drawn on it (MuJoCo then uses them
+    // instead of its planar mapping)
+    if (mesh >= 0 && texture >= 0 && !json["meshes"][mesh].contains("texcoord")) {
+      const std::vector<float> uv = mesh_face_texcoords(m, m.geom_dataid[g]);
+      if (!uv.empty()) json["meshes"][mesh]["texcoord"] = base64_floats(uv);
     }
     // MuJoCo's default material when the geom has none
     const float specular = material >= 0 ? m.mat_specular[material] : 0.5f;
@@ -138,6 +171,7 @@ ReplayScene replay_scene(const mjModel& m) {
          {"shininess", shininess},
          {"emission", emission},
          {"mesh", mesh},
+         {"hfield", hfield},
          {"texture", texture},
          {"texrepeat", material >= 0 ? numbers(m.mat_texrepeat + 2 * material, 2)
                                      : nlohmann::json::array({1.0, 1.0})},
@@ -145,14 +179,20 @@ ReplayScene replay_scene(const mjModel& m) {
     ++scene.drawn_geoms;
   }
   scene.meshes = static_cast<int>(json["meshes"].size());
+  scene.hfields = static_cast<int>(json["hfields"].size());
+  json["skybox"] = textures.skybox();
+  json["textures"] = textures.json();
+  scene.textures = static_cast<int>(json["textures"].size());
 
   json["cameras"] = nlohmann::json::array();
+  int moving = 0;  // the cameras posed per frame (replay_camera_poses), in camera order
   for (int c = 0; c < m.ncam; ++c) {
     json["cameras"].push_back({{"name", name_of(m, mjOBJ_CAMERA, c, "camera")},
                                {"body", m.cam_bodyid[c]},
                                {"pos", numbers(m.cam_pos + 3 * c, 3)},
                                {"quat", numbers(m.cam_quat + 4 * c, 4)},
-                               {"fovy", m.cam_fovy[c]}});
+                               {"fovy", m.cam_fovy[c]},
+                               {"track", camera_moves(m, c) ? moving++ : -1}});
   }
   scene.cameras = m.ncam;
   // the free bodies (the objects a task moves): their recorded qpos is their world pose, which

@@ -1,8 +1,9 @@
 #pragma once
 /// @file
 /// The model as the replay page draws it: bodies, the drawn geoms (MuJoCo's visible groups 0–2,
-/// alpha > 0) with their local poses, sizes and colours as MuJoCo chooses them, the meshes they
-/// use (vertices and faces), the cameras, the model's centre and extent.
+/// alpha > 0) with their local poses, sizes and colours as MuJoCo chooses them, the meshes and
+/// height fields they use, their textures and the skybox (replay_textures.hpp), the cameras, the
+/// model's centre and extent.
 
 #include <mujoco/mujoco.h>
 
@@ -11,9 +12,11 @@
 namespace mjarm::web_detail {
 
 struct ReplayScene {
-  nlohmann::json json;  ///< bodies, geoms, meshes, cameras, center, extent
+  nlohmann::json json;  ///< bodies, geoms, meshes, hfields, textures, skybox, cameras, …
   int drawn_geoms = 0;
   int meshes = 0;
+  int hfields = 0;
+  int textures = 0;
   int cameras = 0;
 };
 

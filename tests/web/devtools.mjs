@@ -13,14 +13,15 @@ const WebSocket = require('ws');
 const sleep = (ms) => new Promise((resolve) => setTimeout(resolve, ms));
 
 export class Browser {
-  static async start(executable, { width = 1280, height = 800 } = {}) {
+  // `args`: more of Chromium's switches (the replay test's unthrottled frames)
+  static async start(executable, { width = 1280, height = 800, args: extra = [] } = {}) {
     const profile = mkdtempSync(join(tmpdir(), 'mjarm-chromium-'));
     // software GL (SwiftShader through ANGLE): no GPU on the machines that run the suite
     const args = ['--headless', '--no-sandbox', '--no-first-run', '--no-default-browser-check',
       '--disable-extensions', '--disable-background-networking', '--disable-component-update',
       '--use-angle=swiftshader', '--enable-unsafe-swiftshader', '--ignore-gpu-blocklist',
       `--window-size=${width},${height}`, '--remote-debugging-port=0', `--user-data-dir=${profile}`,
-      'about:blank'];
+      ...extra, 'about:blank'];
     // a process group of its own: its renderer and GPU processes go with it
     const child = spawn(executable, args, { detached: true, stdio: ['ignore', 'ignore', 'pipe'] });
     let stderr = '';

@@ -37,7 +37,10 @@ const state = csvRows(join(recording, 'state.csv'));
 console.log(`replay: ${report.bytes} bytes, ${report.frames} frames, ${report.drawn_geoms} geoms drawn`);
 check(statSync(html).size === report.bytes, 'the file has the size the command reports');
 
-const browser = await Browser.start(chromium);
+// frames as fast as the page draws them: headless Chromium otherwise holds each frame to the next
+// tick of its 60 Hz clock, so a frame that misses one by a little waits a whole tick (docs/replay.md
+// "Size and speed": 15 frames per second without these switches, 13–75 with them, under load)
+const browser = await Browser.start(chromium, { args: ['--disable-gpu-vsync', '--disable-frame-rate-limit'] });
 try {
   const page = await openPage(browser, pathToFileURL(html).href);
   let ready = false;

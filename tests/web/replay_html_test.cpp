@@ -1,7 +1,8 @@
 // The replay file (include/mjarm/web/replay_html.hpp): what it holds checked against the
 // recording it was made from — free bodies at their recorded qpos, a hinge's link turned by its
 // recorded angle (quaternion by hand, not by MuJoCo) —, the geoms MuJoCo draws and their colours,
-// the recorded model, and the errors (another model, an unwritable file) that leave no file.
+// the recorded model, and the errors (another model, an unwritable file) that leave no file; the
+// scene's textures, skybox, height field and tracking cameras (tests/web/replay_scene_model.xml).
 
 #include "mjarm/web/replay_html.hpp"
 
@@ -13,6 +14,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <string>
@@ -27,6 +29,7 @@
 #include "sim/sim_test_support.hpp"
 #include "web/base64.hpp"
 #include "web/replay_scene.hpp"
+#include "web/replay_textures.hpp"
 
 namespace {
 
@@ -289,7 +292,8 @@ TEST_F(ReplayHtml, GeomsAreDrawnInMujocosColours) {
   // the floor's checker: its pixels once, both colours in them, repeated as its material says
   ASSERT_EQ(scene.json["textures"].size(), 1u);
   const json& texture = scene.json["textures"][0];
-  const std::vector<unsigned char> pixels = unbase64(texture["data"]);
+  const std::vector<unsigned char> pixels = mjarm::web_detail::decode_texture(
+      unbase64(texture["data"]), texture["width"], texture["height"], texture["channels"]);
   ASSERT_EQ(pixels.size(),
             static_cast<std::size_t>(texture["width"].get<int>() * texture["height"].get<int>() *
                                      texture["channels"].get<int>()));
@@ -355,6 +359,179 @@ TEST_F(ReplayHtml, AnUnwritableFileIsAnErrorNamingIt) {
   options.rate = 0.0;
   EXPECT_THROW(mjarm::write_replay_html(mjarm::recorded_model(rec), rec, out("r.html"), options),
                mjarm::Error);
+}
+
+// The scene test model's run, written by hand: the cart slides along x as q = 0.5 sin(3t) for 1 s
+// of 2 ms rows (the recording's files as the recorder names them; no controller, no task).
+fs::path write_cart_recording(const fs::path& dir) {
+  fs::create_directories(dir);
+  std::ofstream state(dir / "state.csv"), task(dir / "task.csv");
+  state << "t,q.cart_x\n";
+  task << "t\n";
+  for (int i = 0; i <= 500; ++i) {
+    const double t = 0.002 * i;
+    state << t << "," << 0.5 * std::sin(3.0 * t) << "\n";
+    task << t << "\n";
+  }
+  std::ofstream(dir / "events.csv") << "t,kind,message\n0,phase,slide\n";
+  std::ofstream(dir / "summary.json") << R"({"model": "replay_scene", "status": "ok"})";
+  return dir;
+}
+
+const fs::path kSceneModel = fs::path(MJARM_SOURCE_DIR) / "tests/web/replay_scene_model.xml";
+
+TEST(ReplayTextures, PixelsComeBackAsTheyWereAndALargeTextureIsHalved) {
+  // a small picture within the budget: kept whole, every byte back
+  std::vector<unsigned char> small(40 * 24 * 3);
+  for (std::size_t i = 0; i < small.size(); ++i) small[i] = static_cast<unsigned char>(i * 7 % 251);
+  const mjarm::web_detail::EncodedTexture kept =
+      mjarm::web_detail::encode_texture(small.data(), 40, 24, 3);
+  EXPECT_EQ(kept.width, 40);
+  EXPECT_EQ(kept.height, 24);
+  EXPECT_EQ(mjarm::web_detail::decode_texture(kept.deflated, 40, 24, 3), small);
+  // a cube strip (6 faces of 64²) of noise over a budget of 4 KiB: halved to faces of 16² (the
+  // smallest halved), still a strip, each pixel the mean of the 4×4 it stands for
+  std::vector<unsigned char> strip(64 * 384 * 3);
+  unsigned seed = 1;
+  for (unsigned char& byte : strip) {
+    seed = seed * 1103515245u + 12345u;
+    byte = static_cast<unsigned char>(seed >> 24);
+  }
+  const mjarm::web_detail::EncodedTexture halved =
+      mjarm::web_detail::encode_texture(strip.data(), 64, 384, 3, 4096);
+  ASSERT_EQ(halved.width, 16);
+  ASSERT_EQ(halved.height, 96);
+  const std::vector<unsigned char> pixels =
+      mjarm::web_detail::decode_texture(halved.deflated, 16, 96, 3);
+  ASSERT_EQ(pixels.size(), 16u * 96u * 3u);
+  double worst = 0.0;
+  for (int y = 0; y < 96; ++y)
+    for (int x = 0; x < 16; ++x)
+      for (int k = 0; k < 3; ++k) {
+        double sum = 0.0;
+        for (int dy = 0; dy < 4; ++dy)
+          for (int dx = 0; dx < 4; ++dx) sum += strip[((4 * y + dy) * 64 + 4 * x + dx) * 3 + k];
+        worst = std::max(worst, std::abs(pixels[(y * 16 + x) * 3 + k] - sum / 16.0));
+      }
+  EXPECT_LE(worst, 1.0) << "two roundings of a mean of four";
+}
+
+TEST(ReplayTextures, TheBundledFloorAndSkyStaySmall) {
+  const mjarm::Robot robot = mjarm::Robot::bundled("arm6");
+  const mjarm::web_detail::ReplayScene scene = mjarm::web_detail::replay_scene(robot.model());
+  ASSERT_GE(scene.json["skybox"].get<int>(), 0);
+  std::size_t bytes = 0;
+  for (const json& texture : scene.json["textures"]) {
+    bytes += texture["data"].get<std::string>().size();
+    EXPECT_LE(texture["data"].get<std::string>().size(),
+              mjarm::web_detail::kTextureBudget * 4 / 3 + 4);
+  }
+  const json& sky = scene.json["textures"][scene.json["skybox"].get<int>()];
+  EXPECT_EQ(sky["type"], "skybox");
+  EXPECT_EQ(sky["height"].get<int>(), 6 * sky["width"].get<int>());
+  EXPECT_LE(bytes, 100u * 1024u) << "the floor and the sky, base64";
+}
+
+TEST(ReplayHtmlScene, TexturesSkyboxHeightFieldAndTrackingCamerasAreInThePage) {
+  mjarm::test::TempDir root("replay_scene");
+  const fs::path rec_dir = write_cart_recording(root.path() / "rec");
+  const mjarm::plot::Recording rec = mjarm::plot::Recording::load(rec_dir);
+  const mjarm::Robot robot = mjarm::Robot::from_file(kSceneModel);
+  const mjModel& m = robot.model();
+  const mjarm::ReplayHtmlReport report =
+      mjarm::write_replay_html(robot, rec, root.path() / "scene.html");
+  EXPECT_EQ(report.drawn_geoms, 8);  // floor, hill, crate, die, pyramid, ball, drum, cart
+  const json data = data_block(root.path() / "scene.html");
+
+  // every texture once, its pixels as MuJoCo holds them (small: none halved)
+  ASSERT_EQ(data["textures"].size(), 3u) << "sky, grid (on six geoms), dice";
+  const int sky = data["skybox"];
+  ASSERT_GE(sky, 0);
+  EXPECT_EQ(data["textures"][sky]["type"], "skybox");
+  for (const json& texture : data["textures"]) {
+    const int width = texture["width"], height = texture["height"], channels = texture["channels"];
+    ASSERT_EQ(width, texture["source_width"].get<int>());
+    int tex = -1;
+    for (int t = 0; t < m.ntex; ++t)
+      if (m.tex_width[t] == width && m.tex_height[t] == height) tex = t;
+    ASSERT_GE(tex, 0);
+    const std::vector<unsigned char> encoded = unbase64(texture["data"]);
+    const std::vector<unsigned char> pixels =
+        mjarm::web_detail::decode_texture(encoded, width, height, channels);
+    EXPECT_TRUE(std::equal(pixels.begin(), pixels.end(), m.tex_data + m.tex_adr[tex]))
+        << texture["type"];
+  }
+  std::map<std::string, json> geoms;
+  for (const json& g : data["geoms"]) geoms[g["name"]] = g;
+  EXPECT_EQ(geoms["crate"]["texture"], geoms["floor"]["texture"]);
+  EXPECT_EQ(geoms["crate"]["texture"], geoms["pyramid"]["texture"]);
+  EXPECT_EQ(data["textures"][geoms["die"]["texture"].get<int>()]["type"], "cube");
+  EXPECT_TRUE(geoms["floor"]["texuniform"].get<bool>());
+  EXPECT_EQ(geoms["cart_box"]["texture"], -1);
+
+  // the pyramid's texture coordinates, per face corner
+  const json& mesh = data["meshes"][geoms["pyramid"]["mesh"].get<int>()];
+  const std::vector<float> uv = unbase64_floats(mesh["texcoord"]);
+  ASSERT_EQ(uv.size(), static_cast<std::size_t>(6 * m.mesh_facenum[0]));
+  for (int f = 0; f < m.mesh_facenum[0]; ++f)
+    for (int k = 0; k < 3; ++k)
+      for (int c = 0; c < 2; ++c)
+        EXPECT_EQ(uv[(3 * f + k) * 2 + c], m.mesh_texcoord[2 * m.mesh_facetexcoord[3 * f + k] + c]);
+
+  // the height field: its grid and size
+  EXPECT_EQ(geoms["hill"]["type"], "hfield");
+  ASSERT_EQ(geoms["hill"]["hfield"], 0);
+  const json& hill = data["hfields"][0];
+  EXPECT_EQ(hill["nrow"], 4);
+  EXPECT_EQ(hill["ncol"], 5);
+  EXPECT_FLOAT_EQ(hill["size"][3].get<float>(), 0.05f);
+  const std::vector<float> elevation = unbase64_floats(hill["data"]);
+  ASSERT_EQ(elevation.size(), 20u);
+  EXPECT_TRUE(std::equal(elevation.begin(), elevation.end(), m.hfield_data));
+  EXPECT_FLOAT_EQ(*std::max_element(elevation.begin(), elevation.end()), 1.0f);
+
+  // the cameras: the one riding the cart needs no poses; the tracking one keeps its offset from
+  // the cart and its orientation, the aimed one looks at the cart — at every frame
+  std::map<std::string, int> track;
+  for (const json& c : data["cameras"]) track[c["name"]] = c["track"];
+  EXPECT_EQ(track["rider"], -1);
+  ASSERT_GE(track["follow"], 0);
+  ASSERT_GE(track["aim"], 0);
+  const json& poses = data["camera_poses"];
+  ASSERT_EQ(poses["cameras"].size(), 2u);
+  const std::vector<float> time = unbase64_floats(data["frames"]["time"]);
+  const std::vector<float> pos = unbase64_floats(poses["pos"]);
+  const std::vector<float> quat = unbase64_floats(poses["quat"]);
+  ASSERT_EQ(pos.size(), time.size() * 2 * 3);
+  ASSERT_EQ(quat.size(), time.size() * 2 * 4);
+  const std::vector<double> t = rec.state().numbers("t");
+  const std::vector<double> q = rec.state().numbers("q.cart_x");
+  double worst_pos = 0.0, worst_aim = 0.0, travel = 0.0;
+  for (std::size_t f = 0; f < time.size(); ++f) {
+    std::size_t row = 0;
+    while (row + 1 < t.size() && std::abs(t[row] - time[f]) > 1e-6) ++row;
+    const double cart[3] = {q[row], 0.0, 0.2};
+    const std::size_t follow = f * 2 + static_cast<std::size_t>(track["follow"]);
+    const double expected[3] = {cart[0], -1.8, 1.2};
+    for (int k = 0; k < 3; ++k)
+      worst_pos = std::max(worst_pos, std::abs(pos[follow * 3 + k] - expected[k]));
+    // the tracking camera turned as at the start: x along the world's x
+    EXPECT_NEAR(std::abs(quat[follow * 4 + 0]), std::cos(std::acos(0.49828388) / 2), 1e-5);
+    // the aimed camera's −z axis (its view) points from it to the cart
+    const std::size_t aim = f * 2 + static_cast<std::size_t>(track["aim"]);
+    mjtNum qa[4], mat[9];
+    for (int k = 0; k < 4; ++k) qa[k] = quat[aim * 4 + k];
+    mju_normalize4(qa);
+    mju_quat2Mat(mat, qa);
+    double to[3] = {cart[0] - pos[aim * 3], cart[1] - pos[aim * 3 + 1], cart[2] - pos[aim * 3 + 2]};
+    const double norm = std::sqrt(to[0] * to[0] + to[1] * to[1] + to[2] * to[2]);
+    for (int k = 0; k < 3; ++k)
+      worst_aim = std::max(worst_aim, std::abs(-mat[3 * k + 2] - to[k] / norm));
+    travel = std::max(travel, std::abs(q[row]));
+  }
+  EXPECT_GT(travel, 0.4) << "the cart barely moved: a weak test";
+  EXPECT_LT(worst_pos, 1e-6) << "the tracking camera's position";
+  EXPECT_LT(worst_aim, 1e-6) << "the aimed camera's view";
 }
 
 }  // namespace

@@ -6,7 +6,7 @@ import {OrbitControls} from 'three/addons/controls/OrbitControls.js';
 import {readReplayData} from './decode.js';
 import {buildOverlays} from './overlays.js';
 import {buildPlots} from './plots.js';
-import {buildScene, poseBodies} from './scene.js';
+import {buildScene, poseBodies, poseTrackedCamera} from './scene.js';
 import {STYLE} from './style.js';
 
 function element(tag, attributes = {}, parent = null) {
@@ -73,10 +73,10 @@ function softwareGl() {
   return /swiftshader|llvmpipe|software/i.test(name);
 }
 
-function start() {
-  const data = readReplayData('mjarm-replay-data');
+async function start() {
+  const data = await readReplayData('mjarm-replay-data');
   const ui = layout();
-  const {scene, bodies, meshCount, skipped, headlight} = buildScene(data);
+  const {scene, bodies, meshCount, skipped, headlight, sky} = buildScene(data);
   const background = scene.background;
   const overlays = buildOverlays(data, scene);
   // multisampling costs software GL (SwiftShader, llvmpipe: no GPU) more than a frame's budget
@@ -144,6 +144,13 @@ function start() {
   function placeCamera() {
     if (cameraIndex < 0) return free;
     const c = data.cameras[cameraIndex];
+    presets.fov = c.fovy;
+    presets.updateProjectionMatrix();
+    // a tracking or targeting camera: its pose per frame, as MuJoCo computed it
+    if (c.track >= 0) {
+      poseTrackedCamera(data, c.track, t, presets);
+      return presets;
+    }
     const parent = bodies[c.body];
     parent.updateMatrixWorld();
     const local = new THREE.Matrix4().compose(
@@ -152,8 +159,6 @@ function start() {
         new THREE.Vector3(1, 1, 1));
     const world = parent.matrixWorld.clone().multiply(local);
     world.decompose(presets.position, presets.quaternion, presets.scale);
-    presets.fov = c.fovy;
-    presets.updateProjectionMatrix();
     return presets;
   }
 
@@ -286,6 +291,16 @@ function start() {
   window.mjarmReplay = {
     ready: true,
     meshCount,
+    skybox: sky !== null,
+    textureCount: data.textures.length,
+    hfieldCount: data.geoms.filter((g) => g.type === 'hfield').length,
+    // the pose of the camera drawn now (the free camera or the chosen preset)
+    cameraPose: () => {
+      const cam = placeCamera();
+      cam.updateMatrixWorld();
+      const q = cam.quaternion;
+      return {pos: cam.position.toArray(), quat: [q.w, q.x, q.y, q.z]};
+    },
     skippedGeoms: skipped,
     softwareGl: software,
     // milliseconds to pose and draw one frame, the GPU (or software GL) waited for: n frames
@@ -352,6 +367,7 @@ function start() {
       };
       const white = new THREE.MeshBasicMaterial({color: 0xffffff});
       scene.background = root === null ? background : new THREE.Color(0, 0, 0);
+      if (sky) sky.visible = root === null;
       ui.title.style.display = root === null ? '' : 'none';
       for (const [name, group] of Object.entries(overlays.groups))
         group.visible = root === null && ui.toggles[name].checked;
@@ -382,9 +398,7 @@ function start() {
   };
 }
 
-try {
-  start();
-} catch (error) {
+start().catch((error) => {
   document.body.textContent = `mjarm replay: ${error.message}`;
   throw error;
-}
+});
