@@ -45,6 +45,8 @@ if [ "$profile" = all ]; then
     # the sanitized test build and the fuzz targets (scripts/fuzz.sh, part of `make test`): clang
     # and its sanitizer and libFuzzer runtimes
     clang libclang-rt-14-dev
+    # the code's format (`make format`, `git clang-format` before a commit: .clang-format)
+    clang-format
     # make test's wheel check reuses the sanitized build's objects through the compiler cache
     ccache
     # the Python extension compiles against Debian's python3 headers
