@@ -58,7 +58,9 @@ class Browser:
         return data
 
     def read(self):
-        """(is_text, payload) of the next data message (pings are skipped)."""
+        """(is_text, payload) of the next data message, its fragments joined (a greeting with
+        the model's meshes and textures comes in several); pings and pongs are skipped."""
+        message, is_text = None, False
         while True:
             first, second = self._exactly(2)
             length = second & 0x7F
@@ -69,7 +71,13 @@ class Browser:
             payload = self._exactly(length)
             opcode = first & 0x0F
             if opcode in (1, 2):
-                return opcode == 1, payload
+                message, is_text = payload, opcode == 1
+            elif opcode == 0 and message is not None:
+                message += payload
+            else:
+                continue  # a control frame
+            if first & 0x80:  # the message's last fragment
+                return is_text, message
 
     def close(self):
         self.sock.close()
