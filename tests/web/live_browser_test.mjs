@@ -69,6 +69,7 @@ try {
       meshCount: l.meshCount, skipped: l.skippedGeoms, bodies: l.bodies,
       sliders: document.querySelectorAll('#mjarm-sliders input').length,
       modes: Array.from(document.querySelectorAll('#mjarm-mode option'), (o) => o.value),
+      shown: ['mjarm-mode', 'mjarm-reset'].every((id) => document.getElementById(id).offsetParent !== null),
       playback: ['mjarm-scrub', 'mjarm-plots', 'mjarm-phases'].filter((id) => document.getElementById(id)) }; })()`);
   const layout = info.greeting.frame;
   check(info.greeting.model === 'panda', 'the greeting names the model', info.greeting.model);
@@ -77,7 +78,8 @@ try {
   check(info.skipped.length === 0, 'no geom left undrawn', info.skipped.join(' '));
   check(info.playback.length === 0, 'no scrub, plots or timeline live', info.playback.join(' '));
   check(info.sliders === 7, 'the panel has the viewer\'s seven sliders', `${info.sliders}`);
-  check(['kinematic', 'position', 'torque'].every((m) => info.modes.includes(m)), 'the panel has the modes',
+  check(info.shown && ['kinematic', 'position', 'torque'].every((m) => info.modes.includes(m)),
+        'the panel shows the modes and reset',
         info.modes.join(' '));
 
   // every body drawn at the pose of the frame the view shows, the tool frame where the frame has it

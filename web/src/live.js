@@ -54,8 +54,9 @@ function buildPanel(greeting, ui, send, sendNow) {
     label.append(s.name, shown, input);
   }
   const steered = greeting.sliders.length > 0;
-  ui.modeLabel.hidden = !steered;
-  ui.reset.hidden = !steered;
+  // display, not the hidden attribute: the panel's style shows every label as a block
+  ui.modeLabel.style.display = steered ? '' : 'none';
+  ui.reset.style.display = steered ? '' : 'none';
   ui.mode.textContent = '';
   for (const m of greeting.modes)
     element('option', {value: m, textContent: m, selected: m === greeting.mode}, ui.mode);
