@@ -8,7 +8,10 @@ real-time factor (simulated time / wall time), the frames published, sent and sk
 clients still connected at the end (the server closes one that has not answered its pings for
 20 s). The stalled client must cost the simulation nothing: both factors near 1.
 
-    python3 bench/web_stalled_client.py build-demo/mjarm [--model panda] [--seconds 10] [--json]
+    python3 bench/web_stalled_client.py build-rel/mjarm [--model panda] [--seconds 10] [--json]
+
+MJARM is a CLI built with the live page (MJARM_WEB, docs/replay.md): without it `view --web`
+exits 1 and so does this.
 """
 
 import argparse

@@ -5180,7 +5180,7 @@ class PassiveWebViewer:
     def __exit__(self: PassiveWebViewer, *args) -> None:
         ...
     def __init__(self: PassiveWebViewer, robot: Robot | mujoco.MjModel, data: Data | mujoco.MjData, options: LiveServerOptions = ...) -> None:
-        """Serves robot's bodies as data holds them. Raises mjarm.Error when the data is another model's or the address cannot be listened on."""
+        """Serves robot's bodies as data holds them on the replay page's scene in live mode. Raises mjarm.Error when the data is another model's, the build holds no page (MJARM_WEB; the message says how to get it) or the address cannot be listened on."""
         ...
     def close(self: PassiveWebViewer) -> None:
         """Stops serving; the browsers are disconnected."""

@@ -14,9 +14,11 @@ never waiting for a frame. Double-click selects a body; Ctrl + right drag pulls 
 drag turns it, through the data's ``xfrc_applied`` (written at each ``sync``, zeroed when the drag
 ends), as MuJoCo's simulate does. See docs/viewer.md.
 
-Without a display, ``launch_passive(model, data, web=True)`` serves the bodies to a browser
-instead: open ``viewer.url`` (127.0.0.1; ``host="0.0.0.0"`` needs the token within the url).
-``sync()`` publishes the poses and returns at once; it draws no markers or plots.
+Without a display, ``launch_passive(model, data, web=True)`` serves the model to a browser
+instead (the replay page's three.js scene, live): open ``viewer.url`` (127.0.0.1;
+``host="0.0.0.0"`` needs the token within the url). ``sync()`` publishes the poses and returns at
+once; it draws no markers or plots. A build without the page (MJARM_WEB) raises ``mjarm.Error``
+saying how to get it.
 """
 from . import _mjarm
 

@@ -165,8 +165,9 @@ void bind_teleop(py::module_& m) {
                }),
            py::arg("robot"), py::arg("data"), py::arg("options") = LiveServerOptions{},
            py::keep_alive<1, 3>(),
-           "Serves robot's bodies as data holds them. Raises mjarm.Error when the data is "
-           "another model's or the address cannot be listened on.")
+           "Serves robot's bodies as data holds them on the replay page's scene in live mode. "
+           "Raises mjarm.Error when the data is another model's, the build holds no page "
+           "(MJARM_WEB; the message says how to get it) or the address cannot be listened on.")
       .def("sync", &PassiveWebViewer::sync,
            "Publishes the data's time and body poses (as the last mj_step or mj_forward left "
            "them) to every browser; returns at once.")

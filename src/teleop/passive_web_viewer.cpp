@@ -3,24 +3,12 @@
 #include <nlohmann/json.hpp>
 
 #include "mjarm/error.hpp"
-#include "teleop/web_viewer_page.hpp"
+#include "mjarm/web/live_page.hpp"
+#include "teleop/web_frame.hpp"
 
 namespace mjarm {
 
 namespace {
-
-/// What a browser is told on connecting: the bodies in frame order and the frame's layout.
-std::string passive_greeting(const Robot& robot) {
-  return nlohmann::json{{"model", robot.name()},
-                        {"bodies", web_viewer_bodies(robot.model())},
-                        {"frame",
-                         {{"layout", "float32: time, then per body xyz and quaternion wxyz"},
-                          {"header_floats", 1},
-                          {"body_floats", 7}}},
-                        {"sliders", nlohmann::json::array()},
-                        {"modes", nlohmann::json::array()}}
-      .dump();
-}
 
 const mjData& checked(const Robot& robot, const mjData& data) {
   // a data's arena and buffer sizes come from its model: a mismatch is another model's data,
@@ -40,22 +28,20 @@ PassiveWebViewer::PassiveWebViewer(const Robot& robot, const mjData& data,
                                    const LiveServerOptions& options)
     : robot_(robot),
       data_(checked(robot, data)),
-      server_(std::make_unique<LiveServer>(web_viewer_page(), options)),
-      frame_(static_cast<std::size_t>(1 + 7 * (robot.model().nbody - 1))) {
-  server_->set_greeting(passive_greeting(robot_));
+      frame_(std::make_unique<WebFrame>(robot.model(), false)) {
+  server_ = std::make_unique<LiveServer>(live_page_html("passive web viewer"), options);
+  nlohmann::json greeting = web_greeting(robot_, *frame_);
+  greeting["sliders"] = nlohmann::json::array();  // watched, not steered: no panel
+  greeting["modes"] = nlohmann::json::array();
+  server_->set_greeting(greeting.dump());
 }
+
+PassiveWebViewer::~PassiveWebViewer() = default;
 
 void PassiveWebViewer::sync() {
   if (!server_) return;
-  const int nbody = robot_.model().nbody;
-  float* out = frame_.data();
-  *out++ = static_cast<float>(data_.time);
-  for (int b = 1; b < nbody; ++b) {
-    for (int k = 0; k < 3; ++k) *out++ = static_cast<float>(data_.xpos[3 * b + k]);
-    for (int k = 0; k < 4; ++k) *out++ = static_cast<float>(data_.xquat[4 * b + k]);
-  }
-  server_->publish(std::string_view(reinterpret_cast<const char*>(frame_.data()),
-                                    frame_.size() * sizeof(float)));
+  frame_->set_bodies(data_.time, data_);
+  server_->publish(frame_->bytes());
   ++syncs_;
 }
 

@@ -9,7 +9,8 @@
 
 #include "mjarm/error.hpp"
 #include "mjarm/interrupt.hpp"
-#include "teleop/web_viewer_page.hpp"
+#include "mjarm/web/live_page.hpp"
+#include "teleop/web_frame.hpp"
 
 namespace mjarm {
 
@@ -21,23 +22,11 @@ using Clock = std::chrono::steady_clock;
 /// The most simulated time one frame catches up [s]; beyond, it is dropped.
 constexpr double kMaxCatchUp = 0.25;
 
-constexpr int kHeaderFloats = 8;  // time, end effector (3), target (3), gripper
-constexpr int kBodyFloats = 7;    // position (3), quaternion w x y z (4)
-
-/// Fills @p frame (sized once) with the session's state; allocates nothing.
-void write_frame(const ViewerSession& session, std::vector<float>& frame) {
+/// Fills @p frame with the session's state; allocates nothing.
+void write_frame(const ViewerSession& session, WebFrame& frame) {
   const ViewerStats& s = session.stats();
-  const mjData& d = session.simulation().data();
-  const mjModel& m = session.robot().model();
-  float* out = frame.data();
-  *out++ = static_cast<float>(s.time);
-  for (int k = 0; k < 3; ++k) *out++ = static_cast<float>(s.X_WE.p[k]);
-  for (int k = 0; k < 3; ++k) *out++ = static_cast<float>(s.X_WT.p[k]);
-  *out++ = static_cast<float>(s.gripper);
-  for (int b = 1; b < m.nbody; ++b) {
-    for (int k = 0; k < 3; ++k) *out++ = static_cast<float>(d.xpos[3 * b + k]);
-    for (int k = 0; k < 4; ++k) *out++ = static_cast<float>(d.xquat[4 * b + k]);
-  }
+  frame.set_bodies(s.time, session.simulation().data());
+  frame.set_panel(s.X_WE, s.X_WT, s.gripper);
 }
 
 }  // namespace
@@ -57,19 +46,12 @@ std::string web_viewer_greeting(const ViewerSession& session, const PanelState& 
   for (SimulationMode mode :
        {SimulationMode::kinematic, SimulationMode::position, SimulationMode::torque})
     if (session.available(mode)) modes.push_back(to_string(mode));
-  return Json{{"model", session.robot().name()},
-              {"site", session.site()},
-              {"bodies", web_viewer_bodies(session.robot().model())},
-              {"frame",
-               {{"layout",
-                 "float32: time, end effector xyz, target xyz, gripper, then per body xyz and "
-                 "quaternion wxyz"},
-                {"header_floats", kHeaderFloats},
-                {"body_floats", kBodyFloats}}},
-              {"sliders", sliders},
-              {"mode", to_string(session.mode())},
-              {"modes", modes}}
-      .dump();
+  Json greeting = web_greeting(session.robot(), WebFrame(session.robot().model(), true));
+  greeting["site"] = session.site();
+  greeting["sliders"] = sliders;
+  greeting["mode"] = to_string(session.mode());
+  greeting["modes"] = modes;
+  return greeting.dump();
 }
 
 std::string apply_web_message(ViewerSession& session, PanelState& panel,
@@ -110,12 +92,11 @@ WebViewerReport run_web_viewer(ViewerSession& session, const WebViewerOptions& o
   check_fields(options);
   PanelState panel = session.initial_panel();
   panel.mode = static_cast<int>(session.mode());
-  LiveServer server(web_viewer_page(), options.server);
+  LiveServer server(live_page_html("view --web"), options.server);
   server.set_greeting(web_viewer_greeting(session, panel));
   if (on_start) on_start(server);
 
-  const int nbody = session.robot().model().nbody;
-  std::vector<float> frame(static_cast<std::size_t>(kHeaderFloats + kBodyFloats * (nbody - 1)));
+  WebFrame frame(session.robot().model(), true);
   std::string message;
   WebViewerReport report;
   double simulated = 0.0;  // since start, across resets
@@ -155,8 +136,7 @@ WebViewerReport run_web_viewer(ViewerSession& session, const WebViewerOptions& o
       if (done < ticks) report.dropped += (ticks - done) * period;  // a fault stopped it
     }
     write_frame(session, frame);
-    server.publish(std::string_view(reinterpret_cast<const char*>(frame.data()),
-                                    frame.size() * sizeof(float)));
+    server.publish(frame.bytes());
     ++report.frames;
     next += std::chrono::duration_cast<Clock::duration>(frame_period);
     const Clock::time_point now = Clock::now();

@@ -6,6 +6,7 @@
 #include "base64.hpp"
 #include "mjarm/error.hpp"
 #include "mjarm/file_writer.hpp"
+#include "page_html.hpp"
 #include "replay_bundle.hpp"
 #include "replay_cameras.hpp"
 #include "replay_frames.hpp"
@@ -14,47 +15,6 @@
 #include "replay_scene.hpp"
 
 namespace mjarm {
-namespace {
-
-std::string html_text(const std::string& text) {
-  std::string out;
-  for (char c : text) {
-    switch (c) {
-      case '&':
-        out += "&amp;";
-        break;
-      case '<':
-        out += "&lt;";
-        break;
-      case '>':
-        out += "&gt;";
-        break;
-      case '"':
-        out += "&quot;";
-        break;
-      default:
-        out += c;
-    }
-  }
-  return out;
-}
-
-// JSON inside a script element: a '<' (only ever inside a string) could close the element
-std::string script_safe(const std::string& json) {
-  std::string out;
-  out.reserve(json.size());
-  for (char c : json) {
-    if (c == '<') {
-      out += "\\u003c";
-    } else {
-      out += c;
-    }
-  }
-  return out;
-}
-
-}  // namespace
-
 bool replay_html_available() { return web_detail::replay_bundle_missing().empty(); }
 
 ReplayHtmlReport write_replay_html(const Robot& robot, const plot::Recording& recording,
@@ -92,14 +52,9 @@ ReplayHtmlReport write_replay_html(const Robot& robot, const plot::Recording& re
   data["plots"] = plots.json["plots"];
 
   FileWriter writer(out, FileWriter::Mode::replace, "replay page");
-  writer.write(
-      "<!doctype html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n"
-      "<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n"
-      "<title>");
-  writer.write(html_text(title + " — mjarm replay"));
-  writer.write(
-      "</title>\n</head>\n<body>\n<script type=\"application/json\" id=\"mjarm-replay-data\">");
-  writer.write(script_safe(data.dump()));
+  writer.write(web_detail::page_head(title + " — mjarm replay"));
+  writer.write("<script type=\"application/json\" id=\"mjarm-replay-data\">");
+  writer.write(web_detail::script_safe(data.dump()));
   writer.write("</script>\n<script>");
   writer.write(web_detail::replay_bundle());
   writer.write("</script>\n</body>\n</html>\n");

@@ -47,10 +47,16 @@ async function texturePixels(texture) {
 export async function readReplayData(elementId) {
   const element = document.getElementById(elementId);
   if (!element) throw new Error(`replay: no data block #${elementId}`);
-  const data = JSON.parse(element.textContent);
+  const data = await decodeScene(JSON.parse(element.textContent));
   data.frames.time = floats(data.frames.time);
   data.frames.pos = floats(data.frames.pos);
   data.frames.quat = floats(data.frames.quat);
+  return data;
+}
+
+// The model's arrays decoded in place (meshes, textures): a replay file's data block and the live
+// view's greeting describe the model alike (src/web/replay_scene.cpp).
+export async function decodeScene(data) {
   for (const mesh of data.meshes) {
     mesh.vert = floats(mesh.vert);
     mesh.face = uints(mesh.face);

@@ -1,20 +1,15 @@
 // The page of a replay file (`mjarm replay-html`, docs/replay.md): the recorded run drawn with
-// three.js, played back, and its state exposed to tests as window.mjarmReplay.
+// three.js, played back, and its state exposed to tests as window.mjarmReplay. The same script is
+// the live view's page (`mjarm view --web`: live.js) when the page holds the live block instead.
 import * as THREE from 'three';
-import {OrbitControls} from 'three/addons/controls/OrbitControls.js';
 
 import {readReplayData} from './decode.js';
+import {startLive} from './live.js';
 import {buildOverlays} from './overlays.js';
 import {buildPlots} from './plots.js';
-import {buildScene, poseBodies, poseTrackedCamera} from './scene.js';
+import {buildScene, poseBodies} from './scene.js';
 import {STYLE} from './style.js';
-
-function element(tag, attributes = {}, parent = null) {
-  const e = document.createElement(tag);
-  Object.assign(e, attributes);
-  if (parent) parent.appendChild(e);
-  return e;
-}
+import {createView, element} from './view.js';
 
 function layout() {
   element('style', {textContent: STYLE}, document.head);
@@ -63,55 +58,14 @@ function layout() {
   };
 }
 
-// True when WebGL runs on a software rasteriser.
-function softwareGl() {
-  const gl = document.createElement('canvas').getContext('webgl2');
-  if (!gl) return false;
-  const info = gl.getExtension('WEBGL_debug_renderer_info');
-  const name = info ? String(gl.getParameter(info.UNMASKED_RENDERER_WEBGL)) : '';
-  gl.getExtension('WEBGL_lose_context')?.loseContext();
-  return /swiftshader|llvmpipe|software/i.test(name);
-}
-
 async function start() {
   const data = await readReplayData('mjarm-replay-data');
   const ui = layout();
   const {scene, bodies, meshCount, skipped, headlight, sky} = buildScene(data);
   const background = scene.background;
   const overlays = buildOverlays(data, scene);
-  // multisampling costs software GL (SwiftShader, llvmpipe: no GPU) more than a frame's budget
-  const software = softwareGl();
-  const renderer = new THREE.WebGLRenderer({antialias: !software});
-  // at most 2 device pixels per CSS pixel: software GL fills every one of them
-  const fullRatio = Math.min(window.devicePixelRatio || 1, 2);
-  renderer.setPixelRatio(fullRatio);
-  ui.view.appendChild(renderer.domElement);
-  const free =
-      new THREE.PerspectiveCamera(45, 1, Math.max(data.extent * 0.01, 0.001), data.extent * 100);
-  free.up.set(0, 0, 1);
-  // MuJoCo's free camera: looking at the model's centre from 1.5 extents, azimuth 90°, elevation
-  // −45°
-  const centre = new THREE.Vector3().fromArray(data.center);
-  const distance = 1.5 * data.extent;
-  free.position.set(
-      centre.x, centre.y - distance * Math.cos(Math.PI / 4),
-      centre.z + distance * Math.sin(Math.PI / 4));
-  free.lookAt(centre);
-  free.add(headlight);
-  scene.add(free);
-  const controls = new OrbitControls(free, renderer.domElement);
-  controls.target.copy(centre);
-  controls.update();
-  let orbited = false;  // paused, the view is drawn again only when the orbit moved it
-  controls.addEventListener('change', () => {
-    orbited = true;
-  });
-  const presets = new THREE.PerspectiveCamera(45, 1, free.near, free.far);
-  presets.add(headlight.clone());
-  scene.add(presets);
-  element('option', {value: -1, textContent: 'free camera'}, ui.camera);
-  data.cameras.forEach((c, i) => element('option', {value: i, textContent: c.name}, ui.camera));
-  let cameraIndex = -1;
+  const view = createView(data, scene, bodies, headlight, ui.view, ui.camera);
+  const {renderer, software, fullRatio, free} = view;
 
   const frames = data.frames.time;
   const t0 = frames[0], t1 = frames[frames.length - 1];
@@ -141,42 +95,13 @@ async function start() {
   }
   const plots = buildPlots(data, ui.plots, (time) => seek(time));
 
-  function placeCamera() {
-    if (cameraIndex < 0) return free;
-    const c = data.cameras[cameraIndex];
-    presets.fov = c.fovy;
-    presets.updateProjectionMatrix();
-    // a tracking or targeting camera: its pose per frame, as MuJoCo computed it
-    if (c.track >= 0) {
-      poseTrackedCamera(data, c.track, t, presets);
-      return presets;
-    }
-    const parent = bodies[c.body];
-    parent.updateMatrixWorld();
-    const local = new THREE.Matrix4().compose(
-        new THREE.Vector3().fromArray(c.pos),
-        new THREE.Quaternion(c.quat[1], c.quat[2], c.quat[3], c.quat[0]),
-        new THREE.Vector3(1, 1, 1));
-    const world = parent.matrixWorld.clone().multiply(local);
-    world.decompose(presets.position, presets.quaternion, presets.scale);
-    return presets;
-  }
-
-  function resize() {
-    const w = ui.view.clientWidth, h = ui.view.clientHeight;
-    renderer.setSize(w, h, false);
-    for (const cam of [free, presets]) {
-      cam.aspect = w / Math.max(h, 1);
-      cam.updateProjectionMatrix();
-    }
-  }
+  const resize = view.resize;
 
   let lastPanel = 0;
   function draw() {
     frame = poseBodies(data, bodies, t);
     overlays.update(frame);
-    const cam = placeCamera();
-    renderer.render(scene, cam);
+    renderer.render(scene, view.camera(t));
     ++renders;
     // the bar and the plots' cursors at most 15 times a second while playing: each change of the
     // page is painted again, which software GL pays for as much as the 3D view
@@ -232,8 +157,8 @@ async function start() {
         setPlaying(false);
       }
       draw();
-    } else if (orbited && cameraIndex < 0) {
-      orbited = false;
+    } else if (view.orbited && view.cameraIndex < 0) {
+      view.orbited = false;
       renderer.render(scene, free);
     }
     requestAnimationFrame(loop);
@@ -253,8 +178,7 @@ async function start() {
   };
   ui.scrub.oninput = () => seek(Number(ui.scrub.value));
   ui.camera.onchange = () => {
-    cameraIndex = Number(ui.camera.value);
-    controls.enabled = cameraIndex < 0;
+    view.setCamera(Number(ui.camera.value));
     draw();
   };
   for (const [name, box] of Object.entries(ui.toggles)) {
@@ -296,7 +220,7 @@ async function start() {
     hfieldCount: data.geoms.filter((g) => g.type === 'hfield').length,
     // the pose of the camera drawn now (the free camera or the chosen preset)
     cameraPose: () => {
-      const cam = placeCamera();
+      const cam = view.camera(t);
       cam.updateMatrixWorld();
       const q = cam.quaternion;
       return {pos: cam.position.toArray(), quat: [q.w, q.x, q.y, q.z]};
@@ -341,11 +265,9 @@ async function start() {
       speed = s;
     },
     setCamera: (name) => {
-      cameraIndex = name === null ? -1 : data.cameras.findIndex((c) => c.name === name);
-      ui.camera.value = cameraIndex;
-      controls.enabled = cameraIndex < 0;
+      view.setCamera(name === null ? -1 : data.cameras.findIndex((c) => c.name === name));
       draw();
-      return cameraIndex;
+      return view.cameraIndex;
     },
     // the 3D view at a size of CSS pixels (null: back to the layout's), for pictures to compare
     setViewSize: (width, height) => {
@@ -398,7 +320,8 @@ async function start() {
   };
 }
 
-start().catch((error) => {
-  document.body.textContent = `mjarm replay: ${error.message}`;
+const live = document.getElementById('mjarm-live') !== null;
+(live ? startLive() : start()).catch((error) => {
+  document.body.textContent = `mjarm ${live ? 'live view' : 'replay'}: ${error.message}`;
   throw error;
 });

@@ -27,8 +27,10 @@ export function buildOverlays(data, scene) {
   const size = Math.max(0.05, 0.08 * data.extent);
   const groups = {frames: new THREE.Group(), path: new THREE.Group(), contacts: new THREE.Group()};
   for (const g of Object.values(groups)) scene.add(g);
-  const tool = o.tool ? floats(o.tool) : null;
-  const target = o.target ? floats(o.target) : null;
+  // base64 in a replay file; the live view hands arrays it refills with every frame
+  const poses = (v) => (typeof v === 'string' ? floats(v) : v);
+  const tool = o.tool ? poses(o.tool) : null;
+  const target = o.target ? poses(o.target) : null;
   const toolAxes = new THREE.AxesHelper(size);
   const targetAxes = new THREE.AxesHelper(size * 0.7);
   targetAxes.material.transparent = true;
@@ -73,6 +75,7 @@ export function buildOverlays(data, scene) {
 
   return {
     groups,
+    axes: {tool: tool ? toolAxes : null, target: target ? targetAxes : null},
     contactCount: 0,
     available: {
       frames: Boolean(tool || target),

@@ -23,3 +23,15 @@ html, body { margin: 0; height: 100%; background: #1e2329; color: #dde3ea;
 #mjarm-bar label { white-space: nowrap; color: #b8c4d0; }
 #mjarm-title { position: absolute; left: 8px; top: 6px; font-size: 12px; color: #b8c4d0; pointer-events: none; }
 `;
+
+// The live view's panel (live.js): the viewer's sliders, mode and reset beside the 3D view.
+export const LIVE_STYLE = `
+#mjarm-panel { width: 290px; padding: 10px; overflow-y: auto; background: #2a3038; }
+#mjarm-panel label { display: block; margin-top: 8px; color: #b8c4d0; }
+#mjarm-panel input[type=range] { width: 100%; }
+#mjarm-panel .value { float: right; font-family: monospace; }
+#mjarm-panel button, #mjarm-panel select { background: #3a424d; color: #dde3ea;
+  border: 1px solid #55606d; border-radius: 3px; padding: 2px 8px; margin-top: 8px; }
+#mjarm-status { font-family: monospace; white-space: pre; margin-top: 12px; color: #b8c4d0; }
+#mjarm-link.down { color: #ea4335; }
+`;

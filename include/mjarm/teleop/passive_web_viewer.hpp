@@ -1,30 +1,37 @@
 #pragma once
 /// @file
 /// `PassiveWebViewer`: the passive viewer's form for machines without a display. Your loop steps
-/// the data and calls `sync()`; every browser connected to `url()` sees the bodies move (the
-/// page of `mjarm view --web`, without the panel). `sync()` copies the poses into the server's
-/// frame slot and returns: it never waits for a browser (see `LiveServer`).
+/// the data and calls `sync()`; every browser connected to `url()` sees the model move on the
+/// page of `mjarm view --web` (the replay page's scene in live mode, without the panel). `sync()`
+/// copies the poses into the server's frame slot and returns: it never waits for a browser (see
+/// `LiveServer`).
 ///
-/// The frame is the web viewer's (web_viewer.hpp) with a one-float header: the data's time, then
-/// every body but the world, its position (3) and quaternion w, x, y, z (4), in body id order.
+/// The frame is the web viewer's (web_viewer.hpp) without the panel's part: little-endian float32,
+/// the data's time, then every body's position (3 per body, the world's first) and every body's
+/// quaternion w, x, y, z (4 per body), in body id order.
 
 #include <mujoco/mujoco.h>
 
 #include <cstdint>
 #include <memory>
 #include <string>
-#include <vector>
 
 #include "mjarm/model/robot.hpp"
 #include "mjarm/web/live_server.hpp"
 
 namespace mjarm {
 
+class WebFrame;
+
 class PassiveWebViewer {
  public:
   /// Starts serving @p robot's bodies as @p data holds them (it must outlive the viewer).
-  /// @throws Error when @p data is not of @p robot's model size, or as `LiveServer`
+  /// @throws Error when @p data is not of @p robot's model size, when the build holds no page
+  ///         (MJARM_WEB: the message says how to get it), or as `LiveServer`
   PassiveWebViewer(const Robot& robot, const mjData& data, const LiveServerOptions& options = {});
+  ~PassiveWebViewer();
+  PassiveWebViewer(const PassiveWebViewer&) = delete;
+  PassiveWebViewer& operator=(const PassiveWebViewer&) = delete;
 
   /// Publishes the data's time and body poses (xpos, xquat: what the last mj_kinematics, mj_step
   /// or mj_forward computed). Allocates nothing after the first call; nothing once closed.
@@ -42,7 +49,7 @@ class PassiveWebViewer {
   Robot robot_;
   const mjData& data_;
   std::unique_ptr<LiveServer> server_;
-  std::vector<float> frame_;
+  std::unique_ptr<WebFrame> frame_;
   std::int64_t syncs_ = 0;
 };
 

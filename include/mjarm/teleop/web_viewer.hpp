@@ -14,9 +14,12 @@
 /// number or a string), or {"reset": true}. A message that is not one, or a value out of range,
 /// is refused: counted, with the last refusal's reason kept, and the panel unchanged.
 ///
-/// The state frame is binary, little-endian float32: the simulated time [s], the end effector's
-/// position (3) and the target's (3), the gripper command, then for every body but the world its
-/// position (3) and orientation quaternion w, x, y, z (4), in body id order.
+/// The page is the replay page's script in live mode (web/live_page.hpp): the greeting gives it
+/// the model as a replay file describes it, the panel (sliders, modes) and the frame's layout.
+/// The state frame is binary, little-endian float32: the simulated time [s], the tool (end
+/// effector) pose and the target pose (x y z [m], quaternion w x y z, 7 each), the gripper
+/// command, then every body's position (3 per body, the world's first) and every body's
+/// quaternion (w x y z, 4 per body) in body id order: the `pos` and `quat` of one replay frame.
 
 #include <cstdint>
 #include <functional>
@@ -67,8 +70,10 @@ struct WebViewerReport {
   }
 };
 
-/// The greeting a browser gets on connecting: the model's name, the bodies in frame order, the
-/// frame layout, the slider names with their ranges and current values, the available modes.
+/// The greeting a browser gets on connecting: the model as the replay page draws it (`live_scene`:
+/// bodies, drawn geoms, meshes, textures, cameras), its name, the frame's layout ("frame": where
+/// time, tool, target, gripper, pos and quat start, in floats), the slider names with their ranges
+/// and current values, the mode and the available modes.
 std::string web_viewer_greeting(const ViewerSession& session, const PanelState& panel);
 
 /// Applies one browser @p message to @p panel and @p session.
@@ -78,7 +83,9 @@ std::string apply_web_message(ViewerSession& session, PanelState& panel,
 
 /// Runs @p session in real time behind a `LiveServer` until @p options' duration or a signal;
 /// @p on_start is called once the server listens (to print its address).
-/// @throws Error for invalid options, or as `LiveServer`
+/// @throws Error for invalid options, when the build holds no page (MJARM_WEB: "view --web: this
+///         mjarm was built without the replay page …", the words of `replay-html`), or as
+///         `LiveServer`
 WebViewerReport run_web_viewer(ViewerSession& session, const WebViewerOptions& options,
                                const std::function<void(const LiveServer&)>& on_start);
 
