@@ -413,9 +413,11 @@ void run_pick_place_scenario(PickPlaceCliOptions cli, const RunCommonOptions& co
   // each recorded trial's page beside its recording (failed ones too); none after Ctrl-C
   std::vector<TrialPage> pages(result.reports.size());
   std::string page_errors;
+  std::size_t pages_done = 0;  // Ctrl-C while writing them stops before the next
   if (common.html && !result.interrupted) {
     Progress writing("replay pages", static_cast<std::int64_t>(pages.size()));
-    for (std::size_t k = 0; k < pages.size(); ++k) {
+    for (; pages_done < pages.size() && !interrupt_requested(); ++pages_done) {
+      const std::size_t k = pages_done;
       const PickPlaceReport& r = result.reports[k];
       pages[k] =
           write_trial_page(r, r.recording.empty() ? r.recording : replay_page_beside(r.recording));
@@ -473,6 +475,10 @@ void run_pick_place_scenario(PickPlaceCliOptions cli, const RunCommonOptions& co
     if (result.interrupted) std::cout << stopped << ": the figures above are of the trials done\n";
   }
   if (result.interrupted) throw InterruptedError(stopped, interrupt_signal());
+  if (common.html && pages_done < pages.size())
+    throw InterruptedError("interrupted after " + std::to_string(pages_done) + " of " +
+                               std::to_string(pages.size()) + " replay pages",
+                           interrupt_signal());
   if (s.successes < s.trials) throw Error(failed + (page_errors.empty() ? "" : "; " + page_errors));
   if (!page_errors.empty()) throw Error(page_errors);
 }
