@@ -17,17 +17,20 @@ build: setup $(BUILD)/CMakeCache.txt
 	cmake --build $(BUILD) -j $(JOBS)
 
 # the main job: an end-to-end run of what mjarm does. It needs only the CLI: the packages for it
-# (setup.sh demo), and a Release build of the library and the CLI alone, one unit per room, without
-# the replay page (MJARM_WEB=OFF: no npm; `mjarm replay-html` then says how to get it)
+# (setup.sh demo: with Node.js and npm), and a Release build of the library and the CLI alone, one
+# unit per room, with the replay page (MJARM_WEB=ON: npm ci of web/package-lock.json into the
+# build folder once, then esbuild), so the demo writes out/demo.html beside out/demo.mp4. A build
+# folder configured before without the page is switched on once.
 DEMO_BUILD ?= build-demo
 $(DEMO_BUILD)/CMakeCache.txt:
 	cmake -S . -B $(DEMO_BUILD) -G Ninja -DCMAKE_BUILD_TYPE=Release -DMJARM_UNITY_BUILD=ON \
-	  -DMJARM_BUILD_TESTS=OFF -DMJARM_BUILD_EXAMPLES=OFF -DMJARM_PYTHON=OFF -DMJARM_WEB=OFF \
+	  -DMJARM_BUILD_TESTS=OFF -DMJARM_BUILD_EXAMPLES=OFF -DMJARM_PYTHON=OFF -DMJARM_WEB=ON \
 	  $(CMAKE_FLAGS)
 
 demo:
 	@bash scripts/setup.sh demo
 	@$(MAKE) --no-print-directory $(DEMO_BUILD)/CMakeCache.txt
+	@grep -q '^MJARM_WEB:STRING=ON$$' $(DEMO_BUILD)/CMakeCache.txt || cmake $(DEMO_BUILD) -DMJARM_WEB=ON
 	cmake --build $(DEMO_BUILD) -j $(JOBS) --target mjarm_cli
 	./$(DEMO_BUILD)/mjarm demo
 

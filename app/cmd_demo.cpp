@@ -1,6 +1,7 @@
 // `mjarm demo`: the main job — the shelf pick on the panda under operational-space control,
-// recorded, filmed and plotted — then a short tour of the library on a bundled arm: model, forward
-// kinematics at the home keyframe, a seeded workspace analysis and a pose-IK round trip.
+// recorded, filmed, plotted and written as a replay page (one HTML file) — then a short tour of the
+// library on a bundled arm: model, forward kinematics at the home keyframe, a seeded workspace
+// analysis and a pose-IK round trip.
 
 #include <chrono>
 #include <iostream>
@@ -14,13 +15,17 @@
 #include "mjarm/plot/gnuplot.hpp"
 #include "mjarm/plot/plots.hpp"
 #include "mjarm/tasks/shelf_pick/shelf_pick.hpp"
+#include "mjarm/web/replay_html_json.hpp"
 #include "output.hpp"
+#include "run_replay.hpp"
 
 namespace mjarm::cli {
 
 // the shelf pick's printing, shared with `mjarm run` (defined in cmd_run.cpp)
 Json shelf_pick_json(const ShelfPickReport& report);
-void print_shelf_pick(std::ostream& os, const ShelfPickReport& report);
+/// @p outputs: more of the run's outputs, listed after its video (the demo's replay page).
+void print_shelf_pick(std::ostream& os, const ShelfPickReport& report,
+                      const std::vector<std::pair<std::string, std::string>>& outputs);
 /// "; the recording is in …; <why the video failed>": every output of the run and its failure.
 std::string run_outputs_text(const ShelfPickReport& report);
 
@@ -52,6 +57,8 @@ struct DemoOptions {
   std::uint64_t seed = 1;
   std::string record = "out/demo";
   std::string video = "out/demo.mp4";
+  std::string html = "out/demo.html";
+  bool html_given = false;  ///< --html on the command line: a build without the page fails
   bool json = false;
 };
 
@@ -63,6 +70,14 @@ void run_demo(const DemoOptions& options) {
   const Configuration config = resolve_configuration(chain, {}, options.key);
   check_output_folder(options.record, "--record");
   if (!options.video.empty()) check_output_file(options.video, "--video", true);
+  // the replay page: by default only where this build holds it (it says why not), on demand
+  // always
+  std::string html_missing;
+  if (!options.html.empty()) {
+    if (options.html_given) check_replay_available("--html");
+    html_missing = replay_html_missing();
+    if (html_missing.empty()) check_output_file(options.html, "--html", true);
+  }
   plot::find_gnuplot();  // the plots of the recording need it (names the package to install)
 
   // with --json one document at the end; it holds the parts done when a later one fails
@@ -85,13 +100,39 @@ void run_demo(const DemoOptions& options) {
   if (pick.video.path.has_parent_path())
     std::filesystem::create_directories(pick.video.path.parent_path());
   const ShelfPickReport report = run_shelf_pick(pick);
+  // the recording's replay page next to the video: one HTML file to open in a browser
+  std::optional<ReplayHtmlReport> page;
+  std::string page_error;
+  const bool recorded =
+      !report.recording.empty() && report.recording_error.empty() && !interrupt_requested();
+  if (recorded && !options.html.empty() && html_missing.empty()) {
+    try {
+      const std::filesystem::path folder = std::filesystem::path(options.html).parent_path();
+      if (!folder.empty()) std::filesystem::create_directories(folder);
+      page = write_run_replay(report.recording, options.html);
+    } catch (const Error& e) {
+      page_error = "replay page " + options.html + ": " + e.what();
+    }
+  }
   if (options.json) {
     doc["shelf_pick"] = shelf_pick_json(report);
+    doc["replay"] = page ? replay_html_json(*page, report.recording) : Json(nullptr);
+    if (!html_missing.empty() && !options.html.empty()) doc["replay_missing"] = html_missing;
   } else {
     print_heading(os, "shelf pick");
-    print_shelf_pick(os, report);
+    std::vector<std::pair<std::string, std::string>> outputs;
+    if (page)
+      outputs.push_back({"replay page", page->path.string() + " (" + std::to_string(page->bytes) +
+                                            " bytes, " + std::to_string(page->frames) +
+                                            " frames; open it in a browser)"});
+    else if (recorded && !options.html.empty())
+      outputs.push_back(
+          {"replay page",
+           "not written: " + (page_error.empty() ? html_missing : std::string("see the error"))});
+    print_shelf_pick(os, report, outputs);
     os.flush();
   }
+  if (!page_error.empty()) fail(page_error);
   // a failed recording or video fails the demo too, after the report (issue 16, items 6, 8)
   const std::string outputs = run_outputs_text(report);
   if (!report.ok())
@@ -198,9 +239,17 @@ Command add_demo_command(CLI::App& root) {
   app->add_option("--video", options->video,
                   "where the shelf pick's video goes (MP4, rendered headless; '' for none)")
       ->capture_default_str();
+  CLI::Option* html =
+      app->add_option("--html", options->html,
+                      "where the shelf pick's replay page goes (one HTML file, docs/replay.md; '' "
+                      "for none; by default written where this build holds the page)")
+          ->capture_default_str();
   add_json_flag(*app, options->json);
 
-  return {app, [options] { run_demo(*options); }};
+  return {app, [options, html] {
+            options->html_given = html->count() > 0;
+            run_demo(*options);
+          }};
 }
 
 }  // namespace mjarm::cli

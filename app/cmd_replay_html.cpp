@@ -8,13 +8,9 @@
 #include "mjarm/plot/recording.hpp"
 #include "mjarm/web/recorded_model.hpp"
 #include "mjarm/web/replay_html.hpp"
+#include "mjarm/web/replay_html_json.hpp"
 
 namespace mjarm::cli {
-
-void write_run_replay(const std::string& recording, const std::string& html) {
-  const plot::Recording loaded = plot::Recording::load(recording);
-  write_replay_html(recorded_model(loaded), loaded, html);
-}
 
 Command add_replay_html_command(CLI::App& root) {
   struct Options {
@@ -56,22 +52,7 @@ Command add_replay_html_command(CLI::App& root) {
             const ReplayHtmlReport report =
                 write_replay_html(robot, recording, options->out, options->replay);
             if (options->json) {
-              Json document;
-              document["recording"] = options->recording;
-              document["path"] = report.path.string();
-              document["bytes"] = report.bytes;
-              document["frames"] = report.frames;
-              document["state_rows"] = report.state_rows;
-              document["rate"] = report.rate;
-              document["start_time"] = report.start_time;
-              document["end_time"] = report.end_time;
-              document["largest_gap"] = report.largest_gap;
-              document["bodies"] = report.bodies;
-              document["drawn_geoms"] = report.drawn_geoms;
-              document["meshes"] = report.meshes;
-              document["cameras"] = report.cameras;
-              document["plots"] = report.plots;
-              print_json(document);
+              print_json(replay_html_json(report, options->recording));
               return;
             }
             std::cout << report.path.string() << ": " << report.bytes << " bytes, " << report.frames

@@ -6,6 +6,7 @@
 // (cmd_run_scenario.cpp); `mjarm run --list`.
 
 #include <algorithm>
+#include <filesystem>
 #include <iostream>
 #include <memory>
 #include <string>
@@ -18,6 +19,7 @@
 #include "mjarm/scenarios/registry.hpp"
 #include "output.hpp"
 #include "parameter_options.hpp"
+#include "run_replay.hpp"
 #include "run_subcommands.hpp"
 
 namespace mjarm::cli {
@@ -83,7 +85,7 @@ namespace {
 /// `mjarm run pick-place`: one trial, or a batch (--trials).
 Command add_pick_place_subcommand(CLI::App& run) {
   struct Options {
-    std::string robot, record;
+    std::string robot, record, html;
     SimulationCli sim;
     VideoCli video;
     bool json = false;
@@ -100,7 +102,14 @@ Command add_pick_place_subcommand(CLI::App& run) {
                          "seed: draws the object, its size, mass, friction and the "
                          "target (same seed, same trial)",
                          "DONE lasts this long before the trial is judged [s]");
-  app->add_option("--record", o->record, "record state, task and events into DIR");
+  CLI::Option* record =
+      app->add_option("--record", o->record,
+                      "record state, task and events into DIR (with --trials: DIR/seed_K each)");
+  CLI::Option* html = add_run_html_option(
+      *app, record, o->html,
+      "with --record: also write the replay page, one self-contained HTML file "
+      "(docs/replay.md); without FILE beside the recording, DIR.html; with --trials one beside "
+      "each trial's recording, DIR/seed_K.html (and no FILE)");
   add_video_options(*app, o->video, "the run");
   add_json_flag(*app, o->json);
   add_pick_place_options(*app, o->pick_place);
@@ -112,9 +121,11 @@ Command add_pick_place_subcommand(CLI::App& run) {
                             "motion.place-height", "motion.dwell-time", "motion.grip-time",
                             "motion.release-time", "motion.limits.max-velocity",
                             "motion.limits.max-acceleration", "motion.settle-time"});
-  return {app, [o, app] {
+  return {app, [o, app, html] {
             refuse_extras(*app);
             RunCommonOptions common;
+            common.html = html->count() > 0;
+            common.html_file = o->html;
             common.robot = o->robot;
             common.seed = o->sim.seed;
             common.record = o->record;
@@ -238,21 +249,26 @@ Command add_run_command(CLI::App& root) {
     if (std::none_of(scenarios.begin(), scenarios.end(),
                      [s](const Command& c) { return c.app->get_name() == s->name(); }))
       scenarios.push_back(add_scenario_subcommand(*app, *s));
-  // --html FILE beside --record DIR: the recorded run's replay page (docs/replay.md), written
-  // once the run ended, from the recording as `mjarm replay-html DIR -o FILE` would
+  // --html [FILE] beside --record DIR: the recorded run's replay page (docs/replay.md), checked
+  // before the run and written once it ended, from the recording as `mjarm replay-html DIR -o
+  // FILE` would; without FILE beside the recording, DIR.html. The pick and place adds its own
+  // (a batch's trials get one page each).
   for (Command& scenario : scenarios) {
     CLI::Option* record = scenario.app->get_option_no_throw("--record");
-    if (record == nullptr) continue;
+    if (record == nullptr || scenario.app->get_option_no_throw("--html") != nullptr) continue;
     auto html = std::make_shared<std::string>();
-    scenario.app
-        ->add_option("--html", *html,
-                     "with --record: also write the run's replay page, one self-contained HTML "
-                     "file (docs/replay.md)")
-        ->needs(record);
-    scenario.run = [run = scenario.run, html, record] {
-      if (!html->empty()) check_output_file(*html, "--html");
+    CLI::Option* option = add_run_html_option(
+        *scenario.app, record, *html,
+        "with --record: also write the run's replay page, one self-contained HTML file "
+        "(docs/replay.md); without FILE beside the recording, DIR.html");
+    scenario.run = [run = scenario.run, html, option, record] {
+      if (option->count() == 0) return run();
+      const std::string recording = record->as<std::string>();
+      const std::filesystem::path page =
+          html->empty() ? replay_page_beside(recording) : std::filesystem::path(*html);
+      check_run_replay("--html", page);
       run();
-      if (!html->empty()) write_run_replay(record->as<std::string>(), *html);
+      write_run_replay(recording, page);
     };
   }
   return {app, [app, list, json, scenarios] {

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <iostream>
 #include <mutex>
+#include <optional>
 #include <sstream>
 #include <string>
 #include <thread>
@@ -16,7 +17,9 @@
 #include "mjarm/interrupt.hpp"
 #include "mjarm/scenarios/pick_place_scenario.hpp"
 #include "mjarm/tasks/pick_place/trials.hpp"
+#include "mjarm/web/replay_html_json.hpp"
 #include "parameter_options.hpp"
+#include "run_replay.hpp"
 
 namespace mjarm::cli {
 
@@ -32,6 +35,27 @@ std::string millimetres(double metres, int decimals = 3) {
 }
 std::string figure_text(double v, int decimals = 3) {
   return std::isnan(v) ? "—" : fixed(v, decimals);
+}
+
+/// A trial's replay page (--html): what was written, or why not.
+struct TrialPage {
+  std::optional<ReplayHtmlReport> report;
+  std::string error;  ///< "replay page FILE: why"; empty when written or not asked for
+};
+
+/// Writes the page of @p r's recording to @p page, also for a failed trial (what a page is most
+/// wanted for); none for a trial without a complete recording or cut short by Ctrl-C.
+TrialPage write_trial_page(const PickPlaceReport& r, const std::filesystem::path& page) {
+  TrialPage out;
+  if (page.empty() || r.recording.empty() || !r.recording_error.empty() ||
+      r.failure == PickPlaceFailure::interrupted)
+    return out;
+  try {
+    out.report = write_run_replay(r.recording, page);
+  } catch (const Error& e) {
+    out.error = "replay page " + page.string() + ": " + e.what();
+  }
+  return out;
 }
 
 std::string pick_place_title(const PickPlaceOptions& o) {
@@ -84,7 +108,7 @@ Json pick_place_trial_json(const PickPlaceReport& r) {
 }
 
 void print_pick_place_trial(std::ostream& os, const PickPlaceOptions& options,
-                            const PickPlaceReport& r) {
+                            const PickPlaceReport& r, const TrialPage& page) {
   const PickPlaceObject& o = r.trial.object;
   os << pick_place_title(options) << ", seed " << r.trial.seed << '\n';
   print_fields(
@@ -125,6 +149,11 @@ void print_pick_place_trial(std::ostream& os, const PickPlaceOptions& options,
                                             : std::string("not written: see the error")) +
                                    ")"});
   }
+  if (page.report)
+    fields.push_back({"replay page", page.report->path.string() + " (" +
+                                         std::to_string(page.report->bytes) + " bytes, " +
+                                         std::to_string(page.report->frames) +
+                                         " frames; open it in a browser)"});
   print_fields(os, fields, 2);
 }
 
@@ -274,6 +303,11 @@ void run_pick_place_scenario(PickPlaceCliOptions cli, const RunCommonOptions& co
   const bool batch = cli.trials > 1;
   if (batch && !common.video.empty())
     throw UsageError("--video films one trial: replay it alone with --seed K (and no --trials)");
+  if (batch && common.html && !common.html_file.empty())
+    throw UsageError("--html " + common.html_file +
+                     " names one page; with --trials each trial gets its own beside its "
+                     "recording (" +
+                     common.record + "/seed_K.html): give --html without FILE");
   if ((!cli.cameras.empty() || cli.separate) && common.video.empty())
     throw UsageError("--cameras and --video-per-camera need --video FILE");
   for (const std::string& camera : cli.cameras) {
@@ -282,6 +316,15 @@ void run_pick_place_scenario(PickPlaceCliOptions cli, const RunCommonOptions& co
   }
   // the outputs are checked before the work
   if (!common.record.empty()) check_output_folder(common.record, "--record");
+  // the replay pages (--html): one trial's to FILE or beside its recording; a batch's beside
+  // each trial's recording, in the folder just checked
+  std::filesystem::path page;
+  if (common.html && batch) check_replay_available("--html");
+  if (common.html && !batch) {
+    page = common.html_file.empty() ? replay_page_beside(common.record)
+                                    : std::filesystem::path(common.html_file);
+    check_run_replay("--html", page);
+  }
   if (!common.video.empty()) {
     const std::vector<std::string> cameras =
         cli.cameras.empty() ? std::vector<std::string>{"front"} : cli.cameras;
@@ -311,12 +354,15 @@ void run_pick_place_scenario(PickPlaceCliOptions cli, const RunCommonOptions& co
   if (!batch) {
     o.record = common.record;
     const PickPlaceReport r = run_pick_place(o);
+    const TrialPage replay = write_trial_page(r, page);
     if (common.json) {
       Json doc = pick_place_trial_json(r);
       doc = Json{{"scenario", "pick-place"},  {"robot", o.robot},     {"grasp", to_string(o.grasp)},
                  {"mode", to_string(o.mode)}, {"classic", o.classic}, {"trial", doc}};
       doc["recording"] = r.recording.empty() ? Json(nullptr) : Json(r.recording.string());
       doc["recording_error"] = r.recording_error.empty() ? Json(nullptr) : Json(r.recording_error);
+      doc["replay"] = replay.report ? replay_html_json(*replay.report, r.recording) : Json(nullptr);
+      doc["replay_error"] = replay.error.empty() ? Json(nullptr) : Json(replay.error);
       Json videos = Json::array(), written = Json::array();
       for (const auto& path : r.videos) videos.push_back(path.string());
       for (const auto& path : r.videos_written) written.push_back(path.string());
@@ -329,7 +375,7 @@ void run_pick_place_scenario(PickPlaceCliOptions cli, const RunCommonOptions& co
                      {"error", r.video_error.empty() ? Json(nullptr) : Json(r.video_error)}};
       print_json(doc);
     } else {
-      print_pick_place_trial(std::cout, o, r);
+      print_pick_place_trial(std::cout, o, r, replay);
     }
     if (r.failure == PickPlaceFailure::interrupted) {
       // the recording is kept (its status says interrupted); a video cut short is not written
@@ -346,6 +392,7 @@ void run_pick_place_scenario(PickPlaceCliOptions cli, const RunCommonOptions& co
     std::string problem = r.success ? "" : "the pick and place failed: " + r.reason;
     if (!r.recording_error.empty()) problem += (problem.empty() ? "" : "; ") + r.recording_error;
     if (!r.video_error.empty()) problem += (problem.empty() ? "" : "; ") + r.video_error;
+    if (!replay.error.empty()) problem += (problem.empty() ? "" : "; ") + replay.error;
     if (!problem.empty()) throw Error(problem);
     return;
   }
@@ -363,6 +410,23 @@ void run_pick_place_scenario(PickPlaceCliOptions cli, const RunCommonOptions& co
   batch_options.on_progress = [&progress](int done) { progress.update(done); };
   const PickPlaceBatch result = run_pick_place_trials(batch_options);
   progress.finish();
+  // each recorded trial's page beside its recording (failed ones too); none after Ctrl-C
+  std::vector<TrialPage> pages(result.reports.size());
+  std::string page_errors;
+  std::size_t pages_done = 0;  // Ctrl-C while writing them stops before the next
+  if (common.html && !result.interrupted) {
+    Progress writing("replay pages", static_cast<std::int64_t>(pages.size()));
+    for (; pages_done < pages.size() && !interrupt_requested(); ++pages_done) {
+      const std::size_t k = pages_done;
+      const PickPlaceReport& r = result.reports[k];
+      pages[k] =
+          write_trial_page(r, r.recording.empty() ? r.recording : replay_page_beside(r.recording));
+      if (!pages[k].error.empty())
+        page_errors += (page_errors.empty() ? "" : "; ") + pages[k].error;
+      writing.update(static_cast<std::int64_t>(k) + 1);
+    }
+    writing.finish();
+  }
   const PickPlaceSummary& s = result.summary;
   const std::string stopped = "interrupted after " + std::to_string(s.trials) + " of " +
                               std::to_string(cli.trials) + " trials";
@@ -373,7 +437,11 @@ void run_pick_place_scenario(PickPlaceCliOptions cli, const RunCommonOptions& co
     for (std::size_t f = 1; f < s.failures.size(); ++f)
       failures[to_string(static_cast<PickPlaceFailure>(f))] = s.failures[f];
     Json trials = Json::array();
-    for (const PickPlaceReport& r : result.reports) trials.push_back(pick_place_trial_json(r));
+    for (std::size_t k = 0; k < result.reports.size(); ++k) {
+      Json trial = pick_place_trial_json(result.reports[k]);
+      trial["replay"] = pages[k].report ? Json(pages[k].report->path.string()) : Json(nullptr);
+      trials.push_back(trial);
+    }
     print_json({{"scenario", "pick-place"},
                 {"robot", o.robot},
                 {"grasp", to_string(o.grasp)},
@@ -400,10 +468,19 @@ void run_pick_place_scenario(PickPlaceCliOptions cli, const RunCommonOptions& co
     print_pick_place_batch(std::cout, cli, result, threads);
     if (!common.record.empty())
       std::cout << "recordings: " << common.record << "/seed_K (one folder per trial)\n";
+    if (std::any_of(pages.begin(), pages.end(),
+                    [](const TrialPage& p) { return p.report.has_value(); }))
+      std::cout << "replay pages: " << common.record
+                << "/seed_K.html (one beside each recording; open one in a browser)\n";
     if (result.interrupted) std::cout << stopped << ": the figures above are of the trials done\n";
   }
   if (result.interrupted) throw InterruptedError(stopped, interrupt_signal());
-  if (s.successes < s.trials) throw Error(failed);
+  if (common.html && pages_done < pages.size())
+    throw InterruptedError("interrupted after " + std::to_string(pages_done) + " of " +
+                               std::to_string(pages.size()) + " replay pages",
+                           interrupt_signal());
+  if (s.successes < s.trials) throw Error(failed + (page_errors.empty() ? "" : "; " + page_errors));
+  if (!page_errors.empty()) throw Error(page_errors);
 }
 
 }  // namespace mjarm::cli

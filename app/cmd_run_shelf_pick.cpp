@@ -89,7 +89,8 @@ Json shelf_pick_json(const ShelfPickReport& r) {
   return doc;
 }
 
-void print_shelf_pick(std::ostream& os, const ShelfPickReport& r) {
+void print_shelf_pick(std::ostream& os, const ShelfPickReport& r,
+                      const std::vector<std::pair<std::string, std::string>>& outputs) {
   const ShelfPickPlan& p = r.plan;
   const PickMetrics& m = r.metrics;
   os << "shelf pick on " << p.robot->name << " (" << p.model.name() << "), "
@@ -130,6 +131,7 @@ void print_shelf_pick(std::ostream& os, const ShelfPickReport& r) {
                                    (r.video_written ? std::to_string(r.video_frames) + " frames"
                                                     : std::string("not written: see the error")) +
                                    "; " + r.video_camera + ")"});
+  fields.insert(fields.end(), outputs.begin(), outputs.end());
   print_fields(os, fields, 2);
 }
 
@@ -341,7 +343,7 @@ Command add_shelf_pick_subcommand(CLI::App& run) {
             if (o->json) {
               print_json(shelf_pick_json(report));
             } else {
-              print_shelf_pick(std::cout, report);
+              print_shelf_pick(std::cout, report, {});
             }
             // every failure is named: the run's, the recording's and the video's
             const std::string outputs = run_outputs_text(report);

@@ -64,8 +64,6 @@ Command add_run_command(CLI::App& root);     ///< `mjarm run shelf-pick …` (cm
 Command add_plot_command(CLI::App& root);    ///< `mjarm plot RECORDING …` (cmd_plot.cpp)
 /// `mjarm replay-html RECORDING -o FILE` (cmd_replay_html.cpp)
 Command add_replay_html_command(CLI::App& root);
-/// Writes the replay page of the recording in @p recording to @p html (`mjarm run … --html`).
-void write_run_replay(const std::string& recording, const std::string& html);
 Command add_traj_command(CLI::App& root);    ///< `mjarm traj KIND …` (cmd_traj.cpp)
 Command add_plan_command(CLI::App& root);    ///< `mjarm plan ROBOT --waypoints F` (cmd_plan.cpp)
 Command add_soak_command(CLI::App& root);    ///< `mjarm soak [--minutes M]` (cmd_soak.cpp)
@@ -163,6 +161,8 @@ struct RunCommonOptions {
   std::string size = "640x480";
   double fps = 30.0;
   bool json = false;
+  bool html = false;      ///< --html given: the replay page of each recording
+  std::string html_file;  ///< its FILE; empty: beside the recording
 };
 /// What `mjarm run pick-place` reads from the command line beyond the shared options.
 struct PickPlaceCliOptions {

@@ -2,9 +2,8 @@
 # installed by npm from web/package-lock.json and bundled by esbuild into one script at build
 # time, then embedded into the library as a generated source. Optional: MJARM_WEB=AUTO builds it
 # where node and npm are found; without it `replay-html` says how to get it. A build without
-# tests (`make demo`, which also passes OFF, even into an older build folder) and the wheel
-# default to OFF: their builds stay free of npm.
-if(MJARM_WHEEL OR NOT MJARM_BUILD_TESTS)
+# tests defaults to OFF, free of npm; `make demo` passes ON and the wheel AUTO (pyproject.toml).
+if(NOT MJARM_BUILD_TESTS AND NOT MJARM_WHEEL)
   set(mjarm_web_default OFF)
 else()
   set(mjarm_web_default AUTO)

@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # Installs the Debian 12 packages mjarm needs, skipping those already present, then makes the
 # project's virtual environment with the pinned MuJoCo and Python packages (setup_venv.sh).
-# Idempotent. `setup.sh demo` installs only what building and running the CLI needs (`make demo`);
-# without an argument, everything (`make test`: the tests, the Python extension, the fuzzers).
+# Idempotent. `setup.sh demo` installs only what building and running the CLI needs (`make demo`,
+# Node.js and npm included: the demo writes a replay page); without an argument, everything
+# (`make test`: the tests, the Python extension, the fuzzers).
 set -euo pipefail
 
 profile="${1:-all}"
@@ -56,11 +57,12 @@ if [ "$profile" = all ]; then
     # the replay page's test (tests/web): headless Chromium, driven through its DevTools protocol
     chromium
   )
-  # the replay page is bundled from npm at build time (web/, MJARM_WEB): Debian's Node.js and npm,
-  # only where no npm is on PATH (a node from elsewhere is kept, never installed over)
-  if ! command -v npm >/dev/null 2>&1; then
-    packages+=(nodejs npm)
-  fi
+fi
+# the replay page is bundled from npm at build time (web/, MJARM_WEB; the demo writes one):
+# Debian's Node.js and npm, only where no npm is on PATH (a node from elsewhere is kept, never
+# installed over)
+if ! command -v npm >/dev/null 2>&1; then
+  packages+=(nodejs npm)
 fi
 
 missing=()

@@ -8973,6 +8973,12 @@ def plan_docking(scene: DockingScene, offset: DockingOffset = ..., motion: Docki
     ...
 def quaternion_from_rotation(R: ArrayLike) -> NDArray[np.float64]:
     ...
+def replay_html(recording: str | os.PathLike[str], output: str | os.PathLike[str], model: Robot | mujoco.MjModel | None = ..., rate: float = ..., title: str | None = ...) -> dict:
+    """Writes one self-contained HTML file that replays the recording (a folder written by a Recorder or `mjarm run ... --record DIR`) in any browser, offline, and returns what `mjarm replay-html --json` prints: {recording, path, bytes, frames, state_rows, rate, start_time, end_time, largest_gap, bodies, drawn_geoms, meshes, cameras, plots}. model: the model it was recorded on (default: the recording's model.mjb); rate: frames kept per simulated second [Hz, 1 to 10000]; title: the page's (default: the recording's folder name). The file is complete or not there. Raises mjarm.Error for a missing or incomplete recording, a model that does not match it, an unwritable output, or a build without the page (replay_html_available())."""
+    ...
+def replay_html_available() -> bool:
+    """True when this build holds the replay page's script (three.js, bundled when mjarm was built with node and npm: MJARM_WEB); replay_html raises mjarm.Error otherwise."""
+    ...
 def rotation_from_quaternion(q_wxyz: ArrayLike) -> NDArray[np.float64]:
     ...
 def rotation_from_rpy(rpy: ArrayLike) -> NDArray[np.float64]:
@@ -9169,5 +9175,6 @@ from . import scene as scene
 from . import tasks as tasks
 from . import render as render
 from . import teleop as teleop
+from . import web as web
 from . import env as env
 from . import scenario as scenario

@@ -72,5 +72,6 @@ void bind_render(py::module_& m);
 void bind_teleop(py::module_& m);
 void bind_env(py::module_& m);
 void bind_scenarios(py::module_& m);
+void bind_web(py::module_& m);
 
 }  // namespace mjarm::python

@@ -66,6 +66,8 @@ PYBIND11_MODULE(_mjarm, m) {
   bind_room(m, rooms, "render", "Offscreen rendering and video.", bind_render);
   bind_room(m, rooms, "teleop", "The passive viewer: a window on the user's own loop.",
             bind_teleop);
+  bind_room(m, rooms, "web", "Replay pages: a recording in one HTML file for any browser.",
+            bind_web);
   bind_room(m, rooms, "env", "Reinforcement-learning environments.", bind_env);
   // `mjarm.scenarios()` is the registry's own function, so its room takes the singular
   bind_room(m, rooms, "scenario", "The scenario registry: scenarios, runs and their outcomes.",

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "app/cli_runner.hpp"
+#include "mjarm/web/replay_html.hpp"
 #include "render/render_test_support.hpp"
 #include "support/file_size_limit.hpp"
 #include "support/running_process.hpp"
@@ -363,6 +364,18 @@ TEST(RunCli, DemoRunsTheShelfPickAndRecordsIntoOutDemo) {
   // the main job also films the pick and plots its recording, and says where they went
   EXPECT_NE(run.out.find("out/demo.mp4 ("), std::string::npos) << run.out;
   EXPECT_GT(fs::file_size(cwd / "out" / "demo.mp4"), 0u);
+  // and writes its replay page next to the video, where this build holds the page (make test's
+  // does: node and npm), or says why not
+  if (mjarm::replay_html_available()) {
+    EXPECT_NE(run.out.find("replay page"), std::string::npos) << run.out;
+    EXPECT_NE(run.out.find("out/demo.html ("), std::string::npos) << run.out;
+    EXPECT_NE(mjarm::test::slurp(cwd / "out" / "demo.html").find("id=\"mjarm-replay-data\""),
+              std::string::npos);
+  } else {
+    EXPECT_NE(run.out.find("not written: this mjarm was built without the replay page"),
+              std::string::npos)
+        << run.out;
+  }
   for (const char* plot :
        {"tracking_error.png", "joint_torques.png", "contact_force.png", "phases.png"}) {
     const fs::path path = cwd / "out" / "demo" / "plots" / plot;
@@ -381,6 +394,26 @@ TEST(RunCli, DemoRunsTheShelfPickAndRecordsIntoOutDemo) {
   expect_recording(cwd / "elsewhere", "finished");
   EXPECT_EQ(doc["shelf_pick"]["video"]["path"], "out/demo.mp4");
   EXPECT_EQ(doc["plots"].size(), 4u);
+  if (mjarm::replay_html_available()) {
+    EXPECT_EQ(doc["replay"]["path"], "out/demo.html");
+    EXPECT_EQ(doc["replay"]["recording"], "elsewhere");
+    EXPECT_EQ(doc["replay"]["bytes"].get<std::uintmax_t>(),
+              fs::file_size(cwd / "out" / "demo.html"));
+  } else {
+    EXPECT_TRUE(doc["replay"].is_null());
+  }
+  // --html FILE puts it elsewhere (its folder made), the video off
+  const CliRun elsewhere = run_cli(
+      {"demo", "--samples", "1000", "--json", "--video", "", "--html", "page/demo.html"}, cwd);
+  if (mjarm::replay_html_available()) {
+    EXPECT_EQ(elsewhere.exit_code, 0) << elsewhere.err;
+    EXPECT_TRUE(fs::exists(cwd / "page" / "demo.html"));
+  } else {  // asked for by name: refused before the shelf pick
+    EXPECT_EQ(elsewhere.exit_code, 1) << elsewhere.err;
+    EXPECT_NE(elsewhere.err.find("--html: this mjarm was built without the replay page"),
+              std::string::npos)
+        << elsewhere.err;
+  }
 }
 
 // ---- --video ----

@@ -7,7 +7,7 @@ import mjarm
 import mjarm._mjarm as native
 
 ROOMS = ("model", "lie", "kinematics", "ik", "dynamics", "control", "sim", "state", "trajectory",
-         "planning", "scene", "tasks", "render", "teleop", "env", "scenario")
+         "planning", "scene", "tasks", "render", "teleop", "web", "env", "scenario")
 
 
 def public_names(module):

@@ -3,7 +3,8 @@ the source tree, pip installs it into a fresh virtual environment, and everythin
 there with the source tree out of reach (no PYTHONPATH, no MJARM_* variables, another working
 folder): the package imports, loads a bundled model and solves an IK; `python -m mjarm` and the
 console script `mjarm` run the CLI inside the package; the models are the package's; the
-binaries' run paths lead to the environment's mujoco, and one libmujoco is loaded.
+binaries' run paths lead to the environment's mujoco, and one libmujoco is loaded; where node and
+npm are found, the wheel holds the replay page and writes one from the CLI and from Python.
 
 Usage: wheel_check.py SOURCE_DIR WORK_DIR [--compiler CXX | --like BUILD [--preload LIBS] |
                                             --isolated]
@@ -213,6 +214,26 @@ def main():
     check(listing.get("models_dir") == str(package / "models"),
           f"mjarm info finds the package's models: {listing.get('models_dir')}")
     check("panda" in listing.get("models", []), f"mjarm info lists panda: {listing}")
+
+    # the replay page: in the wheel where node and npm were found when it was built
+    # (pyproject.toml's MJARM_WEB=AUTO; make test's machine has them), written by the installed
+    # CLI and from Python
+    with_page = shutil.which("node") is not None and shutil.which("npm") is not None
+    available = use(python, "-c", "import mjarm; print(mjarm.replay_html_available())").strip()
+    check(available == str(with_page), f"mjarm.replay_html_available() is {with_page}: {available}")
+    if with_page:
+        recording = outside / "pick"
+        use(console, "run", "shelf-pick", "--robot", "planar2", "--settle-time", "0.3",
+            "--record", recording, "--html")
+        page = outside / "pick.html"
+        check(page.exists() and page.read_text().startswith("<!doctype html>"),
+              f"mjarm run … --html wrote {page}")
+        again = outside / "again.html"
+        written = use(python, "-c", "import mjarm, sys; "
+                      "print(mjarm.replay_html(sys.argv[1], sys.argv[2])['bytes'])",
+                      recording, again).strip()
+        check(again.exists() and written == str(again.stat().st_size),
+              f"mjarm.replay_html wrote {again} ({written} bytes)")
 
     if failures:
         sys.exit(f"{len(failures)} checks failed")

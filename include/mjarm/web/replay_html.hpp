@@ -51,6 +51,9 @@ struct ReplayHtmlReport {
 
 /// True when this build holds the page's script (three.js bundled at build time: MJARM_WEB).
 bool replay_html_available();
+/// Why this build holds no page script and how to get one; empty when it holds one (a command
+/// that will write a page says this before its run, not after it).
+std::string replay_html_missing();
 
 /// Writes the replay of @p recording, recorded on @p robot's model, to @p out through a
 /// `FileWriter` (the file is complete or not there).
