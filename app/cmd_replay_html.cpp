@@ -12,7 +12,7 @@
 namespace mjarm::cli {
 
 void write_run_replay(const std::string& recording, const std::string& html) {
-  const plot::Recording loaded = plot::Recording::load(recording);
+  const plot::Recording loaded = plot::Recording::load(recording, plot::TableRows::header_only);
   write_replay_html(recorded_model(loaded), loaded, html);
 }
 
@@ -33,8 +33,10 @@ Command add_replay_html_command(CLI::App& root) {
       "RECORDING is a folder written by `mjarm run … --record DIR`. The file holds the page's "
       "script (three.js, bundled when mjarm was built) and the run: every body's pose at --rate "
       "frames per simulated second (the page interpolates between them), the model's geoms and "
-      "cameras, the phases and the figures of `mjarm plot`. The model is the recording's "
-      "model.mjb unless --model names it. docs/replay.md");
+      "cameras, the phases and the figures of `mjarm plot`. A run whose page would exceed "
+      "--max-mb keeps fewer frames (the page, the output and --json say how many). The model is "
+      "the recording's model.mjb unless --model names it; a --model whose mesh files are gone "
+      "is drawn with boxes in their place, with a warning. docs/replay.md");
   app->add_option("RECORDING", options->recording,
                   "recording folder (state.csv, task.csv, events.csv, summary.json, model.mjb)")
       ->required();
@@ -46,15 +48,24 @@ Command add_replay_html_command(CLI::App& root) {
       ->capture_default_str()
       ->check(number_in(1.0, 10000.0));
   app->add_option("--title", options->replay.title, "the page's title [default: RECORDING's name]");
+  app->add_option("--max-mb", options->replay.max_mb,
+                  "largest file [MB]: a longer run keeps fewer frames, and the page says so")
+      ->capture_default_str()
+      ->check(number_in(1.0, 4000.0));
   add_json_flag(*app, options->json);
 
   return {app, [options] {
             check_output_file(options->out, "--out");
-            const plot::Recording recording = plot::Recording::load(options->recording);
-            const Robot robot =
-                options->model.empty() ? recorded_model(recording) : load_model(options->model);
+            const plot::Recording recording =
+                plot::Recording::load(options->recording, plot::TableRows::header_only);
+            // a model whose meshes are gone is drawn with boxes, and the page says so
+            const Robot robot = options->model.empty()
+                                    ? recorded_model(recording)
+                                    : load_model(options->model, {.missing_meshes_as_boxes = true});
             const ReplayHtmlReport report =
                 write_replay_html(robot, recording, options->out, options->replay);
+            for (const std::string& warning : report.warnings)
+              std::cerr << "mjarm: warning: " << warning << "\n";
             if (options->json) {
               Json document;
               document["recording"] = options->recording;
@@ -71,6 +82,9 @@ Command add_replay_html_command(CLI::App& root) {
               document["meshes"] = report.meshes;
               document["cameras"] = report.cameras;
               document["plots"] = report.plots;
+              document["decimated"] = report.decimated;
+              document["decimation"] = report.decimation;
+              document["warnings"] = report.warnings;
               print_json(document);
               return;
             }
@@ -80,6 +94,7 @@ Command add_replay_html_command(CLI::App& root) {
                       << readable(report.largest_gap) << " s), " << report.drawn_geoms
                       << " geoms drawn, " << report.cameras << " cameras, " << report.plots
                       << " plots\n";
+            if (report.decimated) std::cout << report.decimation << "\n";
           }};
 }
 

@@ -22,6 +22,8 @@ function layout() {
   const main = element('div', {id: 'mjarm-main'}, root);
   const view = element('div', {id: 'mjarm-view'}, main);
   const title = element('div', {id: 'mjarm-title'}, view);
+  // what the file says of itself: a decimated run, meshes drawn as boxes (docs/replay.md)
+  const notes = element('div', {id: 'mjarm-notes'}, view);
   const plots = element('div', {id: 'mjarm-plots'}, main);
   const phases = element('div', {id: 'mjarm-phases'}, root);
   const bar = element('div', {id: 'mjarm-bar'}, root);
@@ -49,6 +51,7 @@ function layout() {
   return {
     view,
     title,
+    notes,
     plots,
     phases,
     play,
@@ -120,6 +123,8 @@ function start() {
   ui.scrub.max = t1;
   ui.title.textContent =
       `${data.title} — ${data.model} — ${frames.length} frames at ${data.rate} Hz`;
+  const notes = [data.decimation ?? '', ...(data.warnings ?? [])].filter((n) => n !== '');
+  for (const note of notes) element('div', {textContent: note}, ui.notes);
   // grasp and other events as marks under the phases, their message on hover
   for (const event of data.events.filter((e) => e.kind !== 'phase')) {
     element(
@@ -287,6 +292,7 @@ function start() {
     ready: true,
     meshCount,
     skippedGeoms: skipped,
+    notes,
     softwareGl: software,
     // milliseconds to pose and draw one frame, the GPU (or software GL) waited for: n frames
     // across the run (a figure for docs/replay.md; the browser's compositing is not counted)
@@ -353,6 +359,7 @@ function start() {
       const white = new THREE.MeshBasicMaterial({color: 0xffffff});
       scene.background = root === null ? background : new THREE.Color(0, 0, 0);
       ui.title.style.display = root === null ? '' : 'none';
+      ui.notes.style.display = ui.title.style.display;
       for (const [name, group] of Object.entries(overlays.groups))
         group.visible = root === null && ui.toggles[name].checked;
       bodies.forEach((body, id) => {
