@@ -13,6 +13,7 @@
 #include <thread>
 #include <vector>
 
+#include "app/cli_runner.hpp"
 #include "mjarm/error.hpp"
 #include "support/error_message.hpp"
 #include "web/web_client.hpp"
@@ -199,6 +200,16 @@ TEST(LiveServer, BadOptionsAreRefusedWithTheirReason) {
   EXPECT_TRUE(is_loopback_host("::1"));
   EXPECT_FALSE(is_loopback_host("0.0.0.0"));
   EXPECT_FALSE(is_loopback_host("garbage"));
+}
+
+TEST(LiveServer, TheWebViewOnAPortInUseIsAClearError) {
+  LiveServer holder("page");  // holds the port
+  const std::string port = std::to_string(holder.port());
+  const test::CliRun run =
+      test::run_cli({"view", "planar2", "--web", "--port", port, "--duration", "5"});
+  EXPECT_EQ(run.exit_code, 1) << run.err;
+  EXPECT_THAT(run.err, HasSubstr("cannot listen on 127.0.0.1:" + port));
+  EXPECT_THAT(run.err, HasSubstr("choose another --port"));
 }
 
 }  // namespace
