@@ -160,7 +160,8 @@ ReplayHtmlReport write_replay_html(const Robot& robot, const plot::Recording& re
   const double duration = scan.last - scan.first;
   const double max_frames = std::floor((cap - fixed) / per_frame);
   double rate = options.rate;
-  if (duration > 0.0 && duration * rate + 2.0 > max_frames) rate = (max_frames - 2.0) / duration;
+  if (duration > 0.0 && duration * rate + 2.0 > max_frames)
+    rate = std::max(max_frames - 2.0, 1.0) / duration;
 
   // the second pass: the kept rows' frames, then task.csv at their times
   web_detail::ReplayFrames frames = web_detail::replay_frames(m, state_csv, rate, state_columns);
