@@ -193,10 +193,10 @@ CLI::Option* add_json_flag(CLI::App& command, bool& json) {
   return command.add_flag("--json", json, "print one JSON document to stdout instead of tables");
 }
 
-Robot load_model(const std::string& model) {
+Robot load_model(const std::string& model, const LoadOptions& options) {
   // a recording's model (model.mjb, docs/replay.md)
   if (has_extension(model, ".mjb")) return load_mjb_model(model);
-  if (!is_scene_file(model)) return Robot::load(model);
+  if (!is_scene_file(model)) return Robot::load(model, options);
   const Scene scene = load_scene_file(model);
   for (const auto& warning : scene.warnings()) std::cerr << "mjarm: " << warning << "\n";
   return scene.compile();

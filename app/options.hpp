@@ -88,7 +88,7 @@ CLI::Option* add_json_flag(CLI::App& command, bool& json);
 
 /// Loads MODEL (a bundled name or a path) with `Robot::load`.
 /// @throws Error when the model cannot be found or loaded.
-Robot load_model(const std::string& model);
+Robot load_model(const std::string& model, const LoadOptions& options = {});
 
 /// The frame to use: @p site when given, else the model's only named site.
 /// @throws UsageError listing the sites when none was given and the model has several (or none).

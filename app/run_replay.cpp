@@ -36,7 +36,7 @@ void check_run_replay(const std::string& option, const fs::path& html) {
 }
 
 ReplayHtmlReport write_run_replay(const fs::path& recording, const fs::path& html) {
-  const plot::Recording loaded = plot::Recording::load(recording);
+  const plot::Recording loaded = plot::Recording::load(recording, plot::TableRows::header_only);
   return write_replay_html(recorded_model(loaded), loaded, html);
 }
 

@@ -182,8 +182,8 @@ void bind_model(py::module_& m) {
           "Loads MJCF or URDF text; relative assets resolve against base_dir.")
       .def_static("bundled", &Robot::bundled, py::arg("name"),
                   "A bundled model by name ('panda', 'ur5e_torque', ...).")
-      .def_static("load", &Robot::load, py::arg("name_or_path"),
-                  "A bundled name (no '/' nor extension) or a file path.")
+      .def_static("load", py::overload_cast<std::string_view>(&Robot::load),
+                  py::arg("name_or_path"), "A bundled name (no '/' nor extension) or a file path.")
       .def_static("models_dir", &Robot::models_dir, "Directory of the bundled models.")
       .def_static("bundled_names", &Robot::bundled_names, "Names of the bundled models, sorted.")
       .def_property_readonly("name", &Robot::name, "the model's name")

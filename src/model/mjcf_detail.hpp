@@ -74,7 +74,10 @@ void for_each_element(XmlNode& root, Fn&& fn) {
 /// resolve against `base`, then against the including file's folder.
 void inline_includes(XmlNode& root, const std::filesystem::path& base);
 /// Makes every asset file path absolute (compiler meshdir / texturedir / assetdir, strippath)
-/// and checks each existing file; removes those compiler settings.
-void resolve_asset_paths(XmlNode& root, const std::filesystem::path& base);
+/// and checks each existing file; removes those compiler settings. With @p missing_meshes, a
+/// mesh whose file is not found is no error: it is dropped, each geom showing it becomes a box
+/// (replace_missing_meshes) and one message per missing file is appended.
+void resolve_asset_paths(XmlNode& root, const std::filesystem::path& base,
+                         std::vector<std::string>* missing_meshes = nullptr);
 
 }  // namespace mjarm::mjcf_detail

@@ -1,10 +1,13 @@
 // <include> inlining and asset path resolution of the MJCF staging (mjcf_staging.hpp).
 
+#include <functional>
+#include <map>
 #include <optional>
 #include <set>
 
 #include "mjarm/error.hpp"
 #include "mjarm/model/user_file.hpp"
+#include "mjarm/number_text.hpp"
 #include "mjcf_detail.hpp"
 
 namespace mjarm::mjcf_detail {
@@ -95,6 +98,48 @@ bool is_file_attr(std::string_view tag, std::string_view key) {
   return (tag == "mesh" || tag == "hfield" || tag == "skin" || tag == "model") && key == "file";
 }
 
+// Drops the meshes of @p missing and turns each geom showing one (in a body or a default class)
+// into a box of its own size, else kMissingMeshBoxHalfSize; one message per missing file.
+void replace_missing_meshes(XmlNode& root, const std::map<std::string, std::string>& missing,
+                            std::vector<std::string>& messages) {
+  std::map<std::string, int> geoms;  // mesh name -> geoms turned into boxes
+  for_each_element(root, [&](XmlNode& e, XmlNode&) {
+    if (e.tag != "geom") return;
+    const std::string* mesh = e.find("mesh");
+    if (mesh == nullptr || missing.count(*mesh) == 0) return;
+    ++geoms[*mesh];
+    e.erase("mesh");
+    e.set("type", "box");
+    if (!e.has("size")) {
+      const std::string half = number_text(kMissingMeshBoxHalfSize);
+      e.set("size", half + " " + half + " " + half);
+    }
+  });
+  std::function<void(XmlNode&)> drop = [&](XmlNode& parent) {
+    std::erase_if(parent.children, [&](const XmlNode& c) {
+      if (c.tag != "mesh") return false;
+      const std::string* name = c.find("name");
+      const std::string* file = c.find("file");
+      const std::string key = name != nullptr   ? *name
+                              : file != nullptr ? fs::path(*file).stem().string()
+                                                : std::string();
+      return !key.empty() && missing.count(key) != 0;
+    });
+    for (XmlNode& c : parent.children) drop(c);
+  };
+  drop(root);
+  std::set<std::string> said;
+  for (const auto& [name, what] : missing) {
+    if (!said.insert(what).second) continue;  // one message per file
+    const int n = geoms.count(name) != 0 ? geoms.at(name) : 0;
+    messages.push_back("mesh '" + name + "': " + what + ": " +
+                       (n == 0 ? std::string("no geom shows it")
+                               : "its " + std::to_string(n) + (n == 1 ? " geom is" : " geoms are") +
+                                     " drawn as a box (its own size, else half-size " +
+                                     number_text(kMissingMeshBoxHalfSize) + " m)"));
+  }
+}
+
 }  // namespace
 
 void inline_includes(XmlNode& root, const fs::path& base) {
@@ -103,7 +148,9 @@ void inline_includes(XmlNode& root, const fs::path& base) {
   inline_in(root, base, stack, seen);
 }
 
-void resolve_asset_paths(XmlNode& root, const fs::path& base) {
+void resolve_asset_paths(XmlNode& root, const fs::path& base,
+                         std::vector<std::string>* missing_meshes) {
+  std::map<std::string, std::string> missing;  // mesh name -> what is missing
   // compiler settings are global; later elements override earlier ones
   std::string meshdir, texturedir, assetdir;
   bool strip = false;
@@ -130,16 +177,25 @@ void resolve_asset_paths(XmlNode& root, const fs::path& base) {
         const fs::path main = (rel.is_absolute() ? rel : base / rel).lexically_normal();
         const fs::path local =
             e.file ? (e.file->parent_path() / rel).lexically_normal() : fs::path();
-        fail(e, key + " '" + value + "' not found (looked for " + main.string() +
-                    (e.file && !rel.is_absolute() && local != main ? " and " + local.string()
-                                                                   : std::string()) +
-                    ")");
+        const std::string looked =
+            "looked for " + main.string() +
+            (e.file && !rel.is_absolute() && local != main ? " and " + local.string()
+                                                           : std::string());
+        if (missing_meshes != nullptr && e.tag == "mesh") {
+          // MuJoCo names a mesh without a name after its file
+          const std::string* name = e.find("name");
+          missing[name != nullptr ? *name : fs::path(value).stem().string()] =
+              "mesh file '" + value + "' not found (" + looked + ")";
+          continue;
+        }
+        fail(e, key + " '" + value + "' not found (" + looked + ")");
       }
       check_asset(e, key, *found);
       value = found->string();
     }
   });
 
+  if (!missing.empty()) replace_missing_meshes(root, missing, *missing_meshes);
   // every path is absolute now: the folders and the stripping have done their part
   for (auto& c : root.children) {
     if (c.tag != "compiler") continue;

@@ -52,7 +52,7 @@ std::string StagedMjcf::to_source_lines(std::string_view message) const {
 }
 
 StagedMjcf stage_mjcf(std::string_view xml, const std::filesystem::path& base_dir,
-                      const std::filesystem::path& source_file) {
+                      const std::filesystem::path& source_file, bool missing_meshes_as_boxes) {
   using namespace mjcf_detail;
   // an empty base_dir means the working directory
   const std::filesystem::path base =
@@ -68,8 +68,8 @@ StagedMjcf stage_mjcf(std::string_view xml, const std::filesystem::path& base_di
   count_elements(root, 1, count);
   count.check(source_file.empty() ? std::string("the MJCF text")
                                   : "model '" + source_file.string() + "'");
-  resolve_asset_paths(root, base);
   StagedMjcf result;
+  resolve_asset_paths(root, base, missing_meshes_as_boxes ? &result.missing_meshes : nullptr);
   result.xml = write_document(root, &result.source_lines);
   return result;
 }

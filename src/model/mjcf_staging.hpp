@@ -29,7 +29,14 @@ struct StagedMjcf {
   /// @p message (MuJoCo's, about `xml`) with every "line N" / "line = N, column = C" rewritten to
   /// the source: "line 48 of 'arm.xml'" (just "line 48" for text without a file name).
   std::string to_source_lines(std::string_view message) const;
+
+  /// With `missing_meshes_as_boxes`: one message per mesh file that was not found, naming it
+  /// and what its geoms became.
+  std::vector<std::string> missing_meshes;
 };
+
+/// Half-size of the box a geom of a missing mesh becomes when the geom gives no size [m].
+inline constexpr double kMissingMeshBoxHalfSize = 0.025;
 
 /// Stages MJCF text for loading.
 ///
@@ -48,7 +55,11 @@ struct StagedMjcf {
 ///         missing or cyclic include, or an asset that is missing or not a regular, readable
 ///         file of a sensible size; the message names the element (tag, name attribute, line
 ///         and file).
+/// @param missing_meshes_as_boxes  a mesh whose file is not found is dropped instead of failing,
+///        and every geom that shows it becomes a box (its own size, else
+///        kMissingMeshBoxHalfSize): a model drawn from a recording whose meshes are gone.
 StagedMjcf stage_mjcf(std::string_view xml, const std::filesystem::path& base_dir,
-                      const std::filesystem::path& source_file = {});
+                      const std::filesystem::path& source_file = {},
+                      bool missing_meshes_as_boxes = false);
 
 }  // namespace mjarm

@@ -322,7 +322,9 @@ Robot Robot::from_model(std::shared_ptr<const mjModel> model, std::string source
   return Robot(std::move(model), std::move(source), {});
 }
 
-Robot Robot::from_file(const std::filesystem::path& path) {
+Robot Robot::from_file(const std::filesystem::path& path) { return from_file(path, LoadOptions{}); }
+
+Robot Robot::from_file(const std::filesystem::path& path, const LoadOptions& options) {
   install_mujoco_handlers();
   const std::string xml = read_user_file(path, "model file");
   const std::string source = "'" + path.string() + "'";
@@ -337,9 +339,14 @@ Robot Robot::from_file(const std::filesystem::path& path) {
   }
   // every MJCF file loads staged (includes inlined and read through the checked reader, asset
   // paths checked and absolute), so MuJoCo's line numbers map back to the user's own files
-  const StagedMjcf staged = stage_mjcf(xml, std::filesystem::absolute(path).parent_path(), path);
+  const StagedMjcf staged = stage_mjcf(xml, std::filesystem::absolute(path).parent_path(), path,
+                                       options.missing_meshes_as_boxes);
   Loaded loaded = load_from_memory(staged.xml, source, &staged);
-  return Robot(loaded.model, path.string(), std::move(loaded.warnings));
+  std::vector<std::string> warnings = staged.missing_meshes;
+  warnings.insert(warnings.end(), loaded.warnings.begin(), loaded.warnings.end());
+  Robot robot(loaded.model, path.string(), std::move(warnings));
+  robot.missing_meshes_ = staged.missing_meshes;
+  return robot;
 }
 
 Robot Robot::from_string(std::string_view xml, const std::filesystem::path& base_dir) {
@@ -416,10 +423,12 @@ Robot Robot::bundled(std::string_view name) {
   return from_file(file);
 }
 
-Robot Robot::load(std::string_view name_or_path) {
+Robot Robot::load(std::string_view name_or_path) { return load(name_or_path, LoadOptions{}); }
+
+Robot Robot::load(std::string_view name_or_path, const LoadOptions& options) {
   const std::filesystem::path path(name_or_path);
   const bool looks_like_path = path.has_extension() || path.has_parent_path();
-  return looks_like_path ? from_file(path) : bundled(name_or_path);
+  return looks_like_path ? from_file(path, options) : bundled(name_or_path);
 }
 
 int Robot::joint(std::string_view n) const { return find_object(*model_, mjOBJ_JOINT, n); }

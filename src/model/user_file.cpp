@@ -8,6 +8,7 @@
 #include <cctype>
 #include <cerrno>
 #include <cstring>
+#include <limits>
 
 #include "mjarm/error.hpp"
 
@@ -118,6 +119,39 @@ std::string read_user_file(const std::filesystem::path& path, std::string_view w
   }
   text.resize(used);
   return text;
+}
+
+UserFileReader::UserFileReader(const std::filesystem::path& path, std::string_view what)
+    : path_(path), what_(what) {
+  constexpr auto kNoLimit = std::numeric_limits<std::uintmax_t>::max();
+  check_user_file(path, what, kNoLimit);
+  fd_ = ::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC);
+  if (fd_ < 0) throw_errno(what, path, errno, "opened");
+  struct stat st {};
+  if (::fstat(fd_, &st) != 0) {
+    const int error = errno;
+    ::close(fd_);
+    throw_errno(what, path, error, "examined");
+  }
+  try {
+    check_stat(st, what, path, kNoLimit);
+  } catch (...) {
+    ::close(fd_);
+    throw;
+  }
+  size_ = static_cast<std::uintmax_t>(st.st_size);
+}
+
+UserFileReader::~UserFileReader() {
+  if (fd_ >= 0) ::close(fd_);
+}
+
+std::size_t UserFileReader::read(char* buffer, std::size_t size) {
+  while (true) {
+    const ssize_t n = ::read(fd_, buffer, size);
+    if (n >= 0) return static_cast<std::size_t>(n);
+    if (errno != EINTR) throw_errno(what_, path_, errno, "read");
+  }
 }
 
 }  // namespace mjarm

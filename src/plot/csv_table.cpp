@@ -8,6 +8,7 @@
 #include "mjarm/error.hpp"
 #include "mjarm/model/user_file.hpp"
 #include "mjarm/number_text.hpp"
+#include "mjarm/plot/csv_rows.hpp"
 #include "quoted_path.hpp"
 
 namespace mjarm::plot {
@@ -56,6 +57,14 @@ bool parse_number(const std::string& cell, double& value) {
 
 CsvTable CsvTable::read(const std::filesystem::path& path) {
   return parse(read_user_file(path, "recorded table", kMaxDataFileBytes), path);
+}
+
+CsvTable CsvTable::read_header(const std::filesystem::path& path) {
+  const CsvRowReader reader(path, "recorded table");
+  CsvTable table;
+  table.path_ = path;
+  table.header_ = reader.header();
+  return table;
 }
 
 CsvTable CsvTable::parse(std::string_view text, const std::filesystem::path& path) {

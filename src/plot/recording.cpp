@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cerrno>
+#include <limits>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <type_traits>
@@ -80,7 +81,7 @@ T field_or(const nlohmann::json& j, const char* key, T fallback, const fs::path&
 
 }  // namespace
 
-Recording Recording::load(const fs::path& directory) {
+Recording Recording::load(const fs::path& directory, TableRows rows) {
   std::error_code ec;
   const fs::file_status status = fs::status(directory, ec);
   if (ec.value() == ELOOP)
@@ -103,10 +104,13 @@ Recording Recording::load(const fs::path& directory) {
 
   Recording r;
   r.directory_ = directory;
-  r.state_ = CsvTable::read(directory / "state.csv");
-  r.task_ = CsvTable::read(directory / "task.csv");
+  const bool whole = rows == TableRows::read;
+  r.state_ = whole ? CsvTable::read(directory / "state.csv")
+                   : CsvTable::read_header(directory / "state.csv");
+  r.task_ = whole ? CsvTable::read(directory / "task.csv")
+                  : CsvTable::read_header(directory / "task.csv");
   const CsvTable events = CsvTable::read(directory / "events.csv");
-  if (r.task_.rows() == 0 || r.state_.rows() == 0) {
+  if (whole && (r.task_.rows() == 0 || r.state_.rows() == 0)) {
     throw Error("recording " + quoted(directory) +
                 " is empty: " + (r.task_.rows() == 0 ? "task.csv" : "state.csv") +
                 " has no rows (the run never ticked)");
@@ -123,9 +127,11 @@ Recording Recording::load(const fs::path& directory) {
   r.model_ = field_or<std::string>(summary, "model", "", summary_path);
   r.status_ = field_or<std::string>(summary, "status", "", summary_path);
   r.frame_ = field_or<std::string>(summary, "frame", "", summary_path);
-  const std::vector<double> task_t = r.task_.numbers("t");
-  r.start_time_ = field_or<double>(summary, "start_time", task_t.front(), summary_path);
-  r.end_time_ = field_or<double>(summary, "end_time", task_t.back(), summary_path);
+  const std::vector<double> task_t = whole ? r.task_.numbers("t") : std::vector<double>{};
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  r.start_time_ =
+      field_or<double>(summary, "start_time", whole ? task_t.front() : nan, summary_path);
+  r.end_time_ = field_or<double>(summary, "end_time", whole ? task_t.back() : nan, summary_path);
   const auto controllers = summary.find("controllers");
   if (controllers != summary.end() && controllers->is_array())
     for (const nlohmann::json& c : *controllers)

@@ -204,7 +204,8 @@ namespace {
 void write_trial_replay(const SweepFolder& folder, std::int64_t trial, TrialOutcome& o) {
   if (!replay_html_available()) return;
   try {
-    const plot::Recording recording = plot::Recording::load(o.recording);
+    const plot::Recording recording =
+        plot::Recording::load(o.recording, plot::TableRows::header_only);
     write_replay_html(recorded_model(recording), recording, folder.record(trial) / "replay.html");
   } catch (const Error& e) {
     o.recording_error = std::string("replay page: ") + e.what();

@@ -321,8 +321,12 @@ LiveServer::LiveServer(std::string page, const LiveServerOptions& options)
   if (options.require_token || !address.is_loopback()) s.token = new_token();
   const tcp::endpoint endpoint(address, static_cast<unsigned short>(options.port));
   const auto fail = [&](const char* what) {
+    const bool taken = ec == net::error::address_in_use;
     throw Error("live server: cannot " + std::string(what) + " " + s.host + ":" +
-                std::to_string(options.port) + ": " + ec.message());
+                std::to_string(options.port) + ": " + ec.message() +
+                (taken ? " (another program, or another mjarm view, listens there: choose "
+                         "another --port, or 0 for a free one)"
+                       : ""));
   };
   if (s.acceptor.open(endpoint.protocol(), ec)) fail("open a socket for");
   if (s.acceptor.set_option(net::socket_base::reuse_address(true), ec)) fail("reuse");

@@ -1,7 +1,5 @@
 #include "recorded_state.hpp"
 
-#include <algorithm>
-
 namespace mjarm::web_detail {
 namespace {
 
@@ -26,16 +24,5 @@ std::vector<std::string> joint_columns(const mjModel& m, const char* prefix, boo
 std::vector<std::string> qpos_columns(const mjModel& m) { return joint_columns(m, "q.", false); }
 
 std::vector<std::string> qvel_columns(const mjModel& m) { return joint_columns(m, "v.", true); }
-
-std::vector<std::size_t> rows_at_or_before(const std::vector<double>& t,
-                                           const std::vector<double>& times) {
-  std::vector<std::size_t> rows;
-  rows.reserve(times.size());
-  for (double time : times) {
-    const auto after = std::upper_bound(t.begin(), t.end(), time + 1e-12);
-    rows.push_back(after == t.begin() ? 0 : static_cast<std::size_t>(after - t.begin() - 1));
-  }
-  return rows;
-}
 
 }  // namespace mjarm::web_detail

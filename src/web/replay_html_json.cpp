@@ -19,6 +19,9 @@ nlohmann::ordered_json replay_html_json(const ReplayHtmlReport& report,
   doc["meshes"] = report.meshes;
   doc["cameras"] = report.cameras;
   doc["plots"] = report.plots;
+  doc["decimated"] = report.decimated;
+  doc["decimation"] = report.decimation;
+  doc["warnings"] = report.warnings;
   return doc;
 }
 

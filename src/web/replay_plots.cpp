@@ -9,17 +9,6 @@
 namespace mjarm::web_detail {
 namespace {
 
-// for each frame time, the index of the last row at or before it (0 before the first row)
-std::vector<std::size_t> rows_at(const std::vector<double>& t, const std::vector<double>& times) {
-  std::vector<std::size_t> rows;
-  rows.reserve(times.size());
-  for (double time : times) {
-    const auto after = std::upper_bound(t.begin(), t.end(), time + 1e-12);
-    rows.push_back(after == t.begin() ? 0 : static_cast<std::size_t>(after - t.begin() - 1));
-  }
-  return rows;
-}
-
 struct Series {
   std::string label;
   std::vector<float> values;
@@ -33,31 +22,48 @@ nlohmann::json plot_json(const std::string& title, const std::string& unit,
   return {{"title", title}, {"unit", unit}, {"series", list}};
 }
 
+std::vector<float> scaled(const std::vector<double>& values, double scale) {
+  std::vector<float> out;
+  out.reserve(values.size());
+  for (double v : values) out.push_back(static_cast<float>(v * scale));
+  return out;
+}
+
+constexpr const char* kErrorColumns[] = {"err.vx", "err.vy", "err.vz",
+                                         "err.wx", "err.wy", "err.wz"};
+
 }  // namespace
 
-ReplayPlots replay_plots(const plot::Recording& recording, const std::vector<double>& frame_times) {
-  const plot::CsvTable& state = recording.state();
-  const plot::CsvTable& task = recording.task();
-  const std::vector<std::size_t> state_rows = rows_at(state.numbers("t"), frame_times);
-  const std::vector<std::size_t> task_rows = rows_at(task.numbers("t"), frame_times);
-  auto sample = [](const std::vector<double>& column, const std::vector<std::size_t>& rows,
-                   double scale) {
-    std::vector<float> values;
-    values.reserve(rows.size());
-    for (std::size_t row : rows) values.push_back(static_cast<float>(column[row] * scale));
-    return values;
-  };
+std::vector<std::string> plot_state_columns(const plot::Recording& recording) {
+  std::vector<std::string> columns;
+  for (const plot::RecordedActuator& a : recording.actuators()) {
+    const std::string column = "force." + a.name;
+    if (a.force_range && recording.state().has(column)) columns.push_back(column);
+  }
+  if (recording.state().has("contact.normal_force")) columns.emplace_back("contact.normal_force");
+  return columns;
+}
+
+std::vector<std::string> plot_task_columns() {
+  std::vector<std::string> columns(std::begin(kErrorColumns), std::end(kErrorColumns));
+  columns.emplace_back("grasp.force");
+  return columns;
+}
+
+ReplayPlots replay_plots(const plot::Recording& recording, const std::vector<double>& frame_times,
+                         const std::map<std::string, std::vector<double>>& state,
+                         const std::map<std::string, std::vector<double>>& task) {
   ReplayPlots plots;
   nlohmann::json& list = plots.json["plots"] = nlohmann::json::array();
 
-  if (task.has("err.vx") && task.has("err.wz")) {
+  if (std::all_of(std::begin(kErrorColumns), std::end(kErrorColumns),
+                  [&](const char* c) { return task.count(c) != 0; })) {
     std::vector<Series> error{{"position [mm]", {}}, {"orientation [mrad]", {}}};
-    std::vector<std::vector<double>> e;
-    for (const char* axis : {"err.vx", "err.vy", "err.vz", "err.wx", "err.wy", "err.wz"})
-      e.push_back(task.numbers(axis));
-    for (std::size_t row : task_rows) {
-      const double linear = std::hypot(e[0][row], e[1][row], e[2][row]);
-      const double angular = std::hypot(e[3][row], e[4][row], e[5][row]);
+    std::vector<const std::vector<double>*> e;
+    for (const char* axis : kErrorColumns) e.push_back(&task.at(axis));
+    for (std::size_t f = 0; f < frame_times.size(); ++f) {
+      const double linear = std::hypot((*e[0])[f], (*e[1])[f], (*e[2])[f]);
+      const double angular = std::hypot((*e[3])[f], (*e[4])[f], (*e[5])[f]);
       error[0].values.push_back(static_cast<float>(1e3 * linear));
       error[1].values.push_back(static_cast<float>(1e3 * angular));
     }
@@ -67,23 +73,20 @@ ReplayPlots replay_plots(const plot::Recording& recording, const std::vector<dou
   // joint torque (gear · actuator force) as a fraction of its limit: ±1 is the limit
   std::vector<Series> torques;
   for (const plot::RecordedActuator& a : recording.actuators()) {
-    const std::string column = "force." + a.name;
-    if (!a.force_range || !state.has(column)) continue;
+    const auto column = state.find("force." + a.name);
+    if (!a.force_range || column == state.end()) continue;
     const double limit = std::max(std::abs(a.force_range->first), std::abs(a.force_range->second));
     if (!(limit > 0.0)) continue;
-    torques.push_back({a.name, sample(state.numbers(column), state_rows, 1.0 / limit)});
+    torques.push_back({a.name, scaled(column->second, 1.0 / limit)});
   }
   if (!torques.empty()) list.push_back(plot_json("actuator force / its limit", "", torques));
 
-  if (state.has("contact.normal_force")) {
-    list.push_back(plot_json(
-        "contact force (all contacts)", "N",
-        {{"normal force", sample(state.numbers("contact.normal_force"), state_rows, 1.0)}}));
+  if (const auto force = state.find("contact.normal_force"); force != state.end()) {
+    list.push_back(plot_json("contact force (all contacts)", "N",
+                             {{"normal force", scaled(force->second, 1.0)}}));
   }
-  if (task.has("grasp.force")) {
-    list.push_back(
-        plot_json("gripper force", "N",
-                  {{"grasp force", sample(task.numbers("grasp.force"), task_rows, 1.0)}}));
+  if (const auto grasp = task.find("grasp.force"); grasp != task.end()) {
+    list.push_back(plot_json("gripper force", "N", {{"grasp force", scaled(grasp->second, 1.0)}}));
   }
 
   std::vector<float> time(frame_times.begin(), frame_times.end());

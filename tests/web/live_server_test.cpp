@@ -6,10 +6,14 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <boost/system/system_error.hpp>
+#include <optional>
 #include <string>
 #include <thread>
+#include <vector>
 
+#include "app/cli_runner.hpp"
 #include "mjarm/error.hpp"
 #include "support/error_message.hpp"
 #include "web/web_client.hpp"
@@ -93,6 +97,37 @@ TEST(LiveServer, AClientGetsTheGreetingThenTheNewestFrameAndItsMessagesArePolled
   EXPECT_EQ(s.received, 1u);
 }
 
+TEST(LiveServer, TwoBrowsersEachGetTheGreetingAndEveryFrameAndBothAreHeard) {
+  LiveServer server("page");
+  server.set_greeting("hello");
+  std::optional<WebSocketClient> first;
+  first.emplace(server.port(), "/ws");
+  WebSocketClient second(server.port(), "/ws");
+  EXPECT_EQ(first->read(), "hello");
+  EXPECT_EQ(second.read(), "hello");
+  ASSERT_TRUE(eventually([&] { return server.stats().clients == 2; }));
+  for (int k = 0; k < 3; ++k) {
+    server.publish("frame " + std::to_string(k));
+    // each reads before the next is published: none is skipped for a client that keeps up
+    EXPECT_EQ(first->read(), "frame " + std::to_string(k));
+    EXPECT_EQ(second.read(), "frame " + std::to_string(k));
+  }
+  first->send("from the first");
+  second.send("from the second");
+  ASSERT_TRUE(eventually([&] { return server.stats().received == 2; }));
+  std::vector<std::string> messages(2);
+  ASSERT_TRUE(server.poll(messages[0]));
+  ASSERT_TRUE(server.poll(messages[1]));
+  std::sort(messages.begin(), messages.end());
+  EXPECT_EQ(messages, (std::vector<std::string>{"from the first", "from the second"}));
+  // one leaves: the other is still served
+  first.reset();
+  ASSERT_TRUE(eventually([&] { return server.stats().clients == 1; }));
+  server.publish("after");
+  EXPECT_EQ(second.read(), "after");
+  EXPECT_EQ(server.stats().connections, 2u);
+}
+
 TEST(LiveServer, AStalledClientNeitherBlocksThePublisherNorTheOtherClients) {
   LiveServerOptions options;
   options.send_rate = 1000.0;
@@ -158,11 +193,23 @@ TEST(LiveServer, BadOptionsAreRefusedWithTheirReason) {
   taken.port = first.port();
   EXPECT_THAT(test::error_of([&] { LiveServer second("page", taken); }),
               HasSubstr("cannot listen on 127.0.0.1:" + std::to_string(first.port())));
+  EXPECT_THAT(test::error_of([&] { LiveServer second("page", taken); }),
+              HasSubstr("choose another --port"));
   EXPECT_TRUE(is_loopback_host("localhost"));
   EXPECT_TRUE(is_loopback_host("127.0.0.2"));
   EXPECT_TRUE(is_loopback_host("::1"));
   EXPECT_FALSE(is_loopback_host("0.0.0.0"));
   EXPECT_FALSE(is_loopback_host("garbage"));
+}
+
+TEST(LiveServer, TheWebViewOnAPortInUseIsAClearError) {
+  LiveServer holder("page");  // holds the port
+  const std::string port = std::to_string(holder.port());
+  const test::CliRun run =
+      test::run_cli({"view", "planar2", "--web", "--port", port, "--duration", "5"});
+  EXPECT_EQ(run.exit_code, 1) << run.err;
+  EXPECT_THAT(run.err, HasSubstr("cannot listen on 127.0.0.1:" + port));
+  EXPECT_THAT(run.err, HasSubstr("choose another --port"));
 }
 
 }  // namespace

@@ -29,6 +29,7 @@
 #include "sim/sim_test_support.hpp"
 #include "web/base64.hpp"
 #include "web/replay_scene.hpp"
+#include "web/replay_test_support.hpp"
 #include "web/replay_textures.hpp"
 
 namespace {
@@ -75,68 +76,12 @@ constexpr const char* kReplayModel = R"(
 constexpr int kDrawnGeoms = 7;  // all but "hidden" (group 3) and "clear" (alpha 0)
 
 void record_replay_model(const fs::path& dir) {
-  const mjarm::Robot robot = mjarm::Robot::from_string(kReplayModel);
-  const mjarm::Chain chain(robot, "tip");
-  mjarm::SimulationOptions options;
-  options.control_period = 0.004;
-  mjarm::Simulation sim(robot, options);
-  mjarm::test::PdTorque pd(chain, 5.0, 0.1, false);
-  sim.add_controller(pd);
-  mjarm::Recorder recorder(sim, dir);
-  mjarm::Reference reference;
-  reference.joint.q = Eigen::VectorXd::Constant(1, 1.2);  // swings the link up
-  mjarm::ConstantReferenceSource source(reference);
-  recorder.event(0.0, "phase", "swing");
-  const mjarm::RunResult run = sim.run(source, 0.6, &recorder);
-  recorder.finalize(run);
+  mjarm::test::record_swing(mjarm::Robot::from_string(kReplayModel), dir, 0.6);
 }
 
-std::string slurp_file(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
-
-std::vector<unsigned char> unbase64(const std::string& text) {
-  auto value = [](char c) -> int {
-    if (c >= 'A' && c <= 'Z') return c - 'A';
-    if (c >= 'a' && c <= 'z') return c - 'a' + 26;
-    if (c >= '0' && c <= '9') return c - '0' + 52;
-    return c == '+' ? 62 : c == '/' ? 63 : -1;
-  };
-  std::vector<unsigned char> bytes;
-  unsigned bits = 0;
-  int count = 0;
-  for (char c : text) {
-    const int v = value(c);
-    if (v < 0) break;  // padding
-    bits = (bits << 6) | static_cast<unsigned>(v);
-    count += 6;
-    if (count >= 8) {
-      count -= 8;
-      bytes.push_back(static_cast<unsigned char>((bits >> count) & 0xFF));
-    }
-  }
-  return bytes;
-}
-
-std::vector<float> unbase64_floats(const std::string& text) {
-  const std::vector<unsigned char> bytes = unbase64(text);
-  std::vector<float> values(bytes.size() / 4);
-  std::memcpy(values.data(), bytes.data(), values.size() * 4);
-  return values;
-}
-
-// the JSON block of a replay file
-json data_block(const fs::path& html) {
-  const std::string text = slurp_file(html);
-  const std::string open = R"(<script type="application/json" id="mjarm-replay-data">)";
-  const std::size_t begin = text.find(open);
-  EXPECT_NE(begin, std::string::npos);
-  const std::size_t end = text.find("</script>", begin);
-  return json::parse(text.substr(begin + open.size(), end - begin - open.size()));
-}
+using mjarm::test::data_block;
+using mjarm::test::unbase64;
+using mjarm::test::unbase64_floats;
 
 class ReplayHtml : public ::testing::Test {
  protected:

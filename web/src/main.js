@@ -17,6 +17,8 @@ function layout() {
   const main = element('div', {id: 'mjarm-main'}, root);
   const view = element('div', {id: 'mjarm-view'}, main);
   const title = element('div', {id: 'mjarm-title'}, view);
+  // what the file says of itself: a decimated run, meshes drawn as boxes (docs/replay.md)
+  const notes = element('div', {id: 'mjarm-notes'}, view);
   const plots = element('div', {id: 'mjarm-plots'}, main);
   const phases = element('div', {id: 'mjarm-phases'}, root);
   const bar = element('div', {id: 'mjarm-bar'}, root);
@@ -44,6 +46,7 @@ function layout() {
   return {
     view,
     title,
+    notes,
     plots,
     phases,
     play,
@@ -74,6 +77,8 @@ async function start() {
   ui.scrub.max = t1;
   ui.title.textContent =
       `${data.title} — ${data.model} — ${frames.length} frames at ${data.rate} Hz`;
+  const notes = [data.decimation ?? '', ...(data.warnings ?? [])].filter((n) => n !== '');
+  for (const note of notes) element('div', {textContent: note}, ui.notes);
   // grasp and other events as marks under the phases, their message on hover
   for (const event of data.events.filter((e) => e.kind !== 'phase')) {
     element(
@@ -226,6 +231,7 @@ async function start() {
       return {pos: cam.position.toArray(), quat: [q.w, q.x, q.y, q.z]};
     },
     skippedGeoms: skipped,
+    notes,
     softwareGl: software,
     // milliseconds to pose and draw one frame, the GPU (or software GL) waited for: n frames
     // across the run (a figure for docs/replay.md; the browser's compositing is not counted)
@@ -291,6 +297,7 @@ async function start() {
       scene.background = root === null ? background : new THREE.Color(0, 0, 0);
       if (sky) sky.visible = root === null;
       ui.title.style.display = root === null ? '' : 'none';
+      ui.notes.style.display = ui.title.style.display;
       for (const [name, group] of Object.entries(overlays.groups))
         group.visible = root === null && ui.toggles[name].checked;
       bodies.forEach((body, id) => {

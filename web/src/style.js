@@ -22,6 +22,7 @@ html, body { margin: 0; height: 100%; background: #1e2329; color: #dde3ea;
 #mjarm-phases .mjarm-warning, #mjarm-phases .mjarm-divergence { background: #ea4335; }
 #mjarm-bar label { white-space: nowrap; color: #b8c4d0; }
 #mjarm-title { position: absolute; left: 8px; top: 6px; font-size: 12px; color: #b8c4d0; pointer-events: none; }
+#mjarm-notes { position: absolute; left: 8px; top: 24px; max-width: 70%; font-size: 12px; color: #f0b040; pointer-events: none; }
 `;
 
 // The live view's panel (live.js): the viewer's sliders, mode and reset beside the 3D view.

@@ -92,6 +92,15 @@ struct SensorInfo {
   int dimension = 0;
 };
 
+/// How a model file is loaded.
+struct LoadOptions {
+  /// A mesh whose file is missing is no error: the mesh is dropped and each geom showing it
+  /// becomes a box of the geom's own size, else half-size 0.025 m (a model drawn from a recording
+  /// whose meshes are gone: the joints and so the qpos coordinates are unchanged). One message
+  /// per missing file in `Robot::missing_meshes()`. MJCF files only.
+  bool missing_meshes_as_boxes = false;
+};
+
 /// A loaded model. Copies share one immutable `mjModel`; algorithms never modify it.
 class Robot {
  public:
@@ -99,6 +108,8 @@ class Robot {
   /// asset files read and checked through `read_user_file`, mjcf_staging.hpp).
   /// @throws Error naming the file and MuJoCo's message when the file is missing or invalid.
   static Robot from_file(const std::filesystem::path& path);
+  /// As above, with @p options.
+  static Robot from_file(const std::filesystem::path& path, const LoadOptions& options);
 
   /// Loads MJCF or URDF held in @p xml; relative asset paths resolve against @p base_dir.
   /// @throws Error with MuJoCo's message (and line) when the XML is invalid.
@@ -130,6 +141,8 @@ class Robot {
 
   /// A bundled name when @p name_or_path has no '/' and no extension, a file path otherwise.
   static Robot load(std::string_view name_or_path);
+  /// As above, with @p options.
+  static Robot load(std::string_view name_or_path, const LoadOptions& options);
 
   /// Directory of the bundled models: $MJARM_MODELS, else the installed models relative to the
   /// installed CLI or Python extension holding the library (a wheel's `mjarm/models`), else the
@@ -151,6 +164,9 @@ class Robot {
   /// those of MuJoCo's first-step checks on the reference state (qpos0: "Nan, Inf or huge
   /// value in QACC ..."), which the load runs so that a model diverging at once says so here.
   const std::vector<std::string>& load_warnings() const noexcept { return warnings_; }
+  /// The meshes whose files were missing, drawn as boxes (`LoadOptions::missing_meshes_as_boxes`):
+  /// one message per file, naming it and what its geoms became.
+  const std::vector<std::string>& missing_meshes() const noexcept { return missing_meshes_; }
 
   int nq() const noexcept { return model_->nq; }  ///< position coordinates
   int nv() const noexcept { return model_->nv; }  ///< degrees of freedom
@@ -203,6 +219,7 @@ class Robot {
   std::string name_;
   std::string source_;
   std::vector<std::string> warnings_;
+  std::vector<std::string> missing_meshes_;
 };
 
 /// Installs mjarm's MuJoCo log handler (once per process; `mju_setLogHandler`): an error MuJoCo

@@ -38,4 +38,28 @@ void check_user_file(const std::filesystem::path& path, std::string_view what,
 std::string read_user_file(const std::filesystem::path& path, std::string_view what,
                            std::uintmax_t max_bytes = kMaxTextFileBytes);
 
+/// A user's file read in pieces, for files too large to hold whole (a long recording): checked
+/// and opened as `read_user_file` does (regular file, non-blocking open, checked again on the
+/// descriptor), with no size limit.
+class UserFileReader {
+ public:
+  /// @throws Error as `check_user_file()`, or when the file cannot be opened.
+  UserFileReader(const std::filesystem::path& path, std::string_view what);
+  ~UserFileReader();
+  UserFileReader(const UserFileReader&) = delete;
+  UserFileReader& operator=(const UserFileReader&) = delete;
+
+  /// Reads up to @p size bytes into @p buffer; returns how many, 0 at the end of the file.
+  /// @throws Error naming the file when reading fails.
+  std::size_t read(char* buffer, std::size_t size);
+  /// The file's size when it was opened [bytes].
+  std::uintmax_t size() const noexcept { return size_; }
+
+ private:
+  std::filesystem::path path_;
+  std::string what_;
+  int fd_ = -1;
+  std::uintmax_t size_ = 0;
+};
+
 }  // namespace mjarm

@@ -20,6 +20,11 @@ class CsvTable {
   ///         different number of cells than the header (the row number is named).
   static CsvTable read(const std::filesystem::path& path);
 
+  /// Reads the header row of @p path only (`rows()` is 0): a table whose rows are streamed
+  /// (`CsvRowReader`).
+  /// @throws Error as `CsvRowReader`.
+  static CsvTable read_header(const std::filesystem::path& path);
+
   /// Parses CSV text; @p path only names the source in messages.
   /// @throws Error as `read`.
   static CsvTable parse(std::string_view text, const std::filesystem::path& path);

@@ -29,15 +29,24 @@ struct RecordedActuator {
   std::optional<std::pair<double, double>> force_range;
 };
 
-/// A complete recording, read whole.
+/// How `Recording::load` reads state.csv and task.csv.
+enum class TableRows {
+  read,         ///< whole, into `state()` and `task()`
+  header_only,  ///< their header rows only (`state()` and `task()` hold no rows): the caller
+                ///< streams the rows (`CsvRowReader`), a recording of any length in bounded memory
+};
+
+/// A complete recording, read whole (or but for its two long tables: `TableRows::header_only`).
 class Recording {
  public:
-  /// Loads the recording in @p directory.
+  /// Loads the recording in @p directory. With `TableRows::header_only` an empty state.csv or
+  /// task.csv is not detected here (the caller streaming it sees it), and a summary without
+  /// start_time / end_time gives NaN for them.
   /// @throws Error when the directory is missing or not a directory, when one of the four
   ///         files is missing (named, with a hint when a .partial-* folder shows an unfinished
   ///         run), when a file is malformed, or when the recording is empty (no task or state
   ///         rows).
-  static Recording load(const std::filesystem::path& directory);
+  static Recording load(const std::filesystem::path& directory, TableRows rows = TableRows::read);
 
   const std::filesystem::path& directory() const noexcept { return directory_; }
   const CsvTable& state() const noexcept { return state_; }  ///< state.csv
