@@ -5,6 +5,7 @@
 #include "mjarm/file_writer.hpp"
 #include "mjarm/sweep/sweep_report.hpp"
 #include "mjarm/sweep/sweep_results.hpp"
+#include "mjarm/web/page_html.hpp"
 #include "sweep/sweep_dashboard_page.hpp"
 
 namespace mjarm {
@@ -18,17 +19,6 @@ std::string link(const SweepFolder& folder, const std::filesystem::path& html_di
                  const std::string& path) {
   const std::filesystem::path target = std::filesystem::absolute(folder.dir / path);
   return std::filesystem::relative(target, html_dir).generic_string();
-}
-
-/// JSON that may sit inside a <script> element: "</" cannot end it early.
-std::string script_safe(const std::string& json) {
-  std::string out;
-  out.reserve(json.size());
-  for (std::size_t i = 0; i < json.size(); ++i) {
-    out += json[i];
-    if (json[i] == '<' && i + 1 < json.size() && json[i + 1] == '/') out += "\\";
-  }
-  return out;
 }
 
 }  // namespace
@@ -69,7 +59,7 @@ std::string sweep_dashboard_html(const SweepFolder& folder, const std::filesyste
       {"columns", trials.columns},           {"rows", trials.rows},      {"links", links}};
   std::string page = sweep_dashboard_page();
   const std::string marker = "@DATA@";
-  page.replace(page.find(marker), marker.size(), script_safe(data.dump()));
+  page.replace(page.find(marker), marker.size(), script_safe_json(data.dump()));
   return page;
 }
 

@@ -1,6 +1,6 @@
-#include "page_html.hpp"
+#include "mjarm/web/page_html.hpp"
 
-namespace mjarm::web_detail {
+namespace mjarm {
 
 std::string html_text(const std::string& text) {
   std::string out;
@@ -25,7 +25,7 @@ std::string html_text(const std::string& text) {
   return out;
 }
 
-std::string script_safe(const std::string& json) {
+std::string script_safe_json(const std::string& json) {
   std::string out;
   out.reserve(json.size());
   for (char c : json) {
@@ -38,10 +38,10 @@ std::string script_safe(const std::string& json) {
   return out;
 }
 
-std::string page_head(const std::string& title, const std::string& head) {
+std::string html_page_head(const std::string& title, const std::string& head) {
   return "<!doctype html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n"
          "<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n<title>" +
          html_text(title) + "</title>\n" + head + "</head>\n<body>\n";
 }
 
-}  // namespace mjarm::web_detail
+}  // namespace mjarm

@@ -12,7 +12,7 @@
 #include "mjarm/error.hpp"
 #include "mjarm/file_writer.hpp"
 #include "mjarm/number_text.hpp"
-#include "page_html.hpp"
+#include "mjarm/web/page_html.hpp"
 #include "replay_bundle.hpp"
 #include "replay_cameras.hpp"
 #include "replay_frames.hpp"
@@ -24,6 +24,8 @@
 namespace mjarm {
 
 bool replay_html_available() { return web_detail::replay_bundle_missing().empty(); }
+
+std::string replay_html_missing() { return web_detail::replay_bundle_missing(); }
 
 namespace {
 
@@ -82,7 +84,7 @@ ReplayHtmlReport write_replay_html(const Robot& robot, const plot::Recording& re
   const std::string bundle = web_detail::replay_bundle();
   const std::string title =
       options.title.empty() ? recording.directory().filename().string() : options.title;
-  const std::string head = web_detail::page_head(title + " — mjarm replay") +
+  const std::string head = html_page_head(title + " — mjarm replay") +
                            "<script type=\"application/json\" id=\"mjarm-replay-data\">";
   const std::string middle = "</script>\n<script>";
   const std::string tail = "</script>\n</body>\n</html>\n";
@@ -163,7 +165,7 @@ ReplayHtmlReport write_replay_html(const Robot& robot, const plot::Recording& re
     data["plot_time"] = plots.json["plot_time"];
     data["plots"] = plots.json["plots"];
     report.plots = plots.count;
-    data_text = web_detail::script_safe(data.dump());
+    data_text = script_safe_json(data.dump());
     const double total = static_cast<double>(head.size() + data_text.size() + middle.size() +
                                              bundle.size() + tail.size());
     if (total <= cap) break;
