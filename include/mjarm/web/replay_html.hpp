@@ -45,7 +45,8 @@ struct ReplayHtmlReport {
   std::uintmax_t bytes = 0;     ///< size of the file
   int frames = 0;               ///< frames kept
   std::int64_t state_rows = 0;  ///< rows of state.csv
-  double rate = 0.0;            ///< frames per simulated second actually kept (≤ options.rate)
+  double rate = 0.0;  ///< frames per simulated second kept: about options.rate (the last row is
+                      ///< kept too), lower when the cap decimated
   /// True when the size cap (`max_mb`) kept fewer frames than `options.rate` asked for.
   bool decimated = false;
   /// What the page says of the decimation ("decimated to fit 50 MB: N frames of M state rows
