@@ -155,6 +155,13 @@ export class Checks {
     if (ok) ++this.passed; else ++this.failed;
     console.log(`${ok ? 'ok  ' : 'FAIL'} ${what}${detail ? `: ${detail}` : ''}`);
   }
+  // No console error or exception on @p page, and no request but those @p own accepts (its file,
+  // its server: @p source names it).
+  pageIsClean(page, own, source) {
+    this.check(page.problems.length === 0, 'no console error or exception', page.problems.join('\n'));
+    const remote = page.requests.filter((url) => !own(url));
+    this.check(remote.length === 0, `the page requests nothing but ${source}`, remote.join(' '));
+  }
   end() {
     console.log(`${this.passed} passed, ${this.failed} failed`);
     process.exit(this.failed === 0 ? 0 : 1);

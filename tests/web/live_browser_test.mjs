@@ -132,9 +132,8 @@ try {
     colours.add((image.rgba[4 * i] << 16) | (image.rgba[4 * i + 1] << 8) | image.rgba[4 * i + 2]);
   }
   check(colours.size > 50, 'the screenshot is not blank', `${colours.size} colours in ${image.width}×${image.height}`);
-  check(page.problems.length === 0, 'no console error or exception', page.problems.join('\n'));
-  const remote = page.requests.filter((url) => !url.startsWith(open.url.replace(/\/[^/]*$/, '')));
-  check(remote.length === 0, 'the page requests nothing but its own server', remote.join(' '));
+  const server = open.url.replace(/\/[^/]*$/, '');
+  checks.pageIsClean(page, (url) => url.startsWith(server), 'its own server');
 
   const locked = await startViewer(['--token']);
   viewers.push(locked.child);

@@ -183,9 +183,7 @@ try {
           `${overlap.toFixed(3)} (page ${inWeb} pixels, EGL ${inEgl})`);
   }
   await page.evaluate('window.mjarmReplay.silhouette(null); window.mjarmReplay.setViewSize(null, null)');
-  check(page.problems.length === 0, 'no console error or exception', page.problems.join('\n'));
-  const remote = page.requests.filter((url) => !/^(file|data|blob|about):/.test(url));
-  check(remote.length === 0, 'the page requests nothing but its own file', remote.join(' '));
+  checks.pageIsClean(page, (url) => /^(file|data|blob|about):/.test(url), 'its own file');
 } catch (error) {
   check(false, 'the page test ran to its end', error.stack);
 } finally {

@@ -111,9 +111,7 @@ try {
   check(a.width === b.width && n > 0 && difference / n < 6, 'the sky is drawn as MuJoCo draws it (top tenth of the horizon camera)',
         `mean difference ${(difference / n).toFixed(2)} of 255 (${egl})`);
   await page.evaluate('window.mjarmReplay.setViewSize(null, null)');
-  check(page.problems.length === 0, 'no console error or exception', page.problems.join('\n'));
-  const remote = page.requests.filter((url) => !/^(file|data|blob|about):/.test(url));
-  check(remote.length === 0, 'the page requests nothing but its own file', remote.join(' '));
+  checks.pageIsClean(page, (url) => /^(file|data|blob|about):/.test(url), 'its own file');
 } catch (error) {
   check(false, 'the page test ran to its end', error.stack);
 } finally {
