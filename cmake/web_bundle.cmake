@@ -12,7 +12,8 @@ set(MJARM_WEB ${mjarm_web_default} CACHE STRING
     "Bundle the replay page (three.js from npm, at build time): AUTO (when node and npm are found), ON, OFF")
 set_property(CACHE MJARM_WEB PROPERTY STRINGS AUTO ON OFF)
 find_program(MJARM_NODE node)
-find_program(MJARM_NPM npm)
+# npm: the one on PATH, or the one scripts/setup_npm.sh fetched where none was
+find_program(MJARM_NPM npm HINTS ${PROJECT_SOURCE_DIR}/.tools/bin)
 set(MJARM_WEB_ENABLED OFF)
 if(MJARM_WEB STREQUAL "ON" OR MJARM_WEB STREQUAL "AUTO")
   if(MJARM_NODE AND MJARM_NPM)

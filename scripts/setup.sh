@@ -59,10 +59,11 @@ if [ "$profile" = all ]; then
   )
 fi
 # the replay page is bundled from npm at build time (web/, MJARM_WEB; the demo writes one):
-# Debian's Node.js and npm, only where no npm is on PATH (a node from elsewhere is kept, never
-# installed over)
-if ! command -v npm >/dev/null 2>&1; then
-  packages+=(nodejs npm)
+# Debian's Node.js where no node is on PATH (a node from elsewhere is kept, never installed over),
+# and npm, where none is on PATH, from the npm registry (setup_npm.sh, below: Debian's npm package
+# would bring about 350 packages with it)
+if ! command -v node >/dev/null 2>&1; then
+  packages+=(nodejs)
 fi
 
 missing=()
@@ -83,4 +84,7 @@ if [ ${#missing[@]} -gt 0 ]; then
   $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}"
 fi
 
+if ! command -v npm >/dev/null 2>&1; then
+  bash scripts/setup_npm.sh
+fi
 bash scripts/setup_venv.sh
