@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # npm for the replay page's build (web/, cmake/web_bundle.cmake) where none is on PATH. Debian's
-# npm package brings about 350 packages with it (90 s of apt on a bare Debian 12, more than the
-# rest of `make demo`'s set-up), while npm itself is one tarball on the npm registry: this fetches
+# npm package brings 351 packages with it (on a bare Debian 12, more than the rest of `make
+# demo`'s set-up: docs/replay.md), while npm itself is one tarball on the npm registry: this fetches
 # the pinned npm, checks it against its sha512, unpacks it into .tools/npm ($MJARM_TOOLS/npm) and
 # writes .tools/bin/npm, which runs it on the node found on PATH. The build finds it there.
 # Idempotent, and quiet when there is nothing to do; a failed fetch leaves nothing behind.
