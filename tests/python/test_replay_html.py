@@ -3,11 +3,11 @@
 import json
 import os
 import subprocess
-import sys
 
 import pytest
 
 import mjarm
+from mjarm.__main__ import cli_path
 
 
 @pytest.fixture(scope="module")
@@ -40,7 +40,8 @@ def test_the_page_and_report_are_the_clis(recording, tmp_path):
     assert html.startswith("<!doctype html>") and "<title>a pick" in html
 
     cli_page = tmp_path / "cli.html"
-    out = subprocess.run([sys.executable, "-m", "mjarm", "replay-html", str(recording), "-o",
+    # the CLI itself (python -m mjarm forwards to it: test_tasks_render_cli.py)
+    out = subprocess.run([cli_path(), "replay-html", str(recording), "-o",
                           str(cli_page), "--rate", "30", "--title", "a pick", "--json"],
                          capture_output=True, text=True)
     assert out.returncode == 0, out.stderr
