@@ -50,41 +50,54 @@ int main(int argc, char** argv) {
   app.set_version_flag("--version", std::string("mjarm ") + mjarm::version() + " (MuJoCo " +
                                         mj_versionString() + ")");
 
+  // every command, in the order `mjarm --help` lists them
+  struct Entry {
+    const char* name;
+    Command (*add)(CLI::App&);
+  };
+  static constexpr Entry kCommands[] = {
+      {"models", add_models_command},
+      {"info", add_info_command},
+      {"fk", add_fk_command},
+      {"workspace", add_workspace_command},
+      {"singularities", add_singularities_command},
+      {"ik", add_ik_command},
+      {"bench", add_bench_command},
+      {"render", add_render_command},
+      {"view", add_view_command},
+      {"replay", add_replay_command},
+      {"bimanual", add_bimanual_command},
+      {"run", add_run_command},
+      {"plot", add_plot_command},
+      {"replay-html", add_replay_html_command},
+      {"traj", add_traj_command},
+      {"plan", add_plan_command},
+      {"env", add_env_command},
+      {"soak", add_soak_command},
+      {"sweep", add_sweep_command},
+      {"demo", add_demo_command},
+  };
+  // `mjarm COMMAND …` registers that command alone: the options of all of them (about 40 ms of a
+  // sanitized build's start, `run`'s scenario parameters most) are built only for `mjarm`,
+  // `mjarm --help` and `--version`, which list or need them all
+  const bool named = argc > 1 && argv[1][0] != '-';
   std::vector<Command> commands;
-  commands.push_back(add_models_command(app));
-  commands.push_back(add_info_command(app));
-  commands.push_back(add_fk_command(app));
-  commands.push_back(add_workspace_command(app));
-  commands.push_back(add_singularities_command(app));
-  commands.push_back(add_ik_command(app));
-  commands.push_back(add_bench_command(app));
-  commands.push_back(add_render_command(app));
-  commands.push_back(add_view_command(app));
-  commands.push_back(add_replay_command(app));
-  commands.push_back(add_bimanual_command(app));
-  commands.push_back(add_run_command(app));
-  commands.push_back(add_plot_command(app));
-  commands.push_back(add_replay_html_command(app));
-  commands.push_back(add_traj_command(app));
-  commands.push_back(add_plan_command(app));
-  commands.push_back(add_env_command(app));
-  commands.push_back(add_soak_command(app));
-  commands.push_back(add_sweep_command(app));
-  commands.push_back(add_demo_command(app));
+  std::vector<std::string> names;
+  for (const Entry& entry : kCommands) {
+    names.push_back(entry.name);
+    if (named && names.back() != argv[1]) continue;
+    commands.push_back(entry.add(app));
+    if (commands.back().app->get_name() != entry.name)
+      return fail(std::string("internal: command '") + commands.back().app->get_name() +
+                      "' registered as '" + entry.name + "'",
+                  1, false);
+  }
   add_model_size_option(app);
 
   // name an unknown command instead of CLI11's generic "a subcommand is required"
-  if (argc > 1 && argv[1][0] != '-') {
-    std::vector<std::string> names;
-    bool known = false;
-    for (const auto& command : commands) {
-      names.push_back(command.app->get_name());
-      known = known || names.back() == argv[1];
-    }
-    if (!known)
-      return fail(std::string("unknown command '") + argv[1] + "'; commands: " + join(names), 2,
-                  true);
-  }
+  if (named && commands.empty())
+    return fail(std::string("unknown command '") + argv[1] + "'; commands: " + join(names), 2,
+                true);
 
   try {
     app.parse(argc, argv);

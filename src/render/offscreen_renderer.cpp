@@ -99,6 +99,17 @@ void check_buffer_size(const mjModel& m, int width, int height) {
   }
 }
 
+// The side of the shadow map for a width × height picture: the model's (MuJoCo's default 4096)
+// at most, and no more than the power of two at or above 4 × the picture's longer side. Every
+// frame draws and clears the whole map: at 4096² it is most of a small frame's cost in llvmpipe,
+// for detail a small picture cannot show. Pictures of 513 pixels or more a side keep 4096.
+int shadow_map_side(int model_side, int width, int height) {
+  const long long wanted = 4LL * std::max(width, height);
+  long long side = 1;
+  while (side < wanted) side *= 2;
+  return static_cast<int>(std::min<long long>(model_side, side));
+}
+
 }  // namespace
 
 struct OffscreenRenderer::Impl {
@@ -226,6 +237,7 @@ OffscreenRenderer::OffscreenRenderer(const Robot& robot, int width, int height,
     mjModel sized = m;
     sized.vis.global.offwidth = width;
     sized.vis.global.offheight = height;
+    sized.vis.quality.shadowsize = shadow_map_side(m.vis.quality.shadowsize, width, height);
     mjr_defaultContext(&impl->gpu);
     try {
       mjr_makeContext(&sized, &impl->gpu, mjFONTSCALE_100);

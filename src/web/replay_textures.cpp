@@ -22,8 +22,10 @@ std::vector<unsigned char> deflate_rows(const std::vector<unsigned char>& pixels
   }
   uLongf size = compressBound(static_cast<uLong>(filtered.size()));
   std::vector<unsigned char> out(size);
+  // zlib's default level (6): on the bundled sky (256×1536, then 128×768) 0.04 s instead of
+  // level 9's 0.84 s for 8 % more bytes (31,705 instead of 29,250 once halved)
   if (compress2(out.data(), &size, filtered.data(), static_cast<uLong>(filtered.size()),
-                Z_BEST_COMPRESSION) != Z_OK) {
+                Z_DEFAULT_COMPRESSION) != Z_OK) {
     throw Error("replay-html: zlib could not compress a texture");
   }
   out.resize(size);

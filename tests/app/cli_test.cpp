@@ -9,6 +9,7 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <numbers>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -50,15 +51,28 @@ Eigen::VectorXd to_vector(const json& array) {
   return v;
 }
 
+// `mjarm COMMAND …` registers that command alone (app/main.cpp): each command that `mjarm --help`
+// lists, and that an unknown command's message names, works alone
 TEST(Cli, HelpWorksOnEveryCommand) {
-  for (const std::string command :
-       {"", "models", "info", "fk", "workspace", "singularities", "demo"}) {
-    std::vector<std::string> args;
-    if (!command.empty()) args.push_back(command);
-    args.push_back("--help");
-    const CliRun run = run_cli(args);
-    EXPECT_EQ(run.exit_code, 0) << command;
-    EXPECT_NE(run.out.find("Usage"), std::string::npos) << command;
+  const CliRun all = run_cli({"--help"});
+  EXPECT_EQ(all.exit_code, 0);
+  EXPECT_NE(all.out.find("Usage"), std::string::npos);
+  const CliRun unknown = run_cli({"frobnicate"});
+  const std::string listed = "; commands: ";
+  const std::size_t at = unknown.err.find(listed);
+  ASSERT_NE(at, std::string::npos) << unknown.err;
+  std::istringstream names(unknown.err.substr(at + listed.size()));
+  std::vector<std::string> commands;
+  for (std::string name; names >> name && name != "Run";) {
+    if (name.back() == ',') name.pop_back();
+    commands.push_back(name);
+  }
+  EXPECT_EQ(commands.size(), 20u) << unknown.err;
+  for (const std::string& command : commands) {
+    EXPECT_NE(all.out.find("\n  " + command + " "), std::string::npos) << command;
+    const CliRun run = run_cli({command, "--help"});
+    EXPECT_EQ(run.exit_code, 0) << command << ": " << run.err;
+    EXPECT_NE(run.out.find("Usage: mjarm " + command + " "), std::string::npos) << run.out;
   }
   const CliRun bare = run_cli({});
   EXPECT_EQ(bare.exit_code, 2);
@@ -397,15 +411,17 @@ TEST(Cli, DemoChecksEveryArgumentBeforeTheShelfPick) {
   EXPECT_FALSE(fs::exists(cwd / "out"));
 }
 
+// the tour after the main job; the job's video and replay page are checked by
+// RunCli.DemoRunsTheShelfPickAndRecordsIntoOutDemo, here they are left out (the costly part)
 TEST(Cli, DemoRunsTheTour) {
-  const json doc = run_json({"demo", "--samples", "2000", "--json"});
+  const json doc = run_json({"demo", "--samples", "2000", "--video", "", "--html", "", "--json"});
   EXPECT_EQ(doc["model"]["name"], "panda");
   EXPECT_EQ(doc["fk"]["configuration"], "keyframe 'home'");
   EXPECT_EQ(doc["workspace"]["samples"], 2000);
   EXPECT_EQ(doc["ik"]["status"], "converged");
   EXPECT_LE(doc["ik"]["position_error"].get<double>(), 1e-5);
 
-  const CliRun text = run_cli({"demo"});
+  const CliRun text = run_cli({"demo", "--video", "", "--html", ""});
   EXPECT_EQ(text.exit_code, 0) << text.err;
   for (const char* heading : {"== model ==", "== forward kinematics ==", "== workspace ==",
                               "== inverse kinematics round trip =="}) {

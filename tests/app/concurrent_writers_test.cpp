@@ -137,12 +137,14 @@ TEST(ConcurrentWriters, TwoRunsWritingOneOutFileLeaveOneWholeFile) {
 }
 
 // the test's name holds "Video": in the sanitized build it runs without leak checking, as every
-// test that renders (tests/CMakeLists.txt); 2 frames per second keep the runs short
+// test that renders (tests/CMakeLists.txt); the shelf pick (0.4 s simulated) at 10 frames per
+// second, 5 small frames, keeps the runs short; two seeds, two pick points, two videos
 TEST(ConcurrentWriters, TwoRunsWritingOneVideoLeaveOneWholeVideo) {
   expect_the_last_whole_file_stays(
-      "bimanual_video",
-      {"bimanual", "--lift", "0.1", "--size", "64x48", "--fps", "2", "--video", "@"},
-      {"bimanual", "--lift", "0.2", "--size", "64x48", "--fps", "2", "--video", "@"}, ".mp4");
+      "shelf_pick_video",
+      {"run", "shelf-pick", "--seed", "1", "--size", "64x48", "--fps", "10", "--video", "@"},
+      {"run", "shelf-pick", "--seed", "2", "--size", "64x48", "--fps", "10", "--video", "@"},
+      ".mp4");
 }
 
 TEST(ConcurrentWriters, TwoRunsRecordingOneSessionLeaveOneWholeSession) {

@@ -6,8 +6,10 @@
 #include <gtest/gtest.h>
 #include <sys/stat.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <regex>
 #include <string>
 #include <vector>
@@ -21,6 +23,9 @@ namespace fs = std::filesystem;
 using mjarm::test::run_cli;
 using mjarm::test::scratch;
 using mjarm::test::slurp;
+
+// A word that every match of the writer pattern below holds.
+constexpr const char* kWriterWords[] = {"fstream", "fopen(", "fwrite(", "O_WRONLY", "O_RDWR"};
 
 // Lines of the library and the CLI that open or write a file some other way than FileWriter.
 std::vector<std::string> unchecked_writers() {
@@ -38,7 +43,12 @@ std::vector<std::string> unchecked_writers() {
       std::ifstream in(path);
       std::string line;
       for (int number = 1; std::getline(in, line); ++number) {
-        if (!std::regex_search(line, writer)) continue;
+        // the regular expression (slow: about 6 CPU-s over every line of the sanitized build)
+        // only on the lines holding one of the words it needs
+        const bool candidate =
+            std::any_of(std::begin(kWriterWords), std::end(kWriterWords),
+                        [&](const char* word) { return line.find(word) != std::string::npos; });
+        if (!candidate || !std::regex_search(line, writer)) continue;
         // the CLI's output checks only prove, before the work, that a file can be created: they
         // create it empty (or open it) and remove it again, writing no data
         if (relative == "app/options.cpp") continue;

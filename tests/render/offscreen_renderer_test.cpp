@@ -351,6 +351,35 @@ TEST(OffscreenRenderer, LargerThanTheModelOffscreenBufferAndOddSizes) {
   EXPECT_EQ(tiny.render(*d, kFront).rgb.size(), 3u);
 }
 
+// the shadow map is sized to the picture (the power of two at or above 4 × its longer side at
+// most, docs/rendering.md): a small picture still shows the ball's shadow on the floor, and the
+// shared model keeps its own shadow map size
+TEST(OffscreenRenderer, ASmallPictureStillShowsShadows) {
+  const Robot scene = Robot::from_string(kCameraScene, MJARM_MODELS_DIR);
+  DataPtr d = scene.make_data();
+  mj_forward(&scene.model(), d.get());
+  const int model_side = scene.model().vis.quality.shadowsize;
+  RenderOptions lit;
+  lit.reflections = false;
+  RenderOptions unlit = lit;
+  unlit.shadows = false;
+  // from above at 45°: the ball 0.4 m over the floor and, below it, its shadow (the key light
+  // shines straight down): 31 pixels of the 64×48 darker when measured
+  const CameraSpec spec = CameraSpec::free_camera({0.3, 0.1, 0.2}, 1.5, 90.0, -45.0);
+  OffscreenRenderer with_shadows(scene, 64, 48, lit);
+  OffscreenRenderer without_shadows(scene, 64, 48, unlit);
+  const Image a = with_shadows.render(*d, spec);
+  const Image b = without_shadows.render(*d, spec);
+  int darker = 0;
+  for (std::size_t p = 0; p < a.pixels(); ++p) {
+    const int lit_sum = a.rgb[3 * p] + a.rgb[3 * p + 1] + a.rgb[3 * p + 2];
+    const int unlit_sum = b.rgb[3 * p] + b.rgb[3 * p + 1] + b.rgb[3 * p + 2];
+    if (lit_sum + 60 < unlit_sum) ++darker;
+  }
+  EXPECT_GE(darker, 10) << "no shadow in a 64×48 picture";
+  EXPECT_EQ(scene.model().vis.quality.shadowsize, model_side) << "the shared model was modified";
+}
+
 TEST(OffscreenRenderer, CallerDataIsOnlyRead) {
   const Robot panda = Robot::bundled("panda");
   DataPtr d = test::panda_home(panda);
