@@ -17,7 +17,8 @@ build: setup $(BUILD)/CMakeCache.txt
 	cmake --build $(BUILD) -j $(JOBS)
 
 # the main job: an end-to-end run of what mjarm does. It needs only the CLI: the packages for it
-# (setup.sh demo: with Node.js and npm), and a Release build of the library and the CLI alone, one
+# (setup.sh demo-build: with Node.js and npm; the programs the demo runs, setup.sh demo-run,
+# install while it builds: scripts/build_demo.sh), and a Release build of the library and the CLI alone, one
 # unit per room, with the replay page (MJARM_WEB=ON: npm ci of web/package-lock.json into the
 # build folder once, then esbuild), so the demo writes out/demo.html beside out/demo.mp4. A build
 # folder configured before without the page is switched on once.
@@ -28,10 +29,10 @@ $(DEMO_BUILD)/CMakeCache.txt:
 	  $(CMAKE_FLAGS)
 
 demo:
-	@bash scripts/setup.sh demo
+	@bash scripts/setup.sh demo-build
 	@$(MAKE) --no-print-directory $(DEMO_BUILD)/CMakeCache.txt
 	@grep -q '^MJARM_WEB:STRING=ON$$' $(DEMO_BUILD)/CMakeCache.txt || cmake $(DEMO_BUILD) -DMJARM_WEB=ON
-	cmake --build $(DEMO_BUILD) -j $(JOBS) --target mjarm_cli
+	bash scripts/build_demo.sh $(DEMO_BUILD) $(JOBS)
 	./$(DEMO_BUILD)/mjarm demo
 
 # Every test, once, in one build that is both strict (-Werror) and sanitized: ASan + UBSan, clang

@@ -1,15 +1,17 @@
 #!/usr/bin/env bash
 # Installs the Debian 12 packages mjarm needs, skipping those already present, then makes the
 # project's virtual environment with the pinned MuJoCo and Python packages (setup_venv.sh).
-# Idempotent. `setup.sh demo` installs only what building and running the CLI needs (`make demo`,
-# Node.js and npm included: the demo writes a replay page); without an argument, everything
-# (`make test`: the tests, the Python extension, the fuzzers).
+# Idempotent. `setup.sh demo` installs only what building and running the CLI needs (Node.js and
+# npm included: the demo writes a replay page); `demo-build` the part of it the build needs, with
+# the environment, and `demo-run` the rest, the programs the demo runs (`make demo` installs those
+# while it builds); without an argument, everything (`make test`: the tests, the Python extension,
+# the fuzzers).
 set -euo pipefail
 
 profile="${1:-all}"
 case "$profile" in
-  demo|all) ;;
-  *) echo "usage: scripts/setup.sh [demo]" >&2; exit 2 ;;
+  demo|demo-build|demo-run|all) ;;
+  *) echo "usage: scripts/setup.sh [demo|demo-build|demo-run]" >&2; exit 2 ;;
 esac
 
 # the library and the CLI
@@ -25,19 +27,25 @@ packages=(
   libompl-dev
   # a sweep's results (mjarm sweep): SQLite
   libsqlite3-dev
-  # render room (part of the default build, tested headless): EGL + desktop GL headers, Mesa's
-  # EGL vendor and software rasteriser (no GPU, no display), PNG frames, ffmpeg for MP4 video
-  libegl-dev libgl-dev libopengl-dev libegl-mesa0 libgl1-mesa-dri libpng-dev ffmpeg
+  # render room (part of the default build, tested headless): EGL + desktop GL headers, PNG frames
+  libegl-dev libgl-dev libopengl-dev libpng-dev
   # interactive viewer (part of the default build): GLFW windows
   libglfw3-dev
   # the live web view's HTTP and WebSocket server (`mjarm view --web`): Boost.Beast, headers only
   libboost-dev
-  # plots of a recording (`mjarm plot`, the demo)
-  gnuplot-nox
   # the project's virtual environment (MuJoCo, NumPy, pybind11, pytest from PyPI, pinned) on
   # Debian's /usr/bin/python3
   python3-venv
 )
+# what the CLI runs but its build does not need (ffmpeg and gnuplot alone bring 157 of the 321
+# packages a bare Debian 12 lacks for the demo): Mesa's EGL vendor and software rasteriser (no
+# GPU, no display), ffmpeg for MP4 video, gnuplot for the plots of a recording
+run_packages=(libegl-mesa0 libgl1-mesa-dri ffmpeg gnuplot-nox)
+case "$profile" in
+  demo-build) ;;
+  demo-run) packages=("${run_packages[@]}") ;;
+  *) packages+=("${run_packages[@]}") ;;
+esac
 if [ "$profile" = all ]; then
   packages+=(
     libgtest-dev libgmock-dev libbenchmark-dev
@@ -62,7 +70,7 @@ fi
 # Debian's Node.js where no node is on PATH (a node from elsewhere is kept, never installed over),
 # and npm, where none is on PATH, from the npm registry (setup_npm.sh, below: Debian's npm package
 # would bring about 350 packages with it)
-if ! command -v node >/dev/null 2>&1; then
+if [ "$profile" != demo-run ] && ! command -v node >/dev/null 2>&1; then
   packages+=(nodejs)
 fi
 
@@ -84,6 +92,7 @@ if [ ${#missing[@]} -gt 0 ]; then
   $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}"
 fi
 
+[ "$profile" = demo-run ] && exit 0
 if ! command -v npm >/dev/null 2>&1; then
   bash scripts/setup_npm.sh
 fi
