@@ -10,31 +10,8 @@ rm -rf "$work"
 mkdir -p "$work"
 pinned=$(sed -n 's/^version=//p' "$source_dir/scripts/setup_npm.sh")
 
-passed=0
-failed=0
-output=""
-status=0
-run_setup() {
-  set +e
-  output=$(bash "$source_dir/scripts/setup_npm.sh" 2>&1)
-  status=$?
-  set -e
-}
-expect() {  # expect CASE WHAT COMMAND...
-  local case=$1 what=$2
-  shift 2
-  if "$@"; then
-    passed=$((passed + 1))
-  else
-    failed=$((failed + 1))
-    echo "FAILED [$case] $what"
-    echo "  setup_npm.sh exited $status and said:"
-    sed 's/^/    /' <<<"$output"
-  fi
-}
-said() { grep -qF -- "$1" <<<"$output"; }
-exited() { [ "$status" -eq "$1" ]; }
-quiet() { [ "$status" -eq 0 ] && [ -z "$output" ]; }
+source "$(dirname "$0")/script_checks.sh"
+run_setup() { run_script "$source_dir/scripts/setup_npm.sh"; }
 runs() { [ "$("$MJARM_TOOLS/bin/npm" --version)" = "$pinned" ]; }
 absent() { [ ! -e "$MJARM_TOOLS/npm" ] && [ ! -e "$MJARM_TOOLS/bin/npm" ] &&
   [ -z "$(find "$MJARM_TOOLS" -name '.npm-*' 2>/dev/null)" ]; }
@@ -63,5 +40,4 @@ expect mismatch "exit 1" exited 1
 expect mismatch "says it does not match" said "does not match its pinned sha512"
 expect mismatch "nothing installed" absent
 
-echo "$passed passed, $failed failed"
-[ "$failed" -eq 0 ]
+finish

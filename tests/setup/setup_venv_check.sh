@@ -20,31 +20,8 @@ grep -E '^(mujoco|numpy)==' "$source_dir/python/requirements.txt" > "$requiremen
 [ "$(wc -l < "$requirements")" -eq 2 ] ||
   { echo "no mujoco and numpy pins in python/requirements.txt" >&2; exit 1; }
 
-passed=0
-failed=0
-output=""
-status=0
-run_setup() {
-  set +e
-  output=$(bash "$source_dir/scripts/setup_venv.sh" "$requirements" 2>&1)
-  status=$?
-  set -e
-}
-expect() {  # expect CASE CONDITION-DESCRIPTION COMMAND...
-  local case=$1 what=$2
-  shift 2
-  if "$@"; then
-    passed=$((passed + 1))
-  else
-    failed=$((failed + 1))
-    echo "FAILED [$case] $what"
-    echo "  setup_venv.sh exited $status and said:"
-    sed 's/^/    /' <<<"$output"
-  fi
-}
-said() { grep -qF -- "$1" <<<"$output"; }
-exited() { [ "$status" -eq "$1" ]; }
-quiet() { [ "$status" -eq 0 ] && [ -z "$output" ]; }
+source "$(dirname "$0")/script_checks.sh"
+run_setup() { run_script "$source_dir/scripts/setup_venv.sh" "$requirements"; }
 site() { "$MJARM_VENV/bin/python" -c "import sysconfig; print(sysconfig.get_paths()['purelib'])"; }
 # mujoco imports at the pinned version, from one library file (the pinned mujoco-core's)
 works() {
@@ -113,5 +90,4 @@ expect not-a-venv "exit 1" exited 1
 expect not-a-venv "says what to run" said "mv $MJARM_VENV $MJARM_VENV.old"
 expect not-a-venv "left alone" grep -qx keep "$MJARM_VENV/notes.txt"
 
-echo "$passed passed, $failed failed"
-[ "$failed" -eq 0 ]
+finish
