@@ -202,16 +202,20 @@ function mujocoCubeDirection(geometry, geom) {
 // skybox's) as six faces — MuJoCo's order +x −x +y −y +z −z, stacked, or one face repeated —
 // uploaded as OpenGL takes them (no flip).
 function makeTextures(data) {
+  // both kinds are sampled alike: trilinear, mipmapped, sRGB
+  const sampled = (texture) => {
+    texture.magFilter = THREE.LinearFilter;
+    texture.minFilter = THREE.LinearMipmapLinearFilter;
+    texture.generateMipmaps = true;
+    texture.colorSpace = THREE.SRGBColorSpace;
+    texture.needsUpdate = true;
+    return texture;
+  };
   return data.textures.map((t) => {
     if (t.type === '2d') {
       const texture = new THREE.DataTexture(t.rgba, t.width, t.height, THREE.RGBAFormat);
       texture.wrapS = texture.wrapT = THREE.RepeatWrapping;
-      texture.magFilter = THREE.LinearFilter;
-      texture.minFilter = THREE.LinearMipmapLinearFilter;
-      texture.generateMipmaps = true;
-      texture.colorSpace = THREE.SRGBColorSpace;
-      texture.needsUpdate = true;
-      return texture;
+      return sampled(texture);
     }
     const w = t.width, single = t.height === t.width;
     const faces = [];
@@ -221,12 +225,7 @@ function makeTextures(data) {
     }
     const cube = new THREE.CubeTexture(faces);
     cube.format = THREE.RGBAFormat;
-    cube.magFilter = THREE.LinearFilter;
-    cube.minFilter = THREE.LinearMipmapLinearFilter;
-    cube.generateMipmaps = true;
-    cube.colorSpace = THREE.SRGBColorSpace;
-    cube.needsUpdate = true;
-    return cube;
+    return sampled(cube);
   });
 }
 
