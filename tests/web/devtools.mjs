@@ -2,9 +2,9 @@
 // with a profile of its own and a debugging port the browser picks (read from DevToolsActivePort),
 // always stopped by its process id.
 import { execFileSync, spawn } from 'node:child_process';
-import { mkdtempSync, readFileSync, existsSync, rmSync } from 'node:fs';
+import { mkdirSync, mkdtempSync, readFileSync, existsSync, rmSync } from 'node:fs';
 import { tmpdir } from 'node:os';
-import { join } from 'node:path';
+import { join, resolve } from 'node:path';
 import { createRequire } from 'node:module';
 
 const require = createRequire(`${process.env.MJARM_WEB_MODULES}/`);
@@ -137,6 +137,20 @@ export async function openPage(browser, url) {
 
 // The browser to drive: $CHROMIUM or `chromium` on PATH; a missing one ends the test (exit 1)
 // saying what installs it.
+// A replay test's command line, `node SCRIPT MJARM_CLI WORK_DIR`: the CLI and the work folder,
+// emptied; a usage line and exit 2 when either is missing
+export function cliAndWorkFolder(script) {
+  const [cli, workArgument] = process.argv.slice(2);
+  if (!cli || !workArgument) {
+    console.error(`usage: node ${script} MJARM_CLI WORK_DIR`);
+    process.exit(2);
+  }
+  const work = resolve(workArgument);
+  rmSync(work, { recursive: true, force: true });
+  mkdirSync(work, { recursive: true });
+  return { cli, work };
+}
+
 export function findChromium(test) {
   const named = process.env.CHROMIUM || 'chromium';
   try {

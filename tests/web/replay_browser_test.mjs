@@ -5,20 +5,13 @@
 // blank; the arm's silhouette against mjarm's own EGL rendering from the same camera. Usage: node replay_browser_test.mjs MJARM_CLI WORK_DIR (MJARM_WEB_MODULES: the build
 // tree's web/node_modules, for ws; CHROMIUM: the browser, default `chromium` on PATH).
 import { execFileSync } from 'node:child_process';
-import { mkdirSync, readFileSync, rmSync, writeFileSync, statSync } from 'node:fs';
-import { join, resolve } from 'node:path';
+import { readFileSync, writeFileSync, statSync } from 'node:fs';
+import { join } from 'node:path';
 import { pathToFileURL } from 'node:url';
-import { Browser, Checks, findChromium, openPage } from './devtools.mjs';
+import { Browser, Checks, cliAndWorkFolder, findChromium, openPage } from './devtools.mjs';
 import { decodePng } from './png.mjs';
 
-const [cli, workArgument] = process.argv.slice(2);
-if (!cli || !workArgument) {
-  console.error('usage: node replay_browser_test.mjs MJARM_CLI WORK_DIR');
-  process.exit(2);
-}
-const work = resolve(workArgument);
-rmSync(work, { recursive: true, force: true });
-mkdirSync(work, { recursive: true });
+const { cli, work } = cliAndWorkFolder('replay_browser_test.mjs');
 
 const checks = new Checks();
 const check = checks.check.bind(checks);

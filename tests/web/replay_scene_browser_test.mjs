@@ -7,20 +7,13 @@
 // sky as mjarm's own EGL rendering draws it from the same camera. Usage: node
 // replay_scene_browser_test.mjs MJARM_CLI WORK_DIR (MJARM_WEB_MODULES as replay_browser_test.mjs).
 import { execFileSync } from 'node:child_process';
-import { mkdirSync, readFileSync, rmSync, writeFileSync } from 'node:fs';
-import { dirname, join, resolve } from 'node:path';
+import { mkdirSync, readFileSync, writeFileSync } from 'node:fs';
+import { dirname, join } from 'node:path';
 import { fileURLToPath, pathToFileURL } from 'node:url';
-import { Browser, Checks, findChromium, openPage } from './devtools.mjs';
+import { Browser, Checks, cliAndWorkFolder, findChromium, openPage } from './devtools.mjs';
 import { decodePng } from './png.mjs';
 
-const [cli, workArgument] = process.argv.slice(2);
-if (!cli || !workArgument) {
-  console.error('usage: node replay_scene_browser_test.mjs MJARM_CLI WORK_DIR');
-  process.exit(2);
-}
-const work = resolve(workArgument);
-rmSync(work, { recursive: true, force: true });
-mkdirSync(work, { recursive: true });
+const { cli, work } = cliAndWorkFolder('replay_scene_browser_test.mjs');
 const model = join(dirname(fileURLToPath(import.meta.url)), 'replay_scene_model.xml');
 const checks = new Checks();
 const check = checks.check.bind(checks);
